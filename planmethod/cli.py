@@ -1,0 +1,70 @@
+"""The ``planmethod`` command line.
+
+Each subcommand lives in ``planmethod.commands.<name>`` with ``add_arguments(parser)`` and
+``run(args) -> int``; heavy imports stay inside ``run`` so that start-up is quick. Bad input
+prints one line ``planmethod: error: …`` naming the file and key, and exits with status 2.
+
+Examples
+--------
+>>> main(["solve", "exercises/no_such_file.toml"])
+2
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from .errors import PlanmethodError
+
+__all__ = ["COMMANDS", "main"]
+
+#: subcommand → (module, one-line help)
+COMMANDS: dict[str, tuple[str, str]] = {
+    "solve": ("planmethod.commands.solve",
+              "structural analysis, exact kinematics and the plans at one crank angle"),
+    "sweep": ("planmethod.commands.sweep", "the full turn: curves of positions, v, a, ω, ε"),
+}
+
+EXIT_BAD_INPUT = 2
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="planmethod",
+        description="Graphical methods of planar-mechanism analysis (plans of velocities and "
+                    "accelerations, kinetostatics), checked against exact vectors.")
+    from . import __version__
+
+    parser.add_argument("--version", action="version", version=f"planmethod {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    commands.required = True
+    for name, (module, summary) in COMMANDS.items():
+        sub = commands.add_parser(name, help=summary, description=summary)
+        importlib.import_module(module).add_arguments(sub)
+        sub.set_defaults(_module=module)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status (0 ok, 2 bad input)."""
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_:
+        return int(exit_.code or 0)
+    try:
+        return int(importlib.import_module(args._module).run(args) or 0)
+    except PlanmethodError as error:
+        print(f"planmethod: error: {error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("planmethod: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Subcommands of the ``planmethod`` command line (see :mod:`planmethod.cli`)."""

@@ -1,0 +1,98 @@
+"""``planmethod solve FILE``: structure, scales, plans and a check table at one crank angle."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", help="exercise file (TOML)")
+    parser.add_argument("--angle", type=float, metavar="DEG",
+                        help="crank angle in degrees (default: drive.angle of the file)")
+    parser.add_argument("--svg", metavar="DIR",
+                        help="write position.svg, velocity.svg, acceleration.svg into DIR")
+    parser.add_argument("--json", action="store_true", help="print the JSON report")
+    parser.add_argument("--precision", type=float, metavar="MM",
+                        help="drafting precision in mm (overrides [plan] precision_mm)")
+    parser.add_argument("--png", action="store_true",
+                        help="with --svg, also write PNG renderings (needs cairosvg)")
+
+
+def _format(value: float | None, digits: int = 6) -> str:
+    if value is None:
+        return "—"
+    return f"{value:.{digits}g}"
+
+
+def text_report(analysis) -> str:
+    """The report a course prints: structure, scales, check table, flags."""
+    from ..structure import describe
+
+    exercise, motion = analysis.exercise, analysis.motion
+    lines = [f"{exercise.mechanism.title} — crank angle φ1 = {analysis.angle:g}°", "",
+             "Structural analysis"]
+    lines += ["  " + line for line in describe(analysis.structure).splitlines()]
+    for index, branch in sorted(motion.branches.items()):
+        analysis.structure.groups[index]
+        lines.append(f"  group {index + 1} assembly: branch {branch.sign:+d} ({branch.reason})")
+    if analysis.plans:
+        lines += ["", "Scales"] + ["  " + line for line in analysis.plans.scales.describe()]
+        precision = analysis.plans.velocity.precision_mm
+        lines.append(f"  drafting precision: {precision:g} mm" if precision else
+                     "  drafting precision: exact construction")
+    lines += ["", "Quantity            plan          exact         abs. error   rel. error  unit"]
+    for check in analysis.checks:
+        rel = "—" if check.rel_error is None else f"{check.rel_error:.2e}"
+        lines.append(f"  {check.quantity:<17} {_format(check.plan):>12}  "
+                     f"{_format(check.analytic):>12}  {_format(check.abs_error, 3):>10}   "
+                     f"{rel:>9}   {check.unit}")
+    if analysis.plans and analysis.plans.flags:
+        lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.plans.flags]
+    if analysis.forces is not None:
+        lines += ["", analysis.forces.describe()]
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import PlanmethodError, SpecError
+    from ..io import write_bytes_atomic, write_text_atomic
+    from ..report import analyse, report_dict
+    from ..spec import load_exercise
+
+    if args.precision is not None and not args.precision >= 0:
+        raise SpecError(f"--precision must be a non-negative number of mm, got {args.precision}")
+    exercise = load_exercise(args.file)
+    analysis = analyse(exercise, args.angle, precision_mm=args.precision)
+    files: dict[str, str] = {}
+    if args.svg:
+        from ..render.svg import plan_files
+
+        files = plan_files(analysis.plans, forces=analysis.forces)
+    pngs: dict[str, bytes] = {}
+    if args.svg and args.png:
+        try:
+            import cairosvg
+        except ImportError:
+            raise PlanmethodError("--png needs cairosvg: pip install 'planmethod[dev]'") from None
+        pngs = {Path(name).with_suffix(".png").name: cairosvg.svg2png(
+            bytestring=text.encode("utf-8"), output_width=1200) for name, text in files.items()}
+    # everything is computed: now write
+    written = []
+    for name, text in files.items():
+        write_text_atomic(Path(args.svg) / name, text)
+        written.append(str(Path(args.svg) / name))
+    for name, data in pngs.items():
+        write_bytes_atomic(Path(args.svg) / name, data)
+        written.append(str(Path(args.svg) / name))
+    if args.json:
+        json.dump(report_dict(analysis), sys.stdout, ensure_ascii=False, indent=2,
+                  allow_nan=False)
+        print()
+    else:
+        print(text_report(analysis))
+        if written:
+            print("\nWrote " + ", ".join(written))
+    return 0

@@ -1,0 +1,257 @@
+"""The frozen model of a mechanism: links, pairs, drive, mass properties and loads.
+
+A :class:`Mechanism` is built once from an exercise file (see :mod:`planmethod.spec`) and never
+mutated by a solve. Links carry their points in their own frames; a point name shared by two or
+more links is a revolute pair; a :class:`Slide` is a prismatic pair. The fixed link is called
+``frame``.
+
+Examples
+--------
+>>> from planmethod.model import Link
+>>> crank = Link("AB", {"A": (0.0, 0.0), "B": (0.06, 0.0)})
+>>> crank.length("A", "B")
+0.06
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+FRAME = "frame"
+
+Vector = tuple[float, float]
+
+__all__ = [
+    "FRAME",
+    "Ask",
+    "Drive",
+    "Exercise",
+    "Link",
+    "Load",
+    "MassProperties",
+    "Mechanism",
+    "PlanSettings",
+    "Revolute",
+    "Slide",
+]
+
+
+def _frozen_mapping(mapping: Mapping) -> Mapping:
+    return MappingProxyType(dict(mapping))
+
+
+@dataclass(frozen=True, slots=True)
+class Link:
+    """A rigid link: its name and its points in its own frame (m).
+
+    Examples
+    --------
+    >>> Link("BC", {"B": (0, 0), "C": (0.18, 0)}).points["C"]
+    (0.18, 0.0)
+    """
+
+    name: str
+    points: Mapping[str, Vector]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self,
+            "points",
+            _frozen_mapping({k: (float(v[0]), float(v[1])) for k, v in self.points.items()}),
+        )
+
+    def length(self, first: str, second: str) -> float:
+        """Distance between two points of the link (m)."""
+        (x1, y1), (x2, y2) = self.points[first], self.points[second]
+        return math.hypot(x2 - x1, y2 - y1)
+
+
+@dataclass(frozen=True, slots=True)
+class Revolute:
+    """A revolute pair: the point ``point`` shared by ``links`` (two or more).
+
+    A point shared by k links counts as k − 1 revolute pairs.
+    """
+
+    point: str
+    links: tuple[str, ...]
+
+    @property
+    def key(self) -> str:
+        """The report key of the pair: the point name, or ``B:AB/BC/CD`` for a multiple joint."""
+        return self.point if len(self.links) == 2 else f"{self.point}:{'/'.join(self.links)}"
+
+
+@dataclass(frozen=True, slots=True)
+class Slide:
+    """A prismatic pair: ``point`` of ``link`` moves along a line fixed in ``along``.
+
+    The line passes through the point ``through`` of ``along`` at ``direction`` degrees in
+    ``along``'s frame, and ``link``'s +x axis stays at ``direction`` in ``along``'s frame.
+    ``index`` is the 1-based position of the ``[[slide]]`` table in the file (for messages).
+    """
+
+    link: str
+    along: str
+    through: str
+    direction: float
+    point: str
+    index: int = 1
+
+    @property
+    def key(self) -> str:
+        """The report key: ``link/along``."""
+        return f"{self.link}/{self.along}"
+
+    @property
+    def direction_rad(self) -> float:
+        return math.radians(self.direction)
+
+
+@dataclass(frozen=True, slots=True)
+class Drive:
+    """The input link: it turns about ``pivot`` (shared with the frame).
+
+    ``angle`` (deg) is the global angle of the link's own +x axis; ``omega`` (rad/s) and
+    ``epsilon`` (rad/s²) are counter-clockwise positive.
+    """
+
+    link: str
+    pivot: str
+    angle: float
+    omega: float
+    epsilon: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class MassProperties:
+    """Mass ``m`` (kg), moment of inertia ``J`` about the centre of mass (kg·m²) and the centre
+    of mass ``S`` in the link's own frame (m)."""
+
+    link: str
+    m: float
+    J: float
+    S: Vector
+
+
+@dataclass(frozen=True, slots=True)
+class Load:
+    """An external force on a point of a link (N, global axes) or a moment on a link (N·m).
+
+    With ``oppose_velocity`` the force has magnitude |force| and acts against the velocity of
+    its point (at zero velocity it acts as given, and the report flags it).
+    """
+
+    link: str
+    point: str | None = None
+    force: Vector | None = None
+    moment: float | None = None
+    oppose_velocity: bool = False
+    index: int = 1
+
+
+@dataclass(frozen=True, slots=True)
+class PlanSettings:
+    """Drawing choices of the ``[plan]`` table.
+
+    Each scale is given either as a drawn length of the drive link's scale point (``crank_mm``,
+    ``velocity_mm``, ``acceleration_mm``) or directly (``mu_l`` m/mm, ``mu_v`` (m/s)/mm,
+    ``mu_a`` (m/s²)/mm). ``precision_mm`` is the drafting precision (0 = exact);
+    ``min_angle_deg`` the angle below which two intersected lines are flagged.
+    """
+
+    crank_mm: float | None = 30.0
+    velocity_mm: float | None = 30.0
+    acceleration_mm: float | None = 30.0
+    mu_l: float | None = None
+    mu_v: float | None = None
+    mu_a: float | None = None
+    force_mm: float | None = None
+    mu_f: float | None = None
+    scale_point: str | None = None
+    precision_mm: float = 0.0
+    min_angle_deg: float = 1.0
+
+
+@dataclass(frozen=True, slots=True)
+class Ask:
+    """What a scene needs (the ``[ask]`` table). With ``everything`` set (no ``[ask]`` table at
+    all) every point and link is asked, and forces when masses or loads are given."""
+
+    velocity: tuple[str, ...] = ()
+    acceleration: tuple[str, ...] = ()
+    omega: tuple[str, ...] = ()
+    epsilon: tuple[str, ...] = ()
+    curvature: tuple[str, ...] = ()
+    sliding: tuple[str, ...] = ()
+    forces: bool = False
+    everything: bool = False
+
+    @property
+    def needs_acceleration(self) -> bool:
+        return bool(self.acceleration or self.epsilon or self.curvature or self.forces
+                    or self.sliding or self.everything)
+
+
+@dataclass(frozen=True, slots=True)
+class Mechanism:
+    """A planar linkage: links, revolute and prismatic pairs, the drive, masses and loads.
+
+    ``sketch`` holds rough global positions (m) of some points that pick the assembly branch.
+    """
+
+    title: str
+    links: Mapping[str, Link]
+    revolutes: tuple[Revolute, ...]
+    slides: tuple[Slide, ...]
+    drive: Drive
+    sketch: Mapping[str, Vector] = field(default_factory=dict)
+    masses: Mapping[str, MassProperties] = field(default_factory=dict)
+    gravity: float | None = None
+    loads: tuple[Load, ...] = ()
+    friction: Mapping[str, object] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "links", _frozen_mapping(self.links))
+        object.__setattr__(self, "sketch", _frozen_mapping(self.sketch))
+        object.__setattr__(self, "masses", _frozen_mapping(self.masses))
+        object.__setattr__(self, "friction", _frozen_mapping(self.friction))
+
+    @property
+    def moving_links(self) -> tuple[str, ...]:
+        """Names of the links other than the frame, in file order."""
+        return tuple(name for name in self.links if name != FRAME)
+
+    def links_with_point(self, point: str) -> tuple[str, ...]:
+        """Names of the links that carry ``point``, in file order."""
+        return tuple(name for name, link in self.links.items() if point in link.points)
+
+    def local(self, link: str, point: str) -> Vector:
+        """Coordinates of ``point`` in ``link``'s own frame."""
+        return self.links[link].points[point]
+
+    def revolute_at(self, point: str) -> Revolute | None:
+        for pair in self.revolutes:
+            if pair.point == point:
+                return pair
+        return None
+
+    def slide(self, key: str) -> Slide | None:
+        """The prismatic pair keyed ``link/along``, or None."""
+        for pair in self.slides:
+            if pair.key == key:
+                return pair
+        return None
+
+
+@dataclass(frozen=True, slots=True)
+class Exercise:
+    """An exercise: the mechanism, the drawing choices and what is asked, and where it came from."""
+
+    mechanism: Mechanism
+    plan: PlanSettings
+    ask: Ask
+    source: str | None = None

@@ -1,0 +1,815 @@
+"""The plan emulator: velocity and acceleration plans built the way a student draws them.
+
+For one crank angle the plans are drawn group by group in build order from the groups' vector
+equations (see :mod:`planmethod.kinematics.dyads`): a known vector is laid off from a known plan
+point; an unknown one is a line of known direction through a known plan point; two such lines
+are intersected. The acceleration plan lays off the normal components computed from velocity-
+plan segments, (bn) = (bc)²·μv²/((BC)·μl·μa), and the Coriolis components 2ω·v_rel turned 90°
+in the sense of ω. Extra points follow by the similarity rule. ω and ε are read off the plans.
+
+Only the mechanism's *positions* (the position plan) and the drive's ω1, ε1 enter; velocities
+and accelerations are never taken from the analytical solution. With ``precision_mm`` > 0 every
+length laid off or read off is rounded to that precision (directions are drawn exactly), so a
+student sees what a drawing's accuracy gives; at 0 the plans equal the exact vectors.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+>>> round(plans.readings["v_C"], 4), round(plans.readings["omega_BC"], 3)
+(5.2716, -24.254)
+>>> [round(x, 3) for x in plans.velocity.points_mm["b"]]
+[-21.213, 21.213]
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import PlanmethodError, ToggleError
+from ..kinematics import Motion, solve
+from ..kinematics.dyads import TOGGLE_SINE, Construction
+from ..model import FRAME, Exercise, PlanSettings
+from .scales import Scales, choose_scales
+
+__all__ = [
+    "LinkImage",
+    "Plan",
+    "Plans",
+    "PositionPlan",
+    "Step",
+    "draw_plans",
+    "image_label",
+]
+
+#: A drawing sheet is never larger than this (mm): lines that would meet further away than
+#: this, given the drafting precision, are parallel to within the drawing's precision.
+SHEET_MM = 1000.0
+
+
+def image_label(point: str, pole: str = "p") -> str:
+    """The plan label of a point's image: its name in lower case (``B`` → ``b``,
+    ``B@lever`` → ``b@lever``); a name that would clash with the pole gets a prime (p′).
+
+    Examples
+    --------
+    >>> image_label("C"), image_label("O2"), image_label("P"), image_label("B@lever")
+    ('c', 'o2', 'p′', 'b@lever')
+    """
+    name, at, link = point.partition("@")
+    label = name.lower()
+    if label == pole:
+        label += "′"
+    return label + (at + link if at else "")
+
+
+@dataclass(frozen=True, slots=True)
+class Step:
+    """One construction step of a plan (see README, "Plan steps").
+
+    ``action`` is one of ``pole``, ``lay_off`` (a vector from ``start`` to ``end``), ``line`` (a
+    construction line through ``start`` at ``direction_deg``), ``intersect`` (``lines`` are the
+    two line steps' numbers; ``angle_deg`` the angle between them), ``similarity`` (``end``
+    placed from the images ``references`` of the same link), ``coincide`` (``end`` coincides
+    with ``start``), ``project`` (``end`` is the foot of ``start`` on a line) and ``read``
+    (a segment ``start``–``end`` read off as ``length_mm`` giving ``value`` in SI).
+    """
+
+    number: int
+    action: str
+    text: str
+    start: str | None = None
+    end: str | None = None
+    direction_deg: float | None = None
+    length_mm: float | None = None
+    component: str | None = None
+    vector: str | None = None
+    group: int | None = None
+    lines: tuple[int, int] | None = None
+    angle_deg: float | None = None
+    flagged: bool = False
+    references: tuple[str, ...] = ()
+    quantity: str | None = None
+    value: float | None = None
+
+    def as_dict(self) -> dict:
+        out = {}
+        for name in self.__slots__:
+            value = getattr(self, name)
+            if value is None or value == () or (name == "flagged" and not value):
+                continue
+            out[name] = list(value) if isinstance(value, tuple) else value
+        return out
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A velocity or acceleration plan as data: pole, scale, labelled points (mm), steps."""
+
+    kind: str
+    pole: str
+    scale: float
+    unit: str
+    points_mm: Mapping[str, tuple[float, float]]
+    steps: tuple[Step, ...]
+    flags: tuple[str, ...] = ()
+    precision_mm: float = 0.0
+    title: str = ""
+
+    def point(self, label: str) -> np.ndarray:
+        return np.asarray(self.points_mm[label], dtype=float)
+
+    def vector(self, label: str) -> np.ndarray:
+        """The SI vector a plan point represents (from the pole, times the scale)."""
+        return self.point(label) * self.scale
+
+    def as_dict(self) -> dict:
+        return {"pole": self.pole, "scale": self.scale, "unit": self.unit,
+                "points_mm": {k: list(v) for k, v in self.points_mm.items()},
+                "steps": [step.as_dict() for step in self.steps],
+                "flags": list(self.flags)}
+
+    def _repr_svg_(self) -> str:
+        from ..render.svg import plan_svg
+
+        return plan_svg(self)
+
+
+@dataclass(frozen=True)
+class PositionPlan:
+    """The mechanism drawn at μl: every point (mm, global axes), the links, guides, pivots."""
+
+    mu_l: float
+    points_mm: Mapping[str, tuple[float, float]]
+    links: Mapping[str, tuple[str, ...]]
+    pivots: tuple[str, ...]
+    slides: tuple[dict, ...]
+    drive: tuple[str, str, float]
+    curvature: Mapping[str, dict] = field(default_factory=dict)
+    angle: float = 0.0
+    title: str = ""
+
+    def as_dict(self) -> dict:
+        return {"mu_l": self.mu_l, "points_mm": {k: list(v) for k, v in self.points_mm.items()},
+                "links": {k: list(v) for k, v in self.links.items()},
+                "pivots": list(self.pivots), "slides": list(self.slides),
+                "curvature": dict(self.curvature)}
+
+    def _repr_svg_(self) -> str:
+        from ..render.svg import position_svg
+
+        return position_svg(self)
+
+
+@dataclass(frozen=True)
+class Plans:
+    """The position, velocity and acceleration plans of one crank angle, and what is read off
+    them (``readings``: quantity → SI value, e.g. ``v_C``, ``omega_BC``, ``rho_D``)."""
+
+    exercise: Exercise
+    angle: float
+    scales: Scales
+    position: PositionPlan
+    velocity: Plan
+    acceleration: Plan | None
+    readings: Mapping[str, float]
+    flags: tuple[str, ...]
+    motion: Motion
+
+    def rotated_velocity_plan(self) -> dict[str, tuple[float, float]]:
+        """The velocity plan turned 90° clockwise onto the position plan, pole p at the drive's
+        pivot (mm on the position plan): Zhukovsky's lever stands on it. For ω1 > 0 the image
+        of the crank pin then lies along the crank (seed 001)."""
+        pivot = np.asarray(self.position.points_mm[self.position.drive[1]])
+        out = {}
+        for label, (x, y) in self.velocity.points_mm.items():
+            out[label] = (float(pivot[0] + y), float(pivot[1] - x))
+        return out
+
+
+@dataclass(frozen=True, slots=True)
+class LinkImage:
+    """How a link's points map onto a plan: the image of a point P of the link is
+    ``ref_mm + (ω·J(P − ref))/μv`` on the velocity plan and
+    ``ref_mm + (ε·J(P − ref) − ω²(P − ref))/μa`` on the acceleration plan (the similarity rule),
+    with ω and ε as read off the plans."""
+
+    ref: np.ndarray
+    ref_mm: np.ndarray
+    ref_label: str
+    omega: float
+    epsilon: float = 0.0
+
+
+def _angle_deg(vector: np.ndarray) -> float:
+    return math.degrees(math.atan2(vector[1], vector[0]))
+
+
+def _perp(vector: np.ndarray) -> np.ndarray:
+    return np.array([-vector[1], vector[0]])
+
+
+def _cross(a, b) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+class _Sheet:
+    """One plan being drawn: its points, steps and the drafting precision."""
+
+    def __init__(self, kind: str, pole: str, scale: float, unit: str, precision: float,
+                 min_angle: float) -> None:
+        self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
+        self.precision, self.min_angle = precision, min_angle
+        self.points: dict[str, np.ndarray] = {pole: np.zeros(2)}
+        self.steps: list[Step] = []
+        self.flags: list[str] = []
+        self.lines: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self.add(Step(0, "pole", f"pole {pole}", end=pole))
+
+    def add(self, step: Step) -> int:
+        number = len(self.steps) + 1
+        self.steps.append(Step(number, *[getattr(step, n) for n in Step.__slots__[1:]]))
+        return number
+
+    def round(self, length: float) -> float:
+        """A length as laid off or read off the drawing."""
+        if self.precision > 0:
+            return round(length / self.precision) * self.precision
+        return length
+
+    def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, text: str,
+                component: str, vector: str, group: int | None = None) -> np.ndarray:
+        """Lay off a known vector (exact direction, rounded length) from ``start``."""
+        length = float(np.hypot(*vector_mm))
+        drawn = self.round(length)
+        if length > 0:
+            direction = vector_mm / length
+            step = Step(0, "lay_off", text, start=start, end=end,
+                        direction_deg=_angle_deg(direction), length_mm=drawn,
+                        component=component, vector=vector, group=group)
+        else:
+            direction = np.zeros(2)
+            step = Step(0, "coincide", text, start=start, end=end, length_mm=0.0,
+                        component=component, vector=vector, group=group)
+        self.points[end] = self.points[start] + drawn * direction
+        self.add(step)
+        return self.points[end]
+
+    def line(self, through: str, direction: np.ndarray, *, text: str, component: str,
+             vector: str, group: int | None) -> int:
+        number = self.add(Step(0, "line", text, start=through,
+                               direction_deg=_angle_deg(direction) % 180.0,
+                               component=component, vector=vector, group=group))
+        self.lines[number] = (self.points[through].copy(), direction)
+        return number
+
+    def intersect(self, first: int, second: int, end: str, *, text: str, group_name: str,
+                  group: int, angle: float) -> np.ndarray:
+        (p1, e1), (p2, e2) = self.lines[first], self.lines[second]
+        sine = _cross(e1, e2)
+        degrees = math.degrees(math.asin(min(1.0, abs(sine))))
+        limit = max(TOGGLE_SINE, self.precision / SHEET_MM)
+        if abs(sine) < limit:
+            raise ToggleError(
+                f"toggle position: on the {self.kind} plan the lines of steps {first} and "
+                f"{second} are parallel to within the drawing's precision "
+                f"({degrees:.3g}°)", line_angle_deg=degrees, link=group_name, angle=angle)
+        t = _cross(p2 - p1, e2) / sine
+        self.points[end] = p1 + t * e1
+        flagged = degrees < self.min_angle
+        if flagged:
+            self.flags.append(f"{self.kind} plan, group {group_name}: the lines meet at "
+                              f"{degrees:.3g}° (below {self.min_angle:g}°): point {end} is "
+                              "poorly defined")
+        self.add(Step(0, "intersect", text, end=end, lines=(first, second),
+                      angle_deg=degrees, flagged=flagged, group=group))
+        return self.points[end]
+
+    def read(self, start: str, end: str, *, quantity: str, factor: float,
+             sign: float = 1.0) -> float:
+        """Read the segment start–end (rounded) and convert it: value = ±length·factor."""
+        length = self.round(float(np.hypot(*(self.points[end] - self.points[start]))))
+        value = sign * length * factor
+        self.add(Step(0, "read", f"({start}{end}) = {length:.4g} mm → {quantity} = {value:.6g}",
+                      start=start, end=end, length_mm=length, quantity=quantity, value=value))
+        return value
+
+    def place_image(self, label: str, offset_mm: np.ndarray, image: LinkImage, link: str,
+                    text: str) -> None:
+        """Place a point by the similarity rule from the link's reference image."""
+        length = float(np.hypot(*offset_mm))
+        drawn = self.round(length)
+        direction = offset_mm / length if length > 0 else np.zeros(2)
+        self.points[label] = image.ref_mm + drawn * direction
+        self.add(Step(0, "similarity", text, start=image.ref_label, end=label,
+                      references=(image.ref_label,), length_mm=drawn,
+                      direction_deg=_angle_deg(direction) if length > 0 else None,
+                      vector=link))
+
+    def finish(self, title: str) -> Plan:
+        points = {k: (float(v[0]), float(v[1])) for k, v in self.points.items()}
+        return Plan(self.kind, self.pole, self.scale, self.unit, points, tuple(self.steps),
+                    tuple(self.flags), self.precision, title)
+
+
+def _velocity_offset(image: LinkImage, point: np.ndarray, mu_v: float) -> np.ndarray:
+    return image.omega * _perp(point - image.ref) / mu_v
+
+
+def _acceleration_offset(image: LinkImage, point: np.ndarray, mu_a: float) -> np.ndarray:
+    r = point - image.ref
+    return (image.epsilon * _perp(r) - image.omega ** 2 * r) / mu_a
+
+
+class _Emulator:
+    """Draws the three plans of one crank angle."""
+
+    def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
+                 motion: Motion, scales: Scales) -> None:
+        self.exercise = exercise
+        self.mechanism = exercise.mechanism
+        self.settings = settings
+        self.angle = angle
+        self.motion = motion
+        self.scales = scales
+        self.readings: dict[str, float] = {}
+        self.vimages: dict[str, LinkImage] = {}
+        self.aimages: dict[str, LinkImage] = {}
+        self.rel_velocity: dict[tuple[int, int], float] = {}
+        precision, min_angle = settings.precision_mm, settings.min_angle_deg
+        self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle)
+        self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle)
+
+    # -- geometry from the position plan ---------------------------------------------------
+    def where(self, link: str, point: str) -> np.ndarray:
+        state = self.motion.links[link]
+        return state.place(self.mechanism.local(link, point))[0]
+
+    def length_mm(self, first: np.ndarray, second: np.ndarray) -> float:
+        """A length read off the position plan (rounded to the precision)."""
+        return self.v.round(float(np.hypot(*(second - first))) / self.scales.mu_l)
+
+    def label(self, point: str, sheet: _Sheet) -> str:
+        return image_label(point, sheet.pole)
+
+    # -- images --------------------------------------------------------------------------------
+    def image_points(self, link: str, sheet: _Sheet, image: LinkImage, offset, scale,
+                     skip=()) -> None:
+        for name in self.mechanism.links[link].points:
+            label = self.label(name, sheet)
+            if label in sheet.points or name in skip:
+                continue
+            position = self.where(link, name)
+            if link == FRAME:
+                sheet.points[label] = np.zeros(2)
+                sheet.add(Step(0, "coincide", f"{label} at the pole: {name} is fixed",
+                               start=sheet.pole, end=label, length_mm=0.0))
+                continue
+            sheet.place_image(label, offset(image, position, scale), image, link,
+                              f"{label} by similarity on {link} from {image.ref_label}")
+
+    def image_at(self, sheet: _Sheet, images: dict, link: str, position: np.ndarray,
+                 label: str) -> str:
+        """Label of the image of ``link``'s material point at ``position`` (placed if new)."""
+        if label in sheet.points:
+            return label
+        image = images[link]
+        if sheet is self.v:
+            offset = _velocity_offset(image, position, self.scales.mu_v)
+        else:
+            offset = _acceleration_offset(image, position, self.scales.mu_a)
+        if link == FRAME:
+            sheet.points[label] = np.zeros(2)
+            sheet.add(Step(0, "coincide", f"{label} at the pole: the frame does not move",
+                           start=sheet.pole, end=label, length_mm=0.0))
+        else:
+            sheet.place_image(label, offset, image, link,
+                              f"{label} by similarity on {link} from {image.ref_label}")
+        return label
+
+    # -- drive ---------------------------------------------------------------------------------
+    def drive(self) -> None:
+        drive, scales = self.mechanism.drive, self.scales
+        pivot = self.where(drive.link, drive.pivot)
+        point = self.where(drive.link, scales.scale_point)
+        radius = point - pivot
+        length = float(np.hypot(*radius))
+        pole_v, pole_a = self.v.pole, self.a.pole
+        for sheet, images in ((self.v, self.vimages), (self.a, self.aimages)):
+            images[FRAME] = LinkImage(np.zeros(2), np.zeros(2), sheet.pole, 0.0, 0.0)
+            self.image_points(FRAME, sheet, images[FRAME], None, None)
+        a_label = self.label(drive.pivot, self.v)
+        b_v, b_a = self.label(scales.scale_point, self.v), self.label(scales.scale_point, self.a)
+        omega, epsilon = drive.omega, drive.epsilon
+        v_b = omega * _perp(radius)
+        b_vector = (v_b / np.hypot(*v_b) * self.settings.velocity_mm
+                    if self.settings.velocity_mm and self.settings.mu_v is None and omega
+                    else v_b / scales.mu_v)
+        self.v.lay_off(pole_v, b_v, b_vector, component="absolute",
+                       vector=f"v_{scales.scale_point}",
+                       text=f"v_{scales.scale_point} = ω1·l_{drive.pivot}{scales.scale_point} = "
+                            f"{abs(omega) * length:.6g} m/s, ⟂ {drive.pivot}"
+                            f"{scales.scale_point} in the sense of ω1")
+        self.vimages[drive.link] = LinkImage(pivot, self.v.points[a_label], a_label, omega)
+        normal = -omega ** 2 * radius
+        tangential = epsilon * _perp(radius)
+        total = normal + tangential
+        fixed = (self.settings.acceleration_mm if self.settings.acceleration_mm
+                 and self.settings.mu_a is None else None)
+        factor = (fixed / np.hypot(*total)) if fixed and np.hypot(*total) else 1 / scales.mu_a
+        point_name = scales.scale_point
+        if epsilon == 0:
+            self.a.lay_off(pole_a, b_a, normal * factor, component="normal",
+                           vector=f"a_{point_name}",
+                           text=f"a_{point_name} = aⁿ = ω1²·l = {omega ** 2 * length:.6g} m/s², "
+                                f"from {point_name} towards {drive.pivot}")
+        else:
+            n_label = f"n_{point_name}{drive.pivot}"
+            self.a.lay_off(pole_a, n_label, normal * factor, component="normal",
+                           vector=f"aⁿ_{point_name}{drive.pivot}",
+                           text=f"aⁿ = ω1²·l = {omega ** 2 * length:.6g} m/s², from "
+                                f"{point_name} towards {drive.pivot}")
+            self.a.lay_off(n_label, b_a, tangential * factor, component="tangential",
+                           vector=f"aᵗ_{point_name}{drive.pivot}",
+                           text=f"aᵗ = ε1·l = {abs(epsilon) * length:.6g} m/s², ⟂ "
+                                f"{drive.pivot}{point_name} in the sense of ε1")
+        a_pivot = self.label(drive.pivot, self.a)
+        self.aimages[drive.link] = LinkImage(pivot, self.a.points[a_pivot], a_pivot, omega,
+                                             epsilon)
+        self.image_points(drive.link, self.v, self.vimages[drive.link], _velocity_offset,
+                          scales.mu_v)
+        self.image_points(drive.link, self.a, self.aimages[drive.link], _acceleration_offset,
+                          scales.mu_a)
+        self.readings[f"omega_{drive.link}"] = omega
+        self.readings[f"epsilon_{drive.link}"] = epsilon
+        self.readings[f"omega_{FRAME}"] = 0.0
+        self.readings[f"epsilon_{FRAME}"] = 0.0
+
+    # -- groups ----------------------------------------------------------------------------------
+    def _base_label(self, side, sheet) -> str:
+        name = side.base
+        if "@" not in name:
+            return self.label(name, sheet)
+        return self.label(name, sheet)
+
+    def velocity_group(self, construction: Construction) -> None:
+        group = construction.group
+        mu_v, mu_l = self.scales.mu_v, self.scales.mu_l
+        x_label = self.label(construction.point, self.v)
+        x = construction.position[0]
+        line_numbers = []
+        sides = construction.sides
+        equation = " = ".join([f"v_{construction.point}"] + [
+            f"v_{side.base} + v_{construction.point}{side.base}" for side in sides])
+        for side in sides:
+            base = side.base_position[0]
+            base_label = self.image_at(self.v, self.vimages, side.base_link, base,
+                                       self._base_label(side, self.v))
+            direction = side.direction[0]
+            if side.kind == "rotation":
+                text = (f"through {base_label}: v_{construction.point}{side.base} ⟂ "
+                        f"{construction.point}{side.base}")
+                component = "relative"
+            else:
+                text = (f"through {base_label}: v_{construction.point}{side.base} along the "
+                        f"guide of {side.slide.key}")
+                component = "relative"
+            line_numbers.append(self.v.line(base_label, direction, text=text,
+                                            component=component,
+                                            vector=f"v_{construction.point}{side.base}",
+                                            group=group.index))
+        self.v.intersect(*line_numbers, x_label, text=f"{x_label}: {equation}",
+                         group_name=group.name, group=group.index, angle=self.angle)
+        # read the relative velocities and the angular velocities
+        omegas: dict[str, float] = {}
+        rel: list[float] = []
+        for _index, side in enumerate(sides):
+            base_label = self.image_at(self.v, self.vimages, side.base_link,
+                                       side.base_position[0], self._base_label(side, self.v))
+            segment = self.v.points[x_label] - self.v.points[base_label]
+            direction = side.direction[0]
+            sign = 1.0 if float(segment @ direction) >= 0 else -1.0
+            if side.kind == "rotation":
+                radius = x - side.base_position[0]
+                length_mm = self.length_mm(side.base_position[0], x)
+                omega = self.v.read(
+                    base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
+                    factor=mu_v / (length_mm * mu_l))
+                omegas[side.link] = omega
+                rel.append(sign * self.v.round(float(np.hypot(*segment))))
+                del radius
+            else:
+                value = self.v.read(base_label, x_label,
+                                    quantity=f"v_{construction.point}{side.base}",
+                                    sign=sign, factor=mu_v)
+                rel.append(value / mu_v)
+        self.rel_velocity[(group.index, 0)] = rel[0]
+        self.rel_velocity[(group.index, 1)] = rel[1]
+        pending = dict(construction.tied)
+        while pending:
+            for link, other in list(pending.items()):
+                source = omegas.get(other, self.readings.get(f"omega_{other}"))
+                if source is None and other == FRAME:
+                    source = 0.0
+                if source is not None:
+                    omegas[link] = source
+                    del pending[link]
+        for link in group.links:
+            self.readings[f"omega_{link}"] = omegas[link]
+            if link in construction.anchors:
+                pin_name, pin, known = construction.anchors[link]
+                ref_label = self.image_at(self.v, self.vimages, known, pin[0],
+                                          self.label(pin_name, self.v))
+                self.vimages[link] = LinkImage(pin[0], self.v.points[ref_label], ref_label,
+                                               omegas[link])
+            else:
+                self.vimages[link] = LinkImage(x, self.v.points[x_label], x_label, omegas[link])
+        for link in group.links:
+            self.image_points(link, self.v, self.vimages[link], _velocity_offset, mu_v)
+
+    def acceleration_group(self, construction: Construction) -> None:
+        group = construction.group
+        mu_v, mu_a, mu_l = self.scales.mu_v, self.scales.mu_a, self.scales.mu_l
+        x_label = self.label(construction.point, self.a)
+        x = construction.position[0]
+        point = construction.point
+        line_numbers = []
+        normals: dict[int, str] = {}
+        for index, side in enumerate(construction.sides):
+            base = side.base_position[0]
+            base_label = self.image_at(self.a, self.aimages, side.base_link, base,
+                                       self._base_label(side, self.a))
+            direction = side.direction[0]
+            relative = self.rel_velocity[(group.index, index)]  # signed, mm on the v-plan
+            if side.kind == "rotation":
+                radius = x - base
+                length_mm = self.length_mm(base, x)
+                magnitude = (relative ** 2) * mu_v ** 2 / (length_mm * mu_l * mu_a)
+                centre = side.base.partition("@")[0]
+                x_name = point.partition("@")[0]
+                n_label = (f"n_{point}" if "@" in point else f"n_{x_name}{centre}")
+                self.a.lay_off(
+                    base_label, n_label, -magnitude * radius / np.hypot(*radius),
+                    component="normal", vector=f"aⁿ_{x_name}{centre}", group=group.index,
+                    text=f"aⁿ_{x_name}{centre} from {base_label}: ({base_label}{n_label}) = "
+                         f"(v-plan segment)²·μv²/(({x_name}{centre})·μl·μa), from "
+                         f"{x_name} towards {centre}")
+                normals[index] = n_label
+                line_numbers.append(self.a.line(
+                    n_label, direction, component="tangential", group=group.index,
+                    vector=f"aᵗ_{x_name}{centre}",
+                    text=f"through {n_label}: aᵗ_{x_name}{centre} ⟂ {x_name}{centre}"))
+            else:
+                carrier = side.link
+                omega_c = self.readings[f"omega_{carrier}"]
+                multi = sum(s.kind == "sliding" for s in construction.sides) > 1
+                k_label = f"k{index + 1}_{point}" if multi else f"k_{point}"
+                coriolis = 2 * omega_c * relative * mu_v * _perp(direction) / mu_a
+                self.a.lay_off(
+                    base_label, k_label, coriolis, component="coriolis", group=group.index,
+                    vector=f"aᵏ_{point}",
+                    text=(f"aᵏ = 2·ω_{carrier}·v_rel from {base_label}, v_rel turned 90° in the "
+                          f"sense of ω_{carrier}" if omega_c else
+                          f"aᵏ = 0: {carrier} does not turn; {k_label} coincides with "
+                          f"{base_label}"))
+                normals[index] = k_label
+                line_numbers.append(self.a.line(
+                    k_label, direction, component="relative", group=group.index,
+                    vector=f"aʳ_{point}",
+                    text=f"through {k_label}: aʳ (relative) along the guide of "
+                         f"{side.slide.key}"))
+        self.a.intersect(*line_numbers, x_label,
+                         text=f"{x_label}: a_{point} from both vector equations",
+                         group_name=group.name, group=group.index, angle=self.angle)
+        epsilons: dict[str, float] = {}
+        for index, side in enumerate(construction.sides):
+            start = normals[index]
+            segment = self.a.points[x_label] - self.a.points[start]
+            direction = side.direction[0]
+            sign = 1.0 if float(segment @ direction) >= 0 else -1.0
+            if side.kind == "rotation":
+                length_mm = self.length_mm(side.base_position[0], x)
+                epsilons[side.link] = self.a.read(
+                    start, x_label, quantity=f"epsilon_{side.link}", sign=sign,
+                    factor=mu_a / (length_mm * mu_l))
+            else:
+                self.a.read(start, x_label, quantity=f"a_rel_{point}{side.base}", sign=sign,
+                            factor=mu_a)
+        pending = dict(construction.tied)
+        while pending:
+            for link, other in list(pending.items()):
+                source = epsilons.get(other, self.readings.get(f"epsilon_{other}"))
+                if source is None and other == FRAME:
+                    source = 0.0
+                if source is not None:
+                    epsilons[link] = source
+                    del pending[link]
+        for link in group.links:
+            self.readings[f"epsilon_{link}"] = epsilons[link]
+            omega = self.readings[f"omega_{link}"]
+            if link in construction.anchors:
+                pin_name, pin, known = construction.anchors[link]
+                ref_label = self.image_at(self.a, self.aimages, known, pin[0],
+                                          self.label(pin_name, self.a))
+                self.aimages[link] = LinkImage(pin[0], self.a.points[ref_label], ref_label,
+                                               omega, epsilons[link])
+            else:
+                self.aimages[link] = LinkImage(x, self.a.points[x_label], x_label, omega,
+                                               epsilons[link])
+        for link in group.links:
+            self.image_points(link, self.a, self.aimages[link], _acceleration_offset, mu_a)
+
+
+def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: float
+                   ) -> PositionPlan:
+    mechanism = exercise.mechanism
+    points: dict[str, tuple[float, float]] = {}
+    links: dict[str, tuple[str, ...]] = {}
+    for name, link in mechanism.links.items():
+        if name not in motion.links:
+            continue
+        links[name] = tuple(link.points)
+        state = motion.links[name]
+        for point, local in link.points.items():
+            if point not in points:
+                xy = state.place(local)[0] / scales.mu_l
+                points[point] = (float(xy[0]), float(xy[1]))
+    pivots = tuple(p for p in mechanism.links[FRAME].points
+                   if len(mechanism.links_with_point(p)) > 1)
+    slides = []
+    for slide in mechanism.slides:
+        if slide.link not in motion.links or slide.along not in motion.links:
+            continue
+        guide = motion.links[slide.along]
+        through = guide.place(mechanism.local(slide.along, slide.through))[0] / scales.mu_l
+        direction = math.degrees(float(guide.theta[0]) + slide.direction_rad)
+        slides.append({"key": slide.key, "link": slide.link, "along": slide.along,
+                       "through": slide.through, "point": slide.point,
+                       "through_mm": [float(through[0]), float(through[1])],
+                       "direction_deg": direction})
+    drive = mechanism.drive
+    return PositionPlan(scales.mu_l, points, links, pivots, tuple(slides),
+                        (drive.link, drive.pivot, drive.omega), {}, angle, mechanism.title)
+
+
+def _curvature_readings(emulator: _Emulator, point: str, position_plan: PositionPlan) -> None:
+    """ρ = (pd)²·μv² / ((πn_D)·μa): project πd on the normal to pd (seed 001)."""
+    v, a, scales = emulator.v, emulator.a, emulator.scales
+    name = point.partition("@")[0]
+    link, position = emulator.motion._locate(point)
+    v_label = emulator.image_at(v, emulator.vimages, link, position[0],
+                                image_label(point, v.pole))
+    a_label = emulator.image_at(a, emulator.aimages, link, position[0],
+                                image_label(point, a.pole))
+    velocity = v.points[v_label]
+    speed_mm = v.round(float(np.hypot(*velocity)))
+    if speed_mm == 0 or emulator.motion.moves_straight(point):
+        return
+    tangent = velocity / np.hypot(*velocity)
+    normal = _perp(tangent)
+    along_normal = float(a.points[a_label] @ normal)
+    if along_normal < 0:
+        normal = -normal
+        along_normal = -along_normal
+    n_label = f"n_{name}"
+    a.points[n_label] = along_normal * normal
+    a.add(Step(0, "project", f"project π{a_label} on the normal to the path of {name} "
+                             f"(⟂ p{v_label}): {n_label}", start=a_label, end=n_label,
+               direction_deg=_angle_deg(normal) % 180.0))
+    normal_mm = a.round(along_normal)
+    if normal_mm == 0:
+        return
+    rho = speed_mm ** 2 * scales.mu_v ** 2 / (normal_mm * scales.mu_a)
+    a.add(Step(0, "read", f"ρ_{name} = (p{v_label})²·μv²/((π{n_label})·μa) = {rho:.6g} m",
+               start=a.pole, end=n_label, length_mm=normal_mm, quantity=f"rho_{point}",
+               value=rho))
+    emulator.readings[f"rho_{point}"] = rho
+    centre = position[0] / scales.mu_l + rho / scales.mu_l * normal
+    position_plan.curvature[name] = {
+        "center_mm": [float(centre[0]), float(centre[1])], "rho_mm": rho / scales.mu_l,
+        "tangent_deg": _angle_deg(tangent) % 180.0, "normal_deg": _angle_deg(normal)}
+
+
+def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None:
+    mechanism = emulator.mechanism
+    slide = mechanism.slide(key)
+    v, a, scales = emulator.v, emulator.a, emulator.scales
+    mover, guide = emulator.motion.links[slide.link], emulator.motion.links[slide.along]
+    point = mover.place(mechanism.local(slide.link, slide.point))[0]
+    through = guide.place(mechanism.local(slide.along, slide.through))[0]
+    d = np.array([math.cos(float(guide.theta[0]) + slide.direction_rad),
+                  math.sin(float(guide.theta[0]) + slide.direction_rad)])
+    travel = float((point - through) @ d)
+    emulator.readings[f"s_{key}"] = (math.copysign(1.0, travel)
+                                     * emulator.length_mm(through, point) * scales.mu_l)
+    on_link = f"{slide.point}@{slide.link}"
+    on_guide = f"{slide.point}@{slide.along}"
+    lv = emulator.image_at(v, emulator.vimages, slide.link, point, image_label(on_link, "p"))
+    gv = emulator.image_at(v, emulator.vimages, slide.along, point, image_label(on_guide, "p"))
+    segment = v.points[lv] - v.points[gv]
+    sign = 1.0 if float(segment @ d) >= 0 else -1.0
+    ds = v.read(gv, lv, quantity=f"ds_{key}", factor=scales.mu_v, sign=sign)
+    emulator.readings[f"ds_{key}"] = ds
+    if not acceleration:
+        return
+    la = emulator.image_at(a, emulator.aimages, slide.link, point, image_label(on_link, "π"))
+    ga = emulator.image_at(a, emulator.aimages, slide.along, point, image_label(on_guide, "π"))
+    omega = emulator.readings[f"omega_{slide.along}"]
+    coriolis = 2 * omega * ds * _perp(d)
+    k_label = f"k_{key}"
+    if k_label not in a.points:
+        a.lay_off(ga, k_label, coriolis / scales.mu_a, component="coriolis",
+                  vector=f"aᵏ_{key}", text=f"aᵏ of {key} = 2·ω_{slide.along}·v_rel from {ga}")
+    corio = a.round(float(np.hypot(*coriolis)) / scales.mu_a) * scales.mu_a
+    emulator.readings[f"coriolis_{key}"] = corio
+    segment = a.points[la] - a.points[k_label]
+    sign = 1.0 if float(segment @ d) >= 0 else -1.0
+    emulator.readings[f"dds_{key}"] = a.read(k_label, la, quantity=f"dds_{key}",
+                                             factor=scales.mu_a, sign=sign)
+
+
+def draw_plans(exercise: Exercise, angle: float | None = None, *,
+               settings: PlanSettings | None = None, acceleration: bool = True,
+               motion: Motion | None = None) -> Plans:
+    """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
+
+    Parameters
+    ----------
+    exercise
+        The exercise (its ``[plan]`` table gives the scales and drafting precision).
+    angle
+        Crank angle (deg); default ``drive.angle``.
+    settings
+        Overrides the exercise's ``[plan]`` settings.
+    acceleration
+        Also draw the acceleration plan.
+    motion
+        Exact positions at that angle, if already solved (only positions are used).
+
+    Raises
+    ------
+    ToggleError
+        If a group's two construction lines are parallel to within the drawing's precision.
+    """
+    settings = settings or exercise.plan
+    mechanism = exercise.mechanism
+    angle = float(mechanism.drive.angle if angle is None else angle)
+    if motion is None:
+        motion = solve(mechanism, angle, stage="position")
+    scales = choose_scales(exercise, settings)
+    emulator = _Emulator(exercise, settings, angle, motion, scales)
+    position_plan = _position_plan(exercise, motion, scales, angle)
+    emulator.drive()
+    higher = [g for g in motion.structure.groups if not g.is_dyad and g.index in motion.groups]
+    if higher:
+        raise PlanmethodError("plans of class III groups are not drawn yet; their exact "
+                              "kinematics is available (planmethod solve --json)",
+                              link=higher[0].name)
+    for index in sorted(motion.groups):
+        emulator.velocity_group(motion.groups[index].construction)
+    if acceleration:
+        for index in sorted(motion.groups):
+            emulator.acceleration_group(motion.groups[index].construction)
+    ask = exercise.ask
+    for point in _asked_points(exercise, motion):
+        link, position = motion._locate(point)
+        emulator.image_at(emulator.v, emulator.vimages, link, position[0],
+                          image_label(point, "p"))
+        emulator.readings[f"v_{point}"] = emulator.v.read(
+            "p", image_label(point, "p"), quantity=f"v_{point}", factor=scales.mu_v)
+        if acceleration:
+            emulator.image_at(emulator.a, emulator.aimages, link, position[0],
+                              image_label(point, "π"))
+            emulator.readings[f"a_{point}"] = emulator.a.read(
+                "π", image_label(point, "π"), quantity=f"a_{point}", factor=scales.mu_a)
+    if acceleration:
+        curvature = ask.curvature if not ask.everything else ()
+        for point in curvature:
+            _curvature_readings(emulator, point, position_plan)
+    sliding = ask.sliding if not ask.everything else tuple(
+        s.key for s in mechanism.slides if s.link in motion.links and s.along in motion.links)
+    for key in sliding:
+        _sliding_readings(emulator, key, acceleration)
+    velocity_plan = emulator.v.finish(f"{mechanism.title} — velocity plan, φ = {angle:g}°")
+    acceleration_plan = (emulator.a.finish(f"{mechanism.title} — acceleration plan, "
+                                           f"φ = {angle:g}°") if acceleration else None)
+    flags = tuple(velocity_plan.flags) + (tuple(acceleration_plan.flags)
+                                          if acceleration_plan else ())
+    return Plans(exercise, angle, scales, position_plan, velocity_plan, acceleration_plan,
+                 dict(emulator.readings), flags, motion)
+
+
+def _asked_points(exercise: Exercise, motion: Motion) -> tuple[str, ...]:
+    ask = exercise.ask
+    if ask.everything:
+        names = []
+        for link in motion.links:
+            if link == FRAME:
+                continue
+            names += [p for p in exercise.mechanism.links[link].points if p not in names]
+        return tuple(names)
+    return tuple(dict.fromkeys(ask.velocity + ask.acceleration + ask.curvature))

@@ -1,0 +1,57 @@
+"""A small progress bar on stderr for long runs (silent when stderr is not a terminal).
+
+Examples
+--------
+>>> with Progress(3, "sweep", enabled=False) as bar:
+...     for _ in range(3):
+...         bar.advance()
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+
+class Progress:
+    """``with Progress(total, label) as bar: bar.advance(n)``."""
+
+    def __init__(self, total: int, label: str, *, enabled: bool | None = None,
+                 stream=None) -> None:
+        self.total = max(int(total), 1)
+        self.label = label
+        self.stream = stream or sys.stderr
+        self.enabled = (self.stream.isatty() if enabled is None else enabled)
+        self.done = 0
+        self.started = time.perf_counter()
+        self._last = 0.0
+
+    def __enter__(self) -> Progress:
+        self._draw(force=True)
+        return self
+
+    def advance(self, count: int = 1) -> None:
+        self.done = min(self.total, self.done + count)
+        self._draw()
+
+    def _draw(self, force: bool = False) -> None:
+        if not self.enabled:
+            return
+        now = time.perf_counter()
+        if not force and now - self._last < 0.1 and self.done < self.total:
+            return
+        self._last = now
+        width = 30
+        filled = int(width * self.done / self.total)
+        elapsed = now - self.started
+        rate = self.done / elapsed if elapsed > 0 else 0.0
+        eta = (self.total - self.done) / rate if rate > 0 else 0.0
+        self.stream.write(f"\r{self.label} [{'#' * filled}{'.' * (width - filled)}] "
+                          f"{self.done}/{self.total}  {elapsed:5.1f}s  eta {eta:5.1f}s")
+        self.stream.flush()
+
+    def __exit__(self, *exc) -> None:
+        if self.enabled:
+            self._draw(force=True)
+            self.stream.write("\n")
+            self.stream.flush()

@@ -1,0 +1,264 @@
+"""The solve of one exercise at one angle: exact values, plans, checks, and the JSON report.
+
+:func:`analyse` runs the scene (structure → exact kinematics → plans → forces when asked) and
+returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report of DESIGN.md.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> analysis = analyse(load_exercise("exercises/compressor_slider_crank.toml"))
+>>> check = next(c for c in analysis.checks if c.quantity == "a_C")
+>>> round(check.analytic, 2), check.rel_error < 1e-9
+(430.32, True)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from .kinematics import Motion, solve
+from .model import FRAME, Exercise
+from .plans import Plans, draw_plans
+from .scene import Scene, plan_scene
+from .structure import Structure, analyse_structure
+
+__all__ = ["Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
+
+UNITS = {"v": "m/s", "a": "m/s²", "omega": "rad/s", "epsilon": "rad/s²", "rho": "m",
+         "s": "m", "ds": "m/s", "dds": "m/s²", "coriolis": "m/s²"}
+
+
+@dataclass(frozen=True, slots=True)
+class Check:
+    """One asked quantity: the value read off the plan against the exact value."""
+
+    quantity: str
+    plan: float | None
+    analytic: float | None
+    unit: str
+
+    @property
+    def abs_error(self) -> float | None:
+        if self.plan is None or self.analytic is None:
+            return None
+        return abs(self.plan - self.analytic)
+
+    @property
+    def rel_error(self) -> float | None:
+        if self.abs_error is None or self.analytic == 0:
+            return None
+        return self.abs_error / abs(self.analytic)
+
+    def as_dict(self) -> dict:
+        return {"quantity": self.quantity, "plan": self.plan, "analytic": self.analytic,
+                "abs_error": self.abs_error, "rel_error": self.rel_error, "unit": self.unit}
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """Everything computed for one exercise at one crank angle."""
+
+    exercise: Exercise
+    angle: float
+    structure: Structure
+    scene: Scene
+    motion: Motion
+    plans: Plans | None
+    checks: tuple[Check, ...]
+    forces: Any = None
+
+
+def asked_quantities(exercise: Exercise, motion: Motion) -> list[str]:
+    """The quantities a check table lists: ``v_C``, ``a_C``, ``omega_BC``, ``epsilon_BC``,
+    ``rho_D``, and ``s_``/``ds_``/``dds_``/``coriolis_`` of a prismatic pair."""
+    ask, mechanism = exercise.ask, exercise.mechanism
+    if ask.everything:
+        points = [p for link in motion.links if link != FRAME
+                  for p in mechanism.links[link].points]
+        points = list(dict.fromkeys(points))
+        links = [link for link in motion.links if link not in (FRAME, mechanism.drive.link)]
+        slides = [s.key for s in mechanism.slides]
+        return ([f"v_{p}" for p in points] + [f"a_{p}" for p in points]
+                + [f"omega_{link}" for link in links] + [f"epsilon_{link}" for link in links]
+                + [f"{q}_{key}" for key in slides for q in ("s", "ds", "dds", "coriolis")])
+    acceleration = motion.stage == "acceleration"
+    out = [f"v_{p}" for p in ask.velocity] + [f"a_{p}" for p in ask.acceleration]
+    out += [f"omega_{link}" for link in ask.omega] + [f"epsilon_{link}" for link in ask.epsilon]
+    out += [f"rho_{p}" for p in ask.curvature]
+    for key in ask.sliding:
+        out += [f"s_{key}", f"ds_{key}"]
+        if acceleration:
+            out += [f"dds_{key}", f"coriolis_{key}"]
+    return out
+
+
+def exact_value(motion: Motion, quantity: str) -> float | None:
+    """The exact value of a check quantity (magnitudes for v and a; signed ω, ε, s, ds, dds)."""
+    kind, _, name = quantity.partition("_")
+    if kind == "v":
+        return float(np.hypot(*motion.velocity(name)))
+    if kind == "a":
+        return float(np.hypot(*motion.acceleration(name)))
+    if kind == "omega":
+        return float(motion.omega(name))
+    if kind == "epsilon":
+        return float(motion.epsilon(name))
+    if kind == "rho":
+        rho = float(motion.curvature(name).rho)
+        return None if math.isnan(rho) else rho
+    sliding = motion.sliding(name)
+    if kind == "s":
+        return float(sliding.s)
+    if kind == "ds":
+        return float(sliding.velocity)
+    if kind == "dds":
+        return float(sliding.acceleration)
+    if kind == "coriolis":
+        return float(np.hypot(*sliding.coriolis))
+    raise KeyError(quantity)
+
+
+def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: float | None = None,
+            plans: bool = True) -> Analysis:
+    """Solve the exercise's scene at one crank angle (default ``drive.angle``).
+
+    Parameters
+    ----------
+    exercise
+        The exercise.
+    angle
+        Crank angle (deg).
+    precision_mm
+        Overrides ``[plan] precision_mm``.
+    plans
+        Draw the plans (and check them); with False only the exact values are computed.
+    """
+    mechanism = exercise.mechanism
+    if angle is not None:
+        exercise = replace(exercise, mechanism=replace(
+            mechanism, drive=replace(mechanism.drive, angle=float(angle))))
+        mechanism = exercise.mechanism
+    if precision_mm is not None:
+        exercise = replace(exercise, plan=replace(exercise.plan, precision_mm=precision_mm))
+    angle = mechanism.drive.angle
+    structure = analyse_structure(mechanism)
+    scene = plan_scene(exercise)
+    motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, structure=structure)
+    drawn = None
+    if plans:
+        drawn = draw_plans(exercise, angle, motion=motion,
+                           acceleration=scene.stage == "acceleration")
+    checks = []
+    for quantity in asked_quantities(exercise, motion):
+        kind = quantity.partition("_")[0]
+        plan_value = drawn.readings.get(quantity) if drawn else None
+        checks.append(Check(quantity, plan_value, exact_value(motion, quantity), UNITS[kind]))
+    forces = None
+    if scene.forces:
+        from .forces import analyse_forces
+
+        forces = analyse_forces(exercise, motion, plans=drawn)
+    return Analysis(exercise, angle, structure, scene, motion, drawn, tuple(checks), forces)
+
+
+def _vector(array) -> list[float]:
+    return [float(array[0]), float(array[1])]
+
+
+def _finite(value):
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def report_dict(analysis: Analysis) -> dict:
+    """The JSON report of DESIGN.md (see README, "The JSON report")."""
+    exercise, motion, structure = analysis.exercise, analysis.motion, analysis.structure
+    mechanism = exercise.mechanism
+    ask = exercise.ask
+    report: dict[str, Any] = {"title": mechanism.title, "angle": analysis.angle}
+    report["structure"] = {
+        "n": structure.n, "p5": structure.p5, "p4": structure.p4, "W": structure.mobility,
+        "groups": [{"type": g.kind, "links": list(g.links), "class": g.group_class,
+                    "order": g.order, "pairs": [j.label for j in g.joints],
+                    **({"type_number": g.type_number} if g.type_number else {}),
+                    **({"branch": {"sign": motion.branches[g.index].sign,
+                                   "reason": motion.branches[g.index].reason}}
+                       if g.index in motion.branches else {})}
+                   for g in structure.groups]}
+    if analysis.plans:
+        report["scales"] = analysis.plans.scales.as_dict()
+    acceleration = motion.stage == "acceleration"
+    if ask.everything:
+        points = list(dict.fromkeys(p for link in motion.links
+                                    for p in mechanism.links[link].points))
+        velocity_points = acceleration_points = points
+        links = [link for link in motion.links if link != FRAME]
+        curvature = [p for p in points if link_of(motion, p) != FRAME]
+        sliding = [s.key for s in mechanism.slides]
+    else:
+        velocity_points, acceleration_points = ask.velocity, ask.acceleration
+        links = list(dict.fromkeys(ask.omega + ask.epsilon))
+        curvature, sliding = ask.curvature, ask.sliding
+    point_table: dict[str, dict] = {}
+    for point in dict.fromkeys(tuple(velocity_points) + tuple(acceleration_points)
+                               + tuple(curvature)):
+        entry = {"position": _vector(motion.position(point))}
+        entry["velocity"] = _vector(motion.velocity(point))
+        if acceleration:
+            entry["acceleration"] = _vector(motion.acceleration(point))
+        point_table[point] = entry
+    report["points"] = point_table
+    link_table = {}
+    for link in links:
+        entry = {"omega": float(motion.omega(link)), "theta": float(motion.theta(link))}
+        if acceleration:
+            entry["epsilon"] = float(motion.epsilon(link))
+        link_table[link] = entry
+    report["links"] = link_table
+    if acceleration and curvature:
+        table = {}
+        for point in curvature:
+            found = motion.curvature(point)
+            if found.straight:
+                table[point] = {"rho": None, "center": None, "straight": True}
+            else:
+                rho = _finite(found.rho)
+                entry = {"rho": rho, "center": _vector(found.center) if rho else None}
+                if bool(found.inflection):
+                    entry["inflection"] = True
+                if bool(found.stationary):
+                    entry["stationary"] = True
+                table[point] = entry
+        report["curvature"] = table
+    if sliding:
+        table = {}
+        for key in sliding:
+            found = motion.sliding(key)
+            entry = {"s": float(found.s), "velocity": float(found.velocity)}
+            if acceleration:
+                entry |= {"acceleration": float(found.acceleration),
+                          "coriolis": _vector(found.coriolis)}
+            table[key] = entry
+        report["sliding"] = table
+    if analysis.plans:
+        plans = {"position": analysis.plans.position.as_dict(),
+                 "velocity": analysis.plans.velocity.as_dict()}
+        if analysis.plans.acceleration:
+            plans["acceleration"] = analysis.plans.acceleration.as_dict()
+        report["plans"] = plans
+    report["checks"] = [check.as_dict() for check in analysis.checks]
+    flags = list(analysis.plans.flags) if analysis.plans else []
+    report["flags"] = flags
+    if analysis.forces is not None:
+        report["forces"] = analysis.forces.as_dict()
+    return report
+
+
+def link_of(motion: Motion, point: str) -> str:
+    return motion._locate(point)[0]

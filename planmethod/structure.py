@@ -1,0 +1,284 @@
+"""Structural analysis: mobility W = 3n − 2p5 − p4 and the decomposition into Assur groups.
+
+The decomposition starts from the frame and the drive link and repeatedly detaches the smallest
+set of still-unknown links that is attached to known links only and has 3k = 2p (a dyad: two
+links, three pairs; a triad: four links, six pairs), in build order. A dyad's kind is read from
+its pairs in order external–internal–external: RRR (type 1), RRP (2), RPR (3), PRP (4), RPP (5).
+
+Examples
+--------
+>>> from planmethod.spec import parse_exercise
+>>> from pathlib import Path
+>>> exercise = parse_exercise(Path("exercises/compressor_slider_crank.toml").read_text())
+>>> structure = analyse_structure(exercise.mechanism)
+>>> (structure.n, structure.p5, structure.mobility)
+(3, 4, 1)
+>>> [(g.kind, g.links, g.group_class, g.order) for g in structure.groups]
+[('RRP', ('BC', 'slider'), 2, 2)]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from itertools import combinations
+
+from .errors import StructureError
+from .model import FRAME, Mechanism, Slide
+
+__all__ = ["DYAD_TYPES", "AssurGroup", "Joint", "Structure", "analyse_structure", "describe"]
+
+DYAD_TYPES = {"RRR": 1, "RRP": 2, "RPR": 3, "PRP": 4, "RPP": 5}
+
+
+@dataclass(frozen=True, slots=True)
+class Joint:
+    """A kinematic pair as a group sees it.
+
+    For a revolute pair ``point`` is the shared point and ``links`` the two links it joins (the
+    group's link first for an external pair). For a prismatic pair ``slide`` is the
+    :class:`~planmethod.model.Slide` and ``links`` is (slide.link, slide.along).
+    """
+
+    kind: str  # "R" or "P"
+    point: str
+    links: tuple[str, str]
+    slide: Slide | None = None
+
+    def other(self, link: str) -> str:
+        """The link on the other side of the pair from ``link``."""
+        return self.links[1] if self.links[0] == link else self.links[0]
+
+    @property
+    def label(self) -> str:
+        return self.point if self.kind == "R" else self.slide.key
+
+
+@dataclass(frozen=True, slots=True)
+class AssurGroup:
+    """An Assur group in build order.
+
+    For a dyad ``links`` is (L1, L2) and ``joints`` is (external of L1, internal, external of L2);
+    ``kind`` is one of RRR, RRP, RPR, PRP, RPP. For a class III or IV group ``kind`` is
+    ``"triad"`` or ``"tetrad"``, ``joints`` lists internal then external pairs.
+    """
+
+    index: int
+    kind: str
+    links: tuple[str, ...]
+    joints: tuple[Joint, ...]
+    group_class: int
+    order: int
+    attached_to: tuple[str, ...]
+
+    @property
+    def type_number(self) -> int | None:
+        """The dyad's type (1–5) in the Russian school's numbering, None for other groups."""
+        return DYAD_TYPES.get(self.kind)
+
+    @property
+    def name(self) -> str:
+        return "+".join(self.links)
+
+    @property
+    def is_dyad(self) -> bool:
+        return self.kind in DYAD_TYPES
+
+
+@dataclass(frozen=True, slots=True)
+class Structure:
+    """Mobility counts and the Assur groups in build order."""
+
+    n: int
+    p5: int
+    p4: int
+    mobility: int
+    driver: str
+    groups: tuple[AssurGroup, ...]
+
+    def group_of(self, link: str) -> AssurGroup | None:
+        """The group that solves ``link`` (None for the frame and the drive link)."""
+        for group in self.groups:
+            if link in group.links:
+                return group
+        return None
+
+    def groups_needed(self, links: Iterable[str]) -> tuple[AssurGroup, ...]:
+        """The groups on the way to ``links``: each link's group and the groups it rests on,
+        in build order."""
+        needed: set[int] = set()
+        stack = [link for link in links]
+        while stack:
+            group = self.group_of(stack.pop())
+            if group is None or group.index in needed:
+                continue
+            needed.add(group.index)
+            stack.extend(group.attached_to)
+        return tuple(group for group in self.groups if group.index in needed)
+
+
+def _joints_of(mechanism: Mechanism) -> list[tuple[str, object]]:
+    joints: list[tuple[str, object]] = [("R", pair) for pair in mechanism.revolutes]
+    joints += [("P", pair) for pair in mechanism.slides]
+    return joints
+
+
+def _group_pairs(mechanism: Mechanism, group: tuple[str, ...], known: set[str]):
+    """Pairs of ``group`` with itself (internal) and with known links (external)."""
+    internal: list[Joint] = []
+    external: list[Joint] = []
+    for pair in mechanism.revolutes:
+        inside = [link for link in pair.links if link in group]
+        if not inside:
+            continue
+        known_side = [link for link in pair.links if link in known]
+        if known_side:
+            for link in inside:
+                external.append(Joint("R", pair.point, (link, known_side[0])))
+        else:
+            for link in inside[1:]:
+                internal.append(Joint("R", pair.point, (inside[0], link)))
+    for pair in mechanism.slides:
+        ends = (pair.link, pair.along)
+        inside = [link for link in ends if link in group]
+        if len(inside) == 2:
+            internal.append(Joint("P", pair.point, ends, pair))
+        elif len(inside) == 1 and any(link in known for link in ends):
+            external.append(Joint("P", pair.point, ends, pair))
+    return internal, external
+
+
+def _connected(links: tuple[str, ...], internal: list[Joint]) -> bool:
+    reached = {links[0]}
+    changed = True
+    while changed:
+        changed = False
+        for joint in internal:
+            a, b = joint.links
+            if (a in reached) != (b in reached):
+                reached |= {a, b}
+                changed = True
+    return reached >= set(links)
+
+
+def _dyad(index: int, links: tuple[str, str], internal, external) -> AssurGroup | None:
+    if len(internal) != 1 or len(external) != 2:
+        return None
+    first, second = links
+    ext = {link: [j for j in external if first_link(j, links) == link] for link in links}
+    if len(ext[first]) != 1 or len(ext[second]) != 1:
+        return None
+    joints = (ext[first][0], internal[0], ext[second][0])
+    kind = "".join(j.kind for j in joints)
+    if kind not in DYAD_TYPES:
+        joints = joints[::-1]
+        links = (second, first)
+        kind = "".join(j.kind for j in joints)
+    if kind == "RPR" and joints[1].slide.link != links[0]:
+        # the block (the prismatic pair's `link`) first: X is then its pin taken on the guide
+        joints, links = joints[::-1], links[::-1]
+    if kind == "PPP":
+        raise StructureError(
+            "a dyad of three prismatic pairs (PPP) has no definite position",
+            link=f"{first}, {second}")
+    attached = tuple(dict.fromkeys(j.other(first_link(j, links)) for j in (joints[0], joints[2])))
+    return AssurGroup(index, kind, links, joints, 2, 2, attached)
+
+
+def first_link(joint: Joint, group: tuple[str, ...]) -> str:
+    """The group link that an external ``joint`` belongs to."""
+    return joint.links[0] if joint.links[0] in group else joint.links[1]
+
+
+def _larger(index: int, links: tuple[str, ...], internal, external) -> AssurGroup | None:
+    degree = {link: 0 for link in links}
+    for joint in internal:
+        for link in joint.links:
+            degree[link] += 1
+    attached = tuple(dict.fromkeys(j.other(first_link(j, links)) for j in external))
+    if len(links) == 4 and len(internal) == 3 and max(degree.values()) == 3:
+        central = max(degree, key=degree.get)
+        ordered = (central, *[link for link in links if link != central])
+        return AssurGroup(index, "triad", ordered, tuple(internal) + tuple(external), 3,
+                          len(external), attached)
+    if len(links) == 4 and len(internal) == 4 and set(degree.values()) == {2}:
+        return AssurGroup(index, "tetrad", links, tuple(internal) + tuple(external), 4,
+                          len(external), attached)
+    return None
+
+
+def analyse_structure(mechanism: Mechanism) -> Structure:
+    """Count the mobility and decompose the mechanism into Assur groups.
+
+    Raises
+    ------
+    StructureError
+        If W ≠ 1, or the links that remain cannot be split into supported Assur groups.
+    """
+    moving = mechanism.moving_links
+    n = len(moving)
+    p5 = sum(len(pair.links) - 1 for pair in mechanism.revolutes) + len(mechanism.slides)
+    p4 = 0
+    mobility = 3 * n - 2 * p5 - p4
+    if mobility != 1:
+        hint = ("it has too many freedoms: some link is not held" if mobility > 1 else
+                "it is locked (a structure, not a mechanism)")
+        loose = [link for link in moving
+                 if sum(link in pair.links for pair in mechanism.revolutes)
+                 + sum(link in (s.link, s.along) for s in mechanism.slides) < 2]
+        raise StructureError(
+            f"W = 3n − 2p5 − p4 = 3·{n} − 2·{p5} − {p4} = {mobility}, expected 1: {hint}"
+            + (f" (links with fewer than two pairs: {', '.join(loose)})" if loose else ""),
+            link=", ".join(moving))
+    driver = mechanism.drive.link
+    known = {FRAME, driver}
+    remaining = [link for link in moving if link != driver]
+    groups: list[AssurGroup] = []
+    while remaining:
+        found = None
+        for size in (2, 4):
+            for subset in combinations(remaining, size):
+                internal, external = _group_pairs(mechanism, subset, known)
+                if 3 * size != 2 * (len(internal) + len(external)):
+                    continue
+                if not _connected(subset, internal):
+                    continue
+                build = _dyad if size == 2 else _larger
+                found = build(len(groups), subset, internal, external)
+                if found:
+                    break
+            if found:
+                break
+        if found is None:
+            raise StructureError(
+                "these links do not form supported Assur groups (dyads or class III triads) "
+                "attached to the frame and the drive link", link=", ".join(remaining))
+        groups.append(found)
+        known |= set(found.links)
+        remaining = [link for link in remaining if link not in found.links]
+    return Structure(n, p5, p4, mobility, driver, tuple(groups))
+
+
+def describe(structure: Structure) -> str:
+    """The structural analysis as a course prints it.
+
+    Examples
+    --------
+    >>> print(describe(Structure(3, 4, 0, 1, "AB", ())))  # doctest: +NORMALIZE_WHITESPACE
+    n = 3, p5 = 4, p4 = 0, W = 3n − 2p5 − p4 = 3·3 − 2·4 − 0 = 1
+    drive link AB with the frame: class I mechanism
+    """
+    lines = [f"n = {structure.n}, p5 = {structure.p5}, p4 = {structure.p4}, "
+             f"W = 3n − 2p5 − p4 = 3·{structure.n} − 2·{structure.p5} − {structure.p4} = "
+             f"{structure.mobility}",
+             f"drive link {structure.driver} with the frame: class I mechanism"]
+    for group in structure.groups:
+        kind = (f"{group.kind} (type {group.type_number})" if group.is_dyad else group.kind)
+        pairs = ", ".join(joint.label for joint in group.joints)
+        lines.append(f"group {group.index + 1}: links {', '.join(group.links)} — {kind}, "
+                     f"class {group.group_class}, order {group.order}; pairs {pairs}; "
+                     f"attached to {', '.join(group.attached_to)}")
+    mechanism_class = max([g.group_class for g in structure.groups] + [1])
+    if structure.groups:
+        lines.append(f"the mechanism is of class {mechanism_class}")
+    return "\n".join(lines)
