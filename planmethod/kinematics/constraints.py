@@ -1,0 +1,214 @@
+"""Generic constraint equations Φ(q) = 0 of links and pairs, their Jacobian and the γ term.
+
+Each link has coordinates q = (x, y, θ): the global position of its frame's origin and the
+angle of its +x axis. A revolute pair at point P between links i and j gives two rows
+r_i + R_i·p_i − r_j − R_j·p_j = 0; a prismatic pair gives θ_link − θ_along − direction = 0 and
+n·(S − T) = 0 (the slide point on the guide line). Velocities solve Φ_q·q̇ = −Φ_known·q̇_known
+and accelerations Φ_q·q̈ = γ − Φ_known·q̈_known exactly.
+
+This is the machinery for class III groups (Newton on positions), for the whole-mechanism
+force system (Φ_qᵀ·λ gives the reactions), and an independent check of the closed-form dyads.
+
+Examples
+--------
+>>> import numpy as np
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.kinematics import solve
+>>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
+>>> motion = solve(exercise.mechanism)
+>>> system = ConstraintSystem.between(exercise.mechanism, ["BC", "slider"])
+>>> float(np.abs(system.residual(motion.links)).max()) < 1e-15
+True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model import Mechanism, Slide
+from .state import LinkState, perp, rotate, unit_angle
+
+__all__ = ["Constraint", "ConstraintSystem"]
+
+
+@dataclass(frozen=True, slots=True)
+class Constraint:
+    """A revolute pair (``point`` joining ``first`` and ``second``) or a prismatic ``slide``."""
+
+    kind: str
+    point: str
+    first: str
+    second: str
+    slide: Slide | None = None
+
+    @property
+    def rows(self) -> int:
+        return 2
+
+    @property
+    def label(self) -> str:
+        return self.point if self.kind == "R" else self.slide.key
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+@dataclass(frozen=True)
+class ConstraintSystem:
+    """Constraints among ``links``: the unknowns are (x, y, θ) of each link in ``unknown``."""
+
+    mechanism: Mechanism
+    constraints: tuple[Constraint, ...]
+    unknown: tuple[str, ...]
+
+    @classmethod
+    def between(cls, mechanism: Mechanism, unknown: Sequence[str],
+                known: Iterable[str] | None = None) -> ConstraintSystem:
+        """The pairs of the ``unknown`` links with each other and with ``known`` links (default:
+        every other link). A point shared by k links gives k − 1 revolute pairs."""
+        unknown = tuple(unknown)
+        allowed = set(unknown) | (set(mechanism.links) if known is None else set(known))
+        constraints: list[Constraint] = []
+        for pair in mechanism.revolutes:
+            members = [link for link in pair.links if link in allowed]
+            if not any(link in unknown for link in members) or len(members) < 2:
+                continue
+            anchor = next((link for link in members if link not in unknown), members[0])
+            for link in members:
+                if link != anchor and (link in unknown or anchor in unknown):
+                    constraints.append(Constraint("R", pair.point, link, anchor))
+        for slide in mechanism.slides:
+            ends = (slide.link, slide.along)
+            if all(end in allowed for end in ends) and any(end in unknown for end in ends):
+                constraints.append(Constraint("P", slide.point, slide.link, slide.along, slide))
+        return cls(mechanism, tuple(constraints), unknown)
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(rows, unknowns)."""
+        return 2 * len(self.constraints), 3 * len(self.unknown)
+
+    def column(self, link: str) -> int | None:
+        return 3 * self.unknown.index(link) if link in self.unknown else None
+
+    # -- evaluation -----------------------------------------------------------------------------
+    def _parts(self, constraint: Constraint, states: Mapping[str, LinkState]):
+        m = self.mechanism
+        if constraint.kind == "R":
+            first, second = states[constraint.first], states[constraint.second]
+            p1 = rotate(m.local(constraint.first, constraint.point), first.theta)
+            p2 = rotate(m.local(constraint.second, constraint.point), second.theta)
+            return first, second, p1, p2
+        slide = constraint.slide
+        mover, guide = states[slide.link], states[slide.along]
+        s = rotate(m.local(slide.link, slide.point), mover.theta)
+        t = rotate(m.local(slide.along, slide.through), guide.theta)
+        return mover, guide, s, t
+
+    def residual(self, states: Mapping[str, LinkState]) -> np.ndarray:
+        """Φ at the states' poses, shape (N, rows)."""
+        rows = []
+        for constraint in self.constraints:
+            first, second, p1, p2 = self._parts(constraint, states)
+            if constraint.kind == "R":
+                gap = first.origin + p1 - second.origin - p2
+                rows += [gap[..., 0], gap[..., 1]]
+            else:
+                slide = constraint.slide
+                turn = first.theta - second.theta - slide.direction_rad
+                rows.append(np.angle(np.exp(1j * turn)))
+                d = unit_angle(second.theta + slide.direction_rad)
+                rows.append(_dot(perp(d), first.origin + p1 - second.origin - p2))
+        return np.stack(rows, axis=-1)
+
+    def jacobian(self, states: Mapping[str, LinkState]) -> tuple[np.ndarray, np.ndarray]:
+        """(Φ_q for the unknown links (N, rows, 3u), Φ_q·q̇ of the known links (N, rows))
+        — the second needs the known links' velocities; it is zero where they are None."""
+        count = next(iter(states.values())).theta.shape[0]
+        rows, cols = self.size
+        matrix = np.zeros((count, rows, cols))
+        known_rate = np.zeros((count, rows))
+        for index, constraint in enumerate(self.constraints):
+            r = 2 * index
+            first, second, p1, p2 = self._parts(constraint, states)
+            if constraint.kind == "R":
+                blocks = ((constraint.first, first, 1.0, perp(p1)),
+                          (constraint.second, second, -1.0, perp(p2)))
+                for link, state, sign, lever in blocks:
+                    column = self.column(link)
+                    if column is not None:
+                        matrix[:, r, column] = sign
+                        matrix[:, r + 1, column + 1] = sign
+                        matrix[:, r:r + 2, column + 2] = sign * lever
+                    elif state.velocity is not None:
+                        known_rate[:, r:r + 2] += sign * (state.velocity
+                                                          + state.omega[..., None] * lever)
+                continue
+            slide = constraint.slide
+            d = unit_angle(second.theta + slide.direction_rad)
+            n = perp(d)
+            gap = first.origin + p1 - second.origin - p2
+            entries = (
+                (slide.link, first, (1.0, None), (n, _dot(n, perp(p1)))),
+                (slide.along, second, (-1.0, None), (-n, -_dot(d, gap) - _dot(n, perp(p2)))),
+            )
+            for link, state, (turn, _), (along_r, along_theta) in entries:
+                column = self.column(link)
+                if column is not None:
+                    matrix[:, r, column + 2] = turn
+                    matrix[:, r + 1, column:column + 2] = along_r
+                    matrix[:, r + 1, column + 2] = along_theta
+                elif state.velocity is not None:
+                    known_rate[:, r] += turn * state.omega
+                    known_rate[:, r + 1] += _dot(along_r, state.velocity) + (
+                        along_theta * state.omega)
+        return matrix, known_rate
+
+    def gamma(self, states: Mapping[str, LinkState]) -> np.ndarray:
+        """γ with Φ_q·q̈ = γ over *all* links (unknown and known), shape (N, rows); needs
+        every link's ω and origin velocity in ``states``."""
+        rows = []
+        for constraint in self.constraints:
+            first, second, p1, p2 = self._parts(constraint, states)
+            if constraint.kind == "R":
+                g = ((first.omega ** 2)[..., None] * p1 - (second.omega ** 2)[..., None] * p2)
+                rows += [g[..., 0], g[..., 1]]
+                continue
+            slide = constraint.slide
+            d = unit_angle(second.theta + slide.direction_rad)
+            n = perp(d)
+            gap = first.origin + p1 - second.origin - p2
+            v_s = first.velocity + first.omega[..., None] * perp(p1)
+            v_t = second.velocity + second.omega[..., None] * perp(p2)
+            wa, wl = second.omega, first.omega
+            rest = (-(wa ** 2) * _dot(n, gap) + 2 * wa * _dot(-d, v_s - v_t)
+                    + _dot(n, -(wl ** 2)[..., None] * p1 + (wa ** 2)[..., None] * p2))
+            rows += [np.zeros_like(wa), -rest]
+        return np.stack(rows, axis=-1)
+
+    def known_acceleration_term(self, states: Mapping[str, LinkState]) -> np.ndarray:
+        """Φ_known·q̈_known (N, rows) from the known links' ε and origin accelerations."""
+        accelerated = {name: LinkState(s.theta, s.origin, s.epsilon, s.acceleration)
+                       for name, s in states.items() if s.acceleration is not None}
+        for link in self.unknown:
+            state = states[link]
+            accelerated[link] = LinkState(state.theta, state.origin,
+                                          np.zeros_like(state.theta),
+                                          np.zeros_like(state.origin))
+        return self.jacobian(accelerated)[1]
+
+    # -- solves ---------------------------------------------------------------------------------
+    def velocities(self, states: Mapping[str, LinkState]) -> np.ndarray:
+        """q̇ of the unknown links (N, 3u) from the known links' motion."""
+        matrix, known = self.jacobian(states)
+        return np.linalg.solve(matrix, -known[..., None])[..., 0]
+
+    def accelerations(self, states: Mapping[str, LinkState]) -> np.ndarray:
+        """q̈ of the unknown links (N, 3u); ``states`` must hold every link's velocity."""
+        matrix, _ = self.jacobian(states)
+        rhs = self.gamma(states) - self.known_acceleration_term(states)
+        return np.linalg.solve(matrix, rhs[..., None])[..., 0]
