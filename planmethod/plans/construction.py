@@ -41,6 +41,7 @@ __all__ = [
     "Plan",
     "Plans",
     "PositionPlan",
+    "Segment",
     "Step",
     "draw_plans",
     "image_label",
@@ -65,6 +66,20 @@ def image_label(point: str, pole: str = "p") -> str:
     if label == pole:
         label += "′"
     return label + (at + link if at else "")
+
+
+@dataclass(frozen=True, slots=True)
+class Segment:
+    """A length about to be laid off or read off a drawing, as shown to a ``perturb`` model.
+
+    ``plan`` is ``velocity``, ``acceleration`` or ``position``; ``action`` is ``lay_off``,
+    ``read``, ``similarity`` or ``measure`` (a length read off the position plan); ``name``
+    says which (the component, the quantity or the label).
+    """
+
+    plan: str
+    action: str
+    name: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -221,9 +236,10 @@ class _Sheet:
     """One plan being drawn: its points, steps and the drafting precision."""
 
     def __init__(self, kind: str, pole: str, scale: float, unit: str, precision: float,
-                 min_angle: float) -> None:
+                 min_angle: float, perturb=None) -> None:
         self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
         self.precision, self.min_angle = precision, min_angle
+        self.perturb = perturb
         self.points: dict[str, np.ndarray] = {pole: np.zeros(2)}
         self.steps: list[Step] = []
         self.flags: list[str] = []
@@ -235,8 +251,10 @@ class _Sheet:
         self.steps.append(Step(number, *[getattr(step, n) for n in Step.__slots__[1:]]))
         return number
 
-    def round(self, length: float) -> float:
-        """A length as laid off or read off the drawing."""
+    def round(self, length: float, segment: Segment | None = None) -> float:
+        """A length as laid off or read off the drawing (``perturb`` replaces the rounding)."""
+        if self.perturb is not None:
+            return float(self.perturb(length, segment or Segment(self.kind, "read")))
         if self.precision > 0:
             return round(length / self.precision) * self.precision
         return length
@@ -245,7 +263,7 @@ class _Sheet:
                 component: str, vector: str, group: int | None = None) -> np.ndarray:
         """Lay off a known vector (exact direction, rounded length) from ``start``."""
         length = float(np.hypot(*vector_mm))
-        drawn = self.round(length)
+        drawn = self.round(length, Segment(self.kind, "lay_off", component))
         if length > 0:
             direction = vector_mm / length
             step = Step(0, "lay_off", text, start=start, end=end,
@@ -292,7 +310,8 @@ class _Sheet:
     def read(self, start: str, end: str, *, quantity: str, factor: float,
              sign: float = 1.0) -> float:
         """Read the segment start–end (rounded) and convert it: value = ±length·factor."""
-        length = self.round(float(np.hypot(*(self.points[end] - self.points[start]))))
+        length = self.round(float(np.hypot(*(self.points[end] - self.points[start]))),
+                            Segment(self.kind, "read", quantity))
         value = sign * length * factor
         self.add(Step(0, "read", f"({start}{end}) = {length:.4g} mm → {quantity} = {value:.6g}",
                       start=start, end=end, length_mm=length, quantity=quantity, value=value))
@@ -302,7 +321,7 @@ class _Sheet:
                     text: str) -> None:
         """Place a point by the similarity rule from the link's reference image."""
         length = float(np.hypot(*offset_mm))
-        drawn = self.round(length)
+        drawn = self.round(length, Segment(self.kind, "similarity", label))
         direction = offset_mm / length if length > 0 else np.zeros(2)
         self.points[label] = image.ref_mm + drawn * direction
         self.add(Step(0, "similarity", text, start=image.ref_label, end=label,
@@ -329,7 +348,7 @@ class _Emulator:
     """Draws the three plans of one crank angle."""
 
     def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
-                 motion: Motion, scales: Scales) -> None:
+                 motion: Motion, scales: Scales, perturb=None) -> None:
         self.exercise = exercise
         self.mechanism = exercise.mechanism
         self.settings = settings
@@ -341,8 +360,9 @@ class _Emulator:
         self.aimages: dict[str, LinkImage] = {}
         self.rel_velocity: dict[tuple[int, int], float] = {}
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
-        self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle)
-        self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle)
+        self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb)
+        self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
+                        perturb)
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
@@ -351,7 +371,8 @@ class _Emulator:
 
     def length_mm(self, first: np.ndarray, second: np.ndarray) -> float:
         """A length read off the position plan (rounded to the precision)."""
-        return self.v.round(float(np.hypot(*(second - first))) / self.scales.mu_l)
+        return self.v.round(float(np.hypot(*(second - first))) / self.scales.mu_l,
+                            Segment("position", "measure"))
 
     def label(self, point: str, sheet: _Sheet) -> str:
         return image_label(point, sheet.pole)
@@ -500,7 +521,8 @@ class _Emulator:
                     base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
                     factor=mu_v / (length_mm * mu_l))
                 omegas[side.link] = omega
-                rel.append(sign * self.v.round(float(np.hypot(*segment))))
+                rel.append(sign * self.v.round(float(np.hypot(*segment)),
+                                               Segment("velocity", "read", "relative")))
                 del radius
             else:
                 value = self.v.read(base_label, x_label,
@@ -666,7 +688,7 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
     a_label = emulator.image_at(a, emulator.aimages, link, position[0],
                                 image_label(point, a.pole))
     velocity = v.points[v_label]
-    speed_mm = v.round(float(np.hypot(*velocity)))
+    speed_mm = v.round(float(np.hypot(*velocity)), Segment("velocity", "read", f"v_{point}"))
     if speed_mm == 0 or emulator.motion.moves_straight(point):
         return
     tangent = velocity / np.hypot(*velocity)
@@ -680,7 +702,7 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
     a.add(Step(0, "project", f"project π{a_label} on the normal to the path of {name} "
                              f"(⟂ p{v_label}): {n_label}", start=a_label, end=n_label,
                direction_deg=_angle_deg(normal) % 180.0))
-    normal_mm = a.round(along_normal)
+    normal_mm = a.round(along_normal, Segment("acceleration", "read", f"an_{point}"))
     if normal_mm == 0:
         return
     rho = speed_mm ** 2 * scales.mu_v ** 2 / (normal_mm * scales.mu_a)
@@ -724,7 +746,8 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     if k_label not in a.points:
         a.lay_off(ga, k_label, coriolis / scales.mu_a, component="coriolis",
                   vector=f"aᵏ_{key}", text=f"aᵏ of {key} = 2·ω_{slide.along}·v_rel from {ga}")
-    corio = a.round(float(np.hypot(*coriolis)) / scales.mu_a) * scales.mu_a
+    corio = a.round(float(np.hypot(*coriolis)) / scales.mu_a,
+                    Segment("acceleration", "read", f"coriolis_{key}")) * scales.mu_a
     emulator.readings[f"coriolis_{key}"] = corio
     segment = a.points[la] - a.points[k_label]
     sign = 1.0 if float(segment @ d) >= 0 else -1.0
@@ -734,7 +757,7 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
 
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
                settings: PlanSettings | None = None, acceleration: bool = True,
-               motion: Motion | None = None) -> Plans:
+               motion: Motion | None = None, perturb=None) -> Plans:
     """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
 
     Parameters
@@ -749,6 +772,11 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         Also draw the acceleration plan.
     motion
         Exact positions at that angle, if already solved (only positions are used).
+    perturb
+        A drafting-error model ``perturb(length_mm, segment) -> drawn_length_mm`` that
+        replaces the rounding to ``precision_mm`` for every length laid off or read off
+        (``segment`` is a :class:`Segment`); the calls come in construction order. Used to
+        propagate reading errors into grading tolerances. Default: round to ``precision_mm``.
 
     Raises
     ------
@@ -761,7 +789,7 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     if motion is None:
         motion = solve(mechanism, angle, stage="position")
     scales = choose_scales(exercise, settings)
-    emulator = _Emulator(exercise, settings, angle, motion, scales)
+    emulator = _Emulator(exercise, settings, angle, motion, scales, perturb)
     position_plan = _position_plan(exercise, motion, scales, angle)
     emulator.drive()
     higher = [g for g in motion.structure.groups if not g.is_dyad and g.index in motion.groups]
