@@ -74,12 +74,15 @@ class Segment:
 
     ``plan`` is ``velocity``, ``acceleration`` or ``position``; ``action`` is ``lay_off``,
     ``read``, ``similarity`` or ``measure`` (a length read off the position plan); ``name``
-    says which (the component, the quantity or the label).
+    says which (the component, the quantity or the label); a lay-off also names its
+    ``vector`` and the ``group`` index (None for the drive).
     """
 
     plan: str
     action: str
     name: str | None = None
+    vector: str | None = None
+    group: int | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -263,7 +266,7 @@ class _Sheet:
                 component: str, vector: str, group: int | None = None) -> np.ndarray:
         """Lay off a known vector (exact direction, rounded length) from ``start``."""
         length = float(np.hypot(*vector_mm))
-        drawn = self.round(length, Segment(self.kind, "lay_off", component))
+        drawn = self.round(length, Segment(self.kind, "lay_off", component, vector, group))
         if length > 0:
             direction = vector_mm / length
             step = Step(0, "lay_off", text, start=start, end=end,
