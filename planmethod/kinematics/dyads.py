@@ -129,6 +129,34 @@ def _first_bad(mask: np.ndarray) -> int:
     return int(np.flatnonzero(mask)[0])
 
 
+#: A discriminant whose vanishing factor is within this many units of its own rounding error of
+#: zero is a toggle position (the two assemblies coincide), not a failure to assemble.
+ROUNDING_UNITS = 16.0
+
+
+def _toggle_or_miss(group, angles_deg, vanishing, scale, text, shortfall) -> None:
+    """Raise at the first angle where a group cannot be assembled or is in its toggle position.
+
+    ``vanishing`` is the factor of the discriminant that goes to zero at the toggle (e.g.
+    a + b − |P1P2| for RRR), ``scale`` the size of the terms it was computed from: where
+    |vanishing| ≤ ROUNDING_UNITS·eps·scale the sign is lost in rounding — a toggle (ToggleError);
+    below that the links cannot reach (AssemblyError saying by how much).
+    """
+    tolerance = ROUNDING_UNITS * np.finfo(float).eps * scale
+    toggle = np.abs(vanishing) <= tolerance
+    miss = (vanishing < 0) & ~toggle
+    first_toggle = np.flatnonzero(toggle)
+    first_miss = np.flatnonzero(miss)
+    if first_miss.size and (not first_toggle.size or first_miss[0] < first_toggle[0]):
+        raise _assembly_error(group, angles_deg, miss, text, shortfall)
+    if first_toggle.size:
+        index = int(first_toggle[0])
+        raise ToggleError(
+            "toggle position: the group's links are stretched out or folded in line, its two "
+            "construction lines are parallel and its motion is not determined",
+            line_angle_deg=0.0, link=group.name, angle=float(angles_deg[index]))
+
+
 # -- helpers on pairs -------------------------------------------------------------------------
 def _group_link(joint: Joint, group: AssurGroup) -> str:
     return joint.links[0] if joint.links[0] in group.links else joint.links[1]
@@ -222,13 +250,17 @@ def _rrr(mechanism, group, states, branch, angles_deg):
     d = norm(span)
     # Heron's form keeps the height accurate near the toggle (a + b ≈ d or |a − b| ≈ d).
     product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)
-    bad = (product < 0) | (d <= 1e-15 * (a + b))
-    if np.any(bad):
-        shortfall = np.maximum(d - a - b, np.maximum(abs(a - b) - d, 0.0))
-        raise _assembly_error(
-            group, angles_deg, bad,
-            f"{l1} ({ext1.point}{internal.point} = {a:g} m) and {l2} ({internal.point}"
-            f"{ext2.point} = {b:g} m) cannot join {ext1.point} and {ext2.point}", shortfall)
+    if np.any(d <= 1e-15 * (a + b)):
+        raise _assembly_error(group, angles_deg, d <= 1e-15 * (a + b),
+                              f"{ext1.point} and {ext2.point} coincide: the group has no "
+                              "definite position", np.zeros_like(d))
+    # the factor that vanishes: a + b − d (stretched out) or |a − b| − d … (folded)
+    factors = np.stack((a + b - d, a - b + d, b - a + d), axis=0)
+    vanishing = np.take_along_axis(factors, np.argmin(np.abs(factors), axis=0)[None], 0)[0]
+    _toggle_or_miss(group, angles_deg, vanishing, a + b + d + np.max(np.abs(span), axis=-1),
+                    f"{l1} ({ext1.point}{internal.point} = {a:g} m) and {l2} ({internal.point}"
+                    f"{ext2.point} = {b:g} m) cannot join {ext1.point} and {ext2.point}",
+                    np.maximum(d - a - b, np.maximum(abs(a - b) - d, 0.0)))
     u = span / d[..., None]
     x = (a * a - b * b + d * d) / (2 * d)
     h = np.sqrt(np.maximum(product, 0.0)) / (2 * d)
@@ -249,12 +281,10 @@ def _rrp(mechanism, group, states, branch, angles_deg):
     a = mechanism.links[l1].length(ext1.point, internal.point)
     _need_length(a, f"{l1} ({ext1.point}{internal.point})", group)
     h = np.einsum("...i,...i->...", n, p1) - offset
-    bad = np.abs(h) > a
-    if np.any(bad):
-        raise _assembly_error(
-            group, angles_deg, bad,
-            f"{l1} ({ext1.point}{internal.point} = {a:g} m) cannot reach the line of "
-            f"{internal.point} along {ext2.slide.along}'s guide", np.abs(h) - a)
+    scale = a + np.abs(offset) + np.max(np.abs(p1), axis=-1)
+    _toggle_or_miss(group, angles_deg, a - np.abs(h), scale,
+                    f"{l1} ({ext1.point}{internal.point} = {a:g} m) cannot reach the line of "
+                    f"{internal.point} along {ext2.slide.along}'s guide", np.abs(h) - a)
     q = circle_line(p1, a, n, offset, branch, d)
     q1_local = mechanism.local(l1, internal.point)
     return {l1: _pose_from_two(p1_local, q1_local, p1, q),
@@ -274,12 +304,15 @@ def _rpr(mechanism, group, states, branch, angles_deg):
     span = p1 - p2
     length = norm(span)
     offset = float(c0[0] * u[1] - c0[1] * u[0])
-    bad = (np.abs(offset) > length) | (length <= 1e-15)
-    if np.any(bad):
-        raise _assembly_error(
-            group, angles_deg, bad,
-            f"the guide of {l2} passes {abs(offset):g} m from its pivot {ext2.point}; it cannot "
-            f"reach {ext1.point}", np.abs(offset) - length)
+    if np.any(length <= 1e-15):
+        raise _assembly_error(group, angles_deg, length <= 1e-15,
+                              f"{ext1.point} and {ext2.point} coincide: the group has no "
+                              "definite position", np.zeros_like(length))
+    if offset != 0:
+        _toggle_or_miss(group, angles_deg, length - abs(offset),
+                        length + abs(offset) + np.max(np.abs(span), axis=-1),
+                        f"the guide of {l2} passes {abs(offset):g} m from its pivot "
+                        f"{ext2.point}; it cannot reach {ext1.point}", np.abs(offset) - length)
     s = -float(c0 @ u) + branch * np.sqrt(length ** 2 - offset ** 2)
     in_l2 = c0 + s[..., None] * u
     theta2 = (np.arctan2(span[..., 1], span[..., 0]) - np.arctan2(in_l2[..., 1], in_l2[..., 0]))

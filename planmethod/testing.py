@@ -1,0 +1,161 @@
+"""Helpers for tests: reference mechanisms as exercise dicts, and an independent reference solve.
+
+:func:`reference_motion` recomputes velocities and accelerations of every link with the generic
+constraint Jacobian of the whole mechanism (:mod:`planmethod.kinematics.constraints`) — an
+exact linear solve independent of the closed-form dyads and of the plan emulator.
+
+Examples
+--------
+>>> from planmethod.spec import exercise_from_dict
+>>> mechanism = exercise_from_dict(fourbar()).mechanism
+>>> reference = reference_motion(mechanism, [60.0])
+>>> round(float(reference["CD"]["omega"][0]), 6)
+2.448975
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Sequence
+
+import numpy as np
+
+from .kinematics import solve
+from .kinematics.constraints import ConstraintSystem
+from .kinematics.state import LinkState
+from .model import FRAME, Mechanism
+
+__all__ = [
+    "fourbar",
+    "reference_motion",
+    "scotch_yoke",
+    "shaper",
+    "slider_crank",
+    "slotted_lever",
+    "two_guides",
+]
+
+
+def fourbar(*, ground=0.30, crank=0.08, coupler=0.22, rocker=0.18, angle=60.0,
+            omega=10.0, epsilon=0.0, point=(0.10, 0.05)) -> dict:
+    """REFERENCE_CASES case A (defaults): a crank-rocker with coupler point P."""
+    return {
+        "title": "four-bar",
+        "drive": {"link": "AB", "pivot": "A", "angle": angle, "omega": omega,
+                  "epsilon": epsilon},
+        "links": {"frame": {"A": [0, 0], "D": [ground, 0]}, "AB": {"A": [0, 0], "B": [crank, 0]},
+                  "BC": {"B": [0, 0], "C": [coupler, 0], "P": list(point)},
+                  "CD": {"C": [0, 0], "D": [rocker, 0]}},
+        "sketch": {"C": [ground * 0.8, rocker]},
+    }
+
+
+def slider_crank(*, crank=0.06, rod=0.18, offset=0.0, angle=45.0, omega=100.0,
+                 epsilon=0.0) -> dict:
+    """Seed 001's slider-crank (defaults), optionally with the guide ``offset`` below A."""
+    return {
+        "title": "slider-crank",
+        "drive": {"link": "AB", "pivot": "A", "angle": angle, "omega": omega,
+                  "epsilon": epsilon},
+        "links": {"frame": {"A": [0, 0], "G": [0, -offset]}, "AB": {"A": [0, 0], "B": [crank, 0]},
+                  "BC": {"B": [0, 0], "C": [rod, 0], "D": [rod / 2, 0]},
+                  "slider": {"C": [0, 0]}},
+        "slide": [{"link": "slider", "along": "frame", "through": "G", "direction": 0}],
+        "sketch": {"C": [crank + rod, -offset]},
+    }
+
+
+def slotted_lever(*, crank=0.10, centres=0.30, angle=30.0, omega=10.0, epsilon=0.0) -> dict:
+    """REFERENCE_CASES case C (defaults): RPR dyad with the Coriolis component."""
+    return {
+        "title": "slotted lever",
+        "drive": {"link": "crank", "pivot": "O1", "angle": angle, "omega": omega,
+                  "epsilon": epsilon},
+        "links": {"frame": {"O1": [0, 0], "O2": [0, -centres]},
+                  "crank": {"O1": [0, 0], "B": [crank, 0]}, "block": {"B": [0, 0]},
+                  "lever": {"O2": [0, 0], "C": [1.5 * (crank + centres), 0.0]}},
+        "slide": [{"link": "block", "along": "lever", "through": "O2", "direction": 0}],
+    }
+
+
+def scotch_yoke(*, crank=0.10, angle=30.0, omega=10.0, epsilon=-4.0, slot=80.0,
+                guide=10.0) -> dict:
+    """An RPP dyad: block on the crank pin, sliding in a yoke that slides in the frame."""
+    return {
+        "title": "scotch yoke",
+        "drive": {"link": "crank", "pivot": "O", "angle": angle, "omega": omega,
+                  "epsilon": epsilon},
+        "links": {"frame": {"O": [0, 0], "G": [0, 0.5]}, "crank": {"O": [0, 0], "B": [crank, 0]},
+                  "block": {"B": [0, 0]}, "yoke": {"Y": [0, 0], "Z": [0.2, 0.1]}},
+        "slide": [{"link": "block", "along": "yoke", "through": "Y", "direction": slot},
+                  {"link": "yoke", "along": "frame", "through": "G", "direction": guide,
+                   "point": "Y"}],
+    }
+
+
+def two_guides(*, angle=30.0, omega=10.0, epsilon=2.0) -> dict:
+    """A PRP dyad: a block slides on a guide carried by the crank and is pinned to a slider on
+    a fixed guide."""
+    return {
+        "title": "two guides",
+        "drive": {"link": "crank", "pivot": "O", "angle": angle, "omega": omega,
+                  "epsilon": epsilon},
+        "links": {"frame": {"O": [0, 0], "G": [0, 0.5]},
+                  "crank": {"O": [0, 0], "B": [0.1, 0], "H": [0.3, 0.05]},
+                  "s1": {"Q": [0, 0]}, "s2": {"Q": [0, 0]}},
+        "slide": [{"link": "s1", "along": "crank", "through": "H", "direction": 70},
+                  {"link": "s2", "along": "frame", "through": "G", "direction": 10}],
+    }
+
+
+def shaper(*, angle=60.0, omega=8.0) -> dict:
+    """The shaper six-bar of ``exercises/shaper_sixbar.toml``: RPR then RRP in series."""
+    return {
+        "title": "shaper",
+        "drive": {"link": "crank", "pivot": "O1", "angle": angle, "omega": omega},
+        "links": {"frame": {"O1": [0, 0.30], "O2": [0, 0], "E": [0, 0.62]},
+                  "crank": {"O1": [0, 0], "B": [0.10, 0]}, "block": {"B": [0, 0]},
+                  "lever": {"O2": [0, 0], "C": [0.60, 0]}, "rod": {"C": [0, 0], "D": [0.25, 0]},
+                  "ram": {"D": [0, 0]}},
+        "slide": [{"link": "block", "along": "lever", "through": "O2", "direction": 0},
+                  {"link": "ram", "along": "frame", "through": "E", "direction": 0}],
+        "sketch": {"C": [0.10, 0.59], "D": [0.33, 0.62]},
+    }
+
+
+def with_changes(data: dict, **top) -> dict:
+    """A deep copy of an exercise dict with top-level tables replaced."""
+    out = copy.deepcopy(data)
+    out.update(top)
+    return out
+
+
+def reference_motion(mechanism: Mechanism, angles: Sequence[float]) -> dict[str, dict]:
+    """Velocities and accelerations of every moving link by one exact linear solve of the whole
+    mechanism's constraint equations (positions from the closed-form solve).
+
+    Returns ``{link: {"omega", "epsilon", "velocity", "acceleration"}}`` (origin velocity and
+    acceleration), arrays over ``angles``.
+    """
+    angles = np.asarray(angles, dtype=float)
+    positions = solve(mechanism, angles, stage="position")
+    moving = [name for name in mechanism.moving_links if name != mechanism.drive.link]
+    system = ConstraintSystem.between(mechanism, moving)
+    driven = solve(mechanism, angles, links=())  # no group: the frame and the drive only
+    states = {FRAME: driven.links[FRAME], mechanism.drive.link: driven.links[mechanism.drive.link]}
+    for name in moving:
+        state = positions.links[name]
+        states[name] = LinkState(state.theta, state.origin)
+    rates = system.velocities(states)
+    for index, name in enumerate(moving):
+        state = states[name]
+        states[name] = LinkState(state.theta, state.origin, rates[:, 3 * index + 2],
+                                 rates[:, 3 * index:3 * index + 2])
+    second = system.accelerations(states)
+    out = {}
+    for index, name in enumerate(moving):
+        out[name] = {"omega": rates[:, 3 * index + 2],
+                     "velocity": rates[:, 3 * index:3 * index + 2],
+                     "epsilon": second[:, 3 * index + 2],
+                     "acceleration": second[:, 3 * index:3 * index + 2]}
+    return out
