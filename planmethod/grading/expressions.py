@@ -1,0 +1,292 @@
+"""A small, safe expression language for exercise templates (no ``eval`` of file text).
+
+A template value written as a string starting with ``=`` is an expression::
+
+    "= l_AB + l_BC"              arithmetic: + - * / ^ (power), unary minus, parentheses
+    "= 0.5 * links.BC.C[0]"      references: a name from [vars] or a dotted key of the file
+    "= round(3 * l_AB, 3)"       functions: min max abs round sqrt sin cos tan asin acos atan2
+                                 hypot (angles of sin/cos/tan/asin/acos/atan2 in degrees)
+    "= pi / 4"                   constant: pi
+
+The grammar (precedence low → high)::
+
+    expression := term (("+" | "-") term)*
+    term       := unary (("*" | "/") unary)*
+    unary      := ("-" | "+") unary | power
+    power      := atom ("^" unary)?
+    atom       := NUMBER | REFERENCE | NAME "(" [expression ("," expression)*] ")"
+                | "(" expression ")"
+
+Parsing builds a tree of tuples; evaluation walks it with a resolver for references, so
+nothing from the file is ever executed. Every problem is an :class:`ExpressionError` (a
+``ValueError``) saying where in the text it is; the template loader turns it into a
+:class:`~planmethod.errors.SpecError` naming the file and key.
+
+Examples
+--------
+>>> evaluate(parse("2 * (l + 1) ^ 2"), {"l": 0.5}.__getitem__)
+4.5
+>>> evaluate(parse("round(cos(60) * 10, 3)"), lambda name: 0.0)
+5.0
+>>> sorted(references(parse("a.b[1] + max(c, 2)")))
+['a.b[1]', 'c']
+>>> parse("2 +* 3")
+Traceback (most recent call last):
+...
+planmethod.grading.expressions.ExpressionError: at character 4: expected a number, ...
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+
+__all__ = ["FUNCTIONS", "ExpressionError", "evaluate", "parse", "references"]
+
+#: The longest expression accepted (characters) and the deepest nesting.
+MAX_LENGTH = 500
+MAX_DEPTH = 40
+
+
+class ExpressionError(ValueError):
+    """A template expression is malformed or cannot be evaluated."""
+
+
+def _degrees(function: Callable[[float], float]) -> Callable[[float], float]:
+    return lambda x: function(math.radians(x))
+
+
+def _round(x: float, digits: float = 0) -> float:
+    if digits != int(digits) or not -12 <= digits <= 12:
+        raise ExpressionError(f"round(x, digits) needs a whole number of digits in -12…12, "
+                              f"got {digits:g}")
+    return float(round(x, int(digits)))
+
+
+def _checked(name: str, function: Callable[..., float], low: float | None = None,
+             high: float | None = None) -> Callable[..., float]:
+    def call(x: float) -> float:
+        if (low is not None and x < low) or (high is not None and x > high):
+            raise ExpressionError(f"{name}({x:g}) is undefined")
+        return function(x)
+
+    return call
+
+
+#: name → (function, least and most arguments)
+FUNCTIONS: dict[str, tuple[Callable[..., float], int, int]] = {
+    "min": (min, 1, 64),
+    "max": (max, 1, 64),
+    "abs": (abs, 1, 1),
+    "round": (_round, 1, 2),
+    "sqrt": (_checked("sqrt", math.sqrt, low=0.0), 1, 1),
+    "sin": (_degrees(math.sin), 1, 1),
+    "cos": (_degrees(math.cos), 1, 1),
+    "tan": (_degrees(math.tan), 1, 1),
+    "asin": (_checked("asin", lambda x: math.degrees(math.asin(x)), -1.0, 1.0), 1, 1),
+    "acos": (_checked("acos", lambda x: math.degrees(math.acos(x)), -1.0, 1.0), 1, 1),
+    "atan2": (lambda y, x: math.degrees(math.atan2(y, x)), 2, 2),
+    "hypot": (math.hypot, 2, 2),
+}
+CONSTANTS = {"pi": math.pi}
+
+_TOKEN = re.compile(r"""
+    (?P<space>\s+)
+  | (?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*|\[\d+\])*)
+  | (?P<op>[-+*/^(),])
+""", re.VERBOSE)
+
+
+def _tokens(text: str) -> list[tuple[str, str, int]]:
+    if len(text) > MAX_LENGTH:
+        raise ExpressionError(f"longer than {MAX_LENGTH} characters")
+    out, position = [], 0
+    while position < len(text):
+        match = _TOKEN.match(text, position)
+        if not match:
+            raise ExpressionError(f"at character {position + 1}: unexpected "
+                                  f"{text[position]!r}")
+        if match.lastgroup != "space":
+            out.append((match.lastgroup, match.group(), position))
+        position = match.end()
+    out.append(("end", "", len(text)))
+    return out
+
+
+class _Parser:
+    def __init__(self, text: str) -> None:
+        self.tokens = _tokens(text)
+        self.index = 0
+        self.depth = 0
+
+    def peek(self) -> tuple[str, str, int]:
+        return self.tokens[self.index]
+
+    def take(self) -> tuple[str, str, int]:
+        token = self.tokens[self.index]
+        self.index += 1
+        return token
+
+    def expect(self, value: str) -> None:
+        kind, text, position = self.take()
+        if text != value or kind != "op":
+            shown = repr(text) if text else "the end"
+            raise ExpressionError(f"at character {position + 1}: expected {value!r}, "
+                                  f"got {shown}")
+
+    def deeper(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise ExpressionError(f"nested deeper than {MAX_DEPTH} levels")
+
+    def expression(self):
+        self.deeper()
+        node = self.term()
+        while self.peek()[1] in ("+", "-") and self.peek()[0] == "op":
+            operator = self.take()[1]
+            node = (operator, node, self.term())
+        self.depth -= 1
+        return node
+
+    def term(self):
+        node = self.unary()
+        while self.peek()[1] in ("*", "/") and self.peek()[0] == "op":
+            operator = self.take()[1]
+            node = (operator, node, self.unary())
+        return node
+
+    def unary(self):
+        if self.peek()[0] == "op" and self.peek()[1] in ("-", "+"):
+            operator = self.take()[1]
+            self.deeper()
+            operand = self.unary()
+            self.depth -= 1
+            return ("neg", operand) if operator == "-" else operand
+        return self.power()
+
+    def power(self):
+        node = self.atom()
+        if self.peek()[0] == "op" and self.peek()[1] == "^":
+            self.take()
+            self.deeper()
+            node = ("^", node, self.unary())
+            self.depth -= 1
+        return node
+
+    def atom(self):
+        kind, text, position = self.take()
+        if kind == "number":
+            return ("num", float(text))
+        if kind == "name":
+            if self.peek()[1] == "(" and self.peek()[0] == "op":
+                if text not in FUNCTIONS:
+                    raise ExpressionError(f"at character {position + 1}: unknown function "
+                                          f"{text!r}; known: {', '.join(FUNCTIONS)}")
+                self.take()
+                arguments = []
+                if self.peek()[1] != ")":
+                    arguments.append(self.expression())
+                    while self.peek()[1] == "," and self.peek()[0] == "op":
+                        self.take()
+                        arguments.append(self.expression())
+                self.expect(")")
+                _, least, most = FUNCTIONS[text]
+                if not least <= len(arguments) <= most:
+                    wanted = str(least) if least == most else f"{least}…{most}"
+                    raise ExpressionError(f"at character {position + 1}: {text}() takes "
+                                          f"{wanted} argument(s), got {len(arguments)}")
+                return ("call", text, tuple(arguments))
+            if text in CONSTANTS:
+                return ("num", CONSTANTS[text])
+            return ("ref", text)
+        if kind == "op" and text == "(":
+            node = self.expression()
+            self.expect(")")
+            return node
+        shown = repr(text) if text else "the end"
+        raise ExpressionError(f"at character {position + 1}: expected a number, a name or "
+                              f"'(', got {shown}")
+
+
+def parse(text: str):
+    """Parse an expression (without its leading ``=``) into a tree of tuples.
+
+    Raises
+    ------
+    ExpressionError
+        If the text is not an expression of the grammar above.
+    """
+    parser = _Parser(text)
+    if parser.peek()[0] == "end":
+        raise ExpressionError("empty expression")
+    node = parser.expression()
+    kind, token, position = parser.peek()
+    if kind != "end":
+        raise ExpressionError(f"at character {position + 1}: unexpected {token!r}")
+    return node
+
+
+def references(node) -> set[str]:
+    """The names an expression tree refers to."""
+    kind = node[0]
+    if kind == "ref":
+        return {node[1]}
+    if kind == "num":
+        return set()
+    if kind == "call":
+        return set().union(*(references(a) for a in node[2])) if node[2] else set()
+    return set().union(*(references(child) for child in node[1:]))
+
+
+def evaluate(node, resolve: Callable[[str], float]) -> float:
+    """Evaluate an expression tree; ``resolve(name)`` gives the value of a reference.
+
+    Raises
+    ------
+    ExpressionError
+        On division by zero, a result that is not a finite number, or a function outside
+        its domain.
+    """
+    kind = node[0]
+    if kind == "num":
+        return node[1]
+    if kind == "ref":
+        value = resolve(node[1])
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise ExpressionError(f"{node[1]} is not a number ({value!r})")
+        return float(value)
+    if kind == "neg":
+        return -evaluate(node[1], resolve)
+    if kind == "call":
+        function = FUNCTIONS[node[1]][0]
+        arguments = [evaluate(a, resolve) for a in node[2]]
+        try:
+            result = float(function(*arguments))
+        except (ValueError, OverflowError) as error:
+            if isinstance(error, ExpressionError):
+                raise
+            raise ExpressionError(f"{node[1]}() failed: {error}") from None
+    else:
+        left, right = evaluate(node[1], resolve), evaluate(node[2], resolve)
+        try:
+            if kind == "+":
+                result = left + right
+            elif kind == "-":
+                result = left - right
+            elif kind == "*":
+                result = left * right
+            elif kind == "/":
+                if right == 0:
+                    raise ExpressionError("division by zero")
+                result = left / right
+            else:
+                if abs(right) > 64:
+                    raise ExpressionError(f"exponent {right:g} is out of range (|x| ≤ 64)")
+                result = left ** right
+        except OverflowError:
+            raise ExpressionError("the result overflows") from None
+    if isinstance(result, complex) or not math.isfinite(result):
+        raise ExpressionError(f"the result is not a finite number ({result})")
+    return float(result)

@@ -1,0 +1,565 @@
+"""Exercise templates and their reproducible random variants.
+
+A template is an exercise file (DESIGN.md) in which any number may instead be
+
+* a **range** ``{ range = [low, high], step = s }`` — drawn uniformly on the grid
+  low, low + s, … ≤ high (without ``step``: uniformly in [low, high]);
+* a **choice** ``{ choice = [a, b, c] }`` — one of the listed values (numbers or strings);
+* a **derived value**: a string starting with ``=``, an expression of the safe language of
+  :mod:`planmethod.grading.expressions` (``"= l_BC / 2"``, ``"= round(l_AB * ratio, 3)"``),
+  referring to names of the ``[vars]`` table or to dotted keys of the file
+  (``drive.omega``, ``links.BC.C[0]``). A literal string starting with ``=`` is written ``==…``.
+
+Two extra tables belong to templates only:
+
+* ``[vars]`` — named values (numbers, ranges, choices or expressions) used by expressions and
+  by ``{name}`` / ``{name:.3g}`` placeholders in ``description``;
+* ``[template]`` — ``min_line_angle_deg`` (default 15: reject a variant whose construction
+  lines meet at a smaller angle), ``dead_centre_deg`` (default 10: reject a variant whose
+  crank stands within this of a dead centre), ``max_attempts`` (default 200).
+
+The ``[grading]`` table (also allowed in plain exercise files) holds ``precision_mm``
+(the drafting precision the tolerances assume, default 0.5 mm), ``rel_floor``, and per-quantity
+``[grading.tolerance]`` overrides and ``[grading.points]`` — see :mod:`planmethod.grading.keys`.
+
+A variant is a pure function of (template text, seed, student id): every random value is drawn
+from a SHA-256 hash of those and of its own key, so it does not depend on the order of
+evaluation or on the Python version. A drawn variant that cannot be assembled, stands near a
+dead centre, or needs two construction lines meeting below ``min_line_angle_deg`` is rejected
+and redrawn with the next attempt number (also part of the hash), deterministically.
+
+Examples
+--------
+>>> template = load_template("exercises/templates/slider_crank.toml")
+>>> first = draw_variant(template, seed=7, student="s01")
+>>> again = draw_variant(template, seed=7, student="s01")
+>>> first.data == again.data and first.attempt == again.attempt
+True
+>>> 0.05 <= first.values["l_AB"] <= 0.08
+True
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import math
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
+from ..model import Exercise
+from .expressions import ExpressionError, evaluate, parse, references
+
+__all__ = [
+    "Template",
+    "TemplateSettings",
+    "Variant",
+    "check_variant",
+    "draw_variant",
+    "format_description",
+    "load_template",
+    "parse_template",
+    "to_toml",
+]
+
+TEMPLATE_KEYS = ("min_line_angle_deg", "dead_centre_deg", "max_attempts")
+_PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_.\[\]]*)(?::([-+ #0]?\d*(?:\.\d+)?[efgd%]?))?\}")
+_PATH_PART = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]")
+
+
+@dataclass(frozen=True, slots=True)
+class TemplateSettings:
+    """The ``[template]`` table: rejection thresholds and the attempt limit."""
+
+    min_line_angle_deg: float = 15.0
+    dead_centre_deg: float = 10.0
+    max_attempts: int = 200
+
+
+@dataclass(frozen=True)
+class Template:
+    """A parsed template: its raw tables, its settings and a digest of its text."""
+
+    data: Mapping[str, Any]
+    settings: TemplateSettings
+    digest: str
+    source: str | None = None
+
+    @property
+    def is_random(self) -> bool:
+        """True if any value is a range or a choice."""
+        return any(_is_random(value) for _, value in _walk(self.data))
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One drawn variant: the resolved exercise tables, the exercise, the values of
+    ``[vars]``, and the draw that gave it (seed, student, attempt, rejected attempts)."""
+
+    student: str
+    seed: int
+    attempt: int
+    data: Mapping[str, Any]
+    values: Mapping[str, Any]
+    exercise: Exercise
+    rejected: tuple[str, ...] = ()
+
+    @property
+    def description(self) -> str:
+        return format_description(self.data.get("description", ""), self.values, self.data)
+
+
+def load_template(path: str | Path) -> Template:
+    """Read a template (or a plain exercise file, which is a template without randomness).
+
+    Raises
+    ------
+    SpecError
+        If the file cannot be read, is not TOML, or has a malformed range, choice or
+        expression (naming the file and key).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SpecError("no such file", file=str(path)) from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
+    return parse_template(text, file=str(path))
+
+
+def parse_template(text: str, *, file: str | None = None) -> Template:
+    """Parse the text of a template (see :func:`load_template`)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SpecError(f"not valid TOML: {error}", file=file) from None
+    settings = _settings(data.get("template", {}), file)
+    if "vars" in data and not isinstance(data["vars"], Mapping):
+        raise SpecError("must be a table of named values", file=file, key="vars")
+    for name in data.get("vars", {}):
+        if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
+            raise SpecError("a variable name must be an identifier", file=file,
+                            key=f"vars.{name}")
+    # check every random spec and expression now, so that a bad template fails at once
+    for key, value in _walk(data):
+        if _is_random(value):
+            _check_random(value, key, file)
+        elif isinstance(value, str) and _is_expression(value):
+            try:
+                tree = parse(value[1:])
+            except ExpressionError as error:
+                raise SpecError(f"bad expression {value!r}: {error}", file=file,
+                                key=key) from None
+            for name in references(tree):
+                if not _exists(data, name):
+                    raise SpecError(f"expression {value!r} refers to '{name}', which is "
+                                    "neither in [vars] nor a key of the file", file=file,
+                                    key=key)
+    digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return Template(data, settings, digest, file)
+
+
+def _settings(table: Any, file: str | None) -> TemplateSettings:
+    if not isinstance(table, Mapping):
+        raise SpecError("must be a table", file=file, key="template")
+    for name in table:
+        if name not in TEMPLATE_KEYS:
+            raise SpecError(f"unknown key; expected one of {', '.join(TEMPLATE_KEYS)}",
+                            file=file, key=f"template.{name}")
+    values: dict[str, Any] = {}
+    for name in ("min_line_angle_deg", "dead_centre_deg"):
+        if name in table:
+            value = table[name]
+            if (isinstance(value, bool) or not isinstance(value, int | float)
+                    or not 0 <= value < 90):
+                raise SpecError(f"must be an angle in [0, 90) degrees, got {value!r}",
+                                file=file, key=f"template.{name}")
+            values[name] = float(value)
+    if "max_attempts" in table:
+        value = table["max_attempts"]
+        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 10000:
+            raise SpecError(f"must be a whole number in 1…10000, got {value!r}", file=file,
+                            key="template.max_attempts")
+        values["max_attempts"] = value
+    return TemplateSettings(**values)
+
+
+# -- walking the tables ----------------------------------------------------------------------
+def _walk(node: Any, prefix: str = ""):
+    """Yield (dotted key, value) for every leaf and random spec of the tables."""
+    if _is_random(node):
+        yield prefix, node
+    elif isinstance(node, Mapping):
+        for name, value in node.items():
+            yield from _walk(value, f"{prefix}.{name}" if prefix else str(name))
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            yield from _walk(value, f"{prefix}[{index}]")
+    else:
+        yield prefix, node
+
+
+def _is_random(value: Any) -> bool:
+    return isinstance(value, Mapping) and bool(value) and (
+        (set(value) <= {"range", "step"} and "range" in value) or set(value) == {"choice"})
+
+
+def _is_expression(value: str) -> bool:
+    return value.startswith("=") and not value.startswith("==")
+
+
+def _number(value: Any) -> bool:
+    return not isinstance(value, bool) and isinstance(value, int | float) and math.isfinite(value)
+
+
+def _check_random(spec: Mapping[str, Any], key: str, file: str | None) -> None:
+    if "choice" in spec:
+        options = spec["choice"]
+        if not isinstance(options, list) or not options:
+            raise SpecError("choice must be a non-empty list", file=file, key=f"{key}.choice")
+        if not all(_number(o) or isinstance(o, str) for o in options):
+            raise SpecError(f"choice holds numbers or strings, got {options!r}", file=file,
+                            key=f"{key}.choice")
+        return
+    bounds = spec["range"]
+    if (not isinstance(bounds, list) or len(bounds) != 2
+            or not all(_number(b) for b in bounds)):
+        raise SpecError(f"range must be [low, high] with finite numbers, got {bounds!r}",
+                        file=file, key=f"{key}.range")
+    low, high = bounds
+    if low > high:
+        raise SpecError(f"range [{low:g}, {high:g}] has low above high", file=file,
+                        key=f"{key}.range")
+    if "step" in spec:
+        step = spec["step"]
+        if not _number(step) or step <= 0:
+            raise SpecError(f"step must be a positive number, got {step!r}", file=file,
+                            key=f"{key}.step")
+        if (high - low) / step > 1e7:
+            raise SpecError(f"range/step gives more than 10 million values ({step:g})",
+                            file=file, key=f"{key}.step")
+
+
+def _path(name: str) -> list[str | int]:
+    parts: list[str | int] = []
+    for piece in name.split("."):
+        for match in _PATH_PART.finditer(piece):
+            parts.append(match.group(1) if match.group(1) else int(match.group(2)))
+    return parts
+
+
+def _lookup(data: Any, name: str) -> Any:
+    node = data
+    for part in _path(name):
+        if isinstance(part, int):
+            if not isinstance(node, list) or part >= len(node):
+                raise KeyError(name)
+            node = node[part]
+        else:
+            if not isinstance(node, Mapping) or part not in node:
+                raise KeyError(name)
+            node = node[part]
+    return node
+
+
+def _exists(data: Mapping[str, Any], name: str) -> bool:
+    for root in (data.get("vars", {}), data):
+        try:
+            _lookup(root, name)
+        except KeyError:
+            continue
+        return True
+    return False
+
+
+# -- drawing ---------------------------------------------------------------------------------
+def _uniform(*parts: object) -> float:
+    """A number in [0, 1) from a SHA-256 hash of the parts (stable across runs and versions)."""
+    text = "\x1f".join(str(part) for part in parts)
+    digest = hashlib.sha256(text.encode("utf-8")).digest()
+    return int.from_bytes(digest[:7], "big") / float(1 << 56)
+
+
+def _draw(spec: Mapping[str, Any], u: float) -> Any:
+    if "choice" in spec:
+        options = spec["choice"]
+        return options[min(int(u * len(options)), len(options) - 1)]
+    low, high = (float(b) for b in spec["range"])
+    if "step" not in spec:
+        return low + u * (high - low)
+    step = float(spec["step"])
+    count = math.floor((high - low) / step + 1e-9) + 1
+    value = low + min(int(u * count), count - 1) * step
+    decimals = max(0, -math.floor(math.log10(step)) + 6)
+    return round(value, decimals)
+
+
+class _Resolver:
+    """Resolves every random spec and expression of one attempt, lazily and memoised."""
+
+    def __init__(self, template: Template, seed: int, student: str, attempt: int) -> None:
+        self.template = template
+        self.salt = (template.digest, seed, student, attempt)
+        self.memo: dict[str, Any] = {}
+        self.active: list[str] = []
+
+    def value(self, key: str, raw: Any) -> Any:
+        if key in self.memo:
+            return self.memo[key]
+        if key in self.active:
+            cycle = " → ".join([*self.active[self.active.index(key):], key])
+            raise SpecError(f"the expressions refer to each other in a cycle: {cycle}",
+                            file=self.template.source, key=key)
+        self.active.append(key)
+        try:
+            if _is_random(raw):
+                result = _draw(raw, _uniform(*self.salt, key))
+            elif isinstance(raw, str) and _is_expression(raw):
+                try:
+                    result = evaluate(parse(raw[1:]), self.reference)
+                except ExpressionError as error:
+                    raise SpecError(f"{raw!r}: {error}", file=self.template.source,
+                                    key=key) from None
+            elif isinstance(raw, str) and raw.startswith("=="):
+                result = raw[1:]
+            elif isinstance(raw, Mapping):
+                result = {name: self.value(f"{key}.{name}" if key else name, item)
+                          for name, item in raw.items()}
+            elif isinstance(raw, list):
+                result = [self.value(f"{key}[{index}]", item) for index, item in enumerate(raw)]
+            else:
+                result = raw
+        finally:
+            self.active.pop()
+        self.memo[key] = result
+        return result
+
+    def reference(self, name: str) -> Any:
+        data = self.template.data
+        variables = data.get("vars", {})
+        try:
+            raw = _lookup(variables, name)
+            key = f"vars.{name}"
+        except KeyError:
+            raw = _lookup(data, name)
+            key = name
+        canonical = ".".join(str(p) if isinstance(p, str) else f"[{p}]" for p in _path(key))
+        return self.value(canonical.replace(".[", "["), raw)
+
+    def resolve_all(self) -> dict[str, Any]:
+        return {name: self.value(name, raw) for name, raw in self.template.data.items()}
+
+
+def draw_variant(template: Template, seed: int = 0, student: str = "1",
+                 *, check: bool = True) -> Variant:
+    """Draw the variant of ``template`` for (``seed``, ``student``).
+
+    Attempts 0, 1, 2, … are drawn in turn until one passes :func:`check_variant`.
+
+    Raises
+    ------
+    SpecError
+        If the template is malformed, or no attempt within ``max_attempts`` passes (the message
+        counts the reasons of the rejections).
+    """
+    reasons: list[str] = []
+    for attempt in range(template.settings.max_attempts):
+        resolver = _Resolver(template, seed, student, attempt)
+        data = resolver.resolve_all()
+        values = data.pop("vars", {})
+        data.pop("template", None)
+        try:
+            from ..spec import exercise_from_dict
+
+            exercise = exercise_from_dict(data, file=template.source)
+        except SpecError as error:
+            if not template.is_random:
+                raise
+            reasons.append(f"not a valid exercise: {error.message} ({error.key})")
+            continue
+        if not check:
+            return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
+        problem = check_variant(exercise, template.settings)
+        if problem is None:
+            return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
+        if not template.is_random:
+            raise SpecError(f"the exercise itself is unsuitable for grading: {problem}",
+                            file=template.source)
+        reasons.append(problem)
+    counts: dict[str, int] = {}
+    for reason in reasons:
+        short = re.sub(r"[-\d.]+", "#", reason)
+        counts[short] = counts.get(short, 0) + 1
+    summary = "; ".join(f"{n}× {text}" for text, n in sorted(counts.items(),
+                                                            key=lambda item: -item[1])[:3])
+    raise SpecError(f"no acceptable variant in {template.settings.max_attempts} attempts for "
+                    f"student {student!r} (seed {seed}): {summary}", file=template.source)
+
+
+def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSettings()
+                  ) -> str | None:
+    """Why a drawn exercise is unfit to be set (None if it is fit).
+
+    Unfit: it cannot be assembled, a group is at a toggle, two construction lines of a plan
+    meet below ``min_line_angle_deg``, or the crank stands within ``dead_centre_deg`` of a
+    dead centre — read off the velocity plan as the angle between the crank pin's velocity
+    (pb) and the line of the relative velocity drawn through b (they are parallel exactly
+    when the crank and the link it drives are in line: nothing is transmitted).
+    """
+    from ..plans import draw_plans
+
+    try:
+        plans = draw_plans(exercise, acceleration=exercise.ask.needs_acceleration)
+    except AssemblyError as error:
+        return f"cannot be assembled ({error.message})"
+    except ToggleError as error:
+        return f"toggle position ({error.message})"
+    except ConvergenceError as error:
+        return f"no converged assembly ({error.message})"
+    except PlanmethodError as error:
+        return f"cannot draw the plans ({error.message})"
+    return plan_problem(plans, settings)
+
+
+def plan_problem(plans, settings: TemplateSettings) -> str | None:
+    """The reason a variant's plans are unfit (see :func:`check_variant`), or None."""
+    for plan in (plans.velocity, plans.acceleration):
+        if plan is None:
+            continue
+        for step in plan.steps:
+            if step.action == "intersect" and step.angle_deg < settings.min_line_angle_deg:
+                return (f"on the {plan.kind} plan the lines meet at {step.angle_deg:.1f}° "
+                        f"(below {settings.min_line_angle_deg:g}°) for {step.end}")
+    angle = dead_centre_angle(plans)
+    if angle is not None and angle < settings.dead_centre_deg:
+        return (f"the crank is {angle:.1f}° from a dead centre (below "
+                f"{settings.dead_centre_deg:g}°)")
+    return None
+
+
+def dead_centre_angle(plans) -> float | None:
+    """Angle (deg, 0…90) between pb and the first relative-velocity line drawn through b."""
+    velocity = plans.velocity
+    label = next((s.end for s in velocity.steps if s.action == "lay_off"), None)
+    if label is None:
+        return None
+    pb = velocity.points_mm[label]
+    if math.hypot(*pb) == 0:
+        return None
+    direction = math.degrees(math.atan2(pb[1], pb[0]))
+    for step in velocity.steps:
+        if step.action == "line" and step.start == label:
+            difference = abs((step.direction_deg - direction + 90.0) % 180.0 - 90.0)
+            return difference
+    return None
+
+
+def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any]) -> str:
+    """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values and file keys;
+    an unknown name is left as written.
+
+    Examples
+    --------
+    >>> format_description("l = {l:.3g} m, {x}", {"l": 0.0612345}, {})
+    'l = 0.0612 m, {x}'
+    """
+    if not isinstance(text, str):
+        return ""
+
+    def fill(match: re.Match) -> str:
+        name, spec = match.group(1), match.group(2) or ""
+        try:
+            value = _lookup(values, name)
+        except KeyError:
+            try:
+                value = _lookup(data, name)
+            except KeyError:
+                return match.group(0)
+        if isinstance(value, Mapping | list):
+            return match.group(0)
+        try:
+            return format(value, spec) if spec else (f"{value:g}" if _number(value)
+                                                      else str(value))
+        except (ValueError, TypeError):
+            return match.group(0)
+
+    return _PLACEHOLDER.sub(fill, text)
+
+
+# -- writing a resolved exercise back as TOML -----------------------------------------------
+def _toml_value(value: Any) -> str:
+    import json
+
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ValueError(f"cannot write {value} to TOML")
+        text = repr(value)
+        return text if ("." in text or "e" in text or "inf" in text) else text + ".0"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{ " + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
+                                for k, v in value.items()) + " }"
+    raise TypeError(f"cannot write {type(value).__name__} to TOML")
+
+
+def _toml_key(key: str) -> str:
+    import json
+
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False)
+
+
+def to_toml(data: Mapping[str, Any]) -> str:
+    """Write resolved exercise tables as TOML (nested tables inline); reads back equal.
+
+    Examples
+    --------
+    >>> text = to_toml({"title": "x", "drive": {"angle": 45.0}, "slide": [{"link": "s"}]})
+    >>> tomllib.loads(text) == {"title": "x", "drive": {"angle": 45.0}, "slide": [{"link": "s"}]}
+    True
+    """
+    lines: list[str] = []
+    tables = []
+    for key, value in data.items():
+        is_table_array = (isinstance(value, list) and bool(value)
+                          and all(isinstance(v, Mapping) for v in value))
+        if isinstance(value, Mapping) or is_table_array:
+            tables.append((key, value))
+        else:
+            lines.append(f"{_toml_key(key)} = {_toml_value(value)}")
+    for key, value in tables:
+        if isinstance(value, Mapping):
+            lines += ["", f"[{_toml_key(key)}]"]
+            lines += [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in value.items()]
+        else:
+            for item in value:
+                lines += ["", f"[[{_toml_key(key)}]]"]
+                lines += [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in item.items()]
+    return "\n".join(lines) + "\n"
+
+
+def variant_exercise(variant: Variant, angle: float | None = None) -> Exercise:
+    """The variant's exercise, optionally at another crank angle."""
+    if angle is None:
+        return variant.exercise
+    exercise = variant.exercise
+    mechanism = exercise.mechanism
+    return replace(exercise, mechanism=replace(mechanism, drive=replace(mechanism.drive,
+                                                                        angle=float(angle))))
+
+
+def resolved_copy(data: Mapping[str, Any]) -> dict[str, Any]:
+    """A deep copy of resolved tables (for writing keys)."""
+    return copy.deepcopy(dict(data))

@@ -1,0 +1,206 @@
+"""Templates: the safe expression language, ranges and choices, reproducible variants,
+rejection of unfit draws, key-precise errors."""
+
+from __future__ import annotations
+
+import math
+import tomllib
+
+import pytest
+
+from planmethod.errors import SpecError
+from planmethod.grading.expressions import ExpressionError, evaluate, parse
+from planmethod.grading.templates import (
+    TemplateSettings,
+    check_variant,
+    draw_variant,
+    load_template,
+    parse_template,
+    to_toml,
+)
+from planmethod.spec import exercise_from_dict
+
+SLIDER = "exercises/templates/slider_crank.toml"
+FOUR_BAR = "exercises/templates/four_bar.toml"
+
+
+def value(text: str, **names: float) -> float:
+    return evaluate(parse(text), names.__getitem__)
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("1 + 2 * 3", 7.0),
+    ("(1 + 2) * 3", 9.0),
+    ("2 ^ 3 ^ 2", 512.0),          # right-associative
+    ("-2 ^ 2", -4.0),              # unary minus binds looser than ^
+    ("10 / 4 - 1", 1.5),
+    ("min(3, 1, 2) + max(1, 5)", 6.0),
+    ("round(2.71828, 2)", 2.72),
+    ("sqrt(16) + abs(-1)", 5.0),
+    ("atan2(1, 1)", 45.0),
+    ("hypot(3, 4)", 5.0),
+    ("1.5e-3 * 1000", 1.5),
+    ("pi", math.pi),
+])
+def test_expressions_compute(text, expected):
+    assert value(text) == pytest.approx(expected, rel=1e-12)
+
+
+def test_references_are_resolved_not_executed():
+    assert value("a.b[1] * 2", **{"a.b[1]": 3.0}) == 6.0
+    # a name that looks like Python is only ever a reference
+    with pytest.raises(KeyError):
+        value("__import__")
+
+
+@pytest.mark.parametrize(("text", "fragment"), [
+    ("", "empty"),
+    ("1 +", "expected a number"),
+    ("(1 + 2", "expected ')'"),
+    ("1 + 2)", "unexpected ')'"),
+    ("foo(1)", "unknown function 'foo'"),
+    ("round(1, 2, 3)", "takes 1…2 argument"),
+    ("1 ; 2", "unexpected ';'"),
+    ("'a'", "unexpected"),
+    ("lambda: 1", "unexpected ':'"),
+    ("(" * 100 + "1" + ")" * 100, "nested deeper"),
+    ("1" * 600, "longer than"),
+])
+def test_bad_expressions_are_rejected(text, fragment):
+    with pytest.raises(ExpressionError, match=None) as caught:
+        parse(text)
+    assert fragment in str(caught.value)
+
+
+@pytest.mark.parametrize(("text", "fragment"), [
+    ("1 / 0", "division by zero"),
+    ("sqrt(-1)", "sqrt(-1) is undefined"),
+    ("asin(2)", "undefined"),
+    ("(-8) ^ 0.5", "not a finite number"),
+    ("10 ^ 400", "out of range"),
+    ("round(1, 0.5)", "whole number"),
+])
+def test_evaluation_errors(text, fragment):
+    with pytest.raises(ExpressionError) as caught:
+        value(text)
+    assert fragment in str(caught.value)
+
+
+BASE = """
+[vars]
+l = {{ range = [0.05, 0.08], step = 0.005 }}
+{extra}
+[drive]
+link = "AB"
+pivot = "A"
+angle = {angle}
+omega = 100
+[links]
+frame = {{ A = [0, 0] }}
+AB = {{ A = [0, 0], B = ["= l", 0] }}
+BC = {{ B = [0, 0], C = [{rod}, 0] }}
+slider = {{ C = [0, 0] }}
+[[slide]]
+link = "slider"
+along = "frame"
+through = "A"
+[sketch]
+C = [0.3, 0]
+[ask]
+velocity = ["C"]
+acceleration = ["C"]
+omega = ["BC"]
+"""
+
+
+def template_text(extra: str = "", angle: str = "45", rod: str = '"= 4 * l"') -> str:
+    return BASE.format(extra=extra, angle=angle, rod=rod)
+
+
+@pytest.mark.parametrize(("extra", "angle", "key", "fragment"), [
+    ("", '"= 2 *"', "drive.angle", "bad expression"),
+    ("", '"= nope + 1"', "drive.angle", "refers to 'nope'"),
+    ("", "{ range = [50, 10] }", "drive.angle.range", "low above high"),
+    ("", '{ range = [10, 50], step = -1 }', "drive.angle.step", "positive"),
+    ("", "{ choice = [] }", "drive.angle.choice", "non-empty"),
+    ("", '{ range = [10, "x"] }', "drive.angle.range", "finite numbers"),
+    ("a = \"= b\"\nb = \"= a\"", '"= a"', "vars.", "cycle"),
+])
+def test_bad_templates_name_the_key(extra, angle, key, fragment):
+    text = template_text(extra, angle)
+    with pytest.raises(SpecError) as caught:
+        template = parse_template(text, file="t.toml")
+        draw_variant(template, seed=1, student="x")
+    message = str(caught.value)
+    assert message.startswith("t.toml: ")
+    assert key in message and fragment in message
+
+
+def test_bad_template_settings():
+    with pytest.raises(SpecError, match=r"template\.max_attempts"):
+        parse_template(template_text() + "\n[template]\nmax_attempts = 0\n", file="t.toml")
+    with pytest.raises(SpecError, match=r"template\.colour"):
+        parse_template(template_text() + "\n[template]\ncolour = 1\n", file="t.toml")
+
+
+def test_variants_are_reproducible_and_differ_between_students():
+    template = load_template(SLIDER)
+    first = [draw_variant(template, seed=11, student=f"s{i}") for i in range(12)]
+    again = [draw_variant(template, seed=11, student=f"s{i}") for i in range(12)]
+    assert [v.data for v in first] == [v.data for v in again]
+    assert len({(v.values["l_AB"], v.values["phi"], v.values["omega"]) for v in first}) > 8
+    other_seed = [draw_variant(template, seed=12, student=f"s{i}") for i in range(12)]
+    assert [v.data for v in other_seed] != [v.data for v in first]
+    for variant in first:
+        values = variant.values
+        assert 0.05 <= values["l_AB"] <= 0.08
+        assert round(values["l_AB"] / 0.005) * 0.005 == pytest.approx(values["l_AB"])
+        assert values["l_BC"] == pytest.approx(round(values["l_AB"] * values["ratio"], 3))
+        links = variant.data["links"]
+        assert links["BC"]["D"][0] == pytest.approx(values["l_BC"] / 2)
+        assert variant.exercise.mechanism.drive.angle == values["phi"]
+        assert "{" not in variant.description
+
+
+def test_rejected_draws_are_redrawn_deterministically():
+    # the crank angle is 0 (a dead centre) or 60 (fine): 0 must never be set
+    text = template_text(angle="{ choice = [0, 60] }")
+    template = parse_template(text, file="t.toml")
+    variants = [draw_variant(template, seed=3, student=str(i)) for i in range(30)]
+    assert {v.exercise.mechanism.drive.angle for v in variants} == {60}
+    redrawn = [v for v in variants if v.attempt > 0]
+    assert redrawn, "with a 50 % chance of 0°, some students must need a second attempt"
+    assert all("dead centre" in reason for v in redrawn for reason in v.rejected)
+    assert [v.attempt for v in variants] == [
+        draw_variant(template, seed=3, student=str(i)).attempt for i in range(30)]
+
+
+def test_a_template_that_never_assembles_fails_with_the_reasons():
+    text = template_text(rod='"= 0.5 * l"', angle="90")  # the rod is shorter than the crank
+    template = parse_template(text, file="t.toml")
+    with pytest.raises(SpecError) as caught:
+        draw_variant(template, seed=1, student="x")
+    assert "no acceptable variant in 200 attempts" in str(caught.value)
+    assert "cannot be assembled" in str(caught.value)
+
+
+def test_small_line_angles_are_rejected():
+    exercise = draw_variant(load_template(SLIDER), seed=1, student="a").exercise
+    assert check_variant(exercise, TemplateSettings(min_line_angle_deg=89.9)) is not None
+    assert check_variant(exercise, TemplateSettings(min_line_angle_deg=0,
+                                                    dead_centre_deg=0)) is None
+
+
+def test_a_plain_exercise_is_a_template_without_randomness():
+    template = load_template("exercises/compressor_slider_crank.toml")
+    assert not template.is_random
+    variant = draw_variant(template, seed=5, student="anyone")
+    assert variant.attempt == 0 and variant.data["drive"]["angle"] == 45
+
+
+def test_written_toml_reads_back_to_the_same_exercise():
+    for path in (SLIDER, FOUR_BAR):
+        variant = draw_variant(load_template(path), seed=2, student="w")
+        data = tomllib.loads(to_toml(variant.data))
+        assert data == variant.data
+        assert exercise_from_dict(data) == exercise_from_dict(variant.data)
