@@ -57,6 +57,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(importlib.import_module(args._module).run(args) or 0)
     except PlanmethodError as error:
+        from .errors import StructureError
+
+        source = getattr(args, "file", None)
+        if isinstance(source, str):
+            error.located(file=source, key="links" if isinstance(error, StructureError) else None)
         print(f"planmethod: error: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:

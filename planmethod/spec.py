@@ -100,7 +100,8 @@ def parse_exercise(text: str, *, file: str | None = None) -> Exercise:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
-        raise SpecError(f"not valid TOML: {error}", file=file) from None
+        text = str(error).replace("Cannot overwrite a value", "a key is given twice")
+        raise SpecError(f"not valid TOML: {text}", file=file) from None
     return exercise_from_dict(data, file=file)
 
 

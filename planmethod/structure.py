@@ -226,9 +226,14 @@ def analyse_structure(mechanism: Mechanism) -> Structure:
         loose = [link for link in moving
                  if sum(link in pair.links for pair in mechanism.revolutes)
                  + sum(link in (s.link, s.along) for s in mechanism.slides) < 2]
+        lonely = [f"{point} ({link})" for link in loose
+                  for point in mechanism.links[link].points
+                  if len(mechanism.links_with_point(point)) == 1]
         raise StructureError(
             f"W = 3n − 2p5 − p4 = 3·{n} − 2·{p5} − {p4} = {mobility}, expected 1: {hint}"
-            + (f" (links with fewer than two pairs: {', '.join(loose)})" if loose else ""),
+            + (f" (links with fewer than two pairs: {', '.join(loose)})" if loose else "")
+            + (f"; points named in one link only: {', '.join(lonely)} — a revolute pair needs "
+               "its point named in both links" if lonely else ""),
             link=", ".join(moving))
     driver = mechanism.drive.link
     known = {FRAME, driver}

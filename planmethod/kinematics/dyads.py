@@ -412,7 +412,8 @@ def construct(mechanism: Mechanism, group: AssurGroup,
     def ext_sliding(joint):
         link = _group_link(joint, group)
         known = joint.other(link)
-        return _sliding_side(mechanism, joint, group, states, known, f"{x_name}@{known}",
+        return _sliding_side(mechanism, joint, group, states, known,
+                             f"{x_name.partition('@')[0]}@{known}",
                              known, x)
 
     if kind == "RRR":

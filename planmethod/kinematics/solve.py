@@ -205,11 +205,11 @@ class Motion:
     def moves_straight(self, ref: str) -> bool:
         """Whether the point moves on a straight line by construction: it belongs to a link
         that is held against turning by a prismatic pair with the frame."""
-        link, _ = self._locate(ref)
-        if link == FRAME:
-            return True
-        return any(FRAME in (s.link, s.along) and link in (s.link, s.along)
-                   for s in self.mechanism.slides)
+        name, _, on = ref.partition("@")
+        carriers = (on,) if on else self.mechanism.links_with_point(name)
+        return any(link == FRAME or any(FRAME in (s.link, s.along) and link in (s.link, s.along)
+                                        for s in self.mechanism.slides)
+                   for link in carriers)
 
     def curvature(self, ref: str) -> Curvature:
         """Radius ρ = v³/|v × a| and centre of curvature of the point's path."""

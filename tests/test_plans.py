@@ -1,0 +1,252 @@
+"""The plan emulator: at precision 0 every plan point and reading equals the exact vector; plans
+close; images obey the similarity rule; scales change no result; drafting precision shows."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from planmethod.errors import AssemblyError, ToggleError
+from planmethod.kinematics import solve
+from planmethod.plans import draw_plans, image_label
+from planmethod.report import analyse
+from planmethod.spec import exercise_from_dict, load_exercise
+from planmethod.testing import (
+    fourbar,
+    scotch_yoke,
+    shaper,
+    slider_crank,
+    slotted_lever,
+    two_guides,
+)
+
+MECHANISMS = {
+    "RRR four-bar": fourbar(),
+    "RRP slider-crank": slider_crank(),
+    "RRP offset, ε1 ≠ 0": slider_crank(offset=0.02, epsilon=250.0),
+    "RPR slotted lever": slotted_lever(epsilon=3.0),
+    "RPP scotch yoke": scotch_yoke(),
+    "PRP two guides": two_guides(),
+    "RPR + RRP shaper": shaper(),
+}
+EXERCISES = ["compressor_slider_crank", "fourbar_coupler_point", "offset_slider_crank",
+             "slotted_lever", "shaper_sixbar"]
+
+
+def _ref_of(label: str) -> str | None:
+    """The point reference a plan label stands for (None for poles and n_/k_ points)."""
+    if label in ("p", "π") or label.startswith(("n_", "k_", "k1_", "k2_")):
+        return None
+    name, at, link = label.partition("@")
+    return name.replace("′", "").upper() + (at + link)
+
+
+def _check_plan_points(plans, motion, tolerance=1e-9):
+    for plan, exact in ((plans.velocity, motion.velocity), (plans.acceleration,
+                                                             motion.acceleration)):
+        size = max(1.0, max(math.hypot(*xy) for xy in plan.points_mm.values()))
+        for label, xy in plan.points_mm.items():
+            ref = _ref_of(label)
+            if ref is None:
+                continue
+            expected = np.asarray(exact(ref)) / plan.scale
+            assert np.allclose(xy, expected, rtol=0, atol=tolerance * size), (plan.kind, label)
+
+
+def _angles(data):
+    """Angles every 15° at which the mechanism assembles."""
+    exercise = exercise_from_dict(data)
+    out = []
+    for angle in np.arange(0.0, 360.0, 15.0):
+        try:
+            solve(exercise.mechanism, angle, stage="position")
+        except (AssemblyError, ToggleError):
+            continue
+        out.append(float(angle))
+    return out
+
+
+@pytest.mark.parametrize("name", list(MECHANISMS))
+def test_exact_plan_equals_analytic_at_every_angle(name):
+    data = MECHANISMS[name]
+    for angle in _angles(data):
+        changed = dict(data)
+        changed["drive"] = dict(data["drive"], angle=angle)
+        exercise = exercise_from_dict(changed)
+        analysis = analyse(exercise)
+        _check_plan_points(analysis.plans, analysis.motion)
+        for check in analysis.checks:
+            if check.analytic is None:
+                assert check.plan is None, check.quantity
+                continue
+            assert check.plan == pytest.approx(check.analytic, rel=1e-9, abs=1e-9), (
+                name, angle, check.quantity)
+
+
+@pytest.mark.parametrize("name", EXERCISES)
+def test_shipped_exercises_plan_equals_exact(name):
+    analysis = analyse(load_exercise(f"exercises/{name}.toml"))
+    _check_plan_points(analysis.plans, analysis.motion)
+    assert analysis.checks
+    for check in analysis.checks:
+        if check.analytic:
+            assert check.rel_error <= 1e-9, check.quantity
+        elif check.analytic is not None:
+            assert check.abs_error <= 1e-12, check.quantity
+
+
+@pytest.mark.parametrize("angle", [0.0, 180.0])
+def test_crank_dead_centre_is_an_ordinary_position(angle):
+    exercise = exercise_from_dict(slider_crank(angle=angle) | {
+        "ask": {"velocity": ["C", "D"], "acceleration": ["C"], "omega": ["BC"],
+                "epsilon": ["BC"], "curvature": ["D"]}})
+    analysis = analyse(exercise)
+    assert float(np.hypot(*analysis.motion.velocity("C"))) == pytest.approx(0.0, abs=1e-12)
+    readings = analysis.plans.readings
+    assert readings["v_C"] == pytest.approx(0.0, abs=1e-12)
+    # the images of C coincides with the pole, and ω_BC = ∓ω1·l_AB/l_BC
+    assert np.allclose(analysis.plans.velocity.points_mm["c"], 0.0, atol=1e-9)
+    assert readings["omega_BC"] == pytest.approx(-100 * 0.06 / 0.18 * math.cos(
+        math.radians(angle)), rel=1e-9)
+    assert not analysis.plans.flags
+
+
+def test_every_intersection_lies_on_both_lines():
+    for data in MECHANISMS.values():
+        plans = draw_plans(exercise_from_dict(data))
+        for plan in (plans.velocity, plans.acceleration):
+            lines = {step.number: step for step in plan.steps if step.action == "line"}
+            for step in plan.steps:
+                if step.action != "intersect":
+                    continue
+                point = np.asarray(plan.points_mm[step.end])
+                for number in step.lines:
+                    line = lines[number]
+                    through = np.asarray(plan.points_mm[line.start])
+                    direction = np.array([math.cos(math.radians(line.direction_deg)),
+                                          math.sin(math.radians(line.direction_deg))])
+                    offset = point - through
+                    distance = abs(offset[0] * direction[1] - offset[1] * direction[0])
+                    assert distance < 1e-9 * max(1.0, float(np.hypot(*offset)))
+
+
+def test_steps_are_numbered_and_refer_to_drawn_points():
+    plans = draw_plans(load_exercise("exercises/shaper_sixbar.toml"))
+    for plan in (plans.velocity, plans.acceleration):
+        assert [step.number for step in plan.steps] == list(range(1, len(plan.steps) + 1))
+        for step in plan.steps:
+            for label in (step.start, step.end):
+                assert label is None or label in plan.points_mm, (plan.kind, step)
+
+
+def test_normal_component_from_plan_segments_in_general_scales():
+    """(bn) = (bc)²·μv²/((BC)·μl·μa) when the three plans are at different scales."""
+    exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    settings = dataclasses.replace(exercise.plan, crank_mm=45.0, velocity_mm=25.0,
+                                   acceleration_mm=70.0)
+    plans = draw_plans(exercise, settings=settings)
+    s = plans.scales
+    v, a = plans.velocity.points_mm, plans.acceleration.points_mm
+    bc = math.dist(v["b"], v["c"])
+    length_bc = 0.18 / s.mu_l
+    assert math.dist(a["b"], a["n_CB"]) == pytest.approx(
+        bc ** 2 * s.mu_v ** 2 / (length_bc * s.mu_l * s.mu_a), rel=1e-12)
+
+
+@settings(max_examples=25, deadline=None)
+@given(crank_mm=st.floats(5, 200), velocity_mm=st.floats(5, 200),
+       acceleration_mm=st.floats(5, 200), angle=st.floats(0, 360))
+def test_scale_choices_change_no_result(crank_mm, velocity_mm, acceleration_mm, angle):
+    data = fourbar(angle=angle)
+    exercise = exercise_from_dict(data | {"plan": {
+        "crank_mm": crank_mm, "velocity_mm": velocity_mm, "acceleration_mm": acceleration_mm}})
+    base = analyse(exercise_from_dict(data))
+    scaled = analyse(exercise)
+    for first, second in zip(base.checks, scaled.checks, strict=True):
+        assert second.plan == pytest.approx(first.plan, rel=1e-9, abs=1e-12), first.quantity
+
+
+@settings(max_examples=25, deadline=None)
+@given(angle=st.floats(0, 360), ratio=st.floats(2.2, 6.0), omega=st.floats(-50, 50).filter(
+    lambda w: abs(w) > 0.1))
+def test_velocity_image_is_similar_and_turned_90_degrees(angle, ratio, omega):
+    """The image of each link on the velocity plan is the link turned 90° in the sense of ω and
+    scaled by ω·μl/μv (the similarity rule)."""
+    data = fourbar(angle=angle, coupler=0.22, rocker=0.18, crank=0.30 / ratio, omega=omega)
+    exercise = exercise_from_dict(data)
+    try:
+        plans = draw_plans(exercise)
+    except (AssemblyError, ToggleError):
+        return
+    v, position = plans.velocity.points_mm, plans.position.points_mm
+    omega_bc = plans.readings["omega_BC"]
+    factor = omega_bc * plans.scales.mu_l / plans.scales.mu_v
+    for first, second in (("B", "C"), ("B", "P"), ("C", "P")):
+        link = complex(*np.subtract(position[second], position[first]))
+        image = complex(*np.subtract(v[image_label(second)], v[image_label(first)]))
+        assert image == pytest.approx(1j * factor * link, abs=1e-9 * max(1, abs(image)))
+
+
+def test_drafting_precision_rounds_lengths_and_costs_accuracy():
+    exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    rough = dataclasses.replace(exercise.plan, precision_mm=0.5)
+    plans = draw_plans(exercise, settings=rough)
+    for plan in (plans.velocity, plans.acceleration):
+        for step in plan.steps:
+            if step.action in ("lay_off", "read") and step.length_mm is not None:
+                assert step.length_mm / 0.5 == pytest.approx(round(step.length_mm / 0.5),
+                                                             abs=1e-9), step
+    exact = draw_plans(exercise).readings
+    errors = {q: abs(plans.readings[q] - exact[q]) / abs(exact[q])
+              for q in ("v_C", "a_C", "omega_BC", "epsilon_BC", "rho_D")}
+    assert max(errors.values()) > 1e-4  # a real drawing is not exact…
+    assert max(errors.values()) < 0.05  # …but a careful one is within a few per cent
+
+
+def _near_toggle_fourbar(offset_deg: float) -> dict:
+    # A = (0,0), D = (0.3,0), AB = 0.1, BC = 0.15, CD = 0.1: B, C, D in line at cos φ = 0.625
+    toggle = math.degrees(math.acos(0.625))
+    return fourbar(ground=0.3, crank=0.1, coupler=0.15, rocker=0.1, angle=toggle - offset_deg)
+
+
+def test_toggle_position_is_a_named_error():
+    with pytest.raises(ToggleError) as caught:
+        solve(exercise_from_dict(_near_toggle_fourbar(0.0)).mechanism)
+    assert "toggle" in str(caught.value) and caught.value.angle == pytest.approx(51.3178, abs=1e-4)
+    with pytest.raises(AssemblyError) as missed:
+        solve(exercise_from_dict(_near_toggle_fourbar(-0.5)).mechanism)
+    assert missed.value.shortfall > 0
+
+
+def test_lines_meeting_at_a_small_angle_are_flagged_not_wrong():
+    exercise = exercise_from_dict(_near_toggle_fourbar(0.001))
+    plans = draw_plans(exercise)
+    flagged = [s for s in plans.velocity.steps if s.action == "intersect" and s.flagged]
+    assert flagged and flagged[0].angle_deg < 1.0
+    assert any("below 1°" in flag for flag in plans.flags)
+    motion = solve(exercise.mechanism)
+    assert plans.readings["omega_CD"] == pytest.approx(float(motion.omega("CD")), rel=1e-9)
+
+
+def test_near_parallel_lines_are_a_toggle_within_the_drawings_precision():
+    data = _near_toggle_fourbar(1e-6)
+    exact = draw_plans(exercise_from_dict(data))  # exact construction still resolves them
+    assert exact.flags
+    rough = exercise_from_dict(data | {"plan": {"precision_mm": 0.5}})
+    with pytest.raises(ToggleError) as caught:
+        draw_plans(rough)
+    assert "precision" in str(caught.value)
+
+
+def test_rotated_velocity_plan_puts_b_along_the_crank():
+    plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+    lever = plans.rotated_velocity_plan()
+    a, b = np.asarray(plans.position.points_mm["A"]), np.asarray(plans.position.points_mm["B"])
+    # crank scale: (pb) = (AB) = 30 mm, so the rotated b lands on B itself
+    assert np.allclose(lever["b"], b, atol=1e-9)
+    assert np.allclose(lever["p"], a, atol=1e-12)
