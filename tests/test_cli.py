@@ -130,7 +130,8 @@ def test_sweep_writes_csv_and_prints_extremes(capsys, tmp_path):
 
 
 BAD = {  # name → (edit of seed 001's text, expected fragment of the error line)
-    "unknown link": (('link = "slider"', 'link = "slidr"'), "slide[1].link: unknown link 'slidr'"),
+    "unknown link": (('link = "slider"', 'link = "slidr"'),
+                     "slide[1].link: unknown link 'slidr'"),
     "unknown point asked": (('velocity = ["C", "D"]', 'velocity = ["C", "Z"]'),
                             "ask.velocity[1]: unknown point 'Z'"),
     "pivot not in frame": (('frame = { A = [0, 0] }', 'frame = { A1 = [0, 0] }'),
@@ -142,7 +143,8 @@ BAD = {  # name → (edit of seed 001's text, expected fragment of the error lin
     "not a number": (("angle = 45", 'angle = "abc"'), "drive.angle: must be a finite number"),
     "nan": (("omega = 100", "omega = nan"), "drive.omega: must be a finite number, got nan"),
     "inf": (("B = [0.06, 0] }", "B = [inf, 0] }"), "links.AB.B[0]: must be a finite number"),
-    "duplicate link": (("slider = { C = [0, 0] }", "slider = { C = [0, 0] }\nSlider = { C = [0, 0] }"),
+    "duplicate link": (("slider = { C = [0, 0] }",
+                        "slider = { C = [0, 0] }\nSlider = { C = [0, 0] }"),
                        "links.Slider: duplicate link name"),
     "duplicate key": (("omega = 100", "omega = 100\nomega = 50"), "a key is given twice"),
     "ask for a missing link": (('omega = ["BC"]', 'omega = ["XY"]'),
@@ -200,7 +202,8 @@ def test_missing_file_and_bad_options(capsys, tmp_path):
 
 
 def test_sweep_error_names_the_angle_and_writes_no_csv(capsys, tmp_path):
-    text = SEED.read_text().replace("C = [0.18, 0], D = [0.09, 0]", "C = [0.03, 0], D = [0.02, 0]")
+    text = SEED.read_text().replace("C = [0.18, 0], D = [0.09, 0]",
+                                    "C = [0.03, 0], D = [0.02, 0]")
     path = tmp_path / "short.toml"
     path.write_text(text.replace("angle = 45", "angle = 0").replace(
         "frame = { A = [0, 0] }", "frame = { A = [0, 0], G = [0, -0.02] }").replace(
