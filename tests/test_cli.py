@@ -78,6 +78,7 @@ def test_json_report_follows_the_contract_for_every_shipped_exercise(capsys, pat
 
 def test_json_holds_every_asked_quantity(capsys):
     code, out, _ = run(capsys, "solve", ROOT / "exercises" / "shaper_sixbar.toml", "--json")
+    assert code == 0
     report = json.loads(out)
     kinds = [g["type"] for g in report["structure"]["groups"]]
     assert kinds == ["RPR", "RRP"]  # two groups in series
