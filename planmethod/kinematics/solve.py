@@ -18,7 +18,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -101,6 +101,8 @@ class Motion:
     links: Mapping[str, LinkState]
     groups: Mapping[int, GroupMotion]
     branches: Mapping[int, Branch]
+    #: reference → (link, position), filled on first use (positions never change)
+    _located: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     # -- shaping ---------------------------------------------------------------------------
     def _out(self, array: np.ndarray) -> np.ndarray:
@@ -121,6 +123,13 @@ class Motion:
     # -- points --------------------------------------------------------------------------------
     def _locate(self, ref: str) -> tuple[str, np.ndarray]:
         """(link whose material point is meant, its current global position)."""
+        found = self._located.get(ref)
+        if found is None:
+            found = self._located[ref] = self._find(ref)
+            found[1].flags.writeable = False  # shared by later reads
+        return found
+
+    def _find(self, ref: str) -> tuple[str, np.ndarray]:
         name, _, on = ref.partition("@")
         owners = [link for link in self.mechanism.links_with_point(name) if link in self.links]
         if not owners:
@@ -136,7 +145,7 @@ class Motion:
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
         (``"B@lever"``)."""
-        return self._out(self._locate(ref)[1])
+        return self._out(self._locate(ref)[1].copy())
 
     def velocity(self, ref: str) -> np.ndarray:
         """Absolute velocity (m/s) of a point."""
@@ -235,22 +244,26 @@ class Motion:
 # -- the solve ---------------------------------------------------------------------------------
 def _frame_state(count: int) -> LinkState:
     zeros = np.zeros(count)
+    axes = np.zeros((count, 2))
+    axes[:, 0] = 1.0
     return LinkState(zeros, np.zeros((count, 2)), zeros, np.zeros((count, 2)), zeros,
-                     np.zeros((count, 2)))
+                     np.zeros((count, 2)), axes)
 
 
 def _drive_state(mechanism: Mechanism, angles_rad: np.ndarray) -> LinkState:
     drive = mechanism.drive
     pivot_local = mechanism.local(drive.link, drive.pivot)
     pivot = np.asarray(mechanism.local(FRAME, drive.pivot), float)
-    origin = pivot - rotate(pivot_local, angles_rad)
+    axes = unit_angle(angles_rad)
+    origin = pivot - rotate(pivot_local, angles_rad, axes)
     count = angles_rad.shape[0]
     omega = np.full(count, float(drive.omega))
     epsilon = np.full(count, float(drive.epsilon))
     r = origin - pivot
-    velocity = omega[..., None] * perp(r)
-    acceleration = epsilon[..., None] * perp(r) - (omega ** 2)[..., None] * r
-    return LinkState(angles_rad, origin, omega, velocity, epsilon, acceleration)
+    turned = perp(r)
+    velocity = float(drive.omega) * turned
+    acceleration = float(drive.epsilon) * turned - float(drive.omega) ** 2 * r
+    return LinkState(angles_rad, origin, omega, velocity, epsilon, acceleration, axes)
 
 
 def _sketch_distance(mechanism: Mechanism, group: AssurGroup, poses) -> float | None:
@@ -427,9 +440,8 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
     count = angles_deg.shape[0]
     states: dict[str, LinkState] = {FRAME: _frame_state(count)}
     drive = _drive_state(mechanism, np.radians(angles_deg))
-    states[mechanism.drive.link] = drive if level == 2 else LinkState(
-        drive.theta, drive.origin, drive.omega if level else None,
-        drive.velocity if level else None)
+    states[mechanism.drive.link] = drive if level == 2 else drive.moving(
+        drive.omega if level else None, drive.velocity if level else None)
     solved: dict[int, GroupMotion] = {}
     for group in groups:
         sign = branches[group.index].sign
@@ -448,16 +460,14 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
             unknowns, sine, omegas, velocities = _group_velocity(construction, states,
                                                                  angles_deg)
             for link in group.links:
-                states[link] = LinkState(states[link].theta, states[link].origin,
-                                         omegas[link], velocities[link])
+                states[link] = states[link].moving(omegas[link], velocities[link])
             record = GroupMotion(construction, unknowns, None, sine)
         if level >= 2:
             accel_unknowns, epsilons, accelerations = _group_acceleration(
                 construction, states, record.velocity_unknowns)
             for link in group.links:
                 s = states[link]
-                states[link] = LinkState(s.theta, s.origin, s.omega, s.velocity,
-                                         epsilons[link], accelerations[link])
+                states[link] = s.moving(s.omega, s.velocity, epsilons[link], accelerations[link])
             record = GroupMotion(construction, record.velocity_unknowns, accel_unknowns,
                                  record.line_sine)
         solved[group.index] = record
