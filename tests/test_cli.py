@@ -222,3 +222,17 @@ def test_console_script_has_no_traceback(tmp_path):
                             capture_output=True, text=True, cwd=ROOT)
     assert result.returncode == 2
     assert "Traceback" not in result.stderr and result.stderr.count("\n") == 1
+
+
+def test_shipped_exercises_cover_all_five_dyad_kinds_and_groups_in_series(capsys):
+    kinds, series = set(), False
+    for name in ("compressor_slider_crank", "fourbar_coupler_point", "slotted_lever",
+                 "slotted_crank_crosshead", "scotch_yoke", "shaper_sixbar"):
+        code, out, err = run(capsys, "solve", ROOT / "exercises" / f"{name}.toml", "--json")
+        assert code == 0, err
+        report = json.loads(out)
+        _contract_checks(report)
+        groups = report["structure"]["groups"]
+        kinds |= {group["type"] for group in groups}
+        series |= len(groups) >= 2
+    assert kinds == {"RRR", "RRP", "RPR", "PRP", "RPP"} and series

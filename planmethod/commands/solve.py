@@ -43,12 +43,14 @@ def text_report(analysis) -> str:
         precision = analysis.plans.velocity.precision_mm
         lines.append(f"  drafting precision: {precision:g} mm" if precision else
                      "  drafting precision: exact construction")
-    lines += ["", "Quantity            plan          exact         abs. error   rel. error  unit"]
+    width = max([len(check.quantity) for check in analysis.checks] + [8])
+    lines += ["", f"  {'quantity':<{width}} {'plan':>12}  {'exact':>12}  {'abs. error':>10}   "
+                  f"{'rel. error':>10}  unit"]
     for check in analysis.checks:
         rel = "—" if check.rel_error is None else f"{check.rel_error:.2e}"
-        lines.append(f"  {check.quantity:<17} {_format(check.plan):>12}  "
+        lines.append(f"  {check.quantity:<{width}} {_format(check.plan):>12}  "
                      f"{_format(check.analytic):>12}  {_format(check.abs_error, 3):>10}   "
-                     f"{rel:>9}   {check.unit}")
+                     f"{rel:>10}  {check.unit}")
     if analysis.plans and analysis.plans.flags:
         lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.plans.flags]
     if analysis.forces is not None:
