@@ -716,7 +716,20 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
     centre = position[0] / scales.mu_l + rho / scales.mu_l * normal
     position_plan.curvature[name] = {
         "center_mm": [float(centre[0]), float(centre[1])], "rho_mm": rho / scales.mu_l,
-        "tangent_deg": _angle_deg(tangent) % 180.0, "normal_deg": _angle_deg(normal)}
+        "tangent_deg": _angle_deg(tangent) % 180.0, "normal_deg": _angle_deg(normal),
+        "path_mm": _path_mm(emulator.motion, point, scales.mu_l)}
+
+
+def _path_mm(motion: Motion, point: str, mu_l: float) -> list[list[float]] | None:
+    """The point's path over a full turn every 2° (mm), on the branch of the plan; None where
+    the mechanism does not assemble over the whole turn."""
+    angles = np.arange(0.0, 360.0, 2.0)
+    try:
+        path = solve(motion.mechanism, angles, stage="position", links=list(motion.links),
+                     structure=motion.structure, branches=motion.branches).position(point)
+    except PlanmethodError:
+        return None
+    return [[float(x) / mu_l, float(y) / mu_l] for x, y in path]
 
 
 def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None:
