@@ -1,0 +1,277 @@
+"""Grading numeric answers against a key, with feedback that names common mistakes.
+
+Answers come as CSV (a header row; a ``student`` column — or ``id``, ``student_id``, ``sid``,
+``email``, else the first column — and one column per question id such as ``v_C``,
+``omega_BC``) or as JSON (``{"s01": {"v_C": 5.2, …}, …}``, or a list of
+``{"student": "s01", "v_C": 5.2, …}`` / ``{"student": "s01", "answers": {…}}``).
+
+An answer within the question's tolerance scores the question's points. Otherwise the
+feedback says by how much it is off, and names the mistake when the answer matches one
+(see :data:`planmethod.grading.tolerances.MISTAKES`): a reversed sense, a normal or Coriolis
+component left out or reversed, a scale applied twice or not at all, degrees for radians,
+millimetres for metres.
+
+Examples
+--------
+>>> from planmethod.grading.templates import load_template, draw_variant
+>>> from planmethod.grading.keys import build_key
+>>> key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
+>>> result = grade_answers(key, {"v_C": 5.27, "omega_BC": 24.25})
+>>> [q["correct"] for q in result["questions"][:1]], result["score"]
+([True], 1.0)
+>>> print(next(q for q in result["questions"] if q["id"] == "omega_BC")["feedback"])
+... # doctest: +NORMALIZE_WHITESPACE
+omega_BC = 24.25 rad/s: wrong — it looks as if the sense (sign) is reversed
+(that gives 24.2536; right: -24.2536 rad/s ± 0.547)
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from ..errors import SpecError
+
+__all__ = ["MAX_ANSWER_BYTES", "grade_answers", "grade_many", "read_answers"]
+
+MAX_ANSWER_BYTES = 20_000_000
+MAX_ROWS = 200_000
+STUDENT_COLUMNS = ("student", "student_id", "id", "sid", "email", "name")
+
+
+def _number_text(value: float) -> str:
+    return f"{value:.6g}"
+
+
+def _parse_number(raw: Any) -> float | str | None:
+    """A number, None for no answer, or the text of what was given instead."""
+    if raw is None:
+        return None
+    if isinstance(raw, bool):
+        return repr(raw)
+    if isinstance(raw, int | float):
+        return float(raw) if math.isfinite(raw) else str(raw)
+    text = str(raw).strip()
+    if not text:
+        return None
+    cleaned = text.replace("\u2212", "-").replace(" ", "")
+    if cleaned.count(",") == 1 and "." not in cleaned:
+        cleaned = cleaned.replace(",", ".")  # a decimal comma
+    try:
+        value = float(cleaned)
+    except ValueError:
+        return text[:40]
+    return value if math.isfinite(value) else text[:40]
+
+
+def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
+    """Read an answers file (CSV or JSON): a list of (student, {question id: raw answer}).
+
+    Raises
+    ------
+    SpecError
+        If the file is missing, too large, not CSV/JSON of the forms above, or has no
+        student column.
+    """
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+    except FileNotFoundError:
+        raise SpecError("no such file", file=str(path)) from None
+    except OSError as error:
+        raise SpecError(f"cannot read the file ({error.strerror})", file=str(path)) from None
+    if size > MAX_ANSWER_BYTES:
+        raise SpecError(f"the file is {size} bytes, more than the {MAX_ANSWER_BYTES} accepted",
+                        file=str(path))
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as error:
+        raise SpecError(f"cannot read the file as UTF-8 text ({error})", file=str(path)) from None
+    if path.suffix.lower() == ".json" or text.lstrip().startswith(("{", "[")):
+        return _answers_from_json(text, str(path))
+    return _answers_from_csv(text, str(path))
+
+
+def _answers_from_json(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise SpecError(f"not valid JSON: {error}", file=where) from None
+    rows: list[tuple[str, dict[str, Any]]] = []
+    if isinstance(data, Mapping):
+        items = list(data.items())
+        if all(isinstance(v, Mapping) for _, v in items):
+            rows = [(str(k), dict(v)) for k, v in items]
+        else:  # one student's answers
+            rows = [("*", dict(data))]
+    elif isinstance(data, list):
+        for index, item in enumerate(data):
+            if not isinstance(item, Mapping):
+                raise SpecError("each entry must be an object", file=where, key=f"[{index}]")
+            student = next((item[c] for c in STUDENT_COLUMNS if c in item), None)
+            if student is None:
+                raise SpecError("no student id (give 'student')", file=where,
+                                key=f"[{index}]")
+            answers = item.get("answers", {k: v for k, v in item.items()
+                                           if k not in STUDENT_COLUMNS})
+            if not isinstance(answers, Mapping):
+                raise SpecError("must be an object of answers", file=where,
+                                key=f"[{index}].answers")
+            rows.append((str(student), dict(answers)))
+    else:
+        raise SpecError("must be an object or a list of objects", file=where)
+    if len(rows) > MAX_ROWS:
+        raise SpecError(f"more than {MAX_ROWS} students", file=where)
+    return rows
+
+
+def _answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+    try:
+        dialect = csv.Sniffer().sniff(text[:4096], delimiters=",;\t")
+    except csv.Error:
+        dialect = csv.excel
+    reader = csv.reader(io.StringIO(text), dialect)
+    try:
+        header = next(reader)
+    except StopIteration:
+        raise SpecError("the file is empty", file=where) from None
+    except csv.Error as error:
+        raise SpecError(f"not valid CSV: {error}", file=where) from None
+    header = [h.strip() for h in header]
+    if len(header) < 2:
+        raise SpecError("needs a header row with a student column and question columns "
+                        "(e.g. student,v_C,omega_BC)", file=where)
+    lower = [h.lower() for h in header]
+    column = next((lower.index(c) for c in STUDENT_COLUMNS if c in lower), 0)
+    rows = []
+    try:
+        for number, row in enumerate(reader, start=2):
+            if not any(cell.strip() for cell in row):
+                continue
+            if len(rows) >= MAX_ROWS:
+                raise SpecError(f"more than {MAX_ROWS} students", file=where)
+            if len(row) > len(header):
+                raise SpecError(f"row {number} has {len(row)} cells, the header {len(header)}",
+                                file=where)
+            student = row[column].strip() if column < len(row) else ""
+            if not student:
+                raise SpecError(f"row {number} has no student id (column '{header[column]}')",
+                                file=where)
+            rows.append((student, {header[i]: row[i] for i in range(len(row)) if i != column}))
+    except csv.Error as error:
+        raise SpecError(f"not valid CSV: {error}", file=where) from None
+    return rows
+
+
+def _direction(value: float) -> str:
+    return "counter-clockwise" if value > 0 else "clockwise"
+
+
+def _off(answer: float, right: float) -> str:
+    if right == 0:
+        return f"{abs(answer - right):.3g} off"
+    relative = answer / right - 1.0
+    return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}"
+
+
+def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
+    """Grade one answer; returns the question's result with its feedback."""
+    name, unit = question["id"], question.get("unit", "")
+    value, tolerance = float(question["value"]), float(question["tolerance"])
+    points = float(question.get("points", 1.0))
+    right = f"{_number_text(value)} {unit} ± {tolerance:.3g}".replace("  ", " ")
+    result = {"id": name, "answer": None, "value": value, "tolerance": tolerance,
+              "unit": unit, "max_score": points, "score": 0.0, "correct": False,
+              "mistake": None}
+    answer = _parse_number(raw)
+    if answer is None:
+        result["feedback"] = f"{name}: no answer (right: {right})"
+        return result
+    if isinstance(answer, str):
+        result["feedback"] = f"{name}: {answer!r} is not a number (right: {right})"
+        return result
+    result["answer"] = answer
+    result["error_abs"] = abs(answer - value)
+    result["error_rel"] = abs(answer - value) / abs(value) if value else None
+    shown = f"{name} = {_number_text(answer)} {unit}".rstrip()
+    if abs(answer - value) <= tolerance:
+        result.update(score=points, correct=True,
+                      feedback=f"{shown}: correct (exact {_number_text(value)}, "
+                               f"tolerance ± {tolerance:.3g})")
+        return result
+    for mistake in question.get("mistakes", ()):
+        if abs(answer - mistake["value"]) <= mistake["tolerance"]:
+            result["mistake"] = mistake["kind"]
+            how = "" if mistake["kind"] == "sense" else f", {_off(answer, value)}"
+            result["feedback"] = (f"{shown}: wrong{how} — it looks as if "
+                                  f"{mistake['feedback']} (that gives "
+                                  f"{_number_text(mistake['value'])}; right: {right})")
+            return result
+    signed = bool(question.get("signed"))
+    if signed:
+        for mistake in question.get("mistakes", ()):
+            if mistake["kind"] != "sense" and abs(-answer - mistake["value"]) <= \
+                    mistake["tolerance"]:
+                result["mistake"] = mistake["kind"] + "+sense"
+                result["feedback"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
+                                      f"and the sense is reversed (right: {right})")
+                return result
+    if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
+        text = (f"{shown}: wrong — the sense is reversed (the right answer is "
+                f"{_direction(value)}, {right}) and the magnitude "
+                f"{_number_text(abs(answer))} is {_off(abs(answer), abs(value))}")
+    else:
+        tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")
+        text = (f"{shown}: wrong — {_off(answer, value)} (off by "
+                f"{_number_text(abs(answer - value))} {unit}; right: {right}"
+                f"{tolerance_text})").replace("  ", " ")
+    result["feedback"] = text
+    return result
+
+
+def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
+                  student: str | None = None) -> dict:
+    """Grade one student's answers ({question id: raw answer}) against a key.
+
+    Answers keyed by an unknown id are reported in ``ignored``; a question id is matched
+    exactly first, then ignoring case.
+    """
+    by_lower = {}
+    for name in answers:
+        by_lower.setdefault(str(name).strip().lower(), name)
+    results, used = [], set()
+    for question in key["questions"]:
+        name = question["id"]
+        found = name if name in answers else by_lower.get(name.lower())
+        if found is not None:
+            used.add(found)
+        results.append(grade_question(question, answers.get(found) if found is not None
+                                      else None))
+    ignored = sorted(str(n) for n in answers if n not in used)
+    score = sum(r["score"] for r in results)
+    total = sum(r["max_score"] for r in results)
+    return {"student": student if student is not None else key.get("student"),
+            "variant": key.get("student"), "score": score, "max_score": total,
+            "questions": results, "ignored": ignored}
+
+
+def grade_many(keys: Mapping[str, Mapping[str, Any]],
+               rows: list[tuple[str, Mapping[str, Any]]]) -> list[dict]:
+    """Grade many students: each against the key of their own variant (or the key ``*``).
+
+    A student with no key of their own and no common key gets a result with ``error``.
+    """
+    out = []
+    for student, answers in rows:
+        key = keys.get(student, keys.get("*"))
+        if key is None:
+            out.append({"student": student, "score": 0.0, "max_score": None, "questions": [],
+                        "error": f"no key for student {student!r}"})
+            continue
+        out.append(grade_answers(key, answers, student=student))
+    return out

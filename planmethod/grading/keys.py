@@ -1,0 +1,362 @@
+"""Answer keys: every asked value with its tolerance, the plan points in mm with their
+tolerance radii, and the answers that common mistakes would give.
+
+A key is plain JSON (``format: "planmethod-key"``) so that graders and LMS exports read it
+without planmethod's solvers::
+
+    {"format": "planmethod-key", "version": 1, "student": "s01", "seed": 7, "attempt": 0,
+     "title": ..., "task": "what is asked, with the given data", "given": {"l_AB": 0.06, ...},
+     "angle": 45.0, "exercise": {...the resolved exercise tables...},
+     "scales": {"mu_l": ..., "mu_v": ..., "mu_a": ...}, "precision_mm": 0.5,
+     "questions": [{"id": "v_C", "text": ..., "unit": "m/s", "value": 5.27, "signed": false,
+                    "tolerance": 0.094, "tolerance_from": "drawing", "points": 1.0,
+                    "mistakes": [{"kind": "scale_twice", "value": 1.05, "tolerance": 0.019}]}],
+     "plans": {"position": {"mu_l": ..., "points_mm": {...}},
+               "velocity": {"pole": "p", "scale": ..., "points_mm": {...},
+                            "tolerance_mm": {...}, "steps": [...],
+                            "mistakes": {"sense": {...points...}}},
+               "acceleration": {...}}}
+
+The ``[grading]`` table of a template or exercise file sets ``precision_mm`` (default 0.5),
+``rel_floor`` (default 0.005), ``points`` (default per question, 1) and per-quantity overrides::
+
+    [grading.tolerance]
+    v_C = { rel = 0.03 }        # ±3 % of the exact value
+    rho_D = { abs = 0.002 }     # ±0.002 m
+    [grading.points]
+    rho_D = 2
+
+A bundle of keys (``format: "planmethod-keys"``) holds the keys of all variants of a run.
+
+Examples
+--------
+>>> from planmethod.grading.templates import load_template, draw_variant
+>>> key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
+>>> question = next(q for q in key["questions"] if q["id"] == "omega_BC")
+>>> round(question["value"], 3), question["signed"], question["tolerance_from"]
+(-24.254, True, 'drawing')
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from ..errors import SpecError
+from .tolerances import MISTAKES, SIGNED, kind_of, mistaken_plans, propagate, scale_factor
+
+__all__ = [
+    "KEYS_FORMAT",
+    "KEY_FORMAT",
+    "GradingSettings",
+    "build_key",
+    "bundle",
+    "grading_settings",
+    "load_keys",
+    "question_text",
+]
+
+KEY_FORMAT = "planmethod-key"
+KEYS_FORMAT = "planmethod-keys"
+VERSION = 1
+
+#: Keys of the [grading] table.
+GRADING_KEYS = ("precision_mm", "rel_floor", "points", "tolerance")
+
+#: Absolute floor of a tolerance, as a fraction of the drive's own value of the same kind.
+ABS_FLOOR = 1e-3
+
+UNITS = {"v": "m/s", "a": "m/s²", "omega": "rad/s", "epsilon": "rad/s²", "rho": "m",
+         "s": "m", "ds": "m/s", "dds": "m/s²", "coriolis": "m/s²"}
+
+
+class GradingSettings:
+    """The parsed ``[grading]`` table."""
+
+    __slots__ = ("overrides", "points", "precision_mm", "rel_floor")
+
+    def __init__(self, precision_mm: float = 0.5, rel_floor: float = 0.005,
+                 points: Mapping[str, float] | None = None, default_points: float = 1.0,
+                 overrides: Mapping[str, tuple[str, float]] | None = None) -> None:
+        self.precision_mm = precision_mm
+        self.rel_floor = rel_floor
+        self.points = {"*": default_points, **(points or {})}
+        self.overrides = dict(overrides or {})
+
+
+def _positive(value: Any, key: str, file: str | None, *, zero: bool = False) -> float:
+    if (isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value)
+            or value < 0 or (value == 0 and not zero)):
+        raise SpecError(f"must be a {'non-negative' if zero else 'positive'} number, "
+                        f"got {value!r}", file=file, key=key)
+    return float(value)
+
+
+def grading_settings(data: Mapping[str, Any], file: str | None = None,
+                     quantities=()) -> GradingSettings:
+    """Read the ``[grading]`` table of resolved exercise tables (key-precise errors)."""
+    table = data.get("grading", {})
+    if not isinstance(table, Mapping):
+        raise SpecError("must be a table", file=file, key="grading")
+    for name in table:
+        if name not in GRADING_KEYS:
+            raise SpecError(f"unknown key; expected one of {', '.join(GRADING_KEYS)}",
+                            file=file, key=f"grading.{name}")
+    precision = _positive(table.get("precision_mm", 0.5), "grading.precision_mm", file,
+                          zero=True)
+    rel_floor = _positive(table.get("rel_floor", 0.005), "grading.rel_floor", file, zero=True)
+    points_table = table.get("points", 1.0)
+    points: dict[str, float] = {}
+    default_points = 1.0
+    if isinstance(points_table, Mapping):
+        for name, value in points_table.items():
+            if quantities and name not in quantities:
+                raise SpecError(f"'{name}' is not asked; asked: {', '.join(quantities)}",
+                                file=file, key=f"grading.points.{name}")
+            points[name] = _positive(value, f"grading.points.{name}", file, zero=True)
+    else:
+        default_points = _positive(points_table, "grading.points", file, zero=True)
+    overrides: dict[str, tuple[str, float]] = {}
+    tolerance = table.get("tolerance", {})
+    if not isinstance(tolerance, Mapping):
+        raise SpecError("must be a table of quantity = { rel = … } or { abs = … }", file=file,
+                        key="grading.tolerance")
+    for name, value in tolerance.items():
+        key = f"grading.tolerance.{name}"
+        if quantities and name not in quantities:
+            raise SpecError(f"'{name}' is not asked; asked: {', '.join(quantities)}",
+                            file=file, key=key)
+        if isinstance(value, Mapping) and len(value) == 1 and next(iter(value)) in ("rel", "abs"):
+            which = next(iter(value))
+            overrides[name] = (which, _positive(value[which], f"{key}.{which}", file))
+        elif isinstance(value, int | float) and not isinstance(value, bool):
+            overrides[name] = ("abs", _positive(value, key, file))
+        else:
+            raise SpecError(f"must be {{ rel = r }} or {{ abs = a }}, got {value!r}",
+                            file=file, key=key)
+    return GradingSettings(precision, rel_floor, points, default_points, overrides)
+
+
+def question_text(quantity: str) -> str:
+    """What a quantity asks, in words.
+
+    Examples
+    --------
+    >>> question_text("omega_BC")
+    'angular velocity ω of BC (counter-clockwise positive)'
+    """
+    kind, _, name = quantity.partition("_")
+    point = name.replace("@", " of link ")
+    return {
+        "v": f"speed of {point}, |v_{name}|",
+        "a": f"magnitude of the acceleration of {point}, |a_{name}|",
+        "omega": f"angular velocity ω of {name} (counter-clockwise positive)",
+        "epsilon": f"angular acceleration ε of {name} (counter-clockwise positive)",
+        "rho": f"radius of curvature ρ of the path of {point}",
+        "s": f"travel s of the slide {name}",
+        "ds": f"sliding velocity of {name} (along the guide)",
+        "dds": f"sliding (relative) acceleration of {name} (along the guide)",
+        "coriolis": f"magnitude of the Coriolis acceleration of {name}",
+    }.get(kind, quantity)
+
+
+def _drive_reference(exercise, kind: str) -> float:
+    drive = exercise.mechanism.drive
+    link = exercise.mechanism.links[drive.link]
+    length = max(link.length(drive.pivot, p) for p in link.points)
+    omega, epsilon = abs(drive.omega), abs(drive.epsilon)
+    return {
+        "v": omega * length, "ds": omega * length,
+        "a": length * math.hypot(omega ** 2, epsilon), "dds": length * math.hypot(omega ** 2,
+                                                                               epsilon),
+        "coriolis": length * omega ** 2, "omega": omega, "epsilon": max(epsilon, omega ** 2),
+        "rho": length, "s": length,
+    }.get(kind, 0.0)
+
+
+def _mistakes(quantity: str, value: float, tolerance: float, scales, alternatives,
+              motion) -> list[dict]:
+    """The answers common mistakes give for one quantity (only those told apart from the right
+    answer by more than twice the tolerance)."""
+    kind = kind_of(quantity)
+    found: list[tuple[str, float, float]] = []
+    if kind in SIGNED:
+        found.append(("sense", -value, tolerance))
+    for mistake, readings in alternatives.items():
+        if quantity in readings and readings[quantity] is not None:
+            wrong = float(readings[quantity])
+            if math.isfinite(wrong):
+                found.append((mistake, wrong, tolerance))
+    if kind == "rho":
+        from ..report import exact_value
+
+        point = quantity.partition("_")[2]
+        speed = exact_value(motion, f"v_{point}")
+        accel = exact_value(motion, f"a_{point}")
+        if accel:
+            found.append(("full_acceleration", speed ** 2 / accel, tolerance))
+    factor = scale_factor(quantity, scales.mu_l, scales.mu_v, scales.mu_a)
+    if factor and factor != 1.0:
+        found.append(("scale_none", value / factor, tolerance / factor))
+        found.append(("scale_twice", value * factor, tolerance * factor))
+    if kind in ("omega", "epsilon"):
+        found.append(("degrees", math.degrees(value), math.degrees(tolerance)))
+        found.append(("length_mm", value / 1000.0, tolerance / 1000.0))
+    if kind in ("rho", "s", "v", "a", "ds", "dds", "coriolis"):
+        found.append(("millimetres", value * 1000.0, tolerance * 1000.0))
+    out = []
+    for mistake, wrong, wrong_tolerance in found:
+        if abs(wrong - value) > 2 * tolerance and all(
+                abs(wrong - other["value"]) > 1e-12 * max(1.0, abs(wrong)) for other in out):
+            out.append({"kind": mistake, "value": wrong, "tolerance": abs(wrong_tolerance),
+                        "feedback": MISTAKES[mistake]})
+    return out
+
+
+def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
+    """The answer key of a variant (:class:`~planmethod.grading.templates.Variant`).
+
+    Raises
+    ------
+    SpecError
+        If the ``[grading]`` table is malformed.
+    """
+    from ..kinematics import solve
+    from ..plans import choose_scales
+    from ..report import asked_quantities
+
+    exercise = variant.exercise
+    mechanism = exercise.mechanism
+    acceleration = exercise.ask.needs_acceleration
+    motion = solve(mechanism, mechanism.drive.angle,
+                   stage="acceleration" if acceleration else "velocity")
+    quantities = asked_quantities(exercise, motion)
+    if settings is None:
+        settings = grading_settings(variant.data, exercise.source, quantities)
+    found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
+    scales = choose_scales(exercise)
+    wrong_plans = {}
+    for mistake in ("no_normal", "coriolis_reversed"):
+        plans = mistaken_plans(exercise, mistake, motion=motion)
+        if plans is not None:
+            wrong_plans[mistake] = plans
+    alternatives = {mistake: plans.readings for mistake, plans in wrong_plans.items()}
+    questions = []
+    for quantity in quantities:
+        value = found.values[quantity]
+        if value is None:  # a straight path has no finite ρ: nothing to ask
+            continue
+        kind = kind_of(quantity)
+        floor = max(settings.rel_floor * abs(value),
+                    ABS_FLOOR * _drive_reference(exercise, kind))
+        tolerance, source = found.tolerances[quantity], "drawing"
+        if tolerance < floor:
+            tolerance, source = floor, "floor"
+        if quantity in settings.overrides:
+            which, amount = settings.overrides[quantity]
+            tolerance = amount * abs(value) if which == "rel" else amount
+            source = f"override ({which})"
+        questions.append({
+            "id": quantity, "text": question_text(quantity), "unit": UNITS.get(kind, ""),
+            "value": value, "signed": kind in SIGNED, "tolerance": tolerance,
+            "tolerance_from": source,
+            "points": settings.points.get(quantity, settings.points["*"]),
+            "mistakes": _mistakes(quantity, value, tolerance, scales, alternatives, motion),
+        })
+    plans = found.plans
+    plan_table: dict[str, Any] = {"position": {"mu_l": scales.mu_l,
+                                               "points_mm": dict(plans.position.points_mm)}}
+    for name in ("velocity", "acceleration"):
+        plan = getattr(plans, name)
+        if plan is None:
+            continue
+        radii = found.radii[name]
+        floor_mm = settings.precision_mm / 2
+        entry = {"pole": plan.pole, "scale": plan.scale, "unit": plan.unit,
+                 "points_mm": {k: list(v) for k, v in plan.points_mm.items()},
+                 "tolerance_mm": {k: max(radii.get(k, 0.0), floor_mm if k != plan.pole else 0.0)
+                                  for k in plan.points_mm},
+                 "steps": [step.as_dict() for step in plan.steps],
+                 "mistakes": {}}
+        if name == "velocity":
+            entry["mistakes"]["sense"] = {k: [-v[0], -v[1]] for k, v in plan.points_mm.items()}
+        else:
+            for mistake, wrong in wrong_plans.items():
+                entry["mistakes"][mistake] = {
+                    k: list(v) for k, v in wrong.acceleration.points_mm.items()}
+        plan_table[name] = entry
+    return {
+        "format": KEY_FORMAT, "version": VERSION, "title": mechanism.title,
+        "student": variant.student, "seed": variant.seed, "attempt": variant.attempt,
+        "source": exercise.source, "task": variant.description.strip(),
+        "given": dict(variant.values), "angle": mechanism.drive.angle,
+        "exercise": variant.data,
+        "scales": scales.as_dict(), "precision_mm": settings.precision_mm,
+        "rel_floor": settings.rel_floor,
+        "questions": questions, "plans": plan_table,
+    }
+
+
+def bundle(keys: list[dict], **about: Any) -> dict:
+    """A bundle of keys (one per variant), with ``about`` (template, seed, count)."""
+    return {"format": KEYS_FORMAT, "version": VERSION, **about, "keys": keys}
+
+
+def _check_key(key: Any, where: str) -> dict:
+    if not isinstance(key, Mapping) or key.get("format") != KEY_FORMAT:
+        raise SpecError("not a planmethod answer key (format must be 'planmethod-key')",
+                        file=where)
+    questions = key.get("questions")
+    if not isinstance(questions, list):
+        raise SpecError("the key has no list of questions", file=where, key="questions")
+    for index, question in enumerate(questions):
+        if not isinstance(question, Mapping):
+            raise SpecError("must be a table", file=where, key=f"questions[{index}]")
+        for name in ("id", "value", "tolerance"):
+            if name not in question:
+                raise SpecError("missing", file=where, key=f"questions[{index}].{name}")
+        for name in ("value", "tolerance"):
+            value = question[name]
+            if (isinstance(value, bool) or not isinstance(value, int | float)
+                    or not math.isfinite(value)):
+                raise SpecError(f"must be a finite number, got {value!r}", file=where,
+                                key=f"questions[{index}].{name}")
+    return dict(key)
+
+
+def load_keys(path: str | Path) -> dict[str, dict]:
+    """Read a key or a bundle of keys: student → key (a single key is keyed ``*`` too, so
+    that every student is graded against it).
+
+    Raises
+    ------
+    SpecError
+        If the file cannot be read or is not a key.
+    """
+    path = Path(path)
+    if path.is_dir():
+        path = path / "keys.json"
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SpecError("no such file", file=str(path)) from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise SpecError(f"not valid JSON: {error}", file=str(path)) from None
+    if isinstance(data, Mapping) and data.get("format") == KEYS_FORMAT:
+        keys = data.get("keys")
+        if not isinstance(keys, list):
+            raise SpecError("the bundle has no list of keys", file=str(path), key="keys")
+        out = {}
+        for index, key in enumerate(keys):
+            key = _check_key(key, f"{path}: keys[{index}]")
+            out[str(key.get("student"))] = key
+        return out
+    key = _check_key(data, str(path))
+    return {str(key.get("student")): key, "*": key}

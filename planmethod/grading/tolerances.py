@@ -1,0 +1,238 @@
+"""Tolerances that follow from the drawing, and the answers that common mistakes give.
+
+The drafting-error model is the one of ``PlanSettings.precision_mm`` (DESIGN.md): every length
+laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
+plan — carries an error uniform in ±precision/2; directions are drawn exactly. The plan
+emulator (:func:`planmethod.plans.draw_plans`) is run once exactly and once per segment with
+that one segment lengthened by a small δ (its ``perturb`` hook), which gives the sensitivity
+∂q/∂e_i of every quantity read off the plans and ∂X/∂e_i of every plan point to every segment
+error. The tolerance is the linear worst case
+
+    tol(q) = Σ_i |∂q/∂e_i| · precision/2,        radius(X) = Σ_i |∂X/∂e_i| · precision/2,
+
+so that any drawing whose every segment is within ±precision/2 is accepted (to first order);
+:func:`emulate_drawings` draws many random drawings to check it. A floor keeps tolerances
+sensible near zero values and for an exact drawing: ``rel_floor``·|q| (default 0.5 %), and an
+absolute floor of 0.1 % of the drive's own value of the same kind (v_B, a_B, ω1, …).
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> found = propagate(load_exercise("exercises/compressor_slider_crank.toml"), 0.5)
+>>> round(found.values["v_C"], 4), 0.0 < found.tolerances["v_C"] < 0.1 * found.values["v_C"]
+(5.2716, True)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..model import Exercise
+from ..plans.construction import Segment
+
+__all__ = [
+    "MISTAKES",
+    "Propagation",
+    "emulate_drawings",
+    "kind_of",
+    "mistaken_plans",
+    "propagate",
+    "scale_factor",
+]
+
+#: The segment lengthening used to measure sensitivities (mm).
+DELTA_MM = 1e-4
+
+#: Which quantity kinds are signed (their sense can be reversed).
+SIGNED = {"omega", "epsilon", "s", "ds", "dds"}
+
+#: Mistakes detected in numeric answers and drawn plans.
+MISTAKES = {
+    "sense": "the sense (sign) is reversed",
+    "no_normal": "the normal component aⁿ was left out",
+    "coriolis_reversed": "the Coriolis component aᵏ was laid off the wrong way",
+    "full_acceleration": "the full acceleration was used instead of its normal component",
+    "scale_none": "the plan's scale was not applied (the answer is a drawn length)",
+    "scale_twice": "the plan's scale was applied twice",
+    "degrees": "degrees were given for radians",
+    "millimetres": "millimetres were given for metres",
+    "length_mm": "the length was taken in mm instead of m",
+}
+
+
+def kind_of(quantity: str) -> str:
+    """The kind of a quantity name: ``v_C`` → ``v``, ``omega_BC`` → ``omega``."""
+    return quantity.partition("_")[0]
+
+
+@dataclass(frozen=True)
+class Propagation:
+    """Exact values and drawing-derived tolerances of one exercise at one angle.
+
+    ``values``: quantity → exact value; ``tolerances``: quantity → absolute tolerance from the
+    drawing (before floors); ``sensitivity``: quantity → array of ∂q/∂e_i; ``points``:
+    plan → label → exact point (mm); ``radii``: plan → label → tolerance radius (mm);
+    ``segments``: the :class:`~planmethod.plans.construction.Segment` of each e_i.
+    """
+
+    values: Mapping[str, float]
+    readings: Mapping[str, float]
+    tolerances: Mapping[str, float]
+    sensitivity: Mapping[str, np.ndarray]
+    points: Mapping[str, Mapping[str, tuple[float, float]]]
+    radii: Mapping[str, Mapping[str, float]]
+    segments: tuple[Segment, ...]
+    precision_mm: float
+    plans: object
+
+
+class _Recorder:
+    """A perturbation model: records the segments, adds ``delta`` to segment ``target``."""
+
+    def __init__(self, target: int | None = None, delta: float = 0.0, errors=None) -> None:
+        self.target, self.delta, self.errors = target, delta, errors
+        self.segments: list[Segment] = []
+
+    def __call__(self, length: float, segment: Segment) -> float:
+        index = len(self.segments)
+        self.segments.append(segment)
+        if self.errors is not None:
+            return length + (self.errors[index] if index < len(self.errors) else 0.0)
+        if index == self.target:
+            return length + self.delta
+        return length
+
+
+def _plan_points(plans) -> dict[str, dict[str, np.ndarray]]:
+    out = {"velocity": {k: np.asarray(v) for k, v in plans.velocity.points_mm.items()}}
+    if plans.acceleration is not None:
+        out["acceleration"] = {k: np.asarray(v) for k, v in plans.acceleration.points_mm.items()}
+    return out
+
+
+def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
+              motion=None) -> Propagation:
+    """Exact values, readings and drawing tolerances of the exercise's asked quantities.
+
+    Parameters
+    ----------
+    exercise
+        The exercise (drawn at its own scales, at ``drive.angle``).
+    precision_mm
+        The drafting precision: each segment within ±precision_mm/2.
+    quantities
+        The quantities (default: those the exercise asks, see
+        :func:`planmethod.report.asked_quantities`).
+    """
+    from ..kinematics import solve
+    from ..plans import draw_plans
+    from ..report import asked_quantities, exact_value
+
+    mechanism = exercise.mechanism
+    acceleration = exercise.ask.needs_acceleration
+    if motion is None:
+        motion = solve(mechanism, mechanism.drive.angle,
+                       stage="acceleration" if acceleration else "velocity")
+    settings = replace(exercise.plan, precision_mm=0.0)
+    recorder = _Recorder()
+    base = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
+                      perturb=recorder)
+    if quantities is None:
+        quantities = asked_quantities(exercise, motion)
+    values = {q: exact_value(motion, q) for q in quantities}
+    points = _plan_points(base)
+    count = len(recorder.segments)
+    sensitivity = {q: np.zeros(count) for q in quantities}
+    point_sensitivity = {plan: {label: np.zeros((count, 2)) for label in labels}
+                         for plan, labels in points.items()}
+    for index in range(count):
+        drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
+                           perturb=_Recorder(index, DELTA_MM))
+        for q in quantities:
+            if q in base.readings and q in drawn.readings:
+                sensitivity[q][index] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
+        for plan, labels in _plan_points(drawn).items():
+            for label, xy in labels.items():
+                if label in point_sensitivity[plan]:
+                    point_sensitivity[plan][label][index] = (xy - points[plan][label]) / DELTA_MM
+    half = precision_mm / 2.0
+    tolerances = {q: float(np.sum(np.abs(sensitivity[q]))) * half for q in quantities}
+    radii = {plan: {label: float(np.sum(np.hypot(s[:, 0], s[:, 1]))) * half
+                    for label, s in labels.items()}
+             for plan, labels in point_sensitivity.items()}
+    return Propagation(
+        values=values, readings=dict(base.readings), tolerances=tolerances,
+        sensitivity=sensitivity,
+        points={plan: {k: (float(v[0]), float(v[1])) for k, v in labels.items()}
+                for plan, labels in points.items()},
+        radii=radii, segments=tuple(recorder.segments), precision_mm=precision_mm, plans=base)
+
+
+def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, seed: int = 0,
+                     quantities=None, motion=None) -> dict[str, np.ndarray]:
+    """Read the quantities off ``count`` random drawings (every segment's error uniform in
+    ±precision_mm/2): quantity → array of values, plus ``points:<plan>:<label>`` → (count, 2).
+    """
+    from ..kinematics import solve
+    from ..plans import draw_plans
+    from ..report import asked_quantities
+
+    mechanism = exercise.mechanism
+    acceleration = exercise.ask.needs_acceleration
+    if motion is None:
+        motion = solve(mechanism, mechanism.drive.angle,
+                       stage="acceleration" if acceleration else "velocity")
+    if quantities is None:
+        quantities = asked_quantities(exercise, motion)
+    settings = replace(exercise.plan, precision_mm=0.0)
+    generator = np.random.default_rng(seed)
+    out: dict[str, list] = {q: [] for q in quantities}
+    for _ in range(count):
+        errors = generator.uniform(-precision_mm / 2, precision_mm / 2, size=256)
+        drawn = draw_plans(exercise, settings=settings, motion=motion,
+                           acceleration=acceleration, perturb=_Recorder(errors=errors))
+        for q in quantities:
+            out[q].append(drawn.readings.get(q, math.nan))
+        for plan, labels in _plan_points(drawn).items():
+            for label, xy in labels.items():
+                out.setdefault(f"points:{plan}:{label}", []).append(xy)
+    return {k: np.asarray(v, dtype=float) for k, v in out.items()}
+
+
+def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
+    """The plans as drawn with a construction mistake: ``no_normal`` (the groups' normal
+    components aⁿ left out) or ``coriolis_reversed`` (every Coriolis component laid off the
+    wrong way). None if the exercise has no such component to get wrong."""
+    from ..plans import draw_plans
+
+    found = []
+
+    def wrong(length: float, segment: Segment) -> float:
+        if segment.plan == "acceleration" and segment.action == "lay_off":
+            if mistake == "no_normal" and segment.name == "normal" and segment.group is not None:
+                found.append(segment)
+                return 0.0
+            if mistake == "coriolis_reversed" and segment.name == "coriolis" and length > 0:
+                found.append(segment)
+                return -length
+        return length
+
+    if not exercise.ask.needs_acceleration:
+        return None
+    settings = replace(exercise.plan, precision_mm=0.0)
+    plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong)
+    return plans if found else None
+
+
+def scale_factor(quantity: str, mu_l: float, mu_v: float, mu_a: float) -> float | None:
+    """The factor that turns a drawn length (mm, or mm/mm) into the quantity: the scale a
+    student might leave out or apply twice."""
+    kind = kind_of(quantity)
+    return {
+        "v": mu_v, "ds": mu_v, "a": mu_a, "dds": mu_a, "coriolis": mu_a, "s": mu_l,
+        "omega": mu_v / mu_l, "epsilon": mu_a / mu_l, "rho": mu_v ** 2 / mu_a,
+    }.get(kind)
