@@ -1,0 +1,583 @@
+"""Grading drawn plans: read a student's plan (SVG or JSON), align it at the pole, check every
+plan point against its tolerance disc and the construction lines, and explain what is off.
+
+A submission is untrusted input. SVG is read with the standard library's expat parser after
+these checks: at most :data:`MAX_BYTES` bytes, UTF-8, no ``<!DOCTYPE`` or ``<!ENTITY`` at all
+(so no entity expansion and no external resolution), at most :data:`MAX_ELEMENTS` elements,
+nesting at most :data:`MAX_DEPTH`, at most :data:`MAX_NUMBERS` coordinates. Scripts, images and
+links are never followed (they are ignored). Any failure is a :class:`SubmissionError` with
+one clear line.
+
+Points are found in the SVG as the plan's labels (``<text>`` with ``p``, ``π``/``pi``, ``b``,
+``c``, ``n_CB``…): each label marks the nearest drawn point (a line or path end, a vertex, a
+circle's centre) within :data:`LABEL_REACH_MM`, or its own anchor if nothing is drawn near it —
+so labelled dots, text near line ends, and planmethod's blank plan sheet all work. Units: a
+root ``width`` in mm/cm/in/pt/px with a ``viewBox`` fixes the user unit; otherwise a user unit
+is a CSS px (25.4/96 mm). SVG's y axis points down; plans are graded with y up.
+
+JSON submissions are ``{"plan": "velocity", "points": {"p": [0, 0], "b": [x, y], …}}`` in mm,
+y up (or just the points object).
+
+Examples
+--------
+>>> drawing = parse_drawing_json('{"plan": "velocity", "points": {"p": [0, 0], "b": [1, 2]}}')
+>>> drawing.plan, drawing.points["b"]
+('velocity', (1.0, 2.0))
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import SpecError
+
+__all__ = [
+    "Drawing",
+    "SubmissionError",
+    "grade_drawing",
+    "parse_drawing_json",
+    "parse_drawing_svg",
+    "read_drawing",
+]
+
+MAX_BYTES = 2_000_000
+MAX_ELEMENTS = 20_000
+MAX_DEPTH = 64
+MAX_NUMBERS = 200_000
+LABEL_REACH_MM = 8.0
+PX_MM = 25.4 / 96.0
+SVG_NAMESPACE = "{http://www.w3.org/2000/svg}"
+UNITS_MM = {"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72, "pc": 25.4 / 6, "px": PX_MM,
+            "": PX_MM}
+
+
+class SubmissionError(SpecError):
+    """A submitted drawing cannot be read (too large, malformed, unsafe, no labels…)."""
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """A student's plan: labelled points in mm (y up, as drawn: not yet aligned), the plan
+    it claims to be (``velocity``/``acceleration`` or None), and notes on what was skipped."""
+
+    points: Mapping[str, tuple[float, float]]
+    plan: str | None = None
+    notes: tuple[str, ...] = ()
+    source: str | None = None
+    lines: tuple = field(default=())
+
+
+def read_drawing(path: str | Path) -> Drawing:
+    """Read a drawn plan from an SVG or JSON file (see the module notes).
+
+    Raises
+    ------
+    SubmissionError
+        For anything that is not a readable, safe drawing with labelled points.
+    """
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+        if size > MAX_BYTES:
+            raise SubmissionError(f"the file is {size} bytes; at most {MAX_BYTES} are accepted",
+                                  file=str(path))
+        with path.open("rb") as handle:
+            data = handle.read(MAX_BYTES + 1)
+    except FileNotFoundError:
+        raise SubmissionError("no such file", file=str(path)) from None
+    except OSError as error:
+        raise SubmissionError(f"cannot read the file ({error.strerror})",
+                              file=str(path)) from None
+    if len(data) > MAX_BYTES:
+        raise SubmissionError(f"the file is larger than {MAX_BYTES} bytes", file=str(path))
+    head = data.lstrip()[:1]
+    if path.suffix.lower() == ".json" or head in (b"{", b"["):
+        return parse_drawing_json(data, source=str(path))
+    return parse_drawing_svg(data, source=str(path))
+
+
+def _finite_pair(value: Any, where: str, source: str | None) -> tuple[float, float]:
+    if (not isinstance(value, list | tuple) or len(value) != 2
+            or not all(isinstance(v, int | float) and not isinstance(v, bool)
+                       and math.isfinite(v) for v in value)):
+        raise SubmissionError(f"must be [x, y] in mm with finite numbers, got {value!r}"[:120],
+                              file=source, key=where)
+    return (float(value[0]), float(value[1]))
+
+
+def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawing:
+    """A drawing from JSON point coordinates (mm, y up)."""
+    if isinstance(data, bytes):
+        if len(data) > MAX_BYTES:
+            raise SubmissionError(f"larger than {MAX_BYTES} bytes", file=source)
+        try:
+            data = data.decode("utf-8-sig")
+        except UnicodeDecodeError:
+            raise SubmissionError("not UTF-8 text", file=source) from None
+    try:
+        parsed = json.loads(data)
+    except (json.JSONDecodeError, RecursionError) as error:
+        raise SubmissionError(f"not valid JSON: {error}"[:200], file=source) from None
+    if not isinstance(parsed, Mapping):
+        raise SubmissionError("must be an object {\"plan\": …, \"points\": {…}}", file=source)
+    plan = parsed.get("plan")
+    if plan is not None and plan not in ("velocity", "acceleration"):
+        raise SubmissionError(f"plan must be 'velocity' or 'acceleration', got {plan!r}"[:120],
+                              file=source, key="plan")
+    points = parsed.get("points", parsed if plan is None else None)
+    if not isinstance(points, Mapping) or not points:
+        raise SubmissionError("no labelled points (give \"points\": {\"p\": [0, 0], …})",
+                              file=source, key="points")
+    if len(points) > 1000:
+        raise SubmissionError("more than 1000 points", file=source, key="points")
+    out = {}
+    for label, xy in points.items():
+        if label == "plan":
+            continue
+        out[_normal_label(str(label))] = _finite_pair(xy, f"points.{label}", source)
+    return Drawing(out, plan, (), source)
+
+
+# -- SVG -------------------------------------------------------------------------------------
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_TRANSFORM = re.compile(r"\s*(matrix|translate|scale|rotate|skewX|skewY)\s*\(([^)]*)\)\s*,?")
+_LENGTH = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(mm|cm|in|pt|pc|px)?"
+                     r"\s*$")
+
+
+def _numbers(text: str, budget: list[int]) -> list[float]:
+    values = [float(v) for v in _NUMBER.findall(text or "")]
+    budget[0] -= len(values)
+    if budget[0] < 0:
+        raise SubmissionError(f"more than {MAX_NUMBERS} coordinates")
+    return values
+
+
+def _transform(text: str | None, budget) -> np.ndarray:
+    matrix = np.eye(3)
+    if not text:
+        return matrix
+    position = 0
+    for match in _TRANSFORM.finditer(text):
+        if match.start() != position:
+            raise SubmissionError(f"unreadable transform {text[:60]!r}")
+        position = match.end()
+        name, args = match.group(1), _numbers(match.group(2), budget)
+        step = np.eye(3)
+        try:
+            if name == "matrix" and len(args) == 6:
+                a, b, c, d, e, f = args
+                step = np.array([[a, c, e], [b, d, f], [0, 0, 1]])
+            elif name == "translate" and len(args) in (1, 2):
+                step[0, 2], step[1, 2] = args[0], (args[1] if len(args) == 2 else 0.0)
+            elif name == "scale" and len(args) in (1, 2):
+                step[0, 0], step[1, 1] = args[0], (args[1] if len(args) == 2 else args[0])
+            elif name == "rotate" and len(args) in (1, 3):
+                angle = math.radians(args[0])
+                c, s = math.cos(angle), math.sin(angle)
+                rotation = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+                if len(args) == 3:
+                    shift, back = np.eye(3), np.eye(3)
+                    shift[:2, 2], back[:2, 2] = args[1:], [-args[1], -args[2]]
+                    rotation = shift @ rotation @ back
+                step = rotation
+            elif name in ("skewX", "skewY") and len(args) == 1:
+                step[0 if name == "skewX" else 1, 1 if name == "skewX" else 0] = math.tan(
+                    math.radians(args[0]))
+            else:
+                raise SubmissionError(f"unreadable transform {text[:60]!r}")
+        except (OverflowError, ValueError) as error:
+            raise SubmissionError(f"unreadable transform {text[:60]!r}") from error
+        matrix = matrix @ step
+    if text[position:].strip():
+        raise SubmissionError(f"unreadable transform {text[:60]!r}")
+    return matrix
+
+
+def _path_vertices(d: str, budget) -> list[tuple[float, float]]:
+    """The end points of every segment of an SVG path (absolute user units)."""
+    tokens = re.findall(r"[MmLlHhVvCcSsQqTtAaZz]|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?",
+                        d or "")
+    budget[0] -= len(tokens)
+    if budget[0] < 0:
+        raise SubmissionError(f"more than {MAX_NUMBERS} coordinates")
+    sizes = {"m": 2, "l": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "t": 2, "a": 7, "z": 0}
+    out: list[tuple[float, float]] = []
+    x = y = start_x = start_y = 0.0
+    command, index = None, 0
+    while index < len(tokens):
+        token = tokens[index]
+        if token.isalpha():
+            command = token
+            index += 1
+            if command in "Zz":
+                x, y = start_x, start_y
+                continue
+        if command is None:
+            raise SubmissionError("a path's data does not start with a command")
+        size = sizes[command.lower()]
+        if size == 0:
+            raise SubmissionError("a path has numbers after Z")
+        args = tokens[index:index + size]
+        if len(args) < size or any(a.isalpha() for a in args):
+            raise SubmissionError("a path's data is incomplete")
+        values = [float(a) for a in args]
+        index += size
+        relative = command.islower()
+        lower = command.lower()
+        if lower == "h":
+            x = values[0] + (x if relative else 0.0)
+        elif lower == "v":
+            y = values[0] + (y if relative else 0.0)
+        else:
+            nx, ny = values[-2], values[-1]
+            x, y = (x + nx, y + ny) if relative else (nx, ny)
+        if lower == "m":
+            start_x, start_y = x, y
+            command = "l" if relative else "L"  # implicit line-tos follow a move-to
+        out.append((x, y))
+    return out
+
+
+def _length_mm(text: str | None) -> tuple[float, str] | None:
+    if not text:
+        return None
+    match = _LENGTH.match(text)
+    if not match:
+        return None
+    return float(match.group(1)), match.group(2) or ""
+
+
+def _user_unit_mm(root) -> tuple[float, float]:
+    width, height = _length_mm(root.get("width")), _length_mm(root.get("height"))
+    view = root.get("viewBox")
+    if view:
+        numbers = [float(v) for v in _NUMBER.findall(view)]
+        if len(numbers) == 4 and numbers[2] > 0 and numbers[3] > 0:
+            sx = (width[0] * UNITS_MM[width[1]] / numbers[2]) if width else PX_MM
+            sy = (height[0] * UNITS_MM[height[1]] / numbers[3]) if height else sx
+            return sx, sy
+    return PX_MM, PX_MM
+
+
+def _normal_label(text: str) -> str:
+    label = text.strip().replace(" ", "")
+    label = {"pi": "π", "PI": "π", "Pi": "π", "p'": "p′", "P'": "p′"}.get(label, label)
+    return label
+
+
+def parse_drawing_svg(data: bytes | str, *, source: str | None = None) -> Drawing:
+    """A drawing from SVG (see the module notes for what is read and what is refused)."""
+    import xml.etree.ElementTree as ElementTree
+
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    if len(data) > MAX_BYTES:
+        raise SubmissionError(f"larger than {MAX_BYTES} bytes", file=source)
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise SubmissionError("not UTF-8 text (an SVG drawing is expected)", file=source) \
+            from None
+    lowered = text.lower()
+    if "<!doctype" in lowered or "<!entity" in lowered:
+        raise SubmissionError("refused: the file declares a DOCTYPE or ENTITY (not accepted "
+                              "in submissions)", file=source)
+    if "<svg" not in lowered:
+        raise SubmissionError("not an SVG drawing (no <svg> element)", file=source)
+    try:
+        parser = ElementTree.XMLParser()
+        parser.feed(text)
+        root = parser.close()
+    except ElementTree.ParseError as error:
+        line, column = error.position
+        raise SubmissionError(f"malformed XML at line {line}, column {column + 1}",
+                              file=source) from None
+    if root.tag not in ("svg", f"{SVG_NAMESPACE}svg"):
+        raise SubmissionError(f"the root element is <{root.tag}>, not <svg>", file=source)
+    try:
+        return _read_svg(root, source)
+    except SubmissionError as error:
+        raise error.located(file=source) from None
+
+
+def _local(tag: Any) -> str:
+    if not isinstance(tag, str):
+        return ""  # comments and processing instructions
+    return tag.rpartition("}")[2]
+
+
+def _read_svg(root, source: str | None) -> Drawing:
+    sx, sy = _user_unit_mm(root)
+    budget = [MAX_NUMBERS]
+    to_mm = np.diag([sx, -sy, 1.0])  # y up
+    points: list[tuple[float, float]] = []
+    labels: list[tuple[str, tuple[float, float]]] = []
+    notes: set[str] = set()
+    plan = root.get("data-planmethod-plan")
+    count = 0
+    stack = [(root, to_mm, 0)]
+    while stack:
+        element, matrix, depth = stack.pop()
+        count += 1
+        if count > MAX_ELEMENTS:
+            raise SubmissionError(f"more than {MAX_ELEMENTS} elements")
+        if depth > MAX_DEPTH:
+            raise SubmissionError(f"elements nested deeper than {MAX_DEPTH}")
+        tag = _local(element.tag)
+        if tag in ("script", "foreignObject", "image", "use", "style", "a", "iframe"):
+            notes.add(f"<{tag}> ignored")
+            continue
+        if tag in ("defs", "metadata", "title", "desc", "clipPath", "mask", "marker",
+                   "pattern", "symbol"):
+            continue
+        matrix = matrix @ _transform(element.get("transform"), budget)
+
+        def place(x: float, y: float, m=matrix) -> tuple[float, float]:
+            u = m @ np.array([x, y, 1.0])
+            if not (math.isfinite(u[0]) and math.isfinite(u[1])):
+                raise SubmissionError("a coordinate is not a finite number")
+            return (float(u[0]), float(u[1]))
+
+        def attr(name: str, e=element) -> float:
+            values = _numbers(e.get(name, "0"), budget)
+            return values[0] if values else 0.0
+
+        if tag in ("circle", "ellipse"):
+            points.append(place(attr("cx"), attr("cy")))
+        elif tag == "line":
+            points += [place(attr("x1"), attr("y1")), place(attr("x2"), attr("y2"))]
+        elif tag in ("polyline", "polygon"):
+            values = _numbers(element.get("points", ""), budget)
+            points += [place(values[i], values[i + 1]) for i in range(0, len(values) - 1, 2)]
+        elif tag == "path":
+            points += [place(x, y) for x, y in _path_vertices(element.get("d", ""), budget)]
+        elif tag == "text":
+            content = "".join(element.itertext()).strip()
+            if content and len(content) <= 12:
+                x, y = attr("x"), attr("y")
+                span = next((c for c in element if _local(c.tag) == "tspan" and c.get("x")),
+                            None)
+                if span is not None and not element.get("x"):
+                    x, y = attr("x", span), attr("y", span)
+                labels.append((_normal_label(content), place(x, y)))
+            continue
+        for child in reversed(list(element)):
+            stack.append((child, matrix, depth + 1))
+    if not labels:
+        raise SubmissionError("no labelled points: label the plan's points with text "
+                              "(p or π for the pole, b, c, …) next to them")
+    drawn = np.asarray(points, dtype=float).reshape(-1, 2)
+    out: dict[str, tuple[float, float]] = {}
+    for label, anchor in labels:
+        xy = np.asarray(anchor)
+        if len(drawn):
+            distances = np.hypot(*(drawn - xy).T)
+            nearest = int(np.argmin(distances))
+            if distances[nearest] <= LABEL_REACH_MM:
+                xy = drawn[nearest]
+        out.setdefault(label, (float(xy[0]), float(xy[1])))
+    if plan is None:
+        if "π" in out and "p" not in out:
+            plan = "acceleration"
+        elif "p" in out and "π" not in out:
+            plan = "velocity"
+    return Drawing(out, plan, tuple(sorted(notes)), source, ())
+
+
+# -- grading ---------------------------------------------------------------------------------
+def _steps_by_end(steps) -> dict[str, dict]:
+    out = {}
+    for step in steps:
+        if step.get("end") and step["action"] in ("lay_off", "intersect", "similarity"):
+            out.setdefault(step["end"], step)
+    return out
+
+
+def _graded_labels(plan: Mapping[str, Any]) -> list[str]:
+    """The points a student must draw: ends of lay-offs, intersections and similarity steps
+    away from the pole (helper points such as n_CB or k_C are checked when present)."""
+    out = []
+    pole = plan["pole"]
+    for label, xy in plan["points_mm"].items():
+        if label == pole or "_" in label or "@frame" in label:
+            continue
+        if math.hypot(*xy) < 1e-9:
+            continue
+        out.append(label)
+    return out
+
+
+def _match(points: Mapping[str, tuple[float, float]], label: str):
+    if label in points:
+        return points[label]
+    folded = {k.casefold(): v for k, v in points.items()}
+    return folded.get(label.casefold())
+
+
+def _line_name(step: Mapping[str, Any]) -> str:
+    """``through b: v_CB ⟂ CB`` → ``the line v_CB ⟂ CB through b``."""
+    text = step.get("text", "").partition(": ")[2]
+    return f"the line {text} through {step.get('start')}".replace("  ", " ")
+
+
+def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = None, *,
+                  rescale: bool = True) -> dict:
+    """Grade a drawn plan against a key.
+
+    The drawing is moved so that its pole is at the key's pole; with ``rescale`` a drawing
+    whose laid-off first vector (pb or πb, given data) has the wrong length is scaled to it
+    first (an editor's unit mix-up), and the feedback says so. Each graded point scores if it
+    lies in its tolerance disc.
+
+    Raises
+    ------
+    SubmissionError
+        If the plan kind cannot be told, or the pole is not labelled.
+    """
+    from shapely.geometry import LineString, Point
+
+    plan = plan or drawing.plan
+    if plan not in ("velocity", "acceleration"):
+        raise SubmissionError("cannot tell which plan this is: label the pole p (velocity) or "
+                              "π (acceleration), or say which", file=drawing.source)
+    entry = key["plans"].get(plan)
+    if entry is None:
+        raise SubmissionError(f"the key has no {plan} plan", file=drawing.source)
+    pole = entry["pole"]
+    origin = _match(drawing.points, pole)
+    if origin is None and pole == "π":
+        origin = _match(drawing.points, "p")  # a pole labelled p on an acceleration sheet
+    if origin is None:
+        raise SubmissionError(f"no pole labelled {pole}: cannot align the plan",
+                              file=drawing.source)
+    student = {label: np.asarray(xy, dtype=float) - np.asarray(origin)
+               for label, xy in drawing.points.items()}
+    feedback: list[str] = list(drawing.notes)
+    steps = entry["steps"]
+    first = next((s for s in steps if s["action"] == "lay_off"), None)
+    factor = 1.0
+    if rescale and first is not None:
+        end = first["end"]
+        found = _match(student, end)
+        right = np.asarray(entry["points_mm"][end])
+        if found is not None and np.hypot(*found) > 0:
+            ratio = float(np.hypot(*found) / np.hypot(*right))
+            tolerance = entry["tolerance_mm"].get(end, 0.5) / float(np.hypot(*right))
+            if abs(ratio - 1) > max(tolerance, 0.02):
+                factor = 1.0 / ratio
+                feedback.append(f"the drawing's scale is off: ({pole}{end}) measures "
+                                f"{np.hypot(*found):.1f} mm instead of {np.hypot(*right):.1f} mm"
+                                f"; it was graded after scaling by {factor:.4g}")
+                student = {label: xy * factor for label, xy in student.items()}
+    points = {k: np.asarray(v, dtype=float) for k, v in entry["points_mm"].items()}
+    radii = entry["tolerance_mm"]
+    by_end = _steps_by_end(steps)
+    asked = {q["id"] for q in key.get("questions", ())}
+    reads = [s for s in steps if s["action"] == "read" and s.get("quantity") in asked]
+    lines = {s["number"]: s for s in steps if s["action"] == "line"}
+    results = []
+    graded = _graded_labels(entry)
+    for label in list(graded) + [k for k in points if k not in graded and "_" in k]:
+        required = label in graded
+        found = _match(student, label)
+        if found is None:
+            if required:
+                results.append({"point": label, "found": False, "correct": False,
+                                "score": 0.0, "max_score": 1.0,
+                                "feedback": f"{label}: not found on the drawing"})
+            continue
+        right = points[label]
+        radius = float(radii.get(label, 0.5))
+        distance = float(np.hypot(*(found - right)))
+        inside = Point(*right).buffer(radius, 32).covers(Point(*found))
+        result = {"point": label, "found": True, "correct": bool(inside),
+                  "distance_mm": distance, "tolerance_mm": radius,
+                  "score": (1.0 if inside else 0.0) if required else 0.0,
+                  "max_score": 1.0 if required else 0.0}
+        if inside:
+            result["feedback"] = f"{label}: within {radius:.2g} mm ({distance:.2g} mm off)"
+        else:
+            result["feedback"] = _explain(label, found, right, distance, radius, student,
+                                          points, by_end.get(label), lines, reads,
+                                          LineString)
+        results.append(result)
+    wrong = [r for r in results if r["found"] and not r["correct"]]
+    for mistake, alternative in entry.get("mistakes", {}).items():
+        if not wrong:
+            break
+        fits = [r for r in wrong if r["point"] in alternative and float(np.hypot(
+            *(student[r["point"]] if r["point"] in student else _match(student, r["point"]))
+            - np.asarray(alternative[r["point"]]))) <= 2 * r["tolerance_mm"]]
+        if len(fits) == len(wrong):
+            from .tolerances import MISTAKES
+
+            what = ("the plan is turned 180°: the sense of ω1 was reversed"
+                    if mistake == "sense" else MISTAKES.get(mistake, mistake))
+            feedback.append(f"the wrong points fit the plan drawn when {what}")
+            break
+    score = sum(r["score"] for r in results)
+    total = sum(r["max_score"] for r in results)
+    return {"plan": plan, "student": key.get("student"), "score": score, "max_score": total,
+            "scale_factor": factor, "points": results, "feedback": feedback}
+
+
+def _explain(label, found, right, distance, radius, student, points, step, lines, reads,
+             LineString) -> str:
+    text = f"{label} is {distance:.1f} mm off (tolerance {radius:.2g} mm)"
+    if step is not None and step["action"] == "intersect":
+        parts = []
+        for number in step.get("lines", ()):
+            line = lines.get(number)
+            if line is None:
+                continue
+            start = _match(student, line["start"])
+            base = start if start is not None else points[line["start"]]
+            angle = math.radians(line["direction_deg"])
+            direction = np.array([math.cos(angle), math.sin(angle)])
+            far = 10_000.0
+            drawn_line = LineString([tuple(base - far * direction), tuple(base + far * direction)])
+            from shapely.geometry import Point
+
+            off_line = drawn_line.distance(Point(*found))
+            along = float((found - right) @ direction)
+            if off_line <= radius and abs(along) > radius:
+                parts.append(f"it lies on {_line_name(line)} but {abs(along):.1f} mm off "
+                             f"along it")
+            elif off_line > radius:
+                parts.append(f"it is {off_line:.1f} mm off {_line_name(line)}")
+        if parts:
+            text = f"{label} is {distance:.1f} mm off: " + "; ".join(parts)
+    elif step is not None and step["action"] == "lay_off":
+        drawn = float(np.hypot(*(found - (_match(student, step["start"])
+                                          if _match(student, step["start"]) is not None
+                                          else points[step["start"]]))))
+        text += (f": ({step['start']}{label}) should be {step['length_mm']:.1f} mm at "
+                 f"{step['direction_deg']:.0f}°, it is {drawn:.1f} mm")
+    elif step is not None and step["action"] == "similarity":
+        text += f" (placed by the similarity rule from {', '.join(step.get('references', []))})"
+    meanings = []
+    for read in reads:
+        if label not in (read["start"], read["end"]):
+            continue
+        start, end = _match(student, read["start"]), _match(student, read["end"])
+        if read["start"] in ("p", "π") and start is None:
+            start = np.zeros(2)
+        if start is None or end is None or not read.get("length_mm"):
+            continue
+        length = float(np.hypot(*(end - start)))
+        change = length / read["length_mm"] - 1.0
+        if abs(change) >= 0.005:
+            meanings.append(f"{read['quantity']} read {abs(change) * 100:.0f} % "
+                            f"{'high' if change > 0 else 'low'}")
+    if meanings:
+        text += ": " + ", ".join(dict.fromkeys(meanings))
+    return text

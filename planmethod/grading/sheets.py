@@ -1,0 +1,148 @@
+"""Task sheets for variants: the position plan with the given data and what is asked, and the
+blank plan sheets a student draws on (and hands back for grading).
+
+The task sheet embeds :func:`planmethod.render.svg.position_svg` (the mechanism at μl, without
+any answer on it) above the task text. A blank plan sheet is in millimetres
+(``width="…mm"`` with a matching ``viewBox``), marks the pole (p or π) at its centre, prints the
+scale in one long text line (long texts are never taken for labels), and has its grid as a
+pattern so that nothing on it is mistaken for a drawn point by
+:func:`planmethod.grading.drawings.parse_drawing_svg`.
+
+Examples
+--------
+>>> sheet = blank_plan_sheet("velocity", pole="p", scale=0.2, unit="(m/s)/mm", size_mm=120,
+...                          student="s01", title="Slider-crank")
+>>> from planmethod.grading.drawings import parse_drawing_svg
+>>> drawing = parse_drawing_svg(sheet)
+>>> drawing.plan, drawing.points["p"]
+('velocity', (60.0, -72.0))
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import textwrap
+from collections.abc import Mapping
+from dataclasses import replace
+from typing import Any
+from xml.sax.saxutils import escape, quoteattr
+
+__all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_sheet_svg", "task_text"]
+
+
+def task_text(key: Mapping[str, Any]) -> str:
+    """The text of the task: the description, the given data, the scales and the questions.
+
+    Examples
+    --------
+    >>> key = {"title": "T", "task": "Find v_C.", "student": "s1", "angle": 45.0,
+    ...        "scales": {"mu_l": 0.002, "mu_v": 0.2, "mu_a": 20.0}, "given": {},
+    ...        "questions": [{"id": "v_C", "text": "speed of C, |v_C|", "unit": "m/s"}]}
+    >>> print(task_text(key).splitlines()[0])
+    T — variant for s1
+    """
+    scales = key.get("scales", {})
+    lines = [f"{key.get('title', 'Exercise')} — variant for {key.get('student')}", "",
+             key.get("task", "").strip(), ""]
+    given = key.get("given") or {}
+    if given:
+        lines.append("Given: " + ", ".join(f"{name} = {value:g}" if isinstance(value, float)
+                                           else f"{name} = {value}"
+                                           for name, value in given.items()))
+    lines.append(f"Crank angle φ1 = {key.get('angle', 0):g}°; scales μl = "
+                 f"{scales.get('mu_l', 0):.6g} m/mm, μv = {scales.get('mu_v', 0):.6g} (m/s)/mm, "
+                 f"μa = {scales.get('mu_a', 0):.6g} (m/s²)/mm.")
+    lines += ["", "Answer (SI units, counter-clockwise positive):"]
+    for question in key.get("questions", ()):
+        lines.append(f"  {question['id']:<14} {question['text']} [{question.get('unit', '')}]")
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def _svg_size(svg: str) -> tuple[float, float]:
+    head = svg[:2000]
+    view = re.search(r'viewBox="([^"]+)"', head)
+    if view:
+        numbers = [float(v) for v in view.group(1).replace(",", " ").split()]
+        if len(numbers) == 4:
+            return numbers[2], numbers[3]
+    width = re.search(r'width="([\d.]+)', head)
+    height = re.search(r'height="([\d.]+)', head)
+    return (float(width.group(1)) if width else 400.0, float(height.group(1)) if height
+            else 300.0)
+
+
+def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
+    """The task sheet: the position plan (no answers on it) above the task text.
+
+    ``plans`` are the variant's :class:`~planmethod.plans.Plans` (only the position plan is
+    drawn; its curvature construction, which would show ρ, is left out).
+    """
+    from ..render.svg import position_svg
+
+    position = replace(plans.position, curvature={})
+    mechanism = position_svg(position)
+    mechanism = re.sub(r"^<\?xml[^>]*>\s*", "", mechanism)
+    width, height = _svg_size(mechanism)
+    width = max(width, 640.0)
+    text = task_text(key)
+    wrapped: list[str] = []
+    for line in text.splitlines():
+        wrapped += textwrap.wrap(line, 100, subsequent_indent="    ") or [""]
+    line_height = 15.0
+    total = height + 20 + line_height * len(wrapped)
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
+             f'height="{total:.0f}" viewBox="0 0 {width:.0f} {total:.0f}" '
+             f'font-family="DejaVu Sans, sans-serif">',
+             f'<rect width="{width:.0f}" height="{total:.0f}" fill="white"/>',
+             mechanism.replace("<svg ", '<svg x="0" y="0" ', 1)]
+    y = height + 20
+    for line in wrapped:
+        font = ' font-family="DejaVu Sans Mono, monospace"' if line.startswith("  ") else ""
+        parts.append(f'<text x="16" y="{y:.0f}" font-size="12"{font} xml:space="preserve">'
+                     f"{escape(line)}</text>")
+        y += line_height
+    parts.append("</svg>")
+    return "\n".join(parts) + "\n"
+
+
+def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: float,
+                     student: str = "", title: str = "", given: str = "") -> str:
+    """A square blank sheet (mm) with the pole at its centre and a 10 mm grid pattern."""
+    size = float(size_mm)
+    centre = size / 2
+    header = (f"{title} — {plan} plan — {student} — μ{'v' if plan == 'velocity' else 'a'} = "
+              f"{scale:.6g} {unit}. {given} Draw the plan from the pole {pole}; label every "
+              f"point (b, c, …) next to it.")
+    return "\n".join([
+        '<svg xmlns="http://www.w3.org/2000/svg" '
+        f'width="{size:g}mm" height="{size + 12:g}mm" viewBox="0 0 {size:g} {size + 12:g}" '
+        f'data-planmethod-plan="{plan}" data-planmethod-student={quoteattr(student)}>',
+        "<defs><pattern id=\"grid\" width=\"10\" height=\"10\" patternUnits=\"userSpaceOnUse\">"
+        "<path d=\"M 10 0 L 0 0 0 10\" fill=\"none\" stroke=\"#dde\" stroke-width=\"0.2\"/>"
+        "</pattern></defs>",
+        f'<rect x="0" y="12" width="{size:g}" height="{size:g}" fill="url(#grid)" '
+        'stroke="#99a" stroke-width="0.3"/>',
+        '<text x="3" y="4" font-size="2.6" font-family="sans-serif">' + "".join(
+            f'<tspan x="3" y="{4 + 3.2 * i:g}">{escape(line)}</tspan>'
+            for i, line in enumerate(textwrap.wrap(header + " (grid: 10 mm)",
+                                                   int(size / 1.45))[:3])) + "</text>",
+        f'<circle id="planmethod-pole" cx="{centre:g}" cy="{centre + 12:g}" r="0.8" '
+        'fill="black"/>',
+        f'<text x="{centre + 1.5:g}" y="{centre + 12 - 1.5:g}" font-size="5" '
+        f'font-family="serif">{escape(pole)}</text>',
+        "</svg>",
+    ]) + "\n"
+
+
+def plan_sheet_for_key(key: Mapping[str, Any], plan: str) -> str:
+    """The blank sheet of one of a key's plans, large enough for the plan with a margin."""
+    entry = key["plans"][plan]
+    extent = max((math.hypot(*xy) for xy in entry["points_mm"].values()), default=30.0)
+    size = max(120.0, 20.0 * math.ceil((2 * extent + 40.0) / 20.0))
+    first = next((s for s in entry["steps"] if s["action"] == "lay_off"), None)
+    given = (f"({entry['pole']}{first['end']}) = {first['length_mm']:.4g} mm."
+             if first else "")
+    return blank_plan_sheet(plan, pole=entry["pole"], scale=entry["scale"], unit=entry["unit"],
+                            size_mm=size, student=str(key.get("student", "")),
+                            title=str(key.get("title", "")), given=given)
