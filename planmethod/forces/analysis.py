@@ -1,0 +1,386 @@
+"""Kinetostatics of a whole exercise: the solve over any crank angles and the one-angle report.
+
+:func:`solve_forces` (vectorised over the angles of a :class:`~planmethod.kinematics.Motion`)
+runs the known loads, the group-by-group method (with the friction iteration when the exercise
+has friction), the independent whole-system solve, Zhukovsky's lever and the power balance.
+:func:`analyse_forces` adds, at one crank angle with plans, seed 002's combined-force
+construction, its constants and its rule for the sense of ε, and returns the ``forces`` block of
+the JSON report (``as_dict``) and the text for ``planmethod solve`` (``describe``).
+
+Examples
+--------
+>>> from planmethod.report import analyse
+>>> from planmethod.spec import load_exercise
+>>> forces = analyse(load_exercise("exercises/fourbar_forces.toml")).forces
+>>> report = forces.as_dict()
+>>> round(report["balancing_moment"], 6), round(report["zhukovsky_moment"], 6)
+(0.642055, 0.642055)
+>>> [round(x, 5) for x in report["reactions"]["B"]["force"]]
+[-15.95286, -11.57979]
+>>> report["whole_system"]["agrees"], report["power_residual"] < 1e-12
+(True, True)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics import Motion
+from ..model import Exercise, Mechanism
+from .applied import AppliedLoads, applied_loads
+from .checks import ZhukovskyLever, power_residual, zhukovsky_lever
+from .combined import (
+    CombinedConstruction,
+    EpsilonSense,
+    SeedConstants,
+    combined_construction,
+    epsilon_senses,
+    seed_constants,
+)
+from .friction import FrictionResult, friction_settings, solve_with_friction
+from .groups import GroupSolution, solve_by_groups
+from .system import SystemSolution, solve_whole_system
+
+__all__ = ["AGREEMENT", "ForceAnalysis", "ForceSolution", "analyse_forces", "force_columns",
+           "solve_forces"]
+
+#: the group method and the whole-system solve must agree to this (relative), else a flag
+AGREEMENT = 1e-9
+#: default drawn length (mm) of the largest vector of the force polygons
+FORCE_MM = 80.0
+
+
+@dataclass(frozen=True)
+class ForceSolution:
+    """Kinetostatics over N crank angles (arrays on the leading axis)."""
+
+    mechanism: Mechanism
+    angles: np.ndarray
+    applied: AppliedLoads
+    groups: GroupSolution
+    system: SystemSolution
+    lever: ZhukovskyLever
+    power_residual: np.ndarray
+    agreement: np.ndarray
+    friction: FrictionResult | None
+    flags: tuple[str, ...]
+
+    @property
+    def reactions(self):
+        return self.groups.reactions
+
+    @property
+    def balancing_moment(self) -> np.ndarray:
+        return self.groups.balancing_moment
+
+
+def _relative_difference(groups: GroupSolution, system: SystemSolution,
+                         length: float) -> np.ndarray:
+    """Largest difference between the two solves, relative to the largest reaction (moments
+    divided by the crank length)."""
+    scale = np.zeros_like(groups.balancing_moment)
+    difference = np.abs(groups.balancing_moment - system.balancing_moment) / length
+    scale = np.maximum(scale, np.abs(groups.balancing_moment) / length)
+    for key, reaction in groups.reactions.items():
+        other = system.reactions[key]
+        scale = np.maximum(scale, reaction.magnitude)
+        difference = np.maximum(difference, np.hypot(*(reaction.force - other.force).T))
+        if reaction.moment is not None:
+            difference = np.maximum(difference, np.abs(reaction.moment - other.moment) / length)
+    return np.where(scale > 0, difference / np.where(scale > 0, scale, 1.0), difference)
+
+
+def _crank_length(mechanism: Mechanism) -> float:
+    drive = mechanism.drive
+    link = mechanism.links[drive.link]
+    return max(link.length(drive.pivot, p) for p in link.points) or 1.0
+
+
+def solve_forces(motion: Motion, *, plans=None, file: str | None = None) -> ForceSolution:
+    """Reactions, balancing moment and the checks at every angle of ``motion``.
+
+    Parameters
+    ----------
+    motion
+        Exact kinematics up to accelerations of every link.
+    plans
+        The drawn plans at a single angle: Zhukovsky's lever then uses the drawn velocity plan.
+
+    Raises
+    ------
+    ForceError
+        A singular force system (a toggle position) at some angle.
+    ConvergenceError
+        The friction iteration does not converge.
+    """
+    mechanism = motion.mechanism
+    structure = motion.structure
+    states = motion.links
+    angles = motion.angles
+    applied = applied_loads(mechanism, states, angles=angles, file=file)
+    flags = list(applied.flags)
+    settings = friction_settings(mechanism.friction)
+    friction = None
+    if settings is not None:
+        friction = solve_with_friction(mechanism, structure, states, applied, settings,
+                                       angles=angles)
+        groups = friction.solution
+        applied = applied.with_items(friction.items)
+        flags += friction.flags
+    else:
+        groups = solve_by_groups(mechanism, structure, states, applied, angles=angles)
+    system = solve_whole_system(mechanism, structure, states, applied, angles=angles)
+    length = _crank_length(mechanism)
+    agreement = _relative_difference(groups, system, length)
+    if np.any(agreement > AGREEMENT):
+        index = int(np.argmax(agreement))
+        flags.append(f"the group method and the whole-system solve differ by "
+                     f"{float(agreement[index]):.3g} (relative) at crank angle "
+                     f"{float(angles[index]):g}°: an ill-conditioned position")
+    lever = zhukovsky_lever(mechanism, states, applied, plans=plans)
+    if not np.all(np.isfinite(lever.balancing_moment)):
+        flags.append("Zhukovsky's lever is undefined where the crank does not move (ω1 = 0): "
+                     "every image lies at the pole")
+    power = power_residual(mechanism, states, applied, groups.balancing_moment)
+    return ForceSolution(mechanism, angles, applied, groups, system, lever, power, agreement,
+                         friction, tuple(flags))
+
+
+def _number(value) -> float | None:
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def _pair(array) -> list[float]:
+    return [float(array[0]), float(array[1])]
+
+
+@dataclass(frozen=True)
+class ForceAnalysis:
+    """Kinetostatics at one crank angle: the vectorised solution at that angle, and what the
+    plans add (seed 002's construction, constants and ε rule, the force scale μF)."""
+
+    angle: float
+    solution: ForceSolution
+    combined: CombinedConstruction | None
+    constants: SeedConstants | None
+    epsilon: tuple[EpsilonSense, ...]
+    mu_f: float
+    plans: object = None
+
+    # -- scalars ---------------------------------------------------------------------------
+    @property
+    def balancing_moment(self) -> float:
+        return float(self.solution.balancing_moment[0])
+
+    @property
+    def zhukovsky_moment(self) -> float | None:
+        return _number(self.solution.lever.balancing_moment[0])
+
+    @property
+    def power_residual(self) -> float:
+        return float(self.solution.power_residual[0])
+
+    @property
+    def reactions(self) -> dict:
+        return {key: reaction.take(0) for key, reaction in self.solution.reactions.items()}
+
+    @property
+    def flags(self) -> tuple[str, ...]:
+        return self.solution.flags
+
+    # -- the report ------------------------------------------------------------------------
+    def as_dict(self) -> dict:
+        """The ``forces`` block of the JSON report (DESIGN.md), and what else was computed."""
+        solution = self.solution
+        out: dict = {"reactions": {}}
+        for key, reaction in self.reactions.items():
+            entry = {"from": reaction.source, "on": reaction.target,
+                     "force": _pair(reaction.force), "magnitude": float(reaction.magnitude),
+                     "point": _pair(reaction.point)}
+            if reaction.moment is not None:
+                entry["moment"] = float(reaction.moment)
+            out["reactions"][key] = entry
+        out["balancing_moment"] = self.balancing_moment
+        out["zhukovsky_moment"] = self.zhukovsky_moment
+        out["power_residual"] = self.power_residual
+        lever = solution.lever
+        zhukovsky = {"source": lever.source, "mu_v": lever.mu_v,
+                     "balancing_force": (_pair(lever.balancing_force[0])
+                                         if self.zhukovsky_moment is not None else None),
+                     "at": lever.balancing_point,
+                     "difference": (None if self.zhukovsky_moment is None else
+                                    self.zhukovsky_moment - self.balancing_moment),
+                     "forces": [{"name": f.name, "link": f.link, "image_mm": _pair(f.image_mm[0]),
+                                 "force": _pair(f.force[0]), "moment_N_mm": float(f.moment[0])}
+                                for f in lever.forces]}
+        out["zhukovsky"] = zhukovsky
+        system = solution.system
+        out["whole_system"] = {
+            "equations": system.equations,
+            "balancing_moment": float(system.balancing_moment[0]),
+            "reactions": {key: {"force": _pair(r.take(0).force),
+                                **({"moment": float(r.moment[0])} if r.moment is not None
+                                   else {})}
+                          for key, r in system.reactions.items()},
+            "max_rel_difference": float(solution.agreement[0]),
+            "agrees": bool(solution.agreement[0] <= AGREEMENT),
+            "rcond": float(system.rcond[0])}
+        out["inertia"] = {
+            link: {"m": item.mass, "J": item.J, "S": list(item.centre_local),
+                   "centre": _pair(item.centre[0]), "a_S": _pair(item.acceleration[0]),
+                   "epsilon": float(item.epsilon[0]), "force": _pair(item.force[0]),
+                   "moment": float(item.moment[0]), "weight": _pair(item.weight[0]),
+                   "combined": _pair(item.combined[0]),
+                   "offset_h": (float(item.offset[0]) if bool(item.single_force_defined[0])
+                                else None)}
+            for link, item in solution.applied.inertia.items()}
+        out["loads"] = [
+            {"name": item.name, "link": item.link, "kind": item.kind,
+             **({"point": _pair(item.point[0]), "force": _pair(item.force[0])}
+                if item.force is not None else {"moment": float(item.moment[0])})}
+            for item in solution.applied.items if item.kind in ("load", "friction")]
+        out["groups"] = [{"name": g.name, "kind": g.kind, "links": list(g.links),
+                          "steps": list(g.steps), "reactions": list(g.reactions),
+                          **({"special_point": _pair(g.special_point[0])}
+                             if g.special_point is not None else {})}
+                         for g in solution.groups.groups]
+        out["scales"] = {"mu_f": self.mu_f}
+        if self.combined is not None:
+            c = self.combined
+            out["combined_force"] = {
+                "g": c.g, "mu_a": c.mu_a, "gravity_image_mm": c.gravity_image_mm,
+                "new_pole_mm": list(c.new_pole_mm),
+                "links": {f.link: {"m": f.mass, "s_mm": list(f.image_mm),
+                                   "segment_mm": list(f.segment_mm),
+                                   "from_plan": list(f.from_plan), "exact": list(f.exact)}
+                          for f in c.forces}}
+        if self.constants is not None:
+            k = self.constants
+            out["constants"] = {
+                "mu_f_mu_l": k.force_moment, "mu_f": k.mu_f, "mu_l": k.mu_l, "mu_a": k.mu_a,
+                "m_mu_a_mu_l": dict(k.combined_moment),
+                "J_mu_a_over_l": {link: {name: (list(value) if isinstance(value, tuple)
+                                                else value) for name, value in entry.items()}
+                                  for link, entry in k.inertia_moment.items()}}
+        if self.epsilon:
+            out["epsilon_sense"] = {e.link: {"points": list(e.points), "rule": e.rule,
+                                             "exact": e.exact, "agrees": e.agrees}
+                                    for e in self.epsilon}
+        if solution.friction is not None:
+            friction = solution.friction
+            out["friction"] = {
+                "iterations": int(friction.iterations[0]),
+                "history": list(friction.history),
+                "losses_W": {key: float(value[0]) for key, value in friction.losses.items()}}
+        out["flags"] = list(self.flags)
+        return out
+
+    def describe(self) -> str:
+        """The force analysis as text (``planmethod solve``)."""
+        solution = self.solution
+        lines = [f"Kinetostatics (d'Alembert) at φ1 = {self.angle:g}°"]
+        if solution.applied.inertia:
+            lines += ["  link      m kg    J kg·m²   |a_S| m/s²   F_u = −m·a_S (N)          "
+                      "M_u = −J·ε N·m"]
+            for link, item in solution.applied.inertia.items():
+                a = float(np.hypot(*item.acceleration[0]))
+                f = item.force[0]
+                lines.append(f"  {link:<8} {item.mass:>6.4g} {item.J:>10.4g} {a:>11.5g}   "
+                             f"({f[0]:>10.5g}, {f[1]:>10.5g})   {float(item.moment[0]):>10.5g}")
+        for group in solution.groups.groups:
+            lines.append(f"  {group.kind} {group.name}:")
+            lines += [f"    {step}" for step in group.steps]
+        lines.append("  pair           from → on            Fx N         Fy N        |R| N"
+                     "     couple N·m")
+        for key, r in self.reactions.items():
+            couple = "" if r.moment is None else f"{float(r.moment):>12.6g}"
+            lines.append(f"  {key:<14} {r.source + ' → ' + r.target:<18} "
+                         f"{float(r.force[0]):>11.6g} {float(r.force[1]):>11.6g} "
+                         f"{float(r.magnitude):>11.6g} {couple}")
+        lines.append(f"  balancing moment M_b = {self.balancing_moment:.6g} N·m (group method)")
+        system = solution.system
+        lines.append(f"  whole-system solve ({system.equations} equations): M_b = "
+                     f"{float(system.balancing_moment[0]):.6g} N·m; largest difference "
+                     f"{float(solution.agreement[0]):.2g} (relative)")
+        z = self.zhukovsky_moment
+        lines.append("  Zhukovsky's lever (" + solution.lever.source + "): " + (
+            "undefined (ω1 = 0)" if z is None else
+            f"M_b = {z:.6g} N·m, {z - self.balancing_moment:+.3g} from the group method"))
+        lines.append(f"  power balance: |ΣP|/Σ|P| = {self.power_residual:.2g}")
+        if solution.friction is not None:
+            lines.append(f"  friction: converged after {int(solution.friction.iterations[0])} "
+                         "iteration(s)")
+        if self.combined is not None:
+            c = self.combined
+            lines.append(f"  combined force Q = m·(g − a_S) (seed 002): pole π moved down by "
+                         f"Z_g = g/μa = {c.gravity_image_mm:.4g} mm to π′")
+            for f in c.forces:
+                length = float(np.hypot(*f.segment_mm))
+                lines.append(f"    {f.link}: (s π′) = {length:.4g} mm → |Q| = "
+                             f"{float(np.hypot(*f.from_plan)):.6g} N")
+        if self.constants is not None and self.constants.force_moment is not None:
+            lines.append(f"  constants: μF·μl = {self.constants.force_moment:.6g} N·m/mm²; "
+                         + ", ".join(f"m·μa·μl({link}) = {value:.6g}"
+                                     for link, value in self.constants.combined_moment.items()))
+        for sense in self.epsilon:
+            word = {1: "counter-clockwise", -1: "clockwise", 0: "zero", None: "undefined"}
+            lines.append(f"  ε of {sense.link} by the plan's rule: {word[sense.rule]} "
+                         f"(exact: {word[sense.exact]})")
+        if self.flags:
+            lines += [f"  ! {flag}" for flag in self.flags]
+        return "\n".join(lines)
+
+
+def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
+    plan = exercise.plan
+    if plan.mu_f is not None:
+        return plan.mu_f
+    largest = 0.0
+    for group in solution.groups.groups:
+        for edge in group.polygon:
+            largest = max(largest, float(np.hypot(*edge.vector[0])))
+    drawn = plan.force_mm or FORCE_MM
+    return largest / drawn if largest > 0 else 1.0
+
+
+def analyse_forces(exercise: Exercise, motion: Motion, *, plans=None) -> ForceAnalysis:
+    """Kinetostatics of ``exercise`` at the (single) angle of ``motion`` (see the module
+    docstring); ``plans`` (drawn at that angle) adds seed 002's construction and the lever on
+    the drawn velocity plan."""
+    solution = solve_forces(motion, plans=plans, file=exercise.source)
+    mu_f = _force_scale(exercise, solution)
+    g = exercise.mechanism.gravity or 0.0
+    combined = combined_construction(plans, solution.applied, g)
+    constants = seed_constants(plans, solution.applied, mu_f)
+    epsilon = epsilon_senses(plans)
+    return ForceAnalysis(float(motion.angles[0]), solution, combined, constants, epsilon, mu_f,
+                         plans)
+
+
+def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndarray]]:
+    """The ``extra`` callable of :func:`planmethod.sweep.sweep_table` for ``--forces``:
+    ``Rx_K Ry_K R_K`` (and ``M_K`` for a prismatic pair's couple) per pair, ``M_b``,
+    ``M_b_system`` and ``power_residual``."""
+
+    def columns(motion: Motion) -> dict[str, np.ndarray]:
+        solution = solve_forces(motion, file=exercise.source)
+        out: dict[str, np.ndarray] = {}
+        for key, reaction in solution.reactions.items():
+            out[f"Rx_{key}"] = reaction.force[:, 0]
+            out[f"Ry_{key}"] = reaction.force[:, 1]
+            out[f"R_{key}"] = reaction.magnitude
+            if reaction.moment is not None:
+                out[f"M_{key}"] = reaction.moment
+        out["M_b"] = solution.balancing_moment
+        out["M_b_system"] = solution.system.balancing_moment
+        out["power_residual"] = solution.power_residual
+        if solution.friction is not None:
+            out["friction_iterations"] = solution.friction.iterations.astype(float)
+        return out
+
+    return columns

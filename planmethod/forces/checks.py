@@ -1,0 +1,167 @@
+"""Two checks of the balancing moment: Zhukovsky's rigid lever and the power balance.
+
+**Zhukovsky's lever.** The velocity plan turned 90° clockwise about its pole is a rigid lever
+pivoted at the pole; every force carried to the image of its point (forces unchanged in size
+and direction) and the balancing force at the crank pin hold it in equilibrium. The moment of F
+about the pole on the turned plan is cross(r, F) with r the turned image, equal to F·v/μv, so
+the lever is the power balance drawn. A couple M on a link is carried as a pair of forces
+±M/|PQ| ⟂ PQ at two points of the link. With plans, the images are those of the *drawn*
+velocity plan (read to its drafting precision), so the lever shows how far a graphical answer
+is; without plans the exact velocities are used.
+
+**Power balance.** ΣF·v + ΣM·ω + M_b·ω1 = 0 over all known forces and moments (weights,
+inertia, loads, friction); the residual reported is |ΣP| / Σ|P_i| (0 where nothing moves).
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.kinematics import solve
+>>> from planmethod.forces.applied import applied_loads
+>>> exercise = load_exercise("exercises/fourbar_forces.toml")
+>>> motion = solve(exercise.mechanism, [0.0, 60.0, 150.0])
+>>> applied = applied_loads(exercise.mechanism, motion.links)
+>>> lever = zhukovsky_lever(exercise.mechanism, motion.links, applied)
+>>> lever.balancing_moment.round(6)
+array([-0.910965,  0.642055, -0.577299])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics.state import LinkState, cross, perp
+from ..model import FRAME, Mechanism
+from .applied import AppliedItem, AppliedLoads
+
+__all__ = ["LeverForce", "ZhukovskyLever", "power_residual", "zhukovsky_lever"]
+
+
+@dataclass(frozen=True, slots=True)
+class LeverForce:
+    """One force on the lever: its name, the image of its point on the turned velocity plan
+    (mm, pole at 0, 0), the force (N) and its moment about the pole (N·mm)."""
+
+    name: str
+    link: str
+    image_mm: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray
+
+
+@dataclass(frozen=True, slots=True)
+class ZhukovskyLever:
+    """The lever's forces, the balancing force F_b at the drive's scale point (⟂ the crank),
+    and the balancing moment M_b = F_b·l it gives. ``source`` says whose velocities were used:
+    ``velocity plan`` or ``exact velocities``."""
+
+    forces: tuple[LeverForce, ...]
+    balancing_force: np.ndarray
+    balancing_point: str
+    balancing_image_mm: np.ndarray
+    balancing_moment: np.ndarray
+    mu_v: float
+    source: str
+
+
+class _Velocities:
+    """Velocities of material points, from the drawn plan or exact."""
+
+    def __init__(self, mechanism: Mechanism, states: Mapping[str, LinkState], plans=None):
+        self.mechanism, self.states, self.plans = mechanism, states, plans
+
+    def omega(self, link: str) -> np.ndarray:
+        if self.plans is not None:
+            value = self.plans.readings.get(f"omega_{link}")
+            if value is not None:
+                return np.atleast_1d(np.asarray(value, float))
+        return self.states[link].omega
+
+    def at(self, link: str, position: np.ndarray) -> np.ndarray:
+        """Velocity (m/s) of ``link``'s material point at ``position``."""
+        if self.plans is None or link == FRAME:
+            return self.states[link].velocity_at(position)
+        from ..plans.construction import image_label
+
+        plan = self.plans.velocity
+        for name, local in self.mechanism.links[link].points.items():
+            label = image_label(name, plan.pole)
+            if label in plan.points_mm:
+                reference = self.states[link].place(local)
+                image = plan.vector(label)[None, :]
+                return image + self.omega(link)[..., None] * perp(position - reference)
+        return self.states[link].velocity_at(position)
+
+
+def _turned(velocity: np.ndarray, mu_v: float) -> np.ndarray:
+    """The image on the velocity plan turned 90° clockwise (mm)."""
+    return np.stack((velocity[..., 1], -velocity[..., 0]), axis=-1) / mu_v
+
+
+def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
+                    applied: AppliedLoads, *, plans=None, mu_v: float | None = None
+                    ) -> ZhukovskyLever:
+    """The balancing moment by Zhukovsky's lever (see the module docstring)."""
+    velocities = _Velocities(mechanism, states, plans)
+    drive = mechanism.drive
+    if plans is not None:
+        mu_v = plans.scales.mu_v
+        scale_point = plans.scales.scale_point
+    else:
+        link = mechanism.links[drive.link]
+        scale_point = next(p for p in link.points if p != drive.pivot)
+        if mu_v is None:
+            mu_v = abs(drive.omega) * link.length(drive.pivot, scale_point) / 40.0 or 1.0
+    forces: list[LeverForce] = []
+
+    def carry(item: AppliedItem, name: str, point: np.ndarray, force: np.ndarray) -> None:
+        image = _turned(velocities.at(item.link, point), mu_v)
+        forces.append(LeverForce(name, item.link, image, force, cross(image, force)))
+
+    for item in applied.items:
+        if item.link == FRAME:
+            continue
+        if item.force is not None:
+            carry(item, item.name, item.point, item.force)
+            continue
+        points = list(mechanism.links[item.link].points)
+        state = states[item.link]
+        if len(points) >= 2:
+            first, second = (state.place(mechanism.local(item.link, p)) for p in points[:2])
+            arm = second - first
+            pair = (item.moment / np.einsum("...i,...i->...", arm, arm))[..., None] * perp(arm)
+            carry(item, f"{item.name} at {points[1]}", second, pair)
+            carry(item, f"{item.name} at {points[0]}", first, -pair)
+        else:  # a one-point link: the couple's lever moment is M·ω/μv
+            moment = item.moment * velocities.omega(item.link) / mu_v
+            forces.append(LeverForce(item.name, item.link, np.zeros_like(state.origin),
+                                     np.zeros_like(state.origin), moment))
+    state = states[drive.link]
+    pivot = state.place(mechanism.local(drive.link, drive.pivot))
+    pin = state.place(mechanism.local(drive.link, scale_point))
+    arm = pin - pivot
+    direction = perp(arm) / np.einsum("...i,...i->...", arm, arm)[..., None]  # F_b per M_b
+    image = _turned(velocities.at(drive.link, pin), mu_v)
+    image_pivot = _turned(velocities.at(drive.link, pivot), mu_v)
+    per_unit = cross(image, direction) - cross(image_pivot, direction)
+    total = sum((force.moment for force in forces), np.zeros(state.theta.shape[0]))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        balancing = np.where(per_unit != 0, -total / np.where(per_unit != 0, per_unit, 1.0),
+                             np.nan)
+    return ZhukovskyLever(tuple(forces), balancing[..., None] * direction, scale_point, image,
+                          balancing, float(mu_v),
+                          "velocity plan" if plans is not None else "exact velocities")
+
+
+def power_residual(mechanism: Mechanism, states: Mapping[str, LinkState],
+                   applied: AppliedLoads, balancing: np.ndarray) -> np.ndarray:
+    """|ΣP| / Σ|P_i| of all known forces and moments and the balancing moment (0 where every
+    power is zero)."""
+    powers = [item.power(states[item.link]) for item in applied.items if item.link != FRAME]
+    powers.append(balancing * states[mechanism.drive.link].omega)
+    stacked = np.stack(powers)
+    total = np.abs(stacked).sum(axis=0)
+    return np.where(total > 0, np.abs(stacked.sum(axis=0)) / np.where(total > 0, total, 1.0),
+                    0.0)

@@ -1,0 +1,211 @@
+"""Seed 002: the combined force on the acceleration plan, its constants, and the sense of ε.
+
+**Combined force.** The weight and the principal vector of inertia of a link act at the same
+point S, so they add into one force Q = G + F_u = m·(g − a_S). On the acceleration plan, with
+the pole π and the image s of S (πs represents a_S), move the pole down by the image of g,
+Z_g = g/μa mm, to a new pole π′: the segment from s to π′ represents g − a_S, so
+Q = m·μa·(s→π′). (The seed writes its scales as mm per unit, M_a = 1/μa; its "Z_g = M_a·g" is
+this g/μa.)
+
+**Constants computed once for all positions** (seed 002, eqs. 1–3, in μ's, i.e. units per mm):
+
+1. moment of a force drawn W_Q mm long at an arm of h mm on the position plan:
+   M = W_Q·h·(μF·μl) — the constant μF·μl (N·m/mm²) is the same for every link;
+2. moment of the combined force of link i: M = z_i·h·(m_i·μa·μl), z_i = (sπ′) in mm — the
+   constant m_i·μa·μl is proportional to the mass;
+3. inertia moment of link i: M_u = Z_T·(J_i·μa/l_i), Z_T the image (mm) of the tangential
+   acceleration of one end of the link about the other, l_i their distance — the constant is
+   proportional to J_i and inversely to the length. (The seed prints the reciprocals, in its
+   mm-per-unit scales; its cross-checks "inversely proportional to the masses" and
+   "proportional to the length, inversely to the moment of inertia" hold for those.)
+
+**The sense of ε read off the plan** (seed 002's rule): ε turns from the full relative
+acceleration of two points of the link towards its normal component. Indeed with
+a_YX = aⁿ + aᵗ, aⁿ = ω²·(X − Y) and aᵗ = ε·J(Y − X), cross(a_YX, aⁿ) = ε·ω⁴·|XY|², whose sign
+is that of ε whenever ω ≠ 0. M_u = −J·ε turns the other way. Where ω = 0 there is no normal
+component and the rule says nothing (reported as undefined).
+
+Examples
+--------
+>>> from planmethod.report import analyse
+>>> from planmethod.spec import load_exercise
+>>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
+>>> construction = combined_construction(analysis.plans, analysis.forces.solution.applied, 9.81)
+>>> round(construction.gravity_image_mm, 4)
+0.6541
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics.state import cross, perp
+from ..model import FRAME
+from .applied import AppliedLoads
+
+__all__ = ["CombinedConstruction", "CombinedForce", "EpsilonSense", "SeedConstants",
+           "combined_construction", "epsilon_senses", "seed_constants"]
+
+
+@dataclass(frozen=True, slots=True)
+class CombinedForce:
+    """One link's combined force on the plan: the image s of its centre of mass (mm), the
+    segment s→π′ (mm), Q read from it (N) and the exact Q."""
+
+    link: str
+    mass: float
+    image_mm: tuple[float, float]
+    segment_mm: tuple[float, float]
+    from_plan: tuple[float, float]
+    exact: tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class CombinedConstruction:
+    """The construction of seed 002 on one acceleration plan."""
+
+    g: float
+    mu_a: float
+    gravity_image_mm: float
+    new_pole_mm: tuple[float, float]
+    forces: tuple[CombinedForce, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class EpsilonSense:
+    """The sense of ε of a link by seed 002's rule on the plan, against the exact sign:
+    +1 counter-clockwise, −1 clockwise, 0 none; ``rule`` None where undefined (ω = 0)."""
+
+    link: str
+    points: tuple[str, str]
+    rule: int | None
+    exact: int
+
+    @property
+    def agrees(self) -> bool | None:
+        return None if self.rule is None else self.rule == self.exact
+
+
+@dataclass(frozen=True, slots=True)
+class SeedConstants:
+    """Seed 002's constants: μF·μl for every force, and per link m·μa·μl and J·μa/l (with the
+    two points whose distance is l), and the inertia moment read off the plan by eq. 3 with
+    Z_T (mm) against the exact −J·ε."""
+
+    mu_f: float | None
+    mu_l: float
+    mu_a: float
+    force_moment: float | None
+    combined_moment: dict
+    inertia_moment: dict
+
+
+def _image(plans, link: str, position: np.ndarray):
+    """Image (mm) on the acceleration plan of ``link``'s material point at ``position``, by
+    the similarity rule from a drawn image of one of its named points and the ω, ε read off
+    the plans."""
+    from ..plans.construction import image_label
+
+    plan, motion = plans.acceleration, plans.motion
+    mechanism = motion.mechanism
+    omega = plans.readings.get(f"omega_{link}", float(motion.links[link].omega[0]))
+    epsilon = plans.readings.get(f"epsilon_{link}", float(motion.links[link].epsilon[0]))
+    for name, local in mechanism.links[link].points.items():
+        label = image_label(name, plan.pole)
+        if label in plan.points_mm:
+            reference = motion.links[link].place(local)[0]
+            r = position - reference
+            return plan.point(label) + (epsilon * perp(r) - omega ** 2 * r) / plan.scale
+    return None
+
+
+def combined_construction(plans, applied: AppliedLoads, g: float) -> CombinedConstruction | None:
+    """The combined-force construction on ``plans``' acceleration plan (None without one)."""
+    if plans is None or plans.acceleration is None:
+        return None
+    mu_a = plans.acceleration.scale
+    z_g = g / mu_a
+    new_pole = np.array([0.0, -z_g])
+    forces = []
+    for link, inertia in applied.inertia.items():
+        s = _image(plans, link, inertia.centre[0])
+        if s is None:
+            continue
+        segment = new_pole - s
+        q_plan = inertia.mass * mu_a * segment
+        exact = inertia.combined[0]
+        forces.append(CombinedForce(link, inertia.mass, (float(s[0]), float(s[1])),
+                                    (float(segment[0]), float(segment[1])),
+                                    (float(q_plan[0]), float(q_plan[1])),
+                                    (float(exact[0]), float(exact[1]))))
+    return CombinedConstruction(g, mu_a, z_g, (0.0, float(-z_g)), tuple(forces))
+
+
+def _two_points(mechanism, link: str) -> tuple[str, str] | None:
+    points = list(mechanism.links[link].points)
+    return (points[0], points[1]) if len(points) >= 2 else None
+
+
+def epsilon_senses(plans) -> tuple[EpsilonSense, ...]:
+    """Seed 002's rule for each moving link with two named points (not the drive)."""
+    if plans is None or plans.acceleration is None:
+        return ()
+    from ..plans.construction import image_label
+
+    motion = plans.motion
+    mechanism = motion.mechanism
+    plan = plans.acceleration
+    out = []
+    for link in motion.links:
+        if link in (FRAME, mechanism.drive.link):
+            continue
+        pair = _two_points(mechanism, link)
+        if pair is None:
+            continue
+        first, second = pair
+        labels = [image_label(p, plan.pole) for p in pair]
+        if not all(label in plan.points_mm for label in labels):
+            continue
+        state = motion.links[link]
+        x = state.place(mechanism.local(link, first))[0]
+        y = state.place(mechanism.local(link, second))[0]
+        relative = plan.point(labels[1]) - plan.point(labels[0])
+        epsilon = float(state.epsilon[0])
+        omega = plans.readings.get(f"omega_{link}", float(state.omega[0]))
+        normal_mm = omega ** 2 * float(np.hypot(*(x - y))) / plan.scale
+        turn = float(cross(relative, x - y))
+        resolution = max(plan.precision_mm, 1e-9 * float(np.hypot(*relative)) + 1e-300)
+        rule = None if normal_mm <= resolution else int(np.sign(turn))
+        out.append(EpsilonSense(link, (first, second), rule, int(np.sign(epsilon))))
+    return tuple(out)
+
+
+def seed_constants(plans, applied: AppliedLoads, mu_f: float | None) -> SeedConstants | None:
+    """Seed 002's constants for the scales of ``plans`` (see the module docstring)."""
+    if plans is None:
+        return None
+    scales = plans.scales
+    mu_l, mu_a = scales.mu_l, scales.mu_a
+    motion = plans.motion
+    mechanism = motion.mechanism
+    combined = {}
+    inertia_moment = {}
+    for link, inertia in applied.inertia.items():
+        combined[link] = inertia.mass * mu_a * mu_l
+        pair = _two_points(mechanism, link)
+        if pair is None or not inertia.J:
+            continue
+        length = mechanism.links[link].length(*pair)
+        constant = inertia.J * mu_a / length
+        epsilon = float(inertia.epsilon[0])
+        entry = {"points": pair, "length": length, "constant": constant,
+                 "exact_moment": -inertia.J * epsilon}
+        if plans.acceleration is not None:
+            read = plans.readings.get(f"epsilon_{link}", epsilon)
+            z_t = abs(read) * length / mu_a
+            entry |= {"Z_T_mm": z_t, "from_plan": float(-np.sign(read) * z_t * constant)}
+        inertia_moment[link] = entry
+    return SeedConstants(mu_f, mu_l, mu_a, None if mu_f is None else mu_f * mu_l, combined,
+                         inertia_moment)
