@@ -26,7 +26,7 @@ Examples
 >>> loads = applied_loads(exercise.mechanism, motion.links)
 >>> inertia = next(item for item in loads.items if item.name == "F_u,BC")
 >>> inertia.force.round(4)
-array([[ 9.1283, 10.5889]])
+array([[11.4642, 10.9008]])
 """
 
 from __future__ import annotations
