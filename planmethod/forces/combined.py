@@ -32,7 +32,7 @@ Examples
 >>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
 >>> construction = combined_construction(analysis.plans, analysis.forces.solution.applied, 9.81)
 >>> round(construction.gravity_image_mm, 4)
-0.6541
+49.05
 """
 
 from __future__ import annotations
