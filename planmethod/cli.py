@@ -25,6 +25,9 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "solve": ("planmethod.commands.solve",
               "structural analysis, exact kinematics and the plans at one crank angle"),
     "sweep": ("planmethod.commands.sweep", "the full turn: curves of positions, v, a, ω, ε"),
+    "variants": ("planmethod.commands.variants", "student variants of a template, sheets, keys"),
+    "grade": ("planmethod.commands.grade", "grade numeric answers and drawn plans against a key"),
+    "export": ("planmethod.commands.export", "keys to Gradescope, PrairieLearn, Moodle, CSV"),
 }
 
 EXIT_BAD_INPUT = 2

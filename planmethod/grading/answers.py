@@ -173,10 +173,15 @@ def _direction(value: float) -> str:
 
 
 def _off(answer: float, right: float) -> str:
+    """How far off an answer is: ``24.1 % low``, ``1000 times the right value``."""
     if right == 0:
         return f"{abs(answer - right):.3g} off"
-    relative = answer / right - 1.0
-    return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}"
+    ratio = answer / right
+    if ratio >= 10 or 0 < ratio <= 0.1:
+        return f"{ratio:.4g} times the right value"
+    relative = ratio - 1.0
+    magnitude = " in magnitude" if right < 0 and ratio > 0 else ""
+    return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}{magnitude}"
 
 
 def grade_question(question: Mapping[str, Any], raw: Any) -> dict:

@@ -1,0 +1,78 @@
+"""``planmethod export KEY --format gradescope|prairielearn|moodle|csv``: the keys of a run
+as an LMS import (see :mod:`planmethod.grading.exports`)."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("key", help="keys.json (or its folder), a key.json, or an exercise file")
+    parser.add_argument("--format", required=True,
+                        choices=("gradescope", "prairielearn", "moodle", "csv"))
+    parser.add_argument("--out", required=True, metavar="PATH",
+                        help="output file (moodle: quiz.xml; csv: gradebook.csv) or folder "
+                             "(gradescope, prairielearn)")
+    parser.add_argument("--answers", metavar="FILE",
+                        help="graded answers for csv (a gradebook) and gradescope "
+                             "(results.json of one student)")
+    parser.add_argument("--student", help="with --format gradescope --answers: the student")
+    parser.add_argument("--slug", default="planmethod",
+                        help="PrairieLearn question folder name (default planmethod)")
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+    from pathlib import Path
+
+    from ..errors import SpecError
+    from ..grading import exports
+    from ..grading.answers import grade_many, read_answers
+    from ..grading.keys import bundle
+    from ..io import write_text_atomic
+    from .grade import load_any_key
+
+    keys = load_any_key(args.key)
+    unique = list({id(k): k for k in keys.values()}.values())
+    the_bundle = bundle(unique, source=str(args.key))
+    out = Path(args.out)
+    files: dict[str, str] = {}
+    if args.format == "csv":
+        if not args.answers:
+            raise SpecError("--format csv needs --answers (the gradebook scores them)")
+        files[""] = exports.gradebook_csv(grade_many(keys, read_answers(args.answers)))
+    elif args.format == "gradescope":
+        if args.answers:
+            rows = read_answers(args.answers)
+            if args.student is not None:
+                rows = [(args.student, a) for _, a in rows]
+            if len(rows) != 1:
+                raise SpecError(f"results.json is for one student; the answers hold "
+                                f"{len(rows)}", file=args.answers)
+            result = grade_many(keys, rows)[0]
+            files["results.json"] = json.dumps(exports.gradescope_results(result),
+                                               ensure_ascii=False, indent=1)
+        else:
+            files.update(exports.gradescope_autograder(the_bundle))
+    elif args.format == "prairielearn":
+        files.update(exports.prairielearn_questions(the_bundle, slug=args.slug))
+    else:
+        sheets = {}
+        folder = Path(args.key) if Path(args.key).is_dir() else Path(args.key).parent
+        from .variants import folder_name
+
+        for key in unique:
+            sheet = folder / folder_name(str(key.get("student"))) / "task.svg"
+            if sheet.is_file() and sheet.stat().st_size < 2_000_000:
+                sheets[str(key.get("student"))] = sheet.read_text(encoding="utf-8")
+        files[""] = exports.moodle_xml(unique, sheets=sheets)
+    written = []
+    for name, text in files.items():
+        target = out / name if name else out
+        write_text_atomic(target, text)
+        written.append(str(target))
+    if args.format == "gradescope" and not args.answers:
+        (out / "run_autograder").chmod(0o755)
+        (out / "setup.sh").chmod(0o755)
+    print(f"Wrote {', '.join(written) if len(written) <= 4 else f'{len(written)} files in {out}'}")
+    return 0

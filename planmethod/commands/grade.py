@@ -1,0 +1,110 @@
+"""``planmethod grade KEY ANSWERS``: score numeric answers (CSV or JSON, one row per student)
+and drawn plans (``--drawing`` SVG or JSON) against a key, with feedback.
+
+KEY is a key (``key.json``), a bundle (``keys.json`` or the folder that holds it), or a plain
+exercise file (its key is built on the spot). Each student is graded against their own
+variant's key when the bundle has one, else against the single key.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("key", help="key.json, keys.json (or its folder), or an exercise file")
+    parser.add_argument("answers", nargs="?", help="answers: CSV or JSON, one row per student")
+    parser.add_argument("--drawing", action="append", default=[], metavar="FILE",
+                        help="a drawn plan (SVG or JSON of points in mm); may be repeated")
+    parser.add_argument("--plan", choices=("velocity", "acceleration"),
+                        help="which plan the drawing is (default: told by its pole label)")
+    parser.add_argument("--student", help="grade as this student (picks the variant's key; "
+                                          "for a single submission)")
+    parser.add_argument("--json", metavar="FILE", help="write every result as JSON")
+    parser.add_argument("--csv", metavar="FILE", help="write a CSV gradebook")
+    parser.add_argument("--gradescope", metavar="FILE",
+                        help="write Gradescope's results.json (one student)")
+    parser.add_argument("--quiet", action="store_true", help="print the totals only")
+
+
+def load_any_key(path: str) -> dict:
+    """student → key from a key, a bundle, a folder, or an exercise file."""
+    from pathlib import Path
+
+    from ..grading.keys import build_key, load_keys
+
+    if Path(path).suffix.lower() == ".toml":
+        from ..grading.templates import draw_variant, load_template
+
+        template = load_template(path)
+        if template.is_random:
+            from ..errors import SpecError
+
+            raise SpecError("a template with ranges or choices has one key per student: run "
+                            "`planmethod variants` and grade against its keys.json", file=path)
+        key = build_key(draw_variant(template))
+        return {"*": key, str(key["student"]): key}
+    return load_keys(path)
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+    import sys
+
+    from ..errors import SpecError
+    from ..grading.answers import grade_many, read_answers
+    from ..grading.drawings import grade_drawing, read_drawing
+    from ..grading.exports import gradebook_csv, gradescope_results
+    from ..io import write_text_atomic
+
+    if not args.answers and not args.drawing:
+        raise SpecError("give ANSWERS and/or --drawing FILE")
+    keys = load_any_key(args.key)
+    key_of_student = None
+    if args.student is not None:
+        key_of_student = keys.get(args.student, keys.get("*"))
+        if key_of_student is None:
+            raise SpecError(f"no key for student {args.student!r}", file=args.key)
+    results = []
+    if args.answers:
+        rows = read_answers(args.answers)
+        if args.student is not None:
+            rows = [(args.student if s == "*" or len(rows) == 1 else s, a) for s, a in rows]
+        results = grade_many(keys, rows)
+    drawings = []
+    for path in args.drawing:
+        key = key_of_student or keys.get("*")
+        if key is None:
+            raise SpecError("grading a drawing against a bundle needs --student", file=path)
+        drawings.append(grade_drawing(key, read_drawing(path), args.plan))
+    lines = []
+    for result in results:
+        total = result.get("max_score")
+        head = (f"{result['student']}: {result['score']:g}/{total:g}" if total is not None
+                else f"{result['student']}: {result['error']}")
+        lines.append(head)
+        if not args.quiet:
+            lines += [f"  {'ok ' if q['correct'] else 'XX '} {q['feedback']}"
+                      for q in result["questions"]]
+    for path, drawing in zip(args.drawing, drawings, strict=True):
+        lines.append(f"{path} ({drawing['plan']} plan): {drawing['score']:g}/"
+                     f"{drawing['max_score']:g}")
+        if not args.quiet:
+            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
+                      for p in drawing["points"]]
+            lines += [f"  !  {line}" for line in drawing["feedback"]]
+    if args.json:
+        write_text_atomic(args.json, json.dumps({"answers": results, "drawings": drawings},
+                                                ensure_ascii=False, indent=1, allow_nan=False))
+    if args.csv:
+        write_text_atomic(args.csv, gradebook_csv(results))
+    if args.gradescope:
+        if len(results) > 1:
+            raise SpecError(f"--gradescope writes one student's results; the answers hold "
+                            f"{len(results)}", file=args.answers)
+        result = results[0] if results else {"questions": [], "score": 0.0,
+                                             "variant": args.student}
+        write_text_atomic(args.gradescope, json.dumps(gradescope_results(result, drawings),
+                                                      ensure_ascii=False, indent=1))
+    sys.stdout.write("\n".join(lines) + "\n")
+    return 0

@@ -1,0 +1,131 @@
+"""``planmethod variants TEMPLATE``: one variant per student, with task sheets and answer keys.
+
+Writes into ``--out``: ``keys.json`` (the bundle of every key), ``index.csv`` (student, attempt,
+drawn values) and, per student, a folder with ``exercise.toml`` (the variant as a plain
+exercise file), ``key.json``, ``task.svg`` and ``task.txt`` (the task sheet), and blank
+``velocity_sheet.svg`` / ``acceleration_sheet.svg`` to draw the plans on. Everything is
+computed before anything is written; every file is written whole or not at all.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("template", help="exercise template (TOML with ranges, choices, "
+                                         "expressions) or a plain exercise file")
+    parser.add_argument("--count", type=int, metavar="N",
+                        help="number of variants (students 001…N); default: the roster's size, "
+                             "or 1")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
+    parser.add_argument("--students", metavar="ROSTER",
+                        help="roster CSV (a student/id/email column, or one id per line)")
+    parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    parser.add_argument("--no-sheets", action="store_true",
+                        help="write keys only (no SVG task and plan sheets)")
+
+
+def read_roster(path: str) -> list[str]:
+    """Student ids from a roster: a CSV with a student/id/email column, or one id per line."""
+    from ..errors import SpecError
+    from ..grading.answers import STUDENT_COLUMNS, _answers_from_csv
+
+    try:
+        with open(path, encoding="utf-8-sig") as handle:
+            text = handle.read(5_000_000)
+    except FileNotFoundError:
+        raise SpecError("no such file", file=path) from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise SpecError(f"cannot read the roster ({error})", file=path) from None
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    if not lines:
+        raise SpecError("the roster is empty", file=path)
+    header = [cell.strip().lower() for cell in re.split(r"[,;\t]", lines[0])]
+    if len(header) > 1 and any(c in header for c in STUDENT_COLUMNS):
+        students = [student for student, _ in _answers_from_csv(text, path)]
+    else:
+        students = [re.split(r"[,;\t]", line)[0].strip() for line in lines]
+        if students and students[0].lower() in STUDENT_COLUMNS:
+            students = students[1:]
+    duplicates = sorted({s for s in students if students.count(s) > 1})
+    if duplicates:
+        raise SpecError(f"duplicate student ids: {', '.join(duplicates[:5])}", file=path)
+    if not students:
+        raise SpecError("the roster lists no students", file=path)
+    return students
+
+
+def folder_name(student: str) -> str:
+    """A safe folder name for a student id."""
+    name = re.sub(r"[^A-Za-z0-9_.@-]", "_", student).strip(".") or "student"
+    return name[:80]
+
+
+def run(args: argparse.Namespace) -> int:
+    import csv
+    import io
+    import json
+    from pathlib import Path
+
+    from ..errors import SpecError
+    from ..grading.keys import build_key, bundle
+    from ..grading.templates import draw_variant, load_template, to_toml
+    from ..io import write_text_atomic
+    from ..progress import Progress
+
+    template = load_template(args.template)
+    if args.students:
+        students = read_roster(args.students)
+        if args.count is not None and args.count != len(students):
+            raise SpecError(f"--count {args.count} does not match the roster's "
+                            f"{len(students)} students", file=args.students)
+    else:
+        count = 1 if args.count is None else args.count
+        if not 1 <= count <= 100_000:
+            raise SpecError(f"--count must be in 1…100000, got {count}")
+        width = max(3, len(str(count)))
+        students = [str(i).zfill(width) for i in range(1, count + 1)]
+    folders = [folder_name(s) for s in students]
+    if len(set(folders)) != len(folders):
+        raise SpecError("two student ids map to the same folder name", file=args.students)
+    files: dict[str, str] = {}
+    keys = []
+    index_rows = []
+    with Progress(len(students), "variants") as bar:
+        for student, folder in zip(students, folders, strict=True):
+            variant = draw_variant(template, seed=args.seed, student=student)
+            key = build_key(variant)
+            keys.append(key)
+            files[f"{folder}/exercise.toml"] = to_toml(variant.data)
+            files[f"{folder}/key.json"] = json.dumps(key, ensure_ascii=False, indent=1,
+                                                     allow_nan=False)
+            if not args.no_sheets:
+                from ..grading.sheets import plan_sheet_for_key, task_sheet_svg, task_text
+                from ..plans import draw_plans
+
+                plans = draw_plans(variant.exercise, acceleration=False)
+                files[f"{folder}/task.svg"] = task_sheet_svg(key, plans)
+                files[f"{folder}/task.txt"] = task_text(key)
+                for plan in ("velocity", "acceleration"):
+                    if plan in key["plans"]:
+                        files[f"{folder}/{plan}_sheet.svg"] = plan_sheet_for_key(key, plan)
+            index_rows.append([student, folder, variant.attempt,
+                               json.dumps(variant.values, ensure_ascii=False)])
+            bar.advance()
+    files["keys.json"] = json.dumps(bundle(keys, template=str(args.template), seed=args.seed,
+                                           count=len(keys)),
+                                    ensure_ascii=False, indent=1, allow_nan=False)
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["student", "folder", "attempt", "values"])
+    writer.writerows(index_rows)
+    files["index.csv"] = buffer.getvalue()
+    out = Path(args.out)
+    for name, text in files.items():
+        write_text_atomic(out / name, text)
+    redrawn = sum(1 for row in index_rows if row[2])
+    print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "
+          f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
+    return 0

@@ -1,0 +1,327 @@
+"""Exports from keys: Gradescope, PrairieLearn, Moodle XML and a CSV gradebook.
+
+Each function returns file contents (``{relative path: text or bytes}``) and writes nothing;
+the ``export`` command writes them atomically. The structures follow the targets' documents:
+
+* **Gradescope** autograder results (``results.json``: top-level ``score``, ``output``,
+  ``visibility``, ``stdout_visibility``, and ``tests`` with ``name``, ``score``, ``max_score``,
+  ``status``, ``output``), and an autograder folder (``setup.sh``, ``run_autograder`` at its
+  root, reading ``/autograder/submission`` and writing ``/autograder/results/results.json``).
+* **PrairieLearn** v3 questions: ``info.json`` (``uuid``, ``title``, ``topic``, ``tags``,
+  ``type: "v3"``), ``question.html`` with ``pl-question-panel``, one ``pl-number-input``
+  (``comparison="relabs"``, per-variant ``rtol``/``atol`` through mustache ``params``) per
+  asked value, and a ``pl-drawing`` (``gradable``, ``tol`` in px) whose
+  ``pl-drawing-answer`` holds one ``pl-point`` per plan point; ``server.py`` whose
+  ``generate(data)`` picks the variant and fills ``data["params"]`` and
+  ``data["correct_answers"]``.
+* **Moodle XML**: a ``<quiz>`` with a category and one ``numerical`` question per variant and
+  asked value; the right answer's ``<tolerance>`` is absolute (Moodle's nominal ± tolerance),
+  followed by fraction-0 answers for the recognised mistakes with their feedback, and a ``*``
+  catch-all.
+* **CSV gradebook**: one row per student: score per question, total, maximum.
+
+Examples
+--------
+>>> from planmethod.grading.templates import load_template, draw_variant
+>>> from planmethod.grading.keys import build_key
+>>> key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
+>>> xml = moodle_xml([key])
+>>> xml.count('<question type="numerical">')
+7
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import re
+import uuid
+from collections.abc import Iterable, Mapping
+from typing import Any
+from xml.sax.saxutils import escape
+
+__all__ = [
+    "gradebook_csv",
+    "gradescope_autograder",
+    "gradescope_results",
+    "moodle_xml",
+    "prairielearn_questions",
+]
+
+#: PrairieLearn canvas pixels per drawn millimetre.
+PX_PER_MM = 4.0
+
+
+def _identifier(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_]", "_", name)
+
+
+def _format(value: float) -> str:
+    return f"{value:.6g}"
+
+
+# -- Gradescope ------------------------------------------------------------------------------
+def gradescope_results(result: Mapping[str, Any], drawings: Iterable[Mapping[str, Any]] = ()
+                       ) -> dict:
+    """Gradescope's ``results.json`` for one graded submission (numeric answers and,
+    optionally, drawn plans graded by :func:`~planmethod.grading.drawings.grade_drawing`)."""
+    tests = []
+    for number, question in enumerate(result.get("questions", ()), start=1):
+        tests.append({"name": question["id"], "number": str(number),
+                      "score": question["score"], "max_score": question["max_score"],
+                      "status": "passed" if question["correct"] else "failed",
+                      "output": question["feedback"], "visibility": "visible"})
+    score = float(result.get("score", 0.0))
+    for drawing in drawings:
+        lines = [p["feedback"] for p in drawing["points"]] + list(drawing.get("feedback", ()))
+        tests.append({"name": f"{drawing['plan']} plan", "score": drawing["score"],
+                      "max_score": drawing["max_score"],
+                      "status": "passed" if drawing["score"] == drawing["max_score"]
+                      else "failed", "output": "\n".join(lines), "visibility": "visible"})
+        score += float(drawing["score"])
+    output = result.get("error") or (f"Variant {result.get('variant')}: "
+                                     f"{_format(score)} points.")
+    return {"score": score, "output": output, "visibility": "visible",
+            "stdout_visibility": "hidden", "tests": tests}
+
+
+def gradescope_autograder(bundle: Mapping[str, Any]) -> dict[str, str]:
+    """An autograder folder for Gradescope (zip its contents: ``setup.sh`` and
+    ``run_autograder`` must sit at the zip's root).
+
+    Students submit ``answers.json`` (``{"v_C": …}``) or ``answers.csv`` (one row); they are
+    matched to their variant by the e-mail (or SID) in ``submission_metadata.json``.
+    """
+    run = """#!/usr/bin/env bash
+# Gradescope runs this for every submission: grade the answers against the student's variant.
+set -u
+cd /autograder/source
+student=$(python3 - <<'PY'
+import json
+try:
+    users = json.load(open("/autograder/submission_metadata.json"))["users"]
+    print(users[0].get("email") or users[0].get("sid") or "")
+except Exception:
+    print("")
+PY
+)
+answers=$(ls /autograder/submission/answers.json /autograder/submission/answers.csv \\
+          2>/dev/null | head -n 1)
+mkdir -p /autograder/results
+if [ -z "$answers" ]; then
+  echo '{"score": 0, "output": "Submit answers.json or answers.csv.", "tests": []}' \\
+    > /autograder/results/results.json
+  exit 0
+fi
+planmethod grade keys.json "$answers" --student "$student" \\
+  --gradescope /autograder/results/results.json
+"""
+    setup = """#!/usr/bin/env bash
+# Gradescope runs this once when the autograder image is built.
+# Put planmethod's source folder (or a wheel) next to this file before zipping.
+set -eu
+apt-get install -y python3-pip > /dev/null || true
+if [ -d /autograder/source/planmethod-src ]; then
+  pip3 install /autograder/source/planmethod-src
+else
+  pip3 install /autograder/source/planmethod-*.whl
+fi
+"""
+    readme = ("Gradescope autograder for planmethod variants.\n"
+              "1. Copy planmethod's source folder here as planmethod-src/ (or a wheel).\n"
+              "2. Zip the contents of this folder (setup.sh and run_autograder at the root).\n"
+              "3. Students submit answers.json or answers.csv with the question ids:\n   "
+              + ", ".join(q["id"] for q in bundle["keys"][0]["questions"]) + "\n")
+    return {"setup.sh": setup, "run_autograder": run, "README.txt": readme,
+            "keys.json": json.dumps(bundle, ensure_ascii=False, indent=1)}
+
+
+# -- PrairieLearn ----------------------------------------------------------------------------
+def _canvas(entry: Mapping[str, Any], size_px: float, labels: list[str]) -> dict:
+    centre = size_px / 2
+    points = {}
+    for label in labels:
+        x, y = entry["points_mm"][label]
+        points[_identifier(label)] = {"x": round(centre + x * PX_PER_MM, 2),
+                                      "y": round(centre - y * PX_PER_MM, 2)}
+    return points
+
+
+def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod",
+                           topic: str = "Kinematics of mechanisms") -> dict[str, str]:
+    """A PrairieLearn question folder ``<slug>/`` for a bundle of keys: one question whose
+    ``server.py`` draws one of the bundle's variants."""
+    from .drawings import _graded_labels
+
+    keys = bundle["keys"]
+    first = keys[0]
+    question_ids = [q["id"] for q in first["questions"]]
+    plans = [name for name in ("velocity", "acceleration") if name in first["plans"]]
+    labels = {name: _graded_labels(first["plans"][name]) for name in plans}
+    extent = max([30.0] + [math.hypot(*key["plans"][name]["points_mm"][label])
+                           for key in keys for name in plans for label in labels[name]
+                           if label in key["plans"][name]["points_mm"]])
+    size_px = 40 * math.ceil((2 * extent * PX_PER_MM + 80) / 40)
+    variants = []
+    for key in keys:
+        questions = {q["id"]: q for q in key["questions"]}
+        params: dict[str, Any] = {
+            "student": key.get("student"), "title": key.get("title"),
+            "task_html": "<p>" + escape(key.get("task", "")).replace("\n\n", "</p><p>")
+            + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}}
+        correct: dict[str, Any] = {}
+        for name in question_ids:
+            question = questions[name]
+            value, tolerance = float(question["value"]), float(question["tolerance"])
+            ident = _identifier(name)
+            # relabs accepts |x − v| ≤ atol + rtol·|v|: put the whole tolerance in rtol
+            # (atol a hair above zero for a zero answer)
+            if value:
+                params["rtol"][ident] = tolerance / abs(value)
+                params["atol"][ident] = 1e-12
+            else:
+                params["rtol"][ident] = 0.0
+                params["atol"][ident] = tolerance
+            correct[ident] = value
+        for name in plans:
+            entry = key["plans"][name]
+            params["plans"][name] = _canvas(entry, size_px, [
+                label for label in labels[name] if label in entry["points_mm"]])
+            radii = [entry["tolerance_mm"][label] for label in labels[name]
+                     if label in entry["tolerance_mm"]]
+            params["tol_px"][name] = round(max(radii, default=0.5) * PX_PER_MM, 2)
+        variants.append({"params": params, "correct_answers": correct})
+    server = (
+        '"""Picks one planmethod variant per PrairieLearn variant (generated by '
+        '`planmethod export --format prairielearn`)."""\n\nimport random\n\n'
+        f"VARIANTS = {json.dumps(variants, ensure_ascii=False, indent=1)}\n\n\n"
+        "def generate(data):\n"
+        "    variant = random.choice(VARIANTS)\n"
+        "    data[\"params\"].update(variant[\"params\"])\n"
+        "    data[\"correct_answers\"].update(variant[\"correct_answers\"])\n")
+    html = ["<pl-question-panel>", "  <p><b>{{params.title}}</b></p>",
+            "  {{{params.task_html}}}", "</pl-question-panel>", ""]
+    for question in first["questions"]:
+        ident = _identifier(question["id"])
+        html.append(
+            f'<pl-number-input answers-name="{ident}" comparison="relabs" '
+            f'rtol="{{{{params.rtol.{ident}}}}}" atol="{{{{params.atol.{ident}}}}}" '
+            f'label="{escape(question["text"])} =" suffix="{escape(question["unit"])}">'
+            "</pl-number-input>")
+    for name in plans:
+        pole = first["plans"][name]["pole"]
+        centre = size_px / 2
+        html += ["", f"<p>Draw the {name} plan at the given scale (one grid square is "
+                     f"10 mm of the drawing; the pole {pole} is marked): place the points "
+                     f"{', '.join(labels[name])}.</p>",
+                 f'<pl-drawing answers-name="{name}_plan" gradable="true" width="{size_px}" '
+                 f'height="{size_px}" grid-size="{int(10 * PX_PER_MM)}" '
+                 f'tol="{{{{params.tol_px.{name}}}}}" show-tolerance-hint="true">',
+                 "  <pl-drawing-initial>",
+                 f'    <pl-point x1="{centre:g}" y1="{centre:g}" label="{pole}"></pl-point>',
+                 "  </pl-drawing-initial>",
+                 '  <pl-drawing-answer draw-error-box="true">']
+        for label in labels[name]:
+            ident = _identifier(label)
+            html.append(f'    <pl-point x1="{{{{params.plans.{name}.{ident}.x}}}}" '
+                        f'y1="{{{{params.plans.{name}.{ident}.y}}}}" label="{label}">'
+                        "</pl-point>")
+        html += ["  </pl-drawing-answer>", "  <pl-controls>",
+                 '    <pl-controls-group label="Plan points:">',
+                 '      <pl-drawing-button type="pl-point"></pl-drawing-button>',
+                 "    </pl-controls-group>",
+                 '    <pl-controls-group label="Delete:">',
+                 '      <pl-drawing-button type="delete"></pl-drawing-button>',
+                 "    </pl-controls-group>", "  </pl-controls>", "</pl-drawing>"]
+    seed = f"planmethod:{slug}:{first.get('title')}:{bundle.get('seed')}:{len(keys)}"
+    info = {"uuid": str(uuid.uuid5(uuid.NAMESPACE_URL, seed)),
+            "title": str(first.get("title")), "topic": topic,
+            "tags": ["planmethod", "graphical-method"], "type": "v3",
+            "gradingMethod": "Internal"}
+    return {f"{slug}/info.json": json.dumps(info, indent=2, ensure_ascii=False) + "\n",
+            f"{slug}/question.html": "\n".join(html) + "\n",
+            f"{slug}/server.py": server}
+
+
+# -- Moodle ----------------------------------------------------------------------------------
+def _cdata(text: str) -> str:
+    return "<![CDATA[" + text.replace("]]>", "]]]]><![CDATA[>") + "]]>"
+
+
+def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
+               sheets: Mapping[str, str] | None = None) -> str:
+    """A Moodle XML quiz: for every variant, one numerical question per asked value, each with
+    the task text (and the variant's sheet SVG as an embedded file, if ``sheets`` maps the
+    student to it)."""
+    import base64
+
+    out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
+    title = str(keys[0].get("title", "planmethod")) if keys else "planmethod"
+    out += ['  <question type="category">',
+            f"    <category><text>$course$/top/{escape(category)}/{escape(title)}</text>"
+            "</category>", "  </question>"]
+    for key in keys:
+        student = str(key.get("student"))
+        task = escape(key.get("task", "")).replace("\n\n", "</p><p>")
+        image, files = "", ""
+        if sheets and student in sheets:
+            name = f"sheet_{_identifier(student)}.svg"
+            data = base64.b64encode(sheets[student].encode("utf-8")).decode("ascii")
+            image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="position plan" /></p>'
+            files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
+        for question in key["questions"]:
+            value, tolerance = float(question["value"]), float(question["tolerance"])
+            text = (f"<p><b>{escape(title)}</b> — variant {escape(student)}</p><p>{task}</p>"
+                    f"{image}<p>Give the {escape(question['text'])} in "
+                    f"{escape(question['unit'])}.</p>")
+            out += ['  <question type="numerical">',
+                    f"    <name><text>{escape(student)} {escape(question['id'])}</text></name>",
+                    f'    <questiontext format="html"><text>{_cdata(text)}</text>{files}'
+                    "</questiontext>",
+                    '    <generalfeedback format="html"><text></text></generalfeedback>',
+                    f"    <defaultgrade>{float(question.get('points', 1.0)):g}</defaultgrade>",
+                    "    <penalty>0.3333333</penalty>", "    <hidden>0</hidden>",
+                    f"    <idnumber>{escape(student)}:{escape(question['id'])}</idnumber>",
+                    '    <answer fraction="100" format="moodle_auto_format">',
+                    f"      <text>{value!r}</text>", f"      <tolerance>{tolerance!r}</tolerance>",
+                    f'      <feedback format="html"><text>Correct: {_format(value)} '
+                    f"{escape(question['unit'])} ± {tolerance:.3g}.</text></feedback>",
+                    "    </answer>"]
+            for mistake in question.get("mistakes", ()):
+                out += ['    <answer fraction="0" format="moodle_auto_format">',
+                        f"      <text>{float(mistake['value'])!r}</text>",
+                        f"      <tolerance>{float(mistake['tolerance'])!r}</tolerance>",
+                        f'      <feedback format="html"><text>It looks as if '
+                        f"{escape(mistake['feedback'])}.</text></feedback>", "    </answer>"]
+            out += ['    <answer fraction="0" format="moodle_auto_format">',
+                    "      <text>*</text>", "      <tolerance>0</tolerance>",
+                    '      <feedback format="html"><text>Not within the tolerance of the '
+                    "drawing.</text></feedback>", "    </answer>",
+                    "    <unitgradingtype>0</unitgradingtype>",
+                    "    <unitpenalty>0.1000000</unitpenalty>", "    <showunits>3</showunits>",
+                    "    <unitsleft>0</unitsleft>", "  </question>"]
+    out.append("</quiz>")
+    return "\n".join(out) + "\n"
+
+
+# -- CSV gradebook ---------------------------------------------------------------------------
+def gradebook_csv(results: list[Mapping[str, Any]]) -> str:
+    """One row per student: variant, score per question, total and maximum."""
+    ids: list[str] = []
+    for result in results:
+        for question in result.get("questions", ()):
+            if question["id"] not in ids:
+                ids.append(question["id"])
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["student", "variant", *ids, "total", "max", "note"])
+    for result in results:
+        scores = {q["id"]: q["score"] for q in result.get("questions", ())}
+        writer.writerow([result.get("student"), result.get("variant", ""),
+                         *[_format(scores[i]) if i in scores else "" for i in ids],
+                         _format(float(result.get("score", 0.0))),
+                         "" if result.get("max_score") is None
+                         else _format(float(result["max_score"])), result.get("error", "")])
+    return buffer.getvalue()
