@@ -151,12 +151,16 @@ class Motion:
         """Absolute velocity (m/s) of a point."""
         self._need("velocity", f"the velocity of {ref}")
         link, position = self._locate(ref)
+        if link == FRAME:  # a point of the frame does not move
+            return self._out(np.zeros_like(position))
         return self._out(self.links[link].velocity_at(position))
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
         self._need("acceleration", f"the acceleration of {ref}")
         link, position = self._locate(ref)
+        if link == FRAME:
+            return self._out(np.zeros_like(position))
         return self._out(self.links[link].acceleration_at(position))
 
     def place(self, link: str, local) -> np.ndarray:
@@ -278,25 +282,27 @@ def _sketch_distance(mechanism: Mechanism, group: AssurGroup, poses) -> float | 
     return total if used else None
 
 
-def _choose_branch(mechanism, group, states, angle_deg) -> Branch:
+def _choose_branch(mechanism, group, states, angle_deg) -> tuple[Branch, dict | None]:
+    """The group's branch and, when already computed, its poses on that branch."""
     if group.kind not in ("RRR", "RRP", "RPR"):
-        return Branch(1, "unique")
+        return Branch(1, "unique"), None
     angles = np.array([angle_deg])
-    candidates = {}
+    candidates, poses = {}, {}
     errors = []
     for sign in (1, -1):
         try:
-            poses = dyad_positions(mechanism, group, states, sign, angles)
+            poses[sign] = dyad_positions(mechanism, group, states, sign, angles)
         except AssemblyError as error:
             errors.append(error)
             continue
-        candidates[sign] = _sketch_distance(mechanism, group, poses)
+        candidates[sign] = _sketch_distance(mechanism, group, poses[sign])
     if not candidates:
         raise errors[0]
     plus, minus = candidates.get(1), candidates.get(-1)
     if plus is None or minus is None or abs(plus - minus) <= 1e-12 * (plus + minus) + 1e-24:
-        return Branch(1, "default")
-    return Branch(1 if plus < minus else -1, "sketch")
+        return Branch(1, "default"), poses.get(1)
+    sign = 1 if plus < minus else -1
+    return Branch(sign, "sketch"), poses[sign]
 
 
 def choose_branches(mechanism: Mechanism, structure: Structure | None = None,
@@ -314,10 +320,11 @@ def choose_branches(mechanism: Mechanism, structure: Structure | None = None,
             branch, poses = choose_higher_branch(mechanism, group, states, angle)
             branches[group.index] = branch
         else:
-            branches[group.index] = _choose_branch(mechanism, group, states,
-                                                   mechanism.drive.angle)
-            poses = dyad_positions(mechanism, group, states, branches[group.index].sign,
-                                   np.array([mechanism.drive.angle]))
+            branches[group.index], poses = _choose_branch(mechanism, group, states,
+                                                          mechanism.drive.angle)
+            if poses is None:
+                poses = dyad_positions(mechanism, group, states, branches[group.index].sign,
+                                       np.array([mechanism.drive.angle]))
         for link, (theta, origin) in poses.items():
             states[link] = LinkState(theta, origin)
     return branches
