@@ -1,0 +1,207 @@
+"""LMS exports checked against the targets' documented structure, and the three commands
+end to end: template → variants → grade → export."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import re
+import uuid
+import xml.etree.ElementTree as ElementTree
+from pathlib import Path
+
+import pytest
+
+from planmethod.cli import main
+from planmethod.grading.answers import grade_many
+from planmethod.grading.exports import (
+    gradebook_csv,
+    gradescope_autograder,
+    gradescope_results,
+    moodle_xml,
+    prairielearn_questions,
+)
+from planmethod.grading.keys import build_key, bundle
+from planmethod.grading.templates import draw_variant, load_template
+
+TEMPLATE = "exercises/templates/four_bar.toml"
+EXAMPLE = "exercises/templates/slider_crank_answers_example.csv"
+
+
+@pytest.fixture(scope="module")
+def keys():
+    template = load_template(TEMPLATE)
+    return [build_key(draw_variant(template, seed=5, student=s)) for s in ("ann", "bob", "cy")]
+
+
+def test_moodle_xml_structure(keys):
+    root = ElementTree.fromstring(moodle_xml(keys, sheets={"ann": "<svg/>"}))
+    assert root.tag == "quiz"
+    questions = root.findall("question")
+    assert questions[0].get("type") == "category"
+    assert "$course$/top/planmethod/" in questions[0].findtext("category/text")
+    numerical = [q for q in questions if q.get("type") == "numerical"]
+    assert len(numerical) == sum(len(k["questions"]) for k in keys)
+    by_name = {q.findtext("name/text"): q for q in numerical}
+    for key in keys:
+        for question in key["questions"]:
+            element = by_name[f"{key['student']} {question['id']}"]
+            assert element.find("questiontext").get("format") == "html"
+            answers = element.findall("answer")
+            right = answers[0]
+            assert right.get("fraction") == "100"
+            assert float(right.findtext("text")) == question["value"]
+            assert float(right.findtext("tolerance")) == question["tolerance"]   # absolute
+            assert answers[-1].findtext("text") == "*"
+            assert all(a.get("fraction") == "0" for a in answers[1:])
+            assert len(answers) == 2 + len(question["mistakes"])
+            assert float(element.findtext("defaultgrade")) == question["points"]
+    ann = by_name[f"ann {keys[0]['questions'][0]['id']}"]
+    assert ann.find("questiontext/file").get("encoding") == "base64"
+    assert "@@PLUGINFILE@@/sheet_ann.svg" in ann.findtext("questiontext/text")
+
+
+def test_gradescope_results_structure(keys):
+    answers = {q["id"]: q["value"] for q in keys[0]["questions"]}
+    answers[keys[0]["questions"][0]["id"]] = 0.0
+    (result,) = grade_many({"ann": keys[0]}, [("ann", answers)])
+    results = gradescope_results(result)
+    assert set(results) >= {"score", "tests", "output"}
+    assert results["visibility"] in ("hidden", "after_due_date", "after_published", "visible")
+    assert results["score"] == sum(t["score"] for t in results["tests"])
+    assert results["score"] == len(keys[0]["questions"]) - 1
+    for test in results["tests"]:
+        assert set(test) >= {"name", "score", "max_score", "output"}
+        assert test["status"] in ("passed", "failed")
+    json.dumps(results, allow_nan=False)
+
+
+def test_gradescope_autograder_folder(keys):
+    files = gradescope_autograder(bundle(keys))
+    assert {"setup.sh", "run_autograder", "keys.json"} <= set(files)
+    run = files["run_autograder"]
+    assert run.startswith("#!/usr/bin/env bash")
+    assert "/autograder/results/results.json" in run and "submission_metadata.json" in run
+    assert json.loads(files["keys.json"])["format"] == "planmethod-keys"
+
+
+def _resolve(template: str, params: dict) -> str:
+    def value(match):
+        node = {"params": params}
+        for part in match.group(1).split("."):
+            node = node[part]
+        return str(node)
+
+    return re.sub(r"\{\{\{?([A-Za-z0-9_.]+)\}?\}\}", value, template)
+
+
+def test_prairielearn_question_structure(keys):
+    files = prairielearn_questions(bundle(keys, seed=5), slug="fourbar")
+    info = json.loads(files["fourbar/info.json"])
+    uuid.UUID(info["uuid"])
+    assert info["type"] == "v3" and info["title"] and info["topic"]
+    assert isinstance(info["tags"], list)
+    namespace: dict = {}
+    exec(compile(files["fourbar/server.py"], "server.py", "exec"), namespace)  # our own code
+    seen = set()
+    for _ in range(60):
+        data = {"params": {}, "correct_answers": {}}
+        namespace["generate"](data)
+        seen.add(data["params"]["student"])
+        html = _resolve(files["fourbar/question.html"], data["params"])
+        assert "{{" not in html
+        root = ElementTree.fromstring(f"<root>{html}</root>")
+        key = next(k for k in keys if k["student"] == data["params"]["student"])
+        inputs = root.findall("pl-number-input")
+        assert [i.get("answers-name") for i in inputs] == [q["id"] for q in key["questions"]]
+        for element, question in zip(inputs, key["questions"], strict=True):
+            assert element.get("comparison") == "relabs"
+            value = data["correct_answers"][element.get("answers-name")]
+            accepted = float(element.get("atol")) + float(element.get("rtol")) * abs(value)
+            assert accepted == pytest.approx(question["tolerance"], rel=1e-9, abs=1e-11)
+        for drawing in root.findall("pl-drawing"):
+            assert drawing.get("gradable") == "true" and float(drawing.get("tol")) > 0
+            plan = drawing.get("answers-name").removesuffix("_plan")
+            points = drawing.findall("pl-drawing-answer/pl-point")
+            assert points and all(p.get("x1") and p.get("y1") for p in points)
+            entry = key["plans"][plan]
+            for point in points:
+                x, y = entry["points_mm"][point.get("label")]
+                centre = float(drawing.get("width")) / 2
+                assert float(point.get("x1")) == pytest.approx(centre + 4 * x, abs=0.01)
+                assert float(point.get("y1")) == pytest.approx(centre - 4 * y, abs=0.01)
+    assert seen == {"ann", "bob", "cy"}
+
+
+def test_gradebook_csv(keys):
+    rows = [(k["student"], {q["id"]: q["value"] for q in k["questions"]}) for k in keys]
+    rows.append(("dan", {}))
+    text = gradebook_csv(grade_many({k["student"]: k for k in keys}, rows))
+    table = list(csv.DictReader(io.StringIO(text)))
+    assert [r["student"] for r in table] == ["ann", "bob", "cy", "dan"]
+    assert table[0]["total"] == table[0]["max"] == str(len(keys[0]["questions"]))
+    assert "no key for student 'dan'" in table[3]["note"]
+
+
+def test_the_instructor_workflow_end_to_end(tmp_path, capsys):
+    out = tmp_path / "course"
+    roster = tmp_path / "roster.csv"
+    roster.write_text("email,name\nann@uni.edu,Ann\nbob@uni.edu,Bob\n")
+    assert main(["variants", "exercises/templates/slider_crank.toml", "--students",
+                 str(roster), "--seed", "3", "--out", str(out)]) == 0
+    for student in ("ann@uni.edu", "bob@uni.edu"):
+        folder = out / student
+        for name in ("exercise.toml", "key.json", "task.svg", "task.txt",
+                     "velocity_sheet.svg", "acceleration_sheet.svg"):
+            assert (folder / name).stat().st_size > 0, name
+    # a variant is a plain exercise file: `planmethod solve` reads it
+    assert main(["solve", str(out / "ann@uni.edu" / "exercise.toml")]) == 0
+    keys = json.loads((out / "keys.json").read_text())["keys"]
+    answers = tmp_path / "answers.csv"
+    ids = [q["id"] for q in keys[0]["questions"]]
+    answers.write_text("email," + ",".join(ids) + "\n" + "\n".join(
+        k["student"] + "," + ",".join(f"{q['value']:.5g}" for q in k["questions"])
+        for k in keys) + "\n")
+    capsys.readouterr()
+    assert main(["grade", str(out), str(answers), "--csv", str(tmp_path / "gb.csv"),
+                 "--quiet"]) == 0
+    printed = capsys.readouterr().out
+    assert f"ann@uni.edu: {len(ids)}/{len(ids)}" in printed
+    assert main(["export", str(out / "keys.json"), "--format", "moodle", "--out",
+                 str(tmp_path / "quiz.xml")]) == 0
+    quiz = ElementTree.parse(tmp_path / "quiz.xml").getroot()
+    assert len(quiz.findall("question")) == 1 + 2 * len(ids)
+    # variants are reproducible from (template, seed, student)
+    again = tmp_path / "again"
+    assert main(["variants", "exercises/templates/slider_crank.toml", "--students",
+                 str(roster), "--seed", "3", "--out", str(again), "--no-sheets"]) == 0
+    assert (again / "keys.json").read_text() == (out / "keys.json").read_text()
+
+
+@pytest.mark.parametrize("argv", [
+    ["variants", "exercises/templates/slider_crank.toml", "--count", "0"],
+    ["variants", "no/such/template.toml", "--count", "2"],
+    ["grade", "exercises/templates/slider_crank.toml", EXAMPLE],   # random: needs keys.json
+    ["grade", "exercises/compressor_slider_crank.toml", "tests/data/grading/junk_malformed.svg"],
+    ["grade", "exercises/compressor_slider_crank.toml", "--drawing",
+     "tests/data/grading/junk_external.svg"],
+    ["export", "exercises/compressor_slider_crank.toml", "--format", "csv"],
+])
+def test_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, argv):
+    target = tmp_path / "out"
+    argv = [*argv, "--out", str(target)] if argv[0] != "grade" else [
+        *argv, "--json", str(target)]
+    assert main(argv) == 2
+    error = capsys.readouterr().err.strip()
+    assert error.startswith("planmethod: error: ") and "\n" not in error
+    assert not target.exists()
+
+
+def test_grading_the_seed_answers_from_the_command_line(capsys):
+    assert main(["grade", "exercises/compressor_slider_crank.toml",
+                 "tests/data/grading/seed001_paper.csv"]) == 0
+    printed = capsys.readouterr().out
+    assert "paper: 0/7" in printed
+    assert "v_C = 4 m/s: wrong — 24.1 % low" in printed
+    assert Path(EXAMPLE).is_file()
