@@ -1,0 +1,242 @@
+"""Point labels in textbook style, and their placement without overlaps (shapely).
+
+Label text
+----------
+A plan label is written the way a textbook prints it: the letter in italics and what follows
+it as a subscript — ``c4`` → c₄, ``n_CB`` → n with subscript CB, ``b@lever`` → b with the link
+name *lever* as an upright subscript (the image of B taken as a point of the lever),
+``k_C@lever`` → k with subscript "C, lever". Digits and link names are upright, point names
+italic. Labels of points that coincide on the drawing are merged into one label joined by "≡"
+(``p ≡ a ≡ c_frame``), the pole first.
+
+Placement
+---------
+Each label is tried at 16 directions around its point and at growing distances; a candidate
+box may not overlap a label already placed, and among the rest the one with the least length of
+drawn lines inside it, the least area of point marks and other text under it and the smallest
+distance wins (ties: the first direction tried, up-right first). Labels are placed in a fixed
+order, so the result is deterministic. A label pushed far from its point gets a thin leader.
+
+Examples
+--------
+>>> label_runs("b@lever")
+(('b', 'main'), ('lever', 'upright'))
+>>> label_runs("n_CB")
+(('n', 'main'), ('CB', 'sub'))
+>>> label_runs("O2")
+(('O', 'main'), ('2', 'upright'))
+>>> label_runs("k_C@lever")
+(('k', 'main'), ('C', 'sub'), (', lever', 'upright'))
+>>> plain(merge_runs([label_runs("p"), label_runs("c@frame")]))
+'p ≡ c frame'
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from .style import LABEL, NBSP, SUB_SCALE, SUB_SHIFT, text_width
+
+__all__ = [
+    "LabelRequest",
+    "PlacedLabel",
+    "label_runs",
+    "merge_runs",
+    "place_labels",
+    "plain",
+    "runs_extent",
+]
+
+#: a run of label text: (text, kind) with kind "main" (italic), "sub" (italic subscript),
+#: "upright" (upright subscript: digits, link names) or "sep" (upright, on the baseline)
+Run = tuple[str, str]
+
+#: gap (px) kept around a label's text
+PADDING = 2.0
+#: further gap (px) between two labels, so that neighbours never read as one
+LABEL_GAP = 7.0
+#: directions tried, degrees counter-clockwise from +x on the page (up-right first)
+DIRECTIONS = (45, 135, -45, -135, 0, 90, 180, -90,
+              22.5, 67.5, 112.5, 157.5, -22.5, -67.5, -112.5, -157.5)
+#: distances (px) tried beyond the point's mark
+DISTANCES = (2.0, 6.0, 11.0, 17.0, 25.0, 35.0, 48.0, 64.0, 84.0)
+#: beyond this distance (px) a label gets a leader line to its point
+LEADER_DISTANCE = 14.0
+#: cost of one px of a drawn line under a label, relative to one px of distance
+LINE_COST = 30.0
+#: cost of one px² of a point mark or fixed text under a label
+AREA_COST = 2.0
+
+
+def _split_digits(name: str) -> tuple[str, str]:
+    head = name.rstrip("0123456789")
+    return (head, name[len(head):]) if head else (name, "")
+
+
+def label_runs(label: str) -> tuple[Run, ...]:
+    """The runs of a label in textbook style (see the module docstring)."""
+    name, at, link = label.partition("@")
+    main, _, rest = name.partition("_")
+    main, digits = _split_digits(main)
+    parts: list[Run] = []
+    if digits:
+        parts.append((digits, "upright"))
+    if rest:
+        # point names (C, CB, O2) are italic; link and pair names (lever, block/lever) upright
+        parts.append((rest, "upright" if any(ch.islower() for ch in rest) else "sub"))
+    if at:
+        parts.append((link, "upright"))
+    runs: list[Run] = [(main, "main")]
+    for index, (text, kind) in enumerate(parts):
+        runs.append(((", " if index else "") + text, kind))
+    return tuple(runs)
+
+
+def merge_runs(labels: Iterable[Sequence[Run]]) -> tuple[Run, ...]:
+    """Join the runs of coincident points with " ≡ "."""
+    out: list[Run] = []
+    for index, runs in enumerate(labels):
+        if index:
+            out.append((f"{NBSP}≡{NBSP}", "sep"))
+        out.extend(runs)
+    return tuple(out)
+
+
+def plain(runs: Sequence[Run]) -> str:
+    """The runs as plain text (subscripts after a space), e.g. for tests and titles."""
+    out = ""
+    for text, kind in runs:
+        out += (" " + text) if kind == "upright" and text[0].isalpha() else text
+    return out.replace(NBSP, " ")
+
+
+def runs_extent(runs: Sequence[Run], size: float) -> tuple[float, float, float]:
+    """(width, ascent, descent) of the runs at ``size`` px, from the baseline."""
+    width = 0.0
+    descent = 0.24 * size
+    for text, kind in runs:
+        if kind in ("sub", "upright"):
+            width += text_width(text, size * SUB_SCALE, LABEL)
+            descent = max(descent, SUB_SHIFT * size + 0.24 * size * SUB_SCALE)
+        else:
+            width += text_width(text, size, LABEL)
+    return width, 0.76 * size, descent
+
+
+@dataclass(frozen=True, slots=True)
+class LabelRequest:
+    """A label to place: the points it names, its anchor (px, y down), its runs, its size,
+    the radius of the point's mark, and a style class (``label``, ``faint``, ``flag``)."""
+
+    points: tuple[str, ...]
+    anchor: tuple[float, float]
+    runs: tuple[Run, ...]
+    size: float
+    mark_radius: float = 3.0
+    css: str = "label"
+
+
+@dataclass(frozen=True, slots=True)
+class PlacedLabel:
+    """A placed label: its request's data, the baseline start (px), the box it covers
+    ``(x0, y0, x1, y1)`` (padding included) and whether a leader line joins it to the point."""
+
+    points: tuple[str, ...]
+    anchor: tuple[float, float]
+    runs: tuple[Run, ...]
+    size: float
+    baseline: tuple[float, float]
+    box: tuple[float, float, float, float]
+    leader: bool
+    css: str
+
+    @property
+    def text(self) -> str:
+        return plain(self.runs)
+
+
+def _candidate(anchor, direction_deg, distance, width, ascent, descent):
+    """Baseline and box of a label placed ``distance`` beyond the anchor in a direction."""
+    ux = math.cos(math.radians(direction_deg))
+    uy = -math.sin(math.radians(direction_deg))          # page y points down
+    half_w, half_h = width / 2 + PADDING, (ascent + descent) / 2 + PADDING
+    # the box sits beyond the point: its edge (axis directions) or its corner (diagonals)
+    # nearest to the point lies `distance` away along the direction
+    sx = max(-1.0, min(1.0, ux * math.sqrt(2)))
+    sy = max(-1.0, min(1.0, uy * math.sqrt(2)))
+    cx = anchor[0] + ux * distance + sx * half_w
+    cy = anchor[1] + uy * distance + sy * half_h
+    box = (cx - half_w, cy - half_h, cx + half_w, cy + half_h)
+    baseline = (box[0] + PADDING, box[1] + PADDING + ascent)
+    return baseline, box
+
+
+def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence
+                 ) -> tuple[PlacedLabel, ...]:
+    """Place labels so that no two overlap and as few drawn lines as possible run under them.
+
+    Parameters
+    ----------
+    requests
+        The labels, placed in this order.
+    lines
+        Shapely geometries of drawn lines (their length under a label counts).
+    areas
+        Shapely geometries of point marks, symbols and fixed text (their area counts).
+
+    Examples
+    --------
+    >>> from shapely.geometry import LineString
+    >>> request = LabelRequest(("b",), (0.0, 0.0), label_runs("b"), 15.0)
+    >>> placed = place_labels([request, request], [LineString([(-50, 0), (50, 0)])], [])
+    >>> len(placed), placed[0].box[2] < placed[1].box[0] or placed[1].box[2] < placed[0].box[0]
+    (2, True)
+    """
+    from shapely import prepared, unary_union
+    from shapely.geometry import Point
+    from shapely.geometry import box as make_box
+
+    line_union = unary_union(list(lines)) if lines else None
+    area_union = unary_union(list(areas)) if areas else None
+    line_test = prepared.prep(line_union) if line_union is not None else None
+    area_test = prepared.prep(area_union) if area_union is not None else None
+    placed: list[PlacedLabel] = []
+    boxes: list = []
+    for request in requests:
+        width, ascent, descent = runs_extent(request.runs, request.size)
+        own_mark = Point(request.anchor).buffer(request.mark_radius + 1.0, quad_segs=4)
+        best = None
+        for distance in DISTANCES:
+            reach = request.mark_radius + distance
+            for order, direction in enumerate(DIRECTIONS):
+                baseline, bounds = _candidate(request.anchor, direction, reach, width,
+                                              ascent, descent)
+                shape = make_box(*bounds)
+                spaced = make_box(bounds[0] - LABEL_GAP, bounds[1] - LABEL_GAP / 2,
+                                  bounds[2] + LABEL_GAP, bounds[3] + LABEL_GAP / 2)
+                if any(spaced.intersects(other) for other in boxes):
+                    continue
+                cost = distance + 0.05 * order
+                if line_test is not None and line_test.intersects(shape):
+                    cost += LINE_COST * shape.intersection(line_union).length
+                if area_test is not None and area_test.intersects(shape):
+                    cost += AREA_COST * shape.difference(own_mark).intersection(
+                        area_union).area
+                if best is None or cost < best[0] - 1e-9:
+                    best = (cost, baseline, bounds, distance)
+            if best is not None and best[0] <= distance + 1.0:
+                break                       # a clean spot at this distance: nearer is none
+        if best is None:                    # every spot overlaps: put it below everything
+            bottom = max((b.bounds[3] for b in boxes), default=request.anchor[1])
+            baseline, bounds = _candidate((request.anchor[0], bottom + 4), -90, 0.0, width,
+                                          ascent, descent)
+            best = (math.inf, baseline, bounds, LEADER_DISTANCE + 1)
+        _, baseline, bounds, distance = best
+        boxes.append(make_box(*bounds))
+        placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
+                                  (round(baseline[0], 2), round(baseline[1], 2)),
+                                  tuple(round(v, 2) for v in bounds),
+                                  distance > LEADER_DISTANCE, request.css))
+    return tuple(placed)

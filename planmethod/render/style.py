@@ -1,0 +1,169 @@
+"""Drawing style of the SVG figures: fonts, sizes, colours, line styles, number formats.
+
+One fixed style, so that the same input always gives the same bytes. Sizes are SVG user units
+("px"); the plan itself is scaled to a comfortable size and carries a scale bar, so the printed
+scales (μl, μv, μa) stay true whatever the zoom.
+
+Text widths are estimated from the advance widths of the DejaVu fonts (tabulated below, in em),
+which is what the figures name first and what cairosvg finds on a typical Linux machine; label
+boxes are padded a little so that other fonts still fit.
+
+Examples
+--------
+>>> num(-0.0), num(12.345678)
+('0', '12.35')
+>>> round(text_width("pb", 10.0, LABEL), 2)
+12.8
+>>> STYLES["normal"].color
+'#1f5fbf'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "LABEL",
+    "LABEL_SIZE",
+    "LEGEND_ORDER",
+    "SANS",
+    "SANS_BOLD",
+    "STYLES",
+    "SUB_SCALE",
+    "SUB_SHIFT",
+    "TEXT_SIZE",
+    "TITLE_SIZE",
+    "LineStyle",
+    "num",
+    "quantity",
+    "text_width",
+]
+
+#: font families (first choice DejaVu, whose metrics are tabulated here)
+LABEL_FAMILY = "DejaVu Serif, Georgia, Times New Roman, serif"
+TEXT_FAMILY = "DejaVu Sans, Verdana, Arial, Helvetica, sans-serif"
+
+LABEL = "label"          # metric keys for text_width
+SANS = "sans"
+SANS_BOLD = "sans-bold"
+
+LABEL_SIZE = 15.0        # plan and position labels
+SUB_SCALE = 0.72         # a subscript's size relative to its label
+SUB_SHIFT = 0.28         # a subscript's drop below the baseline, in em of the label
+TEXT_SIZE = 12.5         # scales, legend, notes
+TITLE_SIZE = 15.0
+SMALL_SIZE = 11.0
+NBSP = "\u00a0"         # kept by every SVG renderer, unlike a plain space at a tspan's edge
+
+INK = "#000000"
+FAINT = "#9a9a9a"        # the mechanism under the rotated velocity plan
+FLAG = "#d00000"
+LINK_FILL = "#dfe7f1"
+GROUND = "#333333"
+
+
+@dataclass(frozen=True, slots=True)
+class LineStyle:
+    """How one kind of vector is drawn: colour, width, dash pattern, arrowhead size, legend."""
+
+    color: str
+    width: float
+    dash: str | None
+    head: float
+    legend_velocity: str
+    legend_acceleration: str
+
+
+#: vector styles by a step's ``component`` (plus ``result`` for pole → image, ``construction``
+#: for construction lines, ``similarity`` and ``projection``)
+STYLES: dict[str, LineStyle] = {
+    "result": LineStyle(INK, 2.6, None, 13.0, "absolute velocity (result)",
+                        "absolute acceleration (result)"),
+    "absolute": LineStyle(INK, 2.6, None, 13.0, "absolute velocity (result)",
+                          "absolute acceleration (result)"),
+    "normal": LineStyle("#1f5fbf", 1.7, None, 10.0, "normal component",
+                        "normal component aⁿ"),
+    "tangential": LineStyle("#1b8a3a", 1.7, "8,3", 10.0, "tangential component",
+                            "tangential component aᵗ"),
+    "coriolis": LineStyle("#c0392b", 1.7, "9,3,2,3", 10.0, "Coriolis component",
+                          "Coriolis component aᵏ"),
+    "relative": LineStyle("#7b3fa0", 1.7, None, 10.0, "relative velocity",
+                          "relative (sliding) component aʳ"),
+    "construction": LineStyle("#777777", 0.8, "5,4", 0.0, "construction line",
+                              "construction line (colour of its component)"),
+    "similarity": LineStyle("#555555", 1.0, None, 0.0, "image of a link (similarity)",
+                            "image of a link (similarity)"),
+    "projection": LineStyle("#555555", 0.9, "1.5,2.5", 0.0, "projection",
+                            "projection on the normal to the path"),
+}
+
+#: legend entries in this order, those used by a figure only
+LEGEND_ORDER = ("result", "normal", "tangential", "coriolis", "relative", "construction",
+                "similarity", "projection")
+
+
+def num(value: float) -> str:
+    """A coordinate as written into the SVG: two decimals, no trailing zeros, no ``-0``."""
+    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def quantity(value: float, digits: int = 4) -> str:
+    """A printed value with ``digits`` significant digits (``0.002``, ``20``, ``5.272``)."""
+    return f"{value:.{digits}g}"
+
+
+def text_width(text: str, size: float, font: str = SANS) -> float:
+    """Estimated advance width of ``text`` at ``size`` (px) in ``font``."""
+    table = _METRICS[font]
+    return size * sum(table.get(ch, 0.62) for ch in text.replace(NBSP, " "))
+
+
+# advance widths (em) of the DejaVu fonts, read once with FreeType
+WIDTH_CHARS = (
+    ' !"#$%&\'()*+,-./0123456789:;<=>?@ABCDEFG'
+    'HIJKLMNOPQRSTUVWXYZ[\\]^_`abcdefghijklmno'
+    'pqrstuvwxyz{|}~πμωρτηεφαθΔ≡′—–²·ⁿᵗᵏʳ°→−×'
+    '≈±…₁₂'
+)
+SERIF_ITALIC = (
+    0.318, 0.402, 0.46, 0.838, 0.636, 0.95, 0.89, 0.275, 0.39, 0.39, 0.5, 0.838, 0.318, 0.338,
+    0.318, 0.337, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.337,
+    0.337, 0.838, 0.838, 0.838, 0.536, 1, 0.722, 0.735, 0.765, 0.802, 0.73, 0.694, 0.799, 0.872,
+    0.395, 0.401, 0.747, 0.664, 1.024, 0.875, 0.82, 0.673, 0.82, 0.753, 0.685, 0.667, 0.843,
+    0.722, 1.028, 0.712, 0.66, 0.695, 0.39, 0.337, 0.39, 0.838, 0.5, 0.5, 0.596, 0.64, 0.56,
+    0.64, 0.592, 0.37, 0.64, 0.644, 0.32, 0.31, 0.606, 0.32, 0.948, 0.644, 0.602, 0.64, 0.64,
+    0.478, 0.513, 0.402, 0.644, 0.565, 0.856, 0.564, 0.565, 0.527, 0.636, 0.337, 0.636, 0.838,
+    0.657, 0.65, 0.815, 0.588, 0.553, 0.599, 0.537, 0.7, 0.675, 0.602, 0.722, 0.838, 0.227, 1,
+    0.5, 0.401, 0.318, 0.405, 0.247, 0.365, 0.347, 0.5, 0.838, 0.838, 0.838, 0.838, 0.838, 1,
+    0.401, 0.401
+)
+SANS_WIDTHS = (
+    0.318, 0.401, 0.46, 0.838, 0.636, 0.95, 0.78, 0.275, 0.39, 0.39, 0.5, 0.838, 0.318, 0.361,
+    0.318, 0.337, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.337,
+    0.337, 0.838, 0.838, 0.838, 0.531, 1, 0.684, 0.686, 0.698, 0.77, 0.632, 0.575, 0.775, 0.752,
+    0.295, 0.295, 0.656, 0.557, 0.863, 0.748, 0.787, 0.603, 0.787, 0.695, 0.635, 0.611, 0.732,
+    0.684, 0.989, 0.685, 0.611, 0.685, 0.39, 0.337, 0.39, 0.838, 0.5, 0.5, 0.613, 0.635, 0.55,
+    0.635, 0.615, 0.352, 0.635, 0.634, 0.278, 0.278, 0.579, 0.278, 0.974, 0.634, 0.612, 0.635,
+    0.635, 0.411, 0.521, 0.392, 0.634, 0.592, 0.818, 0.592, 0.592, 0.525, 0.636, 0.337, 0.636,
+    0.838, 0.602, 0.636, 0.837, 0.635, 0.602, 0.634, 0.541, 0.66, 0.659, 0.612, 0.684, 0.838,
+    0.227, 1, 0.5, 0.401, 0.318, 0.398, 0.295, 0.426, 0.259, 0.5, 0.838, 0.838, 0.838, 0.838,
+    0.838, 1, 0.401, 0.401
+)
+SANS_BOLD_WIDTHS = (
+    0.348, 0.456, 0.521, 0.838, 0.696, 1.002, 0.872, 0.306, 0.457, 0.457, 0.523, 0.838, 0.38,
+    0.415, 0.38, 0.365, 0.696, 0.696, 0.696, 0.696, 0.696, 0.696, 0.696, 0.696, 0.696, 0.696,
+    0.4, 0.4, 0.838, 0.838, 0.838, 0.58, 1, 0.774, 0.762, 0.734, 0.83, 0.683, 0.683, 0.821,
+    0.837, 0.372, 0.372, 0.775, 0.637, 0.995, 0.837, 0.85, 0.733, 0.85, 0.77, 0.72, 0.682,
+    0.812, 0.774, 1.103, 0.771, 0.724, 0.725, 0.457, 0.365, 0.457, 0.838, 0.5, 0.5, 0.675,
+    0.716, 0.593, 0.716, 0.678, 0.435, 0.716, 0.712, 0.343, 0.343, 0.665, 0.343, 1.042, 0.712,
+    0.687, 0.716, 0.716, 0.493, 0.595, 0.478, 0.712, 0.652, 0.924, 0.645, 0.652, 0.582, 0.712,
+    0.365, 0.712, 0.838, 0.791, 0.736, 0.869, 0.716, 0.638, 0.712, 0.557, 0.782, 0.687, 0.687,
+    0.774, 0.838, 0.264, 1, 0.5, 0.438, 0.38, 0.456, 0.388, 0.487, 0.315, 0.5, 0.838, 0.838,
+    0.838, 0.838, 0.838, 1, 0.438, 0.438
+)
+
+
+_METRICS = {LABEL: dict(zip("".join(WIDTH_CHARS), SERIF_ITALIC, strict=True)),
+            SANS: dict(zip("".join(WIDTH_CHARS), SANS_WIDTHS, strict=True)),
+            SANS_BOLD: dict(zip("".join(WIDTH_CHARS), SANS_BOLD_WIDTHS, strict=True))}

@@ -1,0 +1,357 @@
+"""The SVG drawings and the sweep plots: well-formed, deterministic, complete, legible."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from itertools import combinations
+
+import numpy as np
+import pytest
+
+from planmethod.errors import PlanmethodError
+from planmethod.plans import draw_plans
+from planmethod.render.labels import label_runs, plain
+from planmethod.render.plots import save_sweep_plot
+from planmethod.render.svg import (
+    lever_drawing,
+    plan_drawing,
+    plan_files,
+    plan_svg,
+    position_drawing,
+    position_svg,
+)
+from planmethod.spec import exercise_from_dict, load_exercise
+
+SEED = "exercises/compressor_slider_crank.toml"
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def four_bar(angle: float = 60.0):
+    """A crank-rocker four-bar with a coupler point E off the coupler line."""
+    return exercise_from_dict({
+        "title": "Four-bar with coupler point",
+        "drive": {"link": "crank", "pivot": "A", "angle": angle, "omega": 10, "epsilon": 5},
+        "links": {"frame": {"A": [0, 0], "D": [0.12, 0]},
+                  "crank": {"A": [0, 0], "B": [0.04, 0]},
+                  "coupler": {"B": [0, 0], "C": [0.10, 0], "E": [0.05, 0.04]},
+                  "rocker": {"D": [0, 0], "C": [0.08, 0]}},
+        "sketch": {"C": [0.12, 0.08]},
+        "plan": {"crank_mm": 30, "velocity_mm": 30, "acceleration_mm": 30},
+        "ask": {"velocity": ["C", "E"], "acceleration": ["C", "E"], "curvature": ["E"]},
+    })
+
+
+def slotted_lever(angle: float = 60.0):
+    """A crank and slotted lever: the block B slides on the lever (Coriolis)."""
+    return exercise_from_dict({
+        "title": "Crank and slotted lever",
+        "drive": {"link": "crank", "pivot": "O1", "angle": angle, "omega": 10, "epsilon": 0},
+        "links": {"frame": {"O1": [0, 0.1], "O2": [0, 0]},
+                  "crank": {"O1": [0, 0], "B": [0.05, 0]},
+                  "block": {"B": [0, 0]},
+                  "lever": {"O2": [0, 0], "C": [0.25, 0]}},
+        "slide": [{"link": "block", "along": "lever", "through": "O2", "direction": 0,
+                   "point": "B"}],
+        "plan": {"crank_mm": 30, "velocity_mm": 40, "acceleration_mm": 40},
+    })
+
+
+def _seed(angle=None, precision=None):
+    exercise = load_exercise(SEED)
+    settings = (dataclasses.replace(exercise.plan, precision_mm=precision)
+                if precision is not None else None)
+    return draw_plans(exercise, angle, settings=settings)
+
+
+CASES = {
+    "seed 45°": lambda: _seed(),
+    "seed dead centre": lambda: _seed(0.0),
+    "seed 0.5 mm": lambda: _seed(45.0, 0.5),
+    "four-bar": lambda: draw_plans(four_bar()),
+    "slotted lever": lambda: draw_plans(slotted_lever()),
+}
+
+
+@pytest.fixture(scope="module", params=sorted(CASES))
+def case(request):
+    return request.param
+
+
+@pytest.fixture(scope="module")
+def plans(case):
+    return CASES[case]()
+
+
+def _drawings(plans):
+    return {"position": position_drawing(plans.position, plans=plans),
+            "velocity": plan_drawing(plans.velocity),
+            "acceleration": plan_drawing(plans.acceleration),
+            "lever": lever_drawing(plans)}
+
+
+def _label_points(svg_text: str) -> set[str]:
+    root = ET.fromstring(svg_text.encode("utf-8"))
+    names = set()
+    for text in root.iter(SVG + "text"):
+        if text.get("class") in ("label", "faint"):
+            names.update(text.get("data-points", "").split())
+    return names
+
+
+def test_every_drawing_is_well_formed_svg(plans):
+    for name, text in plan_files(plans).items():
+        root = ET.fromstring(text.encode("utf-8"))
+        assert root.tag == SVG + "svg", name
+        width, height = float(root.get("width")), float(root.get("height"))
+        assert width > 100 and height > 100, name
+        assert len(root.get("viewBox").split()) == 4
+
+
+def test_output_is_byte_identical_for_the_same_input(case, plans):
+    again = CASES[case]()              # a fresh solve: nothing shared with the first
+    assert again is not plans
+    assert plan_files(plans) == plan_files(again)
+
+
+def test_every_plan_point_is_labelled(plans):
+    for plan in (plans.velocity, plans.acceleration):
+        assert _label_points(plan_svg(plan)) == set(plan.points_mm)
+    names = set(plans.position.points_mm)
+    assert _label_points(position_svg(plans.position)) >= names
+    lever = _label_points(lever_drawing(plans).svg)
+    assert lever >= names | set(plans.velocity.points_mm)
+
+
+def test_no_two_label_boxes_overlap(plans):
+    for name, drawing in _drawings(plans).items():
+        for first, second in combinations(drawing.labels, 2):
+            ax0, ay0, ax1, ay1 = first.box
+            bx0, by0, bx1, by1 = second.box
+            apart = ax1 <= bx0 or bx1 <= ax0 or ay1 <= by0 or by1 <= ay0
+            assert apart, (name, first.text, second.text)
+
+
+def test_labels_keep_clear_of_drawn_lines(plans, monkeypatch):
+    """No drawn line runs through the text of a label (its box less the padding)."""
+    from shapely import unary_union
+    from shapely.geometry import box
+
+    import planmethod.render.svg as svg_module
+
+    seen = []
+    original = svg_module.place_labels
+
+    def spy(requests, lines, areas):
+        placed = original(requests, lines, areas)
+        seen.append((placed, unary_union(lines)))
+        return placed
+
+    monkeypatch.setattr(svg_module, "place_labels", spy)
+    _drawings(plans)
+    assert len(seen) == 4
+    for placed, lines in seen:
+        for label in placed:
+            x0, y0, x1, y1 = label.box
+            assert box(x0 + 2, y0 + 2, x1 - 2, y1 - 2).intersection(lines).length < 0.5, \
+                label.text
+
+
+def test_every_laid_off_vector_is_an_arrow(plans):
+    for plan in (plans.velocity, plans.acceleration):
+        drawing = plan_drawing(plan)
+        root = ET.fromstring(drawing.svg.encode("utf-8"))
+        arrows = {g.get("data-step") for g in root.iter(SVG + "g")
+                  if "arrow" in (g.get("class") or "")}
+        for step in plan.steps:
+            if step.action == "lay_off" and step.length_mm > 0.05:
+                assert str(step.number) in arrows, (plan.kind, step.text)
+                assert step.number in drawing.arrow_steps
+        # every arrow has its head: a filled polygon ending at the plan point
+        for group in root.iter(SVG + "g"):
+            if "arrow" in (group.get("class") or ""):
+                assert group.find(SVG + "polygon") is not None
+
+
+def test_results_are_bold_and_heads_sit_on_the_images():
+    plans = _seed()
+    plan = plans.velocity
+    root = ET.fromstring(plan_svg(plan).encode("utf-8"))
+    layer = next(g for g in root.iter(SVG + "g") if g.get("class") == "results")
+    tips, zoom = [], None
+    b = plan.points_mm["b"]
+    for group in layer:
+        line = group.find(SVG + "line")
+        assert float(line.get("stroke-width")) > 2                          # bold
+        assert (float(line.get("x1")), float(line.get("y1"))) == (0.0, 0.0)  # from p
+        first = group.find(SVG + "polygon").get("points").split()[0]
+        tips.append(tuple(float(v) for v in first.split(",")))
+        if group.get("data-step") == "3":        # step 3 lays off v_B from p
+            zoom = tips[-1][0] / b[0]
+    assert len(tips) == 3                                                    # pb, pc, pd
+    assert zoom > 0
+    expected = sorted((zoom * plan.points_mm[k][0], -zoom * plan.points_mm[k][1])
+                      for k in ("b", "c", "d"))
+    assert np.allclose(sorted(tips), expected, atol=0.02)
+
+
+def test_coincident_points_share_one_merged_label():
+    plans = _seed(0.0)                 # dead centre: c is at the pole
+    labels = plan_drawing(plans.velocity).labels
+    at_pole = next(label for label in labels if "p" in label.points)
+    assert at_pole.points[0] == "p"
+    assert {"a", "c@frame", "c"} <= set(at_pole.points)
+    assert at_pole.text.startswith("p ≡ a ≡")
+
+
+def test_scales_are_printed_with_units():
+    plans = _seed()
+    assert "μv = 0.2 (m/s)/mm" in plan_svg(plans.velocity)
+    assert "μa = 20 (m/s²)/mm" in plan_svg(plans.acceleration)
+    assert "μl = 0.002 m/mm" in position_svg(plans.position)
+    assert "drafting precision 0.5 mm" in plan_svg(_seed(45.0, 0.5).velocity)
+
+
+def test_coriolis_and_relative_components_have_their_own_style():
+    plans = draw_plans(slotted_lever())
+    root = ET.fromstring(plan_svg(plans.acceleration).encode("utf-8"))
+    classes = {g.get("class") for g in root.iter(SVG + "g")}
+    assert {"arrow coriolis", "arrow normal", "arrow tangential", "arrow result"} <= classes
+    colours = {}
+    for group in root.iter(SVG + "g"):
+        if (group.get("class") or "").startswith("arrow "):
+            colours.setdefault(group.get("class"), set()).add(
+                group.find(SVG + "line").get("stroke"))
+    assert len({frozenset(c) for c in colours.values()}) == len(colours)
+    legend = plan_svg(plans.acceleration)
+    assert "Coriolis component aᵏ" in legend and "relative (sliding) component aʳ" in legend
+
+
+def test_flagged_intersection_is_marked():
+    plans = _seed()
+    plan = plans.velocity
+    steps = tuple(dataclasses.replace(step, flagged=True, angle_deg=0.7)
+                  if step.action == "intersect" else step for step in plan.steps)
+    flagged = dataclasses.replace(plan, steps=steps,
+                                  flags=("velocity plan, group BC: the lines meet at 0.7°",))
+    text = plan_svg(flagged)
+    root = ET.fromstring(text.encode("utf-8"))
+    rings = [c for c in root.iter(SVG + "circle") if c.get("class") == "flagged"]
+    assert len(rings) == 1
+    assert "0.7°" in text and "the lines meet at 0.7°" in text
+    assert "flagged" not in plan_svg(plan)
+
+
+def test_position_plan_symbols():
+    plans = _seed()
+    root = ET.fromstring(position_svg(plans.position, plans=plans).encode("utf-8"))
+    classes = [element.get("class") or "" for element in root.iter()]
+    assert classes.count("support") == 1               # one fixed pivot, A
+    assert any(c.startswith("slider") for c in classes)
+    assert classes.count("pair") == 3                  # A, B, C
+    assert "omega" in " ".join(classes)
+    # the curvature of D's path: tangent, normal, centre and ρ
+    assert {"tangent", "normal", "centre", "arrow rho"} <= set(classes)
+    text = position_svg(plans.position)
+    assert "ρ" in text and "0.07377 m" in text
+
+
+def test_ternary_link_is_a_polygon_and_lever_lies_on_the_mechanism():
+    plans = draw_plans(four_bar())
+    root = ET.fromstring(position_svg(plans.position).encode("utf-8"))
+    polygons = [p for p in root.iter(SVG + "polygon") if p.get("class") == "link coupler"]
+    assert len(polygons) == 1 and len(polygons[0].get("points").split()) == 3
+    lever = lever_drawing(plans)
+    pole = next(label for label in lever.labels if "p" in label.points)
+    pivot = next(label for label in lever.labels if label.points == ("A",))
+    assert pole.anchor == pivot.anchor                 # p at the drive's pivot A
+
+
+def test_textbook_labels():
+    assert label_runs("c4") == (("c", "main"), ("4", "upright"))
+    assert plain(label_runs("b@lever")) == "b lever"
+    assert label_runs("k_block/lever")[1] == ("block/lever", "upright")
+    root = ET.fromstring(plan_svg(draw_plans(slotted_lever()).velocity).encode("utf-8"))
+    spans = [span.text for span in root.iter(SVG + "tspan")]
+    assert "lever" in spans and "block" in spans
+
+
+def test_jupyter_representations():
+    plans = _seed()
+    assert plans.velocity._repr_svg_() == plan_svg(plans.velocity)
+    assert plans.position._repr_svg_() == position_svg(plans.position)
+
+
+def test_plan_files_without_acceleration():
+    plans = draw_plans(load_exercise(SEED), acceleration=False)
+    assert sorted(plan_files(plans)) == ["lever.svg", "position.svg", "velocity.svg"]
+
+
+def test_import_planmethod_imports_no_drawing_library():
+    code = ("import sys, planmethod, planmethod.render, planmethod.render.svg; "
+            "print(sorted(m for m in ('svgwrite', 'matplotlib', 'shapely') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == "[]"
+
+
+# -- sweep plots -----------------------------------------------------------------------------------
+def _table():
+    angle = np.arange(0.0, 360.0, 5.0)
+    radians = np.radians(angle)
+    return {"angle": angle, "x_C": np.cos(radians), "v_C": np.abs(np.sin(radians)),
+            "a_C": np.abs(np.cos(radians)), "omega_BC": np.cos(radians),
+            "epsilon_BC": np.sin(radians), "s_slider/frame": 1 + np.cos(radians),
+            "ds_slider/frame": -np.sin(radians), "dds_slider/frame": -np.cos(radians),
+            "rho_D": np.where(np.abs(np.sin(radians)) > 1e-9, 1 / np.abs(np.sin(radians) + 2),
+                              np.inf),
+            "M_balancing": 3 * np.sin(2 * radians)}
+
+
+@pytest.mark.parametrize("suffix", ["png", "svg", "pdf"])
+def test_sweep_plot_is_written_and_reproducible(tmp_path, suffix):
+    first, second = tmp_path / f"a.{suffix}", tmp_path / f"b.{suffix}"
+    save_sweep_plot(_table(), first, title="Test")
+    save_sweep_plot(_table(), second, title="Test")
+    assert first.stat().st_size > 1000
+    assert first.read_bytes() == second.read_bytes()
+    assert sorted(p.name for p in tmp_path.iterdir()) == [first.name, second.name]
+
+
+def test_sweep_plot_panels():
+    from planmethod.render.plots import panels
+
+    titles = [title for title, _, _ in panels(_table())]
+    assert titles[0].startswith("speed") and titles[-1] == "other columns"
+    grouped = {title: columns for title, _, columns in panels(_table())}
+    assert grouped["sliding acceleration d²s/dt²"] == ["dds_slider/frame"]
+    assert grouped["other columns"] == ["M_balancing"]
+    assert all("x_C" not in columns for columns in grouped.values())
+
+
+@pytest.mark.parametrize("table, name", [
+    (_table(), "curves.jpg"),
+    ({"v_C": np.ones(3)}, "curves.png"),
+    ({"angle": np.arange(3.0), "v_C": np.ones(4)}, "curves.png"),
+    ({"angle": np.arange(3.0)}, "curves.png"),
+])
+def test_sweep_plot_bad_input_leaves_no_file(tmp_path, table, name):
+    with pytest.raises(PlanmethodError):
+        save_sweep_plot(table, tmp_path / name, title="Test")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_sweep_plot_failure_while_writing_leaves_no_file(tmp_path, monkeypatch):
+    from matplotlib.figure import Figure
+
+    def broken(self, target, **kwargs):
+        with open(target, "wb") as handle:
+            handle.write(b"half a picture")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(Figure, "savefig", broken)
+    with pytest.raises(PlanmethodError, match="cannot write"):
+        save_sweep_plot(_table(), tmp_path / "curves.png", title="Test")
+    assert list(tmp_path.iterdir()) == []
