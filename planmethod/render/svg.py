@@ -43,6 +43,7 @@ True
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -104,6 +105,10 @@ MARGIN = 14.0
 Point = tuple[float, float]
 
 _SYMBOLS = {"velocity": "μv", "acceleration": "μa", "force": "μF"}
+
+#: one element a line (diff-friendly), never inside a <text>: its tspans stay together
+_ONE_PER_LINE = re.compile(r"><(/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
+                           r"title\b|defs\b|/svg\b)")
 
 
 @dataclass(frozen=True)
@@ -365,7 +370,8 @@ class _Figure:
                 for item in self.layers[name]:
                     group.add(_element(drawing, item))
                 drawing.add(group)
-        text = '<?xml version="1.0" encoding="utf-8"?>\n' + drawing.tostring() + "\n"
+        body = _ONE_PER_LINE.sub(r">\n<\1", drawing.tostring())
+        text = '<?xml version="1.0" encoding="utf-8"?>\n' + body + "\n"
         return Drawing(text, float(num(width)), float(num(height)), self.labels,
                        tuple(self.arrow_steps))
 
