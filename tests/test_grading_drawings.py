@@ -174,7 +174,7 @@ JUNK = [
 ]
 
 
-@pytest.mark.parametrize(("data", "fragment"), JUNK)
+@pytest.mark.parametrize(("data", "fragment"), JUNK, ids=[f"junk{i}" for i in range(len(JUNK))])
 def test_junk_bytes_never_crash(tmp_path, data, fragment):
     path = tmp_path / "plan.svg"
     path.write_bytes(data)

@@ -342,7 +342,8 @@ def _read_svg(root, source: str | None) -> Drawing:
         matrix = matrix @ _transform(element.get("transform"), budget)
 
         def place(x: float, y: float, m=matrix) -> tuple[float, float]:
-            u = m @ np.array([x, y, 1.0])
+            with np.errstate(invalid="ignore", over="ignore"):
+                u = m @ np.array([x, y, 1.0])
             if not (math.isfinite(u[0]) and math.isfinite(u[1])):
                 raise SubmissionError("a coordinate is not a finite number")
             return (float(u[0]), float(u[1]))
