@@ -39,6 +39,9 @@ def atomic_path(target: str | Path, suffix: str | None = None) -> Iterator[Path]
                                     dir=folder)
     os.close(handle)
     temporary = Path(name)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(temporary, 0o666 & ~umask)  # the mode an ordinary new file gets, not mkstemp's 0600
     try:
         yield temporary
         os.replace(temporary, target)
