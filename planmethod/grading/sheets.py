@@ -88,7 +88,7 @@ def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
     text = task_text(key)
     wrapped: list[str] = []
     for line in text.splitlines():
-        wrapped += textwrap.wrap(line, 100, subsequent_indent="    ") or [""]
+        wrapped += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
     line_height = 15.0
     total = height + 20 + line_height * len(wrapped)
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
