@@ -872,6 +872,9 @@ def _curvature_content(figure: _Figure, position: PositionPlan, extent_px: float
         normal = _page_direction(float(data["normal_deg"]))
         rho_px = float(data["rho_mm"]) * figure.zoom
         color = "#8a5a00"
+        if data.get("path_mm"):
+            figure.polyline([figure.px(xy) for xy in data["path_mm"]], color=color, width=0.8,
+                            dash="2,3", closed=True, obstacle=False, css="path")
         half = 60.0
         ends = (_add(at, tangent, -half), _add(at, tangent, half))
         figure.line(*ends, color=color, width=1.0, dash="10,3,2,3", layer="marks", css="tangent")
@@ -912,6 +915,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None)
     for data in position.curvature.values():
         if float(data["rho_mm"]) <= 1.6 * extent_mm:
             centres.append(tuple(data["center_mm"]))
+        centres += [tuple(xy) for xy in data.get("path_mm") or ()]
     figure = _Figure(_position_zoom(position, centres))
     _mechanism_content(figure, position)
     _omega_arrow(figure, position)
