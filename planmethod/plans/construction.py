@@ -362,6 +362,8 @@ class _Emulator:
         self.vimages: dict[str, LinkImage] = {}
         self.aimages: dict[str, LinkImage] = {}
         self.rel_velocity: dict[tuple[int, int], float] = {}
+        #: prismatic pair key → plan labels of the group side that draws its relative motion
+        self.sliding_sides: dict[str, dict[str, object]] = {}
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
         self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb)
         self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
@@ -532,6 +534,10 @@ class _Emulator:
                                     quantity=f"v_{construction.point}{side.base}",
                                     sign=sign, factor=mu_v)
                 rel.append(value / mu_v)
+                # the side draws X's link relative to the carrier; the pair's reading wants
+                # `link` relative to `along`, the reverse when the carrier is the pair's `link`
+                self.sliding_sides[side.slide.key] = {
+                    "v": (base_label, x_label), "reverse": side.link == side.slide.link}
         self.rel_velocity[(group.index, 0)] = rel[0]
         self.rel_velocity[(group.index, 1)] = rel[1]
         pending = dict(construction.tied)
@@ -602,6 +608,7 @@ class _Emulator:
                           f"aᵏ = 0: {carrier} does not turn; {k_label} coincides with "
                           f"{base_label}"))
                 normals[index] = k_label
+                self.sliding_sides[side.slide.key]["a"] = (base_label, k_label, x_label)
                 line_numbers.append(self.a.line(
                     k_label, direction, component="relative", group=group.index,
                     vector=f"aʳ_{point}",
@@ -744,6 +751,10 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     travel = float((point - through) @ d)
     emulator.readings[f"s_{key}"] = (math.copysign(1.0, travel)
                                      * emulator.length_mm(through, point) * scales.mu_l)
+    drawn = emulator.sliding_sides.get(key)
+    if drawn is not None:  # a side of a group already draws this pair's relative motion
+        _read_drawn_sliding(emulator, key, d, drawn, acceleration)
+        return
     on_link = f"{slide.point}@{slide.link}"
     on_guide = f"{slide.point}@{slide.along}"
     lv = emulator.image_at(v, emulator.vimages, slide.link, point, image_label(on_link, "p"))
@@ -769,6 +780,30 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     sign = 1.0 if float(segment @ d) >= 0 else -1.0
     emulator.readings[f"dds_{key}"] = a.read(k_label, la, quantity=f"dds_{key}",
                                              factor=scales.mu_a, sign=sign)
+
+
+def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dict,
+                        acceleration: bool) -> None:
+    """Read a prismatic pair's sliding velocity, Coriolis and relative acceleration off the
+    segments its group already drew (reversed when the group drew `along` relative to `link`:
+    between two links that do not turn relative to each other, v_rel, aᵏ and aʳ change sign)."""
+    v, a, scales = emulator.v, emulator.a, emulator.scales
+
+    def read(sheet, start, end, quantity, factor):
+        if drawn["reverse"]:
+            start, end = end, start
+        segment = sheet.points[end] - sheet.points[start]
+        sign = 1.0 if float(segment @ d) >= 0 else -1.0
+        return sheet.read(start, end, quantity=quantity, factor=factor, sign=sign)
+
+    base, x = drawn["v"]
+    emulator.readings[f"ds_{key}"] = read(v, base, x, f"ds_{key}", scales.mu_v)
+    if not acceleration or "a" not in drawn:
+        return
+    base, k_label, x = drawn["a"]
+    emulator.readings[f"coriolis_{key}"] = a.read(base, k_label, quantity=f"coriolis_{key}",
+                                                  factor=scales.mu_a)
+    emulator.readings[f"dds_{key}"] = read(a, k_label, x, f"dds_{key}", scales.mu_a)
 
 
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
@@ -808,16 +843,20 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     emulator = _Emulator(exercise, settings, angle, motion, scales, perturb)
     position_plan = _position_plan(exercise, motion, scales, angle)
     emulator.drive()
-    higher = [g for g in motion.structure.groups if not g.is_dyad and g.index in motion.groups]
-    if higher:
-        raise PlanmethodError("plans of class III groups are not drawn yet; their exact "
-                              "kinematics is available (planmethod solve --json)",
-                              link=higher[0].name)
+    groups = motion.structure.groups
+    if any(not groups[index].is_dyad for index in motion.groups):
+        from .higher import acceleration_triad, velocity_triad  # Assur's special point
     for index in sorted(motion.groups):
-        emulator.velocity_group(motion.groups[index].construction)
+        if groups[index].is_dyad:
+            emulator.velocity_group(motion.groups[index].construction)
+        else:
+            velocity_triad(emulator, groups[index])
     if acceleration:
         for index in sorted(motion.groups):
-            emulator.acceleration_group(motion.groups[index].construction)
+            if groups[index].is_dyad:
+                emulator.acceleration_group(motion.groups[index].construction)
+            else:
+                acceleration_triad(emulator, groups[index])
     ask = exercise.ask
     for point in _asked_points(exercise, motion):
         link, position = motion._locate(point)
