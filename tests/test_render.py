@@ -273,9 +273,13 @@ def test_textbook_labels():
     assert label_runs("c4") == (("c", "main"), ("4", "upright"))
     assert plain(label_runs("b@lever")) == "b lever"
     assert label_runs("k_block/lever")[1] == ("block/lever", "upright")
-    root = ET.fromstring(plan_svg(draw_plans(slotted_lever()).velocity).encode("utf-8"))
+    plans = draw_plans(slotted_lever())
+    root = ET.fromstring(plan_svg(plans.velocity).encode("utf-8"))
     spans = [span.text for span in root.iter(SVG + "tspan")]
-    assert "lever" in spans and "block" in spans
+    assert "lever" in spans  # b@lever: b with the link's name as a subscript
+    root = ET.fromstring(plan_svg(plans.acceleration).encode("utf-8"))
+    spans = [span.text for span in root.iter(SVG + "tspan")]
+    assert "B, lever" in spans  # k_B@lever: k with subscript "B, lever"
 
 
 def test_jupyter_representations():
