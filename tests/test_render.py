@@ -279,7 +279,7 @@ def test_textbook_labels():
     assert "lever" in spans  # b@lever: b with the link's name as a subscript
     root = ET.fromstring(plan_svg(plans.acceleration).encode("utf-8"))
     spans = [span.text for span in root.iter(SVG + "tspan")]
-    assert "B, lever" in spans  # k_B@lever: k with subscript "B, lever"
+    assert ", lever" in spans  # k_B@lever: k with the subscript "B, lever"
 
 
 def test_jupyter_representations():
