@@ -150,8 +150,13 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
     motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, structure=structure)
     drawn = None
     if plans:
-        drawn = draw_plans(exercise, angle, motion=motion,
-                           acceleration=scene.stage == "acceleration")
+        from .plans.higher import PlansUnavailableError
+
+        try:
+            drawn = draw_plans(exercise, angle, motion=motion,
+                               acceleration=scene.stage == "acceleration")
+        except PlansUnavailableError:  # a higher group that is not drawn: exact values only
+            drawn = None
     checks = []
     for quantity in asked_quantities(exercise, motion):
         kind = quantity.partition("_")[0]

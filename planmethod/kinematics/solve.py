@@ -56,7 +56,7 @@ class GroupMotion:
     line to side 2's.
     """
 
-    construction: Construction
+    construction: Construction | None  # None for a class III group (kinematics/higher.py)
     velocity_unknowns: tuple[np.ndarray, np.ndarray] | None = None
     acceleration_unknowns: tuple[np.ndarray, np.ndarray] | None = None
     line_sine: np.ndarray | None = None

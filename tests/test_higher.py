@@ -1,0 +1,254 @@
+"""Class III groups: seed 000's conveyor (REFERENCE_CASES S0), Newton and continuation, branch
+choice, error paths, Assur's special point on the plans and in the force analysis."""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planmethod.errors import AssemblyError, BranchJumpError, ConvergenceError, ToggleError
+from planmethod.forces import solve_forces
+from planmethod.kinematics import higher, solve
+from planmethod.kinematics.solve import Branch, choose_branches
+from planmethod.plans import draw_plans
+from planmethod.plans.higher import SPECIAL
+from planmethod.report import analyse, report_dict
+from planmethod.spec import exercise_from_dict
+from planmethod.structure import analyse_structure
+
+CONVEYOR = Path("exercises/conveyor_sixbar.toml")
+S0 = {"A": (-0.042426, 0.042426), "B": (-0.346622, -0.261489), "C": (-0.346839, -0.186490),
+      "E": (-0.906837, -0.188109), "D": (0.793156, -0.183194)}
+
+
+def conveyor(**changes) -> dict:
+    data = tomllib.loads(CONVEYOR.read_text())
+    data = copy.deepcopy(data)
+    for key, value in changes.items():
+        if value is None:
+            data.pop(key, None)
+        else:
+            data[key] = value
+    return data
+
+
+@pytest.fixture(scope="module")
+def exercise():
+    return exercise_from_dict(conveyor(), file=str(CONVEYOR))
+
+
+def test_structure_is_a_triad(exercise):
+    structure = analyse_structure(exercise.mechanism)
+    assert (structure.n, structure.p5, structure.mobility) == (5, 7, 1)
+    [group] = structure.groups
+    assert (group.kind, group.group_class, group.links[0]) == ("triad", 3, "tray")
+
+
+def test_positions_at_135_match_s0(exercise):
+    motion = solve(exercise.mechanism, 135.0, stage="position")
+    for point, expected in S0.items():
+        assert np.allclose(motion.position(point), expected, atol=1e-6), point
+    assert np.degrees(motion.theta("tray")) == pytest.approx(0.16565, abs=1e-5)
+    assert np.degrees(motion.theta("rocker_EF")) == pytest.approx(-18.29342, abs=1e-5)
+    # the paper's branch: E and D below their pivots F and G
+    assert motion.position("E")[1] < -0.05 and motion.position("D")[1] < -0.05
+    branch = motion.branches[0]
+    assert branch.reason == "sketch" and branch.count >= 2
+    assert isinstance(branch, higher.HigherBranch)
+
+
+def test_pairs_close_to_machine_precision_over_a_turn(exercise):
+    motion = solve(exercise.mechanism, np.arange(0.0, 360.0, 1.0))
+    mechanism = exercise.mechanism
+    for point in "BED":
+        owners = mechanism.links_with_point(point)
+        places = [motion.links[o].place(mechanism.local(o, point)) for o in owners]
+        assert np.abs(places[0] - places[1]).max() < 1e-13
+    assert np.all(motion.groups[0].line_sine > 1e-3)   # well conditioned all the way round
+
+
+def test_velocities_and_accelerations_against_finite_differences(exercise):
+    mechanism = exercise.mechanism
+    omega = mechanism.drive.omega
+    angles = np.array([0.0, 77.0, 135.0, 250.0, 333.0])
+    h = 1e-3  # deg
+    exact = solve(mechanism, angles)
+    ahead, behind = solve(mechanism, angles + h), solve(mechanism, angles - h)
+    step = np.radians(h) / omega  # s
+    for point in "BCED":
+        fd_v = (ahead.position(point) - behind.position(point)) / (2 * step)
+        assert np.allclose(fd_v, exact.velocity(point), atol=1e-9, rtol=0), point
+        fd_a = (ahead.velocity(point) - behind.velocity(point)) / (2 * step)
+        assert np.allclose(fd_a, exact.acceleration(point), atol=1e-7, rtol=0), point
+    for link in ("tray", "rod", "rocker_EF", "rocker_DG"):
+        fd_omega = np.angle(np.exp(1j * (ahead.theta(link) - behind.theta(link)))) / (2 * step)
+        assert np.allclose(fd_omega, exact.omega(link), atol=1e-9, rtol=0)
+        fd_epsilon = (ahead.omega(link) - behind.omega(link)) / (2 * step)
+        assert np.allclose(fd_epsilon, exact.epsilon(link), atol=1e-7, rtol=0)
+
+
+def test_continuation_is_periodic_and_order_free(exercise):
+    mechanism = exercise.mechanism
+    turn = solve(mechanism, np.arange(0.0, 361.0, 1.0), stage="position")
+    for point in "BCED":
+        path = turn.position(point)
+        assert np.abs(np.diff(path, axis=0)).max() < 0.01       # no jump between degrees
+        assert np.allclose(path[0], path[-1], atol=1e-12)       # back to itself after a turn
+    scattered = solve(mechanism, [300.0, 10.0, 135.0, -200.0], stage="position")
+    for angle, index in ((300.0, 0), (10.0, 1), (135.0, 2)):
+        single = solve(mechanism, angle, stage="position")
+        assert np.allclose(scattered.position("D")[index], single.position("D"), atol=1e-12)
+    assert np.allclose(scattered.position("D")[3], turn.position("D")[160], atol=1e-12)
+
+
+def test_default_branch_without_a_sketch_and_a_plain_branch():
+    exercise = exercise_from_dict(conveyor(sketch=None))
+    motion = solve(exercise.mechanism, 135.0, stage="position")
+    assert motion.branches[0].reason == "default" and motion.branches[0].sign == 1
+    sketched = exercise_from_dict(conveyor())
+    chosen = choose_branches(sketched.mechanism)[0]
+    plain = {0: Branch(chosen.sign, "given")}
+    again = solve(sketched.mechanism, 200.0, stage="position", branches=plain)
+    assert np.allclose(again.position("D"), solve(sketched.mechanism, 200.0,
+                                                  stage="position").position("D"), atol=1e-12)
+
+
+def test_a_group_that_cannot_be_assembled():
+    data = conveyor()
+    data["links"]["rocker_EF"]["E"] = [0.05, 0.0]   # far too short to reach the tray
+    with pytest.raises(AssemblyError, match="cannot be assembled") as caught:
+        solve(exercise_from_dict(data).mechanism, 135.0, stage="position")
+    assert caught.value.angle == 135.0 and "tray" in caught.value.link
+
+
+def test_newton_that_does_not_converge_says_where_and_how_far(exercise, monkeypatch):
+    branches = choose_branches(exercise.mechanism)
+    monkeypatch.setattr(higher, "RESIDUAL", -1.0)   # nothing ever counts as converged
+    with pytest.raises(ConvergenceError, match="Newton did not converge: residual") as caught:
+        solve(exercise.mechanism, 140.0, stage="position", branches=branches)
+    assert caught.value.angle is not None and caught.value.residual >= 0
+    assert "tray" in str(caught.value)
+
+
+def test_a_branch_jump_is_an_error_not_a_flip(exercise, monkeypatch):
+    branches = choose_branches(exercise.mechanism)
+    monkeypatch.setattr(higher._Tracker, "accept",
+                        lambda self, solver, q, converged, *rest: (converged & False,
+                                                                   np.ones(len(q))))
+    with pytest.raises(BranchJumpError, match="jump to another branch"):
+        solve(exercise.mechanism, 150.0, stage="position", branches=branches)
+
+
+def test_an_unreachable_angle_in_a_sweep_is_a_named_error():
+    """A crank too long for the rockers: the group exists at 135° but folds at a limit position
+    further on; the sweep stops there with a named error, never a wrong assembly."""
+    data = conveyor()
+    data["links"]["crank"]["A"] = [0.3, 0.0]
+    mechanism = exercise_from_dict(data).mechanism
+    solve(mechanism, 135.0, stage="position")
+    with pytest.raises(ToggleError, match="limit \\(toggle\\) position") as caught:
+        solve(mechanism, np.arange(135.0, 360.0, 5.0), stage="position")
+    assert caught.value.angle == pytest.approx(287.494, abs=0.01)
+    assert caught.value.link == "tray+rod+rocker_EF+rocker_DG"
+
+
+# -- plans by Assur's special point -------------------------------------------------------------
+@pytest.mark.parametrize("angle", [0.0, 60.0, 135.0, 225.0, 300.0])
+def test_triad_plans_equal_exact_vectors(exercise, angle):
+    plans = draw_plans(exercise, angle)
+    motion = solve(exercise.mechanism, angle)
+    for point in "ABCDEO":
+        assert np.allclose(plans.velocity.vector(point.lower()), motion.velocity(point),
+                           atol=1e-12), point
+        assert np.allclose(plans.acceleration.vector(point.lower()), motion.acceleration(point),
+                           atol=1e-11), point
+    for link in ("tray", "rod", "rocker_EF", "rocker_DG"):
+        assert plans.readings[f"omega_{link}"] == pytest.approx(float(motion.omega(link)),
+                                                                abs=1e-12)
+        assert plans.readings[f"epsilon_{link}"] == pytest.approx(float(motion.epsilon(link)),
+                                                                  abs=1e-11)
+    assert SPECIAL in plans.velocity.points_mm and SPECIAL in plans.acceleration.points_mm
+    intersections = [s for s in plans.velocity.steps if s.action == "intersect"]
+    assert [s.end for s in intersections] == [SPECIAL, intersections[1].end]
+
+
+def test_triad_plan_at_drafting_precision_is_close(exercise):
+    plans = draw_plans(exercise, 135.0, settings=exercise.plan.__class__(
+        crank_mm=6, velocity_mm=40, acceleration_mm=40, precision_mm=0.5))
+    motion = solve(exercise.mechanism, 135.0)
+    speed = float(np.hypot(*motion.velocity("D")))
+    assert np.hypot(*(plans.velocity.vector("d") - motion.velocity("D"))) < 0.05 * speed
+
+
+def test_special_point_lies_on_two_side_lines(exercise):
+    plans = draw_plans(exercise, 135.0)
+    text = next(s.text for s in plans.velocity.steps if s.end == SPECIAL)
+    numbers = text.split("S* = (")[1].split(")")[0].split(", ")
+    special = np.array([float(x) for x in numbers])
+    motion = solve(exercise.mechanism, 135.0, stage="position")
+    on_lines = 0
+    for p, q in (("A", "B"), ("F", "E"), ("G", "D")):
+        a, b = motion.position(p), motion.position(q)
+        u, w = b - a, special - a
+        distance = abs(u[0] * w[1] - u[1] * w[0]) / np.hypot(*u)
+        on_lines += distance < 1e-6
+    assert on_lines == 2
+
+
+# -- forces -------------------------------------------------------------------------------------
+def test_triad_forces_by_special_point_match_the_whole_system(exercise):
+    motion = solve(exercise.mechanism, np.arange(0.0, 360.0, 10.0))
+    solution = solve_forces(motion)
+    assert not solution.flags
+    assert np.all(solution.agreement <= 1e-9)
+    assert np.all(solution.power_residual < 1e-12)
+    scale = np.abs(solution.balancing_moment).max()
+    assert np.allclose(solution.lever.balancing_moment, solution.balancing_moment,
+                       atol=1e-9 * scale)
+    triad = next(g for g in solution.groups.groups if g.kind == "triad")
+    assert "special point" in " ".join(triad.steps)
+    assert len(solution.reactions) == 7
+    # the polygon of the group closes
+    total = sum(edge.vector for edge in triad.polygon)
+    assert np.abs(total).max() < 1e-9 * max(np.abs(e.vector).max() for e in triad.polygon)
+
+
+def test_conveyor_report_from_the_cli_path():
+    analysis = analyse(exercise_from_dict(conveyor(), file=str(CONVEYOR)))
+    report = report_dict(analysis)
+    forces = report["forces"]
+    assert forces["whole_system"]["agrees"] and forces["whole_system"]["equations"] == 15
+    assert forces["zhukovsky_moment"] == pytest.approx(forces["balancing_moment"], rel=1e-9)
+    assert report["structure"]["groups"][0]["branch"]["reason"] == "sketch"
+    assert "special_point" in forces["groups"][0]
+
+
+def slider_triad() -> dict:
+    """The conveyor with the rocker DG replaced by a block sliding on a fixed guide: a triad
+    with a prismatic pair (solved by the group's linear system; no plans)."""
+    data = conveyor()
+    del data["links"]["rocker_DG"]
+    del data["mass"]["rocker_DG"]
+    data["links"]["block"] = {"D": [0.0, 0.0]}
+    data["links"]["frame"]["H"] = [0.79, -0.183]
+    data["slide"] = [{"link": "block", "along": "frame", "through": "H", "direction": 80.0}]
+    data["mass"]["block"] = {"m": 2.0, "J": 0.001}
+    return data
+
+
+def test_triad_with_a_prismatic_pair():
+    exercise = exercise_from_dict(slider_triad())
+    [group] = analyse_structure(exercise.mechanism).groups
+    assert group.kind == "triad"
+    motion = solve(exercise.mechanism, [100.0, 135.0, 170.0])
+    solution = solve_forces(motion)
+    assert np.all(solution.agreement <= 1e-9)
+    assert "linear system" in solution.groups.groups[0].steps[0]
+    assert "block/frame" in solution.reactions
+    analysis = analyse(exercise)
+    assert analysis.plans is None and analysis.forces is not None
+    assert analysis.checks and all(c.plan is None for c in analysis.checks)
