@@ -12,7 +12,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -24,7 +24,7 @@ from .progress import Progress
 from .scene import plan_scene
 from .structure import analyse_structure
 
-__all__ = ["CHUNK", "sweep_angles", "sweep_columns", "sweep_table"]
+__all__ = ["CHUNK", "sweep_angles", "sweep_chunks", "sweep_columns", "sweep_table"]
 
 #: angles solved at once; memory stays bounded whatever the length of the sweep
 CHUNK = 65536
@@ -55,15 +55,22 @@ def sweep_columns(exercise: Exercise) -> tuple[list[str], list[str], list[str], 
     return points, links, list(ask.sliding), list(ask.curvature), scene.stage
 
 
-def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
-                stop: float = 360.0, angles: Iterable[float] | None = None,
-                progress: bool | None = None,
-                extra: Callable | None = None) -> dict[str, np.ndarray]:
-    """Columns of a full-turn sweep: ``angle`` and, for the scene's points, links and pairs,
-    ``x_P y_P vx_P vy_P v_P ax_P ay_P a_P``, ``theta_L omega_L epsilon_L``,
-    ``s_K ds_K dds_K``, ``rho_P``. The branch is the one chosen at ``drive.angle``.
+def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
+                 stop: float = 360.0, angles: Iterable[float] | None = None,
+                 progress: bool | None = None,
+                 extra: Callable | None = None) -> Iterator[dict[str, np.ndarray]]:
+    """The sweep's columns (see :func:`sweep_table`) one chunk of at most :data:`CHUNK` angles
+    at a time: memory stays bounded whatever the number of angles, when each chunk is written
+    out or aggregated before the next (a CSV streamed to disk, running minima and maxima).
 
-    ``extra(motion) -> dict`` may add columns per chunk (the force sweep does).
+    Angles of links (``theta_L``) are unwrapped continuously across chunks.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    >>> [len(c["angle"]) for c in sweep_chunks(exercise, angles=range(0, 360, 3))]
+    [120]
     """
     mechanism = exercise.mechanism
     angles = sweep_angles(step, start, stop) if angles is None else np.asarray(
@@ -75,7 +82,7 @@ def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
     groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
     branches = choose_branches(mechanism, structure, groups)
     points, links, slides, curvature, _ = sweep_columns(exercise)
-    chunks: dict[str, list[np.ndarray]] = {"angle": []}
+    last_theta: dict[str, float] = {}
     with Progress(len(angles), "sweep", enabled=progress if len(angles) > CHUNK else False
                   ) as bar:
         for begin in range(0, len(angles), CHUNK):
@@ -94,7 +101,11 @@ def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
                     columns[f"ax_{point}"], columns[f"ay_{point}"] = a[:, 0], a[:, 1]
                     columns[f"a_{point}"] = np.hypot(a[:, 0], a[:, 1])
             for link in links:
-                columns[f"theta_{link}"] = np.degrees(np.unwrap(motion.theta(link)))
+                theta = np.degrees(np.unwrap(motion.theta(link)))
+                if link in last_theta:  # continue the previous chunk's unwrapping
+                    theta += 360.0 * np.round((last_theta[link] - theta[0]) / 360.0)
+                last_theta[link] = float(theta[-1])
+                columns[f"theta_{link}"] = theta
                 columns[f"omega_{link}"] = motion.omega(link)
                 if stage == "acceleration":
                     columns[f"epsilon_{link}"] = motion.epsilon(link)
@@ -108,7 +119,24 @@ def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
                 columns[f"rho_{point}"] = motion.curvature(point).rho
             if extra is not None:
                 columns |= extra(motion)
-            for name, values in columns.items():
-                chunks.setdefault(name, []).append(np.asarray(values))
+            yield {name: np.asarray(values) for name, values in columns.items()}
             bar.advance(len(part))
+
+
+def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
+                stop: float = 360.0, angles: Iterable[float] | None = None,
+                progress: bool | None = None,
+                extra: Callable | None = None) -> dict[str, np.ndarray]:
+    """Columns of a full-turn sweep: ``angle`` and, for the scene's points, links and pairs,
+    ``x_P y_P vx_P vy_P v_P ax_P ay_P a_P``, ``theta_L omega_L epsilon_L``,
+    ``s_K ds_K dds_K``, ``rho_P``. The branch is the one chosen at ``drive.angle``.
+
+    ``extra(motion) -> dict`` may add columns per chunk (the force sweep does). The whole table
+    is held in memory; :func:`sweep_chunks` yields it chunk by chunk.
+    """
+    chunks: dict[str, list[np.ndarray]] = {"angle": []}
+    for columns in sweep_chunks(exercise, step, start=start, stop=stop, angles=angles,
+                                progress=progress, extra=extra):
+        for name, values in columns.items():
+            chunks.setdefault(name, []).append(values)
     return {name: np.concatenate(parts) for name, parts in chunks.items()}

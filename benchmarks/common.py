@@ -1,0 +1,119 @@
+"""Shared pieces of the benchmarks: the benchmarked mechanisms, a timer, the machine, output.
+
+The two mechanisms of the speed benchmark are the four-bar of REFERENCE_CASES case A and seed
+001's slider-crank, modelled with the same joints as the peers model them (no extra points).
+
+Examples
+--------
+>>> mechanism = exercise("fourbar").mechanism
+>>> sorted(mechanism.links)
+['AB', 'BC', 'CD', 'frame']
+>>> full_turn(4).tolist()
+[0.0, 90.0, 180.0, 270.0]
+>>> best_time(lambda: None, min_time=0.0, min_repeats=2)["repeats"]
+2
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import statistics
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from planmethod.io import write_text_atomic
+from planmethod.model import Exercise
+from planmethod.spec import exercise_from_dict, load_exercise
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "benchmarks" / "results"
+FIGURES = ROOT / "figures"
+
+#: REFERENCE_CASES case A with the peers' joints only (A, B, C, D)
+FOURBAR = {
+    "title": "Four-bar, REFERENCE_CASES case A",
+    "drive": {"link": "AB", "pivot": "A", "angle": 60.0, "omega": 10.0, "epsilon": 0.0},
+    "links": {"frame": {"A": [0, 0], "D": [0.30, 0]}, "AB": {"A": [0, 0], "B": [0.08, 0]},
+              "BC": {"B": [0, 0], "C": [0.22, 0]}, "CD": {"C": [0, 0], "D": [0.18, 0]}},
+    "sketch": {"C": [0.236, 0.168]},
+}
+
+
+def exercise(name: str) -> Exercise:
+    """``fourbar`` (case A) or ``slider_crank`` (``exercises/compressor_slider_crank.toml``)."""
+    if name == "fourbar":
+        return exercise_from_dict(FOURBAR)
+    if name == "slider_crank":
+        return load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml")
+    raise KeyError(name)
+
+
+def full_turn(count: int) -> np.ndarray:
+    """Crank angles 360°·k/N, k = 0…N−1 (deg)."""
+    return 360.0 * np.arange(count) / count
+
+
+def best_time(function: Callable[[], object], *, min_time: float = 0.5, min_repeats: int = 3,
+              max_repeats: int = 2000) -> dict:
+    """Wall time of ``function()``: best and median of repeats (s), repeated at least
+    ``min_repeats`` times and until ``min_time`` seconds were spent."""
+    times: list[float] = []
+    while len(times) < max_repeats and (len(times) < min_repeats or sum(times) < min_time):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return {"best": min(times), "median": statistics.median(times), "repeats": len(times)}
+
+
+def machine() -> dict:
+    """What the numbers were measured on."""
+    info = {"python": platform.python_version(), "numpy": np.__version__,
+            "machine": platform.machine(), "system": platform.system(),
+            "cpus": os.cpu_count()}
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                info["cpu"] = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    info["time"] = time.strftime("%Y-%m-%d %H:%M:%S")
+    return info
+
+
+def write_json(name: str, data: dict) -> Path:
+    """Write ``benchmarks/results/NAME`` atomically (pretty JSON, no NaN)."""
+    path = RESULTS / name
+    write_text_atomic(path, json.dumps(data, indent=1, ensure_ascii=False, allow_nan=False)
+                      + "\n")
+    return path
+
+
+def write_text(name: str, text: str) -> Path:
+    path = RESULTS / name
+    write_text_atomic(path, text)
+    return path
+
+
+def save_figure(figure, name: str) -> list[Path]:
+    """Save a matplotlib figure as ``figures/NAME.png`` (and .svg), atomically."""
+    from planmethod.io import atomic_path
+
+    paths = []
+    for suffix, options in ((".png", {"dpi": 130}), (".svg", {})):
+        target = FIGURES / f"{name}{suffix}"
+        with atomic_path(target, suffix) as temporary:
+            figure.savefig(temporary, bbox_inches="tight", **options)
+        paths.append(target)
+    return paths
+
+
+def microseconds(seconds: float) -> str:
+    """A time per angle for a table: 3 significant digits, in µs."""
+    value = seconds * 1e6
+    return f"{value:.3g}" if value < 1000 else f"{value:,.0f}"

@@ -1,0 +1,56 @@
+"""``import planmethod`` and the computing modules load no drawing library.
+
+Each check runs in a fresh interpreter (a subprocess), so modules imported earlier by other
+tests cannot hide or fake an import.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+HEAVY = ("matplotlib", "svgwrite", "shapely")
+
+#: modules whose import must stay light: the package and everything that only computes
+LIGHT = ("planmethod", "planmethod.kinematics", "planmethod.plans", "planmethod.report",
+         "planmethod.sweep", "planmethod.scene", "planmethod.spec", "planmethod.structure",
+         "planmethod.cli", "planmethod.commands.solve", "planmethod.commands.sweep")
+
+
+def heavy_after(code: str) -> list[str]:
+    """The heavy top-level packages loaded after running ``code`` in a fresh interpreter."""
+    probe = (f"import sys\n{code}\n"
+             "print('LOADED:' + ','.join(sorted({m.split('.')[0] for m in sys.modules})))")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    line = next(line for line in done.stdout.splitlines() if line.startswith("LOADED:"))
+    loaded = set(line[len("LOADED:"):].split(","))
+    return sorted(loaded & set(HEAVY))
+
+
+def test_import_planmethod_loads_no_drawing_library():
+    assert heavy_after("import planmethod") == []
+
+
+@pytest.mark.parametrize("module", LIGHT[1:])
+def test_computing_modules_load_no_drawing_library(module):
+    assert heavy_after(f"import {module}") == []
+
+
+def test_solving_and_drawing_plans_as_data_loads_no_drawing_library():
+    code = ("from planmethod.spec import load_exercise\n"
+            "from planmethod.report import analyse, report_dict\n"
+            "analysis = analyse(load_exercise('exercises/compressor_slider_crank.toml'))\n"
+            "report_dict(analysis)\n")
+    assert heavy_after(code) == []
+
+
+def test_the_probe_sees_a_heavy_import():
+    """The check can fail: a module that does import matplotlib is reported."""
+    assert heavy_after("import matplotlib") == ["matplotlib"]
