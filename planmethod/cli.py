@@ -28,6 +28,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "variants": ("planmethod.commands.variants", "student variants of a template, sheets, keys"),
     "grade": ("planmethod.commands.grade", "grade numeric answers and drawn plans against a key"),
     "export": ("planmethod.commands.export", "keys to Gradescope, PrairieLearn, Moodle, CSV"),
+    "check": ("planmethod.commands.check", "test a table of point coordinates against the links"),
+    "study": ("planmethod.commands.study", "seed 003's study: reactions against G4, ω1 and Mc"),
 }
 
 EXIT_BAD_INPUT = 2

@@ -16,6 +16,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="sweep up to (not including) this angle (default 360)")
     parser.add_argument("--csv", metavar="FILE", help="write every column to a CSV file")
     parser.add_argument("--plot", metavar="FILE", help="write the curves as PNG/SVG/PDF")
+    parser.add_argument("--forces", action="store_true",
+                        help="add the reactions per pair and the balancing moment")
 
 
 def csv_text(table) -> str:
@@ -58,12 +60,19 @@ def run(args: argparse.Namespace) -> int:
     from ..sweep import sweep_table
 
     exercise = load_exercise(args.file)
-    table = sweep_table(exercise, args.step, start=args.start, stop=args.stop)
+    extra = None
+    if args.forces:
+        from ..forces import force_columns
+
+        extra = force_columns(exercise)
+    table = sweep_table(exercise, args.step, start=args.start, stop=args.stop, extra=extra)
     outputs = []
     csv = csv_text(table) if args.csv else None
     if args.plot:
         from ..render.plots import save_sweep_plot
 
+        if args.forces:
+            from ..render.force_plots import save_force_plot as save_sweep_plot
         save_sweep_plot(table, args.plot, title=exercise.mechanism.title)
         outputs.append(args.plot)
     if csv is not None:

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -365,7 +365,8 @@ def analyse_forces(exercise: Exercise, motion: Motion, *, plans=None) -> ForceAn
 def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndarray]]:
     """The ``extra`` callable of :func:`planmethod.sweep.sweep_table` for ``--forces``:
     ``Rx_K Ry_K R_K`` (and ``M_K`` for a prismatic pair's couple) per pair, ``M_b``,
-    ``M_b_system`` and ``power_residual``."""
+    ``M_b_system`` and ``power_residual``; with friction also ``friction_iterations`` and
+    ``M_b_no_friction`` (seed 000 compares the motor torque with and without friction)."""
 
     def columns(motion: Motion) -> dict[str, np.ndarray]:
         solution = solve_forces(motion, file=exercise.source)
@@ -381,6 +382,8 @@ def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndar
         out["power_residual"] = solution.power_residual
         if solution.friction is not None:
             out["friction_iterations"] = solution.friction.iterations.astype(float)
+            plain = replace(motion, mechanism=replace(motion.mechanism, friction={}))
+            out["M_b_no_friction"] = solve_forces(plain, file=exercise.source).balancing_moment
         return out
 
     return columns

@@ -1,0 +1,131 @@
+"""``planmethod study FILE``: seed 003's parameter study of a four-bar's reactions.
+
+The rocker weight G4, the crank speed ω1 and the resisting moment Mc on the rocker are stepped
+one at a time over their ranges (default: the seed's 20…100 N, 10…50 rad/s, 80…160 N·m, step
+20, 10, 20) around the base case of the exercise file (or ``--base-*``); for each value the full
+turn is solved and the largest reaction of each pair is tabulated; the seed's two conclusions are
+checked against the numbers. ``--plot`` draws the table, ``--csv`` writes it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import math
+
+
+def _range(text: str) -> tuple[float, ...]:
+    """``20:100:20`` (first:last:step, inclusive) or ``20,40,60``."""
+    try:
+        if ":" in text:
+            first, last, step = (float(part) for part in text.split(":"))
+            if not (step > 0 and last >= first and math.isfinite(last - first)):
+                raise ValueError
+            count = round((last - first) / step)
+            values = tuple(first + step * i for i in range(count + 1))
+        else:
+            values = tuple(float(part) for part in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected first:last:step or a comma list of numbers, got {text!r}") from None
+    if not values or any(not math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected finite numbers, got {text!r}")
+    return values
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", help="exercise file (TOML) of the four-bar (base case)")
+    parser.add_argument("--rocker", metavar="LINK",
+                        help="the link carrying the resisting moment (default: the link of the "
+                             "first [[load]] moment)")
+    parser.add_argument("--weights", type=_range, default="20:100:20", metavar="N",
+                        help="rocker weights G4, N (default 20:100:20)")
+    parser.add_argument("--omegas", type=_range, default="10:50:10", metavar="RAD/S",
+                        help="crank speeds ω1, rad/s (default 10:50:10)")
+    parser.add_argument("--moments", type=_range, default="80:160:20", metavar="N·M",
+                        help="resisting moments Mc, N·m (default 80:160:20)")
+    parser.add_argument("--base-weight", type=float, metavar="N",
+                        help="base rocker weight (default: the file's)")
+    parser.add_argument("--base-omega", type=float, metavar="RAD/S",
+                        help="base crank speed (default: the file's)")
+    parser.add_argument("--base-moment", type=float, metavar="N·M",
+                        help="base resisting moment (default: the file's)")
+    parser.add_argument("--step", type=float, default=2.0, metavar="DEG",
+                        help="crank-angle step of each full turn (default 2)")
+    parser.add_argument("--csv", metavar="FILE", help="write the table as CSV")
+    parser.add_argument("--plot", metavar="FILE", help="write the plots (PNG/SVG/PDF)")
+
+
+def table_text(study) -> str:
+    """The study as a course prints it: one table per parameter, then the conclusions."""
+    lines = [f"{study.title} — largest reactions over a full turn (N) and |M_b| (N·m)",
+             f"base case: {study.base_text()}; the rocker is {study.rocker}", ""]
+    header = "".join(f"{'R_' + pair:>11}" for pair in study.pairs) + f"{'|M_b|':>11}"
+    for parameter in study.parameters:
+        lines.append(f"{parameter.label} ({parameter.unit})".ljust(28) + header)
+        for i, value in enumerate(parameter.values):
+            row = "".join(f"{study.maxima[parameter.name][pair][i]:>11.1f}"
+                          for pair in study.pairs)
+            row += f"{study.balancing[parameter.name][i]:>11.2f}"
+            lines.append(f"  {value:<26g}" + row)
+        change = "".join(f"{100 * study.relative_change(parameter.name, pair):>10.1f}%"
+                         for pair in study.pairs)
+        lines.append("  change over the range".ljust(28) + change)
+        lines.append("")
+    lines.append("The seed's conclusions against these numbers:")
+    for number, (statement, confirmed, evidence) in enumerate(study.conclusions(), start=1):
+        verdict = "CONFIRMED" if confirmed else "REFUTED"
+        lines.append(f"  {number}. \"{statement}\": {verdict} — {evidence}")
+    return "\n".join(lines)
+
+
+def csv_text(study) -> str:
+    out = io.StringIO()
+    out.write("parameter,value," + ",".join(f"R_{p}_max" for p in study.pairs)
+              + ",M_b_max\n")
+    for parameter in study.parameters:
+        for i, value in enumerate(parameter.values):
+            cells = [parameter.name, repr(float(value))]
+            cells += [repr(float(study.maxima[parameter.name][p][i])) for p in study.pairs]
+            cells.append(repr(float(study.balancing[parameter.name][i])))
+            out.write(",".join(cells) + "\n")
+    return out.getvalue()
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import SpecError
+    from ..forces.study import _moment_load, _variant, run_study
+    from ..io import write_text_atomic
+    from ..spec import load_exercise
+
+    if not (math.isfinite(args.step) and 0 < args.step <= 90):
+        raise SpecError(f"--step must be a number of degrees in (0, 90], got {args.step}")
+    exercise = load_exercise(args.file)
+    if any(value is not None for value in (args.base_weight, args.base_omega,
+                                           args.base_moment)):
+        index, load = _moment_load(exercise, args.rocker)
+        mechanism = exercise.mechanism
+        if load.link not in mechanism.masses or not mechanism.gravity:
+            raise SpecError("the study needs [gravity] and a mass on the rocker",
+                            file=exercise.source)
+        base = {"weight": args.base_weight or mechanism.masses[load.link].m * mechanism.gravity,
+                "omega": args.base_omega or mechanism.drive.omega,
+                "moment": args.base_moment or abs(load.moment)}
+        if any(not (math.isfinite(v) and v > 0) for v in base.values()):
+            raise SpecError(f"base values must be positive, got {base}")
+        exercise = _variant(exercise, load.link, index, **base)
+    study = run_study(exercise, rocker=args.rocker, weights=args.weights, omegas=args.omegas,
+                      moments=args.moments, step=args.step)
+    outputs = []
+    if args.plot:
+        from ..render.force_plots import save_study_plot
+
+        save_study_plot(study, args.plot)
+        outputs.append(args.plot)
+    if args.csv:
+        write_text_atomic(args.csv, csv_text(study))
+        outputs.append(args.csv)
+    print(table_text(study))
+    if outputs:
+        print("\nWrote " + ", ".join(outputs))
+    return 0

@@ -1,0 +1,197 @@
+"""Seed 003's parameter study: how the rocker's weight, the crank speed and the resisting moment
+change the largest reactions in the pairs of a four-bar.
+
+One parameter at a time is stepped over its range while the other two keep their base values
+(the exercise's own): the rocker weight G4 (the rocker's mass m = G4/g, its J scaled with m so
+that its radius of gyration stays), the crank speed ω1, and the magnitude of the resisting
+moment Mc on the rocker (its sense as in the exercise). For each value the full turn is solved
+and the largest reaction magnitude of every pair over the turn recorded.
+
+The seed's two conclusions are then put to the numbers:
+
+1. "The weight of the rocker does not significantly affect the reactions" — confirmed when no
+   pair's largest reaction changes by more than :data:`NOT_SIGNIFICANT` (5 %) over G4's range;
+2. "The moment of technological resistance Mc has the greatest influence on the reactions" —
+   confirmed when Mc changes the largest reactions more than either other parameter does
+   (relative change (max − min)/min over its range, the largest over the pairs).
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> study = run_study(load_exercise("exercises/fourbar_study.toml"), step=10.0)
+>>> [p.name for p in study.parameters], study.pairs
+(['weight', 'omega', 'moment'], ('A', 'B', 'C', 'D'))
+>>> study.relative_change("weight") < study.relative_change("omega")
+True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import SpecError
+from ..kinematics import solve
+from ..kinematics.solve import choose_branches
+from ..model import Exercise, Load
+from ..structure import analyse_structure
+from .analysis import solve_forces
+
+__all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "run_study"]
+
+#: a relative change of the largest reactions below this counts as "not significant"
+NOT_SIGNIFICANT = 0.05
+
+WEIGHTS = (20.0, 40.0, 60.0, 80.0, 100.0)
+OMEGAS = (10.0, 20.0, 30.0, 40.0, 50.0)
+MOMENTS = (80.0, 100.0, 120.0, 140.0, 160.0)
+
+
+@dataclass(frozen=True, slots=True)
+class Parameter:
+    name: str
+    label: str
+    unit: str
+    values: tuple[float, ...]
+    base: float
+
+
+@dataclass(frozen=True)
+class Study:
+    """The study's results: for each parameter, its values, the largest reaction of every pair
+    over the turn at each value (``maxima[name][pair]``), and the largest |M_b|."""
+
+    title: str
+    rocker: str
+    parameters: tuple[Parameter, ...]
+    pairs: tuple[str, ...]
+    values: dict
+    maxima: dict
+    balancing: dict
+
+    def relative_change(self, name: str, pair: str | None = None) -> float:
+        """(max − min)/min of the largest reaction over the parameter's range (of ``pair``, or
+        the largest over the pairs)."""
+        pairs = [pair] if pair else self.pairs
+        changes = []
+        for key in pairs:
+            values = np.asarray(self.maxima[name][key])
+            changes.append(float((values.max() - values.min()) / values.min()))
+        return max(changes)
+
+    def base_text(self) -> str:
+        return ", ".join(f"{p.label} = {p.base:g} {p.unit}" for p in self.parameters)
+
+    def conclusions(self) -> list[tuple[str, bool, str]]:
+        """The seed's two conclusions: (statement, confirmed?, the numbers)."""
+        weight = self.relative_change("weight")
+        changes = {p.name: self.relative_change(p.name) for p in self.parameters}
+        labels = {p.name: p.label for p in self.parameters}
+        first = ("The weight of the rocker does not significantly affect the reactions",
+                 weight <= NOT_SIGNIFICANT,
+                 f"over G4 = {_span(self, 'weight')} the largest reactions change by up to "
+                 f"{100 * weight:.1f} % (threshold {100 * NOT_SIGNIFICANT:g} %; G4 also sets "
+                 "the rocker's mass, so its inertia grows with it)")
+        strongest = max(changes, key=changes.get)
+        ranking = ", ".join(f"{labels[name]} {100 * value:.0f} %"
+                            for name, value in sorted(changes.items(), key=lambda kv: -kv[1]))
+        per_pair = ", ".join(
+            f"{pair}: {labels[max(changes, key=lambda n, p=pair: self.relative_change(n, p))]}"
+            for pair in self.pairs)
+        second = ("The resisting moment Mc has the greatest influence on the reactions",
+                  strongest == "moment",
+                  f"largest change of the maximum reactions over each range: {ranking} "
+                  f"(most influential per pair — {per_pair}); against G4 alone Mc "
+                  f"{'changes them more' if changes['moment'] > changes['weight'] else 'does not'}"
+                  )
+        return [first, second]
+
+
+def _span(study: Study, name: str) -> str:
+    parameter = next(p for p in study.parameters if p.name == name)
+    return f"{parameter.values[0]:g}…{parameter.values[-1]:g} {parameter.unit}"
+
+
+def _moment_load(exercise: Exercise, rocker: str | None) -> tuple[int, Load]:
+    loads = exercise.mechanism.loads
+    for index, load in enumerate(loads):
+        if load.moment is not None and (rocker is None or load.link == rocker):
+            return index, load
+    raise SpecError("the study needs a resisting moment on the rocker: a [[load]] with "
+                    f"`moment` on {rocker or 'a link'}", file=exercise.source, key="load")
+
+
+def _variant(exercise: Exercise, rocker: str, index: int, *, weight: float, omega: float,
+             moment: float) -> Exercise:
+    mechanism = exercise.mechanism
+    g = mechanism.gravity
+    props = mechanism.masses[rocker]
+    mass = weight / g
+    masses = dict(mechanism.masses)
+    masses[rocker] = replace(props, m=mass, J=props.J * mass / props.m)
+    loads = list(mechanism.loads)
+    sense = 1.0 if loads[index].moment >= 0 else -1.0
+    loads[index] = replace(loads[index], moment=sense * moment)
+    drive = replace(mechanism.drive, omega=omega)
+    return replace(exercise, mechanism=replace(mechanism, masses=masses, loads=tuple(loads),
+                                               drive=drive))
+
+
+def run_study(exercise: Exercise, *, rocker: str | None = None,
+              weights: Sequence[float] = WEIGHTS, omegas: Sequence[float] = OMEGAS,
+              moments: Sequence[float] = MOMENTS, step: float = 2.0) -> Study:
+    """Run seed 003's study on ``exercise`` (see the module docstring).
+
+    Raises
+    ------
+    SpecError
+        Without gravity, without a mass on the rocker, or without a resisting moment on it; for
+        a non-positive weight or moment or an empty range.
+    """
+    mechanism = exercise.mechanism
+    index, load = _moment_load(exercise, rocker)
+    rocker = load.link
+    if not mechanism.gravity:
+        raise SpecError("the study varies the rocker's weight: give [gravity]",
+                        file=exercise.source, key="gravity")
+    if rocker not in mechanism.masses:
+        raise SpecError(f"the rocker {rocker} needs a mass ([mass.{rocker}])",
+                        file=exercise.source, key=f"mass.{rocker}")
+    for name, values in (("weights", weights), ("omegas", omegas), ("moments", moments)):
+        if not values or any(not (np.isfinite(v) and v > 0) for v in values):
+            raise SpecError(f"the study's {name} must be positive numbers, got {list(values)}")
+    base = {"weight": mechanism.masses[rocker].m * mechanism.gravity,
+            "omega": mechanism.drive.omega, "moment": abs(load.moment)}
+    parameters = (Parameter("weight", "rocker weight G4", "N", tuple(weights), base["weight"]),
+                  Parameter("omega", "crank speed ω1", "rad/s", tuple(omegas), base["omega"]),
+                  Parameter("moment", "resisting moment Mc", "N·m", tuple(moments),
+                            base["moment"]))
+    structure = analyse_structure(mechanism)
+    branches = choose_branches(mechanism, structure)
+    angles = np.arange(0.0, 360.0, step)
+    positions = None
+    maxima: dict = {}
+    balancing: dict = {}
+    pairs: tuple[str, ...] = ()
+    for parameter in parameters:
+        maxima[parameter.name] = {}
+        balancing[parameter.name] = []
+        for value in parameter.values:
+            settings = dict(base) | {parameter.name: value}
+            variant = _variant(exercise, rocker, index, **settings)
+            motion = solve(variant.mechanism, angles, structure=structure, branches=branches)
+            if positions is None:
+                positions = motion
+            solution = solve_forces(motion, file=exercise.source)
+            pairs = tuple(solution.reactions)
+            for key, reaction in solution.reactions.items():
+                maxima[parameter.name].setdefault(key, []).append(
+                    float(reaction.magnitude.max()))
+            balancing[parameter.name].append(float(np.abs(solution.balancing_moment).max()))
+    values = {p.name: np.asarray(p.values) for p in parameters}
+    maxima = {name: {key: np.asarray(v) for key, v in table.items()}
+              for name, table in maxima.items()}
+    return Study(mechanism.title, rocker, parameters, pairs, values, maxima,
+                 {name: np.asarray(v) for name, v in balancing.items()})
