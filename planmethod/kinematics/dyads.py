@@ -196,6 +196,8 @@ def _slide_line(mechanism: Mechanism, slide: Slide, unknown: str, theta: np.ndar
 
 
 def _pose_from_pin(local, position, theta):
+    if local[0] == 0 and local[1] == 0:  # the pin is the link's origin
+        return theta, position.copy()
     return theta, position - rotate(local, theta)
 
 
@@ -254,10 +256,13 @@ def _rrr(mechanism, group, states, branch, angles_deg):
         raise _assembly_error(group, angles_deg, d <= 1e-15 * (a + b),
                               f"{ext1.point} and {ext2.point} coincide: the group has no "
                               "definite position", np.zeros_like(d))
-    # the factor that vanishes: a + b − d (stretched out) or |a − b| − d … (folded)
-    factors = np.stack((a + b - d, a - b + d, b - a + d), axis=0)
-    vanishing = np.take_along_axis(factors, np.argmin(np.abs(factors), axis=0)[None], 0)[0]
-    _toggle_or_miss(group, angles_deg, vanishing, a + b + d + np.max(np.abs(span), axis=-1),
+    # the factor that vanishes: a + b − d (stretched out) or d − |a − b| (folded); of the
+    # three factors a + b − d, a − b + d, b − a + d the one smallest in magnitude (the first
+    # on a tie), computed without stacking them
+    stretched, folded = a + b - d, d - abs(a - b)
+    vanishing = np.where(np.abs(stretched) <= np.abs(folded), stretched, folded)
+    reach = np.maximum(np.abs(span[..., 0]), np.abs(span[..., 1]))
+    _toggle_or_miss(group, angles_deg, vanishing, a + b + d + reach,
                     f"{l1} ({ext1.point}{internal.point} = {a:g} m) and {l2} ({internal.point}"
                     f"{ext2.point} = {b:g} m) cannot join {ext1.point} and {ext2.point}",
                     np.maximum(d - a - b, np.maximum(abs(a - b) - d, 0.0)))
