@@ -2,8 +2,8 @@
 --only stress``, results in ``benchmarks/results/stress.md``).
 
 Every solved angle must be within the stated bound of the 40-digit mpmath reference
-(see :mod:`benchmarks.stress`: |ΔC| ≤ K·ε·L/s, |Δv| ≤ K·ε·max(V₀/s³, V/s²),
-|Δa| ≤ K·ε·max(A₀/s⁵, A/s²)), on the branch the
+(see :mod:`benchmarks.stress`: |ΔC| ≤ K·ε·L/s, |Δv| ≤ K·ε·max(R·V₀/s³, V/s²),
+|Δa| ≤ K·ε·max(R·A₀/s⁵, A/s²)), on the branch the
 sketch picked; every other angle must raise AssemblyError or ToggleError where the reference
 confirms the links do not reach or sit at their toggle. Never NaN, never a flipped branch.
 """

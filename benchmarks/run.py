@@ -1,0 +1,102 @@
+"""Run the benchmarks and write their results: ``python -m benchmarks.run [--quick]``.
+
+Sections (all by default, or ``--only speed,accuracy,scene,memory,stress``):
+
+* ``speed`` — full-turn analysis of the case A four-bar and the seed 001 slider-crank at
+  N = 360, 3,600, 36,000 angles against the peers (``python -m benchmarks.peers --setup``
+  first, to make their separate virtualenv) → ``results/speed.{json,md}``,
+  ``figures/bench_speed.{png,svg}``;
+* ``accuracy`` — run time against error of v and a by the exact closed form, Newton, finite
+  differences and the graphical plans → ``results/accuracy.{json,md}``,
+  ``figures/bench_error_vs_time.{png,svg}``;
+* ``scene`` — what computing only what a scene needs saves, and the command line's start-up
+  → ``results/scene.{json,md}``;
+* ``memory`` — a 1,000,000-angle sweep of the shaper six-bar in bounded memory →
+  ``results/memory.{json,md}``;
+* ``stress`` — the long stress run → ``results/stress.{json,md}``.
+
+A full run writes into ``benchmarks/results`` and ``figures``; ``--quick`` (smaller N, fewer
+repeats, about a minute) writes into ``--out`` (default: a temporary folder), so that quick
+numbers never replace the committed ones.
+
+Examples
+--------
+>>> sorted(SECTIONS)
+['accuracy', 'memory', 'scene', 'speed', 'stress']
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from . import accuracy, memory, scene, speed, stress
+from .common import FIGURES, RESULTS, machine
+
+SECTIONS = {
+    "speed": (speed, "bench_speed"),
+    "accuracy": (accuracy, "bench_error_vs_time"),
+    "scene": (scene, None),
+    "memory": (memory, None),
+    "stress": (stress, None),
+}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.run",
+                                     description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="a short run (smaller N, fewer repeats), written to --out")
+    parser.add_argument("--only", default=",".join(SECTIONS),
+                        help="comma-separated sections (default: all)")
+    parser.add_argument("--out", help="folder for results and figures (default: the "
+                                      "committed ones for a full run, a temporary folder "
+                                      "for --quick)")
+    args = parser.parse_args(argv)
+    chosen = [name.strip() for name in args.only.split(",") if name.strip()]
+    unknown = [name for name in chosen if name not in SECTIONS]
+    if unknown:
+        parser.error(f"unknown section(s): {', '.join(unknown)}")
+    if args.out:
+        results = figures = Path(args.out)
+    elif args.quick:
+        results = figures = Path(tempfile.mkdtemp(prefix="planmethod-bench-"))
+    else:
+        results, figures = RESULTS, FIGURES
+    from planmethod.io import atomic_path, write_text_atomic
+
+    about = machine()
+    print(f"planmethod benchmarks on {about.get('cpu', about['machine'])}, "
+          f"{about['cpus']} cpus, Python {about['python']}, numpy {about['numpy']}")
+    for name in chosen:
+        module, figure_name = SECTIONS[name]
+        print(f"[{name}]")
+        start = time.perf_counter()
+        result = module.run(quick=args.quick)
+        result["machine"] = about
+        result["quick"] = args.quick
+        result["seconds"] = time.perf_counter() - start
+        text = module.table(result)
+        write_text_atomic(results / f"{name}.json",
+                          json.dumps(result, indent=1, ensure_ascii=False, default=float) + "\n")
+        header = (f"<!-- written by `python -m benchmarks.run{' --quick' if args.quick else ''}`"
+                  f" on {about['time']}; {about.get('cpu', '')}, {about['cpus']} cpus, Python "
+                  f"{about['python']}, numpy {about['numpy']} -->\n\n")
+        write_text_atomic(results / f"{name}.md", header + text)
+        print(text)
+        if figure_name:
+            fig = module.figure(result)
+            for suffix, options in ((".png", {"dpi": 130}), (".svg", {})):
+                with atomic_path(figures / f"{figure_name}{suffix}") as temporary:
+                    fig.savefig(temporary, bbox_inches="tight", **options)
+        print(f"  ({result['seconds']:.0f} s)")
+    print(f"results in {results}" + (f", figures in {figures}" if figures != results else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
