@@ -324,9 +324,16 @@ class ForceAnalysis:
                 lines.append(f"    {f.link}: (s π′) = {length:.4g} mm → |Q| = "
                              f"{float(np.hypot(*f.from_plan)):.6g} N")
         if self.constants is not None and self.constants.force_moment is not None:
-            lines.append(f"  constants: μF·μl = {self.constants.force_moment:.6g} N·m/mm²; "
-                         + ", ".join(f"m·μa·μl({link}) = {value:.6g}"
-                                     for link, value in self.constants.combined_moment.items()))
+            k = self.constants
+            lines.append(f"  constants for all positions (seed 002): μF·μl = "
+                         f"{k.force_moment:.6g} N·m/mm²; m·μa·μl: "
+                         + ", ".join(f"{link} {value:.6g}"
+                                     for link, value in k.combined_moment.items())
+                         + " N·m/mm²")
+            if k.inertia_moment:
+                lines.append("    J·μa/l: " + ", ".join(
+                    f"{link} {entry['constant']:.6g} N·m/mm (l = {entry['points'][0]}"
+                    f"{entry['points'][1]})" for link, entry in k.inertia_moment.items()))
         for sense in self.epsilon:
             word = {1: "counter-clockwise", -1: "clockwise", 0: "zero", None: "undefined"}
             lines.append(f"  ε of {sense.link} by the plan's rule: {word[sense.rule]} "

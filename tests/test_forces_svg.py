@@ -1,0 +1,101 @@
+"""Force drawings: the polygons at μF and seed 002's combined-force construction."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ElementTree
+
+import numpy as np
+import pytest
+
+from planmethod.forces.combined import combined_construction, epsilon_senses, seed_constants
+from planmethod.render.force_svg import force_files
+from planmethod.render.svg import plan_files
+from planmethod.report import analyse
+from planmethod.spec import load_exercise
+
+EXERCISES = ["exercises/fourbar_forces.toml", "exercises/combined_force_slider_crank.toml",
+             "exercises/conveyor_sixbar.toml"]
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+@pytest.fixture(scope="module", params=EXERCISES)
+def analysis(request):
+    return analyse(load_exercise(request.param))
+
+
+def test_files_are_well_formed_and_deterministic(analysis):
+    files = force_files(analysis.forces, analysis.plans)
+    groups = len(analysis.structure.groups) + 1
+    assert len([name for name in files if name.startswith("forces_")]) == groups
+    assert "combined_force.svg" in files
+    again = force_files(analysis.forces, analysis.plans)
+    assert files == again
+    for text in files.values():
+        root = ElementTree.fromstring(text.encode("utf-8"))
+        assert root.tag == f"{SVG}svg"
+    assert set(files) <= set(plan_files(analysis.plans, forces=analysis.forces))
+
+
+def test_polygon_shows_every_force_and_the_scale(analysis):
+    files = force_files(analysis.forces, analysis.plans)
+    for group in analysis.forces.solution.groups.groups:
+        name = next(n for n in files if n.startswith("forces_") and n.endswith(
+            group.name.replace("/", "_") + ".svg"))
+        root = ElementTree.fromstring(files[name].encode("utf-8"))
+        labels = {element.get("data-points") for element in root.iter(f"{SVG}text")}
+        drawn = [edge for edge in group.polygon if float(np.hypot(*edge.vector[0])) > 0]
+        for edge in drawn:
+            assert edge.label in labels
+        arrows = [g for g in root.iter(f"{SVG}g") if "force" in (g.get("class") or "")]
+        sizes = [float(np.hypot(*edge.vector[0])) for edge in drawn]
+        visible = [size for size in sizes if size > 0.01 * max(sizes)]  # longer than ~0.5 px
+        assert len(arrows) >= len(visible)
+        assert "μF = " in files[name]
+
+
+def test_combined_force_read_off_the_plan_equals_exact(analysis):
+    construction = analysis.forces.combined
+    g = analysis.exercise.mechanism.gravity or 0.0
+    assert construction.gravity_image_mm == pytest.approx(g / analysis.plans.scales.mu_a)
+    for force in construction.forces:
+        assert np.allclose(force.from_plan, force.exact, atol=1e-9 * (1 + np.hypot(
+            *force.exact)))
+        inertia = analysis.forces.solution.applied.inertia[force.link]
+        assert np.allclose(force.exact, inertia.mass * (np.array([0.0, -g])
+                                                        - inertia.acceleration[0]))
+
+
+def test_combined_force_at_drafting_precision_is_close():
+    exercise = load_exercise("exercises/combined_force_slider_crank.toml")
+    rough = analyse(exercise, precision_mm=0.5)
+    for force in rough.forces.combined.forces:
+        exact = np.hypot(*force.exact)
+        assert np.hypot(*np.subtract(force.from_plan, force.exact)) < 0.05 * exact + 0.05
+
+
+def test_epsilon_rule_agrees_with_the_exact_sense():
+    for exercise in EXERCISES:
+        analysis = analyse(load_exercise(exercise))
+        senses = epsilon_senses(analysis.plans)
+        assert senses and all(sense.agrees for sense in senses if sense.rule is not None)
+
+
+def test_seed_002_constants():
+    analysis = analyse(load_exercise("exercises/combined_force_slider_crank.toml"))
+    scales = analysis.plans.scales
+    constants = seed_constants(analysis.plans, analysis.forces.solution.applied,
+                               analysis.forces.mu_f)
+    assert constants.force_moment == pytest.approx(analysis.forces.mu_f * scales.mu_l)
+    # eq. 2: proportional to the masses
+    ratio = constants.combined_moment["BC"] / constants.combined_moment["AB"]
+    assert ratio == pytest.approx(1.8 / 1.2)
+    # eq. 3: the inertia moment read off the plan equals −J·ε
+    entry = constants.inertia_moment["BC"]
+    assert entry["from_plan"] == pytest.approx(entry["exact_moment"], rel=1e-9)
+    assert entry["constant"] == pytest.approx(6e-3 * scales.mu_a / 0.18)
+
+
+def test_combined_construction_needs_an_acceleration_plan():
+    analysis = analyse(load_exercise("exercises/fourbar_forces.toml"), plans=False)
+    assert combined_construction(None, analysis.forces.solution.applied, 9.81) is None
+    assert analysis.forces.combined is None and analysis.forces.as_dict()
