@@ -42,6 +42,7 @@ def test_case_a_balancing_moment_by_every_method(case_a):
     assert np.allclose(solution.balancing_moment, expected, atol=1e-6, rtol=0)
     assert np.allclose(solution.system.balancing_moment, expected, atol=1e-6, rtol=0)
     assert np.allclose(solution.lever.balancing_moment, expected, atol=1e-6, rtol=0)
+    assert np.allclose(solution.power_moment, expected, atol=1e-6, rtol=0)
     assert np.all(solution.power_residual < 1e-12)
     assert np.all(solution.agreement < 1e-12)
 
@@ -67,6 +68,7 @@ def test_case_a_report_block_and_plans():
     assert forces["zhukovsky_moment"] == pytest.approx(0.642055, abs=1e-6)
     assert forces["zhukovsky"]["source"] == "velocity plan"
     assert forces["power_residual"] < 1e-12
+    assert forces["power_balance_moment"] == pytest.approx(0.642055, abs=1e-6)
     assert forces["whole_system"]["agrees"] and forces["whole_system"]["equations"] == 9
     assert list(forces["reactions"]) == ["A", "B", "C", "D"]
     for key, (source, target, force) in REACTIONS_A_60.items():
@@ -337,4 +339,5 @@ def test_report_never_holds_nan_when_the_crank_stands_still():
     report = report_dict(analysis)
     json.dumps(report, allow_nan=False)
     assert report["forces"]["zhukovsky_moment"] is None
+    assert report["forces"]["power_balance_moment"] is None
     assert any("ω1 = 0" in flag for flag in report["forces"]["flags"])

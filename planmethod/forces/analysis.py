@@ -32,7 +32,7 @@ import numpy as np
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
 from .applied import AppliedLoads, applied_loads
-from .checks import ZhukovskyLever, power_residual, zhukovsky_lever
+from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
 from .combined import (
     CombinedConstruction,
     EpsilonSense,
@@ -65,6 +65,7 @@ class ForceSolution:
     system: SystemSolution
     lever: ZhukovskyLever
     power_residual: np.ndarray
+    power_moment: np.ndarray
     agreement: np.ndarray
     friction: FrictionResult | None
     flags: tuple[str, ...]
@@ -146,8 +147,9 @@ def solve_forces(motion: Motion, *, plans=None, file: str | None = None) -> Forc
         flags.append("Zhukovsky's lever is undefined where the crank does not move (ω1 = 0): "
                      "every image lies at the pole")
     power = power_residual(mechanism, states, applied, groups.balancing_moment)
-    return ForceSolution(mechanism, angles, applied, groups, system, lever, power, agreement,
-                         friction, tuple(flags))
+    by_power = power_moment(mechanism, states, applied)
+    return ForceSolution(mechanism, angles, applied, groups, system, lever, power, by_power,
+                         agreement, friction, tuple(flags))
 
 
 def _number(value) -> float | None:
@@ -208,6 +210,7 @@ class ForceAnalysis:
         out["balancing_moment"] = self.balancing_moment
         out["zhukovsky_moment"] = self.zhukovsky_moment
         out["power_residual"] = self.power_residual
+        out["power_balance_moment"] = _number(solution.power_moment[0])
         lever = solution.lever
         zhukovsky = {"source": lever.source, "mu_v": lever.mu_v,
                      "balancing_force": (_pair(lever.balancing_force[0])
@@ -311,7 +314,10 @@ class ForceAnalysis:
         lines.append("  Zhukovsky's lever (" + solution.lever.source + "): " + (
             "undefined (ω1 = 0)" if z is None else
             f"M_b = {z:.6g} N·m, {z - self.balancing_moment:+.3g} from the group method"))
-        lines.append(f"  power balance: |ΣP|/Σ|P| = {self.power_residual:.2g}")
+        by_power = _number(solution.power_moment[0])
+        lines.append("  power balance: " + ("" if by_power is None else
+                                            f"M_b = −ΣP/ω1 = {by_power:.6g} N·m, ")
+                     + f"|ΣP|/Σ|P| = {self.power_residual:.2g}")
         if solution.friction is not None:
             lines.append(f"  friction: converged after {int(solution.friction.iterations[0])} "
                          "iteration(s)")

@@ -10,7 +10,8 @@ velocity plan (read to its drafting precision), so the lever shows how far a gra
 is; without plans the exact velocities are used.
 
 **Power balance.** ΣF·v + ΣM·ω + M_b·ω1 = 0 over all known forces and moments (weights,
-inertia, loads, friction); the residual reported is |ΣP| / Σ|P_i| (0 where nothing moves).
+inertia, loads, friction): it gives M_b = −ΣP/ω1 by itself, and with the group method's M_b the
+residual |ΣP| / Σ|P_i| (0 where nothing moves).
 
 Examples
 --------
@@ -36,7 +37,7 @@ from ..kinematics.state import LinkState, cross, perp
 from ..model import FRAME, Mechanism
 from .applied import AppliedItem, AppliedLoads
 
-__all__ = ["LeverForce", "ZhukovskyLever", "power_residual", "zhukovsky_lever"]
+__all__ = ["LeverForce", "ZhukovskyLever", "power_moment", "power_residual", "zhukovsky_lever"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -165,3 +166,13 @@ def power_residual(mechanism: Mechanism, states: Mapping[str, LinkState],
     total = np.abs(stacked).sum(axis=0)
     return np.where(total > 0, np.abs(stacked.sum(axis=0)) / np.where(total > 0, total, 1.0),
                     0.0)
+
+
+def power_moment(mechanism: Mechanism, states: Mapping[str, LinkState],
+                 applied: AppliedLoads) -> np.ndarray:
+    """The balancing moment from the power balance alone: M_b = −ΣP/ω1 (NaN where ω1 = 0)."""
+    total = sum((item.power(states[item.link]) for item in applied.items
+                 if item.link != FRAME), np.zeros(states[FRAME].theta.shape[0]))
+    omega = states[mechanism.drive.link].omega
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(omega != 0, -total / np.where(omega != 0, omega, 1.0), np.nan)

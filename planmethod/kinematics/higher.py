@@ -344,12 +344,29 @@ def _upstream(mechanism: Mechanism, group: AssurGroup, states) -> tuple:
     return tuple(out)
 
 
+#: assemblies already found, keyed by the model and the known links' poses (a few entries)
+_CACHE: dict[tuple, list[np.ndarray]] = {}
+
+
+def _cached_assemblies(mechanism: Mechanism, group: AssurGroup, states) -> list[np.ndarray]:
+    """:func:`assemblies`, remembered: the multi-start search is the slow part of a solve,
+    and the same model at the same angle always gives the same list."""
+    key = (repr(mechanism), group.index, tuple(
+        (name, state.theta.tobytes(), state.origin.tobytes())
+        for name, state in sorted(states.items())))
+    if key not in _CACHE:
+        if len(_CACHE) >= 32:
+            _CACHE.pop(next(iter(_CACHE)))
+        _CACHE[key] = assemblies(mechanism, group, states)
+    return [q.copy() for q in _CACHE[key]]
+
+
 def choose_higher_branch(mechanism: Mechanism, group: AssurGroup, states, angle_rad=None):
     """The group's assembly at ``drive.angle``: ``(HigherBranch, {link: (theta, origin)})``.
 
     ``states`` holds the links solved before (at ``drive.angle``).
     """
-    found = assemblies(mechanism, group, states)
+    found = _cached_assemblies(mechanism, group, states)
     distances = [_sketch_distance(mechanism, group, q) for q in found]
     if len(found) == 1:
         index, reason = 0, "unique"
