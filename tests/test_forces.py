@@ -341,3 +341,51 @@ def test_report_never_holds_nan_when_the_crank_stands_still():
     assert report["forces"]["zhukovsky_moment"] is None
     assert report["forces"]["power_balance_moment"] is None
     assert any("ω1 = 0" in flag for flag in report["forces"]["flags"])
+
+
+# -- properties ------------------------------------------------------------------------------------
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_mass = st.fixed_dictionaries({
+    "m": st.floats(0.1, 20.0), "J": st.floats(0.0, 0.5),
+    "S": st.tuples(st.floats(-0.1, 0.3), st.floats(-0.1, 0.1)).map(list)})
+
+
+@settings(max_examples=25, deadline=None)
+@given(kind=st.sampled_from(["fourbar", "slider_crank", "slotted_lever"]),
+       angle=st.floats(0.0, 359.0), omega=st.floats(-30.0, 30.0).filter(lambda w: abs(w) > 0.1),
+       epsilon=st.floats(-50.0, 50.0), masses=st.lists(_mass, min_size=3, max_size=3),
+       force=st.tuples(st.floats(-500, 500), st.floats(-500, 500)),
+       moment=st.floats(-50.0, 50.0), gravity=st.booleans())
+def test_every_method_gives_the_same_balancing_moment(kind, angle, omega, epsilon, masses, force,
+                                                      moment, gravity):
+    """Group method = whole-system solve = Zhukovsky's lever = power balance, for any masses,
+    loads and motion (positions away from toggles)."""
+    build = {"fourbar": testing.fourbar, "slider_crank": testing.slider_crank,
+             "slotted_lever": testing.slotted_lever}[kind]
+    data = build(angle=angle, omega=omega, epsilon=epsilon)
+    links = [name for name in data["links"] if name != "frame"]
+    data["mass"] = {}
+    for link, props in zip(links, masses, strict=False):
+        props = dict(props)
+        if len(data["links"][link]) == 1:
+            props["S"] = [0.0, 0.0]
+        data["mass"][link] = props
+    if gravity:
+        data["gravity"] = {"g": 9.81}
+    data["load"] = [{"link": links[-1], "point": next(iter(data["links"][links[-1]])),
+                     "force": list(force)}, {"link": links[-2], "moment": moment}]
+    exercise = exercise_from_dict(data)
+    motion = solve(exercise.mechanism, angle)
+    if float(np.min(np.abs(next(iter(motion.groups.values())).line_sine))) < 1e-3:
+        return  # too near the toggle for a 1e-9 comparison
+    solution = solve_forces(motion)
+    crank = exercise.mechanism.links[exercise.mechanism.drive.link]
+    arm = max(crank.length(exercise.mechanism.drive.pivot, p) for p in crank.points)
+    largest = max(float(r.magnitude[0]) for r in solution.reactions.values())
+    scale = max(float(np.max(np.abs(solution.balancing_moment))), largest * arm)
+    assert solution.agreement[0] <= 1e-9
+    for other in (solution.lever.balancing_moment, solution.power_moment,
+                  solution.system.balancing_moment):
+        assert abs(float(other[0] - solution.balancing_moment[0])) <= 1e-9 * scale + 1e-12
