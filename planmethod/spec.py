@@ -110,6 +110,21 @@ def exercise_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> E
     return _Reader(file).exercise(data)
 
 
+def _mechanism_size(links: Mapping[str, Link]) -> float:
+    """The largest extent of any link (m), at least 1 mm."""
+    size = 1e-3
+    for link in links.values():
+        xs = [p[0] for p in link.points.values()]
+        ys = [p[1] for p in link.points.values()]
+        if xs:
+            size = max(size, max(xs) - min(xs), max(ys) - min(ys))
+    return size
+
+
+def _distance_to_points(point, points) -> float:
+    return min(math.hypot(point[0] - x, point[1] - y) for x, y in points)
+
+
 def _suggest(word: str, choices) -> str:
     close = difflib.get_close_matches(word, list(choices), n=1)
     return f" (did you mean '{close[0]}'?)" if close else ""
@@ -325,12 +340,10 @@ class _Reader:
             else:  # centroid of the link's points
                 S = (sum(p[0] for p in points.values()) / len(points),
                      sum(p[1] for p in points.values()) / len(points))
-            xs = [p[0] for p in points.values()] + [0.0]
-            ys = [p[1] for p in points.values()] + [0.0]
-            size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
-            if math.hypot(S[0] - sum(xs) / len(xs), S[1] - sum(ys) / len(ys)) > 10 * size:
-                raise self.error(f"{key}.S", f"centre of mass {S} lies more than 10 link sizes "
-                                 f"({size:g} m) from the link's points")
+            if _distance_to_points(S, points.values()) > 10 * _mechanism_size(links):
+                raise self.error(f"{key}.S", f"centre of mass {S} lies more than 10 times the "
+                                 f"mechanism's size ({_mechanism_size(links):g} m) from the "
+                                 "link's points")
             masses[name] = MassProperties(name, m, J, S)
         return masses
 

@@ -710,7 +710,8 @@ def _mechanism_content(figure: _Figure, position: PositionPlan, *, faint: bool =
         hull = _hull(unique)
         if len(hull) >= 3 and _area(hull) > 2.0 * max(
                 _length(_sub(a, b)) for a in unique for b in unique):
-            figure.polyline(hull, color=ink, width=2.0, layer="links", fill=fill, closed=True,
+            # under the bars, so that a ternary link never hides a bar drawn across it
+            figure.polyline(hull, color=ink, width=2.0, layer="ground", fill=fill, closed=True,
                             css=f"link {name}")
         else:
             a, b = _extremes(unique)
