@@ -10,6 +10,7 @@ import pytest
 
 from planmethod.kinematics import solve
 from planmethod.plans import draw_plans
+from planmethod.report import exact_value
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.testing import fourbar, slider_crank, slotted_lever
 
@@ -34,16 +35,7 @@ S1_PRINTED = [  # (quantity, exact value as printed in REFERENCE_CASES, decimals
 
 
 def _s1_exact(motion, quantity: str) -> float:
-    kind, _, name = quantity.partition("_")
-    if kind == "v":
-        return float(np.hypot(*motion.velocity(name)))
-    if kind == "a":
-        return float(np.hypot(*motion.acceleration(name)))
-    if kind == "omega":
-        return float(motion.omega(name))
-    if kind == "epsilon":
-        return float(motion.epsilon(name))
-    return float(motion.curvature(name).rho)
+    return exact_value(motion, quantity)
 
 
 @pytest.mark.parametrize(("quantity", "printed", "digits"), S1_PRINTED)

@@ -34,7 +34,7 @@ array([[0.174929, 0.042426]])
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -98,6 +98,27 @@ class Construction:
     tied: Mapping[str, str]
     anchors: Mapping[str, tuple[str, np.ndarray, str]]
     x_links: tuple[str, ...]
+
+    def reference(self, link: str) -> tuple[str, np.ndarray, str | None]:
+        """(name, position, known link) of the point a group link's motion is referred to: its
+        pin on a known link (whose motion gives the pin's), or X itself (known link None)."""
+        if link in self.anchors:
+            return self.anchors[link]
+        return self.point, self.position, None
+
+    def follow_tied(self, values: dict, known: Callable[[str], object]) -> None:
+        """Give each link whose rotation a prismatic pair ties to another link that link's ω
+        (or ε): ``values`` holds the group's own, ``known(link)`` those of links already known
+        (None where not known)."""
+        pending = dict(self.tied)
+        while pending:
+            for link, other in list(pending.items()):
+                source = values.get(other)
+                if source is None:
+                    source = known(other)
+                if source is not None:
+                    values[link] = source
+                    del pending[link]
 
 
 def branch_count(kind: str) -> int:

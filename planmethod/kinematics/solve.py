@@ -341,17 +341,6 @@ def _toggle_check(group: AssurGroup, sine: np.ndarray, angles_deg: np.ndarray) -
             link=group.name, angle=float(angles_deg[index]))
 
 
-def _resolve_tied(construction: Construction, values: dict[str, np.ndarray],
-                  known: Mapping[str, np.ndarray]) -> None:
-    pending = dict(construction.tied)
-    while pending:
-        for link, other in list(pending.items()):
-            source = values.get(other, known.get(other))
-            if source is not None:
-                values[link] = source
-                del pending[link]
-
-
 def _group_velocity(construction: Construction, states: dict[str, LinkState],
                     angles_deg: np.ndarray):
     side1, side2 = construction.sides
@@ -364,16 +353,12 @@ def _group_velocity(construction: Construction, states: dict[str, LinkState],
     for link, index in construction.rotating.items():
         side = construction.sides[index]
         omegas[link] = (u1, u2)[index] / norm(side.radius)
-    _resolve_tied(construction, omegas, {k: s.omega for k, s in states.items()})
+    construction.follow_tied(omegas, lambda link: states[link].omega)
     velocities = {}
     for link in construction.group.links:
-        state = states[link]
-        if link in construction.anchors:
-            _, pin, known = construction.anchors[link]
-            ref, v_ref = pin, states[known].velocity_at(pin)
-        else:
-            ref, v_ref = construction.position, v_x
-        velocities[link] = v_ref + omegas[link][..., None] * perp(state.origin - ref)
+        _, ref, known = construction.reference(link)
+        v_ref = states[known].velocity_at(ref) if known else v_x
+        velocities[link] = v_ref + omegas[link][..., None] * perp(states[link].origin - ref)
     return (u1, u2), sine, omegas, velocities
 
 
@@ -393,15 +378,12 @@ def _group_acceleration(construction: Construction, states: dict[str, LinkState]
     epsilons: dict[str, np.ndarray] = {}
     for link, index in construction.rotating.items():
         epsilons[link] = (du1, du2)[index] / norm(construction.sides[index].radius)
-    _resolve_tied(construction, epsilons, {k: s.epsilon for k, s in states.items()})
+    construction.follow_tied(epsilons, lambda link: states[link].epsilon)
     accelerations = {}
     for link in construction.group.links:
         state = states[link]
-        if link in construction.anchors:
-            _, pin, anchor = construction.anchors[link]
-            ref, a_ref = pin, states[anchor].acceleration_at(pin)
-        else:
-            ref, a_ref = construction.position, a_x
+        _, ref, known = construction.reference(link)
+        a_ref = states[known].acceleration_at(ref) if known else a_x
         r = state.origin - ref
         accelerations[link] = (a_ref + epsilons[link][..., None] * perp(r)
                                - (state.omega ** 2)[..., None] * r)

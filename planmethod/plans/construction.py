@@ -540,25 +540,14 @@ class _Emulator:
                     "v": (base_label, x_label), "reverse": side.link == side.slide.link}
         self.rel_velocity[(group.index, 0)] = rel[0]
         self.rel_velocity[(group.index, 1)] = rel[1]
-        pending = dict(construction.tied)
-        while pending:
-            for link, other in list(pending.items()):
-                source = omegas.get(other, self.readings.get(f"omega_{other}"))
-                if source is None and other == FRAME:
-                    source = 0.0
-                if source is not None:
-                    omegas[link] = source
-                    del pending[link]
+        construction.follow_tied(omegas, lambda link: self.readings.get(f"omega_{link}"))
         for link in group.links:
             self.readings[f"omega_{link}"] = omegas[link]
-            if link in construction.anchors:
-                pin_name, pin, known = construction.anchors[link]
-                ref_label = self.image_at(self.v, self.vimages, known, pin[0],
-                                          self.label(pin_name, self.v))
-                self.vimages[link] = LinkImage(pin[0], self.v.points[ref_label], ref_label,
-                                               omegas[link])
-            else:
-                self.vimages[link] = LinkImage(x, self.v.points[x_label], x_label, omegas[link])
+            name, ref, known = construction.reference(link)
+            ref_label = (self.image_at(self.v, self.vimages, known, ref[0],
+                                       self.label(name, self.v)) if known else x_label)
+            self.vimages[link] = LinkImage(ref[0], self.v.points[ref_label], ref_label,
+                                           omegas[link])
         for link in group.links:
             self.image_points(link, self.v, self.vimages[link], _velocity_offset, mu_v)
 
@@ -631,27 +620,15 @@ class _Emulator:
             else:
                 self.a.read(start, x_label, quantity=f"a_rel_{point}{side.base}", sign=sign,
                             factor=mu_a)
-        pending = dict(construction.tied)
-        while pending:
-            for link, other in list(pending.items()):
-                source = epsilons.get(other, self.readings.get(f"epsilon_{other}"))
-                if source is None and other == FRAME:
-                    source = 0.0
-                if source is not None:
-                    epsilons[link] = source
-                    del pending[link]
+        construction.follow_tied(epsilons, lambda link: self.readings.get(f"epsilon_{link}"))
         for link in group.links:
             self.readings[f"epsilon_{link}"] = epsilons[link]
             omega = self.readings[f"omega_{link}"]
-            if link in construction.anchors:
-                pin_name, pin, known = construction.anchors[link]
-                ref_label = self.image_at(self.a, self.aimages, known, pin[0],
-                                          self.label(pin_name, self.a))
-                self.aimages[link] = LinkImage(pin[0], self.a.points[ref_label], ref_label,
-                                               omega, epsilons[link])
-            else:
-                self.aimages[link] = LinkImage(x, self.a.points[x_label], x_label, omega,
-                                               epsilons[link])
+            name, ref, known = construction.reference(link)
+            ref_label = (self.image_at(self.a, self.aimages, known, ref[0],
+                                       self.label(name, self.a)) if known else x_label)
+            self.aimages[link] = LinkImage(ref[0], self.a.points[ref_label], ref_label, omega,
+                                           epsilons[link])
         for link in group.links:
             self.image_points(link, self.a, self.aimages[link], _acceleration_offset, mu_a)
 
