@@ -56,7 +56,8 @@ from .model import (
     Slide,
 )
 
-__all__ = ["POINT_NAME", "exercise_from_dict", "load_exercise", "parse_exercise"]
+__all__ = ["POINT_NAME", "exercise_from_dict", "load_exercise", "parse_exercise", "parse_toml",
+           "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -86,23 +87,31 @@ def load_exercise(path: str | Path) -> Exercise:
         If the file cannot be read, is not valid TOML, or breaks the exercise-file contract.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SpecError("no such file", file=str(path)) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
-    return parse_exercise(text, file=str(path))
+    return parse_exercise(read_text(path), file=str(path))
 
 
 def parse_exercise(text: str, *, file: str | None = None) -> Exercise:
     """Parse the text of an exercise file (see :func:`load_exercise`)."""
+    return exercise_from_dict(parse_toml(text, file=file), file=file)
+
+
+def read_text(path: str | Path) -> str:
+    """The UTF-8 text of a file, or a :class:`SpecError` naming it."""
     try:
-        data = tomllib.loads(text)
+        return Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SpecError("no such file", file=str(path)) from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
+
+
+def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
+    """TOML text → tables, or a :class:`SpecError` naming the file, line and column."""
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
-        text = str(error).replace("Cannot overwrite a value", "a key is given twice")
-        raise SpecError(f"not valid TOML: {text}", file=file) from None
-    return exercise_from_dict(data, file=file)
+        message = str(error).replace("Cannot overwrite a value", "a key is given twice")
+        raise SpecError(f"not valid TOML: {message}", file=file) from None
 
 
 def exercise_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> Exercise:

@@ -45,7 +45,6 @@ import copy
 import hashlib
 import math
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -53,6 +52,7 @@ from typing import Any
 
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
 from ..model import Exercise
+from ..spec import parse_toml, read_text
 from .expressions import ExpressionError, evaluate, parse, references
 
 __all__ = [
@@ -124,21 +124,12 @@ def load_template(path: str | Path) -> Template:
         expression (naming the file and key).
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SpecError("no such file", file=str(path)) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
-    return parse_template(text, file=str(path))
+    return parse_template(read_text(path), file=str(path))
 
 
 def parse_template(text: str, *, file: str | None = None) -> Template:
     """Parse the text of a template (see :func:`load_template`)."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SpecError(f"not valid TOML: {error}", file=file) from None
+    data = parse_toml(text, file=file)
     settings = _settings(data.get("template", {}), file)
     if "vars" in data and not isinstance(data["vars"], Mapping):
         raise SpecError("must be a table of named values", file=file, key="vars")
@@ -526,6 +517,7 @@ def to_toml(data: Mapping[str, Any]) -> str:
 
     Examples
     --------
+    >>> import tomllib
     >>> text = to_toml({"title": "x", "drive": {"angle": 45.0}, "slide": [{"link": "s"}]})
     >>> tomllib.loads(text) == {"title": "x", "drive": {"angle": 45.0}, "slide": [{"link": "s"}]}
     True
