@@ -265,7 +265,12 @@ def figure(result: dict):
             axis.plot(xs, ys, color=color, marker=marker, linestyle=line, alpha=0.85,
                       label=NAMES[method], markersize=7)
             dx, dy, align = OFFSETS[method]
-            for group in _merged(rows, key):
+            groups = sorted(_merged(rows, key), key=lambda g: g[0][key])
+            for number, group in enumerate(groups):
+                if method == "plans" and number % 2:  # alternate sides: the points are dense
+                    dx, align = 7, "left"
+                elif method == "plans":
+                    dx, align = -7, "right"
                 labels = [r["label"].split(" (")[0].replace("closed form, ", "")
                           for r in group]
                 x = group[0]["time_per_angle"] * 1e6
@@ -281,7 +286,7 @@ def figure(result: dict):
         axis.axhline(np.finfo(float).eps, color="grey", linewidth=0.8, linestyle=":")
         axis.grid(True, which="major", alpha=0.3)
     axes[0].set_ylabel("max error / max |exact| over the turn")
-    axes[0].legend(fontsize=8, loc="center left")
+    axes[1].legend(fontsize=8, loc="center right")
     fig.suptitle(f"Four-bar (case A), point C: run time against error "
                  f"({result['angles']} angles; plans at {result['plan_angles']} angles, "
                  "magnitudes as read off)")

@@ -32,6 +32,7 @@ from planmethod.kinematics import solve
 from planmethod.kinematics.solve import choose_branches
 from planmethod.structure import analyse_structure
 
+from . import floor
 from . import peers as peer_tools
 from .common import best_time, exercise, full_turn, microseconds
 from .reference import fourbar as fourbar_reference
@@ -41,6 +42,10 @@ COUNTS = (360, 3600, 36000)
 QUICK_COUNTS = (360, 3600)
 MECHANISMS = ("fourbar", "slider_crank")
 TITLES = {"fourbar": "four-bar (case A)", "slider_crank": "slider-crank (seed 001)"}
+FLOOR = "numpy floor (hand-fused, this mechanism only)"
+COLORS = {"planmethod": "black", "planmethod (prepared)": "black", "pylinkage": "tab:blue",
+          "mechanism": "tab:orange", "kimech": "tab:green", "fourbarhinge": "tab:purple",
+          "kinepy": "tab:red", FLOOR: "grey"}
 
 
 def every_point(mechanism) -> list[str]:
@@ -102,6 +107,26 @@ def planmethod_error(name: str, mechanism, count: int = 360) -> dict:
     return relative_errors((position, velocity, acceleration), tuple(reference))
 
 
+def floor_record(name: str, mechanism, counts, min_time: float) -> dict:
+    """The hand-fused numpy closed form of :mod:`benchmarks.floor` (not general: this one
+    mechanism only), timed and checked like the others."""
+    function = floor.RUNNERS[name]
+    runs = {}
+    for count in counts:
+        phi = np.radians(full_turn(count))
+        function(phi)
+        runs[str(count)] = best_time(lambda p=phi: function(p), min_time=min_time)
+    count = counts[-1]
+    out = function(np.radians(full_turn(count)))
+    cy = out.get("cy", np.zeros(count))
+    vcy = out.get("vcy", np.zeros(count))
+    acy = out.get("acy", np.zeros(count))
+    arrays = (np.column_stack((out["cx"], cy)), np.column_stack((out["vcx"], vcy)),
+              np.column_stack((out["acx"], acy)))
+    return {"runs": runs, "error": relative_errors(arrays, exact_c(mechanism, count)),
+            "error_at": count}
+
+
 def run(quick: bool = False, *, log=print) -> dict:
     counts = QUICK_COUNTS if quick else COUNTS
     min_time = 0.2 if quick else 0.5
@@ -117,7 +142,8 @@ def run(quick: bool = False, *, log=print) -> dict:
         entry = {"planmethod": {"runs": {str(c): times[c]["cold"] for c in counts},
                                 "error": planmethod_error(name, mechanism)},
                  "planmethod (prepared)": {"runs": {str(c): times[c]["prepared"]
-                                                    for c in counts}}}
+                                                    for c in counts}},
+                 FLOOR: floor_record(name, mechanism, counts, min_time)}
         if have_peers:
             for peer in peer_tools.PEERS:
                 log(f"  {TITLES[name]}: {peer} …")
@@ -203,18 +229,26 @@ def figure(result: dict):
                     ys.append(value * 1e6)
             if not xs:
                 continue
-            style = {"linewidth": 2.5, "color": "black"} if tool.startswith("planmethod") else {}
-            if tool == "planmethod (prepared)":
-                style = {"linewidth": 1.5, "color": "black", "linestyle": "--"}
-            axis.plot(xs, ys, marker="o", label=tool, **style)
+            style = {"linewidth": 1.5, "color": COLORS.get(tool, "grey")}
+            if tool == "planmethod":
+                style["linewidth"] = 2.8
+            if tool in ("planmethod (prepared)", FLOOR):
+                style["linestyle"] = "--" if tool != FLOOR else ":"
+            label = tool if not record.get("version") else f"{tool} {record['version']}"
+            axis.plot(xs, ys, marker="o", label=label, **style)
         axis.set_xscale("log")
         axis.set_yscale("log")
         axis.set_title(TITLES[name])
         axis.set_xlabel("crank angles N per full turn")
         axis.grid(True, which="both", alpha=0.3)
     np.atleast_1d(axes)[0].set_ylabel("µs per angle (p, v, a of every point)")
-    np.atleast_1d(axes)[-1].legend(fontsize=8, loc="upper right")
+    handles: dict = {}
+    for axis in np.atleast_1d(axes):
+        for handle, label in zip(*axis.get_legend_handles_labels(), strict=True):
+            handles.setdefault(label, handle)
     fig.suptitle("Full-turn kinematics: time per crank angle (lower is better), one run, "
                  "one machine")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=4, fontsize=8,
+               frameon=False)
     return fig

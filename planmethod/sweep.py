@@ -73,8 +73,11 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
     [120]
     """
     mechanism = exercise.mechanism
-    angles = sweep_angles(step, start, stop) if angles is None else np.asarray(
-        list(angles), dtype=float)
+    if angles is None:
+        angles = sweep_angles(step, start, stop)
+    else:  # no Python list of a million floats when an array is given
+        angles = np.asarray(angles if isinstance(angles, (np.ndarray, list, tuple, range))
+                            else list(angles), dtype=float).ravel()
     structure = analyse_structure(mechanism)
     scene = plan_scene(exercise)
     stage = "acceleration" if extra is not None else scene.stage
