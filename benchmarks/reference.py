@@ -68,6 +68,8 @@ def fourbar(phi_deg, *, ground=(0.30, 0.0), crank=0.08, coupler=0.22, rocker=0.1
         b, v_b, a_b = _crank(zero, zero, l1, phi_deg, w, e)
         ux, uy = dx - b[0], dy - b[1]
         d2 = ux * ux + uy * uy
+        if d2 == 0:
+            raise ValueError(f"B and D coincide at {phi_deg}°: no definite position")
         d = mpmath.sqrt(d2)
         reach = (l2 + l3 + d) * (l2 + l3 - d) * (l2 - l3 + d) * (l3 - l2 + d)
         if reach < 0:
