@@ -113,6 +113,8 @@ def fourbar_case(*, crank=0.08, coupler=0.22, rocker=0.18, ground=(0.30, 0.0), o
 
 def slider_case(*, crank=0.06, rod=0.18, offset=0.0, omega=100.0, epsilon=0.0,
                 drive_angle=45.0, forward=True, name="seed 001") -> Case:
+    """A slider-crank A = (0, 0), C on the line y = −``offset``; C ahead of B when
+    ``forward``."""
     params = {"crank": crank, "rod": rod, "offset": offset, "omega": omega,
               "epsilon": epsilon}
     return Case("slider", params, drive_angle, name, forward)
@@ -158,20 +160,17 @@ def _classify(case: Case, angle: float) -> dict:
     except ValueError:
         exact = None
     p = case.params
-    with mpmath.workdps(40):
-        if case.kind == "fourbar":
-            scale = (p["coupler"] + p["rocker"]) ** 4 + 1e-300
-        else:
-            scale = p["rod"] ** 2 + 1e-300
-        if exact is None:  # recompute the (negative) discriminant for the report
-            probe = (fourbar_reference if case.kind == "fourbar" else slider_reference)
-            reach = _reach(probe, case, angle)
-            return {"exact": None, "reach": float(reach / scale), "sine": 0.0}
-        return {"exact": exact, "reach": float(exact["reach"] / scale),
-                "sine": abs(float(exact["sine"]))}
+    if case.kind == "fourbar":
+        scale = (p["coupler"] + p["rocker"]) ** 4 + 1e-300
+    else:
+        scale = p["rod"] ** 2 + 1e-300
+    if exact is None:  # the discriminant (negative, or zero at the toggle) for the report
+        return {"exact": None, "reach": float(_reach(case, angle) / scale), "sine": 0.0}
+    return {"exact": exact, "reach": float(exact["reach"] / scale),
+            "sine": abs(float(exact["sine"]))}
 
 
-def _reach(function, case: Case, angle: float):
+def _reach(case: Case, angle: float):
     """The discriminant where the links cannot be assembled (negative)."""
     p = case.params
     with mpmath.workdps(40):
