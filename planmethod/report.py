@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from .kinematics import Motion, solve
+from .kinematics.solve import FLAG_ERROR
 from .model import FRAME, Exercise
 from .plans import Plans, draw_plans
 from .scene import Scene, plan_scene
@@ -70,6 +71,20 @@ class Analysis:
     plans: Plans | None
     checks: tuple[Check, ...]
     forces: Any = None
+
+    @property
+    def flags(self) -> tuple[str, ...]:
+        """Plan flags (intersections at small angles) and groups whose exact values lose
+        digits near their toggle (estimated relative error above 1e-6)."""
+        flags = list(self.plans.flags) if self.plans else []
+        for index, solved in sorted(self.motion.groups.items()):
+            for stage, values in (solved.error_estimate or {}).items():
+                estimate = float(np.max(values))
+                if estimate > FLAG_ERROR:
+                    group = self.structure.groups[index]
+                    flags.append(f"group {group.name} is near its toggle: its exact {stage}s "
+                                 f"are good to about {estimate:.0e} relative")
+        return tuple(flags)
 
 
 def asked_quantities(exercise: Exercise, motion: Motion) -> list[str]:
@@ -196,6 +211,13 @@ def report_dict(analysis: Analysis) -> dict:
                                    "reason": motion.branches[g.index].reason}}
                        if g.index in motion.branches else {})}
                    for g in structure.groups]}
+    for entry, group in zip(report["structure"]["groups"], structure.groups, strict=True):
+        solved = motion.groups.get(group.index)
+        if solved is not None and solved.line_sine is not None and group.is_dyad:
+            sine = abs(float(solved.line_sine[0]))
+            entry["line_angle_deg"] = math.degrees(math.asin(min(1.0, sine)))
+            entry["error_estimate"] = {stage: float(values[0]) for stage, values in
+                                       (solved.error_estimate or {}).items()}
     if analysis.plans:
         report["scales"] = analysis.plans.scales.as_dict()
     acceleration = motion.stage == "acceleration"
@@ -258,8 +280,7 @@ def report_dict(analysis: Analysis) -> dict:
             plans["acceleration"] = analysis.plans.acceleration.as_dict()
         report["plans"] = plans
     report["checks"] = [check.as_dict() for check in analysis.checks]
-    flags = list(analysis.plans.flags) if analysis.plans else []
-    report["flags"] = flags
+    report["flags"] = list(analysis.flags)
     if analysis.forces is not None:
         report["forces"] = analysis.forces.as_dict()
     return report

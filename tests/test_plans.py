@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from planmethod.errors import AssemblyError, ToggleError
 from planmethod.kinematics import solve
 from planmethod.plans import draw_plans, image_label
-from planmethod.report import analyse
+from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.testing import (
     fourbar,
@@ -250,3 +250,19 @@ def test_rotated_velocity_plan_puts_b_along_the_crank():
     # crank scale: (pb) = (AB) = 30 mm, so the rotated b lands on B itself
     assert np.allclose(lever["b"], b, atol=1e-9)
     assert np.allclose(lever["p"], a, atol=1e-12)
+
+
+def test_near_a_toggle_the_error_estimate_is_reported_and_digitless_stages_refused():
+    """ε·R/s^(2k+1): velocities survive closer to the toggle than accelerations do."""
+    near = exercise_from_dict(_near_toggle_fourbar(math.degrees(1e-5)))
+    velocity = solve(near.mechanism, stage="velocity")
+    estimate = float(velocity.groups[0].error_estimate["velocity"][0])
+    assert 1e-9 < estimate < 1
+    with pytest.raises(ToggleError) as caught:
+        solve(near.mechanism)
+    assert "accelerations would have no correct digit" in str(caught.value)
+    flagged = analyse(exercise_from_dict(_near_toggle_fourbar(0.001)))
+    assert any("near its toggle" in flag for flag in flagged.flags)
+    report_groups = report_dict(flagged)["structure"]["groups"]
+    assert 1e-6 < report_groups[0]["error_estimate"]["acceleration"] < 1
+    assert report_groups[0]["line_angle_deg"] < 1

@@ -51,8 +51,8 @@ def text_report(analysis) -> str:
         lines.append(f"  {check.quantity:<{width}} {_format(check.plan):>12}  "
                      f"{_format(check.analytic):>12}  {_format(check.abs_error, 3):>10}   "
                      f"{rel:>10}  {check.unit}")
-    if analysis.plans and analysis.plans.flags:
-        lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.plans.flags]
+    if analysis.flags:
+        lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.flags]
     if analysis.forces is not None:
         lines += ["", analysis.forces.describe()]
     return "\n".join(lines)

@@ -55,8 +55,9 @@ __all__ = [
     "solve_pair",
 ]
 
-#: Below this |sin| of the angle between a group's two construction lines the group is taken
-#: to be in its toggle position (lines parallel to within the arithmetic's own resolution).
+#: Below this |sin| of the angle between two guides a PRP or RPP dyad has no definite position,
+#: and a drawn intersection is never attempted. (A dyad's velocities and accelerations have
+#: their own, sharper limits from the arithmetic's resolution: see ``solve``.)
 TOGGLE_SINE = 1e-10
 
 
@@ -105,6 +106,17 @@ class Construction:
         if link in self.anchors:
             return self.anchors[link]
         return self.point, self.position, None
+
+    def size_ratio(self) -> np.ndarray:
+        """R = L / l: the group's size L (its radii plus the distance between its two base
+        points) over its shortest radius l (R = 1 for a group without a rotation side).
+        The group's conditioning near its toggle is ε·R/s^(2k+1) (see ``solve``)."""
+        radii = [norm(side.radius) for side in self.sides if side.radius is not None]
+        span = norm(self.sides[0].base_position - self.sides[1].base_position)
+        if not radii:
+            return np.ones_like(span)
+        total = span + sum(radii)
+        return total / np.minimum.reduce(radii)
 
     def follow_tied(self, values: dict, known: Callable[[str], object]) -> None:
         """Give each link whose rotation a prismatic pair ties to another link that link's ω
