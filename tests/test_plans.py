@@ -254,7 +254,7 @@ def test_rotated_velocity_plan_puts_b_along_the_crank():
 
 def test_near_a_toggle_the_error_estimate_is_reported_and_digitless_stages_refused():
     """ε·R/s^(2k+1): velocities survive closer to the toggle than accelerations do."""
-    near = exercise_from_dict(_near_toggle_fourbar(math.degrees(1e-5)))
+    near = exercise_from_dict(_near_toggle_fourbar(1e-5))  # lines at 0.04°
     velocity = solve(near.mechanism, stage="velocity")
     estimate = float(velocity.groups[0].error_estimate["velocity"][0])
     assert 1e-9 < estimate < 1
