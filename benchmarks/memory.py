@@ -36,8 +36,6 @@ from .common import ROOT
 
 FILE = "exercises/shaper_sixbar.toml"
 CASES = ("table", "aggregate", "csv")
-#: CSV rows formatted at once (keeps the text buffer small)
-ROWS_PER_WRITE = 4096
 
 
 def aggregate_columns(chunks) -> dict[str, tuple[float, float]]:
@@ -56,19 +54,15 @@ def stream_csv(chunks, target: Path) -> int:
     """Write the chunks as one CSV (full precision, one chunk at a time); returns the number
     of rows."""
     from planmethod.io import atomic_path
+    from planmethod.sweep import csv_rows
 
     rows = 0
     with atomic_path(target) as temporary, temporary.open("w", encoding="utf-8") as handle:
         for columns in chunks:
             if rows == 0:
                 handle.write(",".join(columns) + "\n")
-            block = np.column_stack(list(columns.values()))
-            for first in range(0, len(block), ROWS_PER_WRITE):
-                part = block[first:first + ROWS_PER_WRITE].tolist()
-                # repr: the shortest text that reads back to the same float; blank if undefined
-                handle.write("\n".join(",".join(map(repr, row)) for row in part)
-                             .replace("nan", "") + "\n")
-            rows += len(block)
+            handle.writelines(csv_rows(columns))
+            rows += len(columns["angle"])
     return rows
 
 

@@ -12,6 +12,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Iterator
 
 import numpy as np
@@ -24,7 +25,8 @@ from .progress import Progress
 from .scene import plan_scene
 from .structure import analyse_structure
 
-__all__ = ["CHUNK", "sweep_angles", "sweep_chunks", "sweep_columns", "sweep_table"]
+__all__ = ["CHUNK", "Extremes", "csv_rows", "sweep_angles", "sweep_chunks", "sweep_columns",
+           "sweep_table"]
 
 #: angles solved at once; memory stays bounded whatever the length of the sweep
 CHUNK = 65536
@@ -143,3 +145,74 @@ def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
         for name, values in columns.items():
             chunks.setdefault(name, []).append(values)
     return {name: np.concatenate(parts) for name, parts in chunks.items()}
+
+
+#: columns a summary leaves to the CSV (coordinates and vector components)
+_COMPONENTS = ("x_", "y_", "vx_", "vy_", "ax_", "ay_")
+#: rows formatted per write when streaming a CSV
+ROWS_PER_WRITE = 4096
+
+
+class Extremes:
+    """Running minima and maxima (with their crank angles) of a sweep's columns, fed chunk by
+    chunk.
+
+    Examples
+    --------
+    >>> extremes = Extremes()
+    >>> extremes.feed({"angle": np.array([0.0, 90.0]), "v_C": np.array([0.0, 6.0])})
+    >>> extremes.table["v_C"]
+    ((0.0, 0.0), (6.0, 90.0))
+    """
+
+    def __init__(self) -> None:
+        self.table: dict[str, tuple | None] = {}
+        self.count = 0
+        self.first: float | None = None
+        self.last: float | None = None
+
+    def feed(self, chunk: dict[str, np.ndarray]) -> None:
+        angles = np.asarray(chunk["angle"], dtype=float)
+        if not len(angles):
+            return
+        self.count += len(angles)
+        self.first = float(angles[0]) if self.first is None else self.first
+        self.last = float(angles[-1])
+        for name, values in chunk.items():
+            if name == "angle" or name.startswith(_COMPONENTS):
+                continue
+            values = np.asarray(values, dtype=float)
+            finite = np.isfinite(values)
+            known = self.table.get(name)
+            if not finite.any():
+                self.table.setdefault(name, None)
+                continue
+            masked = np.where(finite, values, np.nan)
+            low, high = int(np.nanargmin(masked)), int(np.nanargmax(masked))
+            low = (float(values[low]), float(angles[low]))
+            high = (float(values[high]), float(angles[high]))
+            if known is not None:
+                low = min(known[0], low, key=lambda pair: pair[0])
+                high = max(known[1], high, key=lambda pair: pair[0])
+            self.table[name] = (low, high)
+
+    def describe(self, title: str) -> str:
+        """The extremes as a printed table."""
+        lines = [f"{title} — {self.count} crank angles from {self.first:g}° to {self.last:g}°",
+                 "", "  quantity            min      at φ      max      at φ"]
+        for name, found in self.table.items():
+            if found is None:
+                lines.append(f"  {name:<16} (undefined)")
+                continue
+            (low, at_low), (high, at_high) = found
+            lines.append(f"  {name:<16} {low:>10.5g} {at_low:>7g}° {high:>10.5g} {at_high:>7g}°")
+        return "\n".join(lines)
+
+
+def csv_rows(chunk: dict[str, np.ndarray]) -> Iterator[str]:
+    """A chunk of a sweep as CSV lines (full precision: the shortest text that reads back to
+    the same float; blank where a value is undefined)."""
+    block = np.column_stack([np.asarray(values, dtype=float) for values in chunk.values()])
+    for first in range(0, len(block), ROWS_PER_WRITE):
+        for row in block[first:first + ROWS_PER_WRITE].tolist():
+            yield ",".join(repr(v) if math.isfinite(v) else "" for v in row) + "\n"

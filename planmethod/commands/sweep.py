@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import io
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -20,44 +19,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="add the reactions per pair and the balancing moment")
 
 
-def csv_text(table) -> str:
-    """The sweep table as CSV text (full precision, blank for undefined values)."""
-    import numpy as np
-
-    names = list(table)
-    out = io.StringIO()
-    out.write(",".join(names) + "\n")
-    columns = [np.asarray(table[name], dtype=float) for name in names]
-    for row in zip(*columns, strict=True):
-        out.write(",".join("" if not np.isfinite(v) else repr(float(v)) for v in row) + "\n")
-    return out.getvalue()
-
-
-def summary(table, title: str) -> str:
-    import numpy as np
-
-    angles = table["angle"]
-    lines = [f"{title} — {len(angles)} crank angles from {angles[0]:g}° to {angles[-1]:g}°",
-             "", "  quantity            min      at φ      max      at φ"]
-    for name, values in table.items():
-        if name == "angle" or name.startswith(("x_", "y_", "vx_", "vy_", "ax_", "ay_")):
-            continue
-        values = np.asarray(values, dtype=float)
-        finite = np.isfinite(values)
-        if not finite.any():
-            lines.append(f"  {name:<16} (undefined)")
-            continue
-        low = int(np.nanargmin(np.where(finite, values, np.nan)))
-        high = int(np.nanargmax(np.where(finite, values, np.nan)))
-        lines.append(f"  {name:<16} {values[low]:>10.5g} {angles[low]:>7g}° "
-                     f"{values[high]:>10.5g} {angles[high]:>7g}°")
-    return "\n".join(lines)
-
-
 def run(args: argparse.Namespace) -> int:
-    from ..io import write_text_atomic
+    import contextlib
+
+    from ..io import atomic_path
     from ..spec import load_exercise
-    from ..sweep import sweep_table
+    from ..sweep import Extremes, csv_rows, sweep_chunks, sweep_table
 
     exercise = load_exercise(args.file)
     extra = None
@@ -65,20 +32,33 @@ def run(args: argparse.Namespace) -> int:
         from ..forces import force_columns
 
         extra = force_columns(exercise)
-    table = sweep_table(exercise, args.step, start=args.start, stop=args.stop, extra=extra)
-    outputs = []
-    csv = csv_text(table) if args.csv else None
-    if args.plot:
+    sweep = {"step": args.step, "start": args.start, "stop": args.stop, "extra": extra}
+    # a plot needs every column at once; otherwise the sweep streams chunk by chunk, so a
+    # sweep of millions of angles runs in bounded memory
+    table = sweep_table(exercise, **sweep) if args.plot else None
+    chunks = [table] if table is not None else sweep_chunks(exercise, **sweep)
+    if args.plot:  # first: a bad plot file name then leaves no CSV behind
         from ..render.plots import save_sweep_plot
 
         if args.forces:
             from ..render.force_plots import save_force_plot as save_sweep_plot
         save_sweep_plot(table, args.plot, title=exercise.mechanism.title)
-        outputs.append(args.plot)
-    if csv is not None:
-        write_text_atomic(args.csv, csv)
-        outputs.append(args.csv)
-    print(summary(table, exercise.mechanism.title))
+    extremes = Extremes()
+    with contextlib.ExitStack() as stack:
+        handle = None
+        if args.csv:  # written to a temporary file, renamed into place only when complete
+            temporary = stack.enter_context(atomic_path(args.csv))
+            handle = stack.enter_context(temporary.open("w", encoding="utf-8"))
+        for chunk in chunks:
+            if handle is not None:
+                if not extremes.count:
+                    handle.write(",".join(chunk) + "\n")
+                handle.writelines(csv_rows(chunk))
+            extremes.feed(chunk)
+        if handle is not None:
+            handle.close()
+    outputs = ([args.plot] if args.plot else []) + ([args.csv] if args.csv else [])
+    print(extremes.describe(exercise.mechanism.title))
     if outputs:
         print("\nWrote " + ", ".join(outputs))
     return 0
