@@ -93,7 +93,8 @@ def asked_quantities(exercise: Exercise, motion: Motion) -> list[str]:
     ask, mechanism = exercise.ask, exercise.mechanism
     if ask.everything:
         points = [p for link in motion.links if link != FRAME
-                  for p in mechanism.links[link].points]
+                  for p in mechanism.links[link].points
+                  if FRAME not in mechanism.links_with_point(p)]  # fixed pivots do not move
         points = list(dict.fromkeys(points))
         links = [link for link in motion.links if link not in (FRAME, mechanism.drive.link)]
         slides = [s.key for s in mechanism.slides]
