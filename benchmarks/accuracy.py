@@ -112,14 +112,7 @@ def newton_motion(mechanism, angles, *, tol: float):
     q, _ = newton_positions(mechanism, angles, tol=tol)
     system = ConstraintSystem.between(mechanism, UNKNOWN)
     states = _states(mechanism, angles, q)
-    rates = system.velocities(states)
-    for index, link in enumerate(UNKNOWN):
-        s = states[link]
-        states[link] = LinkState(s.theta, s.origin, rates[:, 3 * index + 2],
-                                 rates[:, 3 * index:3 * index + 2])
-    second = system.accelerations(states)
-    s = states["BC"]
-    moving = LinkState(s.theta, s.origin, s.omega, s.velocity, second[:, 2], second[:, 0:2])
+    moving = system.moving_states(states)["BC"]
     c = moving.place(mechanism.local("BC", "C"))
     return moving.velocity_at(c), moving.acceleration_at(c)
 

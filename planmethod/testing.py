@@ -146,16 +146,7 @@ def reference_motion(mechanism: Mechanism, angles: Sequence[float]) -> dict[str,
     for name in moving:
         state = positions.links[name]
         states[name] = LinkState(state.theta, state.origin)
-    rates = system.velocities(states)
-    for index, name in enumerate(moving):
-        state = states[name]
-        states[name] = LinkState(state.theta, state.origin, rates[:, 3 * index + 2],
-                                 rates[:, 3 * index:3 * index + 2])
-    second = system.accelerations(states)
-    out = {}
-    for index, name in enumerate(moving):
-        out[name] = {"omega": rates[:, 3 * index + 2],
-                     "velocity": rates[:, 3 * index:3 * index + 2],
-                     "epsilon": second[:, 3 * index + 2],
-                     "acceleration": second[:, 3 * index:3 * index + 2]}
-    return out
+    moving = system.moving_states(states)
+    return {name: {"omega": moving[name].omega, "velocity": moving[name].velocity,
+                   "epsilon": moving[name].epsilon, "acceleration": moving[name].acceleration}
+            for name in moving}

@@ -212,3 +212,28 @@ class ConstraintSystem:
         matrix, _ = self.jacobian(states)
         rhs = self.gamma(states) - self.known_acceleration_term(states)
         return np.linalg.solve(matrix, rhs[..., None])[..., 0]
+
+    def moving_states(self, states: Mapping[str, LinkState], level: int = 2
+                      ) -> dict[str, LinkState]:
+        """The unknown links' states with ω and origin velocity (``level`` ≥ 1) and ε and
+        origin acceleration (``level`` 2) by the exact linear solves; ``states`` holds every
+        link's pose and the known links' motion (velocities, and accelerations for level 2)."""
+        states = dict(states)
+
+        def column(values, index, width=1):
+            part = values[:, index] if width == 1 else values[:, index:index + width]
+            return np.ascontiguousarray(part)
+
+        if level >= 1:
+            rates = self.velocities(states)
+            for index, link in enumerate(self.unknown):
+                states[link] = states[link].moving(column(rates, 3 * index + 2),
+                                                   column(rates, 3 * index, 2))
+        if level >= 2:
+            second = self.accelerations(states)
+            for index, link in enumerate(self.unknown):
+                state = states[link]
+                states[link] = state.moving(state.omega, state.velocity,
+                                            column(second, 3 * index + 2),
+                                            column(second, 3 * index, 2))
+        return {link: states[link] for link in self.unknown}

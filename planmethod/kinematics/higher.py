@@ -551,16 +551,5 @@ def solve_higher(mechanism: Mechanism, group: AssurGroup, states: dict, sign: in
     for link in group.links:
         states[link] = placed[link]
     if level >= 1:
-        rates = solver.system.velocities(states)
-        for index, link in enumerate(group.links):
-            states[link] = states[link].moving(np.ascontiguousarray(rates[:, 3 * index + 2]),
-                                               np.ascontiguousarray(rates[:, 3 * index:
-                                                                          3 * index + 2]))
-    if level >= 2:
-        second = solver.system.accelerations(states)
-        for index, link in enumerate(group.links):
-            s = states[link]
-            states[link] = s.moving(s.omega, s.velocity,
-                                    np.ascontiguousarray(second[:, 3 * index + 2]),
-                                    np.ascontiguousarray(second[:, 3 * index:3 * index + 2]))
+        states.update(solver.system.moving_states(states, level))
     return GroupMotion(None, None, None, rcond)
