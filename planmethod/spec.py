@@ -186,6 +186,11 @@ class _Reader:
 
     # -- the exercise -----------------------------------------------------------------------
     def exercise(self, data: Mapping[str, Any]) -> Exercise:
+        for name in ("vars", "template"):
+            if name in data:
+                raise self.error(name, "this is an exercise template (it has ranges, choices "
+                                       "or expressions): draw exercises from it with "
+                                       "`planmethod variants`")
         self.only_keys(data, TOP_LEVEL_KEYS, "")
         title = data.get("title", Path(self.file).stem if self.file else "mechanism")
         title = self.string(title, "title")
