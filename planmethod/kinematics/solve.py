@@ -25,17 +25,14 @@ import numpy as np
 from ..errors import AssemblyError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure, analyse_structure
-from .dyads import (
-    Construction,
-    construct,
-    dyad_positions,
-    solve_pair,
-)
-from .state import LinkState, cross, norm, perp, rotate, unit_angle
+from .compiled import Values, accelerations, program, size_ratio, turn, velocities
+from .dyads import Construction, construct, dyad_positions
+from .state import LinkState, _complex, _real, cross, norm, perp, rotate, unit_angle
 
 __all__ = ["STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "Sliding", "solve"]
 
 STAGES = ("position", "velocity", "acceleration")
+_LEVELS = {stage: level for level, stage in enumerate(STAGES)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -104,13 +101,16 @@ class Motion:
     branches: Mapping[int, Branch]
     #: reference → (link, position), filled on first use (positions never change)
     _located: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: reference → its offset from its link's origin (complex); ("spin" | "turn", link) →
+    #: iω and iε − ω² (complex): what a point's velocity and acceleration are made of
+    _terms: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     # -- shaping ---------------------------------------------------------------------------
     def _out(self, array: np.ndarray) -> np.ndarray:
         return array[0] if self.scalar else array
 
     def _need(self, stage: str, what: str) -> None:
-        if STAGES.index(self.stage) < STAGES.index(stage):
+        if _LEVELS[self.stage] < _LEVELS[stage]:
             raise PlanmethodError(f"{what} needs the {stage} stage, but only the {self.stage} "
                                   "stage was solved")
 
@@ -132,7 +132,7 @@ class Motion:
 
     def _find(self, ref: str) -> tuple[str, np.ndarray]:
         name, _, on = ref.partition("@")
-        owners = [link for link in self.mechanism.links_with_point(name) if link in self.links]
+        owners = [link for link in program(self.mechanism).owners(name) if link in self.links]
         if not owners:
             if not self.mechanism.links_with_point(name):
                 raise SpecError(f"unknown point '{name}'")
@@ -148,21 +148,44 @@ class Motion:
         (``"B@lever"``)."""
         return self._out(self._locate(ref)[1].copy())
 
+    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray:
+        """The point's position minus its link's origin, as complex numbers (kept)."""
+        offset = self._terms.get(ref)
+        if offset is None:
+            offset = self._terms[ref] = _complex(position - self.links[link].origin)
+        return offset
+
     def velocity(self, ref: str) -> np.ndarray:
         """Absolute velocity (m/s) of a point."""
-        self._need("velocity", f"the velocity of {ref}")
+        if self.stage == "position":
+            self._need("velocity", f"the velocity of {ref}")
         link, position = self._locate(ref)
         if link == FRAME:  # a point of the frame does not move
-            return self._out(np.zeros_like(position))
-        return self._out(self.links[link].velocity_at(position))
+            return self._out(np.zeros(position.shape))
+        # LinkState.velocity_at, v + ω·J·r, with r and iω kept for later reads
+        state = self.links[link]
+        spin = self._terms.get(("spin", link))
+        if spin is None:
+            spin = self._terms["spin", link] = 1j * state.omega
+        moved = _real(self._offset(ref, link, position) * spin)
+        moved += state.velocity  # v + ω·J·r, in place (one array fewer)
+        return self._out(moved)
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
-        self._need("acceleration", f"the acceleration of {ref}")
+        if self.stage != "acceleration":
+            self._need("acceleration", f"the acceleration of {ref}")
         link, position = self._locate(ref)
         if link == FRAME:
-            return self._out(np.zeros_like(position))
-        return self._out(self.links[link].acceleration_at(position))
+            return self._out(np.zeros(position.shape))
+        # LinkState.acceleration_at, a + ε·J·r − ω²·r
+        state = self.links[link]
+        factor = self._terms.get(("turn", link))
+        if factor is None:
+            factor = self._terms["turn", link] = state.epsilon * 1j - state.omega * state.omega
+        moved = _real(self._offset(ref, link, position) * factor)
+        moved += state.acceleration
+        return self._out(moved)
 
     def place(self, link: str, local) -> np.ndarray:
         """Global position of the point of ``link`` at local coordinates ``local``."""
@@ -348,6 +371,13 @@ def _condition(construction: Construction, sine: np.ndarray, angles_deg: np.ndar
     power = 3 if stage == "velocity" else 5
     with np.errstate(divide="ignore", over="ignore"):
         estimate = EPS * construction.size_ratio() / np.abs(sine) ** power
+    _refuse_digitless(estimate, sine, angles_deg, stage, construction.group.name)
+    return estimate
+
+
+def _refuse_digitless(estimate: np.ndarray, sine: np.ndarray, angles_deg: np.ndarray,
+                      stage: str, group_name: str) -> None:
+    """Raise a ToggleError at the first angle whose estimated relative error reaches 1."""
     bad = ~(estimate < 1.0)
     if np.any(bad):
         index = int(np.flatnonzero(bad)[0])
@@ -355,57 +385,184 @@ def _condition(construction: Construction, sine: np.ndarray, angles_deg: np.ndar
         raise ToggleError(
             f"toggle position: the group's two construction lines meet at {angle:.3g}°, so "
             f"close to parallel that its {stage}s would have no correct digit",
-            line_angle_deg=angle, link=construction.group.name, angle=float(angles_deg[index]))
-    return estimate
+            line_angle_deg=angle, link=group_name, angle=float(angles_deg[index]))
 
 
-def _group_velocity(construction: Construction, states: dict[str, LinkState],
-                    angles_deg: np.ndarray):
-    side1, side2 = construction.sides
-    v1 = states[side1.base_link].velocity_at(side1.base_position)
-    v2 = states[side2.base_link].velocity_at(side2.base_position)
-    u1, u2, sine = solve_pair(v2 - v1, side1.direction, side2.direction)
-    estimate = _condition(construction, sine, angles_deg, "velocity")
-    v_x = v1 + u1[..., None] * side1.direction
-    omegas: dict[str, np.ndarray] = {}
-    for link, index in construction.rotating.items():
-        side = construction.sides[index]
-        omegas[link] = (u1, u2)[index] / norm(side.radius)
-    construction.follow_tied(omegas, lambda link: states[link].omega)
-    velocities = {}
-    for link in construction.group.links:
-        _, ref, known = construction.reference(link)
-        v_ref = states[known].velocity_at(ref) if known else v_x
-        velocities[link] = v_ref + omegas[link][..., None] * perp(states[link].origin - ref)
-    return (u1, u2), sine, omegas, velocities, estimate
+def _estimate(ratio, sine: np.ndarray, stage: str) -> np.ndarray:
+    """ε·R/s³ (velocities) or ε·R/s⁵ (accelerations) as ``_condition`` computes them (R None:
+    1), with products for the powers."""
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        size = np.abs(sine)
+        power = size * size * size
+        if stage == "acceleration":
+            power = power * size * size
+        return (EPS if ratio is None else EPS * ratio) / power
 
 
-def _group_acceleration(construction: Construction, states: dict[str, LinkState],
-                        velocity_unknowns):
-    known = []
-    for side, u in zip(construction.sides, velocity_unknowns, strict=True):
-        a_base = states[side.base_link].acceleration_at(side.base_position)
-        if side.kind == "rotation":
-            known.append(a_base - (states[side.link].omega ** 2)[..., None] * side.radius)
-        else:
-            carrier = states[side.link].omega
-            known.append(a_base + 2 * carrier[..., None] * perp(u[..., None] * side.direction))
-    side1, side2 = construction.sides
-    du1, du2, _ = solve_pair(known[1] - known[0], side1.direction, side2.direction)
-    a_x = known[0] + du1[..., None] * side1.direction
-    epsilons: dict[str, np.ndarray] = {}
-    for link, index in construction.rotating.items():
-        epsilons[link] = (du1, du2)[index] / norm(construction.sides[index].radius)
-    construction.follow_tied(epsilons, lambda link: states[link].epsilon)
-    accelerations = {}
-    for link in construction.group.links:
-        state = states[link]
-        _, ref, known = construction.reference(link)
-        a_ref = states[known].acceleration_at(ref) if known else a_x
-        r = state.origin - ref
-        accelerations[link] = (a_ref + epsilons[link][..., None] * perp(r)
-                               - (state.omega ** 2)[..., None] * r)
-    return (du1, du2), epsilons, accelerations
+class _Estimates(Mapping):
+    """A dyad's ``error_estimate``: ε·R/s³ and ε·R/s⁵ per stage solved, computed when read."""
+
+    __slots__ = ("_ratio", "_sine", "_stages", "_values")
+
+    def __init__(self, ratio, sine: np.ndarray, level: int) -> None:
+        self._ratio, self._sine, self._stages = ratio, sine, STAGES[1:level + 1]
+        self._values: dict[str, np.ndarray] = {}
+
+    def __getitem__(self, stage: str) -> np.ndarray:
+        found = self._values.get(stage)
+        if found is None:
+            if stage not in self._stages:
+                raise KeyError(stage)
+            found = self._values[stage] = _estimate(self._ratio, self._sine, stage)
+        return found
+
+    def __iter__(self):
+        return iter(self._stages)
+
+    def __len__(self) -> int:
+        return len(self._stages)
+
+    def __repr__(self) -> str:
+        return repr(dict(self))
+
+
+def _limit(ratio, sine: np.ndarray, angles_deg: np.ndarray, stage: str, name: str) -> None:
+    """The per-stage limit of ``_condition``: a ToggleError where ε·R/s^(2k+1) ≥ 1. Checked on
+    the largest R and the smallest |s| first; the estimates only where that bound fails."""
+    smallest = float(np.abs(sine).min())
+    largest = 1.0 if ratio is None else float(ratio.max())
+    power = smallest ** (3 if stage == "velocity" else 5)
+    if EPS * largest < power:  # (false for a NaN)
+        return
+    _refuse_digitless(_estimate(ratio, sine, stage), sine, angles_deg, stage, name)
+
+
+class _SolvedDyad(GroupMotion):
+    """A solved dyad whose :class:`Construction` is built on first use (the plan emulator and
+    the force drawings use it; a bare solve does not)."""
+
+    __slots__ = ("_build",)
+
+    def __init__(self, construction=None, velocity_unknowns=None, acceleration_unknowns=None,
+                 line_sine=None, error_estimate=None, *, build=None) -> None:
+        object.__setattr__(self, "_build", build)
+        GroupMotion.__init__(self, construction, velocity_unknowns, acceleration_unknowns,
+                             line_sine, error_estimate)
+
+    @property
+    def construction(self) -> Construction | None:
+        value = _CONSTRUCTION_SLOT.__get__(self, GroupMotion)
+        build = getattr(self, "_build", None)
+        if value is None and build is not None:
+            value = build()
+            _CONSTRUCTION_SLOT.__set__(self, value)
+            object.__setattr__(self, "_build", None)
+        return value
+
+    @construction.setter
+    def construction(self, value) -> None:
+        _CONSTRUCTION_SLOT.__set__(self, value)
+
+
+_CONSTRUCTION_SLOT = GroupMotion.__dict__["construction"]
+
+
+def _pack(x, y, out: np.ndarray) -> np.ndarray:
+    """x and y (arrays, floats or None for zero) into ``out`` (N, 2)."""
+    if x is None:
+        out.fill(0.0)
+    else:
+        out[:, 0] = x
+        out[:, 1] = y
+    return out
+
+
+def _link_state(values: Values, level: int, buffers) -> LinkState:
+    """The state of a solved link; its vectors are packed into the next ``buffers``."""
+    basis = _pack(values.c, values.s, next(buffers))
+    origin = _pack(values.x, values.y, next(buffers))
+    if level == 0:
+        return LinkState(values.theta, origin, basis=basis)
+    velocity = _pack(values.vx, values.vy, next(buffers))
+    if level == 1:
+        return LinkState(values.theta, origin, values.omega, velocity, basis=basis)
+    return LinkState(values.theta, origin, values.omega, velocity, values.epsilon,
+                     _pack(values.ax, values.ay, next(buffers)), basis)
+
+
+def _drive_values(compiled, angles_rad: np.ndarray) -> Values:
+    """The drive link's values (as ``_drive_state``)."""
+    count = angles_rad.shape[0]
+    c, s = np.cos(angles_rad), np.sin(angles_rad)
+    px, py = compiled.pivot
+    if compiled.pivot_local == (0.0, 0.0):
+        values = Values(angles_rad, c, s, px, py)
+        rx = ry = None
+    else:
+        tx, ty = turn(c, s, *compiled.pivot_local)
+        values = Values(angles_rad, c, s, px - tx, py - ty)
+        rx, ry = values.x - px, values.y - py
+    omega, epsilon = compiled.omega, compiled.epsilon
+    values.w, values.omega = omega, np.full(count, omega)
+    values.e, values.epsilon = epsilon, np.full(count, epsilon)
+    if rx is not None:
+        values.vx, values.vy = omega * -ry, omega * rx
+        square = omega ** 2
+        values.ax, values.ay = epsilon * -ry - square * rx, epsilon * rx - square * ry
+    return values
+
+
+def _sliced(values: Values, lo: int, hi: int) -> Values:
+    """The values at angles lo…hi − 1 (views)."""
+    def cut(array):
+        return array[lo:hi] if isinstance(array, np.ndarray) else array
+
+    out = Values(cut(values.theta), cut(values.c), cut(values.s), cut(values.x), cut(values.y),
+                 values.fixed)
+    out.w, out.omega, out.vx, out.vy = values.w, cut(values.omega), cut(values.vx), cut(values.vy)
+    out.e, out.epsilon, out.ax, out.ay = (values.e, cut(values.epsilon), cut(values.ax),
+                                          cut(values.ay))
+    return out
+
+
+def _fixed_values(frame: LinkState) -> Values:
+    fixed = Values(frame.theta, 1.0, 0.0, 0.0, 0.0, fixed=True)
+    fixed.omega = fixed.epsilon = frame.omega
+    return fixed
+
+
+def _stages(dyad, placed, values: dict, level: int, count: int, angles_deg: np.ndarray,
+            name: str) -> dict:
+    """A placed dyad's velocities and accelerations up to ``level``, with the per-stage limit;
+    returns the fields of its record (``ratio``: its size ratio R, for the estimates)."""
+    if level == 0:
+        return {}
+    u1, u2, sine = velocities(dyad, placed, values, count)
+    ratio = size_ratio(placed)
+    _limit(ratio, sine, angles_deg, "velocity", name)
+    record = {"velocity_unknowns": (u1, u2), "line_sine": sine, "ratio": ratio}
+    if level >= 2:
+        record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2), count)
+        _limit(ratio, sine, angles_deg, "acceleration", name)
+    return record
+
+
+def _solved_dyad(record: dict, level: int, build) -> GroupMotion:
+    fields = dict(record)
+    ratio = fields.pop("ratio", None)
+    if level >= 1:
+        fields["error_estimate"] = _Estimates(ratio, fields["line_sine"], level)
+    return _SolvedDyad(build=build, **fields)
+
+
+#: angles evaluated at once: beyond this the temporaries of a solve outgrow a core's cache, so a
+#: long sweep of dyads is evaluated chunk by chunk into the result arrays (each angle is
+#: independent of the others, so the values are the same)
+CHUNK = 8192
+
+
+class _FlaggedError(Exception):
+    """A chunk came near a position the reference check refuses (internal)."""
 
 
 def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
@@ -434,21 +591,49 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
     """
     if stage not in STAGES:
         raise ValueError(f"stage must be one of {STAGES}, got {stage!r}")
-    structure = structure or analyse_structure(mechanism)
+    compiled = program(mechanism)
+    structure = structure or compiled.structure
     groups = structure.groups if links is None else structure.groups_needed(links)
     if branches is None:
-        branches = choose_branches(mechanism, structure, groups)
+        branches = compiled.branches(structure, groups, choose_branches)
     scalar = angles is None or np.ndim(angles) == 0
     angles_deg = np.atleast_1d(np.asarray(
         mechanism.drive.angle if angles is None else angles, dtype=float)).ravel()
-    if not np.all(np.isfinite(angles_deg)):
+    if not np.isfinite(angles_deg).all():
         raise SpecError("crank angles must be finite numbers")
     level = STAGES.index(stage)
     count = angles_deg.shape[0]
-    states: dict[str, LinkState] = {FRAME: _frame_state(count)}
-    drive = _drive_state(mechanism, np.radians(angles_deg))
-    states[mechanism.drive.link] = drive if level == 2 else drive.moving(
-        drive.omega if level else None, drive.velocity if level else None)
+    frame = _frame_state(count)
+    drive = _drive_values(compiled, np.radians(angles_deg))
+    run = _solve_whole
+    if count > CHUNK and all(group.is_dyad for group in groups):
+        run = _solve_chunked
+    try:
+        states, solved = run(compiled, groups, branches, angles_deg, level, frame, drive)
+    except _FlaggedError:  # near a refused position: solve as a whole, group by group, so that the
+        # first angle refused is found as the reference finds it
+        states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
+                                      drive)
+    except PlanmethodError:
+        if run is _solve_whole:
+            raise
+        states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
+                                      drive)
+    return Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
+                  dict(branches))
+
+
+def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive):
+    """Every group over all angles at once, in build order."""
+    mechanism = compiled.mechanism
+    count = angles_deg.shape[0]
+    states: dict[str, LinkState] = {FRAME: frame}
+    values: dict[str, Values] = {FRAME: _fixed_values(frame)}
+    link = mechanism.drive.link
+    # every dyad link's vectors (and the drive's) in one allocation
+    buffers = iter(_carve(count, [2] * ((level + 2) * (1 + 2 * sum(group.is_dyad
+                                                                    for group in groups)))))
+    values[link], states[link] = drive, _link_state(drive, level, buffers)
     solved: dict[int, GroupMotion] = {}
     for group in groups:
         sign = branches[group.index].sign
@@ -457,29 +642,123 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
 
             solved[group.index] = solve_higher(mechanism, group, states, sign, angles_deg,
                                                level, branches[group.index])
+            for link in group.links:
+                values[link] = Values.of(states[link])
             continue
-        poses = dyad_positions(mechanism, group, states, sign, angles_deg)
-        for link, (theta, origin) in poses.items():
-            states[link] = LinkState(theta, origin)
-        construction = construct(mechanism, group, states)
-        record = GroupMotion(construction)
+        dyad = compiled.dyad(group)
+        placed = dyad.place(values, sign, count)
+        if placed is None:  # near a position the reference refuses: let it decide
+            dyad.fallback(mechanism, states, sign, angles_deg)
+            placed = dyad.place(values, sign, count, careful=True)
+        values.update(placed.links)
+        record = _stages(dyad, placed, values, level, count, angles_deg, group.name)
+        for link, link_values in placed.links.items():
+            states[link] = _link_state(link_values, level, buffers)
+        solved[group.index] = _solved_dyad(record, level, _builder(mechanism, group, states))
+    return states, solved
+
+
+_VECTORS = (("origin", "x", "y"), ("velocity", "vx", "vy"), ("acceleration", "ax", "ay"),
+            ("basis", "c", "s"))
+
+
+def _carve(count: int, shapes) -> list[np.ndarray]:
+    """Arrays of ``count`` rows (``shapes``: 1 or 2 columns each) cut from one buffer: one
+    large allocation is backed by huge pages, which first-touches much faster than many."""
+    buffer = np.empty(count * sum(shapes))
+    out, start = [], 0
+    for columns in shapes:
+        part = buffer[start:start + count * columns]
+        out.append(part if columns == 1 else part.reshape(count, columns))
+        start += count * columns
+    return out
+
+
+def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive):
+    """Dyads only: all groups chunk by chunk, each written into the full result arrays."""
+    mechanism = compiled.mechanism
+    count = angles_deg.shape[0]
+    drive_link = mechanism.drive.link
+    scalars = ("theta", "omega", "epsilon")[:level + 1]
+    vectors = _VECTORS[:level + 1] + _VECTORS[3:]
+    # the drive's vectors, then per group its two links' arrays and its record: u1, u2, sine
+    # and the size ratio R (+ du1, du2)
+    per_link = [1] * len(scalars) + [2] * len(vectors)
+    shapes = [2] * len(vectors) + (per_link * 2 + [1] * (0, 4, 6)[level]) * len(groups)
+    arrays = iter(_carve(count, shapes))
+    drive_arrays = {name: next(arrays) for name, _, _ in vectors}
+    for name, x, y in vectors:
+        first = getattr(drive, x)
+        if first is None:
+            drive_arrays[name].fill(0.0)
+        else:
+            drive_arrays[name][:, 0] = first
+            drive_arrays[name][:, 1] = getattr(drive, y)
+    states: dict[str, LinkState] = {FRAME: frame, drive_link: LinkState(
+        drive.theta, drive_arrays["origin"],
+        drive.omega if level >= 1 else None, drive_arrays.get("velocity"),
+        drive.epsilon if level >= 2 else None, drive_arrays.get("acceleration"),
+        drive_arrays["basis"])}
+    outputs: dict[str, dict] = {}
+    records: dict[int, dict] = {}
+    for group in groups:
+        for link in group.links:
+            outputs[link] = {name: next(arrays) for name in scalars}
+            outputs[link].update((name, next(arrays)) for name, _, _ in vectors)
         if level >= 1:
-            unknowns, sine, omegas, velocities, estimate = _group_velocity(
-                construction, states, angles_deg)
-            for link in group.links:
-                states[link] = states[link].moving(omegas[link], velocities[link])
-            record = GroupMotion(construction, unknowns, None, sine, {"velocity": estimate})
+            records[group.index] = {
+                "velocity_unknowns": (next(arrays), next(arrays)), "line_sine": next(arrays),
+                "ratio": next(arrays)}
         if level >= 2:
-            accel_unknowns, epsilons, accelerations = _group_acceleration(
-                construction, states, record.velocity_unknowns)
-            for link in group.links:
-                s = states[link]
-                states[link] = s.moving(s.omega, s.velocity, epsilons[link], accelerations[link])
-            estimates = dict(record.error_estimate,
-                             acceleration=_condition(construction, record.line_sine, angles_deg,
-                                                     "acceleration"))
-            record = GroupMotion(construction, record.velocity_unknowns, accel_unknowns,
-                                 record.line_sine, estimates)
-        solved[group.index] = record
-    return Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
-                  dict(branches))
+            records[group.index]["acceleration_unknowns"] = (next(arrays), next(arrays))
+    for lo in range(0, count, CHUNK):
+        hi = min(lo + CHUNK, count)
+        size = hi - lo
+        values = {FRAME: _fixed_values(frame.take(slice(lo, hi))),
+                  drive_link: _sliced(drive, lo, hi)}
+        for group in groups:
+            dyad = compiled.dyad(group)
+            placed = dyad.place(values, branches[group.index].sign, size)
+            if placed is None:
+                raise _FlaggedError
+            values.update(placed.links)
+            record = _stages(dyad, placed, values, level, size, angles_deg[lo:hi], group.name)
+            if record:
+                if record["ratio"] is None:  # R = 1 (no rotation side)
+                    record["ratio"] = 1.0
+                _fill(records[group.index], record, lo, hi)
+            for link, link_values in placed.links.items():
+                target = outputs[link]
+                for name in scalars:
+                    target[name][lo:hi] = getattr(link_values, name)
+                for name, x, y in vectors:
+                    first = getattr(link_values, x)
+                    if first is None:
+                        target[name][lo:hi] = 0.0
+                    else:
+                        target[name][lo:hi, 0] = first
+                        target[name][lo:hi, 1] = getattr(link_values, y)
+    solved: dict[int, GroupMotion] = {}
+    for group in groups:
+        for link in group.links:
+            states[link] = LinkState(**outputs[link])
+        solved[group.index] = _solved_dyad(records.get(group.index, {}), level,
+                                           _builder(mechanism, group, states))
+    return states, solved
+
+
+def _fill(target: dict, record: dict, lo: int, hi: int) -> None:
+    for key, value in record.items():
+        if isinstance(value, dict):
+            for name, array in value.items():
+                target[key][name][lo:hi] = array
+        elif isinstance(value, tuple):
+            for out, array in zip(target[key], value, strict=True):
+                out[lo:hi] = array
+        else:
+            target[key][lo:hi] = value
+
+
+def _builder(mechanism: Mechanism, group: AssurGroup, states: Mapping[str, LinkState]):
+    """Builds the group's construction from the solved poses, when asked."""
+    return lambda: construct(mechanism, group, states)

@@ -1,0 +1,834 @@
+"""The dyads' closed forms, compiled once per mechanism and evaluated on plain x/y arrays.
+
+:func:`planmethod.kinematics.solve` spends most of a small solve in Python, not in arithmetic:
+reading the model, building each group's construction, choosing branches. This module does that
+work once per mechanism (:func:`program`, remembered for the last few models by identity) and
+then evaluates each dyad's positions, velocities and accelerations with the same formulas as
+:mod:`planmethod.kinematics.dyads` and :func:`~planmethod.kinematics.solve.solve`'s vector
+equations, on separate x and y arrays, skipping the terms that vanish by construction (a frame
+point does not move, a pin at a link's origin has no lever arm, a zero local coordinate adds
+nothing). Results are those of the reference formulas to rounding.
+
+Checks stay exact: each group tests, in a few reductions over all angles, whether any angle
+comes close to a position the reference code would refuse (links that cannot reach, a toggle,
+coinciding pins, parallel guides); if one might, the reference :func:`~planmethod.kinematics.
+dyads.dyad_positions` is run on that group to raise its error with the same angle, link and
+message (or, when it does not raise, the compiled values stand).
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> mechanism = load_exercise("exercises/compressor_slider_crank.toml").mechanism
+>>> compiled = program(mechanism)
+>>> compiled is program(mechanism), [group.kind for group in compiled.structure.groups]
+(True, ['RRP'])
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+
+import numpy as np
+
+from ..model import FRAME, Mechanism
+from ..structure import AssurGroup, Structure, analyse_structure
+from .dyads import ROUNDING_UNITS, TOGGLE_SINE, dyad_positions
+from .state import LinkState
+
+__all__ = ["Program", "Values", "program"]
+
+#: how many models' compiled programs are remembered (by identity, most recent first)
+CACHE_SIZE = 32
+_PROGRAMS: OrderedDict[int, Program] = OrderedDict()
+#: |vanishing factor| within this of zero (relative) is a toggle: see dyads._toggle_or_miss
+_TOLERANCE = ROUNDING_UNITS * float(np.finfo(float).eps)
+#: the bounds over all angles are widened by this factor, so that the rounding of a bound
+#: never hides an angle the reference check would refuse
+_MARGIN = 1.0 + 1e-9
+
+
+def program(mechanism: Mechanism) -> Program:
+    """The compiled program of ``mechanism`` (one per model object, remembered)."""
+    key = id(mechanism)
+    found = _PROGRAMS.get(key)
+    if found is not None and found.mechanism is mechanism:
+        _PROGRAMS.move_to_end(key)
+        return found
+    found = _PROGRAMS[key] = Program(mechanism)
+    while len(_PROGRAMS) > CACHE_SIZE:
+        _PROGRAMS.popitem(last=False)
+    return found
+
+
+class Program:
+    """What a solve needs from the model, read once: the structure, each dyad's constants and
+    the branch choice."""
+
+    def __init__(self, mechanism: Mechanism) -> None:
+        self.mechanism = mechanism
+        self._structure: Structure | None = None
+        self._dyads: dict[int, tuple[AssurGroup, _Dyad]] = {}
+        self._branches: dict[tuple, tuple[Structure, dict]] = {}
+        self._owners: dict[str, tuple[str, ...]] = {}
+        drive = mechanism.drive
+        self.pivot = tuple(float(v) for v in mechanism.local(FRAME, drive.pivot))
+        self.pivot_local = tuple(float(v) for v in mechanism.local(drive.link, drive.pivot))
+        self.omega = float(drive.omega)
+        self.epsilon = float(drive.epsilon)
+
+    def owners(self, point: str) -> tuple[str, ...]:
+        """``mechanism.links_with_point(point)``, remembered."""
+        found = self._owners.get(point)
+        if found is None:
+            found = self._owners[point] = self.mechanism.links_with_point(point)
+        return found
+
+    @property
+    def structure(self) -> Structure:
+        if self._structure is None:
+            self._structure = analyse_structure(self.mechanism)
+        return self._structure
+
+    def dyad(self, group: AssurGroup) -> _Dyad:
+        """The compiled dyad of ``group``."""
+        found = self._dyads.get(id(group))
+        if found is not None and found[0] is group:
+            return found[1]
+        if len(self._dyads) > 64:
+            self._dyads.clear()
+        compiled = _COMPILERS[group.kind](self.mechanism, group)
+        self._dyads[id(group)] = (group, compiled)
+        return compiled
+
+    def branches(self, structure: Structure, groups, choose) -> dict:
+        """``choose(mechanism, structure, groups)``, remembered per structure and groups."""
+        key = (id(structure), tuple(group.index for group in groups))
+        found = self._branches.get(key)
+        if found is not None and found[0] is structure:
+            return found[1]
+        chosen = choose(self.mechanism, structure, groups)
+        if len(self._branches) > 64:
+            self._branches.clear()
+        self._branches[key] = (structure, chosen)
+        return chosen
+
+
+# -- one link's values ---------------------------------------------------------------------------
+class Values:
+    """A link's pose and motion as x/y arrays (or plain floats for constants).
+
+    ``c``, ``s`` are cos θ and sin θ; ``x``, ``y`` the origin; ``w`` the angular velocity used in
+    arithmetic (a float for the drive) and ``omega`` its array; ``vx``, ``vy``, ``ax``, ``ay``
+    the origin's velocity and acceleration, None where identically zero; ``fixed`` for the
+    frame.
+    """
+
+    __slots__ = (
+        "ax",
+        "ay",
+        "c",
+        "e",
+        "epsilon",
+        "fixed",
+        "omega",
+        "s",
+        "theta",
+        "vx",
+        "vy",
+        "w",
+        "x",
+        "y",
+    )
+
+    def __init__(self, theta, c, s, x, y, fixed: bool = False) -> None:
+        self.theta, self.c, self.s, self.x, self.y, self.fixed = theta, c, s, x, y, fixed
+        self.w = self.omega = self.vx = self.vy = None
+        self.e = self.epsilon = self.ax = self.ay = None
+
+    @classmethod
+    def of(cls, state: LinkState) -> Values:
+        """The values of a solved :class:`LinkState` (class III groups)."""
+        axes = state.axes()
+        values = cls(state.theta, axes[:, 0], axes[:, 1], state.origin[:, 0], state.origin[:, 1])
+        if state.omega is not None:
+            values.w = values.omega = state.omega
+            values.vx, values.vy = state.velocity[:, 0], state.velocity[:, 1]
+        if state.epsilon is not None:
+            values.e = values.epsilon = state.epsilon
+            values.ax, values.ay = state.acceleration[:, 0], state.acceleration[:, 1]
+        return values
+
+
+def turn(c, s, lx: float, ly: float):
+    """The local vector (lx, ly) turned by the angle with cosine ``c`` and sine ``s``, as
+    ``LinkState.place`` turns it (terms with a zero coordinate left out: they add ±0)."""
+    if ly == 0.0:
+        return c * lx, s * lx
+    if lx == 0.0:
+        return s * -ly, c * ly
+    return c * lx - s * ly, c * ly + s * lx
+
+
+def place(values: Values, local):
+    """(x, y, rx, ry): the global position of a link's point and its offset from the link's
+    origin (rx, ry None for the origin itself)."""
+    lx, ly = local
+    if lx == 0.0 and ly == 0.0:
+        return values.x, values.y, None, None
+    rx, ry = turn(values.c, values.s, lx, ly)
+    return values.x + rx, values.y + ry, rx, ry
+
+
+def velocity_at(values: Values, rx, ry):
+    """Velocity of the link's material point at origin + r: v + ω·J·r (None if zero)."""
+    if values.fixed:
+        return None
+    if rx is None:
+        return None if values.vx is None else (values.vx, values.vy)
+    w = values.w
+    if w is None:  # a link that only translates
+        return None if values.vx is None else (values.vx, values.vy)
+    if values.vx is None:
+        if isinstance(w, float):
+            return ry * -w, rx * w
+        return -(ry * w), rx * w
+    return values.vx - ry * w, values.vy + rx * w
+
+
+def acceleration_at(values: Values, rx, ry):
+    """Acceleration of the link's material point at origin + r: a + ε·J·r − ω²·r."""
+    if values.fixed:
+        return None
+    if rx is None:
+        return None if values.ax is None else (values.ax, values.ay)
+    w, e = values.w, values.e
+    if w is None:  # a link that only translates
+        if e is None:
+            return None if values.ax is None else (values.ax, values.ay)
+        tx, ty = -(ry * e), rx * e
+    else:
+        normal = -(w * w)
+        if isinstance(e, float) and e == 0.0:
+            tx, ty = rx * normal, ry * normal
+        else:
+            tx, ty = rx * normal - ry * e, rx * e + ry * normal
+    if values.ax is None:
+        return tx, ty
+    return values.ax + tx, values.ay + ty
+
+
+def _rotated(c, s, angle: float):
+    """(cos, sin) of θ + angle from (cos θ, sin θ)."""
+    if angle == 0.0:
+        return c, s
+    return turn(c, s, math.cos(angle), math.sin(angle))
+
+
+def _norm(x, y):
+    return np.sqrt(x * x + y * y)
+
+
+def _array(value, count: int):
+    """A constant as an array over the angles (arrays pass through)."""
+    return np.full(count, value) if np.ndim(value) == 0 else value
+
+
+def _local(mechanism: Mechanism, link: str, point: str) -> tuple[float, float]:
+    x, y = mechanism.local(link, point)
+    return float(x), float(y)
+
+
+def _group_link(joint, group: AssurGroup) -> str:
+    return joint.links[0] if joint.links[0] in group.links else joint.links[1]
+
+
+def _alpha(first, second) -> tuple[float, float, float]:
+    """The angle of second − first in a link's frame, with its cosine and sine (as
+    ``dyads._pose_from_two`` subtracts it)."""
+    angle = np.arctan2(second[1] - first[1], second[0] - first[0])
+    return angle, float(np.cos(angle)), float(np.sin(angle))
+
+
+# -- the side data the vector equations need -----------------------------------------------------
+class Side:
+    """One side of v_X = v_base + u·e at the solved positions (x/y arrays).
+
+    ``base`` is the known link whose material point at the base position (offset ``rx``,
+    ``ry`` from its origin) gives the base velocity; ``px``, ``py`` the base position;
+    ``dx``, ``dy`` the unit direction e; for a rotation side ``link`` turns about the base
+    with radius vector (``radius_x``, ``radius_y``) of length ``length``; for a sliding side
+    ``link`` is the carrier whose ω gives the Coriolis term.
+    """
+
+    __slots__ = (
+        "base",
+        "dx",
+        "dy",
+        "length",
+        "link",
+        "px",
+        "py",
+        "radius_x",
+        "radius_y",
+        "rotation",
+        "rx",
+        "ry",
+    )
+
+    def __init__(self, rotation, link, base, rx, ry, px, py, dx, dy, radius_x=None,
+                 radius_y=None, length=None) -> None:
+        self.rotation, self.link, self.base = rotation, link, base
+        self.rx, self.ry, self.px, self.py, self.dx, self.dy = rx, ry, px, py, dx, dy
+        self.radius_x, self.radius_y, self.length = radius_x, radius_y, length
+
+
+def _rotation_side(link, base: Values, rx, ry, px, py, radius_x, radius_y) -> Side:
+    length = _norm(radius_x, radius_y)
+    # e = perp(unit(radius)), as dyads._rotation_side
+    return Side(True, link, base, rx, ry, px, py, -(radius_y / length), radius_x / length,
+                radius_x, radius_y, length)
+
+
+class Placed:
+    """A dyad at its solved positions: its links' values, X, the two sides, and how each link's
+    motion is referred (``refs[link]`` = (side index or None for X, rx, ry) with r the link's
+    origin minus that point, None when zero)."""
+
+    __slots__ = ("links", "refs", "sides", "span", "xx", "xy")
+
+    def __init__(self, links, xx, xy, sides, refs, span=None) -> None:
+        self.links, self.xx, self.xy, self.sides, self.refs = links, xx, xy, sides, refs
+        self.span = span
+
+
+# -- compiled dyads ------------------------------------------------------------------------------
+class _Dyad:
+    """Constants of one dyad; :meth:`place` evaluates its positions."""
+
+    group: AssurGroup
+    rotating: dict
+    tied: dict
+
+    def fallback(self, mechanism, states, branch, angles_deg) -> None:
+        """Run the reference closed form: it raises the exact error where there is one."""
+        dyad_positions(mechanism, self.group, states, branch, angles_deg)
+
+
+class _SlideLine:
+    """A prismatic pair seen from its ``unknown`` link (``dyads._slide_line``)."""
+
+    __slots__ = ("anchor", "direction", "is_link", "known", "own", "sign", "slide")
+
+    def __init__(self, mechanism: Mechanism, slide, unknown: str) -> None:
+        self.slide = slide
+        self.is_link = unknown == slide.link
+        self.known = slide.along if self.is_link else slide.link
+        self.direction = slide.direction_rad
+        if self.is_link:
+            self.anchor = _local(mechanism, slide.along, slide.through)
+            self.own = _local(mechanism, slide.link, slide.point)
+        else:
+            self.anchor = _local(mechanism, slide.link, slide.point)
+            self.own = _local(mechanism, slide.along, slide.through)
+
+    def theta_and_axes(self, known: Values):
+        """The unknown link's θ and (cos θ, sin θ), and the guide's global direction d."""
+        if self.is_link:
+            theta = known.theta + self.direction
+            c, s = _rotated(known.c, known.s, self.direction)
+            return theta, c, s, c, s
+        theta = known.theta - self.direction
+        c, s = _rotated(known.c, known.s, -self.direction)
+        return theta, c, s, known.c, known.s
+
+    def line(self, known: Values, c, s, dx, dy):
+        """(nx, ny, offset): the line n·o = offset of the unknown link's origin, n = J·d."""
+        nx, ny = -dy, dx
+        ax, ay, _, _ = place(known, self.anchor)
+        ox, oy = turn(c, s, *self.own) if self.own != (0.0, 0.0) else (0.0, 0.0)
+        return nx, ny, nx * (ax - ox) + ny * (ay - oy)
+
+
+def _dot_turned(nx, ny, c, s, local):
+    if local == (0.0, 0.0):
+        return 0.0
+    tx, ty = turn(c, s, *local)
+    return nx * tx + ny * ty
+
+
+class _RRR(_Dyad):
+    def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
+        self.group = group
+        ext1, internal, ext2 = group.joints
+        self.l1, self.l2 = _group_link(ext1, group), _group_link(ext2, group)
+        self.k1, self.k2 = ext1.other(self.l1), ext2.other(self.l2)
+        self.p1_known = _local(mechanism, self.k1, ext1.point)
+        self.p2_known = _local(mechanism, self.k2, ext2.point)
+        self.p1_local = _local(mechanism, self.l1, ext1.point)
+        self.p2_local = _local(mechanism, self.l2, ext2.point)
+        q1 = _local(mechanism, self.l1, internal.point)
+        q2 = _local(mechanism, self.l2, internal.point)
+        self.a = mechanism.links[self.l1].length(ext1.point, internal.point)
+        self.b = mechanism.links[self.l2].length(ext2.point, internal.point)
+        self.alpha1 = _alpha(self.p1_local, q1)
+        self.alpha2 = _alpha(self.p2_local, q2)
+        self.rotating, self.tied = {self.l1: 0, self.l2: 1}, {}
+        self.valid = self.a > 1e-12 and self.b > 1e-12
+
+    def place(self, values, branch, count, careful=False):
+        if not self.valid:
+            return None
+        a, b = self.a, self.b
+        known1, known2 = values[self.k1], values[self.k2]
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
+        p2x, p2y, r2x, r2y = place(known2, self.p2_known)
+        if careful:
+            p1x, p1y, p2x, p2y = (_array(v, count) for v in (p1x, p1y, p2x, p2y))
+        sx, sy = p2x - p1x, p2y - p1y
+        d = _norm(sx, sy)
+        product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)
+        if careful:
+            product = np.maximum(product, 0.0)
+        elif np.ndim(d) == 0:
+            return None
+        else:
+            # a + b − d and d − |a − b| must stay clear of zero (dyads._rrr's checks, bounded
+            # over all angles at once)
+            low, high = float(d.min()), float(d.max())
+            limit = _TOLERANCE * (a + b + 2.0 * high) * _MARGIN
+            if not (a + b - high > limit and low - abs(a - b) > limit
+                    and low > 1e-15 * (a + b) * _MARGIN):
+                return None
+        twice = 2 * d
+        x = (a * a - b * b + d * d) / twice
+        h = np.sqrt(product) / twice
+        ux, uy = sx / d, sy / d
+        if branch != 1:
+            h = branch * h
+        qx = p1x + x * ux - h * uy
+        qy = p1y + x * uy + h * ux
+        side1 = _rotation_side(self.l1, known1, r1x, r1y, p1x, p1y, qx - p1x, qy - p1y)
+        side2 = _rotation_side(self.l2, known2, r2x, r2y, p2x, p2y, qx - p2x, qy - p2y)
+        links, refs = {}, {}
+        for link, side, local, alpha in ((self.l1, side1, self.p1_local, self.alpha1),
+                                         (self.l2, side2, self.p2_local, self.alpha2)):
+            angle, ca, sa = alpha
+            theta = np.arctan2(side.radius_y, side.radius_x) - angle
+            # (cos θ, sin θ) of θ = angle of the radius − α: the unit radius turned by −α
+            c, s = side.dy, -side.dx
+            if angle != 0.0:
+                c, s = turn(c, s, ca, -sa)
+            if local == (0.0, 0.0):
+                ox, oy, r = side.px, side.py, None
+            else:
+                tx, ty = turn(c, s, *local)
+                ox, oy, r = side.px - tx, side.py - ty, (-tx, -ty)
+            links[link] = Values(theta, c, s, ox, oy)
+            refs[link] = (0 if link == self.l1 else 1, r)
+        return Placed(links, qx, qy, (side1, side2), refs, d)
+
+
+class _RRP(_Dyad):
+    def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
+        self.group = group
+        ext1, internal, ext2 = group.joints
+        self.l1 = _group_link(ext1, group)
+        self.k1 = ext1.other(self.l1)
+        self.l2 = _group_link(ext2, group)
+        self.k2 = ext2.other(self.l2)
+        self.line = _SlideLine(mechanism, ext2.slide, self.l2)
+        self.p1_known = _local(mechanism, self.k1, ext1.point)
+        self.p1_local = _local(mechanism, self.l1, ext1.point)
+        self.q2_local = _local(mechanism, self.l2, internal.point)
+        q1 = _local(mechanism, self.l1, internal.point)
+        self.a = mechanism.links[self.l1].length(ext1.point, internal.point)
+        self.alpha1 = _alpha(self.p1_local, q1)
+        self.rotating, self.tied = {self.l1: 0}, {self.l2: self.k2}
+        self.valid = self.a > 1e-12
+
+    def place(self, values, branch, count, careful=False):
+        if not self.valid:
+            return None
+        a = self.a
+        known1, known2 = values[self.k1], values[self.k2]
+        theta2, c2, s2, dx, dy = self.line.theta_and_axes(known2)
+        nx, ny, offset = self.line.line(known2, c2, s2, dx, dy)
+        offset = offset + _dot_turned(nx, ny, c2, s2, self.q2_local)
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
+        if careful:
+            p1x, p1y = _array(p1x, count), _array(p1y, count)
+        h = nx * p1x + ny * p1y - offset
+        if careful:
+            pass
+        elif np.ndim(h) == 0:
+            return None
+        else:
+            # |h| must stay below a by more than rounding (dyads._rrp's check, bounded)
+            reach = max(float(np.max(np.abs(p1x))), float(np.max(np.abs(p1y))))
+            limit = _TOLERANCE * (a + float(np.max(np.abs(offset))) + reach) * _MARGIN
+            if not a - float(np.max(np.abs(h))) > limit:
+                return None
+        along = np.sqrt(a * a - h * h)
+        if branch != 1:
+            along = branch * along
+        qx = p1x - h * nx + along * dx
+        qy = p1y - h * ny + along * dy
+        side1 = _rotation_side(self.l1, known1, r1x, r1y, p1x, p1y, qx - p1x, qy - p1y)
+        angle, ca, sa = self.alpha1
+        theta1 = np.arctan2(side1.radius_y, side1.radius_x) - angle
+        c1, s1 = side1.dy, -side1.dx
+        if angle != 0.0:
+            c1, s1 = turn(c1, s1, ca, -sa)
+        if self.p1_local == (0.0, 0.0):
+            o1x, o1y, ref1 = p1x, p1y, None
+        else:
+            tx, ty = turn(c1, s1, *self.p1_local)
+            o1x, o1y, ref1 = p1x - tx, p1y - ty, (-tx, -ty)
+        if self.q2_local == (0.0, 0.0):
+            o2x, o2y, ref2 = qx, qy, None
+        else:
+            tx, ty = turn(c2, s2, *self.q2_local)
+            o2x, o2y, ref2 = qx - tx, qy - ty, (-tx, -ty)
+        # side 2: X as a point of the guide's carrier k2, sliding along d
+        if known2.fixed:
+            bx = by = None
+        else:
+            bx, by = qx - known2.x, qy - known2.y
+        side2 = Side(False, self.k2, known2, bx, by, qx, qy, dx, dy)
+        links = {self.l1: Values(theta1, c1, s1, o1x, o1y),
+                 self.l2: Values(theta2, c2, s2, o2x, o2y)}
+        return Placed(links, qx, qy, (side1, side2), {self.l1: (0, ref1), self.l2: (None, ref2)})
+
+
+class _RPR(_Dyad):
+    def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
+        self.group = group
+        ext1, internal, ext2 = group.joints
+        slide = internal.slide
+        self.l1, self.l2 = _group_link(ext1, group), _group_link(ext2, group)
+        self.k1, self.k2 = ext1.other(self.l1), ext2.other(self.l2)
+        self.p1_known = _local(mechanism, self.k1, ext1.point)
+        self.p2_known = _local(mechanism, self.k2, ext2.point)
+        self.p1_local = _local(mechanism, self.l1, ext1.point)
+        self.p2_local = _local(mechanism, self.l2, ext2.point)
+        self.direction = slide.direction_rad
+        u = np.array([np.cos(slide.direction_rad), np.sin(slide.direction_rad)])
+        through = np.asarray(mechanism.local(self.l2, slide.through))
+        from .state import rotate
+
+        c0 = (through - np.asarray(mechanism.local(self.l2, ext2.point))
+              + rotate(np.subtract(mechanism.local(self.l1, ext1.point),
+                                   mechanism.local(self.l1, slide.point)), slide.direction_rad))
+        self.c0 = (float(c0[0]), float(c0[1]))
+        self.u = (float(u[0]), float(u[1]))
+        self.offset = float(c0[0] * u[1] - c0[1] * u[0])
+        self.c0u = float(c0 @ u)
+        self.rotating, self.tied = {self.l2: 1}, {self.l1: self.l2}
+
+    def place(self, values, branch, count, careful=False):
+        known1, known2 = values[self.k1], values[self.k2]
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
+        p2x, p2y, r2x, r2y = place(known2, self.p2_known)
+        if careful:
+            p1x, p1y, p2x, p2y = (_array(v, count) for v in (p1x, p1y, p2x, p2y))
+        sx, sy = p1x - p2x, p1y - p2y
+        length = _norm(sx, sy)
+        offset = self.offset
+        if careful:
+            pass
+        elif np.ndim(length) == 0:
+            return None
+        else:
+            low, high = float(length.min()), float(length.max())
+            if not low > 1e-15 * _MARGIN:
+                return None
+            if offset != 0 and not (low - abs(offset)
+                                    > _TOLERANCE * (2.0 * high + abs(offset)) * _MARGIN):
+                return None
+        along = np.sqrt(length * length - offset ** 2)
+        if branch != 1:
+            along = branch * along
+        s = -self.c0u + along
+        (c0x, c0y), (ux, uy) = self.c0, self.u
+        theta2 = np.arctan2(sy, sx) - np.arctan2(c0y + s * uy, c0x + s * ux)
+        c2, s2 = np.cos(theta2), np.sin(theta2)
+        theta1 = theta2 + self.direction
+        c1, s1 = _rotated(c2, s2, self.direction)
+        refs, links = {}, {}
+        for index, (link, theta, c, s, local, px, py) in enumerate((
+                (self.l1, theta1, c1, s1, self.p1_local, p1x, p1y),
+                (self.l2, theta2, c2, s2, self.p2_local, p2x, p2y))):
+            if local == (0.0, 0.0):
+                ox, oy, ref = px, py, None
+            else:
+                tx, ty = turn(c, s, *local)
+                ox, oy, ref = px - tx, py - ty, (-tx, -ty)
+            links[link] = Values(theta, c, s, ox, oy)
+            refs[link] = (index, ref)
+        # side 1: P1 slides relative to l1 along l2's guide, d = (cos, sin)(θ2 + direction)
+        side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, c1, s1)
+        side2 = Side(True, self.l2, known2, r2x, r2y, p2x, p2y, -(sy / length), sx / length,
+                     sx, sy, length)
+        return Placed(links, p1x, p1y, (side1, side2), refs, length)
+
+
+class _PRP(_Dyad):
+    def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
+        self.group = group
+        ext1, internal, ext2 = group.joints
+        self.ends = []
+        for joint in (ext1, ext2):
+            link = _group_link(joint, group)
+            known = joint.other(link)
+            self.ends.append((link, known, _SlideLine(mechanism, joint.slide, link),
+                              _local(mechanism, link, internal.point)))
+        (l1, k1, _, _), (l2, k2, _, _) = self.ends
+        self.rotating, self.tied = {}, {l1: k1, l2: k2}
+
+    def place(self, values, branch, count, careful=False):
+        lines = []
+        for _, known, line, local in self.ends:
+            known_values = values[known]
+            theta, c, s, dx, dy = line.theta_and_axes(known_values)
+            nx, ny, offset = line.line(known_values, c, s, dx, dy)
+            lines.append((theta, c, s, dx, dy, nx, ny, offset + _dot_turned(nx, ny, c, s, local)))
+        (*_, n1x, n1y, o1), (*_, n2x, n2y, o2) = lines
+        det = n1x * n2y - n1y * n2x
+        if not careful and not float(np.min(np.abs(det))) >= TOGGLE_SINE * _MARGIN:
+            return None
+        qx = (o1 * n2y - o2 * n1y) / det
+        qy = (n1x * o2 - n2x * o1) / det
+        if np.ndim(qx) == 0:
+            qx, qy = np.full(count, qx), np.full(count, qy)
+        links, refs, sides = {}, {}, []
+        for (link, known, _, local), (theta, c, s, dx, dy, *_) in zip(self.ends, lines,
+                                                                    strict=True):
+            if local == (0.0, 0.0):
+                ox, oy, ref = qx, qy, None
+            else:
+                tx, ty = turn(c, s, *local)
+                ox, oy, ref = qx - tx, qy - ty, (-tx, -ty)
+            links[link] = Values(theta, c, s, ox, oy)
+            refs[link] = (None, ref)
+            known_values = values[known]
+            bx, by = (None, None) if known_values.fixed else (qx - known_values.x,
+                                                              qy - known_values.y)
+            sides.append(Side(False, known, known_values, bx, by, qx, qy, dx, dy))
+        return Placed(links, qx, qy, tuple(sides), refs)
+
+
+class _RPP(_Dyad):
+    def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
+        self.group = group
+        ext1, internal, ext2 = group.joints
+        self.l1 = _group_link(ext1, group)
+        self.k1 = ext1.other(self.l1)
+        self.l2 = _group_link(ext2, group)
+        self.k2 = ext2.other(self.l2)
+        self.p1_known = _local(mechanism, self.k1, ext1.point)
+        self.p1_local = _local(mechanism, self.l1, ext1.point)
+        self.outer = _SlideLine(mechanism, ext2.slide, self.l2)
+        self.inner = _SlideLine(mechanism, internal.slide, self.l2)
+        # l1's angle from l2's through the internal pair (dyads._slide_theta)
+        self.inner_sign = 1.0 if self.l1 == internal.slide.link else -1.0
+        self.rotating, self.tied = {}, {self.l2: self.k2, self.l1: self.l2}
+
+    def place(self, values, branch, count, careful=False):
+        known1, known2 = values[self.k1], values[self.k2]
+        theta2, c2, s2, d2x, d2y = self.outer.theta_and_axes(known2)
+        turn_by = self.inner_sign * self.inner.direction
+        theta1 = theta2 + turn_by
+        c1, s1 = _rotated(c2, s2, turn_by)
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
+        if self.p1_local == (0.0, 0.0):
+            o1x, o1y, ref1 = p1x, p1y, None
+        else:
+            tx, ty = turn(c1, s1, *self.p1_local)
+            o1x, o1y, ref1 = p1x - tx, p1y - ty, (-tx, -ty)
+        state1 = Values(theta1, c1, s1, o1x, o1y)
+        n2x, n2y, off2 = self.outer.line(known2, c2, s2, d2x, d2y)
+        # the inner pair seen from l2 (unknown) against l1 (known): d from the guide's angle
+        if self.inner.is_link:  # l2 slides in l1
+            d1x, d1y = _rotated(c1, s1, self.inner.direction)
+        else:  # l1 slides in l2: d along l2's guide
+            d1x, d1y = _rotated(c2, s2, self.inner.direction)
+        n1x, n1y, off1 = self.inner.line(state1, c2, s2, d1x, d1y)
+        det = n1x * n2y - n1y * n2x
+        if not careful and not float(np.min(np.abs(det))) >= TOGGLE_SINE * _MARGIN:
+            return None
+        o2x = (off1 * n2y - off2 * n1y) / det
+        o2y = (n1x * off2 - n2x * off1) / det
+        if np.ndim(o2x) == 0:
+            o2x, o2y = np.full(count, o2x), np.full(count, o2y)
+        side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, d1x, d1y)
+        bx, by = (None, None) if known2.fixed else (p1x - known2.x, p1y - known2.y)
+        side2 = Side(False, self.k2, known2, bx, by, p1x, p1y, d2x, d2y)
+        links = {self.l1: state1, self.l2: Values(theta2, c2, s2, o2x, o2y)}
+        refs = {self.l1: (0, ref1), self.l2: (None, (o2x - p1x, o2y - p1y))}
+        return Placed(links, p1x, p1y, (side1, side2), refs)
+
+
+_COMPILERS = {"RRR": _RRR, "RRP": _RRP, "RPR": _RPR, "PRP": _PRP, "RPP": _RPP}
+
+
+# -- the two vector equations --------------------------------------------------------------------
+def _minus(first, second, count: int):
+    """first − second for vectors that may be None (zero)."""
+    if second is None:
+        if first is None:
+            zeros = np.zeros(count)
+            return zeros, zeros
+        return first
+    if first is None:
+        return -second[0], -second[1]
+    return first[0] - second[0], first[1] - second[1]
+
+
+def _solve_pair(wx, wy, first: Side, second: Side):
+    """u1·e1 − u2·e2 = w by Cramer's rule (dyads.solve_pair): (u1, u2)."""
+    det = first.dx * second.dy - first.dy * second.dx
+    return (wx * second.dy - wy * second.dx) / det, (wx * first.dy - wy * first.dx) / det, det
+
+
+def _follow_tied(tied, own: dict, values, attribute: str) -> None:
+    """Give each tied link the ω (or ε) of the link it is tied to (Construction.follow_tied):
+    ``own`` maps a link to (value for arithmetic, array)."""
+    pending = dict(tied)
+    while pending:
+        for link, other in list(pending.items()):
+            source = own.get(other)
+            if source is None and other in values:
+                known = values[other]
+                array = getattr(known, attribute)
+                if array is not None:
+                    source = (None if known.fixed else
+                              (known.w if attribute == "omega" else known.e), array)
+            if source is not None:
+                own[link] = source
+                del pending[link]
+
+
+def velocities(dyad, placed: Placed, values, count: int):
+    """Solve the group's velocity equations; sets ω and the origins' velocities of its links.
+
+    Returns (u1, u2, sine): the unknown lengths and the sine of the lines' angle."""
+    first, second = placed.sides
+    v1 = velocity_at(first.base, first.rx, first.ry)
+    v2 = velocity_at(second.base, second.rx, second.ry)
+    wx, wy = _minus(v2, v1, count)
+    u1, u2, det = _solve_pair(wx, wy, first, second)
+    if np.ndim(det) == 0:
+        det = np.full(count, det)
+    unknowns = (u1, u2)
+    own: dict = {}
+    for link, index in dyad.rotating.items():
+        omega = unknowns[index] / placed.sides[index].length
+        own[link] = (omega, omega)
+    _follow_tied(dyad.tied, own, values, "omega")
+    bases = (v1, v2)
+    velocity_x = None
+    for link, (index, r) in placed.refs.items():
+        if index is None:
+            if velocity_x is None:
+                velocity_x = ((u1 * first.dx, u1 * first.dy) if v1 is None else
+                              (v1[0] + u1 * first.dx, v1[1] + u1 * first.dy))
+            reference = velocity_x
+        else:
+            reference = bases[index]
+        state = placed.links[link]
+        w, state.omega = own[link]
+        state.w = w
+        if r is None or w is None:
+            velocity = reference
+        else:
+            rx, ry = r
+            if reference is None:
+                velocity = (-(ry * w), rx * w)
+            else:
+                velocity = (reference[0] - w * ry, reference[1] + w * rx)
+        state.vx, state.vy = (None, None) if velocity is None else velocity
+    return u1, u2, det
+
+
+def accelerations(dyad, placed: Placed, values, unknowns, count: int):
+    """Solve the group's acceleration equations; sets ε and the origins' accelerations.
+
+    Returns (du1, du2)."""
+    known, bases = [], []
+    for side, u in zip(placed.sides, unknowns, strict=True):
+        base = acceleration_at(side.base, side.rx, side.ry)
+        bases.append(base)
+        if side.rotation:
+            w = placed.links[side.link].w
+            w2 = w * w
+            if base is None:
+                known.append((-(w2 * side.radius_x), -(w2 * side.radius_y)))
+            else:
+                known.append((base[0] - w2 * side.radius_x, base[1] - w2 * side.radius_y))
+            continue
+        carrier = placed.links[side.link] if side.link in placed.links else values[side.link]
+        if carrier.fixed or carrier.w is None:
+            known.append(base)
+            continue
+        twice = 2 * carrier.w
+        cx, cy = twice * -(u * side.dy), twice * (u * side.dx)
+        known.append((cx, cy) if base is None else (base[0] + cx, base[1] + cy))
+    first, second = placed.sides
+    wx, wy = _minus(known[1], known[0], count)
+    du1, du2, _ = _solve_pair(wx, wy, first, second)
+    changes = (du1, du2)
+    own: dict = {}
+    for link, index in dyad.rotating.items():
+        epsilon = changes[index] / placed.sides[index].length
+        own[link] = (epsilon, epsilon)
+    _follow_tied(dyad.tied, own, values, "epsilon")
+    acceleration_x = None
+    for link, (index, r) in placed.refs.items():
+        if index is None:
+            if acceleration_x is None:
+                k = known[0]
+                acceleration_x = ((du1 * first.dx, du1 * first.dy) if k is None else
+                                  (k[0] + du1 * first.dx, k[1] + du1 * first.dy))
+            reference = acceleration_x
+        else:
+            reference = bases[index]
+        state = placed.links[link]
+        e, state.epsilon = own[link]
+        state.e = e
+        state.ax, state.ay = _link_acceleration(reference, r, state.w, e)
+    return du1, du2
+
+
+def _link_acceleration(reference, r, w, e):
+    """a_ref + ε·J·r − ω²·r, in the reference's order (w, e, reference None where zero)."""
+    if r is None or (w is None and e is None):
+        return (None, None) if reference is None else reference
+    rx, ry = r
+    if reference is None:
+        if w is None:
+            return -(e * ry), e * rx
+        w2 = w * w
+        if e is None:
+            return -(w2 * rx), -(w2 * ry)
+        return -(e * ry) - w2 * rx, e * rx - w2 * ry
+    ax, ay = reference
+    if e is not None:
+        ax, ay = ax - e * ry, ay + e * rx
+    if w is not None:
+        w2 = w * w
+        ax, ay = ax - w2 * rx, ay - w2 * ry
+    return ax, ay
+
+
+def size_ratio(placed: Placed):
+    """R = L / l of Construction.size_ratio, or None where it is 1 (no rotation side)."""
+    radii = [side.length for side in placed.sides if side.rotation]
+    if not radii:
+        return None
+    span = placed.span
+    if span is None:
+        first, second = placed.sides
+        span = _norm(first.px - second.px, first.py - second.py)
+    total = span + sum(radii)
+    return total / (radii[0] if len(radii) == 1 else np.minimum(radii[0], radii[1]))
