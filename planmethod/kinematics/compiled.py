@@ -7,7 +7,8 @@ then evaluates each dyad's positions, velocities and accelerations with the same
 :mod:`planmethod.kinematics.dyads` and :func:`~planmethod.kinematics.solve.solve`'s vector
 equations, on separate x and y arrays, skipping the terms that vanish by construction (a frame
 point does not move, a pin at a link's origin has no lever arm, a zero local coordinate adds
-nothing). Results are those of the reference formulas to rounding.
+nothing), and writing each link's origin, axes, velocity and acceleration straight into its
+result arrays (a :class:`Target`). Results are those of the reference formulas to rounding.
 
 Checks stay exact: each group tests, in a few reductions over all angles, whether any angle
 comes close to a position the reference code would refuse (links that cannot reach, a toggle,
@@ -36,7 +37,7 @@ from ..structure import AssurGroup, Structure, analyse_structure
 from .dyads import ROUNDING_UNITS, TOGGLE_SINE, dyad_positions
 from .state import LinkState
 
-__all__ = ["Program", "Values", "program"]
+__all__ = ["Program", "Target", "Values", "program"]
 
 #: how many models' compiled programs are remembered (by identity, most recent first)
 CACHE_SIZE = 32
@@ -72,8 +73,8 @@ class Program:
         self._branches: dict[tuple, tuple[Structure, dict]] = {}
         self._owners: dict[str, tuple[str, ...]] = {}
         drive = mechanism.drive
-        self.pivot = tuple(float(v) for v in mechanism.local(FRAME, drive.pivot))
-        self.pivot_local = tuple(float(v) for v in mechanism.local(drive.link, drive.pivot))
+        self.pivot = _local(mechanism, FRAME, drive.pivot)
+        self.pivot_local = _local(mechanism, drive.link, drive.pivot)
         self.omega = float(drive.omega)
         self.epsilon = float(drive.epsilon)
 
@@ -119,27 +120,13 @@ class Values:
     """A link's pose and motion as x/y arrays (or plain floats for constants).
 
     ``c``, ``s`` are cos θ and sin θ; ``x``, ``y`` the origin; ``w`` the angular velocity used in
-    arithmetic (a float for the drive) and ``omega`` its array; ``vx``, ``vy``, ``ax``, ``ay``
-    the origin's velocity and acceleration, None where identically zero; ``fixed`` for the
-    frame.
+    arithmetic (a float for the drive, None for a link that does not turn) and ``omega`` its
+    array; ``vx``, ``vy``, ``ax``, ``ay`` the origin's velocity and acceleration, None where
+    identically zero; ``e`` and ``epsilon`` the angular acceleration; ``fixed`` for the frame.
     """
 
-    __slots__ = (
-        "ax",
-        "ay",
-        "c",
-        "e",
-        "epsilon",
-        "fixed",
-        "omega",
-        "s",
-        "theta",
-        "vx",
-        "vy",
-        "w",
-        "x",
-        "y",
-    )
+    __slots__ = ("ax", "ay", "c", "e", "epsilon", "fixed", "omega", "s", "theta", "vx", "vy",
+                 "w", "x", "y")
 
     def __init__(self, theta, c, s, x, y, fixed: bool = False) -> None:
         self.theta, self.c, self.s, self.x, self.y, self.fixed = theta, c, s, x, y, fixed
@@ -160,6 +147,28 @@ class Values:
         return values
 
 
+class Target:
+    """Where a link's results go: (n, 2) arrays for its origin, axes (cos θ, sin θ), velocity
+    and acceleration (None for a stage not solved)."""
+
+    __slots__ = ("acceleration", "basis", "origin", "velocity")
+
+    def __init__(self, origin, basis, velocity=None, acceleration=None) -> None:
+        self.origin, self.basis = origin, basis
+        self.velocity, self.acceleration = velocity, acceleration
+
+
+def put(out: np.ndarray, x, y):
+    """Write x and y (arrays, floats, or None for zero) into ``out`` (n, 2); its columns."""
+    first, second = out[:, 0], out[:, 1]
+    if x is None:
+        out.fill(0.0)
+    else:
+        first[...] = x
+        second[...] = y
+    return first, second
+
+
 def turn(c, s, lx: float, ly: float):
     """The local vector (lx, ly) turned by the angle with cosine ``c`` and sine ``s``, as
     ``LinkState.place`` turns it (terms with a zero coordinate left out: they add ±0)."""
@@ -170,42 +179,70 @@ def turn(c, s, lx: float, ly: float):
     return c * lx - s * ly, c * ly + s * lx
 
 
-def place(values: Values, local):
+def _turn_into(out, c, s, ca: float, sa: float):
+    """(c·ca − s·sa, c·sa + s·ca) written into ``out``'s columns (``turn`` with an out)."""
+    first, second = out[:, 0], out[:, 1]
+    if sa == 0.0:
+        np.multiply(c, ca, out=first)
+        np.multiply(s, ca, out=second)
+    elif ca == 0.0:
+        np.multiply(s, -sa, out=first)
+        np.multiply(c, sa, out=second)
+    else:
+        np.subtract(c * ca, s * sa, out=first)
+        np.add(c * sa, s * ca, out=second)
+    return first, second
+
+
+def place(values: Values, local, out=None):
     """(x, y, rx, ry): the global position of a link's point and its offset from the link's
-    origin (rx, ry None for the origin itself)."""
+    origin (rx, ry None for the origin itself); the position written into ``out`` if given."""
     lx, ly = local
     if lx == 0.0 and ly == 0.0:
-        return values.x, values.y, None, None
+        if out is None:
+            return values.x, values.y, None, None
+        return (*put(out, values.x, values.y), None, None)
     rx, ry = turn(values.c, values.s, lx, ly)
-    return values.x + rx, values.y + ry, rx, ry
+    if out is None:
+        return values.x + rx, values.y + ry, rx, ry
+    return (np.add(values.x, rx, out=out[:, 0]), np.add(values.y, ry, out=out[:, 1]), rx, ry)
 
 
-def velocity_at(values: Values, rx, ry):
-    """Velocity of the link's material point at origin + r: v + ω·J·r (None if zero)."""
-    if values.fixed:
-        return None
-    if rx is None:
-        return None if values.vx is None else (values.vx, values.vy)
+def velocity_at(values: Values, rx, ry, out=None):
+    """Velocity of the link's material point at origin + r: v + ω·J·r (None if zero, unless
+    written into ``out``)."""
     w = values.w
-    if w is None:  # a link that only translates
-        return None if values.vx is None else (values.vx, values.vy)
+    if values.fixed or rx is None or w is None:  # no turning term
+        if values.fixed or values.vx is None:
+            return None if out is None else put(out, None, None)
+        return (values.vx, values.vy) if out is None else put(out, values.vx, values.vy)
+    first, second = (None, None) if out is None else (out[:, 0], out[:, 1])
     if values.vx is None:
         if isinstance(w, float):
-            return ry * -w, rx * w
-        return -(ry * w), rx * w
-    return values.vx - ry * w, values.vy + rx * w
+            return np.multiply(ry, -w, out=first), np.multiply(rx, w, out=second)
+        return np.negative(ry * w, out=first), np.multiply(rx, w, out=second)
+    return (np.subtract(values.vx, ry * w, out=first),
+            np.add(values.vy, rx * w, out=second))
 
 
-def acceleration_at(values: Values, rx, ry):
-    """Acceleration of the link's material point at origin + r: a + ε·J·r − ω²·r."""
-    if values.fixed:
-        return None
-    if rx is None:
-        return None if values.ax is None else (values.ax, values.ay)
+def acceleration_at(values: Values, rx, ry, out=None):
+    """Acceleration of the link's material point at origin + r: a + ε·J·r − ω²·r (None if zero,
+    unless written into ``out``)."""
     w, e = values.w, values.e
-    if w is None:  # a link that only translates
-        if e is None:
-            return None if values.ax is None else (values.ax, values.ay)
+    if values.fixed or rx is None or (w is None and e is None):
+        if values.fixed or values.ax is None:
+            return None if out is None else put(out, None, None)
+        return (values.ax, values.ay) if out is None else put(out, values.ax, values.ay)
+    first, second = (None, None) if out is None else (out[:, 0], out[:, 1])
+    if values.ax is None:
+        if w is None:
+            return np.negative(ry * e, out=first), np.multiply(rx, e, out=second)
+        normal = -(w * w)
+        if isinstance(e, float) and e == 0.0:
+            return np.multiply(rx, normal, out=first), np.multiply(ry, normal, out=second)
+        return (np.subtract(rx * normal, ry * e, out=first),
+                np.add(rx * e, ry * normal, out=second))
+    if w is None:
         tx, ty = -(ry * e), rx * e
     else:
         normal = -(w * w)
@@ -213,9 +250,7 @@ def acceleration_at(values: Values, rx, ry):
             tx, ty = rx * normal, ry * normal
         else:
             tx, ty = rx * normal - ry * e, rx * e + ry * normal
-    if values.ax is None:
-        return tx, ty
-    return values.ax + tx, values.ay + ty
+    return np.add(values.ax, tx, out=first), np.add(values.ay, ty, out=second)
 
 
 def _rotated(c, s, angle: float):
@@ -261,20 +296,8 @@ class Side:
     ``link`` is the carrier whose ω gives the Coriolis term.
     """
 
-    __slots__ = (
-        "base",
-        "dx",
-        "dy",
-        "length",
-        "link",
-        "px",
-        "py",
-        "radius_x",
-        "radius_y",
-        "rotation",
-        "rx",
-        "ry",
-    )
+    __slots__ = ("base", "dx", "dy", "length", "link", "px", "py", "radius_x", "radius_y",
+                 "rotation", "rx", "ry")
 
     def __init__(self, rotation, link, base, rx, ry, px, py, dx, dy, radius_x=None,
                  radius_y=None, length=None) -> None:
@@ -283,23 +306,55 @@ class Side:
         self.radius_x, self.radius_y, self.length = radius_x, radius_y, length
 
 
-def _rotation_side(link, base: Values, rx, ry, px, py, radius_x, radius_y) -> Side:
-    length = _norm(radius_x, radius_y)
-    # e = perp(unit(radius)), as dyads._rotation_side
-    return Side(True, link, base, rx, ry, px, py, -(radius_y / length), radius_x / length,
-                radius_x, radius_y, length)
-
-
 class Placed:
     """A dyad at its solved positions: its links' values, X, the two sides, and how each link's
-    motion is referred (``refs[link]`` = (side index or None for X, rx, ry) with r the link's
-    origin minus that point, None when zero)."""
+    motion is referred (``refs[link]`` = (side index or None for X, r) with r = (rx, ry) the
+    link's origin minus that point, None when zero); ``targets`` where its results go."""
 
-    __slots__ = ("links", "refs", "sides", "span", "xx", "xy")
+    __slots__ = ("det", "links", "refs", "sides", "span", "targets", "xx", "xy")
 
-    def __init__(self, links, xx, xy, sides, refs, span=None) -> None:
+    def __init__(self, links, xx, xy, sides, refs, targets, span=None) -> None:
         self.links, self.xx, self.xy, self.sides, self.refs = links, xx, xy, sides, refs
-        self.span = span
+        self.targets, self.span, self.det = targets, span, None
+
+
+def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local):
+    """A link turning about its pin P (at px, py) with its internal pin at P + radius: θ, its
+    axes and origin written into ``target``, the radius' length and unit vector; returns
+    (θ, c, s, origin x, origin y, r, length, ux, uy), r the origin minus P (None if zero)."""
+    length = _norm(radius_x, radius_y)
+    angle, ca, sa = alpha
+    theta = np.arctan2(radius_y, radius_x) - angle
+    basis = target.basis
+    if angle == 0.0:  # (cos θ, sin θ) = the unit radius
+        ux = np.divide(radius_x, length, out=basis[:, 0])
+        uy = np.divide(radius_y, length, out=basis[:, 1])
+        c, s = ux, uy
+    else:
+        ux, uy = radius_x / length, radius_y / length
+        if abs(angle) == math.pi:  # the unit radius reversed
+            c, s = np.negative(ux, out=basis[:, 0]), np.negative(uy, out=basis[:, 1])
+        else:  # the unit radius turned by −α
+            c, s = _turn_into(basis, ux, uy, ca, -sa)
+    ox, oy, r = _origin(target, px, py, c, s, local)
+    return theta, c, s, ox, oy, r, length, ux, uy
+
+
+def _origin(target: Target, px, py, c, s, local):
+    """A link's origin from its pin at (px, py) with local coordinates ``local`` (written into
+    ``target.origin``; the pin is there already when ``local`` is zero): (x, y, r)."""
+    if local == (0.0, 0.0):
+        origin = target.origin
+        return origin[:, 0], origin[:, 1], None
+    tx, ty = turn(c, s, *local)
+    origin = target.origin
+    return (np.subtract(px, tx, out=origin[:, 0]), np.subtract(py, ty, out=origin[:, 1]),
+            (np.negative(tx), np.negative(ty)))
+
+
+def _basis(target: Target, c, s):
+    """Axes that were computed elsewhere, copied into ``target.basis``."""
+    return put(target.basis, c, s)
 
 
 # -- compiled dyads ------------------------------------------------------------------------------
@@ -318,7 +373,7 @@ class _Dyad:
 class _SlideLine:
     """A prismatic pair seen from its ``unknown`` link (``dyads._slide_line``)."""
 
-    __slots__ = ("anchor", "direction", "is_link", "known", "own", "sign", "slide")
+    __slots__ = ("anchor", "direction", "is_link", "known", "own", "slide")
 
     def __init__(self, mechanism: Mechanism, slide, unknown: str) -> None:
         self.slide = slide
@@ -376,13 +431,17 @@ class _RRR(_Dyad):
         self.rotating, self.tied = {self.l1: 0, self.l2: 1}, {}
         self.valid = self.a > 1e-12 and self.b > 1e-12
 
-    def place(self, values, branch, count, careful=False):
+    def place(self, values, branch, count, targets, careful=False):
         if not self.valid:
             return None
         a, b = self.a, self.b
         known1, known2 = values[self.k1], values[self.k2]
-        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
-        p2x, p2y, r2x, r2y = place(known2, self.p2_known)
+        target1, target2 = targets[self.l1], targets[self.l2]
+        # a pin at a link's origin is placed straight into that link's origin
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
+                                   if self.p1_local == (0.0, 0.0) else None)
+        p2x, p2y, r2x, r2y = place(known2, self.p2_known, target2.origin
+                                   if self.p2_local == (0.0, 0.0) else None)
         if careful:
             p1x, p1y, p2x, p2y = (_array(v, count) for v in (p1x, p1y, p2x, p2y))
         sx, sy = p2x - p1x, p2y - p1y
@@ -408,25 +467,19 @@ class _RRR(_Dyad):
             h = branch * h
         qx = p1x + x * ux - h * uy
         qy = p1y + x * uy + h * ux
-        side1 = _rotation_side(self.l1, known1, r1x, r1y, p1x, p1y, qx - p1x, qy - p1y)
-        side2 = _rotation_side(self.l2, known2, r2x, r2y, p2x, p2y, qx - p2x, qy - p2y)
-        links, refs = {}, {}
-        for link, side, local, alpha in ((self.l1, side1, self.p1_local, self.alpha1),
-                                         (self.l2, side2, self.p2_local, self.alpha2)):
-            angle, ca, sa = alpha
-            theta = np.arctan2(side.radius_y, side.radius_x) - angle
-            # (cos θ, sin θ) of θ = angle of the radius − α: the unit radius turned by −α
-            c, s = side.dy, -side.dx
-            if angle != 0.0:
-                c, s = turn(c, s, ca, -sa)
-            if local == (0.0, 0.0):
-                ox, oy, r = side.px, side.py, None
-            else:
-                tx, ty = turn(c, s, *local)
-                ox, oy, r = side.px - tx, side.py - ty, (-tx, -ty)
+        links, refs, sides = {}, {}, []
+        for index, (link, target, known, rx, ry, px, py, local, alpha) in enumerate((
+                (self.l1, target1, known1, r1x, r1y, p1x, p1y, self.p1_local, self.alpha1),
+                (self.l2, target2, known2, r2x, r2y, p2x, p2y, self.p2_local, self.alpha2))):
+            radius_x, radius_y = qx - px, qy - py
+            theta, c, s, ox, oy, r, length, ex, ey = _pivoted(target, px, py, radius_x,
+                                                              radius_y, alpha, local)
+            # e = perp(unit(radius)), as dyads._rotation_side
+            sides.append(Side(True, link, known, rx, ry, px, py, np.negative(ey), ex,
+                              radius_x, radius_y, length))
             links[link] = Values(theta, c, s, ox, oy)
-            refs[link] = (0 if link == self.l1 else 1, r)
-        return Placed(links, qx, qy, (side1, side2), refs, d)
+            refs[link] = (index, r)
+        return Placed(links, qx, qy, tuple(sides), refs, targets, d)
 
 
 class _RRP(_Dyad):
@@ -447,15 +500,17 @@ class _RRP(_Dyad):
         self.rotating, self.tied = {self.l1: 0}, {self.l2: self.k2}
         self.valid = self.a > 1e-12
 
-    def place(self, values, branch, count, careful=False):
+    def place(self, values, branch, count, targets, careful=False):
         if not self.valid:
             return None
         a = self.a
         known1, known2 = values[self.k1], values[self.k2]
+        target1, target2 = targets[self.l1], targets[self.l2]
         theta2, c2, s2, dx, dy = self.line.theta_and_axes(known2)
         nx, ny, offset = self.line.line(known2, c2, s2, dx, dy)
         offset = offset + _dot_turned(nx, ny, c2, s2, self.q2_local)
-        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
+                                   if self.p1_local == (0.0, 0.0) else None)
         if careful:
             p1x, p1y = _array(p1x, count), _array(p1y, count)
         h = nx * p1x + ny * p1y - offset
@@ -472,24 +527,20 @@ class _RRP(_Dyad):
         along = np.sqrt(a * a - h * h)
         if branch != 1:
             along = branch * along
-        qx = p1x - h * nx + along * dx
-        qy = p1y - h * ny + along * dy
-        side1 = _rotation_side(self.l1, known1, r1x, r1y, p1x, p1y, qx - p1x, qy - p1y)
-        angle, ca, sa = self.alpha1
-        theta1 = np.arctan2(side1.radius_y, side1.radius_x) - angle
-        c1, s1 = side1.dy, -side1.dx
-        if angle != 0.0:
-            c1, s1 = turn(c1, s1, ca, -sa)
-        if self.p1_local == (0.0, 0.0):
-            o1x, o1y, ref1 = p1x, p1y, None
-        else:
-            tx, ty = turn(c1, s1, *self.p1_local)
-            o1x, o1y, ref1 = p1x - tx, p1y - ty, (-tx, -ty)
-        if self.q2_local == (0.0, 0.0):
+        # X: written into the block's origin when X is its origin
+        at_x = self.q2_local == (0.0, 0.0)
+        qx = np.add(p1x - h * nx, along * dx, out=target2.origin[:, 0] if at_x else None)
+        qy = np.add(p1y - h * ny, along * dy, out=target2.origin[:, 1] if at_x else None)
+        radius_x, radius_y = qx - p1x, qy - p1y
+        theta1, c1, s1, o1x, o1y, ref1, length, ex, ey = _pivoted(
+            target1, p1x, p1y, radius_x, radius_y, self.alpha1, self.p1_local)
+        side1 = Side(True, self.l1, known1, r1x, r1y, p1x, p1y, np.negative(ey), ex, radius_x,
+                     radius_y, length)
+        c2, s2 = _basis(target2, c2, s2)
+        if at_x:
             o2x, o2y, ref2 = qx, qy, None
         else:
-            tx, ty = turn(c2, s2, *self.q2_local)
-            o2x, o2y, ref2 = qx - tx, qy - ty, (-tx, -ty)
+            o2x, o2y, ref2 = _origin(target2, qx, qy, c2, s2, self.q2_local)
         # side 2: X as a point of the guide's carrier k2, sliding along d
         if known2.fixed:
             bx = by = None
@@ -498,7 +549,8 @@ class _RRP(_Dyad):
         side2 = Side(False, self.k2, known2, bx, by, qx, qy, dx, dy)
         links = {self.l1: Values(theta1, c1, s1, o1x, o1y),
                  self.l2: Values(theta2, c2, s2, o2x, o2y)}
-        return Placed(links, qx, qy, (side1, side2), {self.l1: (0, ref1), self.l2: (None, ref2)})
+        return Placed(links, qx, qy, (side1, side2), {self.l1: (0, ref1), self.l2: (None, ref2)},
+                      targets)
 
 
 class _RPR(_Dyad):
@@ -526,10 +578,13 @@ class _RPR(_Dyad):
         self.c0u = float(c0 @ u)
         self.rotating, self.tied = {self.l2: 1}, {self.l1: self.l2}
 
-    def place(self, values, branch, count, careful=False):
+    def place(self, values, branch, count, targets, careful=False):
         known1, known2 = values[self.k1], values[self.k2]
-        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
-        p2x, p2y, r2x, r2y = place(known2, self.p2_known)
+        target1, target2 = targets[self.l1], targets[self.l2]
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
+                                   if self.p1_local == (0.0, 0.0) else None)
+        p2x, p2y, r2x, r2y = place(known2, self.p2_known, target2.origin
+                                   if self.p2_local == (0.0, 0.0) else None)
         if careful:
             p1x, p1y, p2x, p2y = (_array(v, count) for v in (p1x, p1y, p2x, p2y))
         sx, sy = p1x - p2x, p1y - p2y
@@ -552,25 +607,26 @@ class _RPR(_Dyad):
         s = -self.c0u + along
         (c0x, c0y), (ux, uy) = self.c0, self.u
         theta2 = np.arctan2(sy, sx) - np.arctan2(c0y + s * uy, c0x + s * ux)
-        c2, s2 = np.cos(theta2), np.sin(theta2)
+        basis2 = target2.basis
+        c2, s2 = np.cos(theta2, out=basis2[:, 0]), np.sin(theta2, out=basis2[:, 1])
         theta1 = theta2 + self.direction
-        c1, s1 = _rotated(c2, s2, self.direction)
+        if self.direction == 0.0:
+            c1, s1 = _basis(target1, c2, s2)
+        else:
+            c1, s1 = _turn_into(target1.basis, c2, s2, math.cos(self.direction),
+                                math.sin(self.direction))
         refs, links = {}, {}
-        for index, (link, theta, c, s, local, px, py) in enumerate((
-                (self.l1, theta1, c1, s1, self.p1_local, p1x, p1y),
-                (self.l2, theta2, c2, s2, self.p2_local, p2x, p2y))):
-            if local == (0.0, 0.0):
-                ox, oy, ref = px, py, None
-            else:
-                tx, ty = turn(c, s, *local)
-                ox, oy, ref = px - tx, py - ty, (-tx, -ty)
+        for index, (link, target, theta, c, s, local, px, py) in enumerate((
+                (self.l1, target1, theta1, c1, s1, self.p1_local, p1x, p1y),
+                (self.l2, target2, theta2, c2, s2, self.p2_local, p2x, p2y))):
+            ox, oy, ref = _origin(target, px, py, c, s, local)
             links[link] = Values(theta, c, s, ox, oy)
             refs[link] = (index, ref)
         # side 1: P1 slides relative to l1 along l2's guide, d = (cos, sin)(θ2 + direction)
         side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, c1, s1)
         side2 = Side(True, self.l2, known2, r2x, r2y, p2x, p2y, -(sy / length), sx / length,
                      sx, sy, length)
-        return Placed(links, p1x, p1y, (side1, side2), refs, length)
+        return Placed(links, p1x, p1y, (side1, side2), refs, targets, length)
 
 
 class _PRP(_Dyad):
@@ -586,7 +642,7 @@ class _PRP(_Dyad):
         (l1, k1, _, _), (l2, k2, _, _) = self.ends
         self.rotating, self.tied = {}, {l1: k1, l2: k2}
 
-    def place(self, values, branch, count, careful=False):
+    def place(self, values, branch, count, targets, careful=False):
         lines = []
         for _, known, line, local in self.ends:
             known_values = values[known]
@@ -604,18 +660,20 @@ class _PRP(_Dyad):
         links, refs, sides = {}, {}, []
         for (link, known, _, local), (theta, c, s, dx, dy, *_) in zip(self.ends, lines,
                                                                     strict=True):
+            target = targets[link]
+            c, s = _basis(target, c, s)
             if local == (0.0, 0.0):
-                ox, oy, ref = qx, qy, None
+                ox, oy = put(target.origin, qx, qy)
+                ref = None
             else:
-                tx, ty = turn(c, s, *local)
-                ox, oy, ref = qx - tx, qy - ty, (-tx, -ty)
+                ox, oy, ref = _origin(target, qx, qy, c, s, local)
             links[link] = Values(theta, c, s, ox, oy)
             refs[link] = (None, ref)
             known_values = values[known]
             bx, by = (None, None) if known_values.fixed else (qx - known_values.x,
                                                               qy - known_values.y)
             sides.append(Side(False, known, known_values, bx, by, qx, qy, dx, dy))
-        return Placed(links, qx, qy, tuple(sides), refs)
+        return Placed(links, qx, qy, tuple(sides), refs, targets)
 
 
 class _RPP(_Dyad):
@@ -634,13 +692,15 @@ class _RPP(_Dyad):
         self.inner_sign = 1.0 if self.l1 == internal.slide.link else -1.0
         self.rotating, self.tied = {}, {self.l2: self.k2, self.l1: self.l2}
 
-    def place(self, values, branch, count, careful=False):
+    def place(self, values, branch, count, targets, careful=False):
         known1, known2 = values[self.k1], values[self.k2]
+        target1, target2 = targets[self.l1], targets[self.l2]
         theta2, c2, s2, d2x, d2y = self.outer.theta_and_axes(known2)
         turn_by = self.inner_sign * self.inner.direction
         theta1 = theta2 + turn_by
         c1, s1 = _rotated(c2, s2, turn_by)
-        p1x, p1y, r1x, r1y = place(known1, self.p1_known)
+        p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
+                                   if self.p1_local == (0.0, 0.0) else None)
         if self.p1_local == (0.0, 0.0):
             o1x, o1y, ref1 = p1x, p1y, None
         else:
@@ -661,12 +721,17 @@ class _RPP(_Dyad):
         o2y = (n1x * off2 - n2x * off1) / det
         if np.ndim(o2x) == 0:
             o2x, o2y = np.full(count, o2x), np.full(count, o2y)
+        state1.c, state1.s = _basis(target1, c1, s1)
+        if self.p1_local != (0.0, 0.0):
+            state1.x, state1.y = put(target1.origin, o1x, o1y)
+        c2, s2 = _basis(target2, c2, s2)
+        o2x, o2y = put(target2.origin, o2x, o2y)
         side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, d1x, d1y)
         bx, by = (None, None) if known2.fixed else (p1x - known2.x, p1y - known2.y)
         side2 = Side(False, self.k2, known2, bx, by, p1x, p1y, d2x, d2y)
         links = {self.l1: state1, self.l2: Values(theta2, c2, s2, o2x, o2y)}
         refs = {self.l1: (0, ref1), self.l2: (None, (o2x - p1x, o2y - p1y))}
-        return Placed(links, p1x, p1y, (side1, side2), refs)
+        return Placed(links, p1x, p1y, (side1, side2), refs, targets)
 
 
 _COMPILERS = {"RRR": _RRR, "RRP": _RRP, "RPR": _RPR, "PRP": _PRP, "RPP": _RPP}
@@ -683,12 +748,6 @@ def _minus(first, second, count: int):
     if first is None:
         return -second[0], -second[1]
     return first[0] - second[0], first[1] - second[1]
-
-
-def _solve_pair(wx, wy, first: Side, second: Side):
-    """u1·e1 − u2·e2 = w by Cramer's rule (dyads.solve_pair): (u1, u2)."""
-    det = first.dx * second.dy - first.dy * second.dx
-    return (wx * second.dy - wy * second.dx) / det, (wx * first.dy - wy * first.dx) / det, det
 
 
 def _follow_tied(tied, own: dict, values, attribute: str) -> None:
@@ -709,17 +768,32 @@ def _follow_tied(tied, own: dict, values, attribute: str) -> None:
                 del pending[link]
 
 
+def _straights(placed: Placed, stage: str):
+    """``_straight`` for both sides."""
+    out = [None, None]
+    for link, (side, r) in placed.refs.items():
+        if side is not None and r is None:
+            out[side] = getattr(placed.targets[link], stage)
+    return out
+
+
 def velocities(dyad, placed: Placed, values, count: int):
-    """Solve the group's velocity equations; sets ω and the origins' velocities of its links.
+    """Solve the group's velocity equations; sets ω and the origins' velocities of its links
+    (written into their targets).
 
     Returns (u1, u2, sine): the unknown lengths and the sine of the lines' angle."""
     first, second = placed.sides
-    v1 = velocity_at(first.base, first.rx, first.ry)
-    v2 = velocity_at(second.base, second.rx, second.ry)
+    out1, out2 = _straights(placed, "velocity")
+    v1 = velocity_at(first.base, first.rx, first.ry, out1)
+    v2 = velocity_at(second.base, second.rx, second.ry, out2)
     wx, wy = _minus(v2, v1, count)
-    u1, u2, det = _solve_pair(wx, wy, first, second)
+    det = first.dx * second.dy - first.dy * second.dx
     if np.ndim(det) == 0:
         det = np.full(count, det)
+    placed.det = det
+    # u1·e1 − u2·e2 = w by Cramer's rule (dyads.solve_pair)
+    u1 = (wx * second.dy - wy * second.dx) / det
+    u2 = (wx * first.dy - wy * first.dx) / det
     unknowns = (u1, u2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -729,6 +803,13 @@ def velocities(dyad, placed: Placed, values, count: int):
     bases = (v1, v2)
     velocity_x = None
     for link, (index, r) in placed.refs.items():
+        state = placed.links[link]
+        w, state.omega = own[link]
+        state.w = w
+        out = placed.targets[link].velocity
+        if index is not None and r is None:  # written already, as its side's base velocity
+            state.vx, state.vy = out[:, 0], out[:, 1]
+            continue
         if index is None:
             if velocity_x is None:
                 velocity_x = ((u1 * first.dx, u1 * first.dy) if v1 is None else
@@ -736,28 +817,28 @@ def velocities(dyad, placed: Placed, values, count: int):
             reference = velocity_x
         else:
             reference = bases[index]
-        state = placed.links[link]
-        w, state.omega = own[link]
-        state.w = w
         if r is None or w is None:
-            velocity = reference
+            state.vx, state.vy = put(out, *(reference or (None, None)))
+            continue
+        rx, ry = r
+        if reference is None:
+            state.vx = np.negative(ry * w, out=out[:, 0])
+            state.vy = np.multiply(rx, w, out=out[:, 1])
         else:
-            rx, ry = r
-            if reference is None:
-                velocity = (-(ry * w), rx * w)
-            else:
-                velocity = (reference[0] - w * ry, reference[1] + w * rx)
-        state.vx, state.vy = (None, None) if velocity is None else velocity
+            state.vx = np.subtract(reference[0], w * ry, out=out[:, 0])
+            state.vy = np.add(reference[1], w * rx, out=out[:, 1])
     return u1, u2, det
 
 
 def accelerations(dyad, placed: Placed, values, unknowns, count: int):
-    """Solve the group's acceleration equations; sets ε and the origins' accelerations.
+    """Solve the group's acceleration equations; sets ε and the origins' accelerations (written
+    into their targets).
 
     Returns (du1, du2)."""
     known, bases = [], []
-    for side, u in zip(placed.sides, unknowns, strict=True):
-        base = acceleration_at(side.base, side.rx, side.ry)
+    outs = _straights(placed, "acceleration")
+    for side, u, out in zip(placed.sides, unknowns, outs, strict=True):
+        base = acceleration_at(side.base, side.rx, side.ry, out)
         bases.append(base)
         if side.rotation:
             w = placed.links[side.link].w
@@ -776,7 +857,9 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
         known.append((cx, cy) if base is None else (base[0] + cx, base[1] + cy))
     first, second = placed.sides
     wx, wy = _minus(known[1], known[0], count)
-    du1, du2, _ = _solve_pair(wx, wy, first, second)
+    det = placed.det
+    du1 = (wx * second.dy - wy * second.dx) / det
+    du2 = (wx * first.dy - wy * first.dx) / det
     changes = (du1, du2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -785,6 +868,13 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
     _follow_tied(dyad.tied, own, values, "epsilon")
     acceleration_x = None
     for link, (index, r) in placed.refs.items():
+        state = placed.links[link]
+        e, state.epsilon = own[link]
+        state.e = e
+        out = placed.targets[link].acceleration
+        if index is not None and r is None:  # written already, as its side's base
+            state.ax, state.ay = out[:, 0], out[:, 1]
+            continue
         if index is None:
             if acceleration_x is None:
                 k = known[0]
@@ -793,32 +883,32 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
             reference = acceleration_x
         else:
             reference = bases[index]
-        state = placed.links[link]
-        e, state.epsilon = own[link]
-        state.e = e
-        state.ax, state.ay = _link_acceleration(reference, r, state.w, e)
+        state.ax, state.ay = _link_acceleration(reference, r, state.w, e, out)
     return du1, du2
 
 
-def _link_acceleration(reference, r, w, e):
-    """a_ref + ε·J·r − ω²·r, in the reference's order (w, e, reference None where zero)."""
+def _link_acceleration(reference, r, w, e, out):
+    """a_ref + ε·J·r − ω²·r, in the reference's order (w, e, reference None where zero),
+    written into ``out``."""
     if r is None or (w is None and e is None):
-        return (None, None) if reference is None else reference
+        return put(out, *(reference or (None, None)))
     rx, ry = r
+    first, second = out[:, 0], out[:, 1]
     if reference is None:
         if w is None:
-            return -(e * ry), e * rx
+            return np.negative(e * ry, out=first), np.multiply(e, rx, out=second)
         w2 = w * w
         if e is None:
-            return -(w2 * rx), -(w2 * ry)
-        return -(e * ry) - w2 * rx, e * rx - w2 * ry
+            return np.negative(w2 * rx, out=first), np.negative(w2 * ry, out=second)
+        return (np.subtract(-(e * ry), w2 * rx, out=first),
+                np.subtract(e * rx, w2 * ry, out=second))
     ax, ay = reference
+    if w is None:
+        return np.subtract(ax, e * ry, out=first), np.add(ay, e * rx, out=second)
+    w2 = w * w
     if e is not None:
         ax, ay = ax - e * ry, ay + e * rx
-    if w is not None:
-        w2 = w * w
-        ax, ay = ax - w2 * rx, ay - w2 * ry
-    return ax, ay
+    return np.subtract(ax, w2 * rx, out=first), np.subtract(ay, w2 * ry, out=second)
 
 
 def size_ratio(placed: Placed):

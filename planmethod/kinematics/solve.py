@@ -25,7 +25,16 @@ import numpy as np
 from ..errors import AssemblyError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure, analyse_structure
-from .compiled import Values, accelerations, program, size_ratio, turn, velocities
+from .compiled import (
+    Target,
+    Values,
+    accelerations,
+    program,
+    put,
+    size_ratio,
+    turn,
+    velocities,
+)
 from .dyads import Construction, construct, dyad_positions
 from .state import LinkState, _complex, _real, cross, norm, perp, rotate, unit_angle
 
@@ -270,12 +279,19 @@ class Motion:
 
 
 # -- the solve ---------------------------------------------------------------------------------
-def _frame_state(count: int) -> LinkState:
-    zeros = np.zeros(count)
-    axes = np.zeros((count, 2))
+def _frame_state(count: int, arrays=None) -> LinkState:
+    """The frame at rest (its arrays taken from ``arrays`` when given: zeros (N,), three
+    (N, 2) and the axes (N, 2))."""
+    if arrays is None:
+        zeros = np.zeros(count)
+        axes = np.zeros((count, 2))
+        vectors = np.zeros((count, 2)), np.zeros((count, 2)), np.zeros((count, 2))
+    else:
+        zeros, *vectors, axes = (next(arrays) for _ in range(5))
+        for array in (zeros, *vectors, axes):
+            array.fill(0.0)
     axes[:, 0] = 1.0
-    return LinkState(zeros, np.zeros((count, 2)), zeros, np.zeros((count, 2)), zeros,
-                     np.zeros((count, 2)), axes)
+    return LinkState(zeros, vectors[0], zeros, vectors[1], zeros, vectors[2], axes)
 
 
 def _drive_state(mechanism: Mechanism, angles_rad: np.ndarray) -> LinkState:
@@ -426,11 +442,11 @@ class _Estimates(Mapping):
         return repr(dict(self))
 
 
-def _limit(ratio, sine: np.ndarray, angles_deg: np.ndarray, stage: str, name: str) -> None:
+def _limit(bounds: tuple[float, float], ratio, sine: np.ndarray, angles_deg: np.ndarray,
+           stage: str, name: str) -> None:
     """The per-stage limit of ``_condition``: a ToggleError where ε·R/s^(2k+1) ≥ 1. Checked on
-    the largest R and the smallest |s| first; the estimates only where that bound fails."""
-    smallest = float(np.abs(sine).min())
-    largest = 1.0 if ratio is None else float(ratio.max())
+    the ``bounds`` (largest R, smallest |s|) first; the estimates only where that fails."""
+    largest, smallest = bounds
     power = smallest ** (3 if stage == "velocity" else 5)
     if EPS * largest < power:  # (false for a NaN)
         return
@@ -467,48 +483,72 @@ class _SolvedDyad(GroupMotion):
 _CONSTRUCTION_SLOT = GroupMotion.__dict__["construction"]
 
 
-def _pack(x, y, out: np.ndarray) -> np.ndarray:
-    """x and y (arrays, floats or None for zero) into ``out`` (N, 2)."""
-    if x is None:
-        out.fill(0.0)
-    else:
-        out[:, 0] = x
-        out[:, 1] = y
-    return out
+def _targets(count: int, level: int, links, extra=()):
+    """Result arrays for ``links``: origin, axes (and velocity, acceleration up to ``level``)
+    of each, cut from one allocation with arrays of the ``extra`` shapes after them."""
+    vectors = (level + 2) * len(links)
+    if extra:
+        arrays = iter(_carve(count, [2] * vectors + list(extra)))
+    else:  # (views of a 3-d array are cheaper to make)
+        arrays = iter(np.empty((vectors, count, 2)))
+    return {link: Target(next(arrays), next(arrays), next(arrays) if level >= 1 else None,
+                         next(arrays) if level >= 2 else None) for link in links}, arrays
 
 
-def _link_state(values: Values, level: int, buffers) -> LinkState:
-    """The state of a solved link; its vectors are packed into the next ``buffers``."""
-    basis = _pack(values.c, values.s, next(buffers))
-    origin = _pack(values.x, values.y, next(buffers))
+def _sliced_targets(targets: dict[str, Target], lo: int, hi: int) -> dict[str, Target]:
+    def cut(array):
+        return None if array is None else array[lo:hi]
+
+    return {link: Target(cut(t.origin), cut(t.basis), cut(t.velocity), cut(t.acceleration))
+            for link, t in targets.items()}
+
+
+def _link_state(values: Values, level: int, target: Target) -> LinkState:
+    """The state of a solved link whose vectors are in ``target``."""
     if level == 0:
-        return LinkState(values.theta, origin, basis=basis)
-    velocity = _pack(values.vx, values.vy, next(buffers))
+        return LinkState(values.theta, target.origin, basis=target.basis)
     if level == 1:
-        return LinkState(values.theta, origin, values.omega, velocity, basis=basis)
-    return LinkState(values.theta, origin, values.omega, velocity, values.epsilon,
-                     _pack(values.ax, values.ay, next(buffers)), basis)
+        return LinkState(values.theta, target.origin, values.omega, target.velocity,
+                         basis=target.basis)
+    return LinkState(values.theta, target.origin, values.omega, target.velocity,
+                     values.epsilon, target.acceleration, target.basis)
 
 
-def _drive_values(compiled, angles_rad: np.ndarray) -> Values:
-    """The drive link's values (as ``_drive_state``)."""
-    count = angles_rad.shape[0]
-    c, s = np.cos(angles_rad), np.sin(angles_rad)
+def _drive_values(compiled, angles_deg: np.ndarray, target: Target, arrays=None) -> Values:
+    """The drive link's values (as ``_drive_state``), its vectors written into ``target`` (and
+    θ, cos θ, sin θ, ω, ε into ``arrays`` when given)."""
+    count = angles_deg.shape[0]
+    if arrays is None:
+        angles_rad = np.radians(angles_deg)
+        c, s = np.cos(angles_rad), np.sin(angles_rad)
+        omega_array, epsilon_array = np.empty(count), np.empty(count)
+    else:
+        angles_rad = np.radians(angles_deg, out=next(arrays))
+        c, s = np.cos(angles_rad, out=next(arrays)), np.sin(angles_rad, out=next(arrays))
+        omega_array, epsilon_array = next(arrays), next(arrays)
+    put(target.basis, c, s)
     px, py = compiled.pivot
     if compiled.pivot_local == (0.0, 0.0):
         values = Values(angles_rad, c, s, px, py)
+        put(target.origin, px, py)
         rx = ry = None
     else:
         tx, ty = turn(c, s, *compiled.pivot_local)
-        values = Values(angles_rad, c, s, px - tx, py - ty)
+        values = Values(angles_rad, c, s, *put(target.origin, px - tx, py - ty))
         rx, ry = values.x - px, values.y - py
     omega, epsilon = compiled.omega, compiled.epsilon
-    values.w, values.omega = omega, np.full(count, omega)
-    values.e, values.epsilon = epsilon, np.full(count, epsilon)
+    omega_array.fill(omega)
+    epsilon_array.fill(epsilon)
+    values.w, values.omega = omega, omega_array
+    values.e, values.epsilon = epsilon, epsilon_array
     if rx is not None:
         values.vx, values.vy = omega * -ry, omega * rx
         square = omega ** 2
         values.ax, values.ay = epsilon * -ry - square * rx, epsilon * rx - square * ry
+    if target.velocity is not None:
+        put(target.velocity, values.vx, values.vy)
+    if target.acceleration is not None:
+        put(target.acceleration, values.ax, values.ay)
     return values
 
 
@@ -539,11 +579,12 @@ def _stages(dyad, placed, values: dict, level: int, count: int, angles_deg: np.n
         return {}
     u1, u2, sine = velocities(dyad, placed, values, count)
     ratio = size_ratio(placed)
-    _limit(ratio, sine, angles_deg, "velocity", name)
+    bounds = (1.0 if ratio is None else float(ratio.max()), float(np.abs(sine).min()))
+    _limit(bounds, ratio, sine, angles_deg, "velocity", name)
     record = {"velocity_unknowns": (u1, u2), "line_sine": sine, "ratio": ratio}
     if level >= 2:
         record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2), count)
-        _limit(ratio, sine, angles_deg, "acceleration", name)
+        _limit(bounds, ratio, sine, angles_deg, "acceleration", name)
     return record
 
 
@@ -603,37 +644,42 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         raise SpecError("crank angles must be finite numbers")
     level = STAGES.index(stage)
     count = angles_deg.shape[0]
-    frame = _frame_state(count)
-    drive = _drive_values(compiled, np.radians(angles_deg))
     run = _solve_whole
     if count > CHUNK and all(group.is_dyad for group in groups):
         run = _solve_chunked
+    # the drive's and every dyad link's vectors in one allocation; chunk by chunk with the
+    # frame's and the drive's arrays, the links' angles, ω, ε and the groups' records
+    extra = []
+    if run is _solve_chunked:
+        extra = [1, 2, 2, 2, 2] + [1] * 5 + [1] * _chunked_columns(level, len(groups))
+    targets, singles = _targets(count, level, [mechanism.drive.link] + [
+        link for group in groups if group.is_dyad for link in group.links], extra)
+    frame = _frame_state(count, singles if extra else None)
+    drive = _drive_values(compiled, angles_deg, targets[mechanism.drive.link],
+                          singles if extra else None)
     try:
-        states, solved = run(compiled, groups, branches, angles_deg, level, frame, drive)
-    except _FlaggedError:  # near a refused position: solve as a whole, group by group, so that the
-        # first angle refused is found as the reference finds it
-        states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
-                                      drive)
-    except PlanmethodError:
+        states, solved = run(compiled, groups, branches, angles_deg, level, frame, drive,
+                             targets, singles)
+    except (_FlaggedError, PlanmethodError):
         if run is _solve_whole:
             raise
+        # near a refused position: solve as a whole, group by group, so that the first angle
+        # refused is found as the reference finds it
         states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
-                                      drive)
+                                      drive, targets, singles)
     return Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
                   dict(branches))
 
 
-def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive):
+def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive, targets,
+                 singles=None):
     """Every group over all angles at once, in build order."""
     mechanism = compiled.mechanism
     count = angles_deg.shape[0]
     states: dict[str, LinkState] = {FRAME: frame}
     values: dict[str, Values] = {FRAME: _fixed_values(frame)}
     link = mechanism.drive.link
-    # every dyad link's vectors (and the drive's) in one allocation
-    buffers = iter(_carve(count, [2] * ((level + 2) * (1 + 2 * sum(group.is_dyad
-                                                                    for group in groups)))))
-    values[link], states[link] = drive, _link_state(drive, level, buffers)
+    values[link], states[link] = drive, _link_state(drive, level, targets[link])
     solved: dict[int, GroupMotion] = {}
     for group in groups:
         sign = branches[group.index].sign
@@ -646,20 +692,16 @@ def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive):
                 values[link] = Values.of(states[link])
             continue
         dyad = compiled.dyad(group)
-        placed = dyad.place(values, sign, count)
+        placed = dyad.place(values, sign, count, targets)
         if placed is None:  # near a position the reference refuses: let it decide
             dyad.fallback(mechanism, states, sign, angles_deg)
-            placed = dyad.place(values, sign, count, careful=True)
+            placed = dyad.place(values, sign, count, targets, careful=True)
         values.update(placed.links)
         record = _stages(dyad, placed, values, level, count, angles_deg, group.name)
         for link, link_values in placed.links.items():
-            states[link] = _link_state(link_values, level, buffers)
+            states[link] = _link_state(link_values, level, targets[link])
         solved[group.index] = _solved_dyad(record, level, _builder(mechanism, group, states))
     return states, solved
-
-
-_VECTORS = (("origin", "x", "y"), ("velocity", "vx", "vy"), ("acceleration", "ax", "ay"),
-            ("basis", "c", "s"))
 
 
 def _carve(count: int, shapes) -> list[np.ndarray]:
@@ -674,37 +716,27 @@ def _carve(count: int, shapes) -> list[np.ndarray]:
     return out
 
 
-def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive):
-    """Dyads only: all groups chunk by chunk, each written into the full result arrays."""
+def _chunked_columns(level: int, groups: int) -> int:
+    """Per group its two links' angles (and ω, ε) and its record: u1, u2, sine and the size
+    ratio R (+ du1, du2)."""
+    return (2 * (level + 1) + (0, 4, 6)[level]) * groups
+
+
+def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, targets,
+                   arrays):
+    """Dyads only: all groups chunk by chunk, each written into the full result arrays (the
+    vectors into ``targets``, angles, ω, ε and the groups' records into ``arrays``)."""
     mechanism = compiled.mechanism
     count = angles_deg.shape[0]
     drive_link = mechanism.drive.link
+    states: dict[str, LinkState] = {FRAME: frame,
+                                    drive_link: _link_state(drive, level, targets[drive_link])}
     scalars = ("theta", "omega", "epsilon")[:level + 1]
-    vectors = _VECTORS[:level + 1] + _VECTORS[3:]
-    # the drive's vectors, then per group its two links' arrays and its record: u1, u2, sine
-    # and the size ratio R (+ du1, du2)
-    per_link = [1] * len(scalars) + [2] * len(vectors)
-    shapes = [2] * len(vectors) + (per_link * 2 + [1] * (0, 4, 6)[level]) * len(groups)
-    arrays = iter(_carve(count, shapes))
-    drive_arrays = {name: next(arrays) for name, _, _ in vectors}
-    for name, x, y in vectors:
-        first = getattr(drive, x)
-        if first is None:
-            drive_arrays[name].fill(0.0)
-        else:
-            drive_arrays[name][:, 0] = first
-            drive_arrays[name][:, 1] = getattr(drive, y)
-    states: dict[str, LinkState] = {FRAME: frame, drive_link: LinkState(
-        drive.theta, drive_arrays["origin"],
-        drive.omega if level >= 1 else None, drive_arrays.get("velocity"),
-        drive.epsilon if level >= 2 else None, drive_arrays.get("acceleration"),
-        drive_arrays["basis"])}
     outputs: dict[str, dict] = {}
     records: dict[int, dict] = {}
     for group in groups:
         for link in group.links:
             outputs[link] = {name: next(arrays) for name in scalars}
-            outputs[link].update((name, next(arrays)) for name, _, _ in vectors)
         if level >= 1:
             records[group.index] = {
                 "velocity_unknowns": (next(arrays), next(arrays)), "line_sine": next(arrays),
@@ -716,9 +748,10 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive):
         size = hi - lo
         values = {FRAME: _fixed_values(frame.take(slice(lo, hi))),
                   drive_link: _sliced(drive, lo, hi)}
+        chunk_targets = _sliced_targets(targets, lo, hi)
         for group in groups:
             dyad = compiled.dyad(group)
-            placed = dyad.place(values, branches[group.index].sign, size)
+            placed = dyad.place(values, branches[group.index].sign, size, chunk_targets)
             if placed is None:
                 raise _FlaggedError
             values.update(placed.links)
@@ -731,17 +764,13 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive):
                 target = outputs[link]
                 for name in scalars:
                     target[name][lo:hi] = getattr(link_values, name)
-                for name, x, y in vectors:
-                    first = getattr(link_values, x)
-                    if first is None:
-                        target[name][lo:hi] = 0.0
-                    else:
-                        target[name][lo:hi, 0] = first
-                        target[name][lo:hi, 1] = getattr(link_values, y)
     solved: dict[int, GroupMotion] = {}
     for group in groups:
         for link in group.links:
-            states[link] = LinkState(**outputs[link])
+            target = targets[link]
+            states[link] = LinkState(origin=target.origin, velocity=target.velocity,
+                                     acceleration=target.acceleration, basis=target.basis,
+                                     **outputs[link])
         solved[group.index] = _solved_dyad(records.get(group.index, {}), level,
                                            _builder(mechanism, group, states))
     return states, solved
