@@ -1,10 +1,11 @@
 """Before and after: the kinematics' hot path at an earlier commit against the working tree.
 
-``python -m benchmarks.hot_path [REV]`` (default ``acd7468``, the last commit before the hot
-path was sped up) checks REV out into a temporary git worktree, times the same full-turn
-analysis (positions, velocities, accelerations of every point) with each tree's planmethod in
-its own subprocess, one after the other on the same machine, and writes
-``benchmarks/results/hot_path.{md,json}``.
+``python -m benchmarks.hot_path [REV]`` (default ``dce2f82``, the last commit before the
+compiled dyads of :mod:`planmethod.kinematics.compiled`) checks REV out into a temporary git
+worktree, times the same full-turn analysis (positions, velocities, accelerations of every
+point, kept as :mod:`benchmarks.speed` keeps them) of the case A four-bar, seed 001's
+slider-crank and the shaper six-bar with each tree's planmethod in its own subprocess, one
+after the other on the same machine, and writes ``benchmarks/results/hot_path.{md,json}``.
 
 Examples
 --------
@@ -23,7 +24,7 @@ from pathlib import Path
 
 from .common import RESULTS, ROOT, machine
 
-DEFAULT_REV = "acd7468"
+DEFAULT_REV = "dce2f82"
 
 HARNESS = r'''
 import json, sys, time
@@ -40,7 +41,8 @@ FOURBAR = {"title": "Four-bar", "drive": {"link": "AB", "pivot": "A", "angle": 6
                      "BC": {"B": [0, 0], "C": [0.22, 0]}, "CD": {"C": [0, 0], "D": [0.18, 0]}},
            "sketch": {"C": [0.236, 0.168]}}
 mechanisms = {"fourbar": exercise_from_dict(FOURBAR).mechanism,
-              "slider_crank": load_exercise(sys.argv[2]).mechanism}
+              "slider_crank": load_exercise(sys.argv[2]).mechanism,
+              "shaper": load_exercise(sys.argv[3]).mechanism}
 out = {}
 for name, m in mechanisms.items():
     points = list(dict.fromkeys(p for link in m.links.values() for p in link.points))
@@ -53,8 +55,8 @@ for name, m in mechanisms.items():
             def once():
                 motion = (solve(m, angles) if cold else
                           solve(m, angles, structure=structure, branches=branches))
-                for p in points:
-                    motion.position(p), motion.velocity(p), motion.acceleration(p)
+                return {p: (motion.position(p), motion.velocity(p), motion.acceleration(p))
+                        for p in points}
             once()
             best, spent, repeats = 1e9, 0.0, 0
             while repeats < 3 or spent < 0.5:
@@ -70,7 +72,8 @@ print(json.dumps(out))
 
 def measure(tree: Path) -> dict:
     done = subprocess.run([sys.executable, "-c", HARNESS, str(tree),
-                           str(ROOT / "exercises" / "compressor_slider_crank.toml")],
+                           str(ROOT / "exercises" / "compressor_slider_crank.toml"),
+                           str(ROOT / "exercises" / "shaper_sixbar.toml")],
                           capture_output=True, text=True, cwd=tempfile.gettempdir())
     if done.returncode != 0:
         raise RuntimeError(done.stderr[-800:])

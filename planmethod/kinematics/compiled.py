@@ -28,6 +28,7 @@ Examples
 from __future__ import annotations
 
 import math
+import threading
 from collections import OrderedDict
 
 import numpy as np
@@ -42,6 +43,7 @@ __all__ = ["Program", "Target", "Values", "program"]
 #: how many models' compiled programs are remembered (by identity, most recent first)
 CACHE_SIZE = 32
 _PROGRAMS: OrderedDict[int, Program] = OrderedDict()
+_LOCK = threading.Lock()
 #: |vanishing factor| within this of zero (relative) is a toggle: see dyads._toggle_or_miss
 _TOLERANCE = ROUNDING_UNITS * float(np.finfo(float).eps)
 #: the bounds over all angles are widened by this factor, so that the rounding of a bound
@@ -52,14 +54,15 @@ _MARGIN = 1.0 + 1e-9
 def program(mechanism: Mechanism) -> Program:
     """The compiled program of ``mechanism`` (one per model object, remembered)."""
     key = id(mechanism)
-    found = _PROGRAMS.get(key)
-    if found is not None and found.mechanism is mechanism:
-        _PROGRAMS.move_to_end(key)
+    with _LOCK:
+        found = _PROGRAMS.get(key)
+        if found is not None and found.mechanism is mechanism:
+            _PROGRAMS.move_to_end(key)
+            return found
+        found = _PROGRAMS[key] = Program(mechanism)
+        while len(_PROGRAMS) > CACHE_SIZE:
+            _PROGRAMS.popitem(last=False)
         return found
-    found = _PROGRAMS[key] = Program(mechanism)
-    while len(_PROGRAMS) > CACHE_SIZE:
-        _PROGRAMS.popitem(last=False)
-    return found
 
 
 class Program:
