@@ -4,7 +4,7 @@ This file is run by :mod:`benchmarks.run` as a plain script with the Python of t
 virtualenv (``python -m benchmarks.peers --setup`` makes it); it imports neither planmethod nor
 the ``benchmarks`` package, only the one peer it is asked about. Timing happens here, in the
 subprocess, around the peer's own full-turn call (model building and JIT compilation excluded,
-exactly as for planmethod's "prepared" column).
+as planmethod's row reuses its model, compiled once).
 
 Usage::
 

@@ -5,10 +5,11 @@ time of a full-turn analysis — positions, velocities and accelerations of ever
 crank angles — divided by N:
 
 * ``planmethod``: ``solve(mechanism, angles)`` and then ``position``, ``velocity``,
-  ``acceleration`` of every point, from the frozen model (structural analysis and branch
-  choice included);
-* ``planmethod (prepared)``: the same with the structure and the branches reused, as the peers
-  reuse their built and compiled models;
+  ``acceleration`` of every point, called again and again with the same frozen model, whose
+  structure, branch choice and compiled dyads :func:`~planmethod.kinematics.compiled.program`
+  keeps after the first call — as the peers reuse their built and compiled models;
+* ``planmethod (new model each call)``: the same with a new (equal) model object at every call,
+  so that every call pays the structural analysis, the branch choice and the compilation;
 * each peer (:mod:`benchmarks.peers`) inside its own virtualenv, timed in its subprocess.
 
 The error of each tool is that of C's position, velocity and acceleration over the whole turn,
@@ -21,16 +22,16 @@ Examples
 >>> from benchmarks.common import exercise
 >>> table = planmethod_times(exercise("fourbar").mechanism, [36], min_time=0.0)
 >>> sorted(table[36])
-['cold', 'prepared']
+['fresh', 'reused']
 """
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from planmethod.kinematics import solve
-from planmethod.kinematics.solve import choose_branches
-from planmethod.structure import analyse_structure
 
 from . import floor
 from . import peers as peer_tools
@@ -43,7 +44,8 @@ QUICK_COUNTS = (360, 3600)
 MECHANISMS = ("fourbar", "slider_crank")
 TITLES = {"fourbar": "four-bar (case A)", "slider_crank": "slider-crank (seed 001)"}
 FLOOR = "numpy floor (hand-fused, this mechanism only)"
-COLORS = {"planmethod": "black", "planmethod (prepared)": "black", "pylinkage": "tab:blue",
+FRESH = "planmethod (new model each call)"
+COLORS = {"planmethod": "black", FRESH: "black", "pylinkage": "tab:blue",
           "mechanism": "tab:orange", "kimech": "tab:green", "fourbarhinge": "tab:purple",
           "kinepy": "tab:red", FLOOR: "grey"}
 
@@ -52,26 +54,29 @@ def every_point(mechanism) -> list[str]:
     return list(dict.fromkeys(p for link in mechanism.links.values() for p in link.points))
 
 
-def full_analysis(mechanism, angles, points, structure=None, branches=None):
+def full_analysis(mechanism, angles, points):
     """Positions, velocities and accelerations of every point at every angle."""
-    motion = solve(mechanism, angles, structure=structure, branches=branches)
+    motion = solve(mechanism, angles)
     return {p: (motion.position(p), motion.velocity(p), motion.acceleration(p))
             for p in points}
 
 
 def planmethod_times(mechanism, counts, *, min_time: float = 0.5) -> dict:
+    """Best times of the full analysis at each count: ``reused`` (the same model object at
+    every call) and ``fresh`` (a new, equal model object at every call)."""
     points = every_point(mechanism)
-    structure = analyse_structure(mechanism)
-    branches = choose_branches(mechanism, structure)
+    # more new models than calls: none of them is met twice (the program cache keeps 32)
+    fresh = [dataclasses.replace(mechanism) for _ in range(2048)]
     out = {}
     for count in counts:
         angles = full_turn(count)
         full_analysis(mechanism, angles, points)  # warm-up
+        models = iter(fresh)
         out[count] = {
-            "cold": best_time(lambda a=angles: full_analysis(mechanism, a, points),
-                              min_time=min_time),
-            "prepared": best_time(lambda a=angles: full_analysis(mechanism, a, points, structure,
-                                                                 branches), min_time=min_time),
+            "reused": best_time(lambda a=angles: full_analysis(mechanism, a, points),
+                                min_time=min_time),
+            "fresh": best_time(lambda a=angles, m=models: full_analysis(next(m), a, points),
+                               min_time=min_time, max_repeats=len(fresh)),
         }
     return out
 
@@ -139,10 +144,9 @@ def run(quick: bool = False, *, log=print) -> dict:
         mechanism = exercise(name).mechanism
         log(f"  {TITLES[name]}: planmethod …")
         times = planmethod_times(mechanism, counts, min_time=min_time)
-        entry = {"planmethod": {"runs": {str(c): times[c]["cold"] for c in counts},
+        entry = {"planmethod": {"runs": {str(c): times[c]["reused"] for c in counts},
                                 "error": planmethod_error(name, mechanism)},
-                 "planmethod (prepared)": {"runs": {str(c): times[c]["prepared"]
-                                                    for c in counts}},
+                 FRESH: {"runs": {str(c): times[c]["fresh"] for c in counts}},
                  FLOOR: floor_record(name, mechanism, counts, min_time)}
         if have_peers:
             for peer in peer_tools.PEERS:
@@ -232,7 +236,7 @@ def figure(result: dict):
             style = {"linewidth": 1.5, "color": COLORS.get(tool, "grey")}
             if tool == "planmethod":
                 style["linewidth"] = 2.8
-            if tool in ("planmethod (prepared)", FLOOR):
+            if tool in (FRESH, FLOOR):
                 style["linestyle"] = "--" if tool != FLOOR else ":"
             label = tool if not record.get("version") else f"{tool} {record['version']}"
             axis.plot(xs, ys, marker="o", label=label, **style)

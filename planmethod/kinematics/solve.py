@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import AssemblyError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
-from ..structure import AssurGroup, Structure, analyse_structure
+from ..structure import AssurGroup, Structure
 from .compiled import (
     Target,
     Values,
@@ -35,6 +35,7 @@ from .compiled import (
     turn,
     velocities,
 )
+from .compiled import place as place_point
 from .dyads import Construction, construct, dyad_positions
 from .state import LinkState, _complex, _real, cross, norm, perp, rotate, unit_angle
 
@@ -347,27 +348,80 @@ def _choose_branch(mechanism, group, states, angle_deg) -> tuple[Branch, dict | 
 
 def choose_branches(mechanism: Mechanism, structure: Structure | None = None,
                     groups: Iterable[AssurGroup] | None = None) -> dict[int, Branch]:
-    """Pick each group's assembly at ``drive.angle``: nearest to the sketch, else the default."""
-    structure = structure or analyse_structure(mechanism)
+    """Pick each group's assembly at ``drive.angle``: nearest to the sketch, else the default.
+
+    Dyads are placed on both branches by their compiled closed forms; a group whose compiled
+    check flags a position the reference refuses, and every class III group, is decided by the
+    reference code (which raises its errors)."""
+    compiled = program(mechanism)
+    structure = structure or compiled.structure
     groups = structure.groups if groups is None else tuple(groups)
-    angle = np.radians(np.array([mechanism.drive.angle]))
-    states = {FRAME: _frame_state(1), mechanism.drive.link: _drive_state(mechanism, angle)}
+    angle_deg = float(mechanism.drive.angle)
+    angle = np.radians(np.array([angle_deg]))
+    drive = mechanism.drive.link
+    frame = _frame_state(1)
+    drive_target = _targets(1, 0, [drive])[0][drive]
+    drive_values = _drive_values(compiled, np.array([angle_deg]), drive_target)
+    states = {FRAME: frame, drive: _link_state(drive_values, 0, drive_target)}
+    values = {FRAME: _fixed_values(frame), drive: drive_values}
     branches = {}
     for group in groups:
+        found = _choose_compiled(compiled, group, values) if group.is_dyad else None
+        if found is not None:
+            branches[group.index], placed, targets = found
+            for link, link_values in placed.links.items():
+                values[link] = link_values
+                states[link] = _link_state(link_values, 0, targets[link])
+            continue
         if not group.is_dyad:
             from .higher import choose_higher_branch  # class III groups: Newton from the sketch
 
             branch, poses = choose_higher_branch(mechanism, group, states, angle)
             branches[group.index] = branch
         else:
-            branches[group.index], poses = _choose_branch(mechanism, group, states,
-                                                          mechanism.drive.angle)
+            branches[group.index], poses = _choose_branch(mechanism, group, states, angle_deg)
             if poses is None:
                 poses = dyad_positions(mechanism, group, states, branches[group.index].sign,
-                                       np.array([mechanism.drive.angle]))
+                                       np.array([angle_deg]))
         for link, (theta, origin) in poses.items():
             states[link] = LinkState(theta, origin)
+            values[link] = Values.of(states[link])
     return branches
+
+
+def _choose_compiled(compiled, group: AssurGroup, values: dict):
+    """(branch, placed dyad, its targets) by ``_choose_branch``'s rule, from the compiled
+    closed forms at one angle; None where the reference code must decide."""
+    dyad = compiled.dyad(group)
+    placed = {}
+    for sign in ((1, -1) if group.kind in ("RRR", "RRP", "RPR") else (1,)):
+        targets = _targets(1, 0, group.links)[0]
+        found = dyad.place(values, sign, 1, targets)
+        if found is None:
+            return None
+        placed[sign] = (found, targets)
+    if len(placed) == 1:
+        return Branch(1, "unique"), *placed[1]
+    mechanism = compiled.mechanism
+    plus, minus = (_sketch_gap(mechanism, group, placed[sign][0]) for sign in (1, -1))
+    if plus is None or minus is None or abs(plus - minus) <= 1e-12 * (plus + minus) + 1e-24:
+        return Branch(1, "default"), *placed[1]
+    sign = 1 if plus < minus else -1
+    return Branch(sign, "sketch"), *placed[sign]
+
+
+def _sketch_gap(mechanism: Mechanism, group: AssurGroup, placed) -> float | None:
+    """``_sketch_distance`` of a placed dyad (one angle)."""
+    total, used = 0.0, False
+    for link in group.links:
+        link_values = placed.links[link]
+        for name, local in mechanism.links[link].points.items():
+            if name in mechanism.sketch:
+                x, y, _, _ = place_point(link_values, local)
+                sketch_x, sketch_y = mechanism.sketch[name]
+                total += float(np.sum((x - sketch_x) ** 2 + (y - sketch_y) ** 2))
+                used = True
+    return total if used else None
 
 
 #: the arithmetic's resolution (unit roundoff)
