@@ -99,7 +99,12 @@ class Curvature:
 
 @dataclass(frozen=True)
 class Motion:
-    """The exact kinematics of a mechanism at one or many crank angles."""
+    """The exact kinematics of a mechanism at one or many crank angles.
+
+    The arrays of :attr:`links` (and of :attr:`groups`) are the solve's own and may share one
+    allocation: keeping one keeps the others. The methods (``position``, ``velocity``,
+    ``theta``, ``omega``, …) return arrays of the caller's own.
+    """
 
     mechanism: Mechanism
     structure: Structure
@@ -118,6 +123,10 @@ class Motion:
     # -- shaping ---------------------------------------------------------------------------
     def _out(self, array: np.ndarray) -> np.ndarray:
         return array[0] if self.scalar else array
+
+    def _own(self, array: np.ndarray) -> np.ndarray:
+        """``_out`` of a copy: the caller may keep it without keeping the solve's arrays."""
+        return array[0] if self.scalar else array.copy()
 
     def _need(self, stage: str, what: str) -> None:
         if _LEVELS[self.stage] < _LEVELS[stage]:
@@ -214,17 +223,17 @@ class Motion:
     # -- links ---------------------------------------------------------------------------------
     def theta(self, link: str) -> np.ndarray:
         """Global angle (rad) of the link's own +x axis."""
-        return self._out(self.link_state(link).theta)
+        return self._own(self.link_state(link).theta)
 
     def omega(self, link: str) -> np.ndarray:
         """Angular velocity (rad/s, counter-clockwise positive)."""
         self._need("velocity", f"ω of {link}")
-        return self._out(self.link_state(link).omega)
+        return self._own(self.link_state(link).omega)
 
     def epsilon(self, link: str) -> np.ndarray:
         """Angular acceleration (rad/s², counter-clockwise positive)."""
         self._need("acceleration", f"ε of {link}")
-        return self._out(self.link_state(link).epsilon)
+        return self._own(self.link_state(link).epsilon)
 
     # -- pairs and paths -------------------------------------------------------------------------
     def sliding(self, key: str) -> Sliding:
