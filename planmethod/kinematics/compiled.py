@@ -75,11 +75,20 @@ class Program:
         self._dyads: dict[int, tuple[AssurGroup, _Dyad]] = {}
         self._branches: dict[tuple, tuple[Structure, dict]] = {}
         self._owners: dict[str, tuple[str, ...]] = {}
+        self._locals: dict[tuple[str, str], tuple[float, float]] = {}
         drive = mechanism.drive
         self.pivot = _local(mechanism, FRAME, drive.pivot)
         self.pivot_local = _local(mechanism, drive.link, drive.pivot)
         self.omega = float(drive.omega)
         self.epsilon = float(drive.epsilon)
+
+    def local(self, link: str, point: str) -> tuple[float, float]:
+        """``mechanism.local(link, point)`` as floats, remembered."""
+        key = (link, point)
+        found = self._locals.get(key)
+        if found is None:
+            found = self._locals[key] = _local(self.mechanism, link, point)
+        return found
 
     def owners(self, point: str) -> tuple[str, ...]:
         """``mechanism.links_with_point(point)``, remembered."""

@@ -26,6 +26,7 @@ from ..errors import AssemblyError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure
 from .compiled import (
+    Program,
     Target,
     Values,
     accelerations,
@@ -43,6 +44,8 @@ __all__ = ["STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "Sliding", 
 
 STAGES = ("position", "velocity", "acceleration")
 _LEVELS = {stage: level for level, stage in enumerate(STAGES)}
+#: a key not found (None is a value: a point at its link's origin has no offset)
+_MISSING = object()
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,9 +119,12 @@ class Motion:
     branches: Mapping[int, Branch]
     #: reference → (link, position), filled on first use (positions never change)
     _located: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    #: reference → its offset from its link's origin (complex); ("spin" | "turn", link) →
-    #: iω and iε − ω² (complex): what a point's velocity and acceleration are made of
+    #: reference → its offset from its link's origin (complex, None at the origin); ("spin" |
+    #: "turn", link) → iω and iε − ω² (complex): what a point's velocity and acceleration are
+    #: made of
     _terms: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: the model's compiled program (set by :func:`solve`; looked up when None)
+    _program: Program | None = field(default=None, init=False, repr=False, compare=False)
 
     # -- shaping ---------------------------------------------------------------------------
     def _out(self, array: np.ndarray) -> np.ndarray:
@@ -151,26 +157,45 @@ class Motion:
 
     def _find(self, ref: str) -> tuple[str, np.ndarray]:
         name, _, on = ref.partition("@")
-        owners = [link for link in program(self.mechanism).owners(name) if link in self.links]
-        if not owners:
+        compiled = self._program or program(self.mechanism)
+        links = self.links
+        owner = next((link for link in compiled.owners(name) if link in links), None)
+        if owner is None:
             if not self.mechanism.links_with_point(name):
                 raise SpecError(f"unknown point '{name}'")
             raise PlanmethodError(f"point {name} was not solved in this scene")
-        position = self.links[owners[0]].place(self.mechanism.local(owners[0], name))
+        state = links[owner]
+        local = compiled.local(owner, name)
         if on:
             self.link_state(on)
-            return on, position
-        return owners[0], position
+            return on, state.place(local)
+        if owner == FRAME:  # the frame's axes are (1, 0): the point stays at its coordinates
+            position = np.empty(state.theta.shape, dtype=complex)
+            position.fill(complex(*local))
+            return owner, _real(position)
+        if local == (0.0, 0.0):  # the link's origin: no offset
+            self._terms[ref] = None
+            return owner, state.origin.copy()
+        # r = (cos θ + i sin θ)·(x + iy) (x·(cos θ, sin θ) for a point on the link's x-axis),
+        # kept as complex numbers for the velocity and acceleration reads
+        if local[1] == 0.0:
+            offset = state.axes() * local[0]
+            self._terms[ref] = offset.view(np.complex128).ravel()
+        else:
+            self._terms[ref] = turned = _complex(state.axes()) * complex(*local)
+            offset = _real(turned)
+        return owner, offset + state.origin
 
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
         (``"B@lever"``)."""
         return self._out(self._locate(ref)[1].copy())
 
-    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray:
-        """The point's position minus its link's origin, as complex numbers (kept)."""
-        offset = self._terms.get(ref)
-        if offset is None:
+    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray | None:
+        """The point's position minus its link's origin, as complex numbers (kept; None at the
+        origin)."""
+        offset = self._terms.get(ref, _MISSING)
+        if offset is _MISSING:
             offset = self._terms[ref] = _complex(position - self.links[link].origin)
         return offset
 
@@ -183,10 +208,13 @@ class Motion:
             return self._out(np.zeros(position.shape))
         # LinkState.velocity_at, v + ω·J·r, with r and iω kept for later reads
         state = self.links[link]
+        offset = self._offset(ref, link, position)
+        if offset is None:  # the link's origin
+            return self._out(state.velocity.copy())
         spin = self._terms.get(("spin", link))
         if spin is None:
             spin = self._terms["spin", link] = 1j * state.omega
-        moved = _real(self._offset(ref, link, position) * spin)
+        moved = _real(offset * spin)
         moved += state.velocity  # v + ω·J·r, in place (one array fewer)
         return self._out(moved)
 
@@ -199,10 +227,13 @@ class Motion:
             return self._out(np.zeros(position.shape))
         # LinkState.acceleration_at, a + ε·J·r − ω²·r
         state = self.links[link]
+        offset = self._offset(ref, link, position)
+        if offset is None:  # the link's origin
+            return self._out(state.acceleration.copy())
         factor = self._terms.get(("turn", link))
         if factor is None:
             factor = self._terms["turn", link] = state.epsilon * 1j - state.omega * state.omega
-        moved = _real(self._offset(ref, link, position) * factor)
+        moved = _real(offset * factor)
         moved += state.acceleration
         return self._out(moved)
 
@@ -730,8 +761,10 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         # refused is found as the reference finds it
         states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
                                       drive, targets, singles)
-    return Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
-                  dict(branches))
+    motion = Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
+                    dict(branches))
+    object.__setattr__(motion, "_program", compiled)
+    return motion
 
 
 def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive, targets,
