@@ -323,11 +323,13 @@ class Placed:
     motion is referred (``refs[link]`` = (side index or None for X, r) with r = (rx, ry) the
     link's origin minus that point, None when zero); ``targets`` where its results go."""
 
-    __slots__ = ("det", "links", "refs", "sides", "span", "targets", "xx", "xy")
+    __slots__ = ("bound", "det", "links", "refs", "sides", "span", "targets", "xx", "xy")
 
-    def __init__(self, links, xx, xy, sides, refs, targets, span=None) -> None:
+    def __init__(self, links, xx, xy, sides, refs, targets, span=None, bound=None) -> None:
         self.links, self.xx, self.xy, self.sides, self.refs = links, xx, xy, sides, refs
         self.targets, self.span, self.det = targets, span, None
+        #: an upper bound of the size ratio R over all angles known without R (None: unknown)
+        self.bound = bound
 
 
 def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local):
@@ -447,6 +449,7 @@ class _RRR(_Dyad):
         if not self.valid:
             return None
         a, b = self.a, self.b
+        bound = None
         known1, known2 = values[self.k1], values[self.k2]
         target1, target2 = targets[self.l1], targets[self.l2]
         # a pin at a link's origin is placed straight into that link's origin
@@ -471,6 +474,10 @@ class _RRR(_Dyad):
             if not (a + b - high > limit and low - abs(a - b) > limit
                     and low > 1e-15 * (a + b) * _MARGIN):
                 return None
+            # R = (d + |r1| + |r2|) / min |r|, the radii's lengths a and b to rounding: twice
+            # that bounds it unless a rounding error reaches a third of the shorter link
+            if min(a, b) > 1e-6 * (a + b + high):
+                bound = 2.0 * (a + b + high) / min(a, b)
         twice = 2 * d
         x = (a * a - b * b + d * d) / twice
         h = np.sqrt(product) / twice
@@ -491,7 +498,7 @@ class _RRR(_Dyad):
                               radius_x, radius_y, length))
             links[link] = Values(theta, c, s, ox, oy)
             refs[link] = (index, r)
-        return Placed(links, qx, qy, tuple(sides), refs, targets, d)
+        return Placed(links, qx, qy, tuple(sides), refs, targets, d, bound)
 
 
 class _RRP(_Dyad):
@@ -561,8 +568,9 @@ class _RRP(_Dyad):
         side2 = Side(False, self.k2, known2, bx, by, qx, qy, dx, dy)
         links = {self.l1: Values(theta1, c1, s1, o1x, o1y),
                  self.l2: Values(theta2, c2, s2, o2x, o2y)}
+        # R = (|X − P1| + |X − P1|) / |X − P1| = 2 exactly
         return Placed(links, qx, qy, (side1, side2), {self.l1: (0, ref1), self.l2: (None, ref2)},
-                      targets)
+                      targets, bound=2.0)
 
 
 class _RPR(_Dyad):
@@ -638,7 +646,8 @@ class _RPR(_Dyad):
         side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, c1, s1)
         side2 = Side(True, self.l2, known2, r2x, r2y, p2x, p2y, -(sy / length), sx / length,
                      sx, sy, length)
-        return Placed(links, p1x, p1y, (side1, side2), refs, targets, length)
+        # R = (span + length) / length with span = length: 2 exactly
+        return Placed(links, p1x, p1y, (side1, side2), refs, targets, length, bound=2.0)
 
 
 class _PRP(_Dyad):
@@ -685,7 +694,7 @@ class _PRP(_Dyad):
             bx, by = (None, None) if known_values.fixed else (qx - known_values.x,
                                                               qy - known_values.y)
             sides.append(Side(False, known, known_values, bx, by, qx, qy, dx, dy))
-        return Placed(links, qx, qy, tuple(sides), refs, targets)
+        return Placed(links, qx, qy, tuple(sides), refs, targets, bound=1.0)  # no rotation
 
 
 class _RPP(_Dyad):
@@ -743,7 +752,7 @@ class _RPP(_Dyad):
         side2 = Side(False, self.k2, known2, bx, by, p1x, p1y, d2x, d2y)
         links = {self.l1: state1, self.l2: Values(theta2, c2, s2, o2x, o2y)}
         refs = {self.l1: (0, ref1), self.l2: (None, (o2x - p1x, o2y - p1y))}
-        return Placed(links, p1x, p1y, (side1, side2), refs, targets)
+        return Placed(links, p1x, p1y, (side1, side2), refs, targets, bound=1.0)  # no rotation
 
 
 _COMPILERS = {"RRR": _RRR, "RRP": _RRP, "RPR": _RPR, "PRP": _PRP, "RPP": _RPP}
@@ -925,12 +934,27 @@ def _link_acceleration(reference, r, w, e, out):
 
 def size_ratio(placed: Placed):
     """R = L / l of Construction.size_ratio, or None where it is 1 (no rotation side)."""
+    return size_ratio_later(placed)()
+
+
+def size_ratio_later(placed: Placed):
+    """:func:`size_ratio`, computed when called (keeping only the arrays it needs)."""
     radii = [side.length for side in placed.sides if side.rotation]
     if not radii:
-        return None
+        return lambda: None
     span = placed.span
     if span is None:
         first, second = placed.sides
-        span = _norm(first.px - second.px, first.py - second.py)
-    total = span + sum(radii)
-    return total / (radii[0] if len(radii) == 1 else np.minimum(radii[0], radii[1]))
+        points = first.px, first.py, second.px, second.py
+    else:
+        points = None
+
+    def ratio():
+        nonlocal span
+        if span is None:
+            first_x, first_y, second_x, second_y = points
+            span = _norm(first_x - second_x, first_y - second_y)
+        total = span + sum(radii)
+        return total / (radii[0] if len(radii) == 1 else np.minimum(radii[0], radii[1]))
+
+    return ratio

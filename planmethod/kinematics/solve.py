@@ -32,7 +32,7 @@ from .compiled import (
     accelerations,
     program,
     put,
-    size_ratio,
+    size_ratio_later,
     turn,
     velocities,
 )
@@ -523,6 +523,8 @@ class _Estimates(Mapping):
         if found is None:
             if stage not in self._stages:
                 raise KeyError(stage)
+            if callable(self._ratio):  # R was not needed by the solve: computed now
+                self._ratio = self._ratio()
             found = self._values[stage] = _estimate(self._ratio, self._sine, stage)
         return found
 
@@ -536,13 +538,18 @@ class _Estimates(Mapping):
         return repr(dict(self))
 
 
+def _clear(bounds: tuple[float, float], stage: str) -> bool:
+    """Whether ε·R/s^(2k+1) < 1 at the ``bounds`` (largest R, smallest |s|): the stage's limit
+    holds at every angle (false for a NaN)."""
+    largest, smallest = bounds
+    return EPS * largest < smallest ** (3 if stage == "velocity" else 5)
+
+
 def _limit(bounds: tuple[float, float], ratio, sine: np.ndarray, angles_deg: np.ndarray,
            stage: str, name: str) -> None:
     """The per-stage limit of ``_condition``: a ToggleError where ε·R/s^(2k+1) ≥ 1. Checked on
     the ``bounds`` (largest R, smallest |s|) first; the estimates only where that fails."""
-    largest, smallest = bounds
-    power = smallest ** (3 if stage == "velocity" else 5)
-    if EPS * largest < power:  # (false for a NaN)
+    if _clear(bounds, stage):
         return
     _refuse_digitless(_estimate(ratio, sine, stage), sine, angles_deg, stage, name)
 
@@ -668,17 +675,24 @@ def _fixed_values(frame: LinkState) -> Values:
 def _stages(dyad, placed, values: dict, level: int, count: int, angles_deg: np.ndarray,
             name: str) -> dict:
     """A placed dyad's velocities and accelerations up to ``level``, with the per-stage limit;
-    returns the fields of its record (``ratio``: its size ratio R, for the estimates)."""
+    returns the fields of its record (``ratio``: its size ratio R, for the estimates, or a
+    function that computes it when the limit did not need it)."""
     if level == 0:
         return {}
     u1, u2, sine = velocities(dyad, placed, values, count)
-    ratio = size_ratio(placed)
-    bounds = (1.0 if ratio is None else float(ratio.max()), float(np.abs(sine).min()))
-    _limit(bounds, ratio, sine, angles_deg, "velocity", name)
+    ratio = size_ratio_later(placed)
+    smallest = float(np.abs(sine).min())
     record = {"velocity_unknowns": (u1, u2), "line_sine": sine, "ratio": ratio}
-    if level >= 2:
-        record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2), count)
-        _limit(bounds, ratio, sine, angles_deg, "acceleration", name)
+    for stage in STAGES[1:level + 1]:
+        if stage == "acceleration":
+            record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2),
+                                                            count)
+        if placed.bound is not None and _clear((placed.bound, smallest), stage):
+            continue  # clear of the limit even at the bound of R: R is computed when read
+        if callable(ratio):
+            ratio = record["ratio"] = ratio()
+        _limit((1.0 if ratio is None else float(ratio.max()), smallest), ratio, sine,
+               angles_deg, stage, name)
     return record
 
 
@@ -853,6 +867,8 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
             values.update(placed.links)
             record = _stages(dyad, placed, values, level, size, angles_deg[lo:hi], group.name)
             if record:
+                if callable(record["ratio"]):
+                    record["ratio"] = record["ratio"]()
                 if record["ratio"] is None:  # R = 1 (no rotation side)
                     record["ratio"] = 1.0
                 _fill(records[group.index], record, lo, hi)
