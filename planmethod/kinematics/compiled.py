@@ -214,9 +214,14 @@ def place(values: Values, local, out=None):
         if out is None:
             return values.x, values.y, None, None
         return (*put(out, values.x, values.y), None, None)
-    rx, ry = turn(values.c, values.s, lx, ly)
     if out is None:
+        rx, ry = turn(values.c, values.s, lx, ly)
         return values.x + rx, values.y + ry, rx, ry
+    if type(values.x) is float and values.x == 0.0 and values.y == 0.0:
+        # the link's origin at the global origin: the point is r, turned straight into out
+        first, second = _turn_into(out, values.c, values.s, lx, ly)
+        return first, second, first, second
+    rx, ry = turn(values.c, values.s, lx, ly)
     return (np.add(values.x, rx, out=out[:, 0]), np.add(values.y, ry, out=out[:, 1]), rx, ry)
 
 
@@ -338,7 +343,9 @@ def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local):
     (θ, c, s, origin x, origin y, r, length, ux, uy), r the origin minus P (None if zero)."""
     length = _norm(radius_x, radius_y)
     angle, ca, sa = alpha
-    theta = np.arctan2(radius_y, radius_x) - angle
+    theta = np.arctan2(radius_y, radius_x)
+    if angle != 0.0:
+        theta = theta - angle
     basis = target.basis
     if angle == 0.0:  # (cos θ, sin θ) = the unit radius
         ux = np.divide(radius_x, length, out=basis[:, 0])
@@ -539,9 +546,9 @@ class _RRP(_Dyad):
             return None
         else:
             # |h| must stay below a by more than rounding (dyads._rrp's check, bounded)
-            reach = max(float(np.max(np.abs(p1x))), float(np.max(np.abs(p1y))))
-            limit = _TOLERANCE * (a + float(np.max(np.abs(offset))) + reach) * _MARGIN
-            if not a - float(np.max(np.abs(h))) > limit:
+            reach = max(float(np.abs(p1x).max()), float(np.abs(p1y).max()))
+            limit = _TOLERANCE * (a + float(np.abs(offset).max()) + reach) * _MARGIN
+            if not a - float(np.abs(h).max()) > limit:
                 return None
         along = np.sqrt(a * a - h * h)
         if branch != 1:
@@ -672,7 +679,7 @@ class _PRP(_Dyad):
             lines.append((theta, c, s, dx, dy, nx, ny, offset + _dot_turned(nx, ny, c, s, local)))
         (*_, n1x, n1y, o1), (*_, n2x, n2y, o2) = lines
         det = n1x * n2y - n1y * n2x
-        if not careful and not float(np.min(np.abs(det))) >= TOGGLE_SINE * _MARGIN:
+        if not careful and not float(np.abs(det).min()) >= TOGGLE_SINE * _MARGIN:
             return None
         qx = (o1 * n2y - o2 * n1y) / det
         qy = (n1x * o2 - n2x * o1) / det
@@ -736,7 +743,7 @@ class _RPP(_Dyad):
             d1x, d1y = _rotated(c2, s2, self.inner.direction)
         n1x, n1y, off1 = self.inner.line(state1, c2, s2, d1x, d1y)
         det = n1x * n2y - n1y * n2x
-        if not careful and not float(np.min(np.abs(det))) >= TOGGLE_SINE * _MARGIN:
+        if not careful and not float(np.abs(det).min()) >= TOGGLE_SINE * _MARGIN:
             return None
         o2x = (off1 * n2y - off2 * n1y) / det
         o2y = (n1x * off2 - n2x * off1) / det
