@@ -172,9 +172,12 @@ class Target:
 
 def put(out: np.ndarray, x, y):
     """Write x and y (arrays, floats, or None for zero) into ``out`` (n, 2); its columns."""
-    first, second = out[:, 0], out[:, 1]
     if x is None:
         out.fill(0.0)
+        return out[:, 0], out[:, 1]
+    first, second = out[:, 0], out[:, 1]
+    if type(x) is float and x == y:  # (one fill)
+        out.fill(x)
     else:
         first[...] = x
         second[...] = y
@@ -778,6 +781,18 @@ def _minus(first, second, count: int):
     return first[0] - second[0], first[1] - second[1]
 
 
+def _cramer(minuend, subtrahend, first: Side, second: Side, det, count: int):
+    """(u1, u2) with u1·e1 − u2·e2 = w, w = minuend − subtrahend (vectors None where zero), by
+    Cramer's rule; w = −subtrahend is folded into the products' order (the same values)."""
+    if minuend is None and subtrahend is not None:
+        # (−sx)·dy − (−sy)·dx = sy·dx − sx·dy, exactly
+        sx, sy = subtrahend
+        return ((sy * second.dx - sx * second.dy) / det,
+                (sy * first.dx - sx * first.dy) / det)
+    wx, wy = _minus(minuend, subtrahend, count)
+    return (wx * second.dy - wy * second.dx) / det, (wx * first.dy - wy * first.dx) / det
+
+
 def _follow_tied(tied, own: dict, values, attribute: str) -> None:
     """Give each tied link the ω (or ε) of the link it is tied to (Construction.follow_tied):
     ``own`` maps a link to (value for arithmetic, array)."""
@@ -814,14 +829,12 @@ def velocities(dyad, placed: Placed, values, count: int):
     out1, out2 = _straights(placed, "velocity")
     v1 = velocity_at(first.base, first.rx, first.ry, out1)
     v2 = velocity_at(second.base, second.rx, second.ry, out2)
-    wx, wy = _minus(v2, v1, count)
     det = first.dx * second.dy - first.dy * second.dx
     if np.ndim(det) == 0:
         det = np.full(count, det)
     placed.det = det
-    # u1·e1 − u2·e2 = w by Cramer's rule (dyads.solve_pair)
-    u1 = (wx * second.dy - wy * second.dx) / det
-    u2 = (wx * first.dy - wy * first.dx) / det
+    # u1·e1 − u2·e2 = w = v2 − v1 by Cramer's rule (dyads.solve_pair)
+    u1, u2 = _cramer(v2, v1, first, second, det, count)
     unknowns = (u1, u2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -884,10 +897,7 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
         cx, cy = twice * -(u * side.dy), twice * (u * side.dx)
         known.append((cx, cy) if base is None else (base[0] + cx, base[1] + cy))
     first, second = placed.sides
-    wx, wy = _minus(known[1], known[0], count)
-    det = placed.det
-    du1 = (wx * second.dy - wy * second.dx) / det
-    du2 = (wx * first.dy - wy * first.dx) / det
+    du1, du2 = _cramer(known[1], known[0], first, second, placed.det, count)
     changes = (du1, du2)
     own: dict = {}
     for link, index in dyad.rotating.items():
