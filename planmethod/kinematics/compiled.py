@@ -75,11 +75,20 @@ class Program:
         self._dyads: dict[int, tuple[AssurGroup, _Dyad]] = {}
         self._branches: dict[tuple, tuple[Structure, dict]] = {}
         self._owners: dict[str, tuple[str, ...]] = {}
+        self._locals: dict[tuple[str, str], tuple[float, float]] = {}
         drive = mechanism.drive
         self.pivot = _local(mechanism, FRAME, drive.pivot)
         self.pivot_local = _local(mechanism, drive.link, drive.pivot)
         self.omega = float(drive.omega)
         self.epsilon = float(drive.epsilon)
+
+    def local(self, link: str, point: str) -> tuple[float, float]:
+        """``mechanism.local(link, point)`` as floats, remembered."""
+        key = (link, point)
+        found = self._locals.get(key)
+        if found is None:
+            found = self._locals[key] = _local(self.mechanism, link, point)
+        return found
 
     def owners(self, point: str) -> tuple[str, ...]:
         """``mechanism.links_with_point(point)``, remembered."""
@@ -163,9 +172,12 @@ class Target:
 
 def put(out: np.ndarray, x, y):
     """Write x and y (arrays, floats, or None for zero) into ``out`` (n, 2); its columns."""
-    first, second = out[:, 0], out[:, 1]
     if x is None:
         out.fill(0.0)
+        return out[:, 0], out[:, 1]
+    first, second = out[:, 0], out[:, 1]
+    if type(x) is float and x == y:  # (one fill)
+        out.fill(x)
     else:
         first[...] = x
         second[...] = y
@@ -205,9 +217,14 @@ def place(values: Values, local, out=None):
         if out is None:
             return values.x, values.y, None, None
         return (*put(out, values.x, values.y), None, None)
-    rx, ry = turn(values.c, values.s, lx, ly)
     if out is None:
+        rx, ry = turn(values.c, values.s, lx, ly)
         return values.x + rx, values.y + ry, rx, ry
+    if type(values.x) is float and values.x == 0.0 and values.y == 0.0:
+        # the link's origin at the global origin: the point is r, turned straight into out
+        first, second = _turn_into(out, values.c, values.s, lx, ly)
+        return first, second, first, second
+    rx, ry = turn(values.c, values.s, lx, ly)
     return (np.add(values.x, rx, out=out[:, 0]), np.add(values.y, ry, out=out[:, 1]), rx, ry)
 
 
@@ -314,11 +331,13 @@ class Placed:
     motion is referred (``refs[link]`` = (side index or None for X, r) with r = (rx, ry) the
     link's origin minus that point, None when zero); ``targets`` where its results go."""
 
-    __slots__ = ("det", "links", "refs", "sides", "span", "targets", "xx", "xy")
+    __slots__ = ("bound", "det", "links", "refs", "sides", "span", "targets", "xx", "xy")
 
-    def __init__(self, links, xx, xy, sides, refs, targets, span=None) -> None:
+    def __init__(self, links, xx, xy, sides, refs, targets, span=None, bound=None) -> None:
         self.links, self.xx, self.xy, self.sides, self.refs = links, xx, xy, sides, refs
         self.targets, self.span, self.det = targets, span, None
+        #: an upper bound of the size ratio R over all angles known without R (None: unknown)
+        self.bound = bound
 
 
 def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local):
@@ -327,7 +346,9 @@ def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local):
     (θ, c, s, origin x, origin y, r, length, ux, uy), r the origin minus P (None if zero)."""
     length = _norm(radius_x, radius_y)
     angle, ca, sa = alpha
-    theta = np.arctan2(radius_y, radius_x) - angle
+    theta = np.arctan2(radius_y, radius_x)
+    if angle != 0.0:
+        theta = theta - angle
     basis = target.basis
     if angle == 0.0:  # (cos θ, sin θ) = the unit radius
         ux = np.divide(radius_x, length, out=basis[:, 0])
@@ -438,6 +459,7 @@ class _RRR(_Dyad):
         if not self.valid:
             return None
         a, b = self.a, self.b
+        bound = None
         known1, known2 = values[self.k1], values[self.k2]
         target1, target2 = targets[self.l1], targets[self.l2]
         # a pin at a link's origin is placed straight into that link's origin
@@ -462,6 +484,10 @@ class _RRR(_Dyad):
             if not (a + b - high > limit and low - abs(a - b) > limit
                     and low > 1e-15 * (a + b) * _MARGIN):
                 return None
+            # R = (d + |r1| + |r2|) / min |r|, the radii's lengths a and b to rounding: twice
+            # that bounds it unless a rounding error reaches a third of the shorter link
+            if min(a, b) > 1e-6 * (a + b + high):
+                bound = 2.0 * (a + b + high) / min(a, b)
         twice = 2 * d
         x = (a * a - b * b + d * d) / twice
         h = np.sqrt(product) / twice
@@ -482,7 +508,7 @@ class _RRR(_Dyad):
                               radius_x, radius_y, length))
             links[link] = Values(theta, c, s, ox, oy)
             refs[link] = (index, r)
-        return Placed(links, qx, qy, tuple(sides), refs, targets, d)
+        return Placed(links, qx, qy, tuple(sides), refs, targets, d, bound)
 
 
 class _RRP(_Dyad):
@@ -523,9 +549,9 @@ class _RRP(_Dyad):
             return None
         else:
             # |h| must stay below a by more than rounding (dyads._rrp's check, bounded)
-            reach = max(float(np.max(np.abs(p1x))), float(np.max(np.abs(p1y))))
-            limit = _TOLERANCE * (a + float(np.max(np.abs(offset))) + reach) * _MARGIN
-            if not a - float(np.max(np.abs(h))) > limit:
+            reach = max(float(np.abs(p1x).max()), float(np.abs(p1y).max()))
+            limit = _TOLERANCE * (a + float(np.abs(offset).max()) + reach) * _MARGIN
+            if not a - float(np.abs(h).max()) > limit:
                 return None
         along = np.sqrt(a * a - h * h)
         if branch != 1:
@@ -552,8 +578,9 @@ class _RRP(_Dyad):
         side2 = Side(False, self.k2, known2, bx, by, qx, qy, dx, dy)
         links = {self.l1: Values(theta1, c1, s1, o1x, o1y),
                  self.l2: Values(theta2, c2, s2, o2x, o2y)}
+        # R = (|X − P1| + |X − P1|) / |X − P1| = 2 exactly
         return Placed(links, qx, qy, (side1, side2), {self.l1: (0, ref1), self.l2: (None, ref2)},
-                      targets)
+                      targets, bound=2.0)
 
 
 class _RPR(_Dyad):
@@ -629,7 +656,8 @@ class _RPR(_Dyad):
         side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, c1, s1)
         side2 = Side(True, self.l2, known2, r2x, r2y, p2x, p2y, -(sy / length), sx / length,
                      sx, sy, length)
-        return Placed(links, p1x, p1y, (side1, side2), refs, targets, length)
+        # R = (span + length) / length with span = length: 2 exactly
+        return Placed(links, p1x, p1y, (side1, side2), refs, targets, length, bound=2.0)
 
 
 class _PRP(_Dyad):
@@ -654,7 +682,7 @@ class _PRP(_Dyad):
             lines.append((theta, c, s, dx, dy, nx, ny, offset + _dot_turned(nx, ny, c, s, local)))
         (*_, n1x, n1y, o1), (*_, n2x, n2y, o2) = lines
         det = n1x * n2y - n1y * n2x
-        if not careful and not float(np.min(np.abs(det))) >= TOGGLE_SINE * _MARGIN:
+        if not careful and not float(np.abs(det).min()) >= TOGGLE_SINE * _MARGIN:
             return None
         qx = (o1 * n2y - o2 * n1y) / det
         qy = (n1x * o2 - n2x * o1) / det
@@ -676,7 +704,7 @@ class _PRP(_Dyad):
             bx, by = (None, None) if known_values.fixed else (qx - known_values.x,
                                                               qy - known_values.y)
             sides.append(Side(False, known, known_values, bx, by, qx, qy, dx, dy))
-        return Placed(links, qx, qy, tuple(sides), refs, targets)
+        return Placed(links, qx, qy, tuple(sides), refs, targets, bound=1.0)  # no rotation
 
 
 class _RPP(_Dyad):
@@ -718,7 +746,7 @@ class _RPP(_Dyad):
             d1x, d1y = _rotated(c2, s2, self.inner.direction)
         n1x, n1y, off1 = self.inner.line(state1, c2, s2, d1x, d1y)
         det = n1x * n2y - n1y * n2x
-        if not careful and not float(np.min(np.abs(det))) >= TOGGLE_SINE * _MARGIN:
+        if not careful and not float(np.abs(det).min()) >= TOGGLE_SINE * _MARGIN:
             return None
         o2x = (off1 * n2y - off2 * n1y) / det
         o2y = (n1x * off2 - n2x * off1) / det
@@ -734,7 +762,7 @@ class _RPP(_Dyad):
         side2 = Side(False, self.k2, known2, bx, by, p1x, p1y, d2x, d2y)
         links = {self.l1: state1, self.l2: Values(theta2, c2, s2, o2x, o2y)}
         refs = {self.l1: (0, ref1), self.l2: (None, (o2x - p1x, o2y - p1y))}
-        return Placed(links, p1x, p1y, (side1, side2), refs, targets)
+        return Placed(links, p1x, p1y, (side1, side2), refs, targets, bound=1.0)  # no rotation
 
 
 _COMPILERS = {"RRR": _RRR, "RRP": _RRP, "RPR": _RPR, "PRP": _PRP, "RPP": _RPP}
@@ -751,6 +779,18 @@ def _minus(first, second, count: int):
     if first is None:
         return -second[0], -second[1]
     return first[0] - second[0], first[1] - second[1]
+
+
+def _cramer(minuend, subtrahend, first: Side, second: Side, det, count: int):
+    """(u1, u2) with u1·e1 − u2·e2 = w, w = minuend − subtrahend (vectors None where zero), by
+    Cramer's rule; w = −subtrahend is folded into the products' order (the same values)."""
+    if minuend is None and subtrahend is not None:
+        # (−sx)·dy − (−sy)·dx = sy·dx − sx·dy, exactly
+        sx, sy = subtrahend
+        return ((sy * second.dx - sx * second.dy) / det,
+                (sy * first.dx - sx * first.dy) / det)
+    wx, wy = _minus(minuend, subtrahend, count)
+    return (wx * second.dy - wy * second.dx) / det, (wx * first.dy - wy * first.dx) / det
 
 
 def _follow_tied(tied, own: dict, values, attribute: str) -> None:
@@ -789,14 +829,12 @@ def velocities(dyad, placed: Placed, values, count: int):
     out1, out2 = _straights(placed, "velocity")
     v1 = velocity_at(first.base, first.rx, first.ry, out1)
     v2 = velocity_at(second.base, second.rx, second.ry, out2)
-    wx, wy = _minus(v2, v1, count)
     det = first.dx * second.dy - first.dy * second.dx
     if np.ndim(det) == 0:
         det = np.full(count, det)
     placed.det = det
-    # u1·e1 − u2·e2 = w by Cramer's rule (dyads.solve_pair)
-    u1 = (wx * second.dy - wy * second.dx) / det
-    u2 = (wx * first.dy - wy * first.dx) / det
+    # u1·e1 − u2·e2 = w = v2 − v1 by Cramer's rule (dyads.solve_pair)
+    u1, u2 = _cramer(v2, v1, first, second, det, count)
     unknowns = (u1, u2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -859,10 +897,7 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
         cx, cy = twice * -(u * side.dy), twice * (u * side.dx)
         known.append((cx, cy) if base is None else (base[0] + cx, base[1] + cy))
     first, second = placed.sides
-    wx, wy = _minus(known[1], known[0], count)
-    det = placed.det
-    du1 = (wx * second.dy - wy * second.dx) / det
-    du2 = (wx * first.dy - wy * first.dx) / det
+    du1, du2 = _cramer(known[1], known[0], first, second, placed.det, count)
     changes = (du1, du2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -916,12 +951,27 @@ def _link_acceleration(reference, r, w, e, out):
 
 def size_ratio(placed: Placed):
     """R = L / l of Construction.size_ratio, or None where it is 1 (no rotation side)."""
+    return size_ratio_later(placed)()
+
+
+def size_ratio_later(placed: Placed):
+    """:func:`size_ratio`, computed when called (keeping only the arrays it needs)."""
     radii = [side.length for side in placed.sides if side.rotation]
     if not radii:
-        return None
+        return lambda: None
     span = placed.span
     if span is None:
         first, second = placed.sides
-        span = _norm(first.px - second.px, first.py - second.py)
-    total = span + sum(radii)
-    return total / (radii[0] if len(radii) == 1 else np.minimum(radii[0], radii[1]))
+        points = first.px, first.py, second.px, second.py
+    else:
+        points = None
+
+    def ratio():
+        nonlocal span
+        if span is None:
+            first_x, first_y, second_x, second_y = points
+            span = _norm(first_x - second_x, first_y - second_y)
+        total = span + sum(radii)
+        return total / (radii[0] if len(radii) == 1 else np.minimum(radii[0], radii[1]))
+
+    return ratio

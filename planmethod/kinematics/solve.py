@@ -26,12 +26,13 @@ from ..errors import AssemblyError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure
 from .compiled import (
+    Program,
     Target,
     Values,
     accelerations,
     program,
     put,
-    size_ratio,
+    size_ratio_later,
     turn,
     velocities,
 )
@@ -43,6 +44,8 @@ __all__ = ["STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "Sliding", 
 
 STAGES = ("position", "velocity", "acceleration")
 _LEVELS = {stage: level for level, stage in enumerate(STAGES)}
+#: a key not found (None is a value: a point at its link's origin has no offset)
+_MISSING = object()
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,9 +119,12 @@ class Motion:
     branches: Mapping[int, Branch]
     #: reference → (link, position), filled on first use (positions never change)
     _located: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    #: reference → its offset from its link's origin (complex); ("spin" | "turn", link) →
-    #: iω and iε − ω² (complex): what a point's velocity and acceleration are made of
+    #: reference → its offset from its link's origin (complex, None at the origin); ("spin" |
+    #: "turn", link) → iω and iε − ω² (complex): what a point's velocity and acceleration are
+    #: made of
     _terms: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: the model's compiled program (set by :func:`solve`; looked up when None)
+    _program: Program | None = field(default=None, init=False, repr=False, compare=False)
 
     # -- shaping ---------------------------------------------------------------------------
     def _out(self, array: np.ndarray) -> np.ndarray:
@@ -151,26 +157,45 @@ class Motion:
 
     def _find(self, ref: str) -> tuple[str, np.ndarray]:
         name, _, on = ref.partition("@")
-        owners = [link for link in program(self.mechanism).owners(name) if link in self.links]
-        if not owners:
+        compiled = self._program or program(self.mechanism)
+        links = self.links
+        owner = next((link for link in compiled.owners(name) if link in links), None)
+        if owner is None:
             if not self.mechanism.links_with_point(name):
                 raise SpecError(f"unknown point '{name}'")
             raise PlanmethodError(f"point {name} was not solved in this scene")
-        position = self.links[owners[0]].place(self.mechanism.local(owners[0], name))
+        state = links[owner]
+        local = compiled.local(owner, name)
         if on:
             self.link_state(on)
-            return on, position
-        return owners[0], position
+            return on, state.place(local)
+        if owner == FRAME:  # the frame's axes are (1, 0): the point stays at its coordinates
+            position = np.empty(state.theta.shape, dtype=complex)
+            position.fill(complex(*local))
+            return owner, _real(position)
+        if local == (0.0, 0.0):  # the link's origin: no offset
+            self._terms[ref] = None
+            return owner, state.origin.copy()
+        # r = (cos θ + i sin θ)·(x + iy) (x·(cos θ, sin θ) for a point on the link's x-axis),
+        # kept as complex numbers for the velocity and acceleration reads
+        if local[1] == 0.0:
+            offset = state.axes() * local[0]
+            self._terms[ref] = offset.view(np.complex128).ravel()
+        else:
+            self._terms[ref] = turned = _complex(state.axes()) * complex(*local)
+            offset = _real(turned)
+        return owner, offset + state.origin
 
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
         (``"B@lever"``)."""
         return self._out(self._locate(ref)[1].copy())
 
-    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray:
-        """The point's position minus its link's origin, as complex numbers (kept)."""
-        offset = self._terms.get(ref)
-        if offset is None:
+    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray | None:
+        """The point's position minus its link's origin, as complex numbers (kept; None at the
+        origin)."""
+        offset = self._terms.get(ref, _MISSING)
+        if offset is _MISSING:
             offset = self._terms[ref] = _complex(position - self.links[link].origin)
         return offset
 
@@ -183,10 +208,13 @@ class Motion:
             return self._out(np.zeros(position.shape))
         # LinkState.velocity_at, v + ω·J·r, with r and iω kept for later reads
         state = self.links[link]
+        offset = self._offset(ref, link, position)
+        if offset is None:  # the link's origin
+            return self._out(state.velocity.copy())
         spin = self._terms.get(("spin", link))
         if spin is None:
             spin = self._terms["spin", link] = 1j * state.omega
-        moved = _real(self._offset(ref, link, position) * spin)
+        moved = _real(offset * spin)
         moved += state.velocity  # v + ω·J·r, in place (one array fewer)
         return self._out(moved)
 
@@ -199,10 +227,13 @@ class Motion:
             return self._out(np.zeros(position.shape))
         # LinkState.acceleration_at, a + ε·J·r − ω²·r
         state = self.links[link]
+        offset = self._offset(ref, link, position)
+        if offset is None:  # the link's origin
+            return self._out(state.acceleration.copy())
         factor = self._terms.get(("turn", link))
         if factor is None:
             factor = self._terms["turn", link] = state.epsilon * 1j - state.omega * state.omega
-        moved = _real(self._offset(ref, link, position) * factor)
+        moved = _real(offset * factor)
         moved += state.acceleration
         return self._out(moved)
 
@@ -492,6 +523,8 @@ class _Estimates(Mapping):
         if found is None:
             if stage not in self._stages:
                 raise KeyError(stage)
+            if callable(self._ratio):  # R was not needed by the solve: computed now
+                self._ratio = self._ratio()
             found = self._values[stage] = _estimate(self._ratio, self._sine, stage)
         return found
 
@@ -505,13 +538,18 @@ class _Estimates(Mapping):
         return repr(dict(self))
 
 
+def _clear(bounds: tuple[float, float], stage: str) -> bool:
+    """Whether ε·R/s^(2k+1) < 1 at the ``bounds`` (largest R, smallest |s|): the stage's limit
+    holds at every angle (false for a NaN)."""
+    largest, smallest = bounds
+    return EPS * largest < smallest ** (3 if stage == "velocity" else 5)
+
+
 def _limit(bounds: tuple[float, float], ratio, sine: np.ndarray, angles_deg: np.ndarray,
            stage: str, name: str) -> None:
     """The per-stage limit of ``_condition``: a ToggleError where ε·R/s^(2k+1) ≥ 1. Checked on
     the ``bounds`` (largest R, smallest |s|) first; the estimates only where that fails."""
-    largest, smallest = bounds
-    power = smallest ** (3 if stage == "velocity" else 5)
-    if EPS * largest < power:  # (false for a NaN)
+    if _clear(bounds, stage):
         return
     _refuse_digitless(_estimate(ratio, sine, stage), sine, angles_deg, stage, name)
 
@@ -637,17 +675,24 @@ def _fixed_values(frame: LinkState) -> Values:
 def _stages(dyad, placed, values: dict, level: int, count: int, angles_deg: np.ndarray,
             name: str) -> dict:
     """A placed dyad's velocities and accelerations up to ``level``, with the per-stage limit;
-    returns the fields of its record (``ratio``: its size ratio R, for the estimates)."""
+    returns the fields of its record (``ratio``: its size ratio R, for the estimates, or a
+    function that computes it when the limit did not need it)."""
     if level == 0:
         return {}
     u1, u2, sine = velocities(dyad, placed, values, count)
-    ratio = size_ratio(placed)
-    bounds = (1.0 if ratio is None else float(ratio.max()), float(np.abs(sine).min()))
-    _limit(bounds, ratio, sine, angles_deg, "velocity", name)
+    ratio = size_ratio_later(placed)
+    smallest = float(np.abs(sine).min())
     record = {"velocity_unknowns": (u1, u2), "line_sine": sine, "ratio": ratio}
-    if level >= 2:
-        record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2), count)
-        _limit(bounds, ratio, sine, angles_deg, "acceleration", name)
+    for stage in STAGES[1:level + 1]:
+        if stage == "acceleration":
+            record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2),
+                                                            count)
+        if placed.bound is not None and _clear((placed.bound, smallest), stage):
+            continue  # clear of the limit even at the bound of R: R is computed when read
+        if callable(ratio):
+            ratio = record["ratio"] = ratio()
+        _limit((1.0 if ratio is None else float(ratio.max()), smallest), ratio, sine,
+               angles_deg, stage, name)
     return record
 
 
@@ -730,8 +775,10 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         # refused is found as the reference finds it
         states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
                                       drive, targets, singles)
-    return Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
-                  dict(branches))
+    motion = Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
+                    dict(branches))
+    object.__setattr__(motion, "_program", compiled)
+    return motion
 
 
 def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive, targets,
@@ -820,6 +867,8 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
             values.update(placed.links)
             record = _stages(dyad, placed, values, level, size, angles_deg[lo:hi], group.name)
             if record:
+                if callable(record["ratio"]):
+                    record["ratio"] = record["ratio"]()
                 if record["ratio"] is None:  # R = 1 (no rotation side)
                     record["ratio"] = 1.0
                 _fill(records[group.index], record, lo, hi)
