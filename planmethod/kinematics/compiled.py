@@ -273,6 +273,30 @@ def acceleration_at(values: Values, rx, ry, out=None):
     return np.add(values.ax, tx, out=first), np.add(values.ay, ty, out=second)
 
 
+def _pin(values: Values, local, out, count: int):
+    """``place`` of a pin, also as complex numbers: (x, y, rx, ry, x + iy), written into
+    ``out`` (an (n, 2) array, allocated when None); a fixed pin's x + iy is a Python complex
+    (and is written into ``out`` when given)."""
+    if values.fixed:
+        x, y, rx, ry = place(values, local)
+        if out is not None:
+            put(out, x, y)
+        return x, y, rx, ry, complex(x, y)
+    if out is None:
+        out = np.empty((count, 2))
+    x, y, rx, ry = place(values, local, out)
+    return x, y, rx, ry, out.view(np.complex128)[:, 0]
+
+
+def _complex_array(value, count: int) -> np.ndarray:
+    """A complex constant as an array over the angles (arrays pass through)."""
+    if np.ndim(value) == 0:
+        out = np.empty(count, dtype=np.complex128)
+        out.fill(value)
+        return out
+    return value
+
+
 def _rotated(c, s, angle: float):
     """(cos, sin) of θ + angle from (cos θ, sin θ)."""
     if angle == 0.0:
@@ -340,11 +364,13 @@ class Placed:
         self.bound = bound
 
 
-def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local):
+def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local, length=None):
     """A link turning about its pin P (at px, py) with its internal pin at P + radius: θ, its
-    axes and origin written into ``target``, the radius' length and unit vector; returns
-    (θ, c, s, origin x, origin y, r, length, ux, uy), r the origin minus P (None if zero)."""
-    length = _norm(radius_x, radius_y)
+    axes and origin written into ``target``, the radius' length (computed unless given) and
+    unit vector; returns (θ, c, s, origin x, origin y, r, length, ux, uy), r the origin minus P
+    (None if zero)."""
+    if length is None:
+        length = _norm(radius_x, radius_y)
     angle, ca, sa = alpha
     theta = np.arctan2(radius_y, radius_x)
     if angle != 0.0:
@@ -462,15 +488,18 @@ class _RRR(_Dyad):
         bound = None
         known1, known2 = values[self.k1], values[self.k2]
         target1, target2 = targets[self.l1], targets[self.l2]
-        # a pin at a link's origin is placed straight into that link's origin
-        p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
-                                   if self.p1_local == (0.0, 0.0) else None)
-        p2x, p2y, r2x, r2y = place(known2, self.p2_known, target2.origin
-                                   if self.p2_local == (0.0, 0.0) else None)
+        # a pin at a link's origin is placed straight into that link's origin; positions are
+        # complex numbers x + iy from here on (one call for what takes two on x and y)
+        p1x, p1y, r1x, r1y, p1 = _pin(known1, self.p1_known, target1.origin
+                                      if self.p1_local == (0.0, 0.0) else None, count)
+        p2x, p2y, r2x, r2y, p2 = _pin(known2, self.p2_known, target2.origin
+                                      if self.p2_local == (0.0, 0.0) else None, count)
         if careful:
-            p1x, p1y, p2x, p2y = (_array(v, count) for v in (p1x, p1y, p2x, p2y))
-        sx, sy = p2x - p1x, p2y - p1y
-        d = _norm(sx, sy)
+            p1, p2 = (_complex_array(point, count) for point in (p1, p2))
+            p1x, p1y, p2x, p2y = p1.real, p1.imag, p2.real, p2.imag
+        span = p2 - p1
+        # |span| as np.abs (hypot): one call, and at least as accurate as √(x² + y²)
+        d = np.abs(span)
         product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)
         if careful:
             product = np.maximum(product, 0.0)
@@ -479,7 +508,7 @@ class _RRR(_Dyad):
         else:
             # a + b − d and d − |a − b| must stay clear of zero (dyads._rrr's checks, bounded
             # over all angles at once)
-            low, high = float(d.min()), float(d.max())
+            low, high = float(np.minimum.reduce(d)), float(np.maximum.reduce(d))
             limit = _TOLERANCE * (a + b + 2.0 * high) * _MARGIN
             if not (a + b - high > limit and low - abs(a - b) > limit
                     and low > 1e-15 * (a + b) * _MARGIN):
@@ -489,20 +518,28 @@ class _RRR(_Dyad):
             if min(a, b) > 1e-6 * (a + b + high):
                 bound = 2.0 * (a + b + high) / min(a, b)
         twice = 2 * d
-        x = (a * a - b * b + d * d) / twice
-        h = np.sqrt(product) / twice
-        ux, uy = sx / d, sy / d
+        # Q = P1 + u·(x + ih), u the unit span: x along it, h across (one complex product)
+        along = np.empty(count, dtype=np.complex128)
+        np.divide(a * a - b * b + d * d, twice, out=along.real)
+        root = np.sqrt(product)
         if branch != 1:
-            h = branch * h
-        qx = p1x + x * ux - h * uy
-        qy = p1y + x * uy + h * ux
+            root = np.multiply(root, branch, out=root)
+        np.divide(root, twice, out=along.imag)
+        unit = np.empty(count, dtype=np.complex128)
+        np.divide(span.real, d, out=unit.real)
+        np.divide(span.imag, d, out=unit.imag)
+        q = np.multiply(unit, along, out=along)
+        q = np.add(p1, q, out=q)
+        qx, qy = q.real, q.imag
         links, refs, sides = {}, {}, []
-        for index, (link, target, known, rx, ry, px, py, local, alpha) in enumerate((
-                (self.l1, target1, known1, r1x, r1y, p1x, p1y, self.p1_local, self.alpha1),
-                (self.l2, target2, known2, r2x, r2y, p2x, p2y, self.p2_local, self.alpha2))):
-            radius_x, radius_y = qx - px, qy - py
+        for index, (link, target, known, rx, ry, px, py, p, local, alpha) in enumerate((
+                (self.l1, target1, known1, r1x, r1y, p1x, p1y, p1, self.p1_local, self.alpha1),
+                (self.l2, target2, known2, r2x, r2y, p2x, p2y, p2, self.p2_local, self.alpha2))):
+            radius = q - p
+            radius_x, radius_y = radius.real, radius.imag
             theta, c, s, ox, oy, r, length, ex, ey = _pivoted(target, px, py, radius_x,
-                                                              radius_y, alpha, local)
+                                                              radius_y, alpha, local,
+                                                              np.abs(radius))
             # e = perp(unit(radius)), as dyads._rotation_side
             sides.append(Side(True, link, known, rx, ry, px, py, np.negative(ey), ex,
                               radius_x, radius_y, length))
