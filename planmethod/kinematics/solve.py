@@ -159,7 +159,11 @@ class Motion:
         name, _, on = ref.partition("@")
         compiled = self._program or program(self.mechanism)
         links = self.links
-        owner = next((link for link in compiled.owners(name) if link in links), None)
+        owner = None
+        for link in compiled.owners(name):
+            if link in links:
+                owner = link
+                break
         if owner is None:
             if not self.mechanism.links_with_point(name):
                 raise SpecError(f"unknown point '{name}'")
@@ -170,9 +174,9 @@ class Motion:
             self.link_state(on)
             return on, state.place(local)
         if owner == FRAME:  # the frame's axes are (1, 0): the point stays at its coordinates
-            position = np.empty(state.theta.shape, dtype=complex)
-            position.fill(complex(*local))
-            return owner, _real(position)
+            position = np.empty(state.origin.shape)
+            position.view(np.complex128).fill(complex(*local))  # (one fill of x + iy)
+            return owner, position
         if local == (0.0, 0.0):  # the link's origin: no offset
             self._terms[ref] = None
             return owner, state.origin.copy()
@@ -180,7 +184,7 @@ class Motion:
         # kept as complex numbers for the velocity and acceleration reads
         if local[1] == 0.0:
             offset = state.axes() * local[0]
-            self._terms[ref] = offset.view(np.complex128).ravel()
+            self._terms[ref] = offset.view(np.complex128)[:, 0]
         else:
             self._terms[ref] = turned = _complex(state.axes()) * complex(*local)
             offset = _real(turned)
@@ -189,7 +193,8 @@ class Motion:
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
         (``"B@lever"``)."""
-        return self._out(self._locate(ref)[1].copy())
+        found = self._located.get(ref) or self._locate(ref)
+        return found[1][0].copy() if self.scalar else found[1].copy()
 
     def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray | None:
         """The point's position minus its link's origin, as complex numbers (kept; None at the
@@ -203,39 +208,50 @@ class Motion:
         """Absolute velocity (m/s) of a point."""
         if self.stage == "position":
             self._need("velocity", f"the velocity of {ref}")
-        link, position = self._locate(ref)
+        link, position = self._located.get(ref) or self._locate(ref)
         if link == FRAME:  # a point of the frame does not move
             return self._out(np.zeros(position.shape))
         # LinkState.velocity_at, v + ω·J·r, with r and iω kept for later reads
         state = self.links[link]
-        offset = self._offset(ref, link, position)
+        terms = self._terms
+        offset = terms.get(ref, _MISSING)
+        if offset is _MISSING:
+            offset = self._offset(ref, link, position)
         if offset is None:  # the link's origin
             return self._out(state.velocity.copy())
-        spin = self._terms.get(("spin", link))
-        if spin is None:
-            spin = self._terms["spin", link] = 1j * state.omega
-        moved = _real(offset * spin)
+        spin = terms.get(("spin", link))
+        if spin is None:  # iω
+            spin = terms["spin", link] = np.zeros(offset.shape, dtype=np.complex128)
+            spin.imag = state.omega
+        moved = _real(np.multiply(offset, spin))
         moved += state.velocity  # v + ω·J·r, in place (one array fewer)
-        return self._out(moved)
+        return moved[0] if self.scalar else moved
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
         if self.stage != "acceleration":
             self._need("acceleration", f"the acceleration of {ref}")
-        link, position = self._locate(ref)
+        link, position = self._located.get(ref) or self._locate(ref)
         if link == FRAME:
             return self._out(np.zeros(position.shape))
         # LinkState.acceleration_at, a + ε·J·r − ω²·r
         state = self.links[link]
-        offset = self._offset(ref, link, position)
+        terms = self._terms
+        offset = terms.get(ref, _MISSING)
+        if offset is _MISSING:
+            offset = self._offset(ref, link, position)
         if offset is None:  # the link's origin
             return self._out(state.acceleration.copy())
-        factor = self._terms.get(("turn", link))
-        if factor is None:
-            factor = self._terms["turn", link] = state.epsilon * 1j - state.omega * state.omega
-        moved = _real(offset * factor)
+        factor = terms.get(("turn", link))
+        if factor is None:  # iε − ω²
+            factor = terms["turn", link] = np.empty(offset.shape, dtype=np.complex128)
+            omega = state.omega
+            np.multiply(omega, omega, out=factor.real)
+            np.negative(factor.real, out=factor.real)
+            factor.imag = state.epsilon
+        moved = _real(np.multiply(offset, factor))
         moved += state.acceleration
-        return self._out(moved)
+        return moved[0] if self.scalar else moved
 
     def place(self, link: str, local) -> np.ndarray:
         """Global position of the point of ``link`` at local coordinates ``local``."""
