@@ -46,6 +46,10 @@ _PROGRAMS: OrderedDict[int, Program] = OrderedDict()
 _LOCK = threading.Lock()
 #: |vanishing factor| within this of zero (relative) is a toggle: see dyads._toggle_or_miss
 _TOLERANCE = ROUNDING_UNITS * float(np.finfo(float).eps)
+#: constant arrays (see :meth:`Program.constant`) are kept for solves of at most this many angles
+#: (where making them costs as much as their arithmetic), and for so many counts per model
+CONSTANT_COUNT = 2048
+CONSTANT_KEYS = 16
 #: the bounds over all angles are widened by this factor, so that the rounding of a bound
 #: never hides an angle the reference check would refuse
 _MARGIN = 1.0 + 1e-9
@@ -76,6 +80,7 @@ class Program:
         self._branches: dict[tuple, tuple[Structure, dict]] = {}
         self._owners: dict[str, tuple[str, ...]] = {}
         self._locals: dict[tuple[str, str], tuple[float, float]] = {}
+        self._constants: dict[tuple, object] = {}
         drive = mechanism.drive
         self.pivot = _local(mechanism, FRAME, drive.pivot)
         self.pivot_local = _local(mechanism, drive.link, drive.pivot)
@@ -88,6 +93,19 @@ class Program:
         found = self._locals.get(key)
         if found is None:
             found = self._locals[key] = _local(self.mechanism, link, point)
+        return found
+
+    def constant(self, key: tuple, count: int, make):
+        """``make()``: arrays over ``count`` angles that are the same at every solve (the frame
+        at rest, the drive's ω and ε, a frame point's position), made read-only by ``make``
+        and kept per ``key`` for small counts (made anew for large ones)."""
+        if count > CONSTANT_COUNT:
+            return make()
+        found = self._constants.get(key)
+        if found is None:
+            if len(self._constants) >= CONSTANT_KEYS:
+                self._constants.clear()
+            found = self._constants[key] = make()
         return found
 
     def owners(self, point: str) -> tuple[str, ...]:

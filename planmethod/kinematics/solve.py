@@ -174,9 +174,9 @@ class Motion:
             self.link_state(on)
             return on, state.place(local)
         if owner == FRAME:  # the frame's axes are (1, 0): the point stays at its coordinates
-            position = np.empty(state.origin.shape)
-            position.view(np.complex128).fill(complex(*local))  # (one fill of x + iy)
-            return owner, position
+            count = len(state.origin)
+            return owner, compiled.constant(("point", name, count), count,
+                                            lambda: _at_rest(count, local))
         if local == (0.0, 0.0):  # the link's origin: no offset
             self._terms[ref] = None
             return owner, state.origin.copy()
@@ -336,6 +336,31 @@ class Motion:
 
 
 # -- the solve ---------------------------------------------------------------------------------
+def _at_rest(count: int, local) -> np.ndarray:
+    """A frame point's position at every angle, read-only (shared by the solves)."""
+    position = np.empty((count, 2))
+    position.view(np.complex128).fill(complex(*local))  # (one fill of x + iy)
+    position.flags.writeable = False
+    return position
+
+
+def _frame_at_rest(count: int) -> LinkState:
+    """The frame's state with read-only arrays (shared by the solves of ``count`` angles)."""
+    frame = _frame_state(count)
+    for array in (frame.theta, frame.origin, frame.velocity, frame.acceleration, frame.basis):
+        array.flags.writeable = False
+    return frame
+
+
+def _constant_rates(count: int, omega: float, epsilon: float):
+    """The drive's ω and ε over ``count`` angles, read-only (shared by the solves)."""
+    rates = np.empty((2, count))
+    rates[0].fill(omega)
+    rates[1].fill(epsilon)
+    rates.flags.writeable = False
+    return rates[0], rates[1]
+
+
 def _frame_state(count: int, arrays=None) -> LinkState:
     """The frame at rest (its arrays taken from ``arrays`` when given: zeros (N,), three
     (N, 2) and the axes (N, 2))."""
@@ -638,7 +663,9 @@ def _drive_values(compiled, angles_deg: np.ndarray, target: Target, arrays=None)
     if arrays is None:
         angles_rad = np.radians(angles_deg)
         c, s = np.cos(angles_rad), np.sin(angles_rad)
-        omega_array, epsilon_array = np.empty(count), np.empty(count)
+        omega_array, epsilon_array = compiled.constant(
+            ("rates", count), count,
+            lambda: _constant_rates(count, compiled.omega, compiled.epsilon))
     else:
         angles_rad = np.radians(angles_deg, out=next(arrays))
         c, s = np.cos(angles_rad, out=next(arrays)), np.sin(angles_rad, out=next(arrays))
@@ -654,8 +681,9 @@ def _drive_values(compiled, angles_deg: np.ndarray, target: Target, arrays=None)
         values = Values(angles_rad, c, s, *put(target.origin, px - tx, py - ty))
         rx, ry = values.x - px, values.y - py
     omega, epsilon = compiled.omega, compiled.epsilon
-    omega_array.fill(omega)
-    epsilon_array.fill(epsilon)
+    if arrays is not None:
+        omega_array.fill(omega)
+        epsilon_array.fill(epsilon)
     values.w, values.omega = omega, omega_array
     values.e, values.epsilon = epsilon, epsilon_array
     if rx is not None:
@@ -778,7 +806,10 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         extra = [1, 2, 2, 2, 2] + [1] * 5 + [1] * _chunked_columns(level, len(groups))
     targets, singles = _targets(count, level, [mechanism.drive.link] + [
         link for group in groups if group.is_dyad for link in group.links], extra)
-    frame = _frame_state(count, singles if extra else None)
+    if extra:
+        frame = _frame_state(count, singles)
+    else:  # the same arrays at every solve of this many angles (read-only)
+        frame = compiled.constant(("frame", count), count, lambda: _frame_at_rest(count))
     drive = _drive_values(compiled, angles_deg, targets[mechanism.drive.link],
                           singles if extra else None)
     try:
