@@ -662,7 +662,9 @@ def _drive_values(compiled, angles_deg: np.ndarray, target: Target, arrays=None)
     count = angles_deg.shape[0]
     if arrays is None:
         angles_rad = np.radians(angles_deg)
-        c, s = np.cos(angles_rad), np.sin(angles_rad)
+        # cos θ and sin θ straight into the axes' columns
+        basis = target.basis
+        c, s = np.cos(angles_rad, out=basis[:, 0]), np.sin(angles_rad, out=basis[:, 1])
         omega_array, epsilon_array = compiled.constant(
             ("rates", count), count,
             lambda: _constant_rates(count, compiled.omega, compiled.epsilon))
@@ -670,7 +672,8 @@ def _drive_values(compiled, angles_deg: np.ndarray, target: Target, arrays=None)
         angles_rad = np.radians(angles_deg, out=next(arrays))
         c, s = np.cos(angles_rad, out=next(arrays)), np.sin(angles_rad, out=next(arrays))
         omega_array, epsilon_array = next(arrays), next(arrays)
-    put(target.basis, c, s)
+    if arrays is not None:
+        put(target.basis, c, s)
     px, py = compiled.pivot
     if compiled.pivot_local == (0.0, 0.0):
         values = Values(angles_rad, c, s, px, py)
