@@ -105,7 +105,8 @@ class Motion:
     """The exact kinematics of a mechanism at one or many crank angles.
 
     The arrays of :attr:`links` (and of :attr:`groups`) are the solve's own and may share one
-    allocation: keeping one keeps the others. The methods (``position``, ``velocity``,
+    allocation: keeping one keeps the others; those of the frame and the drive's ω and ε are
+    read-only, shared by the solves of as many angles. The methods (``position``, ``velocity``,
     ``theta``, ``omega``, …) return arrays of the caller's own.
     """
 
