@@ -33,6 +33,7 @@ from collections import OrderedDict
 
 import numpy as np
 
+from ..errors import ToggleError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure, analyse_structure
 from .dyads import ROUNDING_UNITS, TOGGLE_SINE, dyad_positions
@@ -425,13 +426,143 @@ def _basis(target: Target, c, s):
     return put(target.basis, c, s)
 
 
+# -- the per-stage limits ------------------------------------------------------------------------
+#: the arithmetic's resolution (unit roundoff)
+EPS = float(np.finfo(float).eps)
+
+
+def refuse_digitless(estimate: np.ndarray, sine: np.ndarray, angles_deg: np.ndarray,
+                      stage: str, group_name: str) -> None:
+    """Raise a ToggleError at the first angle whose estimated relative error reaches 1."""
+    bad = ~(estimate < 1.0)
+    if np.any(bad):
+        index = int(np.flatnonzero(bad)[0])
+        angle = float(np.degrees(np.arcsin(min(1.0, abs(float(sine[index]))))))
+        raise ToggleError(
+            f"toggle position: the group's two construction lines meet at {angle:.3g}°, so "
+            f"close to parallel that its {stage}s would have no correct digit",
+            line_angle_deg=angle, link=group_name, angle=float(angles_deg[index]))
+
+
+def error_estimate(ratio, sine: np.ndarray, stage: str) -> np.ndarray:
+    """ε·R/s³ (velocities) or ε·R/s⁵ (accelerations) as ``solve._condition`` computes them (R None:
+    1), with products for the powers."""
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        size = np.abs(sine)
+        power = size * size * size
+        if stage == "acceleration":
+            power = power * size * size
+        return (EPS if ratio is None else EPS * ratio) / power
+
+
+def stage_clear(bounds: tuple[float, float], stage: str) -> bool:
+    """Whether ε·R/s^(2k+1) < 1 at the ``bounds`` (largest R, smallest |s|): the stage's limit
+    holds at every angle (false for a NaN)."""
+    largest, smallest = bounds
+    return EPS * largest < smallest ** (3 if stage == "velocity" else 5)
+
+
+def stage_limit(bounds: tuple[float, float], ratio, sine: np.ndarray, angles_deg: np.ndarray,
+           stage: str, name: str) -> None:
+    """The per-stage limit of ``solve._condition``: a ToggleError where ε·R/s^(2k+1) ≥ 1. Checked on
+    the ``bounds`` (largest R, smallest |s|) first; the estimates only where that fails."""
+    if stage_clear(bounds, stage):
+        return
+    refuse_digitless(error_estimate(ratio, sine, stage), sine, angles_deg, stage, name)
+
+
+
+def check_stage(stage: str, bound: float | None, smallest: float, sine: np.ndarray, ratio,
+                angles_deg: np.ndarray, name: str):
+    """The stage's limit (:func:`stage_limit`) for a dyad whose lines' sine is ``sine`` (its
+    smallest magnitude ``smallest``) and size ratio ``ratio`` (None: 1; a function: computed
+    only when ``bound``, an upper bound of R, does not settle it).
+
+    Returns
+    -------
+    object
+        The ratio, computed if the check needed it.
+    """
+    if bound is not None and stage_clear((bound, smallest), stage):
+        return ratio  # clear of the limit even at the bound of R: R is computed when read
+    if callable(ratio):
+        ratio = ratio()
+    stage_limit((1.0 if ratio is None else float(ratio.max()), smallest), ratio, sine,
+                angles_deg, stage, name)
+    return ratio
+
+
 # -- compiled dyads ------------------------------------------------------------------------------
+class Evaluated:
+    """A dyad solved up to a stage: its links' values (vectors written into their targets) and
+    its record: the unknowns, the lines' sine and its size ratio R (None where 1, or a function
+    that computes it when the checks did not need it)."""
+
+    __slots__ = ("acceleration_unknowns", "line_sine", "links", "ratio", "velocity_unknowns")
+
+    def __init__(self, links: dict, velocity_unknowns=None, line_sine=None, ratio=None,
+                 acceleration_unknowns=None) -> None:
+        self.links, self.velocity_unknowns, self.line_sine = links, velocity_unknowns, line_sine
+        self.ratio, self.acceleration_unknowns = ratio, acceleration_unknowns
+
+
 class _Dyad:
-    """Constants of one dyad; :meth:`place` evaluates its positions."""
+    """Constants of one dyad; :meth:`evaluate` solves it."""
 
     group: AssurGroup
     rotating: dict
     tied: dict
+
+    def place(self, values: dict, branch: int, count: int, targets: dict,
+              careful: bool = False) -> Placed | None:
+        """The dyad's positions (None near a position the reference refuses, unless
+        ``careful``)."""
+        raise NotImplementedError
+
+    def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
+                 angles_deg: np.ndarray, name: str, careful: bool = False) -> Evaluated | None:
+        """The dyad's positions and, up to stage ``level``, velocities and accelerations, with
+        each stage's limit checked (:func:`check_stage`) as it is solved.
+
+        Parameters
+        ----------
+        values
+            The known links' values (not changed).
+        branch
+            The assembly's sign.
+        count
+            How many angles.
+        targets
+            Where each of the group's links' vectors go.
+        level
+            0, 1 or 2: the last stage solved.
+        angles_deg, name
+            The crank angles and the group's name, for the errors.
+        careful
+            Evaluate even near a position the reference refuses (after it did not).
+
+        Returns
+        -------
+        Evaluated or None
+            None where the bounded checks flag a position the reference might refuse.
+        """
+        placed = self.place(values, branch, count, targets, careful)
+        if placed is None:
+            return None
+        if level == 0:
+            return Evaluated(placed.links)
+        values = values | placed.links
+        u1, u2, sine = velocities(self, placed, values, count)
+        ratio = size_ratio_later(placed)
+        smallest = float(np.abs(sine).min())
+        ratio = check_stage("velocity", placed.bound, smallest, sine, ratio, angles_deg, name)
+        evaluated = Evaluated(placed.links, (u1, u2), sine, ratio)
+        if level == 2:
+            evaluated.acceleration_unknowns = accelerations(self, placed, values, (u1, u2),
+                                                            count)
+            evaluated.ratio = check_stage("acceleration", placed.bound, smallest, sine,
+                                          evaluated.ratio, angles_deg, name)
+        return evaluated
 
     def fallback(self, mechanism, states, branch, angles_deg) -> None:
         """Run the reference closed form: it raises the exact error where there is one."""
@@ -499,7 +630,10 @@ class _RRR(_Dyad):
         self.rotating, self.tied = {self.l1: 0, self.l2: 1}, {}
         self.valid = self.a > 1e-12 and self.b > 1e-12
 
-    def place(self, values, branch, count, targets, careful=False):
+    def evaluate(self, values, branch, count, targets, level, angles_deg, name, careful=False):
+        """:meth:`_Dyad.evaluate` as straight-line code: the two rotation sides' positions,
+        velocities and accelerations on local variables (the generic vector equations'
+        arithmetic, in the same order)."""
         if not self.valid:
             return None
         a, b = self.a, self.b
@@ -548,22 +682,60 @@ class _RRR(_Dyad):
         np.divide(span.imag, d, out=unit.imag)
         q = np.multiply(unit, along, out=along)
         q = np.add(p1, q, out=q)
-        qx, qy = q.real, q.imag
-        links, refs, sides = {}, {}, []
-        for index, (link, target, known, rx, ry, px, py, p, local, alpha) in enumerate((
-                (self.l1, target1, known1, r1x, r1y, p1x, p1y, p1, self.p1_local, self.alpha1),
-                (self.l2, target2, known2, r2x, r2y, p2x, p2y, p2, self.p2_local, self.alpha2))):
-            radius = q - p
-            radius_x, radius_y = radius.real, radius.imag
-            theta, c, s, ox, oy, r, length, ex, ey = _pivoted(target, px, py, radius_x,
-                                                              radius_y, alpha, local,
-                                                              np.abs(radius))
-            # e = perp(unit(radius)), as dyads._rotation_side
-            sides.append(Side(True, link, known, rx, ry, px, py, np.negative(ey), ex,
-                              radius_x, radius_y, length))
-            links[link] = Values(theta, c, s, ox, oy)
-            refs[link] = (index, r)
-        return Placed(links, qx, qy, tuple(sides), refs, targets, d, bound)
+        l1, l2 = self.l1, self.l2
+        # the radii Q − P, θ and the axes of each link; e = perp(unit(radius)), as
+        # dyads._rotation_side
+        radius1, radius2 = q - p1, q - p2
+        radius1x, radius1y, radius2x, radius2y = (radius1.real, radius1.imag, radius2.real,
+                                                  radius2.imag)
+        theta1, c1, s1, o1x, o1y, ref1, length1, e1x, e1y = _pivoted(
+            target1, p1x, p1y, radius1x, radius1y, self.alpha1, self.p1_local, np.abs(radius1))
+        theta2, c2, s2, o2x, o2y, ref2, length2, e2x, e2y = _pivoted(
+            target2, p2x, p2y, radius2x, radius2y, self.alpha2, self.p2_local, np.abs(radius2))
+        state1, state2 = Values(theta1, c1, s1, o1x, o1y), Values(theta2, c2, s2, o2x, o2y)
+        links = {l1: state1, l2: state2}
+        if level == 0:
+            return Evaluated(links)
+        direction1, direction2 = (np.negative(e1y), e1x), (np.negative(e2y), e2x)
+        # velocities: u1·e1 − u2·e2 = v_P2 − v_P1 (dyads.solve_pair), ω = u / |radius|
+        velocity1, velocity2 = target1.velocity, target2.velocity
+        base1 = velocity_at(known1, r1x, r1y, velocity1 if ref1 is None else None)
+        base2 = velocity_at(known2, r2x, r2y, velocity2 if ref2 is None else None)
+        sine = direction1[0] * direction2[1] - direction1[1] * direction2[0]
+        u1, u2 = _cramer(base2, base1, direction1, direction2, sine, count)
+        w1, w2 = u1 / length1, u2 / length2
+        state1.w = state1.omega = w1
+        state2.w = state2.omega = w2
+        state1.vx, state1.vy = _link_velocity(base1, ref1, w1, velocity1)
+        state2.vx, state2.vy = _link_velocity(base2, ref2, w2, velocity2)
+        ratio = _ratio_later([length1, length2], d, None)
+        smallest = float(np.abs(sine).min())
+        ratio = check_stage("velocity", bound, smallest, sine, ratio, angles_deg, name)
+        evaluated = Evaluated(links, (u1, u2), sine, ratio)
+        if level == 1:
+            return evaluated
+        # accelerations: u̇1·e1 − u̇2·e2 = (a_P2 − ω2²·radius2) − (a_P1 − ω1²·radius1)
+        acceleration1, acceleration2 = target1.acceleration, target2.acceleration
+        base1 = acceleration_at(known1, r1x, r1y, acceleration1 if ref1 is None else None)
+        base2 = acceleration_at(known2, r2x, r2y, acceleration2 if ref2 is None else None)
+        known = []
+        for base, w, radius_x, radius_y in ((base1, w1, radius1x, radius1y),
+                                            (base2, w2, radius2x, radius2y)):
+            square = w * w
+            if base is None:
+                known.append((-(square * radius_x), -(square * radius_y)))
+            else:
+                known.append((base[0] - square * radius_x, base[1] - square * radius_y))
+        du1, du2 = _cramer(known[1], known[0], direction1, direction2, sine, count)
+        e1, e2 = du1 / length1, du2 / length2
+        state1.e = state1.epsilon = e1
+        state2.e = state2.epsilon = e2
+        state1.ax, state1.ay = _link_acceleration(base1, ref1, w1, e1, acceleration1)
+        state2.ax, state2.ay = _link_acceleration(base2, ref2, w2, e2, acceleration2)
+        evaluated.acceleration_unknowns = (du1, du2)
+        evaluated.ratio = check_stage("acceleration", bound, smallest, sine, evaluated.ratio,
+                                      angles_deg, name)
+        return evaluated
 
 
 class _RRP(_Dyad):
@@ -836,16 +1008,18 @@ def _minus(first, second, count: int):
     return first[0] - second[0], first[1] - second[1]
 
 
-def _cramer(minuend, subtrahend, first: Side, second: Side, det, count: int):
+def _cramer(minuend, subtrahend, first, second, det, count: int):
     """(u1, u2) with u1·e1 − u2·e2 = w, w = minuend − subtrahend (vectors None where zero), by
-    Cramer's rule; w = −subtrahend is folded into the products' order (the same values)."""
+    Cramer's rule (``first``, ``second``: the directions (dx, dy) of e1 and e2); w =
+    −subtrahend is folded into the products' order (the same values)."""
+    (first_x, first_y), (second_x, second_y) = first, second
     if minuend is None and subtrahend is not None:
         # (−sx)·dy − (−sy)·dx = sy·dx − sx·dy, exactly
         sx, sy = subtrahend
-        return ((sy * second.dx - sx * second.dy) / det,
-                (sy * first.dx - sx * first.dy) / det)
+        return ((sy * second_x - sx * second_y) / det,
+                (sy * first_x - sx * first_y) / det)
     wx, wy = _minus(minuend, subtrahend, count)
-    return (wx * second.dy - wy * second.dx) / det, (wx * first.dy - wy * first.dx) / det
+    return (wx * second_y - wy * second_x) / det, (wx * first_y - wy * first_x) / det
 
 
 def _follow_tied(tied, own: dict, values, attribute: str) -> None:
@@ -889,7 +1063,7 @@ def velocities(dyad, placed: Placed, values, count: int):
         det = np.full(count, det)
     placed.det = det
     # u1·e1 − u2·e2 = w = v2 − v1 by Cramer's rule (dyads.solve_pair)
-    u1, u2 = _cramer(v2, v1, first, second, det, count)
+    u1, u2 = _cramer(v2, v1, (first.dx, first.dy), (second.dx, second.dy), det, count)
     unknowns = (u1, u2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -913,17 +1087,19 @@ def velocities(dyad, placed: Placed, values, count: int):
             reference = velocity_x
         else:
             reference = bases[index]
-        if r is None or w is None:
-            state.vx, state.vy = put(out, *(reference or (None, None)))
-            continue
-        rx, ry = r
-        if reference is None:
-            state.vx = np.negative(ry * w, out=out[:, 0])
-            state.vy = np.multiply(rx, w, out=out[:, 1])
-        else:
-            state.vx = np.subtract(reference[0], w * ry, out=out[:, 0])
-            state.vy = np.add(reference[1], w * rx, out=out[:, 1])
+        state.vx, state.vy = _link_velocity(reference, r, w, out)
     return u1, u2, det
+
+
+def _link_velocity(reference, r, w, out):
+    """v_ref + ω·J·r (reference, w None where zero), written into ``out``."""
+    if r is None or w is None:
+        return put(out, *(reference or (None, None)))
+    rx, ry = r
+    if reference is None:
+        return np.negative(ry * w, out=out[:, 0]), np.multiply(rx, w, out=out[:, 1])
+    return (np.subtract(reference[0], w * ry, out=out[:, 0]),
+            np.add(reference[1], w * rx, out=out[:, 1]))
 
 
 def accelerations(dyad, placed: Placed, values, unknowns, count: int):
@@ -952,7 +1128,8 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
         cx, cy = twice * -(u * side.dy), twice * (u * side.dx)
         known.append((cx, cy) if base is None else (base[0] + cx, base[1] + cy))
     first, second = placed.sides
-    du1, du2 = _cramer(known[1], known[0], first, second, placed.det, count)
+    du1, du2 = _cramer(known[1], known[0], (first.dx, first.dy), (second.dx, second.dy),
+                       placed.det, count)
     changes = (du1, du2)
     own: dict = {}
     for link, index in dyad.rotating.items():
@@ -1014,12 +1191,14 @@ def size_ratio_later(placed: Placed):
     radii = [side.length for side in placed.sides if side.rotation]
     if not radii:
         return lambda: None
-    span = placed.span
-    if span is None:
-        first, second = placed.sides
-        points = first.px, first.py, second.px, second.py
-    else:
-        points = None
+    first, second = placed.sides
+    points = None if placed.span is not None else (first.px, first.py, second.px, second.py)
+    return _ratio_later(radii, placed.span, points)
+
+
+def _ratio_later(radii: list, span, points):
+    """R = (|span| + Σ radii) / min radii, computed when called (``span`` from ``points``, the
+    two pins' x and y, when None)."""
 
     def ratio():
         nonlocal span

@@ -22,19 +22,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import AssemblyError, PlanmethodError, SpecError, ToggleError
+from ..errors import AssemblyError, PlanmethodError, SpecError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure
 from .compiled import (
+    EPS,
+    Evaluated,
     Program,
     Target,
     Values,
-    accelerations,
+    error_estimate,
     program,
     put,
-    size_ratio_later,
+    refuse_digitless,
     turn,
-    velocities,
 )
 from .compiled import place as place_point
 from .dyads import Construction, construct, dyad_positions
@@ -478,7 +479,7 @@ def _choose_compiled(compiled, group: AssurGroup, values: dict):
     placed = {}
     for sign in ((1, -1) if group.kind in ("RRR", "RRP", "RPR") else (1,)):
         targets = _targets(1, 0, group.links)[0]
-        found = dyad.place(values, sign, 1, targets)
+        found = dyad.evaluate(values, sign, 1, targets, 0, None, group.name)
         if found is None:
             return None
         placed[sign] = (found, targets)
@@ -506,8 +507,6 @@ def _sketch_gap(mechanism: Mechanism, group: AssurGroup, placed) -> float | None
     return total if used else None
 
 
-#: the arithmetic's resolution (unit roundoff)
-EPS = float(np.finfo(float).eps)
 #: estimated relative errors above this are flagged in reports
 FLAG_ERROR = 1e-6
 
@@ -523,32 +522,8 @@ def _condition(construction: Construction, sine: np.ndarray, angles_deg: np.ndar
     power = 3 if stage == "velocity" else 5
     with np.errstate(divide="ignore", over="ignore"):
         estimate = EPS * construction.size_ratio() / np.abs(sine) ** power
-    _refuse_digitless(estimate, sine, angles_deg, stage, construction.group.name)
+    refuse_digitless(estimate, sine, angles_deg, stage, construction.group.name)
     return estimate
-
-
-def _refuse_digitless(estimate: np.ndarray, sine: np.ndarray, angles_deg: np.ndarray,
-                      stage: str, group_name: str) -> None:
-    """Raise a ToggleError at the first angle whose estimated relative error reaches 1."""
-    bad = ~(estimate < 1.0)
-    if np.any(bad):
-        index = int(np.flatnonzero(bad)[0])
-        angle = float(np.degrees(np.arcsin(min(1.0, abs(float(sine[index]))))))
-        raise ToggleError(
-            f"toggle position: the group's two construction lines meet at {angle:.3g}°, so "
-            f"close to parallel that its {stage}s would have no correct digit",
-            line_angle_deg=angle, link=group_name, angle=float(angles_deg[index]))
-
-
-def _estimate(ratio, sine: np.ndarray, stage: str) -> np.ndarray:
-    """ε·R/s³ (velocities) or ε·R/s⁵ (accelerations) as ``_condition`` computes them (R None:
-    1), with products for the powers."""
-    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
-        size = np.abs(sine)
-        power = size * size * size
-        if stage == "acceleration":
-            power = power * size * size
-        return (EPS if ratio is None else EPS * ratio) / power
 
 
 class _Estimates(Mapping):
@@ -567,7 +542,7 @@ class _Estimates(Mapping):
                 raise KeyError(stage)
             if callable(self._ratio):  # R was not needed by the solve: computed now
                 self._ratio = self._ratio()
-            found = self._values[stage] = _estimate(self._ratio, self._sine, stage)
+            found = self._values[stage] = error_estimate(self._ratio, self._sine, stage)
         return found
 
     def __iter__(self):
@@ -578,22 +553,6 @@ class _Estimates(Mapping):
 
     def __repr__(self) -> str:
         return repr(dict(self))
-
-
-def _clear(bounds: tuple[float, float], stage: str) -> bool:
-    """Whether ε·R/s^(2k+1) < 1 at the ``bounds`` (largest R, smallest |s|): the stage's limit
-    holds at every angle (false for a NaN)."""
-    largest, smallest = bounds
-    return EPS * largest < smallest ** (3 if stage == "velocity" else 5)
-
-
-def _limit(bounds: tuple[float, float], ratio, sine: np.ndarray, angles_deg: np.ndarray,
-           stage: str, name: str) -> None:
-    """The per-stage limit of ``_condition``: a ToggleError where ε·R/s^(2k+1) ≥ 1. Checked on
-    the ``bounds`` (largest R, smallest |s|) first; the estimates only where that fails."""
-    if _clear(bounds, stage):
-        return
-    _refuse_digitless(_estimate(ratio, sine, stage), sine, angles_deg, stage, name)
 
 
 class _SolvedDyad(GroupMotion):
@@ -720,36 +679,13 @@ def _fixed_values(frame: LinkState) -> Values:
     return fixed
 
 
-def _stages(dyad, placed, values: dict, level: int, count: int, angles_deg: np.ndarray,
-            name: str) -> dict:
-    """A placed dyad's velocities and accelerations up to ``level``, with the per-stage limit;
-    returns the fields of its record (``ratio``: its size ratio R, for the estimates, or a
-    function that computes it when the limit did not need it)."""
+def _solved_dyad(record: Evaluated, level: int, build) -> GroupMotion:
+    """The group motion of an evaluated dyad (its construction built when first read)."""
     if level == 0:
-        return {}
-    u1, u2, sine = velocities(dyad, placed, values, count)
-    ratio = size_ratio_later(placed)
-    smallest = float(np.abs(sine).min())
-    record = {"velocity_unknowns": (u1, u2), "line_sine": sine, "ratio": ratio}
-    for stage in STAGES[1:level + 1]:
-        if stage == "acceleration":
-            record["acceleration_unknowns"] = accelerations(dyad, placed, values, (u1, u2),
-                                                            count)
-        if placed.bound is not None and _clear((placed.bound, smallest), stage):
-            continue  # clear of the limit even at the bound of R: R is computed when read
-        if callable(ratio):
-            ratio = record["ratio"] = ratio()
-        _limit((1.0 if ratio is None else float(ratio.max()), smallest), ratio, sine,
-               angles_deg, stage, name)
-    return record
-
-
-def _solved_dyad(record: dict, level: int, build) -> GroupMotion:
-    fields = dict(record)
-    ratio = fields.pop("ratio", None)
-    if level >= 1:
-        fields["error_estimate"] = _Estimates(ratio, fields["line_sine"], level)
-    return _SolvedDyad(build=build, **fields)
+        return _SolvedDyad(build=build)
+    return _SolvedDyad(None, record.velocity_unknowns, record.acceleration_unknowns,
+                       record.line_sine, _Estimates(record.ratio, record.line_sine, level),
+                       build=build)
 
 
 #: angles evaluated at once: beyond this the temporaries of a solve outgrow a core's cache, so a
@@ -853,13 +789,13 @@ def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive, ta
                 values[link] = Values.of(states[link])
             continue
         dyad = compiled.dyad(group)
-        placed = dyad.place(values, sign, count, targets)
-        if placed is None:  # near a position the reference refuses: let it decide
+        record = dyad.evaluate(values, sign, count, targets, level, angles_deg, group.name)
+        if record is None:  # near a position the reference refuses: let it decide
             dyad.fallback(mechanism, states, sign, angles_deg)
-            placed = dyad.place(values, sign, count, targets, careful=True)
-        values.update(placed.links)
-        record = _stages(dyad, placed, values, level, count, angles_deg, group.name)
-        for link, link_values in placed.links.items():
+            record = dyad.evaluate(values, sign, count, targets, level, angles_deg, group.name,
+                                   careful=True)
+        values.update(record.links)
+        for link, link_values in record.links.items():
             states[link] = _link_state(link_values, level, targets[link])
         solved[group.index] = _solved_dyad(record, level, _builder(mechanism, group, states))
     return states, solved
@@ -912,18 +848,20 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
         chunk_targets = _sliced_targets(targets, lo, hi)
         for group in groups:
             dyad = compiled.dyad(group)
-            placed = dyad.place(values, branches[group.index].sign, size, chunk_targets)
-            if placed is None:
+            evaluated = dyad.evaluate(values, branches[group.index].sign, size, chunk_targets,
+                                      level, angles_deg[lo:hi], group.name)
+            if evaluated is None:
                 raise _FlaggedError
-            values.update(placed.links)
-            record = _stages(dyad, placed, values, level, size, angles_deg[lo:hi], group.name)
-            if record:
-                if callable(record["ratio"]):
-                    record["ratio"] = record["ratio"]()
-                if record["ratio"] is None:  # R = 1 (no rotation side)
-                    record["ratio"] = 1.0
+            values.update(evaluated.links)
+            if level >= 1:
+                ratio = evaluated.ratio() if callable(evaluated.ratio) else evaluated.ratio
+                record = {"velocity_unknowns": evaluated.velocity_unknowns,
+                          "line_sine": evaluated.line_sine,
+                          "ratio": 1.0 if ratio is None else ratio}  # None: R = 1
+                if level >= 2:
+                    record["acceleration_unknowns"] = evaluated.acceleration_unknowns
                 _fill(records[group.index], record, lo, hi)
-            for link, link_values in placed.links.items():
+            for link, link_values in evaluated.links.items():
                 target = outputs[link]
                 for name in scalars:
                     target[name][lo:hi] = getattr(link_values, name)
@@ -934,8 +872,11 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
             states[link] = LinkState(origin=target.origin, velocity=target.velocity,
                                      acceleration=target.acceleration, basis=target.basis,
                                      **outputs[link])
-        solved[group.index] = _solved_dyad(records.get(group.index, {}), level,
-                                           _builder(mechanism, group, states))
+        record = records.get(group.index, {})
+        solved[group.index] = _solved_dyad(
+            Evaluated({}, record.get("velocity_unknowns"), record.get("line_sine"),
+                      record.get("ratio"), record.get("acceleration_unknowns")),
+            level, _builder(mechanism, group, states))
     return states, solved
 
 
