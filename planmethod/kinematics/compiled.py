@@ -697,7 +697,8 @@ class _RRR(_Dyad):
         if level == 0:
             return Evaluated(links)
         direction1, direction2 = (np.negative(e1y), e1x), (np.negative(e2y), e2x)
-        # velocities: u1·e1 − u2·e2 = v_P2 − v_P1 (dyads.solve_pair), ω = u / |radius|
+        # velocities: u1·e1 − u2·e2 = v_P2 − v_P1 (dyads.solve_pair), ω = u / |radius|; a
+        # link with its pin at its origin has the pin's velocity (written there already)
         velocity1, velocity2 = target1.velocity, target2.velocity
         base1 = velocity_at(known1, r1x, r1y, velocity1 if ref1 is None else None)
         base2 = velocity_at(known2, r2x, r2y, velocity2 if ref2 is None else None)
@@ -706,8 +707,10 @@ class _RRR(_Dyad):
         w1, w2 = u1 / length1, u2 / length2
         state1.w = state1.omega = w1
         state2.w = state2.omega = w2
-        state1.vx, state1.vy = _link_velocity(base1, ref1, w1, velocity1)
-        state2.vx, state2.vy = _link_velocity(base2, ref2, w2, velocity2)
+        state1.vx, state1.vy = (_columns(velocity1) if ref1 is None else
+                                _link_velocity(base1, ref1, w1, velocity1))
+        state2.vx, state2.vy = (_columns(velocity2) if ref2 is None else
+                                _link_velocity(base2, ref2, w2, velocity2))
         ratio = _ratio_later([length1, length2], d, None)
         smallest = float(np.abs(sine).min())
         ratio = check_stage("velocity", bound, smallest, sine, ratio, angles_deg, name)
@@ -718,24 +721,33 @@ class _RRR(_Dyad):
         acceleration1, acceleration2 = target1.acceleration, target2.acceleration
         base1 = acceleration_at(known1, r1x, r1y, acceleration1 if ref1 is None else None)
         base2 = acceleration_at(known2, r2x, r2y, acceleration2 if ref2 is None else None)
-        known = []
-        for base, w, radius_x, radius_y in ((base1, w1, radius1x, radius1y),
-                                            (base2, w2, radius2x, radius2y)):
-            square = w * w
-            if base is None:
-                known.append((-(square * radius_x), -(square * radius_y)))
-            else:
-                known.append((base[0] - square * radius_x, base[1] - square * radius_y))
-        du1, du2 = _cramer(known[1], known[0], direction1, direction2, sine, count)
+        square1, square2 = w1 * w1, w2 * w2
+        known1 = _centripetal(base1, square1, radius1x, radius1y)
+        known2 = _centripetal(base2, square2, radius2x, radius2y)
+        du1, du2 = _cramer(known2, known1, direction1, direction2, sine, count)
         e1, e2 = du1 / length1, du2 / length2
         state1.e = state1.epsilon = e1
         state2.e = state2.epsilon = e2
-        state1.ax, state1.ay = _link_acceleration(base1, ref1, w1, e1, acceleration1)
-        state2.ax, state2.ay = _link_acceleration(base2, ref2, w2, e2, acceleration2)
+        state1.ax, state1.ay = (_columns(acceleration1) if ref1 is None else
+                                _link_acceleration(base1, ref1, w1, e1, acceleration1, square1))
+        state2.ax, state2.ay = (_columns(acceleration2) if ref2 is None else
+                                _link_acceleration(base2, ref2, w2, e2, acceleration2, square2))
         evaluated.acceleration_unknowns = (du1, du2)
         evaluated.ratio = check_stage("acceleration", bound, smallest, sine, evaluated.ratio,
                                       angles_deg, name)
         return evaluated
+
+
+def _columns(out: np.ndarray):
+    """The x and y columns of an (n, 2) array."""
+    return out[:, 0], out[:, 1]
+
+
+def _centripetal(base, square, radius_x, radius_y):
+    """a_base − ω²·radius (base None where zero)."""
+    if base is None:
+        return -(square * radius_x), -(square * radius_y)
+    return base[0] - square * radius_x, base[1] - square * radius_y
 
 
 class _RRP(_Dyad):
@@ -1157,9 +1169,9 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
     return du1, du2
 
 
-def _link_acceleration(reference, r, w, e, out):
+def _link_acceleration(reference, r, w, e, out, square=None):
     """a_ref + ε·J·r − ω²·r, in the reference's order (w, e, reference None where zero),
-    written into ``out``."""
+    written into ``out`` (``square``: ω·ω when known)."""
     if r is None or (w is None and e is None):
         return put(out, *(reference or (None, None)))
     rx, ry = r
@@ -1167,7 +1179,7 @@ def _link_acceleration(reference, r, w, e, out):
     if reference is None:
         if w is None:
             return np.negative(e * ry, out=first), np.multiply(e, rx, out=second)
-        w2 = w * w
+        w2 = w * w if square is None else square
         if e is None:
             return np.negative(w2 * rx, out=first), np.negative(w2 * ry, out=second)
         return (np.subtract(-(e * ry), w2 * rx, out=first),
@@ -1175,7 +1187,7 @@ def _link_acceleration(reference, r, w, e, out):
     ax, ay = reference
     if w is None:
         return np.subtract(ax, e * ry, out=first), np.add(ay, e * rx, out=second)
-    w2 = w * w
+    w2 = w * w if square is None else square
     if e is not None:
         ax, ay = ax - e * ry, ay + e * rx
     return np.subtract(ax, w2 * rx, out=first), np.subtract(ay, w2 * ry, out=second)
