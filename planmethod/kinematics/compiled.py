@@ -80,6 +80,8 @@ class Program:
         self._dyads: dict[int, tuple[AssurGroup, _Dyad]] = {}
         self._branches: dict[tuple, tuple[Structure, dict]] = {}
         self._owners: dict[str, tuple[str, ...]] = {}
+        self._carriers: dict[str, tuple] = {}
+        self._remembered: dict[str, object] = {}
         self._locals: dict[tuple[str, str], tuple[float, float]] = {}
         self._constants: dict[tuple, object] = {}
         drive = mechanism.drive
@@ -109,11 +111,28 @@ class Program:
             found = self._constants[key] = make()
         return found
 
+    def remember(self, key: str, make):
+        """``make()``, made once and remembered under ``key`` (what a solve of the whole model
+        needs besides the angles)."""
+        found = self._remembered.get(key)
+        if found is None:
+            found = self._remembered[key] = make()
+        return found
+
     def owners(self, point: str) -> tuple[str, ...]:
         """``mechanism.links_with_point(point)``, remembered."""
         found = self._owners.get(point)
         if found is None:
             found = self._owners[point] = self.mechanism.links_with_point(point)
+        return found
+
+    def carriers(self, point: str) -> tuple[tuple[str, tuple[float, float]], ...]:
+        """Each link carrying ``point`` (as :meth:`owners`) with the point's local coordinates
+        on it, remembered."""
+        found = self._carriers.get(point)
+        if found is None:
+            found = self._carriers[point] = tuple((link, self.local(link, point))
+                                                  for link in self.owners(point))
         return found
 
     @property

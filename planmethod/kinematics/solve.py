@@ -119,12 +119,16 @@ class Motion:
     links: Mapping[str, LinkState]
     groups: Mapping[int, GroupMotion]
     branches: Mapping[int, Branch]
-    #: reference → (link, position), filled on first use (positions never change)
+    #: reference → (link, position, offset), filled on first use (positions never change): the
+    #: offset of the point from its link's origin as complex numbers (None at the origin,
+    #: ``_MISSING`` where computed when first needed, into ``_offsets``)
     _located: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    #: reference → its offset from its link's origin (complex, None at the origin); ("spin" |
-    #: "turn", link) → iω and iε − ω² (complex): what a point's velocity and acceleration are
+    #: reference → its offset (complex), for the references located without one
+    _offsets: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: link → iω and link → iε − ω² (complex): what a point's velocity and acceleration are
     #: made of
-    _terms: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    _spins: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    _turns: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     #: the model's compiled program (set by :func:`solve`; looked up when None)
     _program: Program | None = field(default=None, init=False, repr=False, compare=False)
 
@@ -149,48 +153,46 @@ class Motion:
         return self.links[link]
 
     # -- points --------------------------------------------------------------------------------
-    def _locate(self, ref: str) -> tuple[str, np.ndarray]:
-        """(link whose material point is meant, its current global position)."""
+    def _locate(self, ref: str) -> tuple[str, np.ndarray, object]:
+        """(link whose material point is meant, its current global position, its offset from
+        the link's origin as complex numbers: None at the origin, ``_MISSING`` if not known
+        yet)."""
         found = self._located.get(ref)
         if found is None:
             found = self._located[ref] = self._find(ref)
             found[1].flags.writeable = False  # shared by later reads
         return found
 
-    def _find(self, ref: str) -> tuple[str, np.ndarray]:
+    def _find(self, ref: str) -> tuple[str, np.ndarray, object]:
         name, _, on = ref.partition("@")
         compiled = self._program or program(self.mechanism)
         links = self.links
-        owner = None
-        for link in compiled.owners(name):
+        owner = local = None
+        for link, coordinates in compiled.carriers(name):
             if link in links:
-                owner = link
+                owner, local = link, coordinates
                 break
         if owner is None:
             if not self.mechanism.links_with_point(name):
                 raise SpecError(f"unknown point '{name}'")
             raise PlanmethodError(f"point {name} was not solved in this scene")
         state = links[owner]
-        local = compiled.local(owner, name)
         if on:
             self.link_state(on)
-            return on, state.place(local)
+            return on, state.place(local), _MISSING
         if owner == FRAME:  # the frame's axes are (1, 0): the point stays at its coordinates
             count = len(state.origin)
             return owner, compiled.constant(("point", name, count), count,
-                                            lambda: _at_rest(count, local))
+                                            lambda: _at_rest(count, local)), _MISSING
         if local == (0.0, 0.0):  # the link's origin: no offset
-            self._terms[ref] = None
-            return owner, state.origin.copy()
+            return owner, state.origin.copy(), None
         # r = (cos θ + i sin θ)·(x + iy) (x·(cos θ, sin θ) for a point on the link's x-axis),
         # kept as complex numbers for the velocity and acceleration reads
         if local[1] == 0.0:
             offset = state.axes() * local[0]
-            self._terms[ref] = offset.view(np.complex128)[:, 0]
-        else:
-            self._terms[ref] = turned = _complex(state.axes()) * complex(*local)
-            offset = _real(turned)
-        return owner, offset + state.origin
+            return owner, offset + state.origin, offset.view(np.complex128)[:, 0]
+        turned = _complex(state.axes()) * complex(*local)
+        return owner, _real(turned) + state.origin, turned
 
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
@@ -199,33 +201,30 @@ class Motion:
         return found[1][0].copy() if self.scalar else found[1].copy()
 
     def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray | None:
-        """The point's position minus its link's origin, as complex numbers (kept; None at the
-        origin)."""
-        offset = self._terms.get(ref, _MISSING)
-        if offset is _MISSING:
-            offset = self._terms[ref] = _complex(position - self.links[link].origin)
+        """The point's position minus its link's origin, as complex numbers (kept)."""
+        offset = self._offsets.get(ref)
+        if offset is None:
+            offset = self._offsets[ref] = _complex(position - self.links[link].origin)
         return offset
 
     def velocity(self, ref: str) -> np.ndarray:
         """Absolute velocity (m/s) of a point."""
         if self.stage == "position":
             self._need("velocity", f"the velocity of {ref}")
-        link, position = self._located.get(ref) or self._locate(ref)
+        link, position, offset = self._located.get(ref) or self._locate(ref)
         if link == FRAME:  # a point of the frame does not move
             return self._out(np.zeros(position.shape))
         # LinkState.velocity_at, v + ω·J·r, with r and iω kept for later reads
         state = self.links[link]
-        terms = self._terms
-        offset = terms.get(ref, _MISSING)
         if offset is _MISSING:
             offset = self._offset(ref, link, position)
-        if offset is None:  # the link's origin
+        elif offset is None:  # the link's origin
             return self._out(state.velocity.copy())
-        spin = terms.get(("spin", link))
+        spin = self._spins.get(link)
         if spin is None:  # iω
-            spin = terms["spin", link] = np.zeros(offset.shape, dtype=np.complex128)
+            spin = self._spins[link] = np.zeros(offset.shape, dtype=np.complex128)
             spin.imag = state.omega
-        moved = _real(np.multiply(offset, spin))
+        moved = np.multiply(offset, spin)[..., None].view(np.float64)
         moved += state.velocity  # v + ω·J·r, in place (one array fewer)
         return moved[0] if self.scalar else moved
 
@@ -233,25 +232,23 @@ class Motion:
         """Absolute acceleration (m/s²) of a point."""
         if self.stage != "acceleration":
             self._need("acceleration", f"the acceleration of {ref}")
-        link, position = self._located.get(ref) or self._locate(ref)
+        link, position, offset = self._located.get(ref) or self._locate(ref)
         if link == FRAME:
             return self._out(np.zeros(position.shape))
         # LinkState.acceleration_at, a + ε·J·r − ω²·r
         state = self.links[link]
-        terms = self._terms
-        offset = terms.get(ref, _MISSING)
         if offset is _MISSING:
             offset = self._offset(ref, link, position)
-        if offset is None:  # the link's origin
+        elif offset is None:  # the link's origin
             return self._out(state.acceleration.copy())
-        factor = terms.get(("turn", link))
+        factor = self._turns.get(link)
         if factor is None:  # iε − ω²
-            factor = terms["turn", link] = np.empty(offset.shape, dtype=np.complex128)
+            factor = self._turns[link] = np.empty(offset.shape, dtype=np.complex128)
             omega = state.omega
             np.multiply(omega, omega, out=factor.real)
             np.negative(factor.real, out=factor.real)
             factor.imag = state.epsilon
-        moved = _real(np.multiply(offset, factor))
+        moved = np.multiply(offset, factor)[..., None].view(np.float64)
         moved += state.acceleration
         return moved[0] if self.scalar else moved
 
@@ -319,7 +316,7 @@ class Motion:
     def curvature(self, ref: str) -> Curvature:
         """Radius ρ = v³/|v × a| and centre of curvature of the point's path."""
         self._need("acceleration", f"the curvature of {ref}'s path")
-        link, position = self._locate(ref)
+        link, position, _ = self._locate(ref)
         state = self.links[link]
         v, a = state.velocity_at(position), state.acceleration_at(position)
         speed = norm(v)
@@ -346,12 +343,13 @@ def _at_rest(count: int, local) -> np.ndarray:
     return position
 
 
-def _frame_at_rest(count: int) -> LinkState:
-    """The frame's state with read-only arrays (shared by the solves of ``count`` angles)."""
+def _frame_at_rest(count: int) -> tuple[LinkState, Values]:
+    """The frame's state with read-only arrays, and its values (shared by the solves of
+    ``count`` angles)."""
     frame = _frame_state(count)
     for array in (frame.theta, frame.origin, frame.velocity, frame.acceleration, frame.basis):
         array.flags.writeable = False
-    return frame
+    return frame, _fixed_values(frame)
 
 
 def _constant_rates(count: int, omega: float, epsilon: float):
@@ -725,75 +723,107 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
     if stage not in STAGES:
         raise ValueError(f"stage must be one of {STAGES}, got {stage!r}")
     compiled = program(mechanism)
-    structure = structure or compiled.structure
-    groups = structure.groups if links is None else structure.groups_needed(links)
-    if branches is None:
-        branches = compiled.branches(structure, groups, choose_branches)
+    plan = groups = None
+    if structure is None and links is None and branches is None:  # the whole model's plan
+        plan = compiled.remember("plan", lambda: _plan(compiled, compiled.structure))
+    else:
+        structure = structure or compiled.structure
+        groups = structure.groups if links is None else structure.groups_needed(links)
+        if branches is None:
+            branches = compiled.branches(structure, groups, choose_branches)
     scalar = angles is None or np.ndim(angles) == 0
     angles_deg = np.atleast_1d(np.asarray(
         mechanism.drive.angle if angles is None else angles, dtype=float)).ravel()
     if not np.isfinite(angles_deg).all():
         raise SpecError("crank angles must be finite numbers")
-    level = STAGES.index(stage)
+    if plan is None:
+        plan = _plan(compiled, structure, groups, branches)
+    level = _LEVELS[stage]
     count = angles_deg.shape[0]
-    run = _solve_whole
-    if count > CHUNK and all(group.is_dyad for group in groups):
-        run = _solve_chunked
+    run = _solve_chunked if count > CHUNK and plan.dyads_only else _solve_whole
     # the drive's and every dyad link's vectors in one allocation; chunk by chunk with the
     # frame's and the drive's arrays, the links' angles, ω, ε and the groups' records
     extra = []
     if run is _solve_chunked:
-        extra = [1, 2, 2, 2, 2] + [1] * 5 + [1] * _chunked_columns(level, len(groups))
-    targets, singles = _targets(count, level, [mechanism.drive.link] + [
-        link for group in groups if group.is_dyad for link in group.links], extra)
+        extra = [1, 2, 2, 2, 2] + [1] * 5 + [1] * _chunked_columns(level, len(plan.steps))
+    targets, singles = _targets(count, level, plan.target_links, extra)
     if extra:
         frame = _frame_state(count, singles)
+        frame_values = _fixed_values(frame)
     else:  # the same arrays at every solve of this many angles (read-only)
-        frame = compiled.constant(("frame", count), count, lambda: _frame_at_rest(count))
+        frame, frame_values = compiled.constant(("frame", count), count,
+                                                lambda: _frame_at_rest(count))
     drive = _drive_values(compiled, angles_deg, targets[mechanism.drive.link],
                           singles if extra else None)
     try:
-        states, solved = run(compiled, groups, branches, angles_deg, level, frame, drive,
-                             targets, singles)
+        states, solved = run(compiled, plan.steps, angles_deg, level, frame, frame_values,
+                             drive, targets, singles)
     except (_FlaggedError, PlanmethodError):
         if run is _solve_whole:
             raise
         # near a refused position: solve as a whole, group by group, so that the first angle
         # refused is found as the reference finds it
-        states, solved = _solve_whole(compiled, groups, branches, angles_deg, level, frame,
-                                      drive, targets, singles)
-    motion = Motion(mechanism, structure, angles_deg, scalar, stage, states, solved,
-                    dict(branches))
+        states, solved = _solve_whole(compiled, plan.steps, angles_deg, level, frame,
+                                      frame_values, drive, targets, singles)
+    motion = Motion(mechanism, plan.structure, angles_deg, scalar, stage, states, solved,
+                    dict(plan.branches))
     object.__setattr__(motion, "_program", compiled)
     return motion
 
 
-def _solve_whole(compiled, groups, branches, angles_deg, level, frame, drive, targets,
+class _Plan:
+    """What a solve needs from the model besides the angles: the structure, the groups' branches,
+    the steps (each group in build order with its branch and its compiled dyad, None for a class
+    III group), the links whose vectors are allocated and whether every group is a dyad."""
+
+    __slots__ = ("branches", "dyads_only", "steps", "structure", "target_links")
+
+    def __init__(self, structure: Structure, branches: Mapping[int, Branch], steps: tuple,
+                 target_links: list[str]) -> None:
+        self.structure, self.branches, self.steps = structure, branches, steps
+        self.target_links = target_links
+        self.dyads_only = all(dyad is not None for _, _, dyad in steps)
+
+
+def _plan(compiled: Program, structure: Structure, groups=None,
+          branches: Mapping[int, Branch] | None = None) -> _Plan:
+    """The plan of a solve of ``groups`` (default: all of ``structure``'s) on ``branches``
+    (default: the model's choice)."""
+    groups = structure.groups if groups is None else groups
+    if branches is None:
+        branches = compiled.branches(structure, groups, choose_branches)
+    steps = tuple((group, branches[group.index], compiled.dyad(group) if group.is_dyad else None)
+                  for group in groups)
+    target_links = [compiled.mechanism.drive.link] + [
+        link for group in groups if group.is_dyad for link in group.links]
+    return _Plan(structure, branches, steps, target_links)
+
+
+def _solve_whole(compiled, steps, angles_deg, level, frame, frame_values, drive, targets,
                  singles=None):
     """Every group over all angles at once, in build order."""
     mechanism = compiled.mechanism
     count = angles_deg.shape[0]
     states: dict[str, LinkState] = {FRAME: frame}
-    values: dict[str, Values] = {FRAME: _fixed_values(frame)}
+    values: dict[str, Values] = {FRAME: frame_values}
     link = mechanism.drive.link
     values[link], states[link] = drive, _link_state(drive, level, targets[link])
     solved: dict[int, GroupMotion] = {}
-    for group in groups:
-        sign = branches[group.index].sign
-        if not group.is_dyad:
+    for group, branch, dyad in steps:
+        if dyad is None:
             from .higher import solve_higher
 
-            solved[group.index] = solve_higher(mechanism, group, states, sign, angles_deg,
-                                               level, branches[group.index])
+            solved[group.index] = solve_higher(mechanism, group, states, branch.sign, angles_deg,
+                                               level, branch)
             for link in group.links:
                 values[link] = Values.of(states[link])
             continue
-        dyad = compiled.dyad(group)
-        record = dyad.evaluate(values, sign, count, targets, level, angles_deg, group.name)
+        record = dyad.evaluate(values, branch.sign, count, targets, level, angles_deg,
+                               group.name)
         if record is None:  # near a position the reference refuses: let it decide
-            dyad.fallback(mechanism, states, sign, angles_deg)
-            record = dyad.evaluate(values, sign, count, targets, level, angles_deg, group.name,
-                                   careful=True)
+            dyad.fallback(mechanism, states, branch.sign, angles_deg)
+            record = dyad.evaluate(values, branch.sign, count, targets, level, angles_deg,
+                                   group.name, careful=True)
         values.update(record.links)
         for link, link_values in record.links.items():
             states[link] = _link_state(link_values, level, targets[link])
@@ -819,7 +849,7 @@ def _chunked_columns(level: int, groups: int) -> int:
     return (2 * (level + 1) + (0, 4, 6)[level]) * groups
 
 
-def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, targets,
+def _solve_chunked(compiled, steps, angles_deg, level, frame, frame_values, drive, targets,
                    arrays):
     """Dyads only: all groups chunk by chunk, each written into the full result arrays (the
     vectors into ``targets``, angles, ω, ε and the groups' records into ``arrays``)."""
@@ -831,7 +861,7 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
     scalars = ("theta", "omega", "epsilon")[:level + 1]
     outputs: dict[str, dict] = {}
     records: dict[int, dict] = {}
-    for group in groups:
+    for group, _, _ in steps:
         for link in group.links:
             outputs[link] = {name: next(arrays) for name in scalars}
         if level >= 1:
@@ -846,10 +876,9 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
         values = {FRAME: _fixed_values(frame.take(slice(lo, hi))),
                   drive_link: _sliced(drive, lo, hi)}
         chunk_targets = _sliced_targets(targets, lo, hi)
-        for group in groups:
-            dyad = compiled.dyad(group)
-            evaluated = dyad.evaluate(values, branches[group.index].sign, size, chunk_targets,
-                                      level, angles_deg[lo:hi], group.name)
+        for group, branch, dyad in steps:
+            evaluated = dyad.evaluate(values, branch.sign, size, chunk_targets, level,
+                                      angles_deg[lo:hi], group.name)
             if evaluated is None:
                 raise _FlaggedError
             values.update(evaluated.links)
@@ -866,7 +895,7 @@ def _solve_chunked(compiled, groups, branches, angles_deg, level, frame, drive, 
                 for name in scalars:
                     target[name][lo:hi] = getattr(link_values, name)
     solved: dict[int, GroupMotion] = {}
-    for group in groups:
+    for group, _, _ in steps:
         for link in group.links:
             target = targets[link]
             states[link] = LinkState(origin=target.origin, velocity=target.velocity,
