@@ -669,7 +669,7 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
     """ρ = (pd)²·μv² / ((πn_D)·μa): project πd on the normal to pd (seed 001)."""
     v, a, scales = emulator.v, emulator.a, emulator.scales
     name = point.partition("@")[0]
-    link, position = emulator.motion._locate(point)
+    link, position, _ = emulator.motion._locate(point)
     v_label = emulator.image_at(v, emulator.vimages, link, position[0],
                                 image_label(point, v.pole))
     a_label = emulator.image_at(a, emulator.aimages, link, position[0],
@@ -836,7 +836,7 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
                 acceleration_triad(emulator, groups[index])
     ask = exercise.ask
     for point in _asked_points(exercise, motion):
-        link, position = motion._locate(point)
+        link, position, _ = motion._locate(point)
         emulator.image_at(emulator.v, emulator.vimages, link, position[0],
                           image_label(point, "p"))
         emulator.readings[f"v_{point}"] = emulator.v.read(
