@@ -326,6 +326,13 @@ def _pin(values: Values, local, out, count: int):
     return x, y, rx, ry, out.view(np.complex128)[:, 0]
 
 
+def _largest(value) -> float:
+    """The largest magnitude of an array's entries (of a float: its magnitude)."""
+    if isinstance(value, float):
+        return abs(value)
+    return float(np.abs(value).max())
+
+
 def _complex_array(value, count: int) -> np.ndarray:
     """A complex constant as an array over the angles (arrays pass through)."""
     if np.ndim(value) == 0:
@@ -784,15 +791,18 @@ class _RRP(_Dyad):
         q1 = _local(mechanism, self.l1, internal.point)
         self.a = mechanism.links[self.l1].length(ext1.point, internal.point)
         self.alpha1 = _alpha(self.p1_local, q1)
-        self.rotating, self.tied = {self.l1: 0}, {self.l2: self.k2}
         self.valid = self.a > 1e-12
 
-    def place(self, values, branch, count, targets, careful=False):
+    def evaluate(self, values, branch, count, targets, level, angles_deg, name, careful=False):
+        """:meth:`_Dyad.evaluate` as straight-line code: the rotation side P1 → X and the
+        sliding side (X on the guide of k2, along d) on local variables (the generic vector
+        equations' arithmetic, in the same order)."""
         if not self.valid:
             return None
         a = self.a
+        l1, l2 = self.l1, self.l2
         known1, known2 = values[self.k1], values[self.k2]
-        target1, target2 = targets[self.l1], targets[self.l2]
+        target1, target2 = targets[l1], targets[l2]
         theta2, c2, s2, dx, dy = self.line.theta_and_axes(known2)
         nx, ny, offset = self.line.line(known2, c2, s2, dx, dy)
         offset = offset + _dot_turned(nx, ny, c2, s2, self.q2_local)
@@ -807,9 +817,9 @@ class _RRP(_Dyad):
             return None
         else:
             # |h| must stay below a by more than rounding (dyads._rrp's check, bounded)
-            reach = max(float(np.abs(p1x).max()), float(np.abs(p1y).max()))
-            limit = _TOLERANCE * (a + float(np.abs(offset).max()) + reach) * _MARGIN
-            if not a - float(np.abs(h).max()) > limit:
+            reach = max(_largest(p1x), _largest(p1y))
+            limit = _TOLERANCE * (a + _largest(offset) + reach) * _MARGIN
+            if not a - _largest(h) > limit:
                 return None
         along = np.sqrt(a * a - h * h)
         if branch != 1:
@@ -821,24 +831,70 @@ class _RRP(_Dyad):
         radius_x, radius_y = qx - p1x, qy - p1y
         theta1, c1, s1, o1x, o1y, ref1, length, ex, ey = _pivoted(
             target1, p1x, p1y, radius_x, radius_y, self.alpha1, self.p1_local)
-        side1 = Side(True, self.l1, known1, r1x, r1y, p1x, p1y, np.negative(ey), ex, radius_x,
-                     radius_y, length)
         c2, s2 = _basis(target2, c2, s2)
         if at_x:
             o2x, o2y, ref2 = qx, qy, None
         else:
             o2x, o2y, ref2 = _origin(target2, qx, qy, c2, s2, self.q2_local)
-        # side 2: X as a point of the guide's carrier k2, sliding along d
-        if known2.fixed:
-            bx = by = None
-        else:
-            bx, by = qx - known2.x, qy - known2.y
-        side2 = Side(False, self.k2, known2, bx, by, qx, qy, dx, dy)
-        links = {self.l1: Values(theta1, c1, s1, o1x, o1y),
-                 self.l2: Values(theta2, c2, s2, o2x, o2y)}
+        state1, state2 = Values(theta1, c1, s1, o1x, o1y), Values(theta2, c2, s2, o2x, o2y)
+        links = {l1: state1, l2: state2}
+        if level == 0:
+            return Evaluated(links)
+        # side 1 turns about P1: e1 = J·unit(radius); side 2: X as a point of the guide's
+        # carrier k2 (offset b from its origin), sliding along d
+        d1x, d1y = np.negative(ey), ex
+        bx, by = (None, None) if known2.fixed else (qx - known2.x, qy - known2.y)
+        # velocities: u1·e1 − u2·d = v_X(k2) − v_P1 (dyads.solve_pair); the block turns with k2
+        velocity1, velocity2 = target1.velocity, target2.velocity
+        base1 = velocity_at(known1, r1x, r1y, velocity1 if ref1 is None else None)
+        base2 = velocity_at(known2, bx, by)
+        sine = d1x * dy - d1y * dx
+        if np.ndim(sine) == 0:
+            sine = np.full(count, sine)
+        u1, u2 = _cramer(base2, base1, (d1x, d1y), (dx, dy), sine, count)
+        w1 = u1 / length
+        w2 = None if known2.fixed else known2.w
+        state1.w = state1.omega = w1
+        state2.w, state2.omega = w2, known2.omega
+        state1.vx, state1.vy = (_columns(velocity1) if ref1 is None else
+                                _link_velocity(base1, ref1, w1, velocity1))
+        # X's velocity v_P1 + u1·e1, the block's origin's from it
+        velocity_x = ((u1 * d1x, u1 * d1y) if base1 is None else
+                      (base1[0] + u1 * d1x, base1[1] + u1 * d1y))
+        state2.vx, state2.vy = _link_velocity(velocity_x, ref2, w2, velocity2)
+        ratio = _ratio_later([length], None, (p1x, p1y, qx, qy))
+        smallest = float(np.abs(sine).min())
         # R = (|X − P1| + |X − P1|) / |X − P1| = 2 exactly
-        return Placed(links, qx, qy, (side1, side2), {self.l1: (0, ref1), self.l2: (None, ref2)},
-                      targets, bound=2.0)
+        ratio = check_stage("velocity", 2.0, smallest, sine, ratio, angles_deg, name)
+        evaluated = Evaluated(links, (u1, u2), sine, ratio)
+        if level == 1:
+            return evaluated
+        # accelerations: u̇1·e1 − u̇2·d = (a_X(k2) + 2ω_k2·J·u2·d) − (a_P1 − ω1²·radius)
+        acceleration1, acceleration2 = target1.acceleration, target2.acceleration
+        base1 = acceleration_at(known1, r1x, r1y, acceleration1 if ref1 is None else None)
+        base2 = acceleration_at(known2, bx, by)
+        square1 = w1 * w1
+        known_first = _centripetal(base1, square1, radius_x, radius_y)
+        if w2 is None:
+            known_second = base2
+        else:  # Coriolis
+            twice = 2 * w2
+            cx, cy = twice * -(u2 * dy), twice * (u2 * dx)
+            known_second = (cx, cy) if base2 is None else (base2[0] + cx, base2[1] + cy)
+        du1, du2 = _cramer(known_second, known_first, (d1x, d1y), (dx, dy), sine, count)
+        e1 = du1 / length
+        state1.e = state1.epsilon = e1
+        state2.e, state2.epsilon = None if known2.fixed else known2.e, known2.epsilon
+        state1.ax, state1.ay = (_columns(acceleration1) if ref1 is None else
+                                _link_acceleration(base1, ref1, w1, e1, acceleration1, square1))
+        acceleration_x = ((du1 * d1x, du1 * d1y) if known_first is None else
+                          (known_first[0] + du1 * d1x, known_first[1] + du1 * d1y))
+        state2.ax, state2.ay = _link_acceleration(acceleration_x, ref2, w2, state2.e,
+                                                  acceleration2)
+        evaluated.acceleration_unknowns = (du1, du2)
+        evaluated.ratio = check_stage("acceleration", 2.0, smallest, sine, evaluated.ratio,
+                                      angles_deg, name)
+        return evaluated
 
 
 class _RPR(_Dyad):
