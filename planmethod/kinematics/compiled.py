@@ -920,9 +920,11 @@ class _RPR(_Dyad):
         self.u = (float(u[0]), float(u[1]))
         self.offset = float(c0[0] * u[1] - c0[1] * u[0])
         self.c0u = float(c0 @ u)
-        self.rotating, self.tied = {self.l2: 1}, {self.l1: self.l2}
 
-    def place(self, values, branch, count, targets, careful=False):
+    def evaluate(self, values, branch, count, targets, level, angles_deg, name, careful=False):
+        """:meth:`_Dyad.evaluate` as straight-line code: P1 sliding relative to l1 along the
+        guide and l2 turning about P2 (l1 turns with it), on local variables (the generic
+        vector equations' arithmetic, in the same order)."""
         known1, known2 = values[self.k1], values[self.k2]
         target1, target2 = targets[self.l1], targets[self.l2]
         p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
@@ -959,19 +961,55 @@ class _RPR(_Dyad):
         else:
             c1, s1 = _turn_into(target1.basis, c2, s2, math.cos(self.direction),
                                 math.sin(self.direction))
-        refs, links = {}, {}
-        for index, (link, target, theta, c, s, local, px, py) in enumerate((
-                (self.l1, target1, theta1, c1, s1, self.p1_local, p1x, p1y),
-                (self.l2, target2, theta2, c2, s2, self.p2_local, p2x, p2y))):
-            ox, oy, ref = _origin(target, px, py, c, s, local)
-            links[link] = Values(theta, c, s, ox, oy)
-            refs[link] = (index, ref)
-        # side 1: P1 slides relative to l1 along l2's guide, d = (cos, sin)(θ2 + direction)
-        side1 = Side(False, self.l1, known1, r1x, r1y, p1x, p1y, c1, s1)
-        side2 = Side(True, self.l2, known2, r2x, r2y, p2x, p2y, -(sy / length), sx / length,
-                     sx, sy, length)
+        l1, l2 = self.l1, self.l2
+        o1x, o1y, ref1 = _origin(target1, p1x, p1y, c1, s1, self.p1_local)
+        o2x, o2y, ref2 = _origin(target2, p2x, p2y, c2, s2, self.p2_local)
+        state1, state2 = Values(theta1, c1, s1, o1x, o1y), Values(theta2, c2, s2, o2x, o2y)
+        links = {l1: state1, l2: state2}
+        if level == 0:
+            return Evaluated(links)
+        # side 1: P1 slides relative to l1 along l2's guide, d = (cos, sin)(θ2 + direction);
+        # side 2: turns about P2 with radius P1 − P2, e2 = J·(radius / length)
+        d2x, d2y = -(sy / length), sx / length
+        # velocities: u1·d − u2·e2 = v_P2 − v_P1 (dyads.solve_pair), ω = u2 / length
+        velocity1, velocity2 = target1.velocity, target2.velocity
+        base1 = velocity_at(known1, r1x, r1y, velocity1 if ref1 is None else None)
+        base2 = velocity_at(known2, r2x, r2y, velocity2 if ref2 is None else None)
+        sine = c1 * d2y - s1 * d2x
+        u1, u2 = _cramer(base2, base1, (c1, s1), (d2x, d2y), sine, count)
+        w = u2 / length
+        state1.w = state1.omega = state2.w = state2.omega = w
+        state1.vx, state1.vy = (_columns(velocity1) if ref1 is None else
+                                _link_velocity(base1, ref1, w, velocity1))
+        state2.vx, state2.vy = (_columns(velocity2) if ref2 is None else
+                                _link_velocity(base2, ref2, w, velocity2))
+        ratio = _ratio_later([length], length, None)
+        smallest = float(np.abs(sine).min())
         # R = (span + length) / length with span = length: 2 exactly
-        return Placed(links, p1x, p1y, (side1, side2), refs, targets, length, bound=2.0)
+        ratio = check_stage("velocity", 2.0, smallest, sine, ratio, angles_deg, name)
+        evaluated = Evaluated(links, (u1, u2), sine, ratio)
+        if level == 1:
+            return evaluated
+        # accelerations: u̇1·d − u̇2·e2 = (a_P2 − ω²·radius) − (a_P1 + 2ω·J·u1·d)
+        acceleration1, acceleration2 = target1.acceleration, target2.acceleration
+        base1 = acceleration_at(known1, r1x, r1y, acceleration1 if ref1 is None else None)
+        base2 = acceleration_at(known2, r2x, r2y, acceleration2 if ref2 is None else None)
+        twice = 2 * w
+        cx, cy = twice * -(u1 * s1), twice * (u1 * c1)  # Coriolis
+        known_first = (cx, cy) if base1 is None else (base1[0] + cx, base1[1] + cy)
+        square = w * w
+        known_second = _centripetal(base2, square, sx, sy)
+        du1, du2 = _cramer(known_second, known_first, (c1, s1), (d2x, d2y), sine, count)
+        e = du2 / length
+        state1.e = state1.epsilon = state2.e = state2.epsilon = e
+        state1.ax, state1.ay = (_columns(acceleration1) if ref1 is None else
+                                _link_acceleration(base1, ref1, w, e, acceleration1, square))
+        state2.ax, state2.ay = (_columns(acceleration2) if ref2 is None else
+                                _link_acceleration(base2, ref2, w, e, acceleration2, square))
+        evaluated.acceleration_unknowns = (du1, du2)
+        evaluated.ratio = check_stage("acceleration", 2.0, smallest, sine, evaluated.ratio,
+                                      angles_deg, name)
+        return evaluated
 
 
 class _PRP(_Dyad):
@@ -1268,13 +1306,9 @@ def _link_acceleration(reference, r, w, e, out, square=None):
     return np.subtract(ax, w2 * rx, out=first), np.subtract(ay, w2 * ry, out=second)
 
 
-def size_ratio(placed: Placed):
-    """R = L / l of Construction.size_ratio, or None where it is 1 (no rotation side)."""
-    return size_ratio_later(placed)()
-
-
 def size_ratio_later(placed: Placed):
-    """:func:`size_ratio`, computed when called (keeping only the arrays it needs)."""
+    """R = L / l of Construction.size_ratio (None where it is 1: no rotation side), computed
+    when called (keeping only the arrays it needs)."""
     radii = [side.length for side in placed.sides if side.rotation]
     if not radii:
         return lambda: None
