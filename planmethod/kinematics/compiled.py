@@ -8,7 +8,10 @@ then evaluates each dyad's positions, velocities and accelerations with the same
 equations, on separate x and y arrays, skipping the terms that vanish by construction (a frame
 point does not move, a pin at a link's origin has no lever arm, a zero local coordinate adds
 nothing), and writing each link's origin, axes, velocity and acceleration straight into its
-result arrays (a :class:`Target`). Results are those of the reference formulas to rounding.
+result arrays (a :class:`Target`). The RRR, RRP and RPR dyads run all their stages as
+straight-line code on local variables (:meth:`_Dyad.evaluate`); the others place their sides
+(:class:`Side`) for the generic vector equations. Results are those of the reference formulas
+to rounding.
 
 Checks stay exact: each group tests, in a few reductions over all angles, whether any angle
 comes close to a position the reference code would refuse (links that cannot reach, a toggle,
@@ -39,7 +42,7 @@ from ..structure import AssurGroup, Structure, analyse_structure
 from .dyads import ROUNDING_UNITS, TOGGLE_SINE, dyad_positions
 from .state import LinkState
 
-__all__ = ["Program", "Target", "Values", "program"]
+__all__ = ["Evaluated", "Program", "Target", "Values", "program"]
 
 #: how many models' compiled programs are remembered (by identity, most recent first)
 CACHE_SIZE = 32
@@ -656,7 +659,8 @@ class _RRR(_Dyad):
         self.rotating, self.tied = {self.l1: 0, self.l2: 1}, {}
         self.valid = self.a > 1e-12 and self.b > 1e-12
 
-    def evaluate(self, values, branch, count, targets, level, angles_deg, name, careful=False):
+    def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
+                 angles_deg: np.ndarray, name: str, careful: bool = False) -> Evaluated | None:
         """:meth:`_Dyad.evaluate` as straight-line code: the two rotation sides' positions,
         velocities and accelerations on local variables (the generic vector equations'
         arithmetic, in the same order)."""
@@ -764,7 +768,7 @@ class _RRR(_Dyad):
         return evaluated
 
 
-def _columns(out: np.ndarray):
+def _columns(out: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The x and y columns of an (n, 2) array."""
     return out[:, 0], out[:, 1]
 
@@ -793,7 +797,8 @@ class _RRP(_Dyad):
         self.alpha1 = _alpha(self.p1_local, q1)
         self.valid = self.a > 1e-12
 
-    def evaluate(self, values, branch, count, targets, level, angles_deg, name, careful=False):
+    def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
+                 angles_deg: np.ndarray, name: str, careful: bool = False) -> Evaluated | None:
         """:meth:`_Dyad.evaluate` as straight-line code: the rotation side P1 → X and the
         sliding side (X on the guide of k2, along d) on local variables (the generic vector
         equations' arithmetic, in the same order)."""
@@ -921,7 +926,8 @@ class _RPR(_Dyad):
         self.offset = float(c0[0] * u[1] - c0[1] * u[0])
         self.c0u = float(c0 @ u)
 
-    def evaluate(self, values, branch, count, targets, level, angles_deg, name, careful=False):
+    def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
+                 angles_deg: np.ndarray, name: str, careful: bool = False) -> Evaluated | None:
         """:meth:`_Dyad.evaluate` as straight-line code: P1 sliding relative to l1 along the
         guide and l2 turning about P2 (l1 turns with it), on local variables (the generic
         vector equations' arithmetic, in the same order)."""

@@ -200,7 +200,7 @@ class Motion:
         found = self._located.get(ref) or self._locate(ref)
         return found[1][0].copy() if self.scalar else found[1].copy()
 
-    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray | None:
+    def _offset(self, ref: str, link: str, position: np.ndarray) -> np.ndarray:
         """The point's position minus its link's origin, as complex numbers (kept)."""
         offset = self._offsets.get(ref)
         if offset is None:
