@@ -243,11 +243,16 @@ class Motion:
             return self._out(state.acceleration.copy())
         factor = self._turns.get(link)
         if factor is None:  # iε − ω²
-            factor = self._turns[link] = np.empty(offset.shape, dtype=np.complex128)
-            omega = state.omega
-            np.multiply(omega, omega, out=factor.real)
-            np.negative(factor.real, out=factor.real)
+            spin = self._spins.get(link)
+            if spin is None:
+                factor = np.empty(offset.shape, dtype=np.complex128)
+                omega = state.omega
+                np.multiply(omega, omega, out=factor.real)
+                np.negative(factor.real, out=factor.real)
+            else:  # (iω)² = −ω², from the velocity read
+                factor = np.multiply(spin, spin)
             factor.imag = state.epsilon
+            self._turns[link] = factor
         moved = np.multiply(offset, factor)[..., None].view(np.float64)
         moved += state.acceleration
         return moved[0] if self.scalar else moved
@@ -731,9 +736,13 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         groups = structure.groups if links is None else structure.groups_needed(links)
         if branches is None:
             branches = compiled.branches(structure, groups, choose_branches)
-    scalar = angles is None or np.ndim(angles) == 0
-    angles_deg = np.atleast_1d(np.asarray(
-        mechanism.drive.angle if angles is None else angles, dtype=float)).ravel()
+    if (type(angles) is np.ndarray and angles.ndim == 1 and angles.dtype == np.float64
+            and angles.flags.c_contiguous):
+        scalar, angles_deg = False, angles  # (what the conversion below would view)
+    else:
+        scalar = angles is None or np.ndim(angles) == 0
+        angles_deg = np.atleast_1d(np.asarray(
+            mechanism.drive.angle if angles is None else angles, dtype=float)).ravel()
     if not np.isfinite(angles_deg).all():
         raise SpecError("crank angles must be finite numbers")
     if plan is None:
