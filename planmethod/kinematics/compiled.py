@@ -314,15 +314,39 @@ def acceleration_at(values: Values, rx, ry, out=None):
     return np.add(values.ax, tx, out=first), np.add(values.ay, ty, out=second)
 
 
-def _pin(values: Values, local, out, count: int):
+#: the frame's values at every solve (``solve._fixed_values``) as far as placing a point on it
+#: goes: what a pin or guide of the frame is made of is the same at every solve
+_AT_REST = Values(0.0, 1.0, 0.0, 0.0, 0.0, fixed=True)
+
+
+def _frame_pin(known: str, local) -> tuple | None:
+    """``_pin`` of a pin of the frame (None if ``known`` is not the frame), made once."""
+    if known != FRAME:
+        return None
+    x, y, rx, ry = place(_AT_REST, local)
+    return x, y, rx, ry, complex(x, y)
+
+
+def _known_pin(values: Values, local, out, at_rest: tuple | None):
+    """``place(values, local, out)`` of a pin of a known link; ``at_rest`` (:func:`_frame_pin`)
+    when that link is the frame."""
+    if at_rest is None:
+        return place(values, local, out)
+    if out is not None:
+        put(out, at_rest[0], at_rest[1])
+    return at_rest[:4]
+
+
+def _pin(values: Values, local, out, count: int, at_rest: tuple | None = None):
     """``place`` of a pin, also as complex numbers: (x, y, rx, ry, x + iy), written into
     ``out`` (an (n, 2) array, allocated when None); a fixed pin's x + iy is a Python complex
-    (and is written into ``out`` when given)."""
+    (and is written into ``out`` when given), ``at_rest`` when that was made already
+    (:func:`_frame_pin`)."""
     if values.fixed:
-        x, y, rx, ry = place(values, local)
+        found = at_rest or _frame_pin(FRAME, local)
         if out is not None:
-            put(out, x, y)
-        return x, y, rx, ry, complex(x, y)
+            put(out, found[0], found[1])
+        return found
     if out is None:
         out = np.empty((count, 2))
     x, y, rx, ry = place(values, local, out)
@@ -615,15 +639,19 @@ class _SlideLine:
             self.anchor = _local(mechanism, slide.link, slide.point)
             self.own = _local(mechanism, slide.along, slide.through)
 
+    def theta(self, known: Values):
+        """The unknown link's θ."""
+        if self.is_link:
+            return known.theta + self.direction
+        return known.theta - self.direction
+
     def theta_and_axes(self, known: Values):
         """The unknown link's θ and (cos θ, sin θ), and the guide's global direction d."""
         if self.is_link:
-            theta = known.theta + self.direction
             c, s = _rotated(known.c, known.s, self.direction)
-            return theta, c, s, c, s
-        theta = known.theta - self.direction
+            return self.theta(known), c, s, c, s
         c, s = _rotated(known.c, known.s, -self.direction)
-        return theta, c, s, known.c, known.s
+        return self.theta(known), c, s, known.c, known.s
 
     def line(self, known: Values, c, s, dx, dy):
         """(nx, ny, offset): the line n·o = offset of the unknown link's origin, n = J·d."""
@@ -656,7 +684,7 @@ class _RRR(_Dyad):
         self.b = mechanism.links[self.l2].length(ext2.point, internal.point)
         self.alpha1 = _alpha(self.p1_local, q1)
         self.alpha2 = _alpha(self.p2_local, q2)
-        self.rotating, self.tied = {self.l1: 0, self.l2: 1}, {}
+        self.frame_pins = (_frame_pin(self.k1, self.p1_known), _frame_pin(self.k2, self.p2_known))
         self.valid = self.a > 1e-12 and self.b > 1e-12
 
     def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
@@ -673,9 +701,11 @@ class _RRR(_Dyad):
         # a pin at a link's origin is placed straight into that link's origin; positions are
         # complex numbers x + iy from here on (one call for what takes two on x and y)
         p1x, p1y, r1x, r1y, p1 = _pin(known1, self.p1_known, target1.origin
-                                      if self.p1_local == (0.0, 0.0) else None, count)
+                                      if self.p1_local == (0.0, 0.0) else None, count,
+                                      self.frame_pins[0])
         p2x, p2y, r2x, r2y, p2 = _pin(known2, self.p2_known, target2.origin
-                                      if self.p2_local == (0.0, 0.0) else None, count)
+                                      if self.p2_local == (0.0, 0.0) else None, count,
+                                      self.frame_pins[1])
         if careful:
             p1, p2 = (_complex_array(point, count) for point in (p1, p2))
             p1x, p1y, p2x, p2y = p1.real, p1.imag, p2.real, p2.imag
@@ -796,6 +826,13 @@ class _RRP(_Dyad):
         self.a = mechanism.links[self.l1].length(ext1.point, internal.point)
         self.alpha1 = _alpha(self.p1_local, q1)
         self.valid = self.a > 1e-12
+        #: a guide of the frame: its axes, direction and line, the same at every solve
+        self.guide_at_rest = None
+        if self.k2 == FRAME:
+            _, c2, s2, dx, dy = self.line.theta_and_axes(_AT_REST)
+            nx, ny, offset = self.line.line(_AT_REST, c2, s2, dx, dy)
+            self.guide_at_rest = (c2, s2, dx, dy, nx, ny,
+                                  offset + _dot_turned(nx, ny, c2, s2, self.q2_local))
 
     def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
                  angles_deg: np.ndarray, name: str, careful: bool = False) -> Evaluated | None:
@@ -808,9 +845,13 @@ class _RRP(_Dyad):
         l1, l2 = self.l1, self.l2
         known1, known2 = values[self.k1], values[self.k2]
         target1, target2 = targets[l1], targets[l2]
-        theta2, c2, s2, dx, dy = self.line.theta_and_axes(known2)
-        nx, ny, offset = self.line.line(known2, c2, s2, dx, dy)
-        offset = offset + _dot_turned(nx, ny, c2, s2, self.q2_local)
+        if self.guide_at_rest is None:
+            theta2, c2, s2, dx, dy = self.line.theta_and_axes(known2)
+            nx, ny, offset = self.line.line(known2, c2, s2, dx, dy)
+            offset = offset + _dot_turned(nx, ny, c2, s2, self.q2_local)
+        else:
+            theta2 = self.line.theta(known2)
+            c2, s2, dx, dy, nx, ny, offset = self.guide_at_rest
         p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
                                    if self.p1_local == (0.0, 0.0) else None)
         if careful:
@@ -925,6 +966,7 @@ class _RPR(_Dyad):
         self.u = (float(u[0]), float(u[1]))
         self.offset = float(c0[0] * u[1] - c0[1] * u[0])
         self.c0u = float(c0 @ u)
+        self.frame_pins = (_frame_pin(self.k1, self.p1_known), _frame_pin(self.k2, self.p2_known))
 
     def evaluate(self, values: dict, branch: int, count: int, targets: dict, level: int,
                  angles_deg: np.ndarray, name: str, careful: bool = False) -> Evaluated | None:
@@ -933,10 +975,12 @@ class _RPR(_Dyad):
         vector equations' arithmetic, in the same order)."""
         known1, known2 = values[self.k1], values[self.k2]
         target1, target2 = targets[self.l1], targets[self.l2]
-        p1x, p1y, r1x, r1y = place(known1, self.p1_known, target1.origin
-                                   if self.p1_local == (0.0, 0.0) else None)
-        p2x, p2y, r2x, r2y = place(known2, self.p2_known, target2.origin
-                                   if self.p2_local == (0.0, 0.0) else None)
+        p1x, p1y, r1x, r1y = _known_pin(known1, self.p1_known, target1.origin
+                                        if self.p1_local == (0.0, 0.0) else None,
+                                        self.frame_pins[0])
+        p2x, p2y, r2x, r2y = _known_pin(known2, self.p2_known, target2.origin
+                                        if self.p2_local == (0.0, 0.0) else None,
+                                        self.frame_pins[1])
         if careful:
             p1x, p1y, p2x, p2y = (_array(v, count) for v in (p1x, p1y, p2x, p2y))
         sx, sy = p1x - p2x, p1y - p2y
