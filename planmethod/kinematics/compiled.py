@@ -436,11 +436,13 @@ class Placed:
         self.bound = bound
 
 
-def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local, length=None):
+def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local, length=None,
+             internal=None):
     """A link turning about its pin P (at px, py) with its internal pin at P + radius: θ, its
     axes and origin written into ``target``, the radius' length (computed unless given) and
     unit vector; returns (θ, c, s, origin x, origin y, r, length, ux, uy), r the origin minus P
-    (None if zero)."""
+    (None if zero). ``internal``: the internal pin's (x, y) when it is the link's origin (which
+    is then that pin, and r the radius)."""
     if length is None:
         length = _norm(radius_x, radius_y)
     angle, ca, sa = alpha
@@ -458,7 +460,10 @@ def _pivoted(target: Target, px, py, radius_x, radius_y, alpha, local, length=No
             c, s = np.negative(ux, out=basis[:, 0]), np.negative(uy, out=basis[:, 1])
         else:  # the unit radius turned by −α
             c, s = _turn_into(basis, ux, uy, ca, -sa)
-    ox, oy, r = _origin(target, px, py, c, s, local)
+    if internal is None or local == (0.0, 0.0):
+        ox, oy, r = _origin(target, px, py, c, s, local)
+    else:
+        (ox, oy), r = put(target.origin, *internal), (radius_x, radius_y)
     return theta, c, s, ox, oy, r, length, ux, uy
 
 
@@ -684,6 +689,8 @@ class _RRR(_Dyad):
         self.b = mechanism.links[self.l2].length(ext2.point, internal.point)
         self.alpha1 = _alpha(self.p1_local, q1)
         self.alpha2 = _alpha(self.p2_local, q2)
+        #: whether the internal pin Q is l1's, l2's origin
+        self.q_at_origin = (q1 == (0.0, 0.0), q2 == (0.0, 0.0))
         self.frame_pins = (_frame_pin(self.k1, self.p1_known), _frame_pin(self.k2, self.p2_known))
         self.valid = self.a > 1e-12 and self.b > 1e-12
 
@@ -749,9 +756,11 @@ class _RRR(_Dyad):
         radius1x, radius1y, radius2x, radius2y = (radius1.real, radius1.imag, radius2.real,
                                                   radius2.imag)
         theta1, c1, s1, o1x, o1y, ref1, length1, e1x, e1y = _pivoted(
-            target1, p1x, p1y, radius1x, radius1y, self.alpha1, self.p1_local, np.abs(radius1))
+            target1, p1x, p1y, radius1x, radius1y, self.alpha1, self.p1_local, np.abs(radius1),
+            (q.real, q.imag) if self.q_at_origin[0] else None)
         theta2, c2, s2, o2x, o2y, ref2, length2, e2x, e2y = _pivoted(
-            target2, p2x, p2y, radius2x, radius2y, self.alpha2, self.p2_local, np.abs(radius2))
+            target2, p2x, p2y, radius2x, radius2y, self.alpha2, self.p2_local, np.abs(radius2),
+            (q.real, q.imag) if self.q_at_origin[1] else None)
         state1, state2 = Values(theta1, c1, s1, o1x, o1y), Values(theta2, c2, s2, o2x, o2y)
         links = {l1: state1, l2: state2}
         if level == 0:
