@@ -211,51 +211,54 @@ class Motion:
         """Absolute velocity (m/s) of a point."""
         if self.stage == "position":
             self._need("velocity", f"the velocity of {ref}")
-        link, position, offset = self._located.get(ref) or self._locate(ref)
-        if link == FRAME:  # a point of the frame does not move
-            return self._out(np.zeros(position.shape))
-        # LinkState.velocity_at, v + ω·J·r, with r and iω kept for later reads
-        state = self.links[link]
-        if offset is _MISSING:
-            offset = self._offset(ref, link, position)
-        elif offset is None:  # the link's origin
-            return self._out(state.velocity.copy())
-        spin = self._spins.get(link)
-        if spin is None:  # iω
-            spin = self._spins[link] = np.zeros(offset.shape, dtype=np.complex128)
-            spin.imag = state.omega
-        moved = np.multiply(offset, spin)[..., None].view(np.float64)
-        moved += state.velocity  # v + ω·J·r, in place (one array fewer)
-        return moved[0] if self.scalar else moved
+        return self._rigid(ref, "velocity", self._spin)  # LinkState.velocity_at, v + ω·J·r
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
         if self.stage != "acceleration":
             self._need("acceleration", f"the acceleration of {ref}")
-        link, position, offset = self._located.get(ref) or self._locate(ref)
-        if link == FRAME:
-            return self._out(np.zeros(position.shape))
         # LinkState.acceleration_at, a + ε·J·r − ω²·r
+        return self._rigid(ref, "acceleration", self._turn)
+
+    def _rigid(self, ref: str, vector: str, factor) -> np.ndarray:
+        """The link's ``vector`` (velocity or acceleration of its origin) plus the point's
+        offset r times ``factor(link, state, r)`` (iω, or iε − ω²), as complex numbers; r and
+        the factors are kept for later reads."""
+        link, position, offset = self._located.get(ref) or self._locate(ref)
+        if link == FRAME:  # a point of the frame does not move
+            return self._out(np.zeros(position.shape))
         state = self.links[link]
         if offset is _MISSING:
             offset = self._offset(ref, link, position)
         elif offset is None:  # the link's origin
-            return self._out(state.acceleration.copy())
+            return self._out(getattr(state, vector).copy())
+        moved = np.multiply(offset, factor(link, state, offset))[..., None].view(np.float64)
+        moved += getattr(state, vector)  # in place (one array fewer)
+        return moved[0] if self.scalar else moved
+
+    def _spin(self, link: str, state: LinkState, offset: np.ndarray) -> np.ndarray:
+        """iω of the link (kept)."""
+        spin = self._spins.get(link)
+        if spin is None:
+            spin = self._spins[link] = np.zeros(offset.shape, dtype=np.complex128)
+            spin.imag = state.omega
+        return spin
+
+    def _turn(self, link: str, state: LinkState, offset: np.ndarray) -> np.ndarray:
+        """iε − ω² of the link (kept; from iω when a velocity read made it)."""
         factor = self._turns.get(link)
-        if factor is None:  # iε − ω²
+        if factor is None:
             spin = self._spins.get(link)
             if spin is None:
                 factor = np.empty(offset.shape, dtype=np.complex128)
                 omega = state.omega
                 np.multiply(omega, omega, out=factor.real)
                 np.negative(factor.real, out=factor.real)
-            else:  # (iω)² = −ω², from the velocity read
+            else:  # (iω)² = −ω²
                 factor = np.multiply(spin, spin)
             factor.imag = state.epsilon
             self._turns[link] = factor
-        moved = np.multiply(offset, factor)[..., None].view(np.float64)
-        moved += state.acceleration
-        return moved[0] if self.scalar else moved
+        return factor
 
     def place(self, link: str, local) -> np.ndarray:
         """Global position of the point of ``link`` at local coordinates ``local``."""
