@@ -571,6 +571,15 @@ class _Dyad:
     rotating: dict
     tied: dict
 
+    def _join(self, group: AssurGroup) -> tuple:
+        """Keep the group, its links l1 and l2 (at its outer pairs) and the known links k1 and
+        k2 they join; return the joints (outer of l1, internal, outer of l2)."""
+        self.group = group
+        ext1, internal, ext2 = group.joints
+        self.l1, self.l2 = _group_link(ext1, group), _group_link(ext2, group)
+        self.k1, self.k2 = ext1.other(self.l1), ext2.other(self.l2)
+        return ext1, internal, ext2
+
     def place(self, values: dict, branch: int, count: int, targets: dict,
               careful: bool = False) -> Placed | None:
         """The dyad's positions (None near a position the reference refuses, unless
@@ -675,10 +684,7 @@ def _dot_turned(nx, ny, c, s, local):
 
 class _RRR(_Dyad):
     def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
-        self.group = group
-        ext1, internal, ext2 = group.joints
-        self.l1, self.l2 = _group_link(ext1, group), _group_link(ext2, group)
-        self.k1, self.k2 = ext1.other(self.l1), ext2.other(self.l2)
+        ext1, internal, ext2 = self._join(group)
         self.p1_known = _local(mechanism, self.k1, ext1.point)
         self.p2_known = _local(mechanism, self.k2, ext2.point)
         self.p1_local = _local(mechanism, self.l1, ext1.point)
@@ -821,12 +827,7 @@ def _centripetal(base, square, radius_x, radius_y):
 
 class _RRP(_Dyad):
     def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
-        self.group = group
-        ext1, internal, ext2 = group.joints
-        self.l1 = _group_link(ext1, group)
-        self.k1 = ext1.other(self.l1)
-        self.l2 = _group_link(ext2, group)
-        self.k2 = ext2.other(self.l2)
+        ext1, internal, ext2 = self._join(group)
         self.line = _SlideLine(mechanism, ext2.slide, self.l2)
         self.p1_known = _local(mechanism, self.k1, ext1.point)
         self.p1_local = _local(mechanism, self.l1, ext1.point)
@@ -954,11 +955,8 @@ class _RRP(_Dyad):
 
 class _RPR(_Dyad):
     def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
-        self.group = group
-        ext1, internal, ext2 = group.joints
+        ext1, internal, ext2 = self._join(group)
         slide = internal.slide
-        self.l1, self.l2 = _group_link(ext1, group), _group_link(ext2, group)
-        self.k1, self.k2 = ext1.other(self.l1), ext2.other(self.l2)
         self.p1_known = _local(mechanism, self.k1, ext1.point)
         self.p2_known = _local(mechanism, self.k2, ext2.point)
         self.p1_local = _local(mechanism, self.l1, ext1.point)
@@ -1073,16 +1071,12 @@ class _RPR(_Dyad):
 
 class _PRP(_Dyad):
     def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
-        self.group = group
-        ext1, internal, ext2 = group.joints
-        self.ends = []
-        for joint in (ext1, ext2):
-            link = _group_link(joint, group)
-            known = joint.other(link)
-            self.ends.append((link, known, _SlideLine(mechanism, joint.slide, link),
-                              _local(mechanism, link, internal.point)))
-        (l1, k1, _, _), (l2, k2, _, _) = self.ends
-        self.rotating, self.tied = {}, {l1: k1, l2: k2}
+        ext1, internal, ext2 = self._join(group)
+        self.ends = [(link, known, _SlideLine(mechanism, joint.slide, link),
+                      _local(mechanism, link, internal.point))
+                     for joint, link, known in ((ext1, self.l1, self.k1),
+                                                (ext2, self.l2, self.k2))]
+        self.rotating, self.tied = {}, {self.l1: self.k1, self.l2: self.k2}
 
     def place(self, values, branch, count, targets, careful=False):
         lines = []
@@ -1120,12 +1114,7 @@ class _PRP(_Dyad):
 
 class _RPP(_Dyad):
     def __init__(self, mechanism: Mechanism, group: AssurGroup) -> None:
-        self.group = group
-        ext1, internal, ext2 = group.joints
-        self.l1 = _group_link(ext1, group)
-        self.k1 = ext1.other(self.l1)
-        self.l2 = _group_link(ext2, group)
-        self.k2 = ext2.other(self.l2)
+        ext1, internal, ext2 = self._join(group)
         self.p1_known = _local(mechanism, self.k1, ext1.point)
         self.p1_local = _local(mechanism, self.l1, ext1.point)
         self.outer = _SlideLine(mechanism, ext2.slide, self.l2)
