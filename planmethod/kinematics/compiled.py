@@ -556,12 +556,31 @@ class Evaluated:
     its record: the unknowns, the lines' sine and its size ratio R (None where 1, or a function
     that computes it when the checks did not need it)."""
 
-    __slots__ = ("acceleration_unknowns", "line_sine", "links", "ratio", "velocity_unknowns")
+    __slots__ = ("acceleration_unknowns", "bound", "line_sine", "links", "ratio", "smallest",
+                 "velocity_unknowns")
 
     def __init__(self, links: dict, velocity_unknowns=None, line_sine=None, ratio=None,
                  acceleration_unknowns=None) -> None:
         self.links, self.velocity_unknowns, self.line_sine = links, velocity_unknowns, line_sine
         self.ratio, self.acceleration_unknowns = ratio, acceleration_unknowns
+
+    @classmethod
+    def with_velocities(cls, links: dict, unknowns, sine: np.ndarray, ratio,
+                        bound: float | None, angles_deg: np.ndarray, name: str) -> Evaluated:
+        """The dyad solved to velocities, the velocity stage's limit checked
+        (:func:`check_stage`; ``bound``: an upper bound of R, or None)."""
+        smallest = float(np.abs(sine).min())
+        ratio = check_stage("velocity", bound, smallest, sine, ratio, angles_deg, name)
+        evaluated = cls(links, unknowns, sine, ratio)
+        evaluated.smallest, evaluated.bound = smallest, bound
+        return evaluated
+
+    def with_accelerations(self, unknowns, angles_deg: np.ndarray, name: str) -> Evaluated:
+        """The same dyad solved to accelerations, the acceleration stage's limit checked."""
+        self.acceleration_unknowns = unknowns
+        self.ratio = check_stage("acceleration", self.bound, self.smallest, self.line_sine,
+                                 self.ratio, angles_deg, name)
+        return self
 
 
 class _Dyad:
@@ -621,14 +640,11 @@ class _Dyad:
         values = values | placed.links
         u1, u2, sine = velocities(self, placed, values, count)
         ratio = size_ratio_later(placed)
-        smallest = float(np.abs(sine).min())
-        ratio = check_stage("velocity", placed.bound, smallest, sine, ratio, angles_deg, name)
-        evaluated = Evaluated(placed.links, (u1, u2), sine, ratio)
+        evaluated = Evaluated.with_velocities(placed.links, (u1, u2), sine, ratio,
+                                              placed.bound, angles_deg, name)
         if level == 2:
-            evaluated.acceleration_unknowns = accelerations(self, placed, values, (u1, u2),
-                                                            count)
-            evaluated.ratio = check_stage("acceleration", placed.bound, smallest, sine,
-                                          evaluated.ratio, angles_deg, name)
+            evaluated.with_accelerations(accelerations(self, placed, values, (u1, u2), count),
+                                    angles_deg, name)
         return evaluated
 
     def fallback(self, mechanism, states, branch, angles_deg) -> None:
@@ -782,14 +798,11 @@ class _RRR(_Dyad):
         w1, w2 = u1 / length1, u2 / length2
         state1.w = state1.omega = w1
         state2.w = state2.omega = w2
-        state1.vx, state1.vy = (_columns(velocity1) if ref1 is None else
-                                _link_velocity(base1, ref1, w1, velocity1))
-        state2.vx, state2.vy = (_columns(velocity2) if ref2 is None else
-                                _link_velocity(base2, ref2, w2, velocity2))
+        state1.vx, state1.vy = _origin_velocity(base1, ref1, w1, velocity1)
+        state2.vx, state2.vy = _origin_velocity(base2, ref2, w2, velocity2)
         ratio = _ratio_later([length1, length2], d, None)
-        smallest = float(np.abs(sine).min())
-        ratio = check_stage("velocity", bound, smallest, sine, ratio, angles_deg, name)
-        evaluated = Evaluated(links, (u1, u2), sine, ratio)
+        evaluated = Evaluated.with_velocities(links, (u1, u2), sine, ratio, bound, angles_deg,
+                                              name)
         if level == 1:
             return evaluated
         # accelerations: u̇1·e1 − u̇2·e2 = (a_P2 − ω2²·radius2) − (a_P1 − ω1²·radius1)
@@ -803,19 +816,19 @@ class _RRR(_Dyad):
         e1, e2 = du1 / length1, du2 / length2
         state1.e = state1.epsilon = e1
         state2.e = state2.epsilon = e2
-        state1.ax, state1.ay = (_columns(acceleration1) if ref1 is None else
-                                _link_acceleration(base1, ref1, w1, e1, acceleration1, square1))
-        state2.ax, state2.ay = (_columns(acceleration2) if ref2 is None else
-                                _link_acceleration(base2, ref2, w2, e2, acceleration2, square2))
-        evaluated.acceleration_unknowns = (du1, du2)
-        evaluated.ratio = check_stage("acceleration", bound, smallest, sine, evaluated.ratio,
-                                      angles_deg, name)
-        return evaluated
+        state1.ax, state1.ay = _origin_acceleration(base1, ref1, w1, e1, acceleration1, square1)
+        state2.ax, state2.ay = _origin_acceleration(base2, ref2, w2, e2, acceleration2, square2)
+        return evaluated.with_accelerations((du1, du2), angles_deg, name)
 
 
 def _columns(out: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The x and y columns of an (n, 2) array."""
     return out[:, 0], out[:, 1]
+
+
+def _plus(base, x, y):
+    """``base`` + (x, y) (``base`` None where zero)."""
+    return (x, y) if base is None else (base[0] + x, base[1] + y)
 
 
 def _centripetal(base, square, radius_x, radius_y):
@@ -912,17 +925,14 @@ class _RRP(_Dyad):
         w2 = None if known2.fixed else known2.w
         state1.w = state1.omega = w1
         state2.w, state2.omega = w2, known2.omega
-        state1.vx, state1.vy = (_columns(velocity1) if ref1 is None else
-                                _link_velocity(base1, ref1, w1, velocity1))
+        state1.vx, state1.vy = _origin_velocity(base1, ref1, w1, velocity1)
         # X's velocity v_P1 + u1·e1, the block's origin's from it
-        velocity_x = ((u1 * d1x, u1 * d1y) if base1 is None else
-                      (base1[0] + u1 * d1x, base1[1] + u1 * d1y))
+        velocity_x = _plus(base1, u1 * d1x, u1 * d1y)
         state2.vx, state2.vy = _link_velocity(velocity_x, ref2, w2, velocity2)
         ratio = _ratio_later([length], None, (p1x, p1y, qx, qy))
-        smallest = float(np.abs(sine).min())
         # R = (|X − P1| + |X − P1|) / |X − P1| = 2 exactly
-        ratio = check_stage("velocity", 2.0, smallest, sine, ratio, angles_deg, name)
-        evaluated = Evaluated(links, (u1, u2), sine, ratio)
+        evaluated = Evaluated.with_velocities(links, (u1, u2), sine, ratio, 2.0, angles_deg,
+                                              name)
         if level == 1:
             return evaluated
         # accelerations: u̇1·e1 − u̇2·d = (a_X(k2) + 2ω_k2·J·u2·d) − (a_P1 − ω1²·radius)
@@ -936,21 +946,16 @@ class _RRP(_Dyad):
         else:  # Coriolis
             twice = 2 * w2
             cx, cy = twice * -(u2 * dy), twice * (u2 * dx)
-            known_second = (cx, cy) if base2 is None else (base2[0] + cx, base2[1] + cy)
+            known_second = _plus(base2, cx, cy)
         du1, du2 = _cramer(known_second, known_first, (d1x, d1y), (dx, dy), sine, count)
         e1 = du1 / length
         state1.e = state1.epsilon = e1
         state2.e, state2.epsilon = None if known2.fixed else known2.e, known2.epsilon
-        state1.ax, state1.ay = (_columns(acceleration1) if ref1 is None else
-                                _link_acceleration(base1, ref1, w1, e1, acceleration1, square1))
-        acceleration_x = ((du1 * d1x, du1 * d1y) if known_first is None else
-                          (known_first[0] + du1 * d1x, known_first[1] + du1 * d1y))
+        state1.ax, state1.ay = _origin_acceleration(base1, ref1, w1, e1, acceleration1, square1)
+        acceleration_x = _plus(known_first, du1 * d1x, du1 * d1y)
         state2.ax, state2.ay = _link_acceleration(acceleration_x, ref2, w2, state2.e,
                                                   acceleration2)
-        evaluated.acceleration_unknowns = (du1, du2)
-        evaluated.ratio = check_stage("acceleration", 2.0, smallest, sine, evaluated.ratio,
-                                      angles_deg, name)
-        return evaluated
+        return evaluated.with_accelerations((du1, du2), angles_deg, name)
 
 
 class _RPR(_Dyad):
@@ -1036,15 +1041,12 @@ class _RPR(_Dyad):
         u1, u2 = _cramer(base2, base1, (c1, s1), (d2x, d2y), sine, count)
         w = u2 / length
         state1.w = state1.omega = state2.w = state2.omega = w
-        state1.vx, state1.vy = (_columns(velocity1) if ref1 is None else
-                                _link_velocity(base1, ref1, w, velocity1))
-        state2.vx, state2.vy = (_columns(velocity2) if ref2 is None else
-                                _link_velocity(base2, ref2, w, velocity2))
+        state1.vx, state1.vy = _origin_velocity(base1, ref1, w, velocity1)
+        state2.vx, state2.vy = _origin_velocity(base2, ref2, w, velocity2)
         ratio = _ratio_later([length], length, None)
-        smallest = float(np.abs(sine).min())
         # R = (span + length) / length with span = length: 2 exactly
-        ratio = check_stage("velocity", 2.0, smallest, sine, ratio, angles_deg, name)
-        evaluated = Evaluated(links, (u1, u2), sine, ratio)
+        evaluated = Evaluated.with_velocities(links, (u1, u2), sine, ratio, 2.0, angles_deg,
+                                              name)
         if level == 1:
             return evaluated
         # accelerations: u̇1·d − u̇2·e2 = (a_P2 − ω²·radius) − (a_P1 + 2ω·J·u1·d)
@@ -1053,20 +1055,15 @@ class _RPR(_Dyad):
         base2 = acceleration_at(known2, r2x, r2y, acceleration2 if ref2 is None else None)
         twice = 2 * w
         cx, cy = twice * -(u1 * s1), twice * (u1 * c1)  # Coriolis
-        known_first = (cx, cy) if base1 is None else (base1[0] + cx, base1[1] + cy)
+        known_first = _plus(base1, cx, cy)
         square = w * w
         known_second = _centripetal(base2, square, sx, sy)
         du1, du2 = _cramer(known_second, known_first, (c1, s1), (d2x, d2y), sine, count)
         e = du2 / length
         state1.e = state1.epsilon = state2.e = state2.epsilon = e
-        state1.ax, state1.ay = (_columns(acceleration1) if ref1 is None else
-                                _link_acceleration(base1, ref1, w, e, acceleration1, square))
-        state2.ax, state2.ay = (_columns(acceleration2) if ref2 is None else
-                                _link_acceleration(base2, ref2, w, e, acceleration2, square))
-        evaluated.acceleration_unknowns = (du1, du2)
-        evaluated.ratio = check_stage("acceleration", 2.0, smallest, sine, evaluated.ratio,
-                                      angles_deg, name)
-        return evaluated
+        state1.ax, state1.ay = _origin_acceleration(base1, ref1, w, e, acceleration1, square)
+        state2.ax, state2.ay = _origin_acceleration(base2, ref2, w, e, acceleration2, square)
+        return evaluated.with_accelerations((du1, du2), angles_deg, name)
 
 
 class _PRP(_Dyad):
@@ -1255,13 +1252,23 @@ def velocities(dyad, placed: Placed, values, count: int):
             continue
         if index is None:
             if velocity_x is None:
-                velocity_x = ((u1 * first.dx, u1 * first.dy) if v1 is None else
-                              (v1[0] + u1 * first.dx, v1[1] + u1 * first.dy))
+                velocity_x = _plus(v1, u1 * first.dx, u1 * first.dy)
             reference = velocity_x
         else:
             reference = bases[index]
         state.vx, state.vy = _link_velocity(reference, r, w, out)
     return u1, u2, det
+
+
+def _origin_velocity(base, r, w, out):
+    """A link's origin's velocity: ``out`` as it is when the origin is the pin (``r`` None: the
+    pin's velocity ``base`` was written there), else :func:`_link_velocity`."""
+    return _columns(out) if r is None else _link_velocity(base, r, w, out)
+
+
+def _origin_acceleration(base, r, w, e, out, square=None):
+    """:func:`_origin_velocity` for accelerations (:func:`_link_acceleration`)."""
+    return _columns(out) if r is None else _link_acceleration(base, r, w, e, out, square)
 
 
 def _link_velocity(reference, r, w, out):
@@ -1287,11 +1294,7 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
         bases.append(base)
         if side.rotation:
             w = placed.links[side.link].w
-            w2 = w * w
-            if base is None:
-                known.append((-(w2 * side.radius_x), -(w2 * side.radius_y)))
-            else:
-                known.append((base[0] - w2 * side.radius_x, base[1] - w2 * side.radius_y))
+            known.append(_centripetal(base, w * w, side.radius_x, side.radius_y))
             continue
         carrier = placed.links[side.link] if side.link in placed.links else values[side.link]
         if carrier.fixed or carrier.w is None:
@@ -1299,7 +1302,7 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
             continue
         twice = 2 * carrier.w
         cx, cy = twice * -(u * side.dy), twice * (u * side.dx)
-        known.append((cx, cy) if base is None else (base[0] + cx, base[1] + cy))
+        known.append(_plus(base, cx, cy))
     first, second = placed.sides
     du1, du2 = _cramer(known[1], known[0], (first.dx, first.dy), (second.dx, second.dy),
                        placed.det, count)
@@ -1320,9 +1323,7 @@ def accelerations(dyad, placed: Placed, values, unknowns, count: int):
             continue
         if index is None:
             if acceleration_x is None:
-                k = known[0]
-                acceleration_x = ((du1 * first.dx, du1 * first.dy) if k is None else
-                                  (k[0] + du1 * first.dx, k[1] + du1 * first.dy))
+                acceleration_x = _plus(known[0], du1 * first.dx, du1 * first.dy)
             reference = acceleration_x
         else:
             reference = bases[index]
