@@ -1,7 +1,10 @@
-"""Output files written whole or not at all.
+"""Output files written whole or not at all, and only where the user said.
 
 Every file planmethod writes goes to a temporary file beside its target and is renamed into
-place only when complete, so a failure never leaves a half-written output.
+place only when complete, so a failure never leaves a half-written output. Every name that
+comes from user input and becomes part of a path (a PrairieLearn slug, a student's folder)
+passes :func:`path_component`, and files written into an output folder go through
+:func:`write_files`, which refuses any relative path that would leave that folder.
 
 Examples
 --------
@@ -10,19 +13,86 @@ Examples
 >>> write_text_atomic(folder / "a.txt", "hello")
 >>> (folder / "a.txt").read_text()
 'hello'
+>>> path_component("../../x", "--slug")  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+planmethod.errors.SpecError: --slug: '../../x' is not a single folder or file name (...)
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
+import re
 import tempfile
-from collections.abc import Iterator
-from pathlib import Path
+from collections.abc import Iterator, Mapping
+from pathlib import Path, PurePosixPath
 
-from .errors import PlanmethodError
+from .errors import PlanmethodError, SpecError
 
-__all__ = ["atomic_path", "write_bytes_atomic", "write_text_atomic"]
+__all__ = [
+    "atomic_path",
+    "path_component",
+    "student_folder",
+    "write_bytes_atomic",
+    "write_files",
+    "write_text_atomic",
+]
+
+#: characters that would make a name more than one path component (or an invalid one)
+_SEPARATORS = ("/", "\\", "\0")
+
+
+def path_component(name: str, what: str) -> str:
+    """``name`` if it is one path component, else a :class:`SpecError` naming ``what`` (the
+    option or key it came from): not empty, no ``/``, ``\\`` or NUL, not ``.`` or ``..``.
+
+    Examples
+    --------
+    >>> path_component("fourbar-2026", "--slug")
+    'fourbar-2026'
+    """
+    if (not isinstance(name, str) or not name.strip() or name in (".", "..")
+            or any(separator in name for separator in _SEPARATORS)):
+        raise SpecError(f"{name!r} is not a single folder or file name (it must not be empty, "
+                        "contain '/' or '\\', or be '.' or '..')", key=what)
+    return name
+
+
+def student_folder(student: str) -> str:
+    """The folder name of a student id: unsafe characters replaced by ``_``, dots stripped
+    from the ends, at most 80 characters — always one path component.
+
+    Examples
+    --------
+    >>> student_folder("Ann.Lee@uni.edu"), student_folder("../x"), student_folder("..")
+    ('Ann.Lee@uni.edu', '_x', 'student')
+    """
+    name = re.sub(r"[^A-Za-z0-9_.@-]", "_", str(student)).strip(".")[:80].strip(".")
+    return path_component(name or "student", "student id")
+
+
+def _inside(folder: Path, relative: str) -> Path:
+    """``folder / relative`` where every part of ``relative`` is one path component."""
+    parts = PurePosixPath(relative).parts
+    if not parts or PurePosixPath(relative).is_absolute():
+        raise SpecError(f"{relative!r} is not a path inside the output folder", file=str(folder))
+    for part in parts:
+        path_component(part, f"output file {relative!r}")
+    return folder.joinpath(*parts)
+
+
+def write_files(folder: str | Path, files: Mapping[str, str | bytes]) -> list[Path]:
+    """Write ``files`` (relative path → text or bytes) into ``folder``, each whole or not at
+    all; every path is checked to stay inside ``folder`` before anything is written."""
+    folder = Path(folder)
+    targets = {name: _inside(folder, name) for name in files}
+    for name, data in files.items():
+        if isinstance(data, bytes):
+            write_bytes_atomic(targets[name], data)
+        else:
+            write_text_atomic(targets[name], data)
+    return list(targets.values())
 
 
 @contextlib.contextmanager
@@ -35,13 +105,20 @@ def atomic_path(target: str | Path, suffix: str | None = None) -> Iterator[Path]
     except OSError as error:
         raise PlanmethodError(f"cannot create the folder {folder}: {error.strerror}",
                               file=str(target)) from None
-    handle, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=suffix or target.suffix,
-                                    dir=folder)
+    try:
+        handle, name = tempfile.mkstemp(prefix=f".{target.name}.",
+                                        suffix=suffix or target.suffix, dir=folder)
+    except OSError as error:
+        raise PlanmethodError(f"cannot create a file in {folder}: {error.strerror}",
+                              file=str(target)) from None
     os.close(handle)
     temporary = Path(name)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(temporary, 0o666 & ~umask)  # the mode an ordinary new file gets, not mkstemp's 0600
+    try:
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)  # an ordinary new file's mode, not mkstemp's 0600
+    except OSError:
+        pass  # a file system without modes (the file stays private)
     try:
         yield temporary
         os.replace(temporary, target)

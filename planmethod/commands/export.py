@@ -29,9 +29,11 @@ def run(args: argparse.Namespace) -> int:
     from ..grading import exports
     from ..grading.answers import grade_many, read_answers
     from ..grading.keys import bundle
-    from ..io import write_text_atomic
+    from ..io import path_component, student_folder, write_files, write_text_atomic
     from .grade import load_any_key
 
+    if args.format == "prairielearn":
+        path_component(args.slug, "--slug")  # before any work: it becomes a folder name
     keys = load_any_key(args.key)
     unique = list({id(k): k for k in keys.values()}.values())
     the_bundle = bundle(unique, source=str(args.key))
@@ -59,18 +61,16 @@ def run(args: argparse.Namespace) -> int:
     else:
         sheets = {}
         folder = Path(args.key) if Path(args.key).is_dir() else Path(args.key).parent
-        from .variants import folder_name
-
         for key in unique:
-            sheet = folder / folder_name(str(key.get("student"))) / "task.svg"
+            sheet = folder / student_folder(str(key.get("student"))) / "task.svg"
             if sheet.is_file() and sheet.stat().st_size < 2_000_000:
                 sheets[str(key.get("student"))] = sheet.read_text(encoding="utf-8")
         files[""] = exports.moodle_xml(unique, sheets=sheets)
-    written = []
-    for name, text in files.items():
-        target = out / name if name else out
-        write_text_atomic(target, text)
-        written.append(str(target))
+    if "" in files:  # one output file
+        write_text_atomic(out, files[""])
+        written = [str(out)]
+    else:  # files inside the output folder, none of them outside it
+        written = [str(path) for path in write_files(out, files)]
     if args.format == "gradescope" and not args.answers:
         (out / "run_autograder").chmod(0o755)
         (out / "setup.sh").chmod(0o755)

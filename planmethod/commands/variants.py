@@ -57,12 +57,6 @@ def read_roster(path: str) -> list[str]:
     return students
 
 
-def folder_name(student: str) -> str:
-    """A safe folder name for a student id."""
-    name = re.sub(r"[^A-Za-z0-9_.@-]", "_", student).strip(".") or "student"
-    return name[:80]
-
-
 def run(args: argparse.Namespace) -> int:
     import csv
     import io
@@ -72,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import SpecError
     from ..grading.keys import build_key, bundle
     from ..grading.templates import draw_variant, load_template, to_toml
-    from ..io import write_text_atomic
+    from ..io import student_folder, write_files
     from ..progress import Progress
 
     template = load_template(args.template)
@@ -87,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
             raise SpecError(f"--count must be in 1…100000, got {count}")
         width = max(3, len(str(count)))
         students = [str(i).zfill(width) for i in range(1, count + 1)]
-    folders = [folder_name(s) for s in students]
+    folders = [student_folder(s) for s in students]
     if len(set(folders)) != len(folders):
         raise SpecError("two student ids map to the same folder name", file=args.students)
     files: dict[str, str] = {}
@@ -123,8 +117,7 @@ def run(args: argparse.Namespace) -> int:
     writer.writerows(index_rows)
     files["index.csv"] = buffer.getvalue()
     out = Path(args.out)
-    for name, text in files.items():
-        write_text_atomic(out / name, text)
+    write_files(out, files)
     redrawn = sum(1 for row in index_rows if row[2])
     print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "
           f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
