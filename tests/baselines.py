@@ -1,0 +1,134 @@
+"""Baselines of every shipped exercise's reports, and the comparison that keeps them.
+
+The restructuring of the solver, the plans and the forces must change no number: each shipped
+exercise's ``planmethod solve --json`` report at ``drive.angle`` and at ``drive.angle + 97°``,
+its kinematic sweep every 10° (``planmethod sweep --csv``) and, with masses, its force sweep
+every 30°, were written here before the change (``python -m tests.baselines``, run from the
+project's root) and are compared by ``tests/test_baselines.py``.
+
+Numbers must agree to 1e-12 relative — relative to the larger of the two values and of the
+largest magnitude among their siblings (the other component of the same vector, the other
+entries of the same row), so that a component that is zero up to rounding compares sensibly.
+Rounding noise itself (a check's ``abs_error`` and ``rel_error``, the power residual, the
+whole-system difference) is compared to 1e-12 of the quantity it measures. Text must be
+identical, except a title that said "seed": it may now cite the paper instead.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import tomllib
+from contextlib import redirect_stderr, redirect_stdout
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+FOLDER = Path(__file__).resolve().parent / "data" / "baselines"
+RELATIVE = 1e-12
+#: keys whose values are rounding noise: compared to RELATIVE of the quantity they measure
+NOISE = {"abs_error", "rel_error", "power_residual", "max_rel_difference", "residual"}
+
+
+def exercises() -> list[Path]:
+    return sorted((ROOT / "exercises").glob("*.toml"))
+
+
+def _run(*argv: str) -> tuple[int, str, str]:
+    from planmethod.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with redirect_stdout(out), redirect_stderr(err):
+        code = main(list(argv))
+    return code, out.getvalue(), err.getvalue()
+
+
+def _sweep(path: Path, *extra: str) -> dict:
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        target = Path(folder) / "sweep.csv"
+        code, _, err = _run("sweep", str(path), "--csv", str(target), *extra)
+        if code:
+            return {"error": err.strip()}
+        rows = list(csv.reader(target.read_text(encoding="utf-8").splitlines()))
+    return {"header": rows[0], "rows": [[float(cell) for cell in row] for row in rows[1:]]}
+
+
+def record(path: Path) -> dict:
+    """Everything the baseline of one exercise holds."""
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    angle = float(data["drive"]["angle"])
+    reports = {}
+    for at in (angle, angle + 97.0):
+        code, out, err = _run("solve", str(path), "--angle", repr(at), "--json")
+        reports[repr(at)] = json.loads(out) if code == 0 else {"error": err.strip()}
+    out = {"reports": reports, "sweep": _sweep(path, "--step", "10")}
+    if "mass" in data:
+        out["force_sweep"] = _sweep(path, "--step", "30", "--forces")
+    return out
+
+
+def write() -> None:
+    FOLDER.mkdir(parents=True, exist_ok=True)
+    for path in exercises():
+        target = FOLDER / f"{path.stem}.json"
+        target.write_text(json.dumps(record(path), ensure_ascii=False, indent=0,
+                                     allow_nan=False) + "\n", encoding="utf-8")
+        print(f"wrote {target.relative_to(ROOT)}")
+
+
+# -- comparison ----------------------------------------------------------------------------------
+def _scale(siblings) -> float:
+    values = [abs(v) for v in siblings if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    return max(values, default=0.0)
+
+
+def differences(old, new, where: str = "", siblings=(), reference: float | None = None
+                ) -> list[str]:
+    """Where ``new`` differs from ``old`` beyond the rules of the module docstring."""
+    if isinstance(old, dict) and isinstance(new, dict):
+        out = []
+        if set(old) != set(new):
+            out.append(f"{where}: keys {sorted(set(old) ^ set(new))} added or missing")
+        measured = None
+        if "analytic" in old and isinstance(old["analytic"], (int, float)):
+            measured = abs(old["analytic"])
+        for key in sorted(set(old) & set(new)):
+            ref = measured if key in NOISE else None
+            if key in NOISE and ref is None:
+                ref = 1.0  # a residual relative to 1 (power_residual, max_rel_difference)
+            out += differences(old[key], new[key], f"{where}.{key}",
+                               [v for v in old.values() if not isinstance(v, (dict, list))],
+                               ref)
+        return out
+    if isinstance(old, list) and isinstance(new, list):
+        if len(old) != len(new):
+            return [f"{where}: {len(old)} entries before, {len(new)} now"]
+        out = []
+        for index, (a, b) in enumerate(zip(old, new, strict=True)):
+            out += differences(a, b, f"{where}[{index}]", old, reference)
+        return out
+    if isinstance(old, (int, float)) and isinstance(new, (int, float)) and not isinstance(
+            old, bool):
+        if reference is not None:
+            tolerance = RELATIVE * max(reference, abs(old), 1e-300)
+            if reference == 1.0:
+                tolerance = max(tolerance, RELATIVE)
+        else:
+            tolerance = RELATIVE * max(abs(old), abs(new), _scale(siblings))
+        if not math.isclose(old, new, rel_tol=0.0, abs_tol=tolerance) and old != new:
+            return [f"{where}: {old!r} before, {new!r} now"]
+        return []
+    if isinstance(old, str) and isinstance(new, str):
+        if old == new or ("seed" in old.lower() and where.endswith(("title", ".name"))):
+            return []
+        return [f"{where}: {old!r} before, {new!r} now"]
+    if old != new:
+        return [f"{where}: {old!r} before, {new!r} now"]
+    return []
+
+
+if __name__ == "__main__":
+    write()

@@ -1,0 +1,30 @@
+"""Every shipped exercise's reports are what they were before the restructuring (see
+``tests/baselines.py``: 1e-12 relative, text identical)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from baselines import FOLDER, differences, exercises, record
+
+
+@pytest.mark.parametrize("path", exercises(), ids=lambda path: path.stem)
+def test_reports_match_the_baseline(path):
+    baseline = FOLDER / f"{path.stem}.json"
+    assert baseline.is_file(), f"no baseline for {path.name}: python -m tests.baselines"
+    found = differences(json.loads(baseline.read_text(encoding="utf-8")), record(path))
+    assert not found, "\n".join(found[:20])
+
+
+def test_the_comparison_can_fail():
+    old = {"points": {"C": {"velocity": [5.2716, 1e-17]}}, "title": "Compressor",
+           "checks": [{"analytic": 5.0, "abs_error": 0.0}]}
+    assert not differences(old, {"points": {"C": {"velocity": [5.2716 * (1 + 5e-13), 3e-17]}},
+                                 "title": "Compressor",
+                                 "checks": [{"analytic": 5.0, "abs_error": 1e-15}]})
+    assert differences(old, {"points": {"C": {"velocity": [5.2716 * (1 + 5e-12), 0.0]}},
+                             "title": "Compressor", "checks": [{"analytic": 5.0,
+                                                                "abs_error": 0.0}]})
+    assert differences(old, {**old, "title": "Other"})
+    assert differences(old, {**old, "checks": [{"analytic": 5.0, "abs_error": 1e-9}]})
