@@ -13,7 +13,7 @@ Examples
 >>> structure = analyse_structure(exercise.mechanism)
 >>> (structure.n, structure.p5, structure.mobility)
 (3, 4, 1)
->>> [(g.kind, g.links, g.group_class, g.order) for g in structure.groups]
+>>> [(str(g.kind), g.links, g.group_class, g.order) for g in structure.groups]
 [('RRP', ('BC', 'slider'), 2, 2)]
 """
 
@@ -25,10 +25,9 @@ from itertools import combinations
 
 from .errors import StructureError
 from .model import FRAME, Mechanism, Slide
+from .vocabulary import GroupKind, PairKind
 
-__all__ = ["DYAD_TYPES", "AssurGroup", "Joint", "Structure", "analyse_structure", "describe"]
-
-DYAD_TYPES = {"RRR": 1, "RRP": 2, "RPR": 3, "PRP": 4, "RPP": 5}
+__all__ = ["AssurGroup", "Joint", "Structure", "analyse_structure", "describe"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -40,7 +39,7 @@ class Joint:
     :class:`~planmethod.model.Slide` and ``links`` is (slide.link, slide.along).
     """
 
-    kind: str  # "R" or "P"
+    kind: PairKind
     point: str
     links: tuple[str, str]
     slide: Slide | None = None
@@ -51,7 +50,7 @@ class Joint:
 
     @property
     def label(self) -> str:
-        return self.point if self.kind == "R" else self.slide.key
+        return self.slide.key if self.slide is not None else self.point
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,11 +59,11 @@ class AssurGroup:
 
     For a dyad ``links`` is (L1, L2) and ``joints`` is (external of L1, internal, external of L2);
     ``kind`` is one of RRR, RRP, RPR, PRP, RPP. For a class III or IV group ``kind`` is
-    ``"triad"`` or ``"tetrad"``, ``joints`` lists internal then external pairs.
+    ``triad`` or ``tetrad``, ``joints`` lists internal then external pairs.
     """
 
     index: int
-    kind: str
+    kind: GroupKind
     links: tuple[str, ...]
     joints: tuple[Joint, ...]
     group_class: int
@@ -74,7 +73,7 @@ class AssurGroup:
     @property
     def type_number(self) -> int | None:
         """The dyad's type (1–5) in the Russian school's numbering, None for other groups."""
-        return DYAD_TYPES.get(self.kind)
+        return self.kind.type_number
 
     @property
     def name(self) -> str:
@@ -82,7 +81,7 @@ class AssurGroup:
 
     @property
     def is_dyad(self) -> bool:
-        return self.kind in DYAD_TYPES
+        return self.kind.is_dyad
 
 
 @dataclass(frozen=True, slots=True)
@@ -118,8 +117,9 @@ class Structure:
 
 
 def _joints_of(mechanism: Mechanism) -> list[tuple[str, object]]:
-    joints: list[tuple[str, object]] = [("R", pair) for pair in mechanism.revolutes]
-    joints += [("P", pair) for pair in mechanism.slides]
+    joints: list[tuple[PairKind, object]] = [(PairKind.REVOLUTE, pair)
+                                             for pair in mechanism.revolutes]
+    joints += [(PairKind.PRISMATIC, pair) for pair in mechanism.slides]
     return joints
 
 
@@ -134,17 +134,17 @@ def _group_pairs(mechanism: Mechanism, group: tuple[str, ...], known: set[str]):
         known_side = [link for link in pair.links if link in known]
         if known_side:
             for link in inside:
-                external.append(Joint("R", pair.point, (link, known_side[0])))
+                external.append(Joint(PairKind.REVOLUTE, pair.point, (link, known_side[0])))
         else:
             for link in inside[1:]:
-                internal.append(Joint("R", pair.point, (inside[0], link)))
+                internal.append(Joint(PairKind.REVOLUTE, pair.point, (inside[0], link)))
     for pair in mechanism.slides:
         ends = (pair.link, pair.along)
         inside = [link for link in ends if link in group]
         if len(inside) == 2:
-            internal.append(Joint("P", pair.point, ends, pair))
+            internal.append(Joint(PairKind.PRISMATIC, pair.point, ends, pair))
         elif len(inside) == 1 and any(link in known for link in ends):
-            external.append(Joint("P", pair.point, ends, pair))
+            external.append(Joint(PairKind.PRISMATIC, pair.point, ends, pair))
     return internal, external
 
 
@@ -169,18 +169,19 @@ def _dyad(index: int, links: tuple[str, str], internal, external) -> AssurGroup 
     if len(ext[first]) != 1 or len(ext[second]) != 1:
         return None
     joints = (ext[first][0], internal[0], ext[second][0])
-    kind = "".join(j.kind for j in joints)
-    if kind not in DYAD_TYPES:
-        joints = joints[::-1]
-        links = (second, first)
-        kind = "".join(j.kind for j in joints)
-    if kind == "RPR" and joints[1].slide.link != links[0]:
-        # the block (the prismatic pair's `link`) first: X is then its pin taken on the guide
-        joints, links = joints[::-1], links[::-1]
-    if kind == "PPP":
+    pattern = "".join(j.kind for j in joints)
+    if pattern == "PPP":
         raise StructureError(
             "a dyad of three prismatic pairs (PPP) has no definite position",
             link=f"{first}, {second}")
+    kind = GroupKind.of_dyad(pattern)
+    if kind is None:  # read the other way round (PPR is an RPP, PRR an RRP)
+        joints = joints[::-1]
+        links = (second, first)
+        kind = GroupKind.of_dyad("".join(j.kind for j in joints))
+    if kind is GroupKind.RPR and joints[1].slide.link != links[0]:
+        # the block (the prismatic pair's `link`) first: X is then its pin taken on the guide
+        joints, links = joints[::-1], links[::-1]
     attached = tuple(dict.fromkeys(j.other(first_link(j, links)) for j in (joints[0], joints[2])))
     return AssurGroup(index, kind, links, joints, 2, 2, attached)
 
@@ -199,10 +200,10 @@ def _larger(index: int, links: tuple[str, ...], internal, external) -> AssurGrou
     if len(links) == 4 and len(internal) == 3 and max(degree.values()) == 3:
         central = max(degree, key=degree.get)
         ordered = (central, *[link for link in links if link != central])
-        return AssurGroup(index, "triad", ordered, tuple(internal) + tuple(external), 3,
-                          len(external), attached)
+        return AssurGroup(index, GroupKind.TRIAD, ordered, tuple(internal) + tuple(external),
+                          3, len(external), attached)
     if len(links) == 4 and len(internal) == 4 and set(degree.values()) == {2}:
-        return AssurGroup(index, "tetrad", links, tuple(internal) + tuple(external), 4,
+        return AssurGroup(index, GroupKind.TETRAD, links, tuple(internal) + tuple(external), 4,
                           len(external), attached)
     return None
 

@@ -24,7 +24,7 @@ Examples
 >>> from planmethod.spec import load_exercise
 >>> mechanism = load_exercise("exercises/compressor_slider_crank.toml").mechanism
 >>> compiled = program(mechanism)
->>> compiled is program(mechanism), [group.kind for group in compiled.structure.groups]
+>>> compiled is program(mechanism), [str(group.kind) for group in compiled.structure.groups]
 (True, ['RRP'])
 """
 

@@ -1,0 +1,169 @@
+"""The one vocabulary: kinds of pairs and Assur groups, and the quantities a course reads off.
+
+Every layer that names a quantity — the report's check table, the figures, the grader, the LMS
+exports, the workbook — asks this module for its symbol as printed (ω with subscript BC, a_C),
+its unit and the drawing scale it is read at; every layer that branches on the kind of a group
+looks the kind up as a :class:`GroupKind` (never a string compared in an ``if`` chain).
+
+Examples
+--------
+>>> GroupKind("RRP").type_number, GroupKind.TRIAD.group_class
+(2, 3)
+>>> q = quantity("omega_BC")
+>>> (q.symbol, q.subscript, q.unit, q.scale)
+('ω', 'BC', 'rad/s', 'mu_v')
+>>> quantity("coriolis_slider/frame").text
+'aᵏ_slider/frame'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+
+__all__ = [
+    "QUANTITY_KINDS",
+    "SCALES",
+    "GroupKind",
+    "PairKind",
+    "Quantity",
+    "QuantityKind",
+    "quantity",
+]
+
+
+class PairKind(StrEnum):
+    """A lower kinematic pair: revolute (``R``) or prismatic (``P``)."""
+
+    REVOLUTE = "R"
+    PRISMATIC = "P"
+
+
+class GroupKind(StrEnum):
+    """An Assur group's kind. A dyad's kind is its pair sequence external–internal–external
+    (types 1–5 of the Russian school's numbering); higher groups are ``triad`` (class III) and
+    ``tetrad`` (class IV). The value is what reports print."""
+
+    RRR = "RRR"
+    RRP = "RRP"
+    RPR = "RPR"
+    PRP = "PRP"
+    RPP = "RPP"
+    TRIAD = "triad"
+    TETRAD = "tetrad"
+
+    @property
+    def type_number(self) -> int | None:
+        """1–5 for the dyads, None for higher groups."""
+        return _TYPE_NUMBERS.get(self)
+
+    @property
+    def is_dyad(self) -> bool:
+        return self in _TYPE_NUMBERS
+
+    @property
+    def group_class(self) -> int:
+        """2 for a dyad, 3 for a triad, 4 for a tetrad."""
+        return 2 if self.is_dyad else (3 if self is GroupKind.TRIAD else 4)
+
+    @property
+    def pairs(self) -> tuple[PairKind, ...] | None:
+        """A dyad's pair sequence (external, internal, external); None for higher groups."""
+        return tuple(PairKind(letter) for letter in self.value) if self.is_dyad else None
+
+    @classmethod
+    def of_dyad(cls, pairs: str) -> GroupKind | None:
+        """The dyad kind of a pair sequence such as ``"RRP"`` (None if it is no dyad kind:
+        ``"PPR"`` is an ``RPP`` read backwards, ``"PPP"`` has no definite position)."""
+        try:
+            kind = cls(pairs)
+        except ValueError:
+            return None
+        return kind if kind.is_dyad else None
+
+
+_TYPE_NUMBERS = {GroupKind.RRR: 1, GroupKind.RRP: 2, GroupKind.RPR: 3, GroupKind.PRP: 4,
+                 GroupKind.RPP: 5}
+
+#: the drawing scales, as printed, with their units
+SCALES = {"mu_l": ("μl", "m/mm"), "mu_v": ("μv", "(m/s)/mm"), "mu_a": ("μa", "(m/s²)/mm"),
+          "mu_f": ("μF", "N/mm")}
+
+
+@dataclass(frozen=True, slots=True)
+class QuantityKind:
+    """One kind of quantity: its name prefix in reports (``v`` of ``v_C``), its symbol as
+    printed, unit, what it describes, the drawing scale it is read at (None for a quantity not
+    read off a plan at a scale), whether it is signed (counter-clockwise or along the guide
+    positive) or a magnitude, and its subject (a ``point``, a ``link`` or a ``pair``)."""
+
+    prefix: str
+    symbol: str
+    unit: str
+    description: str
+    scale: str | None
+    signed: bool
+    subject: str
+
+
+#: every quantity a check table, a key or a sweep names, by prefix
+QUANTITY_KINDS: dict[str, QuantityKind] = {kind.prefix: kind for kind in (
+    QuantityKind("v", "v", "m/s", "speed of a point", "mu_v", False, "point"),
+    QuantityKind("a", "a", "m/s²", "acceleration of a point", "mu_a", False, "point"),
+    QuantityKind("omega", "ω", "rad/s", "angular velocity of a link", "mu_v", True, "link"),
+    QuantityKind("epsilon", "ε", "rad/s²", "angular acceleration of a link", "mu_a", True,
+                 "link"),
+    QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
+                 "point"),
+    QuantityKind("s", "s", "m", "travel of a prismatic pair", "mu_l", True, "pair"),
+    QuantityKind("ds", "ds/dt", "m/s", "sliding velocity of a prismatic pair", "mu_v", True,
+                 "pair"),
+    QuantityKind("dds", "d²s/dt²", "m/s²", "sliding acceleration of a prismatic pair", "mu_a",
+                 True, "pair"),
+    QuantityKind("coriolis", "aᵏ", "m/s²", "Coriolis acceleration of a prismatic pair",
+                 "mu_a", False, "pair"),
+)}
+
+
+@dataclass(frozen=True, slots=True)
+class Quantity:
+    """A named quantity such as ``omega_BC``: its kind and subject (``BC``)."""
+
+    name: str
+    kind: QuantityKind
+    subject: str
+
+    @property
+    def symbol(self) -> str:
+        return self.kind.symbol
+
+    @property
+    def subscript(self) -> str:
+        return self.subject
+
+    @property
+    def unit(self) -> str:
+        return self.kind.unit
+
+    @property
+    def scale(self) -> str | None:
+        return self.kind.scale
+
+    @property
+    def text(self) -> str:
+        """The symbol in plain text, subscript after an underscore (``ω_BC``)."""
+        return f"{self.kind.symbol}_{self.subject}"
+
+
+def quantity(name: str) -> Quantity:
+    """The quantity named ``name`` (``v_C``, ``omega_BC``, ``dds_slider/frame``).
+
+    Raises
+    ------
+    KeyError
+        If the prefix names no known quantity.
+    """
+    prefix, _, subject = name.partition("_")
+    if prefix not in QUANTITY_KINDS or not subject:
+        raise KeyError(name)
+    return Quantity(name, QUANTITY_KINDS[prefix], subject)
