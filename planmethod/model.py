@@ -1,9 +1,11 @@
 """The frozen model of a mechanism: links, pairs, drive, mass properties and loads.
 
 A :class:`Mechanism` is built once from an exercise file (see :mod:`planmethod.spec`) and never
-mutated by a solve. Links carry their points in their own frames; a point name shared by two or
-more links is a revolute pair; a :class:`Slide` is a prismatic pair. The fixed link is called
-``frame``.
+mutated by a solve. Every value here is immutable and hashable by value: two mechanisms built
+from the same file are equal and hash alike, so whatever is computed once per mechanism (its
+structure, its compiled solver) is found again for an equal one. Links carry their points in
+their own frames; a point name shared by two or more links is a revolute pair; a
+:class:`Slide` is a prismatic pair. The fixed link is called ``frame``.
 
 Examples
 --------
@@ -11,14 +13,17 @@ Examples
 >>> crank = Link("AB", {"A": (0.0, 0.0), "B": (0.06, 0.0)})
 >>> crank.length("A", "B")
 0.06
+>>> again = Link("AB", {"A": [0, 0], "B": [0.06, 0]})
+>>> crank == again, hash(crank) == hash(again)
+(True, True)
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from types import MappingProxyType
+from typing import Any
 
 FRAME = "frame"
 
@@ -29,6 +34,7 @@ __all__ = [
     "Ask",
     "Drive",
     "Exercise",
+    "FrozenMap",
     "Link",
     "Load",
     "MassProperties",
@@ -39,8 +45,62 @@ __all__ = [
 ]
 
 
-def _frozen_mapping(mapping: Mapping) -> Mapping:
-    return MappingProxyType(dict(mapping))
+class FrozenMap(Mapping):
+    """An immutable mapping, equal to any mapping with the same items and hashable by value
+    (nested dicts become FrozenMaps, lists tuples). Its hash is computed once.
+
+    Examples
+    --------
+    >>> a = FrozenMap({"f": 0.1, "pairs": {"B": {"f": 0.2}}})
+    >>> a == {"f": 0.1, "pairs": {"B": {"f": 0.2}}}, hash(a) == hash(FrozenMap(dict(a)))
+    (True, True)
+    """
+
+    __slots__ = ("_data", "_hash")
+
+    def __init__(self, data: Mapping | None = None) -> None:
+        items = {} if data is None else (data._data if isinstance(data, FrozenMap) else data)
+        self._data = {key: _freeze(value) for key, value in dict(items).items()}
+        self._hash: int | None = None
+
+    def __getitem__(self, key):
+        return self._data[key]
+
+    def __contains__(self, key) -> bool:
+        return key in self._data
+
+    def __iter__(self) -> Iterator:
+        return iter(self._data)
+
+    def __len__(self) -> int:
+        return len(self._data)
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, FrozenMap):
+            return self._data == other._data
+        if isinstance(other, Mapping):
+            return self._data == dict(other)
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        if self._hash is None:
+            self._hash = hash(frozenset(self._data.items()))
+        return self._hash
+
+    def __repr__(self) -> str:
+        return f"FrozenMap({self._data!r})"
+
+
+def _freeze(value: Any) -> Any:
+    if isinstance(value, Mapping) and not isinstance(value, FrozenMap):
+        return FrozenMap(value)
+    if isinstance(value, list):
+        return tuple(_freeze(item) for item in value)
+    return value
+
+
+def _frozen_mapping(mapping: Mapping) -> FrozenMap:
+    return mapping if isinstance(mapping, FrozenMap) else FrozenMap(mapping)
 
 
 @dataclass(frozen=True, slots=True)
@@ -201,6 +261,7 @@ class Mechanism:
     """A planar linkage: links, revolute and prismatic pairs, the drive, masses and loads.
 
     ``sketch`` holds rough global positions (m) of some points that pick the assembly branch.
+    Equal mechanisms hash alike (the hash is computed once, when the model is made).
     """
 
     title: str
@@ -213,12 +274,23 @@ class Mechanism:
     gravity: float | None = None
     loads: tuple[Load, ...] = ()
     friction: Mapping[str, object] = field(default_factory=dict)
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "links", _frozen_mapping(self.links))
-        object.__setattr__(self, "sketch", _frozen_mapping(self.sketch))
+        object.__setattr__(self, "sketch", _frozen_mapping(
+            {name: (float(x), float(y)) for name, (x, y) in self.sketch.items()}))
         object.__setattr__(self, "masses", _frozen_mapping(self.masses))
         object.__setattr__(self, "friction", _frozen_mapping(self.friction))
+        object.__setattr__(self, "revolutes", tuple(self.revolutes))
+        object.__setattr__(self, "slides", tuple(self.slides))
+        object.__setattr__(self, "loads", tuple(self.loads))
+        object.__setattr__(self, "_hash", hash((
+            self.title, self.links, self.revolutes, self.slides, self.drive, self.sketch,
+            self.masses, self.gravity, self.loads, self.friction)))
+
+    def __hash__(self) -> int:
+        return self._hash
 
     @property
     def moving_links(self) -> tuple[str, ...]:
