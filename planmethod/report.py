@@ -288,4 +288,4 @@ def report_dict(analysis: Analysis) -> dict:
 
 
 def link_of(motion: Motion, point: str) -> str:
-    return motion._locate(point)[0]
+    return motion.locate(point)[0]

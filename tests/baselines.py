@@ -9,9 +9,13 @@ project's root) and are compared by ``tests/test_baselines.py``.
 Numbers must agree to 1e-12 relative — relative to the larger of the two values and of the
 largest magnitude among their siblings (the other component of the same vector, the other
 entries of the same row), so that a component that is zero up to rounding compares sensibly.
-Rounding noise itself (a check's ``abs_error`` and ``rel_error``, the power residual, the
-whole-system difference) is compared to 1e-12 of the quantity it measures. Text must be
-identical, except a title that said "seed": it may now cite the paper instead.
+Rounding noise itself is compared to 1e-12 of the quantity it measures: a check's
+``abs_error`` to its analytic value, ``rel_error`` and the power residual and whole-system
+difference (already relative) to 1, a difference of two computations of one moment to that
+moment (the largest magnitude of what it sits among). The angle between two construction lines
+is compared by its sine (its arcsine has no digits to spare near 90°: a sine of 1 − 1 ulp is
+89.9999991°). Text must be identical, except a title that said "seed": it may now cite the
+paper instead.
 """
 
 from __future__ import annotations
@@ -28,7 +32,12 @@ ROOT = Path(__file__).resolve().parent.parent
 FOLDER = Path(__file__).resolve().parent / "data" / "baselines"
 RELATIVE = 1e-12
 #: keys whose values are rounding noise: compared to RELATIVE of the quantity they measure
-NOISE = {"abs_error", "rel_error", "power_residual", "max_rel_difference", "residual"}
+NOISE = {"abs_error", "rel_error", "power_residual", "max_rel_difference", "residual",
+         "difference"}
+#: relative noise: compared to RELATIVE absolutely
+RELATIVE_NOISE = {"rel_error", "power_residual", "max_rel_difference", "residual"}
+#: angles between construction lines (deg): compared by their sine
+LINE_ANGLES = {"angle_deg", "line_angle_deg"}
 
 
 def exercises() -> list[Path]:
@@ -85,6 +94,17 @@ def _scale(siblings) -> float:
     return max(values, default=0.0)
 
 
+def _deep_scale(value) -> float:
+    """The largest magnitude of any number in ``value`` (nested)."""
+    if isinstance(value, dict):
+        return max((_deep_scale(v) for v in value.values()), default=0.0)
+    if isinstance(value, list):
+        return max((_deep_scale(v) for v in value), default=0.0)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return abs(value)
+    return 0.0
+
+
 def differences(old, new, where: str = "", siblings=(), reference: float | None = None
                 ) -> list[str]:
     """Where ``new`` differs from ``old`` beyond the rules of the module docstring."""
@@ -95,13 +115,20 @@ def differences(old, new, where: str = "", siblings=(), reference: float | None 
         measured = None
         if "analytic" in old and isinstance(old["analytic"], (int, float)):
             measured = abs(old["analytic"])
+        siblings = [v for v in old.values() if not isinstance(v, (dict, list))]
         for key in sorted(set(old) & set(new)):
-            ref = measured if key in NOISE else None
-            if key in NOISE and ref is None:
-                ref = 1.0  # a residual relative to 1 (power_residual, max_rel_difference)
-            out += differences(old[key], new[key], f"{where}.{key}",
-                               [v for v in old.values() if not isinstance(v, (dict, list))],
-                               ref)
+            ref = None
+            if key in RELATIVE_NOISE:
+                ref = 1.0
+            elif key in NOISE:
+                ref = measured if measured is not None else _deep_scale(old)
+            if key in LINE_ANGLES and isinstance(old[key], float) and isinstance(
+                    new[key], float):
+                a, b = (math.sin(math.radians(v)) for v in (old[key], new[key]))
+                if abs(a - b) > RELATIVE:
+                    out.append(f"{where}.{key}: {old[key]!r} before, {new[key]!r} now")
+                continue
+            out += differences(old[key], new[key], f"{where}.{key}", siblings, ref)
         return out
     if isinstance(old, list) and isinstance(new, list):
         if len(old) != len(new):
@@ -113,9 +140,7 @@ def differences(old, new, where: str = "", siblings=(), reference: float | None 
     if isinstance(old, (int, float)) and isinstance(new, (int, float)) and not isinstance(
             old, bool):
         if reference is not None:
-            tolerance = RELATIVE * max(reference, abs(old), 1e-300)
-            if reference == 1.0:
-                tolerance = max(tolerance, RELATIVE)
+            tolerance = RELATIVE * max(reference, 1e-300)
         else:
             tolerance = RELATIVE * max(abs(old), abs(new), _scale(siblings))
         if not math.isclose(old, new, rel_tol=0.0, abs_tol=tolerance) and old != new:

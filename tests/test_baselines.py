@@ -28,3 +28,6 @@ def test_the_comparison_can_fail():
                                                                 "abs_error": 0.0}]})
     assert differences(old, {**old, "title": "Other"})
     assert differences(old, {**old, "checks": [{"analytic": 5.0, "abs_error": 1e-9}]})
+    angles = {"line_angle_deg": 89.99999914622636}
+    assert not differences(angles, {"line_angle_deg": 90.0})   # sines 1 − 1 ulp and 1
+    assert differences(angles, {"line_angle_deg": 89.99})

@@ -4,6 +4,7 @@ choice, error paths, Assur's special point on the plans and in the force analysi
 from __future__ import annotations
 
 import copy
+import dataclasses
 import tomllib
 from pathlib import Path
 
@@ -12,7 +13,8 @@ import pytest
 
 from planmethod.errors import AssemblyError, BranchJumpError, ConvergenceError, ToggleError
 from planmethod.forces import solve_forces
-from planmethod.kinematics import higher, solve
+from planmethod.kinematics import solve
+from planmethod.kinematics.groups import higher
 from planmethod.kinematics.solve import Branch, choose_branches
 from planmethod.plans import draw_plans
 from planmethod.plans.higher import SPECIAL
@@ -125,22 +127,30 @@ def test_a_group_that_cannot_be_assembled():
     assert caught.value.angle == 135.0 and "tray" in caught.value.link
 
 
+def _fresh(mechanism, title: str):
+    """An equal mechanism but for its title: a model of its own (nothing cached yet)."""
+    return dataclasses.replace(mechanism, title=title)
+
+
 def test_newton_that_does_not_converge_says_where_and_how_far(exercise, monkeypatch):
-    branches = choose_branches(exercise.mechanism)
+    mechanism = _fresh(exercise.mechanism, "no convergence")
+    branches = choose_branches(mechanism)
     monkeypatch.setattr(higher, "RESIDUAL", -1.0)   # nothing ever counts as converged
     with pytest.raises(ConvergenceError, match="Newton did not converge: residual") as caught:
-        solve(exercise.mechanism, 140.0, stage="position", branches=branches)
+        solve(mechanism, 140.0, stage="position", branches=branches)
     assert caught.value.angle is not None and caught.value.residual >= 0
     assert "tray" in str(caught.value)
 
 
 def test_a_branch_jump_is_an_error_not_a_flip(exercise, monkeypatch):
-    branches = choose_branches(exercise.mechanism)
-    monkeypatch.setattr(higher._Tracker, "accept",
-                        lambda self, solver, q, converged, *rest: (converged & False,
-                                                                   np.ones(len(q))))
+    mechanism = _fresh(exercise.mechanism, "jump")
+    branches = choose_branches(mechanism)
+    # every correction counts as moving too far from its prediction
+    monkeypatch.setattr(higher, "accept", lambda length, q, converged, *rest: (
+        converged & False, np.ones(len(q))))
+    monkeypatch.setattr(higher, "allowed", lambda length, expected: -1.0)
     with pytest.raises(BranchJumpError, match="jump to another branch"):
-        solve(exercise.mechanism, 150.0, stage="position", branches=branches)
+        solve(mechanism, 150.0, stage="position", branches=branches)
 
 
 def test_an_unreachable_angle_in_a_sweep_is_a_named_error():

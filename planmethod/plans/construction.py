@@ -1,11 +1,12 @@
 """The plan emulator: velocity and acceleration plans built the way a student draws them.
 
 For one crank angle the plans are drawn group by group in build order from the groups' vector
-equations (see :mod:`planmethod.kinematics.dyads`): a known vector is laid off from a known plan
-point; an unknown one is a line of known direction through a known plan point; two such lines
-are intersected. The acceleration plan lays off the normal components computed from velocity-
-plan segments, (bn) = (bc)²·μv²/((BC)·μl·μa), and the Coriolis components 2ω·v_rel turned 90°
-in the sense of ω. Extra points follow by the similarity rule. ω and ε are read off the plans.
+equations (see :mod:`planmethod.kinematics.groups.base`): a known vector is laid off from a
+known plan point; an unknown one is a line of known direction through a known plan point; two
+such lines are intersected. The acceleration plan lays off the normal components computed from
+velocity-plan segments, (bn) = (bc)²·μv²/((BC)·μl·μa), and the Coriolis components 2ω·v_rel
+turned 90° in the sense of ω. Extra points follow by the similarity rule. ω and ε are read off
+the plans.
 
 Only the mechanism's *positions* (the position plan) and the drive's ω1, ε1 enter; velocities
 and accelerations are never taken from the analytical solution. With ``precision_mm`` > 0 every
@@ -32,7 +33,7 @@ import numpy as np
 
 from ..errors import PlanmethodError, ToggleError
 from ..kinematics import Motion, solve
-from ..kinematics.dyads import TOGGLE_SINE, Construction
+from ..kinematics.groups.base import TOGGLE_SINE, Construction
 from ..model import FRAME, Exercise, PlanSettings
 from .scales import Scales, choose_scales
 
@@ -669,7 +670,7 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
     """ρ = (pd)²·μv² / ((πn_D)·μa): project πd on the normal to pd (seed 001)."""
     v, a, scales = emulator.v, emulator.a, emulator.scales
     name = point.partition("@")[0]
-    link, position, _ = emulator.motion._locate(point)
+    link, position = emulator.motion.locate(point)
     v_label = emulator.image_at(v, emulator.vimages, link, position[0],
                                 image_label(point, v.pole))
     a_label = emulator.image_at(a, emulator.aimages, link, position[0],
@@ -836,7 +837,7 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
                 acceleration_triad(emulator, groups[index])
     ask = exercise.ask
     for point in _asked_points(exercise, motion):
-        link, position, _ = motion._locate(point)
+        link, position = motion.locate(point)
         emulator.image_at(emulator.v, emulator.vimages, link, position[0],
                           image_label(point, "p"))
         emulator.readings[f"v_{point}"] = emulator.v.read(

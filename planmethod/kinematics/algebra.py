@@ -1,0 +1,199 @@
+"""The arithmetic the group kinds are written in: one formula, three kinds of number.
+
+Every closed form in :mod:`planmethod.kinematics.groups` is written once, with the operators
+and the functions of this module, over numbers that are
+
+* Python floats (constants of the model: link lengths, local coordinates, ω1 of the drive),
+* numpy arrays over the crank angles (the *direct* evaluation: the reference path, used for the
+  branch choice, the plans' constructions and exact error checks), or
+* :class:`~planmethod.kinematics.tracing.Traced` values, which record each operation instead of
+  doing it (the *traced* evaluation: the formulas of a whole mechanism turned into one
+  straight-line numpy function, see :mod:`planmethod.kinematics.tracing`).
+
+Because the same expressions run in both evaluations, in the same order, the fast path and the
+reference path give the same numbers.
+
+:class:`Vec` is a plane vector of two such numbers (structure of arrays: x and y apart), and
+:class:`Body` a link's pose and motion: its axes (cos θ, sin θ), origin, ω, ε and its origin's
+velocity and acceleration.
+
+Examples
+--------
+>>> import numpy as np
+>>> crank = Body(c=np.array([0.0]), s=np.array([1.0]), x=0.0, y=0.0, w=10.0)
+>>> b = crank.offset(0.08, 0.0)
+>>> [float(v[0]) for v in (b.x, b.y)], [float(v[0]) for v in crank.velocity(b)]
+([0.0, 0.08], [-0.8, 0.0])
+>>> sqrt(4.0), sqrt(np.array([9.0]))
+(2.0, array([3.]))
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Body", "Vec", "absolute", "atan2", "cos", "cross", "dot", "is_zero", "maximum",
+           "minimum", "norm", "sin", "sqrt"]
+
+Number = Any  # float | np.ndarray | Traced
+
+
+def _traced(value) -> bool:
+    return hasattr(value, "tracer")
+
+
+def sqrt(value: Number) -> Number:
+    if isinstance(value, float | int):
+        return math.sqrt(value)
+    if _traced(value):
+        return value.tracer.apply("sqrt", value)
+    return np.sqrt(value)
+
+
+def cos(value: Number) -> Number:
+    if isinstance(value, float | int):
+        return math.cos(value)
+    if _traced(value):
+        return value.tracer.apply("cos", value)
+    return np.cos(value)
+
+
+def sin(value: Number) -> Number:
+    if isinstance(value, float | int):
+        return math.sin(value)
+    if _traced(value):
+        return value.tracer.apply("sin", value)
+    return np.sin(value)
+
+
+def atan2(y: Number, x: Number) -> Number:
+    if isinstance(y, float | int) and isinstance(x, float | int):
+        return math.atan2(y, x)
+    if _traced(y) or _traced(x):
+        tracer = y.tracer if _traced(y) else x.tracer
+        return tracer.apply("arctan2", y, x)
+    return np.arctan2(y, x)
+
+
+def absolute(value: Number) -> Number:
+    if isinstance(value, float | int):
+        return abs(value)
+    if _traced(value):
+        return value.tracer.apply("abs", value)
+    return np.abs(value)
+
+
+def maximum(a: Number, b: Number) -> Number:
+    if isinstance(a, float | int) and isinstance(b, float | int):
+        return max(a, b)
+    if _traced(a) or _traced(b):
+        return (a if _traced(a) else b).tracer.apply("maximum", a, b)
+    return np.maximum(a, b)
+
+
+def minimum(a: Number, b: Number) -> Number:
+    if isinstance(a, float | int) and isinstance(b, float | int):
+        return min(a, b)
+    if _traced(a) or _traced(b):
+        return (a if _traced(a) else b).tracer.apply("minimum", a, b)
+    return np.minimum(a, b)
+
+
+def is_zero(value: Number) -> bool:
+    """Whether ``value`` is the constant zero (a float 0; never an array or a traced value)."""
+    return isinstance(value, float | int) and value == 0
+
+
+class Vec:
+    """A plane vector (x, y) of numbers (floats, arrays or traced values)."""
+
+    __slots__ = ("x", "y")
+
+    def __init__(self, x: Number, y: Number) -> None:
+        self.x, self.y = x, y
+
+    def __add__(self, other: Vec) -> Vec:
+        return Vec(self.x + other.x, self.y + other.y)
+
+    def __sub__(self, other: Vec) -> Vec:
+        return Vec(self.x - other.x, self.y - other.y)
+
+    def __neg__(self) -> Vec:
+        return Vec(-self.x, -self.y)
+
+    def __mul__(self, factor: Number) -> Vec:
+        return Vec(self.x * factor, self.y * factor)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, divisor: Number) -> Vec:
+        return Vec(self.x / divisor, self.y / divisor)
+
+    def perp(self) -> Vec:
+        """The vector turned by +90°: J·v = (−y, x)."""
+        return Vec(-self.y, self.x)
+
+    def turned(self, c: Number, s: Number) -> Vec:
+        """The vector turned by the angle whose cosine and sine are ``c``, ``s``."""
+        return Vec(self.x * c - self.y * s, self.x * s + self.y * c)
+
+    def __iter__(self):
+        return iter((self.x, self.y))
+
+    def __repr__(self) -> str:
+        return f"Vec({self.x!r}, {self.y!r})"
+
+
+def dot(a: Vec, b: Vec) -> Number:
+    return a.x * b.x + a.y * b.y
+
+
+def cross(a: Vec, b: Vec) -> Number:
+    """z-component of a × b."""
+    return a.x * b.y - a.y * b.x
+
+
+def norm(a: Vec) -> Number:
+    return sqrt(a.x * a.x + a.y * a.y)
+
+
+class Body:
+    """A link's pose and motion: axes (``c``, ``s``) = (cos θ, sin θ), origin (``x``, ``y``),
+    angular velocity ``w`` and acceleration ``e``, the origin's velocity (``vx``, ``vy``) and
+    acceleration (``ax``, ``ay``). Motion not (yet) known is zero; the frame is all constants.
+    """
+
+    __slots__ = ("ax", "ay", "c", "e", "s", "vx", "vy", "w", "x", "y")
+
+    def __init__(self, c: Number = 1.0, s: Number = 0.0, x: Number = 0.0, y: Number = 0.0,
+                 w: Number = 0.0, vx: Number = 0.0, vy: Number = 0.0, e: Number = 0.0,
+                 ax: Number = 0.0, ay: Number = 0.0) -> None:
+        self.c, self.s, self.x, self.y = c, s, x, y
+        self.w, self.vx, self.vy = w, vx, vy
+        self.e, self.ax, self.ay = e, ax, ay
+
+    @property
+    def origin(self) -> Vec:
+        return Vec(self.x, self.y)
+
+    def offset(self, lx: float, ly: float) -> Vec:
+        """The local vector (lx, ly) turned onto the link's axes (a point's offset from the
+        origin)."""
+        return Vec(lx, ly).turned(self.c, self.s)
+
+    def point(self, lx: float, ly: float) -> Vec:
+        """Global position of the link's point with local coordinates (lx, ly)."""
+        return self.origin + self.offset(lx, ly)
+
+    def velocity(self, r: Vec) -> Vec:
+        """Velocity of the link's material point at offset ``r`` from the origin:
+        v + ω·J·r."""
+        return Vec(self.vx - self.w * r.y, self.vy + self.w * r.x)
+
+    def acceleration(self, r: Vec) -> Vec:
+        """Acceleration of the material point at offset ``r``: a + ε·J·r − ω²·r."""
+        square = self.w * self.w
+        return Vec(self.ax - self.e * r.y - square * r.x, self.ay + self.e * r.x - square * r.y)

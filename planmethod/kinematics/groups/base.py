@@ -1,0 +1,590 @@
+"""What every group kind shares: the context its formulas see, the two vector equations of a
+dyad and their exact solve, the checks that refuse a position, and the protocols through which
+the plans and the force analysis run a kind's own construction steps.
+
+A dyad kind (:mod:`~planmethod.kinematics.groups.rrr` …) writes one function, ``place(context)``:
+its closed-form positions, and its two vector equations as two :class:`Side` — the statement a
+student writes on the plan,
+
+    v_X = v_base1 + u1·e1 = v_base2 + u2·e2,
+
+where a *rotation* side has e = J·(X − centre) and u = ω of the turning link, and a *sliding*
+side has e along the guide and u the relative sliding speed. Everything after the positions is
+the same for every dyad (:func:`evaluate_dyad`): the 2 × 2 solve by Cramer's rule (parallel
+lines are the group's toggle), the normal (−ω²·r) and Coriolis (2ω × v_rel) terms of the
+accelerations, each link's ω and ε, its origin's velocity and acceleration. The plan emulator
+draws the same two sides (:func:`construction`).
+
+The formulas run on floats, numpy arrays or traced values (:mod:`planmethod.kinematics.algebra`);
+checks go through :meth:`Context.guard`: a cheap bound at every evaluation, the exact check
+(which raises the error) only where the bound fails.
+
+Examples
+--------
+>>> axes_towards(Vec(0.0, 2.0), (0.0, 0.0), (0.5, 0.0), 2.0)  # a link along +y
+(0.0, 1.0)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+
+from ...errors import AssemblyError, StructureError, ToggleError
+from ...model import Mechanism, Slide
+from ...structure import AssurGroup, Joint
+from ..algebra import Body, Vec, cross
+from ..tracing import Traced
+
+__all__ = [
+    "EPS",
+    "ROUNDING_UNITS",
+    "TOGGLE_SINE",
+    "Anchor",
+    "Branch",
+    "Construction",
+    "Context",
+    "ForceSolver",
+    "Pin",
+    "Placed",
+    "PlanDrawer",
+    "Side",
+    "Theta",
+    "evaluate_dyad",
+]
+
+#: the arithmetic's resolution (unit roundoff)
+EPS = float(np.finfo(float).eps)
+#: a vanishing factor within this many units of its own rounding error of zero is a toggle
+#: position (the two assemblies coincide), not a failure to assemble
+ROUNDING_UNITS = 16.0
+#: below this |sin| of the angle between two guides a PRP or RPP dyad has no definite position
+TOGGLE_SINE = 1e-10
+#: the margin by which a guard's bound is widened, so that its rounding never hides an angle the
+#: exact check refuses
+MARGIN = 1.0 + 1e-6
+
+
+@dataclass(frozen=True, slots=True)
+class Branch:
+    """The assembly a group takes: ``sign`` (±1 for a dyad, the assembly's number for a higher
+    group; see README, "Branches") and why (``sketch``, ``default`` or ``unique``)."""
+
+    sign: int
+    reason: str
+
+
+# -- the context -----------------------------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class Pin:
+    """A revolute pair of a group with a known link: ``link`` (of the group) carries the pin at
+    local ``local``; ``known`` carries it at ``known_local``; ``at`` is its global position and
+    ``offset`` its offset from the known link's origin."""
+
+    joint: Joint
+    link: str
+    known: str
+    local: tuple[float, float]
+    known_local: tuple[float, float]
+    at: Vec
+    offset: Vec
+    bound: float | None
+
+
+class Context:
+    """What a group kind's formulas see: the model, the group, its branch ``sign``, the bodies
+    of the links known so far (and of the group's links once placed), the crank angles (deg),
+    and :meth:`guard`. ``bounds`` holds, where known, an upper bound of the distance of a named
+    point from the global origin over every assembled position."""
+
+    def __init__(self, mechanism: Mechanism, group: AssurGroup, bodies: dict[str, Body],
+                 sign: float, angles, bounds: dict[str, float]) -> None:
+        self.mechanism, self.group, self.sign = mechanism, group, float(sign)
+        self.bodies, self.angles, self.bounds = bodies, angles, bounds
+
+    @property
+    def traced(self) -> bool:
+        return isinstance(self.angles, Traced)
+
+    def local(self, link: str, point: str) -> tuple[float, float]:
+        x, y = self.mechanism.local(link, point)
+        return float(x), float(y)
+
+    def group_link(self, joint: Joint) -> str:
+        return joint.links[0] if joint.links[0] in self.group.links else joint.links[1]
+
+    def pin(self, joint: Joint) -> Pin:
+        """The revolute pair ``joint`` between a group link and a known link."""
+        link = self.group_link(joint)
+        known = joint.other(link)
+        known_local = self.local(known, joint.point)
+        body = self.bodies[known]
+        offset = body.offset(*known_local)
+        return Pin(joint, link, known, self.local(link, joint.point), known_local,
+                   body.origin + offset, offset, self.bounds.get(joint.point))
+
+    def length(self, link: str, first: str, second: str) -> float:
+        """Distance between two points of a link; a zero length is a :class:`StructureError`."""
+        length = self.mechanism.links[link].length(first, second)
+        if not length > 1e-12:
+            raise StructureError(f"{link} ({first}{second}) has zero length: the group has no "
+                                 "definite position", link=self.group.name)
+        return length
+
+    def guard(self, value, bound: float, check: Callable, *args) -> None:
+        """Refuse a position: where ``value > bound`` fails at some angle, ``check(angles,
+        *args)`` runs on the arrays and raises (or returns, where the bound was too cautious)."""
+        if isinstance(value, Traced):
+            value.tracer.guard(value, bound, check, *args)
+        elif not (np.min(value) > bound):
+            check(self.angles, *args)
+
+    def guide(self, slide: Slide, unknown: str, body: Body | None = None
+              ) -> tuple[Vec, Vec, Any]:
+        """A prismatic pair's guide as a line for the *unknown* link's frame: (d, n, c) with d
+        the guide's global direction, n = J·d, and n·(origin of ``unknown``) = c. The guide's
+        orientation comes from the known link's axes (``body``, default its known body)."""
+        along_known = unknown == slide.link
+        known = slide.along if along_known else slide.link
+        body = body or self.bodies[known]
+        angle = slide.direction_rad if along_known else -slide.direction_rad
+        c, s = _turned_axes(body.c, body.s, angle)
+        if along_known:  # the guide is fixed in the known link
+            d = Vec(c, s)
+            n = d.perp()
+            through = body.point(*self.local(slide.along, slide.through))
+            own = Vec(*self.local(slide.link, slide.point)).turned(c, s)
+            return d, n, _dot(n, through - own)
+        # the guide is fixed in the unknown link, whose axes are the known link's turned back
+        d = Vec(body.c, body.s)
+        n = d.perp()
+        point = body.point(*self.local(slide.link, slide.point))
+        own = Vec(*self.local(slide.along, slide.through)).turned(c, s)
+        return d, n, _dot(n, point - own)
+
+    def slide_axes(self, slide: Slide, unknown: str) -> tuple[Any, Any]:
+        """The axes (cos θ, sin θ) of ``unknown``, held by a prismatic pair to a known link."""
+        if unknown == slide.link:
+            body = self.bodies[slide.along]
+            return _turned_axes(body.c, body.s, slide.direction_rad)
+        body = self.bodies[slide.link]
+        return _turned_axes(body.c, body.s, -slide.direction_rad)
+
+
+def _dot(a: Vec, b: Vec):
+    return a.x * b.x + a.y * b.y
+
+
+def _turned_axes(c, s, angle: float):
+    """(cos, sin) of θ + angle from (cos θ, sin θ)."""
+    if angle == 0.0:
+        return c, s
+    ca, sa = math.cos(angle), math.sin(angle)
+    return c * ca - s * sa, c * sa + s * ca
+
+
+# -- how a link's angle is read --------------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class Theta:
+    """How a link's angle θ is read from the solved points (computed only when asked):
+
+    * ``two``: θ = atan2(P_second − P_first) − ``alpha`` (a link through two pins);
+    * ``tied``: θ = θ(``link``) + ``alpha`` (a prismatic pair forbids relative rotation);
+    * ``span``: θ = atan2(span) − atan2(span in the link's own axes), span = P_first −
+      P_second (a guide link turning about its pivot);
+    * ``drive``, ``frame``, ``stored`` (a result row of its own).
+    """
+
+    kind: str
+    first: str | None = None
+    second: str | None = None
+    alpha: float = 0.0
+    link: str | None = None
+
+
+# -- a placed dyad ---------------------------------------------------------------------------
+@dataclass(slots=True)
+class Side:
+    """One side of v_X = v_base + u·e at the placed positions.
+
+    ``rotation``: ``link`` (of the group) turns about the base, e = J·``radius``; else ``link``
+    is the carrier X slides on, e the unit guide direction. The base is the material point of
+    the known ``base_link`` at ``position`` (``offset`` from that link's origin); ``length`` is
+    |e|; ``slide`` the prismatic pair of a sliding side.
+    """
+
+    rotation: bool
+    link: str
+    base: str
+    base_link: str
+    position: Vec
+    offset: Vec
+    direction: Vec
+    radius: Vec | None
+    length: Any
+    slide: Slide | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Anchor:
+    """The point a group link's motion is referred to: its pin ``name`` on the known link
+    ``known`` (at ``position``, ``offset`` from the known link's origin), or X itself
+    (``known`` None). ``local``: the point's coordinates on the group link (None: not a named
+    point of it)."""
+
+    name: str
+    position: Vec
+    known: str | None
+    offset: Vec | None
+    local: tuple[float, float] | None
+
+
+@dataclass(slots=True)
+class Placed:
+    """A dyad at its closed-form positions: its links' bodies (positions), X (named ``point``)
+    at ``x``, the two sides, how each link's ω follows (``rotating``: link → side index;
+    ``tied``: link → the link it cannot turn against), each link's :class:`Anchor`, the
+    positions of the named points the kind computed, how each θ is read, and an upper bound of
+    the size ratio R = L/l at every assembled position (see :func:`size_ratio`)."""
+
+    bodies: dict[str, Body]
+    point: str
+    x: Vec
+    sides: tuple[Side, Side]
+    rotating: dict[str, int]
+    tied: dict[str, str]
+    anchors: dict[str, Anchor]
+    points: dict[str, Vec]
+    thetas: dict[str, Theta]
+    ratio_bound: float
+    x_links: tuple[str, ...] = ()
+    #: X's local coordinates on those group links on which it is a named point
+    x_local: dict[str, tuple[float, float]] = field(default_factory=dict)
+
+
+def rotation_side(link: str, pin: Pin, x: Vec, length) -> Side:
+    radius = x - pin.at
+    return Side(True, link, pin.joint.point, pin.known, pin.at, pin.offset, radius.perp(),
+                radius, length)
+
+
+def sliding_side(context: Context, slide: Slide, carrier: str, base: str, base_link: str,
+                 position: Vec, placed: Mapping[str, Body], offset: Vec | None = None) -> Side:
+    """A side along the guide of ``slide`` (the guide's direction from its ``along`` link, a
+    known link or one of the group's ``placed`` bodies)."""
+    body = placed.get(slide.along) or context.bodies[slide.along]
+    c, s = _turned_axes(body.c, body.s, slide.direction_rad)
+    if offset is None:
+        offset = position - context.bodies[base_link].origin
+    return Side(False, carrier, base, base_link, position, offset, Vec(c, s), None, 1.0, slide)
+
+
+def axes_towards(r: Vec, first: tuple[float, float], second: tuple[float, float], length):
+    """The axes (cos θ, sin θ) of a link whose points ``first`` → ``second`` (local) lie along
+    ``r`` (global), |r| = ``length``: θ = angle(r) − angle(second − first)."""
+    lx, ly = second[0] - first[0], second[1] - first[1]
+    size = math.hypot(lx, ly)
+    lx, ly = lx / size, ly / size
+    return (r.x * lx + r.y * ly) / length, (r.y * lx - r.x * ly) / length
+
+
+# -- the generic solve of the two vector equations ---------------------------------------------
+def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Callable) -> dict:
+    """Velocities (``level`` ≥ 1) and accelerations (``level`` 2) of a placed dyad: fills the
+    group links' bodies in ``context.bodies`` and returns X's velocity and acceleration and the
+    sine of the angle between the two lines (``{"v_x", "a_x", "sine"}``)."""
+    bodies = context.bodies
+    for link, body in placed.bodies.items():
+        bodies[link] = body
+    out: dict[str, Any] = {}
+    if level < 1:
+        return out
+    s1, s2 = placed.sides
+    e1, e2 = s1.direction, s2.direction
+    det = cross(e1, e2)
+    sine = det / (s1.length * s2.length)
+    out["sine"] = sine
+    # the digits left near the toggle: ε·R/s³ (velocities), ε·R/s⁵ (accelerations) below 1
+    power = 3.0 if level == 1 else 5.0
+    bound = (EPS * placed.ratio_bound) ** (2.0 / power) * MARGIN
+    context.guard(sine * sine, bound, check_stage, sine, s1.position.x, s1.position.y,
+                  s2.position.x, s2.position.y,
+                  *(side.length if side.rotation else -1.0 for side in (s1, s2)))
+    vb1 = bodies[s1.base_link].velocity(s1.offset)
+    vb2 = bodies[s2.base_link].velocity(s2.offset)
+    w = vb2 - vb1
+    u1 = cross(w, e2) / det
+    u2 = cross(w, e1) / det
+    v_x = vb1 + e1 * u1
+    out["v_x"] = v_x
+    omegas = _follow(placed, {link: (u1, u2)[index] for link, index in placed.rotating.items()},
+                     lambda link: bodies[link].w)
+    for link, body in placed.bodies.items():
+        reference, velocity, _ = _reference(context, placed, link, v_x, None)
+        body.w = omegas[link]
+        r = body.origin - reference if reference is not None else None
+        if r is None:
+            body.vx, body.vy = velocity.x, velocity.y
+        else:
+            moved = velocity + r.perp() * body.w
+            body.vx, body.vy = moved.x, moved.y
+    if level < 2:
+        return out
+    ab1 = bodies[s1.base_link].acceleration(s1.offset)
+    ab2 = bodies[s2.base_link].acceleration(s2.offset)
+    known = []
+    for side, u in ((s1, u1), (s2, u2)):
+        if side.rotation:
+            known.append(side.radius * -(u * u))
+        else:  # the Coriolis term 2ω_carrier·J·v_rel
+            known.append((side.direction * u).perp() * (2.0 * bodies[side.link].w))
+    rhs = (ab2 + known[1]) - (ab1 + known[0])
+    du1 = cross(rhs, e2) / det
+    du2 = cross(rhs, e1) / det
+    a_x = ab1 + known[0] + e1 * du1
+    out["a_x"] = a_x
+    epsilons = _follow(placed, {link: (du1, du2)[index]
+                                for link, index in placed.rotating.items()},
+                       lambda link: bodies[link].e)
+    for link, body in placed.bodies.items():
+        reference, _, acceleration = _reference(context, placed, link, v_x, a_x)
+        body.e = epsilons[link]
+        if reference is None:
+            body.ax, body.ay = acceleration.x, acceleration.y
+        else:
+            r = body.origin - reference
+            square = body.w * body.w
+            moved = acceleration + r.perp() * body.e - r * square
+            body.ax, body.ay = moved.x, moved.y
+    return out
+
+
+def _follow(placed: Placed, values: dict, known: Callable) -> dict:
+    """Each link's ω (or ε): the rotating links' own, tied links follow theirs."""
+    pending = dict(placed.tied)
+    while pending:
+        for link, other in list(pending.items()):
+            if other in values:
+                values[link] = values[other]
+            elif other not in placed.bodies:
+                values[link] = known(other)
+            else:
+                continue
+            del pending[link]
+    return values
+
+
+def _reference(context: Context, placed: Placed, link: str, v_x: Vec, a_x: Vec | None):
+    """(reference position, or None where it is the link's origin; its velocity; its
+    acceleration) of a group link's motion: its pin on a known link, or X — whichever is the
+    link's origin, else the pin."""
+    anchor = placed.anchors.get(link)
+    pinned = anchor is not None and anchor.known is not None
+    on_x = placed.x_local.get(link, anchor.local if anchor is not None and not pinned else None)
+    if pinned and not (anchor.local != (0.0, 0.0) and on_x == (0.0, 0.0)):
+        known = context.bodies[anchor.known]
+        velocity = known.velocity(anchor.offset)
+        acceleration = known.acceleration(anchor.offset) if a_x is not None else None
+        return (None if anchor.local == (0.0, 0.0) else anchor.position), velocity, acceleration
+    return (None if on_x == (0.0, 0.0) else placed.x), v_x, a_x
+
+
+def place_origin(body: Body, references) -> None:
+    """Set a placed link's origin from the first of ``references`` — (global position, local
+    coordinates) of its points — that is the origin itself, else from the first."""
+    chosen = next((item for item in references if item[1] == (0.0, 0.0)), references[0])
+    position, local = chosen
+    origin = position if local == (0.0, 0.0) else position - body.offset(*local)
+    body.x, body.y = origin.x, origin.y
+
+
+# -- exact checks (run on arrays where a guard's bound fails) ----------------------------------
+def first(mask) -> int:
+    return int(np.flatnonzero(np.atleast_1d(mask))[0])
+
+
+def assembly_error(group: AssurGroup, angles, bad, text: str, shortfall) -> AssemblyError:
+    index = first(bad)
+    amount = float(np.broadcast_to(np.asarray(shortfall, dtype=float),
+                                   np.shape(np.atleast_1d(bad)))[index])
+    return AssemblyError(f"{text}: short by {amount:.6g} m", shortfall=amount,
+                         link=group.name, angle=float(np.atleast_1d(angles)[index]))
+
+
+def toggle_or_miss(group: AssurGroup, angles, vanishing, scale, text: str, shortfall) -> None:
+    """Raise at the first angle where a group cannot be assembled or is in its toggle position.
+
+    ``vanishing`` is the factor of the discriminant that goes to zero at the toggle (a + b −
+    |P1P2| for RRR), ``scale`` the size of the terms it was computed from: where |vanishing| ≤
+    ROUNDING_UNITS·eps·scale its sign is lost in rounding — a toggle (ToggleError); below
+    that the links cannot reach (AssemblyError saying by how much)."""
+    vanishing = np.atleast_1d(np.asarray(vanishing, dtype=float))
+    tolerance = ROUNDING_UNITS * EPS * np.asarray(scale, dtype=float)
+    toggle = np.abs(vanishing) <= tolerance
+    miss = (vanishing < 0) & ~toggle
+    toggles, misses = np.flatnonzero(toggle), np.flatnonzero(miss)
+    if misses.size and (not toggles.size or misses[0] < toggles[0]):
+        raise assembly_error(group, angles, miss, text, shortfall)
+    if toggles.size:
+        raise ToggleError(
+            "toggle position: the group's links are stretched out or folded in line, its two "
+            "construction lines are parallel and its motion is not determined",
+            line_angle_deg=0.0, link=group.name,
+            angle=float(np.atleast_1d(angles)[int(toggles[0])]))
+
+
+def parallel_guides(group: AssurGroup, angles, det, text: str) -> None:
+    bad = ~(np.abs(np.atleast_1d(det)) >= TOGGLE_SINE)
+    if np.any(bad):
+        raise ToggleError(text, line_angle_deg=0.0, link=group.name,
+                          angle=float(np.atleast_1d(angles)[first(bad)]))
+
+
+def stage_check(group: AssurGroup, stage: str) -> Callable:
+    """The exact check of a stage's digits (a guard's ``check``): ε·R/s^(2k+1) must stay below
+    1, R the size ratio at each angle (:func:`size_ratio`)."""
+
+    def check(angles, sine, x1, y1, x2, y2, length1, length2) -> None:
+        ratio = size_ratio(x1, y1, x2, y2, length1, length2)
+        estimate = error_estimate(ratio, np.asarray(sine), stage)
+        bad = ~(np.atleast_1d(estimate) < 1.0)
+        if np.any(bad):
+            index = first(bad)
+            value = float(np.broadcast_to(np.asarray(sine), bad.shape)[index])
+            angle = math.degrees(math.asin(min(1.0, abs(value))))
+            raise ToggleError(
+                f"toggle position: the group's two construction lines meet at {angle:.3g}°, "
+                f"so close to parallel that its {stage}s would have no correct digit",
+                line_angle_deg=angle, link=group.name,
+                angle=float(np.atleast_1d(angles)[index]))
+
+    return check
+
+
+def size_ratio(x1, y1, x2, y2, length1, length2):
+    """R = L / l: the group's size L (its radii plus the distance between its two base points)
+    over its shortest radius l (R = 1 for a group without a rotation side; a sliding side's
+    length is given as −1). The group's conditioning near its toggle is ε·R/s^(2k+1)."""
+    radii = [np.asarray(length, dtype=float) for length in (length1, length2)
+             if not (np.ndim(length) == 0 and float(length) < 0)]
+    if not radii:
+        return np.ones(np.shape(np.asarray(x1) - np.asarray(x2)))
+    span = np.hypot(np.asarray(x1) - np.asarray(x2), np.asarray(y1) - np.asarray(y2))
+    return (span + sum(radii)) / np.minimum.reduce(radii)
+
+
+def error_estimate(ratio, sine, stage: str):
+    """ε·R/s³ (velocities) or ε·R/s⁵ (accelerations)."""
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        size = np.abs(sine)
+        power = size * size * size
+        if stage == "acceleration":
+            power = power * size * size
+        return EPS * ratio / power
+
+
+# -- the construction a plan draws -------------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class Construction:
+    """A dyad's construction point X, its two sides and how its links' ω follow, at the solved
+    positions (arrays over the angles): what the plan emulator draws.
+
+    Each side: ``kind`` (``rotation`` or ``sliding``), ``link``, ``base`` (its printed name),
+    ``base_link``, ``base_position``, unit ``direction``, ``radius`` (rotation), ``slide``.
+    """
+
+    group: AssurGroup
+    point: str
+    position: np.ndarray
+    sides: tuple
+    rotating: Mapping[str, int]
+    tied: Mapping[str, str]
+    anchors: Mapping[str, tuple[str, np.ndarray, str]]
+    x_links: tuple[str, ...] = field(default=())
+
+    def reference(self, link: str) -> tuple[str, np.ndarray, str | None]:
+        """(name, position, known link) of the point a group link's motion is referred to:
+        its pin on a known link, or X itself (known link None)."""
+        if link in self.anchors:
+            return self.anchors[link]
+        return self.point, self.position, None
+
+    def size_ratio(self) -> np.ndarray:
+        """R = L/l of :func:`size_ratio` at each angle."""
+        s1, s2 = self.sides
+        lengths = [-1.0 if side.radius is None else np.hypot(*side.radius.T)
+                   for side in self.sides]
+        return size_ratio(s1.base_position[:, 0], s1.base_position[:, 1],
+                          s2.base_position[:, 0], s2.base_position[:, 1], *lengths)
+
+    def follow_tied(self, values: dict, known: Callable[[str], object]) -> None:
+        """Give each link tied to another by a prismatic pair that link's ω (or ε): ``values``
+        holds the group's own, ``known(link)`` those of links already known."""
+        pending = dict(self.tied)
+        while pending:
+            for link, other in list(pending.items()):
+                source = values.get(other)
+                if source is None:
+                    source = known(other)
+                if source is not None:
+                    values[link] = source
+                    del pending[link]
+
+
+@dataclass(frozen=True, slots=True)
+class ConstructionSide:
+    kind: str
+    link: str
+    base: str
+    base_link: str
+    base_position: np.ndarray
+    direction: np.ndarray
+    radius: np.ndarray | None = None
+    slide: Slide | None = None
+
+
+def _array(vec: Vec, count: int) -> np.ndarray:
+    out = np.empty((count, 2))
+    out[:, 0], out[:, 1] = vec.x, vec.y
+    return out
+
+
+def construction(placed: Placed, group: AssurGroup, count: int) -> Construction:
+    """The :class:`Construction` of a dyad placed by the direct evaluation."""
+    sides = []
+    for side in placed.sides:
+        direction = _array(side.direction, count)
+        if side.rotation:
+            direction = direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
+        sides.append(ConstructionSide(
+            "rotation" if side.rotation else "sliding", side.link, side.base, side.base_link,
+            _array(side.position, count), direction,
+            _array(side.radius, count) if side.radius is not None else None, side.slide))
+    anchors = {link: (anchor.name, _array(anchor.position, count), anchor.known)
+               for link, anchor in placed.anchors.items() if anchor.known is not None}
+    return Construction(group, placed.point, _array(placed.x, count), tuple(sides),
+                        dict(placed.rotating), dict(placed.tied), anchors, placed.x_links)
+
+
+# -- the protocols later layers implement ------------------------------------------------------
+class PlanDrawer(Protocol):
+    """What a group kind's own plan construction (a class III triad's) is given by the plan
+    emulator: the plan sheets and the images of the links solved so far (see
+    :mod:`planmethod.plans.construction`)."""
+
+    def where(self, link: str, point: str) -> np.ndarray: ...
+
+
+class ForceSolver(Protocol):
+    """What a group kind's textbook reaction sequence is given by the force analysis (see
+    :mod:`planmethod.forces.groups`): positions, the known wrenches, the 2 × 2 solve, and the
+    recording of reactions, polygon edges and the group's steps."""
+
+    def at(self, link: str, point: str) -> np.ndarray: ...
+
+    def solve2(self, e1, e2, w, group: str, what: str): ...
+

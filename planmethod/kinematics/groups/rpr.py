@@ -1,0 +1,108 @@
+"""RPR dyad (type 3): a block L1 pinned to a known link at P1 slides in a guide link L2 that
+turns about its pivot P2 on a known link (the crank and slotted lever).
+
+Position: in L2's frame the pin P1 lies on the guide line, P2→P1 = c0 + s·u (u the guide's
+direction, s the travel); |P2P1| fixes s, branch +1 the larger root.
+
+Vector equations (X = P1 taken as a point of L2, ``B@lever``): v_X = v_P1 + v_rel (along the
+guide) = v_P2 + v_XP2 (⟂ P2P1); the Coriolis term 2ω_L2 × v_rel.
+
+Reactions: R at P1 along the guide from the block's projection on the guide, across it from
+ΣM_P2 of the group; the normal force and couple of the slide from the block; R at P2 from the
+polygon of L2.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.kinematics import solve
+>>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism)
+>>> round(float(motion.omega("lever")), 6)
+1.923077
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...vocabulary import GroupKind
+from ..algebra import Body, Vec, sqrt
+from .base import (
+    EPS,
+    MARGIN,
+    Anchor,
+    Context,
+    Placed,
+    Theta,
+    assembly_error,
+    rotation_side,
+    sliding_side,
+    toggle_or_miss,
+)
+
+__all__ = ["BRANCHES", "KIND", "place"]
+
+KIND = GroupKind.RPR
+BRANCHES = 2
+
+
+def place(context: Context) -> Placed:
+    group = context.group
+    ext1, internal, ext2 = group.joints
+    slide = internal.slide
+    l1, l2 = group.links           # l1 is the block (the slide's link), l2 its guide
+    p1, p2 = context.pin(ext1), context.pin(ext2)
+    angle = slide.direction_rad
+    u = (math.cos(angle), math.sin(angle))
+    through = context.local(l2, slide.through)
+    block = context.local(l1, slide.point)
+    turned = Vec(p1.local[0] - block[0], p1.local[1] - block[1]).turned(*u)
+    c0 = (through[0] - p2.local[0] + turned.x, through[1] - p2.local[1] + turned.y)
+    offset = c0[0] * u[1] - c0[1] * u[0]      # the guide's distance from the pivot
+    span = p1.at - p2.at
+    square = span.x * span.x + span.y * span.y
+    length = sqrt(square)
+    text = (f"the guide of {l2} passes {abs(offset):g} m from its pivot {ext2.point}; it "
+            f"cannot reach {ext1.point}")
+
+    def check(angles, distance, sx, sy) -> None:
+        distance = np.atleast_1d(np.asarray(distance, dtype=float))
+        close = distance <= 1e-15
+        if np.any(close):
+            raise assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
+                                 "coincide: the group has no definite position", 0.0)
+        if offset != 0:
+            size = np.maximum(np.abs(np.asarray(sx)), np.abs(np.asarray(sy)))
+            toggle_or_miss(group, angles, distance - abs(offset),
+                           distance + abs(offset) + size, text, abs(offset) - distance)
+
+    # |P1P2| − |offset| must exceed 16ε·(|P1P2| + |offset| + |span|) ≤ 16ε·(3|P1P2| + |offset|)
+    # (and 1e-15 m): a margin proportional to the length itself
+    gap = length * (1.0 - 48.0 * EPS * MARGIN) - abs(offset) * (1.0 + 16.0 * EPS * MARGIN)
+    context.guard(gap, 1e-15, check, length, span.x, span.y)
+    projection = -(c0[0] * u[0] + c0[1] * u[1])
+    s = projection + sqrt(square - offset * offset) * context.sign
+    inside = Vec(c0[0] + s * u[0], c0[1] + s * u[1])    # P2 → P1 in L2's frame
+    # L2's axes turn `inside` onto `span`: (cos, sin) of angle(span) − angle(inside)
+    c2 = (inside.x * span.x + inside.y * span.y) / square
+    s2 = (inside.x * span.y - inside.y * span.x) / square
+    body2 = Body(c2, s2)
+    c1, s1 = c2 * u[0] - s2 * u[1], c2 * u[1] + s2 * u[0]
+    body1 = Body(c1, s1)
+    for body, pin in ((body1, p1), (body2, p2)):
+        origin = pin.at - body.offset(*pin.local)
+        body.x, body.y = origin.x, origin.y
+    placed = {l1: body1, l2: body2}
+    x = p1.at
+    sides = (sliding_side(context, slide, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
+             rotation_side(l2, p2, x, length))
+    return Placed(
+        bodies=placed, point=f"{ext1.point}@{l2}", x=x, sides=sides,
+        rotating={l2: 1}, tied={l1: l2},
+        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        points={},
+        thetas={l2: Theta("span", ext1.point, ext2.point, link=l2),
+                l1: Theta("tied", alpha=angle, link=l2)},
+        ratio_bound=2.0 * MARGIN, x_links=(l2,))

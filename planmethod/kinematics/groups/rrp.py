@@ -1,0 +1,100 @@
+"""RRP dyad (type 2): L1 pinned to a known link at P1 and to L2 at Q; L2 slides along a guide
+of a known link (the slider of a slider-crank).
+
+Position: Q is where the circle about P1 (radius a = P1Q) meets the line of Q along the guide;
+branch +1 takes the point further along the guide's direction.
+
+Vector equations (X = Q): v_Q = v_P1 + v_QP1 (⟂ P1Q) = v_Q@K + v_rel (along the guide), K the
+known link of the guide (Coriolis 2ω_K × v_rel where K turns).
+
+Reactions: Rᵗ at P1 from ΣM_Q(L1) = 0; the polygon Rᵗ1 + ΣF + N + Rⁿ1 = 0 with N ⟂ the guide;
+the pin Q from L1; the guide's reaction couple from ΣM(L2) = 0 about the slide point.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.kinematics import solve
+>>> motion = solve(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+>>> round(float(motion.velocity("C")[0]), 4)
+-5.2716
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...vocabulary import GroupKind
+from ..algebra import Body, sqrt
+from .base import (
+    EPS,
+    MARGIN,
+    Anchor,
+    Context,
+    Placed,
+    Theta,
+    axes_towards,
+    place_origin,
+    rotation_side,
+    sliding_side,
+    toggle_or_miss,
+)
+
+__all__ = ["BRANCHES", "KIND", "place"]
+
+KIND = GroupKind.RRP
+BRANCHES = 2
+
+
+def place(context: Context) -> Placed:
+    group = context.group
+    ext1, internal, ext2 = group.joints
+    l1, l2 = group.links
+    slide = ext2.slide
+    k2 = ext2.other(l2)
+    p1 = context.pin(ext1)
+    q1, q2 = context.local(l1, internal.point), context.local(l2, internal.point)
+    a = context.length(l1, ext1.point, internal.point)
+    c2, s2 = context.slide_axes(slide, l2)
+    d, n, c = context.guide(slide, l2)
+    turned = Body(c2, s2).offset(*q2)
+    offset = c + (n.x * turned.x + n.y * turned.y)   # the line of Q: n·Q = offset
+    h = (n.x * p1.at.x + n.y * p1.at.y) - offset
+    square = a * a - h * h
+    text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) cannot reach the line of "
+            f"{internal.point} along {slide.along}'s guide")
+
+    def check(angles, x1, y1, height, line) -> None:
+        height, line = np.asarray(height, dtype=float), np.asarray(line, dtype=float)
+        size = np.maximum(np.abs(np.asarray(x1, dtype=float)), np.abs(np.asarray(y1, dtype=float)))
+        toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
+                       np.abs(height) - a)
+
+    # a² − h² = (a − |h|)(a + |h|): where it exceeds 2a·16ε·(scale) no angle is a toggle or a
+    # miss; the scale a + |offset| + |P1| is at most 2a + 2|P1| while |h| < a
+    if p1.bound is None:
+        context.guard(square, np.inf, check, p1.at.x, p1.at.y, h, offset)
+    else:
+        bound = 2.0 * a * 16.0 * EPS * (2.0 * a + 2.0 * p1.bound) * 1.01 * MARGIN
+        context.guard(square, bound, check, p1.at.x, p1.at.y, h, offset)
+    along = sqrt(square) * context.sign
+    r1 = d * along - n * h
+    x = p1.at + r1
+    body1 = Body(*axes_towards(r1, p1.local, q1, a))
+    place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    body2 = Body(c2, s2)
+    origin2 = x if q2 == (0.0, 0.0) else x - turned
+    body2.x, body2.y = origin2.x, origin2.y
+    placed = {l1: body1, l2: body2}
+    sides = (rotation_side(l1, p1, x, a),
+             sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
+    delta = slide.direction_rad if l2 == slide.link else -slide.direction_rad
+    return Placed(
+        bodies=placed, point=internal.point, x=x, sides=sides,
+        rotating={l1: 0}, tied={l2: k2},
+        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: Anchor(internal.point, x, None, None, q2)},
+        points={internal.point: x},
+        thetas={l1: Theta("two", ext1.point, internal.point,
+                          float(np.arctan2(q1[1] - p1.local[1], q1[0] - p1.local[0]))),
+                l2: Theta("tied", alpha=delta, link=k2)},
+        ratio_bound=2.0 * MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})

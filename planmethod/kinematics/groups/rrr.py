@@ -1,0 +1,106 @@
+"""RRR dyad (type 1): two links L1, L2 pinned to known links at P1, P2 and to each other at Q.
+
+Position: Q is where the circles about P1 (radius a = P1Q) and P2 (radius b = P2Q) meet — by
+Heron's form, which keeps the height accurate near the toggle (a + b ≈ |P1P2| or |a − b| ≈
+|P1P2|). Branch +1 puts Q to the left of P1 → P2.
+
+Vector equations (X = Q): v_Q = v_P1 + v_QP1 (⟂ P1Q) = v_P2 + v_QP2 (⟂ P2Q).
+
+Reactions: Rᵗ at P1 ⟂ P1Q from ΣM_Q(L1) = 0, Rᵗ at P2 from ΣM_Q(L2) = 0; the group's force
+polygon Rᵗ1 + ΣF + Rᵗ2 + Rⁿ2 + Rⁿ1 = 0 with the Rⁿ along the links; the pin Q from L1.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.kinematics import solve
+>>> motion = solve(load_exercise("exercises/fourbar_coupler_point.toml").mechanism, 60.0)
+>>> motion.position("C").round(6)
+array([0.23641 , 0.168393])
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["BRANCHES", "KIND", "place"]
+
+from ...vocabulary import GroupKind
+from ..algebra import Body, sqrt
+from .base import (
+    EPS,
+    MARGIN,
+    Anchor,
+    Context,
+    Placed,
+    Theta,
+    assembly_error,
+    axes_towards,
+    place_origin,
+    rotation_side,
+    toggle_or_miss,
+)
+
+KIND = GroupKind.RRR
+BRANCHES = 2
+
+
+def place(context: Context) -> Placed:
+    group = context.group
+    ext1, internal, ext2 = group.joints
+    l1, l2 = group.links
+    p1, p2 = context.pin(ext1), context.pin(ext2)
+    q1, q2 = context.local(l1, internal.point), context.local(l2, internal.point)
+    a = context.length(l1, ext1.point, internal.point)
+    b = context.length(l2, ext2.point, internal.point)
+    span = p2.at - p1.at
+    square = span.x * span.x + span.y * span.y
+    d = sqrt(square)
+    # Heron's form: the product of the four factors a ± b ± d
+    product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)
+    text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) and {l2} ({internal.point}"
+            f"{ext2.point} = {b:g} m) cannot join {ext1.point} and {ext2.point}")
+
+    def check(angles, x1, y1, x2, y2) -> None:
+        dx, dy = np.asarray(x2) - np.asarray(x1), np.asarray(y2) - np.asarray(y1)
+        distance = np.atleast_1d(np.sqrt(dx * dx + dy * dy))
+        close = distance <= 1e-15 * (a + b)
+        if np.any(close):
+            raise assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
+                                 "coincide: the group has no definite position", 0.0)
+        stretched, folded = a + b - distance, distance - abs(a - b)
+        vanishing = np.where(np.abs(stretched) <= np.abs(folded), stretched, folded)
+        reach = np.maximum(np.abs(dx), np.abs(dy))
+        toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
+                       np.maximum(distance - a - b, np.maximum(abs(a - b) - distance, 0.0)))
+
+    # where the product exceeds this, no angle is a toggle, a miss or coinciding pins (README:
+    # a toggle's vanishing factor within 16ε of the terms' size)
+    bound = max(192.0 * EPS, 1e-30) * (a + b) ** 4 * MARGIN
+    context.guard(product, bound, check, p1.at.x, p1.at.y, p2.at.x, p2.at.y)
+    twice = d * 2.0
+    along = (a * a - b * b + square) / twice
+    height = sqrt(product) / twice * context.sign
+    unit = span / d
+    r1 = unit * along + unit.perp() * height
+    x = p1.at + r1
+    r2 = x - p2.at
+    body1 = Body(*axes_towards(r1, p1.local, q1, a))
+    body2 = Body(*axes_towards(r2, p2.local, q2, b))
+    place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    place_origin(body2, ((p2.at, p2.local), (x, q2)))
+    return Placed(
+        bodies={l1: body1, l2: body2}, point=internal.point, x=x,
+        sides=(rotation_side(l1, p1, x, a), rotation_side(l2, p2, x, b)),
+        rotating={l1: 0, l2: 1}, tied={},
+        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        points={internal.point: x},
+        thetas={l1: Theta("two", ext1.point, internal.point, _angle(p1.local, q1)),
+                l2: Theta("two", ext2.point, internal.point, _angle(p2.local, q2))},
+        ratio_bound=2.0 * (a + b) / min(a, b) * MARGIN, x_links=(l1, l2),
+        x_local={l1: q1, l2: q2})
+
+
+def _angle(first, second) -> float:
+    return float(np.arctan2(second[1] - first[1], second[0] - first[0]))
+

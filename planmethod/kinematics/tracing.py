@@ -1,0 +1,468 @@
+"""Formulas traced into one straight-line numpy function, evaluated in a reused workspace.
+
+A :class:`Tracer` runs the group kinds' formulas (:mod:`planmethod.kinematics.groups`) on
+:class:`Traced` values: each arithmetic operation is recorded instead of done. Constants of the
+model fold away as the operations are recorded (a frame point does not move, a zero coordinate
+adds nothing, a factor 1 is no multiplication), a negation is carried as a sign until a value
+needs it, and an operation already recorded with the same arguments is not recorded again.
+:meth:`Tracer.compile` then writes the recorded operations as Python source — one numpy ufunc
+call per operation, each writing into a row of a preallocated workspace (``out=``), rows reused
+as soon as a value is dead — and compiles it. What the function computes goes straight into the
+rows of the result buffer (:class:`Layout` says which row holds what).
+
+Checks are recorded as *guards*: a cheap bound over all angles (``values.min() > bound``); only
+where the bound fails is the exact check (a function of the group kind, run on the arrays)
+called, which raises the error with its angle, link and message or lets the evaluation go on.
+
+Examples
+--------
+>>> import numpy as np
+>>> tracer = Tracer()
+>>> phi = tracer.angles()
+>>> c = tracer.apply("cos", tracer.apply("radians", phi))
+>>> tracer.output("x", 0.5 * c + 0.0)
+>>> tracer.output("y", 2.0)
+>>> compiled = tracer.compile()
+>>> rows = compiled.evaluate(np.array([0.0, 120.0]))
+>>> compiled.read(rows, "x").round(6).tolist(), compiled.read(rows, "y").tolist()
+([0.5, -0.25], [2.0, 2.0])
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["CHUNK", "Compiled", "Layout", "Redo", "Traced", "Tracer"]
+
+#: angles evaluated at once: a workspace of this many angles per row stays in a core's cache,
+#: and a long sweep is evaluated chunk by chunk into the result rows
+CHUNK = 4096
+
+#: the numpy ufunc of each recorded operation
+_UFUNCS = {"add": "add", "sub": "subtract", "mul": "multiply", "div": "divide",
+           "neg": "negative", "sqrt": "sqrt", "cos": "cos", "sin": "sin", "abs": "absolute",
+           "arctan2": "arctan2", "radians": "radians", "maximum": "maximum",
+           "minimum": "minimum"}
+_PYTHON = {"add": lambda a, b: a + b, "sub": lambda a, b: a - b, "mul": lambda a, b: a * b,
+           "div": lambda a, b: a / b, "neg": lambda a: -a, "sqrt": math.sqrt, "cos": math.cos,
+           "sin": math.sin, "abs": abs, "arctan2": math.atan2, "radians": math.radians,
+           "maximum": max, "minimum": min}
+_COMMUTATIVE = {"add", "mul", "maximum", "minimum"}
+#: ufuncs whose output is passed by keyword
+_KEYWORD_OUT = {"maximum", "minimum"}
+
+
+class Redo(Exception):  # noqa: N818 (a signal, not an error)
+    """Raised by a guard's check where the straight-line evaluation does not apply to a chunk
+    (a Newton step that did not converge, an assembly far from its path): the chunk is then
+    evaluated again by :attr:`Compiled.redo` (the direct evaluation, which iterates and raises
+    the errors)."""
+
+
+def _key(value) -> object:
+    """A CSE key of an argument: an id, or a float's exact bits."""
+    return value if isinstance(value, int) else ("c", float(value).hex())
+
+
+class Traced:
+    """A recorded value: operation ``id`` of its tracer, possibly negated (a negation is carried
+    as a sign until an operation needs the value itself)."""
+
+    __slots__ = ("id", "negated", "tracer")
+
+    def __init__(self, tracer: Tracer, id: int, negated: bool = False) -> None:
+        self.tracer, self.id, self.negated = tracer, id, negated
+
+    def __neg__(self) -> Traced:
+        return Traced(self.tracer, self.id, not self.negated)
+
+    def __add__(self, other):
+        return self.tracer.add(self, other)
+
+    def __radd__(self, other):
+        return self.tracer.add(other, self)
+
+    def __sub__(self, other):
+        return self.tracer.add(self, _negate(other))
+
+    def __rsub__(self, other):
+        return self.tracer.add(other, -self)
+
+    def __mul__(self, other):
+        return self.tracer.mul(self, other)
+
+    def __rmul__(self, other):
+        return self.tracer.mul(other, self)
+
+    def __truediv__(self, other):
+        return self.tracer.div(self, other)
+
+    def __rtruediv__(self, other):
+        return self.tracer.div(other, self)
+
+    def __repr__(self) -> str:
+        return f"{'-' if self.negated else ''}t{self.id}"
+
+
+def _negate(value):
+    return -value
+
+
+def _float(value) -> bool:
+    return isinstance(value, float | int) and not isinstance(value, bool)
+
+
+@dataclass
+class _Op:
+    name: str
+    out: tuple[int, ...]
+    args: tuple
+    extra: object = None  # a guard's (bound, check index); a call's function index
+
+
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """Where each output is: ``rows[name]`` = a row index, or a pair (x row, y row) of
+    consecutive rows, or ``constants[name]`` a float or a pair of floats."""
+
+    rows: dict = field(default_factory=dict)
+    constants: dict = field(default_factory=dict)
+    count: int = 0
+
+
+class Tracer:
+    """Records operations on :class:`Traced` values (see the module docstring)."""
+
+    def __init__(self) -> None:
+        self.ops: list[_Op] = []
+        self._count = 1  # id 0: the crank angles (deg)
+        self._seen: dict[tuple, int] = {}
+        self.checks: list[Callable] = []
+        self.calls: list[Callable] = []
+        self._outputs: list[tuple[str, tuple]] = []
+
+    # -- recording ---------------------------------------------------------------------------
+    def angles(self) -> Traced:
+        """The crank angles in degrees (the function's input)."""
+        return Traced(self, 0)
+
+    def _record(self, name: str, *args) -> Traced:
+        key = (name, *(_key(a) for a in args))
+        if name in _COMMUTATIVE:
+            key = (name, *sorted((_key(a) for a in args), key=repr))
+        found = self._seen.get(key)
+        if found is None:
+            found = self._seen[key] = self._count
+            self._count += 1
+            self.ops.append(_Op(name, (found,), args))
+        return Traced(self, found)
+
+    def plain(self, value) -> object:
+        """A float, or the id of a traced value with its sign applied (a negation recorded)."""
+        if not isinstance(value, Traced):
+            return float(value)
+        if value.negated:
+            return self._record("neg", value.id).id
+        return value.id
+
+    def apply(self, name: str, *args):
+        """Record (or fold) the operation ``name`` of ``args``."""
+        if all(_float(a) for a in args):
+            return _PYTHON[name](*(float(a) for a in args))
+        if name in ("cos", "abs"):
+            (value,) = args
+            return self._record(name, value.id)
+        if name == "sin":
+            (value,) = args
+            found = self._record(name, value.id)
+            return -found if value.negated else found
+        return self._record(name, *(self.plain(a) for a in args))
+
+    def add(self, a, b):
+        if _float(a) and _float(b):
+            return float(a) + float(b)
+        if _float(a) and a == 0:
+            return b
+        if _float(b) and b == 0:
+            return a
+        if _float(a):
+            a, b = b, a
+        if _float(b):  # ±A + c
+            if a.negated:
+                return self._record("sub", float(b), a.id)
+            return self._record("add", a.id, float(b))
+        if a.id == b.id:
+            if a.negated != b.negated:
+                return 0.0
+            found = self._record("add", a.id, a.id)
+            return -found if a.negated else found
+        if not a.negated and not b.negated:
+            return self._record("add", a.id, b.id)
+        if not a.negated:
+            return self._record("sub", a.id, b.id)
+        if not b.negated:
+            return self._record("sub", b.id, a.id)
+        return -self._record("add", a.id, b.id)
+
+    def mul(self, a, b):
+        if _float(a) and _float(b):
+            return float(a) * float(b)
+        if _float(a):
+            a, b = b, a
+        if _float(b):
+            factor = float(b)
+            if factor == 0:
+                return 0.0
+            if factor == 1:
+                return a
+            if factor == -1:
+                return -a
+            return self._record("mul", a.id, -factor if a.negated else factor)
+        found = self._record("mul", a.id, b.id)
+        return -found if a.negated != b.negated else found
+
+    def div(self, a, b):
+        if _float(a) and _float(b):
+            return float(a) / float(b)
+        if _float(b):
+            divisor = float(b)
+            if divisor == 1:
+                return a
+            if divisor == -1:
+                return -a
+            return self._record("div", a.id, -divisor if a.negated else divisor)
+        if _float(a):
+            if a == 0:
+                return 0.0
+            return self._record("div", -float(a) if b.negated else float(a), b.id)
+        found = self._record("div", a.id, b.id)
+        return -found if a.negated != b.negated else found
+
+    def guard(self, value, bound: float, check: Callable, *args) -> None:
+        """At run time: where ``value.min() > bound`` fails (NaN included), call
+        ``check(angles_deg, *args)`` (arrays), which raises or returns."""
+        if _float(value) and float(value) > bound:
+            return  # holds at every angle
+        self.checks.append(check)
+        plain = tuple(self.plain(a) if isinstance(a, Traced) else float(a) for a in args)
+        # a constant that fails the bound: the exact check is called at every evaluation
+        self.ops.append(_Op("guard", (), (self.plain(value), *plain),
+                            (float(bound), len(self.checks) - 1)))
+
+    def call(self, function: Callable, args: Sequence, count: int) -> list[Traced]:
+        """Record ``function(angles_deg, arrays, out_rows)`` that writes ``count`` results
+        into the rows it is given."""
+        self.calls.append(function)
+        out = tuple(range(self._count, self._count + count))
+        self._count += count
+        plain = tuple(self.plain(a) if isinstance(a, Traced) else float(a) for a in args)
+        self.ops.append(_Op("call", out, plain, len(self.calls) - 1))
+        return [Traced(self, i) for i in out]
+
+    def output(self, name: str, value) -> None:
+        """Name a scalar result."""
+        self._outputs.append((name, (value,)))
+
+    def output_vector(self, name: str, x, y) -> None:
+        """Name a vector result (its x and y in consecutive rows, read as an (N, 2) view)."""
+        self._outputs.append((name, (x, y)))
+
+    # -- compiling -----------------------------------------------------------------------------
+    def compile(self, name: str = "evaluate") -> Compiled:
+        """The recorded operations as one compiled function (see :class:`Compiled`)."""
+        primary: dict[int, int] = {}    # id → its output row (written there directly)
+        fills: list[tuple[int, float]] = []
+        copies: list[tuple[int, int]] = []
+        layout = Layout()
+        rows = 0
+        for out_name, values in self._outputs:
+            values = tuple(self.plain(v) if isinstance(v, Traced) else float(v) for v in values)
+            if all(isinstance(v, float) for v in values):
+                layout.constants[out_name] = values[0] if len(values) == 1 else values
+                continue
+            ids = [v for v in values if isinstance(v, int)]
+            existing = [primary.get(i) for i in ids]
+            if (len(values) == 2 and len(ids) == 2 and None not in existing
+                    and existing[1] == existing[0] + 1):
+                layout.rows[out_name] = tuple(existing)
+                continue
+            if len(values) == 1 and existing[0] is not None:
+                layout.rows[out_name] = existing[0]
+                continue
+            mine = list(range(rows, rows + len(values)))
+            rows += len(values)
+            for row, value in zip(mine, values, strict=True):
+                if isinstance(value, float):
+                    fills.append((row, value))
+                elif value == 0 or value in primary:
+                    copies.append((row, value))
+                else:
+                    primary[value] = row
+            layout.rows[out_name] = mine[0] if len(mine) == 1 else tuple(mine)
+        layout = Layout(layout.rows, layout.constants, rows)
+        return self._emit(name, layout, primary, fills, copies)
+
+    def _emit(self, name, layout, primary, fills, copies) -> Compiled:
+        needed = set(primary) | {value for _, value in copies}
+        for op in reversed(self.ops):  # what the outputs, guards and calls need
+            if op.name in ("guard", "call") or op.out[0] in needed:
+                needed.update(arg for arg in op.args if isinstance(arg, int))
+        ops = [op for op in self.ops if op.name in ("guard", "call") or op.out[0] in needed]
+        last: dict[int, int] = {}
+        for index, op in enumerate(ops):
+            for arg in op.args:
+                if isinstance(arg, int):
+                    last[arg] = index
+        end = len(ops)
+        for _, value in copies:
+            last[value] = end
+        where: dict[int, str] = {0: "angles"}
+        for ident, row in primary.items():
+            where[ident] = f"o{row}"
+        free: list[int] = []
+        work = 0
+        lines: list[str] = []
+
+        def arg_text(arg) -> str:
+            return repr(float(arg)) if isinstance(arg, float) else where[arg]
+
+        def release(index: int, op: _Op) -> None:
+            for arg in set(op.args):
+                if (isinstance(arg, int) and last.get(arg) == index and arg not in primary
+                        and arg != 0 and where.get(arg, "").startswith("w")):
+                    free.append(int(where[arg][1:]))
+
+        def take() -> str:
+            nonlocal work
+            if free:
+                return f"w{free.pop()}"
+            work += 1
+            return f"w{work - 1}"
+
+        for row, value in fills:
+            lines.append(f"o{row}.fill({value!r})")
+        for index, op in enumerate(ops):
+            if op.name == "guard":
+                bound, check = op.extra
+                value, *args = (arg_text(a) for a in op.args)
+                call = f"checks[{check}](angles{''.join(', ' + a for a in args)})"
+                if isinstance(op.args[0], float):  # a constant that fails its bound
+                    lines.append(call)
+                else:
+                    lines.append(f"if not ({value}.min() > {bound!r}): {call}")
+                release(index, op)
+                continue
+            if op.name == "call":
+                for out in op.out:
+                    if out not in primary:
+                        where[out] = take()
+                inputs = ", ".join(arg_text(a) for a in op.args)
+                outputs = ", ".join(where[o] for o in op.out)
+                lines.append(f"calls[{op.extra}](angles, ({inputs}{',' if op.args else ''}), "
+                             f"({outputs},))")
+                release(index, op)
+                continue
+            (out,) = op.out
+            args = [arg_text(a) for a in op.args]
+            release(index, op)
+            if out not in primary:
+                where[out] = take()
+            target = where[out]
+            if op.name in _KEYWORD_OUT:  # (a positional out is deprecated for these)
+                target = f"out={target}"
+            lines.append(f"{_UFUNCS[op.name]}({', '.join(args)}, {target})")
+        for row, value in copies:
+            lines.append(f"copyto(o{row}, {where[value]})")
+        header = [f"def {name}(angles, out, work, checks, calls):"]
+        if layout.count:
+            header.append(f"    {', '.join(f'o{i}' for i in range(layout.count))}, = out")
+        if work:
+            header.append(f"    {', '.join(f'w{i}' for i in range(work))}, = work")
+        source = "\n".join(header + [f"    {line}" for line in lines] + ["    return None"])
+        namespace = {ufunc: getattr(np, ufunc) for ufunc in set(_UFUNCS.values())}
+        namespace["copyto"] = np.copyto
+        exec(compile(source, f"<planmethod {name}>", "exec"), namespace)
+        return Compiled(namespace[name], source, layout, work, tuple(self.checks),
+                        tuple(self.calls))
+
+
+class Compiled:
+    """A traced function compiled: ``evaluate(angles_deg)`` → the result rows (K, N)."""
+
+    def __init__(self, function, source: str, layout: Layout, work: int, checks, calls) -> None:
+        self.function, self.source, self.layout = function, source, layout
+        self.work, self.checks, self.calls = work, checks, calls
+        self._local = threading.local()   # a workspace per thread
+        self._constants: dict[tuple[str, int], np.ndarray] = {}
+        self._where: dict[str, tuple] = {}
+        #: ``redo(angles_deg, rows)`` evaluates a chunk again where a check raised :class:`Redo`
+        self.redo: Callable | None = None
+        for name, where in layout.rows.items():
+            self._where[name] = (1, where[0]) if isinstance(where, tuple) else (0, where)
+        for name, value in layout.constants.items():
+            self._where[name] = (2, value)
+
+    def workspace(self, count: int) -> list[np.ndarray]:
+        """Rows of ``count`` angles of this thread's workspace (kept and reused across
+        calls)."""
+        local = self._local
+        views = getattr(local, "views", None)
+        if views is None:
+            views = local.views = {}
+            local.space = np.empty((self.work, CHUNK))
+        found = views.get(count)
+        if found is None:
+            if len(views) > 8:
+                views.clear()
+            found = views[count] = [row[:count] for row in local.space]
+        return found
+
+    def run(self, angles_deg: np.ndarray, rows: list[np.ndarray]) -> None:
+        """Evaluate at ``angles_deg`` into ``rows`` (one array of len(angles) per output row),
+        chunk by chunk. A check that raises propagates (see :meth:`Tracer.guard`)."""
+        count = angles_deg.shape[0]
+        if count <= CHUNK:
+            try:
+                self.function(angles_deg, rows, self.workspace(count), self.checks, self.calls)
+            except Redo:
+                self.redo(angles_deg, rows)
+            return
+        for lo in range(0, count, CHUNK):
+            hi = min(lo + CHUNK, count)
+            part = [row[lo:hi] for row in rows]
+            try:
+                self.function(angles_deg[lo:hi], part, self.workspace(hi - lo), self.checks,
+                              self.calls)
+            except Redo:
+                self.redo(angles_deg[lo:hi], part)
+
+    def evaluate(self, angles_deg: np.ndarray) -> np.ndarray:
+        """The result rows (K, N) at ``angles_deg`` (a new array)."""
+        out = np.empty((self.layout.count, angles_deg.shape[0]))
+        self.run(np.ascontiguousarray(angles_deg, dtype=float), list(out))
+        return out
+
+    def read(self, rows: np.ndarray, name: str) -> np.ndarray:
+        """An output from the result rows: a view, or a constant over the angles (read-only,
+        made once per number of angles)."""
+        kind, where = self._where[name]
+        if kind == 0:
+            return rows[where]
+        if kind == 1:
+            return rows[where:where + 2].T
+        count = rows.shape[1]
+        found = self._constants.get((name, count))
+        if found is None:
+            shape = (count, 2) if isinstance(where, tuple) else (count,)
+            found = np.empty(shape)
+            found[...] = where
+            found.flags.writeable = False
+            if len(self._constants) > 256:
+                self._constants.clear()
+            self._constants[(name, count)] = found
+        return found

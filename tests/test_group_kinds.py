@@ -1,0 +1,245 @@
+"""Every group kind, fast path against reference path, on random mechanisms.
+
+Each registered group-kind module (:mod:`planmethod.kinematics.groups`) is run two ways on the
+same random mechanisms — on both assembly branches where it has two, and at crank angles next to
+the dead centres — and the two must agree to 1e-12 relative: the compiled program (the kind's
+formulas traced into one straight-line numpy function with a reused workspace, chunk by chunk)
+and the direct evaluation (the same formulas run on numpy arrays). The positions are checked
+against the pairs' constraint equations and the velocities and accelerations against one exact
+linear solve of the whole mechanism (:func:`planmethod.testing.reference_motion`), which shares
+nothing with the kinds' vector equations.
+
+Adding a kind means adding its module and a case here: the first test fails for a registered
+kind without one.
+"""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planmethod.kinematics import solve
+from planmethod.kinematics.constraints import ConstraintSystem
+from planmethod.kinematics.groups import kind_module, registered
+from planmethod.kinematics.program import model
+from planmethod.kinematics.tracing import CHUNK
+from planmethod.spec import exercise_from_dict
+from planmethod.testing import (
+    fourbar,
+    reference_motion,
+    scotch_yoke,
+    slider_crank,
+    slotted_lever,
+    two_guides,
+)
+
+ROOT = Path(__file__).resolve().parent.parent
+RELATIVE = 1e-12
+DRAWS = 6
+
+
+def _fourbar(rng: np.random.Generator) -> dict:
+    crank = rng.uniform(0.03, 0.08)
+    coupler, rocker, ground = rng.uniform(0.15, 0.3, size=3)
+    while crank + max(coupler, rocker, ground) >= sum(sorted((coupler, rocker, ground))[:2]):
+        coupler, rocker, ground = rng.uniform(0.15, 0.3, size=3)   # Grashof: a crank-rocker
+    return fourbar(ground=ground, crank=crank, coupler=coupler, rocker=rocker,
+                   omega=rng.uniform(-20, 20), epsilon=rng.uniform(-50, 50),
+                   point=tuple(rng.uniform(-0.1, 0.2, size=2)))
+
+
+def _slider(rng: np.random.Generator) -> dict:
+    crank = rng.uniform(0.03, 0.08)
+    offset = rng.uniform(-0.02, 0.02)
+    return slider_crank(crank=crank, rod=rng.uniform(2.5, 5) * crank + abs(offset),
+                        offset=offset, omega=rng.uniform(-150, 150),
+                        epsilon=rng.uniform(-500, 500))
+
+
+def _lever(rng: np.random.Generator) -> dict:
+    crank = rng.uniform(0.05, 0.12)
+    data = slotted_lever(crank=crank, centres=rng.uniform(1.3, 3.0) * crank,
+                         omega=rng.uniform(-15, 15), epsilon=rng.uniform(-40, 40))
+    data["slide"][0]["direction"] = rng.uniform(-40, 40)   # the slot at an angle in the lever
+    return data
+
+
+def _yoke(rng: np.random.Generator) -> dict:
+    return scotch_yoke(crank=rng.uniform(0.05, 0.15), slot=rng.uniform(60, 120),
+                       guide=rng.uniform(-20, 20), omega=rng.uniform(-15, 15),
+                       epsilon=rng.uniform(-40, 40))
+
+
+def _guides(rng: np.random.Generator) -> dict:
+    data = two_guides(omega=rng.uniform(-15, 15), epsilon=rng.uniform(-40, 40))
+    data["slide"][0]["direction"] = rng.uniform(40, 80)
+    data["slide"][1]["direction"] = rng.uniform(-20, 20)
+    return data
+
+
+def _conveyor() -> dict:
+    return tomllib.loads((ROOT / "exercises" / "conveyor_sixbar.toml").read_text())
+
+
+def _triad(rng: np.random.Generator) -> dict:
+    data = _conveyor()
+    for link in ("rod", "rocker_EF", "rocker_DG"):
+        for point, (x, y) in data["links"][link].items():
+            data["links"][link][point] = [x * rng.uniform(0.99, 1.01), y]
+    data["drive"]["omega"] = rng.uniform(-10, 10)
+    data["drive"]["epsilon"] = rng.uniform(-20, 20)
+    return data
+
+
+def _slider_triad(rng: np.random.Generator) -> dict:
+    """The conveyor with the rocker DG replaced by a block on a fixed guide: a triad with a
+    prismatic pair (the general higher system)."""
+    data = _conveyor()
+    del data["links"]["rocker_DG"]
+    del data["mass"]["rocker_DG"]
+    data["links"]["block"] = {"D": [0.0, 0.0]}
+    data["links"]["frame"]["H"] = [0.79, -0.183]
+    data["slide"] = [{"link": "block", "along": "frame", "through": "H",
+                      "direction": rng.uniform(75, 85)}]
+    data["mass"]["block"] = {"m": 2.0, "J": 0.001}
+    return data
+
+
+#: kind module → random mechanisms whose groups include that kind
+CASES: dict[str, Callable[[np.random.Generator], dict]] = {
+    "rrr": _fourbar, "rrp": _slider, "rpr": _lever, "rpp": _yoke, "prp": _guides,
+    "triad": _triad, "higher": _slider_triad,
+}
+#: dead centres are looked for on modules that have them (where the driven link reverses)
+SLOW_MODULES = {"triad", "higher"}
+
+
+def test_every_registered_kind_has_a_case():
+    modules = {module.__name__.rpartition(".")[2]
+               for modules in registered().values() for module in modules}
+    assert modules == set(CASES), f"registered kinds without a case: {modules - set(CASES)}"
+
+
+def _mechanisms(name: str, sign: int | None = None):
+    rng = np.random.default_rng(sum(map(ord, name)))
+    for _ in range(2 if name in SLOW_MODULES else DRAWS):
+        data = CASES[name](rng)
+        yield exercise_from_dict(copy.deepcopy(data)).mechanism
+
+
+def _dead_centres(mechanism, link: str) -> np.ndarray:
+    """Crank angles where ``link``'s angular velocity (or a slider's speed) changes sign, to
+    within 1e-7°."""
+    grid = np.arange(0.0, 360.0, 0.5)
+    motion = solve(mechanism, grid, stage="velocity")
+    rate = motion.omega(link)
+    if np.allclose(rate, 0.0):
+        return np.array([])
+    flips = np.flatnonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))
+    out = []
+    for index in flips:
+        low, high = grid[index], grid[index + 1]
+        for _ in range(40):
+            middle = 0.5 * (low + high)
+            value = float(solve(mechanism, middle, stage="velocity").omega(link))
+            if np.sign(value) == np.sign(rate[index]):
+                low = middle
+            else:
+                high = middle
+        out += [low, high, low - 1e-6, high + 1e-6]
+    return np.array(out)
+
+
+def _grid(mechanism) -> np.ndarray:
+    """Crank angles every 7.3° — for two guides, more than 8° from where they are parallel
+    (their toggle, which is refused: see tests/test_stress.py)."""
+    grid = np.arange(0.0, 360.0, 7.3) + 0.123
+    slides = {slide.along: slide for slide in mechanism.slides}
+    if "crank" in slides and "frame" in slides:
+        parallel = slides["frame"].direction - slides["crank"].direction
+        gap = np.abs((grid - parallel + 90.0) % 180.0 - 90.0)
+        grid = grid[gap > 8.0]
+    return grid
+
+
+def _angles(mechanism, group) -> np.ndarray:
+    angles = [_grid(mechanism)]
+    driven = [link for link in group.links if link != mechanism.drive.link]
+    for link in driven[-1:]:
+        angles.append(_dead_centres(mechanism, link))
+    return np.concatenate(angles)
+
+
+def _compare(fast, slow, mechanism, what: str) -> None:
+    points = list(dict.fromkeys(p for link in mechanism.links.values() for p in link.points))
+    for point in points:
+        for quantity in ("position", "velocity", "acceleration"):
+            a, b = getattr(fast, quantity)(point), getattr(slow, quantity)(point)
+            scale = max(float(np.abs(b).max()), 1e-300)
+            assert np.abs(a - b).max() <= RELATIVE * scale, (what, point, quantity)
+    for link in mechanism.links:
+        for quantity in ("theta", "omega", "epsilon"):
+            a, b = getattr(fast, quantity)(link), getattr(slow, quantity)(link)
+            scale = max(float(np.abs(b).max()), 1.0 if quantity == "theta" else 1e-300)
+            assert np.abs(a - b).max() <= RELATIVE * scale, (what, link, quantity)
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_fast_path_equals_reference_path(name):
+    for mechanism in _mechanisms(name):
+        groups = model(mechanism).structure.groups
+        kinds = {kind_module(group).__name__.rpartition(".")[2] for group in groups}
+        assert name in kinds, f"the {name} case has no {name} group: {kinds}"
+        group = next(g for g in groups if kind_module(g).__name__.endswith("." + name))
+        signs = [1, -1] if getattr(kind_module(group), "BRANCHES", 1) == 2 else [None]
+        for sign in signs:
+            branches = None
+            if sign is not None:
+                chosen = dict(model(mechanism).branches())
+                chosen[group.index] = type(chosen[group.index])(sign, "given")
+                branches = chosen
+            angles = _angles(mechanism, group) if sign in (None, 1) else _grid(mechanism)
+            fast = solve(mechanism, angles, branches=branches)
+            slow = solve(mechanism, angles, branches=branches, reference=True)
+            _compare(fast, slow, mechanism, f"{name} branch {sign}")
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_against_the_whole_mechanism_linear_solve(name):
+    for mechanism in _mechanisms(name):
+        angles = _grid(mechanism)
+        motion = solve(mechanism, angles)
+        # positions close every pair …
+        moving = [link for link in mechanism.moving_links if link != mechanism.drive.link]
+        system = ConstraintSystem.between(mechanism, moving)
+        size = max(abs(v) for link in mechanism.links.values() for p in link.points.values()
+                   for v in p)
+        assert np.abs(system.residual(motion.links)).max() <= 1e-13 * max(size, 1.0)
+        for link, state in motion.links.items():   # each link's axes are (cos θ, sin θ)
+            axes = np.stack((np.cos(state.theta), np.sin(state.theta)), axis=-1)
+            assert np.abs(state.basis - axes).max() <= 1e-13, (name, link)
+        # … and the velocities and accelerations are the whole mechanism's linear solve's
+        reference = reference_motion(mechanism, angles)
+        for quantity in ("omega", "epsilon", "velocity", "acceleration"):
+            # relative to the largest such quantity of any link (a pivot's zero velocity
+            # is compared with the mechanism's speeds)
+            scale = max(float(np.abs(expected[quantity]).max())
+                        for expected in reference.values())
+            for link, expected in reference.items():
+                got = getattr(motion.links[link], quantity)
+                assert np.abs(got - expected[quantity]).max() <= 1e-12 * scale, (
+                    name, link, quantity)
+
+
+def test_long_sweeps_run_chunk_by_chunk_with_the_same_numbers():
+    mechanism = exercise_from_dict(fourbar()).mechanism
+    angles = np.linspace(0.0, 720.0, 3 * CHUNK + 17)
+    whole = solve(mechanism, angles)
+    for start in (0, CHUNK - 3, 2 * CHUNK + 5):
+        part = solve(mechanism, angles[start:start + 40])
+        assert np.array_equal(part.acceleration("C"), whole.acceleration("C")[start:start + 40])

@@ -1,0 +1,156 @@
+"""The compiled program: tracing (folding, signs, shared values, the workspace), one compilation
+per mechanism, guards and redo, read-only results, threads."""
+
+from __future__ import annotations
+
+import dataclasses
+import threading
+
+import numpy as np
+import pytest
+
+from planmethod.errors import AssemblyError
+from planmethod.kinematics import solve
+from planmethod.kinematics.program import model
+from planmethod.kinematics.tracing import Redo, Tracer
+from planmethod.spec import exercise_from_dict, load_exercise
+from planmethod.sweep import sweep_table
+from planmethod.testing import fourbar
+
+
+def _fresh(path: str, title: str):
+    exercise = load_exercise(path)
+    mechanism = dataclasses.replace(exercise.mechanism, title=title)
+    return dataclasses.replace(exercise, mechanism=mechanism)
+
+
+# -- tracing --------------------------------------------------------------------------------
+def test_constants_fold_and_signs_are_carried():
+    tracer = Tracer()
+    phi = tracer.angles()
+    x = tracer.apply("cos", phi)
+    assert x * 1.0 is x and x + 0.0 is x and (x * 0.0) == 0.0
+    assert 2.0 * 3.0 + 1.0 == 7.0  # (plain floats stay floats)
+    minus = -x
+    assert minus.negated and minus.id == x.id          # a negation costs nothing …
+    assert (minus * 2.0).negated is False              # … the sign goes into the constant
+    assert (x - x) == 0.0 and (x + minus) == 0.0
+    before = len(tracer.ops)
+    assert (x * phi).id == (phi * x).id and len(tracer.ops) == before + 1  # recorded once
+
+
+def test_the_workspace_is_reused():
+    tracer = Tracer()
+    value = tracer.apply("radians", tracer.angles())
+    for step in range(50):   # a long chain: each value dies as the next is made
+        value = value * 1.5 + float(step)
+    tracer.output("out", value)
+    compiled = tracer.compile()
+    assert compiled.work <= 2
+    angles = np.array([10.0, 20.0])
+    expected = np.radians(angles)
+    for step in range(50):
+        expected = expected * 1.5 + step
+    assert np.array_equal(compiled.read(compiled.evaluate(angles), "out"), expected)
+
+
+def test_a_guard_calls_its_check_only_where_its_bound_fails():
+    seen = []
+
+    def check(angles, values):
+        seen.append(list(angles))
+        if np.any(values < -0.5):
+            raise ValueError("refused")
+
+    tracer = Tracer()
+    c = tracer.apply("cos", tracer.apply("radians", tracer.angles()))
+    tracer.guard(c, 0.0, check, c)
+    tracer.output("c", c)
+    compiled = tracer.compile()
+    compiled.evaluate(np.array([0.0, 10.0]))
+    assert seen == []
+    compiled.evaluate(np.array([0.0, 100.0]))           # cos < 0: checked, accepted
+    assert seen == [[0.0, 100.0]]
+    with pytest.raises(ValueError, match="refused"):
+        compiled.evaluate(np.array([0.0, 180.0]))
+
+
+def test_a_redo_evaluates_the_chunk_again():
+    def check(angles, values):
+        raise Redo
+
+    tracer = Tracer()
+    c = tracer.apply("cos", tracer.apply("radians", tracer.angles()))
+    tracer.guard(c, 0.0, check, c)
+    tracer.output("c", c)
+    compiled = tracer.compile()
+    compiled.redo = lambda angles, rows: rows[0].__setitem__(Ellipsis, -1.0)
+    assert compiled.read(compiled.evaluate(np.array([0.0, 120.0])), "c").tolist() == [-1, -1]
+
+
+# -- the program of a mechanism ---------------------------------------------------------------
+@pytest.mark.parametrize("path", ["exercises/compressor_slider_crank.toml",
+                                  "exercises/shaper_sixbar.toml",
+                                  "exercises/conveyor_sixbar.toml"])
+def test_a_sweep_compiles_the_mechanism_once(path):
+    exercise = _fresh(path, "compiled once")
+    found = model(exercise.mechanism)
+    assert found.compilations == 0
+    sweep_table(exercise, step=10)
+    sweep_table(exercise, step=7)
+    for angle in (10.0, 20.0, 30.0):
+        solve(load_exercise(path).mechanism, angle)  # an equal model … of another title
+    again = _fresh(path, "compiled once")            # … and one equal in every way
+    assert model(again.mechanism) is found
+    solve(again.mechanism, np.arange(0.0, 360.0, 10.0))
+    assert found.compilations == 1
+
+
+def test_results_are_read_only_values():
+    mechanism = exercise_from_dict(fourbar()).mechanism
+    motion = solve(mechanism, [0.0, 60.0])
+    for array in (motion.position("C"), motion.velocity("P"), motion.omega("CD"),
+                  motion.links["BC"].origin):
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        motion.stage = "velocity"
+    first = motion.acceleration("C").copy()
+    solve(mechanism, [0.0, 60.0])                    # another solve changes nothing here
+    assert np.array_equal(motion.acceleration("C"), first)
+
+
+def test_threads_share_a_program_but_not_its_workspace():
+    mechanism = exercise_from_dict(fourbar()).mechanism
+    expected = {start: solve(mechanism, np.arange(start, start + 360.0, 0.5)).acceleration("C")
+                for start in (0.0, 0.25)}
+    failures = []
+
+    def work(start):
+        for _ in range(30):
+            found = solve(mechanism, np.arange(start, start + 360.0, 0.5)).acceleration("C")
+            if not np.array_equal(found, expected[start]):
+                failures.append(start)
+
+    threads = [threading.Thread(target=work, args=(start,)) for start in (0.0, 0.25) * 2]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert not failures
+
+
+def test_errors_name_the_first_angle_in_long_sweeps_too():
+    data = fourbar(crank=0.2)          # a crank too long for the rocker: cannot go round
+    mechanism = exercise_from_dict(data).mechanism
+    with pytest.raises(AssemblyError) as short:
+        solve(mechanism, np.arange(60.0, 420.0, 1.0))
+    angles = np.linspace(60.0, 420.0, 360_001)   # many chunks
+    with pytest.raises(AssemblyError) as long:
+        solve(mechanism, angles)
+    assert long.value.link == short.value.link
+    assert short.value.angle - 1.0 < long.value.angle <= short.value.angle
+    first = int(np.flatnonzero(angles == long.value.angle)[0])
+    solve(mechanism, angles[:first])                 # every angle before it assembles
+    with pytest.raises(AssemblyError):
+        solve(mechanism, angles[first])
