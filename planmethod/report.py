@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from . import vocabulary
 from .kinematics import Motion, solve
 from .kinematics.solve import FLAG_ERROR
 from .model import FRAME, Exercise
@@ -28,9 +29,6 @@ from .scene import Scene, plan_scene
 from .structure import Structure, analyse_structure
 
 __all__ = ["Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
-
-UNITS = {"v": "m/s", "a": "m/s²", "omega": "rad/s", "epsilon": "rad/s²", "rho": "m",
-         "s": "m", "ds": "m/s", "dds": "m/s²", "coriolis": "m/s²"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -175,9 +173,9 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
             drawn = None
     checks = []
     for quantity in asked_quantities(exercise, motion):
-        kind = quantity.partition("_")[0]
         plan_value = drawn.readings.get(quantity) if drawn else None
-        checks.append(Check(quantity, plan_value, exact_value(motion, quantity), UNITS[kind]))
+        checks.append(Check(quantity, plan_value, exact_value(motion, quantity),
+                            vocabulary.quantity(quantity).unit))
     forces = None
     if scene.forces:
         from .forces import analyse_forces

@@ -37,6 +37,7 @@ from ..kinematics import solve
 from ..kinematics.solve import choose_branches
 from ..model import Exercise, Load
 from ..structure import analyse_structure
+from ..vocabulary import QUANTITY_KINDS
 from .analysis import solve_forces
 
 __all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "run_study"]
@@ -165,7 +166,8 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
     base = {"weight": mechanism.masses[rocker].m * mechanism.gravity,
             "omega": mechanism.drive.omega, "moment": abs(load.moment)}
     parameters = (Parameter("weight", "rocker weight G4", "N", tuple(weights), base["weight"]),
-                  Parameter("omega", "crank speed ω1", "rad/s", tuple(omegas), base["omega"]),
+                  Parameter("omega", "crank speed ω1", QUANTITY_KINDS["omega"].unit,
+                            tuple(omegas), base["omega"]),
                   Parameter("moment", "resisting moment Mc", "N·m", tuple(moments),
                             base["moment"]))
     structure = analyse_structure(mechanism)

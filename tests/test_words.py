@@ -1,0 +1,62 @@
+"""The words users read: every quantity named from one vocabulary (the report's check table and
+the grader's keys print the same units, signs and questions), and no internal word in the
+commands' help, the shipped exercises, README or the documents."""
+
+from __future__ import annotations
+
+import pytest
+
+from planmethod.grading.keys import build_key
+from planmethod.grading.templates import draw_variant, load_template
+from planmethod.grading.tolerances import scale_factor
+from planmethod.report import analyse
+from planmethod.spec import load_exercise
+from planmethod.vocabulary import QUANTITY_KINDS, quantity
+
+#: what a task sheet and a key say of each kind of quantity: (question, unit, signed)
+WORDING = {
+    "v_B@lever": ("speed of B of link lever, |v_B@lever|", "m/s", False),
+    "a_C": ("magnitude of the acceleration of C, |a_C|", "m/s²", False),
+    "omega_BC": ("angular velocity ω of BC (counter-clockwise positive)", "rad/s", True),
+    "epsilon_BC": ("angular acceleration ε of BC (counter-clockwise positive)", "rad/s²", True),
+    "rho_D": ("radius of curvature ρ of the path of D", "m", False),
+    "s_slider/frame": ("travel s of the slide slider/frame", "m", True),
+    "ds_slider/frame": ("sliding velocity of slider/frame (along the guide)", "m/s", True),
+    "dds_slider/frame": ("sliding (relative) acceleration of slider/frame (along the guide)",
+                         "m/s²", True),
+    "coriolis_slider/frame": ("magnitude of the Coriolis acceleration of slider/frame", "m/s²",
+                              False),
+}
+
+
+def test_every_kind_of_quantity_is_worded():
+    assert {name.partition("_")[0] for name in WORDING} == set(QUANTITY_KINDS)
+    for name, (question, unit, signed) in WORDING.items():
+        found = quantity(name)
+        assert (found.question, found.unit, found.signed) == (question, unit, signed)
+
+
+@pytest.mark.parametrize("file", ["compressor_slider_crank", "slotted_lever", "scotch_yoke"])
+def test_report_and_key_name_quantities_alike(file):
+    """The check table's units and the key's units, signs and questions are the vocabulary's."""
+    exercise = load_exercise(f"exercises/{file}.toml")
+    checks = {check.quantity: check for check in analyse(exercise).checks}
+    key = build_key(draw_variant(load_template(f"exercises/{file}.toml")))
+    assert key["questions"]
+    for question in key["questions"]:
+        expected = quantity(question["id"])
+        assert checks[question["id"]].unit == question["unit"] == expected.unit
+        assert question["signed"] == expected.signed
+        assert question["text"] == expected.question
+
+
+def test_scale_factors_turn_drawn_lengths_into_values():
+    """A drawn length times the factor is the value: v = (pc)·μv, ω = (bc)·μv/((BC)·μl),
+    ρ = (pd)²·μv²/((πn)·μa)."""
+    mu_l, mu_v, mu_a = 0.002, 0.2, 20.0
+    expected = {"v": mu_v, "ds": mu_v, "a": mu_a, "dds": mu_a, "coriolis": mu_a, "s": mu_l,
+                "omega": mu_v / mu_l, "epsilon": mu_a / mu_l, "rho": mu_v ** 2 / mu_a}
+    assert set(expected) == set(QUANTITY_KINDS)
+    for prefix, factor in expected.items():
+        assert scale_factor(f"{prefix}_X", mu_l, mu_v, mu_a) == factor
+    assert scale_factor("force_X", mu_l, mu_v, mu_a) is None
