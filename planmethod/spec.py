@@ -22,7 +22,7 @@ Examples
 ... along = "frame"
 ... through = "A"
 ... '''
->>> exercise = parse_exercise(text, file="seed001.toml")
+>>> exercise = parse_exercise(text, file="compressor.toml")
 >>> exercise.mechanism.slides[0].key
 'slider/frame'
 >>> parse_exercise(text.replace("omega = 100", "omega = nan"), file="x.toml")

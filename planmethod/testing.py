@@ -52,7 +52,8 @@ def fourbar(*, ground=0.30, crank=0.08, coupler=0.22, rocker=0.18, angle=60.0,
 
 def slider_crank(*, crank=0.06, rod=0.18, offset=0.0, angle=45.0, omega=100.0,
                  epsilon=0.0) -> dict:
-    """Seed 001's slider-crank (defaults), optionally with the guide ``offset`` below A."""
+    """The compressor slider-crank of Abduvaliev & Abduxoshimov (defaults), optionally with the
+    guide ``offset`` below A."""
     return {
         "title": "slider-crank",
         "drive": {"link": "AB", "pivot": "A", "angle": angle, "omega": omega,

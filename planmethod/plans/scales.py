@@ -2,7 +2,9 @@
 
 Each scale is set by the drawn length of the drive link's scale point B: μl = l_AB/(AB),
 μv = v_B/(pb), μa = a_B/(πb), or given directly. At the crank scale (all three lengths equal)
-μv = ω1·μl and μa = ω1²·μl. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1² (seed 001).
+μv = ω1·μl and μa = ω1²·μl. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
+U. A. Abduvaliev and J. U. Abduxoshimov, "Kinematic study of a four-link mechanism for the
+purpose of its use in the design of new machines".
 
 Examples
 --------
