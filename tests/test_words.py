@@ -4,6 +4,12 @@ commands' help, the shipped exercises, README or the documents."""
 
 from __future__ import annotations
 
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
 
 from planmethod.grading.keys import build_key
@@ -12,6 +18,8 @@ from planmethod.grading.tolerances import scale_factor
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
 from planmethod.vocabulary import QUANTITY_KINDS, quantity
+
+ROOT = Path(__file__).resolve().parent.parent
 
 #: what a task sheet and a key say of each kind of quantity: (question, unit, signed)
 WORDING = {
@@ -60,3 +68,23 @@ def test_scale_factors_turn_drawn_lengths_into_values():
     for prefix, factor in expected.items():
         assert scale_factor(f"{prefix}_X", mu_l, mu_v, mu_a) == factor
     assert scale_factor("force_X", mu_l, mu_v, mu_a) is None
+
+
+def _python_m(*argv: str) -> subprocess.CompletedProcess:
+    """``python -m planmethod ARGV`` in a fresh interpreter that imports this checkout."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    return subprocess.run([sys.executable, "-m", "planmethod", *argv], capture_output=True,
+                          text=True, cwd=ROOT, env=env, timeout=120)
+
+
+def test_python_m_planmethod_runs_the_command_line():
+    done = _python_m("solve", "exercises/compressor_slider_crank.toml", "--json")
+    assert done.returncode == 0 and not done.stderr
+    assert json.loads(done.stdout)["checks"]
+    help_text = _python_m("--help")
+    assert help_text.returncode == 0 and help_text.stdout.startswith("usage: planmethod ")
+    bad = _python_m("solve", "exercises/no_such_file.toml")
+    assert bad.returncode == 2 and not bad.stdout
+    assert bad.stderr.splitlines() == [
+        "planmethod: error: exercises/no_such_file.toml: no such file"]
