@@ -1,7 +1,8 @@
 """The solve of one exercise at one angle: exact values, plans, checks, and the JSON report.
 
 :func:`analyse` runs the scene (structure → exact kinematics → plans → forces when asked) and
-returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report of DESIGN.md.
+returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report (README, "The
+JSON report").
 
 Examples
 --------
@@ -196,7 +197,7 @@ def _finite(value):
 
 
 def report_dict(analysis: Analysis) -> dict:
-    """The JSON report of DESIGN.md (see README, "The JSON report")."""
+    """The JSON report (see README, "The JSON report")."""
     exercise, motion, structure = analysis.exercise, analysis.motion, analysis.structure
     mechanism = exercise.mechanism
     ask = exercise.ask

@@ -198,7 +198,8 @@ class ForceAnalysis:
 
     # -- the report ------------------------------------------------------------------------
     def as_dict(self) -> dict:
-        """The ``forces`` block of the JSON report (DESIGN.md), and what else was computed."""
+        """The ``forces`` block of the JSON report (README, "Kinetostatics"), and what else was
+        computed."""
         solution = self.solution
         out: dict = {"reactions": {}}
         for key, reaction in self.reactions.items():

@@ -1,6 +1,6 @@
 """Tolerances that follow from the drawing, and the answers that common mistakes give.
 
-The drafting-error model is the one of ``PlanSettings.precision_mm`` (DESIGN.md): every length
+The drafting-error model is the one of ``PlanSettings.precision_mm`` (README): every length
 laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
 plan — carries an error uniform in ±precision/2; directions are drawn exactly. The plan
 emulator (:func:`planmethod.plans.draw_plans`) is run once exactly and once per segment with
