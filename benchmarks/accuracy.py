@@ -1,7 +1,7 @@
 """Run time against error: what each way of getting velocities and accelerations costs.
 
-On the four-bar of REFERENCE_CASES case A, the velocity and acceleration of the coupler pin C
-over a full turn are obtained by
+On the four-bar of reference case A (docs/reference-cases.md), the velocity and acceleration of
+the coupler pin C over a full turn are obtained by
 
 * **exact closed form** — planmethod's :func:`~planmethod.kinematics.solve`, in bulk (N angles
   at once) and one angle at a time;
@@ -210,7 +210,7 @@ def run(quick: bool = False, *, log=print) -> dict:
     record("plans", [30.0, 0.0], "30 mm, exact construction",
            drawn(ex, plan_angles, scale_mm=30.0, precision_mm=0.0), timing["best"],
            plan_count, (v_plan_exact, a_plan_exact))
-    return {"mechanism": "four-bar, REFERENCE_CASES case A", "point": "C",
+    return {"mechanism": "four-bar, reference case A", "point": "C",
             "angles": count, "plan_angles": plan_count, "rows": rows}
 
 

@@ -1,7 +1,8 @@
 """Shared pieces of the benchmarks: the benchmarked mechanisms, a timer, the machine, output.
 
-The two mechanisms of the speed benchmark are the four-bar of REFERENCE_CASES case A and seed
-001's slider-crank, modelled with the same joints as the peers model them (no extra points).
+The two mechanisms of the speed benchmark are the four-bar of case A (docs/reference-cases.md)
+and the compressor slider-crank of Abduvaliev & Abduxoshimov, modelled with the same joints as
+the peers model them (no extra points).
 
 Examples
 --------
@@ -34,9 +35,9 @@ ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 FIGURES = ROOT / "figures"
 
-#: REFERENCE_CASES case A with the peers' joints only (A, B, C, D)
+#: reference case A with the peers' joints only (A, B, C, D)
 FOURBAR = {
-    "title": "Four-bar, REFERENCE_CASES case A",
+    "title": "Four-bar, reference case A",
     "drive": {"link": "AB", "pivot": "A", "angle": 60.0, "omega": 10.0, "epsilon": 0.0},
     "links": {"frame": {"A": [0, 0], "D": [0.30, 0]}, "AB": {"A": [0, 0], "B": [0.08, 0]},
               "BC": {"B": [0, 0], "C": [0.22, 0]}, "CD": {"C": [0, 0], "D": [0.18, 0]}},

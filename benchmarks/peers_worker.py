@@ -10,8 +10,8 @@ Usage::
 
     python benchmarks/peers_worker.py PEER MECHANISM N1,N2,... --out FILE.npz [--budget S]
 
-``MECHANISM`` is ``fourbar`` (REFERENCE_CASES case A: A = (0, 0), D = (0.30, 0), AB = 0.08,
-BC = 0.22, CD = 0.18 m, C above AD, ω = 10 rad/s) or ``slider_crank`` (seed 001: AB = 0.06,
+``MECHANISM`` is ``fourbar`` (reference case A: A = (0, 0), D = (0.30, 0), AB = 0.08,
+BC = 0.22, CD = 0.18 m, C above AD, ω = 10 rad/s) or ``slider_crank`` (the compressor: AB = 0.06,
 BC = 0.18 m, C on the x-axis through A, ω = 100 rad/s). The crank angles are
 φ_k = 360°·k/N, k = 0…N−1. Prints one JSON line: per N the best and median wall time of the
 repeats (s), or why that N was skipped; the arrays of C's position, velocity and acceleration

@@ -2,7 +2,7 @@
 
 Sections (all by default, or ``--only speed,accuracy,scene,memory,stress``):
 
-* ``speed`` — full-turn analysis of the case A four-bar and the seed 001 slider-crank at
+* ``speed`` — full-turn analysis of the case A four-bar and the compressor slider-crank at
   N = 360, 3,600, 36,000 angles against the peers (``python -m benchmarks.peers --setup``
   first, to make their separate virtualenv) → ``results/speed.{json,md}``,
   ``figures/bench_speed.{png,svg}``;

@@ -1,6 +1,6 @@
 """Full-turn speed: planmethod against the open-source peers, in the same run, same machine.
 
-For each mechanism (REFERENCE_CASES case A four-bar; seed 001 slider-crank) and each N, the
+For each mechanism (case A four-bar; Abduvaliev & Abduxoshimov's slider-crank) and each N, the
 time of a full-turn analysis — positions, velocities and accelerations of every point at N
 crank angles — divided by N:
 
@@ -42,7 +42,8 @@ from .reference import slider_crank as slider_reference
 COUNTS = (360, 3600, 36000)
 QUICK_COUNTS = (360, 3600)
 MECHANISMS = ("fourbar", "slider_crank")
-TITLES = {"fourbar": "four-bar (case A)", "slider_crank": "slider-crank (seed 001)"}
+TITLES = {"fourbar": "four-bar (case A)",
+          "slider_crank": "slider-crank (Abduvaliev & Abduxoshimov)"}
 FLOOR = "numpy floor (hand-fused, this mechanism only)"
 FRESH = "planmethod (new model each call)"
 COLORS = {"planmethod": "black", FRESH: "black", "pylinkage": "tab:blue",

@@ -25,11 +25,14 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "solve": ("planmethod.commands.solve",
               "structural analysis, exact kinematics and the plans at one crank angle"),
     "sweep": ("planmethod.commands.sweep", "the full turn: curves of positions, v, a, ω, ε"),
-    "variants": ("planmethod.commands.variants", "student variants of a template, sheets, keys"),
+    "variants": ("planmethod.commands.variants",
+                 "student variants of a template, with task sheets and answer keys"),
     "grade": ("planmethod.commands.grade", "grade numeric answers and drawn plans against a key"),
-    "export": ("planmethod.commands.export", "keys to Gradescope, PrairieLearn, Moodle, CSV"),
+    "export": ("planmethod.commands.export",
+               "answer keys to Gradescope, PrairieLearn, Moodle or a CSV gradebook"),
     "check": ("planmethod.commands.check", "test a table of point coordinates against the links"),
-    "study": ("planmethod.commands.study", "seed 003's study: reactions against G4, ω1 and Mc"),
+    "study": ("planmethod.commands.study",
+              "a four-bar's reactions against G4, ω1 and Mc (the study of Jobborova et al.)"),
 }
 
 EXIT_BAD_INPUT = 2
@@ -39,7 +42,8 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="planmethod",
         description="Graphical methods of planar-mechanism analysis (plans of velocities and "
-                    "accelerations, kinetostatics), checked against exact vectors.")
+                    "accelerations, kinetostatics), checked against exact vectors.",
+        epilog="'planmethod COMMAND --help' shows a command's options.")
     from . import __version__
 
     parser.add_argument("--version", action="version", version=f"planmethod {__version__}")

@@ -1,7 +1,8 @@
 """The solve of one exercise at one angle: exact values, plans, checks, and the JSON report.
 
 :func:`analyse` runs the scene (structure → exact kinematics → plans → forces when asked) and
-returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report of DESIGN.md.
+returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report (README, "The
+JSON report").
 
 Examples
 --------
@@ -20,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from . import vocabulary
 from .kinematics import Motion, solve
 from .kinematics.solve import FLAG_ERROR
 from .model import FRAME, Exercise
@@ -28,9 +30,6 @@ from .scene import Scene, plan_scene
 from .structure import Structure, analyse_structure
 
 __all__ = ["Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
-
-UNITS = {"v": "m/s", "a": "m/s²", "omega": "rad/s", "epsilon": "rad/s²", "rho": "m",
-         "s": "m", "ds": "m/s", "dds": "m/s²", "coriolis": "m/s²"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -175,9 +174,9 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
             drawn = None
     checks = []
     for quantity in asked_quantities(exercise, motion):
-        kind = quantity.partition("_")[0]
         plan_value = drawn.readings.get(quantity) if drawn else None
-        checks.append(Check(quantity, plan_value, exact_value(motion, quantity), UNITS[kind]))
+        checks.append(Check(quantity, plan_value, exact_value(motion, quantity),
+                            vocabulary.quantity(quantity).unit))
     forces = None
     if scene.forces:
         from .forces import analyse_forces
@@ -198,7 +197,7 @@ def _finite(value):
 
 
 def report_dict(analysis: Analysis) -> dict:
-    """The JSON report of DESIGN.md (see README, "The JSON report")."""
+    """The JSON report (see README, "The JSON report")."""
     exercise, motion, structure = analysis.exercise, analysis.motion, analysis.structure
     mechanism = exercise.mechanism
     ask = exercise.ask

@@ -1,6 +1,6 @@
 """Exercise files (TOML) → :class:`~planmethod.model.Exercise`, with file- and key-precise errors.
 
-The format is the contract of DESIGN.md (see README, "The exercise file"). Every problem is
+The format is described in README, "The exercise file". Every problem is
 reported as a :class:`~planmethod.errors.SpecError` naming the file and the dotted key, e.g.
 ``slider.toml: drive.omega: must be a finite number, got nan``.
 
@@ -22,7 +22,7 @@ Examples
 ... along = "frame"
 ... through = "A"
 ... '''
->>> exercise = parse_exercise(text, file="seed001.toml")
+>>> exercise = parse_exercise(text, file="compressor.toml")
 >>> exercise.mechanism.slides[0].key
 'slider/frame'
 >>> parse_exercise(text.replace("omega = 100", "omega = nan"), file="x.toml")

@@ -38,7 +38,7 @@ __all__ = [
 
 def fourbar(*, ground=0.30, crank=0.08, coupler=0.22, rocker=0.18, angle=60.0,
             omega=10.0, epsilon=0.0, point=(0.10, 0.05)) -> dict:
-    """REFERENCE_CASES case A (defaults): a crank-rocker with coupler point P."""
+    """Reference case A (defaults; docs/reference-cases.md): a crank-rocker with coupler point P."""
     return {
         "title": "four-bar",
         "drive": {"link": "AB", "pivot": "A", "angle": angle, "omega": omega,
@@ -52,7 +52,8 @@ def fourbar(*, ground=0.30, crank=0.08, coupler=0.22, rocker=0.18, angle=60.0,
 
 def slider_crank(*, crank=0.06, rod=0.18, offset=0.0, angle=45.0, omega=100.0,
                  epsilon=0.0) -> dict:
-    """Seed 001's slider-crank (defaults), optionally with the guide ``offset`` below A."""
+    """The compressor slider-crank of Abduvaliev & Abduxoshimov (defaults), optionally with the
+    guide ``offset`` below A."""
     return {
         "title": "slider-crank",
         "drive": {"link": "AB", "pivot": "A", "angle": angle, "omega": omega,
@@ -66,7 +67,8 @@ def slider_crank(*, crank=0.06, rod=0.18, offset=0.0, angle=45.0, omega=100.0,
 
 
 def slotted_lever(*, crank=0.10, centres=0.30, angle=30.0, omega=10.0, epsilon=0.0) -> dict:
-    """REFERENCE_CASES case C (defaults): RPR dyad with the Coriolis component."""
+    """Reference case C (defaults; docs/reference-cases.md): an RPR dyad with the Coriolis
+    component."""
     return {
         "title": "slotted lever",
         "drive": {"link": "crank", "pivot": "O1", "angle": angle, "omega": omega,

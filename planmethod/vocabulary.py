@@ -14,6 +14,8 @@ Examples
 ('ω', 'BC', 'rad/s', 'mu_v')
 >>> quantity("coriolis_slider/frame").text
 'aᵏ_slider/frame'
+>>> quantity("omega_BC").question
+'angular velocity ω of BC (counter-clockwise positive)'
 """
 
 from __future__ import annotations
@@ -95,7 +97,9 @@ class QuantityKind:
     """One kind of quantity: its name prefix in reports (``v`` of ``v_C``), its symbol as
     printed, unit, what it describes, the drawing scale it is read at (None for a quantity not
     read off a plan at a scale), whether it is signed (counter-clockwise or along the guide
-    positive) or a magnitude, and its subject (a ``point``, a ``link`` or a ``pair``)."""
+    positive) or a magnitude, and its subject (a ``point``, a ``link`` or a ``pair``).
+    ``question`` is what a task asks, in words: ``{subject}`` is replaced by the quantity's
+    subject, ``{point}`` by the subject read aloud (``B@lever``: "B of link lever")."""
 
     prefix: str
     symbol: str
@@ -104,24 +108,29 @@ class QuantityKind:
     scale: str | None
     signed: bool
     subject: str
+    question: str = ""
 
 
 #: every quantity a check table, a key or a sweep names, by prefix
 QUANTITY_KINDS: dict[str, QuantityKind] = {kind.prefix: kind for kind in (
-    QuantityKind("v", "v", "m/s", "speed of a point", "mu_v", False, "point"),
-    QuantityKind("a", "a", "m/s²", "acceleration of a point", "mu_a", False, "point"),
-    QuantityKind("omega", "ω", "rad/s", "angular velocity of a link", "mu_v", True, "link"),
+    QuantityKind("v", "v", "m/s", "speed of a point", "mu_v", False, "point",
+                 "speed of {point}, |v_{subject}|"),
+    QuantityKind("a", "a", "m/s²", "acceleration of a point", "mu_a", False, "point",
+                 "magnitude of the acceleration of {point}, |a_{subject}|"),
+    QuantityKind("omega", "ω", "rad/s", "angular velocity of a link", "mu_v", True, "link",
+                 "angular velocity ω of {subject} (counter-clockwise positive)"),
     QuantityKind("epsilon", "ε", "rad/s²", "angular acceleration of a link", "mu_a", True,
-                 "link"),
+                 "link", "angular acceleration ε of {subject} (counter-clockwise positive)"),
     QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
-                 "point"),
-    QuantityKind("s", "s", "m", "travel of a prismatic pair", "mu_l", True, "pair"),
+                 "point", "radius of curvature ρ of the path of {point}"),
+    QuantityKind("s", "s", "m", "travel of a prismatic pair", "mu_l", True, "pair",
+                 "travel s of the slide {subject}"),
     QuantityKind("ds", "ds/dt", "m/s", "sliding velocity of a prismatic pair", "mu_v", True,
-                 "pair"),
+                 "pair", "sliding velocity of {subject} (along the guide)"),
     QuantityKind("dds", "d²s/dt²", "m/s²", "sliding acceleration of a prismatic pair", "mu_a",
-                 True, "pair"),
+                 True, "pair", "sliding (relative) acceleration of {subject} (along the guide)"),
     QuantityKind("coriolis", "aᵏ", "m/s²", "Coriolis acceleration of a prismatic pair",
-                 "mu_a", False, "pair"),
+                 "mu_a", False, "pair", "magnitude of the Coriolis acceleration of {subject}"),
 )}
 
 
@@ -153,6 +162,17 @@ class Quantity:
     def text(self) -> str:
         """The symbol in plain text, subscript after an underscore (``ω_BC``)."""
         return f"{self.kind.symbol}_{self.subject}"
+
+    @property
+    def signed(self) -> bool:
+        return self.kind.signed
+
+    @property
+    def question(self) -> str:
+        """What a task asks for this quantity, in words (``speed of B of link lever,
+        |v_B@lever|``)."""
+        return self.kind.question.format(subject=self.subject,
+                                         point=self.subject.replace("@", " of link "))
 
 
 def quantity(name: str) -> Quantity:

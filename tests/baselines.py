@@ -45,12 +45,14 @@ def exercises() -> list[Path]:
 
 
 def _run(*argv: str) -> tuple[int, str, str]:
+    """Run the CLI; the project's folder in messages reads ``<root>``, wherever it is checked
+    out (a worktree, a CI runner)."""
     from planmethod.cli import main
 
     out, err = io.StringIO(), io.StringIO()
     with redirect_stdout(out), redirect_stderr(err):
         code = main(list(argv))
-    return code, out.getvalue(), err.getvalue()
+    return code, out.getvalue(), err.getvalue().replace(str(ROOT), "<root>")
 
 
 def _sweep(path: Path, *extra: str) -> dict:

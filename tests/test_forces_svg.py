@@ -1,4 +1,4 @@
-"""Force drawings: the polygons at μF and seed 002's combined-force construction."""
+"""Force drawings: the polygons at μF and Aliyev's combined-force construction."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ElementTree
 import numpy as np
 import pytest
 
-from planmethod.forces.combined import combined_construction, epsilon_senses, seed_constants
+from planmethod.forces.combined import combined_constants, combined_construction, epsilon_senses
 from planmethod.render.force_svg import force_files
 from planmethod.render.svg import plan_files
 from planmethod.report import analyse
@@ -80,11 +80,11 @@ def test_epsilon_rule_agrees_with_the_exact_sense():
         assert senses and all(sense.agrees for sense in senses if sense.rule is not None)
 
 
-def test_seed_002_constants():
+def test_aliyev_constants():
     analysis = analyse(load_exercise("exercises/combined_force_slider_crank.toml"))
     scales = analysis.plans.scales
-    constants = seed_constants(analysis.plans, analysis.forces.solution.applied,
-                               analysis.forces.mu_f)
+    constants = combined_constants(analysis.plans, analysis.forces.solution.applied,
+                                   analysis.forces.mu_f)
     assert constants.force_moment == pytest.approx(analysis.forces.mu_f * scales.mu_l)
     # eq. 2: proportional to the masses
     ratio = constants.combined_moment["BC"] / constants.combined_moment["AB"]

@@ -106,7 +106,7 @@ def test_bad_grading_tables_name_the_key(table, key):
 
 
 def test_seed_001_printed_answers_are_marked_wrong_and_by_how_much(seed_key):
-    rows = read_answers(DATA / "seed001_paper.csv")
+    rows = read_answers(DATA / "compressor_paper_answers.csv")
     (result,) = grade_many({"*": seed_key}, rows)
     questions = by_id(result)
     assert result["score"] == 0
@@ -135,7 +135,7 @@ EXPECTED_MISTAKES = {
 
 def test_common_mistakes_get_the_right_feedback(seed_key):
     results = {r["student"]: r for r in grade_many({"*": seed_key},
-                                                   read_answers(DATA / "seed001_mistakes.csv"))}
+                                                   read_answers(DATA / "compressor_mistakes.csv"))}
     assert results["exact"]["score"] == results["exact"]["max_score"] == 7
     assert results["careful"]["score"] == 7        # a careful drawing passes everywhere
     for student, expected in EXPECTED_MISTAKES.items():
@@ -153,7 +153,7 @@ def test_common_mistakes_get_the_right_feedback(seed_key):
 
 def test_junk_answers_are_reported_not_crashed(seed_key):
     (result,) = grade_many({"*": seed_key}, [r for r in read_answers(
-        DATA / "seed001_mistakes.csv") if r[0] == "junk"])
+        DATA / "compressor_mistakes.csv") if r[0] == "junk"])
     questions = by_id(result)
     assert "'abc' is not a number" in questions["v_C"]["feedback"]
     assert "no answer" in questions["v_D"]["feedback"]

@@ -103,7 +103,7 @@ def test_missing_points_and_wrong_scale(key):
 
 
 def test_an_editor_svg_with_px_units_groups_and_transforms(key):
-    drawing = read_drawing(DATA / "seed001_velocity_inkscape.svg")
+    drawing = read_drawing(DATA / "compressor_velocity_inkscape.svg")
     assert drawing.plan == "velocity"
     result = grade_drawing(key, drawing)
     assert result["score"] == result["max_score"] == 3, result

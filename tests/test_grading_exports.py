@@ -200,7 +200,7 @@ def test_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, argv)
 
 def test_grading_the_seed_answers_from_the_command_line(capsys):
     assert main(["grade", "exercises/compressor_slider_crank.toml",
-                 "tests/data/grading/seed001_paper.csv"]) == 0
+                 "tests/data/grading/compressor_paper_answers.csv"]) == 0
     printed = capsys.readouterr().out
     assert "paper: 0/7" in printed
     assert "v_C = 4 m/s: wrong — 24.1 % low" in printed

@@ -1,5 +1,6 @@
-"""REFERENCE_CASES.md (S1, A, C) and published textbook examples, by the exact solver and by
-the plans (which at precision 0 must equal the exact vectors)."""
+"""The reference cases of docs/reference-cases.md (the compressor slider-crank of Abduvaliev &
+Abduxoshimov, cases A and C) and published textbook examples, by the exact solver and by the
+plans (which at precision 0 must equal the exact vectors)."""
 
 from __future__ import annotations
 
@@ -20,47 +21,47 @@ def close(value: float, printed: float, digits_after_point: int) -> bool:
     return abs(value - printed) <= 0.5 * 10.0 ** -digits_after_point + 1e-12
 
 
-# -- S1: seed 001 as stated ---------------------------------------------------------------------
+# -- the compressor slider-crank (Abduvaliev & Abduxoshimov), as stated -------------------------
 @pytest.fixture(scope="module")
-def seed001():
+def compressor():
     exercise = load_exercise("exercises/compressor_slider_crank.toml")
     return exercise, solve(exercise.mechanism), draw_plans(exercise)
 
 
-S1_PRINTED = [  # (quantity, exact value as printed in REFERENCE_CASES, decimals)
+PRINTED = [  # (quantity, exact value as printed in docs/reference-cases.md, decimals)
     ("v_B", 6.000, 3), ("v_C", 5.2716, 4), ("omega_BC", -24.2536, 4), ("a_B", 600.0, 1),
     ("a_C", 430.317, 3), ("epsilon_BC", 2282.69, 2), ("v_D", 5.2087, 4), ("a_D", 477.05, 2),
     ("rho_D", 0.07377, 5),
 ]
 
 
-def _s1_exact(motion, quantity: str) -> float:
+def _exact(motion, quantity: str) -> float:
     return exact_value(motion, quantity)
 
 
-@pytest.mark.parametrize(("quantity", "printed", "digits"), S1_PRINTED)
-def test_seed001_exact_values(seed001, quantity, printed, digits):
-    _, motion, _ = seed001
-    assert close(_s1_exact(motion, quantity), printed, digits)
+@pytest.mark.parametrize(("quantity", "printed", "digits"), PRINTED)
+def test_compressor_exact_values(compressor, quantity, printed, digits):
+    _, motion, _ = compressor
+    assert close(_exact(motion, quantity), printed, digits)
 
 
 @pytest.mark.parametrize(("quantity", "printed", "digits"),
-                         [q for q in S1_PRINTED if q[0] not in ("v_B", "a_B")])
-def test_seed001_plan_at_precision_zero_equals_exact(seed001, quantity, printed, digits):
-    _, motion, plans = seed001
-    exact = _s1_exact(motion, quantity)
+                         [q for q in PRINTED if q[0] not in ("v_B", "a_B")])
+def test_compressor_plan_at_precision_zero_equals_exact(compressor, quantity, printed, digits):
+    _, motion, plans = compressor
+    exact = _exact(motion, quantity)
     assert plans.readings[quantity] == pytest.approx(exact, rel=1e-9)
     assert close(plans.readings[quantity], printed, digits)
 
 
-def test_seed001_directions_and_normal_component(seed001):
-    _, motion, plans = seed001
+def test_compressor_directions_and_normal_component(compressor):
+    _, motion, plans = compressor
     a_c = motion.acceleration("C")
     assert a_c[0] < 0 and abs(a_c[1]) < 1e-9 * abs(a_c[0])  # along −x
     omega = float(motion.omega("BC"))
     assert omega < 0  # clockwise
     assert omega ** 2 * 0.18 == pytest.approx(105.882, abs=5e-4)  # aⁿ_CB
-    # seed 001's shortcut at the crank scale: (bn) = (bc)²/(BC)
+    # the paper's shortcut at the crank scale: (bn) = (bc)²/(BC)
     v, a = plans.velocity.points_mm, plans.acceleration.points_mm
     bc = math.dist(v["b"], v["c"])
     assert math.dist(a["b"], a["n_CB"]) == pytest.approx(bc ** 2 / 90.0, rel=1e-12)
@@ -69,17 +70,17 @@ def test_seed001_directions_and_normal_component(seed001):
         (0.002, 0.2, 20.0))
 
 
-def test_seed001_printed_answers_are_wrong_by_12_to_30_percent(seed001):
-    """The paper's graphical answers fit no reading of its data (REFERENCE_CASES S1)."""
-    _, motion, _ = seed001
+def test_compressor_printed_answers_are_wrong_by_12_to_30_percent(compressor):
+    """The paper's graphical answers fit no reading of its data (docs/reference-cases.md)."""
+    _, motion, _ = compressor
     printed = {"v_C": 4.0, "omega_BC": 20.0, "a_C": 356.0, "epsilon_BC": 2000.0,
                "rho_D": 0.0605}
     for quantity, value in printed.items():
-        exact = abs(_s1_exact(motion, quantity))
+        exact = abs(_exact(motion, quantity))
         assert 0.12 <= abs(value - exact) / exact <= 0.30, quantity
 
 
-def test_seed001_figure_angle_fits_some_printed_answers():
+def test_compressor_figure_angle_fits_some_printed_answers():
     """Near φ1 ≈ 125° the paper's v_C, ω2 and ρ_D fit (3.94, 19.87, 0.062)."""
     exercise = load_exercise("exercises/compressor_slider_crank.toml")
     motion = solve(exercise.mechanism, 125.0)
@@ -98,7 +99,7 @@ def case_a():
 def test_case_a_positions_at_60(case_a):
     assert np.allclose(case_a.position("C")[1], [0.236410, 0.168393], atol=5e-7)
     assert close(float(case_a.theta("BC")[1]), 0.467332, 6)
-    # CD's own x axis runs C → D; REFERENCE_CASES measures the rocker from D to C
+    # CD's own x axis runs C → D; docs/reference-cases.md measures the rocker from D to C
     rocker = math.remainder(float(case_a.theta("CD")[1]) + math.pi, 2 * math.pi)
     assert close(rocker, 1.931868, 6)
 

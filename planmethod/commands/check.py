@@ -1,6 +1,7 @@
 """``planmethod check FILE COORDS.csv``: test printed point coordinates against the mechanism.
 
-Papers and students print tables of point coordinates per crank angle (seed 000's Table 2).
+Papers and students print tables of point coordinates per crank angle (Table 2 of Umbetkulov et
+al., "Dynamic force analysis of a six-link planar mechanism").
 This command checks each row two ways:
 
 1. **Link lengths** — every two given points of one link must be as far apart as the link says

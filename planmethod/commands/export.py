@@ -9,7 +9,9 @@ import argparse
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("key", help="keys.json (or its folder), a key.json, or an exercise file")
     parser.add_argument("--format", required=True,
-                        choices=("gradescope", "prairielearn", "moodle", "csv"))
+                        choices=("gradescope", "prairielearn", "moodle", "csv"),
+                        help="gradescope: an autograder; prairielearn: a question; moodle: a "
+                             "quiz (XML); csv: a gradebook of --answers")
     parser.add_argument("--out", required=True, metavar="PATH",
                         help="output file (moodle: quiz.xml; csv: gradebook.csv) or folder "
                              "(gradescope, prairielearn)")

@@ -13,7 +13,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--angle", type=float, metavar="DEG",
                         help="crank angle in degrees (default: drive.angle of the file)")
     parser.add_argument("--svg", metavar="DIR",
-                        help="write position.svg, velocity.svg, acceleration.svg into DIR")
+                        help="write the drawings into DIR as SVG: the position, velocity, "
+                             "acceleration and lever plans (and the force drawings with "
+                             "forces)")
     parser.add_argument("--json", action="store_true", help="print the JSON report")
     parser.add_argument("--precision", type=float, metavar="MM",
                         help="drafting precision in mm (overrides [plan] precision_mm)")

@@ -1,10 +1,12 @@
-"""``planmethod study FILE``: seed 003's parameter study of a four-bar's reactions.
+"""``planmethod study FILE``: the parameter study of a four-bar's reactions of M. A. Jobborova,
+M. O'. Xakimova and Sh. A. Kulturayeva, "Study of the load on kinematic pairs of a four-bar linkage
+mechanism".
 
 The rocker weight G4, the crank speed ω1 and the resisting moment Mc on the rocker are stepped
-one at a time over their ranges (default: the seed's 20…100 N, 10…50 rad/s, 80…160 N·m, step
+one at a time over their ranges (default: the paper's 20…100 N, 10…50 rad/s, 80…160 N·m, step
 20, 10, 20) around the base case of the exercise file (or ``--base-*``); for each value the full
-turn is solved and the largest reaction of each pair is tabulated; the seed's two conclusions are
-checked against the numbers. ``--plot`` draws the table, ``--csv`` writes it.
+turn is solved and the largest reaction of each pair is tabulated; the paper's two conclusions
+are checked against the numbers. ``--plot`` draws the table, ``--csv`` writes it.
 """
 
 from __future__ import annotations
@@ -72,7 +74,7 @@ def table_text(study) -> str:
                          for pair in study.pairs)
         lines.append("  change over the range".ljust(28) + change)
         lines.append("")
-    lines.append("The seed's conclusions against these numbers:")
+    lines.append("The conclusions of Jobborova et al. against these numbers:")
     for number, (statement, confirmed, evidence) in enumerate(study.conclusions(), start=1):
         verdict = "CONFIRMED" if confirmed else "REFUTED"
         lines.append(f"  {number}. \"{statement}\": {verdict} — {evidence}")

@@ -19,7 +19,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--count", type=int, metavar="N",
                         help="number of variants (students 001…N); default: the roster's size, "
                              "or 1")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
+    parser.add_argument("--seed", type=int, default=0,
+                        help="random seed of the draw (default 0): the same seed, template "
+                             "and student always give the same variant")
     parser.add_argument("--students", metavar="ROSTER",
                         help="roster CSV (a student/id/email column, or one id per line)")
     parser.add_argument("--out", required=True, metavar="DIR", help="output folder")

@@ -3,9 +3,10 @@
 :func:`solve_forces` (vectorised over the angles of a :class:`~planmethod.kinematics.Motion`)
 runs the known loads, the group-by-group method (with the friction iteration when the exercise
 has friction), the independent whole-system solve, Zhukovsky's lever and the power balance.
-:func:`analyse_forces` adds, at one crank angle with plans, seed 002's combined-force
-construction, its constants and its rule for the sense of ε, and returns the ``forces`` block of
-the JSON report (``as_dict``) and the text for ``planmethod solve`` (``describe``).
+:func:`analyse_forces` adds, at one crank angle with plans, the combined-force construction of
+I. H. Aliyev ("Studies of the possibility of determining amplifications in kinematic pairs"),
+its constants and its rule for the sense of ε, and returns the ``forces`` block of the JSON
+report (``as_dict``) and the text for ``planmethod solve`` (``describe``).
 
 Examples
 --------
@@ -34,12 +35,12 @@ from ..model import Exercise, Mechanism
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
 from .combined import (
+    CombinedConstants,
     CombinedConstruction,
     EpsilonSense,
-    SeedConstants,
+    combined_constants,
     combined_construction,
     epsilon_senses,
-    seed_constants,
 )
 from .friction import FrictionResult, friction_settings, solve_with_friction
 from .groups import GroupSolution, solve_by_groups
@@ -164,12 +165,12 @@ def _pair(array) -> list[float]:
 @dataclass(frozen=True)
 class ForceAnalysis:
     """Kinetostatics at one crank angle: the vectorised solution at that angle, and what the
-    plans add (seed 002's construction, constants and ε rule, the force scale μF)."""
+    plans add (Aliyev's construction, constants and ε rule, the force scale μF)."""
 
     angle: float
     solution: ForceSolution
     combined: CombinedConstruction | None
-    constants: SeedConstants | None
+    constants: CombinedConstants | None
     epsilon: tuple[EpsilonSense, ...]
     mu_f: float
     plans: object = None
@@ -197,7 +198,8 @@ class ForceAnalysis:
 
     # -- the report ------------------------------------------------------------------------
     def as_dict(self) -> dict:
-        """The ``forces`` block of the JSON report (DESIGN.md), and what else was computed."""
+        """The ``forces`` block of the JSON report (README, "Kinetostatics"), and what else was
+        computed."""
         solution = self.solution
         out: dict = {"reactions": {}}
         for key, reaction in self.reactions.items():
@@ -323,7 +325,7 @@ class ForceAnalysis:
                          "iteration(s)")
         if self.combined is not None:
             c = self.combined
-            lines.append(f"  combined force Q = m·(g − a_S) (seed 002): pole π moved down by "
+            lines.append(f"  combined force Q = m·(g − a_S) (Aliyev): pole π moved down by "
                          f"Z_g = g/μa = {c.gravity_image_mm:.4g} mm to π′")
             for f in c.forces:
                 length = float(np.hypot(*f.segment_mm))
@@ -331,7 +333,7 @@ class ForceAnalysis:
                              f"{float(np.hypot(*f.from_plan)):.6g} N")
         if self.constants is not None and self.constants.force_moment is not None:
             k = self.constants
-            lines.append(f"  constants for all positions (seed 002): μF·μl = "
+            lines.append(f"  constants for all positions (Aliyev): μF·μl = "
                          f"{k.force_moment:.6g} N·m/mm²; m·μa·μl: "
                          + ", ".join(f"{link} {value:.6g}"
                                      for link, value in k.combined_moment.items())
@@ -363,13 +365,13 @@ def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
 
 def analyse_forces(exercise: Exercise, motion: Motion, *, plans=None) -> ForceAnalysis:
     """Kinetostatics of ``exercise`` at the (single) angle of ``motion`` (see the module
-    docstring); ``plans`` (drawn at that angle) adds seed 002's construction and the lever on
+    docstring); ``plans`` (drawn at that angle) adds Aliyev's construction and the lever on
     the drawn velocity plan."""
     solution = solve_forces(motion, plans=plans, file=exercise.source)
     mu_f = _force_scale(exercise, solution)
     g = exercise.mechanism.gravity or 0.0
     combined = combined_construction(plans, solution.applied, g)
-    constants = seed_constants(plans, solution.applied, mu_f)
+    constants = combined_constants(plans, solution.applied, mu_f)
     epsilon = epsilon_senses(plans)
     return ForceAnalysis(float(motion.angles[0]), solution, combined, constants, epsilon, mu_f,
                          plans)
@@ -379,7 +381,8 @@ def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndar
     """The ``extra`` callable of :func:`planmethod.sweep.sweep_table` for ``--forces``:
     ``Rx_K Ry_K R_K`` (and ``M_K`` for a prismatic pair's couple) per pair, ``M_b``,
     ``M_b_system`` and ``power_residual``; with friction also ``friction_iterations`` and
-    ``M_b_no_friction`` (seed 000 compares the motor torque with and without friction)."""
+    ``M_b_no_friction`` (the conveyor of Umbetkulov et al. compares the motor torque with and
+    without friction)."""
 
     def columns(motion: Motion) -> dict[str, np.ndarray]:
         solution = solve_forces(motion, file=exercise.source)

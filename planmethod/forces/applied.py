@@ -1,12 +1,13 @@
 """The known forces on each link: weight, inertia (d'Alembert) and external loads.
 
 For a link with mass m, moment of inertia J_S about its centre of mass S and angular
-acceleration ε (seed 002, GLOSSARY):
+acceleration ε (as in I. H. Aliyev, "Studies of the possibility of determining amplifications
+in kinematic pairs"):
 
 * weight G = m·g, along −y, at S;
 * principal vector of the inertia forces F_u = −m·a_S, at S;
 * principal moment of the inertia forces M_u = −J_S·ε;
-* the combined force Q = G + F_u = m·(g − a_S) (seed 002), at S;
+* the combined force Q = G + F_u = m·(g − a_S) (Aliyev's), at S;
 * the equivalent single inertia force: F_u on the line through S + h·J·F̂_u (F̂_u turned 90°
   counter-clockwise), h = J_S·ε / (m·|a_S|); its moment about S is then M_u.
 

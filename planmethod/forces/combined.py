@@ -1,13 +1,14 @@
-"""Seed 002: the combined force on the acceleration plan, its constants, and the sense of ε.
+"""The combined force on the acceleration plan, its constants, and the sense of ε — the method
+of I. H. Aliyev, "Studies of the possibility of determining amplifications in kinematic pairs".
 
 **Combined force.** The weight and the principal vector of inertia of a link act at the same
 point S, so they add into one force Q = G + F_u = m·(g − a_S). On the acceleration plan, with
 the pole π and the image s of S (πs represents a_S), move the pole down by the image of g,
 Z_g = g/μa mm, to a new pole π′: the segment from s to π′ represents g − a_S, so
-Q = m·μa·(s→π′). (The seed writes its scales as mm per unit, M_a = 1/μa; its "Z_g = M_a·g" is
+Q = m·μa·(s→π′). (Aliyev writes his scales as mm per unit, M_a = 1/μa; his "Z_g = M_a·g" is
 this g/μa.)
 
-**Constants computed once for all positions** (seed 002, eqs. 1–3, in μ's, i.e. units per mm):
+**Constants computed once for all positions** (Aliyev's eqs. 1–3, in μ's, i.e. units per mm):
 
 1. moment of a force drawn W_Q mm long at an arm of h mm on the position plan:
    M = W_Q·h·(μF·μl) — the constant μF·μl (N·m/mm²) is the same for every link;
@@ -15,11 +16,11 @@ this g/μa.)
    constant m_i·μa·μl is proportional to the mass;
 3. inertia moment of link i: M_u = Z_T·(J_i·μa/l_i), Z_T the image (mm) of the tangential
    acceleration of one end of the link about the other, l_i their distance — the constant is
-   proportional to J_i and inversely to the length. (The seed prints the reciprocals, in its
+   proportional to J_i and inversely to the length. (The paper prints the reciprocals, in its
    mm-per-unit scales; its cross-checks "inversely proportional to the masses" and
    "proportional to the length, inversely to the moment of inertia" hold for those.)
 
-**The sense of ε read off the plan** (seed 002's rule): ε turns from the full relative
+**The sense of ε read off the plan** (Aliyev's rule): ε turns from the full relative
 acceleration of two points of the link towards its normal component. Indeed with
 a_YX = aⁿ + aᵗ, aⁿ = ω²·(X − Y) and aᵗ = ε·J(Y − X), cross(a_YX, aⁿ) = ε·ω⁴·|XY|², whose sign
 is that of ε whenever ω ≠ 0. M_u = −J·ε turns the other way. Where ω = 0 there is no normal
@@ -45,8 +46,8 @@ from ..kinematics.state import cross, perp
 from ..model import FRAME
 from .applied import AppliedLoads
 
-__all__ = ["CombinedConstruction", "CombinedForce", "EpsilonSense", "SeedConstants",
-           "combined_construction", "epsilon_senses", "seed_constants"]
+__all__ = ["CombinedConstants", "CombinedConstruction", "CombinedForce", "EpsilonSense",
+           "combined_constants", "combined_construction", "epsilon_senses"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,7 +65,7 @@ class CombinedForce:
 
 @dataclass(frozen=True, slots=True)
 class CombinedConstruction:
-    """The construction of seed 002 on one acceleration plan."""
+    """Aliyev's construction on one acceleration plan."""
 
     g: float
     mu_a: float
@@ -75,7 +76,7 @@ class CombinedConstruction:
 
 @dataclass(frozen=True, slots=True)
 class EpsilonSense:
-    """The sense of ε of a link by seed 002's rule on the plan, against the exact sign:
+    """The sense of ε of a link by Aliyev's rule on the plan, against the exact sign:
     +1 counter-clockwise, −1 clockwise, 0 none; ``rule`` None where undefined (ω = 0)."""
 
     link: str
@@ -89,8 +90,8 @@ class EpsilonSense:
 
 
 @dataclass(frozen=True, slots=True)
-class SeedConstants:
-    """Seed 002's constants: μF·μl for every force, and per link m·μa·μl and J·μa/l (with the
+class CombinedConstants:
+    """Aliyev's constants: μF·μl for every force, and per link m·μa·μl and J·μa/l (with the
     two points whose distance is l), and the inertia moment read off the plan by eq. 3 with
     Z_T (mm) against the exact −J·ε."""
 
@@ -149,7 +150,7 @@ def _two_points(mechanism, link: str) -> tuple[str, str] | None:
 
 
 def epsilon_senses(plans) -> tuple[EpsilonSense, ...]:
-    """Seed 002's rule for each moving link with two named points (not the drive)."""
+    """Aliyev's rule for each moving link with two named points (not the drive)."""
     if plans is None or plans.acceleration is None:
         return ()
     from ..plans.construction import image_label
@@ -182,8 +183,9 @@ def epsilon_senses(plans) -> tuple[EpsilonSense, ...]:
     return tuple(out)
 
 
-def seed_constants(plans, applied: AppliedLoads, mu_f: float | None) -> SeedConstants | None:
-    """Seed 002's constants for the scales of ``plans`` (see the module docstring)."""
+def combined_constants(plans, applied: AppliedLoads,
+                       mu_f: float | None) -> CombinedConstants | None:
+    """Aliyev's constants for the scales of ``plans`` (see the module docstring)."""
     if plans is None:
         return None
     scales = plans.scales
@@ -207,5 +209,5 @@ def seed_constants(plans, applied: AppliedLoads, mu_f: float | None) -> SeedCons
             z_t = abs(read) * length / mu_a
             entry |= {"Z_T_mm": z_t, "from_plan": float(-np.sign(read) * z_t * constant)}
         inertia_moment[link] = entry
-    return SeedConstants(mu_f, mu_l, mu_a, None if mu_f is None else mu_f * mu_l, combined,
-                         inertia_moment)
+    return CombinedConstants(mu_f, mu_l, mu_a, None if mu_f is None else mu_f * mu_l, combined,
+                             inertia_moment)

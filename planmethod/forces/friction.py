@@ -1,4 +1,5 @@
-"""Joint friction by fixed-point iteration on the reactions (seed 000's "iterative procedure").
+"""Joint friction by fixed-point iteration on the reactions (the "iterative procedure" of
+Umbetkulov et al., "Dynamic force analysis of a six-link planar mechanism").
 
 Exercise-file keys (validated by :mod:`planmethod.spec`)::
 
@@ -23,7 +24,7 @@ Each iteration solves the frictionless problem with the friction loads of the pr
 reactions as known loads (iteration 0 has none) until no reaction and no balancing moment
 changes by more than ``tolerance`` times the largest reaction (times the crank length for
 moments). For the small coefficients of real joints the map is a contraction and converges in a
-few iterations; seed 000 reports one.
+few iterations; Umbetkulov et al. report one.
 
 Examples
 --------

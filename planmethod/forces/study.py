@@ -1,5 +1,6 @@
-"""Seed 003's parameter study: how the rocker's weight, the crank speed and the resisting moment
-change the largest reactions in the pairs of a four-bar.
+"""The parameter study of M. A. Jobborova, M. O'. Xakimova and Sh. A. Kulturayeva, "Study of the
+load on kinematic pairs of a four-bar linkage mechanism": how the rocker's weight, the crank
+speed and the resisting moment change the largest reactions in the pairs of a four-bar.
 
 One parameter at a time is stepped over its range while the other two keep their base values
 (the exercise's own): the rocker weight G4 (the rocker's mass m = G4/g, its J scaled with m so
@@ -7,7 +8,7 @@ that its radius of gyration stays), the crank speed ω1, and the magnitude of th
 moment Mc on the rocker (its sense as in the exercise). For each value the full turn is solved
 and the largest reaction magnitude of every pair over the turn recorded.
 
-The seed's two conclusions are then put to the numbers:
+The paper's two conclusions are then put to the numbers:
 
 1. "The weight of the rocker does not significantly affect the reactions" — confirmed when no
    pair's largest reaction changes by more than :data:`NOT_SIGNIFICANT` (5 %) over G4's range;
@@ -37,6 +38,7 @@ from ..kinematics import solve
 from ..kinematics.solve import choose_branches
 from ..model import Exercise, Load
 from ..structure import analyse_structure
+from ..vocabulary import QUANTITY_KINDS
 from .analysis import solve_forces
 
 __all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "run_study"]
@@ -85,7 +87,7 @@ class Study:
         return ", ".join(f"{p.label} = {p.base:g} {p.unit}" for p in self.parameters)
 
     def conclusions(self) -> list[tuple[str, bool, str]]:
-        """The seed's two conclusions: (statement, confirmed?, the numbers)."""
+        """The paper's two conclusions: (statement, confirmed?, the numbers)."""
         weight = self.relative_change("weight")
         changes = {p.name: self.relative_change(p.name) for p in self.parameters}
         labels = {p.name: p.label for p in self.parameters}
@@ -142,7 +144,7 @@ def _variant(exercise: Exercise, rocker: str, index: int, *, weight: float, omeg
 def run_study(exercise: Exercise, *, rocker: str | None = None,
               weights: Sequence[float] = WEIGHTS, omegas: Sequence[float] = OMEGAS,
               moments: Sequence[float] = MOMENTS, step: float = 2.0) -> Study:
-    """Run seed 003's study on ``exercise`` (see the module docstring).
+    """Run the study of Jobborova et al. on ``exercise`` (see the module docstring).
 
     Raises
     ------
@@ -165,7 +167,8 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
     base = {"weight": mechanism.masses[rocker].m * mechanism.gravity,
             "omega": mechanism.drive.omega, "moment": abs(load.moment)}
     parameters = (Parameter("weight", "rocker weight G4", "N", tuple(weights), base["weight"]),
-                  Parameter("omega", "crank speed ω1", "rad/s", tuple(omegas), base["omega"]),
+                  Parameter("omega", "crank speed ω1", QUANTITY_KINDS["omega"].unit,
+                            tuple(omegas), base["omega"]),
                   Parameter("moment", "resisting moment Mc", "N·m", tuple(moments),
                             base["moment"]))
     structure = analyse_structure(mechanism)

@@ -46,7 +46,9 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
-from .tolerances import MISTAKES, SIGNED, kind_of, mistaken_plans, propagate, scale_factor
+from ..vocabulary import QUANTITY_KINDS
+from ..vocabulary import quantity as named_quantity
+from .tolerances import MISTAKES, kind_of, mistaken_plans, propagate, scale_factor
 
 __all__ = [
     "KEYS_FORMAT",
@@ -68,9 +70,6 @@ GRADING_KEYS = ("precision_mm", "rel_floor", "points", "tolerance")
 
 #: Absolute floor of a tolerance, as a fraction of the drive's own value of the same kind.
 ABS_FLOOR = 1e-3
-
-UNITS = {"v": "m/s", "a": "m/s²", "omega": "rad/s", "epsilon": "rad/s²", "rho": "m",
-         "s": "m", "ds": "m/s", "dds": "m/s²", "coriolis": "m/s²"}
 
 
 class GradingSettings:
@@ -148,19 +147,10 @@ def question_text(quantity: str) -> str:
     >>> question_text("omega_BC")
     'angular velocity ω of BC (counter-clockwise positive)'
     """
-    kind, _, name = quantity.partition("_")
-    point = name.replace("@", " of link ")
-    return {
-        "v": f"speed of {point}, |v_{name}|",
-        "a": f"magnitude of the acceleration of {point}, |a_{name}|",
-        "omega": f"angular velocity ω of {name} (counter-clockwise positive)",
-        "epsilon": f"angular acceleration ε of {name} (counter-clockwise positive)",
-        "rho": f"radius of curvature ρ of the path of {point}",
-        "s": f"travel s of the slide {name}",
-        "ds": f"sliding velocity of {name} (along the guide)",
-        "dds": f"sliding (relative) acceleration of {name} (along the guide)",
-        "coriolis": f"magnitude of the Coriolis acceleration of {name}",
-    }.get(kind, quantity)
+    try:
+        return named_quantity(quantity).question
+    except KeyError:
+        return quantity
 
 
 def _drive_reference(exercise, kind: str) -> float:
@@ -183,7 +173,7 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
     answer by more than twice the tolerance)."""
     kind = kind_of(quantity)
     found: list[tuple[str, float, float]] = []
-    if kind in SIGNED:
+    if QUANTITY_KINDS[kind].signed:
         found.append(("sense", -value, tolerance))
     for mistake, readings in alternatives.items():
         if quantity in readings and readings[quantity] is not None:
@@ -202,10 +192,10 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
     if factor and factor != 1.0:
         found.append(("scale_none", value / factor, tolerance / factor))
         found.append(("scale_twice", value * factor, tolerance * factor))
-    if kind in ("omega", "epsilon"):
+    if QUANTITY_KINDS[kind].unit.startswith("rad"):
         found.append(("degrees", math.degrees(value), math.degrees(tolerance)))
         found.append(("length_mm", value / 1000.0, tolerance / 1000.0))
-    if kind in ("rho", "s", "v", "a", "ds", "dds", "coriolis"):
+    else:  # metres
         found.append(("millimetres", value * 1000.0, tolerance * 1000.0))
     out = []
     for mistake, wrong, wrong_tolerance in found:
@@ -260,8 +250,9 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
             tolerance = amount * abs(value) if which == "rel" else amount
             source = f"override ({which})"
         questions.append({
-            "id": quantity, "text": question_text(quantity), "unit": UNITS.get(kind, ""),
-            "value": value, "signed": kind in SIGNED, "tolerance": tolerance,
+            "id": quantity, "text": question_text(quantity),
+            "unit": QUANTITY_KINDS[kind].unit, "value": value,
+            "signed": QUANTITY_KINDS[kind].signed, "tolerance": tolerance,
             "tolerance_from": source,
             "points": settings.points.get(quantity, settings.points["*"]),
             "mistakes": _mistakes(quantity, value, tolerance, scales, alternatives, motion),

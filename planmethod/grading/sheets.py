@@ -28,6 +28,8 @@ from dataclasses import replace
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
+from ..vocabulary import SCALES
+
 __all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_sheet_svg", "task_text"]
 
 
@@ -50,9 +52,9 @@ def task_text(key: Mapping[str, Any]) -> str:
         lines.append("Given: " + ", ".join(f"{name} = {value:g}" if isinstance(value, float)
                                            else f"{name} = {value}"
                                            for name, value in given.items()))
-    lines.append(f"Crank angle φ1 = {key.get('angle', 0):g}°; scales μl = "
-                 f"{scales.get('mu_l', 0):.6g} m/mm, μv = {scales.get('mu_v', 0):.6g} (m/s)/mm, "
-                 f"μa = {scales.get('mu_a', 0):.6g} (m/s²)/mm.")
+    scale_texts = (f"{SCALES[name][0]} = {scales.get(name, 0):.6g} {SCALES[name][1]}"
+                   for name in ("mu_l", "mu_v", "mu_a"))
+    lines.append(f"Crank angle φ1 = {key.get('angle', 0):g}°; scales {', '.join(scale_texts)}.")
     lines += ["", "Answer (SI units, counter-clockwise positive):"]
     for question in key.get("questions", ()):
         lines.append(f"  {question['id']:<14} {question['text']} [{question.get('unit', '')}]")

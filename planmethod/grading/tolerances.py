@@ -1,6 +1,6 @@
 """Tolerances that follow from the drawing, and the answers that common mistakes give.
 
-The drafting-error model is the one of ``PlanSettings.precision_mm`` (DESIGN.md): every length
+The drafting-error model is the one of ``PlanSettings.precision_mm`` (README): every length
 laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
 plan — carries an error uniform in ±precision/2; directions are drawn exactly. The plan
 emulator (:func:`planmethod.plans.draw_plans`) is run once exactly and once per segment with
@@ -33,6 +33,7 @@ import numpy as np
 
 from ..model import Exercise
 from ..plans.construction import Segment
+from ..vocabulary import QUANTITY_KINDS
 
 __all__ = [
     "MISTAKES",
@@ -46,9 +47,6 @@ __all__ = [
 
 #: The segment lengthening used to measure sensitivities (mm).
 DELTA_MM = 1e-4
-
-#: Which quantity kinds are signed (their sense can be reversed).
-SIGNED = {"omega", "epsilon", "s", "ds", "dds"}
 
 #: Mistakes detected in numeric answers and drawn plans.
 MISTAKES = {
@@ -231,8 +229,10 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
 def scale_factor(quantity: str, mu_l: float, mu_v: float, mu_a: float) -> float | None:
     """The factor that turns a drawn length (mm, or mm/mm) into the quantity: the scale a
     student might leave out or apply twice."""
-    kind = kind_of(quantity)
-    return {
-        "v": mu_v, "ds": mu_v, "a": mu_a, "dds": mu_a, "coriolis": mu_a, "s": mu_l,
-        "omega": mu_v / mu_l, "epsilon": mu_a / mu_l, "rho": mu_v ** 2 / mu_a,
-    }.get(kind)
+    kind = QUANTITY_KINDS.get(kind_of(quantity))
+    if kind is None or kind.scale is None:
+        return None
+    if kind.prefix == "rho":  # ρ = (pd)²·μv² / ((πn_D)·μa): mm at μv²/μa
+        return mu_v ** 2 / mu_a
+    factor = {"mu_l": mu_l, "mu_v": mu_v, "mu_a": mu_a}[kind.scale]
+    return factor / mu_l if kind.subject == "link" else factor  # ω = (bc)·μv / ((BC)·μl)

@@ -2,7 +2,9 @@
 
 Each scale is set by the drawn length of the drive link's scale point B: μl = l_AB/(AB),
 μv = v_B/(pb), μa = a_B/(πb), or given directly. At the crank scale (all three lengths equal)
-μv = ω1·μl and μa = ω1²·μl. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1² (seed 001).
+μv = ω1·μl and μa = ω1²·μl. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
+U. A. Abduvaliev and J. U. Abduxoshimov, "Kinematic study of a four-link mechanism for the
+purpose of its use in the design of new machines".
 
 Examples
 --------
@@ -21,6 +23,7 @@ from dataclasses import dataclass
 
 from ..errors import SpecError
 from ..model import Exercise, Mechanism, PlanSettings
+from ..vocabulary import SCALES
 
 __all__ = ["Scales", "choose_scales", "scale_point"]
 
@@ -57,14 +60,19 @@ class Scales:
 
     def describe(self) -> list[str]:
         """The scales as printed on a drawing, with units."""
-        lines = [f"μl = {self.mu_l:.6g} m/mm", f"μv = {self.mu_v:.6g} (m/s)/mm",
-                 f"μa = {self.mu_a:.6g} (m/s²)/mm"]
+        lines = [_scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
         if self.omega1:
             lines += [f"μφv = μv/ω1 = {self.mu_phi_v:.6g} m/mm",
                       f"μφa = μa/ω1² = {self.mu_phi_a:.6g} m/mm"]
         if self.mu_f is not None:
-            lines.append(f"μF = {self.mu_f:.6g} N/mm")
+            lines.append(_scale_text("mu_f", self.mu_f))
         return lines
+
+
+def _scale_text(name: str, value: float) -> str:
+    """``μv = 0.2 (m/s)/mm``: a scale as printed, with its unit."""
+    symbol, unit = SCALES[name]
+    return f"{symbol} = {value:.6g} {unit}"
 
 
 def scale_point(mechanism: Mechanism, settings: PlanSettings) -> str:
