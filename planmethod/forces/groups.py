@@ -1,8 +1,9 @@
 """Reactions group by group, from the last Assur group back to the drive link (d'Alembert).
 
-This is the textbook kinetostatics (seeds 003 and 000): each group, loaded by its known forces
-(weights, inertia forces and moments, external loads) and by the reactions of the groups
-already solved, is statically determinate by itself. Each group kind has its own sequence:
+This is the textbook kinetostatics (Jobborova et al.; Umbetkulov et al.): each group, loaded
+by its known forces (weights, inertia forces and moments, external loads) and by the reactions
+of the groups already solved, is statically determinate by itself. Each group kind has its own
+sequence:
 
 RRR (pins P1–Q–P2)
     Rᵗ at P1 ⟂ P1Q from ΣM_Q(L1) = 0, Rᵗ at P2 from ΣM_Q(L2) = 0; the group's force polygon

@@ -1,4 +1,4 @@
-"""The whole mechanism's force system in one linear solve (the idea of seed 000's D·g = b).
+"""The whole mechanism's force system in one linear solve (the D·g = b of Umbetkulov et al.).
 
 Every moving link i has coordinates q_i = (x_i, y_i, θ_i); the pairs give the constraint
 equations Φ(q) = 0 (:mod:`planmethod.kinematics.constraints`) and the drive adds one more,

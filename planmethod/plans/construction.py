@@ -202,7 +202,7 @@ class Plans:
     def rotated_velocity_plan(self) -> dict[str, tuple[float, float]]:
         """The velocity plan turned 90° clockwise onto the position plan, pole p at the drive's
         pivot (mm on the position plan): Zhukovsky's lever stands on it. For ω1 > 0 the image
-        of the crank pin then lies along the crank (seed 001)."""
+        of the crank pin then lies along the crank (Abduvaliev & Abduxoshimov)."""
         pivot = np.asarray(self.position.points_mm[self.position.drive[1]])
         out = {}
         for label, (x, y) in self.velocity.points_mm.items():
@@ -667,7 +667,8 @@ def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: fl
 
 
 def _curvature_readings(emulator: _Emulator, point: str, position_plan: PositionPlan) -> None:
-    """ρ = (pd)²·μv² / ((πn_D)·μa): project πd on the normal to pd (seed 001)."""
+    """ρ = (pd)²·μv² / ((πn_D)·μa): project πd on the normal to pd (Abduvaliev &
+    Abduxoshimov, with their ρ formula's slip corrected)."""
     v, a, scales = emulator.v, emulator.a, emulator.scales
     name = point.partition("@")[0]
     link, position = emulator.motion.locate(point)
