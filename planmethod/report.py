@@ -26,6 +26,7 @@ from .kinematics import Motion, solve
 from .kinematics.solve import FLAG_ERROR
 from .model import FRAME, Exercise
 from .plans import Plans, draw_plans
+from .plans.construction import PlansUnavailableError
 from .scene import Scene, plan_scene
 from .structure import Structure, analyse_structure
 
@@ -165,8 +166,6 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
     motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, structure=structure)
     drawn = None
     if plans:
-        from .plans.higher import PlansUnavailableError
-
         try:
             drawn = draw_plans(exercise, angle, motion=motion,
                                acceleration=scene.stage == "acceleration")

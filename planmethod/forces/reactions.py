@@ -18,20 +18,36 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..model import Mechanism, Slide
+from ..structure import Joint
+from ..vocabulary import PairKind
 from .applied import Wrench
 
-__all__ = ["Reaction", "pair_key"]
+__all__ = ["Reaction", "canonical", "pair_key"]
+
+
+def canonical(joint: Joint, group_links: Sequence[str]) -> tuple[str, str]:
+    """(from, on) of a pair in the report: an external pair of a group from the known link on
+    the group's link, an internal revolute pair from its first to its second link, a prismatic
+    pair on the slide's ``link`` from its ``along``."""
+    if joint.kind is PairKind.PRISMATIC:
+        return joint.slide.along, joint.slide.link
+    first, second = joint.links
+    if first in group_links and second in group_links:
+        return first, second
+    inside = first if first in group_links else second
+    return joint.other(inside), inside
 
 
 def pair_key(mechanism: Mechanism, kind: str, point: str, source: str, target: str,
              slide: Slide | None = None) -> str:
     """The report key of a pair (see the module docstring)."""
-    if kind == "P":
+    if kind == PairKind.PRISMATIC:
         return slide.key
     pair = mechanism.revolute_at(point)
     if pair is not None and len(pair.links) >= 3:

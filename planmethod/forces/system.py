@@ -40,7 +40,7 @@ from ..kinematics.state import LinkState, cross
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
 from .applied import AppliedLoads, Wrench
-from .reactions import Reaction, pair_key
+from .reactions import Reaction, canonical, pair_key
 
 __all__ = ["SystemSolution", "group_linear_reactions", "solve_whole_system"]
 
@@ -130,8 +130,6 @@ def _as_reaction(mechanism, joint: Joint, source: str, target: str, system, matr
 
 def _pairs(mechanism: Mechanism, structure: Structure):
     """Every pair with its (from, on) orientation, as the group method keys them."""
-    from .groups import canonical
-
     pairs = []
     for group in structure.groups:
         for joint in group.joints:
@@ -171,8 +169,6 @@ def group_linear_reactions(mechanism: Mechanism, group: AssurGroup,
                            angles=None):
     """Reactions of one group from its own 3k equations: ``[(joint, (target, source, point,
     force, moment))]`` with each force on the group's link (or the pair's second link)."""
-    from .groups import canonical
-
     system, matrix, multipliers, _ = _solve(mechanism, group.joints, group.links, states,
                                             wrenches, angles, group.name, drive=False)
     out = []

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..errors import PlanmethodError, ToggleError
 from ..kinematics import Motion, solve
+from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction
 from ..model import FRAME, Exercise, PlanSettings
 from .scales import Scales, choose_scales
@@ -41,12 +42,17 @@ __all__ = [
     "LinkImage",
     "Plan",
     "Plans",
+    "PlansUnavailableError",
     "PositionPlan",
     "Segment",
     "Step",
     "draw_plans",
     "image_label",
 ]
+
+class PlansUnavailableError(PlanmethodError):
+    """The plans of a group cannot be drawn (its exact kinematics is still available)."""
+
 
 #: A drawing sheet is never larger than this (mm): lines that would meet further away than
 #: this, given the drafting precision, are parallel to within the drawing's precision.
@@ -366,6 +372,8 @@ class _Emulator:
         #: prismatic pair key → plan labels of the group side that draws its relative motion
         self.sliding_sides: dict[str, dict[str, object]] = {}
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
+        #: what a group kind's own drawing keeps between its velocity and acceleration plans
+        self.memo: dict = {}
         self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb)
         self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
                         perturb)
@@ -382,6 +390,24 @@ class _Emulator:
 
     def label(self, point: str, sheet: _Sheet) -> str:
         return image_label(point, sheet.pole)
+
+    def drawn_length(self, sheet: _Sheet, start: str, end: str) -> float:
+        """The segment start–end of ``sheet`` as read off the drawing (mm, rounded)."""
+        return sheet.round(float(np.hypot(*(sheet.points[end] - sheet.points[start]))),
+                           Segment(sheet.kind, "read", "relative"))
+
+    def fix_velocity(self, link: str, ref: np.ndarray, label: str, omega: float) -> None:
+        """The link's velocity image is known (its point ``ref`` at ``label``, its ω): its other
+        points follow by similarity."""
+        self.vimages[link] = LinkImage(ref, self.v.points[label], label, omega)
+        self.image_points(link, self.v, self.vimages[link], _velocity_offset, self.scales.mu_v)
+
+    def fix_acceleration(self, link: str, ref: np.ndarray, label: str, omega: float,
+                         epsilon: float) -> None:
+        """The link's acceleration image is known: its other points follow by similarity."""
+        self.aimages[link] = LinkImage(ref, self.a.points[label], label, omega, epsilon)
+        self.image_points(link, self.a, self.aimages[link], _acceleration_offset,
+                          self.scales.mu_a)
 
     # -- images --------------------------------------------------------------------------------
     def image_points(self, link: str, sheet: _Sheet, image: LinkImage, offset, scale,
@@ -822,20 +848,12 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     emulator = _Emulator(exercise, settings, angle, motion, scales, perturb)
     position_plan = _position_plan(exercise, motion, scales, angle)
     emulator.drive()
-    groups = motion.structure.groups
-    if any(not groups[index].is_dyad for index in motion.groups):
-        from .higher import acceleration_triad, velocity_triad  # Assur's special point
-    for index in sorted(motion.groups):
-        if groups[index].is_dyad:
-            emulator.velocity_group(motion.groups[index].construction)
-        else:
-            velocity_triad(emulator, groups[index])
+    groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
+    for group in groups:
+        _draw(emulator, motion, group, "velocity")
     if acceleration:
-        for index in sorted(motion.groups):
-            if groups[index].is_dyad:
-                emulator.acceleration_group(motion.groups[index].construction)
-            else:
-                acceleration_triad(emulator, groups[index])
+        for group in groups:
+            _draw(emulator, motion, group, "acceleration")
     ask = exercise.ask
     for point in _asked_points(exercise, motion):
         link, position = motion.locate(point)
@@ -863,6 +881,25 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
                                           if acceleration_plan else ())
     return Plans(exercise, angle, scales, position_plan, velocity_plan, acceleration_plan,
                  dict(emulator.readings), flags, motion)
+
+
+def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
+    """Draw one group on one plan: a dyad from its two vector equations, a higher group by its
+    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``)."""
+    if group.is_dyad:
+        construction = motion.groups[group.index].construction
+        if plan == "velocity":
+            emulator.velocity_group(construction)
+        else:
+            emulator.acceleration_group(construction)
+        return
+    drawing = getattr(kind_module(group), f"draw_{plan}", None)
+    if drawing is None:
+        raise PlansUnavailableError(
+            f"plans are drawn for class III triads of revolute pairs only; this {group.kind} "
+            "has other pairs — its exact kinematics is reported (planmethod solve --json)",
+            link=group.name)
+    drawing(emulator, group)
 
 
 def _asked_points(exercise: Exercise, motion: Motion) -> tuple[str, ...]:

@@ -55,6 +55,7 @@ __all__ = [
     "Side",
     "Theta",
     "evaluate_dyad",
+    "split",
 ]
 
 #: the arithmetic's resolution (unit roundoff)
@@ -572,19 +573,69 @@ def construction(placed: Placed, group: AssurGroup, count: int) -> Construction:
 
 # -- the protocols later layers implement ------------------------------------------------------
 class PlanDrawer(Protocol):
-    """What a group kind's own plan construction (a class III triad's) is given by the plan
-    emulator: the plan sheets and the images of the links solved so far (see
-    :mod:`planmethod.plans.construction`)."""
+    """What a group kind's own plan construction (a module's ``draw_velocity(drawer, group)``
+    and ``draw_acceleration``: a class III triad's) is given by the plan emulator
+    (:mod:`planmethod.plans.construction`): the two plan sheets ``v`` and ``a`` (``line``,
+    ``intersect``, ``lay_off``, ``read``, ``points``), the scales, the readings so far, the
+    images of the links solved so far, and a ``memo`` kept between the two plans."""
+
+    v: Any
+    a: Any
+    scales: Any
+    readings: dict
+    vimages: dict
+    aimages: dict
+    memo: dict
+    angle: float
 
     def where(self, link: str, point: str) -> np.ndarray: ...
 
+    def label(self, point: str, sheet) -> str: ...
+
+    def image_at(self, sheet, images: dict, link: str, position, label: str) -> str: ...
+
+    def length_mm(self, first, second) -> float: ...
+
+    def drawn_length(self, sheet, start: str, end: str) -> float: ...
+
+    def fix_velocity(self, link: str, ref, label: str, omega: float) -> None: ...
+
+    def fix_acceleration(self, link: str, ref, label: str, omega: float,
+                         epsilon: float) -> None: ...
+
 
 class ForceSolver(Protocol):
-    """What a group kind's textbook reaction sequence is given by the force analysis (see
-    :mod:`planmethod.forces.groups`): positions, the known wrenches, the 2 × 2 solve, and the
-    recording of reactions, polygon edges and the group's steps."""
+    """What a group kind's textbook reaction sequence (its module's ``reactions(solver,
+    group)``) is given by the force analysis (:mod:`planmethod.forces.groups`): the solved
+    positions, each link's known wrench (``wrench[link]``: ``force`` and ``moment_about``), the
+    2 × 2 solve with its singularity check, and the recording of reactions, polygon edges and
+    the group's result. Arrays are over the crank angles."""
+
+    count: int
+    wrench: Mapping[str, Any]
 
     def at(self, link: str, point: str) -> np.ndarray: ...
 
+    def guide(self, joint: Joint) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+
     def solve2(self, e1, e2, w, group: str, what: str): ...
+
+    def singular(self, value, scale, group: str, what: str) -> None: ...
+
+    def record(self, joint: Joint, group_links, target: str, source: str, point, force,
+               moment=None): ...
+
+    def known_edges(self, links) -> list: ...
+
+    def edge(self, label: str, vector, kind: str, link: str): ...
+
+    def total(self, links) -> Any: ...
+
+    def result(self, group: AssurGroup, steps, edges, keys, special=None): ...
+
+
+def split(vector: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(unit vector, length) of arrays of 2-vectors."""
+    length = np.sqrt(vector[..., 0] * vector[..., 0] + vector[..., 1] * vector[..., 1])
+    return vector / length[..., None], length
 

@@ -22,11 +22,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, Vec
-from .base import TOGGLE_SINE, Anchor, Context, Placed, Theta, parallel_guides, sliding_side
+from ..state import cross
+from .base import (
+    TOGGLE_SINE,
+    Anchor,
+    Context,
+    ForceSolver,
+    Placed,
+    Theta,
+    parallel_guides,
+    sliding_side,
+)
 
-__all__ = ["BRANCHES", "KIND", "place"]
+__all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
 KIND = GroupKind.PRP
 BRANCHES = 1
@@ -79,3 +90,37 @@ def place(context: Context) -> Placed:
 
 
 del np
+
+
+# -- the reactions ---------------------------------------------------------------------------
+def reactions(solver: ForceSolver, group: AssurGroup):
+    """The textbook reaction sequence, run by the force analysis (``solver``: see
+    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
+
+    N1, N2 from the group's polygon (each ⟂ its guide); the pin Q from L2; each reaction
+    couple from its link's moments about its slide point.
+    """
+    ext1, internal, ext2 = group.joints
+    l1, l2 = group.links
+    k1, k2 = ext1.other(l1), ext2.other(l2)
+    q = solver.at(l1, internal.point)
+    _, n1, ps1 = solver.guide(ext1)
+    _, n2, ps2 = solver.guide(ext2)
+    w1, w2 = solver.wrench[l1], solver.wrench[l2]
+    big1, big2 = solver.solve2(n1, n2, -(w1.force + w2.force), group.name,
+                             f"the guides of {ext1.slide.key} and {ext2.slide.key} are "
+                             "parallel")
+    f1, f2 = big1[..., None] * n1, big2[..., None] * n2
+    r_q = -(w2.force + f2)                         # on l2 from l1
+    c1 = -(w1.moment_about(ps1) + cross(q - ps1, -r_q))
+    c2 = -(w2.moment_about(ps2) + cross(q - ps2, r_q))
+    edges = [*solver.known_edges((l1, l2)),
+             solver.edge(f"N_{ext2.slide.key}", f2, "component", l2),
+             solver.edge(f"N_{ext1.slide.key}", f1, "component", l1)]
+    keys = [solver.record(ext1, group.links, l1, k1, ps1, f1, c1).key,
+            solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key,
+            solver.record(internal, group.links, l2, l1, q, r_q).key]
+    steps = ("force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide",
+             f"R_{internal.point} from the equilibrium of {l2}",
+             "each reaction couple from its link's moments about its slide point")
+    return solver.result(group, steps, edges, keys)

@@ -26,13 +26,16 @@ import math
 
 import numpy as np
 
+from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, Vec, sqrt
+from ..state import cross, norm
 from .base import (
     EPS,
     MARGIN,
     Anchor,
     Context,
+    ForceSolver,
     Placed,
     Theta,
     assembly_error,
@@ -41,7 +44,7 @@ from .base import (
     toggle_or_miss,
 )
 
-__all__ = ["BRANCHES", "KIND", "place"]
+__all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
 KIND = GroupKind.RPR
 BRANCHES = 2
@@ -106,3 +109,43 @@ def place(context: Context) -> Placed:
         thetas={l2: Theta("span", ext1.point, ext2.point, link=l2),
                 l1: Theta("tied", alpha=angle, link=l2)},
         ratio_bound=2.0 * MARGIN, x_links=(l2,))
+
+
+# -- the reactions ---------------------------------------------------------------------------
+def reactions(solver: ForceSolver, group: AssurGroup):
+    """The textbook reaction sequence, run by the force analysis (``solver``: see
+    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
+
+    R at P1 along the guide from the block's projection on the guide, across it from
+    ΣM_P2 of the group; the slide's normal force and couple from the block; R at P2 from L2.
+    """
+    ext1, internal, ext2 = group.joints
+    l1, l2 = group.links          # l1 is the block (the slide's link), l2 its guide
+    k1, k2 = ext1.other(l1), ext2.other(l2)
+    p1, p2 = solver.at(l1, ext1.point), solver.at(l2, ext2.point)
+    d, n, ps = solver.guide(internal)
+    w1, w2 = solver.wrench[l1], solver.wrench[l2]
+    along = -np.einsum("...i,...i->...", w1.force, d)
+    arm = p1 - p2
+    lever = cross(arm, n)
+    solver.singular(lever, norm(arm) + 1e-300, group.name,
+                  f"{ext1.point} lies on the normal to the guide through {ext2.point}")
+    across = -((w1 + w2).moment_about(p2) + along * cross(arm, d)) / lever
+    r_along, r_across = along[..., None] * d, across[..., None] * n
+    r1 = r_along + r_across
+    inner = -(r1 + w1.force)                       # on the block from the guide
+    couple = -(w1.moment_about(ps) + cross(p1 - ps, r1))
+    r2 = inner - w2.force
+    edges = [solver.edge(f"R∥_{ext1.point}", r_along, "component", l1),
+             solver.edge(f"R⊥_{ext1.point}", r_across, "component", l1),
+             *solver.known_edges((l1, l2)),
+             solver.edge(f"R_{ext2.point}", r2, "reaction", l2)]
+    keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
+            solver.record(internal, group.links, l1, l2, ps, inner, couple).key,
+            solver.record(ext2, group.links, l2, k2, p2, r2).key]
+    P1, P2 = ext1.point, ext2.point
+    steps = (f"R_{P1} along the guide from the block {l1}: projection on the guide",
+             f"R_{P1} ⟂ the guide from ΣM_{P2} of the group = 0",
+             f"the normal force and couple of {internal.slide.key} from the block {l1}",
+             f"R_{P2} from the force polygon of {l2}")
+    return solver.result(group, steps, edges, keys)
