@@ -115,6 +115,11 @@ class Context:
         x, y = self.mechanism.local(link, point)
         return float(x), float(y)
 
+    def dyad(self) -> tuple:
+        """A dyad's (external pair of L1, internal pair, external pair of L2, L1, L2)."""
+        ext1, internal, ext2 = self.group.joints
+        return ext1, internal, ext2, *self.group.links
+
     def group_link(self, joint: Joint) -> str:
         return joint.links[0] if joint.links[0] in self.group.links else joint.links[1]
 

@@ -26,16 +26,7 @@ from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, Vec
 from ..state import cross
-from .base import (
-    TOGGLE_SINE,
-    Anchor,
-    Context,
-    ForceSolver,
-    Placed,
-    Theta,
-    parallel_guides,
-    sliding_side,
-)
+from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -43,10 +34,9 @@ KIND = GroupKind.PRP
 BRANCHES = 1
 
 
-def place(context: Context) -> Placed:
+def place(context: base.Context) -> base.Placed:
     group = context.group
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
+    ext1, internal, ext2, l1, l2 = context.dyad()
     lines = []
     for joint in (ext1, ext2):
         link = context.group_link(joint)
@@ -62,30 +52,30 @@ def place(context: Context) -> Placed:
             f"{internal.point} has no definite position")
 
     def check(angles, value) -> None:
-        parallel_guides(group, angles, value, text)
+        base.parallel_guides(group, angles, value, text)
 
-    context.guard(det * det, TOGGLE_SINE * TOGGLE_SINE, check, det)
+    context.guard(det * det, base.TOGGLE_SINE * base.TOGGLE_SINE, check, det)
     x = Vec((c1 * n2.y - c2 * n1.y) / det, (n1.x * c2 - n2.x * c1) / det)
     for body, turned, local in ((body1, t1, q1), (body2, t2, q2)):
         origin = x if local == (0.0, 0.0) else x - turned
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     k1, k2 = ext1.other(l1), ext2.other(l2)
-    sides = tuple(sliding_side(context, joint.slide, known, f"{internal.point}@{known}", known,
+    sides = tuple(base.sliding_side(context, joint.slide, known, f"{internal.point}@{known}", known,
                                x, placed) for joint, known in ((ext1, k1), (ext2, k2)))
 
     def delta(joint, link) -> float:
         return joint.slide.direction_rad if link == joint.slide.link else (
             -joint.slide.direction_rad)
 
-    return Placed(
+    return base.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={}, tied={l1: k1, l2: k2},
-        anchors={l1: Anchor(internal.point, x, None, None, q1),
-                 l2: Anchor(internal.point, x, None, None, q2)},
+        anchors={l1: base.Anchor(internal.point, x, None, None, q1),
+                 l2: base.Anchor(internal.point, x, None, None, q2)},
         points={internal.point: x},
-        thetas={l1: Theta("tied", alpha=delta(ext1, l1), link=k1),
-                l2: Theta("tied", alpha=delta(ext2, l2), link=k2)},
+        thetas={l1: base.Theta("tied", alpha=delta(ext1, l1), link=k1),
+                l2: base.Theta("tied", alpha=delta(ext2, l2), link=k2)},
         ratio_bound=1.0, x_links=(l1, l2), x_local={l1: q1, l2: q2})
 
 
@@ -93,7 +83,7 @@ del np
 
 
 # -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: ForceSolver, group: AssurGroup):
+def reactions(solver: base.ForceSolver, group: AssurGroup):
     """The textbook reaction sequence, run by the force analysis (``solver``: see
     :class:`~planmethod.kinematics.groups.base.ForceSolver`).
 

@@ -28,16 +28,7 @@ from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, Vec
 from ..state import cross
-from .base import (
-    TOGGLE_SINE,
-    Anchor,
-    Context,
-    ForceSolver,
-    Placed,
-    Theta,
-    parallel_guides,
-    sliding_side,
-)
+from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -45,10 +36,9 @@ KIND = GroupKind.RPP
 BRANCHES = 1
 
 
-def place(context: Context) -> Placed:
+def place(context: base.Context) -> base.Placed:
     group = context.group
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
+    ext1, internal, ext2, l1, l2 = context.dyad()
     k2 = ext2.other(l2)
     p1 = context.pin(ext1)
     c2, s2 = context.slide_axes(ext2.slide, l2)
@@ -65,25 +55,25 @@ def place(context: Context) -> Placed:
             "definite position")
 
     def check(angles, value) -> None:
-        parallel_guides(group, angles, value, text)
+        base.parallel_guides(group, angles, value, text)
 
-    context.guard(det * det, TOGGLE_SINE * TOGGLE_SINE, check, det)
+    context.guard(det * det, base.TOGGLE_SINE * base.TOGGLE_SINE, check, det)
     body2.x = (line1 * n2.y - line2 * n1.y) / det
     body2.y = (n1.x * line2 - n2.x * line1) / det
     placed = {l1: body1, l2: body2}
     x = p1.at
     x_name = f"{ext1.point}@{l2}"
-    sides = (sliding_side(context, inner, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
-             sliding_side(context, ext2.slide, k2, f"{ext1.point}@{k2}", k2, x, placed))
+    sides = (base.sliding_side(context, inner, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
+             base.sliding_side(context, ext2.slide, k2, f"{ext1.point}@{k2}", k2, x, placed))
     outer = ext2.slide.direction_rad if l2 == ext2.slide.link else -ext2.slide.direction_rad
-    return Placed(
+    return base.Placed(
         bodies=placed, point=x_name, x=x, sides=sides,
         rotating={}, tied={l2: k2, l1: l2},
-        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: Anchor(x_name, x, None, None, None)},
+        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: base.Anchor(x_name, x, None, None, None)},
         points={},
-        thetas={l2: Theta("tied", alpha=outer, link=k2),
-                l1: Theta("tied", alpha=angle, link=l2)},
+        thetas={l2: base.Theta("tied", alpha=outer, link=k2),
+                l1: base.Theta("tied", alpha=angle, link=l2)},
         ratio_bound=1.0, x_links=(l2,))
 
 
@@ -100,7 +90,7 @@ del Vec
 
 
 # -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: ForceSolver, group: AssurGroup):
+def reactions(solver: base.ForceSolver, group: AssurGroup):
     """The textbook reaction sequence, run by the force analysis (``solver``: see
     :class:`~planmethod.kinematics.groups.base.ForceSolver`).
 

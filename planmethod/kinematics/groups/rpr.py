@@ -30,19 +30,7 @@ from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, Vec, sqrt
 from ..state import cross, norm
-from .base import (
-    EPS,
-    MARGIN,
-    Anchor,
-    Context,
-    ForceSolver,
-    Placed,
-    Theta,
-    assembly_error,
-    rotation_side,
-    sliding_side,
-    toggle_or_miss,
-)
+from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -50,11 +38,10 @@ KIND = GroupKind.RPR
 BRANCHES = 2
 
 
-def place(context: Context) -> Placed:
+def place(context: base.Context) -> base.Placed:
     group = context.group
-    ext1, internal, ext2 = group.joints
+    ext1, internal, ext2, l1, l2 = context.dyad()   # l1 is the block (the slide's link)
     slide = internal.slide
-    l1, l2 = group.links           # l1 is the block (the slide's link), l2 its guide
     p1, p2 = context.pin(ext1), context.pin(ext2)
     angle = slide.direction_rad
     u = (math.cos(angle), math.sin(angle))
@@ -73,16 +60,17 @@ def place(context: Context) -> Placed:
         distance = np.atleast_1d(np.asarray(distance, dtype=float))
         close = distance <= 1e-15
         if np.any(close):
-            raise assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
+            raise base.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
                                  "coincide: the group has no definite position", 0.0)
         if offset != 0:
             size = np.maximum(np.abs(np.asarray(sx)), np.abs(np.asarray(sy)))
-            toggle_or_miss(group, angles, distance - abs(offset),
+            base.toggle_or_miss(group, angles, distance - abs(offset),
                            distance + abs(offset) + size, text, abs(offset) - distance)
 
     # |P1P2| − |offset| must exceed 16ε·(|P1P2| + |offset| + |span|) ≤ 16ε·(3|P1P2| + |offset|)
     # (and 1e-15 m): a margin proportional to the length itself
-    gap = length * (1.0 - 48.0 * EPS * MARGIN) - abs(offset) * (1.0 + 16.0 * EPS * MARGIN)
+    rounding = 16.0 * base.EPS * base.MARGIN
+    gap = length * (1.0 - 3.0 * rounding) - abs(offset) * (1.0 + rounding)
     context.guard(gap, 1e-15, check, length, span.x, span.y)
     projection = -(c0[0] * u[0] + c0[1] * u[1])
     s = projection + sqrt(square - offset * offset) * context.sign
@@ -98,21 +86,21 @@ def place(context: Context) -> Placed:
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     x = p1.at
-    sides = (sliding_side(context, slide, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
-             rotation_side(l2, p2, x, length))
-    return Placed(
+    sides = (base.sliding_side(context, slide, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
+             base.rotation_side(l2, p2, x, length))
+    return base.Placed(
         bodies=placed, point=f"{ext1.point}@{l2}", x=x, sides=sides,
         rotating={l2: 1}, tied={l1: l2},
-        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         points={},
-        thetas={l2: Theta("span", ext1.point, ext2.point, link=l2),
-                l1: Theta("tied", alpha=angle, link=l2)},
-        ratio_bound=2.0 * MARGIN, x_links=(l2,))
+        thetas={l2: base.Theta("span", ext1.point, ext2.point, link=l2),
+                l1: base.Theta("tied", alpha=angle, link=l2)},
+        ratio_bound=2.0 * base.MARGIN, x_links=(l2,))
 
 
 # -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: ForceSolver, group: AssurGroup):
+def reactions(solver: base.ForceSolver, group: AssurGroup):
     """The textbook reaction sequence, run by the force analysis (``solver``: see
     :class:`~planmethod.kinematics.groups.base.ForceSolver`).
 

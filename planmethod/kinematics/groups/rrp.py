@@ -27,21 +27,7 @@ from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, sqrt
 from ..state import cross, perp
-from .base import (
-    EPS,
-    MARGIN,
-    Anchor,
-    Context,
-    ForceSolver,
-    Placed,
-    Theta,
-    axes_towards,
-    place_origin,
-    rotation_side,
-    sliding_side,
-    split,
-    toggle_or_miss,
-)
+from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -49,10 +35,9 @@ KIND = GroupKind.RRP
 BRANCHES = 2
 
 
-def place(context: Context) -> Placed:
+def place(context: base.Context) -> base.Placed:
     group = context.group
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
+    ext1, internal, ext2, l1, l2 = context.dyad()
     slide = ext2.slide
     k2 = ext2.other(l2)
     p1 = context.pin(ext1)
@@ -70,7 +55,7 @@ def place(context: Context) -> Placed:
     def check(angles, x1, y1, height, line) -> None:
         height, line = np.asarray(height, dtype=float), np.asarray(line, dtype=float)
         size = np.maximum(np.abs(np.asarray(x1, dtype=float)), np.abs(np.asarray(y1, dtype=float)))
-        toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
+        base.toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
                        np.abs(height) - a)
 
     # a² − h² = (a − |h|)(a + |h|): where it exceeds 2a·16ε·(scale) no angle is a toggle or a
@@ -78,34 +63,34 @@ def place(context: Context) -> Placed:
     if p1.bound is None:
         context.guard(square, np.inf, check, p1.at.x, p1.at.y, h, offset)
     else:
-        bound = 2.0 * a * 16.0 * EPS * (2.0 * a + 2.0 * p1.bound) * 1.01 * MARGIN
+        bound = 2.0 * a * 16.0 * base.EPS * (2.0 * a + 2.0 * p1.bound) * 1.01 * base.MARGIN
         context.guard(square, bound, check, p1.at.x, p1.at.y, h, offset)
     along = sqrt(square) * context.sign
     r1 = d * along - n * h
     x = p1.at + r1
-    body1 = Body(*axes_towards(r1, p1.local, q1, a))
-    place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    body1 = Body(*base.axes_towards(r1, p1.local, q1, a))
+    base.place_origin(body1, ((p1.at, p1.local), (x, q1)))
     body2 = Body(c2, s2)
     origin2 = x if q2 == (0.0, 0.0) else x - turned
     body2.x, body2.y = origin2.x, origin2.y
     placed = {l1: body1, l2: body2}
-    sides = (rotation_side(l1, p1, x, a),
-             sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
+    sides = (base.rotation_side(l1, p1, x, a),
+             base.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
     delta = slide.direction_rad if l2 == slide.link else -slide.direction_rad
-    return Placed(
+    return base.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={l1: 0}, tied={l2: k2},
-        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: Anchor(internal.point, x, None, None, q2)},
+        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: base.Anchor(internal.point, x, None, None, q2)},
         points={internal.point: x},
-        thetas={l1: Theta("two", ext1.point, internal.point,
+        thetas={l1: base.Theta("two", ext1.point, internal.point,
                           float(np.arctan2(q1[1] - p1.local[1], q1[0] - p1.local[0]))),
-                l2: Theta("tied", alpha=delta, link=k2)},
-        ratio_bound=2.0 * MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})
+                l2: base.Theta("tied", alpha=delta, link=k2)},
+        ratio_bound=2.0 * base.MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})
 
 
 # -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: ForceSolver, group: AssurGroup):
+def reactions(solver: base.ForceSolver, group: AssurGroup):
     """The textbook reaction sequence, run by the force analysis (``solver``: see
     :class:`~planmethod.kinematics.groups.base.ForceSolver`).
 
@@ -118,7 +103,7 @@ def reactions(solver: ForceSolver, group: AssurGroup):
     p1, q = solver.at(l1, ext1.point), solver.at(l1, internal.point)
     _, n, ps = solver.guide(ext2)
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    e1, a = split(q - p1)
+    e1, a = base.split(q - p1)
     t1 = w1.moment_about(q) / a
     rt1 = t1[..., None] * perp(e1)
     n1, normal = solver.solve2(e1, n, -(rt1 + w1.force + w2.force), group.name,

@@ -28,30 +28,15 @@ from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body, sqrt
 from ..state import perp
-from .base import (
-    EPS,
-    MARGIN,
-    Anchor,
-    Context,
-    ForceSolver,
-    Placed,
-    Theta,
-    assembly_error,
-    axes_towards,
-    place_origin,
-    rotation_side,
-    split,
-    toggle_or_miss,
-)
+from . import base
 
 KIND = GroupKind.RRR
 BRANCHES = 2
 
 
-def place(context: Context) -> Placed:
+def place(context: base.Context) -> base.Placed:
     group = context.group
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
+    ext1, internal, ext2, l1, l2 = context.dyad()
     p1, p2 = context.pin(ext1), context.pin(ext2)
     q1, q2 = context.local(l1, internal.point), context.local(l2, internal.point)
     a = context.length(l1, ext1.point, internal.point)
@@ -69,17 +54,17 @@ def place(context: Context) -> Placed:
         distance = np.atleast_1d(np.sqrt(dx * dx + dy * dy))
         close = distance <= 1e-15 * (a + b)
         if np.any(close):
-            raise assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
+            raise base.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
                                  "coincide: the group has no definite position", 0.0)
         stretched, folded = a + b - distance, distance - abs(a - b)
         vanishing = np.where(np.abs(stretched) <= np.abs(folded), stretched, folded)
         reach = np.maximum(np.abs(dx), np.abs(dy))
-        toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
+        base.toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
                        np.maximum(distance - a - b, np.maximum(abs(a - b) - distance, 0.0)))
 
     # where the product exceeds this, no angle is a toggle, a miss or coinciding pins (README:
     # a toggle's vanishing factor within 16ε of the terms' size)
-    bound = max(192.0 * EPS, 1e-30) * (a + b) ** 4 * MARGIN
+    bound = max(192.0 * base.EPS, 1e-30) * (a + b) ** 4 * base.MARGIN
     context.guard(product, bound, check, p1.at.x, p1.at.y, p2.at.x, p2.at.y)
     twice = d * 2.0
     along = (a * a - b * b + square) / twice
@@ -88,20 +73,20 @@ def place(context: Context) -> Placed:
     r1 = unit * along + unit.perp() * height
     x = p1.at + r1
     r2 = x - p2.at
-    body1 = Body(*axes_towards(r1, p1.local, q1, a))
-    body2 = Body(*axes_towards(r2, p2.local, q2, b))
-    place_origin(body1, ((p1.at, p1.local), (x, q1)))
-    place_origin(body2, ((p2.at, p2.local), (x, q2)))
-    return Placed(
+    body1 = Body(*base.axes_towards(r1, p1.local, q1, a))
+    body2 = Body(*base.axes_towards(r2, p2.local, q2, b))
+    base.place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    base.place_origin(body2, ((p2.at, p2.local), (x, q2)))
+    return base.Placed(
         bodies={l1: body1, l2: body2}, point=internal.point, x=x,
-        sides=(rotation_side(l1, p1, x, a), rotation_side(l2, p2, x, b)),
+        sides=(base.rotation_side(l1, p1, x, a), base.rotation_side(l2, p2, x, b)),
         rotating={l1: 0, l2: 1}, tied={},
-        anchors={l1: Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         points={internal.point: x},
-        thetas={l1: Theta("two", ext1.point, internal.point, _angle(p1.local, q1)),
-                l2: Theta("two", ext2.point, internal.point, _angle(p2.local, q2))},
-        ratio_bound=2.0 * (a + b) / min(a, b) * MARGIN, x_links=(l1, l2),
+        thetas={l1: base.Theta("two", ext1.point, internal.point, _angle(p1.local, q1)),
+                l2: base.Theta("two", ext2.point, internal.point, _angle(p2.local, q2))},
+        ratio_bound=2.0 * (a + b) / min(a, b) * base.MARGIN, x_links=(l1, l2),
         x_local={l1: q1, l2: q2})
 
 
@@ -110,7 +95,7 @@ def _angle(first, second) -> float:
 
 
 # -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: ForceSolver, group: AssurGroup):
+def reactions(solver: base.ForceSolver, group: AssurGroup):
     """The textbook reaction sequence, run by the force analysis (``solver``: see
     :class:`~planmethod.kinematics.groups.base.ForceSolver`).
 
@@ -122,8 +107,8 @@ def reactions(solver: ForceSolver, group: AssurGroup):
     k1, k2 = ext1.other(l1), ext2.other(l2)
     p1, q, p2 = solver.at(l1, ext1.point), solver.at(l1, internal.point), solver.at(l2, ext2.point)
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    e1, a = split(q - p1)
-    e2, b = split(q - p2)
+    e1, a = base.split(q - p1)
+    e2, b = base.split(q - p2)
     t1 = w1.moment_about(q) / a
     t2 = w2.moment_about(q) / b
     rt1, rt2 = t1[..., None] * perp(e1), t2[..., None] * perp(e2)
