@@ -19,7 +19,7 @@ the coupler pin C over a full turn are obtained by
 
 The error is max over the sampled angles of |value − exact| / max over the turn of |exact|
 (vectors; magnitudes for the plans), the exact values from the 40-digit
-:mod:`benchmarks.reference`; the time is per crank angle.
+:mod:`planmethod.testing.oracles`; the time is per crank angle.
 
 Examples
 --------
@@ -42,9 +42,9 @@ from planmethod.kinematics.constraints import ConstraintSystem
 from planmethod.kinematics.state import LinkState
 from planmethod.model import FRAME
 from planmethod.plans import draw_plans
+from planmethod.testing import exact_fourbar as fourbar_reference
 
 from .common import best_time, exercise, full_turn
-from .reference import fourbar as fourbar_reference
 
 UNKNOWN = ("BC", "CD")
 NEWTON_TOLERANCES = (1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-13)

@@ -14,7 +14,7 @@ crank angles — divided by N:
 
 The error of each tool is that of C's position, velocity and acceleration over the whole turn,
 relative to the largest magnitude of each over the turn, against planmethod's exact values
-(themselves checked against the 40-digit :mod:`benchmarks.reference` here and in the stress
+(themselves checked against the 40-digit :mod:`planmethod.testing.oracles` here and in the stress
 suite).
 
 Examples
@@ -32,12 +32,12 @@ import dataclasses
 import numpy as np
 
 from planmethod.kinematics import solve
+from planmethod.testing import exact_fourbar as fourbar_reference
+from planmethod.testing import exact_slider_crank as slider_reference
 
 from . import floor
 from . import peers as peer_tools
 from .common import best_time, exercise, full_turn, microseconds
-from .reference import fourbar as fourbar_reference
-from .reference import slider_crank as slider_reference
 
 COUNTS = (360, 3600, 36000)
 QUICK_COUNTS = (360, 3600)

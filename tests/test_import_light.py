@@ -54,3 +54,15 @@ def test_solving_and_drawing_plans_as_data_loads_no_drawing_library():
 def test_the_probe_sees_a_heavy_import():
     """The check can fail: a module that does import matplotlib is reported."""
     assert heavy_after("import matplotlib") == ["matplotlib"]
+
+
+def test_the_testing_helpers_import_without_mpmath():
+    """mpmath (the ``test`` extra) is needed only when a 40-digit reference is evaluated."""
+    code = ("import sys\nsys.modules['mpmath'] = None\n"
+            "import planmethod.testing, planmethod.testing.stress\n"
+            "try:\n    planmethod.testing.exact_fourbar(60.0)\n"
+            "except ImportError:\n    print('NEEDS MPMATH')\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "NEEDS MPMATH"

@@ -2,7 +2,7 @@
 --only stress``, results in ``benchmarks/results/stress.md``).
 
 Every solved angle must be within the stated bound of the 40-digit mpmath reference
-(see :mod:`benchmarks.stress`: |ΔC| ≤ K·ε·L/s, |Δv| ≤ K·ε·max(R·V₀/s³, V/s²),
+(see :mod:`planmethod.testing.stress`: |ΔC| ≤ K·ε·L/s, |Δv| ≤ K·ε·max(R·V₀/s³, V/s²),
 |Δa| ≤ K·ε·max(R·A₀/s⁵, A/s²)), on the branch the
 sketch picked; every other angle must raise AssemblyError or ToggleError where the reference
 confirms the links do not reach or sit at their toggle. Never NaN, never a flipped branch.
@@ -11,7 +11,6 @@ confirms the links do not reach or sit at their toggle. Never NaN, never a flipp
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -24,13 +23,10 @@ from planmethod.kinematics import solve
 from planmethod.plans import draw_plans
 from planmethod.spec import load_exercise
 from planmethod.sweep import CHUNK, sweep_chunks, sweep_table
+from planmethod.testing import exact_fourbar as fourbar_reference
+from planmethod.testing import stress
 
 ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from benchmarks import stress  # noqa: E402  (the repository root, not an installed package)
-from benchmarks.reference import fourbar as fourbar_reference  # noqa: E402
 
 SCENARIOS = stress.scenarios(quick=True)
 

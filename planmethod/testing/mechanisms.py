@@ -1,38 +1,30 @@
-"""Helpers for tests: reference mechanisms as exercise dicts, and an independent reference solve.
+"""The reference mechanisms of the tests, as exercise dicts (the tables of an exercise file).
 
-:func:`reference_motion` recomputes velocities and accelerations of every link with the generic
-constraint Jacobian of the whole mechanism (:mod:`planmethod.kinematics.constraints`) — an
-exact linear solve independent of the closed-form dyads and of the plan emulator.
+Each function returns a fresh dict, with keyword arguments for the lengths, the drive and the
+guides; :func:`planmethod.spec.exercise_from_dict` turns it into an exercise.
 
 Examples
 --------
 >>> from planmethod.spec import exercise_from_dict
->>> mechanism = exercise_from_dict(fourbar()).mechanism
->>> reference = reference_motion(mechanism, [60.0])
->>> round(float(reference["CD"]["omega"][0]), 6)
-2.448975
+>>> mechanism = exercise_from_dict(slider_crank(offset=0.01)).mechanism
+>>> mechanism.links["frame"].points["G"]
+(0.0, -0.01)
+>>> with_changes(fourbar(), title="another")["title"]
+'another'
 """
 
 from __future__ import annotations
 
 import copy
-from collections.abc import Sequence
-
-import numpy as np
-
-from .kinematics import solve
-from .kinematics.constraints import ConstraintSystem
-from .kinematics.state import LinkState
-from .model import FRAME, Mechanism
 
 __all__ = [
     "fourbar",
-    "reference_motion",
     "scotch_yoke",
     "shaper",
     "slider_crank",
     "slotted_lever",
     "two_guides",
+    "with_changes",
 ]
 
 
@@ -130,25 +122,3 @@ def with_changes(data: dict, **top) -> dict:
     out = copy.deepcopy(data)
     out.update(top)
     return out
-
-
-def reference_motion(mechanism: Mechanism, angles: Sequence[float]) -> dict[str, dict]:
-    """Velocities and accelerations of every moving link by one exact linear solve of the whole
-    mechanism's constraint equations (positions from the closed-form solve).
-
-    Returns ``{link: {"omega", "epsilon", "velocity", "acceleration"}}`` (origin velocity and
-    acceleration), arrays over ``angles``.
-    """
-    angles = np.asarray(angles, dtype=float)
-    positions = solve(mechanism, angles, stage="position")
-    moving = [name for name in mechanism.moving_links if name != mechanism.drive.link]
-    system = ConstraintSystem.between(mechanism, moving)
-    driven = solve(mechanism, angles, links=())  # no group: the frame and the drive only
-    states = {FRAME: driven.links[FRAME], mechanism.drive.link: driven.links[mechanism.drive.link]}
-    for name in moving:
-        state = positions.links[name]
-        states[name] = LinkState(state.theta, state.origin)
-    moving = system.moving_states(states)
-    return {name: {"omega": moving[name].omega, "velocity": moving[name].velocity,
-                   "epsilon": moving[name].epsilon, "acceleration": moving[name].acceleration}
-            for name in moving}
