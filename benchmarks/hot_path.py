@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -29,7 +30,6 @@ DEFAULT_REV = "dce2f82"
 HARNESS = r'''
 import dataclasses, json, sys, time
 import numpy as np
-sys.path.insert(0, sys.argv[1])
 from planmethod.kinematics import solve
 from planmethod.spec import exercise_from_dict, load_exercise
 
@@ -39,8 +39,8 @@ FOURBAR = {"title": "Four-bar", "drive": {"link": "AB", "pivot": "A", "angle": 6
                      "BC": {"B": [0, 0], "C": [0.22, 0]}, "CD": {"C": [0, 0], "D": [0.18, 0]}},
            "sketch": {"C": [0.236, 0.168]}}
 mechanisms = {"fourbar": exercise_from_dict(FOURBAR).mechanism,
-              "slider_crank": load_exercise(sys.argv[2]).mechanism,
-              "shaper": load_exercise(sys.argv[3]).mechanism}
+              "slider_crank": load_exercise(sys.argv[1]).mechanism,
+              "shaper": load_exercise(sys.argv[2]).mechanism}
 out = {}
 for name, m in mechanisms.items():
     points = list(dict.fromkeys(p for link in m.links.values() for p in link.points))
@@ -67,10 +67,14 @@ print(json.dumps(out))
 
 
 def measure(tree: Path) -> dict:
-    done = subprocess.run([sys.executable, "-c", HARNESS, str(tree),
+    """Run the harness with ``tree``'s planmethod: its folder first on the subprocess's
+    PYTHONPATH (nothing of this process's import path is inherited but what PYTHONPATH held)."""
+    path = os.pathsep.join([str(tree), *filter(None, [os.environ.get("PYTHONPATH")])])
+    done = subprocess.run([sys.executable, "-c", HARNESS,
                            str(ROOT / "exercises" / "compressor_slider_crank.toml"),
                            str(ROOT / "exercises" / "shaper_sixbar.toml")],
-                          capture_output=True, text=True, cwd=tempfile.gettempdir())
+                          capture_output=True, text=True, cwd=tempfile.gettempdir(),
+                          env={**os.environ, "PYTHONPATH": path})
     if done.returncode != 0:
         raise RuntimeError(done.stderr[-800:])
     return json.loads(done.stdout.strip().splitlines()[-1])
