@@ -73,7 +73,9 @@ def test_closed_form_agrees_with_the_whole_mechanism_linear_solve(data):
     reference = reference_motion(mechanism, ANGLES)
     for link, expected in reference.items():
         state = motion.links[link]
-        for name in ("omega", "velocity", "epsilon", "acceleration"):
+        turn = np.angle(np.exp(1j * (state.theta - expected["theta"])))
+        assert np.abs(turn).max() <= 1e-9, (link, "theta")
+        for name in ("origin", "omega", "velocity", "epsilon", "acceleration"):
             got, want = getattr(state, name), expected[name]
             scale = max(1.0, float(np.abs(want).max()))
             assert np.allclose(got, want, rtol=0, atol=1e-9 * scale), (link, name)
@@ -142,7 +144,7 @@ def test_prismatic_dyads_agree_with_the_linear_solve(data):
     motion = solve(mechanism, angles)
     reference = reference_motion(mechanism, angles)
     for link, expected in reference.items():
-        for name in ("omega", "velocity", "epsilon", "acceleration"):
+        for name in ("origin", "omega", "velocity", "epsilon", "acceleration"):
             want = expected[name]
             assert np.allclose(getattr(motion.links[link], name), want,
                                atol=1e-9 * max(1.0, float(np.abs(want).max())))
