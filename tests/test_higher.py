@@ -21,6 +21,7 @@ from planmethod.plans import draw_plans
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict
 from planmethod.structure import analyse_structure
+from planmethod.testing import reference_motion
 
 CONVEYOR = Path("exercises/conveyor_sixbar.toml")
 S0 = {"A": (-0.042426, 0.042426), "B": (-0.346622, -0.261489), "C": (-0.346839, -0.186490),
@@ -254,7 +255,17 @@ def test_triad_with_a_prismatic_pair():
     exercise = exercise_from_dict(slider_triad())
     [group] = analyse_structure(exercise.mechanism).groups
     assert group.kind == "triad"
-    motion = solve(exercise.mechanism, [100.0, 135.0, 170.0])
+    angles = [100.0, 135.0, 170.0]
+    motion = solve(exercise.mechanism, angles)
+    # the motion against the whole mechanism's constraint equations, solved by the oracle's
+    # own Newton continuation from the sketch (the forces below only check themselves)
+    for link, expected in reference_motion(exercise.mechanism, angles).items():
+        state = motion.links[link]
+        assert np.abs(np.angle(np.exp(1j * (state.theta - expected["theta"])))).max() < 1e-12
+        for name in ("origin", "velocity", "acceleration", "omega", "epsilon"):
+            scale = max(1.0, float(np.abs(expected[name]).max()))
+            assert np.abs(getattr(state, name) - expected[name]).max() < 1e-12 * scale, (
+                link, name)
     solution = solve_forces(motion)
     assert np.all(solution.agreement <= 1e-9)
     assert "linear system" in solution.groups.groups[0].steps[0]
