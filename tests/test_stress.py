@@ -134,7 +134,7 @@ def mechanisms(draw):
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(mechanisms())
 def test_random_mechanisms_over_full_turns(case):
-    assume(stress.assemblable(case))   # else hypothesis draws another mechanism
+    assume(stress.well_posed(case))   # else hypothesis draws another mechanism
     rows = stress.check(case, np.arange(0.0, 360.0, 15.0))
     assert violations(rows) == []
 

@@ -81,6 +81,7 @@ __all__ = [
     "term_sizes",
     "toggle_fourbar",
     "toggle_slider",
+    "well_posed",
 ]
 
 #: the constant of the stated bounds
@@ -433,6 +434,22 @@ def assemblable(case: Case) -> bool:
     except ValueError:
         return False
     return True
+
+
+def well_posed(case: Case) -> bool:
+    """Whether the case's sketch can pick a branch: the links assemble at its drive angle, and
+    not within rounding of a singular position there (B on D, the links only just reaching,
+    or a toggle), where the solver rightly refuses to choose.
+
+    Examples
+    --------
+    >>> well_posed(fourbar_case()), well_posed(fourbar_case(crank=0.3, drive_angle=1e-170))
+    (True, False)
+    """
+    if not assemblable(case):
+        return False
+    view = _classify(case, case.drive_angle)
+    return view["reach"] > NEAR_SINGULAR and view["sine"] > NEAR_SINGULAR
 
 
 def summary(rows: list[dict]) -> dict:
