@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from planmethod.forces.combined import combined_constants, combined_construction, epsilon_senses
+from planmethod.render.figures import plan_files
 from planmethod.render.force_svg import force_files
-from planmethod.render.svg import plan_files
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
 

@@ -13,12 +13,12 @@ import pytest
 
 from planmethod.errors import PlanmethodError
 from planmethod.plans import draw_plans
+from planmethod.render.figures import plan_files
 from planmethod.render.labels import label_runs, plain
 from planmethod.render.plots import save_sweep_plot
 from planmethod.render.svg import (
     lever_drawing,
     plan_drawing,
-    plan_files,
     plan_svg,
     position_drawing,
     position_svg,
@@ -139,17 +139,17 @@ def test_labels_keep_clear_of_drawn_lines(plans, monkeypatch):
     from shapely import unary_union
     from shapely.geometry import box
 
-    import planmethod.render.svg as svg_module
+    import planmethod.render.canvas as canvas_module
 
     seen = []
-    original = svg_module.place_labels
+    original = canvas_module.place_labels
 
     def spy(requests, lines, areas):
         placed = original(requests, lines, areas)
         seen.append((placed, unary_union(lines)))
         return placed
 
-    monkeypatch.setattr(svg_module, "place_labels", spy)
+    monkeypatch.setattr(canvas_module, "place_labels", spy)
     _drawings(plans)
     assert len(seen) == 4
     for placed, lines in seen:
@@ -282,10 +282,23 @@ def test_textbook_labels():
     assert ", lever" in spans  # k_B@lever: k with the subscript "B, lever"
 
 
-def test_jupyter_representations():
+def test_jupyter_shows_plans_as_svg():
+    """In IPython, a plan and the position plan display as their SVG drawings (the formatters
+    are registered from the top of the import graph; the plans themselves draw nothing)."""
+    pytest.importorskip("IPython")
+    from IPython.core.formatters import DisplayFormatter
+
+    import planmethod
+
+    class Shell:
+        display_formatter = DisplayFormatter()
+
+    planmethod.load_ipython_extension(Shell())
     plans = _seed()
-    assert plans.velocity._repr_svg_() == plan_svg(plans.velocity)
-    assert plans.position._repr_svg_() == position_svg(plans.position)
+    svg = Shell.display_formatter.formatters["image/svg+xml"]
+    assert svg(plans.velocity) == plan_svg(plans.velocity)
+    assert svg(plans.position) == position_svg(plans.position)
+    assert not hasattr(plans.velocity, "_repr_svg_")
 
 
 def test_plan_files_without_acceleration():
@@ -358,4 +371,50 @@ def test_sweep_plot_failure_while_writing_leaves_no_file(tmp_path, monkeypatch):
     monkeypatch.setattr(Figure, "savefig", broken)
     with pytest.raises(PlanmethodError, match="cannot write"):
         save_sweep_plot(_table(), tmp_path / "curves.png", title="Test")
+    assert list(tmp_path.iterdir()) == []
+
+
+# -- plots leave the caller's matplotlib alone -------------------------------------------------
+def _force_table():
+    angle = np.arange(0.0, 360.0, 15.0)
+    radians = np.radians(angle)
+    return {"angle": angle, "Rx_B": np.cos(radians), "Ry_B": np.sin(radians),
+            "R_B": np.ones_like(angle), "M_b": np.sin(2 * radians)}
+
+
+def test_plots_use_neither_pyplot_nor_the_callers_settings(tmp_path):
+    """Every plot is drawn through matplotlib's object API: the caller's backend and rcParams
+    are the same afterwards, pyplot is never imported, and what the caller set does not change
+    the picture."""
+    code = r"""
+import sys, pathlib, matplotlib, numpy as np
+matplotlib.use("svg")
+from planmethod.render.plots import save_force_plot, save_sweep_plot
+sys.path.insert(0, "tests")
+from test_render import _force_table, _table
+out = pathlib.Path(sys.argv[1])
+save_sweep_plot(_table(), out / "plain.svg", title="T")
+save_force_plot(_force_table(), out / "plain_forces.svg", title="T")
+matplotlib.rcParams.update({"lines.linewidth": 7.0, "axes.facecolor": "#ffff00",
+                            "axes.titlesize": 30.0})
+before = dict(matplotlib.rcParams)
+save_sweep_plot(_table(), out / "styled.svg", title="T")
+save_force_plot(_force_table(), out / "styled_forces.svg", title="T")
+changed = sorted(k for k, v in matplotlib.rcParams.items() if before[k] != v)
+print(matplotlib.get_backend(), changed, "matplotlib.pyplot" in sys.modules)
+"""
+    done = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.split() == ["svg", "[]", "False"], done.stdout + done.stderr
+    assert (tmp_path / "plain.svg").read_bytes() == (tmp_path / "styled.svg").read_bytes()
+    assert ((tmp_path / "plain_forces.svg").read_bytes()
+            == (tmp_path / "styled_forces.svg").read_bytes())
+
+
+def test_a_plot_with_an_unknown_suffix_names_the_formats(tmp_path):
+    from planmethod.render.plots import save_force_plot
+
+    with pytest.raises(PlanmethodError, match=r"plot format '\.txt' not supported; use "
+                                              r"\.png, \.svg or \.pdf"):
+        save_force_plot(_force_table(), tmp_path / "curves.txt", title="T")
     assert list(tmp_path.iterdir()) == []

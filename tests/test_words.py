@@ -97,7 +97,7 @@ INTERNAL = re.compile(r"seeds?[ _]?0\d\d|seed's|\bthe seed\b|\.\./shared|<!--|\(
                       r"|(?-i:REFERENCE_CASES|GLOSSARY|DESIGN\.md)", re.IGNORECASE)
 
 #: modules whose owners have yet to cite the papers by name (being rewritten at the same time)
-PENDING = {"planmethod/render/force_plots.py", "planmethod/render/force_svg.py"}
+PENDING: set[str] = set()
 
 
 def _internal(text: str) -> list[str]:

@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
     analysis = analyse(exercise, args.angle, precision_mm=args.precision)
     files: dict[str, str] = {}
     if args.svg:
-        from ..render.svg import plan_files
+        from ..render.figures import plan_files
 
         files = plan_files(analysis.plans, forces=analysis.forces)
     pngs: dict[str, bytes] = {}

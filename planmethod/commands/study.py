@@ -120,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
                       moments=args.moments, step=args.step)
     outputs = []
     if args.plot:
-        from ..render.force_plots import save_study_plot
+        from ..render.plots import save_study_plot
 
         save_study_plot(study, args.plot)
         outputs.append(args.plot)

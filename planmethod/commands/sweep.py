@@ -41,7 +41,7 @@ def run(args: argparse.Namespace) -> int:
         from ..render.plots import save_sweep_plot
 
         if args.forces:
-            from ..render.force_plots import save_force_plot as save_sweep_plot
+            from ..render.plots import save_force_plot as save_sweep_plot
         save_sweep_plot(table, args.plot, title=exercise.mechanism.title)
     extremes = Extremes()
     with contextlib.ExitStack() as stack:

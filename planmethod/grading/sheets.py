@@ -1,8 +1,9 @@
 """Task sheets for variants: the position plan with the given data and what is asked, and the
 blank plan sheets a student draws on (and hands back for grading).
 
-The task sheet embeds :func:`planmethod.render.svg.position_svg` (the mechanism at μl, without
-any answer on it) above the task text. A blank plan sheet is in millimetres
+Both are drawn on the one canvas (:mod:`planmethod.render.canvas`): the task sheet is
+:func:`planmethod.render.svg.position_drawing` (the mechanism at μl, without any answer on it)
+with the task text under it. A blank plan sheet is in millimetres
 (``width="…mm"`` with a matching ``viewBox``), marks the pole (p or π) at its centre, prints the
 scale in one long text line (long texts are never taken for labels), and has its grid as a
 pattern so that nothing on it is mistaken for a drawn point by
@@ -21,13 +22,14 @@ Examples
 from __future__ import annotations
 
 import math
-import re
 import textwrap
 from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
-from xml.sax.saxutils import escape, quoteattr
 
+from ..render.canvas import Canvas
+from ..render.style import LABEL_FAMILY
+from ..render.svg import position_drawing
 from ..vocabulary import SCALES
 
 __all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_sheet_svg", "task_text"]
@@ -61,51 +63,17 @@ def task_text(key: Mapping[str, Any]) -> str:
     return "\n".join(lines).rstrip() + "\n"
 
 
-def _svg_size(svg: str) -> tuple[float, float]:
-    head = svg[:2000]
-    view = re.search(r'viewBox="([^"]+)"', head)
-    if view:
-        numbers = [float(v) for v in view.group(1).replace(",", " ").split()]
-        if len(numbers) == 4:
-            return numbers[2], numbers[3]
-    width = re.search(r'width="([\d.]+)', head)
-    height = re.search(r'height="([\d.]+)', head)
-    return (float(width.group(1)) if width else 400.0, float(height.group(1)) if height
-            else 300.0)
-
-
 def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
     """The task sheet: the position plan (no answers on it) above the task text.
 
     ``plans`` are the variant's :class:`~planmethod.plans.Plans` (only the position plan is
     drawn; its curvature construction, which would show ρ, is left out).
     """
-    from ..render.svg import position_svg
-
     position = replace(plans.position, curvature={})
-    mechanism = position_svg(position)
-    mechanism = re.sub(r"^<\?xml[^>]*>\s*", "", mechanism)
-    width, height = _svg_size(mechanism)
-    width = max(width, 640.0)
-    text = task_text(key)
-    wrapped: list[str] = []
-    for line in text.splitlines():
-        wrapped += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
-    line_height = 15.0
-    total = height + 20 + line_height * len(wrapped)
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
-             f'height="{total:.0f}" viewBox="0 0 {width:.0f} {total:.0f}" '
-             f'font-family="DejaVu Sans, sans-serif">',
-             f'<rect width="{width:.0f}" height="{total:.0f}" fill="white"/>',
-             mechanism.replace("<svg ", '<svg x="0" y="0" ', 1)]
-    y = height + 20
-    for line in wrapped:
-        font = ' font-family="DejaVu Sans Mono, monospace"' if line.startswith("  ") else ""
-        parts.append(f'<text x="16" y="{y:.0f}" font-size="12"{font} xml:space="preserve">'
-                     f"{escape(line)}</text>")
-        y += line_height
-    parts.append("</svg>")
-    return "\n".join(parts) + "\n"
+    lines: list[str] = []
+    for line in task_text(key).splitlines():
+        lines += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
+    return position_drawing(position, notes=lines).svg
 
 
 def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: float,
@@ -116,25 +84,22 @@ def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: 
     header = (f"{title} — {plan} plan — {student} — μ{'v' if plan == 'velocity' else 'a'} = "
               f"{scale:.6g} {unit}. {given} Draw the plan from the pole {pole}; label every "
               f"point (b, c, …) next to it.")
-    return "\n".join([
-        '<svg xmlns="http://www.w3.org/2000/svg" '
-        f'width="{size:g}mm" height="{size + 12:g}mm" viewBox="0 0 {size:g} {size + 12:g}" '
-        f'data-planmethod-plan="{plan}" data-planmethod-student={quoteattr(student)}>',
-        "<defs><pattern id=\"grid\" width=\"10\" height=\"10\" patternUnits=\"userSpaceOnUse\">"
-        "<path d=\"M 10 0 L 0 0 0 10\" fill=\"none\" stroke=\"#dde\" stroke-width=\"0.2\"/>"
-        "</pattern></defs>",
-        f'<rect x="0" y="12" width="{size:g}" height="{size:g}" fill="url(#grid)" '
-        'stroke="#99a" stroke-width="0.3"/>',
-        '<text x="3" y="4" font-size="2.6" font-family="sans-serif">' + "".join(
-            f'<tspan x="3" y="{4 + 3.2 * i:g}">{escape(line)}</tspan>'
-            for i, line in enumerate(textwrap.wrap(header + " (grid: 10 mm)",
-                                                   int(size / 1.45))[:3])) + "</text>",
-        f'<circle id="planmethod-pole" cx="{centre:g}" cy="{centre + 12:g}" r="0.8" '
-        'fill="black"/>',
-        f'<text x="{centre + 1.5:g}" y="{centre + 12 - 1.5:g}" font-size="5" '
-        f'font-family="serif">{escape(pole)}</text>',
-        "</svg>",
-    ]) + "\n"
+    canvas = Canvas()
+    canvas.define("pattern", {"id": "grid", "width": "10", "height": "10",
+                              "patternUnits": "userSpaceOnUse"},
+                  [("path", {"d": "M 10 0 L 0 0 0 10", "fill": "none", "stroke": "#dde",
+                             "stroke-width": "0.2"}, [])])
+    canvas.rectangle((0.0, 12.0), (size, size), fill="url(#grid)", stroke="#99a", width=0.3,
+                     css="grid")
+    for index, line in enumerate(textwrap.wrap(header + " (grid: 10 mm)",
+                                               int(size / 1.45))[:3]):
+        canvas.text((3.0, 4.0 + 3.2 * index), line, size=2.6, css="header", area=False)
+    canvas.circle((centre, centre + 12), 0.8, fill="#000000", css="pole", area=False)
+    canvas.text((centre + 1.5, centre + 12 - 1.5), pole, size=5.0, family=LABEL_FAMILY,
+                css="pole-label", area=False)
+    return canvas.svg(f"{title} — blank {plan} plan sheet", view=(0.0, 0.0, size, size + 12),
+                      unit="mm", attributes={"data-planmethod-plan": plan,
+                                             "data-planmethod-student": student}).svg
 
 
 def plan_sheet_for_key(key: Mapping[str, Any], plan: str) -> str:

@@ -158,11 +158,6 @@ class Plan:
                 "steps": [step.as_dict() for step in self.steps],
                 "flags": list(self.flags)}
 
-    def _repr_svg_(self) -> str:
-        from ..render.svg import plan_svg
-
-        return plan_svg(self)
-
 
 @dataclass(frozen=True)
 class PositionPlan:
@@ -183,11 +178,6 @@ class PositionPlan:
                 "links": {k: list(v) for k, v in self.links.items()},
                 "pivots": list(self.pivots), "slides": list(self.slides),
                 "curvature": dict(self.curvature)}
-
-    def _repr_svg_(self) -> str:
-        from ..render.svg import position_svg
-
-        return position_svg(self)
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,5 @@
-"""SVG drawings of the kinetostatics: force polygons and seed 002's combined-force construction.
+"""SVG drawings of the kinetostatics: force polygons and I. H. Aliyev's
+combined-force construction.
 
 * :func:`polygon_svg` — one group's force polygon at μF, drawn head to tail in the order the
   group's solve writes its vector equation (for an RRR dyad: Rᵗ of the first outer pin, the
@@ -8,11 +9,12 @@
   plans' normal (Rⁿ, N) and tangential (Rᵗ) components; each whole reaction R = Rⁿ + Rᵗ is bold.
 * :func:`combined_svg` — the acceleration plan with the pole moved down by the image of g,
   Z_g = g/μa, to π′, and from each centre-of-mass image s the dashed segment s→π′, which
-  represents the combined force Q = m·(g − a_S) at Q/(m·μa) (seed 002).
+  represents the combined force Q = m·(g − a_S) at Q/(m·μa) (I. H. Aliyev,
+  "Studies of the possibility of determining amplifications in kinematic pairs").
 * :func:`force_files` — all of them as ``{file name: SVG text}`` for ``planmethod solve --svg``.
 
-The figures share the plans' style and label placement (:mod:`planmethod.render.svg`) and are
-deterministic.
+The figures are drawn on the one canvas (:mod:`planmethod.render.canvas`) with the plans' style,
+frame and label placement (:mod:`planmethod.render.svg`), and are deterministic.
 
 Examples
 --------
@@ -31,9 +33,10 @@ from typing import Any
 
 import numpy as np
 
+from .canvas import Canvas, difference, fit_zoom, translate
 from .labels import label_runs
 from .style import INK, LEGEND_ORDER, SMALL_SIZE, TEXT_SIZE, quantity
-from .svg import PLAN_SIZE, _add, _Figure, _frame, _legend, _plan_content, _sub, _zoom
+from .svg import PLAN_SIZE, frame, plan_content, plan_legend
 
 __all__ = ["combined_svg", "force_files", "polygon_svg"]
 
@@ -85,7 +88,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0)
     corners = [np.zeros(2)]
     for vector in vectors:
         corners.append(corners[-1] + vector)
-    figure = _Figure(_zoom([tuple(c) for c in corners], PLAN_SIZE))
+    figure = Canvas(fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
     where = [figure.px(c) for c in corners]
     used: dict[str, tuple[str, str | None]] = {}
     for number, (edge, start, end) in enumerate(zip(edges, where[:-1], where[1:],
@@ -94,7 +97,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0)
         if figure.arrow(start, end, style, layer="components", color=colour,
                         css=f"force {edge.kind}", step=number + 1):
             used.setdefault(_legend_key(edge), (style, colour))
-        middle = _add(start, _sub(end, start), 0.5)
+        middle = translate(start, difference(end, start), 0.5)
         figure.request((edge.label,), middle, _runs(edge.label), mark=2.0)
     count = len(edges)
     for name, first, _ in _totals(edges, vectors):
@@ -102,7 +105,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0)
         start, end = where[first], where[after if after <= count else after - count]
         if figure.arrow(start, end, "result", layer="results", css="force total"):
             used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
-            middle = _add(start, _sub(end, start), 0.5)
+            middle = translate(start, difference(end, start), 0.5)
             figure.request((name,), middle, _runs(name), mark=2.0)
     figure.circle(where[0], 3.4, fill=INK, css="start")
     closure = float(np.hypot(*(corners[-1] - corners[0])))
@@ -114,7 +117,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0)
              f"the polygon closes to {closure:.2g} mm"]
     lines += list(group.steps)
     lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
-    _frame(figure, title, lines, (mu_f, "N", 0.3 * PLAN_SIZE), (), "force")
+    frame(figure, title, lines, (mu_f, "N", 0.3 * PLAN_SIZE), (), "force")
     return figure.svg(title).svg
 
 
@@ -132,7 +135,7 @@ def _legend_key(edge) -> str:
                                                                    "external load")
 
 
-def _force_legend(figure: _Figure, at, used: dict, heading: str = "Legend") -> None:
+def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> None:
     x, y = at
     if not used:
         return
@@ -146,7 +149,7 @@ def _force_legend(figure: _Figure, at, used: dict, heading: str = "Legend") -> N
 
 
 def combined_svg(forces, plans) -> str | None:
-    """Seed 002's construction on the acceleration plan (None without one)."""
+    """Aliyev's combined-force construction on the acceleration plan (None without one)."""
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None:
         return None
@@ -154,14 +157,14 @@ def combined_svg(forces, plans) -> str | None:
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure = _Figure(_zoom(list(points.values()) + extra, PLAN_SIZE))
-    _plan_content(figure, points, plan.steps, plan.pole)
+    figure = Canvas(fit_zoom(list(points.values()) + extra, PLAN_SIZE))
+    plan_content(figure, points, plan.steps, plan.pole)
     pole_px, new_px = figure.px((0.0, 0.0)), figure.px(new_pole)
     if combined.gravity_image_mm > 0:
         figure.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
                      css="gravity image")
-        figure.request(("Z_g",), _add(pole_px, _sub(new_px, pole_px), 0.5), _runs("Z_g"),
-                       mark=2.0)
+        figure.request(("Z_g",), translate(pole_px, difference(new_px, pole_px), 0.5),
+                       _runs("Z_g"), mark=2.0)
     figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
     figure.request(("π′",), new_px, (("π′", "main"),), mark=3.4)
     for force in combined.forces:
@@ -174,12 +177,12 @@ def combined_svg(forces, plans) -> str | None:
                          css=f"combined {force.link}")
     figure.place()
     _, y0, x1, _ = figure.extent
-    _legend(figure, (x1 + 34, y0 + 4), "acceleration")  # the plan's own styles first
+    plan_legend(figure, (x1 + 34, y0 + 4), "acceleration")  # the plan's own styles first
     shown = sum(key in figure.used for key in (*LEGEND_ORDER, "flagged"))
     _force_legend(figure, (x1 + 34, y0 + 4 + 8 + 20 * shown + (34 if shown else 0)), {
         "image of g: π → π′, Z_g = g/μa": ("normal", KNOWN_COLOURS["G"]),
         "s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)": ("tangential", KNOWN_COLOURS["F"])},
-        heading="Combined force (seed 002)")
+        heading="Combined force (Aliyev)")
     figure.used.clear()
     lines = [f"μa = {quantity(combined.mu_a, 6)} (m/s²)/mm; g = {combined.g:g} m/s², "
              f"Z_g = g/μa = {combined.gravity_image_mm:.4g} mm"]
@@ -190,7 +193,7 @@ def combined_svg(forces, plans) -> str | None:
                      f"{force.mass:g}·{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + F_u on the acceleration plan, "
              f"pole moved to π′, φ₁ = {plans.angle:g}°")
-    _frame(figure, title, lines, None, plan.flags, "acceleration")
+    frame(figure, title, lines, None, plan.flags, "acceleration")
     return figure.svg(title).svg
 
 

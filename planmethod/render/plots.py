@@ -1,4 +1,19 @@
-"""Full-turn curves of a sweep table, drawn with matplotlib (Agg, imported only when used).
+"""Every plot of planmethod, drawn with matplotlib's object API (imported only when used).
+
+* :func:`save_sweep_plot` — the kinematic curves of a sweep table over the full turn;
+* :func:`save_force_plot` — the reactions per pair and the balancing moment over the turn
+  (``planmethod sweep --forces``), as the figures 8–14 of Umbetkulov et al., "Dynamic force
+  analysis of a six-link planar mechanism";
+* :func:`save_study_plot` — the parameter study of Jobborova et al., "Study of the load on
+  kinematic pairs of a four-bar linkage mechanism".
+
+Figures are :class:`matplotlib.figure.Figure` objects drawn on their own Agg canvas: pyplot is
+never imported, and the caller's backend and rcParams are neither read nor changed (the style is
+applied inside :func:`matplotlib.style.context` from matplotlib's defaults, and restored when
+the figure is saved), so a user's notebook settings are the same before and after a plot, and
+a plot looks the same whatever the caller set.
+
+:func:`save_sweep_plot` in detail:
 
 :func:`save_sweep_plot` groups the columns of :func:`planmethod.sweep.sweep_table` into panels
 against the crank angle: speeds |v| of points, accelerations |a| of points, ω and ε of links,
@@ -24,15 +39,18 @@ True
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..errors import PlanmethodError
 from ..io import atomic_path
 
-__all__ = ["FORMATS", "panels", "save_sweep_plot"]
+__all__ = ["FORMATS", "panels", "plot_format", "save_force_plot", "save_study_plot",
+           "save_sweep_plot"]
 
 #: file formats by suffix
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
@@ -56,7 +74,6 @@ _STYLE = {
     "font.size": 9.0,
     "axes.grid": True,
     "grid.alpha": 0.35,
-    "axes.prop_cycle": None,       # set below from a fixed colour list
     "lines.linewidth": 1.6,
     "svg.hashsalt": "planmethod",
     "svg.fonttype": "path",
@@ -67,6 +84,54 @@ _COLOURS = ("#1f5fbf", "#c0392b", "#1b8a3a", "#7b3fa0", "#d17a00", "#17848f", "#
 _METADATA = {"png": {"Software": None}, "svg": {"Date": None, "Creator": None},
              "pdf": {"CreationDate": None, "ModDate": None, "Creator": None,
                      "Producer": None}}
+
+
+def plot_format(path: str | Path) -> str:
+    """The matplotlib format of a plot file from its suffix, or a :class:`PlanmethodError`
+    naming the file and the formats that are supported.
+
+    Examples
+    --------
+    >>> plot_format("curves.PNG")
+    'png'
+    >>> try:
+    ...     plot_format("curves.txt")
+    ... except PlanmethodError as error:
+    ...     print(error)
+    curves.txt: plot format '.txt' not supported; use .png, .svg or .pdf
+    """
+    path = Path(path)
+    form = FORMATS.get(path.suffix.lower())
+    if form is None:
+        raise PlanmethodError(f"plot format '{path.suffix or path.name}' not supported; use "
+                              f".png, .svg or .pdf", file=str(path))
+    return form
+
+
+def _style_context(style: Mapping[str, Any]):
+    """matplotlib's defaults with ``style`` on top, for the figures made inside the block;
+    the caller's rcParams are restored on leaving it (the backend is never touched)."""
+    import matplotlib.style
+    from cycler import cycler
+
+    return matplotlib.style.context(
+        ["default", dict(style, **{"axes.prop_cycle": cycler(color=list(_COLOURS))})])
+
+
+def _new_figure(**keywords: Any):
+    """A :class:`~matplotlib.figure.Figure` on its own Agg canvas (no pyplot)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    figure = Figure(**keywords)
+    FigureCanvasAgg(figure)
+    return figure
+
+
+def _save(figure, path: Path, form: str) -> None:
+    """Write the figure whole or not at all, without a date or a version in it."""
+    with atomic_path(path) as temporary:
+        figure.savefig(temporary, format=form, metadata=_METADATA[form])
 
 
 def panels(table: Mapping[str, np.ndarray]) -> list[tuple[str, str, list[str]]]:
@@ -106,10 +171,7 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         column to draw, or the file cannot be written. No file is left behind.
     """
     path = Path(path)
-    form = FORMATS.get(path.suffix.lower())
-    if form is None:
-        raise PlanmethodError(f"a plot is written as .png, .svg or .pdf, got "
-                              f"'{path.suffix or path.name}'", file=str(path))
+    form = plot_format(path)
     if "angle" not in table:
         raise PlanmethodError("the sweep table has no 'angle' column", file=str(path))
     angle = np.asarray(table["angle"], dtype=float)
@@ -122,21 +184,12 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
                 raise PlanmethodError(f"column {name!r} has {np.size(table[name])} values for "
                                       f"{angle.size} angles", file=str(path))
 
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    from cycler import cycler
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    style = dict(_STYLE, **{"axes.prop_cycle": cycler(color=list(_COLOURS))})
     count = len(groups)
     columns_of_panels = 1 if count == 1 else 2
     rows = -(-count // columns_of_panels)
-    with matplotlib.rc_context(style):
-        figure = Figure(figsize=(6.0 * columns_of_panels, 2.6 * rows + 0.6), dpi=120,
-                        layout="constrained")
-        FigureCanvasAgg(figure)
+    with _style_context(_STYLE):
+        figure = _new_figure(figsize=(6.0 * columns_of_panels, 2.6 * rows + 0.6), dpi=120,
+                             layout="constrained")
         axes = figure.subplots(rows, columns_of_panels, squeeze=False, sharex=True)
         for index, (panel, unit, columns) in enumerate(groups):
             ax = axes[index // columns_of_panels][index % columns_of_panels]
@@ -166,5 +219,100 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         if angle.min() >= 0 and angle.max() <= 360 and np.ptp(angle) >= 90:
             axes[0][0].set_xticks(np.arange(0.0, 361.0, 45.0))     # shared by every panel
         figure.suptitle(f"{title} — full turn", fontsize=11, fontweight="bold")
-        with atomic_path(path) as temporary:
-            figure.savefig(temporary, format=form, metadata=_METADATA[form])
+        _save(figure, path, form)
+
+
+#: colours of the force curves
+_FORCE_COLOURS = {"x": "#1f77b4", "y": "#d62728", "magnitude": "#222222", "moment": "#2ca02c"}
+_FORCE_STYLE = {"font.family": "DejaVu Sans", "font.size": 9.0, "axes.grid": True,
+                "grid.alpha": 0.3, "svg.hashsalt": "planmethod", "svg.fonttype": "none",
+                "pdf.compression": 6}
+
+
+def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str) -> None:
+    """Reaction components and magnitude per pair and the balancing moment versus crank angle,
+    from the columns of ``planmethod sweep --forces`` (``Rx_K Ry_K R_K [M_K]``, ``M_b``…).
+
+    Raises
+    ------
+    PlanmethodError
+        If the suffix is not png, svg or pdf, or the file cannot be written.
+    """
+    path = Path(path)
+    form = plot_format(path)
+    angles = np.asarray(table["angle"], float)
+    pairs = [name[2:] for name in table if name.startswith("R_")]
+    count = len(pairs) + 1
+    columns = 2
+    rows = math.ceil(count / columns)
+    with _style_context(_FORCE_STYLE):
+        figure = _new_figure(figsize=(11, 2.4 * rows + 0.6), dpi=130, layout="tight")
+        axes = figure.subplots(rows, columns, sharex=True, squeeze=False)
+        flat = axes.ravel()
+        for axis, key in zip(flat, pairs, strict=False):
+            axis.plot(angles, table[f"Rx_{key}"], color=_FORCE_COLOURS["x"], lw=1.2, label="Rx")
+            axis.plot(angles, table[f"Ry_{key}"], color=_FORCE_COLOURS["y"], lw=1.2, label="Ry")
+            axis.plot(angles, table[f"R_{key}"], color=_FORCE_COLOURS["magnitude"], lw=1.6,
+                      label="|R|")
+            axis.set_title(f"pair {key}", loc="left")
+            axis.set_ylabel("N")
+            if f"M_{key}" in table:
+                twin = axis.twinx()
+                twin.plot(angles, table[f"M_{key}"], color=_FORCE_COLOURS["moment"], lw=1.0,
+                          ls="--", label="couple")
+                twin.set_ylabel("couple, N·m", color=_FORCE_COLOURS["moment"])
+                twin.grid(False)
+            axis.legend(loc="best", fontsize=7, ncol=3)
+        axis = flat[len(pairs)]
+        axis.plot(angles, table["M_b"], color="#9467bd", lw=1.8, label="M_b (groups)")
+        if "M_b_system" in table:
+            axis.plot(angles, table["M_b_system"], color="#ff7f0e", lw=0.9, ls=":",
+                      label="M_b (whole system)")
+        if "M_b_no_friction" in table:
+            axis.plot(angles, table["M_b_no_friction"], color="#8c564b", lw=1.2, ls="--",
+                      label="M_b without friction")
+        axis.set_title("balancing moment on the crank", loc="left")
+        axis.set_ylabel("N·m")
+        axis.legend(loc="best", fontsize=7)
+        for extra in flat[count:]:
+            extra.set_visible(False)
+        for axis in axes[-1]:
+            axis.set_xlabel("crank angle φ₁, °")
+        for axis in flat[:count]:
+            axis.set_xlim(angles[0], angles[-1])
+            axis.xaxis.set_tick_params(labelbottom=True)
+        figure.suptitle(f"{title} — reactions and balancing moment over the turn", fontsize=11)
+        _save(figure, path, form)
+
+
+def save_study_plot(study: Any, path: str | Path) -> None:
+    """The parameter study of Jobborova et al.: the largest reaction in each pair against each
+    parameter (the other two at their base values), one panel per parameter.
+
+    Raises
+    ------
+    PlanmethodError
+        If the suffix is not png, svg or pdf, or the file cannot be written.
+    """
+    path = Path(path)
+    form = plot_format(path)
+    parameters = study.parameters
+    with _style_context(_FORCE_STYLE):
+        figure = _new_figure(figsize=(4.2 * len(parameters), 4.2), dpi=130, layout="tight")
+        axes = figure.subplots(1, len(parameters), squeeze=False, sharey=True)
+        markers = "osD^v<>p"
+        for axis, parameter in zip(axes[0], parameters, strict=True):
+            values = study.values[parameter.name]
+            for index, pair in enumerate(study.pairs):
+                axis.plot(values, study.maxima[parameter.name][pair],
+                          marker=markers[index % 8], lw=1.4, label=f"R_{pair} max")
+            axis.set_xlabel(f"{parameter.label}, {parameter.unit}")
+            axis.set_ylabel("largest reaction over the turn, N")
+            change = study.relative_change(parameter.name)
+            axis.set_title(f"{parameter.label}: up to {100 * change:.0f} % change", loc="left",
+                           fontsize=9)
+            axis.legend(fontsize=7)
+        figure.suptitle(f"{study.title}\nlargest reactions over a turn against each "
+                        f"parameter, the others at the base case: {study.base_text()}",
+                        fontsize=10)
+        _save(figure, path, form)

@@ -1,0 +1,435 @@
+"""The one SVG canvas every figure of planmethod is drawn on (svgwrite, shapely).
+
+A :class:`Canvas` collects primitives in page coordinates (px, y down) in fixed layers — lines,
+polylines, circles, arrows, fixed text, rectangles — remembers what labels must not cover
+(drawn lines and areas), places the requested labels clear of them
+(:func:`planmethod.render.labels.place_labels`) and writes the SVG. Plans, the mechanism, the
+lever, force polygons, task sheets and blank plan sheets are all drawn on it, so a change in how
+an arrow, a label or a scale bar looks is made once, here.
+
+Output is deterministic: no ids unless asked for, no dates, coordinates written with two
+decimals, elements in a fixed order, one element a line — the same input gives the same bytes.
+
+Examples
+--------
+>>> canvas = Canvas(zoom=2.0)
+>>> canvas.line(canvas.px((0, 0)), canvas.px((50, 0)), color="#000000", width=1.0)
+>>> canvas.request(("B",), canvas.px((50, 0)), (("B", "main"),))
+>>> canvas.place()
+>>> drawing = canvas.svg("a bar")
+>>> drawing.svg.startswith("<?xml") and "<title>a bar</title>" in drawing.svg
+True
+>>> [label.text for label in drawing.labels]
+['B']
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from .labels import LabelRequest, PlacedLabel, Run, place_labels
+from .style import (
+    FAINT,
+    FLAG,
+    INK,
+    LABEL_FAMILY,
+    LABEL_SIZE,
+    SANS,
+    SANS_BOLD,
+    SMALL_SIZE,
+    STYLES,
+    SUB_SCALE,
+    SUB_SHIFT,
+    TEXT_FAMILY,
+    TEXT_SIZE,
+    num,
+    text_width,
+)
+
+__all__ = [
+    "Canvas",
+    "Drawing",
+    "Point",
+    "arrowhead",
+    "difference",
+    "fit_zoom",
+    "page_direction",
+    "points_attribute",
+    "round_scale_value",
+    "scale_bar",
+    "translate",
+    "unit_vector",
+    "vector_length",
+]
+
+#: the family of monospaced text (tables on task sheets)
+MONO_FAMILY = "DejaVu Sans Mono, monospace"
+
+#: margin (px) round the whole figure
+MARGIN = 14.0
+
+Point = tuple[float, float]
+
+#: one element a line (diff-friendly), never inside a <text>: its tspans stay together
+_ONE_PER_LINE = re.compile(r"><(/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
+                           r"title\b|defs\b|/svg\b)")
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """An SVG figure and its layout: the text, its size (px), the placed labels and the
+    numbers of the construction steps drawn as arrows."""
+
+    svg: str
+    width: float
+    height: float
+    labels: tuple[PlacedLabel, ...]
+    arrow_steps: tuple[int, ...]
+
+
+
+def difference(p: Point, q: Point) -> Point:
+    return (p[0] - q[0], p[1] - q[1])
+
+
+def translate(p: Point, q: Point, factor: float = 1.0) -> Point:
+    return (p[0] + factor * q[0], p[1] + factor * q[1])
+
+
+def vector_length(v: Point) -> float:
+    return math.hypot(v[0], v[1])
+
+
+def unit_vector(v: Point) -> Point:
+    length = vector_length(v)
+    return (v[0] / length, v[1] / length) if length else (0.0, 0.0)
+
+
+def page_direction(degrees: float) -> Point:
+    """A direction given in degrees counter-clockwise from +x, on the page (y down)."""
+    return (math.cos(math.radians(degrees)), -math.sin(math.radians(degrees)))
+
+
+def points_attribute(points: Sequence[Point]) -> list[tuple[float, float]]:
+    """Points rounded as written (svgwrite formats the list)."""
+    return [(float(num(x)), float(num(y))) for x, y in points]
+
+
+
+def round_scale_value(value: float) -> float:
+    """The largest 1, 2 or 5 × 10ⁿ not above ``value``."""
+    exponent = math.floor(math.log10(value))
+    for mantissa in (5.0, 2.0, 1.0):
+        if mantissa * 10.0 ** exponent <= value * (1 + 1e-12):
+            return mantissa * 10.0 ** exponent
+    return 10.0 ** exponent  # pragma: no cover
+
+
+
+_LAYERS = ("ground", "construction", "similarity", "links", "components", "results",
+           "marks", "points", "leaders", "labels", "text")
+
+
+class Canvas:
+    """Primitives in page coordinates (px, y down), layered; labels placed at the end."""
+
+    def __init__(self, zoom: float = 1.0) -> None:
+        self.zoom = zoom
+        self.layers: dict[str, list] = {name: [] for name in _LAYERS}
+        self.definitions: list = []
+        self.obstacle_lines: list = []
+        self.obstacle_areas: list = []
+        self.requests: list[LabelRequest] = []
+        self.used: set[str] = set()
+        self.arrow_steps: list[int] = []
+        self.extent = [math.inf, math.inf, -math.inf, -math.inf]
+        self.labels: tuple[PlacedLabel, ...] = ()
+
+    # coordinates
+    def px(self, xy: Sequence[float]) -> Point:
+        return (float(xy[0]) * self.zoom, -float(xy[1]) * self.zoom)
+
+    def grow(self, *points: Point) -> None:
+        for x, y in points:
+            self.extent = [min(self.extent[0], x), min(self.extent[1], y),
+                           max(self.extent[2], x), max(self.extent[3], y)]
+
+    # primitives
+    def add(self, layer: str, tag: str, attrs: dict[str, Any], children: list | None = None
+            ) -> None:
+        self.layers[layer].append((tag, attrs, children or []))
+
+    def line(self, p: Point, q: Point, *, color: str, width: float, dash: str | None = None,
+             layer: str = "construction", obstacle: bool = True, cap: str = "butt",
+             css: str | None = None, data: dict | None = None) -> None:
+        from shapely.geometry import LineString
+
+        attrs = {"x1": num(p[0]), "y1": num(p[1]), "x2": num(q[0]), "y2": num(q[1]),
+                 "stroke": color, "stroke-width": num(width)}
+        if dash:
+            attrs["stroke-dasharray"] = dash
+        if cap != "butt":
+            attrs["stroke-linecap"] = cap
+        if css:
+            attrs["class"] = css
+        attrs.update(data or {})
+        self.add(layer, "line", attrs)
+        self.grow(p, q)
+        if obstacle and vector_length(difference(q, p)) > 0:
+            self.obstacle_lines.append(LineString([p, q]))
+
+    def polyline(self, points: Sequence[Point], *, color: str, width: float,
+                 dash: str | None = None, layer: str = "marks", obstacle: bool = True,
+                 fill: str = "none", closed: bool = False, css: str | None = None) -> None:
+        from shapely.geometry import LineString
+
+        attrs = {"points": points_attribute(points), "fill": fill, "stroke": color,
+                 "stroke-width": num(width), "stroke-linejoin": "round"}
+        if dash:
+            attrs["stroke-dasharray"] = dash
+        if css:
+            attrs["class"] = css
+        self.add(layer, "polygon" if closed else "polyline", attrs)
+        self.grow(*points)
+        if obstacle:
+            ring = list(points) + ([points[0]] if closed else [])
+            self.obstacle_lines.append(LineString(ring))
+
+    def circle(self, centre: Point, radius: float, *, fill: str, stroke: str = "none",
+               width: float = 0.0, layer: str = "points", area: bool = True,
+               css: str | None = None) -> None:
+        from shapely.geometry import Point as ShapelyPoint
+
+        attrs = {"cx": num(centre[0]), "cy": num(centre[1]), "r": num(radius), "fill": fill}
+        if stroke != "none":
+            attrs |= {"stroke": stroke, "stroke-width": num(width)}
+        if css:
+            attrs["class"] = css
+        self.add(layer, "circle", attrs)
+        self.grow((centre[0] - radius, centre[1] - radius),
+                  (centre[0] + radius, centre[1] + radius))
+        if area:
+            self.obstacle_areas.append(ShapelyPoint(centre).buffer(radius, quad_segs=4))
+
+    def arrow(self, p: Point, q: Point, style_key: str, *, layer: str, step: int | None = None,
+              color: str | None = None, css: str | None = None) -> bool:
+        """A vector from p to q with its head at q; False if too short to draw."""
+        from shapely.geometry import LineString
+
+        style = STYLES[style_key]
+        vector = difference(q, p)
+        length = vector_length(vector)
+        if length < 0.5:
+            return False
+        color = color or style.color
+        u = unit_vector(vector)
+        n = (-u[1], u[0])
+        head = min(style.head, 0.55 * length)
+        half = head * 0.36
+        base = translate(q, u, -head)
+        shaft_end = translate(q, u, -0.75 * head)
+        line = {"x1": num(p[0]), "y1": num(p[1]), "x2": num(shaft_end[0]),
+                "y2": num(shaft_end[1]), "stroke": color, "stroke-width": num(style.width)}
+        if style.dash:
+            line["stroke-dasharray"] = style.dash
+        tip = {"points": points_attribute([q, translate(base, n, half), translate(base, n, -half)]),
+               "fill": color}
+        group = {"class": f"arrow {css or style_key}"}
+        if step is not None:
+            group["data-step"] = str(step)
+            self.arrow_steps.append(step)
+        self.add(layer, "g", group, [("line", line, []), ("polygon", tip, [])])
+        self.grow(p, q)
+        self.obstacle_lines.append(LineString([p, q]))
+        return True
+
+    def rectangle(self, corner: Point, size: Point, *, fill: str, stroke: str = "none",
+                  width: float = 0.0, layer: str = "ground", css: str | None = None) -> None:
+        """An axis-aligned rectangle, top-left at ``corner`` (page px)."""
+        attrs = {"x": num(corner[0]), "y": num(corner[1]), "width": num(size[0]),
+                 "height": num(size[1]), "fill": fill}
+        if stroke != "none":
+            attrs |= {"stroke": stroke, "stroke-width": num(width)}
+        if css:
+            attrs["class"] = css
+        self.add(layer, "rect", attrs)
+        self.grow(corner, translate(corner, size))
+
+    def define(self, tag: str, attrs: dict[str, Any], children: list | None = None) -> None:
+        """An element of ``<defs>`` (a pattern, a marker), written before the layers."""
+        self.definitions.append((tag, attrs, children or []))
+
+    def text(self, xy: Point, text: str, *, size: float = TEXT_SIZE, color: str = INK,
+             anchor: str = "start", bold: bool = False, css: str = "note",
+             layer: str = "text", area: bool = True, family: str = TEXT_FAMILY,
+             italic: bool = False, monospace: bool = False) -> float:
+        """Fixed text (sans, or monospaced with its spaces kept); returns its width."""
+        from shapely.geometry import box
+
+        if monospace:
+            family = MONO_FAMILY
+            width = 0.6 * size * len(text)
+        else:
+            width = text_width(text, size, SANS_BOLD if bold else SANS)
+        attrs = {"x": num(xy[0]), "y": num(xy[1]), "font-family": family,
+                 "font-size": num(size), "fill": color, "class": css}
+        if bold:
+            attrs["font-weight"] = "bold"
+        if italic:
+            attrs["font-style"] = "italic"
+        if anchor != "start":
+            attrs["text-anchor"] = anchor
+        if monospace:
+            attrs["xml:space"] = "preserve"
+        self.add(layer, "text", attrs, [text])
+        left = xy[0] - (width if anchor == "end" else width / 2 if anchor == "middle" else 0)
+        self.grow((left, xy[1] - 0.8 * size), (left + width, xy[1] + 0.25 * size))
+        if area:
+            self.obstacle_areas.append(box(left, xy[1] - 0.8 * size, left + width,
+                                           xy[1] + 0.25 * size))
+        return width
+
+    def request(self, points: tuple[str, ...], anchor: Point, runs: tuple[Run, ...], *,
+                size: float = LABEL_SIZE, mark: float = 3.0, css: str = "label") -> None:
+        self.requests.append(LabelRequest(points, anchor, runs, size, mark, css))
+
+    # labels
+    def place(self) -> None:
+        self.labels = place_labels(self.requests, self.obstacle_lines, self.obstacle_areas)
+        for label in self.labels:
+            x0, y0, x1, y1 = label.box
+            self.grow((x0, y0), (x1, y1))
+            color = {"faint": FAINT, "flag": FLAG}.get(label.css, INK)
+            if label.leader:
+                ax, ay = label.anchor
+                cx = min(max(ax, x0), x1)
+                cy = min(max(ay, y0), y1)
+                self.add("leaders", "line", {"x1": num(ax), "y1": num(ay), "x2": num(cx),
+                                             "y2": num(cy), "stroke": color,
+                                             "stroke-width": "0.6", "class": "leader"})
+            self.add("labels", "text", _label_attrs(label, color), _label_spans(label))
+
+    # output
+    def svg(self, title: str, *, view: tuple[float, float, float, float] | None = None,
+            unit: str = "", attributes: Mapping[str, str] | None = None) -> Drawing:
+        """The SVG text of everything drawn, as a :class:`Drawing`.
+
+        ``view`` fixes the viewBox ``(x, y, width, height)`` (default: what was drawn plus a
+        margin); ``unit`` is appended to the width and height (``"mm"`` prints at scale);
+        ``attributes`` are added to the root element (e.g. ``data-…`` markers a reader looks
+        for).
+        """
+        import svgwrite
+
+        if view is None:
+            x0, y0, x1, y1 = self.extent
+            x0, y0, x1, y1 = x0 - MARGIN, y0 - MARGIN, x1 + MARGIN, y1 + MARGIN
+            width, height = x1 - x0, y1 - y0
+        else:
+            x0, y0, width, height = view
+        drawing = svgwrite.Drawing(size=(num(width) + unit, num(height) + unit),
+                                   profile="full", debug=False)
+        drawing["viewBox"] = f"{num(x0)} {num(y0)} {num(width)} {num(height)}"
+        for key, value in (attributes or {}).items():
+            drawing[key] = value
+        drawing.set_desc(title=title)
+        if self.definitions:
+            for item in self.definitions:
+                drawing.defs.add(_element(drawing, item))
+        drawing.add(drawing.rect(insert=(num(x0), num(y0)), size=(num(width), num(height)),
+                                 fill="#ffffff", class_="background"))
+        for name in _LAYERS:
+            if self.layers[name]:
+                group = drawing.g(class_=name)
+                for item in self.layers[name]:
+                    group.add(_element(drawing, item))
+                drawing.add(group)
+        body = _ONE_PER_LINE.sub(r">\n<\1", drawing.tostring())
+        text = '<?xml version="1.0" encoding="utf-8"?>\n' + body + "\n"
+        return Drawing(text, float(num(width)), float(num(height)), self.labels,
+                       tuple(self.arrow_steps))
+
+
+def _element(drawing, item):
+    """An svgwrite element from ``(tag, attributes, children)``; strings are text content."""
+    tag, attrs, children = item
+    if tag in ("text", "tspan"):
+        element = getattr(drawing, tag)("".join(c for c in children if isinstance(c, str)))
+    elif tag in ("polygon", "polyline"):       # svgwrite writes `points` itself
+        attrs = dict(attrs)
+        element = getattr(drawing, tag)(points=attrs.pop("points"))
+    else:
+        element = getattr(drawing, tag)()
+    for key, value in attrs.items():
+        element[key] = value
+    for child in children:
+        if not isinstance(child, str):
+            element.add(_element(drawing, child))
+    return element
+
+
+def _label_attrs(label: PlacedLabel, color: str) -> dict[str, str]:
+    return {"x": num(label.baseline[0]), "y": num(label.baseline[1]),
+            "font-family": LABEL_FAMILY, "font-size": num(label.size), "font-style": "italic",
+            "fill": color, "class": label.css, "data-points": " ".join(label.points)}
+
+
+def _label_spans(label: PlacedLabel) -> list:
+    spans = []
+    shift = 0.0
+    for text, kind in label.runs:
+        small = kind in ("sub", "upright")
+        target = SUB_SHIFT * label.size if small else 0.0
+        attrs: dict[str, str] = {}
+        if target != shift:
+            attrs["dy"] = num(target - shift)
+            shift = target
+        if small:
+            attrs["font-size"] = num(label.size * SUB_SCALE)
+        if kind in ("upright", "sep"):
+            attrs["font-style"] = "normal"
+        spans.append(("tspan", attrs, [text]))
+    return spans
+
+
+
+def arrowhead(figure: Canvas, tip: Point, direction: Point, size: float, color: str,
+               layer: str) -> None:
+    """A filled arrowhead at ``tip`` pointing along the page direction ``direction``."""
+    n = (-direction[1], direction[0])
+    base = translate(tip, direction, -size)
+    figure.add(layer, "polygon", {"points": points_attribute(
+        [tip, translate(base, n, 0.36 * size), translate(base, n, -0.36 * size)]), "fill": color})
+
+
+
+def scale_bar(figure: Canvas, at: Point, scale: float, unit: str, target_px: float) -> None:
+    """A scale bar: a nice value whose drawn length is near ``target_px``."""
+    if not (scale > 0 and math.isfinite(scale)):
+        return
+    value = round_scale_value(target_px / figure.zoom * scale)
+    length = value / scale * figure.zoom
+    x, y = at
+    color = INK
+    figure.line((x, y), (x + length, y), color=color, width=1.4, layer="text", obstacle=False)
+    for t in (0.0, 0.5, 1.0):
+        tick = 5.0 if t != 0.5 else 3.0
+        figure.line((x + t * length, y - tick), (x + t * length, y + tick), color=color,
+                    width=1.0, layer="text", obstacle=False)
+    figure.text((x, y + 17), "0", size=SMALL_SIZE, anchor="middle", area=False, css="scale")
+    figure.text((x + length, y + 17), f"{value:g} {unit}", size=SMALL_SIZE, anchor="middle",
+                area=False, css="scale")
+
+
+
+def fit_zoom(points: Sequence[Sequence[float]], size: float) -> float:
+    xs = [float(p[0]) for p in points]
+    ys = [float(p[1]) for p in points]
+    extent = max(max(xs) - min(xs), max(ys) - min(ys)) if points else 0.0
+    return size / extent if extent > 1e-9 else 10.0
+
+

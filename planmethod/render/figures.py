@@ -1,0 +1,40 @@
+"""Every figure of one crank angle, by file name: what ``planmethod solve --svg DIR`` writes.
+
+This module assembles the drawings of :mod:`planmethod.render.svg` (position, velocity,
+acceleration, lever) and of :mod:`planmethod.render.force_svg` (force polygons, combined force)
+so that neither of those imports the other.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.plans import draw_plans
+>>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+>>> sorted(plan_files(plans))
+['acceleration.svg', 'lever.svg', 'position.svg', 'velocity.svg']
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from .force_svg import force_files
+from .svg import lever_svg, plan_svg, position_svg
+
+if TYPE_CHECKING:
+    from ..plans import Plans
+
+__all__ = ["plan_files"]
+
+
+def plan_files(plans: Plans, forces: Any = None) -> dict[str, str]:
+    """Every drawing of one crank angle: ``{"position.svg": …, "velocity.svg": …,
+    "acceleration.svg": … (if drawn), "lever.svg": …}`` plus the force drawings if
+    ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given."""
+    files = {"position.svg": position_svg(plans.position, plans=plans),
+             "velocity.svg": plan_svg(plans.velocity)}
+    if plans.acceleration is not None:
+        files["acceleration.svg"] = plan_svg(plans.acceleration)
+    files["lever.svg"] = lever_svg(plans)
+    if forces is not None:
+        files.update(force_files(forces, plans))
+    return files
