@@ -418,3 +418,18 @@ def test_a_plot_with_an_unknown_suffix_names_the_formats(tmp_path):
                                               r"\.png, \.svg or \.pdf"):
         save_force_plot(_force_table(), tmp_path / "curves.txt", title="T")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_blank_sheet_has_its_grid_drawn():
+    """The blank plan sheet is drawn on the canvas: a 10 mm grid pattern whose path has its
+    geometry, a rectangle filled with it, the pole, and the root markers the reader uses."""
+    from planmethod.grading.sheets import blank_plan_sheet
+
+    sheet = blank_plan_sheet("velocity", pole="p", scale=0.2, unit="(m/s)/mm", size_mm=120,
+                             student="s01", title="T")
+    root = ET.fromstring(sheet.encode("utf-8"))
+    pattern = root.find(f"{SVG}defs/{SVG}pattern")
+    assert pattern.get("id") == "grid" and pattern.get("width") == "10"
+    assert pattern.find(f"{SVG}path").get("d") == "M 10 0 L 0 0 0 10"
+    assert any(rect.get("fill") == "url(#grid)" for rect in root.iter(f"{SVG}rect"))
+    assert root.get("width") == "120mm" and root.get("data-planmethod-student") == "s01"

@@ -87,7 +87,7 @@ def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: 
     canvas = Canvas()
     canvas.define("pattern", {"id": "grid", "width": "10", "height": "10",
                               "patternUnits": "userSpaceOnUse"},
-                  [("path", {"d": "M 10 0 L 0 0 0 10", "fill": "none", "stroke": "#dde",
+                  [("path", {"d": "M 10 0 L 0 0 0 10", "fill": "none", "stroke": "#c9cede",
                              "stroke-width": "0.2"}, [])])
     canvas.rectangle((0.0, 12.0), (size, size), fill="url(#grid)", stroke="#99a", width=0.3,
                      css="grid")

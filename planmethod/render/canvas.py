@@ -362,6 +362,9 @@ def _element(drawing, item):
     elif tag in ("polygon", "polyline"):       # svgwrite writes `points` itself
         attrs = dict(attrs)
         element = getattr(drawing, tag)(points=attrs.pop("points"))
+    elif tag == "path":                        # and `d`
+        attrs = dict(attrs)
+        element = drawing.path(d=attrs.pop("d"))
     else:
         element = getattr(drawing, tag)()
     for key, value in attrs.items():
