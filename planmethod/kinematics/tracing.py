@@ -142,6 +142,7 @@ class Tracer:
         self.ops: list[_Op] = []
         self._count = 1  # id 0: the crank angles (deg)
         self._seen: dict[tuple, int] = {}
+        self._producers: dict[int, _Op] = {}
         self.checks: list[Callable] = []
         self.calls: list[Callable] = []
         self._outputs: list[tuple[str, tuple]] = []
@@ -160,6 +161,7 @@ class Tracer:
             found = self._seen[key] = self._count
             self._count += 1
             self.ops.append(_Op(name, (found,), args))
+            self._producers[found] = self.ops[-1]
         return Traced(self, found)
 
     def plain(self, value) -> object:
@@ -167,8 +169,22 @@ class Tracer:
         if not isinstance(value, Traced):
             return float(value)
         if value.negated:
-            return self._record("neg", value.id).id
+            return self._negation(value.id)
         return value.id
+
+    def _negation(self, ident: int) -> int:
+        """The id of −value: a product or quotient with a constant rewritten with the constant
+        negated (−(a·c) = a·(−c), −(a/c) = a/(−c), −(c/b) = (−c)/b: exact in IEEE arithmetic,
+        signed zeros included), so no extra pass is made; else a negation. (−(a − b) is not
+        rewritten as b − a: the two differ in the sign of a zero, which arctan2 sees.)"""
+        op = self._producers.get(ident)
+        if op is not None and op.name in ("mul", "div"):
+            first, second = op.args
+            if isinstance(second, float):
+                return self._record(op.name, first, -second).id
+            if op.name == "div" and isinstance(first, float):
+                return self._record("div", -first, second).id
+        return self._record("neg", ident).id
 
     def apply(self, name: str, *args):
         """Record (or fold) the operation ``name`` of ``args``."""
@@ -280,10 +296,14 @@ class Tracer:
         copies: list[tuple[int, int]] = []
         layout = Layout()
         rows = 0
+        written: dict[tuple, object] = {}   # the values of an output → its rows
         for out_name, values in self._outputs:
             values = tuple(self.plain(v) if isinstance(v, Traced) else float(v) for v in values)
             if all(isinstance(v, float) for v in values):
                 layout.constants[out_name] = values[0] if len(values) == 1 else values
+                continue
+            if values in written:   # the same values under another name: the same rows
+                layout.rows[out_name] = written[values]
                 continue
             ids = [v for v in values if isinstance(v, int)]
             existing = [primary.get(i) for i in ids]
@@ -304,6 +324,7 @@ class Tracer:
                 else:
                     primary[value] = row
             layout.rows[out_name] = mine[0] if len(mine) == 1 else tuple(mine)
+            written[values] = layout.rows[out_name]
         layout = Layout(layout.rows, layout.constants, rows)
         return self._emit(name, layout, primary, fills, copies)
 

@@ -241,6 +241,8 @@ class Path:
         first, second = self._derivatives(q0[None, :], upstream(np.array([start])))
         node = (q0[None, :], first, second)
         self.nodes = {1: [node], -1: [node]}
+        #: the nodes of each side joined into arrays (q, q', q''), with the count they hold
+        self.stacked: dict[int, tuple[int, tuple[np.ndarray, ...]]] = {}
 
     def _derivatives(self, q: np.ndarray, known):
         first, second = self.system.rates(self.system.at(tuple(q.T), known), 2)
@@ -256,8 +258,12 @@ class Path:
                     before = float(self.start + direction * STEP_DEG * (len(nodes) - 1))
                     nodes.append(self.advance(nodes[-1], before, float(angle),
                                               _take(ahead, np.array([index]))))
-            nodes = nodes[:count + 1]
-        return tuple(np.concatenate(parts) for parts in zip(*nodes, strict=True))
+            stacked = self.stacked.get(direction)
+            if stacked is None or stacked[0] != len(nodes):  # joined once per growth
+                stacked = (len(nodes), tuple(np.concatenate(parts)
+                                             for parts in zip(*nodes, strict=True)))
+                self.stacked[direction] = stacked
+        return tuple(part[:count + 1] for part in stacked[1])
 
     def advance(self, node, start: float, stop: float, known=None):
         """From ``node`` at ``start`` to ``stop`` (deg), halving on trouble."""
@@ -321,6 +327,27 @@ class Path:
         moved = slope * step
         prediction = node_q + moved + (0.5 * step * step) * curve
         return prediction, moved, (node_q, slope, curve, direction, nearest)
+
+    def predict_into(self, angles_deg: np.ndarray, predictions, steps) -> None:
+        """:meth:`predict`'s prediction and step written row by row (one row per unknown, as
+        the traced program keeps them) into ``predictions`` and ``steps``: the same arithmetic,
+        with one gather per row from the nodes of both sides laid end to end."""
+        offsets = angles_deg - self.start
+        nearest = np.rint(offsets / STEP_DEG).astype(np.intp)   # signed: the side and node
+        behind = self.arrays(-1, max(-int(nearest.min()), 0))
+        ahead = self.arrays(1, max(int(nearest.max()), 0))
+        first = behind[0].shape[0] - 1        # the column of the start node
+        node_q, slope, curve = (np.concatenate([back[:0:-1], front]).T
+                                for back, front in zip(behind, ahead, strict=True))
+        index = nearest + first
+        step = np.radians(offsets - STEP_DEG * nearest)
+        half_square = 0.5 * step * step
+        for row in range(self.system.size):
+            moved = steps[row]
+            prediction = predictions[row]
+            np.multiply(slope[row].take(index), step, out=moved)
+            np.add(node_q[row].take(index), moved, out=prediction)
+            prediction += half_square * curve[row].take(index)
 
     def solve(self, angles_deg: np.ndarray, known) -> tuple[np.ndarray, Any]:
         """q and its pose at ``angles_deg`` (``known`` at those angles): all angles corrected by
@@ -546,10 +573,8 @@ def _traced(context, level, model, branch, system, inputs):
 
     def predict(angles_deg, arrays, out) -> None:
         path = _path(context, model, branch, system)
-        prediction, moved, _ = path.predict(np.asarray(angles_deg, dtype=float))
-        for index in range(system.size):
-            out[index][...] = prediction[:, index]
-            out[system.size + index][...] = moved[:, index]
+        path.predict_into(np.asarray(angles_deg, dtype=float), out[:system.size],
+                          out[system.size:])
 
     values = tracer.call(predict, [], 2 * system.size)
     start, moved = tuple(values[:system.size]), values[system.size:]
