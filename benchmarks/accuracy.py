@@ -241,13 +241,13 @@ OFFSETS = {"exact": (6, -4, "left"), "newton": (7, 0, "left"),
 
 
 def figure(result: dict):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
     floor = 1e-17
-    fig, axes = plt.subplots(1, 2, figsize=(13, 6), sharey=True)
+    fig = Figure(figsize=(13, 6))
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(1, 2, sharey=True)
     for axis, key, title in ((axes[0], "velocity_error", "velocity of C"),
                              (axes[1], "acceleration_error", "acceleration of C")):
         for method, (color, marker) in STYLES.items():

@@ -1,4 +1,4 @@
-"""The numpy floor: the case A four-bar and the seed 001 slider-crank as hand-fused closed forms.
+"""The numpy floor: the case A four-bar and Abduvaliev & Abduxoshimov's slider-crank, hand-fused.
 
 Not planmethod and not general — one function per mechanism, structure of arrays (x and y in
 separate arrays), every formula written out once — it shows what plain numpy (no numba) costs

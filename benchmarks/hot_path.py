@@ -1,11 +1,13 @@
 """Before and after: the kinematics' hot path at an earlier commit against the working tree.
 
-``python -m benchmarks.hot_path [REV]`` (default ``dce2f82``, the last commit before the
-compiled dyads of :mod:`planmethod.kinematics.compiled`) checks REV out into a temporary git
-worktree, times the same full-turn analysis (positions, velocities, accelerations of every
-point, kept as :mod:`benchmarks.speed` keeps them) of the case A four-bar, seed 001's
-slider-crank and the shaper six-bar with each tree's planmethod in its own subprocess, one
-after the other on the same machine, and writes ``benchmarks/results/hot_path.{md,json}``.
+``python -m benchmarks.hot_path [REV]`` (default ``6008cc9``, the last commit before the
+kinematics were rebuilt as one module per group kind traced into one program per mechanism,
+:mod:`planmethod.kinematics.program`) checks REV out into a temporary git worktree, times the
+same full-turn analysis (positions, velocities, accelerations of every point, kept as
+:mod:`benchmarks.speed` keeps them) of the case A four-bar, the slider-crank of Abduvaliev &
+Abduxoshimov, the shaper six-bar and the vibratory conveyor's class III six-bar with each
+tree's planmethod in its own subprocess, one after the other on the same machine, and
+writes ``benchmarks/results/hot_path.{md,json}``.
 
 Examples
 --------
@@ -25,7 +27,7 @@ from pathlib import Path
 
 from .common import RESULTS, ROOT, machine
 
-DEFAULT_REV = "dce2f82"
+DEFAULT_REV = "6008cc9"
 
 HARNESS = r'''
 import dataclasses, json, sys, time
@@ -40,7 +42,8 @@ FOURBAR = {"title": "Four-bar", "drive": {"link": "AB", "pivot": "A", "angle": 6
            "sketch": {"C": [0.236, 0.168]}}
 mechanisms = {"fourbar": exercise_from_dict(FOURBAR).mechanism,
               "slider_crank": load_exercise(sys.argv[1]).mechanism,
-              "shaper": load_exercise(sys.argv[2]).mechanism}
+              "shaper": load_exercise(sys.argv[2]).mechanism,
+              "conveyor (class III)": load_exercise(sys.argv[3]).mechanism}
 out = {}
 for name, m in mechanisms.items():
     points = list(dict.fromkeys(p for link in m.links.values() for p in link.points))
@@ -72,7 +75,8 @@ def measure(tree: Path) -> dict:
     path = os.pathsep.join([str(tree), *filter(None, [os.environ.get("PYTHONPATH")])])
     done = subprocess.run([sys.executable, "-c", HARNESS,
                            str(ROOT / "exercises" / "compressor_slider_crank.toml"),
-                           str(ROOT / "exercises" / "shaper_sixbar.toml")],
+                           str(ROOT / "exercises" / "shaper_sixbar.toml"),
+                           str(ROOT / "exercises" / "conveyor_sixbar.toml")],
                           capture_output=True, text=True, cwd=tempfile.gettempdir(),
                           env={**os.environ, "PYTHONPATH": path})
     if done.returncode != 0:

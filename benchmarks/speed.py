@@ -6,8 +6,9 @@ crank angles — divided by N:
 
 * ``planmethod``: ``solve(mechanism, angles)`` and then ``position``, ``velocity``,
   ``acceleration`` of every point, called again and again with the same frozen model, whose
-  structure, branch choice and compiled dyads :func:`~planmethod.kinematics.compiled.program`
-  keeps after the first call — as the peers reuse their built and compiled models;
+  structure, branch choice and traced program (:func:`planmethod.kinematics.program.model`,
+  cached by the model's value) are kept after the first call — as the peers reuse their built
+  and compiled models;
 * ``planmethod (new model each call)``: the same with a new (equal) model object at every call,
   so that every call pays the structural analysis, the branch choice and the compilation;
 * each peer (:mod:`benchmarks.peers`) inside its own virtualenv, timed in its subprocess.
@@ -216,13 +217,13 @@ def table(result: dict) -> str:
 
 def figure(result: dict):
     """Time per angle against N, one panel per mechanism, log–log."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
     counts = result["counts"]
-    fig, axes = plt.subplots(1, len(result["mechanisms"]), figsize=(11, 4.2), sharey=True)
+    fig = Figure(figsize=(11, 4.2))
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(1, len(result["mechanisms"]), sharey=True)
     for axis, (name, entry) in zip(np.atleast_1d(axes), result["mechanisms"].items(),
                                    strict=True):
         for tool, record in entry.items():
