@@ -236,3 +236,20 @@ def test_shipped_exercises_cover_all_five_dyad_kinds_and_groups_in_series(capsys
         kinds |= {group["type"] for group in groups}
         series |= len(groups) >= 2
     assert kinds == {"RRR", "RRP", "RPR", "PRP", "RPP"} and series
+
+
+@pytest.mark.parametrize("argv", [
+    ["sweep", "{missing}", "--plot", "{out}/curves.txt"],
+    ["sweep", "{missing}", "--forces", "--plot", "{out}/curves.txt"],
+    ["study", "{missing}", "--plot", "{out}/curves.txt"],
+])
+def test_a_plot_format_is_refused_before_any_work(capsys, tmp_path, argv):
+    """Every command that plots names the unsupported suffix and the supported ones in one line,
+    exit 2, before it reads the exercise (so the file named here need not even exist) and
+    before it writes anything."""
+    argv = [a.format(missing=tmp_path / "no_such.toml", out=tmp_path) for a in argv]
+    code, out, err = run(capsys, *argv, "--csv", tmp_path / "table.csv")
+    assert code == 2 and not out
+    assert err.splitlines() == [f"planmethod: error: {tmp_path}/curves.txt: plot format '.txt' "
+                                "not supported; use .png, .svg or .pdf"]
+    assert list(tmp_path.iterdir()) == []

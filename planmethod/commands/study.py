@@ -102,6 +102,10 @@ def run(args: argparse.Namespace) -> int:
 
     if not (math.isfinite(args.step) and 0 < args.step <= 90):
         raise SpecError(f"--step must be a number of degrees in (0, 90], got {args.step}")
+    if args.plot:  # before any work: an unsupported format is refused at once
+        from ..render.plots import plot_format
+
+        plot_format(args.plot)
     exercise = load_exercise(args.file)
     if any(value is not None for value in (args.base_weight, args.base_omega,
                                            args.base_moment)):

@@ -26,6 +26,10 @@ def run(args: argparse.Namespace) -> int:
     from ..spec import load_exercise
     from ..sweep import Extremes, csv_rows, sweep_chunks, sweep_table
 
+    if args.plot:  # before any work: an unsupported format is refused at once
+        from ..render.plots import plot_format
+
+        plot_format(args.plot)
     exercise = load_exercise(args.file)
     extra = None
     if args.forces:
