@@ -200,3 +200,36 @@ def test_json_answers_and_per_student_keys(tmp_path):
 def test_grade_answers_matches_ids_ignoring_case(seed_key):
     result = grade_answers(seed_key, {"V_c": 5.27, "colour": "blue"})
     assert by_id(result)["v_C"]["correct"] and result["ignored"] == ["colour"]
+
+
+def test_a_csv_without_a_student_column_is_one_students_answers(tmp_path, capsys, seed_key):
+    """A header of question ids only, with one row of the exact answers, grades full marks:
+    nothing is taken for a student id, nothing is dropped (through the command, too)."""
+    from planmethod.cli import main
+
+    questions = seed_key["questions"]
+    path = tmp_path / "answers.csv"
+    path.write_text(",".join(q["id"] for q in questions) + "\n"
+                    + ",".join(repr(q["value"]) for q in questions) + "\n")
+    ((student, answers),) = read_answers(path)
+    assert student == "*"
+    assert len(answers) == len(questions)
+    result = grade_answers(seed_key, answers)
+    assert result["score"] == result["max_score"] and not result["ignored"]
+    assert main(["grade", SEED, str(path), "--json", str(tmp_path / "out.json")]) == 0
+    assert capsys.readouterr().out.startswith(f"the answers: {len(questions)}/{len(questions)}")
+    (graded,) = json.loads((tmp_path / "out.json").read_text())["answers"]
+    assert graded["score"] == graded["max_score"] == len(questions)
+
+
+@pytest.mark.parametrize(("text", "fragment"), [
+    ("v_C,omega_BC\n5.27,-24.25\n5.3,-24\n", "no student column"),
+    ("student,v_C\ns1,5\ns2,6\nS1,7\n", "student 'S1' answers twice (entries 1 and 3)"),
+    ('[{"student": "a", "v_C": 1}, {"student": "a", "v_C": 2}]', "student 'a' answers twice"),
+])
+def test_ambiguous_answer_files_are_refused(tmp_path, text, fragment):
+    path = tmp_path / ("answers.json" if text.startswith("[") else "answers.csv")
+    path.write_text(text)
+    with pytest.raises(SpecError) as caught:
+        read_answers(path)
+    assert fragment in str(caught.value) and str(path) in str(caught.value)

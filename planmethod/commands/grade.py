@@ -80,8 +80,9 @@ def run(args: argparse.Namespace) -> int:
     lines = []
     for result in results:
         total = result.get("max_score")
-        head = (f"{result['student']}: {result['score']:g}/{total:g}" if total is not None
-                else f"{result['student']}: {result['error']}")
+        who = "the answers" if result["student"] == "*" else result["student"]
+        head = (f"{who}: {result['score']:g}/{total:g}" if total is not None
+                else f"{who}: {result['error']}")
         lines.append(head)
         if not args.quiet:
             lines += [f"  {'ok ' if q['correct'] else 'XX '} {q['feedback']}"

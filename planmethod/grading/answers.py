@@ -1,9 +1,10 @@
 """Grading numeric answers against a key, with feedback that names common mistakes.
 
 Answers come as CSV (a header row; a ``student`` column — or ``id``, ``student_id``, ``sid``,
-``email``, else the first column — and one column per question id such as ``v_C``,
-``omega_BC``) or as JSON (``{"s01": {"v_C": 5.2, …}, …}``, or a list of
-``{"student": "s01", "v_C": 5.2, …}`` / ``{"student": "s01", "answers": {…}}``).
+``email``, ``name`` — and one column per question id such as ``v_C``, ``omega_BC``; a file
+without a student column is one student's answers in one row) or as JSON
+(``{"s01": {"v_C": 5.2, …}, …}``, or a list of ``{"student": "s01", "v_C": 5.2, …}`` /
+``{"student": "s01", "answers": {…}}``).
 
 An answer within the question's tolerance scores the question's points. Otherwise the
 feedback says by how much it is off, and names the mistake when the answer matches one
@@ -75,8 +76,9 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     Raises
     ------
     SpecError
-        If the file is missing, too large, not CSV/JSON of the forms above, or has no
-        student column.
+        If the file is missing, too large, not CSV/JSON of the forms above, answers for the
+        same student twice (ids compared ignoring case), or has no student column and more
+        than one row.
     """
     path = Path(path)
     try:
@@ -93,8 +95,11 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     except (OSError, UnicodeDecodeError) as error:
         raise SpecError(f"cannot read the file as UTF-8 text ({error})", file=str(path)) from None
     if path.suffix.lower() == ".json" or text.lstrip().startswith(("{", "[")):
-        return _answers_from_json(text, str(path))
-    return _answers_from_csv(text, str(path))
+        rows = _answers_from_json(text, str(path))
+    else:
+        rows = _answers_from_csv(text, str(path))
+    _no_student_twice(rows, str(path))
+    return rows
 
 
 def _answers_from_json(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
@@ -143,11 +148,13 @@ def _answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]
     except csv.Error as error:
         raise SpecError(f"not valid CSV: {error}", file=where) from None
     header = [h.strip() for h in header]
+    lower = [h.lower() for h in header]
+    column = next((lower.index(c) for c in STUDENT_COLUMNS if c in lower), None)
+    if column is None:
+        return _one_student_csv(reader, header, where)
     if len(header) < 2:
         raise SpecError("needs a header row with a student column and question columns "
                         "(e.g. student,v_C,omega_BC)", file=where)
-    lower = [h.lower() for h in header]
-    column = next((lower.index(c) for c in STUDENT_COLUMNS if c in lower), 0)
     rows = []
     try:
         for number, row in enumerate(reader, start=2):
@@ -166,6 +173,37 @@ def _answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]
     except csv.Error as error:
         raise SpecError(f"not valid CSV: {error}", file=where) from None
     return rows
+
+
+def _one_student_csv(reader, header: list[str], where: str) -> list[tuple[str, dict[str, Any]]]:
+    """A CSV without a student column: one student's answers, in the one row under the
+    header (the student is ``*``, the one the command is grading). Nothing is dropped."""
+    try:
+        rows = [(number, row) for number, row in enumerate(reader, start=2)
+                if any(cell.strip() for cell in row)]
+    except csv.Error as error:
+        raise SpecError(f"not valid CSV: {error}", file=where) from None
+    if len(rows) != 1:
+        names = ", ".join(STUDENT_COLUMNS[:3])
+        raise SpecError(f"has no student column ({names}, …) but {len(rows)} rows of answers: "
+                        "without one, the file holds one student's answers in one row",
+                        file=where)
+    number, row = rows[0]
+    if len(row) > len(header):
+        raise SpecError(f"row {number} has {len(row)} cells, the header {len(header)}",
+                        file=where)
+    return [("*", {header[i]: row[i] for i in range(len(row))})]
+
+
+def _no_student_twice(rows: list[tuple[str, dict[str, Any]]], where: str) -> None:
+    """Refuse a file that answers for the same student twice (it would be graded twice)."""
+    seen: dict[str, int] = {}
+    for index, (student, _) in enumerate(rows, start=1):
+        name = student.strip().lower()
+        if name in seen:
+            raise SpecError(f"student {student!r} answers twice (entries {seen[name]} and "
+                            f"{index}); keep one", file=where)
+        seen[name] = index
 
 
 def _direction(value: float) -> str:
