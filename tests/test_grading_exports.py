@@ -81,8 +81,16 @@ def test_gradescope_autograder_folder(keys):
     files = gradescope_autograder(bundle(keys))
     assert {"setup.sh", "run_autograder", "keys.json"} <= set(files)
     run = files["run_autograder"]
-    assert run.startswith("#!/usr/bin/env bash")
-    assert "/autograder/results/results.json" in run and "submission_metadata.json" in run
+    assert run.startswith("#!/usr/bin/env bash") and "${AUTOGRADER_ROOT:-/autograder}" in run
+    grader = files["grade_submission.py"]
+    assert 'os.environ.get("AUTOGRADER_ROOT", "/autograder")' in grader
+    assert "submission_metadata.json" in grader and '"results" / "results.json"' in grader
+    compile(grader, "grade_submission.py", "exec")
+    setup = files["setup.sh"].splitlines()
+    installs = [i for i, line in enumerate(setup) if "apt-get install" in line]
+    updates = [i for i, line in enumerate(setup) if line.strip() == "apt-get update"]
+    assert installs and updates and updates[0] < installs[0]   # the index before installing
+    assert "sys.version_info < (3, 11)" in files["setup.sh"]
     assert json.loads(files["keys.json"])["format"] == "planmethod-keys"
 
 
@@ -205,3 +213,106 @@ def test_grading_the_seed_answers_from_the_command_line(capsys):
     assert "paper: 0/7" in printed
     assert "v_C = 4 m/s: wrong — 24.1 % low" in printed
     assert Path(EXAMPLE).is_file()
+
+
+# -- Gradescope, end to end ---------------------------------------------------------------------
+def _autograder(tmp_path, roster: str | None, count: int = 3):
+    """variants (from a roster or --count) → export --format gradescope into
+    <root>/source, as Gradescope unpacks an autograder."""
+    from planmethod.cli import main
+
+    root = tmp_path / "autograder"
+    argv = ["variants", "exercises/templates/slider_crank.toml", "--out",
+            str(tmp_path / "run"), "--no-sheets"]
+    if roster is not None:
+        (tmp_path / "roster.csv").write_text(roster)
+        argv += ["--students", str(tmp_path / "roster.csv")]
+    else:
+        argv += ["--count", str(count)]
+    assert main(argv) == 0
+    assert main(["export", str(tmp_path / "run"), "--format", "gradescope", "--out",
+                 str(root / "source")]) == 0
+    return root, json.loads((tmp_path / "run" / "keys.json").read_text())["keys"]
+
+
+def _submit(root, user: dict, answers: dict | None) -> dict:
+    """Run run_autograder as Gradescope does (bash, in $AUTOGRADER_ROOT) on one submission."""
+    import os
+    import subprocess
+    import sys
+
+    (root / "submission").mkdir(parents=True, exist_ok=True)
+    for old in (root / "submission").iterdir():
+        old.unlink()
+    (root / "results").mkdir(exist_ok=True)
+    (root / "submission_metadata.json").write_text(json.dumps({"users": [user]}))
+    if answers is not None:
+        (root / "submission" / "answers.json").write_text(json.dumps(answers))
+    env = {**os.environ, "AUTOGRADER_ROOT": str(root), "PLANMETHOD_PYTHON": sys.executable,
+           "PYTHONPATH": str(Path(__file__).resolve().parent.parent)}
+    done = subprocess.run(["bash", str(root / "source" / "run_autograder")], env=env,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    results = json.loads((root / "results" / "results.json").read_text())
+    # Gradescope's results format: a score, and tests with name, score, max_score, output
+    assert isinstance(results["score"], int | float) and isinstance(results["tests"], list)
+    for test in results["tests"]:
+        assert {"name", "score", "max_score", "output"} <= set(test)
+    return results
+
+
+def _right(key) -> dict:
+    return {q["id"]: q["value"] for q in key["questions"]}
+
+
+def test_gradescope_roster_by_id_and_by_email_in_any_case(tmp_path):
+    root, keys = _autograder(tmp_path, "student,email\nann,Ann@Uni.EDU\nbob,bob@uni.edu\n")
+    by_student = {k["student"]: k for k in keys}
+    # matched by e-mail, whatever its case: full marks with bob's own answers
+    results = _submit(root, {"email": "BOB@uni.edu", "sid": "", "name": "Bob"},
+                      _right(by_student["bob"]))
+    assert results["score"] == len(by_student["bob"]["questions"])
+    results = _submit(root, {"email": "ann@uni.edu"}, _right(by_student["ann"]))
+    assert results["score"] == len(by_student["ann"]["questions"])
+    # matched by id (a SID equal to the roster's student id)
+    results = _submit(root, {"email": "x@y.z", "sid": "ann"}, _right(by_student["ann"]))
+    assert results["score"] == len(by_student["ann"]["questions"])
+    # not on the roster: a message, no score
+    results = _submit(root, {"email": "eve@uni.edu"}, _right(by_student["ann"]))
+    assert results["score"] == 0 and "roster" in results["output"]
+    # no answers file
+    results = _submit(root, {"email": "ann@uni.edu"}, None)
+    assert results["score"] == 0 and "answers.json" in results["output"]
+
+
+def test_gradescope_without_a_roster_gives_each_submitter_a_stable_variant(tmp_path):
+    root, keys = _autograder(tmp_path, None, count=3)
+    user = {"email": "carol@uni.edu", "sid": "", "name": "Carol"}
+    scores = {key["student"]: _submit(root, user, _right(key))["score"] for key in keys}
+    # exactly one variant is carol's (its answers get full marks), and it stays hers
+    full = [student for student, score in scores.items()
+            if score == len(keys[0]["questions"])]
+    assert len(full) == 1
+    again = next(k for k in keys if k["student"] == full[0])
+    assert _submit(root, user, _right(again))["score"] == len(again["questions"])
+
+
+def test_gradescope_hints_never_show_the_right_value(tmp_path):
+    root, keys = _autograder(tmp_path, "student,email\nann,ann@uni.edu\n")
+    answers = {q["id"]: 3 * q["value"] + 1.0 for q in keys[0]["questions"]}
+    results = _submit(root, {"email": "ann@uni.edu"}, answers)
+    assert results["score"] == 0
+    for test, question in zip(results["tests"], keys[0]["questions"], strict=True):
+        assert test["output"].startswith(question["id"]) and "wrong" in test["output"]
+        assert f"{question['value']:.6g}" not in test["output"], test["output"]
+        assert "right" not in test["output"]
+
+
+def test_the_autograder_installs_the_python_the_package_requires():
+    import tomllib
+
+    from planmethod.grading.exports import AUTOGRADER_PYTHON
+
+    project = tomllib.loads((Path(__file__).resolve().parent.parent / "pyproject.toml")
+                            .read_text())["project"]
+    assert project["requires-python"] == f">={AUTOGRADER_PYTHON}"

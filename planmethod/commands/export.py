@@ -19,6 +19,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="graded answers for csv (a gradebook) and gradescope "
                              "(results.json of one student)")
     parser.add_argument("--student", help="with --format gradescope --answers: the student")
+    parser.add_argument("--feedback", choices=("full", "hints", "score"), default="hints",
+                        help="what students see of each question (gradescope): full (the "
+                             "right values), hints (default: the mistake and which way the "
+                             "answer is off) or score (points only)")
     parser.add_argument("--slug", default="planmethod",
                         help="PrairieLearn question folder name (default planmethod)")
 
@@ -54,10 +58,11 @@ def run(args: argparse.Namespace) -> int:
                 raise SpecError(f"results.json is for one student; the answers hold "
                                 f"{len(rows)}", file=args.answers)
             result = grade_many(keys, rows)[0]
-            files["results.json"] = json.dumps(exports.gradescope_results(result),
-                                               ensure_ascii=False, indent=1)
+            files["results.json"] = json.dumps(
+                exports.gradescope_results(result, feedback=args.feedback),
+                ensure_ascii=False, indent=1)
         else:
-            files.update(exports.gradescope_autograder(the_bundle))
+            files.update(exports.gradescope_autograder(the_bundle, feedback=args.feedback))
     elif args.format == "prairielearn":
         files.update(exports.prairielearn_questions(the_bundle, slug=args.slug))
     else:
@@ -76,5 +81,6 @@ def run(args: argparse.Namespace) -> int:
     if args.format == "gradescope" and not args.answers:
         (out / "run_autograder").chmod(0o755)
         (out / "setup.sh").chmod(0o755)
+        (out / "grade_submission.py").chmod(0o755)
     print(f"Wrote {', '.join(written) if len(written) <= 4 else f'{len(written)} files in {out}'}")
     return 0

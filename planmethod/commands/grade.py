@@ -24,6 +24,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--csv", metavar="FILE", help="write a CSV gradebook")
     parser.add_argument("--gradescope", metavar="FILE",
                         help="write Gradescope's results.json (one student)")
+    parser.add_argument("--feedback", choices=("full", "hints", "score"),
+                        help="what each question's feedback shows: full (the right values), "
+                             "hints (the mistake and which way the answer is off, never the "
+                             "right value) or score (points only); default: full on the "
+                             "screen and in --json, hints in --gradescope (the student sees it)")
     parser.add_argument("--quiet", action="store_true", help="print the totals only")
 
 
@@ -52,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     import sys
 
     from ..errors import SpecError
-    from ..grading.answers import grade_many, read_answers
+    from ..grading.answers import feedback_text, grade_many, read_answers
     from ..grading.drawings import grade_drawing, read_drawing
     from ..grading.exports import gradebook_csv, gradescope_results
     from ..io import write_text_atomic
@@ -85,7 +90,8 @@ def run(args: argparse.Namespace) -> int:
                 else f"{who}: {result['error']}")
         lines.append(head)
         if not args.quiet:
-            lines += [f"  {'ok ' if q['correct'] else 'XX '} {q['feedback']}"
+            lines += [f"  {'ok ' if q['correct'] else 'XX '} "
+                      f"{feedback_text(q, args.feedback or 'full')}"
                       for q in result["questions"]]
     for path, drawing in zip(args.drawing, drawings, strict=True):
         lines.append(f"{path} ({drawing['plan']} plan): {drawing['score']:g}/"
@@ -105,7 +111,8 @@ def run(args: argparse.Namespace) -> int:
                             f"{len(results)}", file=args.answers)
         result = results[0] if results else {"questions": [], "score": 0.0,
                                              "variant": args.student}
-        write_text_atomic(args.gradescope, json.dumps(gradescope_results(result, drawings),
-                                                      ensure_ascii=False, indent=1))
+        write_text_atomic(args.gradescope, json.dumps(
+            gradescope_results(result, drawings, feedback=args.feedback or "hints"),
+            ensure_ascii=False, indent=1))
     sys.stdout.write("\n".join(lines) + "\n")
     return 0

@@ -29,8 +29,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="write keys only (no SVG task and plan sheets)")
 
 
-def read_roster(path: str) -> list[str]:
-    """Student ids from a roster: a CSV with a student/id/email column, or one id per line."""
+def read_roster(path: str) -> list[tuple[str, list[str]]]:
+    """Students from a roster: a CSV with a student/id/email column, or one id per line.
+
+    Each student comes with every other id the roster gives them (e-mail, SID, name), which an
+    LMS may know them by: ``[(student, [aliases…]), …]``.
+    """
     from ..errors import SpecError
     from ..grading.answers import STUDENT_COLUMNS, _answers_from_csv
 
@@ -46,12 +50,18 @@ def read_roster(path: str) -> list[str]:
         raise SpecError("the roster is empty", file=path)
     header = [cell.strip().lower() for cell in re.split(r"[,;\t]", lines[0])]
     if len(header) > 1 and any(c in header for c in STUDENT_COLUMNS):
-        students = [student for student, _ in _answers_from_csv(text, path)]
+        students = []
+        for student, cells in _answers_from_csv(text, path):
+            aliases = [str(value).strip() for name, value in cells.items()
+                       if name.strip().lower() in STUDENT_COLUMNS and str(value).strip()]
+            students.append((student, aliases))
     else:
-        students = [re.split(r"[,;\t]", line)[0].strip() for line in lines]
-        if students and students[0].lower() in STUDENT_COLUMNS:
-            students = students[1:]
-    duplicates = sorted({s for s in students if students.count(s) > 1})
+        names = [re.split(r"[,;\t]", line)[0].strip() for line in lines]
+        if names and names[0].lower() in STUDENT_COLUMNS:
+            names = names[1:]
+        students = [(name, []) for name in names]
+    ids = [student for student, _ in students]
+    duplicates = sorted({s for s in ids if ids.count(s) > 1})
     if duplicates:
         raise SpecError(f"duplicate student ids: {', '.join(duplicates[:5])}", file=path)
     if not students:
@@ -72,8 +82,11 @@ def run(args: argparse.Namespace) -> int:
     from ..progress import Progress
 
     template = load_template(args.template)
+    aliases: dict[str, list[str]] = {}
     if args.students:
-        students = read_roster(args.students)
+        roster = read_roster(args.students)
+        students = [student for student, _ in roster]
+        aliases = dict(roster)
         if args.count is not None and args.count != len(students):
             raise SpecError(f"--count {args.count} does not match the roster's "
                             f"{len(students)} students", file=args.students)
@@ -93,6 +106,10 @@ def run(args: argparse.Namespace) -> int:
         for student, folder in zip(students, folders, strict=True):
             variant = draw_variant(template, seed=args.seed, student=student)
             key = build_key(variant)
+            # who the LMS may know the student as, and whether a roster named them (an
+            # autograder matches submitters to variants by these)
+            key["identities"] = aliases.get(student, [])
+            key["roster"] = bool(args.students)
             keys.append(key)
             files[f"{folder}/exercise.toml"] = to_toml(variant.data)
             files[f"{folder}/key.json"] = json.dumps(key, ensure_ascii=False, indent=1,

@@ -38,7 +38,8 @@ from typing import Any
 
 from ..errors import SpecError
 
-__all__ = ["MAX_ANSWER_BYTES", "grade_answers", "grade_many", "read_answers"]
+__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "feedback_text", "grade_answers",
+           "grade_many", "read_answers"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
@@ -234,9 +235,11 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
     answer = _parse_number(raw)
     if answer is None:
         result["feedback"] = f"{name}: no answer (right: {right})"
+        result["hint"] = f"{name}: no answer"
         return result
     if isinstance(answer, str):
         result["feedback"] = f"{name}: {answer!r} is not a number (right: {right})"
+        result["hint"] = f"{name}: {answer!r} is not a number"
         return result
     result["answer"] = answer
     result["error_abs"] = abs(answer - value)
@@ -245,7 +248,7 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
     if abs(answer - value) <= tolerance:
         result.update(score=points, correct=True,
                       feedback=f"{shown}: correct (exact {_number_text(value)}, "
-                               f"tolerance ± {tolerance:.3g})")
+                               f"tolerance ± {tolerance:.3g})", hint=f"{shown}: correct")
         return result
     for mistake in question.get("mistakes", ()):
         if abs(answer - mistake["value"]) <= mistake["tolerance"]:
@@ -254,6 +257,8 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
             result["feedback"] = (f"{shown}: wrong{how} — it looks as if "
                                   f"{mistake['feedback']} (that gives "
                                   f"{_number_text(mistake['value'])}; right: {right})")
+            result["hint"] = (f"{shown}: wrong ({_way(answer, value, signed=False)}) — it "
+                              f"looks as if {mistake['feedback']}")
             return result
     signed = bool(question.get("signed"))
     if signed:
@@ -263,6 +268,8 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
                 result["mistake"] = mistake["kind"] + "+sense"
                 result["feedback"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
                                       f"and the sense is reversed (right: {right})")
+                result["hint"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
+                                  "and the sense is reversed")
                 return result
     if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
         text = (f"{shown}: wrong — the sense is reversed (the right answer is "
@@ -274,7 +281,42 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
                 f"{_number_text(abs(answer - value))} {unit}; right: {right}"
                 f"{tolerance_text})").replace("  ", " ")
     result["feedback"] = text
+    result["hint"] = f"{shown}: wrong ({_way(answer, value, signed)})"
     return result
+
+
+def _way(answer: float, right: float, signed: bool) -> str:
+    """Which way an answer is off, without the right value: ``too high``, ``too low in
+    magnitude``, ``the sense is reversed``."""
+    if signed and right != 0 and answer != 0 and (answer > 0) != (right > 0):
+        return "the sense is reversed"
+    if right < 0 and answer < 0:
+        return "too large in magnitude" if answer < right else "too small in magnitude"
+    return "too high" if answer > right else "too low"
+
+
+#: what a student is shown of each graded question, by feedback level
+FEEDBACK_LEVELS = ("full", "hints", "score")
+
+
+def feedback_text(question: Mapping[str, Any], level: str = "full") -> str:
+    """The feedback on one graded question at a level: ``full`` (the values: the right answer
+    and its tolerance), ``hints`` (the mistake named and which way the answer is off, never
+    the right value) or ``score`` (nothing but the points).
+
+    Examples
+    --------
+    >>> graded = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
+    >>> feedback_text(graded, "hints")
+    'v_C = 6: wrong (too high)'
+    >>> "5.27" in feedback_text(graded, "full"), feedback_text(graded, "score")
+    (True, '')
+    """
+    if level not in FEEDBACK_LEVELS:
+        raise ValueError(f"feedback level {level!r} is not one of {', '.join(FEEDBACK_LEVELS)}")
+    if level == "score":
+        return ""
+    return question["feedback"] if level == "full" else question.get("hint", "")
 
 
 def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],

@@ -42,6 +42,8 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 from xml.sax.saxutils import escape
 
+from .answers import FEEDBACK_LEVELS, feedback_text
+
 __all__ = [
     "gradebook_csv",
     "gradescope_autograder",
@@ -63,19 +65,26 @@ def _format(value: float) -> str:
 
 
 # -- Gradescope ------------------------------------------------------------------------------
-def gradescope_results(result: Mapping[str, Any], drawings: Iterable[Mapping[str, Any]] = ()
-                       ) -> dict:
+def gradescope_results(result: Mapping[str, Any], drawings: Iterable[Mapping[str, Any]] = (),
+                       *, feedback: str = "hints") -> dict:
     """Gradescope's ``results.json`` for one graded submission (numeric answers and,
-    optionally, drawn plans graded by :func:`~planmethod.grading.drawings.grade_drawing`)."""
+    optionally, drawn plans graded by :func:`~planmethod.grading.drawings.grade_drawing`).
+
+    ``feedback`` is what the student sees of each question (see
+    :func:`~planmethod.grading.answers.feedback_text`): ``hints`` (default) names the mistake
+    and which way the answer is off without the right value; ``full`` gives the values;
+    ``score`` only the points. A drawn plan's point-by-point feedback is shown at ``full``.
+    """
     tests = []
     for number, question in enumerate(result.get("questions", ()), start=1):
         tests.append({"name": question["id"], "number": str(number),
                       "score": question["score"], "max_score": question["max_score"],
                       "status": "passed" if question["correct"] else "failed",
-                      "output": question["feedback"], "visibility": "visible"})
+                      "output": feedback_text(question, feedback), "visibility": "visible"})
     score = float(result.get("score", 0.0))
     for drawing in drawings:
-        lines = [p["feedback"] for p in drawing["points"]] + list(drawing.get("feedback", ()))
+        lines = ([p["feedback"] for p in drawing["points"]] + list(drawing.get("feedback", ()))
+                 if feedback == "full" else [])
         tests.append({"name": f"{drawing['plan']} plan", "score": drawing["score"],
                       "max_score": drawing["max_score"],
                       "status": "passed" if drawing["score"] == drawing["max_score"]
@@ -87,55 +96,150 @@ def gradescope_results(result: Mapping[str, Any], drawings: Iterable[Mapping[str
             "stdout_visibility": "hidden", "tests": tests}
 
 
-def gradescope_autograder(bundle: Mapping[str, Any]) -> dict[str, str]:
+#: the Python the exported autograder needs (pyproject's requires-python)
+AUTOGRADER_PYTHON = "3.11"
+
+_GRADE_SUBMISSION = r"""# Grade one Gradescope submission against the student's planmethod variant.
+# Gradescope runs run_autograder, which runs this with the Python that setup.sh installed.
+# Every path is under $AUTOGRADER_ROOT (default /autograder), so the same script runs end to
+# end in a test folder.
+
+import hashlib
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(os.environ.get("AUTOGRADER_ROOT", "/autograder"))
+SOURCE = Path(__file__).resolve().parent
+RESULTS = ROOT / "results" / "results.json"
+FEEDBACK = "@FEEDBACK@"
+
+
+def finish(output):
+    RESULTS.parent.mkdir(parents=True, exist_ok=True)
+    RESULTS.write_text(json.dumps({"score": 0, "output": output, "visibility": "visible",
+                                   "tests": []}))
+    sys.exit(0)
+
+
+def identities():
+    # the submitter's e-mails, SIDs and names, lower case
+    try:
+        users = json.loads((ROOT / "submission_metadata.json").read_text())["users"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return []
+    found = []
+    for user in users if isinstance(users, list) else []:
+        for field in ("email", "sid", "name"):
+            value = str((user or {}).get(field) or "").strip().lower()
+            if value and value not in found:
+                found.append(value)
+    return found
+
+
+def variant(bundle, who):
+    # the key of the submitter: matched by id, e-mail or SID (any case); without a roster
+    # (variants --count), picked from the submitter's e-mail by a hash, the same every time
+    keys = bundle["keys"]
+    for key in keys:
+        names = {str(key.get("student", "")).lower()}
+        names |= {str(alias).lower() for alias in key.get("identities", ())}
+        if names & set(who):
+            return key
+    if not any(key.get("roster") for key in keys) and who:
+        digest = hashlib.sha256(who[0].encode("utf-8")).hexdigest()
+        return keys[int(digest, 16) % len(keys)]
+    return None
+
+
+def main():
+    bundle = json.loads((SOURCE / "keys.json").read_text(encoding="utf-8"))
+    who = identities()
+    key = variant(bundle, who)
+    if key is None:
+        finish("Your e-mail or SID is not on this assignment's roster: ask your instructor.")
+    submitted = [ROOT / "submission" / name for name in ("answers.json", "answers.csv")]
+    answers = next((path for path in submitted if path.is_file()), None)
+    if answers is None:
+        finish("Submit answers.json or answers.csv with your answers.")
+    done = subprocess.run([sys.executable, "-m", "planmethod", "grade", str(SOURCE / "keys.json"),
+                           str(answers), "--student", str(key["student"]), "--feedback",
+                           FEEDBACK, "--gradescope", str(RESULTS), "--quiet"],
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        finish("Your answers could not be read: " + (done.stderr.strip().splitlines() or
+                                                     ["unknown error"])[-1])
+
+
+main()
+"""
+
+_RUN_AUTOGRADER = """#!/usr/bin/env bash
+# Gradescope runs this for every submission (see grade_submission.py).
+set -u
+root="${AUTOGRADER_ROOT:-/autograder}"
+python="${PLANMETHOD_PYTHON:-$root/venv/bin/python}"
+[ -x "$python" ] || python=python3
+exec "$python" "$(dirname "$0")/grade_submission.py"
+"""
+
+_SETUP = """#!/usr/bin/env bash
+# Gradescope runs this once when the autograder image is built. planmethod needs Python
+# @PYTHON@ or newer; Gradescope's Ubuntu 22.04 image ships 3.10, so a newer Python comes from
+# the deadsnakes archive when the image's own is too old. Put planmethod's source folder
+# (planmethod-src/) or a wheel next to this file before zipping.
+set -eu
+cd "$(dirname "$0")"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update
+python=python3
+if ! python3 -c 'import sys; sys.exit(sys.version_info < (@PYTHON_TUPLE@))' 2>/dev/null; then
+  apt-get install -y software-properties-common
+  add-apt-repository -y ppa:deadsnakes/ppa
+  apt-get update
+  apt-get install -y python@PYTHON@ python@PYTHON@-venv
+  python=python@PYTHON@
+else
+  apt-get install -y python3-venv
+fi
+"$python" -m venv /autograder/venv
+if [ -d planmethod-src ]; then
+  /autograder/venv/bin/pip install ./planmethod-src
+else
+  /autograder/venv/bin/pip install ./planmethod-*.whl
+fi
+"""
+
+
+def gradescope_autograder(bundle: Mapping[str, Any], *, feedback: str = "hints"
+                          ) -> dict[str, str]:
     """An autograder folder for Gradescope (zip its contents: ``setup.sh`` and
     ``run_autograder`` must sit at the zip's root).
 
-    Students submit ``answers.json`` (``{"v_C": …}``) or ``answers.csv`` (one row); they are
-    matched to their variant by the e-mail (or SID) in ``submission_metadata.json``.
+    Students submit ``answers.json`` (``{"v_C": …}``) or ``answers.csv`` (one row). A
+    submission is matched to its variant by the e-mail, SID or name in
+    ``submission_metadata.json`` against the roster's ids and e-mails (any case); a bundle
+    made without a roster (``variants --count``) gives each submitter the variant picked by
+    a hash of their e-mail. ``feedback`` is the level the student sees (``hints``: no right
+    values). Every path is under ``$AUTOGRADER_ROOT`` (default ``/autograder``).
     """
-    run = """#!/usr/bin/env bash
-# Gradescope runs this for every submission: grade the answers against the student's variant.
-set -u
-cd /autograder/source
-student=$(python3 - <<'PY'
-import json
-try:
-    users = json.load(open("/autograder/submission_metadata.json"))["users"]
-    print(users[0].get("email") or users[0].get("sid") or "")
-except Exception:
-    print("")
-PY
-)
-answers=$(ls /autograder/submission/answers.json /autograder/submission/answers.csv \\
-          2>/dev/null | head -n 1)
-mkdir -p /autograder/results
-if [ -z "$answers" ]; then
-  echo '{"score": 0, "output": "Submit answers.json or answers.csv.", "tests": []}' \\
-    > /autograder/results/results.json
-  exit 0
-fi
-planmethod grade keys.json "$answers" --student "$student" \\
-  --gradescope /autograder/results/results.json
-"""
-    setup = """#!/usr/bin/env bash
-# Gradescope runs this once when the autograder image is built.
-# Put planmethod's source folder (or a wheel) next to this file before zipping.
-set -eu
-apt-get install -y python3-pip > /dev/null || true
-if [ -d /autograder/source/planmethod-src ]; then
-  pip3 install /autograder/source/planmethod-src
-else
-  pip3 install /autograder/source/planmethod-*.whl
-fi
-"""
+    if feedback not in FEEDBACK_LEVELS:
+        raise ValueError(f"feedback level {feedback!r} is not one of "
+                         f"{', '.join(FEEDBACK_LEVELS)}")
+    version = tuple(int(part) for part in AUTOGRADER_PYTHON.split("."))
+    setup = (_SETUP.replace("@PYTHON_TUPLE@", ", ".join(map(str, version)))
+             .replace("@PYTHON@", AUTOGRADER_PYTHON))
     readme = ("Gradescope autograder for planmethod variants.\n"
               "1. Copy planmethod's source folder here as planmethod-src/ (or a wheel).\n"
               "2. Zip the contents of this folder (setup.sh and run_autograder at the root).\n"
-              "3. Students submit answers.json or answers.csv with the question ids:\n   "
+              f"3. setup.sh installs Python {AUTOGRADER_PYTHON} if the image's is older.\n"
+              "4. Students submit answers.json or answers.csv with the question ids:\n   "
               + ", ".join(q["id"] for q in bundle["keys"][0]["questions"]) + "\n")
-    return {"setup.sh": setup, "run_autograder": run, "README.txt": readme,
-            "keys.json": json.dumps(bundle, ensure_ascii=False, indent=1)}
+    return {"setup.sh": setup, "run_autograder": _RUN_AUTOGRADER,
+            "grade_submission.py": _GRADE_SUBMISSION.replace("@FEEDBACK@", feedback),
+            "README.txt": readme, "keys.json": json.dumps(bundle, ensure_ascii=False, indent=1)}
 
 
 # -- PrairieLearn ----------------------------------------------------------------------------
