@@ -113,9 +113,12 @@ def test_prairielearn_question_structure(keys):
     namespace: dict = {}
     exec(compile(files["fourbar/server.py"], "server.py", "exec"), namespace)  # our own code
     seen = set()
-    for _ in range(60):
-        data = {"params": {}, "correct_answers": {}}
+    for seed in range(60):
+        data = {"params": {}, "correct_answers": {}, "variant_seed": seed}
         namespace["generate"](data)
+        again = {"params": {}, "correct_answers": {}, "variant_seed": seed}
+        namespace["generate"](again)
+        assert again == data            # a reload shows the same variant
         seen.add(data["params"]["student"])
         html = _resolve(files["fourbar/question.html"], data["params"])
         assert "{{" not in html
@@ -316,3 +319,27 @@ def test_the_autograder_installs_the_python_the_package_requires():
     project = tomllib.loads((Path(__file__).resolve().parent.parent / "pyproject.toml")
                             .read_text())["project"]
     assert project["requires-python"] == f">={AUTOGRADER_PYTHON}"
+
+
+def test_prairielearn_grade_uses_the_drawing_tolerance_and_hides_the_value(keys):
+    files = prairielearn_questions(bundle(keys, seed=5), slug="fourbar")
+    namespace: dict = {}
+    exec(compile(files["fourbar/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 12345}
+    namespace["generate"](data)
+    key = next(k for k in keys if k["student"] == data["params"]["student"])
+    questions = key["questions"]
+    first, second, third = (q["id"] for q in questions[:3])
+    submitted = {q["id"]: q["value"] for q in questions}
+    submitted[first] = questions[0]["value"] + 0.9 * questions[0]["tolerance"]  # inside
+    submitted[second] = questions[1]["value"] + 1.1 * questions[1]["tolerance"]  # outside
+    submitted[third] = "twelve"
+    data.update(submitted_answers=submitted, partial_scores={"velocity_plan": {"score": 1.0}})
+    namespace["grade"](data)
+    parts = data["partial_scores"]
+    assert parts[first]["score"] == 1.0 and parts[second]["score"] == 0.0
+    assert parts[third]["score"] == 0.0 and "no number" in parts[third]["feedback"]
+    assert "too high" in parts[second]["feedback"] or "reversed" in parts[second]["feedback"]
+    assert f"{questions[1]['value']:.4g}" not in parts[second]["feedback"]
+    count = len(questions) + 1
+    assert data["score"] == pytest.approx((count - 2) / count)
