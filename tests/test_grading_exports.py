@@ -35,29 +35,58 @@ def keys():
     return [build_key(draw_variant(template, seed=5, student=s)) for s in ("ann", "bob", "cy")]
 
 
-def test_moodle_xml_structure(keys):
-    root = ElementTree.fromstring(moodle_xml(keys, sheets={"ann": "<svg/>"}))
+def _cloze_fields(text: str) -> list[dict]:
+    """Moodle's embedded answers read back: every {n:NUMERICAL:…} field with its weight and
+    answers (fraction, value, tolerance, feedback), special characters unescaped."""
+    fields = []
+    for match in re.finditer(r"\{(\d+):NUMERICAL:((?:\\.|[^}])*)\}", text):
+        answers = []
+        for part in re.split(r"(?<!\\)~", match.group(2)):
+            head, *rest = re.split(r"(?<!\\)#", part, maxsplit=1)
+            feedback = rest[0] if rest else ""
+            fraction = 100.0 if head.startswith("=") else float(
+                re.match(r"%(-?[\d.]+)%", head).group(1))
+            number = re.sub(r"^=|^%-?[\d.]+%", "", head)
+            value, tolerance = number.split(":")
+            answers.append({"fraction": fraction, "value": float(value),
+                            "tolerance": float(tolerance),
+                            "feedback": re.sub(r"\\(.)", r"\1", feedback)})
+        fields.append({"weight": int(match.group(1)), "answers": answers})
+    return fields
+
+
+def test_moodle_xml_is_one_cloze_question_per_variant(keys):
+    """Parsed back: a category, then one Cloze question per variant whose fields are, in
+    order, its asked values — the right value with the drawing's tolerance first, then the
+    recognised mistakes at 0 % with their feedback."""
+    pytest.importorskip("defusedxml")
+    from defusedxml.ElementTree import fromstring
+
+    root = fromstring(moodle_xml(keys, sheets={"ann": "<svg/>"}))
     assert root.tag == "quiz"
     questions = root.findall("question")
     assert questions[0].get("type") == "category"
     assert "$course$/top/planmethod/" in questions[0].findtext("category/text")
-    numerical = [q for q in questions if q.get("type") == "numerical"]
-    assert len(numerical) == sum(len(k["questions"]) for k in keys)
-    by_name = {q.findtext("name/text"): q for q in numerical}
-    for key in keys:
-        for question in key["questions"]:
-            element = by_name[f"{key['student']} {question['id']}"]
-            assert element.find("questiontext").get("format") == "html"
-            answers = element.findall("answer")
-            right = answers[0]
-            assert right.get("fraction") == "100"
-            assert float(right.findtext("text")) == question["value"]
-            assert float(right.findtext("tolerance")) == question["tolerance"]   # absolute
-            assert answers[-1].findtext("text") == "*"
-            assert all(a.get("fraction") == "0" for a in answers[1:])
-            assert len(answers) == 2 + len(question["mistakes"])
-            assert float(element.findtext("defaultgrade")) == question["points"]
-    ann = by_name[f"ann {keys[0]['questions'][0]['id']}"]
+    cloze = questions[1:]
+    assert [q.get("type") for q in cloze] == ["cloze"] * len(keys)
+    for element, key in zip(cloze, keys, strict=True):
+        assert element.findtext("idnumber") == key["student"]
+        text = element.findtext("questiontext/text")
+        assert element.find("questiontext").get("format") == "html"
+        fields = _cloze_fields(text)
+        assert len(fields) == len(key["questions"])
+        for field, question in zip(fields, key["questions"], strict=True):
+            right, *mistakes = field["answers"]
+            assert right["fraction"] == 100.0
+            assert right["value"] == question["value"]              # full precision
+            assert right["tolerance"] == question["tolerance"]      # absolute, from the scale
+            assert field["weight"] == max(1, round(question["points"]))
+            assert len(mistakes) == len(question["mistakes"])
+            for answer, mistake in zip(mistakes, question["mistakes"], strict=True):
+                assert answer["fraction"] == 0.0 and answer["value"] == mistake["value"]
+                assert mistake["feedback"] in answer["feedback"]
+            assert str(question["value"])[:6] not in right["feedback"]   # no value given away
+    ann = cloze[0]
     assert ann.find("questiontext/file").get("encoding") == "base64"
     assert "@@PLUGINFILE@@/sheet_ann.svg" in ann.findtext("questiontext/text")
 
@@ -182,7 +211,9 @@ def test_the_instructor_workflow_end_to_end(tmp_path, capsys):
     assert main(["export", str(out / "keys.json"), "--format", "moodle", "--out",
                  str(tmp_path / "quiz.xml")]) == 0
     quiz = ElementTree.parse(tmp_path / "quiz.xml").getroot()
-    assert len(quiz.findall("question")) == 1 + 2 * len(ids)
+    assert len(quiz.findall("question")) == 1 + 2   # a category, one Cloze per student
+    assert all(q.findtext("questiontext/text").count(":NUMERICAL:") == len(ids)
+               for q in quiz.findall("question")[1:])
     # variants are reproducible from (template, seed, student)
     again = tmp_path / "again"
     assert main(["variants", "exercises/templates/slider_crank.toml", "--students",

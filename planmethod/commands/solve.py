@@ -80,7 +80,7 @@ def run(args: argparse.Namespace) -> int:
         try:
             import cairosvg
         except ImportError:
-            raise PlanmethodError("--png needs cairosvg: pip install 'planmethod[dev]'") from None
+            raise PlanmethodError("--png needs cairosvg: pip install 'planmethod[png]'") from None
         pngs = {Path(name).with_suffix(".png").name: cairosvg.svg2png(
             bytestring=text.encode("utf-8"), output_width=1200) for name, text in files.items()}
     # everything is computed: now write

@@ -14,10 +14,10 @@ the ``export`` command writes them atomically. The structures follow the targets
   ``pl-drawing-answer`` holds one ``pl-point`` per plan point; ``server.py`` whose
   ``generate(data)`` picks the variant and fills ``data["params"]`` and
   ``data["correct_answers"]``.
-* **Moodle XML**: a ``<quiz>`` with a category and one ``numerical`` question per variant and
-  asked value; the right answer's ``<tolerance>`` is absolute (Moodle's nominal ± tolerance),
-  followed by fraction-0 answers for the recognised mistakes with their feedback, and a ``*``
-  catch-all.
+* **Moodle XML**: a ``<quiz>`` with a category and one embedded-answers (``cloze``) question
+  per variant holding all its asked values, each ``{n:NUMERICAL:=value:tolerance#feedback~…}``
+  with the absolute tolerance from the drawing scale and a 0 % answer with its feedback for each
+  recognised mistake; the task sheet embedded as a base64 file.
 * **CSV gradebook**: one row per student: score per question, total, maximum.
 
 Examples
@@ -26,8 +26,8 @@ Examples
 >>> from planmethod.grading.keys import build_key
 >>> key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
 >>> xml = moodle_xml([key])
->>> xml.count('<question type="numerical">')
-7
+>>> xml.count('<question type="cloze">'), xml.count(":NUMERICAL:")
+(1, 7)
 """
 
 from __future__ import annotations
@@ -45,6 +45,7 @@ from xml.sax.saxutils import escape
 from .answers import FEEDBACK_LEVELS, feedback_text
 
 __all__ = [
+    "cloze_field",
     "gradebook_csv",
     "gradescope_autograder",
     "gradescope_results",
@@ -401,11 +402,47 @@ def _cdata(text: str) -> str:
     return "<![CDATA[" + text.replace("]]>", "]]]]><![CDATA[>") + "]]>"
 
 
+def _cloze_escape(text: str) -> str:
+    """Text inside a Cloze answer or feedback: Moodle's special characters escaped."""
+    for char in ("\\", "}", "#", "~", "/", '"'):
+        text = text.replace(char, "\\" + char)
+    return text
+
+
+def _cloze_number(value: float) -> str:
+    return repr(float(value))
+
+
+def cloze_field(question: Mapping[str, Any]) -> str:
+    """One asked value as a Cloze NUMERICAL field: the right value with its tolerance (from the
+    drawing scale), each recognised mistake as a 0 % answer with its feedback, and the feedback
+    of a right answer. The question's points are the field's weight.
+
+    Examples
+    --------
+    >>> print(cloze_field({"id": "s_C", "value": 0.27, "tolerance": 0.009, "unit": "m",
+    ...                    "points": 2, "mistakes": []}))
+    {2:NUMERICAL:=0.27:0.009#Right: within the drawing's tolerance ± 0.009 m.}
+    """
+    points = max(1, round(float(question.get("points", 1))))
+    unit = question.get("unit", "")
+    tolerance = float(question["tolerance"])
+    right = _cloze_escape(f"Right: within the drawing's tolerance ± {tolerance:.3g} {unit}."
+                          .replace(" .", "."))
+    parts = [f"={_cloze_number(question['value'])}:{_cloze_number(tolerance)}#{right}"]
+    for mistake in question.get("mistakes", ()):
+        feedback = _cloze_escape(f"It looks as if {mistake['feedback']}.")
+        parts.append(f"%0%{_cloze_number(mistake['value'])}:"
+                     f"{_cloze_number(mistake['tolerance'])}#{feedback}")
+    return "{" + f"{points}:NUMERICAL:" + "~".join(parts) + "}"
+
+
 def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
                sheets: Mapping[str, str] | None = None) -> str:
-    """A Moodle XML quiz: for every variant, one numerical question per asked value, each with
-    the task text (and the variant's sheet SVG as an embedded file, if ``sheets`` maps the
-    student to it)."""
+    """A Moodle XML quiz: a category, then for every variant one embedded-answers (Cloze)
+    question holding all its asked values (:func:`cloze_field`), with the task text and the
+    variant's task sheet embedded as an SVG file (``@@PLUGINFILE@@``) when ``sheets`` maps the
+    student to it."""
     import base64
 
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
@@ -420,39 +457,22 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
         if sheets and student in sheets:
             name = f"sheet_{_identifier(student)}.svg"
             data = base64.b64encode(sheets[student].encode("utf-8")).decode("ascii")
-            image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="position plan" /></p>'
+            image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="the mechanism, task sheet" /></p>'
             files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
-        for question in key["questions"]:
-            value, tolerance = float(question["value"]), float(question["tolerance"])
-            text = (f"<p><b>{escape(title)}</b> — variant {escape(student)}</p><p>{task}</p>"
-                    f"{image}<p>Give the {escape(question['text'])} in "
-                    f"{escape(question['unit'])}.</p>")
-            out += ['  <question type="numerical">',
-                    f"    <name><text>{escape(student)} {escape(question['id'])}</text></name>",
-                    f'    <questiontext format="html"><text>{_cdata(text)}</text>{files}'
-                    "</questiontext>",
-                    '    <generalfeedback format="html"><text></text></generalfeedback>',
-                    f"    <defaultgrade>{float(question.get('points', 1.0)):g}</defaultgrade>",
-                    "    <penalty>0.3333333</penalty>", "    <hidden>0</hidden>",
-                    f"    <idnumber>{escape(student)}:{escape(question['id'])}</idnumber>",
-                    '    <answer fraction="100" format="moodle_auto_format">',
-                    f"      <text>{value!r}</text>", f"      <tolerance>{tolerance!r}</tolerance>",
-                    f'      <feedback format="html"><text>Correct: {_format(value)} '
-                    f"{escape(question['unit'])} ± {tolerance:.3g}.</text></feedback>",
-                    "    </answer>"]
-            for mistake in question.get("mistakes", ()):
-                out += ['    <answer fraction="0" format="moodle_auto_format">',
-                        f"      <text>{float(mistake['value'])!r}</text>",
-                        f"      <tolerance>{float(mistake['tolerance'])!r}</tolerance>",
-                        f'      <feedback format="html"><text>It looks as if '
-                        f"{escape(mistake['feedback'])}.</text></feedback>", "    </answer>"]
-            out += ['    <answer fraction="0" format="moodle_auto_format">',
-                    "      <text>*</text>", "      <tolerance>0</tolerance>",
-                    '      <feedback format="html"><text>Not within the tolerance of the '
-                    "drawing.</text></feedback>", "    </answer>",
-                    "    <unitgradingtype>0</unitgradingtype>",
-                    "    <unitpenalty>0.1000000</unitpenalty>", "    <showunits>3</showunits>",
-                    "    <unitsleft>0</unitsleft>", "  </question>"]
+        rows = "".join(
+            f"<tr><td>{escape(question['text'])}</td><td>{cloze_field(question)}</td>"
+            f"<td>{escape(question.get('unit', ''))}</td></tr>"
+            for question in key["questions"])
+        text = (f"<p><b>{escape(title)}</b> — variant {escape(student)}</p><p>{task}</p>"
+                f"{image}<p>Give in SI units (counter-clockwise positive):</p>"
+                f"<table>{rows}</table>")
+        out += ['  <question type="cloze">',
+                f"    <name><text>{escape(title)} — {escape(student)}</text></name>",
+                f'    <questiontext format="html"><text>{_cdata(text)}</text>{files}'
+                "</questiontext>",
+                '    <generalfeedback format="html"><text></text></generalfeedback>',
+                "    <penalty>0.3333333</penalty>", "    <hidden>0</hidden>",
+                f"    <idnumber>{escape(student)}</idnumber>", "  </question>"]
     out.append("</quiz>")
     return "\n".join(out) + "\n"
 
