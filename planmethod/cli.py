@@ -14,7 +14,12 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import re
+import signal
 import sys
+import threading
+import warnings
+from typing import NoReturn
 
 from .errors import PlanmethodError
 
@@ -37,9 +42,26 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 EXIT_BAD_INPUT = 2
 
+#: a negative number as argparse should read it: a value, not an option (-1e300, -.5, -inf)
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",
+                              re.IGNORECASE)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with the project's error line: one line, no usage block, exit 2; and negative
+    numbers in any float notation read as values."""
+
+    def __init__(self, *args, **keywords) -> None:
+        super().__init__(*args, **keywords)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} "
+                                  f"(see '{self.prog} --help')\n")
+
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="planmethod",
         description="Graphical methods of planar-mechanism analysis (plans of velocities and "
                     "accelerations, kinetostatics), checked against exact vectors.",
@@ -47,7 +69,8 @@ def _parser() -> argparse.ArgumentParser:
     from . import __version__
 
     parser.add_argument("--version", action="version", version=f"planmethod {__version__}")
-    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND",
+                                     parser_class=_Parser)
     commands.required = True
     for name, (module, summary) in COMMANDS.items():
         sub = commands.add_parser(name, help=summary, description=summary)
@@ -56,15 +79,50 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _Terminated(BaseException):
+    """SIGTERM, raised where the program is so that every temporary file is removed on the way
+    out, as on Ctrl-C."""
+
+
+def _on_terminate(signum, frame) -> NoReturn:
+    raise _Terminated
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; returns the exit status (0 ok, 2 bad input)."""
+    """Run the command line; returns the exit status (0 ok, 2 bad input, 130 interrupted,
+    143 terminated)."""
     parser = _parser()
     try:
         args = parser.parse_args(argv)
     except SystemExit as exit_:
         return int(exit_.code or 0)
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _on_terminate)
     try:
-        return int(importlib.import_module(args._module).run(args) or 0)
+        return _run(args)
+    except _Terminated:
+        print("planmethod: terminated", file=sys.stderr)
+        return 143
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _run(args: argparse.Namespace) -> int:
+    try:
+        with warnings.catch_warnings():
+            # numbers that overflow are refused by name where they are made (spec limits);
+            # numpy's warnings never reach the terminal as lines of source code
+            warnings.simplefilter("ignore", RuntimeWarning)
+            return int(importlib.import_module(args._module).run(args) or 0)
+    except (OverflowError, RecursionError, MemoryError) as error:
+        what = {OverflowError: "a number is too large to compute with",
+                RecursionError: "the input is nested too deeply",
+                MemoryError: "the input asks for more memory than there is"}[type(error)]
+        source = getattr(args, "file", None) or getattr(args, "key", None)
+        print(f"planmethod: error: {source + ': ' if source else ''}{what}", file=sys.stderr)
+        return EXIT_BAD_INPUT
     except PlanmethodError as error:
         from .errors import StructureError
 

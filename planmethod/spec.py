@@ -105,8 +105,67 @@ def read_text(path: str | Path) -> str:
         raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
 
 
+#: input limits (README, "Bad input"): what the stress suite covers, and no more
+#: — coordinates and lengths (m), the crank's ω (rad/s) and ε (rad/s²), crank angles (°)
+MAX_COORDINATE_M = 1e6
+MAX_OMEGA = 1e4
+MAX_EPSILON = 1e8
+MAX_ANGLE_DEG = 36000.0
+#: any other number (masses, forces, moments, g)
+MAX_MAGNITUDE = 1e12
+#: tables and arrays nested deeper than this are refused before they are read
+MAX_NESTING = 32
+#: the friction iteration's largest allowed count
+MAX_FRICTION_ITERATIONS = 10_000
+#: a friction coefficient above this is not a joint's
+MAX_FRICTION_COEFFICIENT = 2.0
+
+
+def nesting_depth(text: str) -> int:
+    """How deep brackets and braces nest in TOML or JSON text (strings skipped), found without
+    a parser, so that a file nested 100,000 deep is refused before it can exhaust the stack.
+
+    Examples
+    --------
+    >>> nesting_depth('a = [[1, 2], {b = "[[["}]  # [[[[')
+    2
+    """
+    depth = deepest = 0
+    quote = None
+    escaped = comment = False
+    for char in text:
+        if comment:
+            comment = char != "\n"
+        elif quote is not None:
+            if escaped:
+                escaped = False
+            elif char == "\\" and quote == '"':
+                escaped = True
+            elif char == quote:
+                quote = None
+        elif char in "\"'":
+            quote = char
+        elif char in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif char in "]}":
+            depth = max(depth - 1, 0)
+        elif char == "#":           # a TOML comment, to the end of the line
+            comment = True
+    return deepest
+
+
+def check_nesting(text: str, *, file: str | None = None) -> None:
+    """A :class:`SpecError` if ``text`` nests deeper than :data:`MAX_NESTING`."""
+    depth = nesting_depth(text)
+    if depth > MAX_NESTING:
+        raise SpecError(f"tables or arrays nested {depth} deep; at most {MAX_NESTING} are "
+                        "read", file=file)
+
+
 def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
     """TOML text → tables, or a :class:`SpecError` naming the file, line and column."""
+    check_nesting(text, file=file)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
@@ -150,22 +209,37 @@ class _Reader:
 
     # -- scalar readers ---------------------------------------------------------------------
     def number(self, value: Any, key: str, *, positive: bool = False,
-               non_negative: bool = False) -> float:
+               non_negative: bool = False, limit: float = MAX_MAGNITUDE,
+               what: str = "") -> float:
+        """A finite number of magnitude at most ``limit`` (``what`` names the limit)."""
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.error(key, f"must be a finite number, got {value!r}")
-        value = float(value)
+        try:
+            value = float(value)
+        except OverflowError:   # an integer too large for a float
+            raise self.error(key, f"must be at most {limit:g} in magnitude{what}") from None
         if not math.isfinite(value):
             raise self.error(key, f"must be a finite number, got {value}")
+        if abs(value) > limit:
+            raise self.error(key, f"must be at most {limit:g} in magnitude{what}, got "
+                                  f"{value:g}")
         if positive and value <= 0:
             raise self.error(key, f"must be positive, got {value:g}")
         if non_negative and value < 0:
             raise self.error(key, f"must not be negative, got {value:g}")
         return value
 
-    def vector(self, value: Any, key: str) -> tuple[float, float]:
+    def vector(self, value: Any, key: str, *, limit: float = MAX_MAGNITUDE,
+               what: str = "") -> tuple[float, float]:
         if not isinstance(value, list | tuple) or len(value) != 2:
             raise self.error(key, f"must be a pair of numbers [x, y], got {value!r}")
-        return (self.number(value[0], f"{key}[0]"), self.number(value[1], f"{key}[1]"))
+        return (self.number(value[0], f"{key}[0]", limit=limit, what=what),
+                self.number(value[1], f"{key}[1]", limit=limit, what=what))
+
+    def coordinates(self, value: Any, key: str) -> tuple[float, float]:
+        """A point's coordinates (m), within the range the stress suite covers."""
+        return self.vector(value, key, limit=MAX_COORDINATE_M,
+                           what=" (m; the range planmethod is tested on)")
 
     def string(self, value: Any, key: str) -> str:
         if not isinstance(value, str) or not value:
@@ -235,7 +309,7 @@ class _Reader:
                 if not POINT_NAME.match(point):
                     raise self.error(f"{key}.{point}", "a point name is a capital letter, "
                                      "optionally followed by digits (A, O2, C4)")
-                parsed[point] = self.vector(xy, f"{key}.{point}")
+                parsed[point] = self.coordinates(xy, f"{key}.{point}")
             links[name] = Link(name, parsed)
         if len(links) < 2:
             raise self.error("links", "a mechanism needs the frame and at least one moving link")
@@ -317,9 +391,12 @@ class _Reader:
             raise self.error(f"links.{link}", "the drive link needs a point besides its pivot")
         return Drive(
             link=link, pivot=pivot,
-            angle=self.number(table["angle"], "drive.angle"),
-            omega=self.number(table["omega"], "drive.omega"),
-            epsilon=self.number(table.get("epsilon", 0.0), "drive.epsilon"),
+            angle=self.number(table["angle"], "drive.angle", limit=MAX_ANGLE_DEG,
+                              what=" (degrees)"),
+            omega=self.number(table["omega"], "drive.omega", limit=MAX_OMEGA,
+                              what=" (rad/s; the range planmethod is tested on)"),
+            epsilon=self.number(table.get("epsilon", 0.0), "drive.epsilon", limit=MAX_EPSILON,
+                                what=" (rad/s²; the range planmethod is tested on)"),
         )
 
     def sketch(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> dict:
@@ -330,7 +407,7 @@ class _Reader:
             if point not in known:
                 raise self.error(f"sketch.{point}", f"unknown point '{point}'"
                                  f"{_suggest(point, known)}")
-            sketch[point] = self.vector(xy, f"sketch.{point}")
+            sketch[point] = self.coordinates(xy, f"sketch.{point}")
         return sketch
 
     def masses(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> dict:
@@ -350,7 +427,7 @@ class _Reader:
             J = self.number(props.get("J", 0.0), f"{key}.J", non_negative=True)
             points = links[name].points
             if "S" in props:
-                S = self.vector(props["S"], f"{key}.S")
+                S = self.coordinates(props["S"], f"{key}.S")
             else:  # centroid of the link's points
                 S = (sum(p[0] for p in points.values()) / len(points),
                      sum(p[1] for p in points.values()) / len(points))
@@ -419,14 +496,19 @@ class _Reader:
         self.only_keys(table, ("f", "pin_radius", "pairs", "tolerance", "max_iterations"),
                        "friction")
         result: dict[str, Any] = {}
+        limits = {"f": (MAX_FRICTION_COEFFICIENT, " (a friction coefficient)"),
+                  "pin_radius": (MAX_COORDINATE_M, " (m)"), "tolerance": (MAX_MAGNITUDE, "")}
         for name in ("f", "pin_radius", "tolerance"):
             if name in table:
-                result[name] = self.number(table[name], f"friction.{name}", non_negative=True)
+                limit, what = limits[name]
+                result[name] = self.number(table[name], f"friction.{name}", non_negative=True,
+                                           limit=limit, what=what)
         if "max_iterations" in table:
             value = table["max_iterations"]
-            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-                raise self.error("friction.max_iterations", f"must be a positive integer, "
-                                 f"got {value!r}")
+            if (isinstance(value, bool) or not isinstance(value, int)
+                    or not 1 <= value <= MAX_FRICTION_ITERATIONS):
+                raise self.error("friction.max_iterations", f"must be an integer from 1 to "
+                                 f"{MAX_FRICTION_ITERATIONS}, got {value!r}")
             result["max_iterations"] = value
         pair_keys = {pair.point for pair in revolutes} | {pair.key for pair in revolutes}
         pair_keys |= {pair.key for pair in slides}

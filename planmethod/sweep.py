@@ -30,6 +30,10 @@ __all__ = ["CHUNK", "Extremes", "csv_rows", "sweep_angles", "sweep_chunks", "swe
 
 #: angles solved at once; memory stays bounded whatever the length of the sweep
 CHUNK = 65536
+#: the most crank angles one sweep solves (a 0.000036° step over a turn)
+MAX_SWEEP_ANGLES = 10_000_000
+#: the sweep's ends lie within this many degrees of zero
+MAX_SWEEP_DEG = 36000.0
 
 
 def sweep_angles(step: float, start: float = 0.0, stop: float = 360.0) -> np.ndarray:
@@ -38,7 +42,13 @@ def sweep_angles(step: float, start: float = 0.0, stop: float = 360.0) -> np.nda
         raise SpecError(f"--step must be a positive number of degrees, got {step}")
     if not (np.isfinite(start) and np.isfinite(stop) and stop > start):
         raise SpecError(f"the sweep needs finite --from < --to, got {start} and {stop}")
-    count = int(np.ceil((stop - start) / step - 1e-9))
+    if max(abs(start), abs(stop)) > MAX_SWEEP_DEG:
+        raise SpecError(f"--from and --to must lie within ±{MAX_SWEEP_DEG:g}°, got {start:g} "
+                        f"and {stop:g}")
+    count = math.ceil((stop - start) / step - 1e-9)
+    if count > MAX_SWEEP_ANGLES:
+        raise SpecError(f"--step {step:g} from {start:g}° to {stop:g}° gives {count:.3g} crank "
+                        f"angles; at most {MAX_SWEEP_ANGLES:,} are swept (a larger --step)")
     return start + step * np.arange(count, dtype=float)
 
 

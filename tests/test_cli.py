@@ -199,7 +199,14 @@ def test_missing_file_and_bad_options(capsys, tmp_path):
     code, _, err = run(capsys, "sweep", SEED, "--step", "0")
     assert code == 2 and "--step" in err
     code, _, err = run(capsys, "solve")
-    assert code == 2 and "usage" in err
+    assert code == 2 and err.splitlines() == [
+        "planmethod solve: error: the following arguments are required: file "
+        "(see 'planmethod solve --help')"]
+    # a negative number in any float notation is a value, not an option
+    code, _, err = run(capsys, "sweep", SEED, "--from", "-1e300")
+    assert code == 2 and err.splitlines() == [
+        f"planmethod: error: {SEED}: --from and --to must lie within ±36000°, got -1e+300 "
+        "and 360"]
 
 
 def test_sweep_error_names_the_angle_and_writes_no_csv(capsys, tmp_path):

@@ -15,6 +15,9 @@ import argparse
 import io
 import math
 
+#: the most values a study takes per parameter (each is a full-turn force analysis)
+MAX_GRID = 200
+
 
 def _range(text: str) -> tuple[float, ...]:
     """``20:100:20`` (first:last:step, inclusive) or ``20,40,60``."""
@@ -24,9 +27,14 @@ def _range(text: str) -> tuple[float, ...]:
             if not (step > 0 and last >= first and math.isfinite(last - first)):
                 raise ValueError
             count = round((last - first) / step)
+            if count + 1 > MAX_GRID:
+                raise argparse.ArgumentTypeError(
+                    f"{text!r} gives {count + 1:.3g} values; at most {MAX_GRID} per parameter")
             values = tuple(first + step * i for i in range(count + 1))
         else:
-            values = tuple(float(part) for part in text.split(","))
+            values = tuple(float(part) for part in text.split(",")[:MAX_GRID + 1])
+            if len(values) > MAX_GRID:
+                raise argparse.ArgumentTypeError(f"more than {MAX_GRID} values in {text[:40]!r}")
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"expected first:last:step or a comma list of numbers, got {text!r}") from None

@@ -30,6 +30,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..errors import SpecError
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
 from .applied import AppliedLoads, applied_loads
@@ -382,7 +383,18 @@ def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndar
     ``Rx_K Ry_K R_K`` (and ``M_K`` for a prismatic pair's couple) per pair, ``M_b``,
     ``M_b_system`` and ``power_residual``; with friction also ``friction_iterations`` and
     ``M_b_no_friction`` (the conveyor of Umbetkulov et al. compares the motor torque with and
-    without friction)."""
+    without friction).
+
+    Raises
+    ------
+    SpecError
+        If the exercise defines no forces at all (no masses and no loads): its reactions
+        would all be zero.
+    """
+    mechanism = exercise.mechanism
+    if not mechanism.masses and not mechanism.loads:
+        raise SpecError("defines no forces (no [mass.…] and no [[load]] tables): there is "
+                        "nothing to sweep with --forces", file=exercise.source)
 
     def columns(motion: Motion) -> dict[str, np.ndarray]:
         solution = solve_forces(motion, file=exercise.source)

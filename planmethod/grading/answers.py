@@ -37,6 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
+from ..spec import check_nesting
 
 __all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "feedback_text", "grade_answers",
            "grade_many", "read_answers"]
@@ -104,6 +105,7 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
 
 
 def _answers_from_json(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+    check_nesting(text, file=where)
     try:
         data = json.loads(text)
     except json.JSONDecodeError as error:

@@ -46,6 +46,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
+from ..spec import check_nesting
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
 from .tolerances import MISTAKES, kind_of, mistaken_plans, propagate, scale_factor
@@ -336,6 +337,7 @@ def load_keys(path: str | Path) -> dict[str, dict]:
         raise SpecError("no such file", file=str(path)) from None
     except (OSError, UnicodeDecodeError) as error:
         raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
+    check_nesting(text, file=str(path))
     try:
         data = json.loads(text)
     except json.JSONDecodeError as error:
