@@ -82,7 +82,8 @@ class Analysis:
                 estimate = float(np.max(values))
                 if estimate > FLAG_ERROR:
                     group = self.structure.groups[index]
-                    flags.append(f"group {group.name} is near its toggle: its exact {stage}s "
+                    flags.append(f"group {group.name} is near its toggle: its exact "
+                                 f"{vocabulary.STAGE_PLURAL.get(stage, stage)} "
                                  f"are good to about {estimate:.0e} relative")
         return tuple(flags)
 

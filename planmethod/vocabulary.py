@@ -26,6 +26,7 @@ from enum import StrEnum
 __all__ = [
     "QUANTITY_KINDS",
     "SCALES",
+    "STAGE_PLURAL",
     "GroupKind",
     "PairKind",
     "Quantity",
@@ -187,3 +188,7 @@ def quantity(name: str) -> Quantity:
     if prefix not in QUANTITY_KINDS or not subject:
         raise KeyError(name)
     return Quantity(name, QUANTITY_KINDS[prefix], subject)
+
+#: a kinematic stage's quantities as a sentence names them ("its velocities would …")
+STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities",
+                                "acceleration": "accelerations"}

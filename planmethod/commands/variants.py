@@ -27,6 +27,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
     parser.add_argument("--no-sheets", action="store_true",
                         help="write keys only (no SVG task and plan sheets)")
+    parser.add_argument("--force", action="store_true",
+                        help="write into a folder that is not empty: what an earlier "
+                             "`variants` run wrote there (its index.csv lists it) is removed "
+                             "first; nothing else is touched")
 
 
 def read_roster(path: str) -> list[tuple[str, list[str]]]:
@@ -69,10 +73,46 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     return students
 
 
+def _earlier_run(out, *, force: bool) -> list:
+    """What an earlier ``variants`` run wrote into ``out`` (its student folders, keys.json and
+    index.csv), to be replaced; a :class:`SpecError` if ``out`` is not empty and ``force`` is
+    not given, or if it holds anything that no ``variants`` run wrote."""
+    import csv
+    from pathlib import Path
+
+    from ..errors import SpecError
+    from ..io import path_component
+
+    out = Path(out)
+    if not out.is_dir():
+        return []
+    entries = sorted(out.iterdir())
+    if not entries:
+        return []
+    if not force:
+        raise SpecError(f"--out {out} is not empty ({len(entries)} entries): choose an empty "
+                        "folder, or give --force to replace an earlier variants run there")
+    index = out / "index.csv"
+    ours = {out / "keys.json", index}
+    try:
+        with index.open(encoding="utf-8", newline="") as handle:
+            for row in csv.DictReader(handle):
+                ours.add(out / path_component(row.get("folder") or "", "index.csv folder"))
+    except (OSError, UnicodeDecodeError, csv.Error):
+        pass
+    foreign = [entry.name for entry in entries if entry not in ours]
+    if foreign:
+        raise SpecError(f"--out {out} holds files no variants run wrote ({', '.join(foreign[:3])}"
+                        f"{', …' if len(foreign) > 3 else ''}): --force only replaces an "
+                        "earlier run; choose another folder")
+    return [entry for entry in entries if entry in ours]
+
+
 def run(args: argparse.Namespace) -> int:
     import csv
     import io
     import json
+    import shutil
     from pathlib import Path
 
     from ..errors import SpecError
@@ -81,6 +121,8 @@ def run(args: argparse.Namespace) -> int:
     from ..io import student_folder, write_files
     from ..progress import Progress
 
+    out = Path(args.out)
+    earlier = _earlier_run(out, force=args.force)   # before any work: refuse or plan removal
     template = load_template(args.template)
     aliases: dict[str, list[str]] = {}
     if args.students:
@@ -111,7 +153,9 @@ def run(args: argparse.Namespace) -> int:
             key["identities"] = aliases.get(student, [])
             key["roster"] = bool(args.students)
             keys.append(key)
-            files[f"{folder}/exercise.toml"] = to_toml(variant.data)
+            # the description with its placeholders filled in, as the student reads it
+            files[f"{folder}/exercise.toml"] = to_toml({**variant.data,
+                                                        "description": variant.description})
             files[f"{folder}/key.json"] = json.dumps(key, ensure_ascii=False, indent=1,
                                                      allow_nan=False)
             if not args.no_sheets:
@@ -135,7 +179,11 @@ def run(args: argparse.Namespace) -> int:
     writer.writerow(["student", "folder", "attempt", "values"])
     writer.writerows(index_rows)
     files["index.csv"] = buffer.getvalue()
-    out = Path(args.out)
+    for path in earlier:       # the earlier run's students, keys and index, now replaced
+        if path.is_dir():
+            shutil.rmtree(path)
+        elif path.exists():
+            path.unlink()
     write_files(out, files)
     redrawn = sum(1 for row in index_rows if row[2])
     print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "

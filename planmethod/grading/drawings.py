@@ -196,6 +196,10 @@ def _transform(text: str | None, budget) -> np.ndarray:
                 raise SubmissionError(f"unreadable transform {text[:60]!r}")
         except (OverflowError, ValueError) as error:
             raise SubmissionError(f"unreadable transform {text[:60]!r}") from error
+        determinant = step[0, 0] * step[1, 1] - step[0, 1] * step[1, 0]
+        if not (math.isfinite(determinant) and abs(determinant) > 1e-12):
+            raise SubmissionError(f"the transform {text[:60]!r} is singular (it flattens the "
+                                  "drawing onto a line or a point)")
         matrix = matrix @ step
     if text[position:].strip():
         raise SubmissionError(f"unreadable transform {text[:60]!r}")
@@ -258,9 +262,16 @@ def _length_mm(text: str | None) -> tuple[float, str] | None:
 
 def _user_unit_mm(root) -> tuple[float, float]:
     width, height = _length_mm(root.get("width")), _length_mm(root.get("height"))
+    for name, size in (("width", width), ("height", height)):
+        if size is not None and not (math.isfinite(size[0]) and size[0] > 0):
+            raise SubmissionError(f"the drawing's {name} is {root.get(name)!r}: a drawing has "
+                                  "a positive size")
     view = root.get("viewBox")
     if view:
         numbers = [float(v) for v in _NUMBER.findall(view)]
+        if len(numbers) == 4 and not (numbers[2] > 0 and numbers[3] > 0
+                                      and all(math.isfinite(n) for n in numbers)):
+            raise SubmissionError(f"the viewBox {view[:60]!r} has no positive, finite size")
         if len(numbers) == 4 and numbers[2] > 0 and numbers[3] > 0:
             sx = (width[0] * UNITS_MM[width[1]] / numbers[2]) if width else PX_MM
             sy = (height[0] * UNITS_MM[height[1]] / numbers[3]) if height else sx

@@ -37,6 +37,7 @@ import numpy as np
 from ...errors import AssemblyError, StructureError, ToggleError
 from ...model import Mechanism, Slide
 from ...structure import AssurGroup, Joint
+from ...vocabulary import STAGE_PLURAL
 from ..algebra import Body, Vec, cross
 from ..tracing import Traced
 
@@ -464,7 +465,8 @@ def stage_check(group: AssurGroup, stage: str) -> Callable:
             angle = math.degrees(math.asin(min(1.0, abs(value))))
             raise ToggleError(
                 f"toggle position: the group's two construction lines meet at {angle:.3g}°, "
-                f"so close to parallel that its {stage}s would have no correct digit",
+                f"so close to parallel that its {STAGE_PLURAL.get(stage, stage)} would have no "
+                "correct digit",
                 line_angle_deg=angle, link=group.name,
                 angle=float(np.atleast_1d(angles)[index]))
 
