@@ -206,3 +206,53 @@ def test_there_are_more_than_eighty_cases():
              + len(OPTION_CASES) + len(ANSWER_FILES) + 1)
     assert count >= 80
     json.dumps(count)
+
+
+def test_sigterm_leaves_no_temporary_file(tmp_path):
+    """kill -TERM during a long sweep --csv: exit 143 and no hidden temporary file left."""
+    import signal
+    import time
+
+    process = subprocess.Popen([sys.executable, "-m", "planmethod", "sweep", GOOD, "--step",
+                                "0.0001", "--csv", str(tmp_path / "t.csv")], cwd=ROOT,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not list(tmp_path.iterdir()) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert list(tmp_path.iterdir()), "the sweep never started writing"
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 143 and err.strip() == "planmethod: terminated"
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("svg", [
+    '<svg xmlns="http://www.w3.org/2000/svg" width="0mm" height="100mm" viewBox="0 0 0 100">'
+    '<circle cx="1" cy="1" r="1"/><text x="2" y="2">b</text></svg>',
+    '<svg xmlns="http://www.w3.org/2000/svg" width="-100mm" height="100mm">'
+    '<circle cx="1" cy="1" r="1"/><text x="2" y="2">b</text></svg>',
+    '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+    'viewBox="0 0 100 100"><g transform="scale(0)"><circle cx="1" cy="1" r="1"/>'
+    '<text x="2" y="2">b</text></g></svg>',
+    '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+    'viewBox="0 0 100 100"><g transform="matrix(1 2 2 4 0 0)"><circle cx="1" cy="1" r="1"/>'
+    '</g></svg>',
+])
+def test_a_degenerate_drawing_is_refused(capsys, folder, svg):
+    path = folder / "plan.svg"
+    path.write_text(svg)
+    line = _run(capsys, ["grade", GOOD, "--drawing", path, "--plan", "velocity"], folder)
+    assert "plan.svg" in line and ("size" in line or "singular" in line)
+
+
+def test_variants_never_mixes_two_runs(capsys, tmp_path):
+    out = tmp_path / "run"
+    argv = ["variants", str(TEMPLATE), "--out", str(out), "--no-sheets", "--count"]
+    assert main([*argv, "3"]) == 0
+    line = _run(capsys, [*argv, "2"], tmp_path)          # not empty, no --force
+    assert "not empty" in line
+    assert main([*argv, "2", "--force"]) == 0             # replaces the earlier run
+    assert sorted(p.name for p in out.iterdir()) == ["001", "002", "index.csv", "keys.json"]
+    (out / "notes.txt").write_text("mine")
+    line = _run(capsys, [*argv, "2", "--force"], tmp_path)
+    assert "notes.txt" in line and (out / "notes.txt").read_text() == "mine"
