@@ -84,8 +84,10 @@ def table_text(study) -> str:
         lines.append("")
     lines.append("The conclusions of Jobborova et al. against these numbers:")
     for number, (statement, confirmed, evidence) in enumerate(study.conclusions(), start=1):
-        verdict = "CONFIRMED" if confirmed else "REFUTED"
+        verdict = ("the data support it" if confirmed
+                   else "the data do not support it")
         lines.append(f"  {number}. \"{statement}\": {verdict} — {evidence}")
+    lines.append("  (the tables above are the figures that show it; --plot draws them)")
     return "\n".join(lines)
 
 
