@@ -9,7 +9,7 @@ import pytest
 
 from planmethod.forces.combined import combined_constants, combined_construction, epsilon_senses
 from planmethod.render.figures import plan_files
-from planmethod.render.force_svg import force_files
+from planmethod.render.force_svg import combined_omitted, force_files
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
 
@@ -27,7 +27,10 @@ def test_files_are_well_formed_and_deterministic(analysis):
     files = force_files(analysis.forces, analysis.plans)
     groups = len(analysis.structure.groups) + 1
     assert len([name for name in files if name.startswith("forces_")]) == groups
-    assert "combined_force.svg" in files
+    # the combined-force figure exactly where gravity acts (with g = 0 it degenerates)
+    gravity = bool(analysis.forces.combined is not None and analysis.forces.combined.g)
+    assert ("combined_force.svg" in files) == gravity
+    assert (combined_omitted(analysis.forces, analysis.plans) is None) == gravity
     again = force_files(analysis.forces, analysis.plans)
     assert files == again
     for text in files.values():

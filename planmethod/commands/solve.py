@@ -99,4 +99,10 @@ def run(args: argparse.Namespace) -> int:
         print(text_report(analysis))
         if written:
             print("\nWrote " + ", ".join(written))
+        if args.svg and analysis.forces is not None:
+            from ..render.force_svg import combined_omitted
+
+            why = combined_omitted(analysis.forces, analysis.plans)
+            if why:
+                print(why)
     return 0

@@ -21,8 +21,8 @@ Examples
 >>> from planmethod.report import analyse
 >>> from planmethod.spec import load_exercise
 >>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
->>> sorted(force_files(analysis.forces, analysis.plans))
-['combined_force.svg', 'forces_1_BC+CD.svg', 'forces_2_AB.svg']
+>>> sorted(force_files(analysis.forces, analysis.plans))      # no gravity: no combined force
+['forces_1_BC+CD.svg', 'forces_2_AB.svg']
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ from .labels import label_runs
 from .style import INK, LEGEND_ORDER, SMALL_SIZE, TEXT_SIZE, quantity
 from .svg import PLAN_SIZE, frame, plan_content, plan_legend
 
-__all__ = ["combined_svg", "force_files", "polygon_svg"]
+__all__ = ["combined_omitted", "combined_svg", "force_files", "polygon_svg"]
 
 #: colour of each kind of known force in a polygon
 KNOWN_COLOURS = {"G": "#8c564b", "F": "#c0392b", "l": "#7b3fa0", "R": "#666666"}
@@ -149,9 +149,13 @@ def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> No
 
 
 def combined_svg(forces, plans) -> str | None:
-    """Aliyev's combined-force construction on the acceleration plan (None without one)."""
+    """Aliyev's combined-force construction on the acceleration plan (None without one, and
+    None where no gravity acts: with g = 0 the moved pole π′ is π and the construction is the
+    inertia forces alone; see :func:`combined_omitted`)."""
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None:
+        return None
+    if not combined.g:
         return None
     plan = plans.acceleration
     points = dict(plan.points_mm)
@@ -195,6 +199,16 @@ def combined_svg(forces, plans) -> str | None:
              f"pole moved to π′, φ₁ = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, "acceleration")
     return figure.svg(title).svg
+
+
+def combined_omitted(forces, plans) -> str | None:
+    """Why the combined-force figure is not drawn, in one line (None when it is, or when the
+    analysis has no combined-force construction at all)."""
+    combined = getattr(forces, "combined", None)
+    if combined is None or plans is None or plans.acceleration is None or combined.g:
+        return None
+    return ("combined_force.svg is not drawn: no gravity acts (g = 0), so the moved pole π′ "
+            "is π and Q = G + F_u is the inertia force alone")
 
 
 def _file_name(index: int, group) -> str:
