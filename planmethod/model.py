@@ -202,7 +202,8 @@ class Load:
     """An external force on a point of a link (N, global axes) or a moment on a link (N·m).
 
     With ``oppose_velocity`` the force has magnitude |force| and acts against the velocity of
-    its point (at zero velocity it acts as given, and the report flags it).
+    its point, and a moment has magnitude |moment| and turns against the angular velocity of
+    its link (at zero velocity it acts as given, and the report flags it).
     """
 
     link: str

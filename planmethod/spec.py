@@ -475,8 +475,6 @@ class _Reader:
             oppose = table.get("oppose_velocity", False)
             if not isinstance(oppose, bool):
                 raise self.error(f"{key}.oppose_velocity", f"must be true or false, got {oppose!r}")
-            if oppose and not has_force:
-                raise self.error(f"{key}.oppose_velocity", "applies to a force, not a moment")
             loads.append(Load(
                 link=link, point=point,
                 force=self.vector(table["force"], f"{key}.force") if has_force else None,

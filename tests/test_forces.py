@@ -218,6 +218,26 @@ def test_oppose_velocity_load_and_rest_flag():
     assert applied.flags and "0°" in applied.flags[0]
 
 
+def test_a_moment_can_oppose_the_angular_velocity():
+    """A resisting torque on a rocker: |M| against the rocker's ω at every angle, so its power
+    M·ω is never positive; where the rocker turns back, the moment turns with it."""
+    data = testing.fourbar()
+    data["load"] = [{"link": "CD", "moment": 50.0, "oppose_velocity": True}]
+    exercise = exercise_from_dict(data)
+    angles = np.arange(0.0, 360.0, 7.5)
+    motion = solve(exercise.mechanism, angles)
+    applied = applied_loads(exercise.mechanism, motion.links, angles=motion.angles)
+    (item,) = [i for i in applied.items if i.kind == "load"]
+    omega = motion.omega("CD")
+    assert np.all(np.abs(item.moment) == 50.0)
+    assert np.all(item.moment * omega <= 0.0)
+    assert np.any(omega > 0) and np.any(omega < 0)     # the rocker does turn back
+    as_given = applied_loads(replace(exercise.mechanism, loads=(Load("CD", moment=50.0),)),
+                             motion.links, angles=motion.angles)
+    (plain,) = [i for i in as_given.items if i.kind == "load"]
+    assert np.all(plain.moment == 50.0)
+
+
 def test_load_on_a_point_not_in_its_link():
     exercise = exercise_from_dict(testing.fourbar())
     mechanism = replace(exercise.mechanism, loads=(Load("BC", "D", (1.0, 0.0)),))

@@ -12,7 +12,8 @@ in kinematic pairs"):
   counter-clockwise), h = J_S·ε / (m·|a_S|); its moment about S is then M_u.
 
 External loads (``[[load]]``) are forces at points of links (global axes) or moments on links;
-``oppose_velocity`` turns a force against the velocity of its point (at v = 0 it acts as given
+``oppose_velocity`` turns a force against the velocity of its point, and a moment against the
+angular velocity of its link (a resisting torque on a rocker) (at v = 0 or ω = 0 it acts as given
 and is flagged).
 
 Every array has the crank angles on its leading axis. Results are frozen values; nothing here
@@ -236,8 +237,19 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
         state = states[load.link]
         name = f"load[{load.index}]"
         if load.moment is not None:
-            items.append(AppliedItem(load.link, name, "load",
-                                     moment=np.full(count, float(load.moment))))
+            moment = np.full(count, float(load.moment))
+            if load.oppose_velocity:
+                # |M| against the link's angular velocity; at rest it acts as given
+                omega = np.broadcast_to(np.asarray(state.omega, float), (count,))
+                turning = np.abs(omega) > REST_SPEED * max(abs(mechanism.drive.omega), 1e-300)
+                moment = np.where(turning, -abs(float(load.moment)) * np.sign(omega), moment)
+                if not np.all(turning):
+                    at = (", ".join(f"{a:g}°" for a in np.asarray(angles)[~turning][:5])
+                          if angles is not None else "")
+                    flags.append(f"{name} on {load.link}: the link is at rest"
+                                 f"{f' (crank angle {at})' if at else ''}, the moment acts as "
+                                 "given")
+            items.append(AppliedItem(load.link, name, "load", moment=moment))
             continue
         if load.point not in mechanism.links[load.link].points:
             raise SpecError(f"'{load.point}' is not a point of '{load.link}'", file=file,
