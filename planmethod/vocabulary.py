@@ -31,7 +31,9 @@ __all__ = [
     "PairKind",
     "Quantity",
     "QuantityKind",
+    "link_numbers",
     "quantity",
+    "symbol",
 ]
 
 
@@ -192,3 +194,42 @@ def quantity(name: str) -> Quantity:
 #: a kinematic stage's quantities as a sentence names them ("its velocities would …")
 STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities",
                                 "acceleration": "accelerations"}
+
+
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def link_numbers(links: list[str] | tuple[str, ...], drive: str,
+                 frame: str = "frame") -> dict[str, int]:
+    """The links numbered as a course numbers them: the frame 1, the crank (drive link) 2, the
+    others 3, 4, … in the order the exercise lists them.
+
+    Examples
+    --------
+    >>> link_numbers(["frame", "AB", "BC", "CD"], "AB")
+    {'frame': 1, 'AB': 2, 'BC': 3, 'CD': 4}
+    """
+    order = [frame, drive] + [name for name in links if name not in (frame, drive)]
+    return {name: number for number, name in enumerate(order, start=1)}
+
+
+def symbol(name: str, numbers: dict[str, int] | None = None) -> str:
+    """A quantity as a course writes it: a link's by the link's number as a subscript (ω₃,
+    ε₄), a point's with the point's name (v_C, a_C, ρ_D), a pair's with its name; a name that is
+    no quantity is returned as it is.
+
+    Examples
+    --------
+    >>> symbol("omega_BC", {"frame": 1, "AB": 2, "BC": 3}), symbol("a_C"), symbol("rho_D")
+    ('ω₃', 'a_C', 'ρ_D')
+    """
+    try:
+        found = quantity(name)
+    except KeyError:
+        return name
+    kind, subject = found.kind, found.subject
+    if kind.subject == "link" and numbers and subject in numbers:
+        return f"{kind.symbol}{str(numbers[subject]).translate(_SUBSCRIPT)}"
+    if kind.subject == "pair":
+        return f"{kind.symbol} ({subject})"
+    return f"{kind.symbol}_{subject}"

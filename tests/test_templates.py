@@ -204,3 +204,20 @@ def test_written_toml_reads_back_to_the_same_exercise():
         data = tomllib.loads(to_toml(variant.data))
         assert data == variant.data
         assert exercise_from_dict(data) == exercise_from_dict(variant.data)
+
+
+def test_task_sheets_write_quantities_as_the_course_does():
+    """The answer table leads with the course's symbol and unit (ω₃, rad/s; a_C, m/s²), links
+    numbered frame 1, crank 2, …; the answer id follows in brackets for typing answers."""
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.sheets import task_text
+    from planmethod.grading.templates import draw_variant, load_template
+
+    key = build_key(draw_variant(load_template("exercises/templates/four_bar.toml")))
+    text = task_text(key)
+    assert "Links: 1 frame, 2 AB, 3 BC, 4 CD." in text
+    rows = {line.split()[0].rstrip(","): line for line in text.splitlines()
+            if line.startswith("  ")}
+    assert rows["ω₃"].split()[1] == "rad/s" and rows["ω₃"].endswith("[omega_BC]")
+    assert rows["ε₄"].split()[1] == "rad/s²" and rows["a_C"].split()[1] == "m/s²"
+    assert not any(row.lstrip().startswith(("omega_", "epsilon_")) for row in rows.values())

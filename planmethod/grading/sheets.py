@@ -30,7 +30,7 @@ from typing import Any
 from ..render.canvas import Canvas
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
-from ..vocabulary import SCALES
+from ..vocabulary import SCALES, link_numbers, symbol
 
 __all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_sheet_svg", "task_text"]
 
@@ -57,9 +57,19 @@ def task_text(key: Mapping[str, Any]) -> str:
     scale_texts = (f"{SCALES[name][0]} = {scales.get(name, 0):.6g} {SCALES[name][1]}"
                    for name in ("mu_l", "mu_v", "mu_a"))
     lines.append(f"Crank angle φ1 = {key.get('angle', 0):g}°; scales {', '.join(scale_texts)}.")
+    exercise = key.get("exercise") or {}
+    links = list((exercise.get("links") or {}).keys())
+    drive = str((exercise.get("drive") or {}).get("link", ""))
+    numbers = link_numbers(links, drive) if links and drive else {}
+    if numbers:
+        lines.append("Links: " + ", ".join(f"{number} {'frame' if name == 'frame' else name}"
+                                           for name, number in numbers.items()) + ".")
     lines += ["", "Answer (SI units, counter-clockwise positive):"]
     for question in key.get("questions", ()):
-        lines.append(f"  {question['id']:<14} {question['text']} [{question.get('unit', '')}]")
+        unit = question.get("unit", "")
+        shown = symbol(question["id"], numbers)
+        lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {question['text']}"
+                     f"   [{question['id']}]")
     return "\n".join(lines).rstrip() + "\n"
 
 
@@ -72,7 +82,10 @@ def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
     position = replace(plans.position, curvature={})
     lines: list[str] = []
     for line in task_text(key).splitlines():
-        lines += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
+        if line.startswith("  "):     # a row of the answer table: kept whole
+            lines.append(line)
+        else:
+            lines += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
     return position_drawing(position, notes=lines).svg
 
 
