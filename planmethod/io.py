@@ -111,15 +111,15 @@ def atomic_path(target: str | Path, suffix: str | None = None) -> Iterator[Path]
     except OSError as error:
         raise PlanmethodError(f"cannot create a file in {folder}: {error.strerror}",
                               file=str(target)) from None
-    os.close(handle)
     temporary = Path(name)
-    try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(temporary, 0o666 & ~umask)  # an ordinary new file's mode, not mkstemp's 0600
-    except OSError:
-        pass  # a file system without modes (the file stays private)
-    try:
+    try:  # from here on, whatever happens (an error, Ctrl-C, SIGTERM), the file is removed
+        os.close(handle)
+        try:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(temporary, 0o666 & ~umask)  # an ordinary new file's mode, not 0600
+        except OSError:
+            pass  # a file system without modes (the file stays private)
         yield temporary
         os.replace(temporary, target)
     except OSError as error:

@@ -217,9 +217,15 @@ def test_sigterm_leaves_no_temporary_file(tmp_path):
                                 "0.0001", "--csv", str(tmp_path / "t.csv")], cwd=ROOT,
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60
-    while not list(tmp_path.iterdir()) and time.monotonic() < deadline:
+    def writing() -> bool:   # the temporary file exists and rows are being written into it
+        try:
+            return any(path.stat().st_size > 0 for path in tmp_path.iterdir())
+        except FileNotFoundError:
+            return False
+
+    while not writing() and time.monotonic() < deadline:
         time.sleep(0.05)
-    assert list(tmp_path.iterdir()), "the sweep never started writing"
+    assert writing(), "the sweep never started writing"
     process.send_signal(signal.SIGTERM)
     _, err = process.communicate(timeout=60)
     assert process.returncode == 143 and err.strip() == "planmethod: terminated"

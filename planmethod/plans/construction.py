@@ -26,6 +26,7 @@ Examples
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -724,14 +725,31 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
 
 def _path_mm(motion: Motion, point: str, mu_l: float) -> list[list[float]] | None:
     """The point's path over a full turn every 2° (mm), on the branch of the plan; None where
-    the mechanism does not assemble over the whole turn."""
+    the mechanism does not assemble over the whole turn. Kept for the motion's model and
+    branches, so drawing the same position again (the tolerance analysis draws each plan once
+    per segment) does not solve the turn again."""
+    key = (motion.mechanism, tuple(sorted(motion.branches.items())), point, mu_l)
+    with _PATHS_LOCK:
+        if key in _PATHS:
+            found = _PATHS[key]
+            return None if found is None else [list(xy) for xy in found]
     angles = np.arange(0.0, 360.0, 2.0)
     try:
         path = solve(motion.mechanism, angles, stage="position", links=list(motion.links),
                      structure=motion.structure, branches=motion.branches).position(point)
+        found = [[float(x) / mu_l, float(y) / mu_l] for x, y in path]
     except PlanmethodError:
-        return None
-    return [[float(x) / mu_l, float(y) / mu_l] for x, y in path]
+        found = None
+    with _PATHS_LOCK:
+        if len(_PATHS) >= 256:
+            _PATHS.pop(next(iter(_PATHS)))
+        _PATHS[key] = found
+    return found
+
+
+#: the paths of :func:`_path_mm`, by model, branches, point and scale (oldest dropped first)
+_PATHS: dict = {}
+_PATHS_LOCK = threading.Lock()
 
 
 def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None:
