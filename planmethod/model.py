@@ -221,7 +221,9 @@ class PlanSettings:
     Each scale is given either as a drawn length of the drive link's scale point (``crank_mm``,
     ``velocity_mm``, ``acceleration_mm``) or directly (``mu_l`` m/mm, ``mu_v`` (m/s)/mm,
     ``mu_a`` (m/s²)/mm). ``precision_mm`` is the drafting precision (0 = exact);
-    ``min_angle_deg`` the angle below which two intersected lines are flagged.
+    ``min_angle_deg`` the angle below which two intersected lines are flagged. A scale set by a
+    drawn length is rounded to the standard series (:func:`planmethod.plans.scales.standard`)
+    unless ``exact_mm`` keeps the lengths exactly as written.
     """
 
     crank_mm: float | None = 30.0
@@ -234,6 +236,7 @@ class PlanSettings:
     mu_f: float | None = None
     scale_point: str | None = None
     precision_mm: float = 0.0
+    exact_mm: bool = False
     min_angle_deg: float = 1.0
 
 

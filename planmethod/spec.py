@@ -68,7 +68,7 @@ TOP_LEVEL_KEYS = (
 )
 PLAN_KEYS = (
     "crank_mm", "velocity_mm", "acceleration_mm", "mu_l", "mu_v", "mu_a", "force_mm", "mu_f",
-    "scale_point", "precision_mm", "min_angle_deg",
+    "scale_point", "precision_mm", "min_angle_deg", "exact_mm",
 )
 ASK_KEYS = ("velocity", "acceleration", "omega", "epsilon", "curvature", "sliding", "forces")
 
@@ -548,6 +548,11 @@ class _Reader:
         if "min_angle_deg" in table:
             values["min_angle_deg"] = self.number(table["min_angle_deg"], "plan.min_angle_deg",
                                                   non_negative=True)
+        if "exact_mm" in table:
+            if not isinstance(table["exact_mm"], bool):
+                raise self.error("plan.exact_mm", f"must be true or false, got "
+                                                  f"{table['exact_mm']!r}")
+            values["exact_mm"] = table["exact_mm"]
         return PlanSettings(**values)
 
     def ask(self, data: Mapping[str, Any], mechanism: Mechanism) -> Ask:

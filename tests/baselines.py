@@ -16,6 +16,13 @@ moment (the largest magnitude of what it sits among). The angle between two cons
 is compared by its sine (its arcsine has no digits to spare near 90°: a sine of 1 − 1 ulp is
 89.9999991°). Text must be identical, except a title that said "seed": it may now cite the
 paper instead.
+
+Drawing scales are now the standard series' values (README, "The exercise file"), so what
+depends on the scale alone is left out of the comparison — and nothing else: the scales
+themselves (``scale``, ``mu_*``), lengths and points on the drawings (every key ending in
+``_mm``, with all it holds), a construction step's sentence (it quotes drawn lengths), and
+Aliyev's constants that are products of scales (``J_mu_a_over_l``, ``m_mu_a_mu_l``). Every
+value in SI units — exact, read off the plan, forces, moments, checks — is still compared.
 """
 
 from __future__ import annotations
@@ -91,6 +98,16 @@ def write() -> None:
 
 
 # -- comparison ----------------------------------------------------------------------------------
+#: Aliyev's constants that are products of drawing scales
+SCALE_PRODUCTS = {"J_mu_a_over_l", "m_mu_a_mu_l"}
+
+
+def _scale_dependent(key: str, where: str) -> bool:
+    """A value that depends on the drawing scale alone (see the module docstring)."""
+    return (key.endswith("_mm") or key.startswith("mu_") or key == "scale"
+            or key in SCALE_PRODUCTS or (key == "text" and ".steps[" in where))
+
+
 def _scale(siblings) -> float:
     values = [abs(v) for v in siblings if isinstance(v, (int, float)) and not isinstance(v, bool)]
     return max(values, default=0.0)
@@ -119,6 +136,8 @@ def differences(old, new, where: str = "", siblings=(), reference: float | None 
             measured = abs(old["analytic"])
         siblings = [v for v in old.values() if not isinstance(v, (dict, list))]
         for key in sorted(set(old) & set(new)):
+            if _scale_dependent(key, where):
+                continue
             ref = None
             if key in RELATIVE_NOISE:
                 ref = 1.0

@@ -31,3 +31,21 @@ def test_the_comparison_can_fail():
     angles = {"line_angle_deg": 89.99999914622636}
     assert not differences(angles, {"line_angle_deg": 90.0})   # sines 1 − 1 ulp and 1
     assert differences(angles, {"line_angle_deg": 89.99})
+
+
+def test_scale_dependent_values_are_left_out_and_nothing_else():
+    old = {"scales": {"mu_v": 0.00942478}, "plans": {"velocity": {
+        "scale": 0.00942478, "points_mm": {"b": [40.0, 0.0]},
+        "steps": [{"text": "(pb) = 40 mm", "length_mm": 40.0, "value": 5.2716}]}},
+        "checks": [{"plan": 5.2716, "analytic": 5.2716, "abs_error": 0.0}]}
+    rounded = {"scales": {"mu_v": 0.01}, "plans": {"velocity": {
+        "scale": 0.01, "points_mm": {"b": [37.699, 0.0]},
+        "steps": [{"text": "(pb) = 37.7 mm", "length_mm": 37.699, "value": 5.2716}]}},
+        "checks": [{"plan": 5.2716, "analytic": 5.2716, "abs_error": 0.0}]}
+    assert not differences(old, rounded)
+    moved = json.loads(json.dumps(rounded))
+    moved["plans"]["velocity"]["steps"][0]["value"] = 5.3     # an SI reading: compared
+    assert differences(old, moved)
+    moved = json.loads(json.dumps(rounded))
+    moved["checks"][0]["plan"] = 5.3
+    assert differences(old, moved)

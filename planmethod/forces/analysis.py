@@ -33,6 +33,7 @@ import numpy as np
 from ..errors import SpecError
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
+from ..plans.scales import standard
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
 from .combined import (
@@ -361,7 +362,9 @@ def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
         for edge in group.polygon:
             largest = max(largest, float(np.hypot(*edge.vector[0])))
     drawn = plan.force_mm or FORCE_MM
-    return largest / drawn if largest > 0 else 1.0
+    if largest <= 0:
+        return 1.0
+    return largest / drawn if plan.exact_mm else standard(largest / drawn)
 
 
 def analyse_forces(exercise: Exercise, motion: Motion, *, plans=None) -> ForceAnalysis:

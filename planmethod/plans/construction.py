@@ -450,9 +450,11 @@ class _Emulator:
         b_v, b_a = self.label(scales.scale_point, self.v), self.label(scales.scale_point, self.a)
         omega, epsilon = drive.omega, drive.epsilon
         v_b = omega * _perp(radius)
-        b_vector = (v_b / np.hypot(*v_b) * self.settings.velocity_mm
-                    if self.settings.velocity_mm and self.settings.mu_v is None and omega
-                    else v_b / scales.mu_v)
+        # the reference vector is drawn as long as the scale makes it: exactly the written
+        # *_mm where the scale is what that length asks (no rounding noise), else value/μ
+        pinned = _pinned_mm(self.settings.velocity_mm, self.settings.mu_v,
+                            float(np.hypot(*v_b)), scales.mu_v)
+        b_vector = (v_b / np.hypot(*v_b) * pinned if pinned and omega else v_b / scales.mu_v)
         self.v.lay_off(pole_v, b_v, b_vector, component="absolute",
                        vector=f"v_{scales.scale_point}",
                        text=f"v_{scales.scale_point} = ω1·l_{drive.pivot}{scales.scale_point} = "
@@ -462,8 +464,8 @@ class _Emulator:
         normal = -omega ** 2 * radius
         tangential = epsilon * _perp(radius)
         total = normal + tangential
-        fixed = (self.settings.acceleration_mm if self.settings.acceleration_mm
-                 and self.settings.mu_a is None else None)
+        fixed = _pinned_mm(self.settings.acceleration_mm, self.settings.mu_a,
+                           float(np.hypot(*total)), scales.mu_a)
         factor = (fixed / np.hypot(*total)) if fixed and np.hypot(*total) else 1 / scales.mu_a
         point_name = scales.scale_point
         if epsilon == 0:
@@ -721,6 +723,16 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
         "center_mm": [float(centre[0]), float(centre[1])], "rho_mm": rho / scales.mu_l,
         "tangent_deg": _angle_deg(tangent) % 180.0, "normal_deg": _angle_deg(normal),
         "path_mm": _path_mm(emulator.motion, point, scales.mu_l)}
+
+
+def _pinned_mm(drawn_mm: float | None, direct: float | None, value: float,
+               scale: float) -> float | None:
+    """The written length of a reference vector, where the scale is exactly what it asks
+    (``value/drawn_mm``, not rounded to the standard series and not given directly); None
+    where the drawn length must follow from the scale."""
+    if not drawn_mm or direct is not None or not value:
+        return None
+    return drawn_mm if abs(scale * drawn_mm - value) <= 1e-12 * value else None
 
 
 def _path_mm(motion: Motion, point: str, mu_l: float) -> list[list[float]] | None:

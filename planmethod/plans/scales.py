@@ -1,8 +1,13 @@
 """Drawing scales μl, μv, μa (and μF) chosen the way the textbook chooses them.
 
-Each scale is set by the drawn length of the drive link's scale point B: μl = l_AB/(AB),
-μv = v_B/(pb), μa = a_B/(πb), or given directly. At the crank scale (all three lengths equal)
-μv = ω1·μl and μa = ω1²·μl. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
+Each scale is set by the drawn length of the drive link's scale point B, or given directly. A
+scale set by a length is the value of the standard series (mantissa 1, 1.5, 2, 2.5, 4, 5,
+7.5 × 10ᵏ, :func:`standard`) nearest to what the length asks — μl ≈ l_AB/(AB), μv ≈ v_B/(pb),
+μa ≈ a_B/(πb) — and the drawn length then follows from the scale, as course guides ask. At the
+crank scale (all three lengths equal: the textbook's (pb) = (πb) = (AB)) μl is standard and
+μv = ω1·μl, μa = μl·√(ω1⁴ + ε1²) follow from it exactly. ``exact_mm = true`` in ``[plan]`` keeps
+the lengths exactly as written (the scales then follow from them unrounded); a ``mu_*`` given is
+used as it is. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
 U. A. Abduvaliev and J. U. Abduxoshimov, "Kinematic study of a four-link mechanism for the
 purpose of its use in the design of new machines".
 
@@ -25,7 +30,32 @@ from ..errors import SpecError
 from ..model import Exercise, Mechanism, PlanSettings
 from ..vocabulary import SCALES
 
-__all__ = ["Scales", "choose_scales", "scale_point"]
+__all__ = ["STANDARD_MANTISSAS", "Scales", "choose_scales", "scale_point", "standard"]
+
+#: the mantissas of the standard series of drawing scales (× 10ᵏ)
+STANDARD_MANTISSAS = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0, 7.5)
+
+
+def standard(value: float) -> float:
+    """The value of the standard series of drawing scales (1, 1.5, 2, 2.5, 4, 5, 7.5 × 10ᵏ)
+    nearest to ``value`` (by ratio; a tie goes to the smaller, which draws larger).
+
+    Examples
+    --------
+    >>> standard(0.00942478), standard(0.0592176), standard(0.00333333), standard(0.002)
+    (0.01, 0.05, 0.004, 0.002)
+    """
+    if not (math.isfinite(value) and value > 0):
+        return value
+    exponent = math.floor(math.log10(value))
+    best, distance = value, math.inf
+    for power in (exponent - 1, exponent, exponent + 1):
+        for mantissa in STANDARD_MANTISSAS:
+            candidate = float(f"{mantissa}e{power}")     # exact decimal, no 10**k rounding
+            gap = abs(math.log(candidate / value))
+            if gap < distance - 1e-12:
+                best, distance = candidate, gap
+    return best
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,7 +146,21 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
                             key=f"plan.{key}")
         return value / drawn
 
-    mu_l = pick(settings.mu_l, settings.crank_mm, length, "mu_l", "the length")
+    exact = settings.exact_mm
+
+    def rounded(direct, value):
+        return value if direct is not None or exact else standard(value)
+
+    mu_l = rounded(settings.mu_l, pick(settings.mu_l, settings.crank_mm, length, "mu_l",
+                                       "the length"))
+    crank_scale = (not exact and settings.mu_l is None and settings.mu_v is None
+                   and settings.mu_a is None and settings.crank_mm is not None
+                   and settings.crank_mm == settings.velocity_mm == settings.acceleration_mm)
     mu_v = pick(settings.mu_v, settings.velocity_mm, v_b, "mu_v", "the velocity")
     mu_a = pick(settings.mu_a, settings.acceleration_mm, a_b, "mu_a", "the acceleration")
+    if crank_scale:   # (pb) = (πb) = (AB): μv and μa follow from the standard μl exactly
+        mu_v = abs(drive.omega) * mu_l
+        mu_a = math.hypot(drive.omega ** 2, drive.epsilon) * mu_l
+    else:
+        mu_v, mu_a = rounded(settings.mu_v, mu_v), rounded(settings.mu_a, mu_a)
     return Scales(mu_l, mu_v, mu_a, drive.omega, drive.epsilon, point, settings.mu_f)

@@ -1,0 +1,88 @@
+"""Drawing scales: the standard series where a scale is chosen freely, exact lengths on request."""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from planmethod.cli import main
+from planmethod.plans.scales import STANDARD_MANTISSAS, choose_scales, standard
+from planmethod.spec import exercise_from_dict, load_exercise
+
+ROOT = Path(__file__).resolve().parent.parent
+EXERCISES = sorted((ROOT / "exercises").glob("*.toml"))
+
+
+def is_standard(value: float) -> bool:
+    mantissa = value / 10 ** math.floor(math.log10(value) + 1e-12)
+    return any(abs(mantissa - m) <= 1e-9 * m for m in STANDARD_MANTISSAS)
+
+
+def test_standard_is_the_nearest_value_of_the_series():
+    assert [standard(v) for v in (0.00942478, 0.0592176, 0.00333333, 1.0, 0.3, 6.2, 8.9)] == [
+        0.01, 0.05, 0.004, 1.0, 0.25, 7.5, 10.0]
+    for value in (1e-5, 3.3e-3, 0.071, 12.0, 4.4e3):
+        chosen = standard(value)
+        assert is_standard(chosen)
+        assert all(abs(math.log(chosen / value)) <= abs(math.log(c / value)) + 1e-12
+                   for c in (m * 10.0 ** k for m in STANDARD_MANTISSAS for k in range(-7, 6)))
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.stem)
+def test_every_freely_chosen_scale_is_standard(path, capsys):
+    """Without mu_* and exact_mm, every scale the report lists that was chosen from a drawn
+    length is a standard value; at the crank scale μl is, and μv = ω1·μl exactly."""
+    table = tomllib.loads(path.read_text(encoding="utf-8")).get("plan", {})
+    assert not any(key.startswith("mu_") for key in table) and not table.get("exact_mm")
+    assert main(["solve", str(path), "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    scales = report["scales"]
+    assert is_standard(scales["mu_l"])
+    crank = table.get("crank_mm") == table.get("velocity_mm") == table.get("acceleration_mm")
+    omega = tomllib.loads(path.read_text(encoding="utf-8"))["drive"]["omega"]
+    if crank:
+        assert scales["mu_v"] == pytest.approx(abs(omega) * scales["mu_l"], rel=1e-15)
+    else:
+        assert is_standard(scales["mu_v"]) and is_standard(scales["mu_a"])
+    mu_f = (report.get("forces") or {}).get("scales", {}).get("mu_f")
+    if mu_f is not None:
+        assert is_standard(mu_f)
+
+
+def _slider(**plan):
+    data = tomllib.loads((ROOT / "exercises" / "compressor_slider_crank.toml").read_text())
+    data["plan"] = {**{k: v for k, v in data["plan"].items() if not k.endswith("_mm")
+                       or k == "precision_mm"}, **plan}
+    return exercise_from_dict(data)
+
+
+def test_exact_mm_keeps_the_lengths_as_written():
+    rounded = choose_scales(_slider(crank_mm=33, velocity_mm=45, acceleration_mm=50))
+    exact = choose_scales(_slider(crank_mm=33, velocity_mm=45, acceleration_mm=50,
+                                  exact_mm=True))
+    assert (rounded.mu_l, rounded.mu_v, rounded.mu_a) == (0.002, 0.15, 10.0)
+    assert exact.mu_l == pytest.approx(0.06 / 33) and exact.mu_v == pytest.approx(6.0 / 45)
+
+
+def test_the_compressors_printed_scales_stay_as_printed():
+    scales = choose_scales(load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml"))
+    assert (scales.mu_l, scales.mu_v, scales.mu_a) == (0.002, 0.2, 20.0)
+
+
+def test_the_reference_vector_follows_from_a_rounded_scale(capsys):
+    """(pb) is v_B/μv once μv is rounded: the plan still reads v_B exactly."""
+    exercise = _slider(crank_mm=33, velocity_mm=45, acceleration_mm=50)
+    from planmethod.plans import draw_plans
+
+    plans = draw_plans(exercise)
+    b = plans.velocity.points_mm["b"]
+    assert math.hypot(*b) == pytest.approx(6.0 / 0.15, rel=1e-12)      # 40 mm, not 45
+    from planmethod.kinematics import solve
+
+    exact = solve(exercise.mechanism, exercise.mechanism.drive.angle)
+    assert plans.readings["v_C"] == pytest.approx(float(math.hypot(*exact.velocity("C"))),
+                                                  rel=1e-12)
