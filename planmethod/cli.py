@@ -36,6 +36,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "workbook": ("planmethod.commands.workbook",
                  "one offline HTML page: turn the crank, the plans redraw; practise with the "
                  "grader"),
+    "animate": ("planmethod.commands.animate",
+                "the full turn of mechanism and plans as an animation (SVG, GIF or MP4)"),
 }
 
 EXIT_BAD_INPUT = 2
