@@ -33,6 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--step", type=float, default=DEFAULT_STEP, metavar="DEG",
                         help=f"crank-angle step in degrees (default {DEFAULT_STEP:g}; "
                              "1 gives 360 frames)")
+    parser.add_argument("--jobs", type=int, metavar="N",
+                        help="worker processes (default: every core, at least 12 frames "
+                             "each)")
 
 
 def turn_angles(step: float, option: str = "--step") -> list[float]:
@@ -84,9 +87,53 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
             "questions": questions, "tolerance_source": key["precision_mm"]}
 
 
-def build_workbook(exercise, step: float = DEFAULT_STEP, *,
+def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
+    """The frames of the given angles as plain data (:func:`frame_data`), each with its
+    check quantities (``quantities``) and balancing moment (``moment``, None without
+    forces) for the full-turn curves."""
+    import numpy as np
+
+    from ..render.figures import plan_files
+    from ..report import analyse
+
+    variant = exercise_variant(exercise)
+    out = []
+    for angle in angles:
+        analysis = analyse(exercise, angle)
+        files = plan_files(analysis.plans, forces=analysis.forces) if analysis.plans else {}
+        frame = frame_data(analysis, variant, files)
+        frame["quantities"] = [(check.quantity, check.unit) for check in analysis.checks]
+        frame["moment"] = (None if analysis.forces is None else
+                           float(np.ravel(analysis.forces.balancing_moment)[0]))
+        frame["precision_mm"] = analysis.exercise.plan.precision_mm
+        out.append(frame)
+    return out
+
+
+def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
+    exercise, angles = job
+    return solve_frames(exercise, angles)
+
+
+def default_jobs(frames: int) -> int:
+    """Worker processes for ``frames`` frames: every core, but at least 12 frames each.
+
+    >>> default_jobs(1)
+    1
+    """
+    import os
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else \
+        (os.cpu_count() or 1)
+    return max(1, min(cores, frames // 12))
+
+
+def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = None,
                    progress: Callable[[int, int], None] | None = None) -> str:
     """The workbook page of ``exercise`` (an :class:`~planmethod.model.Exercise`) as HTML.
+
+    The frames are solved in ``jobs`` worker processes (default :func:`default_jobs`; 1
+    solves them here).
 
     Examples
     --------
@@ -95,61 +142,64 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *,
     >>> page.count('data-quantity="'), 'id="angle"' in page
     (7, True)
     """
-    from ..render.figures import plan_files
     from ..render.workbook import curve_chart, workbook_html
-    from ..report import analyse
     from ..vocabulary import quantity
 
     angles = turn_angles(step)
-    variant = exercise_variant(exercise)
-    frames, analyses = [], []
-    for number, angle in enumerate(angles):
-        analysis = analyse(exercise, angle)
-        files = plan_files(analysis.plans, forces=analysis.forces) if analysis.plans else {}
-        frames.append(frame_data(analysis, variant, files))
-        analyses.append(analysis)
-        if progress is not None:
-            progress(number + 1, len(angles))
-    first = analyses[0]
-    quantities = [{"name": check.quantity, "symbol": quantity(check.quantity).symbol,
-                   "subscript": quantity(check.quantity).subscript, "unit": check.unit}
-                  for check in first.checks]
-    panels = [name for name in PANELS if name in frames[0]["drawings"]]
-    panels += [name for name in frames[0]["drawings"] if name not in panels]
-    charts = turn_charts(angles, analyses)
-    precision = first.exercise.plan.precision_mm
+    jobs = default_jobs(len(angles)) if jobs is None else max(1, int(jobs))
+    frames: list[dict[str, Any]] = []
+    if jobs == 1:
+        for angle in angles:
+            frames += solve_frames(exercise, [angle])
+            if progress is not None:
+                progress(len(frames), len(angles))
+    else:
+        from concurrent.futures import ProcessPoolExecutor
+
+        size = math.ceil(len(angles) / (4 * jobs))
+        chunks = [(exercise, angles[start:start + size])
+                  for start in range(0, len(angles), size)]
+        with ProcessPoolExecutor(jobs) as pool:
+            for done in pool.map(_solve_chunk, chunks):
+                frames += done
+                if progress is not None:
+                    progress(len(frames), len(angles))
+    first = frames[0]
+    quantities = [{"name": name, "symbol": quantity(name).symbol,
+                   "subscript": quantity(name).subscript, "unit": unit}
+                  for name, unit in first["quantities"]]
+    panels = [name for name in PANELS if name in first["drawings"]]
+    panels += [name for name in first["drawings"] if name not in panels]
+    precision = first["precision_mm"]
     notes = [f"{len(angles)} positions, every {step:g}°; drawings by planmethod, "
              f"drafting precision {precision:g} mm" if precision else
              f"{len(angles)} positions, every {step:g}°; drawings by planmethod, exact "
              "construction",
              f"practice mode grades as `planmethod grade` does: tolerances from a drafting "
-             f"precision of {frames[0]['tolerance_source']:g} mm (each tolerance is shown)"]
+             f"precision of {first['tolerance_source']:g} mm (each tolerance is shown)"]
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
-                                 for title, unit, curves in charts], notes=notes)
+                                 for title, unit, curves in turn_charts(frames)],
+                         notes=notes)
 
 
-def turn_charts(angles: Sequence[float], analyses: Sequence) -> list[tuple[str, str, dict]]:
+def turn_charts(frames: Sequence[dict[str, Any]]) -> list[tuple[str, str, dict]]:
     """The full-turn curves: speeds, accelerations, angular velocities and accelerations of
     the checks, and the balancing moment when forces are computed."""
-    import numpy as np
-
     from ..vocabulary import quantity
 
     titles = {"v": "velocities", "a": "accelerations", "omega": "angular velocities",
               "epsilon": "angular accelerations"}
     charts: dict[str, tuple[str, str, dict]] = {}
-    for index, check in enumerate(analyses[0].checks):
-        kind = check.quantity.partition("_")[0]
+    for index, (name, unit) in enumerate(frames[0]["quantities"]):
+        kind = name.partition("_")[0]
         if kind not in titles:
             continue
-        curves = charts.setdefault(kind, (titles[kind], check.unit, {}))[2]
-        curves[quantity(check.quantity).text] = [analysis.checks[index].analytic
-                                                 for analysis in analyses]
+        curves = charts.setdefault(kind, (titles[kind], unit, {}))[2]
+        curves[quantity(name).text] = [frame["readings"][index][0] for frame in frames]
     out = list(charts.values())
-    if analyses[0].forces is not None:
-        out.append(("balancing moment", "N·m", {"M_b": [
-            float(np.ravel(analysis.forces.balancing_moment)[0]) for analysis in analyses]}))
+    if frames[0]["moment"] is not None:
+        out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]}))
     return out
 
 
@@ -164,6 +214,9 @@ def run(args: argparse.Namespace) -> int:
         raise SpecError(f"the page must be an .html file, got {args.output!r}",
                         key="option -o")
     turn_angles(args.step)
+    if args.jobs is not None and args.jobs < 1:
+        raise SpecError(f"must be a positive number of processes, got {args.jobs}",
+                        key="option --jobs")
     exercise = load_exercise(args.file)
 
     def progress(done: int, total: int) -> None:
@@ -171,7 +224,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"\rframe {done}/{total}", end="" if done < total else "\n",
                   file=sys.stderr)
 
-    page = build_workbook(exercise, args.step, progress=progress)
+    page = build_workbook(exercise, args.step, jobs=args.jobs, progress=progress)
     write_text_atomic(args.output, page)
     print(f"Wrote {args.output} ({len(page.encode('utf-8')) / 1e6:.2f} MB)")
     return 0
