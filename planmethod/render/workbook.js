@@ -3,11 +3,20 @@
   const wb = window.workbook = {ready: false, frame: -1, switchTimes: [], step: null};
   const status = document.getElementById("status");
   const slider = document.getElementById("angle");
+  // Python's format(value, ".{digits}g"), so that the page's feedback reads as the grader's
   function fmt(value, digits) {
     if (value === null || value === undefined) return "—";
     if (value === 0) return "0";
-    const p = Number(value).toPrecision(digits);
-    return String(Number(p));
+    if (!isFinite(value)) return String(value);
+    const [mantissa, power] = Number(value).toExponential(digits - 1).split("e");
+    const exponent = Number(power);
+    const trim = text => text.indexOf(".") < 0 ? text : text.replace(/\.?0+$/, "");
+    if (exponent < -4 || exponent >= digits) {
+      const sign = exponent < 0 ? "-" : "+";
+      const size = String(Math.abs(exponent)).padStart(2, "0");
+      return trim(mantissa) + "e" + sign + size;
+    }
+    return trim(Number(value).toFixed(Math.max(0, digits - 1 - exponent)));
   }
   function numberText(value) { return fmt(value, 6); }
   function parseAnswer(raw) {
@@ -86,11 +95,11 @@
   load().then(data => {
     wb.data = data;
     const panels = data.panels.map(name => document.getElementById("panel-" + name));
-    const cells = Array.from(document.querySelectorAll("#readings td.reading"));
-    const planCells = Array.from(document.querySelectorAll("#readings td.plan-reading"));
-    const tolerances = Array.from(document.querySelectorAll("#readings td.tolerance"));
-    const verdicts = Array.from(document.querySelectorAll("#readings td.verdict"));
-    const answers = Array.from(document.querySelectorAll("#readings input.answer"));
+    const cells = Array.from(document.querySelectorAll("#readings tbody td.reading"));
+    const planCells = Array.from(document.querySelectorAll("#readings tbody td.plan-reading"));
+    const tolerances = Array.from(document.querySelectorAll("#readings tbody td.tolerance"));
+    const verdicts = Array.from(document.querySelectorAll("#readings tbody td.verdict"));
+    const answers = Array.from(document.querySelectorAll("#readings tbody input.answer"));
     const cursors = Array.from(document.querySelectorAll("#charts .chart")).map(
       chart => chart.querySelector("line.cursor"));
     const cache = new Map();
