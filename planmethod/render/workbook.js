@@ -116,6 +116,28 @@
       }
       return text;
     }
+    // each frame's drawings are parsed once and kept: a later visit only swaps nodes
+    const parsed = new Map();
+    function nodesOf(frame) {
+      let nodes = parsed.get(frame);
+      if (nodes === undefined) {
+        nodes = panels.map((_, p) => {
+          const template = document.createElement("template");
+          template.innerHTML = svgOf(frame, p);
+          return template.content.firstElementChild;
+        });
+        parsed.set(frame, nodes);
+      }
+      return nodes;
+    }
+    const later = window.requestIdleCallback || (callback => setTimeout(callback, 0));
+    function prepareNeighbours(frame) {
+      later(() => {
+        const count = data.frames.length;
+        nodesOf((frame + 1) % count);
+        nodesOf((frame - 1 + count) % count);
+      });
+    }
     function questionOf(frame, name) {
       return (data.frames[frame].questions || []).find(q => q.id === name);
     }
@@ -123,7 +145,18 @@
       const t0 = performance.now();
       frame = Math.max(0, Math.min(data.frames.length - 1, frame));
       const f = data.frames[frame];
-      panels.forEach((element, p) => { element.innerHTML = svgOf(frame, p); });
+      const nodes = nodesOf(frame);
+      panels.forEach((element, p) => {
+        const node = nodes[p];
+        if (node) {
+          node.querySelectorAll(".step-hidden, .step-current").forEach(n => {
+            n.classList.remove("step-hidden", "step-current");
+          });
+          element.replaceChildren(node);
+        } else {
+          element.replaceChildren();
+        }
+      });
       data.quantities.forEach((q, i) => {
         const [exact, plan] = f.readings[i];
         cells[i].dataset.value = exact === null ? "" : String(exact);
@@ -150,6 +183,7 @@
       const spent = performance.now() - t0;
       wb.switchTimes.push(spent);
       document.getElementById("switch-time").textContent = spent.toFixed(1) + " ms";
+      prepareNeighbours(frame);
     }
     wb.show = show;
     wb.showAngle = angle => { slider.value = angle; show(stepOf(Number(angle))); };
