@@ -140,6 +140,12 @@ def test_construction_playback_shows_the_reports_steps(browser, compressor_page)
             "nodes => nodes.filter(n => n.classList.contains('step-hidden'))"
             ".map(n => Number(n.dataset.step))")
         assert all(shown > step["number"] for shown in hidden)
+        named = {point for earlier in steps[:number + 1]
+                 for point in (earlier.get("start"), earlier.get("end")) if point}
+        labels = page.eval_on_selector_all(
+            "#panel-velocity text.label:not(.step-hidden)",
+            "nodes => nodes.map(n => n.dataset.points.split(' '))")
+        assert labels and all(named.intersection(points) for points in labels)
     page.click("#step-all")
     assert page.eval_on_selector_all("#panel-velocity .step-hidden", "nodes => nodes.length") == 0
     assert errors == []

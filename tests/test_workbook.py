@@ -64,7 +64,7 @@ def test_frames_hold_the_reports_checks_and_the_keys(compressor_page):
         for check, (exact, plan) in zip(report["checks"], readings, strict=True):
             assert exact == check["analytic"] and plan == check["plan"]
         steps = data["frames"][number]["steps"]["velocity"]
-        assert [data["strings"][text] for _, text, _ in steps] == [
+        assert [data["strings"][text] for _, text, *_ in steps] == [
             step["text"] for step in report["plans"]["velocity"]["steps"]]
     # at the file's own angle the page's key is `planmethod grade`'s key
     key = build_key(draw_variant(load_template(COMPRESSOR)))

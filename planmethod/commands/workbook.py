@@ -79,7 +79,9 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
             if plan is not None:
-                steps[name] = [[step.number, step.text, step.action] for step in plan.steps]
+                steps[name] = [[step.number, step.text, step.action,
+                                 [point for point in (step.start, step.end) if point]]
+                                for step in plan.steps]
     key = build_key(replace(variant, exercise=analysis.exercise))
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]

@@ -218,6 +218,13 @@
         node.classList.toggle("step-hidden", n > current);
         node.classList.toggle("step-current", n === current);
       });
+      // a label shows once a step has named one of its points
+      const named = new Set();
+      steps.slice(0, number + 1).forEach(step => (step[3] || []).forEach(p => named.add(p)));
+      element.querySelectorAll("text.label[data-points]").forEach(label => {
+        const points = label.dataset.points.split(" ");
+        label.classList.toggle("step-hidden", !points.some(p => named.has(p)));
+      });
       document.getElementById("step-number").textContent =
         "step " + (number + 1) + " of " + steps.length;
       document.getElementById("step-text").textContent = data.strings[steps[number][1]];

@@ -177,8 +177,9 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     frames
         One mapping per angle: ``drawings`` {panel: SVG text}, ``readings`` [[exact, plan
         or None], …] in the order of ``quantities``, ``steps`` {plan: [[number, sentence,
-        action], …]} and ``questions`` (the answer key's questions at that angle: ``id``,
-        ``value``, ``tolerance``, ``unit``, ``signed``, ``mistakes``).
+        action, [the plan points it names]], …]} and ``questions`` (the answer key's
+        questions at that angle: ``id``, ``value``, ``tolerance``, ``unit``, ``signed``,
+        ``mistakes``).
     quantities
         The report's check quantities: ``name``, ``symbol``, ``subscript``, ``unit``.
     charts
@@ -191,7 +192,8 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     for frame in frames:
         drawings = [table.lines(inline_svg(frame["drawings"][name])) if name in
                     frame["drawings"] else [] for name in panels]
-        steps = {plan: [[number, table.add(text), action] for number, text, action in listed]
+        steps = {plan: [[number, table.add(text), action, *rest]
+                        for number, text, action, *rest in listed]
                  for plan, listed in frame.get("steps", {}).items()}
         packed_frames.append({"drawings": drawings, "readings": frame["readings"],
                               "steps": steps, "questions": frame.get("questions", [])})
