@@ -90,7 +90,7 @@ def _plan_points(plan) -> dict[str, tuple[float, float]]:
     return {name: (float(xy[0]), float(xy[1])) for name, xy in plan.points_mm.items()}
 
 
-def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 80) -> list[Any]:
+def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any]:
     """The frames as RGB images (``PIL.Image``): the mechanism, the velocity plan and the
     acceleration plan of each frame's :class:`~planmethod.plans.Plans`, axes fixed over the
     turn."""
@@ -109,6 +109,7 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 80) -> list[Any]
     figure = Figure(figsize=(4.0 * len(kinds), 4.0), dpi=dpi)
     canvas = FigureCanvasAgg(figure)
     axes = figure.subplots(1, len(kinds))
+    figure.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.04)
     images = []
     for plans in plans_of_frames:
         for ax, kind in zip(axes, kinds, strict=True):
