@@ -107,8 +107,10 @@ def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
             page.select_option("#step-plan", "velocity")
             for _ in range(5):
                 page.click("#step-next")
+            page.set_viewport_size({"width": 1400, "height": 1200})
+            page.evaluate("window.scrollTo(0, 0)")
             page.screenshot(path=str(screenshot), clip={"x": 0, "y": 0, "width": 1400,
-                                                        "height": 1000})
+                                                        "height": 1200})
         browser.close()
     return {"switches": len(times), "median_ms": statistics.median(times),
             "max_ms": max(times), "load_s": load}
