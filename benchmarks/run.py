@@ -1,6 +1,6 @@
 """Run the benchmarks and write their results: ``python -m benchmarks.run [--quick]``.
 
-Sections (all by default, or ``--only speed,accuracy,scene,memory,stress``):
+Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workbook``):
 
 * ``speed`` — full-turn analysis of the case A four-bar and the compressor slider-crank at
   N = 360, 3,600, 36,000 angles against the peers (``python -m benchmarks.peers --setup``
@@ -13,7 +13,10 @@ Sections (all by default, or ``--only speed,accuracy,scene,memory,stress``):
   → ``results/scene.{json,md}``;
 * ``memory`` — a 1,000,000-angle sweep of the shaper six-bar in bounded memory →
   ``results/memory.{json,md}``;
-* ``stress`` — the long stress run → ``results/stress.{json,md}``.
+* ``stress`` — the long stress run → ``results/stress.{json,md}``;
+* ``workbook`` — per-position analysis, plans + SVG and keys of the compressor and the
+  conveyor, their 360-frame workbooks (time, size) and the frame switch in headless Chromium
+  → ``results/workbook.{json,md}``, ``figures/workbook.png``.
 
 A full run writes into ``benchmarks/results`` and ``figures``; ``--quick`` (smaller N, fewer
 repeats, about a minute) writes into ``--out`` (default: a temporary folder), so that quick
@@ -22,7 +25,7 @@ numbers never replace the committed ones.
 Examples
 --------
 >>> sorted(SECTIONS)
-['accuracy', 'memory', 'scene', 'speed', 'stress']
+['accuracy', 'memory', 'scene', 'speed', 'stress', 'workbook']
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import accuracy, memory, scene, speed, stress
+from . import accuracy, memory, scene, speed, stress, workbook
 from .common import FIGURES, RESULTS, machine
 
 SECTIONS = {
@@ -43,6 +46,7 @@ SECTIONS = {
     "scene": (scene, None),
     "memory": (memory, None),
     "stress": (stress, None),
+    "workbook": (workbook, None),
 }
 
 

@@ -38,6 +38,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "check": ("planmethod.commands.check", "test a table of point coordinates against the links"),
     "study": ("planmethod.commands.study",
               "a four-bar's reactions against G4, ω1 and Mc (the study of Jobborova et al.)"),
+    "workbook": ("planmethod.commands.workbook",
+                 "one offline HTML page: turn the crank, the plans redraw; practise with the "
+                 "grader"),
+    "animate": ("planmethod.commands.animate",
+                "the full turn of mechanism and plans as an animation (SVG, GIF or MP4)"),
 }
 
 EXIT_BAD_INPUT = 2

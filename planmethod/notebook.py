@@ -1,4 +1,5 @@
-"""Plans drawn inline in Jupyter: the position, velocity and acceleration plans display as SVG.
+"""Plans drawn inline in Jupyter: the position, velocity and acceleration plans display as SVG,
+and an exercise displays as its interactive workbook (``planmethod workbook``).
 
 The plans (:mod:`planmethod.plans`) are data and know nothing of drawing; this module, at the
 top of the import graph, tells IPython how to show them. ``import planmethod`` inside IPython or
@@ -14,10 +15,12 @@ Examples
 ...         self.types[module, name] = function
 >>> class Shell:
 ...     class display_formatter:
-...         formatters = {"image/svg+xml": Formatter()}
+...         formatters = {"image/svg+xml": Formatter(), "text/html": Formatter()}
 >>> register(Shell())
 >>> sorted(name for _, name in Shell.display_formatter.formatters["image/svg+xml"].types)
 ['Plan', 'PositionPlan']
+>>> sorted(name for _, name in Shell.display_formatter.formatters["text/html"].types)
+['Exercise']
 """
 
 from __future__ import annotations
@@ -28,6 +31,12 @@ __all__ = ["register"]
 
 #: the module the plan classes are defined in (named, so registering imports nothing)
 _PLANS_MODULE = "planmethod.plans.construction"
+
+#: the module of :class:`~planmethod.model.Exercise`
+_MODEL_MODULE = "planmethod.model"
+
+#: crank-angle step (deg) of the workbook shown inline
+NOTEBOOK_STEP = 10.0
 
 
 def _plan_svg(plan: Any) -> str:
@@ -42,9 +51,24 @@ def _position_svg(position: Any) -> str:
     return position_svg(position)
 
 
+def _exercise_html(exercise: Any) -> str:
+    """The exercise's workbook in an ``<iframe>`` (its own document: its ids, style and
+    script stay apart from the notebook's)."""
+    import html
+
+    from .commands.workbook import build_workbook
+
+    page = build_workbook(exercise, NOTEBOOK_STEP)
+    return (f'<iframe srcdoc="{html.escape(page, quote=True)}" '
+            'style="width:100%;height:900px;border:1px solid #ddd"></iframe>')
+
+
 def register(shell: Any) -> None:
     """Show :class:`~planmethod.plans.Plan` and :class:`~planmethod.plans.PositionPlan` as
-    SVG in the IPython ``shell``."""
-    formatter = shell.display_formatter.formatters["image/svg+xml"]
+    SVG, and :class:`~planmethod.model.Exercise` as its workbook, in the IPython ``shell``."""
+    formatters = shell.display_formatter.formatters
+    formatter = formatters["image/svg+xml"]
     formatter.for_type_by_name(_PLANS_MODULE, "Plan", _plan_svg)
     formatter.for_type_by_name(_PLANS_MODULE, "PositionPlan", _position_svg)
+    if "text/html" in formatters:
+        formatters["text/html"].for_type_by_name(_MODEL_MODULE, "Exercise", _exercise_html)

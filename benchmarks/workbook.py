@@ -1,0 +1,158 @@
+"""The interactive workbook's speed: one position, a whole page, and the browser's frame switch.
+
+*Per position* (median over 12 crank angles, ms): ``analyse`` (kinematics, plans data and
+forces), ``plan_files`` (every drawing of the angle as SVG) and the answer key of the angle
+(``build_key``: the tolerances of ``planmethod grade``), for the compressor slider-crank and the
+six-link conveyor. *Page*: ``planmethod workbook`` of the full turn at 1° (360 frames), wall time
+with its default worker processes and the page's size. *Browser*: the page opened from
+``file://`` in headless Chromium (Playwright), the slider moved through 36 angles one step at
+a time, 40 ms apart (a hand on the slider); the time of each frame switch as the page itself
+records it (swap the drawings and the readings, lay the page out; the page parses the
+neighbouring frames while idle). A full run also writes ``figures/workbook.png``, the
+screenshot in README.
+
+Targets of issue 13: plans + SVG ≤ 10 ms (compressor) and ≤ 40 ms (conveyor) per position, the
+conveyor's ``analyse`` ≤ 20 ms, 360 frames in ≤ 5 s (compressor) and ≤ 20 s (conveyor), the
+compressor's page ≤ 3 MB at 1°, a frame switch ≤ 16 ms.
+
+Examples
+--------
+>>> sorted(TARGETS_MS)
+['compressor', 'conveyor']
+"""
+
+from __future__ import annotations
+
+import shutil
+import statistics
+import tempfile
+import time
+from dataclasses import replace
+from pathlib import Path
+
+from planmethod.commands.workbook import build_workbook, exercise_variant
+from planmethod.grading.keys import build_key
+from planmethod.render.figures import plan_files
+from planmethod.report import analyse
+from planmethod.spec import load_exercise
+
+from .common import FIGURES, ROOT
+
+FILES = {"compressor": "exercises/compressor_slider_crank.toml",
+         "conveyor": "exercises/conveyor_sixbar.toml"}
+
+#: issue 13's targets: (analyse, plans + SVG) per position in ms, and 360 frames in s
+TARGETS_MS = {"compressor": {"analyse": None, "plan_files": 10.0, "page_s": 5.0},
+              "conveyor": {"analyse": 20.0, "plan_files": 40.0, "page_s": 20.0}}
+PAGE_LIMIT_MB = 3.0
+SWITCH_LIMIT_MS = 16.0
+
+
+def per_position(name: str, count: int = 12) -> dict:
+    exercise = load_exercise(ROOT / FILES[name])
+    variant = exercise_variant(exercise)
+    times: dict[str, list[float]] = {"analyse": [], "plan_files": [], "key": []}
+    analyse(exercise, 0.0)  # warm the caches a sweep also keeps
+    for number in range(count):
+        angle = 7.0 + number * 360.0 / count
+        start = time.perf_counter()
+        analysis = analyse(exercise, angle)
+        middle = time.perf_counter()
+        plan_files(analysis.plans, forces=analysis.forces)
+        end = time.perf_counter()
+        build_key(replace(variant, exercise=analysis.exercise))
+        times["analyse"].append(middle - start)
+        times["plan_files"].append(end - middle)
+        times["key"].append(time.perf_counter() - end)
+    return {stage: 1000.0 * statistics.median(values) for stage, values in times.items()}
+
+
+def whole_page(name: str, step: float, folder: Path) -> dict:
+    exercise = load_exercise(ROOT / FILES[name])
+    start = time.perf_counter()
+    page = build_workbook(exercise, step)
+    seconds = time.perf_counter() - start
+    path = folder / f"{name}.html"
+    path.write_text(page, encoding="utf-8")
+    return {"frames": round(360 / step), "seconds": seconds,
+            "megabytes": len(page.encode("utf-8")) / 1e6, "path": str(path)}
+
+
+def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        return None
+    if chromium is None:
+        return None
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
+        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+        start = time.perf_counter()
+        page.goto(Path(path).as_uri())
+        page.wait_for_function("window.workbook && window.workbook.ready", timeout=120_000)
+        load = time.perf_counter() - start
+        angles = page.evaluate("workbook.data.angles")
+        chosen = angles[1:37]
+        for angle in chosen:
+            page.eval_on_selector("#angle", """(slider, angle) => {
+                slider.value = angle;
+                slider.dispatchEvent(new Event("input", {bubbles: true}));}""", angle)
+            page.wait_for_timeout(40)  # a hand on the slider: at most 25 moves a second
+        times = page.evaluate("workbook.switchTimes")[1:]
+        if screenshot is not None:
+            page.eval_on_selector("#angle", """slider => {
+                slider.value = 60; slider.dispatchEvent(new Event("input"));}""")
+            page.select_option("#step-plan", "velocity")
+            for _ in range(5):
+                page.click("#step-next")
+            page.set_viewport_size({"width": 1400, "height": 1200})
+            page.evaluate("window.scrollTo(0, 0)")
+            page.screenshot(path=str(screenshot), clip={"x": 0, "y": 0, "width": 1400,
+                                                        "height": 1200})
+        browser.close()
+    return {"switches": len(times), "median_ms": statistics.median(times),
+            "max_ms": max(times), "load_s": load}
+
+
+def run(*, quick: bool = False) -> dict:
+    step = 10.0 if quick else 1.0
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-workbook-"))
+    result: dict = {"step": step, "mechanisms": {}}
+    for name in FILES:
+        entry = {"per_position_ms": per_position(name, 4 if quick else 12)}
+        entry["page"] = whole_page(name, step, folder)
+        print(f"  {name}: {entry}")
+        result["mechanisms"][name] = entry
+    shot = None if quick else FIGURES / "workbook.png"
+    result["browser"] = {name: browser_switch(entry["page"]["path"],
+                                              shot if name == "compressor" else None)
+                         for name, entry in result["mechanisms"].items()}
+    return result
+
+
+def _mark(value: float, target: float | None) -> str:
+    if target is None:
+        return f"{value:.3g}"
+    return f"{value:.3g} ({'≤' if value <= target else '>'} {target:g})"
+
+
+def table(result: dict) -> str:
+    frames = round(360 / result["step"])
+    lines = ["| mechanism | analyse ms | plans + SVG ms | key ms | "
+             f"{frames} frames, s | page MB | frame switch ms (median / max) |",
+             "|---|---|---|---|---|---|---|"]
+    for name, entry in result["mechanisms"].items():
+        target = TARGETS_MS[name]
+        times, page = entry["per_position_ms"], entry["page"]
+        switch = result["browser"].get(name)
+        shown = ("browser absent" if switch is None else
+                 f"{_mark(switch['median_ms'], SWITCH_LIMIT_MS)} / {switch['max_ms']:.3g}")
+        page_target = target["page_s"] if frames == 360 else None
+        size_target = PAGE_LIMIT_MB if frames == 360 and name == "compressor" else None
+        lines.append(f"| {name} | {_mark(times['analyse'], target['analyse'])} | "
+                     f"{_mark(times['plan_files'], target['plan_files'])} | "
+                     f"{times['key']:.3g} | {_mark(page['seconds'], page_target)} | "
+                     f"{_mark(page['megabytes'], size_target)} | {shown} |")
+    return "\n".join(lines) + "\n"

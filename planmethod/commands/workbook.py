@@ -1,0 +1,232 @@
+"""``planmethod workbook FILE -o PAGE.html``: one offline HTML page for a full turn of the crank.
+
+Every frame (one crank angle every ``--step`` degrees) is solved here as ``planmethod solve
+--angle A`` solves it: its drawings are the ones ``solve --svg`` writes, its readings are the
+report's ``checks``, and its grading questions are those of the answer key ``planmethod
+grade`` builds at that angle. The page (:mod:`planmethod.render.workbook`) only shows them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import Any
+
+from ..errors import SpecError
+
+#: default crank-angle step of a workbook (deg)
+DEFAULT_STEP = 5.0
+
+#: the drawings a frame shows, in this order, by file name of ``plan_files``
+PANELS = ("position", "velocity", "acceleration", "lever")
+
+#: what a question of the key keeps in the page (its ``text`` is not shown)
+QUESTION_FIELDS = ("id", "value", "tolerance", "unit", "signed", "mistakes")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", help="exercise file (TOML)")
+    parser.add_argument("-o", "--output", required=True, metavar="PAGE.html",
+                        help="the HTML page to write")
+    parser.add_argument("--step", type=float, default=DEFAULT_STEP, metavar="DEG",
+                        help=f"crank-angle step in degrees (default {DEFAULT_STEP:g}; "
+                             "1 gives 360 frames)")
+    parser.add_argument("--jobs", type=int, metavar="N",
+                        help="worker processes (default: every core, at least 12 frames "
+                             "each)")
+
+
+def turn_angles(step: float, option: str = "--step") -> list[float]:
+    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart.
+
+    >>> turn_angles(90)
+    [0.0, 90.0, 180.0, 270.0]
+    >>> turn_angles(0)
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: option --step: must be a number of degrees in (0, 180], got 0
+    """
+    if not (isinstance(step, int | float) and math.isfinite(step) and 0 < step <= 180):
+        raise SpecError(f"must be a number of degrees in (0, 180], got {step:g}",
+                        key=f"option {option}")
+    count = math.ceil(360.0 / step - 1e-9)
+    return [round(float(number * step), 9) for number in range(count)]
+
+
+def exercise_variant(exercise):
+    """The variant whose key ``planmethod grade`` builds for this exercise file (the file's
+    own ``[grading]`` table), or a variant with default grading settings for an exercise
+    that has no file."""
+    from ..grading.templates import Variant, draw_variant, load_template
+
+    if exercise.source:
+        variant = draw_variant(load_template(exercise.source))
+        return replace(variant, exercise=exercise)
+    return Variant("1", 0, 0, {}, {}, exercise)
+
+
+def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
+    """One frame of the page as plain data (see :func:`planmethod.render.workbook.
+    workbook_html`)."""
+    from ..grading.keys import build_key
+
+    drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
+    readings = [[check.analytic, check.plan] for check in analysis.checks]
+    steps = {}
+    if analysis.plans is not None:
+        for name in ("velocity", "acceleration"):
+            plan = getattr(analysis.plans, name)
+            if plan is not None:
+                steps[name] = [[step.number, step.text, step.action,
+                                 [point for point in (step.start, step.end) if point]]
+                                for step in plan.steps]
+    key = build_key(replace(variant, exercise=analysis.exercise))
+    questions = [{field: question[field] for field in QUESTION_FIELDS}
+                 for question in key["questions"]]
+    return {"drawings": drawings, "readings": readings, "steps": steps,
+            "questions": questions, "tolerance_source": key["precision_mm"]}
+
+
+def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
+    """The frames of the given angles as plain data (:func:`frame_data`), each with its
+    check quantities (``quantities``) and balancing moment (``moment``, None without
+    forces) for the full-turn curves."""
+    import numpy as np
+
+    from ..render.figures import plan_files
+    from ..report import analyse
+
+    variant = exercise_variant(exercise)
+    out = []
+    for angle in angles:
+        analysis = analyse(exercise, angle)
+        files = plan_files(analysis.plans, forces=analysis.forces) if analysis.plans else {}
+        frame = frame_data(analysis, variant, files)
+        frame["quantities"] = [(check.quantity, check.unit) for check in analysis.checks]
+        frame["moment"] = (None if analysis.forces is None else
+                           float(np.ravel(analysis.forces.balancing_moment)[0]))
+        frame["precision_mm"] = analysis.exercise.plan.precision_mm
+        out.append(frame)
+    return out
+
+
+def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
+    exercise, angles = job
+    return solve_frames(exercise, angles)
+
+
+def default_jobs(frames: int) -> int:
+    """Worker processes for ``frames`` frames: every core, but at least 12 frames each.
+
+    >>> default_jobs(1)
+    1
+    """
+    import os
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else \
+        (os.cpu_count() or 1)
+    return max(1, min(cores, frames // 12))
+
+
+def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = None,
+                   progress: Callable[[int, int], None] | None = None) -> str:
+    """The workbook page of ``exercise`` (an :class:`~planmethod.model.Exercise`) as HTML.
+
+    The frames are solved in ``jobs`` worker processes (default :func:`default_jobs`; 1
+    solves them here).
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> page = build_workbook(load_exercise("exercises/compressor_slider_crank.toml"), 120)
+    >>> page.count('data-quantity="'), 'id="angle"' in page
+    (7, True)
+    """
+    from ..render.workbook import curve_chart, workbook_html
+    from ..vocabulary import quantity
+
+    angles = turn_angles(step)
+    jobs = default_jobs(len(angles)) if jobs is None else max(1, int(jobs))
+    frames: list[dict[str, Any]] = []
+    if jobs == 1:
+        for angle in angles:
+            frames += solve_frames(exercise, [angle])
+            if progress is not None:
+                progress(len(frames), len(angles))
+    else:
+        from concurrent.futures import ProcessPoolExecutor
+
+        size = math.ceil(len(angles) / (4 * jobs))
+        chunks = [(exercise, angles[start:start + size])
+                  for start in range(0, len(angles), size)]
+        with ProcessPoolExecutor(jobs) as pool:
+            for done in pool.map(_solve_chunk, chunks):
+                frames += done
+                if progress is not None:
+                    progress(len(frames), len(angles))
+    first = frames[0]
+    quantities = [{"name": name, "symbol": quantity(name).symbol,
+                   "subscript": quantity(name).subscript, "unit": unit}
+                  for name, unit in first["quantities"]]
+    panels = [name for name in PANELS if name in first["drawings"]]
+    panels += [name for name in first["drawings"] if name not in panels]
+    precision = first["precision_mm"]
+    notes = [f"{len(angles)} positions, every {step:g}°; drawings by planmethod, "
+             f"drafting precision {precision:g} mm" if precision else
+             f"{len(angles)} positions, every {step:g}°; drawings by planmethod, exact "
+             "construction",
+             f"practice mode grades as `planmethod grade` does: tolerances from a drafting "
+             f"precision of {first['tolerance_source']:g} mm (each tolerance is shown)"]
+    return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
+                         charts=[curve_chart(angles, curves, title=title, unit=unit)
+                                 for title, unit, curves in turn_charts(frames)],
+                         notes=notes)
+
+
+def turn_charts(frames: Sequence[dict[str, Any]]) -> list[tuple[str, str, dict]]:
+    """The full-turn curves: speeds, accelerations, angular velocities and accelerations of
+    the checks, and the balancing moment when forces are computed."""
+    from ..vocabulary import quantity
+
+    titles = {"v": "velocities", "a": "accelerations", "omega": "angular velocities",
+              "epsilon": "angular accelerations"}
+    charts: dict[str, tuple[str, str, dict]] = {}
+    for index, (name, unit) in enumerate(frames[0]["quantities"]):
+        kind = name.partition("_")[0]
+        if kind not in titles:
+            continue
+        curves = charts.setdefault(kind, (titles[kind], unit, {}))[2]
+        curves[quantity(name).text] = [frame["readings"][index][0] for frame in frames]
+    out = list(charts.values())
+    if frames[0]["moment"] is not None:
+        out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]}))
+    return out
+
+
+def run(args: argparse.Namespace) -> int:
+    import sys
+    from pathlib import Path
+
+    from ..io import write_text_atomic
+    from ..spec import load_exercise
+
+    if Path(args.output).suffix.lower() not in (".html", ".htm"):
+        raise SpecError(f"the page must be an .html file, got {args.output!r}",
+                        key="option -o")
+    turn_angles(args.step)
+    if args.jobs is not None and args.jobs < 1:
+        raise SpecError(f"must be a positive number of processes, got {args.jobs}",
+                        key="option --jobs")
+    exercise = load_exercise(args.file)
+
+    def progress(done: int, total: int) -> None:
+        if sys.stderr.isatty():
+            print(f"\rframe {done}/{total}", end="" if done < total else "\n",
+                  file=sys.stderr)
+
+    page = build_workbook(exercise, args.step, jobs=args.jobs, progress=progress)
+    write_text_atomic(args.output, page)
+    print(f"Wrote {args.output} ({len(page.encode('utf-8')) / 1e6:.2f} MB)")
+    return 0

@@ -1,0 +1,270 @@
+"use strict";
+(function () {
+  const wb = window.workbook = {ready: false, frame: -1, switchTimes: [], step: null};
+  const status = document.getElementById("status");
+  const slider = document.getElementById("angle");
+  // Python's format(value, ".{digits}g"), so that the page's feedback reads as the grader's
+  function fmt(value, digits) {
+    if (value === null || value === undefined) return "—";
+    if (value === 0) return "0";
+    if (!isFinite(value)) return String(value);
+    const [mantissa, power] = Number(value).toExponential(digits - 1).split("e");
+    const exponent = Number(power);
+    const trim = text => text.indexOf(".") < 0 ? text : text.replace(/\.?0+$/, "");
+    if (exponent < -4 || exponent >= digits) {
+      const sign = exponent < 0 ? "-" : "+";
+      const size = String(Math.abs(exponent)).padStart(2, "0");
+      return trim(mantissa) + "e" + sign + size;
+    }
+    return trim(Number(value).toFixed(Math.max(0, digits - 1 - exponent)));
+  }
+  function numberText(value) { return fmt(value, 6); }
+  function parseAnswer(raw) {
+    const text = String(raw).trim();
+    if (!text) return null;
+    let cleaned = text.replace(/\u2212/g, "-").replace(/ /g, "");
+    if ((cleaned.match(/,/g) || []).length === 1 && cleaned.indexOf(".") < 0)
+      cleaned = cleaned.replace(",", ".");
+    if (!/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(cleaned)) return text.slice(0, 40);
+    const value = Number(cleaned);
+    return isFinite(value) ? value : text.slice(0, 40);
+  }
+  function off(answer, right) {
+    if (right === 0) return fmt(Math.abs(answer - right), 3) + " off";
+    const ratio = answer / right;
+    if (ratio >= 10 || (ratio > 0 && ratio <= 0.1)) return fmt(ratio, 4) + " times the right value";
+    const relative = ratio - 1;
+    const magnitude = right < 0 && ratio > 0 ? " in magnitude" : "";
+    return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
+  }
+  // the rules of planmethod.grading.answers.grade_question, on the precomputed key
+  function grade(q, raw) {
+    const unit = q.unit || "";
+    const right = (numberText(q.value) + " " + unit + " ± " + fmt(q.tolerance, 3)).replace("  ", " ");
+    const answer = parseAnswer(raw);
+    const result = {id: q.id, correct: false, mistake: null, answer: null};
+    if (answer === null) { result.feedback = q.id + ": no answer (right: " + right + ")"; return result; }
+    if (typeof answer === "string") {
+      result.feedback = q.id + ": '" + answer + "' is not a number (right: " + right + ")"; return result;
+    }
+    result.answer = answer;
+    const shown = (q.id + " = " + numberText(answer) + " " + unit).trimEnd();
+    if (Math.abs(answer - q.value) <= q.tolerance) {
+      result.correct = true;
+      result.feedback = shown + ": correct (exact " + numberText(q.value) + ", tolerance ± " + fmt(q.tolerance, 3) + ")";
+      return result;
+    }
+    for (const m of q.mistakes || []) {
+      if (Math.abs(answer - m.value) <= m.tolerance) {
+        result.mistake = m.kind;
+        const how = m.kind === "sense" ? "" : ", " + off(answer, q.value);
+        result.feedback = shown + ": wrong" + how + " — it looks as if " + m.feedback +
+          " (that gives " + numberText(m.value) + "; right: " + right + ")";
+        return result;
+      }
+    }
+    if (q.signed) {
+      for (const m of q.mistakes || []) {
+        if (m.kind !== "sense" && Math.abs(-answer - m.value) <= m.tolerance) {
+          result.mistake = m.kind + "+sense";
+          result.feedback = shown + ": wrong — it looks as if " + m.feedback + ", and the sense is reversed (right: " + right + ")";
+          return result;
+        }
+      }
+    }
+    if (q.signed && q.value !== 0 && answer !== 0 && (answer > 0) !== (q.value > 0)) {
+      result.feedback = shown + ": wrong — the sense is reversed (the right answer is " +
+        (q.value > 0 ? "counter-clockwise" : "clockwise") + ", " + right + ") and the magnitude " +
+        numberText(Math.abs(answer)) + " is " + off(Math.abs(answer), Math.abs(q.value));
+    } else {
+      const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
+      result.feedback = (shown + ": wrong — " + off(answer, q.value) + " (off by " +
+        numberText(Math.abs(answer - q.value)) + " " + unit + "; right: " + right + tol + ")").replace("  ", " ");
+    }
+    return result;
+  }
+  wb.grade = grade;
+
+  async function load() {
+    const raw = document.getElementById("workbook-data").textContent.trim();
+    const bytes = Uint8Array.from(atob(raw), c => c.charCodeAt(0));
+    const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
+    return JSON.parse(await new Response(stream).text());
+  }
+
+  load().then(data => {
+    wb.data = data;
+    const panels = data.panels.map(name => document.getElementById("panel-" + name));
+    const cells = Array.from(document.querySelectorAll("#readings tbody td.reading"));
+    const planCells = Array.from(document.querySelectorAll("#readings tbody td.plan-reading"));
+    const tolerances = Array.from(document.querySelectorAll("#readings tbody td.tolerance"));
+    const verdicts = Array.from(document.querySelectorAll("#readings tbody td.verdict"));
+    const answers = Array.from(document.querySelectorAll("#readings tbody input.answer"));
+    const cursors = Array.from(document.querySelectorAll("#charts .chart")).map(
+      chart => chart.querySelector("line.cursor"));
+    const cache = new Map();
+    const a0 = data.angles[0], a1 = data.angles[data.angles.length - 1];
+    const stepOf = angle => data.angles.length < 2 ? 0 :
+      Math.round((angle - a0) / (data.angles[1] - a0));
+
+    function svgOf(frame, p) {
+      const key = frame + ":" + p;
+      let text = cache.get(key);
+      if (text === undefined) {
+        text = data.frames[frame].drawings[p].map(k => data.strings[k]).join("\n");
+        cache.set(key, text);
+      }
+      return text;
+    }
+    // each frame's drawings are parsed once and kept: a later visit only swaps nodes
+    const parsed = new Map();
+    function nodesOf(frame) {
+      let nodes = parsed.get(frame);
+      if (nodes === undefined) {
+        nodes = panels.map((_, p) => {
+          const template = document.createElement("template");
+          template.innerHTML = svgOf(frame, p);
+          return template.content.firstElementChild;
+        });
+        parsed.set(frame, nodes);
+      }
+      return nodes;
+    }
+    const later = window.requestIdleCallback || (callback => setTimeout(callback, 0));
+    function prepareNeighbours(frame) {
+      later(() => {
+        const count = data.frames.length;
+        nodesOf((frame + 1) % count);
+        nodesOf((frame - 1 + count) % count);
+      });
+    }
+    function questionOf(frame, name) {
+      return (data.frames[frame].questions || []).find(q => q.id === name);
+    }
+    function show(frame) {
+      const t0 = performance.now();
+      frame = Math.max(0, Math.min(data.frames.length - 1, frame));
+      const f = data.frames[frame];
+      const nodes = nodesOf(frame);
+      panels.forEach((element, p) => {
+        const node = nodes[p];
+        if (node) {
+          node.querySelectorAll(".step-hidden, .step-current").forEach(n => {
+            n.classList.remove("step-hidden", "step-current");
+          });
+          element.replaceChildren(node);
+        } else {
+          element.replaceChildren();
+        }
+      });
+      data.quantities.forEach((q, i) => {
+        const [exact, plan] = f.readings[i];
+        cells[i].dataset.value = exact === null ? "" : String(exact);
+        cells[i].textContent = fmt(exact, 4);
+        planCells[i].textContent = fmt(plan, 4);
+        const question = questionOf(frame, q.name);
+        tolerances[i].textContent = question ? "± " + fmt(question.tolerance, 3) + " " + question.unit : "—";
+        verdicts[i].textContent = "";
+        verdicts[i].className = "verdict";
+      });
+      const angle = data.angles[frame];
+      cursors.forEach((cursor, c) => {
+        if (!cursor) return;
+        const [x0, x1] = data.charts[c];
+        const x = a1 === a0 ? x0 : x0 + (angle - a0) / (a1 - a0) * (x1 - x0);
+        cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
+      });
+      document.getElementById("angle-value").textContent = angle + "°";
+      wb.frame = frame;
+      wb.step = null;
+      document.getElementById("step-text").textContent = "";
+      document.getElementById("step-number").textContent = "";
+      void document.body.offsetHeight;  // lay the page out: part of the switch
+      const spent = performance.now() - t0;
+      wb.switchTimes.push(spent);
+      document.getElementById("switch-time").textContent = spent.toFixed(1) + " ms";
+      prepareNeighbours(frame);
+    }
+    wb.show = show;
+    wb.showAngle = angle => { slider.value = angle; show(stepOf(Number(angle))); };
+    slider.addEventListener("input", () => show(stepOf(Number(slider.value))));
+
+    let timer = null;
+    const play = document.getElementById("play");
+    play.addEventListener("click", () => {
+      if (timer) { clearInterval(timer); timer = null; play.textContent = "play"; return; }
+      play.textContent = "pause";
+      timer = setInterval(() => {
+        const next = (wb.frame + 1) % data.frames.length;
+        slider.value = data.angles[next];
+        show(next);
+      }, 60);
+    });
+
+    // construction playback: the steps of one plan, one at a time
+    function playStep(number) {
+      const plan = document.getElementById("step-plan").value;
+      const steps = data.frames[wb.frame].steps[plan] || [];
+      const element = panels[data.panels.indexOf(plan)];
+      if (!element || !steps.length) {
+        document.getElementById("step-text").textContent = "no " + plan + " plan at this angle";
+        return;
+      }
+      number = Math.max(0, Math.min(steps.length - 1, number));
+      wb.step = number;
+      const current = steps[number][0];
+      element.querySelectorAll("[data-step]").forEach(node => {
+        const n = Number(node.dataset.step);
+        node.classList.toggle("step-hidden", n > current);
+        node.classList.toggle("step-current", n === current);
+      });
+      // a label shows once a step has named one of its points
+      const named = new Set();
+      steps.slice(0, number + 1).forEach(step => (step[3] || []).forEach(p => named.add(p)));
+      element.querySelectorAll("text.label[data-points]").forEach(label => {
+        const points = label.dataset.points.split(" ");
+        label.classList.toggle("step-hidden", !points.some(p => named.has(p)));
+      });
+      document.getElementById("step-number").textContent =
+        "step " + (number + 1) + " of " + steps.length;
+      document.getElementById("step-text").textContent = data.strings[steps[number][1]];
+    }
+    wb.playStep = playStep;
+    document.getElementById("step-first").addEventListener("click", () => playStep(0));
+    document.getElementById("step-prev").addEventListener("click",
+      () => playStep(wb.step === null ? 0 : wb.step - 1));
+    document.getElementById("step-next").addEventListener("click",
+      () => playStep(wb.step === null ? 0 : wb.step + 1));
+    document.getElementById("step-all").addEventListener("click", () => show(wb.frame));
+    document.getElementById("step-plan").addEventListener("change", () => show(wb.frame));
+
+    // practice mode: readings hidden, answers graded against the key of this angle
+    document.getElementById("practice").addEventListener("change", event => {
+      document.body.classList.toggle("practising", event.target.checked);
+    });
+    function check() {
+      const results = {};
+      answers.forEach((input, i) => {
+        const name = input.dataset.answer;
+        const question = questionOf(wb.frame, name);
+        if (!question) { verdicts[i].textContent = "not graded at this angle"; return; }
+        const result = grade(question, input.value);
+        results[name] = result;
+        verdicts[i].textContent = result.feedback;
+        verdicts[i].className = "verdict " + (result.correct ? "correct" : "wrong");
+        verdicts[i].dataset.correct = String(result.correct);
+      });
+      wb.results = results;
+      return results;
+    }
+    wb.check = check;
+    document.getElementById("check").addEventListener("click", check);
+
+    show(0);
+    status.textContent = "";
+    wb.ready = true;
+  }).catch(error => {
+    status.textContent = "this page needs a browser with DecompressionStream: " + error;
+    console.error(error);
+  });
+})();

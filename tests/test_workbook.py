@@ -1,0 +1,166 @@
+"""The workbook page and the animations, without a browser: what the page holds (the same
+readings, steps and keys as `solve` and `grade`), that it names no address, and the error paths
+(one line, exit 2, nothing written). The page in a real browser: tests/test_browser.py."""
+
+from __future__ import annotations
+
+import base64
+import gzip
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from planmethod.cli import main
+from planmethod.report import analyse, report_dict
+from planmethod.spec import load_exercise
+
+ROOT = Path(__file__).resolve().parent.parent
+COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
+CONVEYOR = ROOT / "exercises" / "conveyor_sixbar.toml"
+
+
+def run(capsys, *argv):
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def page_data(text: str) -> dict:
+    packed = re.search(r'<script type="application/octet-stream" id="workbook-data">'
+                       r'([^<]*)</script>', text).group(1)
+    return json.loads(gzip.decompress(base64.b64decode(packed)))
+
+
+@pytest.fixture(scope="module")
+def compressor_page(tmp_path_factory):
+    path = tmp_path_factory.mktemp("workbook") / "compressor.html"
+    assert main(["workbook", str(COMPRESSOR), "-o", str(path), "--step", "15"]) == 0
+    return path.read_text(encoding="utf-8")
+
+
+def test_page_names_no_address_and_has_the_controls(compressor_page):
+    data = page_data(compressor_page)
+    everything = compressor_page + json.dumps(data, ensure_ascii=False)
+    assert not re.search(r"https?:|//www\.|\bsrc=|@import|url\(", everything)
+    assert '<input type="range" id="angle" min="0" max="345" step="15"' in compressor_page
+    assert data["angles"] == [15.0 * k for k in range(24)]
+    assert data["panels"][:3] == ["position", "velocity", "acceleration"]
+
+
+def test_frames_hold_the_reports_checks_and_the_keys(compressor_page):
+    data = page_data(compressor_page)
+    exercise = load_exercise(COMPRESSOR)
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.templates import draw_variant, load_template
+
+    names = [q["name"] for q in data["quantities"]]
+    for number in (0, 5, 7):
+        angle = data["angles"][number]
+        report = report_dict(analyse(exercise, angle))
+        assert names == [check["quantity"] for check in report["checks"]]
+        readings = data["frames"][number]["readings"]
+        for check, (exact, plan) in zip(report["checks"], readings, strict=True):
+            assert exact == check["analytic"] and plan == check["plan"]
+        steps = data["frames"][number]["steps"]["velocity"]
+        assert [data["strings"][text] for _, text, *_ in steps] == [
+            step["text"] for step in report["plans"]["velocity"]["steps"]]
+    # at the file's own angle the page's key is `planmethod grade`'s key
+    key = build_key(draw_variant(load_template(COMPRESSOR)))
+    frame = data["frames"][data["angles"].index(exercise.mechanism.drive.angle)]
+    for mine, theirs in zip(frame["questions"], key["questions"], strict=True):
+        assert mine["id"] == theirs["id"]
+        assert mine["value"] == theirs["value"] and mine["tolerance"] == theirs["tolerance"]
+        assert mine["mistakes"] == theirs["mistakes"]
+
+
+def test_drawings_are_the_ones_solve_writes(compressor_page):
+    from planmethod.render.figures import plan_files
+    from planmethod.render.workbook import inline_svg
+
+    data = page_data(compressor_page)
+    analysis = analyse(load_exercise(COMPRESSOR), data["angles"][3])
+    files = plan_files(analysis.plans)
+    for panel, lines in zip(data["panels"], data["frames"][3]["drawings"], strict=True):
+        assert "\n".join(data["strings"][k] for k in lines) == inline_svg(files[panel + ".svg"])
+
+
+def test_identical_svg_lines_are_stored_once(compressor_page):
+    data = page_data(compressor_page)
+    used = [k for frame in data["frames"] for lines in frame["drawings"] for k in lines]
+    assert len(data["strings"]) == len(set(data["strings"]))
+    assert len(set(used)) < 0.7 * len(used)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--step", "0"], "option --step"),
+    (["--step", "nan"], "option --step"),
+    (["--step", "400"], "option --step"),
+])
+def test_workbook_bad_step_exits_2_and_writes_nothing(capsys, tmp_path, argv, words):
+    out_path = tmp_path / "page.html"
+    code, _, err = run(capsys, "workbook", COMPRESSOR, "-o", out_path, *argv)
+    assert code == 2 and words in err and len(err.strip().splitlines()) == 1
+    assert "Traceback" not in err and not out_path.exists()
+
+
+def test_workbook_wants_an_html_file(capsys, tmp_path):
+    code, _, err = run(capsys, "workbook", COMPRESSOR, "-o", tmp_path / "page.pdf")
+    assert code == 2 and "option -o" in err and not (tmp_path / "page.pdf").exists()
+
+
+def test_animate_unknown_suffix_exits_2_before_any_work(capsys, tmp_path):
+    code, _, err = run(capsys, "animate", tmp_path / "missing.toml", "-o", tmp_path / "a.avi")
+    assert code == 2 and ".svg, .gif or .mp4" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "a.avi").exists()
+
+
+def test_animate_mp4_without_ffmpeg_exits_2(capsys, tmp_path, monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path))  # no ffmpeg here
+    code, _, err = run(capsys, "animate", COMPRESSOR, "-o", tmp_path / "a.mp4")
+    assert code == 2 and "ffmpeg" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "a.mp4").exists()
+
+
+def test_animated_svg_shows_each_frame_once_per_turn(capsys, tmp_path):
+    path = tmp_path / "turn.svg"
+    code, _, err = run(capsys, "animate", COMPRESSOR, "-o", path, "--step", "45",
+                       "--seconds", "4")
+    assert code == 0 and not err
+    text = path.read_text(encoding="utf-8")
+    delays = [float(d) for d in re.findall(r'class="frame" style="animation-delay:([0-9.]+)s"',
+                                           text)]
+    assert delays == pytest.approx([0.5 * k for k in range(8)])
+    assert "animation:planmethod-turn 4s step-end infinite" in text
+    assert text.count("φ₁ = 135°") == 1
+
+
+def test_animated_gif_has_one_frame_per_angle(capsys, tmp_path):
+    from PIL import Image
+
+    path = tmp_path / "turn.gif"
+    code, _, _ = run(capsys, "animate", COMPRESSOR, "-o", path, "--step", "60")
+    assert code == 0
+    with Image.open(path) as image:
+        assert image.n_frames == 6 and image.info["loop"] == 0
+
+
+def test_notebook_shows_an_exercise_as_its_workbook():
+    from planmethod.notebook import register
+
+    class Formatter:
+        def __init__(self):
+            self.types = {}
+
+        def for_type_by_name(self, module, name, function):
+            self.types[module, name] = function
+
+    from types import SimpleNamespace
+
+    formatters = {"image/svg+xml": Formatter(), "text/html": Formatter()}
+    register(SimpleNamespace(display_formatter=SimpleNamespace(formatters=formatters)))
+    shown = formatters["text/html"].types[
+        "planmethod.model", "Exercise"]
+    html = shown(load_exercise(COMPRESSOR))
+    assert html.startswith("<iframe") and "srcdoc=" in html and "id=&quot;angle&quot;" in html
