@@ -62,6 +62,8 @@ EXERCISE_COMMANDS = {
     "study": lambda f, out: ["study", f, "--step", "30"],
     "variants": lambda f, out: ["variants", f, "--out", str(out / "run"), "--no-sheets"],
     "grade": lambda f, out: ["grade", f, str(out / "answers.csv")],
+    "workbook": lambda f, out: ["workbook", f, "-o", str(out / "page.html"), "--step", "90"],
+    "animate": lambda f, out: ["animate", f, "-o", str(out / "turn.svg"), "--step", "90"],
 }
 
 
@@ -159,6 +161,13 @@ OPTION_CASES = {
     "check missing table": ["check", str(ROOT / "exercises" / "conveyor_sixbar.toml"),
                             "{out}/none.csv"],
     "unknown command": ["draw", GOOD],
+    "workbook --step 1e-9": ["workbook", GOOD, "-o", "{out}/w.html", "--step", "1e-9"],
+    "workbook --step 0": ["workbook", GOOD, "-o", "{out}/w.html", "--step", "0"],
+    "workbook -o .txt": ["workbook", GOOD, "-o", "{out}/w.txt"],
+    "workbook into /proc": ["workbook", GOOD, "-o", "/proc/w.html", "--step", "90"],
+    "animate --step 1e-9": ["animate", GOOD, "-o", "{out}/a.svg", "--step", "1e-9"],
+    "animate -o .txt": ["animate", GOOD, "-o", "{out}/a.txt"],
+    "animate into /proc": ["animate", GOOD, "-o", "/proc/a.svg", "--step", "90"],
 }
 
 

@@ -16,6 +16,9 @@ from typing import Any
 
 from ..errors import SpecError
 
+#: the finest crank-angle step of a workbook or an animation (deg): 3,600 frames
+MIN_STEP_DEG = 0.1
+
 #: default crank-angle step of a workbook (deg)
 DEFAULT_STEP = 5.0
 
@@ -46,10 +49,12 @@ def turn_angles(step: float, option: str = "--step") -> list[float]:
     >>> turn_angles(0)
     Traceback (most recent call last):
     ...
-    planmethod.errors.SpecError: option --step: must be a number of degrees in (0, 180], got 0
+    planmethod.errors.SpecError: option --step: must be a number of degrees in [0.1, 180] ...
     """
-    if not (isinstance(step, int | float) and math.isfinite(step) and 0 < step <= 180):
-        raise SpecError(f"must be a number of degrees in (0, 180], got {step:g}",
+    if not (isinstance(step, int | float) and math.isfinite(step)
+            and MIN_STEP_DEG <= step <= 180):
+        raise SpecError(f"must be a number of degrees in [{MIN_STEP_DEG:g}, 180] (at most "
+                        f"{round(360 / MIN_STEP_DEG)} frames), got {step:g}",
                         key=f"option {option}")
     count = math.ceil(360.0 / step - 1e-9)
     return [round(float(number * step), 9) for number in range(count)]
