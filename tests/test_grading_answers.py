@@ -233,3 +233,37 @@ def test_ambiguous_answer_files_are_refused(tmp_path, text, fragment):
     with pytest.raises(SpecError) as caught:
         read_answers(path)
     assert fragment in str(caught.value) and str(path) in str(caught.value)
+
+
+def test_the_class_report_counts_right_answers_and_named_mistakes(tmp_path, capsys):
+    """grade --report: per question the share right and the share each mistake explains, as
+    CSV and a chart (the numbers are the ones put in)."""
+    import csv as csv_module
+
+    from planmethod.cli import main
+
+    template = load_template("exercises/templates/slider_crank.toml")
+    keys = [build_key(draw_variant(template, seed=2, student=f"s{i}")) for i in range(10)]
+    (tmp_path / "keys.json").write_text(json.dumps(bundle(keys, template="t", seed=2)))
+    first = keys[0]["questions"][0]
+    mistake = first["mistakes"][0]
+    answers = {}
+    for index, key in enumerate(keys):
+        row = {q["id"]: q["value"] for q in key["questions"]}
+        question = key["questions"][0]
+        if index < 4:      # four students make the first mistake on the first question
+            kind = next(m for m in question["mistakes"] if m["kind"] == mistake["kind"])
+            row[question["id"]] = kind["value"]
+        elif index < 6:    # two are wrong in no recognisable way
+            row[question["id"]] = 1.37 * question["value"]
+        answers[key["student"]] = row
+    (tmp_path / "answers.json").write_text(json.dumps(answers))
+    assert main(["grade", str(tmp_path / "keys.json"), str(tmp_path / "answers.json"),
+                 "--report", str(tmp_path / "report"), "--quiet"]) == 0
+    rows = list(csv_module.DictReader((tmp_path / "report" / "questions.csv").open()))
+    top = rows[0]
+    assert top["question"] == first["id"] and top["students"] == "10"
+    assert float(top["correct"]) == 0.4 and float(top["unexplained"]) == 0.2
+    assert top["top_mistake"] == mistake["kind"] and float(top["top_mistake_share"]) == 0.4
+    assert all(float(row["correct"]) == 1.0 for row in rows[1:])
+    assert (tmp_path / "report" / "class_report.png").stat().st_size > 5000

@@ -29,6 +29,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "hints (the mistake and which way the answer is off, never the "
                              "right value) or score (points only); default: full on the "
                              "screen and in --json, hints in --gradescope (the student sees it)")
+    parser.add_argument("--report", metavar="DIR",
+                        help="write the class report into DIR: questions.csv (mean score, "
+                             "share right, most common mistake per question), mistakes.csv "
+                             "and class_report.png (which step the class gets wrong)")
     parser.add_argument("--quiet", action="store_true", help="print the totals only")
 
 
@@ -105,6 +109,31 @@ def run(args: argparse.Namespace) -> int:
                                                 ensure_ascii=False, indent=1, allow_nan=False))
     if args.csv:
         write_text_atomic(args.csv, gradebook_csv(results))
+    if args.report:
+        import textwrap
+        from pathlib import Path
+
+        from ..grading.report import class_statistics, mistakes_csv, questions_csv
+        from ..render.plots import save_class_report_plot
+        from ..vocabulary import link_numbers, symbol
+
+        rows = class_statistics(results)
+        if not rows:
+            raise SpecError("--report needs graded answers (give ANSWERS)")
+        folder = Path(args.report)
+        first = next(iter(keys.values()))
+        exercise = first.get("exercise") or {}
+        numbers = link_numbers(list(exercise.get("links") or ()),
+                               str((exercise.get("drive") or {}).get("link", "")))
+        symbols = {row["question"]: symbol(row["question"], numbers) for row in rows}
+        words = {mistake["kind"]: textwrap.shorten(mistake["feedback"], 48, placeholder="…")
+                 for key in keys.values() for question in key.get("questions", ())
+                 for mistake in question.get("mistakes", ())}
+        write_text_atomic(folder / "questions.csv", questions_csv(rows))
+        write_text_atomic(folder / "mistakes.csv", mistakes_csv(rows))
+        save_class_report_plot(rows, folder / "class_report.png",
+                               title=str(first.get("title", "")), symbols=symbols,
+                               mistakes=words)
     if args.gradescope:
         if len(results) > 1:
             raise SpecError(f"--gradescope writes one student's results; the answers hold "

@@ -49,8 +49,8 @@ import numpy as np
 from ..errors import PlanmethodError
 from ..io import atomic_path
 
-__all__ = ["FORMATS", "panels", "plot_format", "save_force_plot", "save_study_plot",
-           "save_sweep_plot"]
+__all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_force_plot",
+           "save_study_plot", "save_sweep_plot"]
 
 #: file formats by suffix
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
@@ -315,4 +315,47 @@ def save_study_plot(study: Any, path: str | Path) -> None:
         figure.suptitle(f"{study.title}\nlargest reactions over a turn against each "
                         f"parameter, the others at the base case: {study.base_text()}",
                         fontsize=10)
+        _save(figure, path, form)
+
+
+def save_class_report_plot(rows: list[Mapping[str, Any]], path: str | Path, *,
+                           title: str, symbols: Mapping[str, str] | None = None,
+                           mistakes: Mapping[str, str] | None = None) -> None:
+    """The class report as a bar chart: per question, the share of the class right, each
+    named mistake and the unexplained wrong answers, stacked to 100 %. ``symbols`` prints the
+    questions as the course writes them (ω₃), ``mistakes`` names each mistake in words.
+
+    Raises
+    ------
+    PlanmethodError
+        If the suffix is not png, svg or pdf, or the file cannot be written.
+    """
+    path = Path(path)
+    form = plot_format(path)
+    questions = [row["question"] for row in rows]
+    names = sorted({name for row in rows for name in row["mistakes"]})
+    with _style_context(_STYLE):
+        figure = _new_figure(figsize=(11.0, 4.8), dpi=130, layout="constrained")
+        axis = figure.subplots()
+        positions = np.arange(len(questions))
+        bottom = np.zeros(len(questions))
+        series = [("right", [row["correct"] for row in rows], "#1b8a3a")]
+        series += [((mistakes or {}).get(name, name.replace("_", " ")),
+                    [row["mistakes"].get(name, 0.0) for row in rows], None) for name in names]
+        series.append(("wrong, no mistake named", [row["unexplained"] for row in rows],
+                       "#b0b0b0"))
+        for label, shares, colour in series:
+            values = 100.0 * np.asarray(shares, dtype=float)
+            if not values.any():
+                continue           # the legend lists only what is drawn
+            axis.bar(positions, values, bottom=bottom, label=label, color=colour,
+                     edgecolor="white", linewidth=0.6)
+            bottom += values
+        axis.set_axisbelow(True)
+        axis.set_xticks(positions, [(symbols or {}).get(q, q) for q in questions])
+        axis.set_ylabel("share of the class, %")
+        axis.set_ylim(0, 100)
+        axis.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+        axis.set_title(f"{title} — answers by question: right, and which mistake",
+                       fontsize=10.5, loc="left")
         _save(figure, path, form)
