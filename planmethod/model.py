@@ -331,3 +331,9 @@ class Exercise:
     plan: PlanSettings
     ask: Ask
     source: str | None = None
+    #: values a book or paper prints for this exercise (quantity → value, SI), and where
+    published: Mapping[str, float] = field(default_factory=dict)
+    published_source: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "published", _frozen_mapping(self.published))

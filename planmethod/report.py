@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from . import vocabulary
+from .errors import PlanmethodError
 from .kinematics import Motion, solve
 from .kinematics.solve import FLAG_ERROR
 from .model import FRAME, Exercise
@@ -280,10 +281,47 @@ def report_dict(analysis: Analysis) -> dict:
             plans["acceleration"] = analysis.plans.acceleration.as_dict()
         report["plans"] = plans
     report["checks"] = [check.as_dict() for check in analysis.checks]
+    if analysis.exercise.published:
+        report["published"] = {"source": analysis.exercise.published_source,
+                               "values": published_comparison(analysis)}
     report["flags"] = list(analysis.flags)
     if analysis.forces is not None:
         report["forces"] = analysis.forces.as_dict()
     return report
+
+
+#: a published value further than this from the exact one (relative) is flagged as a slip
+SLIP_RELATIVE = 0.05
+
+
+def published_comparison(analysis: Analysis) -> list[dict]:
+    """The book's printed values against the exact ones: ``quantity``, ``published``,
+    ``exact``, ``difference_percent`` (of the magnitudes, since books print magnitudes and
+    state the sense in words) and ``likely_slip`` (more than 5 % off: beyond any drawing
+    error at a course's scales).
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> path = "exercises/compressor_slider_crank.toml"
+    >>> rows = published_comparison(analyse(load_exercise(path)))
+    >>> [(r["quantity"], round(r["difference_percent"], 1), r["likely_slip"]) for r in rows][:2]
+    [('v_B', 0.0, False), ('v_C', -24.1, True)]
+    """
+    rows = []
+    for name, printed in analysis.exercise.published.items():
+        try:
+            exact = exact_value(analysis.motion, name)
+        except (KeyError, ValueError, PlanmethodError):
+            exact = None
+        difference = None
+        if exact is not None and exact != 0:
+            difference = (abs(printed) - abs(exact)) / abs(exact)
+        rows.append({"quantity": name, "published": float(printed), "exact": exact,
+                     "difference_percent": None if difference is None else 100 * difference,
+                     "likely_slip": bool(difference is not None
+                                         and abs(difference) > SLIP_RELATIVE)})
+    return rows
 
 
 def link_of(motion: Motion, point: str) -> str:

@@ -55,6 +55,7 @@ from .model import (
     Revolute,
     Slide,
 )
+from .vocabulary import quantity
 
 __all__ = ["POINT_NAME", "exercise_from_dict", "load_exercise", "parse_exercise", "parse_toml",
            "read_text"]
@@ -64,7 +65,7 @@ LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 TOP_LEVEL_KEYS = (
     "title", "description", "drive", "links", "slide", "sketch", "plan", "ask",
-    "mass", "gravity", "load", "friction", "grading",
+    "mass", "gravity", "load", "friction", "grading", "published",
 )
 PLAN_KEYS = (
     "crank_mm", "velocity_mm", "acceleration_mm", "mu_l", "mu_v", "mu_a", "force_mm", "mu_f",
@@ -283,7 +284,27 @@ class _Reader:
         )
         plan = self.plan(data, mechanism)
         ask = self.ask(data, mechanism)
-        return Exercise(mechanism=mechanism, plan=plan, ask=ask, source=self.file)
+        published, published_source = self.published(data)
+        return Exercise(mechanism=mechanism, plan=plan, ask=ask, source=self.file,
+                        published=published, published_source=published_source)
+
+    def published(self, data: Mapping[str, Any]) -> tuple[dict[str, float], str | None]:
+        """``[published]``: the values a book prints (``v_C = 4.0``, SI units), with an
+        optional ``source = "…"`` naming the book."""
+        table = self.table(data.get("published", {}), "published")
+        values: dict[str, float] = {}
+        source = None
+        for name, value in table.items():
+            if name == "source":
+                source = self.string(value, "published.source")
+                continue
+            try:
+                quantity(name)
+            except KeyError:
+                raise self.error(f"published.{name}", "is not a quantity (v_C, a_C, omega_BC, "
+                                                      "epsilon_BC, rho_D, …)") from None
+            values[name] = self.number(value, f"published.{name}")
+        return values, source
 
     def links(self, data: Mapping[str, Any]) -> dict[str, Link]:
         if "links" not in data:

@@ -86,3 +86,21 @@ def test_the_reference_vector_follows_from_a_rounded_scale(capsys):
     exact = solve(exercise.mechanism, exercise.mechanism.drive.angle)
     assert plans.readings["v_C"] == pytest.approx(float(math.hypot(*exact.velocity("C"))),
                                                   rel=1e-12)
+
+
+def test_published_values_are_compared_and_checked(capsys):
+    """[published]: the book's values in the JSON report beside the exact ones, differences
+    over 5 % flagged; a key that names no quantity is an error naming it."""
+    assert main(["solve", str(ROOT / "exercises" / "compressor_slider_crank.toml"),
+                 "--json"]) == 0
+    published = json.loads(capsys.readouterr().out)["published"]
+    assert "Abduvaliev" in published["source"]
+    rows = {row["quantity"]: row for row in published["values"]}
+    assert rows["v_B"]["likely_slip"] is False and rows["v_B"]["difference_percent"] == 0.0
+    assert rows["a_C"]["published"] == 356.0 and rows["a_C"]["likely_slip"] is True
+    assert rows["a_C"]["difference_percent"] == pytest.approx(
+        100 * (356.0 - rows["a_C"]["exact"]) / rows["a_C"]["exact"])
+    data = tomllib.loads((ROOT / "exercises" / "compressor_slider_crank.toml").read_text())
+    data["published"] = {"speed_C": 4.0}
+    with pytest.raises(Exception, match=r"published\.speed_C: is not a quantity"):
+        exercise_from_dict(data)

@@ -53,6 +53,19 @@ def text_report(analysis) -> str:
         lines.append(f"  {check.quantity:<{width}} {_format(check.plan):>12}  "
                      f"{_format(check.analytic):>12}  {_format(check.abs_error, 3):>10}   "
                      f"{rel:>10}  {check.unit}")
+    if exercise.published:
+        from ..report import published_comparison
+
+        source = exercise.published_source or "the book"
+        lines += ["", f"Published values ({source}) against the exact ones (magnitudes)",
+                  f"  {'quantity':<22}{'published':>12}{'exact':>14}{'difference':>12}"]
+        for row in published_comparison(analysis):
+            exact = "—" if row["exact"] is None else f"{row['exact']:.6g}"
+            off = ("—" if row["difference_percent"] is None
+                   else f"{row['difference_percent']:+.1f} %")
+            slip = "   likely a slip (> 5 %)" if row["likely_slip"] else ""
+            lines.append(f"  {row['quantity']:<22}{row['published']:>12.6g}{exact:>14}"
+                         f"{off:>12}{slip}")
     if analysis.flags:
         lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.flags]
     if analysis.forces is not None:
