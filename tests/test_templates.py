@@ -18,7 +18,7 @@ from planmethod.grading.templates import (
     parse_template,
     to_toml,
 )
-from planmethod.spec import exercise_from_dict
+from planmethod.spec import exercise_from_dict, load_exercise
 
 SLIDER = "exercises/templates/slider_crank.toml"
 FOUR_BAR = "exercises/templates/four_bar.toml"
@@ -221,3 +221,30 @@ def test_task_sheets_write_quantities_as_the_course_does():
     assert rows["ω₃"].split()[1] == "rad/s" and rows["ω₃"].endswith("[omega_BC]")
     assert rows["ε₄"].split()[1] == "rad/s²" and rows["a_C"].split()[1] == "m/s²"
     assert not any(row.lstrip().startswith(("omega_", "epsilon_")) for row in rows.values())
+
+
+def test_variants_a_student_cannot_measure_or_without_a_required_component_are_rejected():
+    from planmethod.grading.templates import plan_problem
+    from planmethod.plans import draw_plans
+
+    compressor = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+    assert plan_problem(compressor, TemplateSettings(min_segment_mm=0.0)) is None
+    reason = plan_problem(compressor, TemplateSettings(min_segment_mm=500.0))
+    assert reason is not None and "segment read for" in reason and "below 500 mm" in reason
+    # the slider-crank has no Coriolis component; the slotted lever has one, long enough
+    reason = plan_problem(compressor, TemplateSettings(min_segment_mm=1.0,
+                                                       require=("coriolis",)))
+    assert reason is not None and "coriolis component required" in reason
+    lever = draw_plans(load_exercise("exercises/slotted_lever.toml"))
+    assert plan_problem(lever, TemplateSettings(min_segment_mm=1.0, require=("coriolis",))) \
+        is None
+
+
+@pytest.mark.parametrize(("table", "fragment"), [
+    ("min_segment_mm = -1", "template.min_segment_mm"),
+    ('require = ["gravity"]', "template.require"),
+])
+def test_bad_drawability_settings_are_named(table, fragment):
+    text = template_text(angle="60").replace("[drive]", f"[template]\n{table}\n\n[drive]", 1)
+    with pytest.raises(SpecError, match=fragment.replace(".", r"\.")):
+        parse_template(text, file="t.toml")

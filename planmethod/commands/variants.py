@@ -142,11 +142,13 @@ def run(args: argparse.Namespace) -> int:
     if len(set(folders)) != len(folders):
         raise SpecError("two student ids map to the same folder name", file=args.students)
     files: dict[str, str] = {}
+    rejected: list[str] = []
     keys = []
     index_rows = []
     with Progress(len(students), "variants") as bar:
         for student, folder in zip(students, folders, strict=True):
             variant = draw_variant(template, seed=args.seed, student=student)
+            rejected += list(variant.rejected)
             key = build_key(variant)
             # who the LMS may know the student as, and whether a roster named them (an
             # autograder matches submitters to variants by these)
@@ -188,4 +190,12 @@ def run(args: argparse.Namespace) -> int:
     redrawn = sum(1 for row in index_rows if row[2])
     print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "
           f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
+    if rejected:
+        counts: dict[str, int] = {}
+        for reason in rejected:    # the reasons, with their numbers left out, by frequency
+            short = re.sub(r"-?\d+(\.\d+)?", "#", reason)
+            counts[short] = counts.get(short, 0) + 1
+        print(f"{len(rejected)} draws rejected:")
+        for text, count in sorted(counts.items(), key=lambda item: (-item[1], item[0])):
+            print(f"  {count}× {text}")
     return 0

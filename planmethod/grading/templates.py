@@ -16,7 +16,10 @@ Two extra tables belong to templates only:
   by ``{name}`` / ``{name:.3g}`` placeholders in ``description``;
 * ``[template]`` — ``min_line_angle_deg`` (default 15: reject a variant whose construction
   lines meet at a smaller angle), ``dead_centre_deg`` (default 10: reject a variant whose
-  crank stands within this of a dead centre), ``max_attempts`` (default 200).
+  crank stands within this of a dead centre), ``min_segment_mm`` (default 10: reject a variant
+  where a segment the student reads off a plan is shorter), ``require`` (components such as
+  ``["coriolis", "tangential"]`` that must be drawn at least ``min_segment_mm`` long),
+  ``max_attempts`` (default 200).
 
 The ``[grading]`` table (also allowed in plain exercise files) holds ``precision_mm``
 (the drafting precision the tolerances assume, default 0.5 mm), ``rel_floor``, and per-quantity
@@ -67,7 +70,10 @@ __all__ = [
     "to_toml",
 ]
 
-TEMPLATE_KEYS = ("min_line_angle_deg", "dead_centre_deg", "max_attempts")
+TEMPLATE_KEYS = ("min_line_angle_deg", "dead_centre_deg", "max_attempts", "min_segment_mm",
+                 "require")
+#: plan components a template may require to be drawn (not to vanish) in every variant
+COMPONENTS = ("normal", "tangential", "coriolis", "relative")
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_.\[\]]*)(?::([-+ #0]?\d*(?:\.\d+)?[efgd%]?))?\}")
 _PATH_PART = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]")
 
@@ -79,6 +85,10 @@ class TemplateSettings:
     min_line_angle_deg: float = 15.0
     dead_centre_deg: float = 10.0
     max_attempts: int = 200
+    #: every segment a student measures on a plan is at least this long (mm)
+    min_segment_mm: float = 10.0
+    #: components that must be drawn, at least ``min_segment_mm`` long, in every variant
+    require: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -178,6 +188,18 @@ def _settings(table: Any, file: str | None) -> TemplateSettings:
             raise SpecError(f"must be a whole number in 1…10000, got {value!r}", file=file,
                             key="template.max_attempts")
         values["max_attempts"] = value
+    if "min_segment_mm" in table:
+        value = table["min_segment_mm"]
+        if isinstance(value, bool) or not isinstance(value, int | float) or not 0 <= value <= 200:
+            raise SpecError(f"must be a length in [0, 200] mm, got {value!r}", file=file,
+                            key="template.min_segment_mm")
+        values["min_segment_mm"] = float(value)
+    if "require" in table:
+        value = table["require"]
+        if not isinstance(value, list) or any(item not in COMPONENTS for item in value):
+            raise SpecError(f"must be a list of components from {', '.join(COMPONENTS)}, got "
+                            f"{value!r}", file=file, key="template.require")
+        values["require"] = tuple(value)
     return TemplateSettings(**values)
 
 
@@ -376,7 +398,7 @@ def draw_variant(template: Template, seed: int = 0, student: str = "1",
             continue
         if not check:
             return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
-        problem = check_variant(exercise, template.settings)
+        problem = check_variant(exercise, template.settings, drawable=template.is_random)
         if problem is None:
             return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
         if not template.is_random:
@@ -393,8 +415,8 @@ def draw_variant(template: Template, seed: int = 0, student: str = "1",
                     f"student {student!r} (seed {seed}): {summary}", file=template.source)
 
 
-def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSettings()
-                  ) -> str | None:
+def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSettings(), *,
+                  drawable: bool = True) -> str | None:
     """Why a drawn exercise is unfit to be set (None if it is fit).
 
     Unfit: it cannot be assembled, a group is at a toggle, two construction lines of a plan
@@ -415,11 +437,14 @@ def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSetti
         return f"no converged assembly ({error.message})"
     except PlanmethodError as error:
         return f"cannot draw the plans ({error.message})"
-    return plan_problem(plans, settings)
+    return plan_problem(plans, settings, drawable=drawable)
 
 
-def plan_problem(plans, settings: TemplateSettings) -> str | None:
-    """The reason a variant's plans are unfit (see :func:`check_variant`), or None."""
+def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True) -> str | None:
+    """The reason a variant's plans are unfit (see :func:`check_variant`), or None.
+    ``drawable`` adds the rules a random draw must also pass (segments a student measures at
+    least ``min_segment_mm``, required components drawn); an exercise set as written is not
+    held to them."""
     for plan in (plans.velocity, plans.acceleration):
         if plan is None:
             continue
@@ -431,6 +456,23 @@ def plan_problem(plans, settings: TemplateSettings) -> str | None:
     if angle is not None and angle < settings.dead_centre_deg:
         return (f"the crank is {angle:.1f}° from a dead centre (below "
                 f"{settings.dead_centre_deg:g}°)")
+    for plan in (plans.velocity, plans.acceleration):
+        if plan is None or not drawable:
+            continue
+        for step in plan.steps:   # what the student reads off must be long enough to measure
+            if (step.action == "read" and step.length_mm is not None
+                    and abs(step.length_mm) < settings.min_segment_mm):
+                return (f"on the {plan.kind} plan the segment read for "
+                        f"{step.quantity or step.end} is {abs(step.length_mm):.1f} mm (below "
+                        f"{settings.min_segment_mm:g} mm)")
+        for component in settings.require:
+            drawn = [abs(step.length_mm or 0.0) for step in plan.steps
+                     if step.action == "lay_off" and step.component == component]
+            needed = plan.kind == "acceleration" or component == "relative"
+            if needed and (not drawn or max(drawn) < settings.min_segment_mm):
+                return (f"the {component} component required on the {plan.kind} plan is "
+                        f"{max(drawn, default=0.0):.1f} mm (below {settings.min_segment_mm:g} "
+                        "mm, or not drawn)")
     return None
 
 
