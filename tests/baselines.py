@@ -15,7 +15,8 @@ difference (already relative) to 1, a difference of two computations of one mome
 moment (the largest magnitude of what it sits among). The angle between two construction lines
 is compared by its sine (its arcsine has no digits to spare near 90°: a sine of 1 − 1 ulp is
 89.9999991°). Text must be identical, except a title that said "seed": it may now cite the
-paper instead.
+paper instead. A sweep table may gain the columns ``ADDED_COLUMNS`` names (a later extension
+of the CSV); every column it had is compared.
 
 Drawing scales are now the standard series' values (README, "The exercise file"), so what
 depends on the scale alone is left out of the comparison — and nothing else: the scales
@@ -45,6 +46,8 @@ NOISE = {"abs_error", "rel_error", "power_residual", "max_rel_difference", "resi
 RELATIVE_NOISE = {"rel_error", "power_residual", "max_rel_difference", "residual"}
 #: angles between construction lines (deg): compared by their sine
 LINE_ANGLES = {"angle_deg", "line_angle_deg"}
+#: columns a sweep table may have gained since (by prefix): the friction's sense per pair
+ADDED_COLUMNS = ("friction_sense_",)
 
 
 def exercises() -> list[Path]:
@@ -127,10 +130,20 @@ def _deep_scale(value) -> float:
     return 0.0
 
 
+def _without_added_columns(header: list[str], table: dict) -> dict:
+    """``table`` (a sweep: header and rows) without the columns it gained, by ADDED_COLUMNS."""
+    keep = [index for index, name in enumerate(table["header"])
+            if name in header or not name.startswith(ADDED_COLUMNS)]
+    return {**table, "header": [table["header"][index] for index in keep],
+            "rows": [[row[index] for index in keep] for row in table["rows"]]}
+
+
 def differences(old, new, where: str = "", siblings=(), reference: float | None = None
                 ) -> list[str]:
     """Where ``new`` differs from ``old`` beyond the rules of the module docstring."""
     if isinstance(old, dict) and isinstance(new, dict):
+        if {"header", "rows"} <= set(old) and {"header", "rows"} <= set(new):
+            new = _without_added_columns(old["header"], new)
         out = []
         changed = set(old) ^ set(new)
         if where.startswith(".reports.") and where.count(".") <= 3:   # a report itself

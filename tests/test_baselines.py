@@ -33,6 +33,15 @@ def test_the_comparison_can_fail():
     assert differences(angles, {"line_angle_deg": 89.99})
 
 
+def test_a_sweep_may_gain_a_friction_sense_column_and_nothing_else():
+    old = {"header": ["angle", "M_b"], "rows": [[0.0, 1.5]]}
+    assert not differences(old, {"header": ["angle", "M_b", "friction_sense_B"],
+                                 "rows": [[0.0, 1.5, -1.0]]})
+    assert differences(old, {"header": ["angle", "M_b", "R_B"], "rows": [[0.0, 1.5, 2.0]]})
+    assert differences(old, {"header": ["angle", "M_b", "friction_sense_B"],
+                             "rows": [[0.0, 1.6, -1.0]]})
+
+
 def test_scale_dependent_values_are_left_out_and_nothing_else():
     old = {"scales": {"mu_v": 0.00942478}, "plans": {"velocity": {
         "scale": 0.00942478, "points_mm": {"b": [40.0, 0.0]},

@@ -315,6 +315,38 @@ def test_friction_iteration_converges_and_balances_power(name):
             assert np.allclose(moments[0].moment, expected, rtol=1e-8, atol=1e-9)
 
 
+def test_friction_sense_changes_where_the_relative_rotation_turns(tmp_path):
+    """The sweep's sense columns, and the angles the force plot marks, are where the relative
+    angular velocity of a revolute pair's links (from the kinematics) changes sign."""
+    from planmethod.forces import force_columns
+    from planmethod.forces.applied import REST_SPEED
+    from planmethod.render.plots import save_force_plot, sense_changes
+    from planmethod.sweep import sweep_table
+
+    exercise = exercise_from_dict(with_friction(testing.fourbar()))
+    table = sweep_table(exercise, 1.0, extra=force_columns(exercise), progress=False)
+    solution = solve_forces(solve(exercise.mechanism, np.array([30.0])))
+    found = sense_changes(table)
+    checked = 0
+    for key, reaction in solution.reactions.items():
+        omega = {name: table.get(f"omega_{name}", np.zeros_like(table["angle"]))
+                 for name in (reaction.target, reaction.source)}
+        if reaction.target == exercise.mechanism.drive.link:
+            omega[reaction.target] = np.full_like(table["angle"], exercise.mechanism.drive.omega)
+        if reaction.source == exercise.mechanism.drive.link:
+            omega[reaction.source] = np.full_like(table["angle"], exercise.mechanism.drive.omega)
+        relative = omega[reaction.target] - omega[reaction.source]
+        moving = np.flatnonzero(np.abs(relative) > REST_SPEED * abs(exercise.mechanism.drive.omega))
+        turns = table["angle"][moving[1:][np.diff(np.sign(relative[moving])) != 0]]
+        assert found.get(key, []) == pytest.approx(list(turns)), key
+        checked += len(turns)
+    assert checked >= 2                  # the four-bar's rocker turns back twice a turn
+    path = tmp_path / "forces.svg"
+    save_force_plot(table, path, title="four-bar", marks=[(30.0, 1.0)])
+    text = path.read_text(encoding="utf-8")
+    assert "friction changes sense" in text and "M_b = 1 N·m" in text
+
+
 def test_friction_raises_the_driving_moment_on_average():
     exercise = exercise_from_dict(with_friction(testing.fourbar()))
     plain = exercise_from_dict(loaded(testing.fourbar()))

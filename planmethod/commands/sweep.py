@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+import numpy as np
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", help="exercise file (TOML)")
@@ -45,8 +47,19 @@ def run(args: argparse.Namespace) -> int:
         from ..render.plots import save_sweep_plot
 
         if args.forces:
-            from ..render.plots import save_force_plot as save_sweep_plot
-        save_sweep_plot(table, args.plot, title=exercise.mechanism.title)
+            from ..render.plots import save_force_plot
+            from ..report import analyse
+
+            solved = analyse(exercise).forces    # the position the exercise solves, marked
+            marks = ([(float(solved.angle), float(np.ravel(solved.balancing_moment)[0]))]
+                     if solved is not None else [])
+            save_force_plot(table, args.plot, title=exercise.mechanism.title, marks=marks)
+        else:
+            from ..vocabulary import link_numbers
+
+            mechanism = exercise.mechanism
+            save_sweep_plot(table, args.plot, title=mechanism.title,
+                            numbers=link_numbers(mechanism.moving_links, mechanism.drive.link))
     extremes = Extremes()
     with contextlib.ExitStack() as stack:
         handle = None

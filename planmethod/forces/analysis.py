@@ -386,7 +386,8 @@ def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndar
     ``Rx_K Ry_K R_K`` (and ``M_K`` for a prismatic pair's couple) per pair, ``M_b``,
     ``M_b_system`` and ``power_residual``; with friction also ``friction_iterations`` and
     ``M_b_no_friction`` (the conveyor of Umbetkulov et al. compares the motor torque with and
-    without friction).
+    without friction) and ``friction_sense_K`` per pair with friction: the sense of the relative
+    motion (+1, −1, 0 at rest), which the friction load follows.
 
     Raises
     ------
@@ -415,6 +416,8 @@ def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndar
             out["friction_iterations"] = solution.friction.iterations.astype(float)
             plain = replace(motion, mechanism=replace(motion.mechanism, friction={}))
             out["M_b_no_friction"] = solve_forces(plain, file=exercise.source).balancing_moment
+            for key, sense in solution.friction.senses.items():
+                out[f"friction_sense_{key}"] = sense.astype(float)
         return out
 
     return columns

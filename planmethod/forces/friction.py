@@ -36,7 +36,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -93,6 +93,9 @@ class FrictionResult:
     history: tuple[float, ...]
     flags: tuple[str, ...]
     losses: Mapping[str, np.ndarray]
+    #: per pair with friction, the sense of the relative motion (+1, −1, 0 at rest): the
+    #: friction load, and the reactions with it, jump where it changes
+    senses: Mapping[str, np.ndarray] = field(default_factory=dict)
 
 
 def _sense(relative: np.ndarray, rest: float) -> np.ndarray:
@@ -108,9 +111,9 @@ def _where(mask: np.ndarray, angles) -> str:
 
 def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], solution: GroupSolution,
                    settings: FrictionSettings, angles=None
-                   ) -> tuple[list[AppliedItem], dict, list[str]]:
+                   ) -> tuple[list[AppliedItem], dict, list[str], dict]:
     """Friction moments and forces from the reactions of ``solution``: (items, power lost per
-    pair, flags)."""
+    pair, flags, sense of the relative motion per pair)."""
     drive = mechanism.drive
     crank = mechanism.links[drive.link]
     length = max(crank.length(drive.pivot, p) for p in crank.points) or 1.0
@@ -118,6 +121,7 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
     rest_speed = rest_omega * length
     items: list[AppliedItem] = []
     losses: dict[str, np.ndarray] = {}
+    senses: dict[str, np.ndarray] = {}
     flags: list[str] = []
     for key, reaction in solution.reactions.items():
         on, source = states[reaction.target], states[reaction.source]
@@ -132,6 +136,7 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
             items.append(AppliedItem(reaction.target, f"M_f,{key}", "friction", moment=moment))
             items.append(AppliedItem(reaction.source, f"M_f,{key}", "friction", moment=-moment))
             losses[key] = moment * relative
+            senses[key] = sense
             if np.any(sense == 0):
                 flags.append(f"pair {key}: no relative rotation {_where(sense == 0, angles)}"
                              ", friction taken as zero there")
@@ -152,10 +157,11 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
         items.append(AppliedItem(reaction.source, f"F_f,{key}", "friction", point, -force,
                                  label=slide.point))
         losses[key] = np.einsum("...i,...i->...", force, d) * v_rel
+        senses[key] = sense
         if np.any(sense == 0):
             flags.append(f"pair {key}: no relative sliding {_where(sense == 0, angles)}, "
                          "friction taken as zero there")
-    return items, losses, flags
+    return items, losses, flags, senses
 
 
 def solve_with_friction(mechanism: Mechanism, structure: Structure,
@@ -179,12 +185,14 @@ def solve_with_friction(mechanism: Mechanism, structure: Structure,
     history: list[float] = []
     items: list[AppliedItem] = []
     losses: dict = {}
+    senses: dict = {}
     flags: list[str] = []
     for iteration in range(1, settings.max_iterations + 1):
-        items, losses, flags = friction_items(mechanism, states, solution, settings,
+        items, losses, flags, senses = friction_items(mechanism, states, solution, settings,
                                                angles)
         if not items:
-            return FrictionResult(solution, (), iterations, (0.0,), tuple(flags), losses)
+            return FrictionResult(solution, (), iterations, (0.0,), tuple(flags), losses,
+                                  senses)
         updated = solve_by_groups(mechanism, structure, states, applied.with_items(items),
                                   angles=angles)
         scale = np.max(np.stack([r.magnitude for r in updated.reactions.values()]), axis=0)
@@ -205,7 +213,7 @@ def solve_with_friction(mechanism: Mechanism, structure: Structure,
         solution = updated
         if np.all(done):  # the loads that gave this solution are returned with it
             return FrictionResult(solution, tuple(items), iterations, tuple(history),
-                                  tuple(flags), losses)
+                                  tuple(flags), losses, senses)
     index = int(np.flatnonzero(~done)[0])
     angle = None if angles is None else float(np.asarray(angles)[index])
     raise ConvergenceError(

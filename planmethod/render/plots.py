@@ -40,7 +40,7 @@ True
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -48,6 +48,7 @@ import numpy as np
 
 from ..errors import PlanmethodError
 from ..io import atomic_path
+from ..vocabulary import quantity, symbol
 
 __all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_force_plot",
            "save_study_plot", "save_sweep_plot"]
@@ -161,8 +162,39 @@ def panels(table: Mapping[str, np.ndarray]) -> list[tuple[str, str, list[str]]]:
     return out
 
 
-def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str) -> None:
+def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A column's name in a plot's legend, in a course's notation: a link's quantity by the
+    link's number with its name (ω₃ (rod)), a point's with the point as a subscript; a column
+    that is no quantity keeps its name.
+
+    Examples
+    --------
+    >>> numbers = {"frame": 1, "crank": 2, "rod": 3}
+    >>> curve_label("omega_rod", numbers), curve_label("v_C"), curve_label("a_B@rod", numbers)
+    ('ω₃ (rod)', 'v$_{\\\\mathregular{C}}$', 'a$_{\\\\mathregular{B}_{3}}$ (on rod)')
+    """
+    try:
+        found = quantity(name)
+    except KeyError:
+        return name
+    if found.kind.subject == "link" and numbers and found.subject in numbers:
+        return f"{symbol(name, dict(numbers))} ({found.subject})"
+    if found.kind.subject == "point":
+        point, _, link = found.subject.partition("@")   # B@lever: B of the lever, B₄
+        if point.isalnum() and not link:
+            return f"{found.symbol}$_{{\\mathregular{{{point}}}}}$"
+        if point.isalnum() and numbers and link in numbers:
+            return (f"{found.symbol}$_{{\\mathregular{{{point}}}_{{{numbers[link]}}}}}$"
+                    f" (on {link})")
+    return symbol(name)
+
+
+def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str,
+                    numbers: Mapping[str, int] | None = None) -> None:
     """Draw a sweep table's curves against the crank angle into ``path`` (.png, .svg, .pdf).
+    The legends name the curves in a course's notation (:func:`curve_label`; ``numbers`` are
+    the links' numbers, :func:`planmethod.vocabulary.link_numbers`) and list only the curves
+    drawn: a column with no finite value is left out.
 
     Raises
     ------
@@ -198,7 +230,9 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
                 if panel.startswith("radius"):
                     values = np.where(np.isfinite(values) & (np.abs(values) > 0),
                                       np.abs(values), np.nan)
-                ax.plot(angle, values, label=name)
+                if not np.isfinite(values).any():
+                    continue                      # nothing drawn: not in the legend
+                ax.plot(angle, values, label=curve_label(name, numbers))
             if panel.startswith("radius"):
                 radii = np.abs(np.asarray([table[c] for c in columns], dtype=float))
                 radii = radii[np.isfinite(radii) & (radii > 0)]
@@ -229,9 +263,38 @@ _FORCE_STYLE = {"font.family": "DejaVu Sans", "font.size": 9.0, "axes.grid": Tru
                 "pdf.compression": 6}
 
 
-def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str) -> None:
+_SENSE_COLOUR = "#7f7f7f"
+
+
+def sense_changes(table: Mapping[str, np.ndarray]) -> dict[str, list[float]]:
+    """Per pair with friction, the crank angles where its friction changes sense: where the
+    ``friction_sense_K`` column turns from +1 to −1 or back (a rest, 0, in between is passed
+    over). The angle is the first one of the new sense.
+
+    >>> sense_changes({"angle": np.array([0., 10, 20, 30]),
+    ...                "friction_sense_B": np.array([1., 0, -1, -1])})
+    {'B': [20.0]}
+    """
+    angles = np.asarray(table["angle"], float)
+    found: dict[str, list[float]] = {}
+    for name, column in table.items():
+        if not name.startswith("friction_sense_"):
+            continue
+        sense = np.asarray(column, float)
+        moving = np.flatnonzero(sense != 0)
+        flips = moving[1:][np.diff(sense[moving]) != 0]
+        if flips.size:
+            found[name.removeprefix("friction_sense_")] = [float(a) for a in angles[flips]]
+    return found
+
+
+def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str,
+                    marks: Sequence[tuple[float, float]] = ()) -> None:
     """Reaction components and magnitude per pair and the balancing moment versus crank angle,
-    from the columns of ``planmethod sweep --forces`` (``Rx_K Ry_K R_K [M_K]``, ``M_b``…).
+    from the columns of ``planmethod sweep --forces`` (``Rx_K Ry_K R_K [M_K]``, ``M_b``…),
+    on a landscape page. ``marks`` are (crank angle, M_b) of the positions the exercise solves,
+    marked on the M_b curve with their values; with friction the frictionless M_b is drawn
+    beside it and each sense change of the friction is marked.
 
     Raises
     ------
@@ -242,11 +305,14 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
     form = plot_format(path)
     angles = np.asarray(table["angle"], float)
     pairs = [name[2:] for name in table if name.startswith("R_")]
+    changes = sense_changes(table)
     count = len(pairs) + 1
     columns = 2
     rows = math.ceil(count / columns)
     with _style_context(_FORCE_STYLE):
-        figure = _new_figure(figsize=(11, 2.4 * rows + 0.6), dpi=130, layout="tight")
+        # landscape, page-width: at most A4 landscape (11.7 × 8.3 in), however many pairs
+        figure = _new_figure(figsize=(11.7, min(8.3, 2.2 * rows + 0.8)), dpi=130,
+                             layout="tight")
         axes = figure.subplots(rows, columns, sharex=True, squeeze=False)
         flat = axes.ravel()
         for axis, key in zip(flat, pairs, strict=False):
@@ -262,15 +328,37 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
                           ls="--", label="couple")
                 twin.set_ylabel("couple, N·m", color=_FORCE_COLOURS["moment"])
                 twin.grid(False)
-            axis.legend(loc="best", fontsize=7, ncol=3)
+            for number, angle in enumerate(changes.get(key, ())):
+                axis.axvline(angle, color=_SENSE_COLOUR, lw=0.8, ls=":",
+                             label="friction changes sense" if number == 0 else None)
+            axis.legend(loc="best", fontsize=7, ncol=2 if key in changes else 3)
         axis = flat[len(pairs)]
         axis.plot(angles, table["M_b"], color="#9467bd", lw=1.8, label="M_b (groups)")
+        # the balancing moment jumps where any pair's friction changes sense: each is marked
+        # and named by its pair at the top of the axis
+        named: dict[float, list[str]] = {}
+        for key, found in changes.items():
+            for angle in found:
+                named.setdefault(angle, []).append(key)
+        for number, angle in enumerate(sorted(named)):
+            axis.axvline(angle, color=_SENSE_COLOUR, lw=0.8, ls=":",
+                         label="friction changes sense" if number == 0 else None)
+            late = angle > angles[0] + 0.85 * (angles[-1] - angles[0])   # name to the left
+            axis.annotate(", ".join(named[angle]), (angle, 1.0),
+                          xycoords=("data", "axes fraction"), xytext=(-2 if late else 2, -9),
+                          textcoords="offset points", fontsize=7, color=_SENSE_COLOUR,
+                          ha="right" if late else "left")
         if "M_b_system" in table:
             axis.plot(angles, table["M_b_system"], color="#ff7f0e", lw=0.9, ls=":",
                       label="M_b (whole system)")
         if "M_b_no_friction" in table:
-            axis.plot(angles, table["M_b_no_friction"], color="#8c564b", lw=1.2, ls="--",
+            plain = np.asarray(table["M_b_no_friction"], float)
+            axis.plot(angles, plain, color="#8c564b", lw=1.2, ls="--",
                       label="M_b without friction")
+        for angle, value in marks:
+            axis.plot([angle], [value], "o", color="#9467bd", ms=5)
+            axis.annotate(f"φ₁ = {angle:g}°: M_b = {value:.4g} N·m", (angle, value),
+                          textcoords="offset points", xytext=(6, 6), fontsize=7)
         axis.set_title("balancing moment on the crank", loc="left")
         axis.set_ylabel("N·m")
         axis.legend(loc="best", fontsize=7)
