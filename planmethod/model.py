@@ -212,6 +212,9 @@ class Load:
     moment: float | None = None
     oppose_velocity: bool = False
     index: int = 1
+    #: the name figures print (``P_c``, ``F_res``); default P₁, P₂… for forces and T₁, T₂… for
+    #: moments, by ``index``
+    name: str | None = None
 
 
 @dataclass(frozen=True, slots=True)

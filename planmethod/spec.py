@@ -476,7 +476,8 @@ class _Reader:
         for number, table in enumerate(raw, start=1):
             key = f"load[{number}]"
             table = self.table(table, key)
-            self.only_keys(table, ("link", "point", "force", "moment", "oppose_velocity"), key)
+            self.only_keys(table, ("link", "point", "force", "moment", "oppose_velocity", "name"),
+                           key)
             if "link" not in table:
                 raise self.error(f"{key}.link", "missing")
             link = self.link_name(table["link"], f"{key}.link", links)
@@ -496,11 +497,17 @@ class _Reader:
             oppose = table.get("oppose_velocity", False)
             if not isinstance(oppose, bool):
                 raise self.error(f"{key}.oppose_velocity", f"must be true or false, got {oppose!r}")
+            name = None
+            if "name" in table:
+                name = self.string(table["name"], f"{key}.name")
+                if not re.fullmatch(r"[^\W\d][\w,′']{0,15}", name):
+                    raise self.error(f"{key}.name", f"{name!r} is not a symbol: a letter, then up "
+                                     "to 15 letters, digits or _ (P, P_c, F_res)")
             loads.append(Load(
                 link=link, point=point,
                 force=self.vector(table["force"], f"{key}.force") if has_force else None,
                 moment=self.number(table["moment"], f"{key}.moment") if has_moment else None,
-                oppose_velocity=oppose, index=number,
+                oppose_velocity=oppose, index=number, name=name,
             ))
         return tuple(loads)
 

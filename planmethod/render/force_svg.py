@@ -11,6 +11,9 @@ combined-force construction.
   Z_g = g/μa, to π′, and from each centre-of-mass image s the dashed segment s→π′, which
   represents the combined force Q = m·(g − a_S) at Q/(m·μa) (I. H. Aliyev,
   "Studies of the possibility of determining amplifications in kinematic pairs").
+* :func:`lever_forces_svg` — Zhukovsky's lever with its forces: the turned velocity plan, each
+  force at the image of its point with its arm from the pole, the balancing force and ΣM_p = 0.
+* :func:`loaded_svg` — the loaded mechanism: every force and moment acting on it.
 * :func:`force_files` — all of them as ``{file name: SVG text}`` for ``planmethod solve --svg``.
 
 The figures are drawn on the one canvas (:mod:`planmethod.render.canvas`) with the plans' style,
@@ -22,7 +25,7 @@ Examples
 >>> from planmethod.spec import load_exercise
 >>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
 >>> sorted(force_files(analysis.forces, analysis.plans))      # no gravity: no combined force
-['forces_1_BC+CD.svg', 'forces_2_AB.svg']
+['forces_1_BC+CD.svg', 'forces_2_AB.svg', 'lever.svg', 'loaded.svg']
 """
 
 from __future__ import annotations
@@ -33,12 +36,24 @@ from typing import Any
 
 import numpy as np
 
+from ..plans.scales import standard
 from .canvas import Canvas, difference, fit_zoom, translate
 from .labels import label_runs
-from .style import INK, LEGEND_ORDER, SMALL_SIZE, TEXT_SIZE, quantity
-from .svg import PLAN_SIZE, frame, plan_content, plan_legend
+from .notation import ForceNotation, subscript
+from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, quantity
+from .svg import (
+    MECHANISM_SIZE,
+    PLAN_SIZE,
+    frame,
+    mechanism_content,
+    plan_content,
+    plan_legend,
+    position_zoom,
+    turning_arrow,
+)
 
-__all__ = ["combined_omitted", "combined_svg", "force_files", "polygon_svg"]
+__all__ = ["combined_omitted", "combined_svg", "force_files", "lever_forces_svg",
+           "loaded_svg", "polygon_svg"]
 
 #: colour of each kind of known force in a polygon
 KNOWN_COLOURS = {"G": "#8c564b", "F": "#c0392b", "l": "#7b3fa0", "R": "#666666"}
@@ -80,9 +95,11 @@ def _totals(edges, vectors):
     return out
 
 
-def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0) -> str:
+def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
+                notation: ForceNotation | None = None) -> str:
     """One group's force polygon (see the module docstring); ``index`` picks the crank angle
-    of a vectorised solve."""
+    of a vectorised solve; ``notation`` prints the forces as a course writes them (R₁₂, G₃),
+    else by their report names."""
     edges = [edge for edge in group.polygon if float(np.hypot(*edge.vector[index])) > 0]
     vectors = [edge.vector[index] / mu_f for edge in edges]
     corners = [np.zeros(2)]
@@ -98,24 +115,28 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0)
                         css=f"force {edge.kind}", step=number + 1):
             used.setdefault(_legend_key(edge), (style, colour))
         middle = translate(start, difference(end, start), 0.5)
-        figure.request((edge.label,), middle, _runs(edge.label), mark=2.0)
+        runs = notation.runs(edge.label, edge.link) if notation else _runs(edge.label)
+        figure.request((edge.label,), middle, runs, mark=2.0)
     count = len(edges)
     for name, first, _ in _totals(edges, vectors):
+        on = edges[first].link
         after = first + 2  # the corner after the second component (cyclically)
         start, end = where[first], where[after if after <= count else after - count]
         if figure.arrow(start, end, "result", layer="results", css="force total"):
             used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
             middle = translate(start, difference(end, start), 0.5)
-            figure.request((name,), middle, _runs(name), mark=2.0)
+            figure.request((name,), middle,
+                           notation.runs(name, on) if notation else _runs(name), mark=2.0)
     figure.circle(where[0], 3.4, fill=INK, css="start")
     closure = float(np.hypot(*(corners[-1] - corners[0])))
     figure.place()
     _, y0, x1, _ = figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
-    terms = " + ".join(edge.label for edge in edges)
+    terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
+                       for edge in edges)
     lines = [f"μF = {quantity(mu_f, 6)} N/mm", f"ΣF = 0: {terms} = 0",
              f"the polygon closes to {closure:.2g} mm"]
-    lines += list(group.steps)
+    lines += [notation.line(step, group.links) if notation else step for step in group.steps]
     lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
     frame(figure, title, lines, (mu_f, "N", 0.3 * PLAN_SIZE), (), "force")
     return figure.svg(title).svg
@@ -131,8 +152,8 @@ def _legend_key(edge) -> str:
         return "reaction from a group solved before"
     if edge.label.startswith(("M_f", "F_f")):
         return "friction force"
-    return {"G": "weight G", "F": "inertia force F_u = −m·a_S"}.get(edge.label[:1],
-                                                                   "external load")
+    return {"G": "weight G", "F": "inertia force Fᵘ = −m·a_S"}.get(edge.label[:1],
+                                                                  "external load")
 
 
 def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> None:
@@ -171,19 +192,19 @@ def combined_svg(forces, plans) -> str | None:
                        _runs("Z_g"), mark=2.0)
     figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
     figure.request(("π′",), new_px, (("π′", "main"),), mark=3.4)
+    notation = ForceNotation(forces.solution)
     for force in combined.forces:
         s = figure.px(force.image_mm)
         figure.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image")
-        figure.request((f"s_{force.link}",), s, (("s", "main"), (force.link, "upright")),
-                       mark=2.6)
+        figure.request((f"s_{force.link}",), s,
+                       (("s", "main"), (notation.number(force.link), "sub")), mark=2.6)
         if math.hypot(*force.segment_mm) * figure.zoom >= 1.0:
             figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
                          css=f"combined {force.link}")
     figure.place()
     _, y0, x1, _ = figure.extent
-    plan_legend(figure, (x1 + 34, y0 + 4), "acceleration")  # the plan's own styles first
-    shown = sum(key in figure.used for key in (*LEGEND_ORDER, "flagged"))
-    _force_legend(figure, (x1 + 34, y0 + 4 + 8 + 20 * shown + (34 if shown else 0)), {
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), "acceleration")  # the plan's styles
+    _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
         "image of g: π → π′, Z_g = g/μa": ("normal", KNOWN_COLOURS["G"]),
         "s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)": ("tangential", KNOWN_COLOURS["F"])},
         heading="Combined force (Aliyev)")
@@ -193,8 +214,10 @@ def combined_svg(forces, plans) -> str | None:
     for force in combined.forces:
         length = math.hypot(*force.segment_mm)
         q = math.hypot(*force.from_plan)
-        lines.append(f"{force.link}: (s π′) = {length:.4g} mm → Q = m·μa·(s π′) = "
-                     f"{force.mass:g}·{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
+        sub = subscript(notation.number(force.link))
+        lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
+                     f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
+                     f"{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + F_u on the acceleration plan, "
              f"pole moved to π′, φ₁ = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, "acceleration")
@@ -211,6 +234,239 @@ def combined_omitted(forces, plans) -> str | None:
             "is π and Q = G + F_u is the inertia force alone")
 
 
+def _force_colour(name: str) -> str:
+    if name.startswith(("M_f", "F_f")):
+        return FRICTION
+    if name.startswith("M_u"):
+        return KNOWN_COLOURS["F"]
+    return KNOWN_COLOURS.get(name[:1], KNOWN_COLOURS["l"])
+
+
+def lever_forces_svg(forces: Any, plans) -> str | None:
+    """Zhukovsky's lever with its forces: the velocity plan turned 90° clockwise about its
+    pole p, each known force drawn at the image of its point (unchanged in size and
+    direction, at a force scale of the lever), its arm h from p, the balancing force F_b at the
+    image of the crank pin, and the moment sum ΣM_p = 0 that gives M_b (None without a lever
+    from the drawn plan)."""
+    lever = forces.solution.lever
+    if plans is None or lever.source != "velocity plan" or not np.isfinite(
+            lever.balancing_moment[0]):
+        return None
+    notation = ForceNotation(forces.solution)
+    plan = plans.velocity
+    turned = {label: (float(y), float(-x)) for label, (x, y) in plan.points_mm.items()}
+    items = [(force.name, force.link, np.asarray(force.image_mm[0], float),
+              np.asarray(force.force[0], float), float(force.moment[0]))
+             for force in lever.forces]
+    items = [item for item in items if float(np.hypot(*item[3])) > 0]
+    balancing = np.asarray(lever.balancing_force[0], float)
+    largest = max([float(np.hypot(*f)) for _, _, _, f, _ in items]
+                  + [float(np.hypot(*balancing))])
+    points = list(turned.values())
+    extent = max(max(abs(c) for xy in points for c in xy), 1.0)
+    mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
+    ends = [tuple(image + force / mu_f) for _, _, image, force, _ in items]
+    pin = np.asarray(lever.balancing_image_mm[0], float)
+    figure = Canvas(fit_zoom(points + ends + [tuple(pin + balancing / mu_f)], PLAN_SIZE))
+    plan_content(figure, turned, plan.steps, plan.pole, rotate_deg=-90.0)
+    pole = figure.px((0.0, 0.0))
+    used: dict[str, tuple[str, str | None]] = {}
+
+    def draw(name: str, link: str | None, image, force, colour, style, runs) -> float:
+        """The force at its image with its arm from p; returns the arm h (mm)."""
+        start, end = figure.px(image), figure.px(image + force / mu_f)
+        figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
+        figure.request((f"force:{name}",), translate(start, difference(end, start), 0.6), runs,
+                       mark=2.0)
+        size = float(np.hypot(*force))
+        direction = force / size
+        foot = image - float(np.dot(image, direction)) * direction
+        arm = float(np.hypot(*foot))
+        if arm <= 1e-9 * max(float(np.hypot(*image)), 1.0):
+            arm = 0.0                    # the line passes through p (rounding left over)
+        if arm * figure.zoom >= 2.0:
+            figure.line(pole, figure.px(foot), color=colour, width=0.7, dash="1.5,2.5",
+                        layer="construction", css="arm", obstacle=False)
+            line_end = figure.px(foot + direction * max(4.0 / figure.zoom,
+                                                        float(np.dot(image - foot,
+                                                                     direction))))
+            figure.line(figure.px(foot), line_end, color=colour, width=0.5, dash="4,3",
+                        layer="construction", css="line of action", obstacle=False)
+        return arm
+
+    lines = [f"μv = {quantity(plan.scale, 6)} {plan.unit}; forces on the lever at "
+             f"μF = {quantity(mu_f, 6)} N/mm",
+             "each force at the image of its point, turned with the plan (size and direction "
+             "kept); arm h from the pole p",
+             "ΣM_p = Σ ± F·h = 0 (N·mm on the lever, counter-clockwise +):"]
+    total = 0.0
+    magnitude = 0.0      # Σ|M|: the sum is zero to rounding of this
+    couples: dict[str, float] = {}
+    for name, link, image, force, moment in items:
+        base, _, at = name.partition(" at ")
+        total += moment
+        magnitude += abs(moment)
+        if at:     # a couple, carried as two forces ±M/l ⊥ the link: listed, not drawn
+            couples[base] = couples.get(base, 0.0) + moment
+            continue
+        colour = _force_colour(base)
+        arm = draw(name, link, image, force, colour, "relative", notation.runs(base, link))
+        used.setdefault("known force at the image of its point, arm h from p", ("relative",
+                                                                                 colour))
+        size = float(np.hypot(*force))
+        lines.append(f"  {notation.plain(base, link)}: {size:.4g} N × h {arm:.4g} mm = "
+                     f"{(moment if arm else 0.0) + 0.0:+.5g} N·mm")
+    for base, moment in couples.items():
+        lines.append(f"  {notation.plain(base)} (a couple, as ±M/l at two points of its "
+                     f"link): {moment + 0.0:+.5g} N·mm")
+    runs_b = (("F", "main"), ("b", "sub"))
+    arm_b = draw("F_b", None, pin, balancing, INK, "result", runs_b)
+    moment_b = float(pin[0] * balancing[1] - pin[1] * balancing[0])
+    used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = ("result", None)
+    size_b = float(np.hypot(*balancing))
+    remainder = total + moment_b
+    if abs(remainder) <= 1e-9 * (magnitude + abs(moment_b)):
+        remainder = 0.0                               # zero to the rounding of the terms
+    lines.append(f"  F_b: {size_b:.4g} N × h {arm_b:.4g} mm = {moment_b + 0.0:+.5g} N·mm;  "
+                 f"sum {remainder + 0.0:+.2g} N·mm")
+    mechanism = forces.solution.mechanism
+    drive = mechanism.drive
+    crank = mechanism.links[drive.link]
+    length = crank.length(drive.pivot, lever.balancing_point)
+    value = float(lever.balancing_moment[0])
+    lines.append(f"|M_b| = F_b·l_{drive.pivot}{lever.balancing_point} = {size_b:.5g} N × "
+                 f"{length:.4g} m;  M_b = {value:.6g} N·m (Zhukovsky's lever), by the groups "
+                 f"{float(forces.solution.balancing_moment[0]):.6g} N·m")
+    figure.place()
+    _, y0, x1, _ = figure.extent
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), "velocity")    # the plan's styles first
+    _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), used,
+                  heading="Forces on the lever")
+    figure.used.clear()
+    title = (f"{mechanism.title} — Zhukovsky's lever with its forces, "
+             f"φ₁ = {plans.angle:g}°").lstrip(" —")
+    frame(figure, title, lines, (plan.scale, "m/s", 0.3 * PLAN_SIZE), plan.flags, "velocity")
+    return figure.svg(title).svg
+
+
+def loaded_svg(forces: Any, plans) -> str | None:
+    """The loaded mechanism: the mechanism at the solved position with every force and moment
+    acting on it — weights G, inertia forces Fᵘ at the centres of mass with the line of their
+    single equivalent force (offset h = J·ε/(m·a_S)), inertia moments Mᵘ, loads, friction, and
+    the balancing moment M_b on the crank — the picture a force analysis starts from (None
+    without plans)."""
+    if plans is None:
+        return None
+    position = plans.position
+    solution = forces.solution
+    notation = ForceNotation(solution)
+    mu_l = position.mu_l
+    everything = [item for item in solution.applied.items if item.link != "frame"]
+    # friction (a force or moment in each pair, on both its links) is listed, not drawn
+    friction = [item for item in everything if item.kind == "friction"]
+    items = [item for item in everything if item.kind != "friction"]
+    arrows = [(item, np.asarray(item.point[0], float) / mu_l, np.asarray(item.force[0], float))
+              for item in items if item.force is not None
+              and float(np.hypot(*item.force[0])) > 0]
+    couples = [(item, float(item.moment[0])) for item in items
+               if item.moment is not None and float(item.moment[0]) != 0.0]
+    points = list(position.points_mm.values())
+    extent = max(max(p[0] for p in points) - min(p[0] for p in points),
+                 max(p[1] for p in points) - min(p[1] for p in points), 1.0)
+    largest = max((float(np.hypot(*force)) for _, _, force in arrows), default=0.0)
+    mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
+    ends = [tuple(start + force / mu_f) for _, start, force in arrows]
+    figure = Canvas(position_zoom(position, ends))
+    mechanism_content(figure, position)
+    used: dict[str, tuple[str, str | None]] = {}
+    lines = [f"μl = {quantity(mu_l, 6)} m/mm; forces at μF = {quantity(mu_f, 6)} N/mm",
+             f"φ₁ = {plans.angle:g}°, ω₁ = {quantity(solution.mechanism.drive.omega, 6)} rad/s"]
+    for item, start, force in arrows:
+        colour = _force_colour(item.name)
+        begin, end = figure.px(start), figure.px(start + force / mu_f)
+        figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
+        figure.request((f"force:{item.name}:{item.link}",),
+                       translate(begin, difference(end, begin), 0.65),
+                       notation.runs(item.name, item.link), mark=2.0)
+        used.setdefault(_legend_key_of(item.name), ("relative", colour))
+        lines.append(f"{notation.plain(item.name, item.link)} = "
+                     f"{float(np.hypot(*force)):.4g} N on {notation.link_name(item.link)}")
+        inertia = solution.applied.inertia.get(item.link)
+        if item.kind == "inertia_force" and inertia is not None and bool(
+                inertia.single_force_defined[0]) and abs(float(inertia.offset[0])) > 0:
+            # the line of the single equivalent force Fᵘ (with Mᵘ), offset by h from S
+            unit = force / float(np.hypot(*force))
+            shift = float(inertia.offset[0]) * np.array([-unit[1], unit[0]]) / mu_l
+            if float(np.hypot(*shift)) * figure.zoom >= 1.5:
+                figure.line(figure.px(start + shift - 0.6 * force / mu_f),
+                            figure.px(start + shift + 1.2 * force / mu_f), color=colour,
+                            width=0.8, dash=STYLES["construction"].dash, layer="construction",
+                            css="inertia line", obstacle=False)
+                used.setdefault("line of the single equivalent inertia force (h from S)",
+                                ("construction", colour))
+                offset = abs(float(inertia.offset[0]))
+                lines[-1] += f"; with Mᵘ, one force on a line h = {offset:.4g} m from S"
+    mechanism = solution.mechanism
+    for item, moment in couples:
+        inertia = solution.applied.inertia.get(item.link)
+        centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
+                  else np.asarray(inertia.centre[0], float) / mu_l
+                  if item.kind == "inertia_moment" and inertia is not None
+                  else _link_centre(position, item.link))
+        colour = _force_colour(item.name)
+        turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0, colour,
+                      f"moment:{item.name}:{item.link}", notation.runs(item.name, item.link),
+                      css="moment")
+        used.setdefault("moment (curved arrow: its sense)", ("relative", colour))
+        lines.append(f"{notation.plain(item.name, item.link)} = {abs(moment):.4g} N·m "
+                     f"{'counter-clockwise' if moment > 0 else 'clockwise'} on "
+                     f"{notation.link_name(item.link)}")
+    if friction:
+        listed = [f"{notation.plain(item.name, item.link)} {_size(item):.4g}"
+                  for item in friction]
+        lines.append("friction (not drawn; N·m, N): " + ", ".join(listed[:8]))
+        for start in range(8, len(listed), 10):
+            lines.append("  " + ", ".join(listed[start:start + 10]))
+    drive = mechanism.drive
+    balancing = float(solution.balancing_moment[0])
+    if balancing and drive.pivot in position.points_mm:
+        turning_arrow(figure, position.points_mm[drive.pivot], 40.0, -math.pi / 2,
+                      1.0 if balancing > 0 else -1.0, INK, "moment:M_b",
+                      (("M", "main"), ("b", "sub")), css="balancing moment")
+        used["balancing moment M_b on the crank"] = ("result", None)
+        lines.append(f"M_b = {abs(balancing):.6g} N·m "
+                     f"{'counter-clockwise' if balancing > 0 else 'clockwise'} on "
+                     f"{notation.link_name(drive.link)} (to be applied by the motor)")
+    figure.place()
+    _, y0, x1, _ = figure.extent
+    _force_legend(figure, (x1 + 34, y0 + 4), used, heading="Forces and moments")
+    title = f"{mechanism.title} — the loaded mechanism, φ₁ = {plans.angle:g}°".lstrip(" —")
+    frame(figure, title, lines, (mu_l, "m", 0.25 * MECHANISM_SIZE), solution.flags, "position")
+    return figure.svg(title).svg
+
+
+def _legend_key_of(name: str) -> str:
+    if name.startswith(("M_f", "F_f")):
+        return "friction force"
+    return {"G": "weight G", "F": "inertia force Fᵘ = −m·a_S at S"}.get(name[:1],
+                                                                      "external load")
+
+
+def _size(item) -> float:
+    """The size of a known force (N) or moment (N·m) at the first angle."""
+    if item.force is not None:
+        return float(np.hypot(*item.force[0]))
+    return abs(float(item.moment[0]))
+
+
+def _link_centre(position, link: str) -> tuple[float, float]:
+    points = [position.points_mm[p] for p in position.links.get(link, ())
+              if p in position.points_mm]
+    if not points:
+        return (0.0, 0.0)
+    return (sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points))
+
+
 def _file_name(index: int, group) -> str:
     name = re.sub(r"[^A-Za-z0-9_+-]", "_", group.name)
     return f"forces_{index}_{name}.svg"
@@ -220,13 +476,20 @@ def force_files(forces: Any, plans) -> dict[str, str]:
     """``{"forces_<n>_<group>.svg": …, "combined_force.svg": …}`` for one crank angle."""
     files: dict[str, str] = {}
     title = forces.solution.mechanism.title
+    notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
-        kind = "drive link" if group.kind == "drive" else group.kind
+        kind = "drive link" if group.kind == "drive" else f"{group.kind} of"
         files[_file_name(number, group)] = polygon_svg(
-            group, forces.mu_f, angle=forces.angle,
-            title=f"{title} — force polygon {number}: {kind} {', '.join(group.links)}, "
+            group, forces.mu_f, angle=forces.angle, notation=notation,
+            title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "
                   f"φ₁ = {forces.angle:g}°")
     combined = combined_svg(forces, plans)
     if combined is not None:
         files["combined_force.svg"] = combined
+    lever = lever_forces_svg(forces, plans)
+    if lever is not None:
+        files["lever.svg"] = lever
+    loaded = loaded_svg(forces, plans)
+    if loaded is not None:
+        files["loaded.svg"] = loaded
     return files

@@ -83,12 +83,15 @@ __all__ = [
     "frame",
     "lever_drawing",
     "lever_svg",
+    "mechanism_content",
     "plan_content",
     "plan_drawing",
     "plan_legend",
     "plan_svg",
     "position_drawing",
     "position_svg",
+    "position_zoom",
+    "turning_arrow",
 ]
 
 #: the longest side of a plan's points is drawn this long (px); a scale bar keeps it honest
@@ -200,9 +203,8 @@ def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
             figure.line((ax, ay), (bx, by), color=style.color, width=0.8, dash="5,4",
                         layer="construction", css="construction",
                         data={"data-step": str(step.number)})
-            figure.used.add("construction")
-            if step.component in STYLES:    # the legend explains the line's colour
-                figure.used.add(step.component)
+            # the legend explains each colour of line drawn: "line of the … component"
+            figure.used.add(f"construction:{step.component if step.component in STYLES else ''}")
         elif step.action == "intersect" and step.end in where:
             for number in step.lines or ():
                 line = by_number.get(number)
@@ -285,21 +287,43 @@ def _right_angle(figure: Canvas, corner: Point, first: Point, second: Point) -> 
                     obstacle=False)
 
 
-def plan_legend(figure: Canvas, at: Point, kind: str) -> None:
-    """The legend of the styles a figure used, top-left at ``at``."""
+def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
+    """The legend of the styles a figure used, top-left at ``at``: each arrow style drawn, and
+    for each colour of construction line drawn, a row saying whose direction it carries.
+    Returns the y (px) below its last row (``at``'s y when nothing is listed)."""
     x, y = at
-    keys = [key for key in (*LEGEND_ORDER, "flagged") if key in figure.used]
-    if not keys:
-        return
+    lines = sorted(key.partition(":")[2] for key in figure.used
+                   if key.startswith("construction:"))
+    order = [(key, "") for key in LEGEND_ORDER if key in figure.used and key != "construction"]
+    at_lines = next((index for index, (key, _) in enumerate(order)
+                     if key in ("similarity", "projection")), len(order))
+    order[at_lines:at_lines] = [("construction", component) for component in
+                                sorted(lines, key=lambda c: LEGEND_ORDER.index(c)
+                                       if c in LEGEND_ORDER else len(LEGEND_ORDER))]
+    if "flagged" in figure.used:
+        order.append(("flagged", ""))
+    if not order:
+        return y
     figure.text((x, y), "Legend", size=TEXT_SIZE, bold=True, css="legend", area=False)
     y += 8
-    for key in keys:
+    for key, component in order:
         y += 20
         if key == "flagged":
             figure.circle((x + 17, y - 4), 7.0, fill="none", stroke=FLAG, width=1.6,
                           layer="text", area=False)
             text = "intersection at a small angle (flagged)"
-        elif key in ("construction", "similarity", "projection"):
+        elif key == "construction":
+            style = STYLES[key]
+            colour = STYLES[component].color if component else style.color
+            figure.line((x, y - 4), (x + 34, y - 4), color=colour, width=0.8,
+                        dash=style.dash, layer="text", obstacle=False)
+            if component:
+                own = STYLES[component]
+                name = own.legend_velocity if kind == "velocity" else own.legend_acceleration
+                text = f"construction line: direction of the {name}"
+            else:
+                text = "construction line"
+        elif key in ("similarity", "projection"):
             style = STYLES[key]
             figure.line((x, y - 4), (x + 34, y - 4), color=style.color,
                         width=max(style.width, 0.9), dash=style.dash, layer="text",
@@ -311,6 +335,7 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> None:
             figure.obstacle_lines.pop()
             text = style.legend_velocity if kind == "velocity" else style.legend_acceleration
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
+    return y
 
 
 def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | None,
@@ -353,7 +378,7 @@ def plan_svg(plan: Plan) -> str:
 
 
 # -- the mechanism --------------------------------------------------------------------------------
-def _mechanism_content(figure: Canvas, position: PositionPlan, *, faint: bool = False) -> None:
+def mechanism_content(figure: Canvas, position: PositionPlan, *, faint: bool = False) -> None:
     """Links, pairs, pivots, sliders and guides of a position plan, with label requests."""
     ink = FAINT if faint else INK
     fill = "#f2f2f2" if faint else LINK_FILL
@@ -525,6 +550,26 @@ def _area(polygon: Sequence[Point]) -> float:
                    for a, b in zip(polygon, [*polygon[1:], polygon[0]], strict=True))) / 2
 
 
+def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
+                  start_rad: float, sense: float, color: str, key: str,
+                  runs: tuple, *, css: str = "omega", sweep_deg: float = 70.0) -> None:
+    """A curved arrow round ``centre_mm`` (an angular velocity, a moment): ``radius_px`` on the
+    page, from ``start_rad`` (counter-clockwise from +x) through ``sweep_deg`` in the
+    ``sense`` (+1 counter-clockwise), labelled ``runs`` at its middle."""
+    radius = radius_px / figure.zoom
+    count = 21
+    angles = [start_rad + sense * math.radians(22 + sweep_deg * k / (count - 1))
+              for k in range(count)]
+    arc = [figure.px((centre_mm[0] + radius * math.cos(a), centre_mm[1] + radius * math.sin(a)))
+           for a in angles]
+    tip = arc[-1]
+    direction = unit_vector(difference(tip, arc[-2]))
+    figure.polyline([*arc[:-1], translate(tip, direction, -7.0)], color=color, width=1.4,
+                    layer="marks", css=css)
+    arrowhead(figure, tip, direction, 10.0, color, "marks")
+    figure.request((key,), arc[len(arc) // 2], runs, mark=1.0)
+
+
 def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None:
     """The crank's ω1 as a curved arrow round the drive pivot."""
     link, pivot, omega = position.drive
@@ -537,18 +582,8 @@ def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None
     tip_mm = position.points_mm[others[0]]
     start = math.atan2(tip_mm[1] - centre_mm[1], tip_mm[0] - centre_mm[0])
     crank_px = math.hypot(tip_mm[0] - centre_mm[0], tip_mm[1] - centre_mm[1]) * figure.zoom
-    radius = min(max(0.42 * crank_px, 20.0), 44.0) / figure.zoom
-    sense = 1.0 if omega > 0 else -1.0
-    angles = [start + sense * math.radians(22 + 3.5 * k) for k in range(21)]
-    arc = [figure.px((centre_mm[0] + radius * math.cos(a), centre_mm[1] + radius * math.sin(a)))
-           for a in angles]
-    tip = arc[-1]
-    direction = unit_vector(difference(tip, arc[-2]))
-    figure.polyline([*arc[:-1], translate(tip, direction, -7.0)], color=ink, width=1.4,
-                    layer="marks", css="omega")
-    arrowhead(figure, tip, direction, 10.0, ink, "marks")
-    middle = arc[len(arc) // 2]
-    figure.request(("ω1",), middle, (("ω", "main"), ("1", "upright")), mark=1.0)
+    turning_arrow(figure, centre_mm, min(max(0.42 * crank_px, 20.0), 44.0), start,
+                  1.0 if omega > 0 else -1.0, ink, "ω1", (("ω", "main"), ("1", "upright")))
 
 
 def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float) -> None:
@@ -589,7 +624,7 @@ def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float)
                        mark=1.0)
 
 
-def _position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ()) -> float:
+def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ()) -> float:
     points = list(position.points_mm.values()) + [tuple(s["through_mm"])
                                                    for s in position.slides] + list(extra)
     return fit_zoom(points, MECHANISM_SIZE)
@@ -604,14 +639,14 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     """
     position = position_plan
     centres = []
-    base_zoom = _position_zoom(position)
+    base_zoom = position_zoom(position)
     extent_mm = MECHANISM_SIZE / base_zoom
     for data in position.curvature.values():
         if float(data["rho_mm"]) <= 1.6 * extent_mm:
             centres.append(tuple(data["center_mm"]))
         centres += [tuple(xy) for xy in data.get("path_mm") or ()]
-    figure = Canvas(_position_zoom(position, centres))
-    _mechanism_content(figure, position)
+    figure = Canvas(position_zoom(position, centres))
+    mechanism_content(figure, position)
     _omega_arrow(figure, position)
     _curvature_content(figure, position, MECHANISM_SIZE)
     figure.place()
@@ -643,8 +678,8 @@ def lever_drawing(plans: Plans) -> Drawing:
     """The velocity plan turned 90° onto the faint mechanism, pole p at the drive's pivot."""
     position, plan = plans.position, plans.velocity
     rotated = plans.rotated_velocity_plan()
-    figure = Canvas(_position_zoom(position, list(rotated.values())))
-    _mechanism_content(figure, position, faint=True)
+    figure = Canvas(position_zoom(position, list(rotated.values())))
+    mechanism_content(figure, position, faint=True)
     plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0)
     figure.place()
     lines = [f"μl = {quantity(position.mu_l, 6)} m/mm",

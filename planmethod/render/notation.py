@@ -1,0 +1,174 @@
+"""Forces as a course writes them: links by number, reactions R₁₂, inertia Fᵘ₃ and Mᵘ₃.
+
+The solver names its forces for the JSON report (``G_BC``, ``F_u,rocker_EF``, ``R_B``,
+``load[1]``); a figure prints them in a mechanisms course's notation:
+
+=====================  ======================================================================
+report name            printed
+=====================  ======================================================================
+``G_BC``               G₃ — the weight of link 3
+``F_u,BC``             Fᵘ₃ — the inertia force (principal vector) of link 3
+``M_u,BC``             Mᵘ₃ — the inertia moment of link 3
+``R_B``, ``Rᵗ_B``      R₂₃, Rᵗ₂₃ … — the force of link 2 on link 3 (R₃₂ = −R₂₃); also Rⁿ, N
+``M_f,B``, ``F_f,B``   Mᶠ₂₃, Fᶠ₂₃ — the friction moment or force of link 2 on link 3
+``load[1]``            the load's ``name`` from the exercise, else P₁ (a force) or T₁ (a moment)
+=====================  ======================================================================
+
+Links are numbered as a course numbers them (:func:`planmethod.vocabulary.link_numbers`): the
+frame 1, the crank 2, the others in the order the exercise lists them.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> from planmethod.report import analyse
+>>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
+>>> notation = ForceNotation(analysis.forces.solution)
+>>> notation.plain("F_u,BC"), notation.plain("R_B", "BC"), notation.plain("R_B", "AB")
+('Fᵘ₃', 'R₂₃', 'R₃₂')
+>>> notation.line("Rᵗ_C ⟂ CD from ΣM_D(CD) = 0", ("BC", "CD"))
+'Rᵗ₃₄ ⟂ CD from ΣM_D(4) = 0'
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from typing import Any
+
+from ..model import FRAME
+from ..vocabulary import link_numbers
+from .labels import Run, label_runs
+
+__all__ = ["ForceNotation", "subscript"]
+
+_DIGITS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")
+
+#: a reaction or one of its components, by the pair's key
+_REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
+#: a force's report name inside a sentence
+_TOKEN = re.compile(r"load\[\d+\]|(?:F_u|M_u|M_f|F_f),[\w/:]+|(?:Rᵗ|Rⁿ|R∥|R⊥|R|N|G)_[\w/:]+")
+
+
+def subscript(text: str) -> str:
+    """Digits (and a comma) as Unicode subscripts.
+
+    >>> "R" + subscript("12")
+    'R₁₂'
+    """
+    return text.translate(_DIGITS)
+
+
+class ForceNotation:
+    """The printed names of one solution's forces (see the module docstring)."""
+
+    def __init__(self, solution: Any) -> None:
+        mechanism = solution.mechanism
+        self.numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+        self.pairs = {key: (reaction.source, reaction.target)
+                      for key, reaction in solution.reactions.items()}
+        self.loads: dict[str, tuple[str, str]] = {}
+        for load in mechanism.loads:
+            if load.name:
+                self.loads[f"load[{load.index}]"] = (load.name, "")
+            else:
+                self.loads[f"load[{load.index}]"] = ("T" if load.moment is not None else "P",
+                                                     str(load.index))
+
+    # -- links -------------------------------------------------------------------------------
+    def number(self, link: str) -> str:
+        """The link's number as text (its name where it has none)."""
+        return str(self.numbers[link]) if link in self.numbers else link
+
+    def link_name(self, link: str) -> str:
+        """``link 3 (rocker EF)``: the number, with the exercise's name in words."""
+        if link not in self.numbers:
+            return link.replace("_", " ")
+        return f"link {self.numbers[link]} ({link.replace('_', ' ')})"
+
+    def links(self, links: Iterable[str]) -> str:
+        """``links 3, 4 (BC, CD)``."""
+        links = list(links)
+        numbers = ", ".join(self.number(link) for link in links)
+        names = ", ".join(link.replace("_", " ") for link in links)
+        return f"link{'s' if len(links) > 1 else ''} {numbers} ({names})"
+
+    def _pair(self, key: str, on: str | None) -> str | None:
+        """The subscript ``ij`` of the pair ``key``: force of link i on link j, j = ``on``."""
+        found = self.pairs.get(key)
+        if found is None or (on is not None and on not in found):
+            found = next((pair for name, pair in self.pairs.items()
+                          if name.partition(":")[0] == key and (on is None or on in pair)),
+                         found)
+        if found is None:
+            return None
+        source, target = found
+        if on is not None and on == source:
+            source, target = target, source
+        first, second = self.numbers.get(source), self.numbers.get(target)
+        if first is None or second is None:
+            return None
+        return f"{first}{second}" if max(first, second) < 10 else f"{first},{second}"
+
+    # -- forces ------------------------------------------------------------------------------
+    def parts(self, name: str, on: str | None = None) -> tuple[str, str] | None:
+        """(symbol, subscript) of a force's report name acting on link ``on`` (None for a name
+        that is no force of this solution)."""
+        if name in self.loads:
+            return self.loads[name]
+        head, comma, rest = name.partition(",")
+        if comma and head in ("F_u", "M_u") and rest in self.numbers:
+            return ("Fᵘ" if head == "F_u" else "Mᵘ", self.number(rest))
+        if comma and head in ("M_f", "F_f"):
+            pair = self._pair(rest, on)
+            return ("Mᶠ" if head == "M_f" else "Fᶠ", pair) if pair else None
+        if name.startswith("G_") and name[2:] in self.numbers:
+            return ("G", self.number(name[2:]))
+        match = _REACTION.match(name)
+        if match:
+            pair = self._pair(match.group(2), on)
+            return (match.group(1), pair) if pair else None
+        return None
+
+    def runs(self, name: str, on: str | None = None) -> tuple[Run, ...]:
+        """A label's runs: the symbol, its subscript set small."""
+        found = self.parts(name, on)
+        if found is None:
+            return label_runs(name)
+        symbol, sub = found
+        if not sub:
+            return label_runs(symbol)
+        return ((symbol, "main"), (sub, "sub"))
+
+    def plain(self, name: str, on: str | None = None) -> str:
+        """The printed name in one string, the subscript in Unicode subscript digits."""
+        found = self.parts(name, on)
+        if found is None:
+            return name
+        symbol, sub = found
+        return symbol + subscript(sub)
+
+    def line(self, text: str, links: Iterable[str] = ()) -> str:
+        """A sentence of the solver (a group's step) in the course's notation: each force's
+        report name printed, a link named in parentheses by its number (ΣM_D(4)), any other
+        link name with an underscore in words."""
+        links = tuple(links)
+
+        def force(match: re.Match) -> str:
+            name = match.group(0)
+            key = _REACTION.match(name)
+            on = None
+            if key:     # a reaction in a group's sentence acts on the group's link at the pair
+                for pair_key, pair in self.pairs.items():
+                    if key.group(2) in (pair_key, pair_key.partition(":")[0]):
+                        inside = [link for link in pair if link in links]
+                        on = inside[0] if len(inside) == 1 else None
+                        break
+            return self.plain(name, on)
+
+        text = _TOKEN.sub(force, text)
+        for link in sorted(self.numbers, key=len, reverse=True):
+            text = text.replace(f"({link})", f"({self.numbers[link]})")
+            if "_" in link:
+                text = re.sub(rf"\b{re.escape(link)}\b", link.replace("_", " "), text)
+        return text
+

@@ -1,0 +1,205 @@
+"""The figure check: what a lecture slide or a printed sheet must not show, read from the SVG.
+
+:func:`figure_problems` parses an SVG written by planmethod (with ``defusedxml``, like any file
+it did not write itself) and lists, one line each:
+
+* **code words** in any text: a ``name[index]`` or a ``snake_case`` identifier (two or more
+  letters, an underscore, more: ``rocker_EF``, ``load[1]``, ``F_u,rocker_EF``); course notation
+  such as ``M_b`` or ``a_S`` in a note is not one;
+* **overlapping text**: two text boxes (labels, notes, legends, titles) that overlap by more
+  than a hair — boxes are computed from the fonts' advance widths (the same table the labels are
+  placed with) and each element's position, size and anchor, independently of the placer;
+* **outside the viewBox**: a text box, line, polyline, polygon or circle that leaves the
+  figure's viewBox;
+* **legend items not drawn**: a legend's sample (its stroke colour, dash and width, or its
+  fill) that no element of the figure itself has.
+
+Examples
+--------
+>>> svg = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 200 100">'
+...        '<g class="labels"><text x="10" y="50" font-size="12">rocker_EF</text>'
+...        '<text x="12" y="52" font-size="12">B</text></g></svg>')
+>>> for problem in figure_problems(svg):
+...     print(problem)
+code word 'rocker_EF' in text 'rocker_EF'
+text 'rocker_EF' overlaps text 'B'
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from ..render.style import LABEL, SANS, SANS_BOLD, text_width
+
+__all__ = ["CODE_WORD", "TextBox", "figure_problems", "text_boxes"]
+
+#: a code identifier in text: ``name[1]`` or a snake_case name with two or more letters first
+CODE_WORD = re.compile(r"\b[A-Za-z_]\w*\[\d+\]|\b[A-Za-z]{2,}_\w+|\b\w+_\w+_\w+")
+
+_SVG = "{http://www.w3.org/2000/svg}"
+#: overlap (px) tolerated between two boxes: the fonts' side bearings
+_HAIR = 0.6
+#: how far (px) anything may reach past the viewBox: a stroke's half width
+_EDGE = 1.5
+
+
+@dataclass(frozen=True)
+class TextBox:
+    """One ``<text>`` element: its whole text, its class and its box (x0, y0, x1, y1)."""
+
+    text: str
+    css: str
+    box: tuple[float, float, float, float]
+
+
+def _number(value: str | None, default: float = 0.0) -> float:
+    try:
+        return float(value) if value not in (None, "") else default
+    except ValueError:
+        return default
+
+
+def _local(tag: str) -> str:
+    return tag.rpartition("}")[2]
+
+
+def _text_box(element, css: str) -> TextBox:
+    size = _number(element.get("font-size"), 12.0)
+    family = element.get("font-family") or ""
+    italic = element.get("font-style") == "italic"
+    font = LABEL if ("Serif" in family or italic) else (
+        SANS_BOLD if element.get("font-weight") == "bold" else SANS)
+    monospace = "Mono" in family
+    x, y = _number(element.get("x")), _number(element.get("y"))
+    width, ascent, descent = 0.0, 0.8 * size, 0.25 * size
+    parts: list[str] = []
+    runs = [(element.text or "", size, 0.0)]
+    shift = 0.0
+    for child in element:
+        if _local(child.tag) != "tspan":
+            continue
+        child_size = _number(child.get("font-size"), size)
+        shift += _number(child.get("dy"))
+        runs.append((child.text or "", child_size, shift))
+        if child.tail:
+            runs.append((child.tail, size, shift))
+    for text, run_size, run_shift in runs:
+        if not text:
+            continue
+        parts.append(text)
+        width += 0.6 * run_size * len(text) if monospace else text_width(text, run_size, font)
+        ascent = max(ascent, 0.8 * run_size - run_shift)
+        descent = max(descent, 0.25 * run_size + run_shift)
+    anchor = element.get("text-anchor") or "start"
+    left = x - (width if anchor == "end" else width / 2 if anchor == "middle" else 0.0)
+    return TextBox("".join(parts), css, (left, y - ascent, left + width, y + descent))
+
+
+def _walk(element, classes: tuple[str, ...] = ()):
+    """(element, the classes of it and its ancestors) in document order."""
+    own = tuple((element.get("class") or "").split())
+    yield element, classes + own
+    for child in element:
+        yield from _walk(child, classes + own)
+
+
+def text_boxes(svg: str) -> list[TextBox]:
+    """Every ``<text>`` element's box (see the module docstring)."""
+    from defusedxml import ElementTree
+
+    root = ElementTree.fromstring(svg.encode("utf-8"))
+    return [_text_box(element, " ".join(classes)) for element, classes in _walk(root)
+            if _local(element.tag) == "text"]
+
+
+def _overlap(a, b) -> float:
+    width = min(a[2], b[2]) - max(a[0], b[0])
+    height = min(a[3], b[3]) - max(a[1], b[1])
+    return min(width, height)
+
+
+def _points(element) -> list[tuple[float, float]]:
+    tag = _local(element.tag)
+    if tag == "line":
+        return [(_number(element.get("x1")), _number(element.get("y1"))),
+                (_number(element.get("x2")), _number(element.get("y2")))]
+    if tag in ("polyline", "polygon"):
+        numbers = [float(v) for v in re.findall(r"-?\d+(?:\.\d+)?(?:e-?\d+)?",
+                                                element.get("points") or "")]
+        return list(zip(numbers[::2], numbers[1::2], strict=False))
+    if tag == "circle":
+        cx, cy, r = (_number(element.get(k)) for k in ("cx", "cy", "r"))
+        return [(cx - r, cy - r), (cx + r, cy + r)]
+    return []
+
+
+def _look(element) -> tuple[str, ...]:
+    """What a legend sample shows: stroke, dash and width, or the fill of a filled shape."""
+    if element.get("stroke") not in (None, "none"):
+        return ("stroke", element.get("stroke").lower(), element.get("stroke-dasharray") or "",
+                element.get("stroke-width") or "")
+    return ("fill", (element.get("fill") or "").lower())
+
+
+def figure_problems(svg: str) -> list[str]:
+    """Everything wrong with one figure, one line each (empty: nothing).
+
+    Raises
+    ------
+    defusedxml.DefusedXmlException, xml.etree.ElementTree.ParseError
+        If ``svg`` is not well-formed (or declares entities).
+    """
+    from defusedxml import ElementTree
+
+    root = ElementTree.fromstring(svg.encode("utf-8"))
+    problems: list[str] = []
+    boxes: list[TextBox] = []
+    shapes: list[tuple[str, tuple[float, float], tuple[str, ...]]] = []
+    legend_samples: list[tuple[str, ...]] = []
+    drawn: set[tuple[str, ...]] = set()
+    for element, classes in _walk(root):
+        tag = _local(element.tag)
+        if tag in ("title", "desc"):
+            continue
+        if tag == "text":
+            box = _text_box(element, " ".join(classes))
+            boxes.append(box)
+            for word in CODE_WORD.findall(box.text):
+                problems.append(f"code word {word!r} in text {box.text!r}")
+            continue
+        if tag not in ("line", "polyline", "polygon", "circle", "path", "rect"):
+            continue
+        if "background" in classes:
+            continue
+        for point in _points(element):
+            shapes.append((tag, point, classes))
+        if "text" in classes:          # the text layer: legends' samples and scale bars
+            if tag in ("line", "polyline", "circle", "rect", "polygon") and "bar" not in \
+                    classes and "scale" not in classes:
+                legend_samples.append(_look(element))
+        else:
+            drawn.add(_look(element))
+    for index, first in enumerate(boxes):
+        for second in boxes[index + 1:]:
+            if not first.text.strip() or not second.text.strip():
+                continue
+            if _overlap(first.box, second.box) > _HAIR:
+                problems.append(f"text {first.text!r} overlaps text {second.text!r}")
+    view = [float(v) for v in (root.get("viewBox") or "").replace(",", " ").split()]
+    if len(view) == 4:
+        x0, y0, x1, y1 = view[0], view[1], view[0] + view[2], view[1] + view[3]
+        for box in boxes:
+            bx0, by0, bx1, by1 = box.box
+            if bx0 < x0 - _EDGE or by0 < y0 - _EDGE or bx1 > x1 + _EDGE or by1 > y1 + _EDGE:
+                problems.append(f"text {box.text!r} leaves the viewBox")
+        outside = {tag for tag, (x, y), _ in shapes
+                   if not (x0 - _EDGE <= x <= x1 + _EDGE and y0 - _EDGE <= y <= y1 + _EDGE)}
+        for tag in sorted(outside):
+            problems.append(f"a {tag} leaves the viewBox")
+    for sample in legend_samples:
+        if sample[0] == "fill" and sample[1] in ("", "none", "#ffffff", "white"):
+            continue
+        if not any(sample[:3] == look[:3] for look in drawn):     # any width
+            problems.append(f"legend item {' '.join(sample)} is not drawn in the figure")
+    return list(dict.fromkeys(problems))

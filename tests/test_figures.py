@@ -1,0 +1,80 @@
+"""Every figure of every shipped exercise passes the figure check (no code word, no two texts
+overlapping, nothing outside the viewBox, every legend item drawn); Zhukovsky's lever carries
+its forces and states the report's M_b; every exercise with forces has its loaded mechanism."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from planmethod.render.figures import plan_files
+from planmethod.report import analyse, report_dict
+from planmethod.spec import load_exercise
+from planmethod.testing.figures import figure_problems
+
+ROOT = Path(__file__).resolve().parent.parent
+EXERCISES = sorted((ROOT / "exercises").glob("*.toml"))
+
+
+@pytest.fixture(scope="module", params=EXERCISES, ids=lambda path: path.stem)
+def drawn(request):
+    exercise = load_exercise(request.param)
+    analysis = analyse(exercise)
+    return exercise, analysis, plan_files(analysis.plans, analysis.forces)
+
+
+def test_every_figure_passes_the_figure_check(drawn):
+    _, _, files = drawn
+    found = [f"{name}: {problem}" for name, svg in files.items()
+             for problem in figure_problems(svg)]
+    assert not found, "\n".join(found[:20])
+
+
+def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
+    exercise, analysis, files = drawn
+    if analysis.forces is None:
+        pytest.skip("no forces in this exercise")
+    report = report_dict(analysis)
+    moment = report["forces"]["zhukovsky_moment"]
+    lever = files["lever.svg"]
+    assert f"M_b = {moment:.6g} N·m (Zhukovsky's lever)" in lever
+    drawn_forces = {force.name for force in analysis.forces.solution.lever.forces
+                    if " at " not in force.name and any(force.force[0])}
+    labelled = set(re.findall(r'data-points="force:([^"]+)"', lever))
+    assert labelled == drawn_forces | {"F_b"}                 # each force named at its image
+    arrows = re.findall(r'<g class="arrow lever force"', lever)  # (too short ones not drawn)
+    assert len(drawn_forces) // 2 < len(arrows) <= len(drawn_forces) + 1
+    assert "ΣM_p = Σ ± F·h = 0" in lever and "sum +0 N·mm" in lever
+
+
+def test_every_exercise_with_forces_has_its_loaded_mechanism(drawn):
+    exercise, analysis, files = drawn
+    assert ("loaded.svg" in files) == (analysis.forces is not None)
+    if analysis.forces is not None:
+        loaded = files["loaded.svg"]
+        assert "the loaded mechanism" in loaded and "M_b = " in loaded
+        weights = [item for item in analysis.forces.solution.applied.items
+                   if item.kind == "weight"]
+        assert loaded.count('class="arrow load"') >= len(weights)
+
+
+def test_the_figure_check_can_fail():
+    head = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">'
+    text = '<text x="{x}" y="{y}" font-size="12">{t}</text>'
+    assert figure_problems(head + text.format(x=10, y=50, t="load[1]") + "</svg>")
+    assert figure_problems(head + text.format(x=10, y=50, t="F_u,rocker_EF") + "</svg>")
+    assert not figure_problems(head + text.format(x=10, y=50, t="M_b = 4 N·m") + "</svg>")
+    assert figure_problems(head + text.format(x=10, y=50, t="B")
+                           + text.format(x=12, y=51, t="C") + "</svg>")
+    assert not figure_problems(head + text.format(x=10, y=50, t="B")
+                               + text.format(x=60, y=50, t="C") + "</svg>")
+    assert figure_problems(head + text.format(x=290, y=50, t="a long text") + "</svg>")
+    assert figure_problems(head + '<line x1="0" y1="0" x2="400" y2="0" stroke="#000"/></svg>')
+    legend = ('<g class="text"><line x1="5" y1="5" x2="30" y2="5" stroke="#7b3fa0" '
+              'stroke-dasharray="5,4"/></g>')
+    drawn_line = ('<g class="construction"><line x1="5" y1="50" x2="90" y2="50" '
+                  'stroke="#7b3fa0" stroke-dasharray="5,4"/></g>')
+    assert figure_problems(head + legend + "</svg>")
+    assert not figure_problems(head + drawn_line + legend + "</svg>")
