@@ -95,6 +95,9 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
     if factor:
         out["scale_none"] = value / factor
         out["scale_twice"] = value * factor
+    if factor is not None:                  # read off a plan: a scale misread by ten
+        out["scale_ten"] = value * 10.0
+        out["scale_tenth"] = value / 10.0
     if question["unit"].startswith("rad"):
         out["degrees"] = math.degrees(value)
         out["length_mm"] = value / 1000.0
@@ -114,7 +117,7 @@ def _outcome(result: dict, expected: str | None) -> str:
 def _numeric_rows(drawn_variants, keys, seed: int = 1):
     """The answers to grade: rows (student, {question: text}) and, per row and question,
     what the answer is (``("mistake", kind, how)`` or ``("noise", size)``)."""
-    from planmethod.grading.tolerances import mistaken_plans
+    from planmethod.grading.tolerances import CONSTRUCTION_MISTAKES, mistaken_plans
     from planmethod.kinematics import solve
 
     generator = random.Random(seed)
@@ -123,7 +126,7 @@ def _numeric_rows(drawn_variants, keys, seed: int = 1):
         mechanism = variant.exercise.mechanism
         motion = solve(mechanism, mechanism.drive.angle)
         wrong = {}
-        for mistake in ("no_normal", "coriolis_reversed"):
+        for mistake in CONSTRUCTION_MISTAKES:
             plans = mistaken_plans(variant.exercise, mistake, motion=motion)
             if plans is not None:
                 wrong[mistake] = plans.readings

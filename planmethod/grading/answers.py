@@ -255,6 +255,8 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
     for mistake in question.get("mistakes", ()):
         if abs(answer - mistake["value"]) <= mistake["tolerance"]:
             result["mistake"] = mistake["kind"]
+            if mistake.get("also"):   # other mistakes that give the same answer
+                result["also"] = list(mistake["also"])
             how = "" if mistake["kind"] == "sense" else f", {_off(answer, value)}"
             result["feedback"] = (f"{shown}: wrong{how} — it looks as if "
                                   f"{mistake['feedback']} (that gives "

@@ -49,7 +49,14 @@ from ..errors import SpecError
 from ..spec import check_nesting
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
-from .tolerances import MISTAKES, kind_of, mistaken_plans, propagate, scale_factor
+from .tolerances import (
+    CONSTRUCTION_MISTAKES,
+    MISTAKES,
+    kind_of,
+    mistaken_plans,
+    propagate,
+    scale_factor,
+)
 
 __all__ = [
     "KEYS_FORMAT",
@@ -193,17 +200,27 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
     if factor and factor != 1.0:
         found.append(("scale_none", value / factor, tolerance / factor))
         found.append(("scale_twice", value * factor, tolerance * factor))
+    if QUANTITY_KINDS[kind].scale is not None:     # read off a plan: a scale misread by 10
+        found.append(("scale_ten", value * 10.0, tolerance * 10.0))
+        found.append(("scale_tenth", value / 10.0, tolerance / 10.0))
     if QUANTITY_KINDS[kind].unit.startswith("rad"):
         found.append(("degrees", math.degrees(value), math.degrees(tolerance)))
         found.append(("length_mm", value / 1000.0, tolerance / 1000.0))
     else:  # metres
         found.append(("millimetres", value * 1000.0, tolerance * 1000.0))
-    out = []
+    out: list[dict] = []
     for mistake, wrong, wrong_tolerance in found:
-        if abs(wrong - value) > 2 * tolerance and all(
-                abs(wrong - other["value"]) > 1e-12 * max(1.0, abs(wrong)) for other in out):
-            out.append({"kind": mistake, "value": wrong, "tolerance": abs(wrong_tolerance),
-                        "feedback": MISTAKES[mistake]})
+        if abs(wrong - value) <= 2 * tolerance:
+            continue
+        same = next((other for other in out
+                     if abs(wrong - other["value"]) <= 1e-12 * max(1.0, abs(wrong))), None)
+        if same is not None:      # two mistakes give the same answer: the feedback names both
+            if mistake not in same.setdefault("also", []) and mistake != same["kind"]:
+                same["also"].append(mistake)
+                same["feedback"] += f", or {MISTAKES[mistake]}"
+            continue
+        out.append({"kind": mistake, "value": wrong, "tolerance": abs(wrong_tolerance),
+                    "feedback": MISTAKES[mistake]})
     return out
 
 
@@ -230,7 +247,7 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
     scales = choose_scales(exercise)
     wrong_plans = {}
-    for mistake in ("no_normal", "coriolis_reversed"):
+    for mistake in CONSTRUCTION_MISTAKES:
         plans = mistaken_plans(exercise, mistake, motion=motion)
         if plans is not None:
             wrong_plans[mistake] = plans

@@ -36,6 +36,7 @@ from ..plans.construction import Segment
 from ..vocabulary import QUANTITY_KINDS
 
 __all__ = [
+    "CONSTRUCTION_MISTAKES",
     "MISTAKES",
     "Propagation",
     "emulate_drawings",
@@ -48,14 +49,21 @@ __all__ = [
 #: The segment lengthening used to measure sensitivities (mm).
 DELTA_MM = 1e-4
 
+#: The mistakes made in the construction itself: the plans are drawn again with the mistake
+#: (:func:`mistaken_plans`), so every quantity read downstream of it is predicted.
+CONSTRUCTION_MISTAKES = ("no_normal", "no_coriolis", "coriolis_reversed")
+
 #: Mistakes detected in numeric answers and drawn plans.
 MISTAKES = {
     "sense": "the sense (sign) is reversed",
     "no_normal": "the normal component aⁿ was left out",
+    "no_coriolis": "the Coriolis component aᵏ was left out",
     "coriolis_reversed": "the Coriolis component aᵏ was laid off the wrong way",
     "full_acceleration": "the full acceleration was used instead of its normal component",
     "scale_none": "the plan's scale was not applied (the answer is a drawn length)",
     "scale_twice": "the plan's scale was applied twice",
+    "scale_ten": "the plan's scale was misread ten times too large",
+    "scale_tenth": "the plan's scale was misread ten times too small",
     "degrees": "degrees were given for radians",
     "millimetres": "millimetres were given for metres",
     "length_mm": "the length was taken in mm instead of m",
@@ -203,8 +211,17 @@ def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, see
 
 def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
     """The plans as drawn with a construction mistake: ``no_normal`` (the groups' normal
-    components aⁿ left out) or ``coriolis_reversed`` (every Coriolis component laid off the
-    wrong way). None if the exercise has no such component to get wrong."""
+    components aⁿ left out), ``no_coriolis`` (every Coriolis component left out) or
+    ``coriolis_reversed`` (every Coriolis component laid off the wrong way). None if the
+    exercise has no such component to get wrong.
+
+    Raises
+    ------
+    KeyError
+        If ``mistake`` is not one of :data:`CONSTRUCTION_MISTAKES`.
+    """
+    if mistake not in CONSTRUCTION_MISTAKES:
+        raise KeyError(mistake)
     from ..plans import draw_plans
 
     found = []
@@ -217,6 +234,9 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
             if mistake == "coriolis_reversed" and segment.name == "coriolis" and length > 0:
                 found.append(segment)
                 return -length
+            if mistake == "no_coriolis" and segment.name == "coriolis" and length > 0:
+                found.append(segment)
+                return 0.0
         return length
 
     if not exercise.ask.needs_acceleration:
