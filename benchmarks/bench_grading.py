@@ -34,7 +34,7 @@ Examples
 >>> sorted(answers_of_mistakes({"id": "omega_BC", "unit": "rad/s", "signed": True,
 ...                             "value": 2.0}, {"mu_l": 0.01, "mu_v": 0.5, "mu_a": 2.0},
 ...                            {}, None))
-['degrees', 'length_mm', 'scale_none', 'scale_twice', 'sense']
+['degrees', 'length_mm', 'scale_none', 'scale_ten', 'scale_tenth', 'scale_twice', 'sense']
 """
 
 from __future__ import annotations
@@ -111,7 +111,8 @@ def _outcome(result: dict, expected: str | None) -> str:
         return "accepted"
     if result["mistake"] is None:
         return "unnamed"
-    return "named_right" if result["mistake"] == expected else "named_other"
+    named = [result["mistake"], *result.get("also", ())]   # mistakes giving one answer
+    return "named_right" if expected in named else "named_other"
 
 
 def _numeric_rows(drawn_variants, keys, seed: int = 1):
@@ -157,7 +158,7 @@ def _tally(keys, results, truth) -> tuple[dict, dict]:
     noise: dict[float, Counter] = {size: Counter() for size in NOISE}
     named_noise: dict[float, Counter] = {size: Counter() for size in NOISE}
     for result, what in zip(results, truth, strict=True):
-        key = by_student[result["student"]]
+        key = by_student[result["student"].partition("~")[0]]
         listed = {q["id"]: {m["kind"] for m in q["mistakes"]} for q in key["questions"]}
         for graded in result["questions"]:
             if graded["id"] not in what:
@@ -225,12 +226,16 @@ def run(variants: int, drawings: int) -> dict:
         assert status == 0
         ids = [q["id"] for q in keys[0]["questions"]]
         path = folder / "answers.csv"
+        # one row per attempt: a student answers once per file, so each attempt is its own
+        # row id (student~n), graded against that student's key
         path.write_text("student," + ",".join(ids) + "\n" + "\n".join(
-            student + "," + ",".join(given.get(i, "") for i in ids) for student, given in rows)
-            + "\n")
+            f"{student}~{index}," + ",".join(given.get(i, "") for i in ids)
+            for index, (student, given) in enumerate(rows)) + "\n")
         by_student = {key["student"]: key for key in keys}
+        by_row = {f"{student}~{index}": by_student[student]
+                  for index, (student, _) in enumerate(rows)}
         started = time.perf_counter()
-        results = grade_many(by_student, read_answers(path))
+        results = grade_many(by_row, read_answers(path))
         grading_seconds = time.perf_counter() - started
         assert len(results) == len(rows)
         generator = random.Random(3)
