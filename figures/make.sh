@@ -15,8 +15,9 @@ for name in combined_force_slider_crank conveyor_sixbar fourbar_forces fourbar_s
     run solve "exercises/$name.toml" --svg "figures/forces/$name" --png \
         > "figures/forces/$name/solve.txt"
 done
+# `check` exits 1 when it flags rows of the paper's table, as it does here: that is its result
 run check exercises/conveyor_sixbar.toml exercises/conveyor_sixbar_table2.csv \
-    > figures/forces/conveyor_sixbar/check_table2.txt
+    > figures/forces/conveyor_sixbar/check_table2.txt || [ $? -eq 1 ]
 run sweep exercises/conveyor_sixbar.toml --forces --plot figures/forces/conveyor_sixbar/forces_sweep.png > /dev/null
 run sweep exercises/fourbar_study.toml --forces --plot figures/forces/fourbar_study/forces_sweep.png > /dev/null
 run study exercises/fourbar_study.toml --plot figures/forces/fourbar_study/study.png \

@@ -33,7 +33,7 @@ def test_every_figure_passes_the_figure_check(drawn):
 
 
 def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
-    exercise, analysis, files = drawn
+    _, analysis, files = drawn
     if analysis.forces is None:
         pytest.skip("no forces in this exercise")
     report = report_dict(analysis)
@@ -50,7 +50,7 @@ def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
 
 
 def test_every_exercise_with_forces_has_its_loaded_mechanism(drawn):
-    exercise, analysis, files = drawn
+    _, analysis, files = drawn
     assert ("loaded.svg" in files) == (analysis.forces is not None)
     if analysis.forces is not None:
         loaded = files["loaded.svg"]
@@ -78,3 +78,29 @@ def test_the_figure_check_can_fail():
                   'stroke="#7b3fa0" stroke-dasharray="5,4"/></g>')
     assert figure_problems(head + legend + "</svg>")
     assert not figure_problems(head + drawn_line + legend + "</svg>")
+
+
+def test_the_figure_check_follows_translations_and_clip_paths():
+    head = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 200">'
+    moved = ('<g transform="translate(100,0)"><text x="0" y="50" font-size="12">B</text>'
+             '</g><text x="101" y="51" font-size="12">C</text>')
+    assert any("overlaps" in p for p in figure_problems(head + moved + "</svg>"))
+    clipped = ('<defs><clipPath id="k"><rect x="0" y="0" width="50" height="50"/></clipPath>'
+               '</defs><g clip-path="url(#k)"><text x="120" y="150" font-size="12">B</text>'
+               '<line x1="0" y1="0" x2="900" y2="0" stroke="#000"/></g>'
+               '<text x="121" y="151" font-size="12">C</text>')
+    assert not figure_problems(head + clipped + "</svg>")      # hidden by the clip path
+    turned = '<g transform="rotate(30)"><text x="0" y="50" font-size="12">B</text></g>'
+    assert figure_problems(head + turned + "</svg>")
+
+
+def test_a_dense_region_gets_an_enlarged_detail(drawn):
+    exercise, analysis, files = drawn
+    from planmethod.render.svg import dense_regions
+
+    plan = analysis.plans.velocity
+    where = {label: (x * 10.0, -y * 10.0) for label, (x, y) in plan.points_mm.items()}
+    assert isinstance(dense_regions(where), list)
+    if exercise.source.endswith("conveyor_sixbar.toml"):
+        for name in ("velocity.svg", "acceleration.svg"):
+            assert 'class="detail"' in files[name] and "detail A" in files[name], name

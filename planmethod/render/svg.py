@@ -72,6 +72,7 @@ from .style import (
     STYLES,
     TEXT_SIZE,
     TITLE_SIZE,
+    num,
     quantity,
 )
 
@@ -80,6 +81,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "Drawing",
+    "dense_regions",
     "frame",
     "lever_drawing",
     "lever_svg",
@@ -358,15 +360,130 @@ def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | N
         y += 17
 
 
+#: points of a plan nearer than this (px) to a neighbour crowd each other: three or more such
+#: (distinct) points make a region that gets an enlarged detail
+DENSE_PX = 16.0
+#: the longest side of a detail inset (px), and the least and most enlargement worth drawing
+DETAIL_SIZE = 300.0
+DETAIL_ZOOM = (2.5, 12.0)
+
+
+def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX,
+                  least: int = 3) -> list[tuple[float, float, float, float]]:
+    """Boxes (x0, y0, x1, y1, page px) round the groups of at least ``least`` distinct points
+    (coincident ones count once) each within ``gap`` of another of the group — the regions of
+    a plan too dense to read, largest group first.
+
+    Examples
+    --------
+    >>> dense_regions({"a": (0, 0), "b": (5, 0), "c": (5, 6), "d": (200, 0)})
+    [(0.0, 0.0, 5.0, 6.0)]
+    """
+    spots: list[Point] = []
+    for xy in where.values():
+        if all(vector_length(difference(xy, other)) >= COINCIDENT for other in spots):
+            spots.append((float(xy[0]), float(xy[1])))
+    group = list(range(len(spots)))
+
+    def root(index: int) -> int:
+        while group[index] != index:
+            group[index] = group[group[index]]
+            index = group[index]
+        return index
+
+    for i, first in enumerate(spots):
+        for j in range(i + 1, len(spots)):
+            if vector_length(difference(first, spots[j])) < gap:
+                group[root(i)] = root(j)
+    members: dict[int, list[Point]] = {}
+    for index, xy in enumerate(spots):
+        members.setdefault(root(index), []).append(xy)
+    found = [points for points in members.values() if len(points) >= least]
+    found.sort(key=lambda points: (-len(points), points[0]))
+    return [(min(p[0] for p in points), min(p[1] for p in points),
+             max(p[0] for p in points), max(p[1] for p in points)) for points in found]
+
+
+def _detail_regions(figure: Canvas, plan: Plan) -> list[tuple[str, tuple, float]]:
+    """The plan's dense regions worth an enlarged detail: (letter, box in page px,
+    enlargement), each marked on the plan with a frame and its letter (placed with the
+    labels: call before :meth:`Canvas.place`)."""
+    where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
+    out = []
+    for x0, y0, x1, y1 in dense_regions(where)[:2]:
+        margin = max(10.0, 0.2 * max(x1 - x0, y1 - y0))
+        box = (x0 - margin, y0 - margin, x1 + margin, y1 + margin)
+        zoom = min(DETAIL_SIZE / max(box[2] - box[0], box[3] - box[1]), DETAIL_ZOOM[1])
+        if zoom < DETAIL_ZOOM[0]:
+            continue
+        letter = "ABCD"[len(out)]
+        figure.rectangle((box[0], box[1]), (box[2] - box[0], box[3] - box[1]), fill="none",
+                         stroke=INK, width=0.8, layer="marks", css="detail region")
+        figure.request((f"detail:{letter}",), (box[2], box[1]), ((letter, "sep"),),
+                       mark=0.0)
+        out.append((letter, box, float(math.floor(zoom))))     # a whole enlargement: ×6
+    return out
+
+
+def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
+    """Each marked region drawn again, enlarged, below the plan: the drawing clipped to the
+    region, the labels of the points inside it kept whole. Returns the lines that say so."""
+    lines = []
+    x = figure.extent[0]
+    top = figure.extent[3] + 30.0
+    for letter, (x0, y0, x1, y1), zoom in regions:
+        detail = Canvas(figure.zoom * zoom)
+        plan_content(detail, plan.points_mm, plan.steps, plan.pole)
+        detail.place()
+        width, height = (x1 - x0) * zoom, (y1 - y0) * zoom
+        inside = {" ".join(label.points) for label in detail.labels
+                  if x0 * zoom <= label.anchor[0] <= x1 * zoom
+                  and y0 * zoom <= label.anchor[1] <= y1 * zoom}
+        ident = f"detail-{plan.kind}-{letter}"
+        figure.define("clipPath", {"id": ident}, [
+            ("rect", {"x": num(x0 * zoom), "y": num(y0 * zoom), "width": num(width),
+                      "height": num(height)}, [])])
+        drawing = [("g", {"class": name}, items) for name, items in detail.layers.items()
+                   if items and name not in ("labels", "leaders")]
+        texts = [item for item in detail.layers["labels"]
+                 if item[1].get("data-points") in inside]
+        leaders = [item for item in detail.layers["leaders"]
+                   if x0 * zoom <= float(item[1]["x1"]) <= x1 * zoom
+                   and y0 * zoom <= float(item[1]["y1"]) <= y1 * zoom]
+        move = f"translate({num(x - x0 * zoom)},{num(top - y0 * zoom)})"
+        figure.add("points", "g", {"class": "detail", "clip-path": f"url(#{ident})",
+                                   "transform": move}, drawing)
+        figure.add("labels", "g", {"class": "detail labels", "transform": move},
+                   [("g", {"class": "leaders"}, leaders), ("g", {"class": "labels"}, texts)])
+        figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
+                         layer="marks", css="detail frame")
+        right, bottom = x + width, top + height
+        for label in detail.labels:           # labels kept whole may reach past the frame
+            if " ".join(label.points) in inside:
+                bx0, by0, bx1, by1 = label.box
+                corner = (x + bx1 - x0 * zoom, top + by1 - y0 * zoom)
+                figure.grow((x + bx0 - x0 * zoom, top + by0 - y0 * zoom), corner)
+                right, bottom = max(right, corner[0]), max(bottom, corner[1])
+        figure.text((x, bottom + 18), f"{letter}: detail ×{zoom:g}", size=TEXT_SIZE,
+                    bold=True, css="detail", area=False)
+        lines.append(f"detail {letter}: the marked region drawn {zoom:g} times larger")
+        x = right + 40.0
+    return lines
+
+
 def plan_drawing(plan: Plan) -> Drawing:
-    """A velocity or acceleration plan as an SVG :class:`Drawing` (see the module docstring)."""
+    """A velocity or acceleration plan as an SVG :class:`Drawing` (see the module docstring);
+    a region too dense to read is drawn again, enlarged, below the plan."""
     figure = Canvas(fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
     plan_content(figure, plan.points_mm, plan.steps, plan.pole)
+    regions = _detail_regions(figure, plan)
     figure.place()
+    details = _detail_insets(figure, plan, regions)
     symbol = _SYMBOLS.get(plan.kind, "μ")
     lines = [f"{symbol} = {quantity(plan.scale, 6)} {plan.unit}"]
     if plan.precision_mm:
         lines.append(f"drafting precision {plan.precision_mm:g} mm")
+    lines += details
     frame(figure, plan.title or f"{plan.kind} plan", lines,
            (plan.scale, _unit_of(plan.unit), 0.3 * PLAN_SIZE), plan.flags, plan.kind)
     return figure.svg(plan.title or f"{plan.kind} plan")

@@ -96,12 +96,51 @@ def _text_box(element, css: str) -> TextBox:
     return TextBox("".join(parts), css, (left, y - ascent, left + width, y + descent))
 
 
-def _walk(element, classes: tuple[str, ...] = ()):
-    """(element, the classes of it and its ancestors) in document order."""
+_TRANSLATE = re.compile(r"^\s*translate\(\s*(-?[\d.e-]+)[\s,]+(-?[\d.e-]+)\s*\)\s*$")
+
+
+def _walk(element, classes: tuple[str, ...] = (), offset=(0.0, 0.0), clip=None, clips=None):
+    """(element, the classes of it and its ancestors, its translation, its clip box in page
+    coordinates or None) in document order. Only ``translate`` transforms and clip paths
+    made of one rectangle are understood (what planmethod writes); any other transform is
+    reported by :func:`figure_problems`."""
     own = tuple((element.get("class") or "").split())
-    yield element, classes + own
+    transform = element.get("transform")
+    if transform:
+        match = _TRANSLATE.match(transform)
+        if match:
+            offset = (offset[0] + float(match.group(1)), offset[1] + float(match.group(2)))
+        else:
+            classes = (*classes, "unknown-transform")
+    reference = element.get("clip-path")
+    if reference and clips is not None:
+        box = clips.get(reference.strip()[5:-1]) if reference.startswith("url(#") else None
+        if box is not None:
+            box = (box[0] + offset[0], box[1] + offset[1], box[2] + offset[0],
+                   box[3] + offset[1])
+            clip = box if clip is None else (max(clip[0], box[0]), max(clip[1], box[1]),
+                                             min(clip[2], box[2]), min(clip[3], box[3]))
+    yield element, classes + own, offset, clip
     for child in element:
-        yield from _walk(child, classes + own)
+        yield from _walk(child, classes + own, offset, clip, clips)
+
+
+def _clip_boxes(root) -> dict[str, tuple[float, float, float, float]]:
+    """id → box of each ``<clipPath>`` that is one rectangle."""
+    out = {}
+    for element in root.iter():
+        if _local(element.tag) != "clipPath" or not element.get("id"):
+            continue
+        rects = [child for child in element if _local(child.tag) == "rect"]
+        if len(rects) == 1:
+            x, y = _number(rects[0].get("x")), _number(rects[0].get("y"))
+            out[element.get("id")] = (x, y, x + _number(rects[0].get("width")),
+                                      y + _number(rects[0].get("height")))
+    return out
+
+
+def _moved(box, offset):
+    return (box[0] + offset[0], box[1] + offset[1], box[2] + offset[0], box[3] + offset[1])
 
 
 def text_boxes(svg: str) -> list[TextBox]:
@@ -109,8 +148,12 @@ def text_boxes(svg: str) -> list[TextBox]:
     from defusedxml import ElementTree
 
     root = ElementTree.fromstring(svg.encode("utf-8"))
-    return [_text_box(element, " ".join(classes)) for element, classes in _walk(root)
-            if _local(element.tag) == "text"]
+    out = []
+    for element, classes, offset, _ in _walk(root, clips=_clip_boxes(root)):
+        if _local(element.tag) == "text":
+            box = _text_box(element, " ".join(classes))
+            out.append(TextBox(box.text, box.css, _moved(box.box, offset)))
+    return out
 
 
 def _overlap(a, b) -> float:
@@ -158,22 +201,38 @@ def figure_problems(svg: str) -> list[str]:
     shapes: list[tuple[str, tuple[float, float], tuple[str, ...]]] = []
     legend_samples: list[tuple[str, ...]] = []
     drawn: set[tuple[str, ...]] = set()
-    for element, classes in _walk(root):
+    clip_shapes = {id(child) for clip in root.iter() if _local(clip.tag) == "clipPath"
+                   for child in clip}      # a clip path's own shapes are not drawn
+    for element, classes, offset, clip in _walk(root, clips=_clip_boxes(root)):
         tag = _local(element.tag)
-        if tag in ("title", "desc"):
+        if tag in ("title", "desc", "clipPath"):
+            continue
+        if "unknown-transform" in classes:
+            if tag in ("text", "line", "polyline", "polygon", "circle", "rect"):
+                problems.append(f"a {tag} under a transform other than translate")
             continue
         if tag == "text":
             box = _text_box(element, " ".join(classes))
+            box = TextBox(box.text, box.css, _moved(box.box, offset))
+            if clip is not None:          # what a clip path hides is not seen
+                visible = (max(box.box[0], clip[0]), max(box.box[1], clip[1]),
+                           min(box.box[2], clip[2]), min(box.box[3], clip[3]))
+                if visible[0] >= visible[2] or visible[1] >= visible[3]:
+                    continue
+                box = TextBox(box.text, box.css, visible)
             boxes.append(box)
             for word in CODE_WORD.findall(box.text):
                 problems.append(f"code word {word!r} in text {box.text!r}")
             continue
         if tag not in ("line", "polyline", "polygon", "circle", "path", "rect"):
             continue
-        if "background" in classes:
+        if "background" in classes or id(element) in clip_shapes:
             continue
-        for point in _points(element):
-            shapes.append((tag, point, classes))
+        for x, y in _points(element):
+            x, y = x + offset[0], y + offset[1]
+            if clip is not None:          # clipped: only what lies inside the clip is seen
+                x, y = min(max(x, clip[0]), clip[2]), min(max(y, clip[1]), clip[3])
+            shapes.append((tag, (x, y), classes))
         if "text" in classes:          # the text layer: legends' samples and scale bars
             if tag in ("line", "polyline", "circle", "rect", "polygon") and "bar" not in \
                     classes and "scale" not in classes:
