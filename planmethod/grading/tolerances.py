@@ -155,9 +155,10 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
     sensitivity = {q: np.zeros(count) for q in quantities}
     point_sensitivity = {plan: {label: np.zeros((count, 2)) for label in labels}
                          for plan, labels in points.items()}
-    for index in range(count):
+    for index in range(count):           # the same position: scales kept, no mechanism drawn
         drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
-                           perturb=_Recorder(index, DELTA_MM))
+                           perturb=_Recorder(index, DELTA_MM), scales=base.scales,
+                           position=False)
         for q in quantities:
             if q in base.readings and q in drawn.readings:
                 sensitivity[q][index] = (drawn.readings[q] - base.readings[q]) / DELTA_MM

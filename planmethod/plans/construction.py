@@ -184,12 +184,13 @@ class PositionPlan:
 @dataclass(frozen=True)
 class Plans:
     """The position, velocity and acceleration plans of one crank angle, and what is read off
-    them (``readings``: quantity → SI value, e.g. ``v_C``, ``omega_BC``, ``rho_D``)."""
+    them (``readings``: quantity → SI value, e.g. ``v_C``, ``omega_BC``, ``rho_D``).
+    ``position`` is None when drawn with ``position=False`` (readings only)."""
 
     exercise: Exercise
     angle: float
     scales: Scales
-    position: PositionPlan
+    position: PositionPlan | None
     velocity: Plan
     acceleration: Plan | None
     readings: Mapping[str, float]
@@ -357,6 +358,7 @@ class _Emulator:
         self.motion = motion
         self.scales = scales
         self.readings: dict[str, float] = {}
+        self.states: dict = {}
         self.vimages: dict[str, LinkImage] = {}
         self.aimages: dict[str, LinkImage] = {}
         self.rel_velocity: dict[tuple[int, int], float] = {}
@@ -371,7 +373,9 @@ class _Emulator:
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
-        state = self.motion.links[link]
+        state = self.states.get(link)
+        if state is None:                # each link's state read once per drawing
+            state = self.states[link] = self.motion.links[link]
         return state.place(self.mechanism.local(link, point))[0]
 
     def length_mm(self, first: np.ndarray, second: np.ndarray) -> float:
@@ -685,7 +689,8 @@ def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: fl
                         (drive.link, drive.pivot, drive.omega), {}, angle, mechanism.title)
 
 
-def _curvature_readings(emulator: _Emulator, point: str, position_plan: PositionPlan) -> None:
+def _curvature_readings(emulator: _Emulator, point: str,
+                        position_plan: PositionPlan | None) -> None:
     """ρ = (pd)²·μv² / ((πn_D)·μa): project πd on the normal to pd (Abduvaliev &
     Abduxoshimov, with their ρ formula's slip corrected)."""
     v, a, scales = emulator.v, emulator.a, emulator.scales
@@ -718,6 +723,8 @@ def _curvature_readings(emulator: _Emulator, point: str, position_plan: Position
                start=a.pole, end=n_label, length_mm=normal_mm, quantity=f"rho_{point}",
                value=rho))
     emulator.readings[f"rho_{point}"] = rho
+    if position_plan is None:            # drawn without the mechanism: nothing to mark
+        return
     centre = position[0] / scales.mu_l + rho / scales.mu_l * normal
     position_plan.curvature[name] = {
         "center_mm": [float(centre[0]), float(centre[1])], "rho_mm": rho / scales.mu_l,
@@ -833,7 +840,8 @@ def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dic
 
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
                settings: PlanSettings | None = None, acceleration: bool = True,
-               motion: Motion | None = None, perturb=None) -> Plans:
+               motion: Motion | None = None, perturb=None, scales: Scales | None = None,
+               position: bool = True) -> Plans:
     """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
 
     Parameters
@@ -853,6 +861,13 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         replaces the rounding to ``precision_mm`` for every length laid off or read off
         (``segment`` is a :class:`Segment`); the calls come in construction order. Used to
         propagate reading errors into grading tolerances. Default: round to ``precision_mm``.
+    scales
+        The drawing scales, if already chosen for these settings (a tolerance analysis draws
+        the same position many times).
+    position
+        Also make the position plan (the mechanism's drawing, with the paths of the points
+        whose ρ is read); without it ``Plans.position`` is None and only the velocity and
+        acceleration plans and the readings are made.
 
     Raises
     ------
@@ -864,9 +879,9 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     angle = float(mechanism.drive.angle if angle is None else angle)
     if motion is None:
         motion = solve(mechanism, angle, stage="position")
-    scales = choose_scales(exercise, settings)
+    scales = scales or choose_scales(exercise, settings)
     emulator = _Emulator(exercise, settings, angle, motion, scales, perturb)
-    position_plan = _position_plan(exercise, motion, scales, angle)
+    position_plan = _position_plan(exercise, motion, scales, angle) if position else None
     emulator.drive()
     groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
     for group in groups:
