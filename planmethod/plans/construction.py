@@ -238,10 +238,13 @@ class _Sheet:
     """One plan being drawn: its points, steps and the drafting precision."""
 
     def __init__(self, kind: str, pole: str, scale: float, unit: str, precision: float,
-                 min_angle: float, perturb=None) -> None:
+                 min_angle: float, perturb=None, record: bool = True) -> None:
         self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
         self.precision, self.min_angle = precision, min_angle
         self.perturb = perturb
+        #: keep the steps (False: only points and readings are wanted; steps are counted)
+        self.record = record
+        self.count = 0
         self.points: dict[str, np.ndarray] = {pole: np.zeros(2)}
         self.steps: list[Step] = []
         self.flags: list[str] = []
@@ -249,9 +252,10 @@ class _Sheet:
         self.add(Step(0, "pole", f"pole {pole}", end=pole))
 
     def add(self, step: Step) -> int:
-        number = len(self.steps) + 1
-        self.steps.append(Step(number, *[getattr(step, n) for n in Step.__slots__[1:]]))
-        return number
+        self.count += 1
+        if self.record:
+            self.steps.append(Step(self.count, *[getattr(step, n) for n in Step.__slots__[1:]]))
+        return self.count
 
     def round(self, length: float, segment: Segment | None = None) -> float:
         """A length as laid off or read off the drawing (``perturb`` replaces the rounding)."""
@@ -315,6 +319,9 @@ class _Sheet:
         length = self.round(float(np.hypot(*(self.points[end] - self.points[start]))),
                             Segment(self.kind, "read", quantity))
         value = sign * length * factor
+        if not self.record:
+            self.count += 1
+            return value
         self.add(Step(0, "read", f"({start}{end}) = {length:.4g} mm → {quantity} = {value:.6g}",
                       start=start, end=end, length_mm=length, quantity=quantity, value=value))
         return value
@@ -350,7 +357,7 @@ class _Emulator:
     """Draws the three plans of one crank angle."""
 
     def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
-                 motion: Motion, scales: Scales, perturb=None) -> None:
+                 motion: Motion, scales: Scales, perturb=None, record: bool = True) -> None:
         self.exercise = exercise
         self.mechanism = exercise.mechanism
         self.settings = settings
@@ -367,9 +374,10 @@ class _Emulator:
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
         #: what a group kind's own drawing keeps between its velocity and acceleration plans
         self.memo: dict = {}
-        self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb)
+        self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb,
+                        record)
         self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
-                        perturb)
+                        perturb, record)
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
@@ -866,8 +874,8 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         the same position many times).
     position
         Also make the position plan (the mechanism's drawing, with the paths of the points
-        whose ρ is read); without it ``Plans.position`` is None and only the velocity and
-        acceleration plans and the readings are made.
+        whose ρ is read); without it ``Plans.position`` is None and only the points of the
+        velocity and acceleration plans and the readings are made (no steps).
 
     Raises
     ------
@@ -880,7 +888,7 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     if motion is None:
         motion = solve(mechanism, angle, stage="position")
     scales = scales or choose_scales(exercise, settings)
-    emulator = _Emulator(exercise, settings, angle, motion, scales, perturb)
+    emulator = _Emulator(exercise, settings, angle, motion, scales, perturb, record=position)
     position_plan = _position_plan(exercise, motion, scales, angle) if position else None
     emulator.drive()
     groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
