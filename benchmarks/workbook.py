@@ -1,7 +1,8 @@
 """The interactive workbook's speed: one position, a whole page, and the browser's frame switch.
 
 *Per position* (median over 12 crank angles, ms): ``analyse`` (kinematics, plans data and
-forces), ``plan_files`` (every drawing of the angle as SVG) and the answer key of the angle
+forces), ``plan_files`` (every drawing of a workbook frame as SVG: ``solve --svg``'s set without
+the enlarged details and the loaded mechanism) and the answer key of the angle
 (``build_key``: the tolerances of ``planmethod grade``), for the compressor slider-crank and the
 six-link conveyor. *Page*: ``planmethod workbook`` of the full turn at 1° (360 frames), wall time
 with its default worker processes and the page's size. *Browser*: the page opened from
@@ -58,7 +59,7 @@ def per_position(name: str, count: int = 12) -> dict:
         start = time.perf_counter()
         analysis = analyse(exercise, angle)
         middle = time.perf_counter()
-        plan_files(analysis.plans, forces=analysis.forces)
+        plan_files(analysis.plans, forces=analysis.forces, details=False, loaded=False)
         end = time.perf_counter()
         build_key(replace(variant, exercise=analysis.exercise))
         times["analyse"].append(middle - start)

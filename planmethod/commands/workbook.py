@@ -107,7 +107,9 @@ def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
     out = []
     for angle in angles:
         analysis = analyse(exercise, angle)
-        files = plan_files(analysis.plans, forces=analysis.forces) if analysis.plans else {}
+        # many frames: no enlarged details and no loaded mechanism (solve --svg draws them)
+        files = (plan_files(analysis.plans, forces=analysis.forces, details=False,
+                            loaded=False) if analysis.plans else {})
         frame = frame_data(analysis, variant, files)
         frame["quantities"] = [(check.quantity, check.unit) for check in analysis.checks]
         frame["moment"] = (None if analysis.forces is None else

@@ -26,15 +26,18 @@ if TYPE_CHECKING:
 __all__ = ["plan_files"]
 
 
-def plan_files(plans: Plans, forces: Any = None) -> dict[str, str]:
+def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
+               loaded: bool = True) -> dict[str, str]:
     """Every drawing of one crank angle: ``{"position.svg": …, "velocity.svg": …,
     "acceleration.svg": … (if drawn), "lever.svg": …}`` plus the force drawings if
-    ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given."""
+    ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given.
+    ``details`` draws the enlarged details of dense plan regions, ``loaded`` the loaded
+    mechanism (a page of many frames, the workbook, leaves both out)."""
     files = {"position.svg": position_svg(plans.position, plans=plans),
-             "velocity.svg": plan_svg(plans.velocity)}
+             "velocity.svg": plan_svg(plans.velocity, details=details)}
     if plans.acceleration is not None:
-        files["acceleration.svg"] = plan_svg(plans.acceleration)
+        files["acceleration.svg"] = plan_svg(plans.acceleration, details=details)
     files["lever.svg"] = lever_svg(plans)
     if forces is not None:
-        files.update(force_files(forces, plans))
+        files.update(force_files(forces, plans, loaded=loaded))
     return files

@@ -472,7 +472,7 @@ def _file_name(index: int, group) -> str:
     return f"forces_{index}_{name}.svg"
 
 
-def force_files(forces: Any, plans) -> dict[str, str]:
+def force_files(forces: Any, plans, *, loaded: bool = True) -> dict[str, str]:
     """``{"forces_<n>_<group>.svg": …, "combined_force.svg": …}`` for one crank angle."""
     files: dict[str, str] = {}
     title = forces.solution.mechanism.title
@@ -489,7 +489,7 @@ def force_files(forces: Any, plans) -> dict[str, str]:
     lever = lever_forces_svg(forces, plans)
     if lever is not None:
         files["lever.svg"] = lever
-    loaded = loaded_svg(forces, plans)
-    if loaded is not None:
-        files["loaded.svg"] = loaded
+    drawing = loaded_svg(forces, plans) if loaded else None
+    if drawing is not None:
+        files["loaded.svg"] = drawing
     return files

@@ -434,6 +434,10 @@ def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
     for letter, (x0, y0, x1, y1), zoom in regions:
         detail = Canvas(figure.zoom * zoom)
         plan_content(detail, plan.points_mm, plan.steps, plan.pole)
+        reach = 60.0               # labels are placed for the points in and near the region
+        detail.requests = [request for request in detail.requests
+                           if x0 * zoom - reach <= request.anchor[0] <= x1 * zoom + reach
+                           and y0 * zoom - reach <= request.anchor[1] <= y1 * zoom + reach]
         detail.place()
         width, height = (x1 - x0) * zoom, (y1 - y0) * zoom
         inside = {" ".join(label.points) for label in detail.labels
@@ -471,12 +475,12 @@ def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
     return lines
 
 
-def plan_drawing(plan: Plan) -> Drawing:
+def plan_drawing(plan: Plan, *, details: bool = True) -> Drawing:
     """A velocity or acceleration plan as an SVG :class:`Drawing` (see the module docstring);
-    a region too dense to read is drawn again, enlarged, below the plan."""
+    with ``details``, a region too dense to read is drawn again, enlarged, below the plan."""
     figure = Canvas(fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
     plan_content(figure, plan.points_mm, plan.steps, plan.pole)
-    regions = _detail_regions(figure, plan)
+    regions = _detail_regions(figure, plan) if details else []
     figure.place()
     details = _detail_insets(figure, plan, regions)
     symbol = _SYMBOLS.get(plan.kind, "μ")
@@ -489,9 +493,9 @@ def plan_drawing(plan: Plan) -> Drawing:
     return figure.svg(plan.title or f"{plan.kind} plan")
 
 
-def plan_svg(plan: Plan) -> str:
+def plan_svg(plan: Plan, *, details: bool = True) -> str:
     """A velocity or acceleration plan as SVG text, drawn from the plan's data alone."""
-    return plan_drawing(plan).svg
+    return plan_drawing(plan, details=details).svg
 
 
 # -- the mechanism --------------------------------------------------------------------------------
