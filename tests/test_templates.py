@@ -240,9 +240,36 @@ def test_variants_a_student_cannot_measure_or_without_a_required_component_are_r
         is None
 
 
+def test_variants_whose_drawing_tolerance_is_too_large_are_rejected():
+    from dataclasses import replace
+
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.templates import tolerance_problem
+
+    exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    data = tomllib.loads(open("exercises/compressor_slider_crank.toml", "rb").read().decode())
+    assert tolerance_problem(exercise, data, TemplateSettings())[0] is None
+    reason, found = tolerance_problem(exercise, data, TemplateSettings(max_tolerance=0.001))
+    assert reason is not None and "drafting tolerance of" in reason and "above 0.1 %" in reason
+    quantity = reason.split("tolerance of ")[1].split(" is")[0]
+    assert found.tolerances[quantity] > 0.001 * abs(found.values[quantity])
+    # every variant drawn keeps each drawing-derived tolerance within 10 % of its value, and
+    # its key (which reuses the tolerances found while checking) is the key built afresh
+    template = load_template(SLIDER)
+    for student in ("s1", "s2", "s3", "s4", "s5", "s6"):
+        variant = draw_variant(template, seed=3, student=student)
+        key = build_key(variant)
+        assert key == build_key(replace(variant, propagation=None))
+        for question in key["questions"]:
+            if question["tolerance_from"] == "drawing":
+                assert question["tolerance"] <= 0.10 * abs(question["value"]), question["id"]
+
+
 @pytest.mark.parametrize(("table", "fragment"), [
     ("min_segment_mm = -1", "template.min_segment_mm"),
     ('require = ["gravity"]', "template.require"),
+    ("max_tolerance = 0", "template.max_tolerance"),
+    ("max_tolerance = 2", "template.max_tolerance"),
 ])
 def test_bad_drawability_settings_are_named(table, fragment):
     text = template_text(angle="60").replace("[drive]", f"[template]\n{table}\n\n[drive]", 1)

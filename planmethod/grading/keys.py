@@ -244,7 +244,11 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     quantities = asked_quantities(exercise, motion)
     if settings is None:
         settings = grading_settings(variant.data, exercise.source, quantities)
-    found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
+    found = getattr(variant, "propagation", None)    # found while the draw was checked
+    if (found is None or found.plans.exercise is not exercise   # that very exercise only
+            or found.precision_mm != settings.precision_mm
+            or set(found.values) != set(quantities)):
+        found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
     scales = choose_scales(exercise)
     wrong_plans = {}
     for mistake in CONSTRUCTION_MISTAKES:

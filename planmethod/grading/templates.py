@@ -19,7 +19,9 @@ Two extra tables belong to templates only:
   crank stands within this of a dead centre), ``min_segment_mm`` (default 10: reject a variant
   where a segment the student reads off a plan is shorter), ``require`` (components such as
   ``["coriolis", "tangential"]`` that must be drawn at least ``min_segment_mm`` long),
-  ``max_attempts`` (default 200).
+  ``max_tolerance`` (default 0.1: reject a variant where the tolerance a drawing at the
+  ``[grading]`` precision allows exceeds this share of a quantity asked), ``max_attempts``
+  (default 200).
 
 The ``[grading]`` table (also allowed in plain exercise files) holds ``precision_mm``
 (the drafting precision the tolerances assume, default 0.5 mm), ``rel_floor``, and per-quantity
@@ -49,7 +51,7 @@ import hashlib
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -71,7 +73,7 @@ __all__ = [
 ]
 
 TEMPLATE_KEYS = ("min_line_angle_deg", "dead_centre_deg", "max_attempts", "min_segment_mm",
-                 "require")
+                 "require", "max_tolerance")
 #: plan components a template may require to be drawn (not to vanish) in every variant
 COMPONENTS = ("normal", "tangential", "coriolis", "relative")
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_.\[\]]*)(?::([-+ #0]?\d*(?:\.\d+)?[efgd%]?))?\}")
@@ -89,6 +91,8 @@ class TemplateSettings:
     min_segment_mm: float = 10.0
     #: components that must be drawn, at least ``min_segment_mm`` long, in every variant
     require: tuple[str, ...] = ()
+    #: the drafting tolerance of every quantity asked is at most this share of its value
+    max_tolerance: float = 0.10
 
 
 @dataclass(frozen=True)
@@ -118,6 +122,8 @@ class Variant:
     values: Mapping[str, Any]
     exercise: Exercise
     rejected: tuple[str, ...] = ()
+    #: the drawing tolerances found while checking the draw (reused by its answer key)
+    propagation: Any = field(default=None, compare=False, repr=False)
 
     @property
     def description(self) -> str:
@@ -194,6 +200,12 @@ def _settings(table: Any, file: str | None) -> TemplateSettings:
             raise SpecError(f"must be a length in [0, 200] mm, got {value!r}", file=file,
                             key="template.min_segment_mm")
         values["min_segment_mm"] = float(value)
+    if "max_tolerance" in table:
+        value = table["max_tolerance"]
+        if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value <= 1:
+            raise SpecError(f"must be a share in (0, 1] (0.1 = 10 %), got {value!r}", file=file,
+                            key="template.max_tolerance")
+        values["max_tolerance"] = float(value)
     if "require" in table:
         value = table["require"]
         if not isinstance(value, list) or any(item not in COMPONENTS for item in value):
@@ -399,8 +411,13 @@ def draw_variant(template: Template, seed: int = 0, student: str = "1",
         if not check:
             return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
         problem = check_variant(exercise, template.settings, drawable=template.is_random)
+        propagation = None
+        if problem is None and template.is_random:
+            problem, propagation = tolerance_problem(exercise, data, template.settings,
+                                                     file=template.source)
         if problem is None:
-            return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
+            return Variant(student, seed, attempt, data, values, exercise, tuple(reasons),
+                           propagation)
         if not template.is_random:
             raise SpecError(f"the exercise itself is unsuitable for grading: {problem}",
                             file=template.source)
@@ -474,6 +491,27 @@ def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True) ->
                         f"{max(drawn, default=0.0):.1f} mm (below {settings.min_segment_mm:g} "
                         "mm, or not drawn)")
     return None
+
+
+def tolerance_problem(exercise: Exercise, data: Mapping[str, Any], settings: TemplateSettings,
+                      *, file: str | None = None) -> tuple[str | None, Any]:
+    """(why the draw is unfit, the drawing tolerances found): unfit where the tolerance a
+    drawing at the ``[grading]`` precision allows (:func:`~planmethod.grading.tolerances.
+    propagate`) is more than ``max_tolerance`` of a quantity asked — the student could not tell
+    a right drawing from a wrong one. The tolerances are kept for the variant's key."""
+    from .keys import grading_settings
+    from .tolerances import propagate
+
+    precision = grading_settings(data, file).precision_mm
+    found = propagate(exercise, precision)
+    for quantity, value in found.values.items():
+        tolerance = found.tolerances.get(quantity)
+        if value is None or tolerance is None or not value:
+            continue
+        if tolerance > settings.max_tolerance * abs(value):
+            return (f"the drafting tolerance of {quantity} is {100 * tolerance / abs(value):.0f} "
+                    f"% of its value (above {100 * settings.max_tolerance:g} %)"), found
+    return None, found
 
 
 def dead_centre_angle(plans) -> float | None:
