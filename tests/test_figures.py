@@ -104,3 +104,25 @@ def test_a_dense_region_gets_an_enlarged_detail(drawn):
     if exercise.source.endswith("conveyor_sixbar.toml"):
         for name in ("velocity.svg", "acceleration.svg"):
             assert 'class="detail"' in files[name] and "detail A" in files[name], name
+
+
+@pytest.mark.parametrize("path", ["exercises/templates/slider_crank.toml",
+                                  "exercises/templates/four_bar.toml",
+                                  "exercises/conveyor_sixbar.toml"])
+def test_task_and_plan_sheets_pass_the_figure_check(path):
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.sheets import plan_sheet_for_key, task_sheet_svg
+    from planmethod.grading.templates import draw_variant, load_template
+    from planmethod.plans import draw_plans
+
+    variant = draw_variant(load_template(path), seed=5, student="a")
+    key = build_key(variant)
+    answer_columns = [question["id"] for question in key["questions"]]
+    sheets = {"task": task_sheet_svg(key, draw_plans(variant.exercise)),
+              "velocity": plan_sheet_for_key(key, "velocity"),
+              "acceleration": plan_sheet_for_key(key, "acceleration")}
+    found = [f"{name}: {problem}" for name, svg in sheets.items()
+             for problem in figure_problems(svg, allowed=answer_columns)]
+    assert not found, "\n".join(found)
+    # the answer-file column names are the only names printed as they are, in brackets
+    assert figure_problems(sheets["task"])

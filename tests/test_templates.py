@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from pathlib import Path
 
 import pytest
 
@@ -247,7 +248,7 @@ def test_variants_whose_drawing_tolerance_is_too_large_are_rejected():
     from planmethod.grading.templates import tolerance_problem
 
     exercise = load_exercise("exercises/compressor_slider_crank.toml")
-    data = tomllib.loads(open("exercises/compressor_slider_crank.toml", "rb").read().decode())
+    data = tomllib.loads(Path("exercises/compressor_slider_crank.toml").read_text("utf-8"))
     assert tolerance_problem(exercise, data, TemplateSettings())[0] is None
     reason, found = tolerance_problem(exercise, data, TemplateSettings(max_tolerance=0.001))
     assert reason is not None and "drafting tolerance of" in reason and "above 0.1 %" in reason

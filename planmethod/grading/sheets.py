@@ -22,6 +22,7 @@ Examples
 from __future__ import annotations
 
 import math
+import re
 import textwrap
 from collections.abc import Mapping
 from dataclasses import replace
@@ -62,15 +63,25 @@ def task_text(key: Mapping[str, Any]) -> str:
     drive = str((exercise.get("drive") or {}).get("link", ""))
     numbers = link_numbers(links, drive) if links and drive else {}
     if numbers:
-        lines.append("Links: " + ", ".join(f"{number} {'frame' if name == 'frame' else name}"
+        lines.append("Links: " + ", ".join(f"{number} {_words(name)}"
                                            for name, number in numbers.items()) + ".")
-    lines += ["", "Answer (SI units, counter-clockwise positive):"]
+    lines += ["", "Answer (SI units, counter-clockwise positive; in an answers file, the column "
+              "named in brackets):"]
     for question in key.get("questions", ()):
         unit = question.get("unit", "")
         shown = symbol(question["id"], numbers)
-        lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {question['text']}"
+        text = question["text"]
+        for name in numbers:
+            text = re.sub(rf"\b{re.escape(name)}\b", _words(name), text) if "_" in name \
+                else text
+        lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {text}"
                      f"   [{question['id']}]")
     return "\n".join(lines).rstrip() + "\n"
+
+
+def _words(name: str) -> str:
+    """A link's name as a sheet prints it: ``rocker_EF`` → ``rocker EF``."""
+    return name.replace("_", " ")
 
 
 def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
