@@ -433,3 +433,28 @@ def test_the_blank_sheet_has_its_grid_drawn():
     assert pattern.find(f"{SVG}path").get("d") == "M 10 0 L 0 0 0 10"
     assert any(rect.get("fill") == "url(#grid)" for rect in root.iter(f"{SVG}rect"))
     assert root.get("width") == "120mm" and root.get("data-planmethod-student") == "s01"
+
+
+@pytest.mark.parametrize("path", ["exercises/compressor_slider_crank.toml",
+                                  "exercises/conveyor_sixbar.toml",
+                                  "exercises/slotted_lever.toml",
+                                  "exercises/shaper_sixbar.toml"])
+def test_every_construction_element_says_its_step_for_playback(path):
+    """The workbook's construction playback shows an element from the step that draws it: so
+    every arrow, line and link image of a plan carries that step's number."""
+    from defusedxml import ElementTree as SafeTree
+
+    from planmethod.plans import draw_plans
+    from planmethod.render.svg import plan_svg
+
+    plans = draw_plans(load_exercise(path))
+    for plan in (plans.velocity, plans.acceleration):
+        steps = {step.number for step in plan.steps}
+        root = SafeTree.fromstring(plan_svg(plan, details=False).encode("utf-8"))
+        for layer in root.iter("{http://www.w3.org/2000/svg}g"):
+            if layer.get("class") not in ("components", "results", "similarity",
+                                          "construction"):
+                continue
+            for element in layer:
+                assert element.get("data-step") is not None, (plan.kind, element.attrib)
+                assert int(element.get("data-step")) in steps

@@ -184,7 +184,8 @@ class Canvas:
 
     def polyline(self, points: Sequence[Point], *, color: str, width: float,
                  dash: str | None = None, layer: str = "marks", obstacle: bool = True,
-                 fill: str = "none", closed: bool = False, css: str | None = None) -> None:
+                 fill: str = "none", closed: bool = False, css: str | None = None,
+                 data: dict | None = None) -> None:
         from shapely.geometry import LineString
 
         attrs = {"points": points_attribute(points), "fill": fill, "stroke": color,
@@ -193,6 +194,7 @@ class Canvas:
             attrs["stroke-dasharray"] = dash
         if css:
             attrs["class"] = css
+        attrs.update(data or {})
         self.add(layer, "polygon" if closed else "polyline", attrs)
         self.grow(*points)
         if obstacle:

@@ -174,6 +174,10 @@ def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
     result_keys = {(_snap(origin), _snap(where[label])) for label in results}
     drawn = set(result_keys)
     images: dict[str, list[str]] = {}      # link → plan points of its image
+    fixed: dict[str, int] = {}             # label → the step that fixes its point (playback)
+    for step in steps:
+        if step.end and step.end not in fixed and step.action != "read":
+            fixed[step.end] = step.number
 
     def component_arrow(start: str, end: str, component: str, step: int | None,
                         always: bool = False) -> None:
@@ -211,7 +215,8 @@ def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
             for number in step.lines or ():
                 line = by_number.get(number)
                 if line is not None and line.start in where:
-                    component_arrow(line.start, step.end, line.component or "relative", None)
+                    component_arrow(line.start, step.end, line.component or "relative",
+                                    step.number)
             if step.flagged:
                 figure.circle(where[step.end], 11.0, fill="none", stroke=FLAG, width=1.6,
                               layer="marks", area=False, css="flagged")
@@ -236,12 +241,16 @@ def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
                             dash=style.dash, layer="similarity", css="projection",
                             data={"data-step": str(step.number)})
                 figure.used.add("projection")
-                _right_angle(figure, foot, start, origin)
+                _right_angle(figure, foot, start, origin, step.number)
             component_arrow(pole, step.end, "normal", step.number)
     for link, members in images.items():
-        if _link_image(figure, [where[label] for label in dict.fromkeys(members)], link):
+        members = list(dict.fromkeys(members))
+        known = [fixed[label] for label in members if label in fixed]
+        if _link_image(figure, [where[label] for label in members], link,
+                       max(known) if known else None):
             figure.used.add("similarity")
     for label, number in results.items():
+        number = number if number is not None else fixed.get(label)   # found, not laid off
         if figure.arrow(origin, where[label], "result", layer="results", step=number):
             figure.used.add("result")
     # points and labels: coincident points share one mark and one merged label
@@ -255,9 +264,12 @@ def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
                        merge_runs(label_runs(label) for label in members), mark=3.4)
 
 
-def _link_image(figure: Canvas, points: Sequence[Point], link: str) -> bool:
+def _link_image(figure: Canvas, points: Sequence[Point], link: str,
+                step: int | None = None) -> bool:
     """The image of a link on a plan (similarity rule): a segment through its images, or a
-    light polygon when they do not lie on one line. False if it shrinks to a point."""
+    light polygon when they do not lie on one line, shown in playback from ``step`` (the
+    step that fixes the last of its points). False if it shrinks to a point."""
+    data = {"data-step": str(step)} if step is not None else None
     unique = list(dict.fromkeys((round(x, 2), round(y, 2)) for x, y in points))
     if len(unique) < 2:
         return False
@@ -269,14 +281,15 @@ def _link_image(figure: Canvas, points: Sequence[Point], link: str) -> bool:
     hull = _hull(unique)
     if len(hull) >= 3 and _area(hull) > 1.5 * span:
         figure.polyline(hull, color=style.color, width=style.width, layer="similarity",
-                        fill="#ececec", closed=True, css=f"image {link}")
+                        fill="#ececec", closed=True, css=f"image {link}", data=data)
     else:
         figure.line(first, second, color=style.color, width=style.width, layer="similarity",
-                    css=f"image {link}")
+                    css=f"image {link}", data=data)
     return True
 
 
-def _right_angle(figure: Canvas, corner: Point, first: Point, second: Point) -> None:
+def _right_angle(figure: Canvas, corner: Point, first: Point, second: Point,
+                 step: int | None = None) -> None:
     """A small right-angle mark at ``corner`` between the directions to two points."""
     a, b = difference(first, corner), difference(second, corner)
     if vector_length(a) < 12 or vector_length(b) < 12:
@@ -286,6 +299,7 @@ def _right_angle(figure: Canvas, corner: Point, first: Point, second: Point) -> 
     points = [translate(corner, u, size), translate(translate(corner, u, size), v, size),
               translate(corner, v, size)]
     figure.polyline(points, color=STYLES["projection"].color, width=0.7, layer="similarity",
+                    data={"data-step": str(step)} if step is not None else None,
                     obstacle=False)
 
 
