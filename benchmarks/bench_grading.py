@@ -91,6 +91,11 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
 
         speed, accel = exact_value(motion, f"v_{subject}"), exact_value(motion, f"a_{subject}")
         out["full_acceleration"] = speed ** 2 / accel * value / question["value"]
+    if kind in ("omega", "epsilon") and motion is not None:
+        from planmethod.grading.keys import other_lengths
+
+        for _, ratio in other_lengths(motion, subject):
+            out["wrong_length"] = value * ratio
     factor = _scale(kind, scales)
     if factor:
         out["scale_none"] = value / factor

@@ -76,3 +76,24 @@ def test_a_mistake_outside_the_key_is_not_named():
     answers = {q["id"]: q["value"] * 3.7 for q in key["questions"]}
     for name, question in _graded(key, answers).items():
         assert question["mistake"] is None and not question["correct"], name
+
+
+def test_an_angular_velocity_read_with_the_other_links_length_is_named():
+    from planmethod.grading.keys import other_lengths
+
+    variant, key = _key_and_variant("exercises/templates/four_bar.toml")
+    mechanism = variant.exercise.mechanism
+    motion = solve(mechanism, mechanism.drive.angle)
+    answers, expected = {}, set()
+    for question in key["questions"]:
+        kind, _, link = question["id"].partition("_")
+        if kind in ("omega", "epsilon"):
+            ((_, ratio),) = other_lengths(motion, link)       # the dyad's other link
+            answers[question["id"]] = question["value"] * ratio
+            expected.add(question["id"])
+    assert len(expected) == 4
+    for name, question in _graded(key, answers).items():
+        if name not in expected:
+            continue
+        named = [question["mistake"], *question.get("also", ())]
+        assert "wrong_length" in named, (name, question["feedback"])

@@ -131,12 +131,27 @@ def mechanisms(draw):
     return case
 
 
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+# derandomized: CI draws the same 30 mechanisms every run (a failure there is reproducible);
+# the long stress run (python -m benchmarks.run --only stress) explores further
+@settings(max_examples=30, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.filter_too_much])
 @given(mechanisms())
 def test_random_mechanisms_over_full_turns(case):
     assume(stress.well_posed(case))   # else hypothesis draws another mechanism
     rows = stress.check(case, np.arange(0.0, 360.0, 15.0))
     assert violations(rows) == []
+
+
+@pytest.mark.xfail(strict=True, reason="a known counterexample to the stated bound: a "
+                   "slider-crank whose crank is 256 times its rod (found by hypothesis on "
+                   "2026-11-24): at 180° the error of a_C is 1.0075 times the bound (2.64e-9 "
+                   "against 2.62e-9 m/s², 1e-12 of a_C); K = 256 is empirical and the bound's "
+                   "model is not yet revised. strict: it fails loudly once the bound holds")
+def test_the_stated_bound_for_a_crank_256_times_its_rod():
+    case = stress.slider_case(crank=10.0, rod=0.0390625, offset=0.03125, omega=-1.0,
+                              epsilon=0.0, drive_angle=0.0, forward=False,
+                              name="crank 256 times its rod")
+    assert violations(stress.check(case, np.array([180.0]))) == []
 
 
 def test_the_suite_catches_a_flipped_branch():

@@ -196,6 +196,9 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
         accel = exact_value(motion, f"a_{point}")
         if accel:
             found.append(("full_acceleration", speed ** 2 / accel, tolerance))
+    if kind in ("omega", "epsilon"):     # (bc)/(BC) with the length of the group's other link
+        for _, ratio in other_lengths(motion, quantity.partition("_")[2]):
+            found.append(("wrong_length", value * ratio, tolerance * ratio))
     factor = scale_factor(quantity, scales.mu_l, scales.mu_v, scales.mu_a)
     if factor and factor != 1.0:
         found.append(("scale_none", value / factor, tolerance / factor))
@@ -221,6 +224,38 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
             continue
         out.append({"kind": mistake, "value": wrong, "tolerance": abs(wrong_tolerance),
                     "feedback": MISTAKES[mistake]})
+    return out
+
+
+def _link_length(mechanism, link: str) -> float | None:
+    """A link's length as a plan reads ω off it: between its first two points."""
+    points = list(mechanism.links[link].points)
+    return mechanism.links[link].length(points[0], points[1]) if len(points) >= 2 else None
+
+
+def other_lengths(motion, link: str) -> list[tuple[str, float]]:
+    """(other link of the same Assur group, l_link / l_other): the factor an angular
+    velocity or acceleration takes when read off with the other link's length.
+
+    >>> from planmethod.kinematics import solve
+    >>> from planmethod.spec import load_exercise
+    >>> mechanism = load_exercise("exercises/fourbar_forces.toml").mechanism
+    >>> [(other, round(ratio, 4)) for other, ratio in other_lengths(solve(mechanism, 60.0),
+    ...                                                               "BC")]
+    [('CD', 1.2222)]
+    """
+    mechanism = motion.mechanism
+    if link not in mechanism.links:
+        return []
+    own = _link_length(mechanism, link)
+    out = []
+    for group in motion.structure.groups:
+        if link not in group.links:
+            continue
+        for other in group.links:
+            length = _link_length(mechanism, other) if other != link else None
+            if own and length and abs(length - own) > 1e-9 * own:
+                out.append((other, own / length))
     return out
 
 

@@ -64,6 +64,8 @@ MISTAKES = {
     "scale_twice": "the plan's scale was applied twice",
     "scale_ten": "the plan's scale was misread ten times too large",
     "scale_tenth": "the plan's scale was misread ten times too small",
+    "wrong_length": "the angular velocity or acceleration was read off with the length of "
+                    "the group's other link",
     "degrees": "degrees were given for radians",
     "millimetres": "millimetres were given for metres",
     "length_mm": "the length was taken in mm instead of m",
