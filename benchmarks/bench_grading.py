@@ -12,7 +12,7 @@ grading drawn plans (JSON points); then it grades numeric answers of two sorts, 
 one CSV and read and graded as ``planmethod grade`` does (the throughput is in answers/s):
 
 * **mistake answers** — for every question, the answer each mistake the grader knows
-  (:data:`planmethod.grading.tolerances.MISTAKES`) gives, made here from the exercise as a
+  (:data:`planmethod.grading.mistakes.REGISTRY`) gives, made here from the exercise as a
   student would make it, not read from the key's list of mistakes: the sense reversed, the
   normal component left out or the Coriolis component reversed (the plans drawn with that
   mistake; only the answers it changes), the full acceleration for its normal component
@@ -92,7 +92,7 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
         speed, accel = exact_value(motion, f"v_{subject}"), exact_value(motion, f"a_{subject}")
         out["full_acceleration"] = speed ** 2 / accel * value / question["value"]
     if kind in ("omega", "epsilon") and motion is not None:
-        from planmethod.grading.keys import other_lengths
+        from planmethod.grading.mistakes import other_lengths
 
         for _, ratio in other_lengths(motion, subject):
             out["wrong_length"] = value * ratio
@@ -123,7 +123,7 @@ def _outcome(result: dict, expected: str | None) -> str:
 def _numeric_rows(drawn_variants, keys, seed: int = 1):
     """The answers to grade: rows (student, {question: text}) and, per row and question,
     what the answer is (``("mistake", kind, how)`` or ``("noise", size)``)."""
-    from planmethod.grading.tolerances import CONSTRUCTION_MISTAKES, mistaken_plans
+    from planmethod.grading.mistakes import CONSTRUCTION_MISTAKES, mistaken_plans
     from planmethod.kinematics import solve
 
     generator = random.Random(seed)

@@ -8,8 +8,8 @@ import pytest
 
 from planmethod.grading.answers import grade_answers
 from planmethod.grading.keys import build_key
+from planmethod.grading.mistakes import CONSTRUCTION_MISTAKES, MISTAKES, mistaken_plans
 from planmethod.grading.templates import draw_variant, load_template
-from planmethod.grading.tolerances import CONSTRUCTION_MISTAKES, MISTAKES, mistaken_plans
 from planmethod.kinematics import solve
 
 #: exercises where each construction mistake can be made (Coriolis: a slide on a turning link)
@@ -79,7 +79,7 @@ def test_a_mistake_outside_the_key_is_not_named():
 
 
 def test_an_angular_velocity_read_with_the_other_links_length_is_named():
-    from planmethod.grading.keys import other_lengths
+    from planmethod.grading.mistakes import other_lengths
 
     variant, key = _key_and_variant("exercises/templates/four_bar.toml")
     mechanism = variant.exercise.mechanism

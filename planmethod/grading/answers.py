@@ -8,7 +8,7 @@ without a student column is one student's answers in one row) or as JSON
 
 An answer within the question's tolerance scores the question's points. Otherwise the
 feedback says by how much it is off, and names the mistake when the answer matches one
-(see :data:`planmethod.grading.tolerances.MISTAKES`): a reversed sense, a normal or Coriolis
+(see :data:`planmethod.grading.mistakes.REGISTRY`): a reversed sense, a normal or Coriolis
 component left out or reversed, a scale applied twice or not at all, degrees for radians,
 millimetres for metres.
 

@@ -530,7 +530,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             *(student[r["point"]] if r["point"] in student else _match(student, r["point"]))
             - np.asarray(alternative[r["point"]]))) <= 2 * r["tolerance_mm"]]
         if len(fits) == len(wrong):
-            from .tolerances import MISTAKES
+            from .mistakes import MISTAKES
 
             what = ("the plan is turned 180°: the sense of ω1 was reversed"
                     if mistake == "sense" else MISTAKES.get(mistake, mistake))

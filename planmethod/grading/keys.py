@@ -49,14 +49,8 @@ from ..errors import SpecError
 from ..spec import check_nesting
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
-from .tolerances import (
-    CONSTRUCTION_MISTAKES,
-    MISTAKES,
-    kind_of,
-    mistaken_plans,
-    propagate,
-    scale_factor,
-)
+from .mistakes import CONSTRUCTION_MISTAKES, MISTAKES, REGISTRY, mistaken_plans, value_answers
+from .tolerances import kind_of, propagate
 
 __all__ = [
     "KEYS_FORMAT",
@@ -177,40 +171,24 @@ def _drive_reference(exercise, kind: str) -> float:
 
 def _mistakes(quantity: str, value: float, tolerance: float, scales, alternatives,
               motion) -> list[dict]:
-    """The answers common mistakes give for one quantity (only those told apart from the right
-    answer by more than twice the tolerance)."""
-    kind = kind_of(quantity)
+    """The answers the mistakes of :data:`~planmethod.grading.mistakes.REGISTRY` give for one
+    quantity, in registry order (only those told apart from the right answer by more than
+    twice the tolerance): a construction mistake's reading off its re-drawn plans
+    (``alternatives``), a value mistake's answer from the right value."""
+    values = {}
+    for mistake, wrong, wrong_tolerance in value_answers(quantity, value, tolerance,
+                                                          scales=scales, motion=motion):
+        values.setdefault(mistake, []).append((wrong, wrong_tolerance))
     found: list[tuple[str, float, float]] = []
-    if QUANTITY_KINDS[kind].signed:
-        found.append(("sense", -value, tolerance))
-    for mistake, readings in alternatives.items():
-        if quantity in readings and readings[quantity] is not None:
-            wrong = float(readings[quantity])
-            if math.isfinite(wrong):
-                found.append((mistake, wrong, tolerance))
-    if kind == "rho":
-        from ..report import exact_value
-
-        point = quantity.partition("_")[2]
-        speed = exact_value(motion, f"v_{point}")
-        accel = exact_value(motion, f"a_{point}")
-        if accel:
-            found.append(("full_acceleration", speed ** 2 / accel, tolerance))
-    if kind in ("omega", "epsilon"):     # (bc)/(BC) with the length of the group's other link
-        for _, ratio in other_lengths(motion, quantity.partition("_")[2]):
-            found.append(("wrong_length", value * ratio, tolerance * ratio))
-    factor = scale_factor(quantity, scales.mu_l, scales.mu_v, scales.mu_a)
-    if factor and factor != 1.0:
-        found.append(("scale_none", value / factor, tolerance / factor))
-        found.append(("scale_twice", value * factor, tolerance * factor))
-    if QUANTITY_KINDS[kind].scale is not None:     # read off a plan: a scale misread by 10
-        found.append(("scale_ten", value * 10.0, tolerance * 10.0))
-        found.append(("scale_tenth", value / 10.0, tolerance / 10.0))
-    if QUANTITY_KINDS[kind].unit.startswith("rad"):
-        found.append(("degrees", math.degrees(value), math.degrees(tolerance)))
-        found.append(("length_mm", value / 1000.0, tolerance / 1000.0))
-    else:  # metres
-        found.append(("millimetres", value * 1000.0, tolerance * 1000.0))
+    for key, mistake in REGISTRY.items():
+        if mistake.construction is not None:
+            readings = alternatives.get(key) or {}
+            wrong = readings.get(quantity)
+            if wrong is not None and math.isfinite(float(wrong)):
+                found.append((key, float(wrong), tolerance))
+        else:
+            found += [(key, wrong, wrong_tolerance)
+                      for wrong, wrong_tolerance in values.get(key, ())]
     out: list[dict] = []
     for mistake, wrong, wrong_tolerance in found:
         if abs(wrong - value) <= 2 * tolerance:
@@ -224,38 +202,6 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
             continue
         out.append({"kind": mistake, "value": wrong, "tolerance": abs(wrong_tolerance),
                     "feedback": MISTAKES[mistake]})
-    return out
-
-
-def _link_length(mechanism, link: str) -> float | None:
-    """A link's length as a plan reads ω off it: between its first two points."""
-    points = list(mechanism.links[link].points)
-    return mechanism.links[link].length(points[0], points[1]) if len(points) >= 2 else None
-
-
-def other_lengths(motion, link: str) -> list[tuple[str, float]]:
-    """(other link of the same Assur group, l_link / l_other): the factor an angular
-    velocity or acceleration takes when read off with the other link's length.
-
-    >>> from planmethod.kinematics import solve
-    >>> from planmethod.spec import load_exercise
-    >>> mechanism = load_exercise("exercises/fourbar_forces.toml").mechanism
-    >>> [(other, round(ratio, 4)) for other, ratio in other_lengths(solve(mechanism, 60.0),
-    ...                                                               "BC")]
-    [('CD', 1.2222)]
-    """
-    mechanism = motion.mechanism
-    if link not in mechanism.links:
-        return []
-    own = _link_length(mechanism, link)
-    out = []
-    for group in motion.structure.groups:
-        if link not in group.links:
-            continue
-        for other in group.links:
-            length = _link_length(mechanism, other) if other != link else None
-            if own and length and abs(length - own) > 1e-9 * own:
-                out.append((other, own / length))
     return out
 
 

@@ -1,4 +1,5 @@
-"""Tolerances that follow from the drawing, and the answers that common mistakes give.
+"""Tolerances that follow from the drawing (the mistakes and their answers are in
+:mod:`planmethod.grading.mistakes`).
 
 The drafting-error model is the one of ``PlanSettings.precision_mm`` (README): every length
 laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
@@ -36,41 +37,15 @@ from ..plans.construction import Segment
 from ..vocabulary import QUANTITY_KINDS
 
 __all__ = [
-    "CONSTRUCTION_MISTAKES",
-    "MISTAKES",
     "Propagation",
     "emulate_drawings",
     "kind_of",
-    "mistaken_plans",
     "propagate",
     "scale_factor",
 ]
 
 #: The segment lengthening used to measure sensitivities (mm).
 DELTA_MM = 1e-4
-
-#: The mistakes made in the construction itself: the plans are drawn again with the mistake
-#: (:func:`mistaken_plans`), so every quantity read downstream of it is predicted.
-CONSTRUCTION_MISTAKES = ("no_normal", "no_coriolis", "coriolis_reversed")
-
-#: Mistakes detected in numeric answers and drawn plans.
-MISTAKES = {
-    "sense": "the sense (sign) is reversed",
-    "no_normal": "the normal component aⁿ was left out",
-    "no_coriolis": "the Coriolis component aᵏ was left out",
-    "coriolis_reversed": "the Coriolis component aᵏ was laid off the wrong way",
-    "full_acceleration": "the full acceleration was used instead of its normal component",
-    "scale_none": "the plan's scale was not applied (the answer is a drawn length)",
-    "scale_twice": "the plan's scale was applied twice",
-    "scale_ten": "the plan's scale was misread ten times too large",
-    "scale_tenth": "the plan's scale was misread ten times too small",
-    "wrong_length": "the angular velocity or acceleration was read off with the length of "
-                    "the group's other link",
-    "degrees": "degrees were given for radians",
-    "millimetres": "millimetres were given for metres",
-    "length_mm": "the length was taken in mm instead of m",
-}
-
 
 def kind_of(quantity: str) -> str:
     """The kind of a quantity name: ``v_C`` → ``v``, ``omega_BC`` → ``omega``."""
@@ -210,43 +185,6 @@ def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, see
             for label, xy in labels.items():
                 out.setdefault(f"points:{plan}:{label}", []).append(xy)
     return {k: np.asarray(v, dtype=float) for k, v in out.items()}
-
-
-def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
-    """The plans as drawn with a construction mistake: ``no_normal`` (the groups' normal
-    components aⁿ left out), ``no_coriolis`` (every Coriolis component left out) or
-    ``coriolis_reversed`` (every Coriolis component laid off the wrong way). None if the
-    exercise has no such component to get wrong.
-
-    Raises
-    ------
-    KeyError
-        If ``mistake`` is not one of :data:`CONSTRUCTION_MISTAKES`.
-    """
-    if mistake not in CONSTRUCTION_MISTAKES:
-        raise KeyError(mistake)
-    from ..plans import draw_plans
-
-    found = []
-
-    def wrong(length: float, segment: Segment) -> float:
-        if segment.plan == "acceleration" and segment.action == "lay_off":
-            if mistake == "no_normal" and segment.name == "normal" and segment.group is not None:
-                found.append(segment)
-                return 0.0
-            if mistake == "coriolis_reversed" and segment.name == "coriolis" and length > 0:
-                found.append(segment)
-                return -length
-            if mistake == "no_coriolis" and segment.name == "coriolis" and length > 0:
-                found.append(segment)
-                return 0.0
-        return length
-
-    if not exercise.ask.needs_acceleration:
-        return None
-    settings = replace(exercise.plan, precision_mm=0.0)
-    plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong)
-    return plans if found else None
 
 
 def scale_factor(quantity: str, mu_l: float, mu_v: float, mu_a: float) -> float | None:

@@ -1,0 +1,256 @@
+"""The mistakes students make, in one registry: each with what the student is told and how the
+answer it gives is predicted.
+
+Two kinds:
+
+* **construction mistakes** — a step of the construction done wrong (a component left out or
+  laid off the wrong way). The plan emulator draws the plans again with the mistake
+  (:func:`mistaken_plans`, through :func:`~planmethod.plans.draw_plans`' ``perturb`` hook), so
+  the answer is predicted for every quantity read downstream of it;
+* **value mistakes** — a slip in turning the right reading into the answer (the sign, a
+  scale, a unit, a length): the wrong answer follows from the right value
+  (:func:`value_answers`).
+
+Adding a mistake is adding one entry here (and its test in ``tests/test_mistakes.py``). The
+keys (:func:`planmethod.grading.keys.build_key`) list, per question, every mistake whose
+answer differs from the right one by more than twice the tolerance; the grader names it when
+a student's answer matches.
+
+Examples
+--------
+>>> sorted(key for key, mistake in REGISTRY.items() if mistake.construction)
+['coriolis_reversed', 'no_coriolis', 'no_normal']
+>>> MISTAKES["scale_ten"]
+"the plan's scale was misread ten times too large"
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Any
+
+from ..model import Exercise
+from ..plans.construction import Segment
+from ..vocabulary import QUANTITY_KINDS
+from .tolerances import kind_of, scale_factor
+
+__all__ = ["CONSTRUCTION_MISTAKES", "MISTAKES", "REGISTRY", "Mistake", "mistaken_plans",
+           "value_answers"]
+
+#: a construction rule: (laid-off length, segment) → the length drawn with the mistake, or
+#: None where the mistake does not touch that segment
+Rule = Callable[[float, Segment], float | None]
+#: a value rule: (quantity, right value, tolerance, context) → [(wrong answer, its tolerance)]
+Answers = Callable[[str, float, float, "Context"], list[tuple[float, float]]]
+
+
+@dataclass(frozen=True)
+class Context:
+    """What a value rule may use: the drawing scales and the exact motion at the angle."""
+
+    scales: Any
+    motion: Any
+
+
+@dataclass(frozen=True)
+class Mistake:
+    """One mistake: its key (in keys, grades and reports), what the student is told, and how
+    its answer is made — a ``construction`` rule or a ``value`` rule."""
+
+    key: str
+    explanation: str
+    construction: Rule | None = None
+    value: Answers | None = None
+
+
+def _left_out(name: str) -> Rule:
+    """The component ``name`` not laid off: a group's normal component (the drive's own is
+    drawn as the crank's acceleration), or a Coriolis component that is drawn."""
+    def rule(length: float, segment: Segment) -> float | None:
+        if segment.name != name:
+            return None
+        if name == "normal":
+            return 0.0 if segment.group is not None else None
+        return 0.0 if length > 0 else None
+    return rule
+
+
+def _reversed(name: str) -> Rule:
+    def rule(length: float, segment: Segment) -> float | None:
+        return -length if segment.name == name and length > 0 else None
+    return rule
+
+
+def _sense(quantity, value, tolerance, context):
+    return [(-value, tolerance)] if QUANTITY_KINDS[kind_of(quantity)].signed else []
+
+
+def _full_acceleration(quantity, value, tolerance, context):
+    if kind_of(quantity) != "rho":
+        return []
+    from ..report import exact_value
+
+    point = quantity.partition("_")[2]
+    speed = exact_value(context.motion, f"v_{point}")
+    accel = exact_value(context.motion, f"a_{point}")
+    return [(speed ** 2 / accel, tolerance)] if accel else []
+
+
+def _factor(quantity, context) -> float | None:
+    scales = context.scales
+    return scale_factor(quantity, scales.mu_l, scales.mu_v, scales.mu_a)
+
+
+def _scale_none(quantity, value, tolerance, context):
+    factor = _factor(quantity, context)
+    return [(value / factor, tolerance / factor)] if factor and factor != 1.0 else []
+
+
+def _scale_twice(quantity, value, tolerance, context):
+    factor = _factor(quantity, context)
+    return [(value * factor, tolerance * factor)] if factor and factor != 1.0 else []
+
+
+def _scaled_by(times: float) -> Answers:
+    """Ten times too large (10) or too small (-10: divided, exactly)."""
+    def rule(quantity, value, tolerance, context):
+        if QUANTITY_KINDS[kind_of(quantity)].scale is None:    # not read off a plan
+            return []
+        if times < 0:
+            return [(value / -times, tolerance / -times)]
+        return [(value * times, tolerance * times)]
+    return rule
+
+
+def _link_length(mechanism, link: str) -> float | None:
+    """A link's length as a plan reads ω off it: between its first two points."""
+    points = list(mechanism.links[link].points)
+    return mechanism.links[link].length(points[0], points[1]) if len(points) >= 2 else None
+
+
+def other_lengths(motion, link: str) -> list[tuple[str, float]]:
+    """(other link of the same Assur group, l_link / l_other): the factor an angular
+    velocity or acceleration takes when read off with the other link's length.
+
+    >>> from planmethod.kinematics import solve
+    >>> from planmethod.spec import load_exercise
+    >>> mechanism = load_exercise("exercises/fourbar_forces.toml").mechanism
+    >>> [(other, round(ratio, 4)) for other, ratio in other_lengths(solve(mechanism, 60.0),
+    ...                                                               "BC")]
+    [('CD', 1.2222)]
+    """
+    mechanism = motion.mechanism
+    if link not in mechanism.links:
+        return []
+    own = _link_length(mechanism, link)
+    out = []
+    for group in motion.structure.groups:
+        if link not in group.links:
+            continue
+        for other in group.links:
+            length = _link_length(mechanism, other) if other != link else None
+            if own and length and abs(length - own) > 1e-9 * own:
+                out.append((other, own / length))
+    return out
+
+
+def _wrong_length(quantity, value, tolerance, context):
+    kind, _, link = quantity.partition("_")
+    if kind not in ("omega", "epsilon"):
+        return []
+    return [(value * ratio, tolerance * ratio) for _, ratio in other_lengths(context.motion,
+                                                                             link)]
+
+
+def _degrees(quantity, value, tolerance, context):
+    if not QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
+        return []
+    return [(math.degrees(value), math.degrees(tolerance))]
+
+
+def _length_mm(quantity, value, tolerance, context):
+    if not QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
+        return []
+    return [(value / 1000.0, tolerance / 1000.0)]
+
+
+def _millimetres(quantity, value, tolerance, context):
+    if QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
+        return []
+    return [(value * 1000.0, tolerance * 1000.0)]
+
+
+#: every known mistake, in the order a key lists them (the first of two that give the same
+#: answer is named first)
+REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
+    Mistake("sense", "the sense (sign) is reversed", value=_sense),
+    Mistake("no_normal", "the normal component aⁿ was left out",
+            construction=_left_out("normal")),
+    Mistake("no_coriolis", "the Coriolis component aᵏ was left out",
+            construction=_left_out("coriolis")),
+    Mistake("coriolis_reversed", "the Coriolis component aᵏ was laid off the wrong way",
+            construction=_reversed("coriolis")),
+    Mistake("full_acceleration",
+            "the full acceleration was used instead of its normal component",
+            value=_full_acceleration),
+    Mistake("wrong_length", "the angular velocity or acceleration was read off with the "
+            "length of the group's other link", value=_wrong_length),
+    Mistake("scale_none", "the plan's scale was not applied (the answer is a drawn length)",
+            value=_scale_none),
+    Mistake("scale_twice", "the plan's scale was applied twice", value=_scale_twice),
+    Mistake("scale_ten", "the plan's scale was misread ten times too large",
+            value=_scaled_by(10.0)),
+    Mistake("scale_tenth", "the plan's scale was misread ten times too small",
+            value=_scaled_by(-10.0)),
+    Mistake("degrees", "degrees were given for radians", value=_degrees),
+    Mistake("length_mm", "the length was taken in mm instead of m", value=_length_mm),
+    Mistake("millimetres", "millimetres were given for metres", value=_millimetres),
+)}
+
+#: key → what the student is told
+MISTAKES: dict[str, str] = {key: mistake.explanation for key, mistake in REGISTRY.items()}
+#: the mistakes made in the construction itself (the plans are drawn again with them)
+CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items() if mistake.construction)
+
+
+def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
+    """The plans as drawn with a construction mistake of :data:`REGISTRY`. None if the
+    exercise has no step the mistake changes (or asks for no acceleration plan).
+
+    Raises
+    ------
+    KeyError
+        If ``mistake`` is not a construction mistake.
+    """
+    rule = REGISTRY[mistake].construction
+    if rule is None:
+        raise KeyError(mistake)
+    from ..plans import draw_plans
+
+    found = []
+
+    def wrong(length: float, segment: Segment) -> float:
+        if segment.plan == "acceleration" and segment.action == "lay_off":
+            drawn = rule(length, segment)
+            if drawn is not None:
+                found.append(segment)
+                return drawn
+        return length
+
+    if not exercise.ask.needs_acceleration:
+        return None
+    settings = replace(exercise.plan, precision_mm=0.0)
+    plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong)
+    return plans if found else None
+
+
+def value_answers(quantity: str, value: float, tolerance: float, *, scales,
+                  motion) -> list[tuple[str, float, float]]:
+    """(mistake, wrong answer, its tolerance) of every value mistake that applies to
+    ``quantity``, in registry order."""
+    context = Context(scales, motion)
+    return [(key, wrong, wrong_tolerance) for key, mistake in REGISTRY.items()
+            if mistake.value is not None
+            for wrong, wrong_tolerance in mistake.value(quantity, value, tolerance, context)]
