@@ -126,3 +126,20 @@ def test_task_and_plan_sheets_pass_the_figure_check(path):
     assert not found, "\n".join(found)
     # the answer-file column names are the only names printed as they are, in brackets
     assert figure_problems(sheets["task"])
+
+
+def test_construction_sentences_use_the_course_notation(drawn):
+    """The steps' sentences (shown in the workbook's playback, listed in the report) name
+    points on links and quantities as a course does (c₁, ω₃, aʳ_CC₁), never by report name."""
+    import re
+
+    exercise, analysis, _ = drawn
+    links = [name for name in exercise.mechanism.links if "_" in name]
+    for plan in (analysis.plans.velocity, analysis.plans.acceleration):
+        if plan is None:
+            continue
+        for step in plan.steps:
+            assert "@" not in step.text, step.text
+            assert not re.search(r"\b(?:omega|epsilon|rho|coriolis|a_rel|dds|ds)_", step.text), \
+                step.text
+            assert not any(re.search(rf"\b{name}\b", step.text) for name in links), step.text

@@ -26,6 +26,7 @@ Examples
 from __future__ import annotations
 
 import math
+import re
 import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -37,6 +38,7 @@ from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction
 from ..model import FRAME, Exercise, PlanSettings
+from ..vocabulary import _SUBSCRIPT, link_numbers, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -234,16 +236,54 @@ def _cross(a, b) -> float:
     return float(a[0] * b[1] - a[1] * b[0])
 
 
+#: a quantity's report name inside a sentence (``omega_BC``, ``v_CC@frame``, ``ds_slider/frame``)
+_QUANTITY = re.compile(r"\b(?:a_rel|omega|epsilon|coriolis|dds|ds|rho|v|a|s)_[A-Za-z0-9_@/:*]+")
+
+
+def course_text(text: str, numbers: Mapping[str, int]) -> str:
+    """A construction step's sentence as a course writes it: a point on a link with the
+    link's number (``c@frame`` → ``c₁``, ``v_CC@frame`` → ``v_CC₁``), a link's quantity by its
+    symbol (``omega_BC`` → ``ω₃``, ``a_rel_…`` → ``aʳ_…``), a link's name with an underscore in
+    words.
+
+    Examples
+    --------
+    >>> numbers = {"frame": 1, "AB": 2, "BC": 3, "rocker_EF": 4}
+    >>> course_text("(c@framec) = 29 mm → v_CC@frame = 0.58; omega_BC, omega_rocker_EF",
+    ...             numbers)
+    '(c₁c) = 29 mm → v_CC₁ = 0.58; ω₃, ω₄'
+    """
+    if "@" in text and numbers:   # a point on a link: its name, the link's number below
+        names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
+        text = re.sub(rf"@({names})",
+                      lambda match: str(numbers[match.group(1)]).translate(_SUBSCRIPT), text)
+
+    def quantity(match: re.Match) -> str:
+        name = match.group(0)
+        if name.startswith("a_rel_"):
+            return "aʳ_" + name[len("a_rel_"):]
+        return symbol(name, dict(numbers))
+
+    text = _QUANTITY.sub(quantity, text)
+    for name in numbers:
+        if "_" in name:
+            text = re.sub(rf"\b{re.escape(name)}\b", name.replace("_", " "), text)
+    return text
+
+
 class _Sheet:
     """One plan being drawn: its points, steps and the drafting precision."""
 
     def __init__(self, kind: str, pole: str, scale: float, unit: str, precision: float,
-                 min_angle: float, perturb=None, record: bool = True) -> None:
+                 min_angle: float, perturb=None, record: bool = True,
+                 numbers: Mapping[str, int] | None = None) -> None:
         self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
         self.precision, self.min_angle = precision, min_angle
         self.perturb = perturb
         #: keep the steps (False: only points and readings are wanted; steps are counted)
         self.record = record
+        #: the links' numbers, for the sentences (:func:`course_text`)
+        self.numbers = numbers or {}
         self.count = 0
         self.points: dict[str, np.ndarray] = {pole: np.zeros(2)}
         self.steps: list[Step] = []
@@ -254,7 +294,9 @@ class _Sheet:
     def add(self, step: Step) -> int:
         self.count += 1
         if self.record:
-            self.steps.append(Step(self.count, *[getattr(step, n) for n in Step.__slots__[1:]]))
+            fields = [getattr(step, n) for n in Step.__slots__[1:]]
+            fields[1] = course_text(fields[1], self.numbers)      # the sentence
+            self.steps.append(Step(self.count, *fields))
         return self.count
 
     def round(self, length: float, segment: Segment | None = None) -> float:
@@ -374,10 +416,11 @@ class _Emulator:
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
         #: what a group kind's own drawing keeps between its velocity and acceleration plans
         self.memo: dict = {}
+        numbers = link_numbers(self.mechanism.moving_links, self.mechanism.drive.link, FRAME)
         self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb,
-                        record)
+                        record, numbers)
         self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
-                        perturb, record)
+                        perturb, record, numbers)
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
