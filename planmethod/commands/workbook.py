@@ -152,7 +152,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     (7, True)
     """
     from ..render.workbook import curve_chart, workbook_html
-    from ..vocabulary import quantity
+    from ..vocabulary import link_numbers, quantity
 
     angles = turn_angles(step)
     jobs = default_jobs(len(angles)) if jobs is None else max(1, int(jobs))
@@ -174,8 +174,18 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
                 if progress is not None:
                     progress(len(frames), len(angles))
     first = frames[0]
+    mechanism = exercise.mechanism
+    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link)
+
+    def subscript(name: str) -> str:
+        """A link's quantity by the link's number (ω₃), others by their subject."""
+        found = quantity(name)
+        if found.kind.subject == "link" and found.subject in numbers:
+            return str(numbers[found.subject])
+        return found.subject.replace("_", " ")
+
     quantities = [{"name": name, "symbol": quantity(name).symbol,
-                   "subscript": quantity(name).subscript, "unit": unit}
+                   "subscript": subscript(name), "unit": unit}
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]
@@ -188,14 +198,16 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
              f"precision of {first['tolerance_source']:g} mm (each tolerance is shown)"]
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
-                                 for title, unit, curves in turn_charts(frames)],
+                                 for title, unit, curves in turn_charts(frames, numbers)],
                          notes=notes)
 
 
-def turn_charts(frames: Sequence[dict[str, Any]]) -> list[tuple[str, str, dict]]:
+def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None
+                ) -> list[tuple[str, str, dict]]:
     """The full-turn curves: speeds, accelerations, angular velocities and accelerations of
-    the checks, and the balancing moment when forces are computed."""
-    from ..vocabulary import quantity
+    the checks, and the balancing moment when forces are computed; each curve named as a
+    course writes it (ω₃ with the links' ``numbers``, v_C)."""
+    from ..vocabulary import symbol
 
     titles = {"v": "velocities", "a": "accelerations", "omega": "angular velocities",
               "epsilon": "angular accelerations"}
@@ -205,7 +217,7 @@ def turn_charts(frames: Sequence[dict[str, Any]]) -> list[tuple[str, str, dict]]
         if kind not in titles:
             continue
         curves = charts.setdefault(kind, (titles[kind], unit, {}))[2]
-        curves[quantity(name).text] = [frame["readings"][index][0] for frame in frames]
+        curves[symbol(name, numbers)] = [frame["readings"][index][0] for frame in frames]
     out = list(charts.values())
     if frames[0]["moment"] is not None:
         out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]}))

@@ -218,7 +218,7 @@ def combined_svg(forces, plans) -> str | None:
         lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
                      f"{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
-    title = (f"{plans.exercise.mechanism.title} — Q = G + F_u on the acceleration plan, "
+    title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
              f"pole moved to π′, φ₁ = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, "acceleration")
     return figure.svg(title).svg
@@ -231,7 +231,7 @@ def combined_omitted(forces, plans) -> str | None:
     if combined is None or plans is None or plans.acceleration is None or combined.g:
         return None
     return ("combined_force.svg is not drawn: no gravity acts (g = 0), so the moved pole π′ "
-            "is π and Q = G + F_u is the inertia force alone")
+            "is π and Q = G + Fᵘ is the inertia force alone")
 
 
 def _force_colour(name: str) -> str:
