@@ -47,13 +47,19 @@ def run(args: argparse.Namespace) -> int:
         from ..render.plots import save_sweep_plot
 
         if args.forces:
+            from ..render.notation import ForceNotation
             from ..render.plots import save_force_plot
             from ..report import analyse
 
             solved = analyse(exercise).forces    # the position the exercise solves, marked
             marks = ([(float(solved.angle), float(np.ravel(solved.balancing_moment)[0]))]
                      if solved is not None else [])
-            save_force_plot(table, args.plot, title=exercise.mechanism.title, marks=marks)
+            names = {}
+            if solved is not None:   # each pair's reaction as a course writes it: R₁₂
+                notation = ForceNotation(solved.solution)
+                names = {key: notation.plain(f"R_{key}") for key in solved.solution.reactions}
+            save_force_plot(table, args.plot, title=exercise.mechanism.title, marks=marks,
+                            names=names)
         else:
             from ..vocabulary import link_numbers
 

@@ -289,12 +289,14 @@ def sense_changes(table: Mapping[str, np.ndarray]) -> dict[str, list[float]]:
 
 
 def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str,
-                    marks: Sequence[tuple[float, float]] = ()) -> None:
+                    marks: Sequence[tuple[float, float]] = (),
+                    names: Mapping[str, str] | None = None) -> None:
     """Reaction components and magnitude per pair and the balancing moment versus crank angle,
     from the columns of ``planmethod sweep --forces`` (``Rx_K Ry_K R_K [M_K]``, ``M_b``…),
     on a landscape page. ``marks`` are (crank angle, M_b) of the positions the exercise solves,
     marked on the M_b curve with their values; with friction the frictionless M_b is drawn
-    beside it and each sense change of the friction is marked.
+    beside it and each sense change of the friction is marked. ``names`` titles each pair's
+    panel as a course writes its reaction (``R₁₂``), by pair key.
 
     Raises
     ------
@@ -320,7 +322,8 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
             axis.plot(angles, table[f"Ry_{key}"], color=_FORCE_COLOURS["y"], lw=1.2, label="Ry")
             axis.plot(angles, table[f"R_{key}"], color=_FORCE_COLOURS["magnitude"], lw=1.6,
                       label="|R|")
-            axis.set_title(f"pair {key}", loc="left")
+            shown = (names or {}).get(key)
+            axis.set_title(f"{shown} (pair {key})" if shown else f"pair {key}", loc="left")
             axis.set_ylabel("N")
             if f"M_{key}" in table:
                 twin = axis.twinx()
