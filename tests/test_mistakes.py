@@ -14,6 +14,7 @@ from planmethod.kinematics import solve
 
 #: exercises where each construction mistake can be made (Coriolis: a slide on a turning link)
 WHERE = {"no_normal": "exercises/compressor_slider_crank.toml",
+         "tangential_along": "exercises/templates/four_bar.toml",
          "no_coriolis": "exercises/slotted_lever.toml",
          "coriolis_reversed": "exercises/slotted_lever.toml"}
 

@@ -4,9 +4,10 @@ answer it gives is predicted.
 Two kinds:
 
 * **construction mistakes** — a step of the construction done wrong (a component left out or
-  laid off the wrong way). The plan emulator draws the plans again with the mistake
-  (:func:`mistaken_plans`, through :func:`~planmethod.plans.draw_plans`' ``perturb`` hook), so
-  the answer is predicted for every quantity read downstream of it;
+  laid off the wrong way, a construction line drawn in the wrong direction). The plan
+  emulator draws the plans again with the mistake (:func:`mistaken_plans`, through
+  :func:`~planmethod.plans.draw_plans`' ``perturb`` and ``turn`` hooks), so the answer is
+  predicted for every quantity read downstream of it;
 * **value mistakes** — a slip in turning the right reading into the answer (the sign, a
   scale, a unit, a length): the wrong answer follows from the right value
   (:func:`value_answers`).
@@ -18,8 +19,8 @@ a student's answer matches.
 
 Examples
 --------
->>> sorted(key for key, mistake in REGISTRY.items() if mistake.construction)
-['coriolis_reversed', 'no_coriolis', 'no_normal']
+>>> CONSTRUCTION_MISTAKES
+('no_normal', 'no_coriolis', 'coriolis_reversed', 'tangential_along')
 >>> MISTAKES["scale_ten"]
 "the plan's scale was misread ten times too large"
 """
@@ -63,6 +64,9 @@ class Mistake:
     explanation: str
     construction: Rule | None = None
     value: Answers | None = None
+    #: a construction line drawn in the wrong direction: (direction, segment) → the direction
+    #: drawn, or None where the mistake does not touch that line
+    direction: Callable[[Any, Segment], Any] | None = None
 
 
 def _left_out(name: str) -> Rule:
@@ -80,6 +84,15 @@ def _left_out(name: str) -> Rule:
 def _reversed(name: str) -> Rule:
     def rule(length: float, segment: Segment) -> float | None:
         return -length if segment.name == name and length > 0 else None
+    return rule
+
+
+def _along(name: str):
+    """A group's ``name`` construction line drawn along the link instead of across it."""
+    def rule(direction, segment: Segment):
+        if segment.name == name and segment.group is not None:
+            return (-direction[1], direction[0])            # turned 90°: along the link
+        return None
     return rule
 
 
@@ -192,6 +205,8 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
             construction=_left_out("coriolis")),
     Mistake("coriolis_reversed", "the Coriolis component aᵏ was laid off the wrong way",
             construction=_reversed("coriolis")),
+    Mistake("tangential_along", "the tangential component aᵗ was drawn along the link "
+            "instead of across it", direction=_along("tangential")),
     Mistake("full_acceleration",
             "the full acceleration was used instead of its normal component",
             value=_full_acceleration),
@@ -212,7 +227,8 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
 #: key → what the student is told
 MISTAKES: dict[str, str] = {key: mistake.explanation for key, mistake in REGISTRY.items()}
 #: the mistakes made in the construction itself (the plans are drawn again with them)
-CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items() if mistake.construction)
+CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items()
+                              if mistake.construction or mistake.direction)
 
 
 def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
@@ -224,25 +240,38 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
     KeyError
         If ``mistake`` is not a construction mistake.
     """
-    rule = REGISTRY[mistake].construction
-    if rule is None:
+    rule, turning = REGISTRY[mistake].construction, REGISTRY[mistake].direction
+    if rule is None and turning is None:
         raise KeyError(mistake)
+    from ..errors import ToggleError
     from ..plans import draw_plans
 
     found = []
 
     def wrong(length: float, segment: Segment) -> float:
-        if segment.plan == "acceleration" and segment.action == "lay_off":
+        if rule is not None and segment.plan == "acceleration" and segment.action == "lay_off":
             drawn = rule(length, segment)
             if drawn is not None:
                 found.append(segment)
                 return drawn
         return length
 
+    def turn(direction, segment: Segment):
+        if turning is not None and segment.plan == "acceleration":
+            drawn = turning(direction, segment)
+            if drawn is not None:
+                found.append(segment)
+                return drawn
+        return direction
+
     if not exercise.ask.needs_acceleration:
         return None
     settings = replace(exercise.plan, precision_mm=0.0)
-    plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong)
+    try:
+        plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong,
+                           turn=turn)
+    except ToggleError:       # the wrong lines do not meet: no answer to predict
+        return None
     return plans if found else None
 
 

@@ -83,7 +83,8 @@ class Segment:
     """A length about to be laid off or read off a drawing, as shown to a ``perturb`` model.
 
     ``plan`` is ``velocity``, ``acceleration`` or ``position``; ``action`` is ``lay_off``,
-    ``read``, ``similarity`` or ``measure`` (a length read off the position plan); ``name``
+    ``read``, ``similarity`` or ``measure`` (a length read off the position plan), or ``line``
+    (a construction line's direction, as shown to a ``turn`` model); ``name``
     says which (the component, the quantity or the label); a lay-off also names its
     ``vector`` and the ``group`` index (None for the drive).
     """
@@ -276,10 +277,13 @@ class _Sheet:
 
     def __init__(self, kind: str, pole: str, scale: float, unit: str, precision: float,
                  min_angle: float, perturb=None, record: bool = True,
-                 numbers: Mapping[str, int] | None = None) -> None:
+                 numbers: Mapping[str, int] | None = None, turn=None) -> None:
         self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
         self.precision, self.min_angle = precision, min_angle
         self.perturb = perturb
+        #: a direction model ``turn(direction, segment) -> direction`` for construction lines
+        #: (a construction drawn with a mistake); None draws them as they are
+        self.turn = turn
         #: keep the steps (False: only points and readings are wanted; steps are counted)
         self.record = record
         #: the links' numbers, for the sentences (:func:`course_text`)
@@ -327,6 +331,9 @@ class _Sheet:
 
     def line(self, through: str, direction: np.ndarray, *, text: str, component: str,
              vector: str, group: int | None) -> int:
+        if self.turn is not None:
+            direction = np.asarray(self.turn(direction, Segment(self.kind, "line", component,
+                                                                vector, group)), float)
         number = self.add(Step(0, "line", text, start=through,
                                direction_deg=_angle_deg(direction) % 180.0,
                                component=component, vector=vector, group=group))
@@ -399,7 +406,8 @@ class _Emulator:
     """Draws the three plans of one crank angle."""
 
     def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
-                 motion: Motion, scales: Scales, perturb=None, record: bool = True) -> None:
+                 motion: Motion, scales: Scales, perturb=None, record: bool = True,
+                 turn=None) -> None:
         self.exercise = exercise
         self.mechanism = exercise.mechanism
         self.settings = settings
@@ -418,9 +426,9 @@ class _Emulator:
         self.memo: dict = {}
         numbers = link_numbers(self.mechanism.moving_links, self.mechanism.drive.link, FRAME)
         self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb,
-                        record, numbers)
+                        record, numbers, turn)
         self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
-                        perturb, record, numbers)
+                        perturb, record, numbers, turn)
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
@@ -892,7 +900,7 @@ def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dic
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
                settings: PlanSettings | None = None, acceleration: bool = True,
                motion: Motion | None = None, perturb=None, scales: Scales | None = None,
-               position: bool = True) -> Plans:
+               position: bool = True, turn=None) -> Plans:
     """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
 
     Parameters
@@ -915,6 +923,10 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     scales
         The drawing scales, if already chosen for these settings (a tolerance analysis draws
         the same position many times).
+    turn
+        A direction model ``turn(direction, segment) -> direction`` for every construction
+        line (``segment.action`` is ``line``, ``segment.name`` its component): a construction
+        drawn with a mistake (:mod:`planmethod.grading.mistakes`). Default: as they are.
     position
         Also make the position plan (the mechanism's drawing, with the paths of the points
         whose ρ is read); without it ``Plans.position`` is None and only the points of the
@@ -931,7 +943,8 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     if motion is None:
         motion = solve(mechanism, angle, stage="position")
     scales = scales or choose_scales(exercise, settings)
-    emulator = _Emulator(exercise, settings, angle, motion, scales, perturb, record=position)
+    emulator = _Emulator(exercise, settings, angle, motion, scales, perturb, record=position,
+                         turn=turn)
     position_plan = _position_plan(exercise, motion, scales, angle) if position else None
     emulator.drive()
     groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
