@@ -98,3 +98,21 @@ def test_an_angular_velocity_read_with_the_other_links_length_is_named():
             continue
         named = [question["mistake"], *question.get("also", ())]
         assert "wrong_length" in named, (name, question["feedback"])
+
+
+def test_a_relative_velocity_read_for_the_absolute_one_is_named():
+    import numpy as np
+
+    variant, key = _key_and_variant("exercises/templates/four_bar.toml")
+    mechanism = variant.exercise.mechanism
+    motion = solve(mechanism, mechanism.drive.angle)
+    # v_CB and a_CB: the segment bc (or its acceleration twin) read instead of pc
+    def size(vector) -> float:
+        return float(np.hypot(*np.reshape(vector, (-1, 2))[0]))
+
+    answers = {"v_C": size(motion.velocity("C") - motion.velocity("B")),
+               "a_C": size(motion.acceleration("C") - motion.acceleration("B"))}
+    graded = _graded(key, answers)
+    for name in answers:
+        named = [graded[name]["mistake"], *graded[name].get("also", ())]
+        assert "relative_for_absolute" in named, (name, graded[name]["feedback"])

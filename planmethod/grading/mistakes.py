@@ -32,6 +32,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
+import numpy as np
+
 from ..model import Exercise
 from ..plans.construction import Segment
 from ..vocabulary import QUANTITY_KINDS
@@ -177,6 +179,36 @@ def _wrong_length(quantity, value, tolerance, context):
                                                                              link)]
 
 
+def _relative(quantity, value, tolerance, context):
+    """|v_XY| (or |a_XY|) for the other points Y of X's link: the segment from the image of Y
+    read instead of the segment from the pole."""
+    kind, _, point = quantity.partition("_")
+    if kind not in ("v", "a") or "@" in point:
+        return []
+    motion = context.motion
+    read = motion.velocity if kind == "v" else motion.acceleration
+    mechanism = motion.mechanism
+    out = []
+    try:
+        own = np.asarray(read(point), float).reshape(-1, 2)[0]
+    except Exception:                     # not a point this scene solved
+        return []
+    others = []
+    for link in mechanism.links_with_point(point):
+        if link == "frame" or link not in motion.links:
+            continue
+        others += [name for name in mechanism.links[link].points
+                   if name != point and name not in others]
+    for other in others:
+        try:
+            theirs = np.asarray(read(other), float).reshape(-1, 2)[0]
+        except Exception:
+            continue
+        if float(np.hypot(*theirs)) > 0:      # from a fixed point it is the absolute one
+            out.append((float(np.hypot(*(own - theirs))), tolerance))
+    return out
+
+
 def _degrees(quantity, value, tolerance, context):
     if not QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
         return []
@@ -210,6 +242,9 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
     Mistake("full_acceleration",
             "the full acceleration was used instead of its normal component",
             value=_full_acceleration),
+    Mistake("relative_for_absolute", "a relative velocity or acceleration (from the image of "
+            "another point of the link) was read instead of the absolute one (from the pole)",
+            value=_relative),
     Mistake("wrong_length", "the angular velocity or acceleration was read off with the "
             "length of the group's other link", value=_wrong_length),
     Mistake("scale_none", "the plan's scale was not applied (the answer is a drawn length)",
