@@ -143,3 +143,26 @@ def test_construction_sentences_use_the_course_notation(drawn):
             assert not re.search(r"\b(?:omega|epsilon|rho|coriolis|a_rel|dds|ds)_", step.text), \
                 step.text
             assert not any(re.search(rf"\b{name}\b", step.text) for name in links), step.text
+
+
+def test_loads_are_printed_by_the_name_the_exercise_gives_them():
+    import tomllib
+
+    from planmethod.render.notation import ForceNotation
+    from planmethod.spec import exercise_from_dict
+
+    data = tomllib.loads((ROOT / "exercises/combined_force_slider_crank.toml")
+                         .read_text(encoding="utf-8"))
+    solution = analyse(exercise_from_dict(data)).forces.solution
+    assert ForceNotation(solution).plain("load[1]") == "P₁"          # the default name
+    data["load"][0]["name"] = "P_c"
+    named = analyse(exercise_from_dict(data))
+    assert ForceNotation(named.forces.solution).plain("load[1]") == "P_c"
+    files = plan_files(named.plans, named.forces)
+    from planmethod.testing.figures import text_boxes
+
+    texts = [box.text for box in text_boxes(files["loaded.svg"])]
+    assert any(text.startswith("P_c = ") for text in texts)       # in the list of forces
+    assert "Pc" in texts                                          # the label: P, subscript c
+    assert not any("load[" in text for text in texts)
+    assert not figure_problems(files["loaded.svg"])
