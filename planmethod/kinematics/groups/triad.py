@@ -33,6 +33,8 @@ Examples
 from __future__ import annotations
 
 import math
+import threading
+import weakref
 
 import numpy as np
 
@@ -342,6 +344,11 @@ def _cross(a, b) -> float:
     return float(a[0] * b[1] - a[1] * b[0])
 
 
+#: each motion's triad geometry, by group index (forgotten with the motion)
+_GEOMETRY: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+_GEOMETRY_LOCK = threading.Lock()
+
+
 class _Triad:
     """Geometry of one triad at the plan's angle (global positions from the position plan)."""
 
@@ -349,6 +356,19 @@ class _Triad:
         self.emulator = emulator
         self.group = group
         self.central = group.links[0]
+        # the geometry depends on the motion alone: drawing the same position again (the
+        # tolerance analysis draws it once per segment) finds it made
+        with _GEOMETRY_LOCK:
+            known = _GEOMETRY.get(emulator.motion, {}).get(group.index)
+        if known is not None:
+            self.sides, self.i, self.j, self.k, self.special = known
+            return
+        self._measure(emulator, group)
+        with _GEOMETRY_LOCK:
+            _GEOMETRY.setdefault(emulator.motion, {})[group.index] = (
+                self.sides, self.i, self.j, self.k, self.special)
+
+    def _measure(self, emulator, group: AssurGroup) -> None:
         self.sides = []
         for link, inner, outer in sides(group):
             known = outer.other(link)
