@@ -267,7 +267,8 @@ CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items()
 
 
 def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
-    """The plans as drawn with a construction mistake of :data:`REGISTRY`. None if the
+    """The plans as drawn with a construction mistake of :data:`REGISTRY`: their points and
+    readings (no position plan, no steps: ``draw_plans(position=False)``). None if the
     exercise has no step the mistake changes (or asks for no acceleration plan).
 
     Raises
@@ -304,7 +305,7 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
     settings = replace(exercise.plan, precision_mm=0.0)
     try:
         plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong,
-                           turn=turn)
+                           turn=turn, position=False)
     except ToggleError:       # the wrong lines do not meet: no answer to predict
         return None
     return plans if found else None
