@@ -52,6 +52,8 @@ import time
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 TEMPLATE = ROOT / "exercises" / "templates" / "slider_crank.toml"
@@ -96,6 +98,19 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
 
         for _, ratio in other_lengths(motion, subject):
             out["wrong_length"] = value * ratio
+    if kind in ("v", "a") and "@" not in subject and motion is not None:
+        # the segment from the image of the link's first other moving point (bc for pc)
+        read = motion.velocity if kind == "v" else motion.acceleration
+        mechanism = motion.mechanism
+        own = np.reshape(read(subject), (-1, 2))[0]
+        for link in mechanism.links_with_point(subject):
+            others = [p for p in mechanism.links[link].points if p != subject]
+            moving = [p for p in others
+                      if link != "frame" and np.hypot(*np.reshape(read(p), (-1, 2))[0]) > 0]
+            if moving:
+                other = np.reshape(read(moving[0]), (-1, 2))[0]
+                out["relative_for_absolute"] = float(np.hypot(*(own - other))) + drawn
+                break
     factor = _scale(kind, scales)
     if factor:
         out["scale_none"] = value / factor
