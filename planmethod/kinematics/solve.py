@@ -76,33 +76,62 @@ class Curvature:
 class GroupMotion:
     """A solved group: the sine of the angle between its two construction lines
     (``line_sine``; for a class III group the reciprocal condition number of its Jacobian),
-    and — computed when first read — its :class:`~planmethod.kinematics.groups.base.
-    Construction` (what the plans draw; None for a higher group) and ``error_estimate``, the
-    estimated relative error of its velocities and accelerations near its toggle, ε·R/s³ and
-    ε·R/s⁵ (per stage solved)."""
+    and — computed when first read, and kept by the motion — its :class:`~planmethod.
+    kinematics.groups.base.Construction` (what the plans draw; None for a higher group) and
+    ``error_estimate``, the estimated relative error of its velocities and accelerations near
+    its toggle, ε·R/s³ and ε·R/s⁵ (per stage solved)."""
 
-    __slots__ = ("_build", "_construction", "_estimates", "_stages", "line_sine")
+    __slots__ = ("_group", "_motion", "line_sine")
 
-    def __init__(self, line_sine: np.ndarray | None, build=None, stages=()) -> None:
-        self.line_sine = line_sine
-        self._build, self._construction, self._stages = build, None, tuple(stages)
-        self._estimates: dict[str, np.ndarray] | None = None
+    def __init__(self, motion: Motion, group: AssurGroup) -> None:
+        self._motion, self._group = motion, group
+        level = _LEVELS[motion.stage]
+        self.line_sine = motion._read(f"sine:{group.index}") if level >= 1 else None
 
     @property
     def construction(self) -> Construction | None:
-        if self._construction is None and self._build is not None:
-            self._construction = self._build()
-        return self._construction
+        if not self._group.is_dyad:
+            return None
+        kept = self._motion._kept
+        key = ("construction", self._group.index)
+        found = kept.get(key)
+        if found is None:
+            found = kept[key] = _construction(self._motion, self._group)
+        return found
 
     @property
     def error_estimate(self) -> Mapping[str, np.ndarray] | None:
-        if not self._stages or self.line_sine is None or self._build is None:
+        stages = STAGES[1:_LEVELS[self._motion.stage] + 1]
+        if not stages or self.line_sine is None or not self._group.is_dyad:
             return None
-        if self._estimates is None:
+        kept = self._motion._kept
+        key = ("estimates", self._group.index)
+        found = kept.get(key)
+        if found is None:
             ratio = self.construction.size_ratio()
-            self._estimates = {stage: error_estimate(ratio, self.line_sine, stage)
-                               for stage in self._stages}
-        return self._estimates
+            found = kept[key] = {stage: error_estimate(ratio, self.line_sine, stage)
+                                 for stage in stages}
+        return found
+
+
+class _Groups(Mapping):
+    """The solved groups' :class:`GroupMotion` by index, made when read (a motion holds no
+    object that refers back to it, so it is freed as soon as it is dropped)."""
+
+    def __init__(self, motion: Motion) -> None:
+        self._motion = motion
+
+    def __getitem__(self, index: int) -> GroupMotion:
+        for group in self._motion._groups:
+            if group.index == index:
+                return GroupMotion(self._motion, group)
+        raise KeyError(index)
+
+    def __iter__(self) -> Iterator[int]:
+        return (group.index for group in self._motion._groups)
+
+    def __len__(self) -> int:
+        return len(self._motion._groups)
 
 
 class _Links(Mapping):
@@ -139,14 +168,21 @@ class Motion:
     stage: str
     branches: Mapping[int, Branch]
     solved: tuple[str, ...]
-    groups: Mapping[int, GroupMotion] = field(repr=False)
+    _groups: tuple[AssurGroup, ...] = field(repr=False)
     _values: Any = field(repr=False)   # name → read-only array (see program.py's names)
     _thetas: Mapping = field(repr=False)
     _carriers: Mapping[str, tuple[str, ...]] = field(repr=False)
+    #: what is computed when first read (constructions, error estimates), kept
+    _kept: dict = field(repr=False, default_factory=dict, compare=False, init=False)
 
     @property
     def links(self) -> Mapping[str, LinkState]:
         return _Links(self, self.solved)
+
+    @property
+    def groups(self) -> Mapping[int, GroupMotion]:
+        """Each solved group's :class:`GroupMotion`, by the group's index."""
+        return _Groups(self)
 
     # -- reading -----------------------------------------------------------------------------
     def _out(self, array: np.ndarray) -> np.ndarray:
@@ -459,29 +495,15 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
             raise
         rows.flags.writeable = False
         read = _Rows(program, rows)
-    stages = STAGES[1:level + 1]
-    group_motions: dict[int, GroupMotion] = {}
-    motion = Motion(mechanism, found.structure, angles_deg, scalar, stage, chosen, solved,
-                    group_motions, read, thetas, found.carriers)
-    for group in groups:
-        sine = read(f"sine:{group.index}") if level >= 1 and group.is_dyad else None
-        if not group.is_dyad and level >= 1:
-            sine = read(f"sine:{group.index}")
-        build = _construction_builder(motion, group, chosen[group.index]) if group.is_dyad \
-            else None
-        group_motions[group.index] = GroupMotion(sine, build, stages if group.is_dyad else ())
-    return motion
+    return Motion(mechanism, found.structure, angles_deg, scalar, stage, chosen, solved,
+                  tuple(groups), read, thetas, found.carriers)
 
 
-def _construction_builder(motion: Motion, group: AssurGroup, branch: Branch):
-    """Builds the group's construction from the solved positions, when asked: the kind's
-    closed form run directly on the motion's arrays (the same numbers)."""
-
-    def build() -> Construction:
-        bodies = {link: motion.body(link) for link in motion.solved
-                  if link not in group.links}
-        context = Context(motion.mechanism, group, bodies, branch.sign, motion.angles, {})
-        placed = kind_module(group).place(context)
-        return construction(placed, group, motion.angles.shape[0])
-
-    return build
+def _construction(motion: Motion, group: AssurGroup) -> Construction:
+    """The group's construction from the solved positions: the kind's closed form run directly
+    on the motion's arrays (the same numbers)."""
+    bodies = {link: motion.body(link) for link in motion.solved if link not in group.links}
+    context = Context(motion.mechanism, group, bodies, motion.branches[group.index].sign,
+                      motion.angles, {})
+    placed = kind_module(group).place(context)
+    return construction(placed, group, motion.angles.shape[0])
