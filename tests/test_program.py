@@ -42,17 +42,47 @@ def test_constants_fold_and_signs_are_carried():
 
 def test_the_workspace_is_reused():
     tracer = Tracer()
-    value = tracer.apply("radians", tracer.angles())
+    value = tracer.apply("cos", tracer.angles())
     for step in range(50):   # a long chain: each value dies as the next is made
         value = value * 1.5 + float(step)
     tracer.output("out", value)
     compiled = tracer.compile()
     assert compiled.work <= 2
     angles = np.array([10.0, 20.0])
-    expected = np.radians(angles)
+    expected = np.cos(angles)
     for step in range(50):
         expected = expected * 1.5 + step
     assert np.array_equal(compiled.read(compiled.evaluate(angles), "out"), expected)
+
+
+def test_degrees_become_radians_bit_for_bit():
+    """The crank angle's conversion is one multiply by the factor np.radians uses."""
+    from planmethod.kinematics.program import RADIAN, drive_body
+
+    angles = np.concatenate((np.arange(-720.0, 720.0, 0.37), [1e-300, 89.99999999999999]))
+    assert np.array_equal(angles * RADIAN, np.radians(angles))
+    mechanism = exercise_from_dict(fourbar()).mechanism
+    _, theta = drive_body(mechanism, angles)
+    assert np.array_equal(theta, np.radians(angles))
+
+
+def test_a_magnitude_guard_catches_either_sign_and_a_change_of_sign():
+    seen = []
+
+    def check(angles, values):
+        seen.append(values.copy())
+
+    tracer = Tracer()
+    value = tracer.apply("sin", tracer.angles() * (np.pi / 180.0))
+    tracer.guard(value, 0.5, check, value, magnitude=True)
+    tracer.output("out", value)
+    compiled = tracer.compile()
+    for angles, called in (([40.0, 140.0], False), ([-40.0, -140.0], False),
+                           ([40.0, 20.0], True), ([-40.0, -20.0], True),
+                           ([40.0, -40.0], True), ([-40.0, 40.0], True)):
+        seen.clear()
+        compiled.evaluate(np.array(angles))
+        assert bool(seen) is called, angles
 
 
 def test_a_guard_calls_its_check_only_where_its_bound_fails():
@@ -64,7 +94,7 @@ def test_a_guard_calls_its_check_only_where_its_bound_fails():
             raise ValueError("refused")
 
     tracer = Tracer()
-    c = tracer.apply("cos", tracer.apply("radians", tracer.angles()))
+    c = tracer.apply("cos", tracer.angles() * (np.pi / 180.0))
     tracer.guard(c, 0.0, check, c)
     tracer.output("c", c)
     compiled = tracer.compile()
@@ -81,7 +111,7 @@ def test_a_redo_evaluates_the_chunk_again():
         raise Redo
 
     tracer = Tracer()
-    c = tracer.apply("cos", tracer.apply("radians", tracer.angles()))
+    c = tracer.apply("cos", tracer.angles() * (np.pi / 180.0))
     tracer.guard(c, 0.0, check, c)
     tracer.output("c", c)
     compiled = tracer.compile()

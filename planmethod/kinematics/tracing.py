@@ -16,10 +16,11 @@ called, which raises the error with its angle, link and message or lets the eval
 
 Examples
 --------
+>>> import math
 >>> import numpy as np
 >>> tracer = Tracer()
 >>> phi = tracer.angles()
->>> c = tracer.apply("cos", tracer.apply("radians", phi))
+>>> c = tracer.apply("cos", phi * (math.pi / 180.0))
 >>> tracer.output("x", 0.5 * c + 0.0)
 >>> tracer.output("y", 2.0)
 >>> compiled = tracer.compile()
@@ -46,12 +47,10 @@ CHUNK = 4096
 #: the numpy ufunc of each recorded operation
 _UFUNCS = {"add": "add", "sub": "subtract", "mul": "multiply", "div": "divide",
            "neg": "negative", "sqrt": "sqrt", "cos": "cos", "sin": "sin", "abs": "absolute",
-           "arctan2": "arctan2", "radians": "radians", "maximum": "maximum",
-           "minimum": "minimum"}
+           "arctan2": "arctan2", "maximum": "maximum", "minimum": "minimum"}
 _PYTHON = {"add": lambda a, b: a + b, "sub": lambda a, b: a - b, "mul": lambda a, b: a * b,
            "div": lambda a, b: a / b, "neg": lambda a: -a, "sqrt": math.sqrt, "cos": math.cos,
-           "sin": math.sin, "abs": abs, "arctan2": math.atan2, "radians": math.radians,
-           "maximum": max, "minimum": min}
+           "sin": math.sin, "abs": abs, "arctan2": math.atan2, "maximum": max, "minimum": min}
 _COMMUTATIVE = {"add", "mul", "maximum", "minimum"}
 #: ufuncs whose output is passed by keyword
 _KEYWORD_OUT = {"maximum", "minimum"}
@@ -259,16 +258,21 @@ class Tracer:
         found = self._record("div", a.id, b.id)
         return -found if a.negated != b.negated else found
 
-    def guard(self, value, bound: float, check: Callable, *args) -> None:
+    def guard(self, value, bound: float, check: Callable, *args,
+              magnitude: bool = False) -> None:
         """At run time: where ``value.min() > bound`` fails (NaN included), call
-        ``check(angles_deg, *args)`` (arrays), which raises or returns."""
-        if _float(value) and float(value) > bound:
+        ``check(angles_deg, *args)`` (arrays), which raises or returns.
+
+        With ``magnitude``, the bound is on ``|value|`` (``bound`` ≥ 0), tested without a pass
+        of its own over the angles: ``value.min() > bound`` where the first value is positive,
+        else ``value.max() < -bound`` (a value that changes sign fails either way)."""
+        if _float(value) and (abs(float(value)) if magnitude else float(value)) > bound:
             return  # holds at every angle
         self.checks.append(check)
         plain = tuple(self.plain(a) if isinstance(a, Traced) else float(a) for a in args)
         # a constant that fails the bound: the exact check is called at every evaluation
         self.ops.append(_Op("guard", (), (self.plain(value), *plain),
-                            (float(bound), len(self.checks) - 1)))
+                            (float(bound), len(self.checks) - 1, magnitude)))
 
     def call(self, function: Callable, args: Sequence, count: int) -> list[Traced]:
         """Record ``function(angles_deg, arrays, out_rows)`` that writes ``count`` results
@@ -369,11 +373,14 @@ class Tracer:
             lines.append(f"o{row}.fill({value!r})")
         for index, op in enumerate(ops):
             if op.name == "guard":
-                bound, check = op.extra
+                bound, check, magnitude = op.extra
                 value, *args = (arg_text(a) for a in op.args)
                 call = f"checks[{check}](angles{''.join(', ' + a for a in args)})"
                 if isinstance(op.args[0], float):  # a constant that fails its bound
                     lines.append(call)
+                elif magnitude:
+                    lines.append(f"if not ({value}.min() > {bound!r} if {value}[0] > 0.0 else "
+                                 f"{value}.max() < {-bound!r}): {call}")
                 else:
                     lines.append(f"if not ({value}.min() > {bound!r}): {call}")
                 release(index, op)

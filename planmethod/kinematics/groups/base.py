@@ -142,12 +142,14 @@ class Context:
                                  "definite position", link=self.group.name)
         return length
 
-    def guard(self, value, bound: float, check: Callable, *args) -> None:
-        """Refuse a position: where ``value > bound`` fails at some angle, ``check(angles,
-        *args)`` runs on the arrays and raises (or returns, where the bound was too cautious)."""
+    def guard(self, value, bound: float, check: Callable, *args,
+              magnitude: bool = False) -> None:
+        """Refuse a position: where ``value > bound`` (with ``magnitude``: ``|value| > bound``)
+        fails at some angle, ``check(angles, *args)`` runs on the arrays and raises (or returns,
+        where the bound was too cautious)."""
         if isinstance(value, Traced):
-            value.tracer.guard(value, bound, check, *args)
-        elif not (np.min(value) > bound):
+            value.tracer.guard(value, bound, check, *args, magnitude=magnitude)
+        elif not (np.min(np.abs(value) if magnitude else value) > bound):
             check(self.angles, *args)
 
     def guide(self, slide: Slide, unknown: str, body: Body | None = None
@@ -273,8 +275,11 @@ class Placed:
     x_local: dict[str, tuple[float, float]] = field(default_factory=dict)
 
 
-def rotation_side(link: str, pin: Pin, x: Vec, length) -> Side:
-    radius = x - pin.at
+def rotation_side(link: str, pin: Pin, x: Vec, length, radius: Vec | None = None) -> Side:
+    """A side turning about ``pin`` to X at ``x``; ``radius`` = X − pin where the kind has it
+    already (else computed)."""
+    if radius is None:
+        radius = x - pin.at
     return Side(True, link, pin.joint.point, pin.known, pin.at, pin.offset, radius.perp(),
                 radius, length)
 
@@ -317,10 +322,10 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     out["sine"] = sine
     # the digits left near the toggle: ε·R/s³ (velocities), ε·R/s⁵ (accelerations) below 1
     power = 3.0 if level == 1 else 5.0
-    bound = (EPS * placed.ratio_bound) ** (2.0 / power) * MARGIN
-    context.guard(sine * sine, bound, check_stage, sine, s1.position.x, s1.position.y,
+    bound = (EPS * placed.ratio_bound) ** (1.0 / power) * MARGIN
+    context.guard(sine, bound, check_stage, sine, s1.position.x, s1.position.y,
                   s2.position.x, s2.position.y,
-                  *(side.length if side.rotation else -1.0 for side in (s1, s2)))
+                  *(side.length if side.rotation else -1.0 for side in (s1, s2)), magnitude=True)
     vb1 = bodies[s1.base_link].velocity(s1.offset)
     vb2 = bodies[s2.base_link].velocity(s2.offset)
     w = vb2 - vb1

@@ -74,7 +74,7 @@ def place(context: base.Context) -> base.Placed:
     origin2 = x if q2 == (0.0, 0.0) else x - turned
     body2.x, body2.y = origin2.x, origin2.y
     placed = {l1: body1, l2: body2}
-    sides = (base.rotation_side(l1, p1, x, a),
+    sides = (base.rotation_side(l1, p1, x, a, r1),
              base.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
     delta = slide.direction_rad if l2 == slide.link else -slide.direction_rad
     return base.Placed(
