@@ -331,7 +331,10 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     w = vb2 - vb1
     u1 = cross(w, e2) / det
     u2 = cross(w, e1) / det
-    v_x = vb1 + e1 * u1
+    # X's velocity from the side whose base motion and direction are known constants more
+    # often (a guide fixed in the frame: v_X = u2·e2 exactly, no rounding across it)
+    second = _constants(vb2, e2) > _constants(vb1, e1)
+    v_x = vb2 + e2 * u2 if second else vb1 + e1 * u1
     out["v_x"] = v_x
     omegas = _follow(placed, {link: (u1, u2)[index] for link, index in placed.rotating.items()},
                      lambda link: bodies[link].w)
@@ -357,7 +360,7 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     rhs = (ab2 + known[1]) - (ab1 + known[0])
     du1 = cross(rhs, e2) / det
     du2 = cross(rhs, e1) / det
-    a_x = ab1 + known[0] + e1 * du1
+    a_x = ab2 + known[1] + e2 * du2 if second else ab1 + known[0] + e1 * du1
     out["a_x"] = a_x
     epsilons = _follow(placed, {link: (du1, du2)[index]
                                 for link, index in placed.rotating.items()},
@@ -373,6 +376,12 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
             moved = acceleration + r.perp() * body.e - r * square
             body.ax, body.ay = moved.x, moved.y
     return out
+
+
+def _constants(*vectors: Vec) -> int:
+    """How many of the vectors' components are plain numbers (not traced or arrays)."""
+    return sum(isinstance(value, float | int) for vector in vectors
+               for value in (vector.x, vector.y))
 
 
 def _follow(placed: Placed, values: dict, known: Callable) -> dict:
