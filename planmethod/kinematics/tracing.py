@@ -334,10 +334,11 @@ class Tracer:
 
     def _emit(self, name, layout, primary, fills, copies) -> Compiled:
         needed = set(primary) | {value for _, value in copies}
-        for op in reversed(self.ops):  # what the outputs, guards and calls need
+        recorded = _share_negated_products(self.ops, needed)
+        for op in reversed(recorded):  # what the outputs, guards and calls need
             if op.name in ("guard", "call") or op.out[0] in needed:
                 needed.update(arg for arg in op.args if isinstance(arg, int))
-        ops = [op for op in self.ops if op.name in ("guard", "call") or op.out[0] in needed]
+        ops = [op for op in recorded if op.name in ("guard", "call") or op.out[0] in needed]
         last: dict[int, int] = {}
         for index, op in enumerate(ops):
             for arg in op.args:
@@ -417,6 +418,52 @@ class Tracer:
         exec(compile(source, f"<planmethod {name}>", "exec"), namespace)
         return Compiled(namespace[name], source, layout, work, tuple(self.checks),
                         tuple(self.calls))
+
+
+def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:
+    """The operations with one of each pair x·c, x·(−c) left out where the other serves: when
+    both are recorded (one a result's negation, say) and every use of one is a sum or a
+    difference that takes the other instead — a + P = a − N, a − P = a + N, exact in IEEE
+    arithmetic (N = −P to the bit, signed zeros included) — that one is not computed; the other
+    is computed where the first was (it needs only x)."""
+    ops = list(ops)
+    while True:
+        products: dict[tuple[int, float], int] = {}
+        uses: dict[int, list[tuple[int, int]]] = {}
+        for position, op in enumerate(ops):
+            if (op.name == "mul" and isinstance(op.args[0], int)
+                    and isinstance(op.args[1], float)):
+                products[(op.args[0], op.args[1])] = position
+            for place, arg in enumerate(op.args):
+                if isinstance(arg, int):
+                    uses.setdefault(arg, []).append((position, place))
+        for (x, factor), gone in products.items():
+            kept = products.get((x, -factor))
+            dropped = ops[gone].out[0]
+            if kept is None or dropped in pinned or not all(
+                    _takes_negation(ops[position], place) for position, place in
+                    uses.get(dropped, ())):
+                continue
+            other = ops[kept].out[0]
+            for position, place in uses.get(dropped, ()):
+                op = ops[position]
+                rest = op.args[1 - place]
+                args = (rest, other)
+                ops[position] = _Op("sub" if op.name == "add" else "add", op.out, args,
+                                    op.extra)
+            ops[min(gone, kept)] = ops[kept]
+            del ops[max(gone, kept)]
+            break
+        else:
+            return ops
+
+
+def _takes_negation(op: _Op, place: int) -> bool:
+    """Whether argument ``place`` of ``op`` may be replaced by its negation, the operation
+    turned (a sum into a difference, or back)."""
+    if op.args.count(op.args[place]) != 1:
+        return False
+    return op.name == "add" or (op.name == "sub" and place == 1)
 
 
 class Compiled:
