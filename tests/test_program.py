@@ -85,6 +85,59 @@ def test_a_magnitude_guard_catches_either_sign_and_a_change_of_sign():
         assert bool(seen) is called, angles
 
 
+def test_a_product_and_its_negation_are_computed_once():
+    """x·c and x·(−c) both wanted: sums take the one computed, bit for bit."""
+    tracer = Tracer()
+    x = tracer.apply("cos", tracer.angles())
+    y = tracer.apply("sin", tracer.angles())
+    plus = x * 3.0
+    tracer.output("negated", -plus)          # x·(−3) is what the result needs …
+    tracer.output("sum", y + plus)           # … and these take it: y − x·(−3)
+    tracer.output("difference", y - plus)    # y + x·(−3)
+    compiled = tracer.compile()
+    assert compiled.source.count("multiply(") == 1
+    angles = np.concatenate((np.linspace(-400.0, 400.0, 2001), [90.0, 270.0]))
+    rows = compiled.evaluate(angles)
+    x, y = np.cos(angles), np.sin(angles)
+    assert np.array_equal(compiled.read(rows, "negated"), -(x * 3.0))
+    assert np.array_equal(compiled.read(rows, "sum"), y + x * 3.0)
+    assert np.array_equal(compiled.read(rows, "difference"), y - x * 3.0)
+
+
+def test_a_product_used_in_a_product_is_kept():
+    tracer = Tracer()
+    x = tracer.apply("cos", tracer.angles())
+    plus = x * 3.0
+    tracer.output("negated", -plus)
+    tracer.output("square", plus * plus)     # a product cannot take the negation
+    compiled = tracer.compile()
+    assert compiled.source.count("multiply(") == 3
+    angles = np.array([10.0, 200.0])
+    rows = compiled.evaluate(angles)
+    assert np.array_equal(compiled.read(rows, "square"), (np.cos(angles) * 3.0) ** 2)
+
+
+def test_a_chunk_fits_the_workspace_in_cache():
+    from planmethod.kinematics.tracing import CHUNK, MIN_CHUNK, WORKSPACE_BYTES
+
+    for rows in (1, 9, 40, 400):
+        tracer = Tracer()
+        values = [tracer.apply("cos", tracer.angles() * float(k + 1)) for k in range(rows)]
+        total = values[0]
+        for value in values[1:]:
+            total = total + value
+        tracer.output("total", total)
+        compiled = tracer.compile()
+        chunk = compiled.chunk
+        assert MIN_CHUNK <= chunk <= CHUNK and chunk & (chunk - 1) == 0
+        assert chunk == MIN_CHUNK or chunk * 8 * compiled.work <= WORKSPACE_BYTES
+        assert chunk == CHUNK or 2 * chunk * 8 * compiled.work > WORKSPACE_BYTES
+        angles = np.linspace(0.0, 10.0, 2 * chunk + 5)
+        expected = sum(np.cos(angles * float(k + 1)) for k in range(rows))
+        assert np.allclose(compiled.read(compiled.evaluate(angles), "total"), expected,
+                           rtol=0, atol=1e-12 * rows)
+
+
 def test_a_guard_calls_its_check_only_where_its_bound_fails():
     seen = []
 

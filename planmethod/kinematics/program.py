@@ -87,7 +87,8 @@ class Model:
         for name, link in mechanism.links.items():
             for point in link.points:
                 self.carriers[point] = (*self.carriers.get(point, ()), name)
-        #: stage level → (groups, branches, program, thetas, solved links) of a whole solve
+        #: stage level → (groups, branches, program, thetas, solved links, point owners) of a
+        #: whole solve
         self.whole: dict[int, tuple] = {}
         self.memo: dict[Any, Any] = {}  # per-model values of the higher group kinds
 

@@ -34,9 +34,8 @@ from ..structure import AssurGroup, Structure
 from .algebra import Body
 from .groups import kind_module
 from .groups.base import Construction, Context, construction, error_estimate
-from .program import STAGES, Branch, model
+from .program import STAGES, Branch, model, owners
 from .state import LinkState, cross, norm, perp
-from .tracing import CHUNK
 
 __all__ = ["FLAG_ERROR", "STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "Sliding",
            "choose_branches", "solve"]
@@ -172,6 +171,8 @@ class Motion:
     _values: Any = field(repr=False)   # name → read-only array (see program.py's names)
     _thetas: Mapping = field(repr=False)
     _carriers: Mapping[str, tuple[str, ...]] = field(repr=False)
+    #: each point of the solved links → the first of them (in file order) that carries it
+    _owners: Mapping[str, str] = field(repr=False)
     #: what is computed when first read (constructions, error estimates), kept
     _kept: dict = field(repr=False, default_factory=dict, compare=False, init=False)
 
@@ -252,26 +253,29 @@ class Motion:
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
         (``"B@lever"``)."""
+        if ref in self._owners:
+            found = self._values("p:" + ref)
+            return found[0] if self.scalar else found
         return self._out(self.locate(ref)[1])
 
     def velocity(self, ref: str) -> np.ndarray:
         """Absolute velocity (m/s) of a point."""
         if self.stage == "position":
             self._need("velocity", f"the velocity of {ref}")
-        link, position = self.locate(ref)
-        if "@" not in ref:
-            found = self._values(f"v:{ref}")
+        if ref in self._owners:
+            found = self._values("v:" + ref)
             return found[0] if self.scalar else found
+        link, position = self.locate(ref)   # a point under another, or an error
         return self._out(self._state(link).velocity_at(position))
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
         if self.stage != "acceleration":
             self._need("acceleration", f"the acceleration of {ref}")
-        link, position = self.locate(ref)
-        if "@" not in ref:
-            found = self._values(f"a:{ref}")
+        if ref in self._owners:
+            found = self._values("a:" + ref)
             return found[0] if self.scalar else found
+        link, position = self.locate(ref)   # a point under another, or an error
         return self._out(self._state(link).acceleration_at(position))
 
     def place(self, link: str, local) -> np.ndarray:
@@ -473,12 +477,13 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         chosen = found.branches(groups) if branches is None else {
             group.index: branches[group.index] for group in groups}
         solved = (FRAME, mechanism.drive.link, *(link for g in groups for link in g.links))
+        point_owners = owners(mechanism, solved)
         if not reference:
             program, thetas = found.program(level, groups, chosen)
             if links is None and branches is None:
-                found.whole[level] = (groups, chosen, program, thetas, solved)
+                found.whole[level] = (groups, chosen, program, thetas, solved, point_owners)
     else:
-        groups, chosen, program, thetas, solved = whole
+        groups, chosen, program, thetas, solved, point_owners = whole
     if reference:
         values, thetas = found.direct(level, groups, chosen, angles_deg)
         read = _Direct(values)
@@ -487,7 +492,7 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         try:
             program.run(angles_deg, list(rows))
         except PlanmethodError:
-            if angles_deg.shape[0] <= CHUNK:
+            if angles_deg.shape[0] <= program.chunk:
                 raise
             # a chunk came near a refused position: the direct evaluation over every angle
             # finds the first angle refused, group by group in build order
@@ -496,7 +501,7 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         rows.flags.writeable = False
         read = _Rows(program, rows)
     return Motion(mechanism, found.structure, angles_deg, scalar, stage, chosen, solved,
-                  tuple(groups), read, thetas, found.carriers)
+                  tuple(groups), read, thetas, found.carriers, point_owners)
 
 
 def _construction(motion: Motion, group: AssurGroup) -> Construction:

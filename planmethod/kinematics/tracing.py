@@ -40,9 +40,13 @@ import numpy as np
 
 __all__ = ["CHUNK", "Compiled", "Layout", "Redo", "Traced", "Tracer"]
 
-#: angles evaluated at once: a workspace of this many angles per row stays in a core's cache,
-#: and a long sweep is evaluated chunk by chunk into the result rows
-CHUNK = 4096
+#: the most angles evaluated at once: a long sweep is evaluated chunk by chunk into the result
+#: rows, each program's chunk (:attr:`Compiled.chunk`) a power of two between MIN_CHUNK and this
+CHUNK = 16384
+MIN_CHUNK = 2048
+#: a program's chunk is as long as its workspace rows fit in this many bytes (a core's cache):
+#: longer chunks pay numpy's per-call cost less often, shorter ones keep the rows in cache
+WORKSPACE_BYTES = 1 << 20
 
 #: the numpy ufunc of each recorded operation
 _UFUNCS = {"add": "add", "sub": "subtract", "mul": "multiply", "div": "divide",
@@ -473,6 +477,10 @@ class Compiled:
         self.function, self.source, self.layout = function, source, layout
         self.work, self.checks, self.calls = work, checks, calls
         self._local = threading.local()   # a workspace per thread
+        #: angles per chunk: the workspace rows fit in WORKSPACE_BYTES
+        self.chunk = CHUNK
+        while self.chunk > MIN_CHUNK and self.chunk * 8 * work > WORKSPACE_BYTES:
+            self.chunk //= 2
         self._constants: dict[tuple[str, int], np.ndarray] = {}
         self._where: dict[str, tuple] = {}
         #: ``redo(angles_deg, rows)`` evaluates a chunk again where a check raised :class:`Redo`
@@ -489,7 +497,7 @@ class Compiled:
         views = getattr(local, "views", None)
         if views is None:
             views = local.views = {}
-            local.space = np.empty((self.work, CHUNK))
+            local.space = np.empty((self.work, self.chunk))
         found = views.get(count)
         if found is None:
             if len(views) > 8:
@@ -500,15 +508,15 @@ class Compiled:
     def run(self, angles_deg: np.ndarray, rows: list[np.ndarray]) -> None:
         """Evaluate at ``angles_deg`` into ``rows`` (one array of len(angles) per output row),
         chunk by chunk. A check that raises propagates (see :meth:`Tracer.guard`)."""
-        count = angles_deg.shape[0]
-        if count <= CHUNK:
+        count, chunk = angles_deg.shape[0], self.chunk
+        if count <= chunk:
             try:
                 self.function(angles_deg, rows, self.workspace(count), self.checks, self.calls)
             except Redo:
                 self.redo(angles_deg, rows)
             return
-        for lo in range(0, count, CHUNK):
-            hi = min(lo + CHUNK, count)
+        for lo in range(0, count, chunk):
+            hi = min(lo + chunk, count)
             part = [row[lo:hi] for row in rows]
             try:
                 self.function(angles_deg[lo:hi], part, self.workspace(hi - lo), self.checks,
