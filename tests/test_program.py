@@ -117,27 +117,6 @@ def test_a_product_used_in_a_product_is_kept():
     assert np.array_equal(compiled.read(rows, "square"), (np.cos(angles) * 3.0) ** 2)
 
 
-def test_a_chunk_fits_the_workspace_in_cache():
-    from planmethod.kinematics.tracing import CHUNK, MIN_CHUNK, WORKSPACE_BYTES
-
-    for rows in (1, 9, 40, 400):
-        tracer = Tracer()
-        values = [tracer.apply("cos", tracer.angles() * float(k + 1)) for k in range(rows)]
-        total = values[0]
-        for value in values[1:]:
-            total = total + value
-        tracer.output("total", total)
-        compiled = tracer.compile()
-        chunk = compiled.chunk
-        assert MIN_CHUNK <= chunk <= CHUNK and chunk & (chunk - 1) == 0
-        assert chunk == MIN_CHUNK or chunk * 8 * compiled.work <= WORKSPACE_BYTES
-        assert chunk == CHUNK or 2 * chunk * 8 * compiled.work > WORKSPACE_BYTES
-        angles = np.linspace(0.0, 10.0, 2 * chunk + 5)
-        expected = sum(np.cos(angles * float(k + 1)) for k in range(rows))
-        assert np.allclose(compiled.read(compiled.evaluate(angles), "total"), expected,
-                           rtol=0, atol=1e-12 * rows)
-
-
 def test_a_guard_calls_its_check_only_where_its_bound_fails():
     seen = []
 

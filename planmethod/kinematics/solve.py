@@ -36,6 +36,7 @@ from .groups import kind_module
 from .groups.base import Construction, Context, construction, error_estimate
 from .program import STAGES, Branch, model, owners
 from .state import LinkState, cross, norm, perp
+from .tracing import CHUNK
 
 __all__ = ["FLAG_ERROR", "STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "Sliding",
            "choose_branches", "solve"]
@@ -492,7 +493,7 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         try:
             program.run(angles_deg, list(rows))
         except PlanmethodError:
-            if angles_deg.shape[0] <= program.chunk:
+            if angles_deg.shape[0] <= CHUNK:
                 raise
             # a chunk came near a refused position: the direct evaluation over every angle
             # finds the first angle refused, group by group in build order
