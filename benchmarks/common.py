@@ -71,6 +71,29 @@ def best_time(function: Callable[[], object], *, min_time: float = 0.5, min_repe
     return {"best": min(times), "median": statistics.median(times), "repeats": len(times)}
 
 
+def interleaved_best_times(functions: dict[str, Callable[[], object]], *,
+                           min_time: float = 0.5, min_repeats: int = 3,
+                           max_repeats: int = 2000) -> dict[str, dict]:
+    """Wall times of several functions taken in turn, one call of each per round, so that a
+    change in a shared machine's load touches all of them alike: best and median (s) of each,
+    after at least ``min_repeats`` rounds and ``min_time`` seconds per function.
+
+    >>> sorted(interleaved_best_times({"a": lambda: None, "b": lambda: None}, min_time=0.0))
+    ['a', 'b']
+    """
+    times: dict[str, list[float]] = {name: [] for name in functions}
+    rounds = 0
+    while rounds < max_repeats and (rounds < min_repeats or min(
+            sum(spent) for spent in times.values()) < min_time):
+        for name, function in functions.items():
+            start = time.perf_counter()
+            function()
+            times[name].append(time.perf_counter() - start)
+        rounds += 1
+    return {name: {"best": min(spent), "median": statistics.median(spent), "repeats": rounds}
+            for name, spent in times.items()}
+
+
 def machine() -> dict:
     """What the numbers were measured on."""
     info = {"python": platform.python_version(), "numpy": np.__version__,

@@ -21,9 +21,10 @@ suite).
 Examples
 --------
 >>> from benchmarks.common import exercise
->>> table = planmethod_times(exercise("fourbar").mechanism, [36], min_time=0.0)
+>>> table = planmethod_times(exercise("fourbar").mechanism, [36], min_time=0.0,
+...                          floor_name="fourbar")
 >>> sorted(table[36])
-['fresh', 'reused']
+['floor', 'fresh', 'reused']
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ from planmethod.testing import exact_slider_crank as slider_reference
 
 from . import floor
 from . import peers as peer_tools
-from .common import best_time, exercise, full_turn, microseconds
+from .common import exercise, full_turn, interleaved_best_times, microseconds
 
 COUNTS = (360, 3600, 36000)
 QUICK_COUNTS = (360, 3600)
@@ -63,23 +64,30 @@ def full_analysis(mechanism, angles, points):
             for p in points}
 
 
-def planmethod_times(mechanism, counts, *, min_time: float = 0.5) -> dict:
+def planmethod_times(mechanism, counts, *, min_time: float = 0.5, floor_name=None) -> dict:
     """Best times of the full analysis at each count: ``reused`` (the same model object at
-    every call) and ``fresh`` (a new, equal model object at every call)."""
+    every call) and ``fresh`` (a new, equal model object at every call), and with
+    ``floor_name`` the numpy floor's (:mod:`benchmarks.floor`) — taken in turn, one call of
+    each per round, so that the ratios hold on a machine whose load changes."""
     points = every_point(mechanism)
-    # more new models than calls: none of them is met twice (the program cache keeps 32)
+    # more new models than calls: none of them is met twice (the program cache keeps 64)
     fresh = [dataclasses.replace(mechanism) for _ in range(2048)]
     out = {}
     for count in counts:
         angles = full_turn(count)
         full_analysis(mechanism, angles, points)  # warm-up
         models = iter(fresh)
-        out[count] = {
-            "reused": best_time(lambda a=angles: full_analysis(mechanism, a, points),
-                                min_time=min_time),
-            "fresh": best_time(lambda a=angles, m=models: full_analysis(next(m), a, points),
-                               min_time=min_time, max_repeats=len(fresh)),
+        functions = {
+            "reused": lambda a=angles: full_analysis(mechanism, a, points),
+            "fresh": lambda a=angles, m=models: full_analysis(next(m), a, points),
         }
+        if floor_name is not None:
+            phi = np.radians(angles)
+            function = floor.RUNNERS[floor_name]
+            function(phi)
+            functions["floor"] = lambda p=phi, f=function: f(p)
+        out[count] = interleaved_best_times(functions, min_time=min_time,
+                                            max_repeats=len(fresh))
     return out
 
 
@@ -114,15 +122,10 @@ def planmethod_error(name: str, mechanism, count: int = 360) -> dict:
     return relative_errors((position, velocity, acceleration), tuple(reference))
 
 
-def floor_record(name: str, mechanism, counts, min_time: float) -> dict:
+def floor_record(name: str, mechanism, counts, times: dict) -> dict:
     """The hand-fused numpy closed form of :mod:`benchmarks.floor` (not general: this one
-    mechanism only), timed and checked like the others."""
+    mechanism only): its times (taken with planmethod's) and its error."""
     function = floor.RUNNERS[name]
-    runs = {}
-    for count in counts:
-        phi = np.radians(full_turn(count))
-        function(phi)
-        runs[str(count)] = best_time(lambda p=phi: function(p), min_time=min_time)
     count = counts[-1]
     out = function(np.radians(full_turn(count)))
     cy = out.get("cy", np.zeros(count))
@@ -130,8 +133,8 @@ def floor_record(name: str, mechanism, counts, min_time: float) -> dict:
     acy = out.get("acy", np.zeros(count))
     arrays = (np.column_stack((out["cx"], cy)), np.column_stack((out["vcx"], vcy)),
               np.column_stack((out["acx"], acy)))
-    return {"runs": runs, "error": relative_errors(arrays, exact_c(mechanism, count)),
-            "error_at": count}
+    return {"runs": {str(c): times[c]["floor"] for c in counts},
+            "error": relative_errors(arrays, exact_c(mechanism, count)), "error_at": count}
 
 
 def run(quick: bool = False, *, log=print) -> dict:
@@ -145,11 +148,11 @@ def run(quick: bool = False, *, log=print) -> dict:
     for name in MECHANISMS:
         mechanism = exercise(name).mechanism
         log(f"  {TITLES[name]}: planmethod …")
-        times = planmethod_times(mechanism, counts, min_time=min_time)
+        times = planmethod_times(mechanism, counts, min_time=min_time, floor_name=name)
         entry = {"planmethod": {"runs": {str(c): times[c]["reused"] for c in counts},
                                 "error": planmethod_error(name, mechanism)},
                  FRESH: {"runs": {str(c): times[c]["fresh"] for c in counts}},
-                 FLOOR: floor_record(name, mechanism, counts, min_time)}
+                 FLOOR: floor_record(name, mechanism, counts, times)}
         if have_peers:
             for peer in peer_tools.PEERS:
                 log(f"  {TITLES[name]}: {peer} …")
