@@ -142,14 +142,19 @@ def test_random_mechanisms_over_full_turns(case):
     assert violations(rows) == []
 
 
-def test_the_stated_bound_for_a_crank_256_times_its_rod():
-    """Found by hypothesis: a crank 256 times its rod at 180°, where the error of a_C was 1.0075
-    times the bound while the rod's run C − B was read back as the difference of two positions
-    of 10 m (losing the digits of a 0.04 m rod); the kinds now take it from their closed form."""
-    case = stress.slider_case(crank=10.0, rod=0.0390625, offset=0.03125, omega=-1.0,
-                              epsilon=0.0, drive_angle=0.0, forward=False,
-                              name="crank 256 times its rod")
-    assert violations(stress.check(case, np.array([180.0]))) == []
+@pytest.mark.parametrize("power", [8, 12, 16])
+def test_the_stated_bound_for_a_crank_far_longer_than_its_rod(power):
+    """Found by hypothesis: a crank 256 times its rod at 180°, where the error of a_C exceeded
+    the bound of the time (K·ε·A/s², K = 256): B's rounding is ε·R of the rod, which the bound
+    now carries (K·ε·R·A/s², K = 16); at 4,096 times the old bound failed by 15×."""
+    rod = 0.0390625
+    case = stress.slider_case(crank=rod * 2.0 ** power, rod=rod, offset=0.03125, omega=-1.0,
+                              epsilon=0.0, drive_angle=180.0, forward=False,
+                              name=f"crank 2^{power} times its rod")
+    reach = math.degrees(math.asin((rod - 0.03125) / case.params["crank"]))
+    rows = stress.check(case, 180.0 + reach * np.linspace(-0.99, 0.99, 9))
+    assert [row["status"] for row in rows] == ["ok"] * 9
+    assert violations(rows) == []
 
 
 def test_the_suite_catches_a_flipped_branch():
