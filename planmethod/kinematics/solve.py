@@ -261,23 +261,22 @@ class Motion:
 
     def velocity(self, ref: str) -> np.ndarray:
         """Absolute velocity (m/s) of a point."""
-        if self.stage == "position":
-            self._need("velocity", f"the velocity of {ref}")
-        if ref in self._owners:
-            found = self._values("v:" + ref)
-            return found[0] if self.scalar else found
-        link, position = self.locate(ref)   # a point under another, or an error
-        return self._out(self._state(link).velocity_at(position))
+        return self._point_motion(ref, "velocity", "v:", LinkState.velocity_at)
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
-        if self.stage != "acceleration":
-            self._need("acceleration", f"the acceleration of {ref}")
+        return self._point_motion(ref, "acceleration", "a:", LinkState.acceleration_at)
+
+    def _point_motion(self, ref: str, stage: str, prefix: str, rigid) -> np.ndarray:
+        """A named point's velocity or acceleration as solved (``prefix`` + its name), or a
+        link's point under another (``"B@lever"``) by the link's rigid motion (``rigid``)."""
+        if _LEVELS[self.stage] < _LEVELS[stage]:
+            self._need(stage, f"the {stage} of {ref}")
         if ref in self._owners:
-            found = self._values("a:" + ref)
+            found = self._values(prefix + ref)
             return found[0] if self.scalar else found
         link, position = self.locate(ref)   # a point under another, or an error
-        return self._out(self._state(link).acceleration_at(position))
+        return self._out(rigid(self._state(link), position))
 
     def place(self, link: str, local) -> np.ndarray:
         """Global position of the point of ``link`` at local coordinates ``local``."""
