@@ -100,12 +100,18 @@ def plot_format(path: str | Path) -> str:
     ... except PlanmethodError as error:
     ...     print(error)
     curves.txt: plot format '.txt' not supported; use .png, .svg or .pdf
+    >>> try:
+    ...     plot_format("curves")
+    ... except PlanmethodError as error:
+    ...     print(error)
+    curves: a plot file needs a suffix for its format; use .png, .svg or .pdf
     """
     path = Path(path)
     form = FORMATS.get(path.suffix.lower())
     if form is None:
-        raise PlanmethodError(f"plot format '{path.suffix or path.name}' not supported; use "
-                              f".png, .svg or .pdf", file=str(path))
+        found = f"plot format '{path.suffix}' not supported" if path.suffix else (
+            "a plot file needs a suffix for its format")
+        raise PlanmethodError(f"{found}; use .png, .svg or .pdf", file=str(path))
     return form
 
 
