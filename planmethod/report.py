@@ -114,30 +114,35 @@ def asked_quantities(exercise: Exercise, motion: Motion) -> list[str]:
     return out
 
 
+def _radius(motion: Motion, point: str) -> float | None:
+    rho = float(motion.curvature(point).rho)
+    return None if math.isnan(rho) else rho
+
+
+#: how each kind of quantity (vocabulary.QUANTITY_KINDS) is read from a motion, by its prefix
+EXACT_READERS = {
+    "v": lambda motion, name: float(np.hypot(*motion.velocity(name))),
+    "a": lambda motion, name: float(np.hypot(*motion.acceleration(name))),
+    "omega": lambda motion, name: float(motion.omega(name)),
+    "epsilon": lambda motion, name: float(motion.epsilon(name)),
+    "rho": _radius,
+    "s": lambda motion, name: float(motion.sliding(name).s),
+    "ds": lambda motion, name: float(motion.sliding(name).velocity),
+    "dds": lambda motion, name: float(motion.sliding(name).acceleration),
+    "coriolis": lambda motion, name: float(np.hypot(*motion.sliding(name).coriolis)),
+}
+
+
 def exact_value(motion: Motion, quantity: str) -> float | None:
-    """The exact value of a check quantity (magnitudes for v and a; signed ω, ε, s, ds, dds)."""
+    """The exact value of a check quantity (magnitudes for v and a; signed ω, ε, s, ds, dds).
+
+    Raises
+    ------
+    KeyError
+        If the quantity's prefix names no known kind.
+    """
     kind, _, name = quantity.partition("_")
-    if kind == "v":
-        return float(np.hypot(*motion.velocity(name)))
-    if kind == "a":
-        return float(np.hypot(*motion.acceleration(name)))
-    if kind == "omega":
-        return float(motion.omega(name))
-    if kind == "epsilon":
-        return float(motion.epsilon(name))
-    if kind == "rho":
-        rho = float(motion.curvature(name).rho)
-        return None if math.isnan(rho) else rho
-    sliding = motion.sliding(name)
-    if kind == "s":
-        return float(sliding.s)
-    if kind == "ds":
-        return float(sliding.velocity)
-    if kind == "dds":
-        return float(sliding.acceleration)
-    if kind == "coriolis":
-        return float(np.hypot(*sliding.coriolis))
-    raise KeyError(quantity)
+    return EXACT_READERS[kind](motion, name)
 
 
 def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: float | None = None,

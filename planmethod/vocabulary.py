@@ -27,8 +27,11 @@ __all__ = [
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
+    "AppliedKind",
+    "EdgeKind",
     "GroupKind",
     "PairKind",
+    "PlanKind",
     "Quantity",
     "QuantityKind",
     "link_numbers",
@@ -44,6 +47,37 @@ class PairKind(StrEnum):
     PRISMATIC = "P"
 
 
+class PlanKind(StrEnum):
+    """A plan of the graphical method: of positions (the mechanism at μl), of velocities
+    (pole p, μv) or of accelerations (pole π, μa). The value keys the report's ``plans``."""
+
+    POSITION = "position"
+    VELOCITY = "velocity"
+    ACCELERATION = "acceleration"
+
+
+class AppliedKind(StrEnum):
+    """A known force or moment on a link in kinetostatics: its weight G, the inertia force Fᵘ
+    and moment Mᵘ, a given load, or a friction force or moment in a pair."""
+
+    WEIGHT = "weight"
+    INERTIA_FORCE = "inertia_force"
+    INERTIA_MOMENT = "inertia_moment"
+    LOAD = "load"
+    FRICTION = "friction"
+
+
+class EdgeKind(StrEnum):
+    """An edge of a force polygon: a ``known`` force (weight, inertia, load), a ``component``
+    of a reaction found from a moment or a direction (Rᵗ, Rⁿ, N), a ``reaction`` found by
+    closing the polygon, or a reaction ``transmitted`` from a group solved before."""
+
+    KNOWN = "known"
+    COMPONENT = "component"
+    REACTION = "reaction"
+    TRANSMITTED = "transmitted"
+
+
 class GroupKind(StrEnum):
     """An Assur group's kind. A dyad's kind is its pair sequence external–internal–external
     (types 1–5 of the Russian school's numbering); higher groups are ``triad`` (class III) and
@@ -56,6 +90,9 @@ class GroupKind(StrEnum):
     RPP = "RPP"
     TRIAD = "triad"
     TETRAD = "tetrad"
+    #: the drive link with the frame (class I, the initial mechanism): not an Assur group,
+    #: but the force analysis solves it last, as a group of its own
+    DRIVE = "drive"
 
     @property
     def type_number(self) -> int | None:
@@ -68,8 +105,8 @@ class GroupKind(StrEnum):
 
     @property
     def group_class(self) -> int:
-        """2 for a dyad, 3 for a triad, 4 for a tetrad."""
-        return 2 if self.is_dyad else (3 if self is GroupKind.TRIAD else 4)
+        """1 for the drive link, 2 for a dyad, 3 for a triad, 4 for a tetrad."""
+        return 2 if self.is_dyad else _HIGHER_CLASSES[self]
 
     @property
     def pairs(self) -> tuple[PairKind, ...] | None:
@@ -89,6 +126,7 @@ class GroupKind(StrEnum):
 
 _TYPE_NUMBERS = {GroupKind.RRR: 1, GroupKind.RRP: 2, GroupKind.RPR: 3, GroupKind.PRP: 4,
                  GroupKind.RPP: 5}
+_HIGHER_CLASSES = {GroupKind.DRIVE: 1, GroupKind.TRIAD: 3, GroupKind.TETRAD: 4}
 
 #: the drawing scales, as printed, with their units
 SCALES = {"mu_l": ("μl", "m/mm"), "mu_v": ("μv", "(m/s)/mm"), "mu_a": ("μa", "(m/s²)/mm"),

@@ -286,3 +286,41 @@ def test_a_module_without_a_layer_is_named():
     assert problems(modules) == [
         "planmethod/widgets.py: planmethod.widgets has no layer (add it to LAYERS in "
         "tests/test_layers.py)"]
+
+
+# -- kinds are enums ---------------------------------------------------------------------------
+def string_kind_comparisons(root: Path) -> list[str]:
+    """Every comparison of a ``kind`` (a name or an attribute so called) with a string literal:
+    kinds are enums or registry keys (vocabulary.py), not strings compared in ``if`` chains."""
+    found = []
+    for path in sorted(root.rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.Compare):
+                continue
+            sides = [node.left, *node.comparators]
+            named = any((isinstance(side, ast.Name) and side.id == "kind")
+                        or (isinstance(side, ast.Attribute) and side.attr == "kind")
+                        for side in sides)
+            literal = any((isinstance(side, ast.Constant) and isinstance(side.value, str))
+                          or (isinstance(side, ast.Tuple | ast.List | ast.Set) and any(
+                              isinstance(item, ast.Constant) and isinstance(item.value, str)
+                              for item in side.elts))
+                          for side in sides)
+            if named and literal:
+                found.append(f"{path.relative_to(root.parent)}:{node.lineno}: "
+                             f"{ast.unparse(node)}")
+    return found
+
+
+def test_no_kind_is_a_string_compared():
+    assert string_kind_comparisons(ROOT / PACKAGE) == []
+
+
+def test_a_string_kind_comparison_is_named(tmp_path):
+    package = tmp_path / PACKAGE
+    package.mkdir()
+    (package / "probe.py").write_text('def f(edge):\n    return edge.kind == "component"\n',
+                                      encoding="utf-8")
+    assert string_kind_comparisons(package) == [
+        'planmethod/probe.py:2: edge.kind == "component"'.replace('"', "'")]

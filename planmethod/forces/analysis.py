@@ -34,6 +34,7 @@ from ..errors import SpecError
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
 from ..plans.scales import standard
+from ..vocabulary import AppliedKind
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
 from .combined import (
@@ -250,7 +251,8 @@ class ForceAnalysis:
             {"name": item.name, "link": item.link, "kind": item.kind,
              **({"point": _pair(item.point[0]), "force": _pair(item.force[0])}
                 if item.force is not None else {"moment": float(item.moment[0])})}
-            for item in solution.applied.items if item.kind in ("load", "friction")]
+            for item in solution.applied.items
+            if item.kind in (AppliedKind.LOAD, AppliedKind.FRICTION)]
         out["groups"] = [{"name": g.name, "kind": g.kind, "links": list(g.links),
                           "steps": list(g.steps), "reactions": list(g.reactions),
                           **({"special_point": _pair(g.special_point[0])}

@@ -41,6 +41,7 @@ import numpy as np
 from ..errors import SpecError
 from ..kinematics.state import LinkState, cross, norm
 from ..model import FRAME, Mechanism
+from ..vocabulary import AppliedKind
 
 __all__ = [
     "AppliedItem",
@@ -94,7 +95,8 @@ class Wrench:
 class AppliedItem:
     """One known force or moment on a link.
 
-    ``kind`` is ``weight``, ``inertia_force``, ``inertia_moment``, ``load`` or ``friction``;
+    ``kind`` is an :class:`~planmethod.vocabulary.AppliedKind` (weight, inertia force or
+    moment, load, friction);
     ``point`` and ``force`` are set for a force (global, N × 2), ``moment`` for a couple.
     ``local`` is the point's coordinates in the link's frame (for the similarity rule on plans),
     ``label`` the point's name when it is a named point (``S_BC`` for a centre of mass).
@@ -102,7 +104,7 @@ class AppliedItem:
 
     link: str
     name: str
-    kind: str
+    kind: AppliedKind
     point: np.ndarray | None = None
     force: np.ndarray | None = None
     moment: np.ndarray | None = None
@@ -223,12 +225,12 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
         inertia[link] = found
         label = f"S_{link}"
         if gravity:
-            items.append(AppliedItem(link, f"G_{link}", "weight", found.centre, found.weight,
-                                     local=props.S, label=label))
-        items.append(AppliedItem(link, f"F_u,{link}", "inertia_force", found.centre,
+            items.append(AppliedItem(link, f"G_{link}", AppliedKind.WEIGHT, found.centre,
+                                     found.weight, local=props.S, label=label))
+        items.append(AppliedItem(link, f"F_u,{link}", AppliedKind.INERTIA_FORCE, found.centre,
                                  found.force, local=props.S, label=label))
         if props.J:
-            items.append(AppliedItem(link, f"M_u,{link}", "inertia_moment",
+            items.append(AppliedItem(link, f"M_u,{link}", AppliedKind.INERTIA_MOMENT,
                                      moment=found.moment))
     rest = REST_SPEED * _speed_scale(mechanism, states)
     for load in mechanism.loads:
@@ -249,7 +251,7 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
                     flags.append(f"{name} on {load.link}: the link is at rest"
                                  f"{f' (crank angle {at})' if at else ''}, the moment acts as "
                                  "given")
-            items.append(AppliedItem(load.link, name, "load", moment=moment))
+            items.append(AppliedItem(load.link, name, AppliedKind.LOAD, moment=moment))
             continue
         if load.point not in mechanism.links[load.link].points:
             raise SpecError(f"'{load.point}' is not a point of '{load.link}'", file=file,
@@ -272,6 +274,6 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
             elif not np.all(moving):
                 flags.append(f"{name} on {load.link} at {load.point}: the point is at rest, "
                              "the force acts as given")
-        items.append(AppliedItem(load.link, name, "load", point, force, local=local,
+        items.append(AppliedItem(load.link, name, AppliedKind.LOAD, point, force, local=local,
                                  label=load.point))
     return AppliedLoads(tuple(items), inertia, tuple(flags), count)

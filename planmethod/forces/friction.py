@@ -44,6 +44,7 @@ from ..errors import ConvergenceError
 from ..kinematics.state import LinkState, norm, unit_angle
 from ..model import Mechanism
 from ..structure import Structure
+from ..vocabulary import AppliedKind, PairKind
 from .applied import REST_SPEED, AppliedItem, AppliedLoads
 from .groups import GroupSolution, solve_by_groups
 
@@ -125,7 +126,7 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
     flags: list[str] = []
     for key, reaction in solution.reactions.items():
         on, source = states[reaction.target], states[reaction.source]
-        if reaction.kind == "R":
+        if reaction.kind is PairKind.REVOLUTE:
             pair = mechanism.revolute_at(key.partition(":")[0])
             f, radius = settings.lookup(key, key.partition(":")[0], pair.key if pair else None)
             if not f or not radius:
@@ -133,8 +134,9 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
             relative = on.omega - source.omega
             sense = _sense(relative, rest_omega)
             moment = -f * radius * reaction.magnitude * sense
-            items.append(AppliedItem(reaction.target, f"M_f,{key}", "friction", moment=moment))
-            items.append(AppliedItem(reaction.source, f"M_f,{key}", "friction", moment=-moment))
+            for link, sign in ((reaction.target, 1.0), (reaction.source, -1.0)):
+                items.append(AppliedItem(link, f"M_f,{key}", AppliedKind.FRICTION,
+                                         moment=sign * moment))
             losses[key] = moment * relative
             senses[key] = sense
             if np.any(sense == 0):
@@ -152,9 +154,9 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
         normal = norm(reaction.force - along[..., None] * d)
         sense = _sense(v_rel, rest_speed)
         force = (-f * normal * sense)[..., None] * d
-        items.append(AppliedItem(reaction.target, f"F_f,{key}", "friction", point, force,
+        items.append(AppliedItem(reaction.target, f"F_f,{key}", AppliedKind.FRICTION, point, force,
                                  label=slide.point))
-        items.append(AppliedItem(reaction.source, f"F_f,{key}", "friction", point, -force,
+        items.append(AppliedItem(reaction.source, f"F_f,{key}", AppliedKind.FRICTION, point, -force,
                                  label=slide.point))
         losses[key] = np.einsum("...i,...i->...", force, d) * v_rel
         senses[key] = sense

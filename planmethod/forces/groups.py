@@ -40,7 +40,7 @@ from ..kinematics.groups import kind_module
 from ..kinematics.state import LinkState, cross, norm, perp, unit_angle
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
-from ..vocabulary import PairKind
+from ..vocabulary import EdgeKind, GroupKind, PairKind
 from .applied import AppliedLoads, Wrench
 from .reactions import Reaction, canonical, pair_key
 from .system import group_linear_reactions
@@ -55,14 +55,14 @@ SINGULAR_SINE = 1e-10
 class PolygonEdge:
     """One vector of a group's force polygon, in drawing order (head to tail).
 
-    ``kind``: ``known`` (weight, inertia, load, friction), ``transmitted`` (a reaction from a
-    group solved before), ``component`` (a part of an unknown reaction: Rᵗ, Rⁿ, N…), or
-    ``reaction`` (a whole reaction found from the polygon's closure).
+    ``kind``: an :class:`~planmethod.vocabulary.EdgeKind` — a known force (weight, inertia,
+    load, friction), a reaction transmitted from a group solved before, a component of an
+    unknown reaction (Rᵗ, Rⁿ, N…), or a whole reaction found from the polygon's closure.
     """
 
     label: str
     vector: np.ndarray
-    kind: str
+    kind: EdgeKind
     link: str
 
 
@@ -72,7 +72,7 @@ class GroupForces:
     zero), the reactions it found and, for a triad, Assur's special point used (N × 2)."""
 
     name: str
-    kind: str
+    kind: GroupKind
     links: tuple[str, ...]
     steps: tuple[str, ...]
     polygon: tuple[PolygonEdge, ...]
@@ -102,7 +102,7 @@ class _Solver:
         self.edges: dict[str, list[PolygonEdge]] = {link: [] for link in links}
         for item in applied.items:
             if item.force is not None and item.link in self.edges:
-                self.edges[item.link].append(PolygonEdge(item.name, item.force, "known",
+                self.edges[item.link].append(PolygonEdge(item.name, item.force, EdgeKind.KNOWN,
                                                          item.link))
         self.reactions: dict[str, Reaction] = {}
 
@@ -141,13 +141,13 @@ class _Solver:
         self.reactions[key] = found.oriented(*canonical(joint, group_links))
         if source not in group_links:
             self.wrench[source] = self.wrench[source] - found.wrench()
-            self.edges[source].append(PolygonEdge(f"R_{key}", -force, "transmitted", source))
+            self.edges[source].append(PolygonEdge(f"R_{key}", -force, EdgeKind.TRANSMITTED, source))
         return found
 
     def known_edges(self, links) -> list[PolygonEdge]:
         return [edge for link in links for edge in self.edges[link]]
 
-    def edge(self, label: str, vector: np.ndarray, kind: str, link: str) -> PolygonEdge:
+    def edge(self, label: str, vector: np.ndarray, kind: EdgeKind, link: str) -> PolygonEdge:
         return PolygonEdge(label, vector, kind, link)
 
     def total(self, links) -> Wrench:
@@ -184,7 +184,7 @@ class _Solver:
             outside = reaction.source not in group.links or reaction.target not in group.links
             if outside:
                 vector = reaction.force if reaction.target in group.links else -reaction.force
-                edges.append(PolygonEdge(f"R_{key}", vector, "reaction",
+                edges.append(PolygonEdge(f"R_{key}", vector, EdgeKind.REACTION,
                                          reaction.target if reaction.target in group.links
                                          else reaction.source))
         steps = (f"{group.kind} of links {', '.join(group.links)}: its 3·{len(group.links)} "
@@ -201,11 +201,11 @@ class _Solver:
         reaction = -w.force
         joint = Joint(PairKind.REVOLUTE, drive.pivot, (link, FRAME))
         edges = [*self.known_edges((link,)),
-                 PolygonEdge(f"R_{drive.pivot}", reaction, "reaction", link)]
+                 PolygonEdge(f"R_{drive.pivot}", reaction, EdgeKind.REACTION, link)]
         key = self.record(joint, (link,), link, FRAME, pivot, reaction).key
         steps = (f"M_b from ΣM_{drive.pivot}({link}) = 0",
                  f"R_{drive.pivot} from the force polygon of {link}")
-        return balancing, GroupForces(link, "drive", (link,), steps, tuple(edges), (key,))
+        return balancing, GroupForces(link, GroupKind.DRIVE, (link,), steps, tuple(edges), (key,))
 
 
 def solve_by_groups(mechanism: Mechanism, structure: Structure,

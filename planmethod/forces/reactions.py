@@ -11,7 +11,8 @@ prismatic pair always on the slide's ``link`` from its ``along``.
 Examples
 --------
 >>> import numpy as np
->>> reaction = Reaction("B", "R", "AB", "BC", np.zeros((1, 2)), np.array([[3.0, 4.0]]))
+>>> reaction = Reaction("B", PairKind.REVOLUTE, "AB", "BC", np.zeros((1, 2)),
+...                     np.array([[3.0, 4.0]]))
 >>> reaction.reversed().force.tolist(), reaction.reversed().source
 ([[-3.0, -4.0]], 'BC')
 """
@@ -44,7 +45,7 @@ def canonical(joint: Joint, group_links: Sequence[str]) -> tuple[str, str]:
     return joint.other(inside), inside
 
 
-def pair_key(mechanism: Mechanism, kind: str, point: str, source: str, target: str,
+def pair_key(mechanism: Mechanism, kind: PairKind, point: str, source: str, target: str,
              slide: Slide | None = None) -> str:
     """The report key of a pair (see the module docstring)."""
     if kind == PairKind.PRISMATIC:
@@ -62,7 +63,7 @@ class Reaction:
     the couple about ``point``."""
 
     key: str
-    kind: str
+    kind: PairKind
     source: str
     target: str
     point: np.ndarray

@@ -39,6 +39,7 @@ from ..kinematics.constraints import Constraint, ConstraintSystem
 from ..kinematics.state import LinkState, cross
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
+from ..vocabulary import PairKind
 from .applied import AppliedLoads, Wrench
 from .reactions import Reaction, canonical, pair_key
 
@@ -60,10 +61,10 @@ class SystemSolution:
 
 
 def _constraint(joint: Joint) -> Constraint:
-    if joint.kind == "P":
+    if joint.kind is PairKind.PRISMATIC:
         slide = joint.slide
-        return Constraint("P", slide.point, slide.link, slide.along, slide)
-    return Constraint("R", joint.point, joint.links[0], joint.links[1])
+        return Constraint(PairKind.PRISMATIC, slide.point, slide.link, slide.along, slide)
+    return Constraint(PairKind.REVOLUTE, joint.point, joint.links[0], joint.links[1])
 
 
 def _generalized(wrench: Wrench, state: LinkState) -> np.ndarray:
@@ -117,14 +118,15 @@ def _as_reaction(mechanism, joint: Joint, source: str, target: str, system, matr
                  multipliers, index, states, key) -> Reaction:
     moving = target if target != FRAME else source
     wrench = _reaction_on(mechanism, system, matrix, multipliers, index, moving, states)
-    if joint.kind == "P":
+    if joint.kind is PairKind.PRISMATIC:
         slide = joint.slide
         point = states[slide.link].place(mechanism.local(slide.link, slide.point))
     else:
         point = states[moving].place(mechanism.local(moving, joint.point))
     couple = wrench.moment_about(point)
+    prismatic = joint.kind is PairKind.PRISMATIC
     found = Reaction(key, joint.kind, source if moving == target else target, moving, point,
-                     wrench.force, couple if joint.kind == "P" else None, joint.slide)
+                     wrench.force, couple if prismatic else None, joint.slide)
     return found.oriented(source, target)
 
 
@@ -135,7 +137,7 @@ def _pairs(mechanism: Mechanism, structure: Structure):
         for joint in group.joints:
             pairs.append((joint, canonical(joint, group.links)))
     drive = mechanism.drive
-    pairs.append((Joint("R", drive.pivot, (drive.link, FRAME)), (FRAME, drive.link)))
+    pairs.append((Joint(PairKind.REVOLUTE, drive.pivot, (drive.link, FRAME)), (FRAME, drive.link)))
     return pairs
 
 

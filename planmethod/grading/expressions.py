@@ -39,8 +39,10 @@ planmethod.grading.expressions.ExpressionError: at character 4: expected a numbe
 from __future__ import annotations
 
 import math
+import operator
 import re
 from collections.abc import Callable
+from enum import StrEnum
 
 __all__ = ["FUNCTIONS", "ExpressionError", "evaluate", "parse", "references"]
 
@@ -51,6 +53,42 @@ MAX_DEPTH = 40
 
 class ExpressionError(ValueError):
     """A template expression is malformed or cannot be evaluated."""
+
+
+class Token(StrEnum):
+    """What a token of the text is (the group of ``_TOKEN`` that matched it)."""
+
+    NUMBER = "number"
+    NAME = "name"
+    OP = "op"
+    END = "end"
+
+
+class Node(StrEnum):
+    """A node of the tree that is not a binary operation (those are keyed by their operator,
+    see ``_BINARY``)."""
+
+    NUM = "num"
+    REF = "ref"
+    NEG = "neg"
+    CALL = "call"
+
+
+def _divide(left: float, right: float) -> float:
+    if right == 0:
+        raise ExpressionError("division by zero")
+    return left / right
+
+
+def _power(left: float, right: float) -> float:
+    if abs(right) > 64:
+        raise ExpressionError(f"exponent {right:g} is out of range (|x| ≤ 64)")
+    return left ** right
+
+
+#: operator → its function, for the binary nodes ``(operator, left, right)``
+_BINARY: dict[str, Callable[[float, float], float]] = {
+    "+": operator.add, "-": operator.sub, "*": operator.mul, "/": _divide, "^": _power}
 
 
 def _degrees(function: Callable[[float], float]) -> Callable[[float], float]:
@@ -109,9 +147,9 @@ def _tokens(text: str) -> list[tuple[str, str, int]]:
             raise ExpressionError(f"at character {position + 1}: unexpected "
                                   f"{text[position]!r}")
         if match.lastgroup != "space":
-            out.append((match.lastgroup, match.group(), position))
+            out.append((Token(match.lastgroup), match.group(), position))
         position = match.end()
-    out.append(("end", "", len(text)))
+    out.append((Token.END, "", len(text)))
     return out
 
 
@@ -131,7 +169,7 @@ class _Parser:
 
     def expect(self, value: str) -> None:
         kind, text, position = self.take()
-        if text != value or kind != "op":
+        if text != value or kind is not Token.OP:
             shown = repr(text) if text else "the end"
             raise ExpressionError(f"at character {position + 1}: expected {value!r}, "
                                   f"got {shown}")
@@ -144,31 +182,31 @@ class _Parser:
     def expression(self):
         self.deeper()
         node = self.term()
-        while self.peek()[1] in ("+", "-") and self.peek()[0] == "op":
-            operator = self.take()[1]
-            node = (operator, node, self.term())
+        while self.peek()[1] in ("+", "-") and self.peek()[0] is Token.OP:
+            sign = self.take()[1]
+            node = (sign, node, self.term())
         self.depth -= 1
         return node
 
     def term(self):
         node = self.unary()
-        while self.peek()[1] in ("*", "/") and self.peek()[0] == "op":
-            operator = self.take()[1]
-            node = (operator, node, self.unary())
+        while self.peek()[1] in ("*", "/") and self.peek()[0] is Token.OP:
+            factor = self.take()[1]
+            node = (factor, node, self.unary())
         return node
 
     def unary(self):
-        if self.peek()[0] == "op" and self.peek()[1] in ("-", "+"):
-            operator = self.take()[1]
+        if self.peek()[0] is Token.OP and self.peek()[1] in ("-", "+"):
+            sign = self.take()[1]
             self.deeper()
             operand = self.unary()
             self.depth -= 1
-            return ("neg", operand) if operator == "-" else operand
+            return (Node.NEG, operand) if sign == "-" else operand
         return self.power()
 
     def power(self):
         node = self.atom()
-        if self.peek()[0] == "op" and self.peek()[1] == "^":
+        if self.peek()[0] is Token.OP and self.peek()[1] == "^":
             self.take()
             self.deeper()
             node = ("^", node, self.unary())
@@ -177,10 +215,10 @@ class _Parser:
 
     def atom(self):
         kind, text, position = self.take()
-        if kind == "number":
-            return ("num", float(text))
-        if kind == "name":
-            if self.peek()[1] == "(" and self.peek()[0] == "op":
+        if kind is Token.NUMBER:
+            return (Node.NUM, float(text))
+        if kind is Token.NAME:
+            if self.peek()[1] == "(" and self.peek()[0] is Token.OP:
                 if text not in FUNCTIONS:
                     raise ExpressionError(f"at character {position + 1}: unknown function "
                                           f"{text!r}; known: {', '.join(FUNCTIONS)}")
@@ -188,7 +226,7 @@ class _Parser:
                 arguments = []
                 if self.peek()[1] != ")":
                     arguments.append(self.expression())
-                    while self.peek()[1] == "," and self.peek()[0] == "op":
+                    while self.peek()[1] == "," and self.peek()[0] is Token.OP:
                         self.take()
                         arguments.append(self.expression())
                 self.expect(")")
@@ -197,11 +235,11 @@ class _Parser:
                     wanted = str(least) if least == most else f"{least}…{most}"
                     raise ExpressionError(f"at character {position + 1}: {text}() takes "
                                           f"{wanted} argument(s), got {len(arguments)}")
-                return ("call", text, tuple(arguments))
+                return (Node.CALL, text, tuple(arguments))
             if text in CONSTANTS:
-                return ("num", CONSTANTS[text])
-            return ("ref", text)
-        if kind == "op" and text == "(":
+                return (Node.NUM, CONSTANTS[text])
+            return (Node.REF, text)
+        if kind is Token.OP and text == "(":
             node = self.expression()
             self.expect(")")
             return node
@@ -219,11 +257,11 @@ def parse(text: str):
         If the text is not an expression of the grammar above.
     """
     parser = _Parser(text)
-    if parser.peek()[0] == "end":
+    if parser.peek()[0] is Token.END:
         raise ExpressionError("empty expression")
     node = parser.expression()
     kind, token, position = parser.peek()
-    if kind != "end":
+    if kind is not Token.END:
         raise ExpressionError(f"at character {position + 1}: unexpected {token!r}")
     return node
 
@@ -231,13 +269,12 @@ def parse(text: str):
 def references(node) -> set[str]:
     """The names an expression tree refers to."""
     kind = node[0]
-    if kind == "ref":
+    if kind is Node.REF:
         return {node[1]}
-    if kind == "num":
+    children = node[2] if kind is Node.CALL else node[1:]
+    if kind is Node.NUM or not children:
         return set()
-    if kind == "call":
-        return set().union(*(references(a) for a in node[2])) if node[2] else set()
-    return set().union(*(references(child) for child in node[1:]))
+    return set().union(*(references(child) for child in children))
 
 
 def evaluate(node, resolve: Callable[[str], float]) -> float:
@@ -250,43 +287,28 @@ def evaluate(node, resolve: Callable[[str], float]) -> float:
         its domain.
     """
     kind = node[0]
-    if kind == "num":
+    if kind is Node.NUM:
         return node[1]
-    if kind == "ref":
+    if kind is Node.REF:
         value = resolve(node[1])
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise ExpressionError(f"{node[1]} is not a number ({value!r})")
         return float(value)
-    if kind == "neg":
+    if kind is Node.NEG:
         return -evaluate(node[1], resolve)
-    if kind == "call":
-        function = FUNCTIONS[node[1]][0]
-        arguments = [evaluate(a, resolve) for a in node[2]]
-        try:
-            result = float(function(*arguments))
-        except (ValueError, OverflowError) as error:
-            if isinstance(error, ExpressionError):
-                raise
-            raise ExpressionError(f"{node[1]}() failed: {error}") from None
-    else:
-        left, right = evaluate(node[1], resolve), evaluate(node[2], resolve)
-        try:
-            if kind == "+":
-                result = left + right
-            elif kind == "-":
-                result = left - right
-            elif kind == "*":
-                result = left * right
-            elif kind == "/":
-                if right == 0:
-                    raise ExpressionError("division by zero")
-                result = left / right
-            else:
-                if abs(right) > 64:
-                    raise ExpressionError(f"exponent {right:g} is out of range (|x| ≤ 64)")
-                result = left ** right
-        except OverflowError:
-            raise ExpressionError("the result overflows") from None
+    try:
+        if kind is Node.CALL:
+            function, arguments = FUNCTIONS[node[1]][0], node[2]
+            try:
+                result = float(function(*(evaluate(a, resolve) for a in arguments)))
+            except ValueError as error:
+                if isinstance(error, ExpressionError):
+                    raise
+                raise ExpressionError(f"{node[1]}() failed: {error}") from None
+        else:
+            result = _BINARY[kind](evaluate(node[1], resolve), evaluate(node[2], resolve))
+    except OverflowError:
+        raise ExpressionError("the result overflows") from None
     if isinstance(result, complex) or not math.isfinite(result):
         raise ExpressionError(f"the result is not a finite number ({result})")
     return float(result)

@@ -173,20 +173,24 @@ def other_lengths(motion, link: str) -> list[tuple[str, float]]:
 
 def _wrong_length(quantity, value, tolerance, context):
     kind, _, link = quantity.partition("_")
-    if kind not in ("omega", "epsilon"):
+    if QUANTITY_KINDS[kind].subject != "link":    # ω and ε: read with a link's length
         return []
     return [(value * ratio, tolerance * ratio) for _, ratio in other_lengths(context.motion,
                                                                              link)]
+
+
+#: the quantities read as a segment from the pole, and the motion's reading of each
+_ABSOLUTE = {"v": "velocity", "a": "acceleration"}
 
 
 def _relative(quantity, value, tolerance, context):
     """|v_XY| (or |a_XY|) for the other points Y of X's link: the segment from the image of Y
     read instead of the segment from the pole."""
     kind, _, point = quantity.partition("_")
-    if kind not in ("v", "a") or "@" in point:
+    if kind not in _ABSOLUTE or "@" in point:
         return []
     motion = context.motion
-    read = motion.velocity if kind == "v" else motion.acceleration
+    read = getattr(motion, _ABSOLUTE[kind])
     mechanism = motion.mechanism
     out = []
     try:

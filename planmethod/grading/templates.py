@@ -58,6 +58,7 @@ from typing import Any
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
 from ..model import Exercise
 from ..spec import parse_toml, read_text
+from ..vocabulary import PlanKind
 from .expressions import ExpressionError, evaluate, parse, references
 
 __all__ = [
@@ -485,7 +486,7 @@ def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True) ->
         for component in settings.require:
             drawn = [abs(step.length_mm or 0.0) for step in plan.steps
                      if step.action == "lay_off" and step.component == component]
-            needed = plan.kind == "acceleration" or component == "relative"
+            needed = plan.kind is PlanKind.ACCELERATION or component == "relative"
             if needed and (not drawn or max(drawn) < settings.min_segment_mm):
                 return (f"the {component} component required on the {plan.kind} plan is "
                         f"{max(drawn, default=0.0):.1f} mm (below {settings.min_segment_mm:g} "

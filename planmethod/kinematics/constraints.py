@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import Mechanism, Slide
+from ..vocabulary import PairKind
 from .state import LinkState, perp, rotate, unit_angle
 
 __all__ = ["Constraint", "ConstraintSystem"]
@@ -38,7 +39,7 @@ __all__ = ["Constraint", "ConstraintSystem"]
 class Constraint:
     """A revolute pair (``point`` joining ``first`` and ``second``) or a prismatic ``slide``."""
 
-    kind: str
+    kind: PairKind
     point: str
     first: str
     second: str
@@ -50,7 +51,7 @@ class Constraint:
 
     @property
     def label(self) -> str:
-        return self.point if self.kind == "R" else self.slide.key
+        return self.point if self.kind is PairKind.REVOLUTE else self.slide.key
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -80,11 +81,12 @@ class ConstraintSystem:
             anchor = next((link for link in members if link not in unknown), members[0])
             for link in members:
                 if link != anchor and (link in unknown or anchor in unknown):
-                    constraints.append(Constraint("R", pair.point, link, anchor))
+                    constraints.append(Constraint(PairKind.REVOLUTE, pair.point, link, anchor))
         for slide in mechanism.slides:
             ends = (slide.link, slide.along)
             if all(end in allowed for end in ends) and any(end in unknown for end in ends):
-                constraints.append(Constraint("P", slide.point, slide.link, slide.along, slide))
+                constraints.append(Constraint(PairKind.PRISMATIC, slide.point, slide.link,
+                                              slide.along, slide))
         return cls(mechanism, tuple(constraints), unknown)
 
     @property
@@ -98,7 +100,7 @@ class ConstraintSystem:
     # -- evaluation -----------------------------------------------------------------------------
     def _parts(self, constraint: Constraint, states: Mapping[str, LinkState]):
         m = self.mechanism
-        if constraint.kind == "R":
+        if constraint.kind is PairKind.REVOLUTE:
             first, second = states[constraint.first], states[constraint.second]
             p1 = rotate(m.local(constraint.first, constraint.point), first.theta)
             p2 = rotate(m.local(constraint.second, constraint.point), second.theta)
@@ -114,7 +116,7 @@ class ConstraintSystem:
         rows = []
         for constraint in self.constraints:
             first, second, p1, p2 = self._parts(constraint, states)
-            if constraint.kind == "R":
+            if constraint.kind is PairKind.REVOLUTE:
                 gap = first.origin + p1 - second.origin - p2
                 rows += [gap[..., 0], gap[..., 1]]
             else:
@@ -135,7 +137,7 @@ class ConstraintSystem:
         for index, constraint in enumerate(self.constraints):
             r = 2 * index
             first, second, p1, p2 = self._parts(constraint, states)
-            if constraint.kind == "R":
+            if constraint.kind is PairKind.REVOLUTE:
                 blocks = ((constraint.first, first, 1.0, perp(p1)),
                           (constraint.second, second, -1.0, perp(p2)))
                 for link, state, sign, lever in blocks:
@@ -174,7 +176,7 @@ class ConstraintSystem:
         rows = []
         for constraint in self.constraints:
             first, second, p1, p2 = self._parts(constraint, states)
-            if constraint.kind == "R":
+            if constraint.kind is PairKind.REVOLUTE:
                 g = ((first.omega ** 2)[..., None] * p1 - (second.omega ** 2)[..., None] * p2)
                 rows += [g[..., 0], g[..., 1]]
                 continue

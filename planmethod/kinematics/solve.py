@@ -33,7 +33,7 @@ from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure
 from .algebra import Body
 from .groups import kind_module
-from .groups.base import Construction, Context, construction, error_estimate
+from .groups.base import Construction, Context, ThetaKind, construction, error_estimate
 from .program import STAGES, Branch, model, owners
 from .state import LinkState, cross, norm, perp
 from .tracing import CHUNK
@@ -299,12 +299,13 @@ class Motion:
             return np.zeros(self.angles.shape[0])
         if recipe is None:  # the drive, or a link whose θ is a result of its own
             return self._read(f"theta:{link}")
-        if recipe.kind == "two":
+        if recipe.kind is ThetaKind.TWO:
             first, second = self._read(f"p:{recipe.first}"), self._read(f"p:{recipe.second}")
             return np.arctan2(second[:, 1] - first[:, 1], second[:, 0] - first[:, 0]) - (
                 recipe.alpha)
-        if recipe.kind == "tied":
+        if recipe.kind is ThetaKind.TIED:
             return self._theta(recipe.link) + recipe.alpha
+        # ThetaKind.SPAN
         span = self._read(f"p:{recipe.first}") - self._read(f"p:{recipe.second}")
         axes = self._read(f"axes:{link}")
         c, s = axes[:, 0], axes[:, 1]

@@ -38,7 +38,7 @@ from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction
 from ..model import FRAME, Exercise, PlanSettings
-from ..vocabulary import _SUBSCRIPT, link_numbers, symbol
+from ..vocabulary import _SUBSCRIPT, PlanKind, link_numbers, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -425,9 +425,9 @@ class _Emulator:
         #: what a group kind's own drawing keeps between its velocity and acceleration plans
         self.memo: dict = {}
         numbers = link_numbers(self.mechanism.moving_links, self.mechanism.drive.link, FRAME)
-        self.v = _Sheet("velocity", "p", scales.mu_v, "(m/s)/mm", precision, min_angle, perturb,
-                        record, numbers, turn)
-        self.a = _Sheet("acceleration", "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
+        self.v = _Sheet(PlanKind.VELOCITY, "p", scales.mu_v, "(m/s)/mm", precision, min_angle,
+                        perturb, record, numbers, turn)
+        self.a = _Sheet(PlanKind.ACCELERATION, "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
                         perturb, record, numbers, turn)
 
     # -- geometry from the position plan ---------------------------------------------------
@@ -579,7 +579,7 @@ class _Emulator:
             base_label = self.image_at(self.v, self.vimages, side.base_link, base,
                                        self._base_label(side, self.v))
             direction = side.direction[0]
-            if side.kind == "rotation":
+            if side.rotation:
                 text = (f"through {base_label}: v_{construction.point}{side.base} ⟂ "
                         f"{construction.point}{side.base}")
                 component = "relative"
@@ -602,7 +602,7 @@ class _Emulator:
             segment = self.v.points[x_label] - self.v.points[base_label]
             direction = side.direction[0]
             sign = 1.0 if float(segment @ direction) >= 0 else -1.0
-            if side.kind == "rotation":
+            if side.rotation:
                 radius = x - side.base_position[0]
                 length_mm = self.length_mm(side.base_position[0], x)
                 omega = self.v.read(
@@ -648,7 +648,7 @@ class _Emulator:
                                        self._base_label(side, self.a))
             direction = side.direction[0]
             relative = self.rel_velocity[(group.index, index)]  # signed, mm on the v-plan
-            if side.kind == "rotation":
+            if side.rotation:
                 radius = x - base
                 length_mm = self.length_mm(base, x)
                 magnitude = (relative ** 2) * mu_v ** 2 / (length_mm * mu_l * mu_a)
@@ -669,7 +669,7 @@ class _Emulator:
             else:
                 carrier = side.link
                 omega_c = self.readings[f"omega_{carrier}"]
-                multi = sum(s.kind == "sliding" for s in construction.sides) > 1
+                multi = sum(not s.rotation for s in construction.sides) > 1
                 k_label = f"k{index + 1}_{point}" if multi else f"k_{point}"
                 coriolis = 2 * omega_c * relative * mu_v * _perp(direction) / mu_a
                 self.a.lay_off(
@@ -695,7 +695,7 @@ class _Emulator:
             segment = self.a.points[x_label] - self.a.points[start]
             direction = side.direction[0]
             sign = 1.0 if float(segment @ direction) >= 0 else -1.0
-            if side.kind == "rotation":
+            if side.rotation:
                 length_mm = self.length_mm(side.base_position[0], x)
                 epsilons[side.link] = self.a.read(
                     start, x_label, quantity=f"epsilon_{side.link}", sign=sign,

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from ..vocabulary import PlanKind
 from .style import num
 
 __all__ = ["animated_svg", "raster_frames", "save_gif", "save_mp4"]
@@ -98,7 +99,7 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
     from matplotlib.figure import Figure
     from PIL import Image
 
-    kinds = ["position", "velocity"] + (["acceleration"] if all(
+    kinds = [PlanKind.POSITION, PlanKind.VELOCITY] + ([PlanKind.ACCELERATION] if all(
         plans.acceleration is not None for plans in plans_of_frames) else [])
     every: dict[str, list] = {kind: [] for kind in kinds}
     for plans in plans_of_frames:
@@ -120,7 +121,7 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
             ax.set_aspect("equal")
             ax.set_xticks([])
             ax.set_yticks([])
-            if kind == "position":
+            if kind is PlanKind.POSITION:
                 _draw_mechanism(ax, plans.position)
                 ax.set_title(f"φ₁ = {plans.position.angle:g}°", fontsize=10)
             else:

@@ -12,9 +12,10 @@ decimals, elements in a fixed order, one element a line — the same input gives
 
 Examples
 --------
+>>> from planmethod.render.labels import RunKind
 >>> canvas = Canvas(zoom=2.0)
 >>> canvas.line(canvas.px((0, 0)), canvas.px((50, 0)), color="#000000", width=1.0)
->>> canvas.request(("B",), canvas.px((50, 0)), (("B", "main"),))
+>>> canvas.request(("B",), canvas.px((50, 0)), (("B", RunKind.MAIN),))
 >>> canvas.place()
 >>> drawing = canvas.svg("a bar")
 >>> drawing.svg.startswith("<?xml") and "<title>a bar</title>" in drawing.svg
@@ -31,7 +32,14 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .labels import LabelRequest, PlacedLabel, Run, place_labels
+from .labels import (
+    SMALL_RUNS,
+    UPRIGHT_RUNS,
+    LabelRequest,
+    PlacedLabel,
+    Run,
+    place_labels,
+)
 from .style import (
     FAINT,
     FLAG,
@@ -387,7 +395,7 @@ def _label_spans(label: PlacedLabel) -> list:
     spans = []
     shift = 0.0
     for text, kind in label.runs:
-        small = kind in ("sub", "upright")
+        small = kind in SMALL_RUNS
         target = SUB_SHIFT * label.size if small else 0.0
         attrs: dict[str, str] = {}
         if target != shift:
@@ -395,7 +403,7 @@ def _label_spans(label: PlacedLabel) -> list:
             shift = target
         if small:
             attrs["font-size"] = num(label.size * SUB_SCALE)
-        if kind in ("upright", "sep"):
+        if kind in UPRIGHT_RUNS:
             attrs["font-style"] = "normal"
         spans.append(("tspan", attrs, [text]))
     return spans

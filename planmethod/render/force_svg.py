@@ -37,8 +37,9 @@ from typing import Any
 import numpy as np
 
 from ..plans.scales import standard
+from ..vocabulary import AppliedKind, EdgeKind, GroupKind
 from .canvas import Canvas, difference, fit_zoom, translate
-from .labels import label_runs
+from .labels import RunKind, label_runs
 from .notation import ForceNotation, subscript
 from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, quantity
 from .svg import (
@@ -64,18 +65,23 @@ def _runs(name: str):
     """Label runs of a force's name: ``G_BC`` → G with subscript BC, ``F_u,BC`` → F with
     subscript u,BC, ``Rᵗ_B`` → Rᵗ with subscript B."""
     if name.startswith("load["):
-        return ((name, "main"),)
+        return ((name, RunKind.MAIN),)
     return label_runs(name)
+
+
+#: how an edge of each kind but a known force is drawn: (style key, colour override, legend)
+_EDGE_LOOKS = {
+    EdgeKind.REACTION: ("result", None, "reaction found by closing the polygon"),
+    EdgeKind.TRANSMITTED: ("relative", KNOWN_COLOURS["R"], "reaction from a group solved before"),
+}
 
 
 def _edge_style(edge) -> tuple[str, str | None]:
     """(style key, colour override) of a polygon edge."""
-    if edge.kind == "component":
+    if edge.kind is EdgeKind.COMPONENT:
         return ("tangential", None) if edge.label.startswith("Rᵗ") else ("normal", None)
-    if edge.kind == "reaction":
-        return "result", None
-    if edge.kind == "transmitted":
-        return "relative", KNOWN_COLOURS["R"]
+    if edge.kind in _EDGE_LOOKS:
+        return _EDGE_LOOKS[edge.kind][:2]
     if edge.label.startswith(("M_f", "F_f")):
         return "relative", FRICTION
     return "relative", KNOWN_COLOURS.get(edge.label[:1], KNOWN_COLOURS["l"])
@@ -143,13 +149,11 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
 
 
 def _legend_key(edge) -> str:
-    if edge.kind == "component":
+    if edge.kind is EdgeKind.COMPONENT:
         return ("tangential component Rᵗ (⊥ the link)" if edge.label.startswith("Rᵗ")
                 else "normal component Rⁿ (along the link) or N (⊥ a guide)")
-    if edge.kind == "reaction":
-        return "reaction found by closing the polygon"
-    if edge.kind == "transmitted":
-        return "reaction from a group solved before"
+    if edge.kind in _EDGE_LOOKS:
+        return _EDGE_LOOKS[edge.kind][2]
     if edge.label.startswith(("M_f", "F_f")):
         return "friction force"
     return {"G": "weight G", "F": "inertia force Fᵘ = −m·a_S"}.get(edge.label[:1],
@@ -191,13 +195,13 @@ def combined_svg(forces, plans) -> str | None:
         figure.request(("Z_g",), translate(pole_px, difference(new_px, pole_px), 0.5),
                        _runs("Z_g"), mark=2.0)
     figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
-    figure.request(("π′",), new_px, (("π′", "main"),), mark=3.4)
+    figure.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
     notation = ForceNotation(forces.solution)
     for force in combined.forces:
         s = figure.px(force.image_mm)
         figure.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image")
         figure.request((f"s_{force.link}",), s,
-                       (("s", "main"), (notation.number(force.link), "sub")), mark=2.6)
+                       (("s", RunKind.MAIN), (notation.number(force.link), RunKind.SUB)), mark=2.6)
         if math.hypot(*force.segment_mm) * figure.zoom >= 1.0:
             figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
                          css=f"combined {force.link}")
@@ -319,7 +323,7 @@ def lever_forces_svg(forces: Any, plans) -> str | None:
     for base, moment in couples.items():
         lines.append(f"  {notation.plain(base)} (a couple, as ±M/l at two points of its "
                      f"link): {moment + 0.0:+.5g} N·mm")
-    runs_b = (("F", "main"), ("b", "sub"))
+    runs_b = (("F", RunKind.MAIN), ("b", RunKind.SUB))
     arm_b = draw("F_b", None, pin, balancing, INK, "result", runs_b)
     moment_b = float(pin[0] * balancing[1] - pin[1] * balancing[0])
     used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = ("result", None)
@@ -363,8 +367,8 @@ def loaded_svg(forces: Any, plans) -> str | None:
     mu_l = position.mu_l
     everything = [item for item in solution.applied.items if item.link != "frame"]
     # friction (a force or moment in each pair, on both its links) is listed, not drawn
-    friction = [item for item in everything if item.kind == "friction"]
-    items = [item for item in everything if item.kind != "friction"]
+    friction = [item for item in everything if item.kind is AppliedKind.FRICTION]
+    items = [item for item in everything if item.kind is not AppliedKind.FRICTION]
     arrows = [(item, np.asarray(item.point[0], float) / mu_l, np.asarray(item.force[0], float))
               for item in items if item.force is not None
               and float(np.hypot(*item.force[0])) > 0]
@@ -392,7 +396,7 @@ def loaded_svg(forces: Any, plans) -> str | None:
         lines.append(f"{notation.plain(item.name, item.link)} = "
                      f"{float(np.hypot(*force)):.4g} N on {notation.link_name(item.link)}")
         inertia = solution.applied.inertia.get(item.link)
-        if item.kind == "inertia_force" and inertia is not None and bool(
+        if item.kind is AppliedKind.INERTIA_FORCE and inertia is not None and bool(
                 inertia.single_force_defined[0]) and abs(float(inertia.offset[0])) > 0:
             # the line of the single equivalent force Fᵘ (with Mᵘ), offset by h from S
             unit = force / float(np.hypot(*force))
@@ -411,7 +415,7 @@ def loaded_svg(forces: Any, plans) -> str | None:
         inertia = solution.applied.inertia.get(item.link)
         centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
                   else np.asarray(inertia.centre[0], float) / mu_l
-                  if item.kind == "inertia_moment" and inertia is not None
+                  if item.kind is AppliedKind.INERTIA_MOMENT and inertia is not None
                   else _link_centre(position, item.link))
         colour = _force_colour(item.name)
         turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0, colour,
@@ -432,7 +436,7 @@ def loaded_svg(forces: Any, plans) -> str | None:
     if balancing and drive.pivot in position.points_mm:
         turning_arrow(figure, position.points_mm[drive.pivot], 40.0, -math.pi / 2,
                       1.0 if balancing > 0 else -1.0, INK, "moment:M_b",
-                      (("M", "main"), ("b", "sub")), css="balancing moment")
+                      (("M", RunKind.MAIN), ("b", RunKind.SUB)), css="balancing moment")
         used["balancing moment M_b on the crank"] = ("result", None)
         lines.append(f"M_b = {abs(balancing):.6g} N·m "
                      f"{'counter-clockwise' if balancing > 0 else 'clockwise'} on "
@@ -478,7 +482,7 @@ def force_files(forces: Any, plans, *, loaded: bool = True) -> dict[str, str]:
     title = forces.solution.mechanism.title
     notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
-        kind = "drive link" if group.kind == "drive" else f"{group.kind} of"
+        kind = "drive link" if group.kind is GroupKind.DRIVE else f"{group.kind} of"
         files[_file_name(number, group)] = polygon_svg(
             group, forces.mu_f, angle=forces.angle, notation=notation,
             title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "

@@ -19,14 +19,16 @@ order, so the result is deterministic. A label pushed far from its point gets a 
 
 Examples
 --------
->>> label_runs("b@lever")
-(('b', 'main'), ('lever', 'upright'))
->>> label_runs("n_CB")
-(('n', 'main'), ('CB', 'sub'))
->>> label_runs("O2")
-(('O', 'main'), ('2', 'upright'))
->>> label_runs("k_C@lever")
-(('k', 'main'), ('C', 'sub'), (', lever', 'upright'))
+>>> def show(runs):
+...     return " ".join(f"{text!r}:{kind}" for text, kind in runs)
+>>> show(label_runs("b@lever"))
+"'b':main 'lever':upright"
+>>> show(label_runs("n_CB"))
+"'n':main 'CB':sub"
+>>> show(label_runs("O2"))
+"'O':main '2':upright"
+>>> show(label_runs("k_C@lever"))
+"'k':main 'C':sub ', lever':upright"
 >>> plain(merge_runs([label_runs("p"), label_runs("c@frame")]))
 'p ≡ c frame'
 """
@@ -36,12 +38,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 
 from .style import LABEL, NBSP, SUB_SCALE, SUB_SHIFT, text_width
 
 __all__ = [
     "LabelRequest",
     "PlacedLabel",
+    "RunKind",
     "label_runs",
     "merge_runs",
     "place_labels",
@@ -49,9 +53,24 @@ __all__ = [
     "runs_extent",
 ]
 
-#: a run of label text: (text, kind) with kind "main" (italic), "sub" (italic subscript),
-#: "upright" (upright subscript: digits, link names) or "sep" (upright, on the baseline)
-Run = tuple[str, str]
+
+class RunKind(StrEnum):
+    """How a run of label text is set: ``main`` (italic), ``sub`` (italic subscript),
+    ``upright`` (upright subscript: digits, link names) or ``sep`` (upright, on the
+    baseline)."""
+
+    MAIN = "main"
+    SUB = "sub"
+    UPRIGHT = "upright"
+    SEP = "sep"
+
+
+#: the runs set small and lowered, and the runs set upright
+SMALL_RUNS = frozenset({RunKind.SUB, RunKind.UPRIGHT})
+UPRIGHT_RUNS = frozenset({RunKind.UPRIGHT, RunKind.SEP})
+
+#: a run of label text: (text, its RunKind)
+Run = tuple[str, RunKind]
 
 #: gap (px) kept around a label's text
 PADDING = 2.0
@@ -82,13 +101,13 @@ def label_runs(label: str) -> tuple[Run, ...]:
     main, digits = _split_digits(main)
     parts: list[Run] = []
     if digits:
-        parts.append((digits, "upright"))
+        parts.append((digits, RunKind.UPRIGHT))
     if rest:
         # point names (C, CB, O2) are italic; link and pair names (lever, block/lever) upright
-        parts.append((rest, "upright" if any(ch.islower() for ch in rest) else "sub"))
+        parts.append((rest, RunKind.UPRIGHT if any(ch.islower() for ch in rest) else RunKind.SUB))
     if at:
-        parts.append((link, "upright"))
-    runs: list[Run] = [(main, "main")]
+        parts.append((link, RunKind.UPRIGHT))
+    runs: list[Run] = [(main, RunKind.MAIN)]
     for index, (text, kind) in enumerate(parts):
         runs.append(((", " if index else "") + text, kind))
     return tuple(runs)
@@ -99,7 +118,7 @@ def merge_runs(labels: Iterable[Sequence[Run]]) -> tuple[Run, ...]:
     out: list[Run] = []
     for index, runs in enumerate(labels):
         if index:
-            out.append((f"{NBSP}≡{NBSP}", "sep"))
+            out.append((f"{NBSP}≡{NBSP}", RunKind.SEP))
         out.extend(runs)
     return tuple(out)
 
@@ -108,7 +127,7 @@ def plain(runs: Sequence[Run]) -> str:
     """The runs as plain text (subscripts after a space), e.g. for tests and titles."""
     out = ""
     for text, kind in runs:
-        out += (" " + text) if kind == "upright" and text[0].isalpha() else text
+        out += (" " + text) if kind is RunKind.UPRIGHT and text[0].isalpha() else text
     return out.replace(NBSP, " ")
 
 
@@ -117,7 +136,7 @@ def runs_extent(runs: Sequence[Run], size: float) -> tuple[float, float, float]:
     width = 0.0
     descent = 0.24 * size
     for text, kind in runs:
-        if kind in ("sub", "upright"):
+        if kind in SMALL_RUNS:
             width += text_width(text, size * SUB_SCALE, LABEL)
             descent = max(descent, SUB_SHIFT * size + 0.24 * size * SUB_SCALE)
         else:

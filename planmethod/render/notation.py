@@ -37,7 +37,7 @@ from typing import Any
 
 from ..model import FRAME
 from ..vocabulary import link_numbers
-from .labels import Run, label_runs
+from .labels import Run, RunKind, label_runs
 
 __all__ = ["ForceNotation", "subscript"]
 
@@ -137,7 +137,7 @@ class ForceNotation:
         symbol, sub = found
         if not sub:
             return label_runs(symbol)
-        return ((symbol, "main"), (sub, "sub"))
+        return ((symbol, RunKind.MAIN), (sub, RunKind.SUB))
 
     def plain(self, name: str, on: str | None = None) -> str:
         """The printed name in one string, the subscript in Unicode subscript digits."""

@@ -156,7 +156,8 @@ def panels(table: Mapping[str, np.ndarray]) -> list[tuple[str, str, list[str]]]:
         if name == "angle" or name.startswith(_LEFT_TO_CSV):
             continue
         array = np.asarray(values)
-        if array.dtype.kind not in "fiu":
+        if not (np.issubdtype(array.dtype, np.floating)
+                or np.issubdtype(array.dtype, np.integer)):
             continue
         # longest matching prefix wins: dds_ before ds_ before s_
         prefix = max((p for p, _, _ in _PANELS if name.startswith(p)), key=len, default=None)

@@ -47,6 +47,7 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
+from ..vocabulary import PlanKind
 from .canvas import (
     Canvas,
     Drawing,
@@ -60,7 +61,7 @@ from .canvas import (
     unit_vector,
     vector_length,
 )
-from .labels import label_runs, merge_runs
+from .labels import RunKind, label_runs, merge_runs
 from .style import (
     FAINT,
     FLAG,
@@ -221,7 +222,7 @@ def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
                 figure.circle(where[step.end], 11.0, fill="none", stroke=FLAG, width=1.6,
                               layer="marks", area=False, css="flagged")
                 figure.request((f"flag:{step.end}",), where[step.end],
-                               ((f"{step.angle_deg:.2g}°", "sep"),), size=SMALL_SIZE,
+                               ((f"{step.angle_deg:.2g}°", RunKind.SEP),), size=SMALL_SIZE,
                                mark=11.0, css="flag")
                 figure.used.add("flagged")
         elif step.action == "similarity" and step.vector:
@@ -335,7 +336,7 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
                         dash=style.dash, layer="text", obstacle=False)
             if component:
                 own = STYLES[component]
-                name = own.legend_velocity if kind == "velocity" else own.legend_acceleration
+                name = own.legend_velocity if kind is PlanKind.VELOCITY else own.legend_acceleration
                 text = f"construction line: direction of the {name}"
             else:
                 text = "construction line"
@@ -344,12 +345,12 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
             figure.line((x, y - 4), (x + 34, y - 4), color=style.color,
                         width=max(style.width, 0.9), dash=style.dash, layer="text",
                         obstacle=False)
-            text = style.legend_velocity if kind == "velocity" else style.legend_acceleration
+            text = style.legend_velocity if kind is PlanKind.VELOCITY else style.legend_acceleration
         else:
             style = STYLES[key]
             figure.arrow((x, y - 4), (x + 34, y - 4), key, layer="text")
             figure.obstacle_lines.pop()
-            text = style.legend_velocity if kind == "velocity" else style.legend_acceleration
+            text = style.legend_velocity if kind is PlanKind.VELOCITY else style.legend_acceleration
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
     return y
 
@@ -433,7 +434,7 @@ def _detail_regions(figure: Canvas, plan: Plan) -> list[tuple[str, tuple, float]
         letter = "ABCD"[len(out)]
         figure.rectangle((box[0], box[1]), (box[2] - box[0], box[3] - box[1]), fill="none",
                          stroke=INK, width=0.8, layer="marks", css="detail region")
-        figure.request((f"detail:{letter}",), (box[2], box[1]), ((letter, "sep"),),
+        figure.request((f"detail:{letter}",), (box[2], box[1]), ((letter, RunKind.SEP),),
                        mark=0.0)
         out.append((letter, box, float(math.floor(zoom))))     # a whole enlargement: ×6
     return out
@@ -718,7 +719,8 @@ def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None
     start = math.atan2(tip_mm[1] - centre_mm[1], tip_mm[0] - centre_mm[0])
     crank_px = math.hypot(tip_mm[0] - centre_mm[0], tip_mm[1] - centre_mm[1]) * figure.zoom
     turning_arrow(figure, centre_mm, min(max(0.42 * crank_px, 20.0), 44.0), start,
-                  1.0 if omega > 0 else -1.0, ink, "ω1", (("ω", "main"), ("1", "upright")))
+                  1.0 if omega > 0 else -1.0, ink, "ω1",
+                  (("ω", RunKind.MAIN), ("1", RunKind.UPRIGHT)))
 
 
 def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float) -> None:
@@ -738,23 +740,24 @@ def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float)
         ends = (translate(at, tangent, -half), translate(at, tangent, half))
         figure.line(*ends, color=color, width=1.0, dash="10,3,2,3", layer="marks", css="tangent")
         for end in ends:
-            figure.request(("τ",), end, (("τ", "main"),), size=TEXT_SIZE, mark=0.0)
+            figure.request(("τ",), end, (("τ", RunKind.MAIN),), size=TEXT_SIZE, mark=0.0)
         on_sheet = rho_px <= 1.6 * extent_px
         shown = rho_px if on_sheet else 0.5 * extent_px
         ends = (translate(at, normal, -40.0), translate(at, normal, shown + 24.0))
         figure.line(*ends, color=color, width=1.0, dash="10,3,2,3", layer="marks", css="normal")
         for end in ends:
-            figure.request(("η",), end, (("η", "main"),), size=TEXT_SIZE, mark=0.0)
+            figure.request(("η",), end, (("η", RunKind.MAIN),), size=TEXT_SIZE, mark=0.0)
         rho_m = float(data["rho_mm"]) * position.mu_l
-        text = (("ρ", "main"), (name, "sub"), (f" = {quantity(rho_m)} m", "sep"))
+        text = (("ρ", RunKind.MAIN), (name, RunKind.SUB), (f" = {quantity(rho_m)} m", RunKind.SEP))
         if on_sheet:
             centre = translate(at, normal, rho_px)
             figure.arrow(at, centre, "normal", layer="marks", color=color, css="rho")
             figure.circle(centre, 3.0, fill="#ffffff", stroke=color, width=1.4,
                           layer="points", css="centre")
-            figure.request((f"O_{name}",), centre, (("O", "main"), (name, "sub")), mark=3.0)
+            figure.request((f"O_{name}",), centre, (("O", RunKind.MAIN), (name, RunKind.SUB)),
+                           mark=3.0)
         else:
-            text = (*text[:-1], (f" = {quantity(rho_m)} m (centre off the sheet)", "sep"))
+            text = (*text[:-1], (f" = {quantity(rho_m)} m (centre off the sheet)", RunKind.SEP))
         figure.request((f"rho_{name}",), translate(at, normal, 0.5 * shown), text, size=TEXT_SIZE,
                        mark=1.0)
 

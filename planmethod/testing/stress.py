@@ -58,6 +58,7 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass, field
+from enum import StrEnum
 
 import numpy as np
 
@@ -71,6 +72,7 @@ __all__ = [
     "EPS",
     "NEAR_SINGULAR",
     "Case",
+    "CaseKind",
     "K",
     "assemblable",
     "check",
@@ -94,13 +96,20 @@ EPS = float(np.finfo(float).eps)
 NEAR_SINGULAR = 1e-6
 
 
+class CaseKind(StrEnum):
+    """The two mechanisms the stress suite knows exactly."""
+
+    FOURBAR = "fourbar"
+    SLIDER = "slider"
+
+
 @dataclass(frozen=True)
 class Case:
     """A mechanism of the stress suite: ``kind`` "fourbar" or "slider", its parameters (those of
     :func:`planmethod.testing.exact_fourbar` / ``exact_slider_crank``), the drive angle at which the
     sketch fixes the branch, a name, and the branch."""
 
-    kind: str
+    kind: CaseKind
     params: dict = field(default_factory=dict)
     drive_angle: float = 60.0
     name: str = ""
@@ -109,7 +118,7 @@ class Case:
     @property
     def length(self) -> float:
         p = self.params
-        if self.kind == "fourbar":
+        if self.kind is CaseKind.FOURBAR:
             return (p["crank"] + p["coupler"] + p["rocker"] + math.hypot(*p["ground"]))
         return p["crank"] + p["rod"] + abs(p.get("offset", 0.0))
 
@@ -117,10 +126,10 @@ class Case:
     def group_length(self) -> float:
         """The shortest link of the driven group (BC, CD; or the rod)."""
         p = self.params
-        return min(p["coupler"], p["rocker"]) if self.kind == "fourbar" else p["rod"]
+        return min(p["coupler"], p["rocker"]) if self.kind is CaseKind.FOURBAR else p["rod"]
 
     def reference(self, angle: float, branch: bool) -> dict:
-        if self.kind == "fourbar":
+        if self.kind is CaseKind.FOURBAR:
             return fourbar_reference(angle, above=branch, **self.params)
         return slider_reference(angle, forward=branch, **self.params)
 
@@ -130,7 +139,7 @@ def fourbar_case(*, crank=0.08, coupler=0.22, rocker=0.18, ground=(0.30, 0.0), o
     """A four-bar A = (0, 0), D = ``ground``; the branch: C on the left of B→D when ``above``."""
     params = {"crank": crank, "coupler": coupler, "rocker": rocker,
               "ground": tuple(float(g) for g in ground), "omega": omega, "epsilon": epsilon}
-    return Case("fourbar", params, drive_angle, name, above)
+    return Case(CaseKind.FOURBAR, params, drive_angle, name, above)
 
 
 def slider_case(*, crank=0.06, rod=0.18, offset=0.0, omega=100.0, epsilon=0.0,
@@ -139,7 +148,7 @@ def slider_case(*, crank=0.06, rod=0.18, offset=0.0, omega=100.0, epsilon=0.0,
     ``forward``."""
     params = {"crank": crank, "rod": rod, "offset": offset, "omega": omega,
               "epsilon": epsilon}
-    return Case("slider", params, drive_angle, name, forward)
+    return Case(CaseKind.SLIDER, params, drive_angle, name, forward)
 
 
 def exercise_of(case: Case):
@@ -148,7 +157,7 @@ def exercise_of(case: Case):
     exact = case.reference(case.drive_angle, case.branch)
     sketch = [float(exact["C"][0]), float(exact["C"][1])]
     p = case.params
-    if case.kind == "fourbar":
+    if case.kind is CaseKind.FOURBAR:
         data = {"title": case.name or "four-bar",
                 "drive": {"link": "AB", "pivot": "A", "angle": case.drive_angle,
                           "omega": p["omega"], "epsilon": p["epsilon"]},
@@ -182,7 +191,7 @@ def _classify(case: Case, angle: float) -> dict:
     except ValueError:
         exact = None
     p = case.params
-    if case.kind == "fourbar":
+    if case.kind is CaseKind.FOURBAR:
         scale = (p["coupler"] + p["rocker"]) ** 4 + 1e-300
     else:
         scale = p["rod"] ** 2 + 1e-300
@@ -200,7 +209,7 @@ def _reach(case: Case, angle: float):
     with mpmath.workdps(40):
         phi = mpmath.radians(mpmath.mpf(angle))
         bx, by = p["crank"] * mpmath.cos(phi), p["crank"] * mpmath.sin(phi)
-        if case.kind == "fourbar":
+        if case.kind is CaseKind.FOURBAR:
             d = mpmath.sqrt((p["ground"][0] - bx) ** 2 + (p["ground"][1] - by) ** 2)
             b, c = mpmath.mpf(p["coupler"]), mpmath.mpf(p["rocker"])
             return (b + c + d) * (b + c - d) * (b - c + d) * (c - b + d)
@@ -214,7 +223,7 @@ def term_sizes(case: Case, exact: dict) -> tuple[float, float]:
 
     p = case.params
     links = ((("omega_BC", "epsilon_BC", p["coupler"]), ("omega_CD", "epsilon_CD", p["rocker"]))
-             if case.kind == "fourbar" else (("omega_BC", "epsilon_BC", p["rod"]),))
+             if case.kind is CaseKind.FOURBAR else (("omega_BC", "epsilon_BC", p["rod"]),))
     speed = float(mpmath.hypot(*exact["v_B"]))
     accel = float(mpmath.hypot(*exact["a_B"]))
     for omega, epsilon, length in links:

@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from enum import StrEnum
 from typing import Any, Protocol
 
 import numpy as np
@@ -37,7 +38,7 @@ import numpy as np
 from ...errors import AssemblyError, StructureError, ToggleError
 from ...model import Mechanism, Slide
 from ...structure import AssurGroup, Joint
-from ...vocabulary import STAGE_PLURAL
+from ...vocabulary import STAGE_PLURAL, EdgeKind
 from ..algebra import Body, Vec, cross
 from ..tracing import Traced
 
@@ -55,6 +56,7 @@ __all__ = [
     "PlanDrawer",
     "Side",
     "Theta",
+    "ThetaKind",
     "evaluate_dyad",
     "split",
 ]
@@ -197,18 +199,23 @@ def _turned_axes(c, s, angle: float):
 
 
 # -- how a link's angle is read --------------------------------------------------------------
+class ThetaKind(StrEnum):
+    """How a link's angle θ is read from the solved points (see :class:`Theta`)."""
+
+    TWO = "two"      # θ = atan2(P_second − P_first) − alpha: a link through two pins
+    TIED = "tied"    # θ = θ(link) + alpha: a prismatic pair forbids relative rotation
+    SPAN = "span"    # θ = atan2(span) − atan2(span in the link's axes): a guide link turning
+    #                  about its pivot, span = P_first − P_second
+
+
 @dataclass(frozen=True, slots=True)
 class Theta:
-    """How a link's angle θ is read from the solved points (computed only when asked):
+    """How a link's angle θ is read from the solved points (computed only when asked): its
+    :class:`ThetaKind`, the points it is read from, the angle ``alpha`` (rad) and the ``link``
+    it follows. A link with no recipe (the drive, a link whose θ Newton solved) has a result
+    row of its own."""
 
-    * ``two``: θ = atan2(P_second − P_first) − ``alpha`` (a link through two pins);
-    * ``tied``: θ = θ(``link``) + ``alpha`` (a prismatic pair forbids relative rotation);
-    * ``span``: θ = atan2(span) − atan2(span in the link's own axes), span = P_first −
-      P_second (a guide link turning about its pivot);
-    * ``drive``, ``frame``, ``stored`` (a result row of its own).
-    """
-
-    kind: str
+    kind: ThetaKind
     first: str | None = None
     second: str | None = None
     alpha: float = 0.0
@@ -559,7 +566,9 @@ class Construction:
 
 @dataclass(frozen=True, slots=True)
 class ConstructionSide:
-    kind: str
+    """A side of a dyad's two vector equations as the plans draw it (see :class:`Side`)."""
+
+    rotation: bool
     link: str
     base: str
     base_link: str
@@ -583,7 +592,7 @@ def construction(placed: Placed, group: AssurGroup, count: int) -> Construction:
         if side.rotation:
             direction = direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
         sides.append(ConstructionSide(
-            "rotation" if side.rotation else "sliding", side.link, side.base, side.base_link,
+            side.rotation, side.link, side.base, side.base_link,
             _array(side.position, count), direction,
             _array(side.radius, count) if side.radius is not None else None, side.slide))
     anchors = {link: (anchor.name, _array(anchor.position, count), anchor.known)
@@ -648,7 +657,7 @@ class ForceSolver(Protocol):
 
     def known_edges(self, links) -> list: ...
 
-    def edge(self, label: str, vector, kind: str, link: str): ...
+    def edge(self, label: str, vector, kind: EdgeKind, link: str): ...
 
     def total(self, links) -> Any: ...
 

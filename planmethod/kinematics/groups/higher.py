@@ -57,7 +57,7 @@ import numpy as np
 from ...errors import AssemblyError, BranchJumpError, ConvergenceError, StructureError, ToggleError
 from ...model import FRAME, Mechanism
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import GroupKind, PairKind
 from ..algebra import Body, maximum, minimum, sqrt
 from ..constraints import ConstraintSystem
 from ..state import LinkState, rotate
@@ -626,7 +626,7 @@ class GeneralSystem(System):
         self.size = cols
         self.row_scale = np.ones(rows)
         for index, constraint in enumerate(self.constraints.constraints):
-            if constraint.kind == "P":
+            if constraint.kind is PairKind.PRISMATIC:
                 self.row_scale[2 * index] = self.length
         self.weights = np.tile([1.0, 1.0, self.length], len(self.links))
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec
 from ..state import cross
 from . import base
@@ -74,8 +74,8 @@ def place(context: base.Context) -> base.Placed:
         anchors={l1: base.Anchor(internal.point, x, None, None, q1),
                  l2: base.Anchor(internal.point, x, None, None, q2)},
         points={internal.point: x},
-        thetas={l1: base.Theta("tied", alpha=delta(ext1, l1), link=k1),
-                l2: base.Theta("tied", alpha=delta(ext2, l2), link=k2)},
+        thetas={l1: base.Theta(base.ThetaKind.TIED, alpha=delta(ext1, l1), link=k1),
+                l2: base.Theta(base.ThetaKind.TIED, alpha=delta(ext2, l2), link=k2)},
         ratio_bound=1.0, x_links=(l1, l2), x_local={l1: q1, l2: q2})
 
 
@@ -105,8 +105,8 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
     c1 = -(w1.moment_about(ps1) + cross(q - ps1, -r_q))
     c2 = -(w2.moment_about(ps2) + cross(q - ps2, r_q))
     edges = [*solver.known_edges((l1, l2)),
-             solver.edge(f"N_{ext2.slide.key}", f2, "component", l2),
-             solver.edge(f"N_{ext1.slide.key}", f1, "component", l1)]
+             solver.edge(f"N_{ext2.slide.key}", f2, EdgeKind.COMPONENT, l2),
+             solver.edge(f"N_{ext1.slide.key}", f1, EdgeKind.COMPONENT, l1)]
     keys = [solver.record(ext1, group.links, l1, k1, ps1, f1, c1).key,
             solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key,
             solver.record(internal, group.links, l2, l1, q, r_q).key]

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec
 from ..state import cross
 from . import base
@@ -72,8 +72,8 @@ def place(context: base.Context) -> base.Placed:
         anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
                  l2: base.Anchor(x_name, x, None, None, None)},
         points={},
-        thetas={l2: base.Theta("tied", alpha=outer, link=k2),
-                l1: base.Theta("tied", alpha=angle, link=l2)},
+        thetas={l2: base.Theta(base.ThetaKind.TIED, alpha=outer, link=k2),
+                l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
         ratio_bound=1.0, x_links=(l2,))
 
 
@@ -113,9 +113,9 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
     inner = -(r1 + w1.force)                       # on l1 from l2
     c_inner = -(w1.moment_about(psi) + cross(p1 - psi, r1))
     c2 = -(w2.moment_about(ps2) + cross(psi - ps2, -inner) - c_inner)
-    edges = [solver.edge(f"N_{ext2.slide.key}", f2, "component", l2),
+    edges = [solver.edge(f"N_{ext2.slide.key}", f2, EdgeKind.COMPONENT, l2),
              *solver.known_edges((l1, l2)),
-             solver.edge(f"R_{ext1.point}", r1, "reaction", l1)]
+             solver.edge(f"R_{ext1.point}", r1, EdgeKind.REACTION, l1)]
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(internal, group.links, l1, l2, psi, inner, c_inner).key,
             solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key]

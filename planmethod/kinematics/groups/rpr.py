@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec, sqrt
 from ..state import cross, norm
 from . import base
@@ -94,8 +94,8 @@ def place(context: base.Context) -> base.Placed:
         anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
                  l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         points={},
-        thetas={l2: base.Theta("span", ext1.point, ext2.point, link=l2),
-                l1: base.Theta("tied", alpha=angle, link=l2)},
+        thetas={l2: base.Theta(base.ThetaKind.SPAN, ext1.point, ext2.point, link=l2),
+                l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
         ratio_bound=2.0 * base.MARGIN, x_links=(l2,))
 
 
@@ -124,10 +124,10 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
     inner = -(r1 + w1.force)                       # on the block from the guide
     couple = -(w1.moment_about(ps) + cross(p1 - ps, r1))
     r2 = inner - w2.force
-    edges = [solver.edge(f"R∥_{ext1.point}", r_along, "component", l1),
-             solver.edge(f"R⊥_{ext1.point}", r_across, "component", l1),
+    edges = [solver.edge(f"R∥_{ext1.point}", r_along, EdgeKind.COMPONENT, l1),
+             solver.edge(f"R⊥_{ext1.point}", r_across, EdgeKind.COMPONENT, l1),
              *solver.known_edges((l1, l2)),
-             solver.edge(f"R_{ext2.point}", r2, "reaction", l2)]
+             solver.edge(f"R_{ext2.point}", r2, EdgeKind.REACTION, l2)]
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(internal, group.links, l1, l2, ps, inner, couple).key,
             solver.record(ext2, group.links, l2, k2, p2, r2).key]

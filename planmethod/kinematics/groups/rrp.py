@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, sqrt
 from ..state import cross, perp
 from . import base
@@ -83,9 +83,9 @@ def place(context: base.Context) -> base.Placed:
         anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
                  l2: base.Anchor(internal.point, x, None, None, q2)},
         points={internal.point: x},
-        thetas={l1: base.Theta("two", ext1.point, internal.point,
+        thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                           float(np.arctan2(q1[1] - p1.local[1], q1[0] - p1.local[0]))),
-                l2: base.Theta("tied", alpha=delta, link=k2)},
+                l2: base.Theta(base.ThetaKind.TIED, alpha=delta, link=k2)},
         ratio_bound=2.0 * base.MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})
 
 
@@ -112,10 +112,10 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
     r1 = rn1 + rt1
     r_q = r1 + w1.force
     couple = -(w2.moment_about(ps) + cross(q - ps, r_q))
-    edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, "component", l1),
+    edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, EdgeKind.COMPONENT, l1),
              *solver.known_edges((l1, l2)),
-             solver.edge(f"N_{ext2.slide.key}", big_n, "component", l2),
-             solver.edge(f"Rⁿ_{ext1.point}", rn1, "component", l1)]
+             solver.edge(f"N_{ext2.slide.key}", big_n, EdgeKind.COMPONENT, l2),
+             solver.edge(f"Rⁿ_{ext1.point}", rn1, EdgeKind.COMPONENT, l1)]
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(ext2, group.links, l2, k2, ps, big_n, couple).key,
             solver.record(internal, group.links, l2, l1, q, r_q).key]

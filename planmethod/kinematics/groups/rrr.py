@@ -25,7 +25,7 @@ import numpy as np
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, sqrt
 from ..state import perp
 from . import base
@@ -84,8 +84,10 @@ def place(context: base.Context) -> base.Placed:
         anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
                  l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         points={internal.point: x},
-        thetas={l1: base.Theta("two", ext1.point, internal.point, _angle(p1.local, q1)),
-                l2: base.Theta("two", ext2.point, internal.point, _angle(p2.local, q2))},
+        thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
+                               _angle(p1.local, q1)),
+                l2: base.Theta(base.ThetaKind.TWO, ext2.point, internal.point,
+                               _angle(p2.local, q2))},
         ratio_bound=2.0 * (a + b) / min(a, b) * base.MARGIN, x_links=(l1, l2),
         x_local={l1: q1, l2: q2})
 
@@ -117,11 +119,11 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
                          f"{l1} and {l2} are in line (toggle)")
     rn1, rn2 = n1[..., None] * e1, n2[..., None] * e2
     r1, r2 = rn1 + rt1, rn2 + rt2
-    edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, "component", l1),
+    edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, EdgeKind.COMPONENT, l1),
              *solver.known_edges((l1, l2)),
-             solver.edge(f"Rᵗ_{ext2.point}", rt2, "component", l2),
-             solver.edge(f"Rⁿ_{ext2.point}", rn2, "component", l2),
-             solver.edge(f"Rⁿ_{ext1.point}", rn1, "component", l1)]
+             solver.edge(f"Rᵗ_{ext2.point}", rt2, EdgeKind.COMPONENT, l2),
+             solver.edge(f"Rⁿ_{ext2.point}", rn2, EdgeKind.COMPONENT, l2),
+             solver.edge(f"Rⁿ_{ext1.point}", rn1, EdgeKind.COMPONENT, l1)]
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(ext2, group.links, l2, k2, p2, r2).key,
             solver.record(internal, group.links, l2, l1, q, r1 + w1.force).key]

@@ -40,10 +40,10 @@ import numpy as np
 
 from ...errors import ToggleError
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind, PairKind
+from ...vocabulary import EdgeKind, GroupKind, PairKind
 from ..algebra import Body, absolute, cos, maximum, sin, sqrt
 from ..state import cross, norm, perp
-from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, split
+from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, ThetaKind, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
 
 __all__ = ["KIND", "PRIORITY", "SPECIAL", "TriadSystem", "accepts", "choose",
@@ -202,7 +202,7 @@ class TriadSystem(System):
         return {self.central: None if pose is None else pose[0][2]}
 
     def theta_recipes(self) -> dict:
-        return {side.link: Theta("two", side.outer, side.inner, side.alpha)
+        return {side.link: Theta(ThetaKind.TWO, side.outer, side.inner, side.alpha)
                 for side in self.sides}
 
     def results(self, pose, rates, level: int) -> list:
@@ -602,14 +602,14 @@ def reactions(solver: ForceSolver, group: AssurGroup):
         for index, value in ((i, ni), (j, nj), (k, nk)):
             normals[index] = np.where(mask, value, normals[index])
         special = np.where(mask[..., None], s, special)
-    edges = [solver.edge(f"Rᵗ_{side[2].point}", side[7], "component", side[0])
+    edges = [solver.edge(f"Rᵗ_{side[2].point}", side[7], EdgeKind.COMPONENT, side[0])
              for side in sides]
     edges += solver.known_edges(group.links)
     keys = []
     for (link, inner, outer, known, p, q, e, rt), n_value in zip(sides, normals,
                                                                   strict=True):
         rn = n_value[..., None] * e
-        edges.append(solver.edge(f"Rⁿ_{outer.point}", rn, "component", link))
+        edges.append(solver.edge(f"Rⁿ_{outer.point}", rn, EdgeKind.COMPONENT, link))
         r = rn + rt
         keys.append(solver.record(outer, group.links, link, known, p, r).key)
         keys.append(solver.record(inner, group.links, central, link, q,
