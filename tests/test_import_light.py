@@ -66,3 +66,16 @@ def test_the_testing_helpers_import_without_mpmath():
                           cwd=ROOT, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "NEEDS MPMATH"
+
+
+def test_the_command_lines_help_loads_not_even_numpy():
+    """``planmethod --help`` and a command's ``--help`` build every parser, so every command
+    module is imported: each keeps numpy (about 50 ms of start-up) inside ``run``."""
+    code = ("import contextlib, io, sys\nfrom planmethod.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            "    main(['--help']); main(['sweep', '--help'])\n"
+            "print('NUMPY' if 'numpy' in sys.modules else 'LIGHT')\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip().splitlines()[-1] == "LIGHT"
