@@ -70,13 +70,14 @@ print(json.dumps(out))
 
 
 def measure(tree: Path) -> dict:
-    """Run the harness with ``tree``'s planmethod: its folder first on the subprocess's
-    PYTHONPATH (nothing of this process's import path is inherited but what PYTHONPATH held)."""
+    """Run the harness with ``tree``'s planmethod on ``tree``'s own exercise files (an older
+    tree may not read keys added since): its folder first on the subprocess's PYTHONPATH
+    (nothing of this process's import path is inherited but what PYTHONPATH held)."""
     path = os.pathsep.join([str(tree), *filter(None, [os.environ.get("PYTHONPATH")])])
     done = subprocess.run([sys.executable, "-c", HARNESS,
-                           str(ROOT / "exercises" / "compressor_slider_crank.toml"),
-                           str(ROOT / "exercises" / "shaper_sixbar.toml"),
-                           str(ROOT / "exercises" / "conveyor_sixbar.toml")],
+                           str(tree / "exercises" / "compressor_slider_crank.toml"),
+                           str(tree / "exercises" / "shaper_sixbar.toml"),
+                           str(tree / "exercises" / "conveyor_sixbar.toml")],
                           capture_output=True, text=True, cwd=tempfile.gettempdir(),
                           env={**os.environ, "PYTHONPATH": path})
     if done.returncode != 0:
