@@ -20,6 +20,7 @@ from planmethod.grading.templates import (
     to_toml,
 )
 from planmethod.spec import exercise_from_dict, load_exercise
+from planmethod.vocabulary import link_numbers, symbol
 
 SLIDER = "exercises/templates/slider_crank.toml"
 FOUR_BAR = "exercises/templates/four_bar.toml"
@@ -252,7 +253,10 @@ def test_variants_whose_drawing_tolerance_is_too_large_are_rejected():
     assert tolerance_problem(exercise, data, TemplateSettings())[0] is None
     reason, found = tolerance_problem(exercise, data, TemplateSettings(max_tolerance=0.001))
     assert reason is not None and "drafting tolerance of" in reason and "above 0.1 %" in reason
-    quantity = reason.split("tolerance of ")[1].split(" is")[0]
+    shown = reason.split("tolerance of ")[1].split(" is")[0]     # as the course writes it
+    mechanism = exercise.mechanism
+    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, "frame")
+    quantity = next(q for q in found.values if symbol(q, numbers) == shown)
     assert found.tolerances[quantity] > 0.001 * abs(found.values[quantity])
     # every variant drawn keeps each drawing-derived tolerance within 10 % of its value, and
     # its key (which reuses the tolerances found while checking) is the key built afresh
@@ -276,3 +280,19 @@ def test_bad_drawability_settings_are_named(table, fragment):
     text = template_text(angle="60").replace("[drive]", f"[template]\n{table}\n\n[drive]", 1)
     with pytest.raises(SpecError, match=fragment.replace(".", r"\.")):
         parse_template(text, file="t.toml")
+
+
+def test_rejected_draws_are_summed_up_in_course_notation(tmp_path, capsys):
+    """``planmethod variants`` says why draws were rejected as a student reads a task — ω₃,
+    aʳ_CC₁, ρ_D, never a report name — with the range each number took."""
+    from planmethod.cli import main
+
+    assert main(["variants", str(SLIDER), "--count", "30", "--out", str(tmp_path / "out"),
+                 "--no-sheets"]) == 0
+    out = capsys.readouterr().out
+    summary = out.split("draws rejected:")[1].strip().splitlines()
+    assert summary, out
+    for line in summary:
+        assert "#" not in line and "_rel" not in line and "omega" not in line, line
+        assert "epsilon" not in line and "rho_" not in line, line
+    assert any("ω₃" in line for line in summary), summary

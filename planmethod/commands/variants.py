@@ -191,11 +191,39 @@ def run(args: argparse.Namespace) -> int:
     print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "
           f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
     if rejected:
-        counts: dict[str, int] = {}
-        for reason in rejected:    # the reasons, with their numbers left out, by frequency
-            short = re.sub(r"-?\d+(\.\d+)?", "#", reason)
-            counts[short] = counts.get(short, 0) + 1
         print(f"{len(rejected)} draws rejected:")
-        for text, count in sorted(counts.items(), key=lambda item: (-item[1], item[0])):
-            print(f"  {count}× {text}")
+        for line in rejection_summary(rejected):
+            print(f"  {line}")
     return 0
+
+
+#: a number in a reason (not a digit of a name such as O2)
+_NUMBER = re.compile(r"(?<![A-Za-z_])-?\d+(?:\.\d+)?")
+
+
+def rejection_summary(reasons: list[str]) -> list[str]:
+    """The reasons of rejected draws, alike ones counted together, most frequent first, each
+    number shown as the range it took.
+
+    Examples
+    --------
+    >>> for line in rejection_summary(["segment of ω₃ is 4.2 mm (below 10 mm)",
+    ...                                "the crank is 3.1° from a dead centre (below 5°)",
+    ...                                "segment of ω₃ is 9.5 mm (below 10 mm)"]):
+    ...     print(line)
+    2× segment of ω₃ is 4.2–9.5 mm (below 10 mm)
+    1× the crank is 3.1° from a dead centre (below 5°)
+    """
+    groups: dict[str, list[list[str]]] = {}
+    for reason in reasons:
+        groups.setdefault(_NUMBER.sub("#", reason), []).append(_NUMBER.findall(reason))
+    lines = []
+    for pattern, rows in sorted(groups.items(), key=lambda item: (-len(item[1]), item[0])):
+        parts = pattern.split("#")
+        text = parts[0]
+        for column, rest in zip(zip(*rows, strict=True), parts[1:], strict=True):
+            low, high = min(column, key=float), max(column, key=float)
+            text += low if float(low) == float(high) else f"{low}–{high}"
+            text += rest
+        lines.append(f"{len(rows)}× {text}")
+    return lines

@@ -56,9 +56,10 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
-from ..model import Exercise
+from ..model import FRAME, Exercise
+from ..plans.construction import course_text
 from ..spec import parse_toml, read_text
-from ..vocabulary import PlanKind
+from ..vocabulary import PlanKind, link_numbers, symbol
 from .expressions import ExpressionError, evaluate, parse, references
 
 __all__ = [
@@ -462,7 +463,14 @@ def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True) ->
     """The reason a variant's plans are unfit (see :func:`check_variant`), or None.
     ``drawable`` adds the rules a random draw must also pass (segments a student measures at
     least ``min_segment_mm``, required components drawn); an exercise set as written is not
-    held to them."""
+    held to them. Quantities are named as the course writes them (ω₃, aʳ_CC₁)."""
+    mechanism = plans.exercise.mechanism
+    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+    problem = _plan_problem(plans, settings, drawable)
+    return None if problem is None else course_text(problem, numbers)
+
+
+def _plan_problem(plans, settings: TemplateSettings, drawable: bool) -> str | None:
     for plan in (plans.velocity, plans.acceleration):
         if plan is None:
             continue
@@ -505,13 +513,16 @@ def tolerance_problem(exercise: Exercise, data: Mapping[str, Any], settings: Tem
 
     precision = grading_settings(data, file).precision_mm
     found = propagate(exercise, precision)
+    mechanism = exercise.mechanism
+    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
     for quantity, value in found.values.items():
         tolerance = found.tolerances.get(quantity)
         if value is None or tolerance is None or not value:
             continue
         if tolerance > settings.max_tolerance * abs(value):
-            return (f"the drafting tolerance of {quantity} is {100 * tolerance / abs(value):.0f} "
-                    f"% of its value (above {100 * settings.max_tolerance:g} %)"), found
+            return (f"the drafting tolerance of {symbol(quantity, numbers)} is "
+                    f"{100 * tolerance / abs(value):.0f} % of its value (above "
+                    f"{100 * settings.max_tolerance:g} %)"), found
     return None, found
 
 
