@@ -4,10 +4,11 @@
 The drafting-error model is the one of ``PlanSettings.precision_mm`` (README): every length
 laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
 plan — carries an error uniform in ±precision/2; directions are drawn exactly. The plan
-emulator (:func:`planmethod.plans.draw_plans`) is run once exactly and once per segment with
-that one segment lengthened by a small δ (its ``perturb`` hook), which gives the sensitivity
-∂q/∂e_i of every quantity read off the plans and ∂X/∂e_i of every plan point to every segment
-error. The tolerance is the linear worst case
+emulator (:func:`planmethod.plans.draw_plans`) is run once exactly, recording the segments,
+and once more drawing one copy per segment, copy i with segment i lengthened by a small δ (its
+``perturb`` hook returns one length per copy, so the whole drawing is made for every copy at
+once), which gives the sensitivity ∂q/∂e_i of every quantity read off the plans and ∂X/∂e_i of
+every plan point to every segment error. The tolerance is the linear worst case
 
     tol(q) = Σ_i |∂q/∂e_i| · precision/2,        radius(X) = Σ_i |∂X/∂e_i| · precision/2,
 
@@ -74,20 +75,21 @@ class Propagation:
 
 
 class _Recorder:
-    """A perturbation model: records the segments, adds ``delta`` to segment ``target``."""
+    """A perturbation model: records the segments and adds to segment i the errors
+    ``errors[..., i]`` — a number (one drawing), or one number per copy of the drawing (an
+    array over copies: the emulator then draws every copy at once). Without errors the lengths
+    are drawn as they are."""
 
-    def __init__(self, target: int | None = None, delta: float = 0.0, errors=None) -> None:
-        self.target, self.delta, self.errors = target, delta, errors
+    def __init__(self, errors=None) -> None:
+        self.errors = None if errors is None else np.asarray(errors, dtype=float)
         self.segments: list[Segment] = []
 
-    def __call__(self, length: float, segment: Segment) -> float:
+    def __call__(self, length, segment: Segment):
         index = len(self.segments)
         self.segments.append(segment)
-        if self.errors is not None:
-            return length + (self.errors[index] if index < len(self.errors) else 0.0)
-        if index == self.target:
-            return length + self.delta
-        return length
+        if self.errors is None or index >= self.errors.shape[-1]:
+            return length
+        return length + self.errors[..., index]
 
 
 def _plan_points(plans) -> dict[str, dict[str, np.ndarray]]:
@@ -132,17 +134,17 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
     sensitivity = {q: np.zeros(count) for q in quantities}
     point_sensitivity = {plan: {label: np.zeros((count, 2)) for label in labels}
                          for plan, labels in points.items()}
-    for index in range(count):           # the same position: scales kept, no mechanism drawn
+    if count:   # copy i: segment i lengthened by δ; the same position, scales kept, no mechanism
         drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
-                           perturb=_Recorder(index, DELTA_MM), scales=base.scales,
+                           perturb=_Recorder(DELTA_MM * np.eye(count)), scales=base.scales,
                            position=False)
         for q in quantities:
             if q in base.readings and q in drawn.readings:
-                sensitivity[q][index] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
+                sensitivity[q][:] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
         for plan, labels in _plan_points(drawn).items():
             for label, xy in labels.items():
                 if label in point_sensitivity[plan]:
-                    point_sensitivity[plan][label][index] = (xy - points[plan][label]) / DELTA_MM
+                    point_sensitivity[plan][label][:] = (xy - points[plan][label]) / DELTA_MM
     half = precision_mm / 2.0
     tolerances = {q: float(np.sum(np.abs(sensitivity[q]))) * half for q in quantities}
     radii = {plan: {label: float(np.sum(np.hypot(s[:, 0], s[:, 1]))) * half
@@ -174,17 +176,17 @@ def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, see
         quantities = asked_quantities(exercise, motion)
     settings = replace(exercise.plan, precision_mm=0.0)
     generator = np.random.default_rng(seed)
-    out: dict[str, list] = {q: [] for q in quantities}
-    for _ in range(count):
-        errors = generator.uniform(-precision_mm / 2, precision_mm / 2, size=256)
-        drawn = draw_plans(exercise, settings=settings, motion=motion,
-                           acceleration=acceleration, perturb=_Recorder(errors=errors))
-        for q in quantities:
-            out[q].append(drawn.readings.get(q, math.nan))
-        for plan, labels in _plan_points(drawn).items():
-            for label, xy in labels.items():
-                out.setdefault(f"points:{plan}:{label}", []).append(xy)
-    return {k: np.asarray(v, dtype=float) for k, v in out.items()}
+    errors = generator.uniform(-precision_mm / 2, precision_mm / 2, size=(count, 256))
+    # every drawing at once: copy k draws with errors[k]
+    drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
+                       perturb=_Recorder(errors), position=False)
+    out = {q: np.broadcast_to(np.asarray(drawn.readings.get(q, math.nan), dtype=float),
+                              (count,)).copy() for q in quantities}
+    for plan, labels in _plan_points(drawn).items():
+        for label, xy in labels.items():
+            out[f"points:{plan}:{label}"] = np.broadcast_to(np.asarray(xy, dtype=float),
+                                                            (count, 2)).copy()
+    return out
 
 
 def scale_factor(quantity: str, mu_l: float, mu_v: float, mu_a: float) -> float | None:

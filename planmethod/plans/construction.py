@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import PlanmethodError, ToggleError
 from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
-from ..kinematics.groups.base import TOGGLE_SINE, Construction
+from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
 from ..vocabulary import _SUBSCRIPT, PlanKind, link_numbers, symbol
 from .scales import Scales, choose_scales
@@ -225,16 +225,46 @@ class LinkImage:
     epsilon: float = 0.0
 
 
+# The emulator draws one drawing, or — where a ``perturb`` model returns arrays of lengths —
+# several copies of it at once (a tolerance analysis: one copy per segment lengthened): then
+# the numbers it lays off and reads are arrays with a leading copy axis (N,), its points (N, 2).
+# These helpers take a vector's coordinates from its last axis, so they serve both.
 def _angle_deg(vector: np.ndarray) -> float:
     return math.degrees(math.atan2(vector[1], vector[0]))
 
 
 def _perp(vector: np.ndarray) -> np.ndarray:
-    return np.array([-vector[1], vector[0]])
+    return np.stack((-vector[..., 1], vector[..., 0]), axis=-1)
 
 
-def _cross(a, b) -> float:
-    return float(a[0] * b[1] - a[1] * b[0])
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _dot(a, b):
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+def _norm(vector):
+    return np.hypot(vector[..., 0], vector[..., 1])
+
+
+def _times(factor, vector: np.ndarray) -> np.ndarray:
+    """A vector times a number, or times each copy's number."""
+    return np.asarray(factor)[..., None] * vector
+
+
+def _unit(vector: np.ndarray, length=None) -> np.ndarray:
+    """``vector`` over its length (a zero vector stays zero)."""
+    length = _norm(vector) if length is None else length
+    return vector / np.asarray(np.where(length > 0, length, 1.0))[..., None]
+
+
+def _sign(value):
+    """+1 where ``value`` ≥ 0, else −1 (a number, or one per copy)."""
+    if np.ndim(value) == 0:
+        return 1.0 if value >= 0 else -1.0
+    return np.where(value >= 0, 1.0, -1.0)
 
 
 #: a quantity's report name inside a sentence (``omega_BC``, ``v_CC@frame``, ``ds_slider/frame``)
@@ -304,29 +334,31 @@ class _Sheet:
         return self.count
 
     def round(self, length: float, segment: Segment | None = None) -> float:
-        """A length as laid off or read off the drawing (``perturb`` replaces the rounding)."""
+        """A length as laid off or read off the drawing (``perturb`` replaces the rounding,
+        and may return one length per copy of the drawing)."""
         if self.perturb is not None:
-            return float(self.perturb(length, segment or Segment(self.kind, "read")))
+            drawn = self.perturb(length, segment or Segment(self.kind, "read"))
+            return float(drawn) if np.ndim(drawn) == 0 else drawn
         if self.precision > 0:
-            return round(length / self.precision) * self.precision
-        return length
+            return round(float(length) / self.precision) * self.precision
+        return float(length)
 
     def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, text: str,
                 component: str, vector: str, group: int | None = None) -> np.ndarray:
         """Lay off a known vector (exact direction, rounded length) from ``start``."""
-        length = float(np.hypot(*vector_mm))
+        length = _norm(vector_mm)
         drawn = self.round(length, Segment(self.kind, "lay_off", component, vector, group))
-        if length > 0:
-            direction = vector_mm / length
-            step = Step(0, "lay_off", text, start=start, end=end,
-                        direction_deg=_angle_deg(direction), length_mm=drawn,
-                        component=component, vector=vector, group=group)
+        direction = _unit(vector_mm, length)
+        self.points[end] = self.points[start] + _times(drawn, direction)
+        if not self.record:
+            self.count += 1
+        elif length > 0:
+            self.add(Step(0, "lay_off", text, start=start, end=end,
+                          direction_deg=_angle_deg(direction), length_mm=drawn,
+                          component=component, vector=vector, group=group))
         else:
-            direction = np.zeros(2)
-            step = Step(0, "coincide", text, start=start, end=end, length_mm=0.0,
-                        component=component, vector=vector, group=group)
-        self.points[end] = self.points[start] + drawn * direction
-        self.add(step)
+            self.add(Step(0, "coincide", text, start=start, end=end, length_mm=0.0,
+                          component=component, vector=vector, group=group))
         return self.points[end]
 
     def line(self, through: str, direction: np.ndarray, *, text: str, component: str,
@@ -334,9 +366,13 @@ class _Sheet:
         if self.turn is not None:
             direction = np.asarray(self.turn(direction, Segment(self.kind, "line", component,
                                                                 vector, group)), float)
-        number = self.add(Step(0, "line", text, start=through,
-                               direction_deg=_angle_deg(direction) % 180.0,
-                               component=component, vector=vector, group=group))
+        if self.record:
+            number = self.add(Step(0, "line", text, start=through,
+                                   direction_deg=_angle_deg(direction) % 180.0,
+                                   component=component, vector=vector, group=group))
+        else:
+            self.count += 1
+            number = self.count
         self.lines[number] = (self.points[through].copy(), direction)
         return number
 
@@ -344,15 +380,15 @@ class _Sheet:
                   group: int, angle: float) -> np.ndarray:
         (p1, e1), (p2, e2) = self.lines[first], self.lines[second]
         sine = _cross(e1, e2)
-        degrees = math.degrees(math.asin(min(1.0, abs(sine))))
+        degrees = math.degrees(math.asin(min(1.0, float(np.min(np.abs(sine))))))
         limit = max(TOGGLE_SINE, self.precision / SHEET_MM)
-        if abs(sine) < limit:
+        if np.min(np.abs(sine)) < limit:
             raise ToggleError(
                 f"toggle position: on the {self.kind} plan the lines of steps {first} and "
                 f"{second} are parallel to within the drawing's precision "
                 f"({degrees:.3g}°)", line_angle_deg=degrees, link=group_name, angle=angle)
         t = _cross(p2 - p1, e2) / sine
-        self.points[end] = p1 + t * e1
+        self.points[end] = p1 + _times(t, e1)
         flagged = degrees < self.min_angle
         if flagged:
             self.flags.append(f"{self.kind} plan, group {group_name}: the lines meet at "
@@ -365,7 +401,7 @@ class _Sheet:
     def read(self, start: str, end: str, *, quantity: str, factor: float,
              sign: float = 1.0) -> float:
         """Read the segment start–end (rounded) and convert it: value = ±length·factor."""
-        length = self.round(float(np.hypot(*(self.points[end] - self.points[start]))),
+        length = self.round(_norm(self.points[end] - self.points[start]),
                             Segment(self.kind, "read", quantity))
         value = sign * length * factor
         if not self.record:
@@ -378,28 +414,32 @@ class _Sheet:
     def place_image(self, label: str, offset_mm: np.ndarray, image: LinkImage, link: str,
                     text: str) -> None:
         """Place a point by the similarity rule from the link's reference image."""
-        length = float(np.hypot(*offset_mm))
+        length = _norm(offset_mm)
         drawn = self.round(length, Segment(self.kind, "similarity", label))
-        direction = offset_mm / length if length > 0 else np.zeros(2)
-        self.points[label] = image.ref_mm + drawn * direction
+        direction = _unit(offset_mm, length)
+        self.points[label] = image.ref_mm + _times(drawn, direction)
+        if not self.record:
+            self.count += 1
+            return
         self.add(Step(0, "similarity", text, start=image.ref_label, end=label,
                       references=(image.ref_label,), length_mm=drawn,
                       direction_deg=_angle_deg(direction) if length > 0 else None,
                       vector=link))
 
     def finish(self, title: str) -> Plan:
-        points = {k: (float(v[0]), float(v[1])) for k, v in self.points.items()}
+        points = {k: (v if np.ndim(v) == 2 else (float(v[0]), float(v[1])))
+                  for k, v in self.points.items()}    # copies of a drawing: (N, 2) each
         return Plan(self.kind, self.pole, self.scale, self.unit, points, tuple(self.steps),
                     tuple(self.flags), self.precision, title)
 
 
 def _velocity_offset(image: LinkImage, point: np.ndarray, mu_v: float) -> np.ndarray:
-    return image.omega * _perp(point - image.ref) / mu_v
+    return _times(image.omega, _perp(point - image.ref)) / mu_v
 
 
 def _acceleration_offset(image: LinkImage, point: np.ndarray, mu_a: float) -> np.ndarray:
     r = point - image.ref
-    return (image.epsilon * _perp(r) - image.omega ** 2 * r) / mu_a
+    return (_times(image.epsilon, _perp(r)) - _times(image.omega ** 2, r)) / mu_a
 
 
 class _Emulator:
@@ -439,7 +479,7 @@ class _Emulator:
 
     def length_mm(self, first: np.ndarray, second: np.ndarray) -> float:
         """A length read off the position plan (rounded to the precision)."""
-        return self.v.round(float(np.hypot(*(second - first))) / self.scales.mu_l,
+        return self.v.round(float(_norm(second - first)) / self.scales.mu_l,
                             Segment("position", "measure"))
 
     def label(self, point: str, sheet: _Sheet) -> str:
@@ -447,7 +487,7 @@ class _Emulator:
 
     def drawn_length(self, sheet: _Sheet, start: str, end: str) -> float:
         """The segment start–end of ``sheet`` as read off the drawing (mm, rounded)."""
-        return sheet.round(float(np.hypot(*(sheet.points[end] - sheet.points[start]))),
+        return sheet.round(_norm(sheet.points[end] - sheet.points[start]),
                            Segment(sheet.kind, "read", "relative"))
 
     def fix_velocity(self, link: str, ref: np.ndarray, label: str, omega: float) -> None:
@@ -601,7 +641,7 @@ class _Emulator:
                                        side.base_position[0], self._base_label(side, self.v))
             segment = self.v.points[x_label] - self.v.points[base_label]
             direction = side.direction[0]
-            sign = 1.0 if float(segment @ direction) >= 0 else -1.0
+            sign = sense(segment, direction)
             if side.rotation:
                 radius = x - side.base_position[0]
                 length_mm = self.length_mm(side.base_position[0], x)
@@ -609,7 +649,7 @@ class _Emulator:
                     base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
                     factor=mu_v / (length_mm * mu_l))
                 omegas[side.link] = omega
-                rel.append(sign * self.v.round(float(np.hypot(*segment)),
+                rel.append(sign * self.v.round(_norm(segment),
                                                Segment("velocity", "read", "relative")))
                 del radius
             else:
@@ -656,7 +696,7 @@ class _Emulator:
                 x_name = point.partition("@")[0]
                 n_label = (f"n_{point}" if "@" in point else f"n_{x_name}{centre}")
                 self.a.lay_off(
-                    base_label, n_label, -magnitude * radius / np.hypot(*radius),
+                    base_label, n_label, _times(-magnitude, radius / _norm(radius)),
                     component="normal", vector=f"aⁿ_{x_name}{centre}", group=group.index,
                     text=f"aⁿ_{x_name}{centre} from {base_label}: ({base_label}{n_label}) = "
                          f"(v-plan segment)²·μv²/(({x_name}{centre})·μl·μa), from "
@@ -671,12 +711,12 @@ class _Emulator:
                 omega_c = self.readings[f"omega_{carrier}"]
                 multi = sum(not s.rotation for s in construction.sides) > 1
                 k_label = f"k{index + 1}_{point}" if multi else f"k_{point}"
-                coriolis = 2 * omega_c * relative * mu_v * _perp(direction) / mu_a
+                coriolis = _times(2 * omega_c * relative * mu_v, _perp(direction)) / mu_a
                 self.a.lay_off(
                     base_label, k_label, coriolis, component="coriolis", group=group.index,
                     vector=f"aᵏ_{point}",
                     text=(f"aᵏ = 2·ω_{carrier}·v_rel from {base_label}, v_rel turned 90° in the "
-                          f"sense of ω_{carrier}" if omega_c else
+                          f"sense of ω_{carrier}" if np.any(omega_c) else
                           f"aᵏ = 0: {carrier} does not turn; {k_label} coincides with "
                           f"{base_label}"))
                 normals[index] = k_label
@@ -694,7 +734,7 @@ class _Emulator:
             start = normals[index]
             segment = self.a.points[x_label] - self.a.points[start]
             direction = side.direction[0]
-            sign = 1.0 if float(segment @ direction) >= 0 else -1.0
+            sign = sense(segment, direction)
             if side.rotation:
                 length_mm = self.length_mm(side.base_position[0], x)
                 epsilons[side.link] = self.a.read(
@@ -760,27 +800,33 @@ def _curvature_readings(emulator: _Emulator, point: str,
     a_label = emulator.image_at(a, emulator.aimages, link, position[0],
                                 image_label(point, a.pole))
     velocity = v.points[v_label]
-    speed_mm = v.round(float(np.hypot(*velocity)), Segment("velocity", "read", f"v_{point}"))
-    if speed_mm == 0 or emulator.motion.moves_straight(point):
+    speed_mm = v.round(_norm(velocity), Segment("velocity", "read", f"v_{point}"))
+    if np.any(speed_mm == 0) or emulator.motion.moves_straight(point):
         return
-    tangent = velocity / np.hypot(*velocity)
+    tangent = _unit(velocity)
     normal = _perp(tangent)
-    along_normal = float(a.points[a_label] @ normal)
-    if along_normal < 0:
-        normal = -normal
-        along_normal = -along_normal
+    along_normal = _dot(a.points[a_label], normal)
+    outward = _sign(along_normal)          # the normal turned towards the centre
+    normal = _times(outward, normal)
+    along_normal = outward * along_normal
     n_label = f"n_{name}"
-    a.points[n_label] = along_normal * normal
-    a.add(Step(0, "project", f"project π{a_label} on the normal to the path of {name} "
-                             f"(⟂ p{v_label}): {n_label}", start=a_label, end=n_label,
-               direction_deg=_angle_deg(normal) % 180.0))
+    a.points[n_label] = _times(along_normal, normal)
+    if a.record:
+        a.add(Step(0, "project", f"project π{a_label} on the normal to the path of {name} "
+                                 f"(⟂ p{v_label}): {n_label}", start=a_label, end=n_label,
+                   direction_deg=_angle_deg(normal) % 180.0))
+    else:
+        a.count += 1
     normal_mm = a.round(along_normal, Segment("acceleration", "read", f"an_{point}"))
-    if normal_mm == 0:
+    if np.any(normal_mm == 0):
         return
     rho = speed_mm ** 2 * scales.mu_v ** 2 / (normal_mm * scales.mu_a)
-    a.add(Step(0, "read", f"ρ_{name} = (p{v_label})²·μv²/((π{n_label})·μa) = {rho:.6g} m",
-               start=a.pole, end=n_label, length_mm=normal_mm, quantity=f"rho_{point}",
-               value=rho))
+    if a.record:
+        a.add(Step(0, "read", f"ρ_{name} = (p{v_label})²·μv²/((π{n_label})·μa) = {rho:.6g} m",
+                   start=a.pole, end=n_label, length_mm=normal_mm, quantity=f"rho_{point}",
+                   value=rho))
+    else:
+        a.count += 1
     emulator.readings[f"rho_{point}"] = rho
     if position_plan is None:            # drawn without the mechanism: nothing to mark
         return
@@ -851,7 +897,7 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     lv = emulator.image_at(v, emulator.vimages, slide.link, point, image_label(on_link, "p"))
     gv = emulator.image_at(v, emulator.vimages, slide.along, point, image_label(on_guide, "p"))
     segment = v.points[lv] - v.points[gv]
-    sign = 1.0 if float(segment @ d) >= 0 else -1.0
+    sign = sense(segment, d)
     ds = v.read(gv, lv, quantity=f"ds_{key}", factor=scales.mu_v, sign=sign)
     emulator.readings[f"ds_{key}"] = ds
     if not acceleration:
@@ -859,16 +905,16 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     la = emulator.image_at(a, emulator.aimages, slide.link, point, image_label(on_link, "π"))
     ga = emulator.image_at(a, emulator.aimages, slide.along, point, image_label(on_guide, "π"))
     omega = emulator.readings[f"omega_{slide.along}"]
-    coriolis = 2 * omega * ds * _perp(d)
+    coriolis = _times(2 * omega * ds, _perp(d))
     k_label = f"k_{key}"
     if k_label not in a.points:
         a.lay_off(ga, k_label, coriolis / scales.mu_a, component="coriolis",
                   vector=f"aᵏ_{key}", text=f"aᵏ of {key} = 2·ω_{slide.along}·v_rel from {ga}")
-    corio = a.round(float(np.hypot(*coriolis)) / scales.mu_a,
+    corio = a.round(_norm(coriolis) / scales.mu_a,
                     Segment("acceleration", "read", f"coriolis_{key}")) * scales.mu_a
     emulator.readings[f"coriolis_{key}"] = corio
     segment = a.points[la] - a.points[k_label]
-    sign = 1.0 if float(segment @ d) >= 0 else -1.0
+    sign = sense(segment, d)
     emulator.readings[f"dds_{key}"] = a.read(k_label, la, quantity=f"dds_{key}",
                                              factor=scales.mu_a, sign=sign)
 
@@ -884,7 +930,7 @@ def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dic
         if drawn["reverse"]:
             start, end = end, start
         segment = sheet.points[end] - sheet.points[start]
-        sign = 1.0 if float(segment @ d) >= 0 else -1.0
+        sign = sense(segment, d)
         return sheet.read(start, end, quantity=quantity, factor=factor, sign=sign)
 
     base, x = drawn["v"]

@@ -58,6 +58,7 @@ __all__ = [
     "Theta",
     "ThetaKind",
     "evaluate_dyad",
+    "sense",
     "split",
 ]
 
@@ -300,6 +301,23 @@ def sliding_side(context: Context, slide: Slide, carrier: str, base: str, base_l
     if offset is None:
         offset = position - context.bodies[base_link].origin
     return Side(False, carrier, base, base_link, position, offset, Vec(c, s), None, 1.0, slide)
+
+
+def sense(segment, direction):
+    """+1 where a segment drawn on a plan points along ``direction`` (a unit vector), −1 where
+    against it: the sense a student reads an ω, ε or sliding speed with. A segment across the
+    direction (a construction drawn with a mistake) has no sense; +1 (counter-clockwise) is
+    taken there, whatever the rounding. ``segment`` may hold one vector per copy of a drawing
+    (N, 2): one sense per copy.
+
+    >>> sense(np.array([0.0, -2.0]), np.array([0.0, 1.0])), sense(np.array([3.0, 1e-17]),
+    ...                                                           np.array([0.0, 1.0]))
+    (-1.0, 1.0)
+    """
+    along = segment[..., 0] * direction[0] + segment[..., 1] * direction[1]
+    across = 1e-9 * np.hypot(segment[..., 0], segment[..., 1])
+    positive = (along >= 0) | (np.abs(along) <= across)
+    return np.where(positive, 1.0, -1.0) if np.ndim(positive) else (1.0 if positive else -1.0)
 
 
 def axes_towards(r: Vec, first: tuple[float, float], second: tuple[float, float], length):

@@ -43,7 +43,7 @@ from ...structure import AssurGroup
 from ...vocabulary import EdgeKind, GroupKind, PairKind
 from ..algebra import Body, absolute, cos, maximum, sin, sqrt
 from ..state import cross, norm, perp
-from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, ThetaKind, split
+from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, ThetaKind, sense, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
 
 __all__ = ["KIND", "PRIORITY", "SPECIAL", "TriadSystem", "accepts", "choose",
@@ -464,7 +464,7 @@ def _read_turn(emulator: PlanDrawer, sheet, start: str, end: str, centre, point,
     """ω (or ε) of ``link`` read off the segment start→end, ⟂ centre→point."""
     segment = sheet.points[end] - sheet.points[start]
     direction = _perp(_unit(point - centre))
-    sign = 1.0 if float(segment @ direction) >= 0 else -1.0
+    sign = sense(segment, direction)
     length_mm = emulator.length_mm(centre, point)
     return sheet.read(start, end, quantity=f"{what}_{link}", sign=sign,
                       factor=factor / length_mm)
@@ -479,7 +479,8 @@ def _normal(emulator: PlanDrawer, start: str, end: str, centre, point, v_from: s
     segment = emulator.drawn_length(emulator.v, v_from, v_to)
     length_mm = emulator.length_mm(centre, point)
     magnitude = segment ** 2 * scales.mu_v ** 2 / (length_mm * scales.mu_l * scales.mu_a)
-    a.lay_off(start, end, magnitude * _unit(centre - point), component="normal",
+    a.lay_off(start, end, np.asarray(magnitude)[..., None] * _unit(centre - point),
+              component="normal",
               group=group.index, vector=vector,
               text=f"{vector} from {start}: ({v_from}{v_to})²·μv²/(length·μl·μa), towards the "
                    "centre")

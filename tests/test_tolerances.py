@@ -1,0 +1,95 @@
+"""The drawing tolerances come from one drawing made in copies (one copy per segment, that
+segment lengthened by δ) — the same numbers as drawing the plans once per segment, which is
+what a student's error in one segment does and what these tests do the slow way."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planmethod.grading.tolerances import (
+    DELTA_MM,
+    _plan_points,
+    _Recorder,
+    emulate_drawings,
+    propagate,
+)
+from planmethod.kinematics import solve
+from planmethod.plans import draw_plans
+from planmethod.plans.construction import PlansUnavailableError
+from planmethod.report import asked_quantities
+from planmethod.spec import load_exercise
+
+ROOT = Path(__file__).resolve().parent.parent
+EXERCISES = sorted((ROOT / "exercises").glob("*.toml"))
+
+
+def by_redrawing(exercise, precision_mm: float):
+    """(sensitivity of each quantity, of each plan point): one drawing per segment."""
+    acceleration = exercise.ask.needs_acceleration
+    motion = solve(exercise.mechanism, exercise.mechanism.drive.angle,
+                   stage="acceleration" if acceleration else "velocity")
+    settings = replace(exercise.plan, precision_mm=0.0)
+    recorder = _Recorder()
+    base = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
+                      perturb=recorder)
+    quantities = asked_quantities(exercise, motion)
+    count = len(recorder.segments)
+    values = {q: np.zeros(count) for q in quantities}
+    points = {}
+    for index in range(count):
+        errors = np.zeros(count)
+        errors[index] = DELTA_MM
+        drawn = draw_plans(exercise, settings=settings, motion=motion,
+                           acceleration=acceleration, perturb=_Recorder(errors),
+                           scales=base.scales, position=False)
+        for q in quantities:
+            if q in base.readings and q in drawn.readings:
+                values[q][index] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
+        for plan, labels in _plan_points(drawn).items():
+            for label, xy in labels.items():
+                before = _plan_points(base)[plan][label]
+                points.setdefault((plan, label), np.zeros((count, 2)))[index] = (
+                    (xy - before) / DELTA_MM)
+    return values, points
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.stem)
+def test_one_drawing_in_copies_gives_each_segments_sensitivity(path):
+    exercise = load_exercise(path)
+    try:
+        found = propagate(exercise, 0.5)
+    except PlansUnavailableError:
+        pytest.skip("no drawn plans for this exercise's groups")
+    values, points = by_redrawing(exercise, 0.5)
+    assert found.sensitivity.keys() == values.keys()
+    for quantity, expected in values.items():
+        got = found.sensitivity[quantity]
+        scale = max(1.0, float(np.max(np.abs(expected))))
+        assert np.max(np.abs(got - expected)) <= 1e-8 * scale, quantity
+    radii = found.radii
+    for (plan, label), expected in points.items():
+        # the radius of a point is Σ|∂X/∂e_i|·precision/2 from the same sensitivities
+        radius = float(np.sum(np.hypot(expected[:, 0], expected[:, 1]))) * 0.25
+        assert abs(radii[plan][label] - radius) <= 1e-8 * max(1.0, radius), (plan, label)
+
+
+def test_random_drawings_in_copies_equal_the_drawings_one_by_one():
+    exercise = load_exercise(ROOT / "exercises" / "slotted_lever.toml")
+    together = emulate_drawings(exercise, 0.5, 5, seed=11)
+    generator = np.random.default_rng(11)
+    errors = generator.uniform(-0.25, 0.25, size=(5, 256))
+    settings = replace(exercise.plan, precision_mm=0.0)
+    for k in range(5):
+        alone = draw_plans(exercise, settings=settings, perturb=_Recorder(errors[k]),
+                           position=False)
+        for quantity, value in alone.readings.items():
+            if quantity in together:
+                assert abs(together[quantity][k] - value) <= 1e-12 * max(1.0, abs(value))
+        for plan, labels in _plan_points(alone).items():
+            for label, xy in labels.items():
+                assert np.allclose(together[f"points:{plan}:{label}"][k], xy, rtol=0,
+                                   atol=1e-9)
