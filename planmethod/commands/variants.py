@@ -118,7 +118,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import SpecError
     from ..grading.keys import build_key, bundle
     from ..grading.templates import draw_variant, load_template, to_toml
-    from ..io import student_folder, write_files
+    from ..io import json_text, student_folder, write_files
     from ..progress import Progress
 
     out = Path(args.out)
@@ -158,8 +158,7 @@ def run(args: argparse.Namespace) -> int:
             # the description with its placeholders filled in, as the student reads it
             files[f"{folder}/exercise.toml"] = to_toml({**variant.data,
                                                         "description": variant.description})
-            files[f"{folder}/key.json"] = json.dumps(key, ensure_ascii=False, indent=1,
-                                                     allow_nan=False)
+            files[f"{folder}/key.json"] = json_text(key)
             if not args.no_sheets:
                 from ..grading.sheets import plan_sheet_for_key, task_sheet_svg, task_text
                 from ..plans import draw_plans
@@ -173,9 +172,8 @@ def run(args: argparse.Namespace) -> int:
             index_rows.append([student, folder, variant.attempt,
                                json.dumps(variant.values, ensure_ascii=False)])
             bar.advance()
-    files["keys.json"] = json.dumps(bundle(keys, template=str(args.template), seed=args.seed,
-                                           count=len(keys)),
-                                    ensure_ascii=False, indent=1, allow_nan=False)
+    files["keys.json"] = json_text(bundle(keys, template=str(args.template), seed=args.seed,
+                                          count=len(keys)))
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(["student", "folder", "attempt", "values"])
