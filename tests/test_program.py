@@ -117,6 +117,38 @@ def test_a_product_used_in_a_product_is_kept():
     assert np.array_equal(compiled.read(rows, "square"), (np.cos(angles) * 3.0) ** 2)
 
 
+def test_mechanisms_that_differ_in_their_numbers_share_one_compiled_code(monkeypatch):
+    """A template's variants differ in their numbers only: their programs are compiled once,
+    each with its own numbers, and each gives what the formulas give directly."""
+    from planmethod.kinematics import tracing
+
+    compiled_sources = []
+
+    def counting(source, *args, **keywords):
+        compiled_sources.append(source)
+        return compile(source, *args, **keywords)
+
+    monkeypatch.setattr(tracing, "compile", counting, raising=False)
+    monkeypatch.setattr(tracing, "_CODE", {})
+    angles = np.arange(0.0, 360.0, 7.5)
+    first = exercise_from_dict(fourbar(crank=0.0812, omega=11.5)).mechanism
+    second = exercise_from_dict(fourbar(crank=0.0734, coupler=0.2311, omega=-9.25)).mechanism
+    compiled = []
+    for mechanism in (first, second):
+        solve(mechanism, angles)
+        compiled.append(model(mechanism).whole[2][2])
+    assert len(compiled_sources) == 1                    # the second found it compiled
+    assert compiled[0].function.__code__.co_code == compiled[1].function.__code__.co_code
+    assert compiled[0].function.__code__.co_consts != compiled[1].function.__code__.co_consts
+    assert "0.0812" in compiled[0].source and "0.0734" in compiled[1].source  # readable
+    for mechanism in (first, second):
+        fast, direct = solve(mechanism, angles), solve(mechanism, angles, reference=True)
+        for point in ("B", "C", "P"):
+            scale = float(np.max(np.abs(direct.acceleration(point))))
+            assert np.max(np.abs(fast.acceleration(point) - direct.acceleration(point))) \
+                <= 1e-12 * scale
+
+
 def test_a_guard_calls_its_check_only_where_its_bound_fails():
     seen = []
 

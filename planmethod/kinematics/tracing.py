@@ -31,8 +31,10 @@ Examples
 
 from __future__ import annotations
 
+import builtins
 import math
 import threading
+import types
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -57,6 +59,20 @@ _PYTHON = {"add": lambda a, b: a + b, "sub": lambda a, b: a - b, "mul": lambda a
 _COMMUTATIVE = {"add", "mul", "maximum", "minimum"}
 #: ufuncs whose output is passed by keyword
 _KEYWORD_OUT = {"maximum", "minimum"}
+
+
+#: compiled sources, shared by every program whose source is the same (mechanisms that differ
+#: only in their numbers), the most recently used kept
+CODE_CACHE = 256
+_CODE: dict[str, types.CodeType] = {}
+_CODE_LOCK = threading.Lock()
+
+
+def _placeholder(slot: int) -> float:
+    """The number written into a program's source for its number ``slot``: a float no model
+    uses (beyond 1e300, one per slot), replaced by the model's own number in the compiled
+    code's constants."""
+    return 1.0e300 * (1.0 + slot * 2.0 ** -40)
 
 
 class Redo(Exception):  # noqa: N818 (a signal, not an error)
@@ -356,9 +372,20 @@ class Tracer:
         free: list[int] = []
         work = 0
         lines: list[str] = []
+        # the model's numbers are written as placeholders, one per number (_placeholder):
+        # mechanisms that differ only in their numbers (a template's variants) share the
+        # source, compiled once (_CODE); each program's code then takes its own numbers in
+        # place of the placeholders (as constants: no slower than numbers written in)
+        constants: dict[str, int] = {}      # a float's exact bits → its slot
+
+        def constant(value: float) -> str:
+            bits = float(value).hex()
+            if bits not in constants:
+                constants[bits] = len(constants)
+            return repr(_placeholder(constants[bits]))
 
         def arg_text(arg) -> str:
-            return repr(float(arg)) if isinstance(arg, float) else where[arg]
+            return constant(arg) if isinstance(arg, float) else where[arg]
 
         def release(index: int, op: _Op) -> None:
             for arg in set(op.args):
@@ -374,7 +401,7 @@ class Tracer:
             return f"w{work - 1}"
 
         for row, value in fills:
-            lines.append(f"o{row}.fill({value!r})")
+            lines.append(f"o{row}.fill({constant(value)})")
         for index, op in enumerate(ops):
             if op.name == "guard":
                 bound, check, magnitude = op.extra
@@ -383,10 +410,10 @@ class Tracer:
                 if isinstance(op.args[0], float):  # a constant that fails its bound
                     lines.append(call)
                 elif magnitude:
-                    lines.append(f"if not ({value}.min() > {bound!r} if {value}[0] > 0.0 else "
-                                 f"{value}.max() < {-bound!r}): {call}")
+                    lines.append(f"if not ({value}.min() > {constant(bound)} if {value}[0] > 0.0 "
+                                 f"else {value}.max() < {constant(-bound)}): {call}")
                 else:
-                    lines.append(f"if not ({value}.min() > {bound!r}): {call}")
+                    lines.append(f"if not ({value}.min() > {constant(bound)}): {call}")
                 release(index, op)
                 continue
             if op.name == "call":
@@ -415,12 +442,26 @@ class Tracer:
             header.append(f"    {', '.join(f'o{i}' for i in range(layout.count))}, = out")
         if work:
             header.append(f"    {', '.join(f'w{i}' for i in range(work))}, = work")
-        source = "\n".join(header + [f"    {line}" for line in lines] + ["    return None"])
+        template = "\n".join(header + [f"    {line}" for line in lines] + ["    return None"])
+        with _CODE_LOCK:
+            code = _CODE.pop(template, None)
+            if code is None:
+                module = compile(template, f"<planmethod {name}>", "exec")
+                code = next(c for c in module.co_consts if isinstance(c, types.CodeType))
+            _CODE[template] = code                 # most recently used last
+            while len(_CODE) > CODE_CACHE:
+                _CODE.pop(next(iter(_CODE)))
+        numbers = {_placeholder(slot): float.fromhex(bits) for bits, slot in constants.items()}
+        code = code.replace(co_consts=tuple(numbers.get(c, c) if type(c) is float else c
+                                            for c in code.co_consts))
         namespace = {ufunc: getattr(np, ufunc) for ufunc in set(_UFUNCS.values())}
         namespace["copyto"] = np.copyto
-        exec(compile(source, f"<planmethod {name}>", "exec"), namespace)
-        return Compiled(namespace[name], source, layout, work, tuple(self.checks),
-                        tuple(self.calls))
+        namespace["__builtins__"] = builtins
+        function = types.FunctionType(code, namespace, name)
+        source = template
+        for placeholder, value in numbers.items():
+            source = source.replace(repr(placeholder), repr(value))
+        return Compiled(function, source, layout, work, tuple(self.checks), tuple(self.calls))
 
 
 def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:
