@@ -34,7 +34,8 @@ Examples
 >>> sorted(answers_of_mistakes({"id": "omega_BC", "unit": "rad/s", "signed": True,
 ...                             "value": 2.0}, {"mu_l": 0.01, "mu_v": 0.5, "mu_a": 2.0},
 ...                            {}, None))
-['degrees', 'length_mm', 'scale_none', 'scale_ten', 'scale_tenth', 'scale_twice', 'sense']
+['degrees', 'length_mm', 'scale_inverted', 'scale_none', 'scale_ten', 'scale_tenth',
+ 'scale_twice', 'sense']
 """
 
 from __future__ import annotations
@@ -115,6 +116,7 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
     if factor:
         out["scale_none"] = value / factor
         out["scale_twice"] = value * factor
+        out["scale_inverted"] = value / factor ** 2    # the length divided by the scale
     if factor is not None:                  # read off a plan: a scale misread by ten
         out["scale_ten"] = value * 10.0
         out["scale_tenth"] = value / 10.0

@@ -16,7 +16,9 @@ from planmethod.kinematics import solve
 WHERE = {"no_normal": "exercises/compressor_slider_crank.toml",
          "tangential_along": "exercises/templates/four_bar.toml",
          "no_coriolis": "exercises/slotted_lever.toml",
-         "coriolis_reversed": "exercises/slotted_lever.toml"}
+         "coriolis_reversed": "exercises/slotted_lever.toml",
+         # a coupler point off the coupler's line: its images can be turned over
+         "mirrored_similarity": "exercises/fourbar_coupler_point.toml"}
 
 
 def _key_and_variant(path: str):
@@ -70,6 +72,27 @@ def test_a_scale_misread_by_ten_is_named_on_every_quantity_read_at_a_scale(mista
         named = [question["mistake"], *question.get("also", ())]
         assert mistake in named, (name, question["feedback"])     # alone, or with one that
         assert MISTAKES[mistake] in question["feedback"]          # gives the same answer
+
+
+@pytest.mark.parametrize("path", ["exercises/compressor_slider_crank.toml",
+                                  "exercises/slotted_lever.toml"])
+def test_a_drawn_length_divided_by_the_scale_is_named(path):
+    """(pc) = v/μv read, then divided by μv again: v/μv² (ω: the length's μl as well)."""
+    from planmethod.grading.tolerances import scale_factor
+
+    _, key = _key_and_variant(path)
+    scales = key["scales"]
+    answers = {}
+    for question in key["questions"]:
+        factor = scale_factor(question["id"], scales["mu_l"], scales["mu_v"], scales["mu_a"])
+        if factor and factor != 1.0:
+            answers[question["id"]] = question["value"] / factor ** 2
+    graded = _graded(key, answers)
+    assert len(graded) >= 3
+    for name, question in graded.items():
+        named = [question["mistake"], *question.get("also", ())]
+        assert "scale_inverted" in named, (name, question["feedback"])
+        assert not question["correct"]
 
 
 def test_a_mistake_outside_the_key_is_not_named():

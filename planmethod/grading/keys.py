@@ -181,7 +181,7 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
         values.setdefault(mistake, []).append((wrong, wrong_tolerance))
     found: list[tuple[str, float, float]] = []
     for key, mistake in REGISTRY.items():
-        if mistake.construction is not None or mistake.direction is not None:
+        if mistake.redraws:
             readings = alternatives.get(key) or {}
             wrong = readings.get(quantity)
             if wrong is not None and math.isfinite(float(wrong)):

@@ -20,7 +20,7 @@ a student's answer matches.
 Examples
 --------
 >>> CONSTRUCTION_MISTAKES
-('no_normal', 'no_coriolis', 'coriolis_reversed', 'tangential_along')
+('no_normal', 'no_coriolis', 'coriolis_reversed', 'tangential_along', 'mirrored_similarity')
 >>> MISTAKES["scale_ten"]
 "the plan's scale was misread ten times too large"
 """
@@ -69,6 +69,14 @@ class Mistake:
     #: a construction line drawn in the wrong direction: (direction, segment) → the direction
     #: drawn, or None where the mistake does not touch that line
     direction: Callable[[Any, Segment], Any] | None = None
+    #: an image placed by the similarity rule turned over: segment → True where it is
+    mirror: Callable[[Segment], bool] | None = None
+
+    @property
+    def redraws(self) -> bool:
+        """Whether it is a construction mistake (its answers come from the plans drawn
+        again with it)."""
+        return (self.construction or self.direction or self.mirror) is not None
 
 
 def _left_out(name: str) -> Rule:
@@ -96,6 +104,11 @@ def _along(name: str):
             return (-direction[1], direction[0])            # turned 90°: along the link
         return None
     return rule
+
+
+def _mirrored(segment: Segment) -> bool:
+    """Every image placed by the similarity rule off its link's line, turned over."""
+    return segment.action == "similarity"
 
 
 def _sense(quantity, value, tolerance, context):
@@ -126,6 +139,13 @@ def _scale_none(quantity, value, tolerance, context):
 def _scale_twice(quantity, value, tolerance, context):
     factor = _factor(quantity, context)
     return [(value * factor, tolerance * factor)] if factor and factor != 1.0 else []
+
+
+def _scale_inverted(quantity, value, tolerance, context):
+    """The drawn length divided by the scale instead of multiplied."""
+    factor = _factor(quantity, context)
+    return ([(value / factor ** 2, tolerance / factor ** 2)] if factor and factor != 1.0
+            else [])
 
 
 def _scaled_by(times: float) -> Answers:
@@ -243,6 +263,9 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
             construction=_reversed("coriolis")),
     Mistake("tangential_along", "the tangential component aᵗ was drawn along the link "
             "instead of across it", direction=_along("tangential")),
+    Mistake("mirrored_similarity", "the image of a point was placed by the similarity rule "
+            "with its triangle turned over (mirrored across the image of the link's line)",
+            mirror=_mirrored),
     Mistake("full_acceleration",
             "the full acceleration was used instead of its normal component",
             value=_full_acceleration),
@@ -254,6 +277,8 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
     Mistake("scale_none", "the plan's scale was not applied (the answer is a drawn length)",
             value=_scale_none),
     Mistake("scale_twice", "the plan's scale was applied twice", value=_scale_twice),
+    Mistake("scale_inverted", "the drawn length was divided by the plan's scale instead of "
+            "multiplied", value=_scale_inverted),
     Mistake("scale_ten", "the plan's scale was misread ten times too large",
             value=_scaled_by(10.0)),
     Mistake("scale_tenth", "the plan's scale was misread ten times too small",
@@ -266,8 +291,7 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
 #: key → what the student is told
 MISTAKES: dict[str, str] = {key: mistake.explanation for key, mistake in REGISTRY.items()}
 #: the mistakes made in the construction itself (the plans are drawn again with them)
-CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items()
-                              if mistake.construction or mistake.direction)
+CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items() if mistake.redraws)
 
 
 def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
@@ -280,9 +304,10 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
     KeyError
         If ``mistake`` is not a construction mistake.
     """
-    rule, turning = REGISTRY[mistake].construction, REGISTRY[mistake].direction
-    if rule is None and turning is None:
+    if not REGISTRY[mistake].redraws:
         raise KeyError(mistake)
+    rule, turning = REGISTRY[mistake].construction, REGISTRY[mistake].direction
+    mirroring = REGISTRY[mistake].mirror
     from ..errors import ToggleError
     from ..plans import draw_plans
 
@@ -304,12 +329,19 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
                 return drawn
         return direction
 
+    def mirror(segment: Segment) -> bool:
+        if mirroring is not None and mirroring(segment):
+            found.append(segment)
+            return True
+        return False
+
     if not exercise.ask.needs_acceleration:
         return None
     settings = replace(exercise.plan, precision_mm=0.0)
     try:
         plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong,
-                           turn=turn, position=False)
+                           turn=turn, mirror=mirror if mirroring is not None else None,
+                           position=False)
     except ToggleError:       # the wrong lines do not meet: no answer to predict
         return None
     return plans if found else None

@@ -447,7 +447,7 @@ class _Emulator:
 
     def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
                  motion: Motion, scales: Scales, perturb=None, record: bool = True,
-                 turn=None) -> None:
+                 turn=None, mirror=None) -> None:
         self.exercise = exercise
         self.mechanism = exercise.mechanism
         self.settings = settings
@@ -459,6 +459,10 @@ class _Emulator:
         self.vimages: dict[str, LinkImage] = {}
         self.aimages: dict[str, LinkImage] = {}
         self.rel_velocity: dict[tuple[int, int], float] = {}
+        #: a similarity model ``mirror(segment) -> bool``: place the image of a point off its
+        #: link's line mirrored across the image of that line (a construction drawn with a
+        #: mistake); None places every image as the similarity rule says
+        self.mirror = mirror
         #: prismatic pair key → plan labels of the group side that draws its relative motion
         self.sliding_sides: dict[str, dict[str, object]] = {}
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
@@ -516,6 +520,7 @@ class _Emulator:
                 sheet.add(Step(0, "coincide", f"{label} at the pole: {name} is fixed",
                                start=sheet.pole, end=label, length_mm=0.0))
                 continue
+            position = self.similar(sheet, link, image, position, label)
             sheet.place_image(label, offset(image, position, scale), image, link,
                               f"{label} by similarity on {link} from {image.ref_label}")
 
@@ -525,6 +530,7 @@ class _Emulator:
         if label in sheet.points:
             return label
         image = images[link]
+        position = self.similar(sheet, link, image, position, label)
         if sheet is self.v:
             offset = _velocity_offset(image, position, self.scales.mu_v)
         else:
@@ -537,6 +543,32 @@ class _Emulator:
             sheet.place_image(label, offset, image, link,
                               f"{label} by similarity on {link} from {image.ref_label}")
         return label
+
+    def similar(self, sheet: _Sheet, link: str, image: LinkImage, position: np.ndarray,
+                label: str) -> np.ndarray:
+        """The point whose image the similarity rule places for ``position`` of ``link``: the
+        point itself, or — where the ``mirror`` model says so — its mirror image across the
+        line through the image's reference point and another pin of the link (the student's
+        triangle turned over)."""
+        if self.mirror is None or link == FRAME:
+            return position
+        pins = [name for name in self.mechanism.links[link].points
+                if len(self.mechanism.links_with_point(name)) > 1]
+        for name in pins:
+            other = self.where(link, name)
+            axis = other - image.ref
+            length = float(_norm(axis))
+            if length <= 1e-12 * max(1.0, float(_norm(image.ref))):
+                continue
+            unit = axis / length
+            offset = position - image.ref
+            across = float(_cross(unit, offset))
+            if abs(across) <= 1e-9 * length:         # on the link's line: no mirror image
+                return position
+            if not self.mirror(Segment(sheet.kind, "similarity", label, link)):
+                return position
+            return position - 2.0 * across * _perp(unit)
+        return position
 
     # -- drive ---------------------------------------------------------------------------------
     def drive(self) -> None:
@@ -946,7 +978,7 @@ def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dic
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
                settings: PlanSettings | None = None, acceleration: bool = True,
                motion: Motion | None = None, perturb=None, scales: Scales | None = None,
-               position: bool = True, turn=None) -> Plans:
+               position: bool = True, turn=None, mirror=None) -> Plans:
     """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
 
     Parameters
@@ -973,6 +1005,11 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         A direction model ``turn(direction, segment) -> direction`` for every construction
         line (``segment.action`` is ``line``, ``segment.name`` its component): a construction
         drawn with a mistake (:mod:`planmethod.grading.mistakes`). Default: as they are.
+    mirror
+        A similarity model ``mirror(segment) -> bool`` for every image placed by the
+        similarity rule off its link's line (``segment.name`` its label, ``segment.vector``
+        the link): True places it mirrored across the image of the link's line (a mistake).
+        Default: as the rule says.
     position
         Also make the position plan (the mechanism's drawing, with the paths of the points
         whose ρ is read); without it ``Plans.position`` is None and only the points of the
@@ -990,7 +1027,7 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         motion = solve(mechanism, angle, stage="position")
     scales = scales or choose_scales(exercise, settings)
     emulator = _Emulator(exercise, settings, angle, motion, scales, perturb, record=position,
-                         turn=turn)
+                         turn=turn, mirror=mirror)
     position_plan = _position_plan(exercise, motion, scales, angle) if position else None
     emulator.drive()
     groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
