@@ -365,12 +365,61 @@ def test_prairielearn_grade_uses_the_drawing_tolerance_and_hides_the_value(keys)
     submitted[first] = questions[0]["value"] + 0.9 * questions[0]["tolerance"]  # inside
     submitted[second] = questions[1]["value"] + 1.1 * questions[1]["tolerance"]  # outside
     submitted[third] = "twelve"
-    data.update(submitted_answers=submitted, partial_scores={"velocity_plan": {"score": 1.0}})
+    plans = data["params"]["plans"]
+    for name, points in plans.items():     # every plan drawn right
+        submitted[f"{name}_plan"] = [{"gradingName": "pl-point", "left": p["x"], "top": p["y"]}
+                                     for p in points.values()]
+    data.update(submitted_answers=submitted, partial_scores={})
     namespace["grade"](data)
     parts = data["partial_scores"]
     assert parts[first]["score"] == 1.0 and parts[second]["score"] == 0.0
     assert parts[third]["score"] == 0.0 and "no number" in parts[third]["feedback"]
     assert "too high" in parts[second]["feedback"] or "reversed" in parts[second]["feedback"]
     assert f"{questions[1]['value']:.4g}" not in parts[second]["feedback"]
-    count = len(questions) + 1
+    assert all(parts[f"{name}_plan"]["score"] == 1.0 for name in plans)
+    count = len(questions) + len(plans)
     assert data["score"] == pytest.approx((count - 2) / count)
+
+
+def test_prairielearn_grades_a_plan_point_by_point_within_each_disc(keys):
+    """Each plan point is found within its own tolerance disc (the key's, in px); the feedback
+    names the points not found and how far the nearest free point is, never where they go."""
+    files = prairielearn_questions(bundle(keys, seed=5), slug="fourbar")
+    namespace: dict = {}
+    exec(compile(files["fourbar/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 7}
+    namespace["generate"](data)
+    params = data["params"]
+    points, radii = params["plans"]["velocity"], params["radius_px"]["velocity"]
+    labels = params["plan_labels"]["velocity"]
+    key = next(k for k in keys if k["student"] == params["student"])
+    entry = key["plans"]["velocity"]
+    for ident, label in labels.items():        # the discs are the key's, 4 px a millimetre
+        assert radii[ident] == pytest.approx(max(0.5, entry["tolerance_mm"][label]) * 4,
+                                             abs=0.01)
+    idents = list(points)
+    moved, dropped = idents[0], idents[-1]
+    placed = []
+    for ident in idents:
+        if ident == dropped:
+            continue
+        x, y = points[ident]["x"], points[ident]["y"]
+        shift = (0.8 if ident != moved else 1.5) * radii[ident]   # inside / outside its disc
+        placed.append({"gradingName": "pl-point", "left": x + shift, "top": y})
+    placed.append({"gradingName": "pl-point", "left": 1.0, "top": 1.0})    # a stray point
+    placed.append({"gradingName": "pl-line", "x1": 0, "y1": 0})           # not a point
+    data.update(submitted_answers={"velocity_plan": placed}, partial_scores={})
+    namespace["grade"](data)
+    part = data["partial_scores"]["velocity_plan"]
+    found = len(idents) - 2
+    assert part["score"] == pytest.approx(found / len(idents))
+    feedback = part["feedback"]
+    assert feedback.startswith(f"{found} of {len(idents)} plan points")
+    assert labels[moved] in feedback and labels[dropped] in feedback
+    assert labels[idents[1]] + " is not" not in feedback          # a point found is not named
+    for ident in idents:                                           # no right position given
+        assert f"{points[ident]['x']:g}" not in feedback
+    # nothing placed at all: no point found, and the plan still graded (score 0)
+    data.update(submitted_answers={}, partial_scores={})
+    namespace["grade"](data)
+    assert data["partial_scores"]["velocity_plan"]["score"] == 0.0

@@ -259,9 +259,11 @@ _PRAIRIELEARN_SERVER = '''"""One planmethod variant per PrairieLearn variant (ge
 
 generate() picks the variant from PrairieLearn's data["variant_seed"], so a reload shows the
 student the same numbers; grade() re-grades each numeric part with the tolerance that follows
-from the drawing scale and says which way a wrong answer is off, never the right value.
+from the drawing scale and says which way a wrong answer is off, never the right value, and
+grades each drawn plan point by point, each point within its own tolerance disc.
 """
 
+import math
 import random
 
 VARIANTS = @VARIANTS@
@@ -277,9 +279,47 @@ def generate(data):
     data["correct_answers"].update(variant["correct_answers"])
 
 
+def _grade_plan(points, radii, labels, submitted):
+    """(score, feedback): each plan point found within its disc (px) by one point the student
+    placed (the pole is given, so each point fixes its vector from the pole)."""
+    placed = [(float(o["left"]), float(o["top"])) for o in submitted or []
+              if isinstance(o, dict) and o.get("gradingName") == "pl-point"
+              and isinstance(o.get("left"), (int, float))
+              and isinstance(o.get("top"), (int, float))]
+    pairs = sorted((math.hypot(x - points[i]["x"], y - points[i]["y"]) / radii[i], i, k)
+                   for i in points for k, (x, y) in enumerate(placed))
+    found, used = {}, set()
+    for ratio, ident, k in pairs:
+        if ratio <= 1.0 and ident not in found and k not in used:
+            found[ident] = k
+            used.add(k)
+    missing = [ident for ident in points if ident not in found]
+    notes = []
+    for ident in missing:
+        near = min((math.hypot(x - points[ident]["x"], y - points[ident]["y"])
+                    for k, (x, y) in enumerate(placed) if k not in used), default=None)
+        where = ("" if near is None else
+                 f" (the nearest free point is {near / 4:.1f} mm away; tolerance "
+                 f"{radii[ident] / 4:.1f} mm)")
+        notes.append(f"{labels[ident]} is not where the construction puts it{where}")
+    extra = len(placed) - len(found)
+    if extra > 0:
+        notes.append(f"{extra} point(s) more than the plan has")
+    score = len(found) / max(len(points), len(placed), 1)
+    feedback = (f"{len(found)} of {len(points)} plan points within the drawing's tolerance"
+                + ("; " + "; ".join(notes) if notes else ""))
+    return score, feedback
+
+
 def grade(data):
     tolerance = data["params"].get("tolerance", {})
     scores = []
+    for name, points in data["params"].get("plans", {}).items():
+        answer = f"{name}_plan"
+        score, feedback = _grade_plan(points, data["params"]["radius_px"][name],
+                                      data["params"]["plan_labels"][name],
+                                      data["submitted_answers"].get(answer))
+        data["partial_scores"][answer] = {"score": score, "weight": 1, "feedback": feedback}
     for name, right in data["correct_answers"].items():
         if name not in tolerance:
             continue
@@ -327,7 +367,8 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
         params: dict[str, Any] = {
             "student": key.get("student"), "title": key.get("title"),
             "task_html": "<p>" + escape(key.get("task", "")).replace("\n\n", "</p><p>")
-            + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}}
+            + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}, "radius_px": {},
+            "plan_labels": {}}
         correct: dict[str, Any] = {}
         for name in question_ids:
             question = questions[name]
@@ -347,9 +388,14 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
             entry = key["plans"][name]
             params["plans"][name] = _canvas(entry, size_px, [
                 label for label in labels[name] if label in entry["points_mm"]])
-            radii = [entry["tolerance_mm"][label] for label in labels[name]
-                     if label in entry["tolerance_mm"]]
-            params["tol_px"][name] = round(max(radii, default=0.5) * PX_PER_MM, 2)
+            drawn = [label for label in labels[name] if label in entry["points_mm"]]
+            # each point's own disc (px), at least half a millimetre of the drawing
+            params["radius_px"][name] = {
+                _identifier(label): round(max(0.5, entry["tolerance_mm"].get(label, 0.5))
+                                          * PX_PER_MM, 2) for label in drawn}
+            params["plan_labels"][name] = {_identifier(label): label for label in drawn}
+            params["tol_px"][name] = max(params["radius_px"][name].values(),
+                                         default=round(0.5 * PX_PER_MM, 2))
         variants.append({"params": params, "correct_answers": correct})
     server = _PRAIRIELEARN_SERVER.replace(
         "@VARIANTS@", json.dumps(variants, ensure_ascii=False, indent=1))
