@@ -22,14 +22,19 @@ LIGHT = ("planmethod", "planmethod.kinematics", "planmethod.plans", "planmethod.
          "planmethod.cli", "planmethod.commands.solve", "planmethod.commands.sweep")
 
 
-def heavy_after(code: str) -> list[str]:
-    """The heavy top-level packages loaded after running ``code`` in a fresh interpreter."""
-    probe = (f"import sys\n{code}\n"
-             "print('LOADED:' + ','.join(sorted({m.split('.')[0] for m in sys.modules})))")
-    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+def run_fresh(code: str) -> str:
+    """What ``code`` prints, run in a fresh interpreter from the repository root."""
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           cwd=ROOT, timeout=120)
     assert done.returncode == 0, done.stderr
-    line = next(line for line in done.stdout.splitlines() if line.startswith("LOADED:"))
+    return done.stdout
+
+
+def heavy_after(code: str) -> list[str]:
+    """The heavy top-level packages loaded after running ``code`` in a fresh interpreter."""
+    out = run_fresh(f"import sys\n{code}\n"
+                    "print('LOADED:' + ','.join(sorted({m.split('.')[0] for m in sys.modules})))")
+    line = next(line for line in out.splitlines() if line.startswith("LOADED:"))
     loaded = set(line[len("LOADED:"):].split(","))
     return sorted(loaded & set(HEAVY))
 
@@ -62,10 +67,7 @@ def test_the_testing_helpers_import_without_mpmath():
             "import planmethod.testing, planmethod.testing.stress\n"
             "try:\n    planmethod.testing.exact_fourbar(60.0)\n"
             "except ImportError:\n    print('NEEDS MPMATH')\n")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          cwd=ROOT, timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "NEEDS MPMATH"
+    assert run_fresh(code).strip() == "NEEDS MPMATH"
 
 
 def test_the_command_lines_help_loads_not_even_numpy():
@@ -75,7 +77,4 @@ def test_the_command_lines_help_loads_not_even_numpy():
             "with contextlib.redirect_stdout(io.StringIO()):\n"
             "    main(['--help']); main(['sweep', '--help'])\n"
             "print('NUMPY' if 'numpy' in sys.modules else 'LIGHT')\n")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          cwd=ROOT, timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert done.stdout.strip().splitlines()[-1] == "LIGHT"
+    assert run_fresh(code).strip().splitlines()[-1] == "LIGHT"
