@@ -110,6 +110,23 @@ def test_every_drawing_is_well_formed_svg(plans):
         assert len(root.get("viewBox").split()) == 4
 
 
+def _legend_texts(svg_text: str) -> list[str]:
+    root = ET.fromstring(svg_text.encode("utf-8"))
+    return [text.text or "" for text in root.iter(SVG + "text") if text.get("class") == "legend"]
+
+
+def test_each_plan_has_its_own_plans_legend(plans):
+    """The velocity plans (and the lever, the velocity plan turned) speak of velocities, the
+    acceleration plan of accelerations."""
+    files = plan_files(plans)
+    for name in ("velocity", "lever", "acceleration"):
+        legend = " ".join(_legend_texts(files[f"{name}.svg"]))
+        own, other = (("velocity", "acceleration") if name != "acceleration"
+                      else ("acceleration", "velocity"))
+        assert f"absolute {own} (result)" in legend, (name, legend)
+        assert f"absolute {other}" not in legend, (name, legend)
+
+
 def test_output_is_byte_identical_for_the_same_input(case, plans):
     again = CASES[case]()              # a fresh solve: nothing shared with the first
     assert again is not plans

@@ -494,7 +494,7 @@ def _plan_problem(plans, settings: TemplateSettings, drawable: bool) -> str | No
         for component in settings.require:
             drawn = [abs(step.length_mm or 0.0) for step in plan.steps
                      if step.action == "lay_off" and step.component == component]
-            needed = plan.kind is PlanKind.ACCELERATION or component == "relative"
+            needed = plan.kind == PlanKind.ACCELERATION or component == "relative"
             if needed and (not drawn or max(drawn) < settings.min_segment_mm):
                 return (f"the {component} component required on the {plan.kind} plan is "
                         f"{max(drawn, default=0.0):.1f} mm (below {settings.min_segment_mm:g} "

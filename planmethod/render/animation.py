@@ -121,7 +121,7 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
             ax.set_aspect("equal")
             ax.set_xticks([])
             ax.set_yticks([])
-            if kind is PlanKind.POSITION:
+            if kind == PlanKind.POSITION:
                 _draw_mechanism(ax, plans.position)
                 ax.set_title(f"φ₁ = {plans.position.angle:g}°", fontsize=10)
             else:

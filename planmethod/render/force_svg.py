@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from ..plans.scales import standard
-from ..vocabulary import AppliedKind, EdgeKind, GroupKind
+from ..vocabulary import AppliedKind, EdgeKind, GroupKind, PlanKind
 from .canvas import Canvas, difference, fit_zoom, translate
 from .labels import RunKind, label_runs
 from .notation import ForceNotation, subscript
@@ -78,7 +78,7 @@ _EDGE_LOOKS = {
 
 def _edge_style(edge) -> tuple[str, str | None]:
     """(style key, colour override) of a polygon edge."""
-    if edge.kind is EdgeKind.COMPONENT:
+    if edge.kind == EdgeKind.COMPONENT:
         return ("tangential", None) if edge.label.startswith("Rᵗ") else ("normal", None)
     if edge.kind in _EDGE_LOOKS:
         return _EDGE_LOOKS[edge.kind][:2]
@@ -149,7 +149,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
 
 
 def _legend_key(edge) -> str:
-    if edge.kind is EdgeKind.COMPONENT:
+    if edge.kind == EdgeKind.COMPONENT:
         return ("tangential component Rᵗ (⊥ the link)" if edge.label.startswith("Rᵗ")
                 else "normal component Rⁿ (along the link) or N (⊥ a guide)")
     if edge.kind in _EDGE_LOOKS:
@@ -207,7 +207,7 @@ def combined_svg(forces, plans) -> str | None:
                          css=f"combined {force.link}")
     figure.place()
     _, y0, x1, _ = figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), "acceleration")  # the plan's styles
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
         "image of g: π → π′, Z_g = g/μa": ("normal", KNOWN_COLOURS["G"]),
         "s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)": ("tangential", KNOWN_COLOURS["F"])},
@@ -224,7 +224,7 @@ def combined_svg(forces, plans) -> str | None:
                      f"{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
              f"pole moved to π′, φ₁ = {plans.angle:g}°")
-    frame(figure, title, lines, None, plan.flags, "acceleration")
+    frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION)
     return figure.svg(title).svg
 
 
@@ -343,13 +343,13 @@ def lever_forces_svg(forces: Any, plans) -> str | None:
                  f"{float(forces.solution.balancing_moment[0]):.6g} N·m")
     figure.place()
     _, y0, x1, _ = figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), "velocity")    # the plan's styles first
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)    # the plan's styles first
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), used,
                   heading="Forces on the lever")
     figure.used.clear()
     title = (f"{mechanism.title} — Zhukovsky's lever with its forces, "
              f"φ₁ = {plans.angle:g}°").lstrip(" —")
-    frame(figure, title, lines, (plan.scale, "m/s", 0.3 * PLAN_SIZE), plan.flags, "velocity")
+    frame(figure, title, lines, (plan.scale, "m/s", 0.3 * PLAN_SIZE), plan.flags, PlanKind.VELOCITY)
     return figure.svg(title).svg
 
 
@@ -367,8 +367,8 @@ def loaded_svg(forces: Any, plans) -> str | None:
     mu_l = position.mu_l
     everything = [item for item in solution.applied.items if item.link != "frame"]
     # friction (a force or moment in each pair, on both its links) is listed, not drawn
-    friction = [item for item in everything if item.kind is AppliedKind.FRICTION]
-    items = [item for item in everything if item.kind is not AppliedKind.FRICTION]
+    friction = [item for item in everything if item.kind == AppliedKind.FRICTION]
+    items = [item for item in everything if item.kind != AppliedKind.FRICTION]
     arrows = [(item, np.asarray(item.point[0], float) / mu_l, np.asarray(item.force[0], float))
               for item in items if item.force is not None
               and float(np.hypot(*item.force[0])) > 0]
@@ -396,7 +396,7 @@ def loaded_svg(forces: Any, plans) -> str | None:
         lines.append(f"{notation.plain(item.name, item.link)} = "
                      f"{float(np.hypot(*force)):.4g} N on {notation.link_name(item.link)}")
         inertia = solution.applied.inertia.get(item.link)
-        if item.kind is AppliedKind.INERTIA_FORCE and inertia is not None and bool(
+        if item.kind == AppliedKind.INERTIA_FORCE and inertia is not None and bool(
                 inertia.single_force_defined[0]) and abs(float(inertia.offset[0])) > 0:
             # the line of the single equivalent force Fᵘ (with Mᵘ), offset by h from S
             unit = force / float(np.hypot(*force))
@@ -415,7 +415,7 @@ def loaded_svg(forces: Any, plans) -> str | None:
         inertia = solution.applied.inertia.get(item.link)
         centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
                   else np.asarray(inertia.centre[0], float) / mu_l
-                  if item.kind is AppliedKind.INERTIA_MOMENT and inertia is not None
+                  if item.kind == AppliedKind.INERTIA_MOMENT and inertia is not None
                   else _link_centre(position, item.link))
         colour = _force_colour(item.name)
         turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0, colour,
@@ -445,7 +445,8 @@ def loaded_svg(forces: Any, plans) -> str | None:
     _, y0, x1, _ = figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used, heading="Forces and moments")
     title = f"{mechanism.title} — the loaded mechanism, φ₁ = {plans.angle:g}°".lstrip(" —")
-    frame(figure, title, lines, (mu_l, "m", 0.25 * MECHANISM_SIZE), solution.flags, "position")
+    frame(figure, title, lines, (mu_l, "m", 0.25 * MECHANISM_SIZE), solution.flags,
+          PlanKind.POSITION)
     return figure.svg(title).svg
 
 
@@ -482,7 +483,7 @@ def force_files(forces: Any, plans, *, loaded: bool = True) -> dict[str, str]:
     title = forces.solution.mechanism.title
     notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
-        kind = "drive link" if group.kind is GroupKind.DRIVE else f"{group.kind} of"
+        kind = "drive link" if group.kind == GroupKind.DRIVE else f"{group.kind} of"
         files[_file_name(number, group)] = polygon_svg(
             group, forces.mu_f, angle=forces.angle, notation=notation,
             title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "

@@ -127,7 +127,7 @@ def plain(runs: Sequence[Run]) -> str:
     """The runs as plain text (subscripts after a space), e.g. for tests and titles."""
     out = ""
     for text, kind in runs:
-        out += (" " + text) if kind is RunKind.UPRIGHT and text[0].isalpha() else text
+        out += (" " + text) if kind == RunKind.UPRIGHT and text[0].isalpha() else text
     return out.replace(NBSP, " ")
 
 

@@ -336,7 +336,7 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
                         dash=style.dash, layer="text", obstacle=False)
             if component:
                 own = STYLES[component]
-                name = own.legend_velocity if kind is PlanKind.VELOCITY else own.legend_acceleration
+                name = own.legend_velocity if kind == PlanKind.VELOCITY else own.legend_acceleration
                 text = f"construction line: direction of the {name}"
             else:
                 text = "construction line"
@@ -345,12 +345,12 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
             figure.line((x, y - 4), (x + 34, y - 4), color=style.color,
                         width=max(style.width, 0.9), dash=style.dash, layer="text",
                         obstacle=False)
-            text = style.legend_velocity if kind is PlanKind.VELOCITY else style.legend_acceleration
+            text = style.legend_velocity if kind == PlanKind.VELOCITY else style.legend_acceleration
         else:
             style = STYLES[key]
             figure.arrow((x, y - 4), (x + 34, y - 4), key, layer="text")
             figure.obstacle_lines.pop()
-            text = style.legend_velocity if kind is PlanKind.VELOCITY else style.legend_acceleration
+            text = style.legend_velocity if kind == PlanKind.VELOCITY else style.legend_acceleration
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
     return y
 
@@ -796,7 +796,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
         lines += [line for line in plans.scales.describe()[1:3]]
     title = f"{position.title} — position plan, φ₁ = {position.angle:g}°".lstrip(" —")
     frame(figure, title, lines, (position.mu_l, "m", 0.25 * MECHANISM_SIZE),
-           plans.flags if plans is not None else (), "position")
+           plans.flags if plans is not None else (), PlanKind.POSITION)
     y = figure.extent[3] + 24
     for line in notes:
         if line.strip():
@@ -827,7 +827,7 @@ def lever_drawing(plans: Plans) -> Drawing:
     title = (f"{position.title} — rotated velocity plan, φ₁ = {position.angle:g}°"
              .lstrip(" —"))
     frame(figure, title, lines, (plan.scale, _unit_of(plan.unit), 0.25 * MECHANISM_SIZE),
-           plan.flags, "velocity")
+           plan.flags, PlanKind.VELOCITY)
     return figure.svg(title)
 
 
