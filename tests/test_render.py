@@ -154,7 +154,7 @@ def test_no_two_label_boxes_overlap(plans):
 def test_labels_keep_clear_of_drawn_lines(plans, monkeypatch):
     """No drawn line runs through the text of a label (its box less the padding)."""
     from shapely import unary_union
-    from shapely.geometry import box
+    from shapely.geometry import LineString, box
 
     import planmethod.render.canvas as canvas_module
 
@@ -163,7 +163,7 @@ def test_labels_keep_clear_of_drawn_lines(plans, monkeypatch):
 
     def spy(requests, lines, areas):
         placed = original(requests, lines, areas)
-        seen.append((placed, unary_union(lines)))
+        seen.append((placed, unary_union([LineString(line) for line in lines])))
         return placed
 
     monkeypatch.setattr(canvas_module, "place_labels", spy)

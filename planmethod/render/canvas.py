@@ -1,4 +1,4 @@
-"""The one SVG canvas every figure of planmethod is drawn on (svgwrite, shapely).
+"""The one SVG canvas every figure of planmethod is drawn on (svgwrite).
 
 A :class:`Canvas` collects primitives in page coordinates (px, y down) in fixed layers — lines,
 polylines, circles, arrows, fixed text, rectangles — remembers what labels must not cover
@@ -138,6 +138,9 @@ def round_scale_value(value: float) -> float:
 
 
 
+#: the side of the square whose area is a round mark's (its 16-gon's), per unit of radius
+_ROUND_MARK = math.sqrt(8.0 * math.sin(math.pi / 8.0))
+
 _LAYERS = ("ground", "construction", "similarity", "links", "components", "results",
            "marks", "points", "leaders", "labels", "text")
 
@@ -149,8 +152,10 @@ class Canvas:
         self.zoom = zoom
         self.layers: dict[str, list] = {name: [] for name in _LAYERS}
         self.definitions: list = []
-        self.obstacle_lines: list = []
-        self.obstacle_areas: list = []
+        #: what labels keep clear of: drawn lines as point sequences, marks and fixed text as
+        #: rectangles (x0, y0, x1, y1)
+        self.obstacle_lines: list[tuple[Point, ...]] = []
+        self.obstacle_areas: list[tuple[float, float, float, float]] = []
         self.requests: list[LabelRequest] = []
         self.used: set[str] = set()
         self.arrow_steps: list[int] = []
@@ -174,8 +179,6 @@ class Canvas:
     def line(self, p: Point, q: Point, *, color: str, width: float, dash: str | None = None,
              layer: str = "construction", obstacle: bool = True, cap: str = "butt",
              css: str | None = None, data: dict | None = None) -> None:
-        from shapely.geometry import LineString
-
         attrs = {"x1": num(p[0]), "y1": num(p[1]), "x2": num(q[0]), "y2": num(q[1]),
                  "stroke": color, "stroke-width": num(width)}
         if dash:
@@ -188,14 +191,12 @@ class Canvas:
         self.add(layer, "line", attrs)
         self.grow(p, q)
         if obstacle and vector_length(difference(q, p)) > 0:
-            self.obstacle_lines.append(LineString([p, q]))
+            self.obstacle_lines.append((p, q))
 
     def polyline(self, points: Sequence[Point], *, color: str, width: float,
                  dash: str | None = None, layer: str = "marks", obstacle: bool = True,
                  fill: str = "none", closed: bool = False, css: str | None = None,
                  data: dict | None = None) -> None:
-        from shapely.geometry import LineString
-
         attrs = {"points": points_attribute(points), "fill": fill, "stroke": color,
                  "stroke-width": num(width), "stroke-linejoin": "round"}
         if dash:
@@ -206,14 +207,11 @@ class Canvas:
         self.add(layer, "polygon" if closed else "polyline", attrs)
         self.grow(*points)
         if obstacle:
-            ring = list(points) + ([points[0]] if closed else [])
-            self.obstacle_lines.append(LineString(ring))
+            self.obstacle_lines.append(tuple(points) + ((points[0],) if closed else ()))
 
     def circle(self, centre: Point, radius: float, *, fill: str, stroke: str = "none",
                width: float = 0.0, layer: str = "points", area: bool = True,
                css: str | None = None) -> None:
-        from shapely.geometry import Point as ShapelyPoint
-
         attrs = {"cx": num(centre[0]), "cy": num(centre[1]), "r": num(radius), "fill": fill}
         if stroke != "none":
             attrs |= {"stroke": stroke, "stroke-width": num(width)}
@@ -223,13 +221,14 @@ class Canvas:
         self.grow((centre[0] - radius, centre[1] - radius),
                   (centre[0] + radius, centre[1] + radius))
         if area:
-            self.obstacle_areas.append(ShapelyPoint(centre).buffer(radius, quad_segs=4))
+            # a round mark as the square of the area of its 16-gon
+            half = _ROUND_MARK * radius / 2
+            self.obstacle_areas.append((centre[0] - half, centre[1] - half, centre[0] + half,
+                                        centre[1] + half))
 
     def arrow(self, p: Point, q: Point, style_key: str, *, layer: str, step: int | None = None,
               color: str | None = None, css: str | None = None) -> bool:
         """A vector from p to q with its head at q; False if too short to draw."""
-        from shapely.geometry import LineString
-
         style = STYLES[style_key]
         vector = difference(q, p)
         length = vector_length(vector)
@@ -254,7 +253,7 @@ class Canvas:
             self.arrow_steps.append(step)
         self.add(layer, "g", group, [("line", line, []), ("polygon", tip, [])])
         self.grow(p, q)
-        self.obstacle_lines.append(LineString([p, q]))
+        self.obstacle_lines.append((p, q))
         return True
 
     def rectangle(self, corner: Point, size: Point, *, fill: str, stroke: str = "none",
@@ -278,8 +277,6 @@ class Canvas:
              layer: str = "text", area: bool = True, family: str = TEXT_FAMILY,
              italic: bool = False, monospace: bool = False) -> float:
         """Fixed text (sans, or monospaced with its spaces kept); returns its width."""
-        from shapely.geometry import box
-
         if monospace:
             family = MONO_FAMILY
             width = 0.6 * size * len(text)
@@ -299,8 +296,8 @@ class Canvas:
         left = xy[0] - (width if anchor == "end" else width / 2 if anchor == "middle" else 0)
         self.grow((left, xy[1] - 0.8 * size), (left + width, xy[1] + 0.25 * size))
         if area:
-            self.obstacle_areas.append(box(left, xy[1] - 0.8 * size, left + width,
-                                           xy[1] + 0.25 * size))
+            self.obstacle_areas.append((left, xy[1] - 0.8 * size, left + width,
+                                        xy[1] + 0.25 * size))
         return width
 
     def request(self, points: tuple[str, ...], anchor: Point, runs: tuple[Run, ...], *,

@@ -1,4 +1,4 @@
-"""Point labels in textbook style, and their placement without overlaps (shapely).
+"""Point labels in textbook style, and their placement without overlaps.
 
 Label text
 ----------
@@ -215,32 +215,22 @@ for _batch in _BATCHES:
                         np.asarray(DISTANCES)[_steps] + 0.05 * _order))
 
 
-def _segments(lines) -> np.ndarray:
-    """The straight pieces (x0, y0, x1, y1) of a line geometry (None: none)."""
-    import shapely
+def _segments(lines: Sequence[Sequence[tuple[float, float]]]) -> np.ndarray:
+    """The straight pieces (x0, y0, x1, y1) of the drawn lines (point sequences); a piece
+    drawn twice (a construction line along a vector) counts once.
 
-    if lines is None or lines.is_empty:
+    >>> _segments([((0, 0), (1, 0), (1, 1)), ((1, 0), (0, 0))]).tolist()
+    [[0.0, 0.0, 1.0, 0.0], [1.0, 0.0, 1.0, 1.0]]
+    """
+    pieces = [(*line[k], *line[k + 1]) for line in lines for k in range(len(line) - 1)]
+    if not pieces:
         return np.empty((0, 4))
-    coordinates, index = shapely.get_coordinates(shapely.get_parts(lines), return_index=True)
-    same = index[1:] == index[:-1]
-    return np.hstack((coordinates[:-1][same], coordinates[1:][same]))
-
-
-def _rectangles(areas) -> np.ndarray:
-    """Each area as a rectangle (x0, y0, x1, y1): its bounds where it fills them (text), else
-    the square of its area about its centroid (a point's round mark)."""
-    import shapely
-
-    shapes = np.asarray([a for a in areas if not a.is_empty], dtype=object)
-    if not len(shapes):
-        return np.empty((0, 4))
-    bounds = shapely.bounds(shapes)
-    area = shapely.area(shapes)
-    centre = shapely.get_coordinates(shapely.centroid(shapes))
-    half = np.sqrt(area) / 2
-    square = np.hstack((centre - half[:, None], centre + half[:, None]))
-    fills = area >= 0.999 * (bounds[:, 2] - bounds[:, 0]) * (bounds[:, 3] - bounds[:, 1])
-    return np.where(fills[:, None], bounds, square)
+    out = np.asarray(pieces, dtype=float)
+    # each piece from its lower end (x, then y), so that a piece drawn both ways is one
+    swap = (out[:, 2] < out[:, 0]) | ((out[:, 2] == out[:, 0]) & (out[:, 3] < out[:, 1]))
+    out[swap] = out[swap][:, [2, 3, 0, 1]]
+    out = out[np.any(out[:, :2] != out[:, 2:], axis=1)]           # no zero-length pieces
+    return np.unique(out, axis=0)
 
 
 def _meeting(items: np.ndarray, region) -> np.ndarray:
@@ -301,22 +291,20 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     requests
         The labels, placed in this order.
     lines
-        Shapely geometries of drawn lines (their length under a label counts).
+        The drawn lines as sequences of points (their length under a label counts).
     areas
-        Shapely geometries of point marks, symbols and fixed text (their area counts).
+        Point marks, symbols and fixed text as rectangles (x0, y0, x1, y1) (their area
+        counts).
 
     Examples
     --------
-    >>> from shapely.geometry import LineString
     >>> request = LabelRequest(("b",), (0.0, 0.0), label_runs("b"), 15.0)
-    >>> placed = place_labels([request, request], [LineString([(-50, 0), (50, 0)])], [])
+    >>> placed = place_labels([request, request], [((-50, 0), (50, 0))], [])
     >>> len(placed), placed[0].box[2] < placed[1].box[0] or placed[1].box[2] < placed[0].box[0]
     (2, True)
     """
-    from shapely import unary_union
-
-    segments = _segments(unary_union(list(lines)) if lines else None)   # overlaps once
-    rectangles = _rectangles(areas)
+    segments = _segments(lines)
+    rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
     placed: list[PlacedLabel] = []
     taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1)
     for request in requests:
