@@ -198,7 +198,7 @@ def _candidate(anchor, direction_deg, distance, width, ascent, descent):
 
 
 #: the distances costed together (a label mostly settles within the first batch), and per
-#: batch: each candidate's distance step, distance, direction order and direction terms
+#: batch: each candidate's distance and direction terms and its cost before obstacles
 _BATCHES = ((0, 1, 2), tuple(range(3, len(DISTANCES))))
 #: the candidate directions' unit vectors (page y down) and the signs that put a box beyond
 #: its point (see _candidate)
@@ -210,7 +210,7 @@ _CANDIDATES = []
 for _batch in _BATCHES:
     _steps = np.repeat(np.asarray(_batch), len(DIRECTIONS))
     _order = np.tile(np.arange(len(DIRECTIONS)), len(_batch))
-    _CANDIDATES.append((_batch, _steps, np.asarray(DISTANCES)[_steps], _UX[_order],
+    _CANDIDATES.append((_batch, np.asarray(DISTANCES)[_steps], _UX[_order],
                         _UY[_order], _SX[_order], _SY[_order],
                         np.asarray(DISTANCES)[_steps] + 0.05 * _order))
 
@@ -315,12 +315,12 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
         best = None                         # (cost, box, distance)
-        for batch, steps, distance, ux, uy, sx, sy, base in _CANDIDATES:
+        for batch, distance, ux, uy, sx, sy, base in _CANDIDATES:
             reach = request.mark_radius + distance
             cx = ax + ux * reach + sx * half_w
             cy = ay + uy * reach + sy * half_h
             boxes = np.stack((cx - half_w, cy - half_h, cx + half_w, cy + half_h), axis=1)
-            free = np.ones(len(boxes), dtype=bool)
+            free = True
             if len(taken):   # widened by the gap kept between labels; touching counts
                 free = ~np.any((boxes[:, 0, None] - LABEL_GAP <= taken[:, 2])
                                & (taken[:, 0] <= boxes[:, 2, None] + LABEL_GAP)
@@ -336,13 +336,15 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
             if len(under):
                 cost = cost + AREA_COST * np.maximum(
                     _overlap_areas(under, boxes) - _overlap_areas(own_mark, boxes), 0.0)
+            # per distance of the batch, its cheapest free candidate (the first of equals)
+            table = np.where(free, cost, np.inf).reshape(len(batch), len(DIRECTIONS))
+            picks = table.argmin(axis=1)
+            lowest = table[np.arange(len(batch)), picks].tolist()
             settled = False
-            for step in batch:              # the nearest distance with a clean spot wins
-                candidates = np.flatnonzero(free & (steps == step))
-                if len(candidates):
-                    pick = candidates[np.argmin(cost[candidates])]
-                    if best is None or cost[pick] < best[0] - 1e-9:
-                        best = (float(cost[pick]), boxes[pick], DISTANCES[step])
+            for row, step in enumerate(batch):   # the nearest distance with a clean spot wins
+                if lowest[row] < math.inf and (best is None or lowest[row] < best[0] - 1e-9):
+                    best = (lowest[row], boxes[row * len(DIRECTIONS) + picks[row]],
+                            DISTANCES[step])
                 if best is not None and best[0] <= DISTANCES[step] + 1.0:
                     settled = True
                     break
