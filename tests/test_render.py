@@ -475,3 +475,20 @@ def test_every_construction_element_says_its_step_for_playback(path):
             for element in layer:
                 assert element.get("data-step") is not None, (plan.kind, element.attrib)
                 assert int(element.get("data-step")) in steps
+
+
+def test_labels_that_find_no_free_spot_go_below_all_others():
+    """Crowd one point with more labels than its candidate spots hold: the ones that find no
+    free spot are put below everything (with a leader), and still no two boxes overlap."""
+    from planmethod.render.labels import LabelRequest, place_labels
+
+    requests = [LabelRequest((f"p{k}",), (0.0, 0.0), label_runs(f"p{k}"), 15.0)
+                for k in range(160)]
+    placed = place_labels(requests, [((-300.0, 0.0), (300.0, 0.0))], [(-3, -3, 3, 3)])
+    assert len(placed) == len(requests)
+    below = [label for label in placed if label.leader and label.box[1] > 84.0]
+    assert below                                   # some had to go below everything
+    for first, second in combinations(placed, 2):
+        ax0, ay0, ax1, ay1 = first.box
+        bx0, by0, bx1, by1 = second.box
+        assert ax1 <= bx0 or bx1 <= ax0 or ay1 <= by0 or by1 <= ay0, (first.text, second.text)

@@ -181,38 +181,36 @@ class PlacedLabel:
         return plain(self.runs)
 
 
-def _candidate(anchor, direction_deg, distance, width, ascent, descent):
-    """Baseline and box of a label placed ``distance`` beyond the anchor in a direction."""
-    ux = math.cos(math.radians(direction_deg))
-    uy = -math.sin(math.radians(direction_deg))          # page y points down
-    half_w, half_h = width / 2 + PADDING, (ascent + descent) / 2 + PADDING
-    # the box sits beyond the point: its edge (axis directions) or its corner (diagonals)
-    # nearest to the point lies `distance` away along the direction
-    sx = max(-1.0, min(1.0, ux * math.sqrt(2)))
-    sy = max(-1.0, min(1.0, uy * math.sqrt(2)))
+def _directions(degrees) -> tuple:
+    """The unit vector (page y down) of each direction, and the signs that put a label's box
+    beyond its point: its edge (axis directions) or its corner (diagonals) nearest to the point
+    lies the distance away along the direction."""
+    ux = np.cos(np.radians(degrees))
+    uy = -np.sin(np.radians(degrees))
+    return ux, uy, np.clip(ux * math.sqrt(2), -1.0, 1.0), np.clip(uy * math.sqrt(2), -1.0, 1.0)
+
+
+def _boxes(anchor, directions, distance, half_w: float, half_h: float) -> np.ndarray:
+    """The boxes (x0, y0, x1, y1) of a label ``distance`` beyond the anchor in each of the
+    ``directions`` (see :func:`_directions`)."""
+    ux, uy, sx, sy = directions
     cx = anchor[0] + ux * distance + sx * half_w
     cy = anchor[1] + uy * distance + sy * half_h
-    box = (cx - half_w, cy - half_h, cx + half_w, cy + half_h)
-    baseline = (box[0] + PADDING, box[1] + PADDING + ascent)
-    return baseline, box
+    return np.stack((cx - half_w, cy - half_h, cx + half_w, cy + half_h), axis=-1)
 
 
 #: the distances costed together (a label mostly settles within the first batch), and per
 #: batch: each candidate's distance and direction terms and its cost before obstacles
 _BATCHES = ((0, 1, 2), tuple(range(3, len(DISTANCES))))
-#: the candidate directions' unit vectors (page y down) and the signs that put a box beyond
-#: its point (see _candidate)
-_UX = np.cos(np.radians(DIRECTIONS))
-_UY = -np.sin(np.radians(DIRECTIONS))
-_SX = np.clip(_UX * math.sqrt(2), -1.0, 1.0)
-_SY = np.clip(_UY * math.sqrt(2), -1.0, 1.0)
 _CANDIDATES = []
 for _batch in _BATCHES:
     _steps = np.repeat(np.asarray(_batch), len(DIRECTIONS))
     _order = np.tile(np.arange(len(DIRECTIONS)), len(_batch))
-    _CANDIDATES.append((_batch, np.asarray(DISTANCES)[_steps], _UX[_order],
-                        _UY[_order], _SX[_order], _SY[_order],
+    _CANDIDATES.append((_batch, np.asarray(DISTANCES)[_steps],
+                        _directions(np.asarray(DIRECTIONS)[_order]),
                         np.asarray(DISTANCES)[_steps] + 0.05 * _order))
+#: where a label goes when every spot overlaps: straight below
+_BELOW = _directions(np.array([-90.0]))
 
 
 def _segments(lines: Sequence[Sequence[tuple[float, float]]]) -> np.ndarray:
@@ -315,11 +313,9 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
         best = None                         # (cost, box, distance)
-        for batch, distance, ux, uy, sx, sy, base in _CANDIDATES:
-            reach = request.mark_radius + distance
-            cx = ax + ux * reach + sx * half_w
-            cy = ay + uy * reach + sy * half_h
-            boxes = np.stack((cx - half_w, cy - half_h, cx + half_w, cy + half_h), axis=1)
+        for batch, distance, directions, base in _CANDIDATES:
+            boxes = _boxes((ax, ay), directions, request.mark_radius + distance, half_w,
+                           half_h)
             free = True
             if len(taken):   # widened by the gap kept between labels; touching counts
                 free = ~np.any((boxes[:, 0, None] - LABEL_GAP <= taken[:, 2])
@@ -352,12 +348,11 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
                 break
         if best is None:                    # every spot overlaps: put it below everything
             bottom = float(taken[:, 3].max()) if len(taken) else ay
-            baseline, bounds = _candidate((ax, bottom + 4), -90, 0.0, width, ascent, descent)
-            far = True
-        else:
-            bounds = tuple(float(v) for v in best[1])
-            baseline = (bounds[0] + PADDING, bounds[1] + PADDING + ascent)
-            far = best[2] > LEADER_DISTANCE
+            best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, half_w, half_h)[0],
+                    math.inf)
+        bounds = tuple(float(v) for v in best[1])
+        baseline = (bounds[0] + PADDING, bounds[1] + PADDING + ascent)
+        far = best[2] > LEADER_DISTANCE
         taken = np.vstack((taken, [bounds]))
         placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
                                   (round(baseline[0], 2), round(baseline[1], 2)),
