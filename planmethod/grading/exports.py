@@ -42,6 +42,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 from xml.sax.saxutils import escape
 
+from ..io import json_text
 from .answers import FEEDBACK_LEVELS, feedback_text
 
 __all__ = [
@@ -240,7 +241,7 @@ def gradescope_autograder(bundle: Mapping[str, Any], *, feedback: str = "hints"
               + ", ".join(q["id"] for q in bundle["keys"][0]["questions"]) + "\n")
     return {"setup.sh": setup, "run_autograder": _RUN_AUTOGRADER,
             "grade_submission.py": _GRADE_SUBMISSION.replace("@FEEDBACK@", feedback),
-            "README.txt": readme, "keys.json": json.dumps(bundle, ensure_ascii=False, indent=1)}
+            "README.txt": readme, "keys.json": json_text(bundle)}
 
 
 # -- PrairieLearn ----------------------------------------------------------------------------

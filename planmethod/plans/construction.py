@@ -37,6 +37,7 @@ from ..errors import PlanmethodError, ToggleError
 from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
+from ..kinematics.state import cross
 from ..model import FRAME, Exercise, PlanSettings
 from ..vocabulary import _SUBSCRIPT, PlanKind, link_numbers, symbol
 from .scales import Scales, choose_scales
@@ -237,10 +238,6 @@ def _perp(vector: np.ndarray) -> np.ndarray:
     return np.stack((-vector[..., 1], vector[..., 0]), axis=-1)
 
 
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
 def _dot(a, b):
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
@@ -379,7 +376,7 @@ class _Sheet:
     def intersect(self, first: int, second: int, end: str, *, text: str, group_name: str,
                   group: int, angle: float) -> np.ndarray:
         (p1, e1), (p2, e2) = self.lines[first], self.lines[second]
-        sine = _cross(e1, e2)
+        sine = cross(e1, e2)
         degrees = math.degrees(math.asin(min(1.0, float(np.min(np.abs(sine))))))
         limit = max(TOGGLE_SINE, self.precision / SHEET_MM)
         if np.min(np.abs(sine)) < limit:
@@ -387,7 +384,7 @@ class _Sheet:
                 f"toggle position: on the {self.kind} plan the lines of steps {first} and "
                 f"{second} are parallel to within the drawing's precision "
                 f"({degrees:.3g}°)", line_angle_deg=degrees, link=group_name, angle=angle)
-        t = _cross(p2 - p1, e2) / sine
+        t = cross(p2 - p1, e2) / sine
         self.points[end] = p1 + _times(t, e1)
         flagged = degrees < self.min_angle
         if flagged:
@@ -562,7 +559,7 @@ class _Emulator:
                 continue
             unit = axis / length
             offset = position - image.ref
-            across = float(_cross(unit, offset))
+            across = float(cross(unit, offset))
             if abs(across) <= 1e-9 * length:         # on the link's line: no mirror image
                 return position
             if not self.mirror(Segment(sheet.kind, "similarity", label, link)):
