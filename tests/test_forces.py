@@ -16,10 +16,11 @@ from planmethod.forces.applied import Wrench, applied_loads
 from planmethod.forces.groups import solve_by_groups
 from planmethod.forces.system import solve_whole_system
 from planmethod.kinematics import solve
-from planmethod.kinematics.state import LinkState, cross, perp
+from planmethod.kinematics.state import LinkState
 from planmethod.model import Load
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict, load_exercise
+from planmethod.vectors import cross, perp
 
 CASE_A = "exercises/fourbar_forces.toml"
 BALANCING_A = {0.0: -0.910965, 60.0: 0.642055, 150.0: -0.577299}

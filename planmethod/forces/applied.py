@@ -39,8 +39,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SpecError
-from ..kinematics.state import LinkState, cross, norm
+from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
+from ..vectors import cross, norm
 from ..vocabulary import AppliedKind
 
 __all__ = [

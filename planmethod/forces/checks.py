@@ -33,8 +33,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.state import LinkState, cross, perp
+from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
+from ..vectors import cross, perp
 from .applied import AppliedItem, AppliedLoads
 
 __all__ = ["LeverForce", "ZhukovskyLever", "power_moment", "power_residual", "zhukovsky_lever"]

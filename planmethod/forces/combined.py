@@ -42,8 +42,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.state import cross, perp
 from ..model import FRAME
+from ..vectors import cross, perp
 from .applied import AppliedLoads
 
 __all__ = ["CombinedConstants", "CombinedConstruction", "CombinedForce", "EpsilonSense",

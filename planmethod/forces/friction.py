@@ -41,9 +41,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ConvergenceError
-from ..kinematics.state import LinkState, norm, unit_angle
+from ..kinematics.state import LinkState
 from ..model import Mechanism
 from ..structure import Structure
+from ..vectors import norm, unit_angle
 from ..vocabulary import AppliedKind, PairKind
 from .applied import REST_SPEED, AppliedItem, AppliedLoads
 from .groups import GroupSolution, solve_by_groups

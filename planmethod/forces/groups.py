@@ -37,9 +37,10 @@ import numpy as np
 
 from ..errors import ForceError
 from ..kinematics.groups import kind_module
-from ..kinematics.state import LinkState, cross, norm, perp, unit_angle
+from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
+from ..vectors import cross, norm, perp, unit_angle
 from ..vocabulary import EdgeKind, GroupKind, PairKind
 from .applied import AppliedLoads, Wrench
 from .reactions import Reaction, canonical, pair_key

@@ -36,9 +36,10 @@ import numpy as np
 
 from ..errors import ForceError
 from ..kinematics.constraints import Constraint, ConstraintSystem
-from ..kinematics.state import LinkState, cross
+from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
+from ..vectors import cross
 from ..vocabulary import PairKind
 from .applied import AppliedLoads, Wrench
 from .reactions import Reaction, canonical, pair_key

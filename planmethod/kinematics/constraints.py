@@ -29,8 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import Mechanism, Slide
+from ..vectors import perp, rotate, unit_angle
 from ..vocabulary import PairKind
-from .state import LinkState, perp, rotate, unit_angle
+from .state import LinkState
 
 __all__ = ["Constraint", "ConstraintSystem"]
 

@@ -31,11 +31,12 @@ import numpy as np
 from ..errors import PlanmethodError, SpecError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure
+from ..vectors import cross, norm, perp
 from .algebra import Body
 from .groups import kind_module
 from .groups.base import Construction, Context, ThetaKind, construction, error_estimate
 from .program import STAGES, Branch, model, owners
-from .state import LinkState, cross, norm, perp
+from .state import LinkState
 from .tracing import CHUNK
 
 __all__ = ["FLAG_ERROR", "STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "Sliding",

@@ -1,4 +1,4 @@
-"""Vector helpers and the state of a moving link (pose, ω, ε, velocity and acceleration).
+"""The state of a moving link (pose, ω, ε, velocity and acceleration).
 
 All arrays carry the crank angles on the leading axis: scalars have shape (N,), vectors (N, 2).
 
@@ -15,57 +15,13 @@ array([[-2.,  0.]])
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["LinkState", "cross", "norm", "perp", "rotate", "unit", "unit_angle"]
+from ..vectors import rotate, turn_onto, unit_angle
 
-# Row vectors times these 2 × 2 matrices: one vectorised call instead of a stack of columns
-# (the solver's hot path; the products are exact: each entry is ±1 or 0).
-_TURN = np.array([[0.0, 1.0], [-1.0, 0.0]])
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """z-component of a × b for arrays of 2-vectors."""
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
-def perp(a: np.ndarray) -> np.ndarray:
-    """a turned by +90° (counter-clockwise): J·a."""
-    return np.asarray(a, dtype=float) @ _TURN
-
-
-def norm(a: np.ndarray) -> np.ndarray:
-    x, y = a[..., 0], a[..., 1]
-    return np.sqrt(x * x + y * y)  # hypot is 10× slower; lengths here never over/underflow
-
-
-def unit(a: np.ndarray) -> np.ndarray:
-    return a / norm(a)[..., None]
-
-
-def unit_angle(theta: np.ndarray) -> np.ndarray:
-    """Unit vectors at angles ``theta`` (rad)."""
-    theta = np.asarray(theta, dtype=float)
-    out = np.empty((*theta.shape, 2))
-    np.cos(theta, out=out[..., 0])
-    np.sin(theta, out=out[..., 1])
-    return out
-
-
-@functools.lru_cache(maxsize=4096)
-def _turn_matrix(x: float, y: float) -> np.ndarray:
-    matrix = np.array([[x, y], [-y, x]])
-    matrix.flags.writeable = False
-    return matrix
-
-
-def _turn_by(axes: np.ndarray, local) -> np.ndarray:
-    """``local`` (2,) turned onto the unit vectors ``axes`` = (cos θ, sin θ) (N, 2)."""
-    x, y = local
-    return axes @ _turn_matrix(float(x), float(y))
+__all__ = ["LinkState"]
 
 
 def _complex(a: np.ndarray) -> np.ndarray:
@@ -76,17 +32,6 @@ def _complex(a: np.ndarray) -> np.ndarray:
 def _real(z: np.ndarray) -> np.ndarray:
     """Complex numbers (...) as a float array (..., 2)."""
     return z[..., None].view(np.float64)
-
-
-def rotate(local, theta: np.ndarray, axes: np.ndarray | None = None) -> np.ndarray:
-    """A local vector (2,) or (N, 2) turned by ``theta`` (N,); ``axes`` (cos θ, sin θ) may be
-    passed when known."""
-    local = np.asarray(local, dtype=float)
-    if local.ndim == 1 and np.ndim(theta) == 1:
-        return _turn_by(unit_angle(theta) if axes is None else axes, local)
-    c, s = (np.cos(theta), np.sin(theta)) if axes is None else (axes[..., 0], axes[..., 1])
-    x, y = local[..., 0], local[..., 1]
-    return np.stack((c * x - s * y, s * x + c * y), axis=-1)
 
 
 @dataclass(frozen=True, slots=True)
@@ -118,10 +63,10 @@ class LinkState:
         if isinstance(local, tuple) and len(local) == 2 and np.ndim(self.theta) == 1:
             if local[0] == 0 and local[1] == 0:
                 return self.origin.copy()
-            return self.origin + _turn_by(self.axes(), local)
+            return self.origin + turn_onto(self.axes(), local)
         local = np.asarray(local, dtype=float)
         if local.ndim == 1 and np.ndim(self.theta) == 1:
-            return self.origin + _turn_by(self.axes(), local)
+            return self.origin + turn_onto(self.axes(), local)
         return self.origin + rotate(local, self.theta)
 
     def to_local(self, position: np.ndarray) -> np.ndarray:

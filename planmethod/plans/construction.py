@@ -37,8 +37,8 @@ from ..errors import PlanmethodError, ToggleError
 from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
-from ..kinematics.state import cross
 from ..model import FRAME, Exercise, PlanSettings
+from ..vectors import cross
 from ..vocabulary import _SUBSCRIPT, PlanKind, link_numbers, symbol
 from .scales import Scales, choose_scales
 

@@ -57,10 +57,11 @@ import numpy as np
 from ...errors import AssemblyError, BranchJumpError, ConvergenceError, StructureError, ToggleError
 from ...model import FRAME, Mechanism
 from ...structure import AssurGroup
+from ...vectors import rotate
 from ...vocabulary import GroupKind, PairKind
 from ..algebra import Body, maximum, minimum, sqrt
 from ..constraints import ConstraintSystem
-from ..state import LinkState, rotate
+from ..state import LinkState
 from ..tracing import Redo, Traced
 from .base import Branch, Context
 

@@ -23,9 +23,9 @@ from __future__ import annotations
 import numpy as np
 
 from ...structure import AssurGroup
+from ...vectors import cross
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec
-from ..state import cross
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]

@@ -27,9 +27,9 @@ import math
 import numpy as np
 
 from ...structure import AssurGroup
+from ...vectors import cross, norm
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec, sqrt
-from ..state import cross, norm
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]

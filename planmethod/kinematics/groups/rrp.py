@@ -24,9 +24,9 @@ from __future__ import annotations
 import numpy as np
 
 from ...structure import AssurGroup
+from ...vectors import cross, perp
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, sqrt
-from ..state import cross, perp
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]

@@ -25,9 +25,9 @@ import numpy as np
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
 from ...structure import AssurGroup
+from ...vectors import perp
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, sqrt
-from ..state import perp
 from . import base
 
 KIND = GroupKind.RRR

@@ -40,9 +40,9 @@ import numpy as np
 
 from ...errors import ToggleError
 from ...structure import AssurGroup
+from ...vectors import cross, norm, perp
 from ...vocabulary import EdgeKind, GroupKind, PairKind
 from ..algebra import Body, absolute, cos, maximum, sin, sqrt
-from ..state import cross, norm, perp
 from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, ThetaKind, sense, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
 
