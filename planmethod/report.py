@@ -24,7 +24,7 @@ import numpy as np
 from . import vocabulary
 from .errors import PlanmethodError
 from .kinematics import Motion, solve
-from .kinematics.solve import FLAG_ERROR
+from .kinematics.solve import FLAG_ERROR, pose
 from .model import FRAME, Exercise
 from .plans import Plans, draw_plans
 from .plans.construction import PlansUnavailableError
@@ -154,23 +154,28 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
     exercise
         The exercise.
     angle
-        Crank angle (deg).
+        Crank angle (deg). The assemblies are those chosen at ``drive.angle`` (the sketch or
+        the default branch), followed to this angle as a sweep follows them
+        (:func:`~planmethod.kinematics.solve.pose`); a group that meets a limit position on
+        the way is a ``ToggleError`` naming it and the crank angle of the limit.
     precision_mm
         Overrides ``[plan] precision_mm``.
     plans
         Draw the plans (and check them); with False only the exact values are computed.
     """
-    mechanism = exercise.mechanism
-    if angle is not None:
-        exercise = replace(exercise, mechanism=replace(
-            mechanism, drive=replace(mechanism.drive, angle=float(angle))))
-        mechanism = exercise.mechanism
+    scene = plan_scene(exercise)
+    branches = None
+    if angle is not None and angle != exercise.mechanism.drive.angle:
+        # the assembly chosen at drive.angle, followed to the angle as a sweep follows it
+        posed = pose(exercise.mechanism, angle, links=scene.links)
+        exercise, branches = replace(exercise, mechanism=posed.mechanism), posed.branches
     if precision_mm is not None:
         exercise = replace(exercise, plan=replace(exercise.plan, precision_mm=precision_mm))
+    mechanism = exercise.mechanism
     angle = mechanism.drive.angle
     structure = analyse_structure(mechanism)
-    scene = plan_scene(exercise)
-    motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, structure=structure)
+    motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, structure=structure,
+                   branches=branches)
     drawn = None
     if plans:
         try:

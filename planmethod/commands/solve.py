@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -11,7 +12,9 @@ from pathlib import Path
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", help="exercise file (TOML)")
     parser.add_argument("--angle", type=float, metavar="DEG",
-                        help="crank angle in degrees (default: drive.angle of the file)")
+                        help="crank angle in degrees (default: drive.angle of the file); "
+                             "the assembly chosen at drive.angle is followed there, as a "
+                             "sweep follows it")
     parser.add_argument("--svg", metavar="DIR",
                         help="write the drawings into DIR as SVG: the position, velocity, "
                              "acceleration and lever plans (and the force drawings with "
@@ -77,10 +80,14 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import PlanmethodError, SpecError
     from ..io import write_bytes_atomic, write_text_atomic
     from ..report import analyse, report_dict
-    from ..spec import load_exercise
+    from ..spec import MAX_ANGLE_DEG, load_exercise
 
     if args.precision is not None and not args.precision >= 0:
         raise SpecError(f"--precision must be a non-negative number of mm, got {args.precision}")
+    if args.angle is not None and not (math.isfinite(args.angle)
+                                       and abs(args.angle) <= MAX_ANGLE_DEG):
+        raise SpecError(f"must be a finite number of degrees within ±{MAX_ANGLE_DEG:g}°, got "
+                        f"{args.angle:g}", key="option --angle")
     exercise = load_exercise(args.file)
     analysis = analyse(exercise, args.angle, precision_mm=args.precision)
     files: dict[str, str] = {}
