@@ -189,6 +189,15 @@ def test_whitworth_every_entry_point_follows_the_sweep(capsys, tmp_path):
     assert exact["a_D"] == pytest.approx(row["a_D"], rel=AGREE)
 
 
+def test_whitworth_variant_at_another_angle_keeps_the_assembly():
+    from planmethod.grading.templates import draw_variant, load_template, variant_exercise
+
+    exercise = variant_exercise(draw_variant(load_template(WHITWORTH)), 250.0)
+    motion = solve(exercise.mechanism)
+    assert exercise.mechanism.drive.angle == 250.0
+    assert lever_side(motion.position("C"), motion.position("B")) > 0
+
+
 def test_whitworth_posed_mechanism_keeps_the_assembly():
     """The posed exercise (what the workbook builds its keys from) solves at its own
     drive.angle on the followed assembly, whatever solves it next."""

@@ -635,13 +635,14 @@ def to_toml(data: Mapping[str, Any]) -> str:
 
 
 def variant_exercise(variant: Variant, angle: float | None = None) -> Exercise:
-    """The variant's exercise, optionally at another crank angle."""
+    """The variant's exercise, optionally posed at another crank angle on the assemblies
+    chosen at its ``drive.angle`` (:func:`planmethod.kinematics.solve.pose`)."""
+    from ..kinematics.solve import pose
+
     if angle is None:
         return variant.exercise
     exercise = variant.exercise
-    mechanism = exercise.mechanism
-    return replace(exercise, mechanism=replace(mechanism, drive=replace(mechanism.drive,
-                                                                        angle=float(angle))))
+    return replace(exercise, mechanism=pose(exercise.mechanism, angle).mechanism)
 
 
 def resolved_copy(data: Mapping[str, Any]) -> dict[str, Any]:
