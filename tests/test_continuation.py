@@ -251,6 +251,18 @@ def test_a_limit_between_the_coarse_steps_is_found():
     follow(mechanism, -60.0)           # the other way round
 
 
+def test_an_assembly_that_cannot_be_chosen_says_where(capsys, tmp_path):
+    """The assembly is chosen at drive.angle: where the file's links do not join there, the
+    error says so, whatever angle was asked."""
+    text = ROCKER.read_text(encoding="utf-8").replace("angle = 60", "angle = 150")
+    path = tmp_path / "rocker_at_150.toml"
+    path.write_text(text, encoding="utf-8")
+    code, out, err = run(capsys, "solve", path, "--angle", "60")
+    assert code == 2 and not out and err.count("\n") == 1
+    assert "crank angle 150°" in err and "cannot join" in err
+    assert "at drive.angle, where the assembly followed to 60° is chosen" in err
+
+
 def test_out_of_range_angle_is_refused(capsys):
     for text in ("nan", "1e300", "36000.5"):
         code, out, err = run(capsys, "solve", WHITWORTH, f"--angle={text}")

@@ -753,7 +753,14 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
     angle = float(angle)
     found = model(mechanism)
     groups = found.groups(links)
-    original = found.branches(groups)
+    try:
+        original = found.branches(groups)
+    except PlanmethodError as error:
+        if angle != start and error.angle == start:   # say why that angle, not the one asked
+            error.message += (f" (at drive.angle, where the assembly followed to {angle:g}° "
+                              "is chosen)")
+            error.args = (str(error),)
+        raise
     if angle == start:
         return Posed(mechanism, original, start)
     follow(mechanism, angle, links=links)
