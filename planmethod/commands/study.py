@@ -12,7 +12,6 @@ are checked against the numbers. ``--plot`` draws the table, ``--csv`` writes it
 from __future__ import annotations
 
 import argparse
-import io
 import math
 
 #: the most values a study takes per parameter (each is a full-turn force analysis)
@@ -92,16 +91,18 @@ def table_text(study) -> str:
 
 
 def csv_text(study) -> str:
-    out = io.StringIO()
-    out.write("parameter,value," + ",".join(f"R_{p}_max" for p in study.pairs)
-              + ",M_b_max\n")
+    """The study as CSV: one line per parameter value, the largest reaction of each pair and
+    |M_b| (full precision)."""
+    from ..io import csv_text as spreadsheet_csv
+
+    rows: list[list] = [["parameter", "value", *(f"R_{p}_max" for p in study.pairs),
+                         "M_b_max"]]
     for parameter in study.parameters:
         for i, value in enumerate(parameter.values):
-            cells = [parameter.name, repr(float(value))]
-            cells += [repr(float(study.maxima[parameter.name][p][i])) for p in study.pairs]
-            cells.append(repr(float(study.balancing[parameter.name][i])))
-            out.write(",".join(cells) + "\n")
-    return out.getvalue()
+            rows.append([parameter.name, float(value),
+                         *(float(study.maxima[parameter.name][p][i]) for p in study.pairs),
+                         float(study.balancing[parameter.name][i])])
+    return spreadsheet_csv(rows)
 
 
 def run(args: argparse.Namespace) -> int:

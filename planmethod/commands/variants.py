@@ -81,7 +81,7 @@ def _earlier_run(out, *, force: bool) -> list:
     from pathlib import Path
 
     from ..errors import SpecError
-    from ..io import path_component
+    from ..io import path_component, spreadsheet_text
 
     out = Path(out)
     if not out.is_dir():
@@ -97,7 +97,8 @@ def _earlier_run(out, *, force: bool) -> list:
     try:
         with index.open(encoding="utf-8", newline="") as handle:
             for row in csv.DictReader(handle):
-                ours.add(out / path_component(row.get("folder") or "", "index.csv folder"))
+                folder = spreadsheet_text(row.get("folder") or "")
+                ours.add(out / path_component(folder, "index.csv folder"))
     except (OSError, UnicodeDecodeError, csv.Error):
         pass
     foreign = [entry.name for entry in entries if entry not in ours]
@@ -109,8 +110,6 @@ def _earlier_run(out, *, force: bool) -> list:
 
 
 def run(args: argparse.Namespace) -> int:
-    import csv
-    import io
     import json
     import shutil
     from pathlib import Path
@@ -118,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import SpecError
     from ..grading.keys import build_key, bundle
     from ..grading.templates import draw_variant, load_template, to_toml
-    from ..io import json_text, student_folder, write_files
+    from ..io import csv_text, json_text, student_folder, write_files
     from ..progress import Progress
 
     out = Path(args.out)
@@ -174,11 +173,7 @@ def run(args: argparse.Namespace) -> int:
             bar.advance()
     files["keys.json"] = json_text(bundle(keys, template=str(args.template), seed=args.seed,
                                           count=len(keys)))
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["student", "folder", "attempt", "values"])
-    writer.writerows(index_rows)
-    files["index.csv"] = buffer.getvalue()
+    files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *index_rows])
     for path in earlier:       # the earlier run's students, keys and index, now replaced
         if path.is_dir():
             shutil.rmtree(path)

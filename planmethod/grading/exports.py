@@ -32,8 +32,6 @@ Examples
 
 from __future__ import annotations
 
-import csv
-import io
 import json
 import math
 import re
@@ -42,7 +40,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 from xml.sax.saxutils import escape
 
-from ..io import json_text
+from ..io import csv_text, json_text
 from .answers import FEEDBACK_LEVELS, feedback_text
 
 __all__ = [
@@ -526,20 +524,19 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
 
 # -- CSV gradebook ---------------------------------------------------------------------------
 def gradebook_csv(results: list[Mapping[str, Any]]) -> str:
-    """One row per student: variant, score per question, total and maximum."""
+    """One row per student: variant, score per question, total and maximum (text cells made
+    safe to open in a spreadsheet: :func:`~planmethod.io.csv_text`)."""
     ids: list[str] = []
     for result in results:
         for question in result.get("questions", ()):
             if question["id"] not in ids:
                 ids.append(question["id"])
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["student", "variant", *ids, "total", "max", "note"])
+    rows: list[list[Any]] = [["student", "variant", *ids, "total", "max", "note"]]
     for result in results:
         scores = {q["id"]: q["score"] for q in result.get("questions", ())}
-        writer.writerow([result.get("student"), result.get("variant", ""),
-                         *[_format(scores[i]) if i in scores else "" for i in ids],
-                         _format(float(result.get("score", 0.0))),
-                         "" if result.get("max_score") is None
-                         else _format(float(result["max_score"])), result.get("error", "")])
-    return buffer.getvalue()
+        rows.append([result.get("student"), result.get("variant", ""),
+                     *[_format(scores[i]) if i in scores else "" for i in ids],
+                     _format(float(result.get("score", 0.0))),
+                     "" if result.get("max_score") is None
+                     else _format(float(result["max_score"])), result.get("error", "")])
+    return csv_text(rows)
