@@ -10,6 +10,7 @@ change it covers.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -129,3 +130,106 @@ def test_a_polyline_with_a_point_that_is_not_a_number_is_refused(capsys, tmp_pat
                     '<text x="0" y="0">p</text><text x="30" y="10">b</text></svg>')
     line = refused(capsys, ["grade", GOOD, "--drawing", path, "--plan", "velocity"], tmp_path)
     assert 'plan.svg: <polyline id="v">: points=' in line
+
+
+# -- answers that were lost or merged --------------------------------------------------------
+LOST_OR_MERGED = {
+    # an unterminated quote merged the rest of the file into one student
+    "a quote left open": ("student,v_C,omega_BC\ns1,5.27,-24.25\ns2,\"4\ns3,5.27,-24\n"
+                          "s4,1,2\n", "answers.csv: line 3: "),
+    "a quote closed on a later line": ("student,v_C\ns1,5\ns2,\"4\ns3,5\ns4,\"6\"\n",
+                                       "answers.csv: line 3: "),
+    "text after a closing quote": ("student,v_C\ns1,5\ns2,\"4\"x\n", "answers.csv: line 3: "),
+    "a quote left open in the header": ("student,\"v_C\ns1,5\n", "answers.csv: line 1: "),
+    # a repeated column kept the last one silently
+    "a column twice": ("student,v_C,v_C\ns1,1,5.27\n", "answers.csv: line 1: column 'v_C' "
+                                                      "is given twice (columns 2 and 3)"),
+    "a column twice in another case": ("student,v_C,V_c \ns1,1,5.27\n",
+                                       "answers.csv: line 1: column 'V_c'"),
+    # a header and no student graded an empty class
+    "a header and no student": ("student,v_C,omega_BC\n", "answers.csv: a header (line 1) and "
+                                                         "no student's answers"),
+    "a header and blank lines": ("student,v_C\n\n , \n", "no student's answers"),
+    # a JSON object with one stray value collapsed the class into one row for '*'
+    "a stray value in a class": ('{"s1": {"v_C": 5.27}, "s2": {"v_C": 4}, "s3": 6}',
+                                 "answers.json: s3: is a number, not an object of one "
+                                 "student's answers"),
+    "an object among one student's answers": ('{"v_C": 5.27, "a_C": 4, "x": {"a": 1}}',
+                                              "answers.json: x: is an object, not an answer"),
+    "a list as an answer": ('{"s1": {"v_C": [5.27]}}', "answers.json: s1.v_C: is a list"),
+    "a key twice": ('{"s1": {"v_C": 1}, "s1": {"v_C": 2}}', "answers.json: s1: the key is "
+                                                            "given twice"),
+    "an answer twice": ('[{"student": "s1", "v_C": 1, "v_C": 2}]', "answers.json: v_C: the key "
+                                                                  "is given twice"),
+    "an empty object": ("{}", "answers.json: no student's answers"),
+    "an empty list": ("[]", "answers.json: no student's answers"),
+    "a student id that is an object": ('[{"student": {"a": 1}, "v_C": 1}]',
+                                       "answers.json: [0].student: no student id"),
+    "a 5,000-digit answer": ('{"s1": {"v_C": ' + HUGE + "}}",
+                             "answers.json: s1.v_C: a whole number of 5000 digits"),
+}
+
+
+@pytest.mark.parametrize("case", list(LOST_OR_MERGED))
+def test_answers_that_would_be_lost_or_merged_are_refused(capsys, tmp_path, case):
+    text, expected = LOST_OR_MERGED[case]
+    path = tmp_path / ("answers.json" if text.startswith(("{", "[")) else "answers.csv")
+    path.write_text(text, encoding="utf-8")
+    line = refused(capsys, ["grade", GOOD, path, "--csv", tmp_path / "book.csv",
+                            "--json", tmp_path / "out.json"], tmp_path)
+    assert expected in line, line
+
+
+def test_grades_own_results_given_back_as_answers_are_refused(capsys, tmp_path):
+    """grade --json output fed to grade gave a gradebook of one student '*' with no answer."""
+    answers = tmp_path / "answers.csv"
+    answers.write_text("student,v_C,omega_BC\ns1,5.27,-24.25\ns2,4,20\n")
+    results = tmp_path / "results.json"
+    assert main(["grade", str(GOOD), str(answers), "--json", str(results), "--quiet"]) == 0
+    capsys.readouterr()
+    line = refused(capsys, ["grade", GOOD, results, "--csv", tmp_path / "book.csv"], tmp_path)
+    assert "results.json: this is planmethod grade's --json output" in line
+    # its list of graded students, too
+    listed = tmp_path / "listed.json"
+    listed.write_text(json.dumps(json.loads(results.read_text())["answers"]))
+    line = refused(capsys, ["grade", GOOD, listed], tmp_path)
+    assert "listed.json: [0]: this is planmethod grade's --json output" in line
+
+
+VALID_ANSWERS = {
+    "a plain class": "student,v_C,omega_BC\ns1,5.27,-24.25\ns2,4,20\n",
+    "quoted cells with commas": 'student,v_C,omega_BC\n"s1, Ann","5,27","-24,25"\ns2,4,20\n',
+    "doubled quotes": 'student,v_C\n"Ann ""the"" Lee",5.27\ns2,4\n',
+    "semicolons": "student;v_C;omega_BC\ns1;5,27;-24,25\ns2;4;20\n",
+    "tabs and a blank line": "student\tv_C\ns1\t5.27\n\ns2\t4\n",
+    "CRLF line ends": "student,v_C\r\ns1,5.27\r\ns2,4\r\n",
+    "JSON by student": '{"s1": {"v_C": 5.27}, "s2": {"v_C": null}}',
+    "a JSON list": '[{"student": "s1", "v_C": 5.27}, {"student": 2, "answers": {"v_C": 4}}]',
+}
+
+
+@pytest.mark.parametrize("case", list(VALID_ANSWERS))
+def test_every_student_of_a_valid_file_is_in_the_gradebook(capsys, tmp_path, case):
+    """The post-condition: a file that is read has every one of its students graded."""
+    import csv
+
+    text = VALID_ANSWERS[case]
+    path = tmp_path / ("answers.json" if text.startswith(("{", "[")) else "answers.csv")
+    path.write_bytes(text.encode("utf-8"))
+    book = tmp_path / "book.csv"
+    assert main(["grade", str(GOOD), str(path), "--csv", str(book), "--quiet"]) == 0
+    capsys.readouterr()
+    graded = [row["student"] for row in csv.DictReader(book.open(encoding="utf-8"))]
+    expected = {"a plain class": ["s1", "s2"], "quoted cells with commas": ["s1, Ann", "s2"],
+                "doubled quotes": ['Ann "the" Lee', "s2"]}.get(case, ["s1", "s2" if "list"
+                                                                    not in case else "2"])
+    assert graded == expected
+
+
+def test_a_roster_with_a_quote_left_open_is_refused(capsys, tmp_path):
+    """variants --students reads a roster the way grade reads answers: nobody is merged."""
+    roster = tmp_path / "roster.csv"
+    roster.write_text('student,email\nann,"ann@x.org\nbob,bob@x.org\n')
+    line = refused(capsys, ["variants", TEMPLATE, "--students", roster, "--out",
+                            tmp_path / "run", "--no-sheets"], tmp_path)
+    assert "roster.csv: line 2: " in line
