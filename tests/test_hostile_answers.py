@@ -233,3 +233,16 @@ def test_a_roster_with_a_quote_left_open_is_refused(capsys, tmp_path):
     line = refused(capsys, ["variants", TEMPLATE, "--students", roster, "--out",
                             tmp_path / "run", "--no-sheets"], tmp_path)
     assert "roster.csv: line 2: " in line
+
+
+# -- study: the limits of the exercise file --------------------------------------------------
+@pytest.mark.parametrize(("option", "value"), [
+    ("--omegas", "1e9"), ("--omegas", "10:20010:10000"), ("--base-omega", "1e5"),
+    ("--weights", "1e13"), ("--base-weight", "-2e12"), ("--moments", "1e300"),
+    ("--moments", "80,1e300"), ("--base-moment", "inf"),
+])
+def test_study_options_beyond_the_limits_are_refused(capsys, tmp_path, option, value):
+    line = refused(capsys, ["study", STUDY, option, value, "--step", "30", "--csv",
+                            tmp_path / "s.csv"], tmp_path)
+    assert line.startswith(f"planmethod study: error: argument {option}: ")
+    assert "at most 10000 rad/s" in line or "at most 1e+12 N" in line, line
