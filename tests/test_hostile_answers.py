@@ -246,3 +246,139 @@ def test_study_options_beyond_the_limits_are_refused(capsys, tmp_path, option, v
                             tmp_path / "s.csv"], tmp_path)
     assert line.startswith(f"planmethod study: error: argument {option}: ")
     assert "at most 10000 rad/s" in line or "at most 1e+12 N" in line, line
+
+
+# -- Moodle Cloze: text cannot add a sub-question --------------------------------------------
+#: Moodle's own expression for a Cloze field (question/type/multianswer/questiontype.php,
+#: ANSWER_REGEX), in Python: PCRE's look-behind of three widths as three look-behinds
+_CLOZE_TYPES = ("NUMERICAL|NM|MULTICHOICE|MC|MULTICHOICE_V|MCV|MULTICHOICE_H|MCH|SHORTANSWER|"
+                "SA|MW|SHORTANSWER_C|SAC|MWC|MULTICHOICE_S|MCS|MULTICHOICE_VS|MCVS|"
+                "MULTICHOICE_HS|MCHS|MULTIRESPONSE|MR|MULTIRESPONSE_H|MRH|MULTIRESPONSE_S|MRS|"
+                "MULTIRESPONSE_HS|MRHS")
+_ALTERNATIVE = (r"(=|%(-?[0-9]+(?:[.,][0-9]*)?)%)?(.+?(?<!\\)(?<!&)(?<!&amp;)(?=[~#}]|$))"
+                r"(#(.*?(?<!\\)(?=[~}]|$)))?")
+_CLOZE_FIELD = (rf"\{{([0-9]*):({_CLOZE_TYPES}):({_ALTERNATIVE}(~{_ALTERNATIVE})*)\}}")
+
+
+def cloze_sub_questions(text: str) -> int:
+    """How many sub-questions Moodle makes of a Cloze question text: it takes the first field,
+    replaces it by ``{#n}`` and goes on, as qtype_multianswer_extract_question does."""
+    import re
+
+    count = 0
+    while (match := re.search(_CLOZE_FIELD, text, re.S)) is not None:
+        count += 1
+        text = text.replace(match.group(0), f"{{#{count}}}", 1)
+    return count
+
+
+HOSTILE_TEXT = "Crank {1:MULTICHOICE:=yes~no} {#1} {2:SA:=x} } \\{3:NM:=1:1\\}"
+
+
+def test_hostile_text_adds_no_cloze_sub_question(capsys, tmp_path):
+    """A title, a description and a student id holding Cloze fields (and a {#1} that would
+    repeat one) leave every variant with exactly one sub-question per asked value."""
+    from defusedxml.ElementTree import fromstring
+
+    exercise = tmp_path / "hostile.toml"
+    text = BASE.replace('title = "Compressor slider-crank (Abduvaliev & Abduxoshimov)"',
+                        f"title = {json.dumps(HOSTILE_TEXT)}", 1)
+    exercise.write_text(text.replace('description = """\n',
+                                     f'description = """\n{HOSTILE_TEXT.replace(chr(92), "")}\n',
+                                     1), encoding="utf-8")
+    roster = tmp_path / "roster.csv"
+    roster.write_text('student\ns1\n"{1:NM:=5:1} {#2}"\n', encoding="utf-8")
+    run = tmp_path / "run"
+    assert main(["variants", str(exercise), "--students", str(roster), "--out", str(run),
+                 "--no-sheets"]) == 0
+    assert main(["export", str(run / "keys.json"), "--format", "moodle", "--out",
+                 str(tmp_path / "quiz.xml")]) == 0
+    capsys.readouterr()
+    keys = json.loads((run / "keys.json").read_text())["keys"]
+    assert len(keys) == 2 and "MULTICHOICE" in keys[0]["title"] + keys[0]["task"]
+    quiz = fromstring((tmp_path / "quiz.xml").read_bytes())
+    questions = quiz.findall("question[@type='cloze']")
+    assert len(questions) == 2
+    for question, key in zip(questions, keys, strict=True):
+        html = question.find("questiontext/text").text
+        assert cloze_sub_questions(html) == len(key["questions"]) == html.count(":NUMERICAL:")
+        assert "{#" not in html and "&#123;1:MULTICHOICE:=yes~no&#125;" in html
+    category = quiz.find("question[@type='category']/category/text").text
+    assert category.count("/") - 2 * category.count("//") == 3   # $course$/top/cat/title
+
+
+# -- no CSV cell starts a formula ------------------------------------------------------------
+FORMULAS = ("=HYPERLINK(\"http://x\",\"y\")", "+cmd|' /C calc'!A0", "-2+3", "@SUM(A1)",
+            "\tx", "\rx")
+
+
+def _cells(path: Path) -> list[str]:
+    import csv
+
+    with path.open(encoding="utf-8", newline="") as handle:
+        return [cell for row in csv.reader(handle) for cell in row]
+
+
+def _starts_a_formula(cell: str) -> bool:
+    import re
+
+    number = re.fullmatch(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", cell)
+    return number is None and cell.lstrip(" ").startswith(("=", "+", "-", "@", "\t", "\r"))
+
+
+def test_no_csv_cell_written_starts_a_formula(capsys, tmp_path):
+    """Hostile student ids, question ids and notes go into every CSV planmethod writes — the
+    gradebook of grade and of export, the class report, index.csv, the sweep and study tables —
+    and no text cell starts a formula; numbers (negative ones too) stay numbers, and the ids
+    read back through io.spreadsheet_text are the ids given."""
+    from planmethod.io import spreadsheet_text
+
+    import csv
+
+    roster = tmp_path / "roster.csv"
+    with roster.open("w", encoding="utf-8", newline="") as handle:
+        csv.writer(handle).writerows([["student", "email"], *[[f, f"{n}@x.org"] for n, f in
+                                                              enumerate(FORMULAS[:4])],
+                                      ["-7", "m@x.org"], ["'q", "q@x.org"]])
+    run = tmp_path / "run"
+    assert main(["variants", str(TEMPLATE), "--students", str(roster), "--out", str(run),
+                 "--no-sheets", "--seed", "3"]) == 0
+    keys = json.loads((run / "keys.json").read_text())["keys"]
+    answers = tmp_path / "answers.json"
+    answers.write_text(json.dumps({key["student"]: {q["id"]: -q["value"]
+                                                    for q in key["questions"]}
+                                   for key in keys} | {"=1+1": {"v_C": 1}}))
+    book, report = tmp_path / "book.csv", tmp_path / "report"
+    assert main(["grade", str(run / "keys.json"), str(answers), "--csv", str(book),
+                 "--report", str(report), "--quiet"]) == 0
+    exported = tmp_path / "exported.csv"
+    assert main(["export", str(run / "keys.json"), "--format", "csv", "--answers",
+                 str(answers), "--out", str(exported)]) == 0
+    sweep, study = tmp_path / "sweep.csv", tmp_path / "study.csv"
+    assert main(["sweep", str(GOOD), "--step", "30", "--csv", str(sweep)]) == 0
+    assert main(["study", str(STUDY), "--step", "30", "--csv", str(study), "--omegas",
+                 "10,20", "--weights", "20,40", "--moments", "80,100"]) == 0
+    capsys.readouterr()
+    written = [book, exported, report / "questions.csv", report / "mistakes.csv",
+               run / "index.csv", sweep, study]
+    for path in written:
+        cells = _cells(path)
+        assert cells and not [c for c in cells if _starts_a_formula(c)], path
+    # the hostile ids are in the gradebooks, neutralised, and read back exactly
+    for path in (book, exported, run / "index.csv"):
+        students = [spreadsheet_text(row[0]) for row in _rows(path)[1:]]
+        assert set(students) >= {*FORMULAS[:4], "-7", "'q"}, (path, students)
+    # numbers stay numbers: the sweep's negative values are plain numbers, not quoted text
+    assert any(cell.startswith("-") and float(cell) < 0 for cell in _cells(sweep))
+    # a second run with --force reads index.csv back: the folders of ids that needed a ' are
+    # its own, and are replaced
+    assert main(["variants", str(TEMPLATE), "--students", str(roster), "--out", str(run),
+                 "--no-sheets", "--seed", "3", "--force"]) == 0
+    capsys.readouterr()
+
+
+def _rows(path: Path) -> list[list[str]]:
+    import csv
+
+    with path.open(encoding="utf-8", newline="") as handle:
+        return list(csv.reader(handle))

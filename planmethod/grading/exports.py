@@ -52,6 +52,9 @@ __all__ = [
     "prairielearn_questions",
 ]
 
+#: a double quote as XML writes it inside an attribute value
+_QUOTE = {'"': "&quot;"}
+
 #: PrairieLearn canvas pixels per drawn millimetre.
 PX_PER_MM = 4.0
 
@@ -405,7 +408,8 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
         html.append(
             f'<pl-number-input answers-name="{ident}" comparison="relabs" '
             f'rtol="{{{{params.rtol.{ident}}}}}" atol="{{{{params.atol.{ident}}}}}" '
-            f'label="{escape(question["text"])} =" suffix="{escape(question["unit"])}">'
+            f'label="{escape(question["text"], _QUOTE)} =" '
+            f'suffix="{escape(question["unit"], _QUOTE)}">'
             "</pl-number-input>")
     for name in plans:
         pole = first["plans"][name]["pole"]
@@ -447,8 +451,30 @@ def _cdata(text: str) -> str:
     return "<![CDATA[" + text.replace("]]>", "]]]]><![CDATA[>") + "]]>"
 
 
+def _cloze_text(text: object) -> str:
+    """Text of a Cloze question outside its fields (a title, the task, a student id, a
+    question's words): HTML-escaped, and its braces written as character references, so that
+    no text can open a field (``{1:MULTICHOICE:…}``) or repeat one (``{#1}``) — Moodle finds
+    the fields in the HTML source before it decodes references.
+
+    >>> _cloze_text("{1:MULTICHOICE:=a~b} <i>")
+    '&#123;1:MULTICHOICE:=a~b&#125; &lt;i&gt;'
+    """
+    return escape(str(text)).replace("{", "&#123;").replace("}", "&#125;")
+
+
+def _category_name(name: object) -> str:
+    """One name of a Moodle category path: a ``/`` in it doubled, as Moodle writes it, so
+    that a title cannot make more categories (and XML-escaped)."""
+    doubled = str(name).replace("/", "//")
+    doubled = (" " if doubled.startswith("/") else "") + doubled
+    return escape(doubled + (" " if doubled.endswith("/") else ""))
+
+
 def _cloze_escape(text: str) -> str:
-    """Text inside a Cloze answer or feedback: Moodle's special characters escaped."""
+    """Text inside a Cloze answer or feedback: HTML-escaped, and Moodle's special characters
+    escaped with a backslash (Moodle decodes the feedback's references when it reads it)."""
+    text = escape(text)
     for char in ("\\", "}", "#", "~", "/", '"'):
         text = text.replace(char, "\\" + char)
     return text
@@ -493,11 +519,12 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
     title = str(keys[0].get("title", "planmethod")) if keys else "planmethod"
     out += ['  <question type="category">',
-            f"    <category><text>$course$/top/{escape(category)}/{escape(title)}</text>"
+            f"    <category><text>$course$/top/{_category_name(category)}/"
+            f"{_category_name(title)}</text>"
             "</category>", "  </question>"]
     for key in keys:
         student = str(key.get("student"))
-        task = escape(key.get("task", "")).replace("\n\n", "</p><p>")
+        task = _cloze_text(key.get("task", "")).replace("\n\n", "</p><p>")
         image, files = "", ""
         if sheets and student in sheets:
             name = f"sheet_{_identifier(student)}.svg"
@@ -505,10 +532,11 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
             image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="the mechanism, task sheet" /></p>'
             files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
         rows = "".join(
-            f"<tr><td>{escape(question['text'])}</td><td>{cloze_field(question)}</td>"
-            f"<td>{escape(question.get('unit', ''))}</td></tr>"
+            f"<tr><td>{_cloze_text(question['text'])}</td><td>{cloze_field(question)}</td>"
+            f"<td>{_cloze_text(question.get('unit', ''))}</td></tr>"
             for question in key["questions"])
-        text = (f"<p><b>{escape(title)}</b> — variant {escape(student)}</p><p>{task}</p>"
+        text = (f"<p><b>{_cloze_text(title)}</b> — variant {_cloze_text(student)}</p>"
+                f"<p>{task}</p>"
                 f"{image}<p>Give in SI units (counter-clockwise positive):</p>"
                 f"<table>{rows}</table>")
         out += ['  <question type="cloze">',
