@@ -110,6 +110,15 @@ def test_a_5000_digit_number_in_json_is_one_line_naming_its_key(capsys, tmp_path
     assert "keys.json: version: a whole number of 5000 digits" in line
 
 
+@pytest.mark.parametrize("seed", ["1" + "0" * 23, HUGE])
+def test_a_seed_beyond_64_bits_is_refused(capsys, tmp_path, seed):
+    """keys.json is read back with 64-bit whole numbers: a longer seed would make a run whose
+    keys cannot be graded."""
+    line = refused(capsys, ["variants", GOOD, "--seed", seed, "--out", tmp_path / "run"],
+                   tmp_path)
+    assert "argument --seed: expected a whole number within ±9223372036854775807" in line
+
+
 @pytest.mark.parametrize("value", ["NaN", "inf", "-Infinity", "1e999"])
 def test_a_drawn_label_at_a_coordinate_that_is_not_finite_is_refused(capsys, tmp_path, value):
     """A label at x="NaN" counted as a point at the pole."""
@@ -331,9 +340,9 @@ def test_no_csv_cell_written_starts_a_formula(capsys, tmp_path):
     gradebook of grade and of export, the class report, index.csv, the sweep and study tables —
     and no text cell starts a formula; numbers (negative ones too) stay numbers, and the ids
     read back through io.spreadsheet_text are the ids given."""
-    from planmethod.io import spreadsheet_text
-
     import csv
+
+    from planmethod.io import spreadsheet_text
 
     roster = tmp_path / "roster.csv"
     with roster.open("w", encoding="utf-8", newline="") as handle:

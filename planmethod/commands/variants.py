@@ -19,7 +19,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--count", type=int, metavar="N",
                         help="number of variants (students 001…N); default: the roster's size, "
                              "or 1")
-    parser.add_argument("--seed", type=int, default=0,
+    parser.add_argument("--seed", type=_whole_number, default=0,
                         help="random seed of the draw (default 0): the same seed, template "
                              "and student always give the same variant")
     parser.add_argument("--students", metavar="ROSTER",
@@ -31,6 +31,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="write into a folder that is not empty: what an earlier "
                              "`variants` run wrote there (its index.csv lists it) is removed "
                              "first; nothing else is touched")
+
+
+def _whole_number(text: str) -> int:
+    """A whole number within 64 bits, as the keys.json it goes into is read back."""
+    from ..spec import MAX_INTEGER
+
+    try:
+        value = int(text) if len(text) <= 20 else None
+    except ValueError:
+        value = None
+    if value is None or abs(value) > MAX_INTEGER:
+        raise argparse.ArgumentTypeError(f"expected a whole number within ±{MAX_INTEGER}, got "
+                                         f"{text[:30]!r}")
+    return value
 
 
 def read_roster(path: str) -> list[tuple[str, list[str]]]:
