@@ -38,7 +38,7 @@ import json
 import math
 import re
 import tomllib
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -58,8 +58,8 @@ from .model import (
 )
 from .vocabulary import quantity
 
-__all__ = ["POINT_NAME", "exercise_from_dict", "load_exercise", "parse_exercise", "parse_json",
-           "parse_toml", "read_text"]
+__all__ = ["POINT_NAME", "exercise_from_dict", "leaves", "load_exercise", "parse_exercise",
+           "parse_json", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -190,7 +190,7 @@ def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
         raise SpecError(f"not valid TOML: {message}", file=file) from None
     except ValueError:  # a digit string beyond Python's integer-string conversion limit
         raise _long_digits_error(text, file) from None
-    for key, value in _leaves(data):
+    for key, value in leaves(data):
         if isinstance(value, int) and not isinstance(value, bool) and abs(value) > MAX_INTEGER:
             raise SpecError(_too_long(_digit_count(value)), file=file, key=key)
     return data
@@ -218,14 +218,24 @@ def _digit_count(value: int) -> int:
     return count + (abs(value) >= 10 ** count)
 
 
-def _leaves(node: Any, prefix: str = "") -> Iterator[tuple[str, Any]]:
-    """(dotted key, value) of every value in nested tables and lists."""
-    if isinstance(node, Mapping):
+def leaves(node: Any, prefix: str = "", *,
+           whole: Callable[[Any], bool] | None = None) -> Iterator[tuple[str, Any]]:
+    """(dotted key, value) of every value in nested tables and lists; a table or list for
+    which ``whole`` is true is given as one value, not entered.
+
+    >>> def ranged(value):
+    ...     return isinstance(value, dict) and "range" in value
+    >>> list(leaves({"a": [1, {"b": 2}], "c": {"range": [0, 1]}}, whole=ranged))
+    [('a[0]', 1), ('a[1].b', 2), ('c', {'range': [0, 1]})]
+    """
+    if whole is not None and whole(node):
+        yield prefix, node
+    elif isinstance(node, Mapping):
         for name, value in node.items():
-            yield from _leaves(value, f"{prefix}.{name}" if prefix else str(name))
+            yield from leaves(value, f"{prefix}.{name}" if prefix else str(name), whole=whole)
     elif isinstance(node, list):
         for index, value in enumerate(node):
-            yield from _leaves(value, f"{prefix}[{index}]")
+            yield from leaves(value, f"{prefix}[{index}]", whole=whole)
     else:
         yield prefix, node
 
@@ -292,7 +302,7 @@ def parse_json(text: str, *, file: str | None = None, unique_keys: bool = False)
         raise SpecError("the key is given twice in one object", file=file,
                         key=str(error.args[0])) from None
     if long_integers:
-        for key, value in _leaves(data):
+        for key, value in leaves(data):
             if isinstance(value, _LongInteger):
                 raise SpecError(_too_long(value.digits), file=file, key=key or None)
     return data
