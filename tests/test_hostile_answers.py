@@ -391,3 +391,19 @@ def _rows(path: Path) -> list[list[str]]:
 
     with path.open(encoding="utf-8", newline="") as handle:
         return list(csv.reader(handle))
+
+
+# -- variants: a count that finishes in about a minute ---------------------------------------
+def test_more_variants_than_a_minute_draws_are_refused_at_once(capsys, tmp_path):
+    """`--count` (and a roster) stop at MAX_VARIANTS, the count benchmarked to take about a
+    minute; the refusal comes before any variant is drawn."""
+    from planmethod.commands.variants import MAX_VARIANTS
+
+    line = refused(capsys, ["variants", TEMPLATE, "--count", MAX_VARIANTS + 1, "--out",
+                            tmp_path / "run"], tmp_path)
+    assert f"--count must be in 1…{MAX_VARIANTS}" in line
+    roster = tmp_path / "roster.csv"
+    roster.write_text("student\n" + "\n".join(f"s{i}" for i in range(MAX_VARIANTS + 1)) + "\n")
+    line = refused(capsys, ["variants", TEMPLATE, "--students", roster, "--out",
+                            tmp_path / "run"], tmp_path)
+    assert f"roster.csv: the roster lists {MAX_VARIANTS + 1} students" in line

@@ -12,13 +12,18 @@ from __future__ import annotations
 import argparse
 import re
 
+#: the most variants one run draws: about a minute of CPU time, with sheets, on the 2-CPU
+#: machine of ``python -m benchmarks.bench_grading --scale`` even when it is shared (48 ms a
+#: variant at a load of 8, benchmarks/results/grading_scale.md; 19 ms idle, grading.md)
+MAX_VARIANTS = 1_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("template", help="exercise template (TOML with ranges, choices, "
                                          "expressions) or a plain exercise file")
     parser.add_argument("--count", type=int, metavar="N",
-                        help="number of variants (students 001…N); default: the roster's size, "
-                             "or 1")
+                        help=f"number of variants (students 001…N, at most {MAX_VARIANTS}); "
+                             "default: the roster's size, or 1")
     parser.add_argument("--seed", type=_whole_number, default=0,
                         help="random seed of the draw (default 0): the same seed, template "
                              "and student always give the same variant")
@@ -141,14 +146,19 @@ def run(args: argparse.Namespace) -> int:
     if args.students:
         roster = read_roster(args.students)
         students = [student for student, _ in roster]
+        if len(students) > MAX_VARIANTS:
+            raise SpecError(f"the roster lists {len(students)} students; at most {MAX_VARIANTS} "
+                            "a run (a run of that many takes about a minute): split it",
+                            file=args.students)
         aliases = dict(roster)
         if args.count is not None and args.count != len(students):
             raise SpecError(f"--count {args.count} does not match the roster's "
                             f"{len(students)} students", file=args.students)
     else:
         count = 1 if args.count is None else args.count
-        if not 1 <= count <= 100_000:
-            raise SpecError(f"--count must be in 1…100000, got {count}")
+        if not 1 <= count <= MAX_VARIANTS:
+            raise SpecError(f"--count must be in 1…{MAX_VARIANTS}, got {count} (a run of "
+                            f"{MAX_VARIANTS} takes about a minute)")
         width = max(3, len(str(count)))
         students = [str(i).zfill(width) for i in range(1, count + 1)]
     folders = [student_folder(s) for s in students]
