@@ -29,6 +29,11 @@ one CSV and read and graded as ``planmethod grade`` does (the throughput is in a
 
 Results go to ``benchmarks/results/grading.json`` and ``benchmarks/results/grading.md``.
 
+``--scale N`` measures only what bounds ``variants --count``: the whole command run as a
+subprocess for N variants of the template, with and without sheets — wall and CPU time, peak
+memory, the machine's load — and how many variants that rate gives in a minute. Results go to
+``benchmarks/results/grading_scale.json`` and ``.md``.
+
 Examples
 --------
 >>> sorted(answers_of_mistakes({"id": "omega_BC", "unit": "rad/s", "signed": True,
@@ -356,11 +361,90 @@ def _mistake_row(title: str, counts) -> str:
             f"{_share(counts.get('unnamed', 0), total)} |")
 
 
+def scale_run(count: int) -> dict:
+    """``planmethod variants`` for ``count`` variants of the template, as a subprocess (its
+    own peak memory), with sheets and with ``--no-sheets``: wall and CPU seconds, peak memory
+    (MB), and the variants a minute of each gives."""
+    import resource
+    import subprocess
+
+    from planmethod.commands.variants import MAX_VARIANTS
+
+    runs = {}
+    for sheets in (True, False):
+        folder = Path(tempfile.mkdtemp(prefix="bench-scale-"))
+        try:
+            command = ["variants", str(TEMPLATE), "--count", str(count), "--seed", "2026",
+                       "--out", str(folder / "course"), *([] if sheets else ["--no-sheets"])]
+            # the child reports its own peak memory (RUSAGE_CHILDREN keeps the largest child's)
+            script = ("import resource, sys\nfrom planmethod.cli import main\ntry:\n"
+                      f"    code = main({command!r})\nfinally:\n    print('peak-kb', "
+                      "resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)\n"
+                      "sys.exit(code)\n")
+            load = os.getloadavg()[0]
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            started = time.perf_counter()
+            done = subprocess.run([sys.executable, "-c", script], check=True, text=True,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                  env={**os.environ, "PYTHONPATH": str(ROOT)})
+            wall = time.perf_counter() - started
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            peak_kb = int(next(line.split()[1] for line in done.stderr.splitlines()
+                               if line.startswith("peak-kb")))
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        runs["with sheets" if sheets else "--no-sheets"] = {
+            "wall_s": round(wall, 2), "cpu_s": round(cpu, 2),
+            "peak_mb": round(peak_kb / 1024),   # Linux reports ru_maxrss in KB
+            "load_average_at_start": round(load, 2),
+            "ms_per_variant_wall": round(1000 * wall / count, 2),
+            "ms_per_variant_cpu": round(1000 * cpu / count, 2),
+            "variants_per_minute_wall": int(60 * count / wall),
+            "variants_per_minute_cpu": int(60 * count / cpu)}
+    return {"machine": {"python": sys.version.split()[0], "platform": platform.platform(),
+                        "cpus": os.cpu_count()},
+            "template": str(TEMPLATE.relative_to(ROOT)), "variants": count,
+            "count_limit": MAX_VARIANTS, "runs": runs}
+
+
+def scale_markdown(result: dict) -> str:
+    lines = [f"# `planmethod variants` at scale ({result['machine']['platform']}, Python "
+             f"{result['machine']['python']}, {result['machine']['cpus']} cpus)", "",
+             f"Template `{result['template']}`, {result['variants']} variants, the command "
+             "run as a subprocess (`python -m benchmarks.bench_grading --scale "
+             f"{result['variants']}`). The limit of `--count` (and of a roster): "
+             f"{result['count_limit']:,}.", "",
+             "| run | wall (s) | CPU (s) | ms a variant (wall / CPU) | variants a minute "
+             "(wall / CPU) | peak memory (MB) | load average at start |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for name, run in result["runs"].items():
+        lines.append(f"| {name} | {run['wall_s']:.1f} | {run['cpu_s']:.1f} | "
+                     f"{run['ms_per_variant_wall']:.1f} / {run['ms_per_variant_cpu']:.1f} | "
+                     f"{run['variants_per_minute_wall']:,} / {run['variants_per_minute_cpu']:,} "
+                     f"| {run['peak_mb']} | {run['load_average_at_start']:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="50 variants, 100 drawn plans")
     parser.add_argument("--no-write", action="store_true", help="print only")
+    parser.add_argument("--scale", type=int, metavar="N",
+                        help="only time `planmethod variants` for N variants (the --count "
+                             "limit's measure)")
     args = parser.parse_args(argv)
+    if args.scale:
+        result = scale_run(args.scale)
+        text = scale_markdown(result)
+        print(text)
+        if not args.no_write:
+            from planmethod.io import write_text_atomic
+
+            write_text_atomic(RESULTS / "grading_scale.json",
+                              json.dumps(result, indent=2) + "\n")
+            write_text_atomic(RESULTS / "grading_scale.md", text)
+        return 0
     variants, drawings = (50, 100) if args.quick else (500, 1000)
     result = run(variants, drawings)
     text = markdown(result)

@@ -22,18 +22,23 @@ planmethod.errors.SpecError: --slug: '../../x' is not a single folder or file na
 from __future__ import annotations
 
 import contextlib
+import csv
+import io
 import json
 import os
 import re
 import tempfile
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path, PurePosixPath
 
 from .errors import PlanmethodError, SpecError
 
 __all__ = [
     "atomic_path",
+    "csv_text",
     "path_component",
+    "spreadsheet_cell",
+    "spreadsheet_text",
     "student_folder",
     "write_bytes_atomic",
     "write_files",
@@ -170,3 +175,63 @@ def write_bytes_atomic(target: str | Path, data: bytes) -> None:
     """Write ``data`` to ``target`` whole or not at all."""
     with atomic_path(target) as temporary:
         temporary.write_bytes(data)
+
+
+# -- CSV a spreadsheet opens safely ------------------------------------------------------------
+#: what makes a spreadsheet (Excel, LibreOffice Calc, Google Sheets) read a text cell as a
+#: formula when it starts the cell: ``= + - @``, tab and carriage return (OWASP, "CSV
+#: Injection"), NUL (OWASP ASVS 1.2.10) and line feed
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r", "\n", "\0")
+#: a plain decimal number, which a spreadsheet reads as a number and never as a formula
+_PLAIN_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def spreadsheet_cell(value: object) -> object:
+    """A CSV cell that no spreadsheet runs as a formula, as OWASP advises: text that starts
+    with one of :data:`FORMULA_STARTS` (after any spaces) gets a ``'`` in front, and so does text
+    that starts with ``'`` itself, so that :func:`spreadsheet_text` gives back exactly the text
+    written. Numbers, and text that is a plain decimal number (``-1.5``), stay as they are;
+    None is an empty cell.
+
+    Examples
+    --------
+    >>> spreadsheet_cell("=1+2"), spreadsheet_cell("@SUM(A1)"), spreadsheet_cell(" +x")
+    ("'=1+2", "'@SUM(A1)", "' +x")
+    >>> spreadsheet_cell(-1.5), spreadsheet_cell("-1.5"), spreadsheet_cell("s01")
+    (-1.5, '-1.5', 's01')
+    """
+    if value is None:
+        return ""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return value
+    text = str(value)
+    if (text.startswith("'") or text.lstrip(" ").startswith(FORMULA_STARTS)) \
+            and not _PLAIN_NUMBER.fullmatch(text):
+        return "'" + text
+    return text
+
+
+def spreadsheet_text(cell: str) -> str:
+    """The text a cell written through :func:`spreadsheet_cell` stands for (its ``'`` taken
+    off): what a reader of planmethod's own CSV files uses, so that ids survive a round trip.
+
+    >>> spreadsheet_text(spreadsheet_cell("=1+1")), spreadsheet_text(spreadsheet_cell("'x"))
+    ('=1+1', "'x")
+    """
+    return cell[1:] if cell.startswith("'") else cell
+
+
+def csv_text(rows: Iterable[Iterable[object]]) -> str:
+    """CSV text (comma-separated, quoted where needed, one line per row ending in a line feed)
+    whose every cell went through :func:`spreadsheet_cell`: every CSV planmethod writes is made
+    here.
+
+    >>> print(csv_text([["student", "score"], ["=cmd|' /C calc'!A0", -1.5]]), end="")
+    student,score
+    '=cmd|' /C calc'!A0,-1.5
+    """
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    for row in rows:
+        writer.writerow([spreadsheet_cell(cell) for cell in row])
+    return buffer.getvalue()

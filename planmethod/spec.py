@@ -34,10 +34,11 @@ planmethod.errors.SpecError: x.toml: drive.omega: must be a finite number, got n
 from __future__ import annotations
 
 import difflib
+import json
 import math
 import re
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -57,8 +58,8 @@ from .model import (
 )
 from .vocabulary import quantity
 
-__all__ = ["POINT_NAME", "exercise_from_dict", "load_exercise", "parse_exercise", "parse_toml",
-           "read_text"]
+__all__ = ["POINT_NAME", "exercise_from_dict", "leaves", "load_exercise", "parse_exercise",
+           "parse_json", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -109,6 +110,10 @@ def read_text(path: str | Path) -> str:
 #: input limits (README, "Bad input"): what the stress suite covers, and no more
 #: — coordinates and lengths (m), the crank's ω (rad/s) and ε (rad/s²), crank angles (°)
 MAX_COORDINATE_M = 1e6
+#: a length (m) — two points of one moving link apart, a pin radius — that is not 0 is at least
+#: this: the stress suite covers cranks down to 6e-8 m; far shorter ones (a crank of 5e-324 m)
+#: underflow and divide by zero. (A tiny coordinate is harmless: it is a length that counts.)
+MIN_LENGTH_M = 1e-8
 MAX_OMEGA = 1e4
 MAX_EPSILON = 1e8
 MAX_ANGLE_DEG = 36000.0
@@ -116,6 +121,9 @@ MAX_ANGLE_DEG = 36000.0
 MAX_MAGNITUDE = 1e12
 #: tables and arrays nested deeper than this are refused before they are read
 MAX_NESTING = 32
+#: whole numbers in TOML and JSON are 64-bit (TOML's own range); larger ones are refused where
+#: they are read, before Python's limit on converting long digit strings can be met
+MAX_INTEGER = 2**63 - 1
 #: the friction iteration's largest allowed count
 MAX_FRICTION_ITERATIONS = 10_000
 #: a friction coefficient above this is not a joint's
@@ -165,13 +173,139 @@ def check_nesting(text: str, *, file: str | None = None) -> None:
 
 
 def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
-    """TOML text → tables, or a :class:`SpecError` naming the file, line and column."""
+    """TOML text → tables, or a :class:`SpecError` naming the file, line and column (or the
+    key of a whole number beyond :data:`MAX_INTEGER`).
+
+    >>> parse_toml("a = " + "9" * 5000, file="x.toml")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: x.toml: line 1: a whole number of 5000 digits, beyond the \
+64-bit range (at most 9223372036854775807 in magnitude)
+    """
     check_nesting(text, file=file)
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         message = str(error).replace("Cannot overwrite a value", "a key is given twice")
         raise SpecError(f"not valid TOML: {message}", file=file) from None
+    except ValueError:  # a digit string beyond Python's integer-string conversion limit
+        raise _long_digits_error(text, file) from None
+    for key, value in leaves(data):
+        if isinstance(value, int) and not isinstance(value, bool) and abs(value) > MAX_INTEGER:
+            raise SpecError(_too_long(_digit_count(value)), file=file, key=key)
+    return data
+
+
+def _long_digits_error(text: str, file: str | None) -> SpecError:
+    """The error for the line of ``text`` holding the longest run of digits."""
+    best = (0, 0)
+    for number, line in enumerate(text.splitlines(), start=1):
+        for run in re.findall(r"\d[\d_]*", line):
+            best = max(best, (len(run.replace("_", "")), -number))
+    digits, line = best[0], -best[1]
+    return SpecError(_too_long(digits), file=file, key=f"line {line}")
+
+
+def _too_long(digits: int) -> str:
+    return (f"a whole number of {digits} digits, beyond the 64-bit range (at most "
+            f"{MAX_INTEGER} in magnitude)")
+
+
+def _digit_count(value: int) -> int:
+    """How many decimal digits ``value`` has, without converting it to text (which Python
+    refuses beyond 4,300 digits)."""
+    count = math.floor(max(abs(value).bit_length() - 1, 0) * math.log10(2)) + 1  # at least
+    return count + (abs(value) >= 10 ** count)
+
+
+def leaves(node: Any, prefix: str = "", *,
+           whole: Callable[[Any], bool] | None = None) -> Iterator[tuple[str, Any]]:
+    """(dotted key, value) of every value in nested tables and lists; a table or list for
+    which ``whole`` is true is given as one value, not entered.
+
+    >>> def ranged(value):
+    ...     return isinstance(value, dict) and "range" in value
+    >>> list(leaves({"a": [1, {"b": 2}], "c": {"range": [0, 1]}}, whole=ranged))
+    [('a[0]', 1), ('a[1].b', 2), ('c', {'range': [0, 1]})]
+    """
+    if whole is not None and whole(node):
+        yield prefix, node
+    elif isinstance(node, Mapping):
+        for name, value in node.items():
+            yield from leaves(value, f"{prefix}.{name}" if prefix else str(name), whole=whole)
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            yield from leaves(value, f"{prefix}[{index}]", whole=whole)
+    else:
+        yield prefix, node
+
+
+class _LongInteger:
+    """What a JSON whole number beyond :data:`MAX_INTEGER` is read as, until it is reported."""
+
+    __slots__ = ("digits",)
+
+    def __init__(self, digits: int) -> None:
+        self.digits = digits
+
+
+class _RepeatedKeyError(Exception):
+    pass
+
+
+def _unique_object(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    out = dict(pairs)
+    if len(out) != len(pairs):
+        seen: set[str] = set()
+        for name, _ in pairs:
+            if name in seen:
+                raise _RepeatedKeyError(name)
+            seen.add(name)
+    return out
+
+
+def parse_json(text: str, *, file: str | None = None, unique_keys: bool = False) -> Any:
+    """JSON text → data, or a :class:`SpecError` naming the file: nesting deeper than
+    :data:`MAX_NESTING` is refused before parsing, a whole number beyond :data:`MAX_INTEGER`
+    (a 5,000-digit one included) with its key, and — with ``unique_keys`` — a key given
+    twice in one object (JSON would keep the last silently).
+
+    Examples
+    --------
+    >>> parse_json('{"s1": {"v_C": 1, "v_C": 2}}', file="a.json", unique_keys=True)
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: a.json: v_C: the key is given twice in one object
+    >>> parse_json('{"s1": {"v_C": 1' + '0' * 30 + '}}', file="a.json")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: a.json: s1.v_C: a whole number of 31 digits, beyond the \
+64-bit range (at most 9223372036854775807 in magnitude)
+    """
+    check_nesting(text, file=file)
+    long_integers: list[_LongInteger] = []
+
+    def integer(digits: str) -> int | _LongInteger:
+        # more than 19 digits is beyond 64 bits: never converted (a 5,000-digit one could not be)
+        value = int(digits) if len(digits) <= 20 else None
+        if value is not None and abs(value) <= MAX_INTEGER:
+            return value
+        long_integers.append(_LongInteger(len(digits.lstrip("-"))))
+        return long_integers[-1]
+
+    try:
+        data = json.loads(text, parse_int=integer,
+                          object_pairs_hook=_unique_object if unique_keys else None)
+    except json.JSONDecodeError as error:
+        raise SpecError(f"not valid JSON: {error}", file=file) from None
+    except _RepeatedKeyError as error:
+        raise SpecError("the key is given twice in one object", file=file,
+                        key=str(error.args[0])) from None
+    if long_integers:
+        for key, value in leaves(data):
+            if isinstance(value, _LongInteger):
+                raise SpecError(_too_long(value.digits), file=file, key=key or None)
+    return data
 
 
 def exercise_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> Exercise:
@@ -241,6 +375,13 @@ class _Reader:
         """A point's coordinates (m), within the range the stress suite covers."""
         return self.vector(value, key, limit=MAX_COORDINATE_M,
                            what=" (m; the range planmethod is tested on)")
+
+    def not_tiny(self, length: float, key: str, what: str = "") -> None:
+        """A :class:`SpecError` if ``length`` (m) is not 0 but below :data:`MIN_LENGTH_M`."""
+        if length != 0 and abs(length) < MIN_LENGTH_M:
+            raise self.error(key, f"{what}must be 0 or at least {MIN_LENGTH_M:g} m in "
+                                  f"magnitude, got {length:g} (m; the range planmethod is "
+                                  "tested on)")
 
     def string(self, value: Any, key: str) -> str:
         if not isinstance(value, str) or not value:
@@ -334,7 +475,26 @@ class _Reader:
             links[name] = Link(name, parsed)
         if len(links) < 2:
             raise self.error("links", "a mechanism needs the frame and at least one moving link")
+        owners: dict[str, int] = {}
+        for link in links.values():
+            for point in link.points:
+                owners[point] = owners.get(point, 0) + 1
+        for name, link in links.items():
+            if name != FRAME:
+                self.no_tiny_lengths({point: xy for point, xy in link.points.items()
+                                      if owners[point] > 1}, f"links.{name}")
         return links
+
+    def no_tiny_lengths(self, points: Mapping[str, tuple[float, float]], key: str) -> None:
+        """Two joints of one moving link (points it shares with another link) are one point
+        or at least :data:`MIN_LENGTH_M` apart: the plans divide by such lengths. (A point of
+        one link only — a coupler point — may lie as close to a joint as it likes.)"""
+        names = list(points)
+        for index, first in enumerate(names):
+            for second in names[index + 1:]:
+                (x1, y1), (x2, y2) = points[first], points[second]
+                self.not_tiny(math.hypot(x2 - x1, y2 - y1), f"{key}.{second}",
+                              f"its distance from {first} ")
 
     def revolutes(self, links: Mapping[str, Link]) -> tuple[Revolute, ...]:
         owners: dict[str, list[str]] = {}
@@ -529,6 +689,8 @@ class _Reader:
                 limit, what = limits[name]
                 result[name] = self.number(table[name], f"friction.{name}", non_negative=True,
                                            limit=limit, what=what)
+        if "pin_radius" in result:
+            self.not_tiny(result["pin_radius"], "friction.pin_radius")
         if "max_iterations" in table:
             value = table["max_iterations"]
             if (isinstance(value, bool) or not isinstance(value, int)
@@ -545,8 +707,11 @@ class _Reader:
                 raise self.error(key, f"unknown pair '{name}'{_suggest(name, pair_keys)}")
             props = self.table(props, key)
             self.only_keys(props, ("f", "pin_radius"), key)
-            pairs[name] = {k: self.number(v, f"{key}.{k}", non_negative=True)
+            pairs[name] = {k: self.number(v, f"{key}.{k}", non_negative=True,
+                                          limit=limits[k][0], what=limits[k][1])
                            for k, v in props.items()}
+            if "pin_radius" in pairs[name]:
+                self.not_tiny(pairs[name]["pin_radius"], f"{key}.pin_radius")
         result["pairs"] = pairs
         return result
 

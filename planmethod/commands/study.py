@@ -12,15 +12,15 @@ are checked against the numbers. ``--plot`` draws the table, ``--csv`` writes it
 from __future__ import annotations
 
 import argparse
-import io
 import math
 
 #: the most values a study takes per parameter (each is a full-turn force analysis)
 MAX_GRID = 200
 
 
-def _range(text: str) -> tuple[float, ...]:
-    """``20:100:20`` (first:last:step, inclusive) or ``20,40,60``."""
+def _range(text: str, limit: float = math.inf, unit: str = "") -> tuple[float, ...]:
+    """``20:100:20`` (first:last:step, inclusive) or ``20,40,60``; each value finite and at
+    most ``limit`` in magnitude."""
     try:
         if ":" in text:
             first, last, step = (float(part) for part in text.split(":"))
@@ -40,7 +40,33 @@ def _range(text: str) -> tuple[float, ...]:
             f"expected first:last:step or a comma list of numbers, got {text!r}") from None
     if not values or any(not math.isfinite(v) for v in values):
         raise argparse.ArgumentTypeError(f"expected finite numbers, got {text!r}")
+    largest = max(values, key=abs)
+    if abs(largest) > limit:
+        raise argparse.ArgumentTypeError(f"{largest:g} is beyond the limit: at most {limit:g} "
+                                         f"{unit}in magnitude (as in an exercise file)")
     return values
+
+
+def _within(limit_name: str, unit: str, *, grid: bool):
+    """An argparse type: a range (``grid``) or one number, at most the exercise file's limit
+    ``limit_name`` (:mod:`planmethod.spec`) in magnitude — the same table as the file's."""
+    def parse(text: str):
+        from .. import spec
+
+        limit = getattr(spec, limit_name)
+        if grid:
+            return _range(text, limit, unit)
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+        if not math.isfinite(value) or abs(value) > limit:
+            raise argparse.ArgumentTypeError(f"must be a finite number at most {limit:g} "
+                                             f"{unit}in magnitude (as in an exercise file), "
+                                             f"got {text!r}")
+        return value
+    parse.__name__ = "number" if not grid else "range"
+    return parse
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -48,17 +74,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--rocker", metavar="LINK",
                         help="the link carrying the resisting moment (default: the link of the "
                              "first [[load]] moment)")
-    parser.add_argument("--weights", type=_range, default="20:100:20", metavar="N",
+    parser.add_argument("--weights", type=_within("MAX_MAGNITUDE", "N ", grid=True),
+                        default="20:100:20", metavar="N",
                         help="rocker weights G4, N (default 20:100:20)")
-    parser.add_argument("--omegas", type=_range, default="10:50:10", metavar="RAD/S",
+    parser.add_argument("--omegas", type=_within("MAX_OMEGA", "rad/s ", grid=True),
+                        default="10:50:10", metavar="RAD/S",
                         help="crank speeds ω1, rad/s (default 10:50:10)")
-    parser.add_argument("--moments", type=_range, default="80:160:20", metavar="N·M",
+    parser.add_argument("--moments", type=_within("MAX_MAGNITUDE", "N·m ", grid=True),
+                        default="80:160:20", metavar="N·M",
                         help="resisting moments Mc, N·m (default 80:160:20)")
-    parser.add_argument("--base-weight", type=float, metavar="N",
+    parser.add_argument("--base-weight", type=_within("MAX_MAGNITUDE", "N ", grid=False),
+                        metavar="N",
                         help="base rocker weight (default: the file's)")
-    parser.add_argument("--base-omega", type=float, metavar="RAD/S",
+    parser.add_argument("--base-omega", type=_within("MAX_OMEGA", "rad/s ", grid=False),
+                        metavar="RAD/S",
                         help="base crank speed (default: the file's)")
-    parser.add_argument("--base-moment", type=float, metavar="N·M",
+    parser.add_argument("--base-moment", type=_within("MAX_MAGNITUDE", "N·m ", grid=False),
+                        metavar="N·M",
                         help="base resisting moment (default: the file's)")
     parser.add_argument("--step", type=float, default=2.0, metavar="DEG",
                         help="crank-angle step of each full turn (default 2)")
@@ -92,16 +124,18 @@ def table_text(study) -> str:
 
 
 def csv_text(study) -> str:
-    out = io.StringIO()
-    out.write("parameter,value," + ",".join(f"R_{p}_max" for p in study.pairs)
-              + ",M_b_max\n")
+    """The study as CSV: one line per parameter value, the largest reaction of each pair and
+    |M_b| (full precision)."""
+    from ..io import csv_text as spreadsheet_csv
+
+    rows: list[list] = [["parameter", "value", *(f"R_{p}_max" for p in study.pairs),
+                         "M_b_max"]]
     for parameter in study.parameters:
         for i, value in enumerate(parameter.values):
-            cells = [parameter.name, repr(float(value))]
-            cells += [repr(float(study.maxima[parameter.name][p][i])) for p in study.pairs]
-            cells.append(repr(float(study.balancing[parameter.name][i])))
-            out.write(",".join(cells) + "\n")
-    return out.getvalue()
+            rows.append([parameter.name, float(value),
+                         *(float(study.maxima[parameter.name][p][i]) for p in study.pairs),
+                         float(study.balancing[parameter.name][i])])
+    return spreadsheet_csv(rows)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -24,7 +24,7 @@ def run(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from ..io import atomic_path
+    from ..io import atomic_path, csv_text
     from ..spec import load_exercise
     from ..sweep import Extremes, csv_rows, sweep_chunks, sweep_table
 
@@ -74,8 +74,8 @@ def run(args: argparse.Namespace) -> int:
             handle = stack.enter_context(temporary.open("w", encoding="utf-8"))
         for chunk in chunks:
             if handle is not None:
-                if not extremes.count:
-                    handle.write(",".join(chunk) + "\n")
+                if not extremes.count:   # the header's text; the rows are numbers
+                    handle.write(csv_text([list(chunk)]))
                 handle.writelines(csv_rows(chunk))
             extremes.feed(chunk)
         if handle is not None:

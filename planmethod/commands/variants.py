@@ -12,14 +12,19 @@ from __future__ import annotations
 import argparse
 import re
 
+#: the most variants one run draws: about a minute of CPU time, with sheets, on the 2-CPU
+#: machine of ``python -m benchmarks.bench_grading --scale`` even when it is shared (48 ms a
+#: variant at a load of 8, benchmarks/results/grading_scale.md; 19 ms idle, grading.md)
+MAX_VARIANTS = 1_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("template", help="exercise template (TOML with ranges, choices, "
                                          "expressions) or a plain exercise file")
     parser.add_argument("--count", type=int, metavar="N",
-                        help="number of variants (students 001…N); default: the roster's size, "
-                             "or 1")
-    parser.add_argument("--seed", type=int, default=0,
+                        help=f"number of variants (students 001…N, at most {MAX_VARIANTS}); "
+                             "default: the roster's size, or 1")
+    parser.add_argument("--seed", type=_whole_number, default=0,
                         help="random seed of the draw (default 0): the same seed, template "
                              "and student always give the same variant")
     parser.add_argument("--students", metavar="ROSTER",
@@ -31,6 +36,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="write into a folder that is not empty: what an earlier "
                              "`variants` run wrote there (its index.csv lists it) is removed "
                              "first; nothing else is touched")
+
+
+def _whole_number(text: str) -> int:
+    """A whole number within 64 bits, as the keys.json it goes into is read back."""
+    from ..spec import MAX_INTEGER
+
+    try:
+        value = int(text) if len(text) <= 20 else None
+    except ValueError:
+        value = None
+    if value is None or abs(value) > MAX_INTEGER:
+        raise argparse.ArgumentTypeError(f"expected a whole number within ±{MAX_INTEGER}, got "
+                                         f"{text[:30]!r}")
+    return value
 
 
 def read_roster(path: str) -> list[tuple[str, list[str]]]:
@@ -81,7 +100,7 @@ def _earlier_run(out, *, force: bool) -> list:
     from pathlib import Path
 
     from ..errors import SpecError
-    from ..io import path_component
+    from ..io import path_component, spreadsheet_text
 
     out = Path(out)
     if not out.is_dir():
@@ -97,7 +116,8 @@ def _earlier_run(out, *, force: bool) -> list:
     try:
         with index.open(encoding="utf-8", newline="") as handle:
             for row in csv.DictReader(handle):
-                ours.add(out / path_component(row.get("folder") or "", "index.csv folder"))
+                folder = spreadsheet_text(row.get("folder") or "")
+                ours.add(out / path_component(folder, "index.csv folder"))
     except (OSError, UnicodeDecodeError, csv.Error):
         pass
     foreign = [entry.name for entry in entries if entry not in ours]
@@ -109,8 +129,6 @@ def _earlier_run(out, *, force: bool) -> list:
 
 
 def run(args: argparse.Namespace) -> int:
-    import csv
-    import io
     import json
     import shutil
     from pathlib import Path
@@ -118,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import SpecError
     from ..grading.keys import build_key, bundle
     from ..grading.templates import draw_variant, load_template, to_toml
-    from ..io import json_text, student_folder, write_files
+    from ..io import csv_text, json_text, student_folder, write_files
     from ..progress import Progress
 
     out = Path(args.out)
@@ -128,14 +146,19 @@ def run(args: argparse.Namespace) -> int:
     if args.students:
         roster = read_roster(args.students)
         students = [student for student, _ in roster]
+        if len(students) > MAX_VARIANTS:
+            raise SpecError(f"the roster lists {len(students)} students; at most {MAX_VARIANTS} "
+                            "a run (a run of that many takes about a minute): split it",
+                            file=args.students)
         aliases = dict(roster)
         if args.count is not None and args.count != len(students):
             raise SpecError(f"--count {args.count} does not match the roster's "
                             f"{len(students)} students", file=args.students)
     else:
         count = 1 if args.count is None else args.count
-        if not 1 <= count <= 100_000:
-            raise SpecError(f"--count must be in 1…100000, got {count}")
+        if not 1 <= count <= MAX_VARIANTS:
+            raise SpecError(f"--count must be in 1…{MAX_VARIANTS}, got {count} (a run of "
+                            f"{MAX_VARIANTS} takes about a minute)")
         width = max(3, len(str(count)))
         students = [str(i).zfill(width) for i in range(1, count + 1)]
     folders = [student_folder(s) for s in students]
@@ -174,11 +197,7 @@ def run(args: argparse.Namespace) -> int:
             bar.advance()
     files["keys.json"] = json_text(bundle(keys, template=str(args.template), seed=args.seed,
                                           count=len(keys)))
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["student", "folder", "attempt", "values"])
-    writer.writerows(index_rows)
-    files["index.csv"] = buffer.getvalue()
+    files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *index_rows])
     for path in earlier:       # the earlier run's students, keys and index, now replaced
         if path.is_dir():
             shutil.rmtree(path)

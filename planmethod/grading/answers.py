@@ -30,14 +30,13 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
-from ..spec import check_nesting
+from ..spec import parse_json
 
 __all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "feedback_text", "grade_answers",
            "grade_many", "read_answers"]
@@ -75,12 +74,17 @@ def _parse_number(raw: Any) -> float | str | None:
 def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     """Read an answers file (CSV or JSON): a list of (student, {question id: raw answer}).
 
+    Every student of the file is in the list, or the file is refused: nothing is merged,
+    dropped or kept twice without a word.
+
     Raises
     ------
     SpecError
-        If the file is missing, too large, not CSV/JSON of the forms above, answers for the
-        same student twice (ids compared ignoring case), or has no student column and more
-        than one row.
+        If the file is missing, too large, not CSV/JSON of the forms above, or ambiguous: a
+        quote left open (naming its line), a column or JSON key given twice, a JSON object of
+        students with a stray value, an answer that is a list or an object, no student at all,
+        answers for the same student twice (ids compared ignoring case), no student column and
+        more than one row, or grade's own ``--json`` results instead of answers.
     """
     path = Path(path)
     try:
@@ -104,33 +108,76 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     return rows
 
 
+#: what grade's ``--json`` results hold (keys of the file, of one graded student)
+_RESULTS_KEYS = ({"answers", "drawings"}, {"score", "max_score", "questions"})
+_NOT_ANSWERS = ("this is planmethod grade's --json output (graded results), not an answers "
+                "file")
+
+
+def _kind(value: Any) -> str:
+    """What a JSON value is, in words: ``a list``, ``a number``…"""
+    if isinstance(value, Mapping | list):
+        return "an object" if isinstance(value, Mapping) else "a list"
+    if isinstance(value, bool) or value is None:
+        return "true/false" if value is not None else "null"
+    return "a number" if isinstance(value, int | float) else "a text"
+
+
+def _one_answer_each(answers: Mapping[str, Any], where: str, prefix: str) -> dict[str, Any]:
+    """A student's answers, each a number, a text, true/false or null — never a list or an
+    object (which would be graded as no answer while the file meant something else)."""
+    if any(keys <= set(answers) for keys in _RESULTS_KEYS):
+        raise SpecError(_NOT_ANSWERS, file=where, key=prefix or None)
+    for name, value in answers.items():
+        if isinstance(value, Mapping | list):
+            raise SpecError(f"is {_kind(value)}, not an answer (a number): give "
+                            "{\"question id\": answer, …} for each student", file=where,
+                            key=f"{prefix}.{name}" if prefix else str(name))
+    return dict(answers)
+
+
 def _answers_from_json(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
-    check_nesting(text, file=where)
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise SpecError(f"not valid JSON: {error}", file=where) from None
+    data = parse_json(text, file=where, unique_keys=True)
     rows: list[tuple[str, dict[str, Any]]] = []
     if isinstance(data, Mapping):
-        items = list(data.items())
-        if all(isinstance(v, Mapping) for _, v in items):
-            rows = [(str(k), dict(v)) for k, v in items]
-        else:  # one student's answers
-            rows = [("*", dict(data))]
+        if not data:
+            raise SpecError("no student's answers (the object is empty)", file=where)
+        if any(keys <= set(data) for keys in _RESULTS_KEYS):
+            raise SpecError(_NOT_ANSWERS, file=where)
+        students = [name for name, value in data.items() if isinstance(value, Mapping)]
+        if len(students) == len(data):       # {"s01": {"v_C": 5.2, …}, …}
+            rows = [(str(name), _one_answer_each(value, where, str(name)))
+                    for name, value in data.items()]
+        elif not students:                   # one student's answers
+            rows = [("*", _one_answer_each(data, where, ""))]
+        else:   # a class with a stray value, or one student with an object among the answers
+            by_student = 2 * len(students) >= len(data)   # most entries are students' objects
+            odd = next(name for name, value in data.items()
+                       if isinstance(value, Mapping) != by_student)
+            others = len(students) if by_student else len(data) - len(students)
+            like = ("an object of one student's answers" if by_student else "an answer")
+            raise SpecError(f"is {_kind(data[odd])}, not {like} like the {others} "
+                            f"other{'s' if others > 1 else ''}: the file "
+                            "is either {\"student\": {\"question id\": answer, …}, …} or one "
+                            "student's {\"question id\": answer, …}", file=where, key=str(odd))
     elif isinstance(data, list):
+        if not data:
+            raise SpecError("no student's answers (the list is empty)", file=where)
         for index, item in enumerate(data):
             if not isinstance(item, Mapping):
                 raise SpecError("each entry must be an object", file=where, key=f"[{index}]")
-            student = next((item[c] for c in STUDENT_COLUMNS if c in item), None)
-            if student is None:
+            column = next((c for c in STUDENT_COLUMNS if c in item), None)
+            student = item[column] if column is not None else None
+            if isinstance(student, Mapping | list) or student is None or not str(student).strip():
                 raise SpecError("no student id (give 'student')", file=where,
-                                key=f"[{index}]")
+                                key=f"[{index}]" + (f".{column}" if column else ""))
             answers = item.get("answers", {k: v for k, v in item.items()
                                            if k not in STUDENT_COLUMNS})
             if not isinstance(answers, Mapping):
                 raise SpecError("must be an object of answers", file=where,
                                 key=f"[{index}].answers")
-            rows.append((str(student), dict(answers)))
+            rows.append((str(student), _one_answer_each(
+                answers, where, f"[{index}].answers" if "answers" in item else f"[{index}]")))
     else:
         raise SpecError("must be an object or a list of objects", file=where)
     if len(rows) > MAX_ROWS:
@@ -138,63 +185,99 @@ def _answers_from_json(text: str, where: str) -> list[tuple[str, dict[str, Any]]
     return rows
 
 
-def _answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+class _Records:
+    """The records of a CSV text, each with the line it starts on; a quoted cell that runs
+    over a line end (a quote left open, which would swallow the students below it) or a quote
+    never closed is a :class:`SpecError` naming that line."""
+
+    def __init__(self, text: str, where: str) -> None:
+        try:   # the separator and spaces after it are guessed; quotes are always "…"
+            sniffed = csv.Sniffer().sniff(text[:4096], delimiters=",;\t")
+            delimiter, spaces = sniffed.delimiter, sniffed.skipinitialspace
+        except csv.Error:
+            delimiter, spaces = ",", False
+        self.reader = csv.reader(io.StringIO(text), delimiter=delimiter, quotechar='"',
+                                 doublequote=True, skipinitialspace=spaces, strict=True)
+        self.where = where
+
+    def __iter__(self):
+        while True:
+            line = self.reader.line_num + 1
+            try:
+                row = next(self.reader)
+            except StopIteration:
+                return
+            except csv.Error as error:
+                raise SpecError(f"not valid CSV: {error} (is a quote (\") left open or a "
+                                "cell quoted twice?)", file=self.where,
+                                key=f"line {line}") from None
+            if any("\n" in cell or "\r" in cell for cell in row):
+                raise SpecError(f"a quoted cell runs on to line {self.reader.line_num}: is a "
+                                "closing quote (\") missing?", file=self.where,
+                                key=f"line {line}")
+            yield line, row
+
+
+def _header(records, where: str) -> tuple[int, list[str]]:
+    """The header row (its line, its stripped cells); a column given twice is refused."""
     try:
-        dialect = csv.Sniffer().sniff(text[:4096], delimiters=",;\t")
-    except csv.Error:
-        dialect = csv.excel
-    reader = csv.reader(io.StringIO(text), dialect)
-    try:
-        header = next(reader)
+        line, header = next(iter(records))
     except StopIteration:
         raise SpecError("the file is empty", file=where) from None
-    except csv.Error as error:
-        raise SpecError(f"not valid CSV: {error}", file=where) from None
     header = [h.strip() for h in header]
+    seen: dict[str, int] = {}
+    for number, name in enumerate(header, start=1):
+        if name and name.lower() in seen:
+            raise SpecError(f"column {name!r} is given twice (columns {seen[name.lower()]} "
+                            f"and {number}): which one holds the answers?", file=where,
+                            key=f"line {line}")
+        seen.setdefault(name.lower(), number)
+    return line, header
+
+
+def _answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+    records = iter(_Records(text, where))
+    header_line, header = _header(records, where)
     lower = [h.lower() for h in header]
     column = next((lower.index(c) for c in STUDENT_COLUMNS if c in lower), None)
     if column is None:
-        return _one_student_csv(reader, header, where)
+        return _one_student_csv(records, header, where)
     if len(header) < 2:
         raise SpecError("needs a header row with a student column and question columns "
                         "(e.g. student,v_C,omega_BC)", file=where)
     rows = []
-    try:
-        for number, row in enumerate(reader, start=2):
-            if not any(cell.strip() for cell in row):
-                continue
-            if len(rows) >= MAX_ROWS:
-                raise SpecError(f"more than {MAX_ROWS} students", file=where)
-            if len(row) > len(header):
-                raise SpecError(f"row {number} has {len(row)} cells, the header {len(header)}",
-                                file=where)
-            student = row[column].strip() if column < len(row) else ""
-            if not student:
-                raise SpecError(f"row {number} has no student id (column '{header[column]}')",
-                                file=where)
-            rows.append((student, {header[i]: row[i] for i in range(len(row)) if i != column}))
-    except csv.Error as error:
-        raise SpecError(f"not valid CSV: {error}", file=where) from None
+    for line, row in records:
+        if not any(cell.strip() for cell in row):
+            continue
+        if len(rows) >= MAX_ROWS:
+            raise SpecError(f"more than {MAX_ROWS} students", file=where)
+        if len(row) > len(header):
+            raise SpecError(f"has {len(row)} cells, the header {len(header)}", file=where,
+                            key=f"line {line}")
+        student = row[column].strip() if column < len(row) else ""
+        if not student:
+            raise SpecError(f"no student id (column '{header[column]}')", file=where,
+                            key=f"line {line}")
+        rows.append((student, {header[i]: row[i] for i in range(len(row)) if i != column}))
+    if not rows:
+        raise SpecError(f"a header (line {header_line}) and no student's answers under it",
+                        file=where)
     return rows
 
 
-def _one_student_csv(reader, header: list[str], where: str) -> list[tuple[str, dict[str, Any]]]:
+def _one_student_csv(records, header: list[str], where: str) -> list[tuple[str, dict[str, Any]]]:
     """A CSV without a student column: one student's answers, in the one row under the
     header (the student is ``*``, the one the command is grading). Nothing is dropped."""
-    try:
-        rows = [(number, row) for number, row in enumerate(reader, start=2)
-                if any(cell.strip() for cell in row)]
-    except csv.Error as error:
-        raise SpecError(f"not valid CSV: {error}", file=where) from None
+    rows = [(line, row) for line, row in records if any(cell.strip() for cell in row)]
     if len(rows) != 1:
         names = ", ".join(STUDENT_COLUMNS[:3])
         raise SpecError(f"has no student column ({names}, …) but {len(rows)} rows of answers: "
                         "without one, the file holds one student's answers in one row",
                         file=where)
-    number, row = rows[0]
+    line, row = rows[0]
     if len(row) > len(header):
-        raise SpecError(f"row {number} has {len(row)} cells, the header {len(header)}",
-                        file=where)
+        raise SpecError(f"has {len(row)} cells, the header {len(header)}", file=where,
+                        key=f"line {line}")
     return [("*", {header[i]: row[i] for i in range(len(row))})]
 
 

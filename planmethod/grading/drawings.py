@@ -27,7 +27,6 @@ Examples
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from collections.abc import Mapping
@@ -38,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SpecError
+from ..spec import parse_json
 
 __all__ = [
     "Drawing",
@@ -123,9 +123,11 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
         except UnicodeDecodeError:
             raise SubmissionError("not UTF-8 text", file=source) from None
     try:
-        parsed = json.loads(data)
-    except (json.JSONDecodeError, RecursionError) as error:
-        raise SubmissionError(f"not valid JSON: {error}"[:200], file=source) from None
+        parsed = parse_json(data, file=source)
+    except SpecError as error:    # too deep, not JSON, or a whole number beyond 64 bits
+        message = error.message if error.key or error.message.startswith("not valid JSON") \
+            else f"not valid JSON: {error.message}"
+        raise SubmissionError(message[:200], file=source, key=error.key) from None
     if not isinstance(parsed, Mapping):
         raise SubmissionError("must be an object {\"plan\": …, \"points\": {…}}", file=source)
     plan = parsed.get("plan")
@@ -320,6 +322,29 @@ def parse_drawing_svg(data: bytes | str, *, source: str | None = None) -> Drawin
         raise error.located(file=source) from None
 
 
+def _element_name(element) -> str:
+    """An element as an error names it: ``<text> 'b'``, ``<circle id="c1">``, ``<line>``."""
+    tag = _local(element.tag)
+    if tag == "text":
+        return f"<text> {''.join(element.itertext()).strip()[:12]!r}"
+    return f'<{tag} id="{element.get("id")[:40]}">' if element.get("id") else f"<{tag}>"
+
+
+def _coordinate(element, name: str, budget: list[int]) -> float:
+    """The number an attribute such as ``x`` or ``cx`` starts with (0 when it is absent); one
+    that is not a finite number (``NaN``, ``inf``, ``1e999``) is refused, naming the element —
+    never read as 0, which would put the point at the pole."""
+    text = element.get(name)
+    if text is None or not text.strip():
+        return 0.0
+    values = _numbers(text, budget)
+    first = _NUMBER.match(text.strip())
+    if first is None or not values or not math.isfinite(values[0]):
+        raise SubmissionError(f"{name}={text[:40]!r} is not a finite number",
+                              key=_element_name(element))
+    return values[0]
+
+
 def _local(tag: Any) -> str:
     if not isinstance(tag, str):
         return ""  # comments and processing instructions
@@ -352,16 +377,16 @@ def _read_svg(root, source: str | None) -> Drawing:
             continue
         matrix = matrix @ _transform(element.get("transform"), budget)
 
-        def place(x: float, y: float, m=matrix) -> tuple[float, float]:
+        def place(x: float, y: float, m=matrix, e=element) -> tuple[float, float]:
             with np.errstate(invalid="ignore", over="ignore"):
                 u = m @ np.array([x, y, 1.0])
             if not (math.isfinite(u[0]) and math.isfinite(u[1])):
-                raise SubmissionError("a coordinate is not a finite number")
+                raise SubmissionError("a coordinate is not a finite number",
+                                      key=_element_name(e))
             return (float(u[0]), float(u[1]))
 
         def attr(name: str, e=element) -> float:
-            values = _numbers(e.get(name, "0"), budget)
-            return values[0] if values else 0.0
+            return _coordinate(e, name, budget)
 
         if tag in ("circle", "ellipse"):
             points.append(place(attr("cx"), attr("cy")))
@@ -369,6 +394,10 @@ def _read_svg(root, source: str | None) -> Drawing:
             points += [place(attr("x1"), attr("y1")), place(attr("x2"), attr("y2"))]
         elif tag in ("polyline", "polygon"):
             values = _numbers(element.get("points", ""), budget)
+            if _NUMBER.sub("", element.get("points", "")).strip(" ,\t\n\r"):
+                raise SubmissionError(f"points={element.get('points', '')[:40]!r} holds "
+                                      "something that is not a finite number",
+                                      key=_element_name(element))
             points += [place(values[i], values[i + 1]) for i in range(0, len(values) - 1, 2)]
         elif tag == "path":
             points += [place(x, y) for x, y in _path_vertices(element.get("d", ""), budget)]

@@ -32,8 +32,6 @@ Examples
 
 from __future__ import annotations
 
-import csv
-import io
 import json
 import math
 import re
@@ -42,7 +40,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 from xml.sax.saxutils import escape
 
-from ..io import json_text
+from ..io import csv_text, json_text
 from .answers import FEEDBACK_LEVELS, feedback_text
 
 __all__ = [
@@ -53,6 +51,9 @@ __all__ = [
     "moodle_xml",
     "prairielearn_questions",
 ]
+
+#: a double quote as XML writes it inside an attribute value
+_QUOTE = {'"': "&quot;"}
 
 #: PrairieLearn canvas pixels per drawn millimetre.
 PX_PER_MM = 4.0
@@ -407,7 +408,8 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
         html.append(
             f'<pl-number-input answers-name="{ident}" comparison="relabs" '
             f'rtol="{{{{params.rtol.{ident}}}}}" atol="{{{{params.atol.{ident}}}}}" '
-            f'label="{escape(question["text"])} =" suffix="{escape(question["unit"])}">'
+            f'label="{escape(question["text"], _QUOTE)} =" '
+            f'suffix="{escape(question["unit"], _QUOTE)}">'
             "</pl-number-input>")
     for name in plans:
         pole = first["plans"][name]["pole"]
@@ -449,8 +451,30 @@ def _cdata(text: str) -> str:
     return "<![CDATA[" + text.replace("]]>", "]]]]><![CDATA[>") + "]]>"
 
 
+def _cloze_text(text: object) -> str:
+    """Text of a Cloze question outside its fields (a title, the task, a student id, a
+    question's words): HTML-escaped, and its braces written as character references, so that
+    no text can open a field (``{1:MULTICHOICE:…}``) or repeat one (``{#1}``) — Moodle finds
+    the fields in the HTML source before it decodes references.
+
+    >>> _cloze_text("{1:MULTICHOICE:=a~b} <i>")
+    '&#123;1:MULTICHOICE:=a~b&#125; &lt;i&gt;'
+    """
+    return escape(str(text)).replace("{", "&#123;").replace("}", "&#125;")
+
+
+def _category_name(name: object) -> str:
+    """One name of a Moodle category path: a ``/`` in it doubled, as Moodle writes it, so
+    that a title cannot make more categories (and XML-escaped)."""
+    doubled = str(name).replace("/", "//")
+    doubled = (" " if doubled.startswith("/") else "") + doubled
+    return escape(doubled + (" " if doubled.endswith("/") else ""))
+
+
 def _cloze_escape(text: str) -> str:
-    """Text inside a Cloze answer or feedback: Moodle's special characters escaped."""
+    """Text inside a Cloze answer or feedback: HTML-escaped, and Moodle's special characters
+    escaped with a backslash (Moodle decodes the feedback's references when it reads it)."""
+    text = escape(text)
     for char in ("\\", "}", "#", "~", "/", '"'):
         text = text.replace(char, "\\" + char)
     return text
@@ -495,11 +519,12 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
     title = str(keys[0].get("title", "planmethod")) if keys else "planmethod"
     out += ['  <question type="category">',
-            f"    <category><text>$course$/top/{escape(category)}/{escape(title)}</text>"
+            f"    <category><text>$course$/top/{_category_name(category)}/"
+            f"{_category_name(title)}</text>"
             "</category>", "  </question>"]
     for key in keys:
         student = str(key.get("student"))
-        task = escape(key.get("task", "")).replace("\n\n", "</p><p>")
+        task = _cloze_text(key.get("task", "")).replace("\n\n", "</p><p>")
         image, files = "", ""
         if sheets and student in sheets:
             name = f"sheet_{_identifier(student)}.svg"
@@ -507,10 +532,11 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
             image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="the mechanism, task sheet" /></p>'
             files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
         rows = "".join(
-            f"<tr><td>{escape(question['text'])}</td><td>{cloze_field(question)}</td>"
-            f"<td>{escape(question.get('unit', ''))}</td></tr>"
+            f"<tr><td>{_cloze_text(question['text'])}</td><td>{cloze_field(question)}</td>"
+            f"<td>{_cloze_text(question.get('unit', ''))}</td></tr>"
             for question in key["questions"])
-        text = (f"<p><b>{escape(title)}</b> — variant {escape(student)}</p><p>{task}</p>"
+        text = (f"<p><b>{_cloze_text(title)}</b> — variant {_cloze_text(student)}</p>"
+                f"<p>{task}</p>"
                 f"{image}<p>Give in SI units (counter-clockwise positive):</p>"
                 f"<table>{rows}</table>")
         out += ['  <question type="cloze">',
@@ -526,20 +552,19 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
 
 # -- CSV gradebook ---------------------------------------------------------------------------
 def gradebook_csv(results: list[Mapping[str, Any]]) -> str:
-    """One row per student: variant, score per question, total and maximum."""
+    """One row per student: variant, score per question, total and maximum (text cells made
+    safe to open in a spreadsheet: :func:`~planmethod.io.csv_text`)."""
     ids: list[str] = []
     for result in results:
         for question in result.get("questions", ()):
             if question["id"] not in ids:
                 ids.append(question["id"])
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["student", "variant", *ids, "total", "max", "note"])
+    rows: list[list[Any]] = [["student", "variant", *ids, "total", "max", "note"]]
     for result in results:
         scores = {q["id"]: q["score"] for q in result.get("questions", ())}
-        writer.writerow([result.get("student"), result.get("variant", ""),
-                         *[_format(scores[i]) if i in scores else "" for i in ids],
-                         _format(float(result.get("score", 0.0))),
-                         "" if result.get("max_score") is None
-                         else _format(float(result["max_score"])), result.get("error", "")])
-    return buffer.getvalue()
+        rows.append([result.get("student"), result.get("variant", ""),
+                     *[_format(scores[i]) if i in scores else "" for i in ids],
+                     _format(float(result.get("score", 0.0))),
+                     "" if result.get("max_score") is None
+                     else _format(float(result["max_score"])), result.get("error", "")])
+    return csv_text(rows)

@@ -39,14 +39,13 @@ Examples
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
-from ..spec import check_nesting
+from ..spec import parse_json
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
 from .mistakes import CONSTRUCTION_MISTAKES, MISTAKES, REGISTRY, mistaken_plans, value_answers
@@ -339,11 +338,7 @@ def load_keys(path: str | Path) -> dict[str, dict]:
         raise SpecError("no such file", file=str(path)) from None
     except (OSError, UnicodeDecodeError) as error:
         raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
-    check_nesting(text, file=str(path))
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise SpecError(f"not valid JSON: {error}", file=str(path)) from None
+    data = parse_json(text, file=str(path))
     if isinstance(data, Mapping) and data.get("format") == KEYS_FORMAT:
         keys = data.get("keys")
         if not isinstance(keys, list):

@@ -20,10 +20,10 @@ Examples
 
 from __future__ import annotations
 
-import csv
-import io
 from collections.abc import Iterable, Mapping
 from typing import Any
+
+from ..io import csv_text
 
 __all__ = ["class_statistics", "mistakes_csv", "questions_csv"]
 
@@ -63,24 +63,18 @@ def class_statistics(results: Iterable[Mapping[str, Any]]) -> list[dict]:
 def questions_csv(rows: list[Mapping[str, Any]]) -> str:
     """``question, students, answered, mean_score, correct, unexplained, top_mistake,
     top_mistake_share`` — one line per question."""
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["question", "students", "answered", "mean_score", "correct",
-                     "unexplained", "top_mistake", "top_mistake_share"])
+    lines: list[list[Any]] = [["question", "students", "answered", "mean_score", "correct",
+                               "unexplained", "top_mistake", "top_mistake_share"]]
     for row in rows:
         top = max(row["mistakes"].items(), key=lambda item: item[1], default=("", 0.0))
-        writer.writerow([row["question"], row["students"], row["answered"],
-                         f"{row['mean_score']:.4f}", f"{row['correct']:.4f}",
-                         f"{row['unexplained']:.4f}", top[0], f"{top[1]:.4f}"])
-    return buffer.getvalue()
+        lines.append([row["question"], row["students"], row["answered"],
+                      f"{row['mean_score']:.4f}", f"{row['correct']:.4f}",
+                      f"{row['unexplained']:.4f}", top[0], f"{top[1]:.4f}"])
+    return csv_text(lines)
 
 
 def mistakes_csv(rows: list[Mapping[str, Any]]) -> str:
     """``question, mistake, share`` — one line per question and named mistake."""
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["question", "mistake", "share"])
-    for row in rows:
-        for name, share in row["mistakes"].items():
-            writer.writerow([row["question"], name, f"{share:.4f}"])
-    return buffer.getvalue()
+    return csv_text([["question", "mistake", "share"]]
+                    + [[row["question"], name, f"{share:.4f}"]
+                       for row in rows for name, share in row["mistakes"].items()])

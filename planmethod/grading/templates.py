@@ -58,7 +58,7 @@ from typing import Any
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Exercise
 from ..plans.construction import course_text
-from ..spec import parse_toml, read_text
+from ..spec import leaves, parse_toml, read_text
 from ..vocabulary import PlanKind, link_numbers, symbol
 from .expressions import ExpressionError, evaluate, parse, references
 
@@ -220,16 +220,7 @@ def _settings(table: Any, file: str | None) -> TemplateSettings:
 # -- walking the tables ----------------------------------------------------------------------
 def _walk(node: Any, prefix: str = ""):
     """Yield (dotted key, value) for every leaf and random spec of the tables."""
-    if _is_random(node):
-        yield prefix, node
-    elif isinstance(node, Mapping):
-        for name, value in node.items():
-            yield from _walk(value, f"{prefix}.{name}" if prefix else str(name))
-    elif isinstance(node, list):
-        for index, value in enumerate(node):
-            yield from _walk(value, f"{prefix}[{index}]")
-    else:
-        yield prefix, node
+    return leaves(node, prefix, whole=_is_random)
 
 
 def _is_random(value: Any) -> bool:
