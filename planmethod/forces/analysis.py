@@ -34,6 +34,7 @@ from ..errors import SpecError
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
 from ..plans.scales import standard
+from ..vectors import norm
 from ..vocabulary import AppliedKind
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
@@ -93,7 +94,7 @@ def _relative_difference(groups: GroupSolution, system: SystemSolution,
     for key, reaction in groups.reactions.items():
         other = system.reactions[key]
         scale = np.maximum(scale, reaction.magnitude)
-        difference = np.maximum(difference, np.hypot(*(reaction.force - other.force).T))
+        difference = np.maximum(difference, norm(reaction.force - other.force))
         if reaction.moment is not None:
             difference = np.maximum(difference, np.abs(reaction.moment - other.moment) / length)
     return np.where(scale > 0, difference / np.where(scale > 0, scale, 1.0), difference)
@@ -297,7 +298,7 @@ class ForceAnalysis:
             lines += ["  link      m kg    J kg·m²   |a_S| m/s²   F_u = −m·a_S (N)          "
                       "M_u = −J·ε N·m"]
             for link, item in solution.applied.inertia.items():
-                a = float(np.hypot(*item.acceleration[0]))
+                a = float(norm(item.acceleration[0]))
                 f = item.force[0]
                 lines.append(f"  {link:<8} {item.mass:>6.4g} {item.J:>10.4g} {a:>11.5g}   "
                              f"({f[0]:>10.5g}, {f[1]:>10.5g})   {float(item.moment[0]):>10.5g}")
@@ -332,9 +333,9 @@ class ForceAnalysis:
             lines.append(f"  combined force Q = m·(g − a_S) (Aliyev): pole π moved down by "
                          f"Z_g = g/μa = {c.gravity_image_mm:.4g} mm to π′")
             for f in c.forces:
-                length = float(np.hypot(*f.segment_mm))
+                length = float(norm(np.asarray(f.segment_mm)))
                 lines.append(f"    {f.link}: (s π′) = {length:.4g} mm → |Q| = "
-                             f"{float(np.hypot(*f.from_plan)):.6g} N")
+                             f"{float(norm(np.asarray(f.from_plan))):.6g} N")
         if self.constants is not None and self.constants.force_moment is not None:
             k = self.constants
             lines.append(f"  constants for all positions (Aliyev): μF·μl = "
@@ -362,7 +363,7 @@ def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
     largest = 0.0
     for group in solution.groups.groups:
         for edge in group.polygon:
-            largest = max(largest, float(np.hypot(*edge.vector[0])))
+            largest = max(largest, float(norm(edge.vector[0])))
     drawn = plan.force_mm or FORCE_MM
     if largest <= 0:
         return 1.0

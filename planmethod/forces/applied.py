@@ -41,7 +41,7 @@ import numpy as np
 from ..errors import SpecError
 from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
-from ..vectors import cross, norm
+from ..vectors import cross, dot, norm
 from ..vocabulary import AppliedKind
 
 __all__ = [
@@ -121,7 +121,7 @@ class AppliedItem:
         """Power of this force or moment (W) with the link's motion: F·v or M·ω."""
         if self.force is not None:
             velocity = state.velocity_at(self.point)
-            return np.einsum("...i,...i->...", self.force, velocity)
+            return dot(self.force, velocity)
         return self.moment * state.omega
 
 
@@ -264,7 +264,7 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
             velocity = state.velocity_at(point)
             speed = norm(velocity)
             moving = speed > rest
-            magnitude = float(np.hypot(*load.force))
+            magnitude = float(norm(np.asarray(load.force)))
             with np.errstate(divide="ignore", invalid="ignore"):
                 against = -magnitude * velocity / np.where(moving, speed, 1.0)[..., None]
             force = np.where(moving[..., None], against, force)

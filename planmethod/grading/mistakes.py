@@ -36,6 +36,7 @@ import numpy as np
 
 from ..model import Exercise
 from ..plans.construction import Segment
+from ..vectors import norm, perp
 from ..vocabulary import QUANTITY_KINDS
 from .tolerances import kind_of, scale_factor
 
@@ -101,7 +102,7 @@ def _along(name: str):
     """A group's ``name`` construction line drawn along the link instead of across it."""
     def rule(direction, segment: Segment):
         if segment.name == name and segment.group is not None:
-            return (-direction[1], direction[0])            # turned 90°: along the link
+            return perp(direction)            # turned 90°: along the link
         return None
     return rule
 
@@ -228,8 +229,8 @@ def _relative(quantity, value, tolerance, context):
             theirs = np.asarray(read(other), float).reshape(-1, 2)[0]
         except Exception:
             continue
-        if float(np.hypot(*theirs)) > 0:      # from a fixed point it is the absolute one
-            out.append((float(np.hypot(*(own - theirs))), tolerance))
+        if float(norm(theirs)) > 0:      # from a fixed point it is the absolute one
+            out.append((float(norm(own - theirs)), tolerance))
     return out
 
 

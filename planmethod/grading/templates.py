@@ -59,6 +59,7 @@ from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError
 from ..model import FRAME, Exercise
 from ..plans.construction import course_text
 from ..spec import parse_toml, read_text
+from ..vectors import angle_deg
 from ..vocabulary import PlanKind, link_numbers, symbol
 from .expressions import ExpressionError, evaluate, parse, references
 
@@ -533,9 +534,9 @@ def dead_centre_angle(plans) -> float | None:
     if label is None:
         return None
     pb = velocity.points_mm[label]
-    if math.hypot(*pb) == 0:
+    if pb[0] == 0 and pb[1] == 0:
         return None
-    direction = math.degrees(math.atan2(pb[1], pb[0]))
+    direction = angle_deg(pb)
     for step in velocity.steps:
         if step.action == "line" and step.start == label:
             difference = abs((step.direction_deg - direction + 90.0) % 180.0 - 90.0)

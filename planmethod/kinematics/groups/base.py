@@ -35,11 +35,12 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from ... import vectors
 from ...errors import AssemblyError, StructureError, ToggleError
 from ...model import Mechanism, Slide
 from ...structure import AssurGroup, Joint
 from ...vocabulary import STAGE_PLURAL, EdgeKind
-from ..algebra import Body, Vec, cross
+from ..algebra import Body, Vec, cross, dot
 from ..tracing import Traced
 
 __all__ = [
@@ -60,6 +61,7 @@ __all__ = [
     "evaluate_dyad",
     "sense",
     "split",
+    "turned_axes",
 ]
 
 #: the arithmetic's resolution (unit roundoff)
@@ -164,39 +166,39 @@ class Context:
         known = slide.along if along_known else slide.link
         body = body or self.bodies[known]
         angle = slide.direction_rad if along_known else -slide.direction_rad
-        c, s = _turned_axes(body.c, body.s, angle)
+        c, s = turned_axes(body.c, body.s, angle)
         if along_known:  # the guide is fixed in the known link
             d = Vec(c, s)
             n = d.perp()
             through = body.point(*self.local(slide.along, slide.through))
             own = Vec(*self.local(slide.link, slide.point)).turned(c, s)
-            return d, n, _dot(n, through - own)
+            return d, n, dot(n, through - own)
         # the guide is fixed in the unknown link, whose axes are the known link's turned back
         d = Vec(body.c, body.s)
         n = d.perp()
         point = body.point(*self.local(slide.link, slide.point))
         own = Vec(*self.local(slide.along, slide.through)).turned(c, s)
-        return d, n, _dot(n, point - own)
+        return d, n, dot(n, point - own)
 
     def slide_axes(self, slide: Slide, unknown: str) -> tuple[Any, Any]:
         """The axes (cos θ, sin θ) of ``unknown``, held by a prismatic pair to a known link."""
         if unknown == slide.link:
             body = self.bodies[slide.along]
-            return _turned_axes(body.c, body.s, slide.direction_rad)
+            return turned_axes(body.c, body.s, slide.direction_rad)
         body = self.bodies[slide.link]
-        return _turned_axes(body.c, body.s, -slide.direction_rad)
+        return turned_axes(body.c, body.s, -slide.direction_rad)
 
 
-def _dot(a: Vec, b: Vec):
-    return a.x * b.x + a.y * b.y
+def turned_axes(c, s, angle: float) -> tuple[Any, Any]:
+    """(cos, sin) of θ + ``angle`` (rad, a constant) from (cos θ, sin θ).
 
-
-def _turned_axes(c, s, angle: float):
-    """(cos, sin) of θ + angle from (cos θ, sin θ)."""
+    >>> turned_axes(1.0, 0.0, math.pi / 2)
+    (6.123233995736766e-17, 1.0)
+    """
     if angle == 0.0:
         return c, s
-    ca, sa = math.cos(angle), math.sin(angle)
-    return c * ca - s * sa, c * sa + s * ca
+    turned = Vec(c, s).turned(math.cos(angle), math.sin(angle))
+    return turned.x, turned.y
 
 
 # -- how a link's angle is read --------------------------------------------------------------
@@ -297,7 +299,7 @@ def sliding_side(context: Context, slide: Slide, carrier: str, base: str, base_l
     """A side along the guide of ``slide`` (the guide's direction from its ``along`` link, a
     known link or one of the group's ``placed`` bodies)."""
     body = placed.get(slide.along) or context.bodies[slide.along]
-    c, s = _turned_axes(body.c, body.s, slide.direction_rad)
+    c, s = turned_axes(body.c, body.s, slide.direction_rad)
     if offset is None:
         offset = position - context.bodies[base_link].origin
     return Side(False, carrier, base, base_link, position, offset, Vec(c, s), None, 1.0, slide)
@@ -314,8 +316,8 @@ def sense(segment, direction):
     ...                                                           np.array([0.0, 1.0]))
     (-1.0, 1.0)
     """
-    along = segment[..., 0] * direction[0] + segment[..., 1] * direction[1]
-    across = 1e-9 * np.hypot(segment[..., 0], segment[..., 1])
+    along = vectors.dot(segment, direction)
+    across = 1e-9 * vectors.norm(segment)
     positive = (along >= 0) | (np.abs(along) <= across)
     return np.where(positive, 1.0, -1.0) if np.ndim(positive) else (1.0 if positive else -1.0)
 
@@ -325,8 +327,8 @@ def axes_towards(r: Vec, first: tuple[float, float], second: tuple[float, float]
     ``r`` (global), |r| = ``length``: θ = angle(r) − angle(second − first)."""
     lx, ly = second[0] - first[0], second[1] - first[1]
     size = math.hypot(lx, ly)
-    lx, ly = lx / size, ly / size
-    return (r.x * lx + r.y * ly) / length, (r.y * lx - r.x * ly) / length
+    along = Vec(lx / size, ly / size)
+    return dot(r, along) / length, cross(along, r) / length
 
 
 # -- the generic solve of the two vector equations ---------------------------------------------
@@ -563,7 +565,7 @@ class Construction:
     def size_ratio(self) -> np.ndarray:
         """R = L/l of :func:`size_ratio` at each angle."""
         s1, s2 = self.sides
-        lengths = [-1.0 if side.radius is None else np.hypot(*side.radius.T)
+        lengths = [-1.0 if side.radius is None else vectors.norm(side.radius)
                    for side in self.sides]
         return size_ratio(s1.base_position[:, 0], s1.base_position[:, 1],
                           s2.base_position[:, 0], s2.base_position[:, 1], *lengths)
@@ -608,7 +610,7 @@ def construction(placed: Placed, group: AssurGroup, count: int) -> Construction:
     for side in placed.sides:
         direction = _array(side.direction, count)
         if side.rotation:
-            direction = direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
+            direction = vectors.unit(direction)
         sides.append(ConstructionSide(
             side.rotation, side.link, side.base, side.base_link,
             _array(side.position, count), direction,
@@ -684,6 +686,6 @@ class ForceSolver(Protocol):
 
 def split(vector: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(unit vector, length) of arrays of 2-vectors."""
-    length = np.sqrt(vector[..., 0] * vector[..., 0] + vector[..., 1] * vector[..., 1])
+    length = vectors.norm(vector)
     return vector / length[..., None], length
 
