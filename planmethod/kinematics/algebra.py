@@ -20,7 +20,7 @@ velocity and acceleration.
 Examples
 --------
 >>> import numpy as np
->>> crank = Body(c=np.array([0.0]), s=np.array([1.0]), x=0.0, y=0.0, w=10.0)
+>>> crank = Body(cos=np.array([0.0]), sin=np.array([1.0]), x=0.0, y=0.0, omega=10.0)
 >>> b = crank.offset(0.08, 0.0)
 >>> [float(v[0]) for v in (b.x, b.y)], [float(v[0]) for v in crank.velocity(b)]
 ([0.0, 0.08], [-0.8, 0.0])
@@ -161,19 +161,20 @@ def norm(a: Vec) -> Number:
 
 
 class Body:
-    """A link's pose and motion: axes (``c``, ``s``) = (cos θ, sin θ), origin (``x``, ``y``),
-    angular velocity ``w`` and acceleration ``e``, the origin's velocity (``vx``, ``vy``) and
-    acceleration (``ax``, ``ay``). Motion not (yet) known is zero; the frame is all constants.
+    """A link's pose and motion: its axes (``cos``, ``sin``) = (cos θ, sin θ), its origin
+    (``x``, ``y``), its angular velocity ``omega`` and acceleration ``epsilon``, its origin's
+    velocity (``vx``, ``vy``) and acceleration (``ax``, ``ay``). Motion not (yet) known is zero;
+    the frame is all constants. (Mutable: a group kind fills a body's motion in stage by stage.)
     """
 
-    __slots__ = ("ax", "ay", "c", "e", "s", "vx", "vy", "w", "x", "y")
+    __slots__ = ("ax", "ay", "cos", "epsilon", "omega", "sin", "vx", "vy", "x", "y")
 
-    def __init__(self, c: Number = 1.0, s: Number = 0.0, x: Number = 0.0, y: Number = 0.0,
-                 w: Number = 0.0, vx: Number = 0.0, vy: Number = 0.0, e: Number = 0.0,
-                 ax: Number = 0.0, ay: Number = 0.0) -> None:
-        self.c, self.s, self.x, self.y = c, s, x, y
-        self.w, self.vx, self.vy = w, vx, vy
-        self.e, self.ax, self.ay = e, ax, ay
+    def __init__(self, cos: Number = 1.0, sin: Number = 0.0, x: Number = 0.0, y: Number = 0.0,
+                 omega: Number = 0.0, vx: Number = 0.0, vy: Number = 0.0,
+                 epsilon: Number = 0.0, ax: Number = 0.0, ay: Number = 0.0) -> None:
+        self.cos, self.sin, self.x, self.y = cos, sin, x, y
+        self.omega, self.vx, self.vy = omega, vx, vy
+        self.epsilon, self.ax, self.ay = epsilon, ax, ay
 
     @property
     def origin(self) -> Vec:
@@ -182,7 +183,7 @@ class Body:
     def offset(self, lx: float, ly: float) -> Vec:
         """The local vector (lx, ly) turned onto the link's axes (a point's offset from the
         origin)."""
-        return Vec(lx, ly).turned(self.c, self.s)
+        return Vec(lx, ly).turned(self.cos, self.sin)
 
     def point(self, lx: float, ly: float) -> Vec:
         """Global position of the link's point with local coordinates (lx, ly)."""
@@ -191,9 +192,10 @@ class Body:
     def velocity(self, r: Vec) -> Vec:
         """Velocity of the link's material point at offset ``r`` from the origin:
         v + ω·J·r."""
-        return Vec(self.vx - self.w * r.y, self.vy + self.w * r.x)
+        return Vec(self.vx - self.omega * r.y, self.vy + self.omega * r.x)
 
     def acceleration(self, r: Vec) -> Vec:
         """Acceleration of the material point at offset ``r``: a + ε·J·r − ω²·r."""
-        square = self.w * self.w
-        return Vec(self.ax - self.e * r.y - square * r.x, self.ay + self.e * r.x - square * r.y)
+        square = self.omega * self.omega
+        return Vec(self.ax - self.epsilon * r.y - square * r.x,
+                   self.ay + self.epsilon * r.x - square * r.y)

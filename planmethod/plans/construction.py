@@ -39,7 +39,7 @@ from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
-from ..vocabulary import _SUBSCRIPT, PlanKind, link_numbers, symbol
+from ..vocabulary import PlanKind, link_numbers, number_subscript, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -263,7 +263,7 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     if "@" in text and numbers:   # a point on a link: its name, the link's number below
         names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
         text = re.sub(rf"@({names})",
-                      lambda match: str(numbers[match.group(1)]).translate(_SUBSCRIPT), text)
+                      lambda match: number_subscript(numbers[match.group(1)]), text)
 
     def quantity(match: re.Match) -> str:
         name = match.group(0)

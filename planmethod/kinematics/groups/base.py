@@ -16,7 +16,7 @@ accelerations, each link's ω and ε, its origin's velocity and acceleration. Th
 draws the same two sides (:func:`construction`).
 
 The formulas run on floats, numpy arrays or traced values (:mod:`planmethod.kinematics.algebra`);
-checks go through :meth:`Context.guard`: a cheap bound at every evaluation, the exact check
+checks go through :meth:`GroupInputs.guard`: a cheap bound at every evaluation, the exact check
 (which raises the error) only where the bound fails.
 
 Examples
@@ -31,7 +31,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any, Protocol
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
@@ -50,8 +50,8 @@ __all__ = [
     "Anchor",
     "Branch",
     "Construction",
-    "Context",
     "ForceSolver",
+    "GroupInputs",
     "Pin",
     "Placed",
     "PlanDrawer",
@@ -102,7 +102,19 @@ class Pin:
     bound: float | None
 
 
-class Context:
+class Dyad(NamedTuple):
+    """A dyad's pairs and links: ``link1`` is joined to a known link by ``external1`` and to
+    ``link2`` by ``internal``; ``link2`` to a known link by ``external2`` (a prismatic pair's
+    guide may be on either side)."""
+
+    external1: Joint
+    internal: Joint
+    external2: Joint
+    link1: str
+    link2: str
+
+
+class GroupInputs:
     """What a group kind's formulas see: the model, the group, its branch ``sign``, the bodies
     of the links known so far (and of the group's links once placed), the crank angles (deg),
     and :meth:`guard`. ``bounds`` holds, where known, an upper bound of the distance of a named
@@ -121,10 +133,11 @@ class Context:
         x, y = self.mechanism.local(link, point)
         return float(x), float(y)
 
-    def dyad(self) -> tuple:
-        """A dyad's (external pair of L1, internal pair, external pair of L2, L1, L2)."""
-        ext1, internal, ext2 = self.group.joints
-        return ext1, internal, ext2, *self.group.links
+    def dyad(self) -> Dyad:
+        """The group's pairs and links as a dyad kind's formulas name them."""
+        external1, internal, external2 = self.group.joints
+        link1, link2 = self.group.links
+        return Dyad(external1, internal, external2, link1, link2)
 
     def group_link(self, joint: Joint) -> str:
         return joint.links[0] if joint.links[0] in self.group.links else joint.links[1]
@@ -166,7 +179,7 @@ class Context:
         known = slide.along if along_known else slide.link
         body = body or self.bodies[known]
         angle = slide.direction_rad if along_known else -slide.direction_rad
-        c, s = turned_axes(body.c, body.s, angle)
+        c, s = turned_axes(body.cos, body.sin, angle)
         if along_known:  # the guide is fixed in the known link
             d = Vec(c, s)
             n = d.perp()
@@ -174,7 +187,7 @@ class Context:
             own = Vec(*self.local(slide.link, slide.point)).turned(c, s)
             return d, n, dot(n, through - own)
         # the guide is fixed in the unknown link, whose axes are the known link's turned back
-        d = Vec(body.c, body.s)
+        d = Vec(body.cos, body.sin)
         n = d.perp()
         point = body.point(*self.local(slide.link, slide.point))
         own = Vec(*self.local(slide.along, slide.through)).turned(c, s)
@@ -184,9 +197,9 @@ class Context:
         """The axes (cos θ, sin θ) of ``unknown``, held by a prismatic pair to a known link."""
         if unknown == slide.link:
             body = self.bodies[slide.along]
-            return turned_axes(body.c, body.s, slide.direction_rad)
+            return turned_axes(body.cos, body.sin, slide.direction_rad)
         body = self.bodies[slide.link]
-        return turned_axes(body.c, body.s, -slide.direction_rad)
+        return turned_axes(body.cos, body.sin, -slide.direction_rad)
 
 
 def turned_axes(c, s, angle: float) -> tuple[Any, Any]:
@@ -294,12 +307,12 @@ def rotation_side(link: str, pin: Pin, x: Vec, length, radius: Vec | None = None
                 radius, length)
 
 
-def sliding_side(context: Context, slide: Slide, carrier: str, base: str, base_link: str,
+def sliding_side(context: GroupInputs, slide: Slide, carrier: str, base: str, base_link: str,
                  position: Vec, placed: Mapping[str, Body], offset: Vec | None = None) -> Side:
     """A side along the guide of ``slide`` (the guide's direction from its ``along`` link, a
     known link or one of the group's ``placed`` bodies)."""
     body = placed.get(slide.along) or context.bodies[slide.along]
-    c, s = turned_axes(body.c, body.s, slide.direction_rad)
+    c, s = turned_axes(body.cos, body.sin, slide.direction_rad)
     if offset is None:
         offset = position - context.bodies[base_link].origin
     return Side(False, carrier, base, base_link, position, offset, Vec(c, s), None, 1.0, slide)
@@ -332,7 +345,7 @@ def axes_towards(r: Vec, first: tuple[float, float], second: tuple[float, float]
 
 
 # -- the generic solve of the two vector equations ---------------------------------------------
-def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Callable) -> dict:
+def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage: Callable) -> dict:
     """Velocities (``level`` ≥ 1) and accelerations (``level`` 2) of a placed dyad: fills the
     group links' bodies in ``context.bodies`` and returns X's velocity and acceleration and the
     sine of the angle between the two lines (``{"v_x", "a_x", "sine"}``)."""
@@ -364,15 +377,15 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     v_x = vb2 + e2 * u2 if second else vb1 + e1 * u1
     out["v_x"] = v_x
     omegas = _follow(placed, {link: (u1, u2)[index] for link, index in placed.rotating.items()},
-                     lambda link: bodies[link].w)
+                     lambda link: bodies[link].omega)
     for link, body in placed.bodies.items():
         reference, velocity, _ = _reference(context, placed, link, v_x, None)
-        body.w = omegas[link]
+        body.omega = omegas[link]
         r = body.origin - reference if reference is not None else None
         if r is None:
             body.vx, body.vy = velocity.x, velocity.y
         else:
-            moved = velocity + r.perp() * body.w
+            moved = velocity + r.perp() * body.omega
             body.vx, body.vy = moved.x, moved.y
     if level < 2:
         return out
@@ -383,7 +396,7 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
         if side.rotation:
             known.append(side.radius * -(u * u))
         else:  # the Coriolis term 2ω_carrier·J·v_rel
-            known.append((side.direction * u).perp() * (2.0 * bodies[side.link].w))
+            known.append((side.direction * u).perp() * (2.0 * bodies[side.link].omega))
     rhs = (ab2 + known[1]) - (ab1 + known[0])
     du1 = cross(rhs, e2) / det
     du2 = cross(rhs, e1) / det
@@ -391,16 +404,16 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     out["a_x"] = a_x
     epsilons = _follow(placed, {link: (du1, du2)[index]
                                 for link, index in placed.rotating.items()},
-                       lambda link: bodies[link].e)
+                       lambda link: bodies[link].epsilon)
     for link, body in placed.bodies.items():
         reference, _, acceleration = _reference(context, placed, link, v_x, a_x)
-        body.e = epsilons[link]
+        body.epsilon = epsilons[link]
         if reference is None:
             body.ax, body.ay = acceleration.x, acceleration.y
         else:
             r = body.origin - reference
-            square = body.w * body.w
-            moved = acceleration + r.perp() * body.e - r * square
+            square = body.omega * body.omega
+            moved = acceleration + r.perp() * body.epsilon - r * square
             body.ax, body.ay = moved.x, moved.y
     return out
 
@@ -426,7 +439,7 @@ def _follow(placed: Placed, values: dict, known: Callable) -> dict:
     return values
 
 
-def _reference(context: Context, placed: Placed, link: str, v_x: Vec, a_x: Vec | None):
+def _reference(context: GroupInputs, placed: Placed, link: str, v_x: Vec, a_x: Vec | None):
     """(reference position, or None where it is the link's origin; its velocity; its
     acceleration) of a group link's motion: its pin on a known link, or X — whichever is the
     link's origin, else the pin."""

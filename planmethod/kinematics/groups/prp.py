@@ -32,7 +32,7 @@ KIND = GroupKind.PRP
 BRANCHES = 1
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     lines = []

@@ -34,7 +34,7 @@ KIND = GroupKind.RPP
 BRANCHES = 1
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     k2 = ext2.other(l2)

@@ -38,7 +38,7 @@ KIND = GroupKind.RPR
 BRANCHES = 2
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()   # l1 is the block (the slide's link)
     slide = internal.slide

@@ -35,7 +35,7 @@ KIND = GroupKind.RRP
 BRANCHES = 2
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     slide = ext2.slide

@@ -34,7 +34,7 @@ KIND = GroupKind.RRR
 BRANCHES = 2
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     p1, p2 = context.pin(ext1), context.pin(ext2)

@@ -43,7 +43,7 @@ from ...structure import AssurGroup
 from ...vectors import cross, norm, perp, turn_onto, unit, unit_angle
 from ...vocabulary import EdgeKind, GroupKind, PairKind
 from ..algebra import Body, absolute, cos, maximum, sin, sqrt
-from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, ThetaKind, sense, split
+from .base import Branch, ForceSolver, GroupInputs, PlanDrawer, Theta, ThetaKind, sense, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
 
 __all__ = ["KIND", "PRIORITY", "SPECIAL", "TriadSystem", "accepts", "choose",
@@ -106,7 +106,7 @@ class TriadSystem(System):
 
     traceable = True
 
-    def __init__(self, context: Context) -> None:
+    def __init__(self, context: GroupInputs) -> None:
         mechanism, group = context.mechanism, context.group
         self.mechanism, self.group = mechanism, group
         self.links = tuple(group.links)
@@ -317,12 +317,12 @@ def _cramer(rows, rhs) -> tuple:
     return u0, u1, u2
 
 
-def evaluate(context: Context, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
     """Solve the triad at the context's angles (see the module docstring)."""
     return higher_evaluate(context, level, model, branch, outputs, TriadSystem)
 
 
-def choose(context: Context, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
     """The triad's assembly at ``drive.angle``."""
     return choose_with(context, model, TriadSystem)
 
