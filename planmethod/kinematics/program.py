@@ -276,10 +276,10 @@ def build(model: Model, groups: tuple[AssurGroup, ...], branches: Mapping[int, B
     placements: dict[int, Any] = {}
     named: dict[str, tuple] = {}   # point → (position, velocity, acceleration) from a group
     for group in groups:
-        module = kind_module(group)
+        kind = kind_module(group)
         context = GroupInputs(mechanism, group, bodies, branches[group.index].sign, angles, bounds)
-        if hasattr(module, "place"):
-            placed = module.place(context)
+        if kind.closed_form:
+            placed = kind.place(context)
             found = evaluate_dyad(context, placed, level,
                                   stage_check(group, STAGES[max(level, 1)]))
             if "sine" in found:
@@ -288,7 +288,7 @@ def build(model: Model, groups: tuple[AssurGroup, ...], branches: Mapping[int, B
                 named[placed.point] = (placed.x, found.get("v_x"), found.get("a_x"))
             placements[group.index] = placed
         else:
-            found = module.evaluate(context, level, model, branches[group.index], outputs)
+            found = kind.evaluate(context, level, model, branches[group.index], outputs)
             placements[group.index] = found
         _spread(mechanism, group.links, bounds)
     solved = [FRAME, mechanism.drive.link] + [link for g in groups for link in g.links]
@@ -345,9 +345,9 @@ def _branches_at_drive_angle(model: Model, groups: Iterable[AssurGroup]
     bounds = _bounds(mechanism)
     chosen: dict[int, Branch] = {}
     for group in groups:
-        module = kind_module(group)
-        if not hasattr(module, "place"):
-            branch, placed_bodies = module.choose(
+        kind = kind_module(group)
+        if not kind.closed_form:
+            branch, placed_bodies = kind.choose(
                 GroupInputs(mechanism, group, dict(bodies), 1.0, angles, bounds), model)
             chosen[group.index] = branch
             bodies.update(placed_bodies)
@@ -355,15 +355,15 @@ def _branches_at_drive_angle(model: Model, groups: Iterable[AssurGroup]
             continue
         candidates: dict[int, Any] = {}
         errors = []
-        for sign in ((1, -1) if module.BRANCHES == 2 else (1,)):
+        for sign in ((1, -1) if kind.branches == 2 else (1,)):
             context = GroupInputs(mechanism, group, dict(bodies), sign, angles, bounds)
             try:
-                candidates[sign] = module.place(context).bodies
+                candidates[sign] = kind.place(context).bodies
             except AssemblyError as error:
                 errors.append(error)
         if not candidates:
             raise errors[0]
-        if module.BRANCHES == 1:
+        if kind.branches == 1:
             branch = Branch(1, "unique")
         else:
             plus, minus = (None if sign not in candidates else

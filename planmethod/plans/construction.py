@@ -1043,7 +1043,8 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
 
 def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
     """Draw one group on one plan: a dyad from its two vector equations, a higher group by its
-    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``)."""
+    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``: see
+    :class:`~planmethod.kinematics.groups.OwnPlans`)."""
     if group.is_dyad:
         construction = motion.groups[group.index].construction
         if plan == "velocity":
@@ -1051,7 +1052,7 @@ def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
         else:
             emulator.acceleration_group(construction)
         return
-    drawing = getattr(kind_module(group), f"draw_{plan}", None)
+    drawing = kind_module(group).drawings.get(PlanKind(plan))
     if drawing is None:
         raise PlansUnavailableError(
             f"plans are drawn for class III triads of revolute pairs only; this {group.kind} "
