@@ -46,12 +46,11 @@ True
 
 from __future__ import annotations
 
-import copy
 import hashlib
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -633,18 +632,3 @@ def to_toml(data: Mapping[str, Any]) -> str:
                 lines += ["", f"[[{_toml_key(key)}]]"]
                 lines += [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in item.items()]
     return "\n".join(lines) + "\n"
-
-
-def variant_exercise(variant: Variant, angle: float | None = None) -> Exercise:
-    """The variant's exercise, optionally at another crank angle."""
-    if angle is None:
-        return variant.exercise
-    exercise = variant.exercise
-    mechanism = exercise.mechanism
-    return replace(exercise, mechanism=replace(mechanism, drive=replace(mechanism.drive,
-                                                                        angle=float(angle))))
-
-
-def resolved_copy(data: Mapping[str, Any]) -> dict[str, Any]:
-    """A deep copy of resolved tables (for writing keys)."""
-    return copy.deepcopy(dict(data))

@@ -125,10 +125,6 @@ class GroupInputs:
         self.mechanism, self.group, self.sign = mechanism, group, float(sign)
         self.bodies, self.angles, self.bounds = bodies, angles, bounds
 
-    @property
-    def traced(self) -> bool:
-        return isinstance(self.angles, Traced)
-
     def local(self, link: str, point: str) -> tuple[float, float]:
         x, y = self.mechanism.local(link, point)
         return float(x), float(y)
