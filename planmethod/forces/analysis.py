@@ -217,37 +217,10 @@ class ForceAnalysis:
         out["zhukovsky_moment"] = self.zhukovsky_moment
         out["power_residual"] = self.power_residual
         out["power_balance_moment"] = _number(solution.power_moment[0])
-        lever = solution.lever
-        zhukovsky = {"source": lever.source, "mu_v": lever.mu_v,
-                     "balancing_force": (_pair(lever.balancing_force[0])
-                                         if self.zhukovsky_moment is not None else None),
-                     "at": lever.balancing_point,
-                     "difference": (None if self.zhukovsky_moment is None else
-                                    self.zhukovsky_moment - self.balancing_moment),
-                     "forces": [{"name": f.name, "link": f.link, "image_mm": _pair(f.image_mm[0]),
-                                 "force": _pair(f.force[0]), "moment_N_mm": float(f.moment[0])}
-                                for f in lever.forces]}
-        out["zhukovsky"] = zhukovsky
-        system = solution.system
-        out["whole_system"] = {
-            "equations": system.equations,
-            "balancing_moment": float(system.balancing_moment[0]),
-            "reactions": {key: {"force": _pair(r.take(0).force),
-                                **({"moment": float(r.moment[0])} if r.moment is not None
-                                   else {})}
-                          for key, r in system.reactions.items()},
-            "max_rel_difference": float(solution.agreement[0]),
-            "agrees": bool(solution.agreement[0] <= AGREEMENT),
-            "rcond": float(system.rcond[0])}
-        out["inertia"] = {
-            link: {"m": item.mass, "J": item.J, "S": list(item.centre_local),
-                   "centre": _pair(item.centre[0]), "a_S": _pair(item.acceleration[0]),
-                   "epsilon": float(item.epsilon[0]), "force": _pair(item.force[0]),
-                   "moment": float(item.moment[0]), "weight": _pair(item.weight[0]),
-                   "combined": _pair(item.combined[0]),
-                   "offset_h": (float(item.offset[0]) if bool(item.single_force_defined[0])
-                                else None)}
-            for link, item in solution.applied.inertia.items()}
+        out["zhukovsky"] = self._zhukovsky_dict()
+        out["whole_system"] = _whole_system_dict(solution)
+        out["inertia"] = {link: _inertia_dict(item)
+                          for link, item in solution.applied.inertia.items()}
         out["loads"] = [
             {"name": item.name, "link": item.link, "kind": item.kind,
              **({"point": _pair(item.point[0]), "force": _pair(item.force[0])}
@@ -261,22 +234,9 @@ class ForceAnalysis:
                          for g in solution.groups.groups]
         out["scales"] = {"mu_f": self.mu_f}
         if self.combined is not None:
-            c = self.combined
-            out["combined_force"] = {
-                "g": c.g, "mu_a": c.mu_a, "gravity_image_mm": c.gravity_image_mm,
-                "new_pole_mm": list(c.new_pole_mm),
-                "links": {f.link: {"m": f.mass, "s_mm": list(f.image_mm),
-                                   "segment_mm": list(f.segment_mm),
-                                   "from_plan": list(f.from_plan), "exact": list(f.exact)}
-                          for f in c.forces}}
+            out["combined_force"] = _combined_dict(self.combined)
         if self.constants is not None:
-            k = self.constants
-            out["constants"] = {
-                "mu_f_mu_l": k.force_moment, "mu_f": k.mu_f, "mu_l": k.mu_l, "mu_a": k.mu_a,
-                "m_mu_a_mu_l": dict(k.combined_moment),
-                "J_mu_a_over_l": {link: {name: (list(value) if isinstance(value, tuple)
-                                                else value) for name, value in entry.items()}
-                                  for link, entry in k.inertia_moment.items()}}
+            out["constants"] = _constants_dict(self.constants)
         if self.epsilon:
             out["epsilon_sense"] = {e.link: {"points": list(e.points), "rule": e.rule,
                                              "exact": e.exact, "agrees": e.agrees}
@@ -289,6 +249,20 @@ class ForceAnalysis:
                 "losses_W": {key: float(value[0]) for key, value in friction.losses.items()}}
         out["flags"] = list(self.flags)
         return out
+
+    def _zhukovsky_dict(self) -> dict:
+        """Zhukovsky's lever: its forces' images and moments, the balancing force."""
+        lever = self.solution.lever
+        return {"source": lever.source, "mu_v": lever.mu_v,
+                "balancing_force": (_pair(lever.balancing_force[0])
+                                    if self.zhukovsky_moment is not None else None),
+                "at": lever.balancing_point,
+                "difference": (None if self.zhukovsky_moment is None else
+                               self.zhukovsky_moment - self.balancing_moment),
+                "forces": [{"name": f.name, "link": f.link, "image_mm": _pair(f.image_mm[0]),
+                            "force": _pair(f.force[0]), "moment_N_mm": float(f.moment[0])}
+                           for f in lever.forces]}
+
 
     def describe(self) -> str:
         """The force analysis as text (``planmethod solve``)."""
@@ -354,6 +328,53 @@ class ForceAnalysis:
         if self.flags:
             lines += [f"  ! {flag}" for flag in self.flags]
         return "\n".join(lines)
+
+
+def _whole_system_dict(solution) -> dict:
+    """The whole mechanism's linear system: its reactions and how well they agree."""
+    system = solution.system
+    return {
+        "equations": system.equations,
+        "balancing_moment": float(system.balancing_moment[0]),
+        "reactions": {key: {"force": _pair(r.take(0).force),
+                            **({"moment": float(r.moment[0])} if r.moment is not None
+                               else {})}
+                      for key, r in system.reactions.items()},
+        "max_rel_difference": float(solution.agreement[0]),
+        "agrees": bool(solution.agreement[0] <= AGREEMENT),
+        "rcond": float(system.rcond[0])}
+
+
+def _inertia_dict(item) -> dict:
+    """A link's mass properties, inertia force and moment, weight and combined force."""
+    return {"m": item.mass, "J": item.J, "S": list(item.centre_local),
+            "centre": _pair(item.centre[0]), "a_S": _pair(item.acceleration[0]),
+            "epsilon": float(item.epsilon[0]), "force": _pair(item.force[0]),
+            "moment": float(item.moment[0]), "weight": _pair(item.weight[0]),
+            "combined": _pair(item.combined[0]),
+            "offset_h": (float(item.offset[0]) if bool(item.single_force_defined[0])
+                         else None)}
+
+
+def _combined_dict(combined) -> dict:
+    """The combined force (inertia + weight) read off the acceleration plan."""
+    return {"g": combined.g, "mu_a": combined.mu_a,
+            "gravity_image_mm": combined.gravity_image_mm,
+            "new_pole_mm": list(combined.new_pole_mm),
+            "links": {f.link: {"m": f.mass, "s_mm": list(f.image_mm),
+                               "segment_mm": list(f.segment_mm),
+                               "from_plan": list(f.from_plan), "exact": list(f.exact)}
+                      for f in combined.forces}}
+
+
+def _constants_dict(constants) -> dict:
+    """Aliyev's constants, computed once for all positions."""
+    return {"mu_f_mu_l": constants.force_moment, "mu_f": constants.mu_f,
+            "mu_l": constants.mu_l, "mu_a": constants.mu_a,
+            "m_mu_a_mu_l": dict(constants.combined_moment),
+            "J_mu_a_over_l": {link: {name: (list(value) if isinstance(value, tuple) else value)
+                                     for name, value in entry.items()}
+                              for link, entry in constants.inertia_moment.items()}}
 
 
 def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
