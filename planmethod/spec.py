@@ -37,7 +37,7 @@ import difflib
 import math
 import re
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -57,8 +57,8 @@ from .model import (
 )
 from .vocabulary import quantity
 
-__all__ = ["POINT_NAME", "did_you_mean", "exercise_from_dict", "load_exercise", "parse_exercise",
-           "parse_toml", "read_text"]
+__all__ = ["POINT_NAME", "checked_table", "did_you_mean", "exercise_from_dict", "load_exercise",
+           "parse_exercise", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -164,6 +164,34 @@ def check_nesting(text: str, *, file: str | None = None) -> None:
                         "read", file=file)
 
 
+def checked_table(value: Any, key: str, allowed: Sequence[str], *, file: str | None = None
+                  ) -> Mapping[str, Any]:
+    """``value`` as the table ``key`` of a file, holding only ``allowed`` keys.
+
+    Raises
+    ------
+    SpecError
+        If it is no table, or has another key (naming it, and the keys allowed).
+
+    Examples
+    --------
+    >>> checked_table({"precision_mm": 0.5}, "grading", ("precision_mm", "points"))
+    {'precision_mm': 0.5}
+    >>> checked_table({"precision": 0.5}, "grading", ("precision_mm",), file="task.toml")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: task.toml: grading.precision: unknown key; expected one of \
+precision_mm
+    """
+    if not isinstance(value, Mapping):
+        raise SpecError("must be a table", file=file, key=key)
+    for name in value:
+        if name not in allowed:
+            raise SpecError(f"unknown key; expected one of {', '.join(allowed)}", file=file,
+                            key=f"{key}.{name}")
+    return value
+
+
 def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
     """TOML text → tables, or a :class:`SpecError` naming the file, line and column."""
     check_nesting(text, file=file)
@@ -256,6 +284,18 @@ class _Reader:
         if not isinstance(value, Mapping):
             raise self.error(key, f"must be a table, got {value!r}")
         return value
+
+    def tables(self, data: Mapping[str, Any], name: str
+               ) -> Iterator[tuple[int, str, Mapping[str, Any]]]:
+        """The array of tables ``[[name]]`` (one table alone counts as one): (number from 1,
+        its key, the table) each, checked one by one as they are read."""
+        raw = data.get(name, [])
+        if isinstance(raw, Mapping):
+            raw = [raw]
+        if not isinstance(raw, list):
+            raise self.error(name, f"must be an array of tables ([[{name}]])")
+        for number, table in enumerate(raw, start=1):
+            yield number, f"{name}[{number}]", self.table(table, f"{name}[{number}]")
 
     def only_keys(self, table: Mapping[str, Any], allowed, key: str) -> None:
         for name in table:
@@ -350,15 +390,8 @@ class _Reader:
                      if len(names) >= 2)
 
     def slides(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Slide, ...]:
-        raw = data.get("slide", [])
-        if isinstance(raw, Mapping):
-            raw = [raw]
-        if not isinstance(raw, list):
-            raise self.error("slide", "must be an array of tables ([[slide]])")
         slides = []
-        for number, table in enumerate(raw, start=1):
-            key = f"slide[{number}]"
-            table = self.table(table, key)
+        for number, key, table in self.tables(data, "slide"):
             self.only_keys(table, ("link", "along", "through", "direction", "point"), key)
             for needed in ("link", "along", "through"):
                 if needed not in table:
@@ -473,15 +506,8 @@ class _Reader:
         return self.number(table.get("g", 9.81), "gravity.g", non_negative=True)
 
     def loads(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Load, ...]:
-        raw = data.get("load", [])
-        if isinstance(raw, Mapping):
-            raw = [raw]
-        if not isinstance(raw, list):
-            raise self.error("load", "must be an array of tables ([[load]])")
         loads = []
-        for number, table in enumerate(raw, start=1):
-            key = f"load[{number}]"
-            table = self.table(table, key)
+        for number, key, table in self.tables(data, "load"):
             self.only_keys(table, ("link", "point", "force", "moment", "oppose_velocity", "name"),
                            key)
             if "link" not in table:

@@ -46,7 +46,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
-from ..spec import check_nesting
+from ..spec import check_nesting, checked_table
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
 from .mistakes import CONSTRUCTION_MISTAKES, MISTAKES, REGISTRY, mistaken_plans, value_answers
@@ -99,13 +99,7 @@ def _positive(value: Any, key: str, file: str | None, *, zero: bool = False) -> 
 def grading_settings(data: Mapping[str, Any], file: str | None = None,
                      quantities=()) -> GradingSettings:
     """Read the ``[grading]`` table of resolved exercise tables (key-precise errors)."""
-    table = data.get("grading", {})
-    if not isinstance(table, Mapping):
-        raise SpecError("must be a table", file=file, key="grading")
-    for name in table:
-        if name not in GRADING_KEYS:
-            raise SpecError(f"unknown key; expected one of {', '.join(GRADING_KEYS)}",
-                            file=file, key=f"grading.{name}")
+    table = checked_table(data.get("grading", {}), "grading", GRADING_KEYS, file=file)
     precision = _positive(table.get("precision_mm", 0.5), "grading.precision_mm", file,
                           zero=True)
     rel_floor = _positive(table.get("rel_floor", 0.005), "grading.rel_floor", file, zero=True)

@@ -57,7 +57,7 @@ from typing import Any
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Exercise
 from ..plans.construction import course_text
-from ..spec import parse_toml, read_text
+from ..spec import checked_table, parse_toml, read_text
 from ..vectors import angle_deg
 from ..vocabulary import PlanKind, link_numbers, symbol
 from .expressions import ExpressionError, evaluate, parse, references
@@ -175,12 +175,7 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
 
 
 def _settings(table: Any, file: str | None) -> TemplateSettings:
-    if not isinstance(table, Mapping):
-        raise SpecError("must be a table", file=file, key="template")
-    for name in table:
-        if name not in TEMPLATE_KEYS:
-            raise SpecError(f"unknown key; expected one of {', '.join(TEMPLATE_KEYS)}",
-                            file=file, key=f"template.{name}")
+    table = checked_table(table, "template", TEMPLATE_KEYS, file=file)
     values: dict[str, Any] = {}
     for name in ("min_line_angle_deg", "dead_centre_deg"):
         if name in table:

@@ -31,6 +31,7 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -45,61 +46,45 @@ def _traced(value) -> bool:
     return hasattr(value, "tracer")
 
 
-def sqrt(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return math.sqrt(value)
-    if _traced(value):
-        return value.tracer.apply("sqrt", value)
-    return np.sqrt(value)
+def _unary(name: str, scalar: Callable, array: Callable) -> Callable[[Number], Number]:
+    """The function ``name`` of one number: ``scalar`` on a Python number, recorded on a traced
+    value, ``array`` on an array."""
+
+    def function(value: Number) -> Number:
+        """The function of a float, an array or a traced value (recorded)."""
+        if isinstance(value, float | int):
+            return scalar(value)
+        if _traced(value):
+            return value.tracer.apply(name, value)
+        return array(value)
+
+    function.__name__ = array.__name__
+    return function
 
 
-def cos(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return math.cos(value)
-    if _traced(value):
-        return value.tracer.apply("cos", value)
-    return np.cos(value)
+def _binary(name: str, scalar: Callable, array: Callable) -> Callable[[Number, Number], Number]:
+    """The function ``name`` of two numbers (see :func:`_unary`): recorded where either is
+    traced."""
+
+    def function(a: Number, b: Number) -> Number:
+        """The function of floats, arrays or traced values (recorded where either is)."""
+        if isinstance(a, float | int) and isinstance(b, float | int):
+            return scalar(a, b)
+        if _traced(a) or _traced(b):
+            return (a if _traced(a) else b).tracer.apply(name, a, b)
+        return array(a, b)
+
+    function.__name__ = array.__name__
+    return function
 
 
-def sin(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return math.sin(value)
-    if _traced(value):
-        return value.tracer.apply("sin", value)
-    return np.sin(value)
-
-
-def atan2(y: Number, x: Number) -> Number:
-    if isinstance(y, float | int) and isinstance(x, float | int):
-        return math.atan2(y, x)
-    if _traced(y) or _traced(x):
-        tracer = y.tracer if _traced(y) else x.tracer
-        return tracer.apply("arctan2", y, x)
-    return np.arctan2(y, x)
-
-
-def absolute(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return abs(value)
-    if _traced(value):
-        return value.tracer.apply("abs", value)
-    return np.abs(value)
-
-
-def maximum(a: Number, b: Number) -> Number:
-    if isinstance(a, float | int) and isinstance(b, float | int):
-        return max(a, b)
-    if _traced(a) or _traced(b):
-        return (a if _traced(a) else b).tracer.apply("maximum", a, b)
-    return np.maximum(a, b)
-
-
-def minimum(a: Number, b: Number) -> Number:
-    if isinstance(a, float | int) and isinstance(b, float | int):
-        return min(a, b)
-    if _traced(a) or _traced(b):
-        return (a if _traced(a) else b).tracer.apply("minimum", a, b)
-    return np.minimum(a, b)
+sqrt = _unary("sqrt", math.sqrt, np.sqrt)
+cos = _unary("cos", math.cos, np.cos)
+sin = _unary("sin", math.sin, np.sin)
+absolute = _unary("abs", abs, np.abs)
+atan2 = _binary("arctan2", math.atan2, np.arctan2)
+maximum = _binary("maximum", max, np.maximum)
+minimum = _binary("minimum", min, np.minimum)
 
 
 def is_zero(value: Number) -> bool:

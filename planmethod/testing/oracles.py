@@ -213,8 +213,7 @@ def _guess(mechanism: Mechanism, unknown: Sequence[str], fixed: Mapping[str, Lin
             (x, y), world = (0.0, 0.0), np.mean(list(places.values()), axis=0)
         else:
             return False
-        c, s = math.cos(theta), math.sin(theta)
-        put(link, theta, world - np.array([c * x - s * y, s * x + c * y]))
+        put(link, theta, world - rotate((x, y), theta))
         return True
 
     waiting = [link for link in unknown]
@@ -443,9 +442,7 @@ def reference_place(mechanism: Mechanism, reference: Mapping[str, dict], point: 
     for link in mechanism.links_with_point(point):
         if link in reference:
             theta, origin = reference[link]["theta"], reference[link]["origin"]
-            x, y = mechanism.local(link, point)
-            c, s = np.cos(theta), np.sin(theta)
-            return origin + np.stack((c * x - s * y, s * x + c * y), axis=-1)
+            return origin + rotate(mechanism.local(link, point), theta)
     raise KeyError(f"{point} is on no link of the reference (the frame or the drive only?)")
 
 

@@ -42,7 +42,7 @@ from ...errors import ToggleError
 from ...structure import AssurGroup
 from ...vectors import cross, norm, perp, turn_onto, unit, unit_angle
 from ...vocabulary import EdgeKind, GroupKind, PairKind
-from ..algebra import Body, absolute, cos, maximum, sin, sqrt
+from ..algebra import Body, Vec, absolute, cos, maximum, sin, sqrt
 from .base import Branch, ForceSolver, GroupInputs, PlanDrawer, Theta, ThetaKind, sense, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
 
@@ -151,7 +151,7 @@ class TriadSystem(System):
         out = []
         for side, values in zip(self.sides, known, strict=True):
             lx, ly = side.central_local
-            rx, ry = c * lx - s * ly, s * lx + c * ly
+            rx, ry = Vec(lx, ly).turned(c, s)
             dx, dy = x + rx - values[0], y + ry - values[1]
             misfit = (dx * dx + dy * dy - side.length * side.length) * (0.5 / side.length)
             out.append((rx, ry, dx, dy, misfit))
@@ -219,8 +219,8 @@ class TriadSystem(System):
             ux, uy = side.unit
             sc = (dx * ux + dy * uy) / side.length
             ss = (dy * ux - dx * uy) / side.length
-            bx, by = side.outer_local
-            tx, ty = -(sc * bx - ss * by), -(ss * bx + sc * by)   # origin − P
+            turned = Vec(*side.outer_local).turned(sc, ss)
+            tx, ty = -turned.x, -turned.y   # origin − P
             px, py = values[0], values[1]
             out += [sc, ss, px + tx, py + ty]
             if level >= 1:
@@ -243,9 +243,8 @@ class TriadSystem(System):
         columns = [q[0], q[1], wrap(q[2])]
         for (_, _, dx, dy, _), side, values in zip(geometry, self.sides, known, strict=True):
             theta = wrap(np.arctan2(dy, dx) - side.alpha)
-            c, s = np.cos(theta), np.sin(theta)
-            bx, by = side.outer_local
-            columns += [values[0] - (c * bx - s * by), values[1] - (s * bx + c * by), theta]
+            turned = Vec(*side.outer_local).turned(np.cos(theta), np.sin(theta))
+            columns += [values[0] - turned.x, values[1] - turned.y, theta]
         count = max(np.size(column) for column in columns)
         return np.stack([np.broadcast_to(np.asarray(column, dtype=float), (count,))
                          for column in columns], axis=-1)
