@@ -89,7 +89,7 @@ class _Terminated(BaseException):
     out, as on Ctrl-C."""
 
 
-def _on_terminate(signum, frame) -> NoReturn:
+def _on_terminate(_signum, _frame) -> NoReturn:
     raise _Terminated
 
 

@@ -50,7 +50,7 @@ class Progress:
                           f"{self.done}/{self.total}  {elapsed:5.1f}s  eta {eta:5.1f}s")
         self.stream.flush()
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, *_exc) -> None:
         if self.enabled:
             self._draw(force=True)
             self.stream.write("\n")

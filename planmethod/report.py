@@ -30,6 +30,7 @@ from .plans import Plans, draw_plans
 from .plans.construction import PlansUnavailableError
 from .scene import Scene, plan_scene
 from .structure import Structure, analyse_structure
+from .vectors import norm
 
 __all__ = ["Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
 
@@ -121,15 +122,15 @@ def _radius(motion: Motion, point: str) -> float | None:
 
 #: how each kind of quantity (vocabulary.QUANTITY_KINDS) is read from a motion, by its prefix
 EXACT_READERS = {
-    "v": lambda motion, name: float(np.hypot(*motion.velocity(name))),
-    "a": lambda motion, name: float(np.hypot(*motion.acceleration(name))),
+    "v": lambda motion, name: float(norm(motion.velocity(name))),
+    "a": lambda motion, name: float(norm(motion.acceleration(name))),
     "omega": lambda motion, name: float(motion.omega(name)),
     "epsilon": lambda motion, name: float(motion.epsilon(name)),
     "rho": _radius,
     "s": lambda motion, name: float(motion.sliding(name).s),
     "ds": lambda motion, name: float(motion.sliding(name).velocity),
     "dds": lambda motion, name: float(motion.sliding(name).acceleration),
-    "coriolis": lambda motion, name: float(np.hypot(*motion.sliding(name).coriolis)),
+    "coriolis": lambda motion, name: float(norm(motion.sliding(name).coriolis)),
 }
 
 

@@ -38,7 +38,7 @@ import json
 import math
 import re
 import tomllib
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -58,8 +58,8 @@ from .model import (
 )
 from .vocabulary import quantity
 
-__all__ = ["POINT_NAME", "exercise_from_dict", "leaves", "load_exercise", "parse_exercise",
-           "parse_json", "parse_toml", "read_text"]
+__all__ = ["POINT_NAME", "checked_table", "did_you_mean", "exercise_from_dict", "leaves",
+           "load_exercise", "parse_exercise", "parse_json", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -170,6 +170,34 @@ def check_nesting(text: str, *, file: str | None = None) -> None:
     if depth > MAX_NESTING:
         raise SpecError(f"tables or arrays nested {depth} deep; at most {MAX_NESTING} are "
                         "read", file=file)
+
+
+def checked_table(value: Any, key: str, allowed: Sequence[str], *, file: str | None = None
+                  ) -> Mapping[str, Any]:
+    """``value`` as the table ``key`` of a file, holding only ``allowed`` keys.
+
+    Raises
+    ------
+    SpecError
+        If it is no table, or has another key (naming it, and the keys allowed).
+
+    Examples
+    --------
+    >>> checked_table({"precision_mm": 0.5}, "grading", ("precision_mm", "points"))
+    {'precision_mm': 0.5}
+    >>> checked_table({"precision": 0.5}, "grading", ("precision_mm",), file="task.toml")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: task.toml: grading.precision: unknown key; expected one of \
+precision_mm
+    """
+    if not isinstance(value, Mapping):
+        raise SpecError("must be a table", file=file, key=key)
+    for name in value:
+        if name not in allowed:
+            raise SpecError(f"unknown key; expected one of {', '.join(allowed)}", file=file,
+                            key=f"{key}.{name}")
+    return value
 
 
 def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
@@ -328,7 +356,12 @@ def _distance_to_points(point, points) -> float:
     return min(math.hypot(point[0] - x, point[1] - y) for x, y in points)
 
 
-def _suggest(word: str, choices) -> str:
+def did_you_mean(word: str, choices) -> str:
+    """The closest of ``choices`` to a misspelt ``word``, as a message's tail, or "".
+
+    >>> did_you_mean("crnak", ["crank", "rod"]), did_you_mean("xyz", ["crank"])
+    (" (did you mean 'crank'?)", '')
+    """
     close = difflib.get_close_matches(word, list(choices), n=1)
     return f" (did you mean '{close[0]}'?)" if close else ""
 
@@ -393,11 +426,23 @@ class _Reader:
             raise self.error(key, f"must be a table, got {value!r}")
         return value
 
+    def tables(self, data: Mapping[str, Any], name: str
+               ) -> Iterator[tuple[int, str, Mapping[str, Any]]]:
+        """The array of tables ``[[name]]`` (one table alone counts as one): (number from 1,
+        its key, the table) each, checked one by one as they are read."""
+        raw = data.get(name, [])
+        if isinstance(raw, Mapping):
+            raw = [raw]
+        if not isinstance(raw, list):
+            raise self.error(name, f"must be an array of tables ([[{name}]])")
+        for number, table in enumerate(raw, start=1):
+            yield number, f"{name}[{number}]", self.table(table, f"{name}[{number}]")
+
     def only_keys(self, table: Mapping[str, Any], allowed, key: str) -> None:
         for name in table:
             if name not in allowed:
                 raise self.error(f"{key}.{name}" if key else name,
-                                 f"unknown key{_suggest(name, allowed)}; expected one of "
+                                 f"unknown key{did_you_mean(name, allowed)}; expected one of "
                                  f"{', '.join(allowed)}")
 
     # -- the exercise -----------------------------------------------------------------------
@@ -453,7 +498,7 @@ class _Reader:
         table = self.table(data["links"], "links")
         if FRAME not in table:
             raise self.error("links", f"missing the fixed link '{FRAME}'"
-                                      f"{_suggest(FRAME, table)}")
+                                      f"{did_you_mean(FRAME, table)}")
         links: dict[str, Link] = {}
         seen_lower: dict[str, str] = {}
         for name, points in table.items():
@@ -505,15 +550,8 @@ class _Reader:
                      if len(names) >= 2)
 
     def slides(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Slide, ...]:
-        raw = data.get("slide", [])
-        if isinstance(raw, Mapping):
-            raw = [raw]
-        if not isinstance(raw, list):
-            raise self.error("slide", "must be an array of tables ([[slide]])")
         slides = []
-        for number, table in enumerate(raw, start=1):
-            key = f"slide[{number}]"
-            table = self.table(table, key)
+        for number, key, table in self.tables(data, "slide"):
             self.only_keys(table, ("link", "along", "through", "direction", "point"), key)
             for needed in ("link", "along", "through"):
                 if needed not in table:
@@ -525,13 +563,13 @@ class _Reader:
             through = self.string(table["through"], f"{key}.through")
             if through not in links[along].points:
                 raise self.error(f"{key}.through", f"'{through}' is not a point of '{along}'"
-                                 f"{_suggest(through, links[along].points)}")
+                                 f"{did_you_mean(through, links[along].points)}")
             direction = self.number(table.get("direction", 0.0), f"{key}.direction")
             if "point" in table:
                 point = self.string(table["point"], f"{key}.point")
                 if point not in links[link].points:
                     raise self.error(f"{key}.point", f"'{point}' is not a point of '{link}'"
-                                     f"{_suggest(point, links[link].points)}")
+                                     f"{did_you_mean(point, links[link].points)}")
             elif len(links[link].points) == 1:
                 point = next(iter(links[link].points))
             else:
@@ -546,13 +584,14 @@ class _Reader:
     def link_name(self, value: Any, key: str, links: Mapping[str, Link]) -> str:
         name = self.string(value, key)
         if name not in links:
-            raise self.error(key, f"unknown link '{name}'{_suggest(name, links)}")
+            raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
         return name
 
     def drive(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> Drive:
         if "drive" not in data:
+            unknown = [k for k in data if k not in TOP_LEVEL_KEYS]
             raise self.error("drive", "missing the [drive] table (link, pivot, angle, omega)"
-                             f"{_suggest('drive', [k for k in data if k not in TOP_LEVEL_KEYS])}")
+                             f"{did_you_mean('drive', unknown)}")
         table = self.table(data["drive"], "drive")
         self.only_keys(table, ("link", "pivot", "angle", "omega", "epsilon"), "drive")
         for needed in ("link", "pivot", "angle", "omega"):
@@ -564,7 +603,7 @@ class _Reader:
         pivot = self.string(table["pivot"], "drive.pivot")
         if pivot not in links[link].points:
             raise self.error("drive.pivot", f"'{pivot}' is not a point of '{link}'"
-                             f"{_suggest(pivot, links[link].points)}")
+                             f"{did_you_mean(pivot, links[link].points)}")
         if pivot not in links[FRAME].points:
             raise self.error("drive.pivot", f"'{pivot}' must also be a point of '{FRAME}' "
                              "(the drive turns about a fixed pivot)")
@@ -587,7 +626,7 @@ class _Reader:
         for point, xy in table.items():
             if point not in known:
                 raise self.error(f"sketch.{point}", f"unknown point '{point}'"
-                                 f"{_suggest(point, known)}")
+                                 f"{did_you_mean(point, known)}")
             sketch[point] = self.coordinates(xy, f"sketch.{point}")
         return sketch
 
@@ -597,7 +636,7 @@ class _Reader:
         for name, props in table.items():
             key = f"mass.{name}"
             if name not in links:
-                raise self.error(key, f"unknown link '{name}'{_suggest(name, links)}")
+                raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
             if name == FRAME:
                 raise self.error(key, "the frame does not move: it needs no mass")
             props = self.table(props, key)
@@ -627,15 +666,8 @@ class _Reader:
         return self.number(table.get("g", 9.81), "gravity.g", non_negative=True)
 
     def loads(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Load, ...]:
-        raw = data.get("load", [])
-        if isinstance(raw, Mapping):
-            raw = [raw]
-        if not isinstance(raw, list):
-            raise self.error("load", "must be an array of tables ([[load]])")
         loads = []
-        for number, table in enumerate(raw, start=1):
-            key = f"load[{number}]"
-            table = self.table(table, key)
+        for number, key, table in self.tables(data, "load"):
             self.only_keys(table, ("link", "point", "force", "moment", "oppose_velocity", "name"),
                            key)
             if "link" not in table:
@@ -653,7 +685,7 @@ class _Reader:
                 point = self.string(table["point"], f"{key}.point")
                 if point not in links[link].points:
                     raise self.error(f"{key}.point", f"'{point}' is not a point of '{link}'"
-                                     f"{_suggest(point, links[link].points)}")
+                                     f"{did_you_mean(point, links[link].points)}")
             oppose = table.get("oppose_velocity", False)
             if not isinstance(oppose, bool):
                 raise self.error(f"{key}.oppose_velocity", f"must be true or false, got {oppose!r}")
@@ -704,7 +736,7 @@ class _Reader:
         for name, props in self.table(table.get("pairs", {}), "friction.pairs").items():
             key = f"friction.pairs.{name}"
             if name not in pair_keys:
-                raise self.error(key, f"unknown pair '{name}'{_suggest(name, pair_keys)}")
+                raise self.error(key, f"unknown pair '{name}'{did_you_mean(name, pair_keys)}")
             props = self.table(props, key)
             self.only_keys(props, ("f", "pin_radius"), key)
             pairs[name] = {k: self.number(v, f"{key}.{k}", non_negative=True,
@@ -763,14 +795,14 @@ class _Reader:
             for i, item in enumerate(items):
                 if item not in mechanism.links:
                     raise self.error(f"ask.{name}[{i}]", f"unknown link '{item}'"
-                                     f"{_suggest(item, mechanism.links)}")
+                                     f"{did_you_mean(item, mechanism.links)}")
             values[name] = tuple(items)
         keys = [pair.key for pair in mechanism.slides]
         items = self.names(table, "sliding")
         for i, item in enumerate(items):
             if item not in keys:
                 raise self.error(f"ask.sliding[{i}]", f"no prismatic pair '{item}'"
-                                 f"{_suggest(item, keys)}; the pairs are {keys or 'none'}")
+                                 f"{did_you_mean(item, keys)}; the pairs are {keys or 'none'}")
         values["sliding"] = tuple(items)
         forces = table.get("forces", False)
         if not isinstance(forces, bool):
@@ -792,7 +824,7 @@ class _Reader:
         """A point name, or ``X@link`` for the point of ``link`` coincident with X."""
         name, _, link = item.partition("@")
         if name not in points:
-            raise self.error(key, f"unknown point '{name}'{_suggest(name, points)}")
+            raise self.error(key, f"unknown point '{name}'{did_you_mean(name, points)}")
         if link and link not in mechanism.links:
-            raise self.error(key, f"unknown link '{link}'{_suggest(link, mechanism.links)}")
+            raise self.error(key, f"unknown link '{link}'{did_you_mean(link, mechanism.links)}")
         return item

@@ -1,5 +1,10 @@
 """Structural analysis: mobility W = 3n − 2p5 − p4 and the decomposition into Assur groups.
 
+The course writes Chebyshev's formula with p4, the higher pairs (cam, gear teeth: one freedom
+taken each), beside p5, the lower pairs (two taken each). The model has lower pairs only —
+revolute and prismatic (:class:`~planmethod.vocabulary.PairKind`) — so p4 is 0 by construction:
+:attr:`Structure.p4` says so, and the formula and the report still print it.
+
 The decomposition starts from the frame and the drive link and repeatedly detaches the smallest
 set of still-unknown links that is attached to known links only and has 3k = 2p (a dyad: two
 links, three pairs; a triad: four links, six pairs), in build order. A dyad's kind is read from
@@ -90,10 +95,14 @@ class Structure:
 
     n: int
     p5: int
-    p4: int
     mobility: int
     driver: str
     groups: tuple[AssurGroup, ...]
+
+    @property
+    def p4(self) -> int:
+        """The higher pairs: none, the model has lower pairs only (see the module docstring)."""
+        return 0
 
     def group_of(self, link: str) -> AssurGroup | None:
         """The group that solves ``link`` (None for the frame and the drive link)."""
@@ -114,13 +123,6 @@ class Structure:
             needed.add(group.index)
             stack.extend(group.attached_to)
         return tuple(group for group in self.groups if group.index in needed)
-
-
-def _joints_of(mechanism: Mechanism) -> list[tuple[str, object]]:
-    joints: list[tuple[PairKind, object]] = [(PairKind.REVOLUTE, pair)
-                                             for pair in mechanism.revolutes]
-    joints += [(PairKind.PRISMATIC, pair) for pair in mechanism.slides]
-    return joints
 
 
 def _group_pairs(mechanism: Mechanism, group: tuple[str, ...], known: set[str]):
@@ -219,7 +221,7 @@ def analyse_structure(mechanism: Mechanism) -> Structure:
     moving = mechanism.moving_links
     n = len(moving)
     p5 = sum(len(pair.links) - 1 for pair in mechanism.revolutes) + len(mechanism.slides)
-    p4 = 0
+    p4 = 0   # the model has no higher pairs (see the module docstring)
     mobility = 3 * n - 2 * p5 - p4
     if mobility != 1:
         hint = ("it has too many freedoms: some link is not held" if mobility > 1 else
@@ -262,7 +264,7 @@ def analyse_structure(mechanism: Mechanism) -> Structure:
         groups.append(found)
         known |= set(found.links)
         remaining = [link for link in remaining if link not in found.links]
-    return Structure(n, p5, p4, mobility, driver, tuple(groups))
+    return Structure(n, p5, mobility, driver, tuple(groups))
 
 
 def describe(structure: Structure) -> str:
@@ -270,7 +272,7 @@ def describe(structure: Structure) -> str:
 
     Examples
     --------
-    >>> print(describe(Structure(3, 4, 0, 1, "AB", ())))  # doctest: +NORMALIZE_WHITESPACE
+    >>> print(describe(Structure(3, 4, 1, "AB", ())))  # doctest: +NORMALIZE_WHITESPACE
     n = 3, p5 = 4, p4 = 0, W = 3n − 2p5 − p4 = 3·3 − 2·4 − 0 = 1
     drive link AB with the frame: class I mechanism
     """

@@ -24,6 +24,7 @@ from .model import FRAME, Exercise
 from .progress import Progress
 from .scene import plan_scene
 from .structure import analyse_structure
+from .vectors import norm
 
 __all__ = ["CHUNK", "Extremes", "csv_rows", "sweep_angles", "sweep_chunks", "sweep_columns",
            "sweep_table"]
@@ -110,11 +111,11 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
                 columns[f"x_{point}"], columns[f"y_{point}"] = xy[:, 0], xy[:, 1]
                 v = motion.velocity(point)
                 columns[f"vx_{point}"], columns[f"vy_{point}"] = v[:, 0], v[:, 1]
-                columns[f"v_{point}"] = np.hypot(v[:, 0], v[:, 1])
+                columns[f"v_{point}"] = norm(v)
                 if stage == "acceleration":
                     a = motion.acceleration(point)
                     columns[f"ax_{point}"], columns[f"ay_{point}"] = a[:, 0], a[:, 1]
-                    columns[f"a_{point}"] = np.hypot(a[:, 0], a[:, 1])
+                    columns[f"a_{point}"] = norm(a)
             for link in links:
                 theta = np.degrees(np.unwrap(motion.theta(link)))
                 if link in last_theta:  # continue the previous chunk's unwrapping

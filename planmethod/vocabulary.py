@@ -35,6 +35,7 @@ __all__ = [
     "Quantity",
     "QuantityKind",
     "link_numbers",
+    "number_subscript",
     "quantity",
     "symbol",
 ]
@@ -237,6 +238,15 @@ STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities
 _SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
+def number_subscript(number: int) -> str:
+    """A link's number as a course writes it below a symbol.
+
+    >>> "ω" + number_subscript(12)
+    'ω₁₂'
+    """
+    return str(number).translate(_SUBSCRIPT)
+
+
 def link_numbers(links: list[str] | tuple[str, ...], drive: str,
                  frame: str = "frame") -> dict[str, int]:
     """The links numbered as a course numbers them: the frame 1, the crank (drive link) 2, the
@@ -267,7 +277,7 @@ def symbol(name: str, numbers: dict[str, int] | None = None) -> str:
         return name
     kind, subject = found.kind, found.subject
     if kind.subject == "link" and numbers and subject in numbers:
-        return f"{kind.symbol}{str(numbers[subject]).translate(_SUBSCRIPT)}"
+        return f"{kind.symbol}{number_subscript(numbers[subject])}"
     if kind.subject == "pair":
         return f"{kind.symbol} ({subject})"
     return f"{kind.symbol}_{subject}"

@@ -120,8 +120,7 @@ SLOW_MODULES = {"triad", "higher"}
 
 
 def test_every_registered_kind_has_a_case():
-    modules = {module.__name__.rpartition(".")[2]
-               for modules in registered().values() for module in modules}
+    modules = {module.name for modules in registered().values() for module in modules}
     assert modules == set(CASES), f"registered kinds without a case: {modules - set(CASES)}"
 
 
@@ -193,10 +192,10 @@ def _compare(fast, slow, mechanism, what: str) -> None:
 def test_fast_path_equals_reference_path(name):
     for mechanism in _mechanisms(name):
         groups = model(mechanism).structure.groups
-        kinds = {kind_module(group).__name__.rpartition(".")[2] for group in groups}
+        kinds = {kind_module(group).name for group in groups}
         assert name in kinds, f"the {name} case has no {name} group: {kinds}"
-        group = next(g for g in groups if kind_module(g).__name__.endswith("." + name))
-        signs = [1, -1] if getattr(kind_module(group), "BRANCHES", 1) == 2 else [None]
+        group = next(g for g in groups if kind_module(g).name == name)
+        signs = [1, -1] if kind_module(group).branches == 2 else [None]
         for sign in signs:
             branches = None
             if sign is not None:

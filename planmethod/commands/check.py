@@ -149,7 +149,7 @@ def read_coordinates(path: str | Path, exercise) -> list[Row]:
         a value that is not a finite number — naming the file, line and column.
     """
     from ..errors import SpecError
-    from ..spec import _suggest
+    from ..spec import did_you_mean
 
     path = Path(path)
     file = str(path)
@@ -179,7 +179,7 @@ def read_coordinates(path: str | Path, exercise) -> list[Row]:
         if axis.lower() not in ("x", "y") or not point:
             raise SpecError(f"column {name!r}: expected x_P or y_P for a point P", file=file)
         if point not in known:
-            raise SpecError(f"column {name!r}: unknown point '{point}'{_suggest(point, known)}",
+            raise SpecError(f"column {name!r}: unknown point '{point}'{did_you_mean(point, known)}",
                             file=file)
         columns.setdefault(point, {})[axis.lower()] = index
     for point, axes in columns.items():

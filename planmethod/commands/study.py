@@ -140,7 +140,7 @@ def csv_text(study) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import SpecError
-    from ..forces.study import _moment_load, _variant, run_study
+    from ..forces.study import moment_load, run_study, study_variant
     from ..io import write_text_atomic
     from ..spec import load_exercise
 
@@ -153,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
     exercise = load_exercise(args.file)
     if any(value is not None for value in (args.base_weight, args.base_omega,
                                            args.base_moment)):
-        index, load = _moment_load(exercise, args.rocker)
+        index, load = moment_load(exercise, args.rocker)
         mechanism = exercise.mechanism
         if load.link not in mechanism.masses or not mechanism.gravity:
             raise SpecError("the study needs [gravity] and a mass on the rocker",
@@ -163,7 +163,7 @@ def run(args: argparse.Namespace) -> int:
                 "moment": args.base_moment or abs(load.moment)}
         if any(not (math.isfinite(v) and v > 0) for v in base.values()):
             raise SpecError(f"base values must be positive, got {base}")
-        exercise = _variant(exercise, load.link, index, **base)
+        exercise = study_variant(exercise, load.link, index, **base)
     study = run_study(exercise, rocker=args.rocker, weights=args.weights, omegas=args.omegas,
                       moments=args.moments, step=args.step)
     outputs = []

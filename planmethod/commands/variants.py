@@ -59,7 +59,7 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     LMS may know them by: ``[(student, [aliases…]), …]``.
     """
     from ..errors import SpecError
-    from ..grading.answers import STUDENT_COLUMNS, _answers_from_csv
+    from ..grading.answers import STUDENT_COLUMNS, answers_from_csv
 
     try:
         with open(path, encoding="utf-8-sig") as handle:
@@ -74,7 +74,7 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     header = [cell.strip().lower() for cell in re.split(r"[,;\t]", lines[0])]
     if len(header) > 1 and any(c in header for c in STUDENT_COLUMNS):
         students = []
-        for student, cells in _answers_from_csv(text, path):
+        for student, cells in answers_from_csv(text, path):
             aliases = [str(value).strip() for name, value in cells.items()
                        if name.strip().lower() in STUDENT_COLUMNS and str(value).strip()]
             students.append((student, aliases))

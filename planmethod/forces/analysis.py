@@ -34,6 +34,7 @@ from ..errors import SpecError
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
 from ..plans.scales import standard
+from ..vectors import norm
 from ..vocabulary import AppliedKind
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
@@ -93,7 +94,7 @@ def _relative_difference(groups: GroupSolution, system: SystemSolution,
     for key, reaction in groups.reactions.items():
         other = system.reactions[key]
         scale = np.maximum(scale, reaction.magnitude)
-        difference = np.maximum(difference, np.hypot(*(reaction.force - other.force).T))
+        difference = np.maximum(difference, norm(reaction.force - other.force))
         if reaction.moment is not None:
             difference = np.maximum(difference, np.abs(reaction.moment - other.moment) / length)
     return np.where(scale > 0, difference / np.where(scale > 0, scale, 1.0), difference)
@@ -216,37 +217,10 @@ class ForceAnalysis:
         out["zhukovsky_moment"] = self.zhukovsky_moment
         out["power_residual"] = self.power_residual
         out["power_balance_moment"] = _number(solution.power_moment[0])
-        lever = solution.lever
-        zhukovsky = {"source": lever.source, "mu_v": lever.mu_v,
-                     "balancing_force": (_pair(lever.balancing_force[0])
-                                         if self.zhukovsky_moment is not None else None),
-                     "at": lever.balancing_point,
-                     "difference": (None if self.zhukovsky_moment is None else
-                                    self.zhukovsky_moment - self.balancing_moment),
-                     "forces": [{"name": f.name, "link": f.link, "image_mm": _pair(f.image_mm[0]),
-                                 "force": _pair(f.force[0]), "moment_N_mm": float(f.moment[0])}
-                                for f in lever.forces]}
-        out["zhukovsky"] = zhukovsky
-        system = solution.system
-        out["whole_system"] = {
-            "equations": system.equations,
-            "balancing_moment": float(system.balancing_moment[0]),
-            "reactions": {key: {"force": _pair(r.take(0).force),
-                                **({"moment": float(r.moment[0])} if r.moment is not None
-                                   else {})}
-                          for key, r in system.reactions.items()},
-            "max_rel_difference": float(solution.agreement[0]),
-            "agrees": bool(solution.agreement[0] <= AGREEMENT),
-            "rcond": float(system.rcond[0])}
-        out["inertia"] = {
-            link: {"m": item.mass, "J": item.J, "S": list(item.centre_local),
-                   "centre": _pair(item.centre[0]), "a_S": _pair(item.acceleration[0]),
-                   "epsilon": float(item.epsilon[0]), "force": _pair(item.force[0]),
-                   "moment": float(item.moment[0]), "weight": _pair(item.weight[0]),
-                   "combined": _pair(item.combined[0]),
-                   "offset_h": (float(item.offset[0]) if bool(item.single_force_defined[0])
-                                else None)}
-            for link, item in solution.applied.inertia.items()}
+        out["zhukovsky"] = self._zhukovsky_dict()
+        out["whole_system"] = _whole_system_dict(solution)
+        out["inertia"] = {link: _inertia_dict(item)
+                          for link, item in solution.applied.inertia.items()}
         out["loads"] = [
             {"name": item.name, "link": item.link, "kind": item.kind,
              **({"point": _pair(item.point[0]), "force": _pair(item.force[0])}
@@ -260,22 +234,9 @@ class ForceAnalysis:
                          for g in solution.groups.groups]
         out["scales"] = {"mu_f": self.mu_f}
         if self.combined is not None:
-            c = self.combined
-            out["combined_force"] = {
-                "g": c.g, "mu_a": c.mu_a, "gravity_image_mm": c.gravity_image_mm,
-                "new_pole_mm": list(c.new_pole_mm),
-                "links": {f.link: {"m": f.mass, "s_mm": list(f.image_mm),
-                                   "segment_mm": list(f.segment_mm),
-                                   "from_plan": list(f.from_plan), "exact": list(f.exact)}
-                          for f in c.forces}}
+            out["combined_force"] = _combined_dict(self.combined)
         if self.constants is not None:
-            k = self.constants
-            out["constants"] = {
-                "mu_f_mu_l": k.force_moment, "mu_f": k.mu_f, "mu_l": k.mu_l, "mu_a": k.mu_a,
-                "m_mu_a_mu_l": dict(k.combined_moment),
-                "J_mu_a_over_l": {link: {name: (list(value) if isinstance(value, tuple)
-                                                else value) for name, value in entry.items()}
-                                  for link, entry in k.inertia_moment.items()}}
+            out["constants"] = _constants_dict(self.constants)
         if self.epsilon:
             out["epsilon_sense"] = {e.link: {"points": list(e.points), "rule": e.rule,
                                              "exact": e.exact, "agrees": e.agrees}
@@ -289,6 +250,20 @@ class ForceAnalysis:
         out["flags"] = list(self.flags)
         return out
 
+    def _zhukovsky_dict(self) -> dict:
+        """Zhukovsky's lever: its forces' images and moments, the balancing force."""
+        lever = self.solution.lever
+        return {"source": lever.source, "mu_v": lever.mu_v,
+                "balancing_force": (_pair(lever.balancing_force[0])
+                                    if self.zhukovsky_moment is not None else None),
+                "at": lever.balancing_point,
+                "difference": (None if self.zhukovsky_moment is None else
+                               self.zhukovsky_moment - self.balancing_moment),
+                "forces": [{"name": f.name, "link": f.link, "image_mm": _pair(f.image_mm[0]),
+                            "force": _pair(f.force[0]), "moment_N_mm": float(f.moment[0])}
+                           for f in lever.forces]}
+
+
     def describe(self) -> str:
         """The force analysis as text (``planmethod solve``)."""
         solution = self.solution
@@ -297,7 +272,7 @@ class ForceAnalysis:
             lines += ["  link      m kg    J kg·m²   |a_S| m/s²   F_u = −m·a_S (N)          "
                       "M_u = −J·ε N·m"]
             for link, item in solution.applied.inertia.items():
-                a = float(np.hypot(*item.acceleration[0]))
+                a = float(norm(item.acceleration[0]))
                 f = item.force[0]
                 lines.append(f"  {link:<8} {item.mass:>6.4g} {item.J:>10.4g} {a:>11.5g}   "
                              f"({f[0]:>10.5g}, {f[1]:>10.5g})   {float(item.moment[0]):>10.5g}")
@@ -332,9 +307,9 @@ class ForceAnalysis:
             lines.append(f"  combined force Q = m·(g − a_S) (Aliyev): pole π moved down by "
                          f"Z_g = g/μa = {c.gravity_image_mm:.4g} mm to π′")
             for f in c.forces:
-                length = float(np.hypot(*f.segment_mm))
+                length = float(norm(np.asarray(f.segment_mm)))
                 lines.append(f"    {f.link}: (s π′) = {length:.4g} mm → |Q| = "
-                             f"{float(np.hypot(*f.from_plan)):.6g} N")
+                             f"{float(norm(np.asarray(f.from_plan))):.6g} N")
         if self.constants is not None and self.constants.force_moment is not None:
             k = self.constants
             lines.append(f"  constants for all positions (Aliyev): μF·μl = "
@@ -355,6 +330,53 @@ class ForceAnalysis:
         return "\n".join(lines)
 
 
+def _whole_system_dict(solution) -> dict:
+    """The whole mechanism's linear system: its reactions and how well they agree."""
+    system = solution.system
+    return {
+        "equations": system.equations,
+        "balancing_moment": float(system.balancing_moment[0]),
+        "reactions": {key: {"force": _pair(r.take(0).force),
+                            **({"moment": float(r.moment[0])} if r.moment is not None
+                               else {})}
+                      for key, r in system.reactions.items()},
+        "max_rel_difference": float(solution.agreement[0]),
+        "agrees": bool(solution.agreement[0] <= AGREEMENT),
+        "rcond": float(system.rcond[0])}
+
+
+def _inertia_dict(item) -> dict:
+    """A link's mass properties, inertia force and moment, weight and combined force."""
+    return {"m": item.mass, "J": item.J, "S": list(item.centre_local),
+            "centre": _pair(item.centre[0]), "a_S": _pair(item.acceleration[0]),
+            "epsilon": float(item.epsilon[0]), "force": _pair(item.force[0]),
+            "moment": float(item.moment[0]), "weight": _pair(item.weight[0]),
+            "combined": _pair(item.combined[0]),
+            "offset_h": (float(item.offset[0]) if bool(item.single_force_defined[0])
+                         else None)}
+
+
+def _combined_dict(combined) -> dict:
+    """The combined force (inertia + weight) read off the acceleration plan."""
+    return {"g": combined.g, "mu_a": combined.mu_a,
+            "gravity_image_mm": combined.gravity_image_mm,
+            "new_pole_mm": list(combined.new_pole_mm),
+            "links": {f.link: {"m": f.mass, "s_mm": list(f.image_mm),
+                               "segment_mm": list(f.segment_mm),
+                               "from_plan": list(f.from_plan), "exact": list(f.exact)}
+                      for f in combined.forces}}
+
+
+def _constants_dict(constants) -> dict:
+    """Aliyev's constants, computed once for all positions."""
+    return {"mu_f_mu_l": constants.force_moment, "mu_f": constants.mu_f,
+            "mu_l": constants.mu_l, "mu_a": constants.mu_a,
+            "m_mu_a_mu_l": dict(constants.combined_moment),
+            "J_mu_a_over_l": {link: {name: (list(value) if isinstance(value, tuple) else value)
+                                     for name, value in entry.items()}
+                              for link, entry in constants.inertia_moment.items()}}
+
+
 def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
     plan = exercise.plan
     if plan.mu_f is not None:
@@ -362,7 +384,7 @@ def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
     largest = 0.0
     for group in solution.groups.groups:
         for edge in group.polygon:
-            largest = max(largest, float(np.hypot(*edge.vector[0])))
+            largest = max(largest, float(norm(edge.vector[0])))
     drawn = plan.force_mm or FORCE_MM
     if largest <= 0:
         return 1.0

@@ -41,7 +41,7 @@ import numpy as np
 from ..errors import SpecError
 from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
-from ..vectors import cross, norm
+from ..vectors import cross, dot, norm
 from ..vocabulary import AppliedKind
 
 __all__ = [
@@ -121,7 +121,7 @@ class AppliedItem:
         """Power of this force or moment (W) with the link's motion: F·v or M·ω."""
         if self.force is not None:
             velocity = state.velocity_at(self.point)
-            return np.einsum("...i,...i->...", self.force, velocity)
+            return dot(self.force, velocity)
         return self.moment * state.omega
 
 
@@ -195,6 +195,55 @@ def _speed_scale(mechanism: Mechanism, states: Mapping[str, LinkState]) -> float
     return max(abs(drive.omega) * radius, 1e-300)
 
 
+def _at_rest(angles: np.ndarray | None, resting: np.ndarray) -> str:
+    """The first crank angles where something is at rest, as a message quotes them."""
+    if angles is None:
+        return ""
+    return ", ".join(f"{a:g}°" for a in np.asarray(angles)[resting][:5])
+
+
+def _given_moment(mechanism: Mechanism, load, state: LinkState, count: int,
+                 angles: np.ndarray | None, flags: list[str]) -> AppliedItem:
+    """A given moment on a link; with ``oppose_velocity`` its magnitude against the link's ω
+    (as given, and flagged, where the link is at rest)."""
+    name = f"load[{load.index}]"
+    moment = np.full(count, float(load.moment))
+    if load.oppose_velocity:
+        omega = np.broadcast_to(np.asarray(state.omega, float), (count,))
+        turning = np.abs(omega) > REST_SPEED * max(abs(mechanism.drive.omega), 1e-300)
+        moment = np.where(turning, -abs(float(load.moment)) * np.sign(omega), moment)
+        if not np.all(turning):
+            at = _at_rest(angles, ~turning)
+            flags.append(f"{name} on {load.link}: the link is at rest"
+                         f"{f' (crank angle {at})' if at else ''}, the moment acts as given")
+    return AppliedItem(load.link, name, AppliedKind.LOAD, moment=moment)
+
+
+def _given_force(mechanism: Mechanism, load, state: LinkState, count: int, rest: float,
+                angles: np.ndarray | None, flags: list[str]) -> AppliedItem:
+    """A given force at a point of a link; with ``oppose_velocity`` its magnitude against the
+    point's velocity (as given, and flagged, where the point is at rest: speed ≤ ``rest``)."""
+    name = f"load[{load.index}]"
+    local = mechanism.local(load.link, load.point)
+    point = state.place(local)
+    force = np.broadcast_to(np.asarray(load.force, float), (count, 2)).copy()
+    if load.oppose_velocity:
+        velocity = state.velocity_at(point)
+        speed = norm(velocity)
+        moving = speed > rest
+        magnitude = float(norm(np.asarray(load.force)))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            against = -magnitude * velocity / np.where(moving, speed, 1.0)[..., None]
+        force = np.where(moving[..., None], against, force)
+        if not np.all(moving):
+            at = _at_rest(angles, ~moving)
+            flags.append(f"{name} on {load.link} at {load.point}: the point is at rest"
+                         f"{f' (crank angle {at})' if angles is not None else ''}, the force "
+                         "acts as given")
+    return AppliedItem(load.link, name, AppliedKind.LOAD, point, force, local=local,
+                       label=load.point)
+
+
 def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
                   angles: np.ndarray | None = None, file: str | None = None) -> AppliedLoads:
     """Weights, inertia forces and moments, and the external loads, at every solved angle.
@@ -222,8 +271,7 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
     for link, props in mechanism.masses.items():
         if link not in states:
             continue
-        found = inertia_of(mechanism, link, states[link], gravity)
-        inertia[link] = found
+        found = inertia[link] = inertia_of(mechanism, link, states[link], gravity)
         label = f"S_{link}"
         if gravity:
             items.append(AppliedItem(link, f"G_{link}", AppliedKind.WEIGHT, found.centre,
@@ -237,44 +285,12 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
     for load in mechanism.loads:
         if load.link not in states:
             continue
-        state = states[load.link]
-        name = f"load[{load.index}]"
         if load.moment is not None:
-            moment = np.full(count, float(load.moment))
-            if load.oppose_velocity:
-                # |M| against the link's angular velocity; at rest it acts as given
-                omega = np.broadcast_to(np.asarray(state.omega, float), (count,))
-                turning = np.abs(omega) > REST_SPEED * max(abs(mechanism.drive.omega), 1e-300)
-                moment = np.where(turning, -abs(float(load.moment)) * np.sign(omega), moment)
-                if not np.all(turning):
-                    at = (", ".join(f"{a:g}°" for a in np.asarray(angles)[~turning][:5])
-                          if angles is not None else "")
-                    flags.append(f"{name} on {load.link}: the link is at rest"
-                                 f"{f' (crank angle {at})' if at else ''}, the moment acts as "
-                                 "given")
-            items.append(AppliedItem(load.link, name, AppliedKind.LOAD, moment=moment))
+            items.append(_given_moment(mechanism, load, states[load.link], count, angles, flags))
             continue
         if load.point not in mechanism.links[load.link].points:
             raise SpecError(f"'{load.point}' is not a point of '{load.link}'", file=file,
                             key=f"load[{load.index}].point")
-        local = mechanism.local(load.link, load.point)
-        point = state.place(local)
-        force = np.broadcast_to(np.asarray(load.force, float), (count, 2)).copy()
-        if load.oppose_velocity:
-            velocity = state.velocity_at(point)
-            speed = norm(velocity)
-            moving = speed > rest
-            magnitude = float(np.hypot(*load.force))
-            with np.errstate(divide="ignore", invalid="ignore"):
-                against = -magnitude * velocity / np.where(moving, speed, 1.0)[..., None]
-            force = np.where(moving[..., None], against, force)
-            if not np.all(moving) and angles is not None:
-                at = ", ".join(f"{a:g}°" for a in np.asarray(angles)[~moving][:5])
-                flags.append(f"{name} on {load.link} at {load.point}: the point is at rest "
-                             f"(crank angle {at}), the force acts as given")
-            elif not np.all(moving):
-                flags.append(f"{name} on {load.link} at {load.point}: the point is at rest, "
-                             "the force acts as given")
-        items.append(AppliedItem(load.link, name, AppliedKind.LOAD, point, force, local=local,
-                                 label=load.point))
+        items.append(_given_force(mechanism, load, states[load.link], count, rest, angles,
+                                 flags))
     return AppliedLoads(tuple(items), inertia, tuple(flags), count)

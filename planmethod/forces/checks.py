@@ -35,7 +35,7 @@ import numpy as np
 
 from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
-from ..vectors import cross, perp
+from ..vectors import cross, dot, perp
 from .applied import AppliedItem, AppliedLoads
 
 __all__ = ["LeverForce", "ZhukovskyLever", "power_moment", "power_residual", "zhukovsky_lever"]
@@ -133,7 +133,7 @@ def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
         if len(points) >= 2:
             first, second = (state.place(mechanism.local(item.link, p)) for p in points[:2])
             arm = second - first
-            pair = (item.moment / np.einsum("...i,...i->...", arm, arm))[..., None] * perp(arm)
+            pair = (item.moment / dot(arm, arm))[..., None] * perp(arm)
             carry(item, f"{item.name} at {points[1]}", second, pair)
             carry(item, f"{item.name} at {points[0]}", first, -pair)
         else:  # a one-point link: the couple's lever moment is M·ω/μv
@@ -144,7 +144,7 @@ def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
     pivot = state.place(mechanism.local(drive.link, drive.pivot))
     pin = state.place(mechanism.local(drive.link, scale_point))
     arm = pin - pivot
-    direction = perp(arm) / np.einsum("...i,...i->...", arm, arm)[..., None]  # F_b per M_b
+    direction = perp(arm) / dot(arm, arm)[..., None]  # F_b per M_b
     image = _turned(velocities.at(drive.link, pin), mu_v)
     image_pivot = _turned(velocities.at(drive.link, pivot), mu_v)
     per_unit = cross(image, direction) - cross(image_pivot, direction)

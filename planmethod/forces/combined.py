@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import FRAME
-from ..vectors import cross, perp
+from ..vectors import cross, norm, perp
 from .applied import AppliedLoads
 
 __all__ = ["CombinedConstants", "CombinedConstruction", "CombinedForce", "EpsilonSense",
@@ -175,9 +175,9 @@ def epsilon_senses(plans) -> tuple[EpsilonSense, ...]:
         relative = plan.point(labels[1]) - plan.point(labels[0])
         epsilon = float(state.epsilon[0])
         omega = plans.readings.get(f"omega_{link}", float(state.omega[0]))
-        normal_mm = omega ** 2 * float(np.hypot(*(x - y))) / plan.scale
+        normal_mm = omega ** 2 * float(norm(x - y)) / plan.scale
         turn = float(cross(relative, x - y))
-        resolution = max(plan.precision_mm, 1e-9 * float(np.hypot(*relative)) + 1e-300)
+        resolution = max(plan.precision_mm, 1e-9 * float(norm(relative)) + 1e-300)
         rule = None if normal_mm <= resolution else int(np.sign(turn))
         out.append(EpsilonSense(link, (first, second), rule, int(np.sign(epsilon))))
     return tuple(out)

@@ -44,7 +44,7 @@ from ..errors import ConvergenceError
 from ..kinematics.state import LinkState
 from ..model import Mechanism
 from ..structure import Structure
-from ..vectors import norm, unit_angle
+from ..vectors import dot, norm, unit_angle
 from ..vocabulary import AppliedKind, PairKind
 from .applied import REST_SPEED, AppliedItem, AppliedLoads
 from .groups import GroupSolution, solve_by_groups
@@ -150,8 +150,8 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
             continue
         d = unit_angle(states[slide.along].theta + slide.direction_rad)
         point = reaction.point
-        v_rel = np.einsum("...i,...i->...", on.velocity_at(point) - source.velocity_at(point), d)
-        along = np.einsum("...i,...i->...", reaction.force, d)
+        v_rel = dot(on.velocity_at(point) - source.velocity_at(point), d)
+        along = dot(reaction.force, d)
         normal = norm(reaction.force - along[..., None] * d)
         sense = _sense(v_rel, rest_speed)
         force = (-f * normal * sense)[..., None] * d
@@ -159,7 +159,7 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
                                  label=slide.point))
         items.append(AppliedItem(reaction.source, f"F_f,{key}", AppliedKind.FRICTION, point, -force,
                                  label=slide.point))
-        losses[key] = np.einsum("...i,...i->...", force, d) * v_rel
+        losses[key] = dot(force, d) * v_rel
         senses[key] = sense
         if np.any(sense == 0):
             flags.append(f"pair {key}: no relative sliding {_where(sense == 0, angles)}, "

@@ -166,7 +166,7 @@ class _Solver:
     def group(self, group: AssurGroup) -> GroupForces:
         """The group's own textbook sequence (its kind module's ``reactions``), else its linear
         system."""
-        sequence = getattr(kind_module(group), "reactions", None)
+        sequence = kind_module(group).reactions
         if sequence is not None:
             return sequence(self, group)
         return self._linear(group)

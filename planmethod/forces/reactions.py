@@ -26,6 +26,7 @@ import numpy as np
 
 from ..model import Mechanism, Slide
 from ..structure import Joint
+from ..vectors import norm
 from ..vocabulary import PairKind
 from .applied import Wrench
 
@@ -97,4 +98,4 @@ class Reaction:
 
     @property
     def magnitude(self) -> np.ndarray:
-        return np.hypot(self.force[..., 0], self.force[..., 1])
+        return norm(self.force)

@@ -41,7 +41,7 @@ from ..structure import analyse_structure
 from ..vocabulary import QUANTITY_KINDS
 from .analysis import solve_forces
 
-__all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "run_study"]
+__all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "moment_load", "run_study", "study_variant"]
 
 #: a relative change of the largest reactions below this counts as "not significant"
 NOT_SIGNIFICANT = 0.05
@@ -116,7 +116,22 @@ def _span(study: Study, name: str) -> str:
     return f"{parameter.values[0]:g}…{parameter.values[-1]:g} {parameter.unit}"
 
 
-def _moment_load(exercise: Exercise, rocker: str | None) -> tuple[int, Load]:
+def moment_load(exercise: Exercise, rocker: str | None) -> tuple[int, Load]:
+    """The resisting moment the study varies: (its index among the loads, the load) — the first
+    moment on ``rocker`` (on any link where None).
+
+    Raises
+    ------
+    SpecError
+        If the exercise has no such moment.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> index, load = moment_load(load_exercise("exercises/fourbar_study.toml"), None)
+    >>> index, load.link, load.moment
+    (0, 'CD', -120.0)
+    """
     loads = exercise.mechanism.loads
     for index, load in enumerate(loads):
         if load.moment is not None and (rocker is None or load.link == rocker):
@@ -125,8 +140,18 @@ def _moment_load(exercise: Exercise, rocker: str | None) -> tuple[int, Load]:
                     f"`moment` on {rocker or 'a link'}", file=exercise.source, key="load")
 
 
-def _variant(exercise: Exercise, rocker: str, index: int, *, weight: float, omega: float,
+def study_variant(exercise: Exercise, rocker: str, index: int, *, weight: float, omega: float,
              moment: float) -> Exercise:
+    """The exercise with the rocker's weight G (its mass and moment of inertia scaled
+    together), the crank's ω1 and the resisting moment's magnitude (load ``index``, its sense
+    kept) set to the given values.
+
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/fourbar_study.toml")
+    >>> changed = study_variant(exercise, "CD", 0, weight=40.0, omega=20.0, moment=100.0)
+    >>> changed.mechanism.loads[0].moment, changed.mechanism.drive.omega
+    (-100.0, 20.0)
+    """
     mechanism = exercise.mechanism
     g = mechanism.gravity
     props = mechanism.masses[rocker]
@@ -153,7 +178,7 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
         a non-positive weight or moment or an empty range.
     """
     mechanism = exercise.mechanism
-    index, load = _moment_load(exercise, rocker)
+    index, load = moment_load(exercise, rocker)
     rocker = load.link
     if not mechanism.gravity:
         raise SpecError("the study varies the rocker's weight: give [gravity]",
@@ -183,7 +208,7 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
         balancing[parameter.name] = []
         for value in parameter.values:
             settings = dict(base) | {parameter.name: value}
-            variant = _variant(exercise, rocker, index, **settings)
+            variant = study_variant(exercise, rocker, index, **settings)
             motion = solve(variant.mechanism, angles, structure=structure, branches=branches)
             if positions is None:
                 positions = motion

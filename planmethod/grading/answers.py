@@ -38,8 +38,8 @@ from typing import Any
 from ..errors import SpecError
 from ..spec import parse_json
 
-__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "feedback_text", "grade_answers",
-           "grade_many", "read_answers"]
+__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS", "answers_from_csv",
+           "feedback_text", "grade_answers", "grade_many", "read_answers"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
@@ -103,7 +103,7 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     if path.suffix.lower() == ".json" or text.lstrip().startswith(("{", "[")):
         rows = _answers_from_json(text, str(path))
     else:
-        rows = _answers_from_csv(text, str(path))
+        rows = answers_from_csv(text, str(path))
     _no_student_twice(rows, str(path))
     return rows
 
@@ -235,7 +235,14 @@ def _header(records, where: str) -> tuple[int, list[str]]:
     return line, header
 
 
-def _answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+def answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
+    """The rows of a CSV of answers (any of , ; or tab): [(student, {column: cell})], one per
+    student row, or the one student of a file without a student column; ``where`` names the
+    file in errors.
+
+    >>> answers_from_csv("student,v_C\\ns01,5.27\\n", "answers.csv")
+    [('s01', {'v_C': '5.27'})]
+    """
     records = iter(_Records(text, where))
     header_line, header = _header(records, where)
     lower = [h.lower() for h in header]

@@ -43,6 +43,7 @@ __all__ = [
     "Drawing",
     "SubmissionError",
     "grade_drawing",
+    "graded_labels",
     "parse_drawing_json",
     "parse_drawing_svg",
     "read_drawing",
@@ -443,9 +444,14 @@ def _steps_by_end(steps) -> dict[str, dict]:
     return out
 
 
-def _graded_labels(plan: Mapping[str, Any]) -> list[str]:
+def graded_labels(plan: Mapping[str, Any]) -> list[str]:
     """The points a student must draw: ends of lay-offs, intersections and similarity steps
-    away from the pole (helper points such as n_CB or k_C are checked when present)."""
+    away from the pole (helper points such as n_CB or k_C are checked when present).
+
+    >>> graded_labels({"pole": "p", "points_mm": {"p": [0, 0], "b": [3.0, 4.0],
+    ...                                           "n_CB": [1.0, 0.0], "c": [0.0, 0.0]}})
+    ['b']
+    """
     out = []
     pole = plan["pole"]
     for label, xy in plan["points_mm"].items():
@@ -526,7 +532,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     reads = [s for s in steps if s["action"] == "read" and s.get("quantity") in asked]
     lines = {s["number"]: s for s in steps if s["action"] == "line"}
     results = []
-    graded = _graded_labels(entry)
+    graded = graded_labels(entry)
     for label in list(graded) + [k for k in points if k not in graded and "_" in k]:
         required = label in graded
         found = _match(student, label)

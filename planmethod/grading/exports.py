@@ -352,13 +352,13 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
                            topic: str = "Kinematics of mechanisms") -> dict[str, str]:
     """A PrairieLearn question folder ``<slug>/`` for a bundle of keys: one question whose
     ``server.py`` draws one of the bundle's variants."""
-    from .drawings import _graded_labels
+    from .drawings import graded_labels
 
     keys = bundle["keys"]
     first = keys[0]
     question_ids = [q["id"] for q in first["questions"]]
     plans = [name for name in ("velocity", "acceleration") if name in first["plans"]]
-    labels = {name: _graded_labels(first["plans"][name]) for name in plans}
+    labels = {name: graded_labels(first["plans"][name]) for name in plans}
     extent = max([30.0] + [math.hypot(*key["plans"][name]["points_mm"][label])
                            for key in keys for name in plans for label in labels[name]
                            if label in key["plans"][name]["points_mm"]])

@@ -45,7 +45,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
-from ..spec import parse_json
+from ..spec import checked_table, parse_json
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
 from .mistakes import CONSTRUCTION_MISTAKES, MISTAKES, REGISTRY, mistaken_plans, value_answers
@@ -98,13 +98,7 @@ def _positive(value: Any, key: str, file: str | None, *, zero: bool = False) -> 
 def grading_settings(data: Mapping[str, Any], file: str | None = None,
                      quantities=()) -> GradingSettings:
     """Read the ``[grading]`` table of resolved exercise tables (key-precise errors)."""
-    table = data.get("grading", {})
-    if not isinstance(table, Mapping):
-        raise SpecError("must be a table", file=file, key="grading")
-    for name in table:
-        if name not in GRADING_KEYS:
-            raise SpecError(f"unknown key; expected one of {', '.join(GRADING_KEYS)}",
-                            file=file, key=f"grading.{name}")
+    table = checked_table(data.get("grading", {}), "grading", GRADING_KEYS, file=file)
     precision = _positive(table.get("precision_mm", 0.5), "grading.precision_mm", file,
                           zero=True)
     rel_floor = _positive(table.get("rel_floor", 0.005), "grading.rel_floor", file, zero=True)
@@ -204,6 +198,50 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
     return out
 
 
+def _tolerance(quantity: str, value: float, drawing: float, exercise,
+               settings: GradingSettings) -> tuple[float, str]:
+    """A question's tolerance and where it comes from: the drawing's own (``drawing``: the
+    reading errors propagated), raised to the floor, or the ``[grading]`` table's override."""
+    kind = kind_of(quantity)
+    floor = max(settings.rel_floor * abs(value), ABS_FLOOR * _drive_reference(exercise, kind))
+    tolerance, source = drawing, "drawing"
+    if tolerance < floor:
+        tolerance, source = floor, "floor"
+    if quantity in settings.overrides:
+        which, amount = settings.overrides[quantity]
+        tolerance = amount * abs(value) if which == "rel" else amount
+        source = f"override ({which})"
+    return tolerance, source
+
+
+def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict) -> dict[str, Any]:
+    """The key's plans: the position plan's points, and each drawn plan's points with their
+    tolerance discs, its steps and where a mistake puts its points."""
+    plans = found.plans
+    table: dict[str, Any] = {"position": {"mu_l": scales.mu_l,
+                                          "points_mm": dict(plans.position.points_mm)}}
+    for name in ("velocity", "acceleration"):
+        plan = getattr(plans, name)
+        if plan is None:
+            continue
+        radii = found.radii[name]
+        floor_mm = settings.precision_mm / 2
+        entry = {"pole": plan.pole, "scale": plan.scale, "unit": plan.unit,
+                 "points_mm": {k: list(v) for k, v in plan.points_mm.items()},
+                 "tolerance_mm": {k: max(radii.get(k, 0.0), floor_mm if k != plan.pole else 0.0)
+                                  for k in plan.points_mm},
+                 "steps": [step.as_dict() for step in plan.steps],
+                 "mistakes": {}}
+        if name == "velocity":
+            entry["mistakes"]["sense"] = {k: [-v[0], -v[1]] for k, v in plan.points_mm.items()}
+        else:
+            for mistake, wrong in wrong_plans.items():
+                entry["mistakes"][mistake] = {
+                    k: list(v) for k, v in wrong.acceleration.points_mm.items()}
+        table[name] = entry
+    return table
+
+
 def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     """The answer key of a variant (:class:`~planmethod.grading.templates.Variant`).
 
@@ -241,46 +279,18 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
         value = found.values[quantity]
         if value is None:  # a straight path has no finite ρ: nothing to ask
             continue
-        kind = kind_of(quantity)
-        floor = max(settings.rel_floor * abs(value),
-                    ABS_FLOOR * _drive_reference(exercise, kind))
-        tolerance, source = found.tolerances[quantity], "drawing"
-        if tolerance < floor:
-            tolerance, source = floor, "floor"
-        if quantity in settings.overrides:
-            which, amount = settings.overrides[quantity]
-            tolerance = amount * abs(value) if which == "rel" else amount
-            source = f"override ({which})"
+        tolerance, source = _tolerance(quantity, value, found.tolerances[quantity], exercise,
+                                       settings)
+        kind = QUANTITY_KINDS[kind_of(quantity)]
         questions.append({
             "id": quantity, "text": question_text(quantity),
-            "unit": QUANTITY_KINDS[kind].unit, "value": value,
-            "signed": QUANTITY_KINDS[kind].signed, "tolerance": tolerance,
+            "unit": kind.unit, "value": value,
+            "signed": kind.signed, "tolerance": tolerance,
             "tolerance_from": source,
             "points": settings.points.get(quantity, settings.points["*"]),
             "mistakes": _mistakes(quantity, value, tolerance, scales, alternatives, motion),
         })
-    plans = found.plans
-    plan_table: dict[str, Any] = {"position": {"mu_l": scales.mu_l,
-                                               "points_mm": dict(plans.position.points_mm)}}
-    for name in ("velocity", "acceleration"):
-        plan = getattr(plans, name)
-        if plan is None:
-            continue
-        radii = found.radii[name]
-        floor_mm = settings.precision_mm / 2
-        entry = {"pole": plan.pole, "scale": plan.scale, "unit": plan.unit,
-                 "points_mm": {k: list(v) for k, v in plan.points_mm.items()},
-                 "tolerance_mm": {k: max(radii.get(k, 0.0), floor_mm if k != plan.pole else 0.0)
-                                  for k in plan.points_mm},
-                 "steps": [step.as_dict() for step in plan.steps],
-                 "mistakes": {}}
-        if name == "velocity":
-            entry["mistakes"]["sense"] = {k: [-v[0], -v[1]] for k, v in plan.points_mm.items()}
-        else:
-            for mistake, wrong in wrong_plans.items():
-                entry["mistakes"][mistake] = {
-                    k: list(v) for k, v in wrong.acceleration.points_mm.items()}
-        plan_table[name] = entry
+    plan_table = _plan_table(found, scales, settings, wrong_plans)
     return {
         "format": KEY_FORMAT, "version": VERSION, "title": mechanism.title,
         "student": variant.student, "seed": variant.seed, "attempt": variant.attempt,

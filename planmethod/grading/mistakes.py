@@ -36,6 +36,7 @@ import numpy as np
 
 from ..model import Exercise
 from ..plans.construction import Segment
+from ..vectors import norm, perp
 from ..vocabulary import QUANTITY_KINDS
 from .tolerances import kind_of, scale_factor
 
@@ -45,12 +46,13 @@ __all__ = ["CONSTRUCTION_MISTAKES", "MISTAKES", "REGISTRY", "Mistake", "mistaken
 #: a construction rule: (laid-off length, segment) → the length drawn with the mistake, or
 #: None where the mistake does not touch that segment
 Rule = Callable[[float, Segment], float | None]
-#: a value rule: (quantity, right value, tolerance, context) → [(wrong answer, its tolerance)]
-Answers = Callable[[str, float, float, "Context"], list[tuple[float, float]]]
+#: a value rule: (quantity, right value, tolerance, the scales and the exact motion) →
+#: [(wrong answer, its tolerance)]
+Answers = Callable[[str, float, float, "ScalesAndMotion"], list[tuple[float, float]]]
 
 
 @dataclass(frozen=True)
-class Context:
+class ScalesAndMotion:
     """What a value rule may use: the drawing scales and the exact motion at the angle."""
 
     scales: Any
@@ -101,7 +103,7 @@ def _along(name: str):
     """A group's ``name`` construction line drawn along the link instead of across it."""
     def rule(direction, segment: Segment):
         if segment.name == name and segment.group is not None:
-            return (-direction[1], direction[0])            # turned 90°: along the link
+            return perp(direction)            # turned 90°: along the link
         return None
     return rule
 
@@ -111,46 +113,46 @@ def _mirrored(segment: Segment) -> bool:
     return segment.action == "similarity"
 
 
-def _sense(quantity, value, tolerance, context):
+def _sense(quantity, value, tolerance, given):
     return [(-value, tolerance)] if QUANTITY_KINDS[kind_of(quantity)].signed else []
 
 
-def _full_acceleration(quantity, value, tolerance, context):
+def _full_acceleration(quantity, value, tolerance, given):
     if kind_of(quantity) != "rho":
         return []
     from ..report import exact_value
 
     point = quantity.partition("_")[2]
-    speed = exact_value(context.motion, f"v_{point}")
-    accel = exact_value(context.motion, f"a_{point}")
+    speed = exact_value(given.motion, f"v_{point}")
+    accel = exact_value(given.motion, f"a_{point}")
     return [(speed ** 2 / accel, tolerance)] if accel else []
 
 
-def _factor(quantity, context) -> float | None:
-    scales = context.scales
+def _factor(quantity, given) -> float | None:
+    scales = given.scales
     return scale_factor(quantity, scales.mu_l, scales.mu_v, scales.mu_a)
 
 
-def _scale_none(quantity, value, tolerance, context):
-    factor = _factor(quantity, context)
+def _scale_none(quantity, value, tolerance, given):
+    factor = _factor(quantity, given)
     return [(value / factor, tolerance / factor)] if factor and factor != 1.0 else []
 
 
-def _scale_twice(quantity, value, tolerance, context):
-    factor = _factor(quantity, context)
+def _scale_twice(quantity, value, tolerance, given):
+    factor = _factor(quantity, given)
     return [(value * factor, tolerance * factor)] if factor and factor != 1.0 else []
 
 
-def _scale_inverted(quantity, value, tolerance, context):
+def _scale_inverted(quantity, value, tolerance, given):
     """The drawn length divided by the scale instead of multiplied."""
-    factor = _factor(quantity, context)
+    factor = _factor(quantity, given)
     return ([(value / factor ** 2, tolerance / factor ** 2)] if factor and factor != 1.0
             else [])
 
 
 def _scaled_by(times: float) -> Answers:
     """Ten times too large (10) or too small (-10: divided, exactly)."""
-    def rule(quantity, value, tolerance, context):
+    def rule(quantity, value, tolerance, given):
         if QUANTITY_KINDS[kind_of(quantity)].scale is None:    # not read off a plan
             return []
         if times < 0:
@@ -191,11 +193,11 @@ def other_lengths(motion, link: str) -> list[tuple[str, float]]:
     return out
 
 
-def _wrong_length(quantity, value, tolerance, context):
+def _wrong_length(quantity, value, tolerance, given):
     kind, _, link = quantity.partition("_")
     if QUANTITY_KINDS[kind].subject != "link":    # ω and ε: read with a link's length
         return []
-    return [(value * ratio, tolerance * ratio) for _, ratio in other_lengths(context.motion,
+    return [(value * ratio, tolerance * ratio) for _, ratio in other_lengths(given.motion,
                                                                              link)]
 
 
@@ -203,13 +205,13 @@ def _wrong_length(quantity, value, tolerance, context):
 _ABSOLUTE = {"v": "velocity", "a": "acceleration"}
 
 
-def _relative(quantity, value, tolerance, context):
+def _relative(quantity, value, tolerance, given):
     """|v_XY| (or |a_XY|) for the other points Y of X's link: the segment from the image of Y
     read instead of the segment from the pole."""
     kind, _, point = quantity.partition("_")
     if kind not in _ABSOLUTE or "@" in point:
         return []
-    motion = context.motion
+    motion = given.motion
     read = getattr(motion, _ABSOLUTE[kind])
     mechanism = motion.mechanism
     out = []
@@ -228,24 +230,24 @@ def _relative(quantity, value, tolerance, context):
             theirs = np.asarray(read(other), float).reshape(-1, 2)[0]
         except Exception:
             continue
-        if float(np.hypot(*theirs)) > 0:      # from a fixed point it is the absolute one
-            out.append((float(np.hypot(*(own - theirs))), tolerance))
+        if float(norm(theirs)) > 0:      # from a fixed point it is the absolute one
+            out.append((float(norm(own - theirs)), tolerance))
     return out
 
 
-def _degrees(quantity, value, tolerance, context):
+def _degrees(quantity, value, tolerance, given):
     if not QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
         return []
     return [(math.degrees(value), math.degrees(tolerance))]
 
 
-def _length_mm(quantity, value, tolerance, context):
+def _length_mm(quantity, value, tolerance, given):
     if not QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
         return []
     return [(value / 1000.0, tolerance / 1000.0)]
 
 
-def _millimetres(quantity, value, tolerance, context):
+def _millimetres(quantity, value, tolerance, given):
     if QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
         return []
     return [(value * 1000.0, tolerance * 1000.0)]
@@ -351,7 +353,7 @@ def value_answers(quantity: str, value: float, tolerance: float, *, scales,
                   motion) -> list[tuple[str, float, float]]:
     """(mistake, wrong answer, its tolerance) of every value mistake that applies to
     ``quantity``, in registry order."""
-    context = Context(scales, motion)
+    given = ScalesAndMotion(scales, motion)
     return [(key, wrong, wrong_tolerance) for key, mistake in REGISTRY.items()
             if mistake.value is not None
-            for wrong, wrong_tolerance in mistake.value(quantity, value, tolerance, context)]
+            for wrong, wrong_tolerance in mistake.value(quantity, value, tolerance, given)]

@@ -46,7 +46,6 @@ True
 
 from __future__ import annotations
 
-import copy
 import hashlib
 import math
 import re
@@ -58,7 +57,8 @@ from typing import Any
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Exercise
 from ..plans.construction import course_text
-from ..spec import leaves, parse_toml, read_text
+from ..spec import checked_table, leaves, parse_toml, read_text
+from ..vectors import angle_deg
 from ..vocabulary import PlanKind, link_numbers, symbol
 from .expressions import ExpressionError, evaluate, parse, references
 
@@ -175,12 +175,7 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
 
 
 def _settings(table: Any, file: str | None) -> TemplateSettings:
-    if not isinstance(table, Mapping):
-        raise SpecError("must be a table", file=file, key="template")
-    for name in table:
-        if name not in TEMPLATE_KEYS:
-            raise SpecError(f"unknown key; expected one of {', '.join(TEMPLATE_KEYS)}",
-                            file=file, key=f"template.{name}")
+    table = checked_table(table, "template", TEMPLATE_KEYS, file=file)
     values: dict[str, Any] = {}
     for name in ("min_line_angle_deg", "dead_centre_deg"):
         if name in table:
@@ -524,9 +519,9 @@ def dead_centre_angle(plans) -> float | None:
     if label is None:
         return None
     pb = velocity.points_mm[label]
-    if math.hypot(*pb) == 0:
+    if pb[0] == 0 and pb[1] == 0:
         return None
-    direction = math.degrees(math.atan2(pb[1], pb[0]))
+    direction = angle_deg(pb)
     for step in velocity.steps:
         if step.action == "line" and step.start == label:
             difference = abs((step.direction_deg - direction + 90.0) % 180.0 - 90.0)
@@ -635,7 +630,3 @@ def variant_exercise(variant: Variant, angle: float | None = None) -> Exercise:
     exercise = variant.exercise
     return replace(exercise, mechanism=pose(exercise.mechanism, angle).mechanism)
 
-
-def resolved_copy(data: Mapping[str, Any]) -> dict[str, Any]:
-    """A deep copy of resolved tables (for writing keys)."""
-    return copy.deepcopy(dict(data))

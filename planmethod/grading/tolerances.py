@@ -35,6 +35,7 @@ import numpy as np
 
 from ..model import Exercise
 from ..plans.construction import Segment
+from ..vectors import norm
 from ..vocabulary import QUANTITY_KINDS
 
 __all__ = [
@@ -147,7 +148,7 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
                     point_sensitivity[plan][label][:] = (xy - points[plan][label]) / DELTA_MM
     half = precision_mm / 2.0
     tolerances = {q: float(np.sum(np.abs(sensitivity[q]))) * half for q in quantities}
-    radii = {plan: {label: float(np.sum(np.hypot(s[:, 0], s[:, 1]))) * half
+    radii = {plan: {label: float(np.sum(norm(s))) * half
                     for label, s in labels.items()}
              for plan, labels in point_sensitivity.items()}
     return Propagation(

@@ -20,7 +20,7 @@ velocity and acceleration.
 Examples
 --------
 >>> import numpy as np
->>> crank = Body(c=np.array([0.0]), s=np.array([1.0]), x=0.0, y=0.0, w=10.0)
+>>> crank = Body(cos=np.array([0.0]), sin=np.array([1.0]), x=0.0, y=0.0, omega=10.0)
 >>> b = crank.offset(0.08, 0.0)
 >>> [float(v[0]) for v in (b.x, b.y)], [float(v[0]) for v in crank.velocity(b)]
 ([0.0, 0.08], [-0.8, 0.0])
@@ -31,6 +31,7 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -45,61 +46,45 @@ def _traced(value) -> bool:
     return hasattr(value, "tracer")
 
 
-def sqrt(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return math.sqrt(value)
-    if _traced(value):
-        return value.tracer.apply("sqrt", value)
-    return np.sqrt(value)
+def _unary(name: str, scalar: Callable, array: Callable) -> Callable[[Number], Number]:
+    """The function ``name`` of one number: ``scalar`` on a Python number, recorded on a traced
+    value, ``array`` on an array."""
+
+    def function(value: Number) -> Number:
+        """The function of a float, an array or a traced value (recorded)."""
+        if isinstance(value, float | int):
+            return scalar(value)
+        if _traced(value):
+            return value.tracer.apply(name, value)
+        return array(value)
+
+    function.__name__ = array.__name__
+    return function
 
 
-def cos(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return math.cos(value)
-    if _traced(value):
-        return value.tracer.apply("cos", value)
-    return np.cos(value)
+def _binary(name: str, scalar: Callable, array: Callable) -> Callable[[Number, Number], Number]:
+    """The function ``name`` of two numbers (see :func:`_unary`): recorded where either is
+    traced."""
+
+    def function(a: Number, b: Number) -> Number:
+        """The function of floats, arrays or traced values (recorded where either is)."""
+        if isinstance(a, float | int) and isinstance(b, float | int):
+            return scalar(a, b)
+        if _traced(a) or _traced(b):
+            return (a if _traced(a) else b).tracer.apply(name, a, b)
+        return array(a, b)
+
+    function.__name__ = array.__name__
+    return function
 
 
-def sin(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return math.sin(value)
-    if _traced(value):
-        return value.tracer.apply("sin", value)
-    return np.sin(value)
-
-
-def atan2(y: Number, x: Number) -> Number:
-    if isinstance(y, float | int) and isinstance(x, float | int):
-        return math.atan2(y, x)
-    if _traced(y) or _traced(x):
-        tracer = y.tracer if _traced(y) else x.tracer
-        return tracer.apply("arctan2", y, x)
-    return np.arctan2(y, x)
-
-
-def absolute(value: Number) -> Number:
-    if isinstance(value, float | int):
-        return abs(value)
-    if _traced(value):
-        return value.tracer.apply("abs", value)
-    return np.abs(value)
-
-
-def maximum(a: Number, b: Number) -> Number:
-    if isinstance(a, float | int) and isinstance(b, float | int):
-        return max(a, b)
-    if _traced(a) or _traced(b):
-        return (a if _traced(a) else b).tracer.apply("maximum", a, b)
-    return np.maximum(a, b)
-
-
-def minimum(a: Number, b: Number) -> Number:
-    if isinstance(a, float | int) and isinstance(b, float | int):
-        return min(a, b)
-    if _traced(a) or _traced(b):
-        return (a if _traced(a) else b).tracer.apply("minimum", a, b)
-    return np.minimum(a, b)
+sqrt = _unary("sqrt", math.sqrt, np.sqrt)
+cos = _unary("cos", math.cos, np.cos)
+sin = _unary("sin", math.sin, np.sin)
+absolute = _unary("abs", abs, np.abs)
+atan2 = _binary("arctan2", math.atan2, np.arctan2)
+maximum = _binary("maximum", max, np.maximum)
+minimum = _binary("minimum", min, np.minimum)
 
 
 def is_zero(value: Number) -> bool:
@@ -161,19 +146,20 @@ def norm(a: Vec) -> Number:
 
 
 class Body:
-    """A link's pose and motion: axes (``c``, ``s``) = (cos θ, sin θ), origin (``x``, ``y``),
-    angular velocity ``w`` and acceleration ``e``, the origin's velocity (``vx``, ``vy``) and
-    acceleration (``ax``, ``ay``). Motion not (yet) known is zero; the frame is all constants.
+    """A link's pose and motion: its axes (``cos``, ``sin``) = (cos θ, sin θ), its origin
+    (``x``, ``y``), its angular velocity ``omega`` and acceleration ``epsilon``, its origin's
+    velocity (``vx``, ``vy``) and acceleration (``ax``, ``ay``). Motion not (yet) known is zero;
+    the frame is all constants. (Mutable: a group kind fills a body's motion in stage by stage.)
     """
 
-    __slots__ = ("ax", "ay", "c", "e", "s", "vx", "vy", "w", "x", "y")
+    __slots__ = ("ax", "ay", "cos", "epsilon", "omega", "sin", "vx", "vy", "x", "y")
 
-    def __init__(self, c: Number = 1.0, s: Number = 0.0, x: Number = 0.0, y: Number = 0.0,
-                 w: Number = 0.0, vx: Number = 0.0, vy: Number = 0.0, e: Number = 0.0,
-                 ax: Number = 0.0, ay: Number = 0.0) -> None:
-        self.c, self.s, self.x, self.y = c, s, x, y
-        self.w, self.vx, self.vy = w, vx, vy
-        self.e, self.ax, self.ay = e, ax, ay
+    def __init__(self, cos: Number = 1.0, sin: Number = 0.0, x: Number = 0.0, y: Number = 0.0,
+                 omega: Number = 0.0, vx: Number = 0.0, vy: Number = 0.0,
+                 epsilon: Number = 0.0, ax: Number = 0.0, ay: Number = 0.0) -> None:
+        self.cos, self.sin, self.x, self.y = cos, sin, x, y
+        self.omega, self.vx, self.vy = omega, vx, vy
+        self.epsilon, self.ax, self.ay = epsilon, ax, ay
 
     @property
     def origin(self) -> Vec:
@@ -182,7 +168,7 @@ class Body:
     def offset(self, lx: float, ly: float) -> Vec:
         """The local vector (lx, ly) turned onto the link's axes (a point's offset from the
         origin)."""
-        return Vec(lx, ly).turned(self.c, self.s)
+        return Vec(lx, ly).turned(self.cos, self.sin)
 
     def point(self, lx: float, ly: float) -> Vec:
         """Global position of the link's point with local coordinates (lx, ly)."""
@@ -191,9 +177,10 @@ class Body:
     def velocity(self, r: Vec) -> Vec:
         """Velocity of the link's material point at offset ``r`` from the origin:
         v + ω·J·r."""
-        return Vec(self.vx - self.w * r.y, self.vy + self.w * r.x)
+        return Vec(self.vx - self.omega * r.y, self.vy + self.omega * r.x)
 
     def acceleration(self, r: Vec) -> Vec:
         """Acceleration of the material point at offset ``r``: a + ε·J·r − ω²·r."""
-        square = self.w * self.w
-        return Vec(self.ax - self.e * r.y - square * r.x, self.ay + self.e * r.x - square * r.y)
+        square = self.omega * self.omega
+        return Vec(self.ax - self.epsilon * r.y - square * r.x,
+                   self.ay + self.epsilon * r.x - square * r.y)

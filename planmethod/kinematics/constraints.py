@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import Mechanism, Slide
-from ..vectors import perp, rotate, unit_angle
+from ..vectors import dot, perp, rotate, unit_angle
 from ..vocabulary import PairKind
 from .state import LinkState
 
@@ -53,10 +53,6 @@ class Constraint:
     @property
     def label(self) -> str:
         return self.point if self.kind is PairKind.REVOLUTE else self.slide.key
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
 @dataclass(frozen=True)
@@ -125,7 +121,7 @@ class ConstraintSystem:
                 turn = first.theta - second.theta - slide.direction_rad
                 rows.append(np.angle(np.exp(1j * turn)))
                 d = unit_angle(second.theta + slide.direction_rad)
-                rows.append(_dot(perp(d), first.origin + p1 - second.origin - p2))
+                rows.append(dot(perp(d), first.origin + p1 - second.origin - p2))
         return np.stack(rows, axis=-1)
 
     def jacobian(self, states: Mapping[str, LinkState]) -> tuple[np.ndarray, np.ndarray]:
@@ -156,8 +152,8 @@ class ConstraintSystem:
             n = perp(d)
             gap = first.origin + p1 - second.origin - p2
             entries = (
-                (slide.link, first, (1.0, None), (n, _dot(n, perp(p1)))),
-                (slide.along, second, (-1.0, None), (-n, -_dot(d, gap) - _dot(n, perp(p2)))),
+                (slide.link, first, (1.0, None), (n, dot(n, perp(p1)))),
+                (slide.along, second, (-1.0, None), (-n, -dot(d, gap) - dot(n, perp(p2)))),
             )
             for link, state, (turn, _), (along_r, along_theta) in entries:
                 column = self.column(link)
@@ -167,7 +163,7 @@ class ConstraintSystem:
                     matrix[:, r + 1, column + 2] = along_theta
                 elif state.velocity is not None:
                     known_rate[:, r] += turn * state.omega
-                    known_rate[:, r + 1] += _dot(along_r, state.velocity) + (
+                    known_rate[:, r + 1] += dot(along_r, state.velocity) + (
                         along_theta * state.omega)
         return matrix, known_rate
 
@@ -188,8 +184,8 @@ class ConstraintSystem:
             v_s = first.velocity + first.omega[..., None] * perp(p1)
             v_t = second.velocity + second.omega[..., None] * perp(p2)
             wa, wl = second.omega, first.omega
-            rest = (-(wa ** 2) * _dot(n, gap) + 2 * wa * _dot(-d, v_s - v_t)
-                    + _dot(n, -(wl ** 2)[..., None] * p1 + (wa ** 2)[..., None] * p2))
+            rest = (-(wa ** 2) * dot(n, gap) + 2 * wa * dot(-d, v_s - v_t)
+                    + dot(n, -(wl ** 2)[..., None] * p1 + (wa ** 2)[..., None] * p2))
             rows += [np.zeros_like(wa), -rest]
         return np.stack(rows, axis=-1)
 

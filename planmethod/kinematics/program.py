@@ -41,7 +41,7 @@ from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, analyse_structure
 from .algebra import Body, Vec, cos, sin
 from .groups import kind_module
-from .groups.base import Branch, Context, evaluate_dyad, stage_check
+from .groups.base import Branch, GroupInputs, evaluate_dyad, stage_check
 from .tracing import Compiled, Tracer
 
 __all__ = ["STAGES", "Branch", "Model", "build", "model"]
@@ -108,7 +108,7 @@ class Model:
         key = tuple(group.index for group in groups)
         found = self._branches.get(key)
         if found is None:
-            found = self._branches[key] = choose_branches(self, groups)
+            found = self._branches[key] = _branches_at_drive_angle(self, groups)
         return found
 
     def program(self, level: int, groups: tuple[AssurGroup, ...],
@@ -215,7 +215,7 @@ def drive_body(mechanism: Mechanism, angles) -> tuple[Body, Any]:
     body.x, body.y = px - turned.x, py - turned.y
     omega, epsilon = float(drive.omega), float(drive.epsilon)
     r = Vec(-turned.x, -turned.y)   # the origin's offset from the pivot
-    body.w, body.e = omega, epsilon
+    body.omega, body.epsilon = omega, epsilon
     v = r.perp() * omega
     body.vx, body.vy = v.x, v.y
     a = r.perp() * epsilon - r * (omega * omega)
@@ -276,10 +276,10 @@ def build(model: Model, groups: tuple[AssurGroup, ...], branches: Mapping[int, B
     placements: dict[int, Any] = {}
     named: dict[str, tuple] = {}   # point → (position, velocity, acceleration) from a group
     for group in groups:
-        module = kind_module(group)
-        context = Context(mechanism, group, bodies, branches[group.index].sign, angles, bounds)
-        if hasattr(module, "place"):
-            placed = module.place(context)
+        kind = kind_module(group)
+        context = GroupInputs(mechanism, group, bodies, branches[group.index].sign, angles, bounds)
+        if kind.closed_form:
+            placed = kind.place(context)
             found = evaluate_dyad(context, placed, level,
                                   stage_check(group, STAGES[max(level, 1)]))
             if "sine" in found:
@@ -288,19 +288,19 @@ def build(model: Model, groups: tuple[AssurGroup, ...], branches: Mapping[int, B
                 named[placed.point] = (placed.x, found.get("v_x"), found.get("a_x"))
             placements[group.index] = placed
         else:
-            found = module.evaluate(context, level, model, branches[group.index], outputs)
+            found = kind.evaluate(context, level, model, branches[group.index], outputs)
             placements[group.index] = found
         _spread(mechanism, group.links, bounds)
     solved = [FRAME, mechanism.drive.link] + [link for g in groups for link in g.links]
     for link in solved:
         body = bodies[link]
-        outputs.vector(f"axes:{link}", Vec(body.c, body.s))
+        outputs.vector(f"axes:{link}", Vec(body.cos, body.sin))
         outputs.vector(f"origin:{link}", body.origin)
         if level >= 1:
-            outputs.scalar(f"omega:{link}", body.w)
+            outputs.scalar(f"omega:{link}", body.omega)
             outputs.vector(f"velocity:{link}", Vec(body.vx, body.vy))
         if level >= 2:
-            outputs.scalar(f"epsilon:{link}", body.e)
+            outputs.scalar(f"epsilon:{link}", body.epsilon)
             outputs.vector(f"acceleration:{link}", Vec(body.ax, body.ay))
     for point, link in owners(mechanism, solved).items():
         body = bodies[link]
@@ -334,7 +334,8 @@ def _sketch_distance(mechanism: Mechanism, links, bodies: Mapping[str, Body]) ->
     return total if used else None
 
 
-def choose_branches(model: Model, groups: Iterable[AssurGroup]) -> dict[int, Branch]:
+def _branches_at_drive_angle(model: Model, groups: Iterable[AssurGroup]
+                             ) -> dict[int, Branch]:
     """Pick each group's assembly at ``drive.angle``: nearest (least squares) to the group's
     sketched points, else the default (+1 for a dyad; see README, "Branches")."""
     mechanism = model.mechanism
@@ -344,25 +345,25 @@ def choose_branches(model: Model, groups: Iterable[AssurGroup]) -> dict[int, Bra
     bounds = _bounds(mechanism)
     chosen: dict[int, Branch] = {}
     for group in groups:
-        module = kind_module(group)
-        if not hasattr(module, "place"):
-            branch, placed_bodies = module.choose(
-                Context(mechanism, group, dict(bodies), 1.0, angles, bounds), model)
+        kind = kind_module(group)
+        if not kind.closed_form:
+            branch, placed_bodies = kind.choose(
+                GroupInputs(mechanism, group, dict(bodies), 1.0, angles, bounds), model)
             chosen[group.index] = branch
             bodies.update(placed_bodies)
             _spread(mechanism, group.links, bounds)
             continue
         candidates: dict[int, Any] = {}
         errors = []
-        for sign in ((1, -1) if module.BRANCHES == 2 else (1,)):
-            context = Context(mechanism, group, dict(bodies), sign, angles, bounds)
+        for sign in ((1, -1) if kind.branches == 2 else (1,)):
+            context = GroupInputs(mechanism, group, dict(bodies), sign, angles, bounds)
             try:
-                candidates[sign] = module.place(context).bodies
+                candidates[sign] = kind.place(context).bodies
             except AssemblyError as error:
                 errors.append(error)
         if not candidates:
             raise errors[0]
-        if module.BRANCHES == 1:
+        if kind.branches == 1:
             branch = Branch(1, "unique")
         else:
             plus, minus = (None if sign not in candidates else

@@ -38,7 +38,7 @@ from ..structure import AssurGroup, Structure
 from ..vectors import cross, norm, perp
 from .algebra import Body
 from .groups import kind_module
-from .groups.base import Construction, Context, ThetaKind, construction, error_estimate
+from .groups.base import Construction, GroupInputs, ThetaKind, construction, error_estimate
 from .program import STAGES, Branch, model, owners
 from .state import LinkState
 from .tracing import CHUNK
@@ -231,10 +231,10 @@ class Motion:
         body = Body(axes[:, 0], axes[:, 1], origin[:, 0], origin[:, 1])
         if level >= 1:
             velocity = read(f"velocity:{link}")
-            body.w, body.vx, body.vy = read(f"omega:{link}"), velocity[:, 0], velocity[:, 1]
+            body.omega, body.vx, body.vy = read(f"omega:{link}"), velocity[:, 0], velocity[:, 1]
         if level >= 2:
             acceleration = read(f"acceleration:{link}")
-            body.e, body.ax, body.ay = (read(f"epsilon:{link}"), acceleration[:, 0],
+            body.epsilon, body.ax, body.ay = (read(f"epsilon:{link}"), acceleration[:, 0],
                                         acceleration[:, 1])
         return body
 
@@ -644,7 +644,7 @@ followed (just beyond: ... short by ... m)
     # the groups whose assembly was chosen among several (with what they rest on): a dyad with
     # one assembly has nothing to follow
     chosen = [link for group in found.groups(links)
-              if not group.is_dyad or kind_module(group).BRANCHES > 1 for link in group.links]
+              if not group.is_dyad or kind_module(group).branches > 1 for link in group.links]
     if not chosen:
         return
     links = chosen
@@ -798,7 +798,7 @@ def _construction(motion: Motion, group: AssurGroup) -> Construction:
     """The group's construction from the solved positions: the kind's closed form run directly
     on the motion's arrays (the same numbers)."""
     bodies = {link: motion.body(link) for link in motion.solved if link not in group.links}
-    context = Context(motion.mechanism, group, bodies, motion.branches[group.index].sign,
+    context = GroupInputs(motion.mechanism, group, bodies, motion.branches[group.index].sign,
                       motion.angles, {})
     placed = kind_module(group).place(context)
     return construction(placed, group, motion.angles.shape[0])

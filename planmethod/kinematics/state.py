@@ -69,10 +69,6 @@ class LinkState:
             return self.origin + turn_onto(self.axes(), local)
         return self.origin + rotate(local, self.theta)
 
-    def to_local(self, position: np.ndarray) -> np.ndarray:
-        """Local coordinates of the link's material point now at ``position``."""
-        return rotate(position - self.origin, -self.theta)
-
     def moving(self, omega=None, velocity=None, epsilon=None, acceleration=None) -> LinkState:
         """The same pose with motion fields set (the cached axes are kept)."""
         return LinkState(self.theta, self.origin, omega, velocity, epsilon, acceleration,

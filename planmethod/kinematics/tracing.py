@@ -313,7 +313,27 @@ class Tracer:
 
     # -- compiling -----------------------------------------------------------------------------
     def compile(self, name: str = "evaluate") -> Compiled:
-        """The recorded operations as one compiled function (see :class:`Compiled`)."""
+        """The recorded operations as one compiled function (see :class:`Compiled`): the
+        outputs given rows (:meth:`_rows`), the operations they need kept (:meth:`_needed`),
+        written as numpy calls into reused workspace rows (:class:`_SourceWriter`) and compiled
+        once per source (:func:`_load`)."""
+        layout, primary, fills, copies = self._rows()
+        writer = _SourceWriter(self._needed(primary, copies), primary, copies)
+        template = writer.source(name, layout, fills, copies)
+        numbers = {_placeholder(slot): float.fromhex(bits)
+                   for bits, slot in writer.constants.items()}
+        function = _load(template, name, numbers)
+        source = template
+        for placeholder, value in numbers.items():
+            source = source.replace(repr(placeholder), repr(value))
+        return Compiled(function, source, layout, writer.work, tuple(self.checks),
+                        tuple(self.calls))
+
+    def _rows(self) -> tuple[Layout, dict[int, int], list[tuple[int, float]],
+                             list[tuple[int, int]]]:
+        """Where each output goes: the :class:`Layout`; the values computed straight into an
+        output row (``primary``: id → row); rows filled with a constant (``fills``); rows
+        copied from a value computed elsewhere (``copies``: row, id)."""
         primary: dict[int, int] = {}    # id → its output row (written there directly)
         fills: list[tuple[int, float]] = []
         copies: list[tuple[int, int]] = []
@@ -348,120 +368,137 @@ class Tracer:
                     primary[value] = row
             layout.rows[out_name] = mine[0] if len(mine) == 1 else tuple(mine)
             written[values] = layout.rows[out_name]
-        layout = Layout(layout.rows, layout.constants, rows)
-        return self._emit(name, layout, primary, fills, copies)
+        return Layout(layout.rows, layout.constants, rows), primary, fills, copies
 
-    def _emit(self, name, layout, primary, fills, copies) -> Compiled:
+    def _needed(self, primary: dict[int, int], copies: list[tuple[int, int]]) -> list[_Op]:
+        """The recorded operations the outputs, guards and calls need, in order (one of each
+        pair of products x·c, x·(−c) shared: :func:`_share_negated_products`)."""
         needed = set(primary) | {value for _, value in copies}
         recorded = _share_negated_products(self.ops, needed)
-        for op in reversed(recorded):  # what the outputs, guards and calls need
+        for op in reversed(recorded):
             if op.name in ("guard", "call") or op.out[0] in needed:
                 needed.update(arg for arg in op.args if isinstance(arg, int))
-        ops = [op for op in recorded if op.name in ("guard", "call") or op.out[0] in needed]
-        last: dict[int, int] = {}
+        return [op for op in recorded if op.name in ("guard", "call") or op.out[0] in needed]
+
+
+class _SourceWriter:
+    """Writes operations as Python source, one numpy call a line: a value computed into its
+    output row where it has one, else into a workspace row ``w<k>`` taken from the rows freed
+    after their last use. The model's numbers are written as placeholders, one per number
+    (:func:`_placeholder`): mechanisms that differ only in their numbers (a template's
+    variants) share the source, compiled once; each program's code then takes its own numbers
+    in place of the placeholders (as constants: no slower than numbers written in)."""
+
+    def __init__(self, ops: list[_Op], primary: dict[int, int],
+                 copies: list[tuple[int, int]]) -> None:
+        self.ops, self.primary = ops, primary
+        #: each value's last use (an operation's index; copied outputs: past the end)
+        self.last: dict[int, int] = {}
         for index, op in enumerate(ops):
             for arg in op.args:
                 if isinstance(arg, int):
-                    last[arg] = index
-        end = len(ops)
+                    self.last[arg] = index
         for _, value in copies:
-            last[value] = end
-        where: dict[int, str] = {0: "angles"}
+            self.last[value] = len(ops)
+        self.where: dict[int, str] = {0: "angles"}
         for ident, row in primary.items():
-            where[ident] = f"o{row}"
-        free: list[int] = []
-        work = 0
-        lines: list[str] = []
-        # the model's numbers are written as placeholders, one per number (_placeholder):
-        # mechanisms that differ only in their numbers (a template's variants) share the
-        # source, compiled once (_CODE); each program's code then takes its own numbers in
-        # place of the placeholders (as constants: no slower than numbers written in)
-        constants: dict[str, int] = {}      # a float's exact bits → its slot
+            self.where[ident] = f"o{row}"
+        self.free: list[int] = []
+        #: workspace rows used
+        self.work = 0
+        #: a float's exact bits → its placeholder's slot
+        self.constants: dict[str, int] = {}
 
-        def constant(value: float) -> str:
-            bits = float(value).hex()
-            if bits not in constants:
-                constants[bits] = len(constants)
-            return repr(_placeholder(constants[bits]))
+    def constant(self, value: float) -> str:
+        bits = float(value).hex()
+        if bits not in self.constants:
+            self.constants[bits] = len(self.constants)
+        return repr(_placeholder(self.constants[bits]))
 
-        def arg_text(arg) -> str:
-            return constant(arg) if isinstance(arg, float) else where[arg]
+    def text(self, arg) -> str:
+        return self.constant(arg) if isinstance(arg, float) else self.where[arg]
 
-        def release(index: int, op: _Op) -> None:
-            for arg in set(op.args):
-                if (isinstance(arg, int) and last.get(arg) == index and arg not in primary
-                        and arg != 0 and where.get(arg, "").startswith("w")):
-                    free.append(int(where[arg][1:]))
+    def release(self, index: int, op: _Op) -> None:
+        """Free the workspace rows of the arguments whose last use is operation ``index``."""
+        for arg in set(op.args):
+            if (isinstance(arg, int) and self.last.get(arg) == index
+                    and arg not in self.primary and arg != 0
+                    and self.where.get(arg, "").startswith("w")):
+                self.free.append(int(self.where[arg][1:]))
 
-        def take() -> str:
-            nonlocal work
-            if free:
-                return f"w{free.pop()}"
-            work += 1
-            return f"w{work - 1}"
+    def take(self) -> str:
+        if self.free:
+            return f"w{self.free.pop()}"
+        self.work += 1
+        return f"w{self.work - 1}"
 
-        for row, value in fills:
-            lines.append(f"o{row}.fill({constant(value)})")
-        for index, op in enumerate(ops):
-            if op.name == "guard":
-                bound, check, magnitude = op.extra
-                value, *args = (arg_text(a) for a in op.args)
-                call = f"checks[{check}](angles{''.join(', ' + a for a in args)})"
-                if isinstance(op.args[0], float):  # a constant that fails its bound
-                    lines.append(call)
-                elif magnitude:
-                    lines.append(f"if not ({value}.min() > {constant(bound)} if {value}[0] > 0.0 "
-                                 f"else {value}.max() < {constant(-bound)}): {call}")
-                else:
-                    lines.append(f"if not ({value}.min() > {constant(bound)}): {call}")
-                release(index, op)
-                continue
-            if op.name == "call":
-                for out in op.out:
-                    if out not in primary:
-                        where[out] = take()
-                inputs = ", ".join(arg_text(a) for a in op.args)
-                outputs = ", ".join(where[o] for o in op.out)
-                lines.append(f"calls[{op.extra}](angles, ({inputs}{',' if op.args else ''}), "
-                             f"({outputs},))")
-                release(index, op)
-                continue
-            (out,) = op.out
-            args = [arg_text(a) for a in op.args]
-            release(index, op)
-            if out not in primary:
-                where[out] = take()
-            target = where[out]
-            if op.name in _KEYWORD_OUT:  # (a positional out is deprecated for these)
-                target = f"out={target}"
-            lines.append(f"{_UFUNCS[op.name]}({', '.join(args)}, {target})")
-        for row, value in copies:
-            lines.append(f"copyto(o{row}, {where[value]})")
+    def guard(self, op: _Op) -> str:
+        bound, check, magnitude = op.extra
+        value, *args = (self.text(a) for a in op.args)
+        call = f"checks[{check}](angles{''.join(', ' + a for a in args)})"
+        if isinstance(op.args[0], float):  # a constant that fails its bound
+            return call
+        if magnitude:
+            return (f"if not ({value}.min() > {self.constant(bound)} if {value}[0] > 0.0 "
+                    f"else {value}.max() < {self.constant(-bound)}): {call}")
+        return f"if not ({value}.min() > {self.constant(bound)}): {call}"
+
+    def call(self, op: _Op) -> str:
+        for out in op.out:
+            if out not in self.primary:
+                self.where[out] = self.take()
+        inputs = ", ".join(self.text(a) for a in op.args)
+        outputs = ", ".join(self.where[o] for o in op.out)
+        return (f"calls[{op.extra}](angles, ({inputs}{',' if op.args else ''}), "
+                f"({outputs},))")
+
+    def ufunc(self, index: int, op: _Op) -> str:
+        (out,) = op.out
+        args = [self.text(a) for a in op.args]
+        self.release(index, op)   # an argument's row may take the result
+        if out not in self.primary:
+            self.where[out] = self.take()
+        target = self.where[out]
+        if op.name in _KEYWORD_OUT:  # (a positional out is deprecated for these)
+            target = f"out={target}"
+        return f"{_UFUNCS[op.name]}({', '.join(args)}, {target})"
+
+    def source(self, name: str, layout: Layout, fills: list[tuple[int, float]],
+               copies: list[tuple[int, int]]) -> str:
+        """The function's source: constant rows filled, the operations, copied rows."""
+        lines = [f"o{row}.fill({self.constant(value)})" for row, value in fills]
+        for index, op in enumerate(self.ops):
+            if op.name in ("guard", "call"):
+                lines.append(self.guard(op) if op.name == "guard" else self.call(op))
+                self.release(index, op)
+            else:
+                lines.append(self.ufunc(index, op))
+        lines += [f"copyto(o{row}, {self.where[value]})" for row, value in copies]
         header = [f"def {name}(angles, out, work, checks, calls):"]
         if layout.count:
             header.append(f"    {', '.join(f'o{i}' for i in range(layout.count))}, = out")
-        if work:
-            header.append(f"    {', '.join(f'w{i}' for i in range(work))}, = work")
-        template = "\n".join(header + [f"    {line}" for line in lines] + ["    return None"])
-        with _CODE_LOCK:
-            code = _CODE.pop(template, None)
-            if code is None:
-                module = compile(template, f"<planmethod {name}>", "exec")
-                code = next(c for c in module.co_consts if isinstance(c, types.CodeType))
-            _CODE[template] = code                 # most recently used last
-            while len(_CODE) > CODE_CACHE:
-                _CODE.pop(next(iter(_CODE)))
-        numbers = {_placeholder(slot): float.fromhex(bits) for bits, slot in constants.items()}
-        code = code.replace(co_consts=tuple(numbers.get(c, c) if type(c) is float else c
-                                            for c in code.co_consts))
-        namespace = {ufunc: getattr(np, ufunc) for ufunc in set(_UFUNCS.values())}
-        namespace["copyto"] = np.copyto
-        namespace["__builtins__"] = builtins
-        function = types.FunctionType(code, namespace, name)
-        source = template
-        for placeholder, value in numbers.items():
-            source = source.replace(repr(placeholder), repr(value))
-        return Compiled(function, source, layout, work, tuple(self.checks), tuple(self.calls))
+        if self.work:
+            header.append(f"    {', '.join(f'w{i}' for i in range(self.work))}, = work")
+        return "\n".join(header + [f"    {line}" for line in lines] + ["    return None"])
+
+
+def _load(template: str, name: str, numbers: dict[float, float]) -> types.FunctionType:
+    """The function of ``template`` with its placeholders replaced by ``numbers``: compiled once
+    per template (the most recently used :data:`CODE_CACHE` kept)."""
+    with _CODE_LOCK:
+        code = _CODE.pop(template, None)
+        if code is None:
+            module = compile(template, f"<planmethod {name}>", "exec")
+            code = next(c for c in module.co_consts if isinstance(c, types.CodeType))
+        _CODE[template] = code                 # most recently used last
+        while len(_CODE) > CODE_CACHE:
+            _CODE.pop(next(iter(_CODE)))
+    code = code.replace(co_consts=tuple(numbers.get(c, c) if type(c) is float else c
+                                        for c in code.co_consts))
+    namespace = {ufunc: getattr(np, ufunc) for ufunc in set(_UFUNCS.values())}
+    namespace["copyto"] = np.copyto
+    namespace["__builtins__"] = builtins
+    return types.FunctionType(code, namespace, name)
 
 
 def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:

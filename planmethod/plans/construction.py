@@ -38,8 +38,8 @@ from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
-from ..vectors import cross
-from ..vocabulary import _SUBSCRIPT, PlanKind, link_numbers, symbol
+from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
+from ..vocabulary import PlanKind, link_numbers, number_subscript, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -229,32 +229,11 @@ class LinkImage:
 # The emulator draws one drawing, or — where a ``perturb`` model returns arrays of lengths —
 # several copies of it at once (a tolerance analysis: one copy per segment lengthened): then
 # the numbers it lays off and reads are arrays with a leading copy axis (N,), its points (N, 2).
-# These helpers take a vector's coordinates from its last axis, so they serve both.
-def _angle_deg(vector: np.ndarray) -> float:
-    return math.degrees(math.atan2(vector[1], vector[0]))
-
-
-def _perp(vector: np.ndarray) -> np.ndarray:
-    return np.stack((-vector[..., 1], vector[..., 0]), axis=-1)
-
-
-def _dot(a, b):
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
-
-
-def _norm(vector):
-    return np.hypot(vector[..., 0], vector[..., 1])
-
-
+# The vector helpers (planmethod.vectors) take a vector's coordinates from its last axis, so
+# they serve both.
 def _times(factor, vector: np.ndarray) -> np.ndarray:
     """A vector times a number, or times each copy's number."""
     return np.asarray(factor)[..., None] * vector
-
-
-def _unit(vector: np.ndarray, length=None) -> np.ndarray:
-    """``vector`` over its length (a zero vector stays zero)."""
-    length = _norm(vector) if length is None else length
-    return vector / np.asarray(np.where(length > 0, length, 1.0))[..., None]
 
 
 def _sign(value):
@@ -284,7 +263,7 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     if "@" in text and numbers:   # a point on a link: its name, the link's number below
         names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
         text = re.sub(rf"@({names})",
-                      lambda match: str(numbers[match.group(1)]).translate(_SUBSCRIPT), text)
+                      lambda match: number_subscript(numbers[match.group(1)]), text)
 
     def quantity(match: re.Match) -> str:
         name = match.group(0)
@@ -343,15 +322,15 @@ class _Sheet:
     def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, text: str,
                 component: str, vector: str, group: int | None = None) -> np.ndarray:
         """Lay off a known vector (exact direction, rounded length) from ``start``."""
-        length = _norm(vector_mm)
+        length = norm(vector_mm)
         drawn = self.round(length, Segment(self.kind, "lay_off", component, vector, group))
-        direction = _unit(vector_mm, length)
+        direction = unit_or_zero(vector_mm, length)
         self.points[end] = self.points[start] + _times(drawn, direction)
         if not self.record:
             self.count += 1
         elif length > 0:
             self.add(Step(0, "lay_off", text, start=start, end=end,
-                          direction_deg=_angle_deg(direction), length_mm=drawn,
+                          direction_deg=angle_deg(direction), length_mm=drawn,
                           component=component, vector=vector, group=group))
         else:
             self.add(Step(0, "coincide", text, start=start, end=end, length_mm=0.0,
@@ -365,7 +344,7 @@ class _Sheet:
                                                                 vector, group)), float)
         if self.record:
             number = self.add(Step(0, "line", text, start=through,
-                                   direction_deg=_angle_deg(direction) % 180.0,
+                                   direction_deg=angle_deg(direction) % 180.0,
                                    component=component, vector=vector, group=group))
         else:
             self.count += 1
@@ -398,7 +377,7 @@ class _Sheet:
     def read(self, start: str, end: str, *, quantity: str, factor: float,
              sign: float = 1.0) -> float:
         """Read the segment start–end (rounded) and convert it: value = ±length·factor."""
-        length = self.round(_norm(self.points[end] - self.points[start]),
+        length = self.round(norm(self.points[end] - self.points[start]),
                             Segment(self.kind, "read", quantity))
         value = sign * length * factor
         if not self.record:
@@ -411,16 +390,16 @@ class _Sheet:
     def place_image(self, label: str, offset_mm: np.ndarray, image: LinkImage, link: str,
                     text: str) -> None:
         """Place a point by the similarity rule from the link's reference image."""
-        length = _norm(offset_mm)
+        length = norm(offset_mm)
         drawn = self.round(length, Segment(self.kind, "similarity", label))
-        direction = _unit(offset_mm, length)
+        direction = unit_or_zero(offset_mm, length)
         self.points[label] = image.ref_mm + _times(drawn, direction)
         if not self.record:
             self.count += 1
             return
         self.add(Step(0, "similarity", text, start=image.ref_label, end=label,
                       references=(image.ref_label,), length_mm=drawn,
-                      direction_deg=_angle_deg(direction) if length > 0 else None,
+                      direction_deg=angle_deg(direction) if length > 0 else None,
                       vector=link))
 
     def finish(self, title: str) -> Plan:
@@ -431,12 +410,12 @@ class _Sheet:
 
 
 def _velocity_offset(image: LinkImage, point: np.ndarray, mu_v: float) -> np.ndarray:
-    return _times(image.omega, _perp(point - image.ref)) / mu_v
+    return _times(image.omega, perp(point - image.ref)) / mu_v
 
 
 def _acceleration_offset(image: LinkImage, point: np.ndarray, mu_a: float) -> np.ndarray:
     r = point - image.ref
-    return (_times(image.epsilon, _perp(r)) - _times(image.omega ** 2, r)) / mu_a
+    return (_times(image.epsilon, perp(r)) - _times(image.omega ** 2, r)) / mu_a
 
 
 class _Emulator:
@@ -480,7 +459,7 @@ class _Emulator:
 
     def length_mm(self, first: np.ndarray, second: np.ndarray) -> float:
         """A length read off the position plan (rounded to the precision)."""
-        return self.v.round(float(_norm(second - first)) / self.scales.mu_l,
+        return self.v.round(float(norm(second - first)) / self.scales.mu_l,
                             Segment("position", "measure"))
 
     def label(self, point: str, sheet: _Sheet) -> str:
@@ -488,7 +467,7 @@ class _Emulator:
 
     def drawn_length(self, sheet: _Sheet, start: str, end: str) -> float:
         """The segment start–end of ``sheet`` as read off the drawing (mm, rounded)."""
-        return sheet.round(_norm(sheet.points[end] - sheet.points[start]),
+        return sheet.round(norm(sheet.points[end] - sheet.points[start]),
                            Segment(sheet.kind, "read", "relative"))
 
     def fix_velocity(self, link: str, ref: np.ndarray, label: str, omega: float) -> None:
@@ -554,8 +533,8 @@ class _Emulator:
         for name in pins:
             other = self.where(link, name)
             axis = other - image.ref
-            length = float(_norm(axis))
-            if length <= 1e-12 * max(1.0, float(_norm(image.ref))):
+            length = float(norm(axis))
+            if length <= 1e-12 * max(1.0, float(norm(image.ref))):
                 continue
             unit = axis / length
             offset = position - image.ref
@@ -564,7 +543,7 @@ class _Emulator:
                 return position
             if not self.mirror(Segment(sheet.kind, "similarity", label, link)):
                 return position
-            return position - 2.0 * across * _perp(unit)
+            return position - 2.0 * across * perp(unit)
         return position
 
     # -- drive ---------------------------------------------------------------------------------
@@ -573,7 +552,7 @@ class _Emulator:
         pivot = self.where(drive.link, drive.pivot)
         point = self.where(drive.link, scales.scale_point)
         radius = point - pivot
-        length = float(np.hypot(*radius))
+        length = float(norm(radius))
         pole_v, pole_a = self.v.pole, self.a.pole
         for sheet, images in ((self.v, self.vimages), (self.a, self.aimages)):
             images[FRAME] = LinkImage(np.zeros(2), np.zeros(2), sheet.pole, 0.0, 0.0)
@@ -581,12 +560,12 @@ class _Emulator:
         a_label = self.label(drive.pivot, self.v)
         b_v, b_a = self.label(scales.scale_point, self.v), self.label(scales.scale_point, self.a)
         omega, epsilon = drive.omega, drive.epsilon
-        v_b = omega * _perp(radius)
+        v_b = omega * perp(radius)
         # the reference vector is drawn as long as the scale makes it: exactly the written
         # *_mm where the scale is what that length asks (no rounding noise), else value/μ
         pinned = _pinned_mm(self.settings.velocity_mm, self.settings.mu_v,
-                            float(np.hypot(*v_b)), scales.mu_v)
-        b_vector = (v_b / np.hypot(*v_b) * pinned if pinned and omega else v_b / scales.mu_v)
+                            float(norm(v_b)), scales.mu_v)
+        b_vector = (unit(v_b) * pinned if pinned and omega else v_b / scales.mu_v)
         self.v.lay_off(pole_v, b_v, b_vector, component="absolute",
                        vector=f"v_{scales.scale_point}",
                        text=f"v_{scales.scale_point} = ω1·l_{drive.pivot}{scales.scale_point} = "
@@ -594,11 +573,11 @@ class _Emulator:
                             f"{scales.scale_point} in the sense of ω1")
         self.vimages[drive.link] = LinkImage(pivot, self.v.points[a_label], a_label, omega)
         normal = -omega ** 2 * radius
-        tangential = epsilon * _perp(radius)
+        tangential = epsilon * perp(radius)
         total = normal + tangential
         fixed = _pinned_mm(self.settings.acceleration_mm, self.settings.mu_a,
-                           float(np.hypot(*total)), scales.mu_a)
-        factor = (fixed / np.hypot(*total)) if fixed and np.hypot(*total) else 1 / scales.mu_a
+                           float(norm(total)), scales.mu_a)
+        factor = (fixed / norm(total)) if fixed and norm(total) else 1 / scales.mu_a
         point_name = scales.scale_point
         if epsilon == 0:
             self.a.lay_off(pole_a, b_a, normal * factor, component="normal",
@@ -678,7 +657,7 @@ class _Emulator:
                     base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
                     factor=mu_v / (length_mm * mu_l))
                 omegas[side.link] = omega
-                rel.append(sign * self.v.round(_norm(segment),
+                rel.append(sign * self.v.round(norm(segment),
                                                Segment("velocity", "read", "relative")))
                 del radius
             else:
@@ -725,7 +704,7 @@ class _Emulator:
                 x_name = point.partition("@")[0]
                 n_label = (f"n_{point}" if "@" in point else f"n_{x_name}{centre}")
                 self.a.lay_off(
-                    base_label, n_label, _times(-magnitude, radius / _norm(radius)),
+                    base_label, n_label, _times(-magnitude, unit(radius)),
                     component="normal", vector=f"aⁿ_{x_name}{centre}", group=group.index,
                     text=f"aⁿ_{x_name}{centre} from {base_label}: ({base_label}{n_label}) = "
                          f"(v-plan segment)²·μv²/(({x_name}{centre})·μl·μa), from "
@@ -740,7 +719,7 @@ class _Emulator:
                 omega_c = self.readings[f"omega_{carrier}"]
                 multi = sum(not s.rotation for s in construction.sides) > 1
                 k_label = f"k{index + 1}_{point}" if multi else f"k_{point}"
-                coriolis = _times(2 * omega_c * relative * mu_v, _perp(direction)) / mu_a
+                coriolis = _times(2 * omega_c * relative * mu_v, perp(direction)) / mu_a
                 self.a.lay_off(
                     base_label, k_label, coriolis, component="coriolis", group=group.index,
                     vector=f"aᵏ_{point}",
@@ -829,12 +808,12 @@ def _curvature_readings(emulator: _Emulator, point: str,
     a_label = emulator.image_at(a, emulator.aimages, link, position[0],
                                 image_label(point, a.pole))
     velocity = v.points[v_label]
-    speed_mm = v.round(_norm(velocity), Segment("velocity", "read", f"v_{point}"))
+    speed_mm = v.round(norm(velocity), Segment("velocity", "read", f"v_{point}"))
     if np.any(speed_mm == 0) or emulator.motion.moves_straight(point):
         return
-    tangent = _unit(velocity)
-    normal = _perp(tangent)
-    along_normal = _dot(a.points[a_label], normal)
+    tangent = unit_or_zero(velocity)
+    normal = perp(tangent)
+    along_normal = dot(a.points[a_label], normal)
     outward = _sign(along_normal)          # the normal turned towards the centre
     normal = _times(outward, normal)
     along_normal = outward * along_normal
@@ -843,7 +822,7 @@ def _curvature_readings(emulator: _Emulator, point: str,
     if a.record:
         a.add(Step(0, "project", f"project π{a_label} on the normal to the path of {name} "
                                  f"(⟂ p{v_label}): {n_label}", start=a_label, end=n_label,
-                   direction_deg=_angle_deg(normal) % 180.0))
+                   direction_deg=angle_deg(normal) % 180.0))
     else:
         a.count += 1
     normal_mm = a.round(along_normal, Segment("acceleration", "read", f"an_{point}"))
@@ -862,7 +841,7 @@ def _curvature_readings(emulator: _Emulator, point: str,
     centre = position[0] / scales.mu_l + rho / scales.mu_l * normal
     position_plan.curvature[name] = {
         "center_mm": [float(centre[0]), float(centre[1])], "rho_mm": rho / scales.mu_l,
-        "tangent_deg": _angle_deg(tangent) % 180.0, "normal_deg": _angle_deg(normal),
+        "tangent_deg": angle_deg(tangent) % 180.0, "normal_deg": angle_deg(normal),
         "path_mm": _path_mm(emulator.motion, point, scales.mu_l)}
 
 
@@ -934,12 +913,12 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     la = emulator.image_at(a, emulator.aimages, slide.link, point, image_label(on_link, "π"))
     ga = emulator.image_at(a, emulator.aimages, slide.along, point, image_label(on_guide, "π"))
     omega = emulator.readings[f"omega_{slide.along}"]
-    coriolis = _times(2 * omega * ds, _perp(d))
+    coriolis = _times(2 * omega * ds, perp(d))
     k_label = f"k_{key}"
     if k_label not in a.points:
         a.lay_off(ga, k_label, coriolis / scales.mu_a, component="coriolis",
                   vector=f"aᵏ_{key}", text=f"aᵏ of {key} = 2·ω_{slide.along}·v_rel from {ga}")
-    corio = a.round(_norm(coriolis) / scales.mu_a,
+    corio = a.round(norm(coriolis) / scales.mu_a,
                     Segment("acceleration", "read", f"coriolis_{key}")) * scales.mu_a
     emulator.readings[f"coriolis_{key}"] = corio
     segment = a.points[la] - a.points[k_label]
@@ -1064,7 +1043,8 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
 
 def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
     """Draw one group on one plan: a dyad from its two vector equations, a higher group by its
-    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``)."""
+    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``: see
+    :class:`~planmethod.kinematics.groups.OwnPlans`)."""
     if group.is_dyad:
         construction = motion.groups[group.index].construction
         if plan == "velocity":
@@ -1072,7 +1052,7 @@ def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
         else:
             emulator.acceleration_group(construction)
         return
-    drawing = getattr(kind_module(group), f"draw_{plan}", None)
+    drawing = kind_module(group).drawings.get(PlanKind(plan))
     if drawing is None:
         raise PlansUnavailableError(
             f"plans are drawn for class III triads of revolute pairs only; this {group.kind} "

@@ -66,7 +66,6 @@ class Scales:
     mu_v: float
     mu_a: float
     omega1: float
-    epsilon1: float
     scale_point: str
     mu_f: float | None = None
 
@@ -163,4 +162,4 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
         mu_a = math.hypot(drive.omega ** 2, drive.epsilon) * mu_l
     else:
         mu_v, mu_a = rounded(settings.mu_v, mu_v), rounded(settings.mu_a, mu_a)
-    return Scales(mu_l, mu_v, mu_a, drive.omega, drive.epsilon, point, settings.mu_f)
+    return Scales(mu_l, mu_v, mu_a, drive.omega, point, settings.mu_f)

@@ -37,6 +37,7 @@ import numpy as np
 from ..kinematics.constraints import ConstraintSystem
 from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
+from ..vectors import cross, dot, norm, perp, rotate
 
 __all__ = [
     "DIGITS",
@@ -70,9 +71,8 @@ def _driven(mechanism: Mechanism, angles: np.ndarray) -> dict[str, LinkState]:
     theta = np.radians(angles)
     pivot = np.array(mechanism.local(FRAME, drive.pivot))
     x, y = mechanism.local(drive.link, drive.pivot)
-    c, s = np.cos(theta), np.sin(theta)
-    arm = -np.stack((c * x - s * y, s * x + c * y), axis=-1)   # pivot → the drive's origin
-    turned = np.stack((-arm[:, 1], arm[:, 0]), axis=-1)
+    arm = -rotate(np.array([x, y], dtype=float), theta)   # pivot → the drive's origin
+    turned = perp(arm)
     omega, epsilon = np.full(count, drive.omega), np.full(count, drive.epsilon)
     return {
         FRAME: LinkState(zero, zeros, zero, zeros, zero, zeros),
@@ -137,7 +137,7 @@ def _tangent(system: ConstraintSystem, fixed: Mapping[str, LinkState], q: np.nda
     arm = turning.origin - np.array(mechanism.local(FRAME, mechanism.drive.pivot))
     states[mechanism.drive.link] = LinkState(
         turning.theta, turning.origin, np.ones_like(turning.theta),
-        np.stack((-arm[:, 1], arm[:, 0]), axis=-1))
+        perp(arm))
     with np.errstate(all="ignore"):
         return system.velocities(states)
 
@@ -147,12 +147,8 @@ def _fit(pairs: list[tuple[tuple[float, float], np.ndarray]]) -> tuple[float, np
     local = np.array([p for p, _ in pairs], dtype=float)
     world = np.array([g for _, g in pairs], dtype=float)
     a, b = local - local.mean(axis=0), world - world.mean(axis=0)
-    theta = math.atan2(float(np.sum(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])),
-                       float(np.sum(a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])))
-    c, s = math.cos(theta), math.sin(theta)
-    centre = local.mean(axis=0)
-    origin = world.mean(axis=0) - np.array([c * centre[0] - s * centre[1],
-                                            s * centre[0] + c * centre[1]])
+    theta = math.atan2(float(np.sum(cross(a, b))), float(np.sum(dot(a, b))))
+    origin = world.mean(axis=0) - rotate(local.mean(axis=0), theta)
     return theta, origin
 
 
@@ -172,9 +168,8 @@ def _guess(mechanism: Mechanism, unknown: Sequence[str], fixed: Mapping[str, Lin
 
     def put(link: str, theta: float, origin: np.ndarray) -> None:
         poses[link] = (theta, origin)
-        c, s = math.cos(theta), math.sin(theta)
-        for name, (x, y) in mechanism.links[link].points.items():
-            places[name] = origin + np.array([c * x - s * y, s * x + c * y])
+        for name, local in mechanism.links[link].points.items():
+            places[name] = origin + rotate(local, theta)
 
     for link in fixed:
         put(link, *poses[link])
@@ -195,7 +190,7 @@ def _guess(mechanism: Mechanism, unknown: Sequence[str], fixed: Mapping[str, Lin
                     slide.through in places) and slide.link not in poses and (
                     slide.along not in poses):
                 gap = places[slide.point] - places[slide.through]
-                if np.hypot(*gap) > 0:
+                if norm(gap) > 0:
                     line = math.atan2(gap[1], gap[0])
                     return line if link == slide.link else line - slide.direction_rad
         return None
@@ -218,8 +213,7 @@ def _guess(mechanism: Mechanism, unknown: Sequence[str], fixed: Mapping[str, Lin
             (x, y), world = (0.0, 0.0), np.mean(list(places.values()), axis=0)
         else:
             return False
-        c, s = math.cos(theta), math.sin(theta)
-        put(link, theta, world - np.array([c * x - s * y, s * x + c * y]))
+        put(link, theta, world - rotate((x, y), theta))
         return True
 
     waiting = [link for link in unknown]
@@ -448,9 +442,7 @@ def reference_place(mechanism: Mechanism, reference: Mapping[str, dict], point: 
     for link in mechanism.links_with_point(point):
         if link in reference:
             theta, origin = reference[link]["theta"], reference[link]["origin"]
-            x, y = mechanism.local(link, point)
-            c, s = np.cos(theta), np.sin(theta)
-            return origin + np.stack((c * x - s * y, s * x + c * y), axis=-1)
+            return origin + rotate(mechanism.local(link, point), theta)
     raise KeyError(f"{point} is on no link of the reference (the frame or the drive only?)")
 
 

@@ -65,6 +65,7 @@ import numpy as np
 from ..errors import AssemblyError, PlanmethodError, ToggleError
 from ..kinematics import solve
 from ..spec import exercise_from_dict
+from ..vectors import cross, norm
 from .oracles import exact_fourbar as fourbar_reference
 from .oracles import exact_slider_crank as slider_reference
 
@@ -298,7 +299,7 @@ def check(case: Case, angles, *, mechanism=None) -> list[dict]:
         bounds = (K * EPS * length / s,
                   K * EPS * ratio * max(speed / s ** 3, terms_v / s ** 2),
                   K * EPS * ratio * max(accel / s ** 5, terms_a / s ** 2))
-        errors = [float(np.hypot(*(value - _vector(exact[key]))))
+        errors = [float(norm(value - _vector(exact[key])))
                   for value, key in zip(values, ("C", "v_C", "a_C"), strict=True)]
         row["errors"] = errors
         row["bounds"] = list(bounds)
@@ -308,7 +309,7 @@ def check(case: Case, angles, *, mechanism=None) -> list[dict]:
         if row["ratio"] > 1.0:
             row["violation"] = "error above the stated bound"
             other = case.reference(angle, not case.branch) if reference["exact"] else None
-            if other is not None and float(np.hypot(*(values[0] - _vector(other["C"])))) < (
+            if other is not None and float(norm(values[0] - _vector(other["C"]))) < (
                     errors[0]):
                 row["violation"] = "flipped branch"
         rows.append(row)
@@ -330,20 +331,18 @@ def _crank_dead_centre_fourbar() -> float:
     position of the RRR group (its own toggle is B, C, D in line)."""
     case = fourbar_case()
 
-    def cross(phi):
+    def alignment(phi):   # OB × OC in the reference's digits: zero with A, B, C in line
         exact = case.reference(float(phi), True)
-        bx, by = exact["B"]
-        cx, cy = exact["C"]
-        return float(bx * cy - by * cx)
+        return float(cross(np.array(exact["B"], dtype=object), np.array(exact["C"], dtype=object)))
 
     angles = np.arange(0.0, 360.0, 1.0)
-    values = [cross(a) for a in angles]
+    values = [alignment(a) for a in angles]
     for k in range(len(angles) - 1):
         if values[k] == 0 or values[k] * values[k + 1] < 0:
             low, high = angles[k], angles[k + 1]
             for _ in range(80):
                 middle = 0.5 * (low + high)
-                if cross(low) * cross(middle) <= 0:
+                if alignment(low) * alignment(middle) <= 0:
                     high = middle
                 else:
                     low = middle

@@ -1,56 +1,251 @@
-"""The group kinds: one module per kind, found by its kind.
+"""The group kinds: one module per kind, found by its kind, checked against one interface.
 
 Each module of this package that defines ``KIND`` (a :class:`~planmethod.vocabulary.GroupKind`)
-is a group kind, registered when the package is first asked for one — adding a kind means adding
-one module here (and its test), nothing else. A dyad kind defines ``BRANCHES`` (how many
-assemblies it has) and ``place(context)``: its closed-form positions and its two vector
-equations (see :mod:`~planmethod.kinematics.groups.base`); a higher kind defines
-``evaluate(context, level)`` and ``assemblies(context)``. A module may also define
-``accepts(group)`` (default: every group of its kind) and ``PRIORITY`` (higher first), and
-``reactions(solver, group)`` and ``draw(drawer, group, plan)``, the textbook sequences the force
-analysis and the plan emulator run for it.
+or ``KINDS`` (several) is a group kind, registered when the package is first asked for one —
+adding a kind means adding one module here (and its test), nothing else. What such a module
+provides is written once, here, as protocols:
+
+* :class:`ClosedFormKind` — a dyad: ``BRANCHES`` (how many assemblies it has) and
+  ``place(context)``, its closed-form positions and its two vector equations (see
+  :mod:`~planmethod.kinematics.groups.base`); or
+* :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch,
+  outputs)`` and ``choose(context, model)`` (Newton continued along the crank angle, see
+  :mod:`.higher`);
+
+and, optionally, :class:`Accepts` (``accepts(group)``: which groups of its kind it solves;
+default every one) with ``PRIORITY`` (higher first), :class:`Reactions` (``reactions(solver,
+group)``, the textbook sequence the force analysis runs; without it the group's equilibrium
+equations are solved at once) and :class:`OwnPlans` (``draw_velocity(emulator, group)`` and
+``draw_acceleration(emulator, group)``, the construction the plan emulator runs for a higher
+group; a dyad is drawn from its two vector equations).
+
+When the registry loads the modules, :func:`describe` checks each one against the protocols —
+every function present, callable with the protocol's arguments — and records what it found as a
+:class:`KindModule`, which is what the solver, the plans and the force analysis call. A module
+that breaks the interface is a :class:`TypeError` naming the module and what is wrong, at load.
 
 Examples
 --------
->>> from planmethod.vocabulary import GroupKind
 >>> sorted(str(kind) for kind in registered())
 ['PRP', 'RPP', 'RPR', 'RRP', 'RRR', 'tetrad', 'triad']
+>>> rrr = registered()[GroupKind.RRR][0]
+>>> rrr.name, rrr.closed_form, rrr.branches, sorted(rrr.drawings)
+('rrr', True, 2, [])
 """
 
 from __future__ import annotations
 
 import importlib
+import inspect
 import pkgutil
 import threading
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from types import ModuleType
+from typing import Any, Protocol
 
 from ...errors import StructureError
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import GroupKind, PlanKind
+from ..algebra import Body
+from .base import Branch, ForceSolver, GroupInputs, Placed, PlanDrawer
 
-__all__ = ["kind_module", "registered"]
+__all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "OwnPlans", "Reactions",
+           "describe", "kind_module", "registered"]
 
-_REGISTRY: dict[GroupKind, list[ModuleType]] = {}
+
+# -- the interface ----------------------------------------------------------------------------
+class ClosedFormKind(Protocol):
+    """A dyad kind: closed-form positions and the two vector equations, on ``BRANCHES`` (1 or 2)
+    assemblies."""
+
+    BRANCHES: int
+
+    def place(self, context: GroupInputs) -> Placed: ...
+
+
+class IterativeKind(Protocol):
+    """A higher group kind: its links' motion by Newton continued from ``drive.angle``
+    (``evaluate``), and its assembly there (``choose``)."""
+
+    def evaluate(self, context: GroupInputs, level: int, model: Any, branch: Branch,
+                 outputs: Any) -> Any: ...
+
+    def choose(self, context: GroupInputs, model: Any) -> tuple[Branch, dict[str, Body]]: ...
+
+
+class Accepts(Protocol):
+    """Which groups of its kind a module solves (the first accepting module by ``PRIORITY``)."""
+
+    def accepts(self, group: AssurGroup) -> bool: ...
+
+
+class Reactions(Protocol):
+    """A kind's textbook reaction sequence, run by :mod:`planmethod.forces.groups`."""
+
+    def reactions(self, solver: ForceSolver, group: AssurGroup) -> Any: ...
+
+
+class OwnPlans(Protocol):
+    """A higher kind's own plan construction, run by :mod:`planmethod.plans.construction`."""
+
+    def draw_velocity(self, emulator: PlanDrawer, group: AssurGroup) -> None: ...
+
+    def draw_acceleration(self, emulator: PlanDrawer, group: AssurGroup) -> None: ...
+
+
+@dataclass(frozen=True, eq=False)
+class KindModule:
+    """A group kind's module as the registry checked it (see the module docstring): its short
+    ``name``, the ``kinds`` it registers for, its ``priority``, and its functions — None where
+    the module does not provide that part; ``drawings`` maps a plan to its own construction."""
+
+    name: str
+    kinds: tuple[GroupKind, ...]
+    priority: int = 0
+    accepts: Callable[[AssurGroup], bool] | None = None
+    branches: int = 0
+    place: Callable[[GroupInputs], Placed] | None = None
+    evaluate: Callable[..., Any] | None = None
+    choose: Callable[..., tuple[Branch, dict[str, Body]]] | None = None
+    reactions: Callable[[ForceSolver, AssurGroup], Any] | None = None
+    drawings: Mapping[PlanKind, Callable[[PlanDrawer, AssurGroup], None]] = field(
+        default_factory=dict)
+
+    @property
+    def closed_form(self) -> bool:
+        """Whether the kind is a closed-form dyad (else an iterative higher group)."""
+        return self.place is not None
+
+    def solves(self, group: AssurGroup) -> bool:
+        """Whether the module solves ``group`` (one of its kinds, and accepted)."""
+        return group.kind in self.kinds and (self.accepts is None or self.accepts(group))
+
+
+def _arguments(protocol: type) -> dict[str, int]:
+    """Each function of a protocol with the number of arguments it is called with."""
+    return {name: len(inspect.signature(member).parameters) - 1
+            for name, member in vars(protocol).items()
+            if inspect.isfunction(member) and not name.startswith("_")}
+
+
+def _part(module: ModuleType, protocol: type, problems: list[str]) -> dict[str, Callable] | None:
+    """The module's functions of ``protocol`` (None where it has none of them); a function
+    missing beside the others, or one that cannot take the protocol's arguments, is a
+    problem."""
+    wanted = _arguments(protocol)
+    present = {name: getattr(module, name) for name in wanted if hasattr(module, name)}
+    if not present:
+        return None
+    for name, count in wanted.items():
+        if name not in present:
+            problems.append(f"defines {', '.join(sorted(present))} but not {name} "
+                            f"({protocol.__name__})")
+            continue
+        function = present[name]
+        try:
+            inspect.signature(function).bind(*range(count))
+        except (TypeError, ValueError):
+            problems.append(f"{name} cannot be called with the {count} arguments of "
+                            f"{protocol.__name__}.{name}")
+    return present
+
+
+def describe(module: ModuleType) -> KindModule:
+    """Check a kind module against the interface and record what it provides.
+
+    Raises
+    ------
+    TypeError
+        Naming the module and each way it breaks the interface.
+
+    Examples
+    --------
+    >>> from types import ModuleType
+    >>> fake = ModuleType("planmethod.kinematics.groups.fake")
+    >>> fake.KIND, fake.BRANCHES = "RRR", 2
+    >>> describe(fake)
+    Traceback (most recent call last):
+    ...
+    TypeError: group kind module planmethod.kinematics.groups.fake: defines neither place \
+(ClosedFormKind) nor evaluate and choose (IterativeKind)
+    """
+    problems: list[str] = []
+    declared = getattr(module, "KINDS", None) or (
+        (module.KIND,) if hasattr(module, "KIND") else ())
+    kinds = []
+    for kind in declared:
+        try:
+            kinds.append(GroupKind(kind))
+        except ValueError:
+            problems.append(f"KIND {kind!r} is no GroupKind")
+    if not declared:
+        problems.append("defines neither KIND nor KINDS")
+    closed = _part(module, ClosedFormKind, problems)
+    iterative = _part(module, IterativeKind, problems)
+    accepts = _part(module, Accepts, problems)
+    reactions = _part(module, Reactions, problems)
+    drawings = _part(module, OwnPlans, problems)
+    branches = getattr(module, "BRANCHES", 0)
+    if closed and iterative:
+        problems.append("defines both place (ClosedFormKind) and evaluate/choose "
+                        "(IterativeKind)")
+    elif closed is None and iterative is None:
+        problems.append("defines neither place (ClosedFormKind) nor evaluate and choose "
+                        "(IterativeKind)")
+    elif closed and branches not in (1, 2):
+        problems.append(f"BRANCHES must be 1 or 2 for a closed-form kind, not {branches!r}")
+    if closed and drawings:
+        problems.append("a closed-form kind is drawn from its two vector equations: it "
+                        "defines no draw_velocity or draw_acceleration")
+    priority = getattr(module, "PRIORITY", 0)
+    if not isinstance(priority, int):
+        problems.append(f"PRIORITY must be a whole number, not {priority!r}")
+    if problems:
+        raise TypeError(f"group kind module {module.__name__}: " + "; ".join(problems))
+    drawings = drawings or {}
+    return KindModule(
+        name=module.__name__.rpartition(".")[2], kinds=tuple(kinds), priority=priority,
+        accepts=(accepts or {}).get("accepts"), branches=branches if closed else 0,
+        place=(closed or {}).get("place"), evaluate=(iterative or {}).get("evaluate"),
+        choose=(iterative or {}).get("choose"), reactions=(reactions or {}).get("reactions"),
+        drawings={PlanKind.VELOCITY: drawings["draw_velocity"],
+                  PlanKind.ACCELERATION: drawings["draw_acceleration"]} if drawings else {})
+
+
+# -- the registry -----------------------------------------------------------------------------
+_REGISTRY: dict[GroupKind, tuple[KindModule, ...]] | None = None
 _LOCK = threading.Lock()
 
 
-def registered() -> dict[GroupKind, list[ModuleType]]:
-    """Every group kind with its modules (discovered once)."""
+def _modules() -> list[ModuleType]:
+    """The modules of this package that declare a kind."""
+    out = []
+    for info in pkgutil.iter_modules(__path__):
+        module = importlib.import_module(f"{__name__}.{info.name}")
+        if hasattr(module, "KIND") or hasattr(module, "KINDS"):
+            out.append(module)
+    return out
+
+
+def registered() -> dict[GroupKind, tuple[KindModule, ...]]:
+    """Every group kind with its modules, highest ``PRIORITY`` first (discovered and checked
+    once)."""
+    global _REGISTRY
     with _LOCK:
-        if not _REGISTRY:
-            for info in pkgutil.iter_modules(__path__):
-                module = importlib.import_module(f"{__name__}.{info.name}")
-                kinds = getattr(module, "KINDS", None) or (
-                    (module.KIND,) if hasattr(module, "KIND") else ())
-                for kind in kinds:
-                    _REGISTRY.setdefault(GroupKind(kind), []).append(module)
-            for modules in _REGISTRY.values():
-                modules.sort(key=lambda m: -getattr(m, "PRIORITY", 0))
+        if _REGISTRY is None:
+            found: dict[GroupKind, list[KindModule]] = {}
+            for module in _modules():
+                described = describe(module)
+                for kind in described.kinds:
+                    found.setdefault(kind, []).append(described)
+            _REGISTRY = {kind: tuple(sorted(modules, key=lambda m: -m.priority))
+                         for kind, modules in found.items()}
         return _REGISTRY
 
 
-def kind_module(group: AssurGroup) -> ModuleType:
-    """The module that solves ``group``.
+def kind_module(group: AssurGroup) -> KindModule:
+    """The kind module that solves ``group``.
 
     Raises
     ------
@@ -58,8 +253,7 @@ def kind_module(group: AssurGroup) -> ModuleType:
         If no module accepts a group of its kind and shape.
     """
     for module in registered().get(group.kind, ()):
-        accepts = getattr(module, "accepts", None)
-        if accepts is None or accepts(group):
+        if module.solves(group):
             return module
     raise StructureError(f"no solver for a group of kind {group.kind!s} of this shape",
                          link=group.name)

@@ -16,7 +16,7 @@ accelerations, each link's ω and ε, its origin's velocity and acceleration. Th
 draws the same two sides (:func:`construction`).
 
 The formulas run on floats, numpy arrays or traced values (:mod:`planmethod.kinematics.algebra`);
-checks go through :meth:`Context.guard`: a cheap bound at every evaluation, the exact check
+checks go through :meth:`GroupInputs.guard`: a cheap bound at every evaluation, the exact check
 (which raises the error) only where the bound fails.
 
 Examples
@@ -31,15 +31,16 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any, Protocol
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
+from ... import vectors
 from ...errors import AssemblyError, StructureError, ToggleError
 from ...model import Mechanism, Slide
 from ...structure import AssurGroup, Joint
 from ...vocabulary import STAGE_PLURAL, EdgeKind
-from ..algebra import Body, Vec, cross
+from ..algebra import Body, Vec, cross, dot
 from ..tracing import Traced
 
 __all__ = [
@@ -49,8 +50,8 @@ __all__ = [
     "Anchor",
     "Branch",
     "Construction",
-    "Context",
     "ForceSolver",
+    "GroupInputs",
     "Pin",
     "Placed",
     "PlanDrawer",
@@ -60,6 +61,7 @@ __all__ = [
     "evaluate_dyad",
     "sense",
     "split",
+    "turned_axes",
 ]
 
 #: the arithmetic's resolution (unit roundoff)
@@ -100,7 +102,19 @@ class Pin:
     bound: float | None
 
 
-class Context:
+class Dyad(NamedTuple):
+    """A dyad's pairs and links: ``link1`` is joined to a known link by ``external1`` and to
+    ``link2`` by ``internal``; ``link2`` to a known link by ``external2`` (a prismatic pair's
+    guide may be on either side)."""
+
+    external1: Joint
+    internal: Joint
+    external2: Joint
+    link1: str
+    link2: str
+
+
+class GroupInputs:
     """What a group kind's formulas see: the model, the group, its branch ``sign``, the bodies
     of the links known so far (and of the group's links once placed), the crank angles (deg),
     and :meth:`guard`. ``bounds`` holds, where known, an upper bound of the distance of a named
@@ -111,18 +125,15 @@ class Context:
         self.mechanism, self.group, self.sign = mechanism, group, float(sign)
         self.bodies, self.angles, self.bounds = bodies, angles, bounds
 
-    @property
-    def traced(self) -> bool:
-        return isinstance(self.angles, Traced)
-
     def local(self, link: str, point: str) -> tuple[float, float]:
         x, y = self.mechanism.local(link, point)
         return float(x), float(y)
 
-    def dyad(self) -> tuple:
-        """A dyad's (external pair of L1, internal pair, external pair of L2, L1, L2)."""
-        ext1, internal, ext2 = self.group.joints
-        return ext1, internal, ext2, *self.group.links
+    def dyad(self) -> Dyad:
+        """The group's pairs and links as a dyad kind's formulas name them."""
+        external1, internal, external2 = self.group.joints
+        link1, link2 = self.group.links
+        return Dyad(external1, internal, external2, link1, link2)
 
     def group_link(self, joint: Joint) -> str:
         return joint.links[0] if joint.links[0] in self.group.links else joint.links[1]
@@ -164,39 +175,39 @@ class Context:
         known = slide.along if along_known else slide.link
         body = body or self.bodies[known]
         angle = slide.direction_rad if along_known else -slide.direction_rad
-        c, s = _turned_axes(body.c, body.s, angle)
+        c, s = turned_axes(body.cos, body.sin, angle)
         if along_known:  # the guide is fixed in the known link
             d = Vec(c, s)
             n = d.perp()
             through = body.point(*self.local(slide.along, slide.through))
             own = Vec(*self.local(slide.link, slide.point)).turned(c, s)
-            return d, n, _dot(n, through - own)
+            return d, n, dot(n, through - own)
         # the guide is fixed in the unknown link, whose axes are the known link's turned back
-        d = Vec(body.c, body.s)
+        d = Vec(body.cos, body.sin)
         n = d.perp()
         point = body.point(*self.local(slide.link, slide.point))
         own = Vec(*self.local(slide.along, slide.through)).turned(c, s)
-        return d, n, _dot(n, point - own)
+        return d, n, dot(n, point - own)
 
     def slide_axes(self, slide: Slide, unknown: str) -> tuple[Any, Any]:
         """The axes (cos θ, sin θ) of ``unknown``, held by a prismatic pair to a known link."""
         if unknown == slide.link:
             body = self.bodies[slide.along]
-            return _turned_axes(body.c, body.s, slide.direction_rad)
+            return turned_axes(body.cos, body.sin, slide.direction_rad)
         body = self.bodies[slide.link]
-        return _turned_axes(body.c, body.s, -slide.direction_rad)
+        return turned_axes(body.cos, body.sin, -slide.direction_rad)
 
 
-def _dot(a: Vec, b: Vec):
-    return a.x * b.x + a.y * b.y
+def turned_axes(c, s, angle: float) -> tuple[Any, Any]:
+    """(cos, sin) of θ + ``angle`` (rad, a constant) from (cos θ, sin θ).
 
-
-def _turned_axes(c, s, angle: float):
-    """(cos, sin) of θ + angle from (cos θ, sin θ)."""
+    >>> turned_axes(1.0, 0.0, math.pi / 2)
+    (6.123233995736766e-17, 1.0)
+    """
     if angle == 0.0:
         return c, s
-    ca, sa = math.cos(angle), math.sin(angle)
-    return c * ca - s * sa, c * sa + s * ca
+    turned = Vec(c, s).turned(math.cos(angle), math.sin(angle))
+    return turned.x, turned.y
 
 
 # -- how a link's angle is read --------------------------------------------------------------
@@ -292,12 +303,12 @@ def rotation_side(link: str, pin: Pin, x: Vec, length, radius: Vec | None = None
                 radius, length)
 
 
-def sliding_side(context: Context, slide: Slide, carrier: str, base: str, base_link: str,
+def sliding_side(context: GroupInputs, slide: Slide, carrier: str, base: str, base_link: str,
                  position: Vec, placed: Mapping[str, Body], offset: Vec | None = None) -> Side:
     """A side along the guide of ``slide`` (the guide's direction from its ``along`` link, a
     known link or one of the group's ``placed`` bodies)."""
     body = placed.get(slide.along) or context.bodies[slide.along]
-    c, s = _turned_axes(body.c, body.s, slide.direction_rad)
+    c, s = turned_axes(body.cos, body.sin, slide.direction_rad)
     if offset is None:
         offset = position - context.bodies[base_link].origin
     return Side(False, carrier, base, base_link, position, offset, Vec(c, s), None, 1.0, slide)
@@ -314,8 +325,8 @@ def sense(segment, direction):
     ...                                                           np.array([0.0, 1.0]))
     (-1.0, 1.0)
     """
-    along = segment[..., 0] * direction[0] + segment[..., 1] * direction[1]
-    across = 1e-9 * np.hypot(segment[..., 0], segment[..., 1])
+    along = vectors.dot(segment, direction)
+    across = 1e-9 * vectors.norm(segment)
     positive = (along >= 0) | (np.abs(along) <= across)
     return np.where(positive, 1.0, -1.0) if np.ndim(positive) else (1.0 if positive else -1.0)
 
@@ -325,12 +336,12 @@ def axes_towards(r: Vec, first: tuple[float, float], second: tuple[float, float]
     ``r`` (global), |r| = ``length``: θ = angle(r) − angle(second − first)."""
     lx, ly = second[0] - first[0], second[1] - first[1]
     size = math.hypot(lx, ly)
-    lx, ly = lx / size, ly / size
-    return (r.x * lx + r.y * ly) / length, (r.y * lx - r.x * ly) / length
+    along = Vec(lx / size, ly / size)
+    return dot(r, along) / length, cross(along, r) / length
 
 
 # -- the generic solve of the two vector equations ---------------------------------------------
-def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Callable) -> dict:
+def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage: Callable) -> dict:
     """Velocities (``level`` ≥ 1) and accelerations (``level`` 2) of a placed dyad: fills the
     group links' bodies in ``context.bodies`` and returns X's velocity and acceleration and the
     sine of the angle between the two lines (``{"v_x", "a_x", "sine"}``)."""
@@ -362,15 +373,15 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     v_x = vb2 + e2 * u2 if second else vb1 + e1 * u1
     out["v_x"] = v_x
     omegas = _follow(placed, {link: (u1, u2)[index] for link, index in placed.rotating.items()},
-                     lambda link: bodies[link].w)
+                     lambda link: bodies[link].omega)
     for link, body in placed.bodies.items():
         reference, velocity, _ = _reference(context, placed, link, v_x, None)
-        body.w = omegas[link]
+        body.omega = omegas[link]
         r = body.origin - reference if reference is not None else None
         if r is None:
             body.vx, body.vy = velocity.x, velocity.y
         else:
-            moved = velocity + r.perp() * body.w
+            moved = velocity + r.perp() * body.omega
             body.vx, body.vy = moved.x, moved.y
     if level < 2:
         return out
@@ -381,7 +392,7 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
         if side.rotation:
             known.append(side.radius * -(u * u))
         else:  # the Coriolis term 2ω_carrier·J·v_rel
-            known.append((side.direction * u).perp() * (2.0 * bodies[side.link].w))
+            known.append((side.direction * u).perp() * (2.0 * bodies[side.link].omega))
     rhs = (ab2 + known[1]) - (ab1 + known[0])
     du1 = cross(rhs, e2) / det
     du2 = cross(rhs, e1) / det
@@ -389,16 +400,16 @@ def evaluate_dyad(context: Context, placed: Placed, level: int, check_stage: Cal
     out["a_x"] = a_x
     epsilons = _follow(placed, {link: (du1, du2)[index]
                                 for link, index in placed.rotating.items()},
-                       lambda link: bodies[link].e)
+                       lambda link: bodies[link].epsilon)
     for link, body in placed.bodies.items():
         reference, _, acceleration = _reference(context, placed, link, v_x, a_x)
-        body.e = epsilons[link]
+        body.epsilon = epsilons[link]
         if reference is None:
             body.ax, body.ay = acceleration.x, acceleration.y
         else:
             r = body.origin - reference
-            square = body.w * body.w
-            moved = acceleration + r.perp() * body.e - r * square
+            square = body.omega * body.omega
+            moved = acceleration + r.perp() * body.epsilon - r * square
             body.ax, body.ay = moved.x, moved.y
     return out
 
@@ -424,7 +435,7 @@ def _follow(placed: Placed, values: dict, known: Callable) -> dict:
     return values
 
 
-def _reference(context: Context, placed: Placed, link: str, v_x: Vec, a_x: Vec | None):
+def _reference(context: GroupInputs, placed: Placed, link: str, v_x: Vec, a_x: Vec | None):
     """(reference position, or None where it is the link's origin; its velocity; its
     acceleration) of a group link's motion: its pin on a known link, or X — whichever is the
     link's origin, else the pin."""
@@ -563,7 +574,7 @@ class Construction:
     def size_ratio(self) -> np.ndarray:
         """R = L/l of :func:`size_ratio` at each angle."""
         s1, s2 = self.sides
-        lengths = [-1.0 if side.radius is None else np.hypot(*side.radius.T)
+        lengths = [-1.0 if side.radius is None else vectors.norm(side.radius)
                    for side in self.sides]
         return size_ratio(s1.base_position[:, 0], s1.base_position[:, 1],
                           s2.base_position[:, 0], s2.base_position[:, 1], *lengths)
@@ -608,7 +619,7 @@ def construction(placed: Placed, group: AssurGroup, count: int) -> Construction:
     for side in placed.sides:
         direction = _array(side.direction, count)
         if side.rotation:
-            direction = direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
+            direction = vectors.unit(direction)
         sides.append(ConstructionSide(
             side.rotation, side.link, side.base, side.base_link,
             _array(side.position, count), direction,
@@ -684,6 +695,6 @@ class ForceSolver(Protocol):
 
 def split(vector: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(unit vector, length) of arrays of 2-vectors."""
-    length = np.sqrt(vector[..., 0] * vector[..., 0] + vector[..., 1] * vector[..., 1])
+    length = vectors.norm(vector)
     return vector / length[..., None], length
 

@@ -63,7 +63,7 @@ from ..algebra import Body, maximum, minimum, sqrt
 from ..constraints import ConstraintSystem
 from ..state import LinkState
 from ..tracing import Redo, Traced
-from .base import Branch, Context
+from .base import Branch, GroupInputs
 
 __all__ = ["ITERATIONS", "KINDS", "MIN_STEP_DEG", "RESIDUAL", "STEP_DEG", "HigherBranch",
            "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate"]
@@ -408,7 +408,7 @@ def _arrays(values: Sequence, count: int) -> list[np.ndarray]:
     return [np.broadcast_to(np.asarray(value, dtype=float), (count,)) for value in values]
 
 
-def choose_with(context: Context, model, make_system) -> tuple[Branch, dict[str, Body]]:
+def choose_with(context: GroupInputs, model, make_system) -> tuple[Branch, dict[str, Body]]:
     """The group's assembly at ``drive.angle`` and its links' bodies there."""
     mechanism, group = context.mechanism, context.group
     system = make_system(context)
@@ -440,7 +440,7 @@ def choose_with(context: Context, model, make_system) -> tuple[Branch, dict[str,
 
 
 # -- the path of a model ------------------------------------------------------------------------
-def _path(context: Context, model, branch: Branch, system: System) -> Path:
+def _path(context: GroupInputs, model, branch: Branch, system: System) -> Path:
     """The model's path for this group and branch (made once)."""
     key = ("path", context.group.index, branch.sign)
     found = model.memo.get(key)
@@ -449,7 +449,7 @@ def _path(context: Context, model, branch: Branch, system: System) -> Path:
     mechanism, group = context.mechanism, context.group
     assemblies = model.memo.get(("assemblies", group.index))
     if assemblies is None:
-        choose_with(Context(mechanism, group, _upstream_bodies(
+        choose_with(GroupInputs(mechanism, group, _upstream_bodies(
             model, group, np.array([float(mechanism.drive.angle)]), 0), 1.0,
             np.array([float(mechanism.drive.angle)]), {}), model, lambda _: system)
         assemblies = model.memo[("assemblies", group.index)]
@@ -489,10 +489,10 @@ def _body(values: Mapping[str, np.ndarray], link: str, level: int) -> Body:
     body = Body(axes[:, 0], axes[:, 1], origin[:, 0], origin[:, 1])
     if level >= 1:
         velocity = values[f"velocity:{link}"]
-        body.w, body.vx, body.vy = values[f"omega:{link}"], velocity[:, 0], velocity[:, 1]
+        body.omega, body.vx, body.vy = values[f"omega:{link}"], velocity[:, 0], velocity[:, 1]
     if level >= 2:
         acceleration = values[f"acceleration:{link}"]
-        body.e, body.ax, body.ay = (values[f"epsilon:{link}"], acceleration[:, 0],
+        body.epsilon, body.ax, body.ay = (values[f"epsilon:{link}"], acceleration[:, 0],
                                     acceleration[:, 1])
     return body
 
@@ -505,7 +505,7 @@ class Solved:
     thetas: dict
 
 
-def higher_evaluate(context: Context, level: int, model, branch: Branch, outputs,
+def higher_evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs,
                     make_system: Callable) -> Solved:
     """Solve a higher group at the context's angles and put its links' bodies into the
     context; name each stored θ ``theta:L`` and the conditioning ``sine:i`` in ``outputs``."""
@@ -523,9 +523,9 @@ def higher_evaluate(context: Context, level: int, model, branch: Branch, outputs
         part = values[per * number:per * (number + 1)]
         body = Body(*part[:4])
         if level >= 1:
-            body.w, body.vx, body.vy = part[4:7]
+            body.omega, body.vx, body.vy = part[4:7]
         if level >= 2:
-            body.e, body.ax, body.ay = part[7:10]
+            body.epsilon, body.ax, body.ay = part[7:10]
         context.bodies[link] = body
     for link, theta in stored.items():
         outputs.scalar(f"theta:{link}", theta)
@@ -555,7 +555,7 @@ def _called(context, level, model, branch, system, inputs):
     stored_links = list(system.stored(None))
 
     def compute(angles_deg, arrays, out) -> None:
-        inner = Context(context.mechanism, context.group, {}, context.sign,
+        inner = GroupInputs(context.mechanism, context.group, {}, context.sign,
                         np.asarray(angles_deg, dtype=float), {})
         values, stored, health = _direct(inner, level, model, branch, system, list(arrays))
         results = [*values, *(stored[link] for link in stored_links), health]
@@ -606,7 +606,7 @@ class GeneralSystem(System):
     """Any higher group on :class:`~planmethod.kinematics.constraints.ConstraintSystem`:
     q = (x, y, θ) of each group link (numpy only: evaluated as one call when traced)."""
 
-    def __init__(self, context: Context) -> None:
+    def __init__(self, context: GroupInputs) -> None:
         mechanism, group = context.mechanism, context.group
         self.mechanism, self.group = mechanism, group
         self.links = tuple(group.links)
@@ -635,11 +635,11 @@ class GeneralSystem(System):
         out = []
         for link in self.known_links:
             body = bodies[link]
-            values = [body.c, body.s, body.x, body.y]
+            values = [body.cos, body.sin, body.x, body.y]
             if level >= 1:
-                values += [body.w, body.vx, body.vy]
+                values += [body.omega, body.vx, body.vy]
             if level >= 2:
-                values += [body.e, body.ax, body.ay]
+                values += [body.epsilon, body.ax, body.ay]
             out += values
         return out
 
@@ -753,11 +753,11 @@ def _inside(joint, group: AssurGroup) -> str:
     return joint.links[0] if joint.links[0] in group.links else joint.links[1]
 
 
-def evaluate(context: Context, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
     """Solve a higher group of any shape (see the module docstring)."""
     return higher_evaluate(context, level, model, branch, outputs, GeneralSystem)
 
 
-def choose(context: Context, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
     """The group's assembly at ``drive.angle`` (see the module docstring)."""
     return choose_with(context, model, GeneralSystem)

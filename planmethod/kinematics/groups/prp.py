@@ -20,12 +20,10 @@ array([0.175279, 0.530906])
 
 from __future__ import annotations
 
-import numpy as np
-
+from ... import vectors
 from ...structure import AssurGroup
-from ...vectors import cross
 from ...vocabulary import EdgeKind, GroupKind
-from ..algebra import Body, Vec
+from ..algebra import Body, Vec, cross, dot
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
@@ -34,7 +32,7 @@ KIND = GroupKind.PRP
 BRANCHES = 1
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     lines = []
@@ -44,10 +42,10 @@ def place(context: base.Context) -> base.Placed:
         _, n, line = context.guide(joint.slide, link)
         local = context.local(link, internal.point)
         turned = Body(c, s).offset(*local)
-        lines.append((link, Body(c, s), n, line + (n.x * turned.x + n.y * turned.y), local,
+        lines.append((link, Body(c, s), n, line + dot(n, turned), local,
                       turned))
     (_, body1, n1, c1, q1, t1), (_, body2, n2, c2, q2, t2) = lines
-    det = n1.x * n2.y - n1.y * n2.x
+    det = cross(n1, n2)
     text = (f"the guides of {ext1.slide.key} and {ext2.slide.key} are parallel: "
             f"{internal.point} has no definite position")
 
@@ -79,8 +77,6 @@ def place(context: base.Context) -> base.Placed:
         ratio_bound=1.0, x_links=(l1, l2), x_local={l1: q1, l2: q2})
 
 
-del np
-
 
 # -- the reactions ---------------------------------------------------------------------------
 def reactions(solver: base.ForceSolver, group: AssurGroup):
@@ -102,8 +98,8 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
                              "parallel")
     f1, f2 = big1[..., None] * n1, big2[..., None] * n2
     r_q = -(w2.force + f2)                         # on l2 from l1
-    c1 = -(w1.moment_about(ps1) + cross(q - ps1, -r_q))
-    c2 = -(w2.moment_about(ps2) + cross(q - ps2, r_q))
+    c1 = -(w1.moment_about(ps1) + vectors.cross(q - ps1, -r_q))
+    c2 = -(w2.moment_about(ps2) + vectors.cross(q - ps2, r_q))
     edges = [*solver.known_edges((l1, l2)),
              solver.edge(f"N_{ext2.slide.key}", f2, EdgeKind.COMPONENT, l2),
              solver.edge(f"N_{ext1.slide.key}", f1, EdgeKind.COMPONENT, l1)]

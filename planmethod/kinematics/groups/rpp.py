@@ -22,12 +22,10 @@ Examples
 
 from __future__ import annotations
 
-import numpy as np
-
+from ... import vectors
 from ...structure import AssurGroup
-from ...vectors import cross
 from ...vocabulary import EdgeKind, GroupKind
-from ..algebra import Body, Vec
+from ..algebra import Body, cross
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
@@ -36,7 +34,7 @@ KIND = GroupKind.RPP
 BRANCHES = 1
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     k2 = ext2.other(l2)
@@ -45,12 +43,12 @@ def place(context: base.Context) -> base.Placed:
     body2 = Body(c2, s2)
     inner = internal.slide
     angle = inner.direction_rad if l1 == inner.link else -inner.direction_rad
-    body1 = Body(*_turn(c2, s2, angle))
+    body1 = Body(*base.turned_axes(c2, s2, angle))
     origin1 = p1.at - body1.offset(*p1.local)
     body1.x, body1.y = origin1.x, origin1.y
     _, n2, line2 = context.guide(ext2.slide, l2)
     _, n1, line1 = context.guide(inner, l2, body1)
-    det = n1.x * n2.y - n1.y * n2.x
+    det = cross(n1, n2)
     text = (f"the guides of {inner.key} and {ext2.slide.key} are parallel: {l2} has no "
             "definite position")
 
@@ -77,18 +75,6 @@ def place(context: base.Context) -> base.Placed:
         ratio_bound=1.0, x_links=(l2,))
 
 
-def _turn(c, s, angle: float):
-    import math
-
-    if angle == 0.0:
-        return c, s
-    ca, sa = math.cos(angle), math.sin(angle)
-    return c * ca - s * sa, c * sa + s * ca
-
-
-del Vec
-
-
 # -- the reactions ---------------------------------------------------------------------------
 def reactions(solver: base.ForceSolver, group: AssurGroup):
     """The textbook reaction sequence, run by the force analysis (``solver``: see
@@ -104,15 +90,15 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
     di, _, psi = solver.guide(internal)
     _, n2, ps2 = solver.guide(ext2)
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    across = np.einsum("...i,...i->...", n2, di)
+    across = vectors.dot(n2, di)
     solver.singular(across, 1.0, group.name,
                   f"the guides of {internal.slide.key} and {ext2.slide.key} are parallel")
-    big2 = -np.einsum("...i,...i->...", w2.force, di) / across
+    big2 = -vectors.dot(w2.force, di) / across
     f2 = big2[..., None] * n2
     r1 = -(w1.force + w2.force + f2)
     inner = -(r1 + w1.force)                       # on l1 from l2
-    c_inner = -(w1.moment_about(psi) + cross(p1 - psi, r1))
-    c2 = -(w2.moment_about(ps2) + cross(psi - ps2, -inner) - c_inner)
+    c_inner = -(w1.moment_about(psi) + vectors.cross(p1 - psi, r1))
+    c2 = -(w2.moment_about(ps2) + vectors.cross(psi - ps2, -inner) - c_inner)
     edges = [solver.edge(f"N_{ext2.slide.key}", f2, EdgeKind.COMPONENT, l2),
              *solver.known_edges((l1, l2)),
              solver.edge(f"R_{ext1.point}", r1, EdgeKind.REACTION, l1)]

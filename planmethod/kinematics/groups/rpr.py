@@ -26,10 +26,10 @@ import math
 
 import numpy as np
 
+from ... import vectors
 from ...structure import AssurGroup
-from ...vectors import cross, norm
 from ...vocabulary import EdgeKind, GroupKind
-from ..algebra import Body, Vec, sqrt
+from ..algebra import Body, Vec, cross, dot, sqrt
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
@@ -38,20 +38,20 @@ KIND = GroupKind.RPR
 BRANCHES = 2
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()   # l1 is the block (the slide's link)
     slide = internal.slide
     p1, p2 = context.pin(ext1), context.pin(ext2)
     angle = slide.direction_rad
-    u = (math.cos(angle), math.sin(angle))
+    u = Vec(math.cos(angle), math.sin(angle))
     through = context.local(l2, slide.through)
     block = context.local(l1, slide.point)
     turned = Vec(p1.local[0] - block[0], p1.local[1] - block[1]).turned(*u)
-    c0 = (through[0] - p2.local[0] + turned.x, through[1] - p2.local[1] + turned.y)
-    offset = c0[0] * u[1] - c0[1] * u[0]      # the guide's distance from the pivot
+    c0 = Vec(through[0] - p2.local[0] + turned.x, through[1] - p2.local[1] + turned.y)
+    offset = cross(c0, u)      # the guide's distance from the pivot
     span = p1.at - p2.at
-    square = span.x * span.x + span.y * span.y
+    square = dot(span, span)
     length = sqrt(square)
     text = (f"the guide of {l2} passes {abs(offset):g} m from its pivot {ext2.point}; it "
             f"cannot reach {ext1.point}")
@@ -72,14 +72,14 @@ def place(context: base.Context) -> base.Placed:
     rounding = 16.0 * base.EPS * base.MARGIN
     gap = length * (1.0 - 3.0 * rounding) - abs(offset) * (1.0 + rounding)
     context.guard(gap, 1e-15, check, length, span.x, span.y)
-    projection = -(c0[0] * u[0] + c0[1] * u[1])
+    projection = -dot(c0, u)
     s = projection + sqrt(square - offset * offset) * context.sign
-    inside = Vec(c0[0] + s * u[0], c0[1] + s * u[1])    # P2 → P1 in L2's frame
+    inside = c0 + u * s    # P2 → P1 in L2's frame
     # L2's axes turn `inside` onto `span`: (cos, sin) of angle(span) − angle(inside)
-    c2 = (inside.x * span.x + inside.y * span.y) / square
-    s2 = (inside.x * span.y - inside.y * span.x) / square
+    c2 = dot(inside, span) / square
+    s2 = cross(inside, span) / square
     body2 = Body(c2, s2)
-    c1, s1 = c2 * u[0] - s2 * u[1], c2 * u[1] + s2 * u[0]
+    c1, s1 = Vec(c2, s2).turned(u.x, u.y)
     body1 = Body(c1, s1)
     for body, pin in ((body1, p1), (body2, p2)):
         origin = pin.at - body.offset(*pin.local)
@@ -113,16 +113,16 @@ def reactions(solver: base.ForceSolver, group: AssurGroup):
     p1, p2 = solver.at(l1, ext1.point), solver.at(l2, ext2.point)
     d, n, ps = solver.guide(internal)
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    along = -np.einsum("...i,...i->...", w1.force, d)
+    along = -vectors.dot(w1.force, d)
     arm = p1 - p2
-    lever = cross(arm, n)
-    solver.singular(lever, norm(arm) + 1e-300, group.name,
+    lever = vectors.cross(arm, n)
+    solver.singular(lever, vectors.norm(arm) + 1e-300, group.name,
                   f"{ext1.point} lies on the normal to the guide through {ext2.point}")
-    across = -((w1 + w2).moment_about(p2) + along * cross(arm, d)) / lever
+    across = -((w1 + w2).moment_about(p2) + along * vectors.cross(arm, d)) / lever
     r_along, r_across = along[..., None] * d, across[..., None] * n
     r1 = r_along + r_across
     inner = -(r1 + w1.force)                       # on the block from the guide
-    couple = -(w1.moment_about(ps) + cross(p1 - ps, r1))
+    couple = -(w1.moment_about(ps) + vectors.cross(p1 - ps, r1))
     r2 = inner - w2.force
     edges = [solver.edge(f"R∥_{ext1.point}", r_along, EdgeKind.COMPONENT, l1),
              solver.edge(f"R⊥_{ext1.point}", r_across, EdgeKind.COMPONENT, l1),

@@ -26,7 +26,7 @@ import numpy as np
 from ...structure import AssurGroup
 from ...vectors import cross, perp
 from ...vocabulary import EdgeKind, GroupKind
-from ..algebra import Body, sqrt
+from ..algebra import Body, dot, sqrt
 from . import base
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
@@ -35,7 +35,7 @@ KIND = GroupKind.RRP
 BRANCHES = 2
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     slide = ext2.slide
@@ -46,8 +46,8 @@ def place(context: base.Context) -> base.Placed:
     c2, s2 = context.slide_axes(slide, l2)
     d, n, c = context.guide(slide, l2)
     turned = Body(c2, s2).offset(*q2)
-    offset = c + (n.x * turned.x + n.y * turned.y)   # the line of Q: n·Q = offset
-    h = (n.x * p1.at.x + n.y * p1.at.y) - offset
+    offset = c + dot(n, turned)   # the line of Q: n·Q = offset
+    h = dot(n, p1.at) - offset
     square = a * a - h * h
     text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) cannot reach the line of "
             f"{internal.point} along {slide.along}'s guide")

@@ -27,14 +27,14 @@ __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 from ...structure import AssurGroup
 from ...vectors import perp
 from ...vocabulary import EdgeKind, GroupKind
-from ..algebra import Body, sqrt
+from ..algebra import Body, dot, sqrt
 from . import base
 
 KIND = GroupKind.RRR
 BRANCHES = 2
 
 
-def place(context: base.Context) -> base.Placed:
+def place(context: base.GroupInputs) -> base.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     p1, p2 = context.pin(ext1), context.pin(ext2)
@@ -42,7 +42,7 @@ def place(context: base.Context) -> base.Placed:
     a = context.length(l1, ext1.point, internal.point)
     b = context.length(l2, ext2.point, internal.point)
     span = p2.at - p1.at
-    square = span.x * span.x + span.y * span.y
+    square = dot(span, span)
     d = sqrt(square)
     # Heron's form: the product of the four factors a ± b ± d
     product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)

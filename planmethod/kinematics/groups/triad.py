@@ -40,10 +40,10 @@ import numpy as np
 
 from ...errors import ToggleError
 from ...structure import AssurGroup
-from ...vectors import cross, norm, perp
+from ...vectors import cross, norm, perp, turn_onto, unit, unit_angle
 from ...vocabulary import EdgeKind, GroupKind, PairKind
-from ..algebra import Body, absolute, cos, maximum, sin, sqrt
-from .base import Branch, Context, ForceSolver, PlanDrawer, Theta, ThetaKind, sense, split
+from ..algebra import Body, Vec, absolute, cos, maximum, sin, sqrt
+from .base import Branch, ForceSolver, GroupInputs, PlanDrawer, Theta, ThetaKind, sense, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
 
 __all__ = ["KIND", "PRIORITY", "SPECIAL", "TriadSystem", "accepts", "choose",
@@ -96,7 +96,7 @@ class _Side:
         a = np.array(mechanism.local(link, inner.point), dtype=float)
         b = np.array(mechanism.local(link, outer.point), dtype=float)
         self.outer_local = (float(b[0]), float(b[1]))
-        self.length = float(np.hypot(*(a - b)))
+        self.length = float(norm(a - b))
         self.alpha = math.atan2(a[1] - b[1], a[0] - b[0])
         self.unit = ((a[0] - b[0]) / self.length, (a[1] - b[1]) / self.length)
 
@@ -106,7 +106,7 @@ class TriadSystem(System):
 
     traceable = True
 
-    def __init__(self, context: Context) -> None:
+    def __init__(self, context: GroupInputs) -> None:
         mechanism, group = context.mechanism, context.group
         self.mechanism, self.group = mechanism, group
         self.links = tuple(group.links)
@@ -117,7 +117,7 @@ class TriadSystem(System):
         sizes = [1e-9] + [side.length for side in self.sides]
         points = np.array(list(mechanism.links[self.central].points.values()), dtype=float)
         if len(points) > 1:
-            sizes.append(float(np.max(np.hypot(*(points[:, None] - points[None]).T))))
+            sizes.append(float(np.max(norm(points[:, None] - points[None]))))
         self.length = max(sizes)
         self.weights = np.array([1.0, 1.0, self.length])
 
@@ -151,7 +151,7 @@ class TriadSystem(System):
         out = []
         for side, values in zip(self.sides, known, strict=True):
             lx, ly = side.central_local
-            rx, ry = c * lx - s * ly, s * lx + c * ly
+            rx, ry = Vec(lx, ly).turned(c, s)
             dx, dy = x + rx - values[0], y + ry - values[1]
             misfit = (dx * dx + dy * dy - side.length * side.length) * (0.5 / side.length)
             out.append((rx, ry, dx, dy, misfit))
@@ -219,8 +219,8 @@ class TriadSystem(System):
             ux, uy = side.unit
             sc = (dx * ux + dy * uy) / side.length
             ss = (dy * ux - dx * uy) / side.length
-            bx, by = side.outer_local
-            tx, ty = -(sc * bx - ss * by), -(ss * bx + sc * by)   # origin − P
+            turned = Vec(*side.outer_local).turned(sc, ss)
+            tx, ty = -turned.x, -turned.y   # origin − P
             px, py = values[0], values[1]
             out += [sc, ss, px + tx, py + ty]
             if level >= 1:
@@ -243,9 +243,8 @@ class TriadSystem(System):
         columns = [q[0], q[1], wrap(q[2])]
         for (_, _, dx, dy, _), side, values in zip(geometry, self.sides, known, strict=True):
             theta = wrap(np.arctan2(dy, dx) - side.alpha)
-            c, s = np.cos(theta), np.sin(theta)
-            bx, by = side.outer_local
-            columns += [values[0] - (c * bx - s * by), values[1] - (s * bx + c * by), theta]
+            turned = Vec(*side.outer_local).turned(np.cos(theta), np.sin(theta))
+            columns += [values[0] - turned.x, values[1] - turned.y, theta]
         count = max(np.size(column) for column in columns)
         return np.stack([np.broadcast_to(np.asarray(column, dtype=float), (count,))
                          for column in columns], axis=-1)
@@ -255,29 +254,29 @@ class TriadSystem(System):
         side links fix T's origin (0 or 2 ways); the third side's misfit changes sign at an
         assembly; each sign change is polished by Newton."""
         theta = -np.pi + 2.0 * np.pi * np.arange(SAMPLES + 1) / SAMPLES
-        c, s = np.cos(theta), np.sin(theta)
+        axes = unit_angle(theta)
         first, second, third = self.sides
         p1, p2, p3 = (np.array([float(np.asarray(v[0]).reshape(-1)[0]),
                                 float(np.asarray(v[1]).reshape(-1)[0])]) for v in known)
 
-        def turned(local):
-            return np.stack((c * local[0] - s * local[1], s * local[0] + c * local[1]))
+        def turned(local):   # (2, N): x and y apart
+            return turn_onto(axes, local).T
 
         # T's origin o: |o + R·c1 − P1| = l1, |o + R·c2 − P2| = l2
         centre1 = p1[:, None] - turned(first.central_local)
         centre2 = p2[:, None] - turned(second.central_local)
         l1, l2, l3 = first.length, second.length, third.length
         span = centre2 - centre1
-        distance = np.hypot(*span)
+        distance = norm(span.T)
         starts = []
         with np.errstate(invalid="ignore", divide="ignore"):
             along = (l1 * l1 - l2 * l2 + distance * distance) / (2.0 * distance)
             height = np.sqrt(l1 * l1 - along * along)
-            unit = span / distance
+            direction = span / distance
             r3 = turned(third.central_local)
             for sign in (1.0, -1.0):
-                ox = centre1[0] + along * unit[0] - sign * height * unit[1]
-                oy = centre1[1] + along * unit[1] + sign * height * unit[0]
+                ox = centre1[0] + along * direction[0] - sign * height * direction[1]
+                oy = centre1[1] + along * direction[1] + sign * height * direction[0]
                 misfit = (ox + r3[0] - p3[0]) ** 2 + (oy + r3[1] - p3[1]) ** 2 - l3 * l3
                 change = np.flatnonzero(np.isfinite(misfit[:-1]) & np.isfinite(misfit[1:])
                                         & (np.sign(misfit[:-1]) != np.sign(misfit[1:])))
@@ -317,12 +316,12 @@ def _cramer(rows, rhs) -> tuple:
     return u0, u1, u2
 
 
-def evaluate(context: Context, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
     """Solve the triad at the context's angles (see the module docstring)."""
     return higher_evaluate(context, level, model, branch, outputs, TriadSystem)
 
 
-def choose(context: Context, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
     """The triad's assembly at ``drive.angle``."""
     return choose_with(context, model, TriadSystem)
 
@@ -330,18 +329,6 @@ def choose(context: Context, model) -> tuple[Branch, dict[str, Body]]:
 # -- the plans by Assur's special point ----------------------------------------------------------
 #: the plan label of Assur's special point
 SPECIAL = "s*"
-
-
-def _perp(vector: np.ndarray) -> np.ndarray:
-    return np.array([-vector[1], vector[0]])
-
-
-def _unit(vector: np.ndarray) -> np.ndarray:
-    return vector / float(np.hypot(*vector))
-
-
-def _cross(a, b) -> float:
-    return float(a[0] * b[1] - a[1] * b[0])
 
 
 #: each motion's triad geometry, by group index (forgotten with the motion)
@@ -376,19 +363,19 @@ class _Triad:
                                "known": known, "P": emulator.where(link, outer.point),
                                "Q": emulator.where(link, inner.point)})
         points = np.array([s["P"] for s in self.sides] + [s["Q"] for s in self.sides])
-        size = float(np.max(np.hypot(*(points[:, None] - points[None]).T)))
+        size = float(np.max(norm(points[:, None] - points[None])))
         best = None
         for i in range(3):
             j, k = [m for m in range(3) if m != i]
             pj, qj, pk, qk = (self.sides[j]["P"], self.sides[j]["Q"], self.sides[k]["P"],
                               self.sides[k]["Q"])
-            ej, ek = _unit(qj - pj), _unit(qk - pk)
-            sine = abs(_cross(ej, ek))
+            ej, ek = unit(qj - pj), unit(qk - pk)
+            sine = abs(cross(ej, ek))
             if sine < 1e-9:
                 continue
-            special = pj + _cross(pk - pj, ek) / _cross(ej, ek) * ej
-            near = float(np.hypot(*(special - self.sides[i]["Q"]))) / size
-            far = float(np.hypot(*(special - points.mean(axis=0)))) / size
+            special = pj + cross(pk - pj, ek) / cross(ej, ek) * ej
+            near = float(norm(special - self.sides[i]["Q"])) / size
+            far = float(norm(special - points.mean(axis=0))) / size
             score = sine * min(1.0, near) * min(1.0, 5.0 / max(far, 1e-12))
             if best is None or score > best[0]:
                 best = (score, i, j, k, special)
@@ -422,7 +409,7 @@ def draw_velocity(emulator: PlanDrawer, group: AssurGroup) -> None:
     for index in (triad.j, triad.k):
         side = triad.sides[index]
         base = triad.pin_label(side, v, emulator.vimages)
-        direction = _perp(_unit(side["Q"] - side["P"]))
+        direction = perp(unit(side["Q"] - side["P"]))
         lines.append(v.line(base, direction, component="relative", group=group.index,
                             vector=f"v_S*{side['outer']}",
                             text=f"through {base}: v_S* − v_{side['outer']} ⟂ "
@@ -435,10 +422,10 @@ def draw_velocity(emulator: PlanDrawer, group: AssurGroup) -> None:
     third = triad.sides[triad.i]
     q_label = emulator.label(third["inner"], v)
     base = triad.pin_label(third, v, emulator.vimages)
-    first = v.line(SPECIAL, _perp(_unit(third["Q"] - special)), component="relative",
+    first = v.line(SPECIAL, perp(unit(third["Q"] - special)), component="relative",
                    group=group.index, vector=f"v_{third['inner']}S*",
                    text=f"through {SPECIAL}: v_{third['inner']}S* ⟂ {third['inner']}S*")
-    second = v.line(base, _perp(_unit(third["Q"] - third["P"])), component="relative",
+    second = v.line(base, perp(unit(third["Q"] - third["P"])), component="relative",
                     group=group.index, vector=f"v_{third['inner']}{third['outer']}",
                     text=f"through {base}: v_{third['inner']}{third['outer']} ⟂ "
                          f"{third['inner']}{third['outer']}")
@@ -463,7 +450,7 @@ def _read_turn(emulator: PlanDrawer, sheet, start: str, end: str, centre, point,
                factor: float, what: str) -> float:
     """ω (or ε) of ``link`` read off the segment start→end, ⟂ centre→point."""
     segment = sheet.points[end] - sheet.points[start]
-    direction = _perp(_unit(point - centre))
+    direction = perp(unit(point - centre))
     sign = sense(segment, direction)
     length_mm = emulator.length_mm(centre, point)
     return sheet.read(start, end, quantity=f"{what}_{link}", sign=sign,
@@ -479,7 +466,7 @@ def _normal(emulator: PlanDrawer, start: str, end: str, centre, point, v_from: s
     segment = emulator.drawn_length(emulator.v, v_from, v_to)
     length_mm = emulator.length_mm(centre, point)
     magnitude = segment ** 2 * scales.mu_v ** 2 / (length_mm * scales.mu_l * scales.mu_a)
-    a.lay_off(start, end, np.asarray(magnitude)[..., None] * _unit(centre - point),
+    a.lay_off(start, end, np.asarray(magnitude)[..., None] * unit(centre - point),
               component="normal",
               group=group.index, vector=vector,
               text=f"{vector} from {start}: ({v_from}{v_to})²·μv²/(length·μl·μa), towards the "
@@ -507,7 +494,7 @@ def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
         second = f"n_S*{side['inner']}"
         _normal(emulator, first, second, side["Q"], special, q_v, SPECIAL, group,
                 f"aⁿ_S*{side['inner']}")
-        lines.append(a.line(second, _perp(_unit(side["Q"] - side["P"])), component="tangential",
+        lines.append(a.line(second, perp(unit(side["Q"] - side["P"])), component="tangential",
                             group=group.index, vector=f"aᵗ_S*{side['outer']}",
                             text=f"through {second}: aᵗ_{side['inner']}{side['outer']} + "
                                  f"aᵗ_S*{side['inner']} ⟂ {side['outer']}{side['inner']}"))
@@ -519,7 +506,7 @@ def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
     n_central = f"n_{third['inner']}S*"
     _normal(emulator, SPECIAL, n_central, special, third["Q"], SPECIAL, q_v, group,
             f"aⁿ_{third['inner']}S*")
-    first = a.line(n_central, _perp(_unit(third["Q"] - special)), component="tangential",
+    first = a.line(n_central, perp(unit(third["Q"] - special)), component="tangential",
                    group=group.index, vector=f"aᵗ_{third['inner']}S*",
                    text=f"through {n_central}: aᵗ_{third['inner']}S* ⟂ {third['inner']}S*")
     base = triad.pin_label(third, a, emulator.aimages)
@@ -527,7 +514,7 @@ def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
     n_side = f"n_{third['inner']}{third['outer']}"
     _normal(emulator, base, n_side, third["P"], third["Q"], p_v, q_v, group,
             f"aⁿ_{third['inner']}{third['outer']}")
-    second = a.line(n_side, _perp(_unit(third["Q"] - third["P"])), component="tangential",
+    second = a.line(n_side, perp(unit(third["Q"] - third["P"])), component="tangential",
                     group=group.index, vector=f"aᵗ_{third['inner']}{third['outer']}",
                     text=f"through {n_side}: aᵗ_{third['inner']}{third['outer']} ⟂ "
                          f"{third['inner']}{third['outer']}")

@@ -1,0 +1,83 @@
+"""The group-kind interface (planmethod.kinematics.groups): every registered module provides
+what its protocols name, and a module that lacks a function or takes other arguments is refused
+when the registry loads — naming the module and what is missing."""
+
+from __future__ import annotations
+
+from types import ModuleType
+
+import pytest
+
+import planmethod.kinematics.groups as groups
+from planmethod.kinematics.groups import KindModule, describe, higher, registered, rrr, triad
+from planmethod.vocabulary import GroupKind, PlanKind
+
+
+def _copy(module: ModuleType, *, without: tuple[str, ...] = (), **extra) -> ModuleType:
+    """A fake kind module: ``module``'s names, some left out, some added or replaced."""
+    fake = ModuleType(f"planmethod.kinematics.groups.fake_{module.__name__.rpartition('.')[2]}")
+    for name, value in vars(module).items():
+        if not name.startswith("__") and name not in without:
+            setattr(fake, name, value)
+    for name, value in extra.items():
+        setattr(fake, name, value)
+    return fake
+
+
+def test_every_registered_kind_is_described_by_its_module():
+    found = {module.name: module for modules in registered().values() for module in modules}
+    assert set(found) == {"rrr", "rrp", "rpr", "prp", "rpp", "triad", "higher"}
+    for name in ("rrr", "rrp", "rpr", "prp", "rpp"):
+        kind = found[name]
+        assert isinstance(kind, KindModule) and kind.closed_form and kind.drawings == {}
+        assert kind.kinds == (GroupKind(name.upper()),) and kind.reactions is not None
+    assert found["rrr"].branches == 2 and found["prp"].branches == 1
+    assert found["triad"].drawings == {PlanKind.VELOCITY: triad.draw_velocity,
+                                       PlanKind.ACCELERATION: triad.draw_acceleration}
+    assert found["triad"].evaluate is triad.evaluate and found["triad"].priority == 10
+    assert found["higher"].reactions is None and found["higher"].drawings == {}
+    assert registered()[GroupKind.TRIAD] == (found["triad"], found["higher"])   # by priority
+
+
+@pytest.mark.parametrize(("module", "without", "extra", "message"), [
+    (rrr, ("place",), {}, "defines neither place (ClosedFormKind) nor evaluate and choose"),
+    (higher, ("choose",), {}, "defines evaluate but not choose (IterativeKind)"),
+    (triad, ("draw_acceleration",), {},
+     "defines draw_velocity but not draw_acceleration (OwnPlans)"),
+    (rrr, (), {"reactions": lambda solver: None},
+     "reactions cannot be called with the 2 arguments of Reactions.reactions"),
+    (rrr, (), {"BRANCHES": 3}, "BRANCHES must be 1 or 2 for a closed-form kind, not 3"),
+    (rrr, (), {"draw_velocity": triad.draw_velocity,
+               "draw_acceleration": triad.draw_acceleration},
+     "a closed-form kind is drawn from its two vector equations"),
+    (rrr, (), {"evaluate": higher.evaluate, "choose": higher.choose},
+     "defines both place (ClosedFormKind) and evaluate/choose"),
+    (rrr, (), {"KIND": "RRRR"}, "KIND 'RRRR' is no GroupKind"),
+])
+def test_a_module_that_breaks_the_interface_is_refused(module, without, extra, message):
+    fake = _copy(module, without=without, **extra)
+    with pytest.raises(TypeError) as error:
+        describe(fake)
+    assert str(error.value).startswith(f"group kind module {fake.__name__}: ")
+    assert message in str(error.value)
+
+
+def test_a_whole_copy_is_accepted():
+    """The fakes above differ from a real module by what they name alone."""
+    for module in (rrr, triad, higher):
+        described = describe(_copy(module))
+        assert described.closed_form == (module is rrr)
+
+
+def test_the_registry_checks_every_module_when_it_loads(monkeypatch):
+    broken = _copy(triad, without=("draw_velocity",))
+    real = groups._modules()
+    monkeypatch.setattr(groups, "_REGISTRY", None)
+    monkeypatch.setattr(groups, "_modules", lambda: [*real, broken])
+    with pytest.raises(TypeError, match=r"fake_triad: defines draw_acceleration but not "
+                                        r"draw_velocity \(OwnPlans\)"):
+        registered()
+    assert groups._REGISTRY is None        # nothing half-registered
+    monkeypatch.setattr(groups, "_modules", lambda: real)
+    assert sorted(str(kind) for kind in registered()) == [
+        "PRP", "RPP", "RPR", "RRP", "RRR", "tetrad", "triad"]
