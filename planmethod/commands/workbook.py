@@ -223,7 +223,14 @@ def exercise_fingerprint(exercise) -> str:
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
     """The drawing mode's data for the whole page (:func:`planmethod.render.workbook_draw.
     drawing_data`): one sheet per plan for the turn, each point's course name (b₄), the
-    mistakes with what the student is told. None when no frame has a plan to draw."""
+    mistakes with what the student is told. None when no frame has a plan to draw.
+
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/slotted_lever.toml")
+    >>> meta = drawing_meta(exercise, solve_frames(exercise, [30.0]))
+    >>> meta["names"]["b@lever"], meta["poles"]
+    ('b₄', {'velocity': 'p', 'acceleration': 'π'})
+    """
     from ..grading.drawings import DRAWING_FORMAT
     from ..grading.mistakes import drawn_explanation
     from ..grading.plan_points import DRAWN_MISTAKES, MISTAKE_WORDING, plan_extent

@@ -491,7 +491,17 @@ def drawn_mistakes(plan: PlanContext, radii: Mapping[str, float],
 
 def plan_context(plans, name: str, motion) -> PlanContext:
     """The :class:`PlanContext` of the plan ``name`` (``velocity`` or ``acceleration``) of
-    :class:`~planmethod.plans.Plans` drawn from ``motion`` (their exact motion)."""
+    :class:`~planmethod.plans.Plans` drawn from ``motion`` (their exact motion).
+
+    >>> from planmethod.kinematics import solve
+    >>> from planmethod.plans import draw_plans
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    >>> motion = solve(exercise.mechanism, exercise.mechanism.drive.angle)
+    >>> context = plan_context(draw_plans(exercise, motion=motion), "velocity", motion)
+    >>> context.others["c"], context.first[0]
+    (('b', 'd'), 'v_B')
+    """
     from ..model import FRAME
     from ..plans import image_label
     from ..report import exact_value

@@ -89,7 +89,11 @@ def named_mistakes(candidates, x, y, radius):
 
 def word_mistakes(mistakes, texts, wording):
     """Where a point lies that ``mistakes`` put there, in words: ``texts`` maps a mistake to
-    what the student is told, ``wording`` is :data:`MISTAKE_WORDING`."""
+    what the student is told, ``wording`` is :data:`MISTAKE_WORDING`.
+
+    >>> word_mistakes(["a", "b"], {"a": "A was done", "b": "B was not"}, MISTAKE_WORDING)
+    'where the construction puts it when A was done, or when B was not'
+    """
     sentence, joint = wording
     return sentence.format(joint.join(texts[mistake] for mistake in mistakes))
 

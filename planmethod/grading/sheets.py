@@ -92,6 +92,12 @@ def task_figure_svg(plans, notes: list[str] | None = None) -> str:
 
     ``plans`` are the variant's :class:`~planmethod.plans.Plans` (only the position plan is
     drawn).
+
+    >>> from planmethod.plans import draw_plans
+    >>> from planmethod.spec import load_exercise
+    >>> plans = draw_plans(load_exercise("exercises/slotted_lever.toml"), acceleration=False)
+    >>> "position plan, φ₁ = 30°" in task_figure_svg(plans)
+    True
     """
     position = replace(plans.position, curvature={})
     return position_drawing(position, notes=notes or []).svg

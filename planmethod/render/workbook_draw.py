@@ -88,7 +88,15 @@ def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
     course name (``names``: b₄), the poles, one sheet per plan for the whole turn
     (``extents``: left, bottom, right, top in mm, y up), the mistakes by index with what the
     student is told, the sentence that names them, and the ``format`` of a downloaded
-    drawing."""
+    drawing.
+
+    >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₄"},
+    ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
+    ...                     mistakes=[("sense", "ω1 reversed")], wording=("when {}", ", or "),
+    ...                     file_format="planmethod-drawing")
+    >>> data["scales"], data["extents"]["velocity"]
+    ({'velocity': 'μv'}, [-20.0, -20.0, 20.0, 20.0])
+    """
     return {"title": title, "exercise": exercise, "names": dict(names), "poles": dict(poles),
             "scales": {plan: PLAN_TITLES[plan][1] for plan in poles},
             "extents": {plan: [float(v) for v in extent] for plan, extent in extents.items()},
