@@ -80,18 +80,21 @@ def shown_readings(page) -> dict[str, float]:
         "[data-quantity]", "cells => cells.map(c => [c.dataset.quantity, c.dataset.value])")}
 
 
+def workbook_page(tmp_path_factory, exercise: Path, step: float) -> Path:
+    """The workbook page of ``exercise`` every ``step`` degrees, written by the command."""
+    path = tmp_path_factory.mktemp("browser") / f"{exercise.stem}.html"
+    cli("workbook", exercise, "-o", path, "--step", step)
+    return path
+
+
 @pytest.fixture(scope="module")
 def compressor_page(tmp_path_factory):
-    path = tmp_path_factory.mktemp("browser") / "compressor.html"
-    cli("workbook", COMPRESSOR, "-o", path, "--step", "15")
-    return path
+    return workbook_page(tmp_path_factory, COMPRESSOR, 15)
 
 
 @pytest.fixture(scope="module")
 def conveyor_page(tmp_path_factory):
-    path = tmp_path_factory.mktemp("browser") / "conveyor.html"
-    cli("workbook", CONVEYOR, "-o", path, "--step", "30")
-    return path
+    return workbook_page(tmp_path_factory, CONVEYOR, 30)
 
 
 @pytest.mark.parametrize("which, angles", [
@@ -199,9 +202,7 @@ def test_practice_mode_grades_as_the_cli(browser, compressor_page, tmp_path):
 # -- drawing mode -------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def slotted_page(tmp_path_factory):
-    path = tmp_path_factory.mktemp("browser") / "slotted.html"
-    cli("workbook", SLOTTED, "-o", path, "--step", "15")
-    return path
+    return workbook_page(tmp_path_factory, SLOTTED, 15)
 
 
 @pytest.fixture(scope="module")
@@ -212,6 +213,16 @@ def slotted_report():
 def start_drawing(page, angle: float) -> None:
     move_slider(page, angle)
     page.check("#draw-mode")
+
+
+@pytest.fixture
+def drawing(browser, slotted_page):
+    """The slotted lever's page in drawing mode at its own angle (30°), and the console errors
+    it logs."""
+    page, errors = open_page(browser, slotted_page)
+    start_drawing(page, 30)
+    yield page, errors
+    page.close()
 
 
 def click_plan_point(page, plan: str, x: float, y: float) -> None:
@@ -247,10 +258,8 @@ def verdicts(page, plan: str) -> dict[str, tuple[str | None, str]]:
         "cells => cells.map(c => [c.dataset.verdictFor, c.dataset.ok ?? null, c.textContent])")}
 
 
-def test_the_right_plans_placed_by_clicks_are_right_point_by_point(browser, slotted_page,
-                                                                  slotted_report):
-    page, errors = open_page(browser, slotted_page)
-    start_drawing(page, 30)
+def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slotted_report):
+    page, errors = drawing
     names = page.evaluate("workbook.data.draw.names")
     assert names["b@lever"] == "b₄"          # the course's name, shown on the button
     for plan in ("velocity", "acceleration"):
@@ -272,19 +281,17 @@ def test_the_right_plans_placed_by_clicks_are_right_point_by_point(browser, slot
             assert sentence.startswith(names[label] + ": right")
     assert max(page.evaluate("workbook.draw.checkTimes")) < 50
     assert errors == []
-    page.close()
 
 
-def test_a_point_where_the_coriolis_term_is_left_out_is_named(browser, slotted_page,
-                                                             slotted_report, tmp_path):
+def test_a_point_where_the_coriolis_term_is_left_out_is_named(drawing, slotted_report,
+                                                             tmp_path):
     from planmethod.grading.mistakes import mistaken_plans
     from planmethod.spec import load_exercise
 
     wrong = mistaken_plans(load_exercise(SLOTTED), "no_coriolis")
     assert wrong is not None
     points = dict(slotted_report["plans"]["acceleration"]["points_mm"])
-    page, errors = open_page(browser, slotted_page)
-    start_drawing(page, 30)
+    page, errors = drawing
     place_by_clicks(page, "acceleration", points)
     page.click('[data-place="acceleration:b@lever"]')
     click_plan_point(page, "acceleration", *wrong.acceleration.points_mm["b@lever"])
@@ -308,13 +315,10 @@ def test_a_point_where_the_coriolis_term_is_left_out_is_named(browser, slotted_p
     point = next(p for p in graded["points"] if p["point"] == "b@lever")
     assert not point["correct"] and point["mistakes"] == ["no_coriolis"]
     assert errors == []
-    page.close()
 
 
-def test_the_downloaded_drawing_is_graded_by_the_cli(browser, slotted_page, slotted_report,
-                                                     tmp_path):
-    page, errors = open_page(browser, slotted_page)
-    start_drawing(page, 30)
+def test_the_downloaded_drawing_is_graded_by_the_cli(drawing, slotted_report, tmp_path):
+    page, errors = drawing
     for plan in ("velocity", "acceleration"):
         place_by_clicks(page, plan, slotted_report["plans"][plan]["points_mm"])
         with page.expect_download() as download:
@@ -330,13 +334,10 @@ def test_the_downloaded_drawing_is_graded_by_the_cli(browser, slotted_page, slot
         assert graded["max_score"] >= 3 and graded["score"] == graded["max_score"]
         assert all(p["correct"] for p in graded["points"])
     assert errors == []
-    page.close()
 
 
-def test_a_reload_keeps_the_drawing_and_ignores_another_exercises(browser, slotted_page,
-                                                                  slotted_report):
-    page, errors = open_page(browser, slotted_page)
-    start_drawing(page, 30)
+def test_a_reload_keeps_the_drawing_and_ignores_another_exercises(drawing, slotted_report):
+    page, errors = drawing
     points = slotted_report["plans"]["velocity"]["points_mm"]
     labels = place_by_clicks(page, "velocity", points)
     # drag b₄ 5 mm to the right, then nudge it back with the arrow keys (0.5 mm each)
@@ -380,13 +381,10 @@ def test_a_reload_keeps_the_drawing_and_ignores_another_exercises(browser, slott
     assert page.evaluate("workbook.draw.drawing('velocity').points") == {}
     assert "belongs to another exercise" in page.text_content("#draw-notice")
     assert errors == []
-    page.close()
 
 
-def test_show_the_construction_reveals_one_step_at_a_time(browser, slotted_page,
-                                                          slotted_report):
-    page, errors = open_page(browser, slotted_page)
-    start_drawing(page, 30)
+def test_show_the_construction_reveals_one_step_at_a_time(drawing, slotted_report):
+    page, errors = drawing
     assert not page.is_visible("#panel-acceleration")       # the answer stays hidden
     steps = slotted_report["plans"]["acceleration"]["steps"]
     for number in range(4):
@@ -403,4 +401,3 @@ def test_show_the_construction_reveals_one_step_at_a_time(browser, slotted_page,
     assert page.eval_on_selector_all('svg[data-draw="acceleration"] .right-point',
                                      "nodes => nodes.length") == 5
     assert errors == []
-    page.close()
