@@ -9,7 +9,7 @@ the ``export`` command writes them atomically. The structures follow the targets
   root, reading ``/autograder/submission`` and writing ``/autograder/results/results.json``).
 * **PrairieLearn** v3 questions: ``info.json`` (``uuid``, ``title``, ``topic``, ``tags``,
   ``type: "v3"``), ``question.html`` with ``pl-question-panel`` (the task text and the task
-  figure, a ``pl-figure`` of the variant's ``clientFilesQuestion/task_<student>.svg``: the
+  figure, a ``pl-figure`` of the variant's ``clientFilesQuestion/task_<n>_<student>.svg``: the
   mechanism at its position as the task sheet draws it), one ``pl-number-input``
   (``comparison="relabs"``, per-variant ``rtol``/``atol`` through mustache ``params``) per
   asked value, and a ``pl-drawing`` (``gradable``, ``tol`` in px) whose
@@ -442,7 +442,7 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
     size_px = 40 * math.ceil((2 * extent * PX_PER_MM + 80) / 40)
     variants = []
     figures: dict[str, str] = {}
-    for key in keys:
+    for number, key in enumerate(keys, start=1):
         questions = {q["id"]: q for q in key["questions"]}
         params: dict[str, Any] = {
             "student": key.get("student"), "title": key.get("title"),
@@ -451,7 +451,8 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
             "plan_labels": {}, "mistakes_px": {}}
         figure = _task_figure(key)
         if figure is not None:
-            params["task_figure"] = f"task_{_identifier(str(key.get('student')))}.svg"
+            # numbered: two students whose ids differ only in punctuation get two files
+            params["task_figure"] = f"task_{number}_{_identifier(str(key.get('student')))}.svg"
             figures[f"{slug}/clientFilesQuestion/{params['task_figure']}"] = figure
         name_of = _course_names(key)
         correct: dict[str, Any] = {}
