@@ -5,6 +5,12 @@ The slider is moved to several angles and the readings shown must equal ``planme
 switch took; construction playback must show the report's step sentences; practice mode must
 grade a right and a wrong answer as ``planmethod grade`` does.
 
+Drawing mode, on the crank and slotted lever (a Coriolis component): the plans drawn by clicks
+where ``planmethod solve --json`` puts their points are right point by point; a point where the
+construction without the Coriolis component puts it is named with that mistake; the drawing
+downloaded from the page is graded by ``planmethod grade --drawing`` with every point scored;
+a reload keeps the drawing, and a kept drawing of another exercise is ignored with a notice.
+
 Skipped, with the reason, where Playwright or the system Chromium is missing (CI installs both:
 .ci/run). Leave them out with ``pytest -m "not browser"``.
 """
@@ -25,6 +31,7 @@ pytestmark = pytest.mark.browser
 ROOT = Path(__file__).resolve().parent.parent
 COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
 CONVEYOR = ROOT / "exercises" / "conveyor_sixbar.toml"
+SLOTTED = ROOT / "exercises" / "slotted_lever.toml"
 
 sync_api = pytest.importorskip(
     "playwright.sync_api",
@@ -73,18 +80,21 @@ def shown_readings(page) -> dict[str, float]:
         "[data-quantity]", "cells => cells.map(c => [c.dataset.quantity, c.dataset.value])")}
 
 
+def workbook_page(tmp_path_factory, exercise: Path, step: float) -> Path:
+    """The workbook page of ``exercise`` every ``step`` degrees, written by the command."""
+    path = tmp_path_factory.mktemp("browser") / f"{exercise.stem}.html"
+    cli("workbook", exercise, "-o", path, "--step", step)
+    return path
+
+
 @pytest.fixture(scope="module")
 def compressor_page(tmp_path_factory):
-    path = tmp_path_factory.mktemp("browser") / "compressor.html"
-    cli("workbook", COMPRESSOR, "-o", path, "--step", "15")
-    return path
+    return workbook_page(tmp_path_factory, COMPRESSOR, 15)
 
 
 @pytest.fixture(scope="module")
 def conveyor_page(tmp_path_factory):
-    path = tmp_path_factory.mktemp("browser") / "conveyor.html"
-    cli("workbook", CONVEYOR, "-o", path, "--step", "30")
-    return path
+    return workbook_page(tmp_path_factory, CONVEYOR, 30)
 
 
 @pytest.mark.parametrize("which, angles", [
@@ -157,7 +167,8 @@ def test_practice_mode_grades_as_the_cli(browser, compressor_page, tmp_path):
     exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
     answers = {"v_C": exact["v_C"],                   # right
                "a_C": exact["a_C"] * 1.5,             # wrong
-               "omega_BC": -exact["omega_BC"]}        # sense reversed
+               "omega_BC": -exact["omega_BC"],        # sense reversed
+               "v_D": -exact["v_D"]}                  # a magnitude with a sign
     sheet = tmp_path / "answers.csv"
     with sheet.open("w", newline="") as handle:
         writer = csv.writer(handle)
@@ -183,5 +194,210 @@ def test_practice_mode_grades_as_the_cli(browser, compressor_page, tmp_path):
         tolerance = page.text_content(f'[data-tolerance-for="{name}"]')
         assert tolerance.startswith("± ") and f"{graded[name]['tolerance']:.3g}" in tolerance
     assert graded["v_C"]["correct"] and not graded["a_C"]["correct"]
+    assert "a magnitude, never negative" in results["v_D"]["feedback"]
     assert errors == []
     page.close()
+
+
+# -- drawing mode -------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def slotted_page(tmp_path_factory):
+    return workbook_page(tmp_path_factory, SLOTTED, 15)
+
+
+@pytest.fixture(scope="module")
+def slotted_report():
+    return json.loads(cli("solve", SLOTTED, "--json").stdout)
+
+
+def start_drawing(page, angle: float) -> None:
+    move_slider(page, angle)
+    page.check("#draw-mode")
+
+
+@pytest.fixture
+def drawing(browser, slotted_page):
+    """The slotted lever's page in drawing mode at its own angle (30°), and the console errors
+    it logs."""
+    page, errors = open_page(browser, slotted_page)
+    start_drawing(page, 30)
+    yield page, errors
+    page.close()
+
+
+def click_plan_point(page, plan: str, x: float, y: float) -> None:
+    """Click the drawing sheet of ``plan`` where the plan point (x, y) in mm (y up) is: at
+    user coordinates (x, −y), scrolled into view first."""
+    where = page.eval_on_selector(f'svg[data-draw="{plan}"]', """(svg, [x, y]) => {
+        const mark = document.createElementNS(svg.namespaceURI, "circle");
+        mark.setAttribute("cx", x); mark.setAttribute("cy", y); mark.setAttribute("r", 0.01);
+        svg.appendChild(mark);
+        mark.scrollIntoView({block: "center", inline: "center"});
+        const box = mark.getBoundingClientRect();
+        mark.remove();
+        return [box.x + box.width / 2, box.y + box.height / 2];
+    }""", [x, -y])
+    page.mouse.click(*where)
+
+
+def place_by_clicks(page, plan: str, points: dict) -> list[str]:
+    """Choose every point the page offers for ``plan`` and click where ``points`` (mm) put
+    it; returns the points placed."""
+    places = page.eval_on_selector_all(f'[data-place^="{plan}:"]',
+                                       "buttons => buttons.map(b => b.dataset.place)")
+    labels = [place.partition(":")[2] for place in places]
+    for label in labels:
+        page.click(f'[data-place="{plan}:{label}"]')
+        click_plan_point(page, plan, *points[label])
+    return labels
+
+
+def verdicts(page, plan: str) -> dict[str, tuple[str | None, str]]:
+    return {cell[0].partition(":")[2]: (cell[1], cell[2]) for cell in page.eval_on_selector_all(
+        f'[data-verdict-for^="{plan}:"]',
+        "cells => cells.map(c => [c.dataset.verdictFor, c.dataset.ok ?? null, c.textContent])")}
+
+
+def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slotted_report):
+    page, errors = drawing
+    names = page.evaluate("workbook.data.draw.names")
+    assert names["b@lever"] == "b₄"          # the course's name, shown on the button
+    for plan in ("velocity", "acceleration"):
+        points = slotted_report["plans"][plan]["points_mm"]
+        labels = place_by_clicks(page, plan, points)
+        assert "b@lever" in labels and page.text_content(
+            f'[data-place="{plan}:b@lever"]') == "b₄"
+        # the sheet's user units are the plan's mm, the pole at (0, 0): each point where
+        # solve --json puts it, to the click's precision
+        for label in labels:
+            placed = page.get_attribute(f'[data-point="{plan}:{label}"]', "data-x"), \
+                page.get_attribute(f'[data-point="{plan}:{label}"]', "data-y")
+            assert [float(v) for v in placed] == pytest.approx(points[label], abs=0.05)
+        page.click(f'[data-check="{plan}"]')
+        shown = verdicts(page, plan)
+        assert set(shown) == set(labels)
+        for label, (ok, sentence) in shown.items():
+            assert ok == "true", (label, sentence)
+            assert sentence.startswith(names[label] + ": right")
+    assert max(page.evaluate("workbook.draw.checkTimes")) < 50
+    assert errors == []
+
+
+def test_a_point_where_the_coriolis_term_is_left_out_is_named(drawing, slotted_report,
+                                                             tmp_path):
+    from planmethod.grading.mistakes import mistaken_plans
+    from planmethod.spec import load_exercise
+
+    wrong = mistaken_plans(load_exercise(SLOTTED), "no_coriolis")
+    assert wrong is not None
+    points = dict(slotted_report["plans"]["acceleration"]["points_mm"])
+    page, errors = drawing
+    place_by_clicks(page, "acceleration", points)
+    page.click('[data-place="acceleration:b@lever"]')
+    click_plan_point(page, "acceleration", *wrong.acceleration.points_mm["b@lever"])
+    page.click('[data-check="acceleration"]')
+    shown = verdicts(page, "acceleration")
+    ok, sentence = shown["b@lever"]
+    assert ok == "false"
+    assert sentence.startswith("b₄ is ") and "mm off" in sentence
+    assert "Coriolis component aᵏ was left out" in sentence
+    assert all(shown[label][0] == "true" for label in ("b", "c"))
+    # hints only: the right position is never told
+    x, y = points["b@lever"]
+    assert f"{x:.1f}" not in sentence and f"{y:.1f}" not in sentence
+    # the instructor grading the handed-in drawing names the same mistake
+    with page.expect_download() as download:
+        page.click('[data-download="acceleration"]')
+    path = tmp_path / "acceleration.json"
+    download.value.save_as(path)
+    cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+    graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+    point = next(p for p in graded["points"] if p["point"] == "b@lever")
+    assert not point["correct"] and point["mistakes"] == ["no_coriolis"]
+    assert errors == []
+
+
+def test_the_downloaded_drawing_is_graded_by_the_cli(drawing, slotted_report, tmp_path):
+    page, errors = drawing
+    for plan in ("velocity", "acceleration"):
+        place_by_clicks(page, plan, slotted_report["plans"][plan]["points_mm"])
+        with page.expect_download() as download:
+            page.click(f'[data-download="{plan}"]')
+        path = tmp_path / f"{plan}.json"
+        download.value.save_as(path)
+        drawing = json.loads(path.read_text())
+        assert drawing["title"] == slotted_report["title"] and drawing["angle"] == 30
+        assert drawing["plan"] == plan
+        done = cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+        assert f"({plan} plan): " in done.stdout
+        graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+        assert graded["max_score"] >= 3 and graded["score"] == graded["max_score"]
+        assert all(p["correct"] for p in graded["points"])
+    assert errors == []
+
+
+def test_a_reload_keeps_the_drawing_and_ignores_another_exercises(drawing, slotted_report):
+    page, errors = drawing
+    points = slotted_report["plans"]["velocity"]["points_mm"]
+    labels = place_by_clicks(page, "velocity", points)
+    # drag b₄ 5 mm to the right, then nudge it back with the arrow keys (0.5 mm each)
+    x, y = points["b@lever"]
+    page.click('[data-place="velocity:b@lever"]')
+    page.eval_on_selector('svg[data-draw="velocity"]', "svg => svg.scrollIntoView()")
+    start = page.eval_on_selector('[data-point="velocity:b@lever"] circle',
+                                  "c => { const b = c.getBoundingClientRect(); "
+                                  "return [b.x + b.width / 2, b.y + b.height / 2]; }")
+    zoom = page.evaluate("workbook.draw.zoom")
+    page.mouse.move(*start)
+    page.mouse.down()
+    page.mouse.move(start[0] + 5 * zoom, start[1], steps=5)
+    page.mouse.up()
+    moved = page.evaluate("workbook.draw.drawing('velocity').points['b@lever']")
+    assert moved == pytest.approx([x + 5, y], abs=0.1)
+    for _ in range(10):
+        page.keyboard.press("ArrowLeft")
+    back = page.evaluate("workbook.draw.drawing('velocity').points['b@lever']")
+    assert back == pytest.approx([moved[0] - 5, moved[1]], abs=1e-9)
+    kept = page.evaluate("workbook.draw.drawing('velocity').points")
+    page.reload()
+    page.wait_for_function("window.workbook && window.workbook.ready", timeout=30_000)
+    start_drawing(page, 30)
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == kept
+    assert sorted(kept) == sorted(labels)
+    for label, (u, v) in kept.items():
+        assert page.get_attribute(f'[data-point="velocity:{label}"]', "data-x") == f"{u:g}"
+        assert page.get_attribute(f'[data-point="velocity:{label}"]', "data-y") == f"{v:g}"
+    assert page.text_content("#draw-notice") == ""
+    # a drawing kept under this title and angle by another exercise's page is ignored
+    page.evaluate("""() => {
+        const key = Object.keys(localStorage).find(k => k.endsWith(":30"));
+        const record = JSON.parse(localStorage.getItem(key));
+        record.exercise = "another exercise";
+        localStorage.setItem(key, JSON.stringify(record));
+    }""")
+    page.reload()
+    page.wait_for_function("window.workbook && window.workbook.ready", timeout=30_000)
+    start_drawing(page, 30)
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == {}
+    assert "belongs to another exercise" in page.text_content("#draw-notice")
+    assert errors == []
+
+
+def test_show_the_construction_reveals_one_step_at_a_time(drawing, slotted_report):
+    page, errors = drawing
+    assert not page.is_visible("#panel-acceleration")       # the answer stays hidden
+    steps = slotted_report["plans"]["acceleration"]["steps"]
+    for number in range(4):
+        page.click('[data-show-step="acceleration"]')
+        assert page.is_visible("#panel-acceleration")
+        assert page.text_content('.draw-plan[data-plan="acceleration"] .draw-step') == \
+            f"step {number + 1} of {len(steps)}: {steps[number]['text']}"
+        hidden = page.eval_on_selector_all(
+            "#panel-acceleration [data-step].step-hidden", "nodes => nodes.length")
+        assert hidden > 0
+    assert page.eval_on_selector_all('svg[data-draw="acceleration"] .right-point',
+                                     "nodes => nodes.length") == 0
+    page.click('[data-show-plan="acceleration"]')
+    assert page.eval_on_selector_all('svg[data-draw="acceleration"] .right-point',
+                                     "nodes => nodes.length") == 5
+    assert errors == []

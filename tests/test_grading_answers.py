@@ -151,6 +151,20 @@ def test_common_mistakes_get_the_right_feedback(seed_key):
     assert "normal component aⁿ was left out" in feedback
 
 
+def test_a_negative_magnitude_is_told_it_is_a_magnitude(seed_key):
+    """A speed given with a minus sign is not "199.8 % low": the feedback says that a speed is
+    a magnitude; a signed quantity with the wrong sign still says the sense is reversed."""
+    values = {q["id"]: q["value"] for q in seed_key["questions"]}
+    result = by_id(grade_answers(seed_key, {"v_C": -values["v_C"],
+                                            "omega_BC": -values["omega_BC"]}))
+    speed = result["v_C"]
+    assert not speed["correct"] and "%" not in speed["feedback"]
+    assert "v_C is the speed of C, |v_C|: a magnitude, never negative" in speed["feedback"]
+    assert speed["hint"].endswith("a magnitude, never negative")
+    assert "right" not in speed["hint"] and "right: " in speed["feedback"]
+    assert result["omega_BC"]["mistake"] == "sense"
+
+
 def test_junk_answers_are_reported_not_crashed(seed_key):
     (result,) = grade_many({"*": seed_key}, [r for r in read_answers(
         DATA / "compressor_mistakes.csv") if r[0] == "junk"])

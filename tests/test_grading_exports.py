@@ -423,3 +423,77 @@ def test_prairielearn_grades_a_plan_point_by_point_within_each_disc(keys):
     data.update(submitted_answers={}, partial_scores={})
     namespace["grade"](data)
     assert data["partial_scores"]["velocity_plan"]["score"] == 0.0
+
+
+def test_prairielearn_shows_each_variants_task_figure_above_the_drawing(keys):
+    """The question panel shows the variant's mechanism at its position, drawn as the task
+    sheet draws it, above the drawing canvases."""
+    from planmethod.grading.sheets import task_sheet_svg
+    from planmethod.plans import draw_plans
+
+    template = load_template(TEMPLATE)
+    files = prairielearn_questions(bundle(keys, seed=5), slug="fourbar")
+    namespace: dict = {}
+    exec(compile(files["fourbar/server.py"], "server.py", "exec"), namespace)  # our own code
+    figures = {}
+    for seed in range(40):
+        data = {"params": {}, "correct_answers": {}, "variant_seed": seed}
+        namespace["generate"](data)
+        params = data["params"]
+        html = _resolve(files["fourbar/question.html"], params)
+        root = ElementTree.fromstring(f"<root>{html}</root>")
+        panel = root.find("pl-question-panel")
+        figure = panel.find("pl-figure")
+        assert figure.get("directory") == "clientFilesQuestion"
+        order = [child.tag for child in root]
+        assert order.index("pl-question-panel") < order.index("pl-drawing")
+        text = files[f"fourbar/clientFilesQuestion/{figure.get('file-name')}"]
+        figures[params["student"]] = text
+    assert sorted(figures) == ["ann", "bob", "cy"]
+    assert len(set(figures.values())) == 3                 # each variant its own mechanism
+    for student, text in figures.items():
+        variant = draw_variant(template, seed=5, student=student)
+        key = next(k for k in keys if k["student"] == student)
+        sheet = task_sheet_svg(key, draw_plans(variant.exercise, acceleration=False))
+        root = ElementTree.fromstring(text)
+        drawn = [ElementTree.tostring(e) for e in root.iter()
+                 if e.tag.rpartition("}")[2] in ("line", "polyline", "path", "circle")]
+        sheet_elements = {ElementTree.tostring(e) for e in ElementTree.fromstring(sheet).iter()}
+        assert drawn and all(element in sheet_elements for element in drawn)
+        assert f"φ₁ = {key['angle']:g}°" in text and "Find" not in text
+
+
+def test_prairielearn_grade_names_the_mistake_of_a_misplaced_point():
+    """A point placed where the construction without the Coriolis component puts it is named
+    with that mistake in grade(), as the workbook page names it."""
+    from planmethod.grading.mistakes import mistaken_plans
+
+    variant = draw_variant(load_template("exercises/slotted_lever.toml"))
+    key = build_key(variant)
+    files = prairielearn_questions(bundle([key]), slug="slotted")
+    namespace: dict = {}
+    exec(compile(files["slotted/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 3}
+    namespace["generate"](data)
+    params = data["params"]
+    assert params["plan_labels"]["acceleration"]["b_lever"] == "b₄"
+    points = params["plans"]["acceleration"]
+    centre = float(re.search(r'answers-name="acceleration_plan"[^>]*width="(\d+)"',
+                             files["slotted/question.html"]).group(1)) / 2
+    wrong = mistaken_plans(variant.exercise, "no_coriolis").acceleration.points_mm["b@lever"]
+    placed = [{"gradingName": "pl-point", "left": p["x"], "top": p["y"]}
+              for ident, p in points.items() if ident != "b_lever"]
+    placed.append({"gradingName": "pl-point", "left": centre + 4 * wrong[0],
+                   "top": centre - 4 * wrong[1]})
+    data.update(submitted_answers={"acceleration_plan": placed}, partial_scores={})
+    namespace["grade"](data)
+    part = data["partial_scores"]["acceleration_plan"]
+    assert part["score"] == pytest.approx(2 / 3)
+    assert "b₄ is not where the construction puts it" in part["feedback"]
+    assert "the Coriolis component aᵏ was left out" in part["feedback"]
+    assert "more than the plan has" not in part["feedback"]
+    # a point placed nowhere in particular is not named with any mistake
+    placed[-1] = {"gradingName": "pl-point", "left": 3.0, "top": 3.0}
+    data.update(submitted_answers={"acceleration_plan": placed}, partial_scores={})
+    namespace["grade"](data)
+    assert "left out" not in data["partial_scores"]["acceleration_plan"]["feedback"]

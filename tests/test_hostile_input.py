@@ -58,8 +58,12 @@ def test_prairielearn_slug_cannot_leave_the_output_folder(tmp_path, keys_file, c
 def test_prairielearn_slug_that_is_a_name_writes_inside(tmp_path, keys_file, capsys):
     assert main(["export", str(keys_file), "--format", "prairielearn", "--out",
                  str(tmp_path / "DIR"), "--slug", "fourbar-2026"]) == 0
+    figures = {"DIR/fourbar-2026/clientFilesQuestion"} | {
+        f"DIR/fourbar-2026/clientFilesQuestion/task_{number}_{student}.svg"
+        for number, student in enumerate(("001", "002"), start=1)}
     assert _tree(tmp_path) == {"DIR", "DIR/fourbar-2026", "DIR/fourbar-2026/info.json",
-                               "DIR/fourbar-2026/question.html", "DIR/fourbar-2026/server.py"}
+                               "DIR/fourbar-2026/question.html", "DIR/fourbar-2026/server.py",
+                               *figures}
 
 
 def test_student_ids_that_climb_stay_inside(tmp_path, capsys):

@@ -164,3 +164,49 @@ def test_notebook_shows_an_exercise_as_its_workbook():
         "planmethod.model", "Exercise"]
     html = shown(load_exercise(COMPRESSOR))
     assert html.startswith("<iframe") and "srcdoc=" in html and "id=&quot;angle&quot;" in html
+    # the same drawing mode inline
+    for plan in ("velocity", "acceleration"):
+        assert f"svg data-draw=&quot;{plan}&quot;" in html
+        assert f"data-check=&quot;{plan}&quot;" in html
+
+
+def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
+    """The drawing mode's data are the answer key's at each angle (points, tolerance radii,
+    mistakes' positions on the sheet), the markup is the documented one, and the page grades
+    against them without computing mechanics."""
+    from dataclasses import replace
+
+    from planmethod.commands.workbook import exercise_variant
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
+
+    slotted = ROOT / "exercises" / "slotted_lever.toml"
+    path = tmp_path / "slotted.html"
+    assert main(["workbook", str(slotted), "-o", str(path), "--step", "60"]) == 0
+    text = path.read_text(encoding="utf-8")
+    for plan in ("velocity", "acceleration"):
+        for attribute in ("svg data-draw", "data-check", "data-download"):
+            assert f'{attribute}="{plan}"' in text
+    data = page_data(text)
+    draw = data["draw"]
+    assert draw["title"] == "Crank and slotted lever" and draw["format"] == "planmethod-drawing"
+    assert draw["names"]["b@lever"] == "b₄" and draw["names"]["c"] == "c"
+    assert [mistake for mistake, _ in draw["mistakes"]] == list(DRAWN_MISTAKES)
+    exercise = load_exercise(slotted)
+    variant = exercise_variant(exercise)
+    for number in (0, 3):
+        angle = data["angles"][number]
+        key = build_key(replace(variant, exercise=analyse(exercise, angle).exercise))
+        expected = drawing_frame(key)
+        frame = data["frames"][number]["draw"]
+        for plan, entry in expected.items():
+            left, bottom, right, top = draw["extents"][plan]
+            assert frame[plan]["points"] == entry["points"]
+            assert frame[plan]["required"] == entry["required"]
+            for x, y, _ in entry["points"].values():     # one sheet holds every angle's plan
+                assert left < x < right and bottom < y < top
+            for label, candidates in entry["mistakes"].items():
+                on_sheet = [c for c in candidates
+                            if left <= c[1] <= right and bottom <= c[2] <= top]
+                assert frame[plan]["mistakes"].get(label, []) == on_sheet
+    assert data["frames"][1]["draw"]["acceleration"]["mistakes"]["b@lever"]

@@ -76,6 +76,7 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     """One frame of the page as plain data (see :func:`planmethod.render.workbook.
     workbook_html`)."""
     from ..grading.keys import build_key
+    from ..grading.plan_points import drawing_frame
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
     readings = [[check.analytic, check.plan] for check in analysis.checks]
@@ -91,7 +92,8 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
-            "questions": questions, "tolerance_source": key["precision_mm"]}
+            "questions": questions, "tolerance_source": key["precision_mm"],
+            "draw": drawing_frame(key)}
 
 
 def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
@@ -151,6 +153,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     >>> page.count('data-quantity="'), 'id="angle"' in page
     (7, True)
     """
+    from ..grading.answers import magnitude_note
     from ..render.workbook import curve_chart, workbook_html
     from ..vocabulary import link_numbers, quantity
 
@@ -185,7 +188,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
         return found.subject.replace("_", " ")
 
     quantities = [{"name": name, "symbol": quantity(name).symbol,
-                   "subscript": subscript(name), "unit": unit}
+                   "subscript": subscript(name), "unit": unit,
+                   "negative": magnitude_note(name)}
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]
@@ -199,7 +203,58 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
                                  for title, unit, curves in turn_charts(frames, numbers)],
-                         notes=notes)
+                         notes=notes, drawing=drawing_meta(exercise, frames))
+
+
+def exercise_fingerprint(exercise) -> str:
+    """A short digest of the exercise's mechanism, drawing settings and scene: a drawing kept
+    by the page for another exercise (or another version of it) is told apart by it.
+
+    >>> from planmethod.spec import load_exercise
+    >>> len(exercise_fingerprint(load_exercise("exercises/slotted_lever.toml")))
+    16
+    """
+    import hashlib
+
+    text = repr((exercise.mechanism, exercise.plan, exercise.ask))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
+
+def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
+    """The drawing mode's data for the whole page (:func:`planmethod.render.workbook_draw.
+    drawing_data`): one sheet per plan for the turn, each point's course name (b₄), the
+    mistakes with what the student is told. None when no frame has a plan to draw.
+
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/slotted_lever.toml")
+    >>> meta = drawing_meta(exercise, solve_frames(exercise, [30.0]))
+    >>> meta["names"]["b@lever"], meta["poles"]
+    ('b₄', {'velocity': 'p', 'acceleration': 'π'})
+    """
+    from ..grading.drawings import DRAWING_FORMAT
+    from ..grading.mistakes import drawn_explanation
+    from ..grading.plan_points import DRAWN_MISTAKES, MISTAKE_WORDING, plan_extent
+    from ..model import FRAME
+    from ..plans.construction import course_text
+    from ..render.workbook_draw import drawing_data
+    from ..vocabulary import link_numbers
+
+    draws = [frame.get("draw", {}) for frame in frames]
+    plans = [plan for plan in ("velocity", "acceleration")
+             if any(plan in draw for draw in draws)]
+    if not plans:
+        return None
+    mechanism = exercise.mechanism
+    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+    labels = {label for draw in draws for entry in draw.values() for label in entry["points"]}
+    poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
+             for plan in plans}
+    return drawing_data(
+        title=mechanism.title, exercise=exercise_fingerprint(exercise),
+        names={label: course_text(label, numbers) for label in sorted(labels)},
+        poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
+        mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
+        wording=MISTAKE_WORDING, file_format=DRAWING_FORMAT)
 
 
 def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None

@@ -37,9 +37,10 @@ from typing import Any
 
 from ..errors import SpecError
 from ..spec import parse_json
+from ..vocabulary import quantity
 
 __all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS", "answers_from_csv",
-           "feedback_text", "grade_answers", "grade_many", "read_answers"]
+           "feedback_text", "grade_answers", "grade_many", "magnitude_note", "read_answers"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
@@ -365,6 +366,11 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
                 result["hint"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
                                   "and the sense is reversed")
                 return result
+    note = None if signed or answer >= 0 else magnitude_note(name)
+    if note is not None:
+        result["feedback"] = f"{shown}: wrong — {note} (right: {right})"
+        result["hint"] = f"{shown}: wrong — {note}"
+        return result
     if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
         text = (f"{shown}: wrong — the sense is reversed (the right answer is "
                 f"{_direction(value)}, {right}) and the magnitude "
@@ -377,6 +383,24 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
     result["feedback"] = text
     result["hint"] = f"{shown}: wrong ({_way(answer, value, signed)})"
     return result
+
+
+def magnitude_note(name: str) -> str | None:
+    """What a negative answer for a magnitude is told (None for a signed quantity or an
+    unknown name).
+
+    >>> magnitude_note("v_C")
+    'v_C is the speed of C, |v_C|: a magnitude, never negative'
+    >>> magnitude_note("omega_BC") is None
+    True
+    """
+    try:
+        found = quantity(name)
+    except KeyError:
+        return None
+    if found.signed:
+        return None
+    return f"{name} is the {found.question}: a magnitude, never negative"
 
 
 def _way(answer: float, right: float, signed: bool) -> str:

@@ -16,7 +16,10 @@ root ``width`` in mm/cm/in/pt/px with a ``viewBox`` fixes the user unit; otherwi
 is a CSS px (25.4/96 mm). SVG's y axis points down; plans are graded with y up.
 
 JSON submissions are ``{"plan": "velocity", "points": {"p": [0, 0], "b": [x, y], …}}`` in mm,
-y up (or just the points object).
+y up (or just the points object). A drawing downloaded from the workbook page
+(``"format": "planmethod-drawing"``, see docs/workbook-drawing.md) also names its exercise's
+``title`` and crank ``angle``: grading it against a key of another exercise or angle is refused
+in one line. It is drawn on a millimetre grid, so it is never rescaled.
 
 Examples
 --------
@@ -38,12 +41,12 @@ import numpy as np
 
 from ..errors import SpecError
 from ..spec import parse_json
+from .plan_points import graded_labels, mistake_sentence, named_mistakes
 
 __all__ = [
     "Drawing",
     "SubmissionError",
     "grade_drawing",
-    "graded_labels",
     "parse_drawing_json",
     "parse_drawing_svg",
     "read_drawing",
@@ -54,6 +57,8 @@ MAX_ELEMENTS = 20_000
 MAX_DEPTH = 64
 MAX_NUMBERS = 200_000
 LABEL_REACH_MM = 8.0
+#: the ``format`` of a drawing downloaded from the workbook page
+DRAWING_FORMAT = "planmethod-drawing"
 PX_MM = 25.4 / 96.0
 SVG_NAMESPACE = "{http://www.w3.org/2000/svg}"
 UNITS_MM = {"mm": 1.0, "cm": 10.0, "in": 25.4, "pt": 25.4 / 72, "pc": 25.4 / 6, "px": PX_MM,
@@ -74,6 +79,12 @@ class Drawing:
     notes: tuple[str, ...] = ()
     source: str | None = None
     lines: tuple = field(default=())
+    #: the exercise's title and the crank angle (deg) the drawing says it is of (a drawing
+    #: from the workbook page), else None
+    title: str | None = None
+    angle: float | None = None
+    #: drawn on a millimetre grid (the workbook page): its scale is never corrected
+    exact_scale: bool = False
 
 
 def read_drawing(path: str | Path) -> Drawing:
@@ -146,7 +157,17 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
         if label == "plan":
             continue
         out[_normal_label(str(label))] = _finite_pair(xy, f"points.{label}", source)
-    return Drawing(out, plan, (), source)
+    if parsed.get("format") != DRAWING_FORMAT:
+        return Drawing(out, plan, (), source)
+    title, angle = parsed.get("title"), parsed.get("angle")
+    if not isinstance(title, str):
+        raise SubmissionError(f"must be the exercise's title, got {title!r}"[:120],
+                              file=source, key="title")
+    if (isinstance(angle, bool) or not isinstance(angle, int | float)
+            or not math.isfinite(angle)):
+        raise SubmissionError(f"must be the crank angle in degrees, got {angle!r}"[:120],
+                              file=source, key="angle")
+    return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True)
 
 
 # -- SVG -------------------------------------------------------------------------------------
@@ -436,30 +457,23 @@ def _read_svg(root, source: str | None) -> Drawing:
 
 
 # -- grading ---------------------------------------------------------------------------------
+def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
+    """Refuse, in one line, a drawing that says it is of another exercise or angle."""
+    title, angle = key.get("title"), key.get("angle")
+    other_title = drawing.title is not None and title is not None and drawing.title != title
+    other_angle = (drawing.angle is not None and isinstance(angle, int | float)
+                   and abs((drawing.angle - angle + 180.0) % 360.0 - 180.0) > 1e-6)
+    if other_title or other_angle:
+        raise SubmissionError(f"the drawing is of {drawing.title!r} at φ1 = {drawing.angle:g}°, "
+                              f"the key of {title!r} at φ1 = {angle:g}°: grade it against the "
+                              "key of its own exercise and angle", file=drawing.source)
+
+
 def _steps_by_end(steps) -> dict[str, dict]:
     out = {}
     for step in steps:
         if step.get("end") and step["action"] in ("lay_off", "intersect", "similarity"):
             out.setdefault(step["end"], step)
-    return out
-
-
-def graded_labels(plan: Mapping[str, Any]) -> list[str]:
-    """The points a student must draw: ends of lay-offs, intersections and similarity steps
-    away from the pole (helper points such as n_CB or k_C are checked when present).
-
-    >>> graded_labels({"pole": "p", "points_mm": {"p": [0, 0], "b": [3.0, 4.0],
-    ...                                           "n_CB": [1.0, 0.0], "c": [0.0, 0.0]}})
-    ['b']
-    """
-    out = []
-    pole = plan["pole"]
-    for label, xy in plan["points_mm"].items():
-        if label == pole or "_" in label or "@frame" in label:
-            continue
-        if math.hypot(*xy) < 1e-9:
-            continue
-        out.append(label)
     return out
 
 
@@ -493,6 +507,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     from shapely.geometry import LineString, Point
 
     plan = plan or drawing.plan
+    _check_exercise(key, drawing)
     if plan not in ("velocity", "acceleration"):
         raise SubmissionError("cannot tell which plan this is: label the pole p (velocity) or "
                               "π (acceleration), or say which", file=drawing.source)
@@ -512,7 +527,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     steps = entry["steps"]
     first = next((s for s in steps if s["action"] == "lay_off"), None)
     factor = 1.0
-    if rescale and first is not None:
+    if rescale and not drawing.exact_scale and first is not None:
         end = first["end"]
         found = _match(student, end)
         right = np.asarray(entry["points_mm"][end])
@@ -556,6 +571,11 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             result["feedback"] = _explain(label, found, right, distance, radius, student,
                                           points, by_end.get(label), lines, reads,
                                           LineString)
+            named = named_mistakes(entry.get("mistake_points", {}).get(label, ()),
+                                   float(found[0]), float(found[1]), radius)
+            if named:
+                result["mistakes"] = named
+                result["feedback"] += f"; {mistake_sentence(named)}"
         results.append(result)
     wrong = [r for r in results if r["found"] and not r["correct"]]
     for mistake, alternative in entry.get("mistakes", {}).items():
@@ -565,10 +585,9 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             *(student[r["point"]] if r["point"] in student else _match(student, r["point"]))
             - np.asarray(alternative[r["point"]]))) <= 2 * r["tolerance_mm"]]
         if len(fits) == len(wrong):
-            from .mistakes import MISTAKES
+            from .mistakes import REGISTRY, drawn_explanation
 
-            what = ("the plan is turned 180°: the sense of ω1 was reversed"
-                    if mistake == "sense" else MISTAKES.get(mistake, mistake))
+            what = drawn_explanation(mistake) if mistake in REGISTRY else mistake
             feedback.append(f"the wrong points fit the plan drawn when {what}")
             break
     score = sum(r["score"] for r in results)

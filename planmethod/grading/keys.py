@@ -14,8 +14,13 @@ without planmethod's solvers::
      "plans": {"position": {"mu_l": ..., "points_mm": {...}},
                "velocity": {"pole": "p", "scale": ..., "points_mm": {...},
                             "tolerance_mm": {...}, "steps": [...],
-                            "mistakes": {"sense": {...points...}}},
+                            "mistakes": {"sense": {...points...}},
+                            "mistake_points": {"c": [["sense", x, y], ...]}},
                "acceleration": {...}}}
+
+``mistakes`` holds the points of each plan re-drawn with a construction mistake (the velocity
+plan turned 180° under ``sense``); ``mistake_points`` lists, for each point a student draws,
+where the known mistakes put it (:func:`~planmethod.grading.mistakes.drawn_mistakes`).
 
 The ``[grading]`` table of a template or exercise file sets ``precision_mm`` (default 0.5),
 ``rel_floor`` (default 0.005), ``points`` (default per question, 1) and per-quantity overrides::
@@ -48,7 +53,16 @@ from ..errors import SpecError
 from ..spec import checked_table, parse_json
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
-from .mistakes import CONSTRUCTION_MISTAKES, MISTAKES, REGISTRY, mistaken_plans, value_answers
+from .mistakes import (
+    CONSTRUCTION_MISTAKES,
+    MISTAKES,
+    REGISTRY,
+    drawn_mistakes,
+    mistaken_plans,
+    plan_context,
+    value_answers,
+)
+from .plan_points import drawn_labels
 from .tolerances import kind_of, propagate
 
 __all__ = [
@@ -214,7 +228,8 @@ def _tolerance(quantity: str, value: float, drawing: float, exercise,
     return tolerance, source
 
 
-def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict) -> dict[str, Any]:
+def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict,
+                motion) -> dict[str, Any]:
     """The key's plans: the position plan's points, and each drawn plan's points with their
     tolerance discs, its steps and where a mistake puts its points."""
     plans = found.plans
@@ -238,6 +253,10 @@ def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict) -> 
             for mistake, wrong in wrong_plans.items():
                 entry["mistakes"][mistake] = {
                     k: list(v) for k, v in wrong.acceleration.points_mm.items()}
+        # where the known mistakes put each point a student draws (named when one lands there)
+        entry["mistake_points"] = drawn_mistakes(
+            plan_context(plans, name, motion), entry["tolerance_mm"], entry["mistakes"],
+            drawn_labels(entry))
         table[name] = entry
     return table
 
@@ -290,7 +309,7 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
             "points": settings.points.get(quantity, settings.points["*"]),
             "mistakes": _mistakes(quantity, value, tolerance, scales, alternatives, motion),
         })
-    plan_table = _plan_table(found, scales, settings, wrong_plans)
+    plan_table = _plan_table(found, scales, settings, wrong_plans, motion)
     return {
         "format": KEY_FORMAT, "version": VERSION, "title": mechanism.title,
         "student": variant.student, "seed": variant.seed, "attempt": variant.attempt,

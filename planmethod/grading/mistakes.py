@@ -12,6 +12,13 @@ Two kinds:
   scale, a unit, a length): the wrong answer follows from the right value
   (:func:`value_answers`).
 
+A drawn plan point can land where a mistake puts it: a construction mistake's re-drawn plan
+places it, and a mistake with a ``placed`` rule places it from the right plan (the plan laid
+off at a wrong scale, a relative vector laid off from the pole). :func:`drawn_mistakes` lists
+those positions for every point of a plan; the answer key carries them, and the workbook's
+drawing mode, PrairieLearn's ``grade()`` and ``planmethod grade --drawing`` name a misplaced
+point by them.
+
 Adding a mistake is adding one entry here (and its test in ``tests/test_mistakes.py``). The
 keys (:func:`planmethod.grading.keys.build_key`) list, per question, every mistake whose
 answer differs from the right one by more than twice the tolerance; the grader names it when
@@ -28,7 +35,7 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -40,8 +47,8 @@ from ..vectors import norm, perp
 from ..vocabulary import QUANTITY_KINDS
 from .tolerances import kind_of, scale_factor
 
-__all__ = ["CONSTRUCTION_MISTAKES", "MISTAKES", "REGISTRY", "Mistake", "mistaken_plans",
-           "value_answers"]
+__all__ = ["CONSTRUCTION_MISTAKES", "MISTAKES", "REGISTRY", "Mistake", "PlanContext",
+           "drawn_explanation", "drawn_mistakes", "mistaken_plans", "value_answers"]
 
 #: a construction rule: (laid-off length, segment) → the length drawn with the mistake, or
 #: None where the mistake does not touch that segment
@@ -49,6 +56,14 @@ Rule = Callable[[float, Segment], float | None]
 #: a value rule: (quantity, right value, tolerance, the scales and the exact motion) →
 #: [(wrong answer, its tolerance)]
 Answers = Callable[[str, float, float, "ScalesAndMotion"], list[tuple[float, float]]]
+#: a drawn-plan rule: (plan label, the right plan) → where the mistake puts that point (mm)
+Placed = Callable[[str, "PlanContext"], list[tuple[float, float]]]
+
+#: positions of drawn-plan mistakes are kept to this many decimals of a millimetre
+DRAWN_DECIMALS = 2
+#: a drawing sheet is at most this large (mm): a mistake that puts a point further from the pole
+#: is not listed (no one draws it there)
+DRAWN_SHEET_MM = 1000.0
 
 
 @dataclass(frozen=True)
@@ -57,6 +72,19 @@ class ScalesAndMotion:
 
     scales: Any
     motion: Any
+
+
+@dataclass(frozen=True)
+class PlanContext:
+    """What a drawn-plan rule may use: the right plan's points (mm, the pole at the origin),
+    for each image the images of the other points of its links (``others``), the drive's
+    vector laid off first (``first``: its quantity, ``v_B`` or ``a_B``, and exact value) and
+    the value rules' context."""
+
+    points_mm: Mapping[str, Sequence[float]]
+    others: Mapping[str, tuple[str, ...]]
+    first: tuple[str, float] | None
+    context: ScalesAndMotion
 
 
 @dataclass(frozen=True)
@@ -73,6 +101,12 @@ class Mistake:
     direction: Callable[[Any, Segment], Any] | None = None
     #: an image placed by the similarity rule turned over: segment → True where it is
     mirror: Callable[[Segment], bool] | None = None
+    #: where the mistake puts a point of a drawn plan, from the right plan (a mistake that
+    #: re-draws the plans places its points by the re-drawn plans instead)
+    placed: Placed | None = None
+    #: what a student is told whose drawn point lies where the mistake puts it (default: the
+    #: explanation)
+    drawing: str | None = None
 
     @property
     def redraws(self) -> bool:
@@ -235,6 +269,33 @@ def _relative(quantity, value, tolerance, given):
     return out
 
 
+def _relative_placed(label: str, plan: PlanContext) -> list[tuple[float, float]]:
+    """The image laid off from the pole by its relative vector (from the image of another
+    point of its link) instead of its absolute one: ``x − y`` for each such image ``y`` off
+    the pole (from a fixed point the relative vector is the absolute one)."""
+    x, y = plan.points_mm[label]
+    out = []
+    for other in plan.others.get(label, ()):
+        other_x, other_y = plan.points_mm[other]
+        if math.hypot(other_x, other_y) > 0:
+            out.append((x - other_x, y - other_y))
+    return out
+
+
+def _at_scale(rule: Answers) -> Placed:
+    """The whole plan laid off at a wrong scale: the slip that turns a reading into ``rule``'s
+    wrong answer, made when the drive's vector is turned into a length, draws every point at
+    (right reading / wrong reading) times its right place."""
+    def placed(label: str, plan: PlanContext) -> list[tuple[float, float]]:
+        if plan.first is None:
+            return []
+        quantity, value = plan.first
+        x, y = plan.points_mm[label]
+        return [(x * value / wrong, y * value / wrong)
+                for wrong, _ in rule(quantity, value, 0.0, plan.context) if wrong]
+    return placed
+
+
 def _degrees(quantity, value, tolerance, given):
     if not QUANTITY_KINDS[kind_of(quantity)].unit.startswith("rad"):
         return []
@@ -253,10 +314,13 @@ def _millimetres(quantity, value, tolerance, given):
     return [(value * 1000.0, tolerance * 1000.0)]
 
 
+_TEN_TIMES, _TENTH = _scaled_by(10.0), _scaled_by(-10.0)
+
 #: every known mistake, in the order a key lists them (the first of two that give the same
 #: answer is named first)
 REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
-    Mistake("sense", "the sense (sign) is reversed", value=_sense),
+    Mistake("sense", "the sense (sign) is reversed", value=_sense,
+            drawing="the sense of ω1 was reversed (the plan is turned 180°)"),
     Mistake("no_normal", "the normal component aⁿ was left out",
             construction=_left_out("normal")),
     Mistake("no_coriolis", "the Coriolis component aᵏ was left out",
@@ -273,18 +337,31 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
             value=_full_acceleration),
     Mistake("relative_for_absolute", "a relative velocity or acceleration (from the image of "
             "another point of the link) was read instead of the absolute one (from the pole)",
-            value=_relative),
+            value=_relative, placed=_relative_placed,
+            drawing="a relative velocity or acceleration was laid off from the pole instead "
+                    "of from the image of the link's other point (relative for absolute)"),
     Mistake("wrong_length", "the angular velocity or acceleration was read off with the "
             "length of the group's other link", value=_wrong_length),
     Mistake("scale_none", "the plan's scale was not applied (the answer is a drawn length)",
-            value=_scale_none),
-    Mistake("scale_twice", "the plan's scale was applied twice", value=_scale_twice),
+            value=_scale_none, placed=_at_scale(_scale_none),
+            drawing="the plan was drawn at a wrong scale: the drive's vector laid off as its "
+                    "value in mm, without the scale"),
+    Mistake("scale_twice", "the plan's scale was applied twice", value=_scale_twice,
+            placed=_at_scale(_scale_twice),
+            drawing="the plan was drawn at a wrong scale: the drive's vector divided by the "
+                    "scale twice"),
     Mistake("scale_inverted", "the drawn length was divided by the plan's scale instead of "
-            "multiplied", value=_scale_inverted),
+            "multiplied", value=_scale_inverted, placed=_at_scale(_scale_inverted),
+            drawing="the plan was drawn at a wrong scale: the drive's vector multiplied by "
+                    "the scale instead of divided"),
     Mistake("scale_ten", "the plan's scale was misread ten times too large",
-            value=_scaled_by(10.0)),
+            value=_TEN_TIMES, placed=_at_scale(_TEN_TIMES),
+            drawing="the plan was drawn at a wrong scale, misread ten times too large "
+                    "(every length ten times too short)"),
     Mistake("scale_tenth", "the plan's scale was misread ten times too small",
-            value=_scaled_by(-10.0)),
+            value=_TENTH, placed=_at_scale(_TENTH),
+            drawing="the plan was drawn at a wrong scale, misread ten times too small "
+                    "(every length ten times too long)"),
     Mistake("degrees", "degrees were given for radians", value=_degrees),
     Mistake("length_mm", "the length was taken in mm instead of m", value=_length_mm),
     Mistake("millimetres", "millimetres were given for metres", value=_millimetres),
@@ -357,3 +434,102 @@ def value_answers(quantity: str, value: float, tolerance: float, *, scales,
     return [(key, wrong, wrong_tolerance) for key, mistake in REGISTRY.items()
             if mistake.value is not None
             for wrong, wrong_tolerance in mistake.value(quantity, value, tolerance, given)]
+
+
+def drawn_explanation(mistake: str) -> str:
+    """What a student who drew a plan point where ``mistake`` puts it is told: the registry's
+    explanation, and for a reversed sense the plan turned 180°.
+
+    >>> drawn_explanation("sense")
+    'the sense of ω1 was reversed (the plan is turned 180°)'
+    >>> drawn_explanation("no_coriolis")
+    'the Coriolis component aᵏ was left out'
+    """
+    return REGISTRY[mistake].drawing or REGISTRY[mistake].explanation
+
+
+def drawn_mistakes(plan: PlanContext, radii: Mapping[str, float],
+                   redrawn: Mapping[str, Mapping[str, Sequence[float]]],
+                   labels: Sequence[str]) -> dict[str, list[list]]:
+    """Where the known mistakes put each drawn point: ``label → [[mistake, x, y], …]`` (mm, y up,
+    rounded to :data:`DRAWN_DECIMALS`), in registry order.
+
+    ``redrawn`` holds the points of the plans re-drawn with a construction mistake (and the
+    velocity plan turned 180° under ``sense``); a mistake with a ``placed`` rule places the
+    point from the right plan. Only positions told apart from the right one and from the pole
+    (by more than the point's tolerance radius in ``radii``) and on a sheet are listed.
+
+    Examples
+    --------
+    >>> context = PlanContext({"p": (0.0, 0.0), "b": (0.0, 30.0), "c": (20.0, 10.0)},
+    ...                       {"c": ("b",)}, None, ScalesAndMotion(None, None))
+    >>> drawn_mistakes(context, {"b": 0.5, "c": 0.5}, {}, ["b", "c"])
+    {'c': [['relative_for_absolute', 20.0, -20.0]]}
+    """
+    out: dict[str, list[list]] = {}
+    for label in labels:
+        right_x, right_y = (float(v) for v in plan.points_mm[label])
+        radius = float(radii.get(label, 0.0))
+        found: list[list] = []
+        for key, mistake in REGISTRY.items():
+            positions = []
+            if label in redrawn.get(key, {}):
+                positions.append(redrawn[key][label])
+            if mistake.placed is not None:
+                positions += mistake.placed(label, plan)
+            for position in positions:
+                x, y = (round(float(value), DRAWN_DECIMALS) + 0.0 for value in position)
+                if not (math.isfinite(x) and math.isfinite(y)):
+                    continue
+                away = math.hypot(x, y)
+                if (math.hypot(x - right_x, y - right_y) <= radius or away <= radius
+                        or away > DRAWN_SHEET_MM or [key, x, y] in found):
+                    continue
+                found.append([key, x, y])
+        if found:
+            out[label] = found
+    return out
+
+
+def plan_context(plans, name: str, motion) -> PlanContext:
+    """The :class:`PlanContext` of the plan ``name`` (``velocity`` or ``acceleration``) of
+    :class:`~planmethod.plans.Plans` drawn from ``motion`` (their exact motion).
+
+    >>> from planmethod.kinematics import solve
+    >>> from planmethod.plans import draw_plans
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    >>> motion = solve(exercise.mechanism, exercise.mechanism.drive.angle)
+    >>> context = plan_context(draw_plans(exercise, motion=motion), "velocity", motion)
+    >>> context.others["c"], context.first[0]
+    (('b', 'd'), 'v_B')
+    """
+    from ..model import FRAME
+    from ..plans import image_label
+    from ..report import exact_value
+
+    plan = getattr(plans, name)
+    mechanism = plans.exercise.mechanism
+    labels = set(plan.points_mm)
+    others: dict[str, tuple[str, ...]] = {}
+    for label in plan.points_mm:
+        if "_" in label or label == plan.pole:      # n_CB, k_C…: no point of a link
+            continue
+        point_name, at, link = label.partition("@")
+        point = point_name.rstrip("′").upper()
+        links = [link] if at else [each for each in mechanism.links_with_point(point)
+                                    if each != FRAME]
+        found: list[str] = []
+        for each in links:
+            for other in mechanism.links[each].points if each in mechanism.links else ():
+                image = image_label(other, plan.pole)
+                if other != point and image in labels and image not in found:
+                    found.append(image)
+        others[label] = tuple(found)
+    quantity = f"{'v' if name == 'velocity' else 'a'}_{plans.scales.scale_point}"
+    try:
+        value = exact_value(motion, quantity)
+    except KeyError:
+        value = None
+    first = (quantity, float(value)) if value else None
+    return PlanContext(plan.points_mm, others, first, ScalesAndMotion(plans.scales, motion))

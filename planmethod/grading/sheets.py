@@ -33,7 +33,8 @@ from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
 from ..vocabulary import SCALES, link_numbers, symbol
 
-__all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_sheet_svg", "task_text"]
+__all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_figure_svg", "task_sheet_svg",
+           "task_text"]
 
 
 def task_text(key: Mapping[str, Any]) -> str:
@@ -84,20 +85,34 @@ def _words(name: str) -> str:
     return name.replace("_", " ")
 
 
-def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
-    """The task sheet: the position plan (no answers on it) above the task text.
+def task_figure_svg(plans, notes: list[str] | None = None) -> str:
+    """The task's figure: the mechanism at its position as the task sheet draws it (the
+    position plan without its curvature construction, which would show ρ), with ``notes``
+    under it.
 
     ``plans`` are the variant's :class:`~planmethod.plans.Plans` (only the position plan is
-    drawn; its curvature construction, which would show ρ, is left out).
+    drawn).
+
+    >>> from planmethod.plans import draw_plans
+    >>> from planmethod.spec import load_exercise
+    >>> plans = draw_plans(load_exercise("exercises/slotted_lever.toml"), acceleration=False)
+    >>> "position plan, φ₁ = 30°" in task_figure_svg(plans)
+    True
     """
     position = replace(plans.position, curvature={})
+    return position_drawing(position, notes=notes or []).svg
+
+
+def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
+    """The task sheet: the task's figure (:func:`task_figure_svg`, no answers on it) above the
+    task text."""
     lines: list[str] = []
     for line in task_text(key).splitlines():
         if line.startswith("  "):     # a row of the answer table: kept whole
             lines.append(line)
         else:
             lines += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
-    return position_drawing(position, notes=lines).svg
+    return task_figure_svg(plans, lines)
 
 
 def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: float,

@@ -37,6 +37,8 @@
     const magnitude = right < 0 && ratio > 0 ? " in magnitude" : "";
     return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
   }
+  // what a negative answer for a magnitude is told, by quantity (filled from the page's data)
+  const negativeNotes = {};
   // the rules of planmethod.grading.answers.grade_question, on the precomputed key
   function grade(q, raw) {
     const unit = q.unit || "";
@@ -72,6 +74,11 @@
         }
       }
     }
+    const note = !q.signed && answer < 0 ? negativeNotes[q.id] : undefined;
+    if (note) {   // a magnitude given with a sign (planmethod.grading.answers.magnitude_note)
+      result.feedback = shown + ": wrong — " + note + " (right: " + right + ")";
+      return result;
+    }
     if (q.signed && q.value !== 0 && answer !== 0 && (answer > 0) !== (q.value > 0)) {
       result.feedback = shown + ": wrong — the sense is reversed (the right answer is " +
         (q.value > 0 ? "counter-clockwise" : "clockwise") + ", " + right + ") and the magnitude " +
@@ -94,6 +101,7 @@
 
   load().then(data => {
     wb.data = data;
+    data.quantities.forEach(q => { if (q.negative) negativeNotes[q.name] = q.negative; });
     const panels = data.panels.map(name => document.getElementById("panel-" + name));
     const cells = Array.from(document.querySelectorAll("#readings tbody td.reading"));
     const planCells = Array.from(document.querySelectorAll("#readings tbody td.plan-reading"));
@@ -179,6 +187,8 @@
       wb.step = null;
       document.getElementById("step-text").textContent = "";
       document.getElementById("step-number").textContent = "";
+      // other parts of the page (the drawing mode) follow the frame: part of the switch
+      document.dispatchEvent(new CustomEvent("workbook:frame", {detail: {frame: frame}}));
       void document.body.offsetHeight;  // lay the page out: part of the switch
       const spent = performance.now() - t0;
       wb.switchTimes.push(spent);
@@ -260,6 +270,8 @@
     wb.check = check;
     document.getElementById("check").addEventListener("click", check);
 
+    // other parts of the page (the drawing mode) start from the loaded data
+    document.dispatchEvent(new CustomEvent("workbook:load", {detail: wb}));
     show(0);
     status.textContent = "";
     wb.ready = true;

@@ -163,7 +163,7 @@ def _pack(data: Any) -> str:
 def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
                   frames: Sequence[Mapping[str, Any]], quantities: Sequence[Mapping[str, str]],
                   *, charts: Sequence[tuple[str, tuple[float, float]]] = (),
-                  notes: Sequence[str] = ()) -> str:
+                  notes: Sequence[str] = (), drawing: Mapping[str, Any] | None = None) -> str:
     """The workbook page as HTML text.
 
     Parameters
@@ -186,6 +186,9 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         Full-turn charts from :func:`curve_chart`.
     notes
         Lines shown under the title (drafting precision, where the tolerances come from).
+    drawing
+        The drawing mode's data (:func:`planmethod.render.workbook_draw.drawing_data`); each
+        frame then holds its ``draw`` data too. None: no drawing mode.
     """
     table = StringTable()
     packed_frames = []
@@ -197,10 +200,20 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
                  for plan, listed in frame.get("steps", {}).items()}
         packed_frames.append({"drawings": drawings, "readings": frame["readings"],
                               "steps": steps, "questions": frame.get("questions", [])})
+    draw_html, draw_extra = "", ""
+    if drawing is not None:
+        from .workbook_draw import DRAW_STYLE, draw_script, drawing_section, pack_frame
+
+        for packed, frame in zip(packed_frames, frames, strict=True):
+            packed["draw"] = pack_frame(frame.get("draw", {}), drawing["extents"])
+        draw_html = drawing_section(list(drawing["extents"]))
+        draw_extra = f"<script>{draw_script()}</script>\n<style>{DRAW_STYLE}</style>"
     data = {"angles": [float(a) for a in angles], "panels": list(panels),
             "strings": table.strings, "frames": packed_frames,
             "quantities": [dict(q) for q in quantities],
             "charts": [list(span) for _, span in charts]}
+    if drawing is not None:
+        data["draw"] = dict(drawing)
     rows = "\n".join(
         f'<tr><th scope="row">{_quantity_label(q)}</th>'
         f'<td class="reading" data-quantity="{html.escape(q["name"])}" data-value=""></td>'
@@ -221,7 +234,8 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     return _PAGE.format(
         title=html.escape(title), notes=note_html, low=num(low), high=num(high),
         step=num(step), panels=panel_html, charts=chart_html, rows=rows,
-        data=_pack(data), style=_STYLE, script=_script())
+        data=_pack(data), style=_STYLE, script=_script(), drawing=draw_html,
+        drawing_script=draw_extra)
 
 
 _STYLE = """
@@ -274,6 +288,7 @@ _PAGE = """<!DOCTYPE html>
 <div id="panels">
 {panels}
 </div>
+{drawing}
 <section id="playback">
 <label>construction of the
 <select id="step-plan"><option value="velocity">velocity plan</option>
@@ -299,6 +314,7 @@ _PAGE = """<!DOCTYPE html>
 {charts}
 </div>
 <script type="application/octet-stream" id="workbook-data">{data}</script>
+{drawing_script}
 <script>{script}</script>
 </body>
 </html>

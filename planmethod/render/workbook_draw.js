@@ -1,0 +1,502 @@
+"use strict";
+// The workbook's drawing mode (see docs/workbook-drawing.md): the student draws the velocity
+// and the acceleration plan of the current angle on a millimetre grid; "check" grades every
+// point within its own tolerance disc and names the known mistake whose position of the point
+// it lies in. Everything it compares against was computed in Python (the answer key of the
+// angle: planmethod.grading.plan_points.drawing_frame); nothing here computes mechanics.
+(function () {
+  const PLANS = ["velocity", "acceleration"];
+  const ZOOMS = [4, 5, 6, 8, 10, 12, 16, 20, 24, 32];   // CSS px per drawing millimetre
+  const NUDGE_MM = 0.5;
+  const draw = {results: {}, checkTimes: [], tool: {}, selected: {}, armed: {}, revealed: {},
+                shownPlan: {}, frame: -1, zoom: 6};
+  let wb = null, meta = null, store = null, drag = null;
+
+  const element = id => document.getElementById(id);
+  const round2 = value => Math.round(value * 100) / 100;
+  const fixed = (value, digits) => Number(value).toFixed(digits);
+  const nameOf = label => (meta.names[label] || label);
+  const planBox = plan => document.querySelector('.draw-plan[data-plan="' + plan + '"]');
+  const svgOf = plan => document.querySelector('svg[data-draw="' + plan + '"]');
+  function frameData(plan) {
+    const frame = wb.data.frames[draw.frame];
+    return frame && frame.draw ? frame.draw[plan] : undefined;
+  }
+  function notice(text) { element("draw-notice").textContent = text; }
+
+  // -- keeping the drawing: localStorage, one record per exercise and angle ----------------
+  function storageKey() {
+    return "planmethod-drawing:" + meta.title + ":" + wb.data.angles[draw.frame];
+  }
+  function emptyRecord() {
+    const plans = {};
+    PLANS.forEach(plan => { plans[plan] = {points: {}, lines: []}; });
+    return {format: meta.format, version: 1, title: meta.title, exercise: meta.exercise,
+            angle: wb.data.angles[draw.frame], plans: plans};
+  }
+  function restore() {
+    let record = null;
+    try {
+      const text = window.localStorage.getItem(storageKey());
+      if (text !== null) record = JSON.parse(text);
+    } catch (error) {
+      notice("a drawing kept in this browser could not be read and is ignored (" + error + ")");
+      return emptyRecord();
+    }
+    if (record === null) return emptyRecord();
+    if (!record || record.format !== meta.format || record.exercise !== meta.exercise ||
+        record.title !== meta.title || !record.plans) {
+      notice("a drawing kept in this browser for “" + meta.title + "” at φ₁ = " +
+             wb.data.angles[draw.frame] + "° belongs to another exercise (or another " +
+             "version of it) and is ignored; drawing here replaces it");
+      return emptyRecord();
+    }
+    const fresh = emptyRecord();
+    PLANS.forEach(plan => {
+      const kept = record.plans[plan] || {};
+      const points = {};
+      Object.entries(kept.points || {}).forEach(([label, xy]) => {
+        if (Array.isArray(xy) && xy.length === 2 && xy.every(Number.isFinite)) points[label] = xy;
+      });
+      fresh.plans[plan] = {points: points,
+                           lines: (kept.lines || []).filter(line => line && Array.isArray(line.at))};
+    });
+    return fresh;
+  }
+  function save() {
+    try {
+      window.localStorage.setItem(storageKey(), JSON.stringify(store));
+    } catch (error) {
+      notice("this browser does not keep the drawing (" + error + "); download it instead");
+    }
+  }
+
+  // -- the sheet: grid, pole, lines, points ---------------------------------------------------
+  // a new SVG element inside ``parent`` (in its namespace: the page names no address)
+  function make(name, attributes, parent) {
+    const node = document.createElementNS(parent.namespaceURI, name);
+    Object.entries(attributes || {}).forEach(([key, value]) => node.setAttribute(key, value));
+    parent.appendChild(node);
+    return node;
+  }
+  function sheet(plan) {
+    const svg = svgOf(plan);
+    const [left, bottom, right, top] = meta.extents[plan];
+    svg.setAttribute("viewBox", [left, -top, right - left, top - bottom].join(" "));
+    svg.style.width = (right - left) * draw.zoom + "px";
+    svg.style.height = (top - bottom) * draw.zoom + "px";
+    svg.replaceChildren();
+    const grid = make("g", {"class": "grid"}, svg);
+    let minor = "", major = "";
+    for (let x = Math.ceil(left); x <= right; x++) {
+      const path = "M" + x + " " + (-top) + "V" + (-bottom);
+      if (x % 10 === 0) major += path; else minor += path;
+    }
+    for (let y = Math.ceil(bottom); y <= top; y++) {
+      const path = "M" + left + " " + (-y) + "H" + right;
+      if (y % 10 === 0) major += path; else minor += path;
+    }
+    make("path", {d: minor, "class": "minor", "vector-effect": "non-scaling-stroke"}, grid);
+    make("path", {d: major, "class": "major", "vector-effect": "non-scaling-stroke"}, grid);
+    make("g", {"class": "lines"}, svg);
+    make("g", {"class": "right-plan"}, svg);
+    make("g", {"class": "points"}, svg);
+    render(plan);
+  }
+  function marker(parent, x, y, text, css, attributes) {
+    const group = make("g", Object.assign({"class": css}, attributes || {}), parent);
+    make("circle", {cx: x, cy: -y, r: 3.5 / draw.zoom}, group);
+    const label = make("text", {x: x + 5 / draw.zoom, y: -y - 5 / draw.zoom,
+                                "font-size": 14 / draw.zoom}, group);
+    label.textContent = text;
+    return group;
+  }
+  function render(plan) {
+    const svg = svgOf(plan);
+    if (!store || !svg.querySelector("g.points")) return;
+    const drawn = store.plans[plan];
+    const frame = frameData(plan);
+    const lines = svg.querySelector("g.lines");
+    lines.replaceChildren();
+    drawn.lines.forEach((line, index) => {
+      const at = line.through && drawn.points[line.through] ? drawn.points[line.through] :
+        (line.through === meta.poles[plan] ? [0, 0] : line.at);
+      const angle = line.direction_deg * Math.PI / 180, reach = 5000;
+      const dx = Math.cos(angle) * reach, dy = Math.sin(angle) * reach;
+      make("line", {x1: at[0] - dx, y1: -(at[1] - dy), x2: at[0] + dx, y2: -(at[1] + dy),
+                    "class": "construction", "data-line": plan + ":" + index,
+                    "vector-effect": "non-scaling-stroke"}, lines);
+    });
+    const right = svg.querySelector("g.right-plan");
+    right.replaceChildren();
+    if (draw.shownPlan[plan] && frame) {
+      Object.entries(frame.points).forEach(([label, [x, y]]) =>
+        marker(right, x, y, nameOf(label), "right-point"));
+    }
+    const points = svg.querySelector("g.points");
+    points.replaceChildren();
+    marker(points, 0, 0, meta.poles[plan], "pole");
+    Object.entries(drawn.points).forEach(([label, [x, y]]) => {
+      const result = (draw.results[plan] || {})[label];
+      const css = "placed" + (label === draw.selected[plan] ? " selected" : "") +
+        (result ? (result.ok ? " ok" : " off") : "");
+      marker(points, x, y, nameOf(label), css,
+             {"data-point": plan + ":" + label, "data-x": x, "data-y": y});
+    });
+    planBox(plan).querySelectorAll("[data-place]").forEach(button => {
+      const label = button.dataset.place.slice(plan.length + 1);
+      button.classList.toggle("selected", label === draw.selected[plan]);
+      button.setAttribute("aria-pressed", String(label === draw.selected[plan]));
+      button.classList.toggle("placed", label in drawn.points);
+    });
+  }
+
+  // -- the list of points of the angle --------------------------------------------------------
+  function buildList(plan) {
+    const box = planBox(plan);
+    const list = box.querySelector(".draw-points");
+    list.replaceChildren();
+    const frame = frameData(plan);
+    box.classList.toggle("absent", !frame);
+    if (!frame) return;
+    const scale = box.querySelector(".draw-scale");
+    scale.textContent = "pole " + meta.poles[plan] + ", " + meta.scales[plan] + " = " +
+      frame.scale + " " + frame.unit + "; one small square is 1 mm";
+    Object.keys(frame.points).forEach(label => {
+      const item = document.createElement("li");
+      const button = document.createElement("button");
+      button.type = "button";
+      button.dataset.place = plan + ":" + label;
+      button.textContent = nameOf(label);
+      button.title = frame.required.includes(label) ? "a point of the plan" :
+        "a construction point (checked when placed)";
+      button.addEventListener("click", () => select(plan, label));
+      const verdict = document.createElement("span");
+      verdict.className = "draw-verdict";
+      verdict.dataset.verdictFor = plan + ":" + label;
+      item.append(button, " ", verdict);
+      list.appendChild(item);
+    });
+    const first = Object.keys(frame.points).find(label => !(label in store.plans[plan].points));
+    draw.selected[plan] = first === undefined ? Object.keys(frame.points)[0] : first;
+    draw.armed[plan] = first !== undefined;
+  }
+  function select(plan, label) {
+    draw.selected[plan] = label;
+    draw.armed[plan] = true;
+    setTool(plan, "point");
+    render(plan);
+  }
+  function nextUnplaced(plan) {
+    const frame = frameData(plan);
+    const labels = Object.keys(frame.points);
+    const start = labels.indexOf(draw.selected[plan]);
+    for (let k = 1; k <= labels.length; k++) {
+      const label = labels[(start + k) % labels.length];
+      if (!(label in store.plans[plan].points)) return label;
+    }
+    return null;
+  }
+  function clearVerdict(plan, label) {
+    const cell = document.querySelector('[data-verdict-for="' + plan + ":" + label + '"]');
+    if (cell) { cell.textContent = ""; delete cell.dataset.ok; }
+    if (draw.results[plan]) delete draw.results[plan][label];
+  }
+  function setTool(plan, tool) {
+    draw.tool[plan] = tool;
+    planBox(plan).querySelectorAll("[data-tool]").forEach(button =>
+      button.setAttribute("aria-pressed", String(button.dataset.tool === tool)));
+  }
+
+  // -- placing, dragging, nudging -------------------------------------------------------------
+  function planPoint(plan, event) {
+    const svg = svgOf(plan);
+    const point = svg.createSVGPoint();
+    point.x = event.clientX; point.y = event.clientY;
+    const user = point.matrixTransform(svg.getScreenCTM().inverse());
+    return [user.x, -user.y];
+  }
+  function nearest(plan, xy, reachPx) {
+    const reach = reachPx / draw.zoom;
+    let best = null, distance = reach;
+    const candidates = Object.entries(store.plans[plan].points);
+    candidates.push([meta.poles[plan], [0, 0]]);
+    candidates.forEach(([label, [x, y]]) => {
+      const d = Math.hypot(x - xy[0], y - xy[1]);
+      if (d <= distance) { best = label; distance = d; }
+    });
+    return best;
+  }
+  function place(plan, label, x, y) {
+    store.plans[plan].points[label] = [round2(x), round2(y)];
+    clearVerdict(plan, label);
+    save();
+    render(plan);
+  }
+  function onPointerDown(plan, event) {
+    if (event.button !== 0 || !frameData(plan)) return;
+    const xy = planPoint(plan, event);
+    svgOf(plan).focus({preventScroll: true});
+    if (draw.tool[plan] === "line") {
+      const through = nearest(plan, xy, 10);
+      const at = through === meta.poles[plan] ? [0, 0] :
+        (through ? store.plans[plan].points[through] : [round2(xy[0]), round2(xy[1])]);
+      drag = {plan: plan, line: {through: through, at: at.slice(), direction_deg: 0},
+              start: xy};
+    } else {
+      // the armed point (chosen by its button, or the next one not yet placed) goes where the
+      // student clicks; a press on another placed point drags that one
+      const hit = nearest(plan, xy, 8);
+      const label = draw.selected[plan];
+      const other = hit && hit !== meta.poles[plan] && hit !== label ? hit : null;
+      if (draw.armed[plan] && label !== undefined && !other) {
+        place(plan, label, xy[0], xy[1]);
+        drag = {plan: plan, label: label, moved: false, placed: true};
+      } else if (hit && hit !== meta.poles[plan]) {
+        draw.selected[plan] = hit;
+        draw.armed[plan] = false;
+        drag = {plan: plan, label: hit, moved: false, placed: false};
+        render(plan);
+      } else {
+        return;
+      }
+    }
+    svgOf(plan).setPointerCapture(event.pointerId);
+    event.preventDefault();
+  }
+  function onPointerMove(plan, event) {
+    if (!drag || drag.plan !== plan) return;
+    const xy = planPoint(plan, event);
+    if (drag.line) {
+      const at = drag.line.at;
+      drag.line.direction_deg = Math.round(
+        Math.atan2(xy[1] - at[1], xy[0] - at[0]) * 1800 / Math.PI) / 10;
+      drag.length = Math.hypot(xy[0] - at[0], xy[1] - at[1]) * draw.zoom;
+      const preview = svgOf(plan).querySelector("line.preview") ||
+        make("line", {"class": "construction preview", "vector-effect": "non-scaling-stroke"},
+             svgOf(plan).querySelector("g.lines"));
+      preview.setAttribute("x1", at[0]); preview.setAttribute("y1", -at[1]);
+      preview.setAttribute("x2", xy[0]); preview.setAttribute("y2", -xy[1]);
+    } else {
+      drag.moved = true;
+      store.plans[plan].points[drag.label] = [round2(xy[0]), round2(xy[1])];
+      clearVerdict(plan, drag.label);
+      render(plan);
+    }
+  }
+  function onPointerUp(plan) {
+    if (!drag || drag.plan !== plan) return;
+    const done = drag;
+    drag = null;
+    if (done.line) {
+      if ((done.length || 0) >= 6) store.plans[plan].lines.push(done.line);
+      render(plan);
+    } else if (done.placed) {
+      const next = nextUnplaced(plan);
+      draw.armed[plan] = next !== null;
+      if (next !== null) draw.selected[plan] = next;
+      render(plan);
+    }
+    save();
+  }
+  function onKey(plan, event) {
+    const label = draw.selected[plan];
+    const points = store.plans[plan].points;
+    const steps = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1]};
+    if (event.key in steps && label in points) {
+      const [dx, dy] = steps[event.key];
+      const [x, y] = points[label];
+      place(plan, label, x + dx * NUDGE_MM, y + dy * NUDGE_MM);
+      event.preventDefault();
+    } else if ((event.key === "Delete" || event.key === "Backspace") && label in points &&
+               event.target.tagName !== "INPUT") {
+      delete points[label];
+      clearVerdict(plan, label);
+      save();
+      render(plan);
+      event.preventDefault();
+    }
+  }
+
+  // -- checking -------------------------------------------------------------------------------
+  // the one comparison of planmethod.grading.plan_points.named_mistakes
+  function namedMistakes(candidates, x, y, radius) {
+    const out = [];
+    (candidates || []).forEach(([index, mx, my]) => {
+      const mistake = meta.mistakes[index][0];
+      if (Math.hypot(x - mx, y - my) <= radius && !out.includes(mistake)) out.push(mistake);
+    });
+    return out;
+  }
+  function mistakeSentence(mistakes) {
+    const texts = Object.fromEntries(meta.mistakes);
+    const [sentence, joint] = meta.wording;
+    return "it lies " + sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
+  }
+  function check(plan) {
+    const t0 = performance.now();
+    const frame = frameData(plan);
+    const results = {};
+    if (!frame) return results;
+    const drawn = store.plans[plan].points;
+    Object.entries(frame.points).forEach(([label, [x, y, radius]]) => {
+      const name = nameOf(label);
+      const required = frame.required.includes(label);
+      const result = {label: label, placed: label in drawn, required: required, ok: false,
+                      mistakes: []};
+      if (!(label in drawn)) {
+        result.ok = required ? false : null;
+        result.sentence = name + ": not placed" + (required ? "" : " (a construction point: " +
+          "checked when placed)");
+      } else {
+        const [u, v] = drawn[label];
+        const distance = Math.hypot(u - x, v - y);
+        result.distance = distance;
+        result.ok = distance <= radius;
+        if (result.ok) {
+          result.sentence = name + ": right — " + fixed(distance, 2) + " mm from where the " +
+            "construction puts it, within its tolerance of " + fixed(radius, 2) + " mm";
+        } else {
+          result.mistakes = namedMistakes(frame.mistakes[label], u, v, radius);
+          result.sentence = name + " is " + fixed(distance, 1) + " mm off (tolerance " +
+            fixed(radius, 2) + " mm)" +
+            (result.mistakes.length ? "; " + mistakeSentence(result.mistakes) : "");
+        }
+      }
+      results[label] = result;
+    });
+    draw.results[plan] = results;
+    Object.values(results).forEach(result => {
+      const cell = document.querySelector('[data-verdict-for="' + plan + ":" + result.label + '"]');
+      if (!cell) return;
+      cell.textContent = result.sentence;
+      if (result.ok === null) delete cell.dataset.ok; else cell.dataset.ok = String(result.ok);
+    });
+    const required = Object.values(results).filter(result => result.required);
+    planBox(plan).querySelector(".draw-summary").textContent =
+      required.filter(result => result.ok).length + " of " + required.length +
+      " points of the " + plan + " plan right";
+    render(plan);
+    void document.body.offsetHeight;   // the verdicts laid out: part of the check
+    draw.checkTimes.push(performance.now() - t0);
+    return results;
+  }
+
+  // -- help: the construction step by step, the right plan on request ------------------------
+  function panelOf(plan) { return element("panel-" + plan); }
+  function showStep(plan) {
+    const steps = wb.data.frames[draw.frame].steps[plan] || [];
+    if (!steps.length || !panelOf(plan)) return;
+    const next = Math.min(steps.length - 1, (draw.revealed[plan] ?? -1) + 1);
+    draw.revealed[plan] = next;
+    // the plan's points show as its steps reach them, not all at once
+    panelOf(plan).classList.add("revealed", "stepwise");
+    element("step-plan").value = plan;
+    wb.playStep(next);
+    planBox(plan).querySelector(".draw-step").textContent =
+      "step " + (next + 1) + " of " + steps.length + ": " + wb.data.strings[steps[next][1]];
+  }
+  function showPlan(plan) {
+    draw.shownPlan[plan] = true;
+    const panel = panelOf(plan);
+    if (panel) {
+      panel.classList.add("revealed");
+      panel.classList.remove("stepwise");
+      panel.querySelectorAll(".step-hidden, .step-current").forEach(node =>
+        node.classList.remove("step-hidden", "step-current"));
+    }
+    render(plan);
+  }
+
+  // -- the drawing as the JSON planmethod grade --drawing reads -------------------------------
+  function exported(plan) {
+    const points = {};
+    points[meta.poles[plan]] = [0, 0];
+    Object.assign(points, store.plans[plan].points);
+    return {format: meta.format, version: 1, title: meta.title, exercise: meta.exercise,
+            angle: wb.data.angles[draw.frame], plan: plan, points: points,
+            lines: store.plans[plan].lines};
+  }
+  function download(plan) {
+    const text = JSON.stringify(exported(plan), null, 1) + "\n";
+    const link = document.createElement("a");
+    link.href = URL.createObjectURL(new Blob([text], {type: "application/json"}));
+    const slug = meta.title.toLowerCase().replace(/[^a-z0-9]+/g, "-").replace(/^-|-$/g, "");
+    link.download = (slug || "plan") + "-" + plan + "-" + wb.data.angles[draw.frame] + "deg.json";
+    document.body.appendChild(link);
+    link.click();
+    link.remove();
+    setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+  }
+
+  // -- the page's frames ----------------------------------------------------------------------
+  function onFrame(frame) {
+    draw.frame = frame;
+    draw.results = {};
+    draw.revealed = {};
+    draw.shownPlan = {};
+    notice("");
+    store = restore();
+    PLANS.forEach(plan => {
+      if (!planBox(plan)) return;
+      if (panelOf(plan)) panelOf(plan).classList.remove("revealed", "stepwise");
+      planBox(plan).querySelector(".draw-summary").textContent = "";
+      planBox(plan).querySelector(".draw-step").textContent = "";
+      buildList(plan);
+      render(plan);
+    });
+  }
+  function setZoom(zoom) {
+    draw.zoom = zoom;
+    element("draw-zoom").textContent = zoom + " px/mm";
+    PLANS.forEach(plan => { if (planBox(plan)) sheet(plan); });
+  }
+  function start(workbook) {
+    wb = workbook;
+    meta = wb.data.draw;
+    if (!meta) return;
+    const widest = Math.max(...PLANS.filter(plan => meta.extents[plan]).map(
+      plan => meta.extents[plan][2] - meta.extents[plan][0]));
+    draw.zoom = ZOOMS.filter(zoom => zoom === ZOOMS[0] || zoom * widest <= 640).pop();
+    PLANS.forEach(plan => {
+      const box = planBox(plan);
+      if (!box) return;
+      const svg = svgOf(plan);
+      draw.tool[plan] = "point";
+      svg.addEventListener("pointerdown", event => onPointerDown(plan, event));
+      svg.addEventListener("pointermove", event => onPointerMove(plan, event));
+      svg.addEventListener("pointerup", () => onPointerUp(plan));
+      svg.addEventListener("pointercancel", () => onPointerUp(plan));
+      box.addEventListener("keydown", event => onKey(plan, event));
+      box.querySelectorAll("[data-tool]").forEach(button =>
+        button.addEventListener("click", () => setTool(plan, button.dataset.tool)));
+      box.querySelector("[data-check]").addEventListener("click", () => check(plan));
+      box.querySelector("[data-download]").addEventListener("click", () => download(plan));
+      box.querySelector("[data-show-step]").addEventListener("click", () => showStep(plan));
+      box.querySelector("[data-show-plan]").addEventListener("click", () => showPlan(plan));
+      box.querySelector("[data-unline]").addEventListener("click", () => {
+        store.plans[plan].lines.pop(); save(); render(plan);
+      });
+      box.querySelector("[data-clear]").addEventListener("click", () => {
+        store.plans[plan] = {points: {}, lines: []};
+        draw.results[plan] = {};
+        save();
+        buildList(plan);
+        render(plan);
+      });
+    });
+    element("draw-mode").addEventListener("change", event =>
+      document.body.classList.toggle("drawing", event.target.checked));
+    document.querySelectorAll("[data-zoom]").forEach(button => button.addEventListener(
+      "click", () => {
+        const at = ZOOMS.indexOf(draw.zoom) + Number(button.dataset.zoom);
+        setZoom(ZOOMS[Math.max(0, Math.min(ZOOMS.length - 1, at))]);
+      }));
+    wb.draw = Object.assign(draw, {check: check, place: place, exported: exported,
+                                   select: select, showStep: showStep, showPlan: showPlan,
+                                   drawing: plan => store.plans[plan]});
+    setZoom(draw.zoom);
+  }
+  document.addEventListener("workbook:load", event => start(event.detail));
+  document.addEventListener("workbook:frame", event => { if (meta) onFrame(event.detail.frame); });
+})();

@@ -1,0 +1,168 @@
+"""The workbook's drawing mode: the student draws the plans of the current angle on a
+millimetre grid, and the page grades each point (docs/workbook-drawing.md).
+
+This module adds to the page (:func:`planmethod.render.workbook.workbook_html`) its markup
+(:func:`drawing_section`), style (:data:`DRAW_STYLE`), script (``workbook_draw.js`` beside this
+module) and data (:func:`drawing_data`, :func:`pack_frame`). The data are computed in Python
+from each angle's answer key (:func:`planmethod.grading.plan_points.drawing_frame`); the script
+only compares a drawn point with them.
+
+The markup is stable (the browser tests and any course tooling rely on it):
+``svg[data-draw="velocity"]`` / ``svg[data-draw="acceleration"]`` have the plan's millimetres
+as user units with the pole at (0, 0), so a point (x, y) of ``plans.<plan>.points_mm`` of
+``planmethod solve --json`` is at user coordinates (x, −y); ``[data-place="<plan>:<point>"]``
+chooses the point to place next; ``[data-check="<plan>"]`` grades; each point's verdict is in
+``[data-verdict-for="<plan>:<point>"]`` with ``data-ok="true|false"``; ``[data-download=
+"<plan>"]`` saves the drawing as the JSON ``planmethod grade --drawing`` reads.
+
+Examples
+--------
+>>> markup = drawing_section(["velocity", "acceleration"])
+>>> 'svg data-draw="velocity"' in markup and 'data-check="acceleration"' in markup
+True
+>>> pack_frame({"velocity": {"points": {"b": [1.0, 2.0, 0.5]}, "required": ["b"],
+...             "mistakes": {"b": [[0, -1.0, -2.0], [3, 900.0, 0.0]]}}},
+...            {"velocity": (-20.0, -20.0, 20.0, 20.0)})["velocity"]["mistakes"]
+{'b': [[0, -1.0, -2.0]]}
+"""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+__all__ = ["DRAW_STYLE", "draw_script", "drawing_data", "drawing_section", "pack_frame"]
+
+#: what each plan is called on the page, and its scale's symbol
+PLAN_TITLES = {"velocity": ("velocity plan", "μv"), "acceleration": ("acceleration plan", "μa")}
+
+
+def drawing_section(plans: Sequence[str]) -> str:
+    """The drawing mode's markup: a switch, the zoom, and per plan a sheet with its tools."""
+    blocks = []
+    for plan in plans:
+        name = html.escape(plan)
+        title = PLAN_TITLES[plan][0]
+        blocks.append(f"""<div class="draw-plan" data-plan="{name}">
+<h3>{title} <span class="draw-scale"></span></h3>
+<div class="draw-tools">
+<button type="button" data-tool="point" aria-pressed="true">place points</button>
+<button type="button" data-tool="line" aria-pressed="false">draw a construction line</button>
+<button type="button" data-unline="{name}">remove the last line</button>
+<button type="button" data-clear="{name}">clear</button>
+</div>
+<div class="draw-sheet"><svg data-draw="{name}" tabindex="0" role="img"
+ aria-label="your {title}: millimetre grid, the pole at the origin"></svg></div>
+<ol class="draw-points"></ol>
+<div class="draw-actions">
+<button type="button" data-check="{name}">check</button>
+<button type="button" data-show-step="{name}">show the construction (next step)</button>
+<button type="button" data-show-plan="{name}">show the right plan</button>
+<button type="button" data-download="{name}">download the drawing</button>
+</div>
+<p class="draw-summary"></p>
+<p class="draw-step"></p>
+</div>""")
+    return f"""<section id="drawing">
+<h2>Draw the plans</h2>
+<p><label><input type="checkbox" id="draw-mode"> draw the plans of this angle yourself</label>
+(the plans' drawings are hidden; click to place a point, drag it, the arrow keys move it
+0.5 mm, Delete removes it)
+<span class="draw-zoom">zoom <button type="button" data-zoom="-1" aria-label="zoom out">−</button>
+<output id="draw-zoom"></output>
+<button type="button" data-zoom="1" aria-label="zoom in">+</button></span></p>
+<p id="draw-notice" role="status"></p>
+<div class="draw-plans">
+{chr(10).join(blocks)}
+</div>
+</section>"""
+
+
+def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
+                 poles: Mapping[str, str], extents: Mapping[str, Sequence[float]],
+                 mistakes: Sequence[tuple[str, str]], wording: Sequence[str],
+                 file_format: str) -> dict[str, Any]:
+    """What the drawing mode needs besides each frame's points: the exercise's ``title`` and
+    fingerprint (``exercise``: a kept drawing of another exercise is ignored), each point's
+    course name (``names``: b₄), the poles, one sheet per plan for the whole turn
+    (``extents``: left, bottom, right, top in mm, y up), the mistakes by index with what the
+    student is told, the sentence that names them, and the ``format`` of a downloaded
+    drawing.
+
+    >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₄"},
+    ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
+    ...                     mistakes=[("sense", "ω1 reversed")], wording=("when {}", ", or "),
+    ...                     file_format="planmethod-drawing")
+    >>> data["scales"], data["extents"]["velocity"]
+    ({'velocity': 'μv'}, [-20.0, -20.0, 20.0, 20.0])
+    """
+    return {"title": title, "exercise": exercise, "names": dict(names), "poles": dict(poles),
+            "scales": {plan: PLAN_TITLES[plan][1] for plan in poles},
+            "extents": {plan: [float(v) for v in extent] for plan, extent in extents.items()},
+            "mistakes": [list(pair) for pair in mistakes], "wording": list(wording),
+            "format": file_format}
+
+
+def pack_frame(draw: Mapping[str, Any], extents: Mapping[str, Sequence[float]]
+               ) -> dict[str, Any]:
+    """One frame's drawing data for the page, without the mistakes' positions that fall off
+    the plan's sheet (nobody can click there)."""
+    out = {}
+    for plan, entry in draw.items():
+        left, bottom, right, top = extents[plan]
+        mistakes = {}
+        for label, candidates in entry["mistakes"].items():
+            kept = [candidate for candidate in candidates
+                    if left <= candidate[1] <= right and bottom <= candidate[2] <= top]
+            if kept:
+                mistakes[label] = kept
+        out[plan] = {**entry, "mistakes": mistakes}
+    return out
+
+
+def draw_script() -> str:
+    """The drawing mode's script (``workbook_draw.js`` beside this module)."""
+    from importlib.resources import files
+
+    return files(__package__).joinpath("workbook_draw.js").read_text(encoding="utf-8")
+
+
+DRAW_STYLE = """
+#drawing{margin-top:10px;border-top:1px solid #ccc}
+#drawing h2{font-size:1.1em;margin:6px 0}
+.draw-plans,.draw-zoom{display:none}
+body.drawing .draw-plans{display:flex;flex-wrap:wrap;gap:16px}
+body.drawing .draw-zoom{display:inline}
+body.drawing .panel[data-panel]:not([data-panel="position"]):not(.revealed){display:none}
+body.drawing .panel.stepwise circle.point{visibility:hidden}
+.draw-plan{flex:1 1 560px;min-width:320px}
+.draw-plan.absent{display:none}
+.draw-plan h3{font-size:1em;margin:4px 0}
+.draw-scale{font-weight:normal;color:#444}
+.draw-sheet{overflow:auto;max-height:720px;border:1px solid #bbb;margin:4px 0}
+.draw-sheet svg{display:block;background:#fff;cursor:crosshair;touch-action:none}
+.draw-sheet svg:focus{outline:2px solid #1f5fa8}
+.draw-sheet .minor{stroke:#e3e7f0;stroke-width:1px;fill:none}
+.draw-sheet .major{stroke:#b8c0d8;stroke-width:1px;fill:none}
+.draw-sheet .construction{stroke:#7a7a7a;stroke-width:1px;stroke-dasharray:6 3}
+.draw-sheet .pole circle{fill:#000}
+.draw-sheet .placed circle{fill:#1f5fa8}
+.draw-sheet .placed.selected circle{fill:#d35400}
+.draw-sheet .placed.ok circle{fill:#1a7f37}
+.draw-sheet .placed.off circle{fill:#c0392b}
+.draw-sheet .right-point circle{fill:none;stroke:#2e8b57;stroke-width:1px;
+ vector-effect:non-scaling-stroke}
+.draw-sheet .right-point text{fill:#2e8b57}
+.draw-sheet text{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;
+ pointer-events:none;user-select:none}
+.draw-points{display:flex;flex-direction:column;gap:2px;padding-left:1.5em;margin:4px 0}
+.draw-points button{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;min-width:4em}
+.draw-points button.placed{background:#e8f0fb}
+.draw-points button.selected{outline:2px solid #d35400}
+.draw-verdict[data-ok="true"]{color:#1a7f37}
+.draw-verdict[data-ok="false"]{color:#c0392b}
+.draw-tools button[aria-pressed="true"]{background:#dde7f5}
+#draw-notice{color:#c0392b}
+.draw-step{font-style:italic}
+"""

@@ -1,0 +1,201 @@
+"""Where the known mistakes put each point of a drawn plan — carried by the answer key,
+computed from the mistake registry's own rules — and the drawing graders naming a misplaced
+point by them (``planmethod grade --drawing``; the workbook page's drawing mode and
+PrairieLearn's grade() read the same data: tests/test_browser.py, test_grading_exports.py).
+A drawing downloaded from the page carries its exercise and angle."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from planmethod.cli import main
+from planmethod.grading.drawings import Drawing, grade_drawing, parse_drawing_json
+from planmethod.grading.keys import build_key
+from planmethod.grading.mistakes import MISTAKES, REGISTRY, mistaken_plans
+from planmethod.grading.plan_points import (
+    DRAWN_MISTAKES,
+    drawing_frame,
+    drawn_labels,
+    named_mistakes,
+)
+from planmethod.grading.templates import draw_variant, load_template
+from planmethod.kinematics import solve
+
+ROOT = Path(__file__).resolve().parent.parent
+SLOTTED = "exercises/slotted_lever.toml"
+COMPRESSOR = "exercises/compressor_slider_crank.toml"
+
+
+def _key_and_variant(path: str):
+    variant = draw_variant(load_template(path))
+    return build_key(variant), variant
+
+
+@pytest.fixture(scope="module")
+def slotted():
+    return _key_and_variant(SLOTTED)
+
+
+@pytest.fixture(scope="module")
+def compressor():
+    return _key_and_variant(COMPRESSOR)
+
+
+def _points(key, plan):
+    return {label: tuple(xy) for label, xy in key["plans"][plan]["points_mm"].items()}
+
+
+def _candidates(key, plan, label, mistake):
+    return [(x, y) for kind, x, y in key["plans"][plan]["mistake_points"].get(label, ())
+            if kind == mistake]
+
+
+def test_the_key_puts_a_construction_mistakes_points_where_its_redrawn_plan_does(slotted):
+    key, variant = slotted
+    mechanism = variant.exercise.mechanism
+    motion = solve(mechanism, mechanism.drive.angle)
+    redrawn = mistaken_plans(variant.exercise, "no_coriolis", motion=motion)
+    for label in ("b@lever", "c"):
+        x, y = redrawn.acceleration.points_mm[label]
+        assert _candidates(key, "acceleration", label, "no_coriolis") == [
+            (round(x, 2), round(y, 2))]
+    # the reversed Coriolis component puts b₄ on the other side
+    assert _candidates(key, "acceleration", "b@lever", "coriolis_reversed")
+
+
+def test_listed_positions_are_told_apart_from_the_right_point_and_the_pole(slotted,
+                                                                           compressor):
+    for key, _ in (slotted, compressor):
+        for plan in ("velocity", "acceleration"):
+            entry = key["plans"][plan]
+            assert set(entry["mistake_points"]) <= set(drawn_labels(entry))
+            for label, found in entry["mistake_points"].items():
+                right_x, right_y = entry["points_mm"][label]
+                radius = entry["tolerance_mm"][label]
+                for mistake, x, y in found:
+                    assert mistake in REGISTRY
+                    assert math.hypot(x - right_x, y - right_y) > radius
+                    assert math.hypot(x, y) > radius
+                    assert (round(x, 2), round(y, 2)) == (x, y)
+
+
+def test_relative_for_absolute_and_a_wrong_scale_are_placed_from_the_right_plan(compressor):
+    key, _ = compressor
+    points = _points(key, "velocity")
+    (c_x, c_y), (b_x, b_y) = points["c"], points["b"]
+    # v_CB laid off from the pole: c − b
+    assert (round(c_x - b_x, 2), round(c_y - b_y, 2)) in _candidates(
+        key, "velocity", "c", "relative_for_absolute")
+    # a scale misread ten times too large: every length ten times too short
+    assert _candidates(key, "velocity", "c", "scale_ten") == [
+        (round(c_x / 10, 2), round(c_y / 10, 2))]
+    # with the drive's scale applied twice (v_B/μv²) the plan is 1/μv times too long
+    mu_v = key["scales"]["mu_v"]
+    assert _candidates(key, "velocity", "b", "scale_twice") == [
+        (round(b_x / mu_v, 2), round(b_y / mu_v, 2))]
+
+
+def test_named_mistakes_is_the_one_comparison():
+    candidates = [["no_coriolis", 1.0, 1.0], ["scale_ten", 1.2, 1.0], ["no_coriolis", 1.0, 1.1]]
+    assert named_mistakes(candidates, 1.05, 1.0, 0.2) == ["no_coriolis", "scale_ten"]
+    assert named_mistakes(candidates, 5.0, 5.0, 0.2) == []
+
+
+def test_grade_drawing_names_the_mistake_a_misplaced_point_lies_at(slotted):
+    key, _ = slotted
+    points = _points(key, "acceleration")
+    points["b@lever"] = _candidates(key, "acceleration", "b@lever", "no_coriolis")[0]
+    result = grade_drawing(key, Drawing(points, "acceleration"))
+    verdicts = {p["point"]: p for p in result["points"]}
+    assert not verdicts["b@lever"]["correct"]
+    assert verdicts["b@lever"]["mistakes"] == ["no_coriolis"]
+    assert MISTAKES["no_coriolis"] in verdicts["b@lever"]["feedback"]
+    assert "Coriolis" in verdicts["b@lever"]["feedback"]
+    assert verdicts["c"]["correct"] and "mistakes" not in verdicts["c"]
+
+
+def test_the_page_frame_refers_to_mistakes_by_their_registry_index(slotted):
+    key, _ = slotted
+    frame = drawing_frame(key)["acceleration"]
+    assert frame["required"] == ["b", "b@lever", "c"]
+    assert set(frame["points"]) == {"b", "k_B@lever", "n_B@lever", "b@lever", "c"}
+    for label, (x, y, radius) in frame["points"].items():
+        right = key["plans"]["acceleration"]["points_mm"][label]
+        assert (x, y) == pytest.approx(right, abs=5e-4)
+        assert radius == pytest.approx(key["plans"]["acceleration"]["tolerance_mm"][label],
+                                       abs=5e-4)
+    listed = {(DRAWN_MISTAKES[index], x, y)
+              for index, x, y in frame["mistakes"]["b@lever"]}
+    assert listed == {tuple(entry) for entry in
+                      key["plans"]["acceleration"]["mistake_points"]["b@lever"]}
+
+
+def _page_drawing(key, plan, points, **changes) -> dict:
+    drawing = {"format": "planmethod-drawing", "version": 1, "title": key["title"],
+               "exercise": "0123456789abcdef", "angle": key["angle"], "plan": plan,
+               "points": {key["plans"][plan]["pole"]: [0, 0], **points}, "lines": []}
+    drawing.update(changes)
+    return drawing
+
+
+def test_a_page_drawing_is_graded_at_its_own_scale(compressor):
+    """A drawing made on the page's millimetre grid is never rescaled: a plan drawn ten
+    times too small is wrong, each point named with the wrong scale."""
+    key, _ = compressor
+    small = {label: [x / 10, y / 10] for label, (x, y) in _points(key, "velocity").items()
+             if label in drawn_labels(key["plans"]["velocity"])}
+    drawing = parse_drawing_json(json.dumps(_page_drawing(key, "velocity", small)))
+    assert drawing.title == key["title"] and drawing.angle == key["angle"]
+    result = grade_drawing(key, drawing)
+    assert result["scale_factor"] == 1.0 and result["score"] == 0
+    for point in result["points"]:
+        assert point["mistakes"] == ["scale_ten"], point
+        assert "wrong scale" in point["feedback"]
+    # the same points without the page's format: an editor's unit slip, scaled back
+    plain = parse_drawing_json(json.dumps({"plan": "velocity",
+                                           "points": {"p": [0, 0], **small}}))
+    assert grade_drawing(key, plain)["score"] == grade_drawing(key, plain)["max_score"]
+
+
+@pytest.mark.parametrize(("changes", "words"), [
+    ({"angle": 45.0}, "at φ1 = 45°, the key of 'Crank and slotted lever' at φ1 = 30°"),
+    ({"title": "Another mechanism"}, "the drawing is of 'Another mechanism'"),
+])
+def test_grade_drawing_refuses_a_page_drawing_of_another_exercise_in_one_line(
+        tmp_path, capsys, slotted, changes, words):
+    key, _ = slotted
+    path = tmp_path / "drawing.json"
+    points = {label: list(xy) for label, xy in _points(key, "velocity").items()}
+    path.write_text(json.dumps(_page_drawing(key, "velocity", points, **changes)))
+    code = main(["grade", str(ROOT / SLOTTED), "--drawing", str(path)])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("planmethod: error: ")
+    assert words in err
+
+
+@pytest.mark.parametrize(("changes", "key_name"), [
+    ({"angle": "thirty"}, "angle"), ({"angle": float("inf")}, "angle"), ({"title": 7}, "title"),
+])
+def test_a_page_drawing_with_a_bad_title_or_angle_names_the_key(tmp_path, capsys, slotted,
+                                                                changes, key_name):
+    key, _ = slotted
+    path = tmp_path / "drawing.json"
+    text = json.dumps(_page_drawing(key, "velocity", {"b": [1, 2]}, **changes))
+    path.write_text(text.replace("Infinity", "1e999"))
+    code = main(["grade", str(ROOT / SLOTTED), "--drawing", str(path)])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and f": {key_name}: " in err
+
+
+def test_every_drawn_mistake_has_what_the_student_is_told():
+    from planmethod.grading.mistakes import drawn_explanation
+
+    for mistake in DRAWN_MISTAKES:
+        assert drawn_explanation(mistake)
+    assert "turned 180°" in drawn_explanation("sense")
+    assert "wrong scale" in drawn_explanation("scale_none")
