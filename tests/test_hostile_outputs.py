@@ -1,0 +1,336 @@
+"""Outputs that must not damage what they replace, output sets written all or nothing, worker
+processes that end with the command, and inputs read only when they are regular files, and only
+up to a limit (issue 24).
+
+Each case checks its post-condition, not only the exit status: the special file an output was
+given is still a device, a FIFO or a link afterwards; a folder holds afterwards exactly what it
+held before a failed command; an earlier ``variants`` run is intact after a failed ``--force``;
+no process of the command is alive after it exits.
+
+Devices are private twins made with ``mknod`` in the test's folder (``/dev/null`` is 1:3,
+``/dev/full`` 1:7), never the machine's own, so that a regression damages nothing outside the
+test; they need CAP_MKNOD (root here), and the cases skip without it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import select
+import socket
+import stat
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from planmethod.cli import main
+from planmethod.errors import PlanmethodError
+from planmethod.io import output_set
+
+ROOT = Path(__file__).resolve().parent.parent
+GOOD = str(ROOT / "exercises" / "compressor_slider_crank.toml")
+STUDY = str(ROOT / "exercises" / "fourbar_study.toml")
+FOURBAR = ROOT / "exercises" / "fourbar_forces.toml"
+CONVEYOR = str(ROOT / "exercises" / "conveyor_sixbar.toml")
+TABLE = ROOT / "exercises" / "conveyor_sixbar_table2.csv"
+TEMPLATE = str(ROOT / "exercises" / "templates" / "slider_crank.toml")
+
+
+def _fails(capfd, argv: list) -> str:
+    """Run ``argv`` in-process: exit 2, one line on stderr, no traceback; returns the line."""
+    code = main([str(a) for a in argv])
+    out, err = capfd.readouterr()
+    assert code == 2, (argv, code, out[-300:], err[-300:])
+    assert "Traceback" not in out + err, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("planmethod") and ": error: " in lines[0], err
+    return lines[0]
+
+
+def _tree(folder: Path) -> dict[str, bytes | str]:
+    """Every entry under ``folder`` (hidden ones too): a regular file's bytes, else what it is
+    (a link's target, "folder", or the file type of a device, FIFO or socket)."""
+    def entry(path: Path) -> bytes | str:
+        mode = os.lstat(path).st_mode
+        if stat.S_ISLNK(mode):
+            return f"link to {os.readlink(path)}"
+        if stat.S_ISREG(mode):
+            return path.read_bytes()
+        return "folder" if stat.S_ISDIR(mode) else f"special {stat.S_IFMT(mode)}"
+
+    return {str(path.relative_to(folder)): entry(path) for path in sorted(folder.rglob("*"))}
+
+
+@pytest.fixture
+def private_temp(tmp_path, monkeypatch) -> Path:
+    """The folder Python's tempfile uses during the test (content for devices is staged
+    there): empty again after every command."""
+    folder = tmp_path / "tempdir"
+    folder.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(folder))
+    return folder
+
+
+def _device(path: Path, minor: int) -> Path:
+    """A private twin of /dev/null (minor 3) or /dev/full (minor 7) at ``path``."""
+    try:
+        os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(1, minor))
+    except PermissionError:
+        pytest.skip("making a device needs CAP_MKNOD (root)")
+    return path
+
+
+class FifoReader:
+    """A reader on a FIFO: holds its read end open and collects what is written into it."""
+
+    def __init__(self, path: Path) -> None:
+        self.descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+        self.chunks: list[bytes] = []
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._read, daemon=True)
+        self.thread.start()
+
+    def _read(self) -> None:
+        while not self.stop.is_set():
+            if select.select([self.descriptor], [], [], 0.05)[0]:
+                try:
+                    chunk = os.read(self.descriptor, 1 << 16)
+                except BlockingIOError:
+                    continue
+                if chunk:
+                    self.chunks.append(chunk)
+                else:
+                    time.sleep(0.01)   # no writer at the moment
+
+    def close(self) -> bytes:
+        self.stop.set()
+        self.thread.join()
+        with contextlib.suppress(BlockingIOError):
+            while chunk := os.read(self.descriptor, 1 << 16):
+                self.chunks.append(chunk)
+        os.close(self.descriptor)
+        return b"".join(self.chunks)
+
+
+# ---------------------------------------------------------------------------------------------
+# outputs that exist and are not regular files
+
+#: command → (argv with OUT for the output, the output's suffix)
+SINGLE_OUTPUTS: dict[str, tuple[list[str], str]] = {
+    "sweep --csv": (["sweep", GOOD, "--step", "30", "--csv", "OUT"], ".csv"),
+    "sweep --plot": (["sweep", GOOD, "--step", "30", "--plot", "OUT"], ".svg"),
+    "study --csv": (["study", STUDY, "--step", "90", "--csv", "OUT"], ".csv"),
+    "grade --csv": (["grade", GOOD, "ANSWERS", "--csv", "OUT"], ".csv"),
+    "grade --json": (["grade", GOOD, "ANSWERS", "--json", "OUT"], ".json"),
+    "export moodle": (["export", GOOD, "--format", "moodle", "--out", "OUT"], ".xml"),
+    "workbook": (["workbook", GOOD, "-o", "OUT", "--step", "90"], ".html"),
+    "animate": (["animate", GOOD, "-o", "OUT", "--step", "90"], ".svg"),
+}
+
+
+def _argv(case: str, out: Path, folder: Path) -> list[str]:
+    answers = folder / "answers.csv"
+    if not answers.exists():
+        answers.write_text("student,v_C\ns1,5\n")
+    return [str(out) if a == "OUT" else str(answers) if a == "ANSWERS" else a
+            for a in SINGLE_OUTPUTS[case][0]]
+
+
+@pytest.mark.parametrize("case", list(SINGLE_OUTPUTS))
+def test_a_device_output_stays_a_device(capfd, tmp_path, private_temp, case):
+    """As ``cmd > /dev/null``: written in place, through a link named with the suffix the
+    command asks; the device is still a device and the link still a link."""
+    device = _device(tmp_path / "null", 3)
+    out = tmp_path / f"out{SINGLE_OUTPUTS[case][1]}"
+    out.symlink_to(device)
+    assert main(_argv(case, out, tmp_path)) == 0, capfd.readouterr().err
+    assert out.is_symlink() and stat.S_ISCHR(os.stat(device).st_mode)
+    assert os.stat(device).st_rdev == os.makedev(1, 3)
+    assert list(private_temp.iterdir()) == []
+
+
+@pytest.mark.parametrize("case", list(SINGLE_OUTPUTS))
+def test_a_fifo_output_gets_the_file_and_stays_a_fifo(capfd, tmp_path, private_temp, case):
+    """Into a FIFO that a program reads: the reader gets exactly the bytes the command writes
+    into a regular file, and the FIFO is still a FIFO."""
+    regular = tmp_path / f"regular{SINGLE_OUTPUTS[case][1]}"
+    assert main(_argv(case, regular, tmp_path)) == 0
+    fifo = tmp_path / f"pipe{SINGLE_OUTPUTS[case][1]}"
+    os.mkfifo(fifo)
+    reader = FifoReader(fifo)
+    try:
+        assert main(_argv(case, fifo, tmp_path)) == 0, capfd.readouterr().err
+    finally:
+        received = reader.close()
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    assert received == regular.read_bytes() and received
+    assert list(private_temp.iterdir()) == []
+
+
+@pytest.mark.parametrize("case", ["sweep --csv", "grade --json", "export moodle", "workbook"])
+def test_a_link_to_the_standard_output_writes_into_it(capfd, tmp_path, private_temp, case):
+    """A link to /proc/self/fd/1 (as /dev/stdout is): the content goes into the standard
+    output, the link stays a link."""
+    regular = tmp_path / f"regular{SINGLE_OUTPUTS[case][1]}"
+    assert main(_argv(case, regular, tmp_path)) == 0
+    capfd.readouterr()
+    out = tmp_path / f"stdout{SINGLE_OUTPUTS[case][1]}"
+    out.symlink_to("/proc/self/fd/1")
+    assert main(_argv(case, out, tmp_path)) == 0
+    printed = capfd.readouterr().out
+    assert out.is_symlink() and os.readlink(out) == "/proc/self/fd/1"
+    assert regular.read_text(encoding="utf-8") in printed
+    assert list(private_temp.iterdir()) == []
+
+
+def test_a_full_device_is_one_line(capfd, tmp_path, private_temp):
+    device = _device(tmp_path / "full", 7)
+    line = _fails(capfd, ["sweep", GOOD, "--step", "30", "--csv", device])
+    assert "No space left on device" in line and str(device) in line
+    assert stat.S_ISCHR(os.stat(device).st_mode)
+    assert list(private_temp.iterdir()) == []
+
+
+def test_a_full_device_in_a_set_leaves_the_other_file_alone(capfd, tmp_path, private_temp):
+    """grade --json FILE --csv /dev/full: the device refuses, so the JSON is not written."""
+    device = _device(tmp_path / "full.csv", 7)
+    (tmp_path / "answers.csv").write_text("student,v_C\ns1,5\n")
+    (tmp_path / "g.json").write_text("earlier")
+    before = _tree(tmp_path)
+    _fails(capfd, ["grade", GOOD, tmp_path / "answers.csv", "--json", tmp_path / "g.json",
+                   "--csv", device])
+    assert _tree(tmp_path) == before and stat.S_ISCHR(os.stat(device).st_mode)
+
+
+def test_a_fifo_that_nothing_reads_is_refused_at_once(tmp_path):
+    """A real process, so that a regression hangs no test run: one line, exit 2 at once (no
+    waiting for a reader), the FIFO still a FIFO."""
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    done = subprocess.run([sys.executable, "-m", "planmethod", "sweep", GOOD, "--step", "30",
+                           "--csv", str(fifo)], capture_output=True, text=True, cwd=ROOT,
+                          timeout=120)
+    assert done.returncode == 2 and "nothing reads" in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode) and sorted(tmp_path.iterdir()) == [fifo]
+
+
+def test_a_socket_output_is_refused(capfd, tmp_path):
+    path = tmp_path / "s.csv"
+    server = socket.socket(socket.AF_UNIX)
+    try:
+        server.bind(str(path))
+        line = _fails(capfd, ["sweep", GOOD, "--step", "30", "--csv", path])
+        assert "socket" in line and stat.S_ISSOCK(os.lstat(path).st_mode)
+    finally:
+        server.close()
+    assert sorted(tmp_path.iterdir()) == [path]
+
+
+def test_a_link_to_a_regular_file_stays_a_link(tmp_path, capfd):
+    real = tmp_path / "real.csv"
+    real.write_text("earlier")
+    link = tmp_path / "link.csv"
+    link.symlink_to(real.name)
+    assert main(["sweep", GOOD, "--step", "30", "--csv", str(link)]) == 0
+    assert link.is_symlink() and real.read_text().startswith("angle")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.csv", "real.csv"]
+
+
+# ---------------------------------------------------------------------------------------------
+# output sets: all or nothing, no folder left behind
+
+
+def test_solve_svg_with_a_folder_in_the_way_writes_no_drawing(capfd, tmp_path):
+    figures = tmp_path / "svg"
+    (figures / "velocity.svg").mkdir(parents=True)
+    line = _fails(capfd, ["solve", GOOD, "--svg", figures])
+    assert "velocity.svg" in line and "folder" in line
+    assert sorted(p.name for p in figures.iterdir()) == ["velocity.svg"]
+    assert list((figures / "velocity.svg").iterdir()) == []
+
+
+def test_a_sweep_that_cannot_turn_leaves_no_folder(capfd, tmp_path, monkeypatch):
+    """A four-bar whose crank (0.20 m) is too long to turn: the error comes while the CSV is
+    being written, and neither the CSV nor its new folder n1/ is left."""
+    stuck = tmp_path / "stuck.toml"
+    stuck.write_text(FOURBAR.read_text(encoding="utf-8").replace(
+        "B = [0.08, 0]", "B = [0.20, 0]"), encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    line = _fails(capfd, ["sweep", "stuck.toml", "--step", "10", "--csv", "n1/s.csv"])
+    assert "cannot join" in line
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["stuck.toml"]
+
+
+def test_a_slug_too_long_for_a_folder_leaves_no_folder(capfd, tmp_path):
+    line = _fails(capfd, ["export", GOOD, "--format", "prairielearn", "--out", tmp_path / "pl",
+                          "--slug", "q" * 300])
+    assert "--slug" in line and "255" in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_plot_is_not_written_without_its_csv(capfd, tmp_path):
+    (tmp_path / "t.csv").mkdir()
+    _fails(capfd, ["sweep", GOOD, "--step", "30", "--plot", tmp_path / "c.png", "--csv",
+                   tmp_path / "t.csv"])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.csv"]
+
+
+def test_grade_writes_none_of_its_outputs_when_one_fails(capfd, tmp_path):
+    (tmp_path / "answers.csv").write_text("student,v_C\ns1,5\n")
+    (tmp_path / "report").write_text("a file where the report folder should be")
+    before = _tree(tmp_path)
+    line = _fails(capfd, ["grade", GOOD, tmp_path / "answers.csv", "--json",
+                          tmp_path / "new" / "g.json", "--csv", tmp_path / "g.csv", "--report",
+                          tmp_path / "report"])
+    assert "not a folder" in line
+    assert _tree(tmp_path) == before
+
+
+def _fail_call(monkeypatch, name: str, number: int, error: OSError) -> None:
+    """Make the ``number``-th call of ``os.<name>`` raise ``error`` (the others work)."""
+    real = getattr(os, name)
+    calls = []
+
+    def failing(*arguments, **keywords):
+        calls.append(arguments)
+        if len(calls) == number:
+            raise error
+        return real(*arguments, **keywords)
+
+    monkeypatch.setattr(os, name, failing)
+
+
+def test_a_failed_rename_undoes_the_set(tmp_path, monkeypatch):
+    """The second rename of a commit fails: the first file gets its earlier content back, and
+    the folder the commit made is removed."""
+    (tmp_path / "a.txt").write_text("earlier a")
+    before = _tree(tmp_path)
+    _fail_call(monkeypatch, "replace", 2, OSError(28, "No space left on device"))
+    with pytest.raises(PlanmethodError, match="No space left"), output_set() as outputs:
+        outputs.text(tmp_path / "a.txt", "new a")
+        outputs.text(tmp_path / "new" / "b.txt", "new b")
+    monkeypatch.undo()
+    assert _tree(tmp_path) == before
+
+
+def test_a_set_given_one_file_twice_is_refused(tmp_path):
+    with pytest.raises(PlanmethodError, match="twice"), output_set() as outputs:
+        outputs.text(tmp_path / "a.csv", "1")
+        outputs.text(tmp_path / "." / "a.csv", "2")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_set_stages_nothing_outside_its_folder_through_a_link(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / "q").symlink_to(outside)
+    with pytest.raises(ValueError, match="leads out"), output_set() as outputs:
+        outputs.files(tmp_path / "out", {"q/info.json": "{}"})
+    assert list(outside.iterdir()) == []
