@@ -1,5 +1,5 @@
 """Files written whole or not at all, only where the user said, never damaging what they
-replace.
+replace; files read only when they are regular files, and only up to a limit.
 
 Writing. Every file planmethod writes belongs to an :class:`OutputSet` (a command's outputs,
 written together): each file is first *staged* — written in full to a temporary file — and
@@ -22,6 +22,10 @@ folder) pass :func:`path_component`, and files written into an output folder go 
 :meth:`OutputSet.files`, which refuses a relative path that would leave that folder, by name
 or through a symbolic link.
 
+Reading. :func:`read_bytes_bounded` and :func:`read_text_bounded` read every input file: a
+FIFO, a device (``/dev/zero``, ``/dev/urandom``), a socket or a folder is refused with one line
+before it is opened for reading, and at most ``limit + 1`` bytes are read.
+
 Examples
 --------
 >>> import tempfile, pathlib
@@ -29,7 +33,7 @@ Examples
 >>> with output_set() as outputs:
 ...     _ = outputs.text(folder / "a.txt", "hello")
 ...     _ = outputs.text(folder / "new" / "b.txt", "world")
->>> (folder / "new" / "b.txt").read_text()
+>>> read_text_bounded(folder / "new" / "b.txt", limit=100)
 'world'
 >>> path_component("../../x", "--slug")  # doctest: +ELLIPSIS
 Traceback (most recent call last):
@@ -63,6 +67,8 @@ __all__ = [
     "atomic_path",
     "output_set",
     "path_component",
+    "read_bytes_bounded",
+    "read_text_bounded",
     "student_folder",
     "write_bytes_atomic",
     "write_files",
@@ -616,3 +622,79 @@ def write_bytes_atomic(target: str | Path, data: bytes) -> None:
     """Write ``data`` to ``target`` whole or not at all."""
     with output_set() as outputs:
         outputs.binary(target, data)
+
+
+def read_bytes_bounded(path: str | Path, limit: int, *,
+                       error: type[PlanmethodError] = SpecError) -> bytes:
+    """The bytes of the regular file ``path``, at most ``limit`` of them.
+
+    A folder, a FIFO, a device or a socket is refused before it is opened for reading (a FIFO
+    would block, ``/dev/zero`` never ends); then at most ``limit + 1`` bytes are read, so a
+    file that grows while it is read is refused too. Every refusal is an ``error`` (a
+    :class:`SpecError` unless told) naming the file.
+
+    Examples
+    --------
+    >>> read_bytes_bounded("/dev/zero", limit=10)
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: /dev/zero: is a character device, not a regular file
+    """
+    name = str(path)
+    try:
+        status = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        raise error("no such file", file=name) from None
+    except OSError as failure:
+        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+    if stat.S_ISDIR(status.st_mode):
+        raise error("is a folder, not a file", file=name)
+    if not stat.S_ISREG(status.st_mode):
+        raise error(f"is {_special_kind(status.st_mode)}, not a regular file", file=name)
+    if status.st_size > limit:
+        raise error(f"the file is {status.st_size} bytes; at most {limit} are accepted",
+                    file=name)
+    flags = (os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
+             | getattr(os, "O_CLOEXEC", 0))
+    try:
+        descriptor = os.open(path, flags)
+    except OSError as failure:
+        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+    chunks, total = [], 0
+    try:
+        if not stat.S_ISREG(os.fstat(descriptor).st_mode):   # replaced since the stat
+            raise error("is not a regular file", file=name)
+        while total <= limit:
+            chunk = os.read(descriptor, min(_CHUNK, limit + 1 - total))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            total += len(chunk)
+    except OSError as failure:
+        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+    finally:
+        os.close(descriptor)
+    if total > limit:
+        raise error(f"the file is more than {limit} bytes; at most {limit} are accepted",
+                    file=name)
+    return b"".join(chunks)
+
+
+def read_text_bounded(path: str | Path, limit: int, *, encoding: str = "utf-8",
+                      error: type[PlanmethodError] = SpecError) -> str:
+    """The text of the regular file ``path`` (``encoding``; ``utf-8-sig`` drops a byte-order
+    mark), at most ``limit`` bytes of it (see :func:`read_bytes_bounded`).
+
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "big.csv"
+    >>> _ = path.write_text("x" * 11)
+    >>> read_text_bounded(path, limit=10)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: .../big.csv: the file is 11 bytes; at most 10 are accepted
+    """
+    data = read_bytes_bounded(path, limit, error=error)
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError as failure:
+        raise error(f"cannot read the file as UTF-8 text ({failure})", file=str(path)) from None

@@ -30,7 +30,7 @@ import pytest
 
 from planmethod.cli import main
 from planmethod.errors import PlanmethodError
-from planmethod.io import output_set
+from planmethod.io import output_set, read_bytes_bounded
 
 ROOT = Path(__file__).resolve().parent.parent
 GOOD = str(ROOT / "exercises" / "compressor_slider_crank.toml")
@@ -334,3 +334,110 @@ def test_a_set_stages_nothing_outside_its_folder_through_a_link(tmp_path):
     with pytest.raises(ValueError, match="leads out"), output_set() as outputs:
         outputs.files(tmp_path / "out", {"q/info.json": "{}"})
     assert list(outside.iterdir()) == []
+
+
+# ---------------------------------------------------------------------------------------------
+# inputs: regular files only, read up to a limit
+
+#: input → argv with IN for the input (FOLDER: the test's folder)
+INPUTS: dict[str, list[str]] = {
+    "exercise (solve)": ["solve", "IN"],
+    "exercise (sweep)": ["sweep", "IN", "--step", "90"],
+    "template (variants)": ["variants", "IN", "--out", "FOLDER/run"],
+    "roster (variants)": ["variants", TEMPLATE, "--students", "IN", "--out", "FOLDER/run"],
+    "answers (grade)": ["grade", GOOD, "IN"],
+    "drawing (grade)": ["grade", GOOD, "--drawing", "IN", "--plan", "velocity"],
+    "key (grade)": ["grade", "IN", "FOLDER/answers.csv"],
+    "coordinates (check)": ["check", CONVEYOR, "IN"],
+    "answers (export)": ["export", GOOD, "--format", "csv", "--answers", "IN", "--out",
+                         "FOLDER/g.csv"],
+}
+
+#: what a key input needs to be read as one (by its suffix)
+SUFFIXES = {"key (grade)": ".json", "template (variants)": ".toml"}
+
+
+def _input_argv(argv: list[str], path: Path, folder: Path) -> list[str]:
+    (folder / "answers.csv").write_text("student,v_C\ns1,5\n")
+    return [str(path) if a == "IN" else a.replace("FOLDER", str(folder)) for a in argv]
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+@pytest.mark.parametrize("case", list(INPUTS))
+def test_an_endless_device_is_refused(capfd, tmp_path, case, device):
+    """Through a link with the input's suffix, so that nothing but the read tells it apart."""
+    link = tmp_path / f"input{SUFFIXES.get(case, '.csv')}"
+    link.symlink_to(device)
+    argv = _input_argv(INPUTS[case], link, tmp_path)
+    before = _tree(tmp_path)
+    line = _fails(capfd, argv)
+    assert str(link) in line and "character device" in line
+    assert _tree(tmp_path) == before
+
+
+@pytest.mark.parametrize("case", list(INPUTS))
+def test_a_fifo_input_is_refused_without_waiting(capfd, tmp_path, case):
+    """A FIFO with no writer: refused at once. If a read ever blocked on it, a watchdog opens
+    the write end after 20 s so that the test fails instead of hanging."""
+    fifo = tmp_path / f"input{SUFFIXES.get(case, '.csv')}"
+    os.mkfifo(fifo)
+    finished = threading.Event()
+
+    def watchdog() -> None:
+        if not finished.wait(20):
+            descriptor = os.open(fifo, os.O_WRONLY | os.O_NONBLOCK)
+            os.close(descriptor)
+
+    guard = threading.Thread(target=watchdog, daemon=True)
+    guard.start()
+    argv = _input_argv(INPUTS[case], fifo, tmp_path)
+    before = _tree(tmp_path)
+    started = time.monotonic()
+    try:
+        line = _fails(capfd, argv)
+    finally:
+        finished.set()
+        guard.join()
+    assert time.monotonic() - started < 20
+    assert str(fifo) in line and "FIFO" in line and _tree(tmp_path) == before
+
+
+def test_a_moodle_sheet_that_is_a_device_is_refused(capfd, tmp_path):
+    run = tmp_path / "run"
+    assert main(["variants", TEMPLATE, "--out", str(run), "--count", "1"]) == 0
+    capfd.readouterr()
+    (run / "001" / "task.svg").unlink()
+    (run / "001" / "task.svg").symlink_to("/dev/zero")
+    line = _fails(capfd, ["export", run, "--format", "moodle", "--out", tmp_path / "q.xml"])
+    assert "task.svg" in line and not (tmp_path / "q.xml").exists()
+
+
+#: input → (the limit it is read up to, the argv, the file's suffix)
+LIMITS: dict[str, tuple[int, list[str], str]] = {
+    "exercise": (1_000_000, INPUTS["exercise (solve)"], ".toml"),
+    "roster": (20_000_000, INPUTS["roster (variants)"], ".csv"),
+    "coordinates": (50_000_000, INPUTS["coordinates (check)"], ".csv"),
+    "key": (1_000_000_000, INPUTS["key (grade)"], ".json"),
+}
+
+
+@pytest.mark.parametrize("case", list(LIMITS))
+def test_a_file_above_its_limit_is_refused_before_reading(capfd, tmp_path, case):
+    """A sparse file one byte over the limit (no disk used): refused by its size."""
+    limit, argv, suffix = LIMITS[case]
+    path = tmp_path / f"big{suffix}"
+    with path.open("wb") as handle:
+        handle.truncate(limit + 1)
+    line = _fails(capfd, _input_argv(argv, path, tmp_path))
+    assert str(path) in line and f"at most {limit} are accepted" in line
+
+
+def test_the_reader_reads_no_more_than_the_limit(tmp_path):
+    """A file that the stat calls small but that reads longer (as /proc files do) is cut
+    off at limit + 1 bytes and refused."""
+    status = Path("/proc/self/status")
+    if not status.exists() or os.stat(status).st_size:
+        pytest.skip("needs a /proc file whose size is reported as 0")
+    with pytest.raises(PlanmethodError, match="more than 10 bytes"):
+        read_bytes_bounded(status, limit=10)
+    assert len(read_bytes_bounded(status, limit=1_000_000)) > 10

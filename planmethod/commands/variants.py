@@ -12,6 +12,9 @@ from __future__ import annotations
 import argparse
 import re
 
+#: the largest roster read (as an answers file: 200,000 students), bytes
+MAX_ROSTER_BYTES = 20_000_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("template", help="exercise template (TOML with ranges, choices, "
@@ -41,14 +44,9 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     """
     from ..errors import SpecError
     from ..grading.answers import STUDENT_COLUMNS, _answers_from_csv
+    from ..io import read_text_bounded
 
-    try:
-        with open(path, encoding="utf-8-sig") as handle:
-            text = handle.read(5_000_000)
-    except FileNotFoundError:
-        raise SpecError("no such file", file=path) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the roster ({error})", file=path) from None
+    text = read_text_bounded(path, MAX_ROSTER_BYTES, encoding="utf-8-sig")
     lines = [line.strip() for line in text.splitlines() if line.strip()]
     if not lines:
         raise SpecError("the roster is empty", file=path)
