@@ -46,6 +46,7 @@ from __future__ import annotations
 import contextlib
 import enum
 import errno
+import hashlib
 import json
 import os
 import re
@@ -69,6 +70,7 @@ __all__ = [
     "path_component",
     "read_bytes_bounded",
     "read_text_bounded",
+    "sha256_of_file",
     "student_folder",
     "write_bytes_atomic",
     "write_files",
@@ -698,3 +700,28 @@ def read_text_bounded(path: str | Path, limit: int, *, encoding: str = "utf-8",
         return data.decode(encoding)
     except UnicodeDecodeError as failure:
         raise error(f"cannot read the file as UTF-8 text ({failure})", file=str(path)) from None
+
+
+def sha256_of_file(path: str | Path) -> str | None:
+    """The SHA-256 (hex) of the regular file ``path``, read in chunks; None if ``path`` is not
+    a regular file, is a symbolic link, or cannot be read.
+
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.txt"
+    >>> _ = path.write_bytes(b"abc")
+    >>> sha256_of_file(path)[:16], sha256_of_file("/dev/zero")
+    ('ba7816bf8f01cfea', None)
+    """
+    flags = (os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
+             | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0))
+    try:
+        descriptor = os.open(path, flags)
+    except OSError:
+        return None
+    with open(descriptor, "rb") as handle:
+        if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
+            return None
+        try:
+            return hashlib.file_digest(handle, "sha256").hexdigest()
+        except OSError:
+            return None

@@ -15,8 +15,10 @@ test; they need CAP_MKNOD (root here), and the cases skip without it.
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import select
+import signal
 import socket
 import stat
 import subprocess
@@ -334,6 +336,134 @@ def test_a_set_stages_nothing_outside_its_folder_through_a_link(tmp_path):
     with pytest.raises(ValueError, match="leads out"), output_set() as outputs:
         outputs.files(tmp_path / "out", {"q/info.json": "{}"})
     assert list(outside.iterdir()) == []
+
+
+# ---------------------------------------------------------------------------------------------
+# variants --force
+
+
+def _variants(count: int, out: Path, *extra: str) -> list[str]:
+    return ["variants", TEMPLATE, "--out", str(out), "--no-sheets", "--count", str(count),
+            *extra]
+
+
+@pytest.fixture
+def earlier_run(tmp_path, capfd) -> Path:
+    """An earlier run of three variants in tmp_path/run."""
+    out = tmp_path / "run"
+    assert main(_variants(3, out)) == 0
+    capfd.readouterr()
+    return out
+
+
+def test_force_replaces_an_earlier_run_and_removes_only_it(tmp_path, capfd, earlier_run):
+    (tmp_path / "beside.txt").write_text("not in the run")
+    assert main(_variants(2, earlier_run, "--force")) == 0
+    assert sorted(p.name for p in earlier_run.iterdir()) == [
+        "001", "002", "index.csv", "keys.json", "manifest.json"]
+    assert json.loads((earlier_run / "keys.json").read_text())["count"] == 2
+    assert (tmp_path / "beside.txt").read_text() == "not in the run"
+
+
+def test_force_never_follows_a_linked_variant_folder(tmp_path, capfd, earlier_run):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "key.json").write_text("someone else's")
+    for name in os.listdir(earlier_run / "002"):
+        os.unlink(earlier_run / "002" / name)
+    (earlier_run / "002").rmdir()
+    (earlier_run / "002").symlink_to(elsewhere)
+    before = _tree(tmp_path)
+    line = _fails(capfd, _variants(3, earlier_run, "--force"))
+    assert "symbolic link" in line and "002" in line
+    assert _tree(tmp_path) == before and (earlier_run / "002").is_symlink()
+
+
+def test_an_edited_index_never_deletes_the_file_it_names(tmp_path, capfd, earlier_run):
+    (earlier_run / "notes.txt").write_text("mine")
+    with (earlier_run / "index.csv").open("a") as index:
+        index.write("x,notes.txt,0,{}\n")
+    before = _tree(tmp_path)
+    line = _fails(capfd, _variants(3, earlier_run, "--force"))
+    assert "notes.txt" in line
+    assert _tree(tmp_path) == before
+    (earlier_run / "notes.txt").unlink()    # the edited index alone is refused too
+    line = _fails(capfd, _variants(3, earlier_run, "--force"))
+    assert "index.csv changed" in line and (earlier_run / "001" / "key.json").is_file()
+
+
+def test_a_manifest_naming_another_file_is_refused(tmp_path, capfd, earlier_run):
+    (earlier_run / "notes.txt").write_text("mine")
+    manifest = json.loads((earlier_run / "manifest.json").read_text())
+    manifest["files"].append(["notes.txt", 4, "0" * 64])
+    (earlier_run / "manifest.json").write_text(json.dumps(manifest))
+    before = _tree(tmp_path)
+    line = _fails(capfd, _variants(3, earlier_run, "--force"))
+    assert "notes.txt" in line and _tree(tmp_path) == before
+
+
+def test_an_edited_key_is_not_removed(tmp_path, capfd, earlier_run):
+    (earlier_run / "002" / "key.json").write_text("{}")
+    before = _tree(tmp_path)
+    line = _fails(capfd, _variants(3, earlier_run, "--force"))
+    assert "002/key.json changed" in line and _tree(tmp_path) == before
+
+
+def test_a_folder_without_a_manifest_is_not_replaced(tmp_path, capfd, earlier_run):
+    (earlier_run / "manifest.json").unlink()
+    before = _tree(tmp_path)
+    line = _fails(capfd, _variants(3, earlier_run, "--force"))
+    assert "manifest.json" in line and _tree(tmp_path) == before
+
+
+def test_a_run_that_fails_while_written_leaves_the_earlier_one(tmp_path, earlier_run):
+    """A real process whose files may not exceed 40 kB (RLIMIT_FSIZE): the student files are
+    written, keys.json (about 60 kB) fails. The earlier run is intact and nothing staged is
+    left (no hidden folder)."""
+    import resource
+
+    def small_files() -> None:
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)   # a write past the limit fails (EFBIG)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (40_000, 40_000))
+
+    before = _tree(tmp_path)
+    done = subprocess.run([sys.executable, "-m", "planmethod",
+                           *_variants(3, earlier_run, "--force")], capture_output=True,
+                          text=True, cwd=ROOT, timeout=300, preexec_fn=small_files)
+    assert done.returncode == 2 and "File too large" in done.stderr, done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1
+    assert _tree(tmp_path) == before
+
+
+def test_a_swap_that_fails_midway_is_undone(tmp_path, capfd, earlier_run, monkeypatch):
+    """The third move of the swap fails: every entry goes back, the earlier run is intact."""
+    before = _tree(tmp_path)
+    _fail_call(monkeypatch, "rename", 3, OSError(5, "Input/output error"))
+    line = _fails(capfd, _variants(2, earlier_run, "--force"))
+    monkeypatch.undo()
+    assert "Input/output error" in line and _tree(tmp_path) == before
+
+
+def test_the_run_is_never_mixed_with_files_added_during_it(tmp_path, capfd, earlier_run,
+                                                          monkeypatch):
+    """A file the user adds into the earlier run's folder while the new run is computed stays
+    (in the moved-aside folder, which the note names)."""
+    from planmethod.grading import keys
+
+    real_build_key = keys.build_key
+
+    def build_key_adding_a_file(variant):
+        extra = earlier_run / "001" / "added.txt"
+        if not extra.exists():
+            extra.write_text("added during the run")
+        return real_build_key(variant)
+
+    monkeypatch.setattr(keys, "build_key", build_key_adding_a_file)
+    assert main(_variants(2, earlier_run, "--force")) == 0
+    err = capfd.readouterr().err
+    kept = [path for path in earlier_run.rglob("added.txt")]
+    assert len(kept) == 1 and kept[0].read_text() == "added during the run"
+    assert "keeps" in err and "001" in err
 
 
 # ---------------------------------------------------------------------------------------------
