@@ -467,6 +467,78 @@ def test_the_run_is_never_mixed_with_files_added_during_it(tmp_path, capfd, earl
 
 
 # ---------------------------------------------------------------------------------------------
+# workbook --jobs: bounded, and no worker outlives the command
+
+
+def test_jobs_above_the_cpus_is_one_line(capfd, tmp_path):
+    from planmethod.commands.workbook import usable_cpus
+
+    line = _fails(capfd, ["workbook", GOOD, "-o", tmp_path / "w.html", "--step", "90",
+                          "--jobs", str(usable_cpus() + 1)])
+    assert "--jobs" in line and f"1…{usable_cpus()}" in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_never_more_workers_than_frames():
+    from planmethod.commands.workbook import usable_cpus, worker_count
+
+    assert worker_count(usable_cpus(), 1) == 1
+    assert worker_count(None, 4) == 1
+    assert worker_count(1, 360) == 1
+
+
+def _processes_holding(marker: str) -> list[int]:
+    """The processes whose command line holds ``marker`` (a fork keeps its parent's)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                command = (entry / "cmdline").read_bytes()
+                state = (entry / "stat").read_text().rsplit(")", 1)[1].split()[0]
+            except (OSError, IndexError):
+                continue
+            if marker.encode() in command and state != "Z":
+                found.append(int(entry.name))
+    return found
+
+
+@pytest.mark.skipif(not Path("/proc/self/cmdline").exists(), reason="needs /proc")
+def test_sigterm_ends_the_workbook_and_its_workers(tmp_path):
+    """SIGTERM to the main process alone, mid-run with two workers: it exits (143) within
+    2 s, and no process of it is left."""
+    from planmethod.commands.workbook import usable_cpus
+
+    if usable_cpus() < 2:
+        pytest.skip("two workers need two CPUs")
+    page = tmp_path / "marker-page.html"
+    process = subprocess.Popen([sys.executable, "-m", "planmethod", "workbook", GOOD, "-o",
+                                str(page), "--step", "0.5", "--jobs", "2"], cwd=ROOT,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+
+        def workers() -> list[int]:
+            return [pid for pid in _processes_holding(str(page)) if pid != process.pid]
+
+        while len(workers()) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert len(workers()) == 2, "the workers never started"
+        time.sleep(0.5)                 # they are solving frames now
+        assert process.poll() is None
+        process.send_signal(signal.SIGTERM)
+        sent = time.monotonic()
+        _, err = process.communicate(timeout=60)
+        took = time.monotonic() - sent
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == 143 and err.strip() == "planmethod: terminated"
+    assert took <= 2.0, f"took {took:.1f} s to end"
+    assert _processes_holding(str(page)) == []
+    assert list(tmp_path.iterdir()) == []
+
+
+# ---------------------------------------------------------------------------------------------
 # inputs: regular files only, read up to a limit
 
 #: input → argv with IN for the input (FOLDER: the test's folder)
