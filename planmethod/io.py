@@ -1,18 +1,40 @@
-"""Output files written whole or not at all, and only where the user said.
+"""Files written whole or not at all, only where the user said, never damaging what they
+replace; files read only when they are regular files, and only up to a limit.
 
-Every file planmethod writes goes to a temporary file beside its target and is renamed into
-place only when complete, so a failure never leaves a half-written output. Every name that
-comes from user input and becomes part of a path (a PrairieLearn slug, a student's folder)
-passes :func:`path_component`, and files written into an output folder go through
-:func:`write_files`, which refuses any relative path that would leave that folder.
+Writing. Every file planmethod writes belongs to an :class:`OutputSet` (a command's outputs,
+written together): each file is first *staged* — written in full to a temporary file — and
+only when every file of the set is staged is the set *committed*: missing folders are created
+and the temporary files renamed into place. An error, Ctrl-C or SIGTERM before that removes
+every staged file and leaves no folder behind; a rename that fails during the commit undoes
+the renames before it. What the target is decides how it is written (:class:`WriteMode`):
+
+- a regular file, or nothing yet: the temporary file is renamed onto it (through a symbolic
+  link, onto the file the link names: the link stays);
+- the command's own standard output or error (``/dev/stdout``, ``/proc/self/fd/1``, or the file
+  the output is redirected to): written into that stream;
+- a character device (``/dev/null``, a terminal) or a FIFO: written in place, without rename,
+  as shell redirection does — it stays a device or a FIFO. A FIFO that nothing reads is refused
+  at once rather than waited for; ``/dev/full`` gives its one-line "No space left on device";
+- a folder, a socket or a block device (a disk): refused with one line.
+
+Names that come from user input and become part of a path (a PrairieLearn slug, a student's
+folder) pass :func:`path_component`, and files written into an output folder go through
+:meth:`OutputSet.files`, which refuses a relative path that would leave that folder, by name
+or through a symbolic link.
+
+Reading. :func:`read_bytes_bounded` and :func:`read_text_bounded` read every input file: a
+FIFO, a device (``/dev/zero``, ``/dev/urandom``), a socket or a folder is refused with one line
+before it is opened for reading, and at most ``limit + 1`` bytes are read.
 
 Examples
 --------
 >>> import tempfile, pathlib
 >>> folder = pathlib.Path(tempfile.mkdtemp())
->>> write_text_atomic(folder / "a.txt", "hello")
->>> (folder / "a.txt").read_text()
-'hello'
+>>> with output_set() as outputs:
+...     _ = outputs.text(folder / "a.txt", "hello")
+...     _ = outputs.text(folder / "new" / "b.txt", "world")
+>>> read_text_bounded(folder / "new" / "b.txt", limit=100)
+'world'
 >>> path_component("../../x", "--slug")  # doctest: +ELLIPSIS
 Traceback (most recent call last):
 ...
@@ -23,20 +45,35 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import enum
+import errno
+import hashlib
 import io
 import json
 import os
 import re
+import secrets
+import shutil
+import stat
+import sys
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
 from .errors import PlanmethodError, SpecError
 
 __all__ = [
+    "NAME_MAX",
+    "OutputSet",
+    "WriteMode",
     "atomic_path",
     "csv_text",
+    "output_set",
     "path_component",
+    "read_bytes_bounded",
+    "read_text_bounded",
+    "sha256_of_file",
     "spreadsheet_cell",
     "spreadsheet_text",
     "student_folder",
@@ -45,23 +82,35 @@ __all__ = [
     "write_text_atomic",
 ]
 
+#: the longest file or folder name (bytes) the common file systems take
+NAME_MAX = 255
+
 #: characters that would make a name more than one path component (or an invalid one)
 _SEPARATORS = ("/", "\\", "\0")
 
 
 def path_component(name: str, what: str) -> str:
     """``name`` if it is one path component, else a :class:`SpecError` naming ``what`` (the
-    option or key it came from): not empty, no ``/``, ``\\`` or NUL, not ``.`` or ``..``.
+    option or key it came from): not empty, no ``/``, ``\\`` or NUL, not ``.`` or ``..``, at
+    most :data:`NAME_MAX` bytes.
 
     Examples
     --------
     >>> path_component("fourbar-2026", "--slug")
     'fourbar-2026'
+    >>> path_component("x" * 300, "--slug")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: --slug: 'xxxxxxxxxxxxxxxxxxxxxxxx'… is 300 bytes long; ...
     """
     if (not isinstance(name, str) or not name.strip() or name in (".", "..")
             or any(separator in name for separator in _SEPARATORS)):
         raise SpecError(f"{name!r} is not a single folder or file name (it must not be empty, "
                         "contain '/' or '\\', or be '.' or '..')", key=what)
+    length = len(os.fsencode(name))
+    if length > NAME_MAX:
+        raise SpecError(f"{name[:24]!r}… is {length} bytes long; a file or folder name has at "
+                        f"most {NAME_MAX}", key=what)
     return name
 
 
@@ -117,64 +166,570 @@ def json_text(data: object) -> str:
     return one(data)
 
 
-def write_files(folder: str | Path, files: Mapping[str, str | bytes]) -> list[Path]:
-    """Write ``files`` (relative path → text or bytes) into ``folder``, each whole or not at
-    all; every path is checked to stay inside ``folder`` before anything is written."""
-    folder = Path(folder)
-    targets = {name: _inside(folder, name) for name in files}
-    for name, data in files.items():
-        if isinstance(data, bytes):
-            write_bytes_atomic(targets[name], data)
+class WriteMode(enum.Enum):
+    """How a target is written, by what it is (see the module notes)."""
+
+    #: a regular file or nothing yet: a temporary file renamed onto it
+    RENAME = "rename"
+    #: a character device or a FIFO: opened and written, as shell redirection does
+    IN_PLACE = "in place"
+    #: the command's own standard output or error: written into that stream
+    STREAM = "stream"
+
+
+#: what a file that is neither a regular file nor a folder is, by its ``stat`` test
+_SPECIAL_KINDS = ((stat.S_ISCHR, "a character device"), (stat.S_ISFIFO, "a FIFO"),
+                  (stat.S_ISBLK, "a block device (a disk)"), (stat.S_ISSOCK, "a socket"))
+
+#: the chunk in which staged content is copied into a device or a FIFO, and files are read
+_CHUNK = 1 << 20
+
+
+def _special_kind(mode: int) -> str:
+    """The words for a file that is not a regular file ("a FIFO", "a character device"…)."""
+    return next((words for test, words in _SPECIAL_KINDS if test(mode)), "not a regular file")
+
+
+def _cannot_write(error: OSError, target: str | Path) -> PlanmethodError:
+    return PlanmethodError(f"cannot write the file: {error.strerror or error}", file=str(target))
+
+
+def _standard_stream(status: os.stat_result) -> int | None:
+    """1 or 2 when ``status`` is the file of the command's standard output or error."""
+    for descriptor in (1, 2):
+        try:
+            other = os.fstat(descriptor)
+        except OSError:
+            continue
+        if (other.st_dev, other.st_ino) == (status.st_dev, status.st_ino):
+            return descriptor
+    return None
+
+
+def _status(path: Path, target: Path) -> os.stat_result | None:
+    """What ``path`` is (links followed), None if nothing is there yet."""
+    try:
+        return os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except OSError as error:
+        raise _cannot_write(error, target) from None
+
+
+def _umask() -> int:
+    """The process's umask (what an ordinary new file or folder is created without)."""
+    umask = os.umask(0)
+    os.umask(umask)
+    return umask
+
+
+def _existing_folders(folder: Path, target: Path) -> tuple[Path, list[Path]]:
+    """The nearest of ``folder`` and its ancestors that exists, and the missing folders
+    below it, top first; a :class:`PlanmethodError` if the one that exists is not a folder."""
+    missing: list[Path] = []
+    current = folder
+    while True:
+        try:
+            status = os.stat(current)
+        except (FileNotFoundError, NotADirectoryError):
+            if current.parent == current:
+                raise PlanmethodError(f"the folder {current} does not exist",
+                                      file=str(target)) from None
+            missing.append(current)
+            current = current.parent
+            continue
+        except OSError as error:
+            raise _cannot_write(error, target) from None
+        if not stat.S_ISDIR(status.st_mode):
+            raise PlanmethodError(f"{current} is a file, not a folder", file=str(target))
+        for name in [path.name for path in missing]:
+            if len(os.fsencode(name)) > NAME_MAX:
+                raise PlanmethodError(f"the folder name {name[:24]!r}… is longer than "
+                                      f"{NAME_MAX} bytes", file=str(target))
+        return current, missing[::-1]
+
+
+@dataclass(frozen=True)
+class _Staged:
+    """One file of a set: where the user asked (``target``), what is written (``final``: the
+    file a link names, or the device), and the temporary file holding its content."""
+
+    target: Path
+    final: Path
+    temporary: Path
+    mode: WriteMode
+    folders: tuple[Path, ...] = ()
+    descriptor: int | None = None
+
+
+@dataclass(frozen=True)
+class _StagedFolder:
+    """A folder whose entries ``replaces`` (of an earlier run) are swapped for the staged
+    folder's entries; ``inside`` when the staged folder is in ``final`` (it exists)."""
+
+    target: Path
+    final: Path
+    staged: Path
+    replaces: tuple[str, ...]
+    inside: bool
+    folders: tuple[Path, ...] = ()
+
+
+@dataclass
+class _Commit:
+    """What a commit has done so far, to be undone in reverse order if it fails."""
+
+    folders: list[Path] = field(default_factory=list)
+    renames: list[tuple[Path, Path]] = field(default_factory=list)   # (from, to)
+    backups: list[tuple[Path, Path | None]] = field(default_factory=list)  # (file, its copy)
+
+    def undo(self) -> None:
+        for final, backup in reversed(self.backups):
+            with contextlib.suppress(OSError):
+                if backup is None:
+                    os.unlink(final)
+                else:
+                    os.replace(backup, final)
+        for source, destination in reversed(self.renames):
+            with contextlib.suppress(OSError):
+                os.rename(destination, source)
+        for folder in reversed(self.folders):
+            with contextlib.suppress(OSError):
+                os.rmdir(folder)
+
+    def forget_backups(self) -> None:
+        for _, backup in self.backups:
+            if backup is not None:
+                with contextlib.suppress(OSError):
+                    os.unlink(backup)
+
+
+def _hidden_name(folder: Path, name: str, tag: str) -> Path:
+    """A name in ``folder`` that nothing has yet: ``.NAME.TAG-XXXXXXXX``."""
+    while True:
+        candidate = folder / f".{name[:40]}.{tag}-{secrets.token_hex(4)}"
+        if not os.path.lexists(candidate):
+            return candidate
+
+
+class OutputSet:
+    """Files written together: each staged in full, then all committed, or none.
+
+    Use :func:`output_set` (``with output_set() as outputs: …``): the set is committed when
+    the block ends without an error, and discarded (every staged file removed, no folder
+    created) when it raises. A target that exists and is a device or a FIFO is written in place
+    at the commit, before any rename, so that a device that refuses (``/dev/full``) leaves the
+    set's files as they were; writing a device cannot be undone, so a set with two devices may
+    have written the first when the second fails.
+    """
+
+    def __init__(self) -> None:
+        self._files: list[_Staged] = []
+        self._folders: list[_StagedFolder] = []
+        self._seen: dict[object, Path] = {}
+        self._umask = _umask()
+        #: each replaced folder target → the hidden folder its earlier entries were moved to
+        #: by the commit (the caller removes what it knows it wrote there)
+        self.retired: dict[Path, Path] = {}
+
+    def _once(self, key: object, target: Path) -> None:
+        if key in self._seen:
+            raise PlanmethodError(f"is given twice as an output (also as {self._seen[key]})",
+                                  file=str(target))
+        self._seen[key] = target
+
+    def path(self, target: str | Path, suffix: str | None = None, *,
+             mode: int | None = None) -> Path:
+        """A temporary path to write ``target``'s content into (for writers that take a
+        path: matplotlib, Pillow, ffmpeg); ``mode`` sets the file's permission bits
+        (default: those of the file it replaces, or an ordinary new file's)."""
+        target = Path(target)
+        suffix = (target.suffix if suffix is None else suffix)[:16]
+        status = _status(target, target)
+        if status is not None and stat.S_ISDIR(status.st_mode):
+            raise PlanmethodError("is a folder, not a file", file=str(target))
+        descriptor = None if status is None else _standard_stream(status)
+        if status is not None and (descriptor is not None
+                                   or not stat.S_ISREG(status.st_mode)):
+            how = WriteMode.STREAM if descriptor is not None else WriteMode.IN_PLACE
+            if how is WriteMode.IN_PLACE and not (stat.S_ISCHR(status.st_mode)
+                                                  or stat.S_ISFIFO(status.st_mode)):
+                raise PlanmethodError(f"is {_special_kind(status.st_mode)}: planmethod writes "
+                                      "only files, character devices and FIFOs",
+                                      file=str(target))
+            self._once((status.st_dev, status.st_ino), target)
+            try:
+                handle, name = tempfile.mkstemp(prefix=".planmethod-", suffix=suffix)
+            except OSError as error:
+                raise _cannot_write(error, target) from None
+            os.close(handle)
+            self._files.append(_Staged(target, target, Path(name), how,
+                                       descriptor=descriptor))
+            return Path(name)
+        final = Path(os.path.realpath(target)) if os.path.islink(target) else target
+        if len(os.fsencode(final.name)) > NAME_MAX:
+            raise PlanmethodError(f"the file name is longer than {NAME_MAX} bytes",
+                                  file=str(target))
+        self._once(os.path.abspath(final), target)
+        folder, missing = _existing_folders(final.parent, target)
+        try:
+            handle, name = tempfile.mkstemp(prefix=f".{final.name[:40]}.", suffix=suffix,
+                                            dir=folder)
+        except OSError as error:
+            raise PlanmethodError(f"cannot create a file in {folder}: {error.strerror}",
+                                  file=str(target)) from None
+        temporary = Path(name)
+        self._files.append(_Staged(target, final, temporary, WriteMode.RENAME, tuple(missing)))
+        os.close(handle)
+        if mode is None:
+            mode = (stat.S_IMODE(status.st_mode) & 0o777 if status is not None
+                    else 0o666 & ~self._umask)   # not mkstemp's 0600
+        with contextlib.suppress(OSError):   # a file system without modes keeps 0600
+            os.chmod(temporary, mode)
+        return temporary
+
+    def binary(self, target: str | Path, data: bytes, *, mode: int | None = None) -> Path:
+        """Stage ``data`` as the content of ``target``; returns ``target``."""
+        temporary = self.path(target, mode=mode)
+        try:
+            temporary.write_bytes(data)
+        except OSError as error:
+            raise _cannot_write(error, target) from None
+        return Path(target)
+
+    def text(self, target: str | Path, text: str, *, mode: int | None = None) -> Path:
+        """Stage ``text`` (UTF-8) as the content of ``target``; returns ``target``."""
+        return self.binary(target, text.encode("utf-8"), mode=mode)
+
+    def files(self, folder: str | Path, files: Mapping[str, str | bytes], *,
+              modes: Mapping[str, int] | None = None) -> list[Path]:
+        """Stage ``files`` (relative path → text or bytes) in ``folder``; every path is
+        checked to stay inside ``folder`` (by name and through symbolic links) before anything
+        is staged. ``modes`` gives some files their permission bits (``0o755``)."""
+        folder = Path(folder)
+        targets = {name: _inside(folder, name) for name in files}
+        base = os.path.realpath(folder)
+        for name, target in targets.items():
+            if os.path.commonpath([base, os.path.realpath(target)]) != base:
+                raise SpecError(f"{name!r} leads out of the output folder (through a symbolic "
+                                "link)", file=str(folder))
+        for name, data in files.items():
+            content = data if isinstance(data, bytes) else data.encode("utf-8")
+            self.binary(targets[name], content, mode=(modes or {}).get(name))
+        return list(targets.values())
+
+    def folder(self, target: str | Path, files: Mapping[str, str | bytes], *,
+               replaces: tuple[str, ...] = ()) -> Path:
+        """Stage a whole folder: ``files`` (relative path → text or bytes) written into a
+        private staging folder beside the entries of ``target``; at the commit the entries of
+        ``target`` named in ``replaces`` (those of an earlier run) are moved to a hidden folder
+        (:attr:`retired`) and the staged entries moved in. Any other entry of ``target`` is
+        left alone, and one a staged entry would land on is an error before the commit."""
+        target = Path(target)
+        final = Path(os.path.realpath(target)) if os.path.islink(target) else target
+        for name in files:
+            _inside(final, name)
+        status = _status(final, target)
+        if status is not None and not stat.S_ISDIR(status.st_mode):
+            raise PlanmethodError("is a file, not a folder", file=str(target))
+        if status is None:
+            parent, missing = _existing_folders(final.parent, target)
+            if len(os.fsencode(final.name)) > NAME_MAX:
+                raise PlanmethodError(f"the folder name is longer than {NAME_MAX} bytes",
+                                      file=str(target))
         else:
-            write_text_atomic(targets[name], data)
-    return list(targets.values())
+            parent, missing = final, []
+            kept = {entry.name for entry in os.scandir(final)} - set(replaces)
+            clash = sorted({PurePosixPath(name).parts[0] for name in files} & kept)
+            if clash:
+                raise PlanmethodError(f"holds {', '.join(clash[:3])}, which this run would "
+                                      "replace and did not write", file=str(target))
+        self._once(os.path.abspath(final), target)
+        try:
+            staged = Path(tempfile.mkdtemp(prefix=f".{final.name[:40]}.new-", dir=parent))
+        except OSError as error:
+            raise PlanmethodError(f"cannot create a folder in {parent}: {error.strerror}",
+                                  file=str(target)) from None
+        self._folders.append(_StagedFolder(target, final, staged, tuple(replaces),
+                                           status is not None, tuple(missing)))
+        try:
+            for name, data in files.items():
+                path = staged.joinpath(*PurePosixPath(name).parts)
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_bytes(data if isinstance(data, bytes) else data.encode("utf-8"))
+        except OSError as error:
+            raise _cannot_write(error, target) from None
+        return final
+
+    def discard(self) -> None:
+        """Remove every staged file and folder (nothing is left of the set)."""
+        for item in self._files:
+            with contextlib.suppress(OSError):
+                os.unlink(item.temporary)
+        for folder in self._folders:
+            shutil.rmtree(folder.staged, ignore_errors=True)
+        self._files, self._folders = [], []
+
+    def commit(self) -> None:
+        """Write devices and FIFOs in place, create the missing folders, rename every staged
+        file and folder into place; a failure undoes the renames and folders made so far."""
+        for item in self._files:
+            if item.mode is not WriteMode.RENAME:
+                self._write_in_place(item)
+        done = _Commit()
+        current: Path = Path()   # the target being committed, for the error line
+        try:
+            for item in [*self._files, *self._folders]:
+                current = item.target
+                for folder in item.folders:
+                    try:
+                        os.mkdir(folder)
+                    except FileExistsError:
+                        if not folder.is_dir():
+                            raise
+                        continue
+                    done.folders.append(folder)
+            for item in self._files:
+                current = item.target
+                if item.mode is WriteMode.RENAME:
+                    backup = None
+                    if os.path.lexists(item.final):
+                        backup = _hidden_name(item.final.parent, item.final.name, "old")
+                        try:
+                            os.link(item.final, backup)
+                        except OSError:   # no hard links here: this file cannot be undone
+                            backup = None
+                    os.replace(item.temporary, item.final)
+                    done.backups.append((item.final, backup))
+            for folder in self._folders:
+                current = folder.target
+                self._swap(folder, done)
+        except BaseException as error:
+            done.undo()
+            if isinstance(error, OSError):
+                raise _cannot_write(error, current) from None
+            raise
+        done.forget_backups()
+        for item in self._files:
+            if item.mode is not WriteMode.RENAME:   # its content is copied: not needed now
+                with contextlib.suppress(OSError):
+                    os.unlink(item.temporary)
+        for folder in self._folders:
+            with contextlib.suppress(OSError):
+                os.rmdir(folder.staged)
+        self._files, self._folders = [], []
+
+    def _swap(self, folder: _StagedFolder, done: _Commit) -> None:
+        """Move a staged folder's entries into place (see :meth:`folder`)."""
+        if not folder.inside:
+            os.chmod(folder.staged, 0o777 & ~self._umask)   # not mkdtemp's 0700
+            os.rename(folder.staged, folder.final)
+            done.renames.append((folder.staged, folder.final))
+            return
+        moved = [name for name in folder.replaces if os.path.lexists(folder.final / name)]
+        if moved:
+            retired = _hidden_name(folder.final, folder.final.name, "old")
+            os.mkdir(retired, 0o700)
+            done.folders.append(retired)
+            for name in moved:
+                os.rename(folder.final / name, retired / name)
+                done.renames.append((folder.final / name, retired / name))
+            self.retired[folder.target] = retired
+        for entry in sorted(os.listdir(folder.staged)):
+            os.rename(folder.staged / entry, folder.final / entry)
+            done.renames.append((folder.staged / entry, folder.final / entry))
+
+    @staticmethod
+    def _write_in_place(item: _Staged) -> None:
+        """Copy a staged file into a character device, a FIFO or a standard stream."""
+        for stream in (sys.stdout, sys.stderr, sys.__stdout__, sys.__stderr__):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        descriptor = item.descriptor
+        if descriptor is None:
+            fifo = stat.S_ISFIFO(os.stat(item.final).st_mode)
+            flags = os.O_WRONLY | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0)
+            try:   # a FIFO is opened without waiting: with no reader, ENXIO at once
+                descriptor = os.open(item.final, flags | (os.O_NONBLOCK if fifo else 0))
+            except OSError as error:
+                if fifo and error.errno == errno.ENXIO:
+                    raise PlanmethodError("is a FIFO that nothing reads: start its reader "
+                                          "first (planmethod does not wait for one)",
+                                          file=str(item.target)) from None
+                raise _cannot_write(error, item.target) from None
+            if fifo:
+                os.set_blocking(descriptor, True)
+        try:
+            with open(item.temporary, "rb") as source:
+                while chunk := source.read(_CHUNK):
+                    view = memoryview(chunk)
+                    while view:
+                        view = view[os.write(descriptor, view):]
+        except OSError as error:
+            raise _cannot_write(error, item.target) from None
+        finally:
+            if item.descriptor is None:
+                os.close(descriptor)
+
+
+@contextlib.contextmanager
+def output_set() -> Iterator[OutputSet]:
+    """``with output_set() as outputs:`` stage files with ``outputs.text(…)``,
+    ``outputs.path(…)``, ``outputs.files(…)``; they are committed together when the block
+    ends, and none of them is written if it raises (see :class:`OutputSet`).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> (folder / "b.svg").mkdir()
+    >>> with output_set() as outputs:  # doctest: +ELLIPSIS
+    ...     _ = outputs.text(folder / "a.svg", "<svg/>")
+    ...     _ = outputs.text(folder / "b.svg", "<svg/>")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.PlanmethodError: .../b.svg: is a folder, not a file
+    >>> sorted(path.name for path in folder.iterdir())
+    ['b.svg']
+    """
+    outputs = OutputSet()
+    try:
+        yield outputs
+        outputs.commit()
+    except OSError as error:
+        staged = {item.temporary: item.target for item in outputs._files}
+        where = staged.get(Path(error.filename or ""), error.filename)
+        raise _cannot_write(error, where or "") from None
+    finally:
+        outputs.discard()
+
+
+def write_files(folder: str | Path, files: Mapping[str, str | bytes]) -> list[Path]:
+    """Write ``files`` (relative path → text or bytes) into ``folder``, all or none; every
+    path is checked to stay inside ``folder`` before anything is written."""
+    with output_set() as outputs:
+        return outputs.files(folder, files)
 
 
 @contextlib.contextmanager
 def atomic_path(target: str | Path, suffix: str | None = None) -> Iterator[Path]:
-    """Yield a temporary path beside ``target``; rename it onto ``target`` on success."""
-    target = Path(target)
-    folder = target.parent if str(target.parent) else Path(".")
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        raise PlanmethodError(f"cannot create the folder {folder}: {error.strerror}",
-                              file=str(target)) from None
-    try:
-        handle, name = tempfile.mkstemp(prefix=f".{target.name}.",
-                                        suffix=suffix or target.suffix, dir=folder)
-    except OSError as error:
-        raise PlanmethodError(f"cannot create a file in {folder}: {error.strerror}",
-                              file=str(target)) from None
-    temporary = Path(name)
-    try:  # from here on, whatever happens (an error, Ctrl-C, SIGTERM), the file is removed
-        os.close(handle)
-        try:
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(temporary, 0o666 & ~umask)  # an ordinary new file's mode, not 0600
-        except OSError:
-            pass  # a file system without modes (the file stays private)
-        yield temporary
-        os.replace(temporary, target)
-    except OSError as error:
-        raise PlanmethodError(f"cannot write the file: {error.strerror}",
-                              file=str(target)) from None
-    finally:
-        if temporary.exists():
-            temporary.unlink()
+    """Yield a temporary path to write ``target`` into; it becomes ``target`` on success (a
+    set of one file: see :class:`OutputSet`)."""
+    with output_set() as outputs:
+        yield outputs.path(target, suffix)
 
 
 def write_text_atomic(target: str | Path, text: str) -> None:
     """Write ``text`` (UTF-8) to ``target`` whole or not at all."""
-    with atomic_path(target) as temporary:
-        temporary.write_text(text, encoding="utf-8")
+    with output_set() as outputs:
+        outputs.text(target, text)
 
 
 def write_bytes_atomic(target: str | Path, data: bytes) -> None:
     """Write ``data`` to ``target`` whole or not at all."""
-    with atomic_path(target) as temporary:
-        temporary.write_bytes(data)
+    with output_set() as outputs:
+        outputs.binary(target, data)
+
+
+def read_bytes_bounded(path: str | Path, limit: int, *,
+                       error: type[PlanmethodError] = SpecError) -> bytes:
+    """The bytes of the regular file ``path``, at most ``limit`` of them.
+
+    A folder, a FIFO, a device or a socket is refused before it is opened for reading (a FIFO
+    would block, ``/dev/zero`` never ends); then at most ``limit + 1`` bytes are read, so a
+    file that grows while it is read is refused too. Every refusal is an ``error`` (a
+    :class:`SpecError` unless told) naming the file.
+
+    Examples
+    --------
+    >>> read_bytes_bounded("/dev/zero", limit=10)
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: /dev/zero: is a character device, not a regular file
+    """
+    name = str(path)
+    try:
+        status = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        raise error("no such file", file=name) from None
+    except OSError as failure:
+        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+    if stat.S_ISDIR(status.st_mode):
+        raise error("is a folder, not a file", file=name)
+    if not stat.S_ISREG(status.st_mode):
+        raise error(f"is {_special_kind(status.st_mode)}, not a regular file", file=name)
+    if status.st_size > limit:
+        raise error(f"the file is {status.st_size} bytes; at most {limit} are accepted",
+                    file=name)
+    flags = (os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
+             | getattr(os, "O_CLOEXEC", 0))
+    try:
+        descriptor = os.open(path, flags)
+    except OSError as failure:
+        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+    chunks, total = [], 0
+    try:
+        if not stat.S_ISREG(os.fstat(descriptor).st_mode):   # replaced since the stat
+            raise error("is not a regular file", file=name)
+        while total <= limit:
+            chunk = os.read(descriptor, min(_CHUNK, limit + 1 - total))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            total += len(chunk)
+    except OSError as failure:
+        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+    finally:
+        os.close(descriptor)
+    if total > limit:
+        raise error(f"the file is more than {limit} bytes; at most {limit} are accepted",
+                    file=name)
+    return b"".join(chunks)
+
+
+def read_text_bounded(path: str | Path, limit: int, *, encoding: str = "utf-8",
+                      error: type[PlanmethodError] = SpecError) -> str:
+    """The text of the regular file ``path`` (``encoding``; ``utf-8-sig`` drops a byte-order
+    mark), at most ``limit`` bytes of it (see :func:`read_bytes_bounded`).
+
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "big.csv"
+    >>> _ = path.write_text("x" * 11)
+    >>> read_text_bounded(path, limit=10)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: .../big.csv: the file is 11 bytes; at most 10 are accepted
+    """
+    data = read_bytes_bounded(path, limit, error=error)
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError as failure:
+        raise error(f"cannot read the file as UTF-8 text ({failure})", file=str(path)) from None
+
+
+def sha256_of_file(path: str | Path) -> str | None:
+    """The SHA-256 (hex) of the regular file ``path``, read in chunks; None if ``path`` is not
+    a regular file, is a symbolic link, or cannot be read.
+
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.txt"
+    >>> _ = path.write_bytes(b"abc")
+    >>> sha256_of_file(path)[:16], sha256_of_file("/dev/zero")
+    ('ba7816bf8f01cfea', None)
+    """
+    flags = (os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
+             | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0))
+    try:
+        descriptor = os.open(path, flags)
+    except OSError:
+        return None
+    with open(descriptor, "rb") as handle:
+        if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
+            return None
+        try:
+            return hashlib.file_digest(handle, "sha256").hexdigest()
+        except OSError:
+            return None
 
 
 # -- CSV a spreadsheet opens safely ------------------------------------------------------------

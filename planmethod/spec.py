@@ -43,6 +43,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import SpecError
+from .io import read_text_bounded
 from .model import (
     FRAME,
     Ask,
@@ -98,13 +99,9 @@ def parse_exercise(text: str, *, file: str | None = None) -> Exercise:
 
 
 def read_text(path: str | Path) -> str:
-    """The UTF-8 text of a file, or a :class:`SpecError` naming it."""
-    try:
-        return Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SpecError("no such file", file=str(path)) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
+    """The UTF-8 text of an exercise or template file (a regular file of at most
+    :data:`MAX_FILE_BYTES`), or a :class:`SpecError` naming it."""
+    return read_text_bounded(path, MAX_FILE_BYTES)
 
 
 #: input limits (README, "Bad input"): what the stress suite covers, and no more
@@ -119,6 +116,8 @@ MAX_EPSILON = 1e8
 MAX_ANGLE_DEG = 36000.0
 #: any other number (masses, forces, moments, g)
 MAX_MAGNITUDE = 1e12
+#: the largest exercise or template file read (bytes); the shipped ones are below 3 kB
+MAX_FILE_BYTES = 1_000_000
 #: tables and arrays nested deeper than this are refused before they are read
 MAX_NESTING = 32
 #: whole numbers in TOML and JSON are 64-bit (TOML's own range); larger ones are refused where

@@ -267,7 +267,8 @@ def test_variants_never_mixes_two_runs(capsys, tmp_path):
     line = _run(capsys, [*argv, "2"], tmp_path)          # not empty, no --force
     assert "not empty" in line
     assert main([*argv, "2", "--force"]) == 0             # replaces the earlier run
-    assert sorted(p.name for p in out.iterdir()) == ["001", "002", "index.csv", "keys.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["001", "002", "index.csv", "keys.json",
+                                                     "manifest.json"]
     (out / "notes.txt").write_text("mine")
     line = _run(capsys, [*argv, "2", "--force"], tmp_path)
     assert "notes.txt" in line and (out / "notes.txt").read_text() == "mine"

@@ -74,7 +74,7 @@ def test_student_ids_that_climb_stay_inside(tmp_path, capsys):
     assert main(["variants", TEMPLATE, "--students", str(roster), "--out", str(out),
                  "--no-sheets"]) == 0
     assert _tree(tmp_path) - {"roster.csv"} == {"course"} | {
-        f"course/{name}" for name in ("keys.json", "index.csv")} | {
+        f"course/{name}" for name in ("keys.json", "index.csv", "manifest.json")} | {
         f"course/{folder}{file}" for folder in ("_.._evil", "_etc_passwd", "student",
                                                 "Ann.Lee@uni.edu")
         for file in ("", "/exercise.toml", "/key.json")}

@@ -38,6 +38,9 @@ from pathlib import Path
 
 ANGLE_COLUMNS = ("angle", "phi", "phi1", "φ1", "φ")
 
+#: the largest coordinates table read (bytes)
+MAX_TABLE_BYTES = 50_000_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", help="exercise file (TOML)")
@@ -149,16 +152,12 @@ def read_coordinates(path: str | Path, exercise) -> list[Row]:
         a value that is not a finite number — naming the file, line and column.
     """
     from ..errors import SpecError
+    from ..io import read_text_bounded
     from ..spec import did_you_mean
 
     path = Path(path)
     file = str(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SpecError("no such file", file=file) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the file ({error})", file=file) from None
+    text = read_text_bounded(path, MAX_TABLE_BYTES)
     lines = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
              if line.strip() and not line.lstrip().startswith("#")]
     if not lines:

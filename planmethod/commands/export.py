@@ -5,6 +5,12 @@ from __future__ import annotations
 
 import argparse
 
+#: the files of a Gradescope autograder that must be executable
+EXECUTABLES = ("run_autograder", "setup.sh", "grade_submission.py")
+
+#: the largest task sheet (task.svg) a Moodle quiz embeds, bytes
+MAX_SHEET_BYTES = 2_000_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("key", help="keys.json (or its folder), a key.json, or an exercise file")
@@ -29,13 +35,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import json
+    import os
     from pathlib import Path
 
     from ..errors import SpecError
     from ..grading import exports
     from ..grading.answers import grade_many, read_answers
     from ..grading.keys import bundle
-    from ..io import path_component, student_folder, write_files, write_text_atomic
+    from ..io import output_set, path_component, read_text_bounded, student_folder
     from .grade import load_any_key
 
     if args.format == "prairielearn":
@@ -68,19 +75,16 @@ def run(args: argparse.Namespace) -> int:
     else:
         sheets = {}
         folder = Path(args.key) if Path(args.key).is_dir() else Path(args.key).parent
-        for key in unique:
+        for key in unique:   # each student's task sheet that variants wrote, if it is there
             sheet = folder / student_folder(str(key.get("student"))) / "task.svg"
-            if sheet.is_file() and sheet.stat().st_size < 2_000_000:
-                sheets[str(key.get("student"))] = sheet.read_text(encoding="utf-8")
+            if os.path.lexists(sheet):
+                sheets[str(key.get("student"))] = read_text_bounded(sheet, MAX_SHEET_BYTES)
         files[""] = exports.moodle_xml(unique, sheets=sheets)
-    if "" in files:  # one output file
-        write_text_atomic(out, files[""])
-        written = [str(out)]
-    else:  # files inside the output folder, none of them outside it
-        written = [str(path) for path in write_files(out, files)]
-    if args.format == "gradescope" and not args.answers:
-        (out / "run_autograder").chmod(0o755)
-        (out / "setup.sh").chmod(0o755)
-        (out / "grade_submission.py").chmod(0o755)
+    with output_set() as outputs:   # every file or none
+        if "" in files:  # one output file
+            written = [str(outputs.text(out, files[""]))]
+        else:  # files inside the output folder, none of them outside it
+            written = [str(path) for path in outputs.files(
+                out, files, modes={name: 0o755 for name in EXECUTABLES if name in files})]
     print(f"Wrote {', '.join(written) if len(written) <= 4 else f'{len(written)} files in {out}'}")
     return 0

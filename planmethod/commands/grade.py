@@ -9,6 +9,10 @@ variant's key when the bundle has one, else against the single key.
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..io import OutputSet
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -56,6 +60,37 @@ def load_any_key(path: str) -> dict:
     return load_keys(path)
 
 
+def _stage_class_report(outputs: OutputSet, report: str, keys: dict, results: list
+                        ) -> None:
+    """Stage the class report (questions.csv, mistakes.csv, class_report.png) in the folder
+    ``report`` of the output set ``outputs``."""
+    import textwrap
+    from pathlib import Path
+
+    from ..errors import SpecError
+    from ..grading.report import class_statistics, mistakes_csv, questions_csv
+    from ..render.plots import save_class_report_plot
+    from ..vocabulary import link_numbers, symbol
+
+    rows = class_statistics(results)
+    if not rows:
+        raise SpecError("--report needs graded answers (give ANSWERS)")
+    folder = Path(report)
+    first = next(iter(keys.values()))
+    exercise = first.get("exercise") or {}
+    numbers = link_numbers(list(exercise.get("links") or ()),
+                           str((exercise.get("drive") or {}).get("link", "")))
+    symbols = {row["question"]: symbol(row["question"], numbers) for row in rows}
+    words = {mistake["kind"]: textwrap.shorten(mistake["feedback"], 48, placeholder="…")
+             for key in keys.values() for question in key.get("questions", ())
+             for mistake in question.get("mistakes", ())}
+    outputs.text(folder / "questions.csv", questions_csv(rows))
+    outputs.text(folder / "mistakes.csv", mistakes_csv(rows))
+    save_class_report_plot(rows, outputs.path(folder / "class_report.png"),
+                           title=str(first.get("title", "")), symbols=symbols,
+                           mistakes=words)
+
+
 def run(args: argparse.Namespace) -> int:
     import json
     import sys
@@ -64,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
     from ..grading.answers import feedback_text, grade_many, read_answers
     from ..grading.drawings import grade_drawing, read_drawing
     from ..grading.exports import gradebook_csv, gradescope_results
-    from ..io import write_text_atomic
+    from ..io import output_set
 
     if not args.answers and not args.drawing:
         raise SpecError("give ANSWERS and/or --drawing FILE")
@@ -104,44 +139,22 @@ def run(args: argparse.Namespace) -> int:
             lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
                       for p in drawing["points"]]
             lines += [f"  !  {line}" for line in drawing["feedback"]]
-    if args.json:
-        write_text_atomic(args.json, json.dumps({"answers": results, "drawings": drawings},
-                                                ensure_ascii=False, indent=1, allow_nan=False))
-    if args.csv:
-        write_text_atomic(args.csv, gradebook_csv(results))
-    if args.report:
-        import textwrap
-        from pathlib import Path
-
-        from ..grading.report import class_statistics, mistakes_csv, questions_csv
-        from ..render.plots import save_class_report_plot
-        from ..vocabulary import link_numbers, symbol
-
-        rows = class_statistics(results)
-        if not rows:
-            raise SpecError("--report needs graded answers (give ANSWERS)")
-        folder = Path(args.report)
-        first = next(iter(keys.values()))
-        exercise = first.get("exercise") or {}
-        numbers = link_numbers(list(exercise.get("links") or ()),
-                               str((exercise.get("drive") or {}).get("link", "")))
-        symbols = {row["question"]: symbol(row["question"], numbers) for row in rows}
-        words = {mistake["kind"]: textwrap.shorten(mistake["feedback"], 48, placeholder="…")
-                 for key in keys.values() for question in key.get("questions", ())
-                 for mistake in question.get("mistakes", ())}
-        write_text_atomic(folder / "questions.csv", questions_csv(rows))
-        write_text_atomic(folder / "mistakes.csv", mistakes_csv(rows))
-        save_class_report_plot(rows, folder / "class_report.png",
-                               title=str(first.get("title", "")), symbols=symbols,
-                               mistakes=words)
-    if args.gradescope:
-        if len(results) > 1:
-            raise SpecError(f"--gradescope writes one student's results; the answers hold "
-                            f"{len(results)}", file=args.answers)
-        result = results[0] if results else {"questions": [], "score": 0.0,
-                                             "variant": args.student}
-        write_text_atomic(args.gradescope, json.dumps(
-            gradescope_results(result, drawings, feedback=args.feedback or "hints"),
-            ensure_ascii=False, indent=1))
+    if args.gradescope and len(results) > 1:
+        raise SpecError(f"--gradescope writes one student's results; the answers hold "
+                        f"{len(results)}", file=args.answers)
+    with output_set() as outputs:   # every output file, or none
+        if args.json:
+            outputs.text(args.json, json.dumps({"answers": results, "drawings": drawings},
+                                               ensure_ascii=False, indent=1, allow_nan=False))
+        if args.csv:
+            outputs.text(args.csv, gradebook_csv(results))
+        if args.report:
+            _stage_class_report(outputs, args.report, keys, results)
+        if args.gradescope:
+            result = results[0] if results else {"questions": [], "score": 0.0,
+                                                 "variant": args.student}
+            outputs.text(args.gradescope, json.dumps(
+                gradescope_results(result, drawings, feedback=args.feedback or "hints"),
+                ensure_ascii=False, indent=1))
     sys.stdout.write("\n".join(lines) + "\n")
     return 0

@@ -78,7 +78,7 @@ def text_report(analysis) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import PlanmethodError, SpecError
-    from ..io import write_bytes_atomic, write_text_atomic
+    from ..io import output_set
     from ..report import analyse, report_dict
     from ..spec import MAX_ANGLE_DEG, load_exercise
 
@@ -103,14 +103,10 @@ def run(args: argparse.Namespace) -> int:
             raise PlanmethodError("--png needs cairosvg: pip install 'planmethod[png]'") from None
         pngs = {Path(name).with_suffix(".png").name: cairosvg.svg2png(
             bytestring=text.encode("utf-8"), output_width=1200) for name, text in files.items()}
-    # everything is computed: now write
-    written = []
-    for name, text in files.items():
-        write_text_atomic(Path(args.svg) / name, text)
-        written.append(str(Path(args.svg) / name))
-    for name, data in pngs.items():
-        write_bytes_atomic(Path(args.svg) / name, data)
-        written.append(str(Path(args.svg) / name))
+    written: list[str] = []
+    if args.svg:  # everything is computed: now write, every drawing or none
+        with output_set() as outputs:
+            written = [str(path) for path in outputs.files(args.svg, {**files, **pngs})]
     if args.json:
         json.dump(report_dict(analysis), sys.stdout, ensure_ascii=False, indent=2,
                   allow_nan=False)

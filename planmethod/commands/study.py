@@ -141,7 +141,7 @@ def csv_text(study) -> str:
 def run(args: argparse.Namespace) -> int:
     from ..errors import SpecError
     from ..forces.study import moment_load, run_study, study_variant
-    from ..io import write_text_atomic
+    from ..io import output_set
     from ..spec import load_exercise
 
     if not (math.isfinite(args.step) and 0 < args.step <= 90):
@@ -166,16 +166,15 @@ def run(args: argparse.Namespace) -> int:
         exercise = study_variant(exercise, load.link, index, **base)
     study = run_study(exercise, rocker=args.rocker, weights=args.weights, omegas=args.omegas,
                       moments=args.moments, step=args.step)
-    outputs = []
-    if args.plot:
-        from ..render.plots import save_study_plot
+    with output_set() as outputs:   # the plot and the CSV together, or neither
+        if args.plot:
+            from ..render.plots import save_study_plot
 
-        save_study_plot(study, args.plot)
-        outputs.append(args.plot)
-    if args.csv:
-        write_text_atomic(args.csv, csv_text(study))
-        outputs.append(args.csv)
+            save_study_plot(study, outputs.path(args.plot))
+        if args.csv:
+            outputs.text(args.csv, csv_text(study))
+    written = [path for path in (args.plot, args.csv) if path]
     print(table_text(study))
-    if outputs:
-        print("\nWrote " + ", ".join(outputs))
+    if written:
+        print("\nWrote " + ", ".join(written))
     return 0

@@ -19,12 +19,39 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="add the reactions per pair and the balancing moment")
 
 
+def _save_plot(exercise, table, path, *, forces: bool) -> None:
+    """The sweep's curves (or, with forces, the reactions and the balancing moment) into
+    ``path``."""
+    import numpy as np
+
+    from ..render.plots import save_sweep_plot
+
+    if forces:
+        from ..render.notation import ForceNotation
+        from ..render.plots import save_force_plot
+        from ..report import analyse
+
+        solved = analyse(exercise).forces    # the position the exercise solves, marked
+        marks = ([(float(solved.angle), float(np.ravel(solved.balancing_moment)[0]))]
+                 if solved is not None else [])
+        names = {}
+        if solved is not None:   # each pair's reaction as a course writes it: R₁₂
+            notation = ForceNotation(solved.solution)
+            names = {key: notation.plain(f"R_{key}") for key in solved.solution.reactions}
+        save_force_plot(table, path, title=exercise.mechanism.title, marks=marks,
+                        names=names)
+    else:
+        from ..vocabulary import link_numbers
+
+        mechanism = exercise.mechanism
+        save_sweep_plot(table, path, title=mechanism.title,
+                        numbers=link_numbers(mechanism.moving_links, mechanism.drive.link))
+
+
 def run(args: argparse.Namespace) -> int:
     import contextlib
 
-    import numpy as np
-
-    from ..io import atomic_path, csv_text
+    from ..io import csv_text, output_set
     from ..spec import load_exercise
     from ..sweep import Extremes, csv_rows, sweep_chunks, sweep_table
 
@@ -43,45 +70,21 @@ def run(args: argparse.Namespace) -> int:
     # sweep of millions of angles runs in bounded memory
     table = sweep_table(exercise, **sweep) if args.plot else None
     chunks = [table] if table is not None else sweep_chunks(exercise, **sweep)
-    if args.plot:  # first: a bad plot file name then leaves no CSV behind
-        from ..render.plots import save_sweep_plot
-
-        if args.forces:
-            from ..render.notation import ForceNotation
-            from ..render.plots import save_force_plot
-            from ..report import analyse
-
-            solved = analyse(exercise).forces    # the position the exercise solves, marked
-            marks = ([(float(solved.angle), float(np.ravel(solved.balancing_moment)[0]))]
-                     if solved is not None else [])
-            names = {}
-            if solved is not None:   # each pair's reaction as a course writes it: R₁₂
-                notation = ForceNotation(solved.solution)
-                names = {key: notation.plain(f"R_{key}") for key in solved.solution.reactions}
-            save_force_plot(table, args.plot, title=exercise.mechanism.title, marks=marks,
-                            names=names)
-        else:
-            from ..vocabulary import link_numbers
-
-            mechanism = exercise.mechanism
-            save_sweep_plot(table, args.plot, title=mechanism.title,
-                            numbers=link_numbers(mechanism.moving_links, mechanism.drive.link))
     extremes = Extremes()
-    with contextlib.ExitStack() as stack:
-        handle = None
-        if args.csv:  # written to a temporary file, renamed into place only when complete
-            temporary = stack.enter_context(atomic_path(args.csv))
-            handle = stack.enter_context(temporary.open("w", encoding="utf-8"))
-        for chunk in chunks:
-            if handle is not None:
-                if not extremes.count:   # the header's text; the rows are numbers
-                    handle.write(csv_text([list(chunk)]))
-                handle.writelines(csv_rows(chunk))
-            extremes.feed(chunk)
-        if handle is not None:
-            handle.close()
-    outputs = ([args.plot] if args.plot else []) + ([args.csv] if args.csv else [])
+    with output_set() as outputs:   # the plot and the CSV together, or neither
+        if args.plot:
+            _save_plot(exercise, table, outputs.path(args.plot), forces=args.forces)
+        with contextlib.ExitStack() as stack:
+            handle = (stack.enter_context(outputs.path(args.csv).open("w", encoding="utf-8"))
+                      if args.csv else None)   # streamed: a sweep of millions of rows fits
+            for chunk in chunks:
+                if handle is not None:
+                    if not extremes.count:
+                        handle.write(csv_text([list(chunk)]))   # header text; rows: numbers
+                    handle.writelines(csv_rows(chunk))
+                extremes.feed(chunk)
+    written = ([args.plot] if args.plot else []) + ([args.csv] if args.csv else [])
     print(extremes.describe(exercise.mechanism.title))
-    if outputs:
-        print("\nWrote " + ", ".join(outputs))
+    if written:
+        print("\nWrote " + ", ".join(written))
     return 0

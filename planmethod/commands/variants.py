@@ -1,16 +1,40 @@
 """``planmethod variants TEMPLATE``: one variant per student, with task sheets and answer keys.
 
 Writes into ``--out``: ``keys.json`` (the bundle of every key), ``index.csv`` (student, attempt,
-drawn values) and, per student, a folder with ``exercise.toml`` (the variant as a plain
-exercise file), ``key.json``, ``task.svg`` and ``task.txt`` (the task sheet), and blank
-``velocity_sheet.svg`` / ``acceleration_sheet.svg`` to draw the plans on. Everything is
-computed before anything is written; every file is written whole or not at all.
-"""
+drawn values), ``manifest.json`` (every file of the run with its size and SHA-256: what a later
+``--force`` may remove) and, per student, a folder with ``exercise.toml`` (the variant as a
+plain exercise file), ``key.json``, ``task.svg`` and ``task.txt`` (the task sheet), and blank
+``velocity_sheet.svg`` / ``acceleration_sheet.svg`` to draw the plans on.
 
+Everything is computed before anything is written, and the run is written whole or not at all:
+into a private folder inside ``--out``, whose entries are moved into place only when every file
+is written. ``--force`` replaces an earlier run only when everything in ``--out`` is what that
+run's manifest lists, unchanged (no other file, no symbolic link, no edited file); its entries
+are moved aside when the new run is in place and only then removed, file by file, each checked
+again against the manifest.
+"""
 from __future__ import annotations
 
 import argparse
 import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+#: the files of a run beside its student folders
+RUN_FILES = ("keys.json", "index.csv")
+
+#: the run's list of its own files (what ``--force`` may remove), and its format tag
+MANIFEST = "manifest.json"
+MANIFEST_FORMAT = "planmethod-variants-manifest"
+
+#: the files variants writes into a student's folder
+STUDENT_FILES = ("exercise.toml", "key.json", "task.svg", "task.txt", "velocity_sheet.svg",
+                 "acceleration_sheet.svg")
+
+#: the largest roster (as the answers files: 200,000 students) and manifest read, bytes
+MAX_ROSTER_BYTES = 20_000_000
+MAX_MANIFEST_BYTES = 200_000_000
 
 #: the most variants one run draws: about a minute of CPU time, with sheets, on the 2-CPU
 #: machine of ``python -m benchmarks.bench_grading --scale`` even when it is shared (48 ms a
@@ -33,9 +57,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-sheets", action="store_true",
                         help="write keys only (no SVG task and plan sheets)")
     parser.add_argument("--force", action="store_true",
-                        help="write into a folder that is not empty: what an earlier "
-                             "`variants` run wrote there (its index.csv lists it) is removed "
-                             "first; nothing else is touched")
+                        help="replace an earlier variants run in --out: only when everything "
+                             "there is what that run's manifest.json lists, unchanged; its "
+                             "files are removed once the new run is written")
 
 
 def _whole_number(text: str) -> int:
@@ -60,14 +84,9 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     """
     from ..errors import SpecError
     from ..grading.answers import STUDENT_COLUMNS, answers_from_csv
+    from ..io import read_text_bounded
 
-    try:
-        with open(path, encoding="utf-8-sig") as handle:
-            text = handle.read(5_000_000)
-    except FileNotFoundError:
-        raise SpecError("no such file", file=path) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the roster ({error})", file=path) from None
+    text = read_text_bounded(path, MAX_ROSTER_BYTES, encoding="utf-8-sig")
     lines = [line.strip() for line in text.splitlines() if line.strip()]
     if not lines:
         raise SpecError("the roster is empty", file=path)
@@ -92,55 +111,201 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     return students
 
 
-def _earlier_run(out, *, force: bool) -> list:
-    """What an earlier ``variants`` run wrote into ``out`` (its student folders, keys.json and
-    index.csv), to be replaced; a :class:`SpecError` if ``out`` is not empty and ``force`` is
-    not given, or if it holds anything that no ``variants`` run wrote."""
-    import csv
-    from pathlib import Path
+@dataclass(frozen=True)
+class EarlierRun:
+    """A run of ``variants`` found in ``--out``: its entries there (student folders, run files,
+    manifest) and every file its manifest lists, relative path → (bytes, SHA-256)."""
+
+    entries: tuple[str, ...]
+    files: Mapping[str, tuple[int, str]]
+
+
+def manifest_text(files: Mapping[str, bytes]) -> str:
+    """The manifest of a run: each file's relative path, size in bytes and SHA-256.
+
+    >>> print(manifest_text({"001/key.json": b"{}"}))  # doctest: +ELLIPSIS
+    {
+     "format": "planmethod-variants-manifest",
+     "note": "...",
+     "files": [
+      ["001/key.json", 2, "44136fa355b3678a1146ad16f7e8649e94fb4fc21fe77e8310c060f61caaff8a"]
+     ]
+    }
+    """
+    import hashlib
+
+    from ..io import json_text
+
+    return json_text({"format": MANIFEST_FORMAT,
+                      "note": "written by planmethod variants: the files `variants --force` may "
+                              "remove, each only while its size and SHA-256 are these",
+                      "files": [[name, len(data), hashlib.sha256(data).hexdigest()]
+                                for name, data in sorted(files.items())]})
+
+
+def _manifest_path(name: object) -> bool:
+    """Whether ``name`` is a path variants writes: a run file, or a student file in a
+    student folder."""
+    from ..errors import SpecError
+    from ..io import path_component
+
+    if not isinstance(name, str):
+        return False
+    parts = name.split("/")
+    if len(parts) == 1:
+        return name in RUN_FILES
+    try:
+        path_component(parts[0], "folder")
+    except SpecError:
+        return False
+    return (len(parts) == 2 and parts[1] in STUDENT_FILES
+            and parts[0] not in (*RUN_FILES, MANIFEST))
+
+
+def _read_manifest(out: Path) -> dict[str, tuple[int, str]]:
+    """The files the manifest in ``out`` lists, or a :class:`SpecError`."""
+    import json
+    import os
 
     from ..errors import SpecError
-    from ..io import path_component, spreadsheet_text
+    from ..io import read_text_bounded
+
+    path = out / MANIFEST
+    if not os.path.lexists(path):
+        raise SpecError(f"--out {out} holds no {MANIFEST}, so no variants run of this version "
+                        "wrote it: --force replaces only such a run; choose another folder")
+    if os.path.islink(path):
+        raise SpecError("is a symbolic link, which variants never writes: --force replaces "
+                        "only an earlier run", file=str(path))
+    try:
+        data = json.loads(read_text_bounded(path, MAX_MANIFEST_BYTES))
+    except json.JSONDecodeError as error:
+        raise SpecError(f"not valid JSON ({error})", file=str(path)) from None
+    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
+        raise SpecError(f"not a manifest of variants (format {MANIFEST_FORMAT!r})",
+                        file=str(path))
+    files: dict[str, tuple[int, str]] = {}
+    rows = data.get("files")
+    for index, row in enumerate(rows if isinstance(rows, list) else [None]):
+        if not (isinstance(row, list) and len(row) == 3 and _manifest_path(row[0])
+                and type(row[1]) is int and isinstance(row[2], str)
+                and re.fullmatch(r"[0-9a-f]{64}", row[2])):
+            raise SpecError(f"lists {str(row)[:60]!r}, not a file variants writes with its "
+                            "size and SHA-256", file=str(path), key=f"files[{index}]")
+        files[row[0]] = (row[1], row[2])
+    return files
+
+
+def _unchanged(path: Path, size: int, digest: str) -> bool:
+    """Whether ``path`` is a regular file (not a link) of ``size`` bytes and SHA-256
+    ``digest``."""
+    import os
+    import stat
+
+    from ..io import sha256_of_file
+
+    try:
+        status = os.lstat(path)
+    except OSError:
+        return False
+    return (stat.S_ISREG(status.st_mode) and status.st_size == size
+            and sha256_of_file(path) == digest)
+
+
+def earlier_run(out: str | Path, *, force: bool) -> EarlierRun | None:
+    """The earlier run in ``out`` that ``--force`` may replace; None for a folder that is
+    missing or empty. A :class:`SpecError` if ``out`` is not empty and ``force`` is not given,
+    or if anything there is not what the run's manifest lists, unchanged: another file, a
+    symbolic link, an edited file (an ``index.csv`` edited to name ``notes.txt`` is one)."""
+    import os
+
+    from ..errors import SpecError
 
     out = Path(out)
+    if not os.path.lexists(out):
+        return None
     if not out.is_dir():
-        return []
-    entries = sorted(out.iterdir())
+        raise SpecError(f"--out {out} is a file, not a folder")
+    entries = sorted(os.listdir(out))
     if not entries:
-        return []
+        return None
     if not force:
         raise SpecError(f"--out {out} is not empty ({len(entries)} entries): choose an empty "
                         "folder, or give --force to replace an earlier variants run there")
-    index = out / "index.csv"
-    ours = {out / "keys.json", index}
-    try:
-        with index.open(encoding="utf-8", newline="") as handle:
-            for row in csv.DictReader(handle):
-                folder = spreadsheet_text(row.get("folder") or "")
-                ours.add(out / path_component(folder, "index.csv folder"))
-    except (OSError, UnicodeDecodeError, csv.Error):
-        pass
-    foreign = [entry.name for entry in entries if entry not in ours]
+    files = _read_manifest(out)
+    tops = {name.split("/")[0] for name in files}
+    foreign, linked, changed = [], [], []
+    for name in entries:
+        path = out / name
+        if os.path.islink(path):
+            linked.append(name)
+        elif name == MANIFEST:
+            continue
+        elif name not in tops:
+            foreign.append(name)
+        elif path.is_dir():
+            for inner in sorted(os.listdir(path)):
+                relative = f"{name}/{inner}"
+                if os.path.islink(path / inner):
+                    linked.append(relative)
+                elif relative not in files:
+                    foreign.append(relative)
+                elif not _unchanged(path / inner, *files[relative]):
+                    changed.append(relative)
+        elif name not in files or not _unchanged(path, *files[name]):
+            changed.append(name)
     if foreign:
         raise SpecError(f"--out {out} holds files no variants run wrote ({', '.join(foreign[:3])}"
                         f"{', …' if len(foreign) > 3 else ''}): --force only replaces an "
                         "earlier run; choose another folder")
-    return [entry for entry in entries if entry in ours]
+    if linked:
+        raise SpecError(f"--out {out} holds symbolic links ({', '.join(linked[:3])}), which "
+                        "variants never writes: --force only replaces an earlier run; choose "
+                        "another folder")
+    if changed:
+        raise SpecError(f"--out {out}: {', '.join(changed[:3])} changed since variants wrote "
+                        f"{'them' if len(changed) > 1 else 'it'} (size or SHA-256 differs from "
+                        f"{MANIFEST}): --force removes only what variants wrote; move "
+                        f"{'them' if len(changed) > 1 else 'it'} away or choose another folder")
+    return EarlierRun(tuple(entries), files)
+
+
+def remove_retired(retired: Path, earlier: EarlierRun | None) -> list[str]:
+    """Remove an earlier run moved aside into ``retired``: each file its manifest lists, if
+    still unchanged, then the manifest and the emptied folders. Returns what is left there
+    (changed since the check), which stays."""
+    import contextlib
+    import os
+
+    files = earlier.files if earlier is not None else {}
+    for name, (size, digest) in files.items():
+        path = retired / name
+        if _unchanged(path, size, digest):
+            os.unlink(path)
+    manifest = retired / MANIFEST
+    if os.path.lexists(manifest) and not os.path.islink(manifest) and manifest.is_file():
+        os.unlink(manifest)
+    for name in sorted({name.split("/")[0] for name in files if "/" in name}):
+        with contextlib.suppress(OSError):
+            os.rmdir(retired / name)
+    left = sorted(os.listdir(retired))
+    if not left:
+        os.rmdir(retired)
+    return left
 
 
 def run(args: argparse.Namespace) -> int:
     import json
-    import shutil
-    from pathlib import Path
+    import sys
 
     from ..errors import SpecError
     from ..grading.keys import build_key, bundle
     from ..grading.templates import draw_variant, load_template, to_toml
-    from ..io import csv_text, json_text, student_folder, write_files
+    from ..io import csv_text, json_text, output_set, student_folder
     from ..progress import Progress
 
     out = Path(args.out)
-    earlier = _earlier_run(out, force=args.force)   # before any work: refuse or plan removal
+    earlier = earlier_run(out, force=args.force)   # before any work: refuse, or what to replace
     template = load_template(args.template)
     aliases: dict[str, list[str]] = {}
     if args.students:
@@ -164,6 +329,10 @@ def run(args: argparse.Namespace) -> int:
     folders = [student_folder(s) for s in students]
     if len(set(folders)) != len(folders):
         raise SpecError("two student ids map to the same folder name", file=args.students)
+    taken = sorted(set(folders) & {*RUN_FILES, MANIFEST})
+    if taken:
+        raise SpecError(f"a student id maps to the folder name {taken[0]}, which the run's own "
+                        "file has", file=args.students)
     files: dict[str, str] = {}
     rejected: list[str] = []
     keys = []
@@ -198,12 +367,15 @@ def run(args: argparse.Namespace) -> int:
     files["keys.json"] = json_text(bundle(keys, template=str(args.template), seed=args.seed,
                                           count=len(keys)))
     files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *index_rows])
-    for path in earlier:       # the earlier run's students, keys and index, now replaced
-        if path.is_dir():
-            shutil.rmtree(path)
-        elif path.exists():
-            path.unlink()
-    write_files(out, files)
+    data = {name: text.encode("utf-8") for name, text in files.items()}
+    data[MANIFEST] = manifest_text(data).encode("utf-8")
+    with output_set() as outputs:   # the whole run, beside the earlier one, then swapped in
+        outputs.folder(out, data, replaces=earlier.entries if earlier else ())
+    retired = outputs.retired.get(out)
+    left = remove_retired(retired, earlier) if retired is not None else []
+    if left:
+        print(f"planmethod: note: {retired} keeps what changed in the earlier run during this "
+              f"one ({', '.join(left[:3])}{', …' if len(left) > 3 else ''})", file=sys.stderr)
     redrawn = sum(1 for row in index_rows if row[2])
     print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "
           f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")

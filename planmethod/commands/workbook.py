@@ -37,8 +37,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"crank-angle step in degrees (default {DEFAULT_STEP:g}; "
                              "1 gives 360 frames)")
     parser.add_argument("--jobs", type=int, metavar="N",
-                        help="worker processes (default: every core, at least 12 frames "
-                             "each)")
+                        help="worker processes, at most the CPUs this process may use "
+                             "(default: every CPU, at least 12 frames each)")
 
 
 def turn_angles(step: float, option: str = "--step") -> list[float]:
@@ -126,25 +126,94 @@ def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
     return solve_frames(exercise, angles)
 
 
-def default_jobs(frames: int) -> int:
-    """Worker processes for ``frames`` frames: every core, but at least 12 frames each.
+def usable_cpus() -> int:
+    """The CPUs this process may run on (its CPU affinity, where the system tells it).
 
-    >>> default_jobs(1)
-    1
+    >>> usable_cpus() >= 1
+    True
     """
     import os
 
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else \
-        (os.cpu_count() or 1)
-    return max(1, min(cores, frames // 12))
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0)) or 1
+    return os.cpu_count() or 1
+
+
+def worker_count(jobs: int | None, frames: int) -> int:
+    """Worker processes for ``frames`` frames: ``jobs`` (1 … the usable CPUs, else a
+    :class:`SpecError`), by default every CPU with at least 12 frames each; never more than
+    there are frames.
+
+    >>> worker_count(None, 1), worker_count(1, 100)
+    (1, 1)
+    >>> worker_count(100_000, 4)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: option --jobs: must be a number of processes in 1…...
+    """
+    cpus = usable_cpus()
+    if jobs is None:
+        return max(1, min(cpus, frames // 12))
+    if not 1 <= jobs <= cpus:
+        raise SpecError(f"must be a number of processes in 1…{cpus} (the CPUs this process "
+                        f"may use), got {jobs}", key="option --jobs")
+    return max(1, min(jobs, frames))
+
+
+def _end_with_parent(parent: int | None) -> None:
+    """A worker's first act: end with the process that started it. SIGTERM ends it at once
+    (not through the command's handler, which a pool worker would report and go on), Ctrl-C
+    is left to the parent, and on Linux the kernel kills it when its parent ends, even by
+    SIGKILL (``prctl(PR_SET_PDEATHSIG)``)."""
+    import contextlib
+    import os
+    import signal
+    import sys
+
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        set_parent_death_signal = 1   # PR_SET_PDEATHSIG of <linux/prctl.h>
+        with contextlib.suppress(OSError, AttributeError):   # no libc or no prctl
+            ctypes.CDLL(None, use_errno=True).prctl(set_parent_death_signal,
+                                                    int(signal.SIGKILL), 0, 0, 0)
+    if parent is not None and os.getppid() != parent:   # the parent ended before that
+        os._exit(1)
+
+
+def _solve_in_workers(exercise, angles: Sequence[float], workers: int,
+                      progress: Callable[[int, int], None] | None) -> list[dict[str, Any]]:
+    """The frames of ``angles`` solved in ``workers`` processes, in order. The pool is
+    terminated whenever this ends — done, failed, Ctrl-C or SIGTERM (the command line turns
+    it into an exception here) — so that no worker outlives the command."""
+    import multiprocessing
+    import os
+    import sys
+
+    size = math.ceil(len(angles) / (4 * workers))
+    chunks = [(exercise, angles[start:start + size]) for start in range(0, len(angles), size)]
+    # fork on Linux: the workers are this process's children (the parent check above holds)
+    method = "fork" if sys.platform.startswith("linux") else None
+    context = multiprocessing.get_context(method)
+    parent = os.getpid() if method == "fork" else None
+    frames: list[dict[str, Any]] = []
+    with context.Pool(min(workers, len(chunks)), initializer=_end_with_parent,
+                      initargs=(parent,)) as pool:   # leaving the block terminates the pool
+        for done in pool.imap(_solve_chunk, chunks):
+            frames += done
+            if progress is not None:
+                progress(len(frames), len(angles))
+    return frames
 
 
 def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = None,
                    progress: Callable[[int, int], None] | None = None) -> str:
     """The workbook page of ``exercise`` (an :class:`~planmethod.model.Exercise`) as HTML.
 
-    The frames are solved in ``jobs`` worker processes (default :func:`default_jobs`; 1
-    solves them here).
+    The frames are solved in ``jobs`` worker processes (see :func:`worker_count`; 1 solves
+    them here).
 
     Examples
     --------
@@ -158,24 +227,15 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     from ..vocabulary import link_numbers, quantity
 
     angles = turn_angles(step)
-    jobs = default_jobs(len(angles)) if jobs is None else max(1, int(jobs))
+    workers = worker_count(jobs, len(angles))
     frames: list[dict[str, Any]] = []
-    if jobs == 1:
+    if workers == 1:
         for angle in angles:
             frames += solve_frames(exercise, [angle])
             if progress is not None:
                 progress(len(frames), len(angles))
     else:
-        from concurrent.futures import ProcessPoolExecutor
-
-        size = math.ceil(len(angles) / (4 * jobs))
-        chunks = [(exercise, angles[start:start + size])
-                  for start in range(0, len(angles), size)]
-        with ProcessPoolExecutor(jobs) as pool:
-            for done in pool.map(_solve_chunk, chunks):
-                frames += done
-                if progress is not None:
-                    progress(len(frames), len(angles))
+        frames = _solve_in_workers(exercise, angles, workers, progress)
     first = frames[0]
     mechanism = exercise.mechanism
     numbers = link_numbers(mechanism.moving_links, mechanism.drive.link)
@@ -289,10 +349,7 @@ def run(args: argparse.Namespace) -> int:
     if Path(args.output).suffix.lower() not in (".html", ".htm"):
         raise SpecError(f"the page must be an .html file, got {args.output!r}",
                         key="option -o")
-    turn_angles(args.step)
-    if args.jobs is not None and args.jobs < 1:
-        raise SpecError(f"must be a positive number of processes, got {args.jobs}",
-                        key="option --jobs")
+    worker_count(args.jobs, len(turn_angles(args.step)))   # before any work
     exercise = load_exercise(args.file)
 
     def progress(done: int, total: int) -> None:

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
+from ..io import read_text_bounded
 from ..spec import parse_json
 from ..vocabulary import quantity
 
@@ -88,19 +89,7 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
         more than one row, or grade's own ``--json`` results instead of answers.
     """
     path = Path(path)
-    try:
-        size = path.stat().st_size
-    except FileNotFoundError:
-        raise SpecError("no such file", file=str(path)) from None
-    except OSError as error:
-        raise SpecError(f"cannot read the file ({error.strerror})", file=str(path)) from None
-    if size > MAX_ANSWER_BYTES:
-        raise SpecError(f"the file is {size} bytes, more than the {MAX_ANSWER_BYTES} accepted",
-                        file=str(path))
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the file as UTF-8 text ({error})", file=str(path)) from None
+    text = read_text_bounded(path, MAX_ANSWER_BYTES, encoding="utf-8-sig")
     if path.suffix.lower() == ".json" or text.lstrip().startswith(("{", "[")):
         rows = _answers_from_json(text, str(path))
     else:

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SpecError
+from ..io import read_bytes_bounded
 from ..spec import parse_json
 from .plan_points import graded_labels, mistake_sentence, named_mistakes
 
@@ -96,20 +97,7 @@ def read_drawing(path: str | Path) -> Drawing:
         For anything that is not a readable, safe drawing with labelled points.
     """
     path = Path(path)
-    try:
-        size = path.stat().st_size
-        if size > MAX_BYTES:
-            raise SubmissionError(f"the file is {size} bytes; at most {MAX_BYTES} are accepted",
-                                  file=str(path))
-        with path.open("rb") as handle:
-            data = handle.read(MAX_BYTES + 1)
-    except FileNotFoundError:
-        raise SubmissionError("no such file", file=str(path)) from None
-    except OSError as error:
-        raise SubmissionError(f"cannot read the file ({error.strerror})",
-                              file=str(path)) from None
-    if len(data) > MAX_BYTES:
-        raise SubmissionError(f"the file is larger than {MAX_BYTES} bytes", file=str(path))
+    data = read_bytes_bounded(path, MAX_BYTES, error=SubmissionError)
     head = data.lstrip()[:1]
     if path.suffix.lower() == ".json" or head in (b"{", b"["):
         return parse_drawing_json(data, source=str(path))

@@ -50,6 +50,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
+from ..io import read_text_bounded
 from ..spec import checked_table, parse_json
 from ..vocabulary import QUANTITY_KINDS
 from ..vocabulary import quantity as named_quantity
@@ -79,6 +80,9 @@ __all__ = [
 KEY_FORMAT = "planmethod-key"
 KEYS_FORMAT = "planmethod-keys"
 VERSION = 1
+
+#: the largest key or bundle read (bytes): some 20,000 students of the largest shipped exercise
+MAX_KEYS_BYTES = 1_000_000_000
 
 #: Keys of the [grading] table.
 GRADING_KEYS = ("precision_mm", "rel_floor", "points", "tolerance")
@@ -361,12 +365,7 @@ def load_keys(path: str | Path) -> dict[str, dict]:
     path = Path(path)
     if path.is_dir():
         path = path / "keys.json"
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SpecError("no such file", file=str(path)) from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise SpecError(f"cannot read the file ({error})", file=str(path)) from None
+    text = read_text_bounded(path, MAX_KEYS_BYTES)
     data = parse_json(text, file=str(path))
     if isinstance(data, Mapping) and data.get("format") == KEYS_FORMAT:
         keys = data.get("keys")
