@@ -43,6 +43,9 @@ COMMANDS: dict[str, tuple[str, str]] = {
                  "grader"),
     "animate": ("planmethod.commands.animate",
                 "the full turn of mechanism and plans as an animation (SVG, GIF or MP4)"),
+    "convert": ("planmethod.commands.convert",
+                "an exercise file in the other form: as drawn (global points) or in link "
+                "frames"),
 }
 
 EXIT_BAD_INPUT = 2

@@ -41,7 +41,7 @@ LAYERS: dict[str, int] = {
     "plans": 5,
     "forces": 6,
     # 7: what is made of the results: reports, sweeps, drawings, grading
-    "report": 7, "sweep": 7, "render": 7, "grading": 7,
+    "report": 7, "sweep": 7, "render": 7, "grading": 7, "convert": 7,
     # 8: helpers for tests and benchmarks
     "testing": 8,
     # 9: the command line and the package root
