@@ -32,7 +32,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-
 #: the forms ``--to`` names (:data:`planmethod.convert.FORMS`; not imported here, which would
 #: load numpy for ``--help``)
 FORMS = ("drawn", "frames")
