@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -157,8 +158,11 @@ def _orientations(mechanism: Mechanism, orders: Mapping[str, list[str]],
     return angles
 
 
-def drawn_tables(data: Mapping[str, Any], *, file: str | None = None) -> dict[str, Any]:
-    """Exercise tables in the link-frame form → the same exercise written as drawn.
+def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
+                 angle: float | None = None) -> dict[str, Any]:
+    """Exercise tables in the link-frame form → the same exercise written as drawn (at
+    ``drive.angle``, or turned to the crank angle ``angle``: on the assembly the file picks at
+    ``drive.angle``, followed to ``angle`` as a sweep follows it).
 
     Raises
     ------
@@ -179,7 +183,11 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None) -> dict[st
         raise SpecError("the file is already written as drawn ([points])", file=file)
     exercise = exercise_from_dict(data, file=file)
     mechanism = exercise.mechanism
-    motion = solve(mechanism, mechanism.drive.angle, stage="position")
+    if angle is None:
+        motion = solve(mechanism, mechanism.drive.angle, stage="position")
+    else:   # the assembly chosen at drive.angle, followed to the new angle
+        motion = solve(mechanism, float(angle), stage="position")
+        mechanism = replace(mechanism, drive=replace(mechanism.drive, angle=float(angle)))
     orders = {link: list(mechanism.links[link].points) for link in mechanism.links}
     names = list(dict.fromkeys(p for order in orders.values() for p in order))
     solved = {p: np.asarray(motion.position(p), dtype=float) for p in names}
@@ -206,6 +214,8 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None) -> dict[st
             out["links"] = orders
         elif key == "sketch":
             continue
+        elif key == "drive" and angle is not None:
+            out["drive"] = dict(value, angle=mechanism.drive.angle)
         elif key == "slide":
             out["slide"] = [dict(table, direction=angles[pair.along] + pair.direction + 0.0)
                             for table, pair in zip(_tables(value), mechanism.slides,
