@@ -46,6 +46,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "convert": ("planmethod.commands.convert",
                 "an exercise file in the other form: as drawn (global points) or in link "
                 "frames"),
+    "studio": ("planmethod.commands.studio",
+               "the instructor's studio: draw a mechanism in the browser, see its plans live"),
 }
 
 EXIT_BAD_INPUT = 2

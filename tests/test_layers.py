@@ -45,7 +45,7 @@ LAYERS: dict[str, int] = {
     # 8: helpers for tests and benchmarks
     "testing": 8,
     # 9: the command line and the package root
-    "commands": 9, "cli": 9, "__main__": 9, "notebook": 9, "": 9,
+    "commands": 9, "cli": 9, "__main__": 9, "notebook": 9, "studio": 9, "": 9,
 }
 
 
