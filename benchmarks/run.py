@@ -1,6 +1,6 @@
 """Run the benchmarks and write their results: ``python -m benchmarks.run [--quick]``.
 
-Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workbook``):
+Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workbook,studio``):
 
 * ``speed`` — full-turn analysis of the case A four-bar and the compressor slider-crank at
   N = 360, 3,600, 36,000 angles against the peers (``python -m benchmarks.peers --setup``
@@ -16,7 +16,9 @@ Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workboo
 * ``stress`` — the long stress run → ``results/stress.{json,md}``;
 * ``workbook`` — per-position analysis, plans + SVG and keys of the compressor and the
   conveyor, their 360-frame workbooks (time, size) and the frame switch in headless Chromium
-  → ``results/workbook.{json,md}``, ``figures/workbook.png``.
+  → ``results/workbook.{json,md}``, ``figures/workbook.png``;
+* ``studio`` — the studio's time per update while a point is dragged, on the server and in
+  headless Chromium → ``results/studio.{json,md}``.
 
 A full run writes into ``benchmarks/results`` and ``figures``; ``--quick`` (smaller N, fewer
 repeats, about a minute) writes into ``--out`` (default: a temporary folder), so that quick
@@ -25,7 +27,7 @@ numbers never replace the committed ones.
 Examples
 --------
 >>> sorted(SECTIONS)
-['accuracy', 'memory', 'scene', 'speed', 'stress', 'workbook']
+['accuracy', 'memory', 'scene', 'speed', 'stress', 'studio', 'workbook']
 """
 
 from __future__ import annotations
@@ -37,7 +39,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import accuracy, memory, scene, speed, stress, workbook
+from . import accuracy, memory, scene, speed, stress, studio, workbook
 from .common import FIGURES, RESULTS, machine
 
 SECTIONS = {
@@ -47,6 +49,7 @@ SECTIONS = {
     "memory": (memory, None),
     "stress": (stress, None),
     "workbook": (workbook, None),
+    "studio": (studio, None),
 }
 
 

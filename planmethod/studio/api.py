@@ -162,7 +162,7 @@ def solve(text: str) -> dict[str, Any]:
 
     start = time.perf_counter()
     analysis = analyse(_exercise(text))
-    report = json.loads(json.dumps(report_dict(analysis), ensure_ascii=False, allow_nan=False))
+    report = report_dict(analysis)
     svg = {}
     plans = analysis.plans
     if plans is not None:

@@ -1,0 +1,265 @@
+"""The studio's speed while a point is dragged: the server's time per update and the browser's
+round trip.
+
+*Server* (in-process, ms per update, median and 90th percentile of 40 steps): the crank pin
+of the compressor slider-crank (B) and of the six-link conveyor (A) moved 0.5 mm at a time, as
+a hand drags it — every step a new mechanism (new lengths, new angle) written as drawn, and
+what ``POST /api/solve`` does with it: read the TOML, solve (structure, exact kinematics,
+plans, forces where masses are given), the JSON report, and the position, velocity and
+acceleration plans as SVG. Also each stage's share.
+
+*Browser* (ms): the studio started on a free port, its page opened in headless Chromium
+(Playwright) with the exercise, the pin moved the same way by the page's own drag code
+(``studio.movePoint``), one step after the previous plans were shown; the time the page itself
+records from sending the drawing to showing the plans (request, server, answer, putting the
+SVG into the page).
+
+Targets of issue 22: the server ≤ 16 ms (compressor) and ≤ 40 ms (conveyor) per update, the
+round trip ≤ 50 ms and ≤ 100 ms, on the benchmark machine.
+
+*Load*: the machine these run on is shared, and its load changes the numbers several times
+over. So the run also takes the workbook benchmark's reference measure, the compressor's
+plans + SVG at one position (``benchmarks.workbook.per_position``), whose committed value
+(``results/workbook.json``) was measured on the idle machine; the ratio of the two is the
+run's *load factor*, and each time divided by it is shown as the idle estimate. Compare
+times only within one run.
+
+Examples
+--------
+>>> sorted(TARGETS_MS)
+['compressor', 'conveyor']
+>>> steps = drag_steps({"points": {"A": [0.0, 0.0], "B": [0.06, 0.0]},
+...                     "drive": {"pivot": "A", "angle": 0.0}}, "B", 2)
+>>> [step["points"]["B"] for step in steps]
+[[0.06, 0.0005], [0.06, 0.001]]
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import shutil
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+from planmethod.convert import drawn_tables
+from planmethod.grading.templates import to_toml
+from planmethod.spec import parse_toml, read_text
+from planmethod.studio import api
+
+from .common import FIGURES, ROOT
+
+FILES = {"compressor": ("exercises/compressor_slider_crank.toml", "B"),
+         "conveyor": ("exercises/conveyor_sixbar.toml", "A")}
+
+#: issue 22's targets: the server's time per update and the browser's round trip (ms)
+TARGETS_MS = {"compressor": {"server": 16.0, "browser": 50.0},
+              "conveyor": {"server": 40.0, "browser": 100.0}}
+
+#: how far the pin moves per step (m), and how many steps
+STEP_M, STEPS = 0.0005, 40
+
+
+def drag_steps(tables: dict, pin: str, count: int) -> list[dict]:
+    """The drawing after each of ``count`` steps of the crank pin moved ⟂ to the crank (the
+    drive angle following the pin, as the page sets it)."""
+    out = []
+    pivot = tables["points"][tables["drive"]["pivot"]]
+    for number in range(1, count + 1):
+        step = copy.deepcopy(tables)
+        x, y = step["points"][pin]
+        angle = math.atan2(y - pivot[1], x - pivot[0])
+        x -= number * STEP_M * math.sin(angle)
+        y += number * STEP_M * math.cos(angle)
+        step["points"][pin] = [round(x, 12) + 0.0, round(y, 12) + 0.0]
+        step["drive"]["angle"] = math.degrees(math.atan2(y - pivot[1], x - pivot[0]))
+        out.append(step)
+    return out
+
+
+def _percentile(values: list[float], share: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, round(share * (len(ordered) - 1)))]
+
+
+def server_times(name: str, count: int = STEPS) -> dict:
+    """ms per update of ``api.solve`` along a drag, and each stage's median (ms)."""
+    from planmethod.render.svg import plan_svg, position_svg
+    from planmethod.report import analyse, report_dict
+    from planmethod.spec import parse_exercise
+
+    path, pin = FILES[name]
+    tables = drawn_tables(parse_toml(read_text(ROOT / path)))
+    texts = [to_toml(step) for step in drag_steps(tables, pin, count)]
+    api.solve(to_toml(tables))   # the imports and the first compilations
+    totals = []
+    for text in texts:
+        start = time.perf_counter()
+        api.solve(text)
+        totals.append(1000 * (time.perf_counter() - start))
+    stages: dict[str, list[float]] = {"read": [], "solve": [], "report": [], "svg": []}
+    for text in texts[: count // 2]:
+        moved = text.replace("0.0005", "0.00051")   # a mechanism not met before
+        clock = [time.perf_counter()]
+        exercise = parse_exercise(moved)
+        clock.append(time.perf_counter())
+        analysis = analyse(exercise)
+        clock.append(time.perf_counter())
+        report_dict(analysis)
+        clock.append(time.perf_counter())
+        plans = analysis.plans
+        position_svg(plans.position, plans=plans)
+        plan_svg(plans.velocity, details=False)
+        plan_svg(plans.acceleration, details=False)
+        clock.append(time.perf_counter())
+        for stage, start, end in zip(stages, clock, clock[1:], strict=False):
+            stages[stage].append(1000 * (end - start))
+    return {"median_ms": statistics.median(totals), "p90_ms": _percentile(totals, 0.9),
+            "stages_ms": {stage: statistics.median(values) for stage, values in stages.items()}}
+
+
+def browser_times(name: str, count: int = STEPS) -> dict | None:
+    """The page's round trip per drag step (ms), or None without Chromium and Playwright."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        return None
+    if chromium is None:
+        return None
+    from planmethod.studio.server import StudioServer
+
+    path, pin = FILES[name]
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-bench-"))
+    tables = drawn_tables(parse_toml(read_text(ROOT / path)))
+    (folder / "exercise.toml").write_text(to_toml(tables), encoding="utf-8")
+    server = StudioServer(folder, 0, initial="exercise.toml")
+    server.start()
+    try:
+        with sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=chromium,
+                                                 args=["--no-sandbox"])
+            context = browser.new_context(bypass_csp=True,
+                                          viewport={"width": 1500, "height": 1000})
+            page = context.new_page()
+            page.goto(server.url("/", token=True))
+            page.wait_for_function("window.studio.ready && window.studio.solves > 0",
+                                   timeout=120_000)
+            for step in drag_steps(tables, pin, 5):   # warm the solver and the page
+                _move(page, pin, step["points"][pin])
+            page.evaluate("window.studio.timings = []")
+            for step in drag_steps(tables, pin, count):
+                _move(page, pin, step["points"][pin])
+            times = page.evaluate("window.studio.timings")
+            browser.close()
+    finally:
+        server.stop()
+        shutil.rmtree(folder, ignore_errors=True)
+    return {"median_ms": statistics.median(times), "p90_ms": _percentile(times, 0.9),
+            "steps": len(times)}
+
+
+def screenshot(path: Path, exercise: str = "exercises/fourbar_coupler_point.toml",
+               point: str = "C") -> bool:
+    """The studio with ``exercise`` open and ``point`` selected, 1500 × 1000 px, as a PNG at
+    ``path`` (the picture in README and docs/studio.md); False without a browser."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        return False
+    if chromium is None:
+        return False
+    from planmethod.io import write_bytes_atomic
+    from planmethod.studio.server import StudioServer
+
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-shot-"))
+    shutil.copy(ROOT / exercise, folder / Path(exercise).name)
+    server = StudioServer(folder, 0, initial=Path(exercise).name)
+    server.start()
+    try:
+        with sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=chromium,
+                                                 args=["--no-sandbox"])
+            context = browser.new_context(bypass_csp=True,
+                                          viewport={"width": 1500, "height": 1000})
+            page = context.new_page()
+            page.goto(server.url("/", token=True))
+            page.wait_for_function("window.studio.ready && window.studio.solves > 0",
+                                   timeout=120_000)
+            page.click(f'circle.point-hit[data-point="{point}"]')
+            for _ in range(3):   # solved again, warm: the status shows an update's time
+                where = page.evaluate(f"window.studio.tables.points[{point!r}]")
+                _move(page, point, where)
+            page.wait_for_timeout(500)
+            image = page.screenshot(clip={"x": 0, "y": 0, "width": 1500, "height": 1000})
+            browser.close()
+    finally:
+        server.stop()
+        shutil.rmtree(folder, ignore_errors=True)
+    write_bytes_atomic(path, image)
+    return True
+
+
+def _move(page, pin: str, xy: list[float]) -> None:
+    solves = page.evaluate("window.studio.solves")
+    page.evaluate("([name, x, y]) => window.studio.movePoint(name, x, y)", [pin, *xy])
+    page.wait_for_function(f"window.studio.solves > {solves}", timeout=60_000, polling=1)
+
+
+def load_factor() -> dict:
+    """The workbook's reference measure now against its committed (idle) value."""
+    import json
+
+    from .common import RESULTS
+    from .workbook import per_position
+
+    committed = json.loads((RESULTS / "workbook.json").read_text(encoding="utf-8"))
+    idle = committed["mechanisms"]["compressor"]["per_position_ms"]["plan_files"]
+    now = per_position("compressor", 12)["plan_files"]
+    return {"reference_ms": now, "idle_reference_ms": idle, "factor": max(now / idle, 1.0)}
+
+
+def run(*, quick: bool = False) -> dict:
+    count = 10 if quick else STEPS
+    result: dict = {"steps": count, "step_m": STEP_M, "mechanisms": {}}
+    before = load_factor()
+    for name in FILES:
+        entry = {"server": server_times(name, count), "browser": browser_times(name, count)}
+        print(f"  {name}: {entry}")
+        result["mechanisms"][name] = entry
+    after = load_factor()
+    result["load"] = {"before": before, "after": after,
+                      "factor": (before["factor"] + after["factor"]) / 2}
+    if not quick:
+        screenshot(FIGURES / "studio.png")
+    return result
+
+
+def _mark(value: float, target: float) -> str:
+    return f"{value:.3g} ({'≤' if value <= target else '>'} {target:g})"
+
+
+def table(result: dict) -> str:
+    factor = result["load"]["factor"]
+    lines = ["| mechanism | server ms per update: median / p90 (idle estimate) | "
+             "read / solve / report / SVG ms | browser round trip ms: median / p90 (idle "
+             "estimate) |", "|---|---|---|---|"]
+    for name, entry in result["mechanisms"].items():
+        target, server = TARGETS_MS[name], entry["server"]
+        stages = " / ".join(f"{value:.3g}" for value in server["stages_ms"].values())
+        browser = entry["browser"]
+        shown = ("browser absent" if browser is None else
+                 f"{browser['median_ms']:.3g} / {browser['p90_ms']:.3g} "
+                 f"({_mark(browser['median_ms'] / factor, target['browser'])})")
+        lines.append(f"| {name} | {server['median_ms']:.3g} / {server['p90_ms']:.3g} "
+                     f"({_mark(server['median_ms'] / factor, target['server'])}) | {stages} | "
+                     f"{shown} |")
+    load = result["load"]
+    lines += ["", f"Load factor of this run: {factor:.2f} (the workbook's reference measure: "
+              f"{load['before']['reference_ms']:.3g} ms before, {load['after']['reference_ms']:.3g}"
+              f" ms after, {load['before']['idle_reference_ms']:.3g} ms idle); an idle "
+              "estimate is a time divided by it."]
+    return "\n".join(lines) + "\n"
