@@ -38,6 +38,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import math
 import shutil
@@ -51,7 +52,7 @@ from planmethod.grading.templates import to_toml
 from planmethod.spec import parse_toml, read_text
 from planmethod.studio import api
 
-from .common import FIGURES, ROOT
+from .common import FIGURES, ROOT, browser_launcher
 
 FILES = {"compressor": ("exercises/compressor_slider_crank.toml", "B"),
          "conveyor": ("exercises/conveyor_sixbar.toml", "A")}
@@ -123,42 +124,53 @@ def server_times(name: str, count: int = STEPS) -> dict:
             "stages_ms": {stage: statistics.median(values) for stage, values in stages.items()}}
 
 
-def browser_times(name: str, count: int = STEPS) -> dict | None:
-    """The page's round trip per drag step (ms), or None without Chromium and Playwright."""
-    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        return None
-    if chromium is None:
-        return None
+@contextlib.contextmanager
+def studio_page(folder: Path, initial: str):
+    """A studio serving ``folder`` (``initial`` open) and its page in headless Chromium, the
+    first solve shown; None without Chromium and Playwright. Everything is stopped after."""
+    found = browser_launcher()
+    if found is None:
+        yield None
+        return
+    sync_playwright, chromium = found
     from planmethod.studio.server import StudioServer
 
-    path, pin = FILES[name]
-    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-bench-"))
-    tables = drawn_tables(parse_toml(read_text(ROOT / path)))
-    (folder / "exercise.toml").write_text(to_toml(tables), encoding="utf-8")
-    server = StudioServer(folder, 0, initial="exercise.toml")
+    server = StudioServer(folder, 0, initial=initial)
     server.start()
     try:
         with sync_playwright() as playwright:
             browser = playwright.chromium.launch(executable_path=chromium,
                                                  args=["--no-sandbox"])
+            # the page's policy forbids eval; Playwright's waits evaluate their text
             context = browser.new_context(bypass_csp=True,
                                           viewport={"width": 1500, "height": 1000})
             page = context.new_page()
             page.goto(server.url("/", token=True))
             page.wait_for_function("window.studio.ready && window.studio.solves > 0",
                                    timeout=120_000)
+            yield page
+            browser.close()
+    finally:
+        server.stop()
+
+
+def browser_times(name: str, count: int = STEPS) -> dict | None:
+    """The page's round trip per drag step (ms), or None without Chromium and Playwright."""
+    path, pin = FILES[name]
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-bench-"))
+    tables = drawn_tables(parse_toml(read_text(ROOT / path)))
+    (folder / "exercise.toml").write_text(to_toml(tables), encoding="utf-8")
+    try:
+        with studio_page(folder, "exercise.toml") as page:
+            if page is None:
+                return None
             for step in drag_steps(tables, pin, 5):   # warm the solver and the page
                 _move(page, pin, step["points"][pin])
             page.evaluate("window.studio.timings = []")
             for step in drag_steps(tables, pin, count):
                 _move(page, pin, step["points"][pin])
             times = page.evaluate("window.studio.timings")
-            browser.close()
     finally:
-        server.stop()
         shutil.rmtree(folder, ignore_errors=True)
     return {"median_ms": statistics.median(times), "p90_ms": _percentile(times, 0.9),
             "steps": len(times)}
@@ -168,39 +180,21 @@ def screenshot(path: Path, exercise: str = "exercises/fourbar_coupler_point.toml
                point: str = "C") -> bool:
     """The studio with ``exercise`` open and ``point`` selected, 1500 × 1000 px, as a PNG at
     ``path`` (the picture in README and docs/studio.md); False without a browser."""
-    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        return False
-    if chromium is None:
-        return False
     from planmethod.io import write_bytes_atomic
-    from planmethod.studio.server import StudioServer
 
     folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-shot-"))
     shutil.copy(ROOT / exercise, folder / Path(exercise).name)
-    server = StudioServer(folder, 0, initial=Path(exercise).name)
-    server.start()
     try:
-        with sync_playwright() as playwright:
-            browser = playwright.chromium.launch(executable_path=chromium,
-                                                 args=["--no-sandbox"])
-            context = browser.new_context(bypass_csp=True,
-                                          viewport={"width": 1500, "height": 1000})
-            page = context.new_page()
-            page.goto(server.url("/", token=True))
-            page.wait_for_function("window.studio.ready && window.studio.solves > 0",
-                                   timeout=120_000)
+        with studio_page(folder, Path(exercise).name) as page:
+            if page is None:
+                return False
             page.click(f'circle.point-hit[data-point="{point}"]')
             for _ in range(3):   # solved again, warm: the status shows an update's time
                 where = page.evaluate(f"window.studio.tables.points[{point!r}]")
                 _move(page, point, where)
             page.wait_for_timeout(500)
             image = page.screenshot(clip={"x": 0, "y": 0, "width": 1500, "height": 1000})
-            browser.close()
     finally:
-        server.stop()
         shutil.rmtree(folder, ignore_errors=True)
     write_bytes_atomic(path, image)
     return True

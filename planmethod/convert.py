@@ -69,6 +69,7 @@ __all__ = [
     "convert_text",
     "drawn_tables",
     "frame_tables",
+    "refuse_template",
 ]
 
 #: significant digits (of the drawing's size) of a position or a point in its link's frame
@@ -349,9 +350,14 @@ def convert_text(text: str, *, to: str | None = None, file: str | None = None) -
     from .grading.templates import to_toml
 
     data = parse_toml(text, file=file)
+    refuse_template(data, "is converted variant by variant", file=file)
+    return _header(text) + to_toml(convert_tables(data, to=to, file=file))
+
+
+def refuse_template(data: Mapping[str, Any], what: str, *, file: str | None = None) -> None:
+    """A :class:`SpecError` if the tables are a template (``[vars]`` or ``[template]``): it
+    ``what`` (``"is converted variant by variant"``)."""
     for name in ("vars", "template"):
         if name in data:
-            raise SpecError("a template (it has ranges, choices or expressions) is converted "
-                            "variant by variant: draw one with `planmethod variants`",
-                            file=file, key=name)
-    return _header(text) + to_toml(convert_tables(data, to=to, file=file))
+            raise SpecError(f"a template (it has ranges, choices or expressions) {what}: draw "
+                            "one with `planmethod variants`", file=file, key=name)

@@ -14,12 +14,12 @@ with ``pytest -m "not browser"``.
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+import chromium
 import pytest
 
 from planmethod.studio.server import StudioServer
@@ -29,13 +29,7 @@ pytestmark = pytest.mark.browser
 ROOT = Path(__file__).resolve().parent.parent
 COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
 
-sync_api = pytest.importorskip(
-    "playwright.sync_api",
-    reason="Playwright is not installed (pip install 'planmethod[test]')")
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-if CHROMIUM is None:
-    pytest.skip("no system Chromium on the PATH (apt-get install chromium)",
-                allow_module_level=True)
+sync_api, CHROMIUM = chromium.require()
 
 #: the compressor as drawn at φ1 = 45° (planmethod convert of the shipped file), m
 DRAWN = {"A": ("0", "0"), "B": ("0.0424264068711929", "0.0424264068711928"),

@@ -176,15 +176,11 @@ def solve(text: str) -> dict[str, Any]:
 
 def _drawn(text: str, file: str | None = None) -> dict[str, Any]:
     """The tables of an exercise file, written as drawn (converted if it is in link frames)."""
-    from ..convert import drawn_tables
+    from ..convert import drawn_tables, refuse_template
     from ..spec import is_drawn, parse_toml
 
     data = parse_toml(text, file=file)
-    for name in ("vars", "template"):
-        if name in data:
-            raise SpecError("this is a template (ranges, choices, expressions): the studio "
-                            "edits one exercise; draw one with `planmethod variants`",
-                            file=file, key=name)
+    refuse_template(data, "is not edited in the studio, one exercise is", file=file)
     if is_drawn(data):
         _exercise(text, file)    # it must be a whole exercise
         return data
