@@ -234,6 +234,7 @@ def load_factor(count: int = 12) -> dict:
         wall.append(1000 * (time.perf_counter() - start))
     wall_ms, cpu_ms = statistics.median(wall), statistics.median(cpu)
     return {"reference_ms": wall_ms, "reference_cpu_ms": cpu_ms, "idle_reference_ms": idle,
+            "idle_machine": committed.get("machine", {}).get("cpu", "?"),
             "factor": max(wall_ms / idle, 1.0), "cpu_factor": max(cpu_ms / idle, 1.0)}
 
 
@@ -275,11 +276,14 @@ def table(result: dict) -> str:
                      f"({_mark(server['cpu_median_ms'] / cpu_factor, target['server'])}) | "
                      f"{server['median_ms']:.3g} / {server['p90_ms']:.3g} | {stages} | "
                      f"{shown} |")
+    idle_machine = load["before"].get("idle_machine", "?")
     lines += ["", f"Load of this run: the reference measure (the compressor's plans + SVG at one "
-              f"position, {load['before']['idle_reference_ms']:.3g} ms on the idle machine) took "
+              f"position, {load['before']['idle_reference_ms']:.3g} ms on the idle machine, "
+              f"{idle_machine}) took "
               f"{load['before']['reference_ms']:.3g} / {load['after']['reference_ms']:.3g} ms "
               f"wall and {load['before']['reference_cpu_ms']:.3g} / "
               f"{load['after']['reference_cpu_ms']:.3g} ms CPU before / after: factors "
               f"{factor:.2f} (wall) and {cpu_factor:.2f} (CPU). An idle estimate is a time "
-              "divided by its factor."]
+              "divided by its factor: a rough one, the more so when the reference was measured "
+              "on another processor than the header's."]
     return "\n".join(lines) + "\n"
