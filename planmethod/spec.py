@@ -799,7 +799,8 @@ class _Drawing:
             if not isinstance(table, Mapping):
                 continue
             link, along = table.get("link"), table.get("along")
-            if link in self.lists and along in self.lists and link != along:
+            if (isinstance(link, str) and isinstance(along, str) and link in self.lists
+                    and along in self.lists and link != along and self.lists[link]):
                 direction = self.reader.number(table.get("direction", 0.0),
                                                f"slide[{number}].direction")
                 found.append((number, table, link, along, direction))

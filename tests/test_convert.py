@@ -207,6 +207,8 @@ def test_a_slide_point_off_its_guide_gives_the_distance():
                                                    "pivot A"),
     (("A = [0, 0]", "A = [0, 0]\nZ = [0, 0]"), "points.Z: is not a point of any link"),
     (("C = [0.217355, 0]", "C = [1e300, 0]"), "points.C[0]: must be at most 1e+06 in magnitude"),
+    (('slider = ["C"]', "slider = []"), "links.slider: a link needs at least one point"),
+    (('link = "slider"', 'link = ["slider"]'), "slide[1].link: must be a non-empty string"),
 ])
 def test_as_drawn_mistakes_are_one_line(change, expected):
     assert expected in drawn_error(ISSUE_EXAMPLE.replace(*change))
