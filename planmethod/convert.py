@@ -57,7 +57,7 @@ import numpy as np
 
 from .errors import SpecError
 from .model import FRAME, Mechanism
-from .spec import exercise_from_dict, frames_from_drawn, is_drawn, parse_toml
+from .spec import drawing_size, exercise_from_dict, frames_from_drawn, is_drawn, parse_toml
 from .vectors import angle_deg, norm
 
 __all__ = [
@@ -96,14 +96,6 @@ def _decimals(size: float, digits: int) -> int:
 def _rounded(values, decimals: int) -> list[float]:
     """Numbers rounded to ``decimals`` places (−0.0 written 0.0)."""
     return [round(float(value), decimals) + 0.0 for value in values]
-
-
-def _size(points) -> float:
-    """The larger side of the box around points (m), at least 1 mm."""
-    coordinates = np.array(list(points), dtype=float).reshape(-1, 2)
-    if not len(coordinates):
-        return 1e-3
-    return max(1e-3, float(np.max(np.ptp(coordinates, axis=0))))
 
 
 def _difference(total: float, part: float) -> float:
@@ -192,7 +184,7 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
     orders = {link: list(mechanism.links[link].points) for link in mechanism.links}
     names = list(dict.fromkeys(p for order in orders.values() for p in order))
     solved = {p: np.asarray(motion.position(p), dtype=float) for p in names}
-    size = _size(solved.values())
+    size = drawing_size(solved.values())
     places = _decimals(size, DIGITS)
     fixed = mechanism.links[FRAME].points
     points: dict[str, list[float]] = {}
@@ -261,7 +253,7 @@ def frame_tables(data: Mapping[str, Any], *, file: str | None = None) -> dict[st
     frames = frames_from_drawn(data, file=file)
     exercise_from_dict(frames, file=file)   # the whole exercise is valid
     angles = _drawn_angles(data, frames)
-    size = _size(tuple(value) for value in frames["sketch"].values())
+    size = drawing_size(tuple(value) for value in frames["sketch"].values())
     places = _decimals(size, DIGITS)
 
     def local(link: str, xy) -> list[float]:

@@ -60,8 +60,9 @@ from .model import (
 from .vectors import angle_deg, cross, dot, norm, unit_angle
 from .vocabulary import quantity
 
-__all__ = ["DRAWN_TOLERANCE", "POINT_NAME", "exercise_from_dict", "frames_from_drawn",
-           "is_drawn", "load_exercise", "parse_exercise", "parse_toml", "read_text"]
+__all__ = ["DRAWN_TOLERANCE", "POINT_NAME", "drawing_size", "exercise_from_dict",
+           "frames_from_drawn", "is_drawn", "load_exercise", "parse_exercise", "parse_toml",
+           "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -710,6 +711,19 @@ def frames_from_drawn(data: Mapping[str, Any], *, file: str | None = None) -> di
     return _Drawing(_Reader(file), data).tables()
 
 
+def drawing_size(points) -> float:
+    """The larger side of the box around points (m), at least 1 mm: the scale of a drawing's
+    tolerances.
+
+    >>> drawing_size([(0, 0), (0.2, 0.05)]), drawing_size([])
+    (0.2, 0.001)
+    """
+    coordinates = np.array(list(points), dtype=float).reshape(-1, 2)
+    if not len(coordinates):
+        return 1e-3
+    return max(1e-3, float(np.max(np.ptp(coordinates, axis=0))))
+
+
 def _distinct(first: float, second: float) -> tuple[str, str]:
     """Two numbers written with as few decimals as tell them apart (at most 9).
 
@@ -772,9 +786,7 @@ class _Drawing:
         return lists
 
     def drawing_size(self) -> float:
-        """The larger side of the box around the drawn points (m), at least 1 mm."""
-        coordinates = np.array(list(self.points.values())).reshape(-1, 2)
-        return max(1e-3, float(np.max(np.ptp(coordinates, axis=0))))
+        return drawing_size(self.points.values())
 
     def drive(self) -> tuple[str, str, float] | None:
         """(link, pivot, angle) when ``[drive]`` names them well enough to draw the crank's
