@@ -9,6 +9,7 @@ from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
 from planmethod.kinematics.program import Model
 from planmethod.kinematics.solve import Motion
+from planmethod.studio.server import StudioHandler, StudioServer
 
 # argparse's parser reads this attribute: negative numbers in any float notation are values
 _Parser._negative_number_matcher  # noqa: B018
@@ -21,3 +22,18 @@ Motion.acceleration_of  # noqa: B018
 # a variant posed at another crank angle on its followed assembly: the public API the
 # continuation tests call (tests/test_continuation.py)
 variant_exercise  # noqa: B018
+# the standard library's HTTP server reads these class attributes and calls these methods by
+# name (socketserver, http.server): the studio's server and its request handler
+StudioServer.daemon_threads  # noqa: B018
+StudioServer.allow_reuse_address  # noqa: B018
+StudioHandler.server_version  # noqa: B018
+StudioHandler.sys_version  # noqa: B018
+StudioHandler.protocol_version  # noqa: B018
+StudioHandler.timeout  # noqa: B018
+StudioHandler.do_GET  # noqa: B018
+StudioHandler.do_POST  # noqa: B018
+StudioHandler.do_PUT  # noqa: B018
+StudioHandler.do_DELETE  # noqa: B018
+StudioHandler.do_HEAD  # noqa: B018
+StudioHandler.log_message  # noqa: B018
+StudioHandler.close_connection  # noqa: B018

@@ -94,6 +94,19 @@ def interleaved_best_times(functions: dict[str, Callable[[], object]], *,
             for name, spent in times.items()}
 
 
+def browser_launcher():
+    """(Playwright's ``sync_playwright``, the system Chromium's path), or None where either
+    is missing (the browser measures are then left out)."""
+    import shutil
+
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        return None
+    return None if chromium is None else (sync_playwright, chromium)
+
+
 def machine() -> dict:
     """What the numbers were measured on."""
     info = {"python": platform.python_version(), "numpy": np.__version__,

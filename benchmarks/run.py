@@ -21,7 +21,9 @@ Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workboo
   against choosing it again at the angle, for every shipped exercise →
   ``results/continuation.{json,md}``;
 * ``toggle`` — how close to a four-bar's toggle each stage still solves, and the error estimate
-  against the measured error → ``results/toggle.{json,md}``.
+  against the measured error → ``results/toggle.{json,md}``;
+* ``studio`` — the studio's time per update while a point is dragged, on the server and in
+  headless Chromium → ``results/studio.{json,md}``.
 
 A full run writes into ``benchmarks/results`` and ``figures``; ``--quick`` (smaller N, fewer
 repeats, about a minute) writes into ``--out`` (default: a temporary folder), so that quick
@@ -30,7 +32,7 @@ numbers never replace the committed ones.
 Examples
 --------
 >>> sorted(SECTIONS)
-['accuracy', 'continuation', 'memory', 'scene', 'speed', 'stress', 'toggle', 'workbook']
+['accuracy', 'continuation', 'memory', 'scene', 'speed', 'stress', 'studio', 'toggle', 'workbook']
 """
 
 from __future__ import annotations
@@ -42,7 +44,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import accuracy, continuation, memory, scene, speed, stress, toggle, workbook
+from . import accuracy, continuation, memory, scene, speed, stress, studio, toggle, workbook
 from .common import FIGURES, RESULTS, machine
 
 SECTIONS = {
@@ -54,6 +56,7 @@ SECTIONS = {
     "workbook": (workbook, None),
     "continuation": (continuation, None),
     "toggle": (toggle, None),
+    "studio": (studio, None),
 }
 
 

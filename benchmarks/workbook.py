@@ -27,7 +27,6 @@ Examples
 
 from __future__ import annotations
 
-import shutil
 import statistics
 import tempfile
 import time
@@ -40,7 +39,7 @@ from planmethod.render.figures import plan_files
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
 
-from .common import FIGURES, ROOT
+from .common import FIGURES, ROOT, browser_launcher
 
 FILES = {"compressor": "exercises/compressor_slider_crank.toml",
          "conveyor": "exercises/conveyor_sixbar.toml"}
@@ -95,13 +94,10 @@ def whole_page(name: str, step: float, folder: Path) -> dict:
 
 
 def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
-    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
+    found = browser_launcher()
+    if found is None:
         return None
-    if chromium is None:
-        return None
+    sync_playwright, chromium = found
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
         page = browser.new_page(viewport={"width": 1400, "height": 1000})

@@ -43,6 +43,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
                  "grader"),
     "animate": ("planmethod.commands.animate",
                 "the full turn of mechanism and plans as an animation (SVG, GIF or MP4)"),
+    "convert": ("planmethod.commands.convert",
+                "an exercise file in the other form: as drawn (global points) or in link "
+                "frames"),
+    "studio": ("planmethod.commands.studio",
+               "the instructor's studio: draw a mechanism in the browser, see its plans live"),
 }
 
 EXIT_BAD_INPUT = 2

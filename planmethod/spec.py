@@ -42,6 +42,8 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from .errors import SpecError
 from .io import read_text_bounded
 from .model import (
@@ -57,17 +59,19 @@ from .model import (
     Revolute,
     Slide,
 )
+from .vectors import angle_deg, cross, dot, norm, unit_angle
 from .vocabulary import quantity
 
-__all__ = ["POINT_NAME", "checked_table", "did_you_mean", "exercise_from_dict", "leaves",
-           "load_exercise", "parse_exercise", "parse_json", "parse_toml", "read_text"]
+__all__ = ["DRAWN_TOLERANCE", "POINT_NAME", "checked_table", "did_you_mean", "drawing_size",
+           "exercise_from_dict", "frames_from_drawn", "is_drawn", "leaves", "load_exercise",
+           "parse_exercise", "parse_json", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 TOP_LEVEL_KEYS = (
     "title", "description", "drive", "links", "slide", "sketch", "plan", "ask",
-    "mass", "gravity", "load", "friction", "grading", "published",
+    "mass", "gravity", "load", "friction", "grading", "published", "points",
 )
 PLAN_KEYS = (
     "crank_mm", "velocity_mm", "acceleration_mm", "mu_l", "mu_v", "mu_a", "force_mm", "mu_f",
@@ -452,6 +456,7 @@ class _Reader:
                                        "or expressions): draw exercises from it with "
                                        "`planmethod variants`")
         self.only_keys(data, TOP_LEVEL_KEYS, "")
+        data = frames_from_drawn(data, file=self.file)
         title = data.get("title", Path(self.file).stem if self.file else "mechanism")
         title = self.string(title, "title")
         links = self.links(data)
@@ -827,3 +832,305 @@ class _Reader:
         if link and link not in mechanism.links:
             raise self.error(key, f"unknown link '{link}'{did_you_mean(link, mechanism.links)}")
         return item
+
+
+# -- the exercise written as drawn --------------------------------------------------------------
+# An exercise may give every point's global position at drive.angle ([points], m) and each link
+# as the list of its points; a slide's `direction` is then global too, and so is a centre of
+# mass S. The functions below turn those tables into the link-frame form that the rest of this
+# module reads (README, "The exercise file"; docs/studio.md). Each link's frame is derived:
+#   * frame: the global axes;
+#   * the drive link: origin at its pivot, +x at drive.angle (its pin must be drawn there);
+#   * a link that slides (the `link` of a [[slide]]): origin at its first point, +x along the
+#     slide's direction (the contract: a sliding link's +x axis stays along its guide);
+#   * any other link: origin at its first point, +x toward the next point drawn apart from it
+#     (along global +x if there is none).
+# Every point not on the frame is also a sketched point, so the solver takes, group by group,
+# the assembly nearest the drawing: the one drawn.
+
+#: as drawn, a point may be off the line it must lie on (the crank pin off the ray at
+#: drive.angle, a slide's point off its guide) by this share of the drawing's size
+DRAWN_TOLERANCE = 1e-6
+
+
+def is_drawn(data: Mapping[str, Any]) -> bool:
+    """True if exercise tables are written as drawn (they have a ``[points]`` table).
+
+    >>> is_drawn({"points": {"A": [0, 0]}}), is_drawn({"links": {}})
+    (True, False)
+    """
+    return "points" in data
+
+
+def frames_from_drawn(data: Mapping[str, Any], *, file: str | None = None) -> dict[str, Any]:
+    """The tables of an exercise written as drawn, in the link-frame form (tables in the
+    link-frame form are returned as they are).
+
+    Every link gets its own frame (origin and +x axis, see the comment above this function in
+    the source and docs/studio.md), its points their coordinates in it, each slide its
+    ``direction`` in the frame of ``along``, each centre of mass ``S`` its coordinates in its
+    link's frame, and ``[sketch]`` the drawn positions of every point not on the frame, so
+    that the assembly is the drawn one.
+
+    Raises
+    ------
+    SpecError
+        If a link names a point that is not drawn, a drawn point belongs to no link, the crank
+        is not drawn at ``drive.angle`` (naming both angles), a slide's point is drawn off its
+        guide (with the distance), or the tables mix the two forms.
+
+    Examples
+    --------
+    >>> tables = frames_from_drawn({
+    ...     "drive": {"link": "AB", "pivot": "A", "angle": 90, "omega": 10},
+    ...     "points": {"A": [0, 0], "B": [0, 0.05], "C": [0.2, 0]},
+    ...     "links": {"frame": ["A"], "AB": ["A", "B"], "BC": ["B", "C"], "slider": ["C"]},
+    ...     "slide": [{"link": "slider", "along": "frame", "through": "A"}]})
+    >>> [round(value, 12) for value in tables["links"]["AB"]["B"]]
+    [0.05, 0.0]
+    >>> tables["links"]["BC"]["C"][1], tables["sketch"]
+    (0.0, {'B': [0.0, 0.05], 'C': [0.2, 0.0]})
+    >>> frames_from_drawn({"drive": {"link": "AB", "pivot": "A", "angle": 80},
+    ...     "points": {"A": [0, 0], "B": [0, 0.05]},
+    ...     "links": {"frame": ["A"], "AB": ["A", "B"]}}, file="x.toml")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: x.toml: drive.angle: the crank AB is drawn at 90°, but ...
+    """
+    if not is_drawn(data):
+        links = data.get("links")
+        for name, value in (links.items() if isinstance(links, Mapping) else ()):
+            if isinstance(value, list):
+                raise SpecError("a list of point names needs the [points] table (their "
+                                "positions as drawn)", file=file, key=f"links.{name}")
+        return dict(data)
+    return _Drawing(_Reader(file), data).tables()
+
+
+def drawing_size(points) -> float:
+    """The larger side of the box around points (m), at least 1 mm: the scale of a drawing's
+    tolerances.
+
+    >>> drawing_size([(0, 0), (0.2, 0.05)]), drawing_size([])
+    (0.2, 0.001)
+    """
+    coordinates = np.array(list(points), dtype=float).reshape(-1, 2)
+    if not len(coordinates):
+        return 1e-3
+    return max(1e-3, float(np.max(np.ptp(coordinates, axis=0))))
+
+
+def _distinct(first: float, second: float) -> tuple[str, str]:
+    """Two numbers written with as few decimals as tell them apart (at most 9).
+
+    >>> _distinct(44.99996, 45.0), _distinct(30.0, 30.0)
+    (('44.99996', '45'), ('30', '30'))
+    """
+    for decimals in range(10):
+        texts = (f"{first:.{decimals}f}", f"{second:.{decimals}f}")
+        if texts[0] != texts[1]:
+            break
+    return tuple(text.rstrip("0").rstrip(".") if "." in text else text for text in texts)
+
+
+class _Drawing:
+    """Reads the as-drawn tables (see :func:`frames_from_drawn`) with a reader's checks."""
+
+    def __init__(self, reader: _Reader, data: Mapping[str, Any]) -> None:
+        self.reader, self.data = reader, data
+        self.points = self.read_points()
+        self.lists = self.read_links()
+        self.size = self.drawing_size()
+
+    # -- reading ----------------------------------------------------------------------------
+    def read_points(self) -> dict[str, np.ndarray]:
+        table = self.reader.table(self.data["points"], "points")
+        points = {}
+        for name, xy in table.items():
+            if not POINT_NAME.match(name):
+                raise self.reader.error(f"points.{name}", "a point name is a capital letter, "
+                                        "optionally followed by digits (A, O2, C4)")
+            points[name] = np.array(self.reader.coordinates(xy, f"points.{name}"))
+        return points
+
+    def read_links(self) -> dict[str, list[str]]:
+        if "links" not in self.data:
+            raise self.reader.error("links", "missing the [links] table (each link as the "
+                                    "list of its points)")
+        table = self.reader.table(self.data["links"], "links")
+        lists: dict[str, list[str]] = {}
+        for name, names in table.items():
+            key = f"links.{name}"
+            if isinstance(names, Mapping):
+                raise self.reader.error(key, "with [points] (the exercise written as drawn) a "
+                                        f"link is the list of its points, e.g. {name} = "
+                                        f"{list(names)!r}".replace("'", '"'))
+            if not isinstance(names, list):
+                raise self.reader.error(key, f"must be a list of point names, got {names!r}")
+            for index, point in enumerate(names):
+                point = self.reader.string(point, f"{key}[{index}]")
+                if point not in self.points:
+                    raise self.reader.error(f"{key}[{index}]", f"'{point}' is not drawn in "
+                                            f"[points]{did_you_mean(point, self.points)}")
+                if point in names[:index]:
+                    raise self.reader.error(f"{key}[{index}]", f"'{point}' is listed twice")
+            lists[name] = list(names)
+        used = {point for names in lists.values() for point in names}
+        for point in self.points:
+            if point not in used:
+                raise self.reader.error(f"points.{point}", "is not a point of any link")
+        return lists
+
+    def drawing_size(self) -> float:
+        return drawing_size(self.points.values())
+
+    def drive(self) -> tuple[str, str, float] | None:
+        """(link, pivot, angle) when ``[drive]`` names them well enough to draw the crank's
+        frame (anything less is left to the link-frame reader's messages)."""
+        table = self.data.get("drive")
+        if not isinstance(table, Mapping) or "angle" not in table:
+            return None
+        link, pivot = table.get("link"), table.get("pivot")
+        if not (isinstance(link, str) and link in self.lists and link != FRAME
+                and isinstance(pivot, str) and pivot in self.lists[link]):
+            return None
+        angle = self.reader.number(table["angle"], "drive.angle", limit=MAX_ANGLE_DEG,
+                                   what=" (degrees)")
+        return link, pivot, angle
+
+    def slides(self) -> list[tuple[int, Mapping[str, Any], str, str, float]]:
+        """(number, table, link, along, direction) of each well-formed [[slide]] table."""
+        raw = self.data.get("slide", [])
+        raw = [raw] if isinstance(raw, Mapping) else raw
+        found = []
+        for number, table in enumerate(raw if isinstance(raw, list) else [], start=1):
+            if not isinstance(table, Mapping):
+                continue
+            link, along = table.get("link"), table.get("along")
+            if (isinstance(link, str) and isinstance(along, str) and link in self.lists
+                    and along in self.lists and link != along and self.lists[link]):
+                direction = self.reader.number(table.get("direction", 0.0),
+                                               f"slide[{number}].direction")
+                found.append((number, table, link, along, direction))
+        return found
+
+    # -- the frames -------------------------------------------------------------------------
+    def frames(self) -> dict[str, tuple[np.ndarray, np.ndarray, float]]:
+        """Each link's frame: (origin, axis, angle in degrees); a point's coordinates in it
+        are (axis · r, axis × r) / |axis| with r from the origin."""
+        frames: dict[str, tuple[np.ndarray, np.ndarray, float]] = {}
+        if FRAME in self.lists:
+            frames[FRAME] = (np.zeros(2), np.array([1.0, 0.0]), 0.0)
+        drive = self.drive()
+        if drive is not None:
+            link, pivot, angle = drive
+            frames[link] = (self.points[pivot], unit_angle(math.radians(angle)), angle)
+            self.check_crank(link, pivot, angle)
+        for number, _, link, _, direction in self.slides():
+            if link in frames:
+                self.check_turn(number, link, direction, frames[link][2])
+                continue
+            origin = self.points[self.lists[link][0]]
+            frames[link] = (origin, unit_angle(math.radians(direction)), direction)
+        for link, names in self.lists.items():
+            if link in frames or not names:
+                continue
+            origin = self.points[names[0]]
+            axis = next((self.points[p] - origin for p in names[1:]
+                         if float(norm(self.points[p] - origin)) > 0), None)
+            if axis is None:
+                frames[link] = (origin, np.array([1.0, 0.0]), 0.0)
+            else:
+                frames[link] = (origin, axis, angle_deg(axis))
+        return frames
+
+    def check_crank(self, link: str, pivot: str, angle: float) -> None:
+        """The drive link's pin (``plan.scale_point``, else its first point after the pivot)
+        must be drawn on the ray from the pivot at ``drive.angle``."""
+        names = self.lists[link]
+        plan = self.data.get("plan")
+        chosen = plan.get("scale_point") if isinstance(plan, Mapping) else None
+        pin = chosen if chosen in names and chosen != pivot else next(
+            (p for p in names if p != pivot), None)
+        if pin is None:
+            return
+        arm = self.points[pin] - self.points[pivot]
+        if float(norm(arm)) == 0:
+            raise self.reader.error(f"points.{pin}", f"the crank pin {pin} is drawn on the "
+                                    f"pivot {pivot}")
+        axis = unit_angle(math.radians(angle))
+        if (float(dot(axis, arm)) <= 0
+                or abs(float(cross(axis, arm))) > DRAWN_TOLERANCE * self.size):
+            drawn = angle_deg(arm)
+            drawn += 360.0 * round((angle - drawn) / 360.0)
+            drawn_text, angle_text = _distinct(drawn, angle)
+            raise self.reader.error("drive.angle", f"the crank {pivot}{pin} is drawn at "
+                                    f"{drawn_text}°, but drive.angle is {angle_text}°")
+
+    def check_turn(self, number: int, link: str, direction: float, angle: float) -> None:
+        """A link already turned (the frame, the crank, or sliding on an earlier guide) must
+        have its +x axis along this slide too (the contract: a sliding link's +x axis stays
+        along its guide)."""
+        if abs((direction - angle + 180.0) % 360.0 - 180.0) > 1e-9:
+            direction_text, angle_text = _distinct(direction, angle)
+            raise self.reader.error(f"slide[{number}].direction", f"'{link}' would slide at "
+                                    f"{direction_text}°, but its +x axis is at {angle_text}° "
+                                    "(a sliding link's +x axis stays along its guide)")
+
+    def check_guides(self) -> None:
+        """Each slide's point lies on its guide: the line through ``through`` at
+        ``direction`` (a one-line error with the distance if it does not)."""
+        for number, table, link, along, direction in self.slides():
+            through, point = table.get("through"), table.get("point")
+            if point is None and len(self.lists[link]) == 1:
+                point = self.lists[link][0]
+            if through not in self.lists[along] or point not in self.lists[link]:
+                continue   # the link-frame reader names what is missing
+            offset = abs(float(cross(unit_angle(math.radians(direction)),
+                                     self.points[point] - self.points[through])))
+            allowed = DRAWN_TOLERANCE * self.size
+            if offset > allowed:
+                raise self.reader.error(f"slide[{number}].point", f"{point} is drawn "
+                                        f"{offset:.3g} m off its guide, the line through "
+                                        f"{through} at {direction:g}° (at most {allowed:.1g} m "
+                                        "is allowed)")
+
+    # -- the link-frame tables --------------------------------------------------------------
+    def tables(self) -> dict[str, Any]:
+        if "sketch" in self.data:
+            raise self.reader.error("sketch", "an exercise written as drawn is assembled as "
+                                    "drawn: it takes no [sketch]")
+        frames = self.frames()
+        self.check_guides()
+
+        def local(link: str, position: np.ndarray) -> list[float]:
+            origin, axis, _ = frames[link]
+            if link == FRAME:
+                return [float(position[0]), float(position[1])]
+            arm, length = position - origin, float(norm(axis))
+            return [float(dot(axis, arm)) / length, float(cross(axis, arm)) / length]
+
+        out = {key: value for key, value in self.data.items() if key != "points"}
+        out["links"] = {link: {p: local(link, self.points[p]) for p in names}
+                        for link, names in self.lists.items()}
+        slides = self.data.get("slide")
+        if isinstance(slides, list | Mapping):
+            turned = {number: frames[along][2] - direction
+                      for number, _, _, along, direction in self.slides()}
+            out["slide"] = [dict(table, direction=-turned[number]) if number in turned else table
+                            for number, table in enumerate(
+                                [slides] if isinstance(slides, Mapping) else slides, start=1)]
+        masses = self.data.get("mass")
+        if isinstance(masses, Mapping):
+            out["mass"] = {link: self.mass(link, table, local) for link, table in masses.items()}
+        fixed = self.lists.get(FRAME, [])
+        out["sketch"] = {p: [float(x) for x in self.points[p]] for link, names in
+                         self.lists.items() if link != FRAME for p in names if p not in fixed}
+        return out
+
+    def mass(self, link: str, table: Any, local) -> Any:
+        """A ``[mass.X]`` table with its drawn centre of mass ``S`` in the link's frame."""
+        if not (isinstance(table, Mapping) and "S" in table and link in self.lists):
+            return table
+        where = np.array(self.reader.coordinates(table["S"], f"mass.{link}.S"))
+        return dict(table, S=local(link, where))

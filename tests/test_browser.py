@@ -19,11 +19,11 @@ from __future__ import annotations
 
 import csv
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
+import chromium
 import pytest
 
 pytestmark = pytest.mark.browser
@@ -33,13 +33,7 @@ COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
 CONVEYOR = ROOT / "exercises" / "conveyor_sixbar.toml"
 SLOTTED = ROOT / "exercises" / "slotted_lever.toml"
 
-sync_api = pytest.importorskip(
-    "playwright.sync_api",
-    reason="Playwright is not installed (pip install 'planmethod[test]')")
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-if CHROMIUM is None:
-    pytest.skip("no system Chromium on the PATH (apt-get install chromium)",
-                allow_module_level=True)
+sync_api, CHROMIUM = chromium.require()
 
 
 def cli(*argv) -> subprocess.CompletedProcess:

@@ -64,6 +64,7 @@ EXERCISE_COMMANDS = {
     "grade": lambda f, out: ["grade", f, str(out / "answers.csv")],
     "workbook": lambda f, out: ["workbook", f, "-o", str(out / "page.html"), "--step", "90"],
     "animate": lambda f, out: ["animate", f, "-o", str(out / "turn.svg"), "--step", "90"],
+    "convert": lambda f, out: ["convert", f, "-o", str(out / "converted.toml")],
 }
 
 

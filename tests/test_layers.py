@@ -41,11 +41,11 @@ LAYERS: dict[str, int] = {
     "plans": 5,
     "forces": 6,
     # 7: what is made of the results: reports, sweeps, drawings, grading
-    "report": 7, "sweep": 7, "render": 7, "grading": 7,
+    "report": 7, "sweep": 7, "render": 7, "grading": 7, "convert": 7,
     # 8: helpers for tests and benchmarks
     "testing": 8,
     # 9: the command line and the package root
-    "commands": 9, "cli": 9, "__main__": 9, "notebook": 9, "": 9,
+    "commands": 9, "cli": 9, "__main__": 9, "notebook": 9, "studio": 9, "": 9,
 }
 
 

@@ -111,7 +111,7 @@ def test_the_pattern_finds_internal_words():
 
 
 @pytest.mark.parametrize("command", ["", "solve", "sweep", "variants", "grade", "export",
-                                     "check", "study"])
+                                     "check", "study", "convert", "studio"])
 def test_help_has_no_internal_words(capsys, command):
     from planmethod.cli import main
 

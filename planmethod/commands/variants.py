@@ -295,14 +295,11 @@ def remove_retired(retired: Path, earlier: EarlierRun | None) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    import json
     import sys
 
     from ..errors import SpecError
-    from ..grading.keys import build_key, bundle
-    from ..grading.templates import draw_variant, load_template, to_toml
-    from ..io import csv_text, json_text, output_set, student_folder
-    from ..progress import Progress
+    from ..grading.templates import load_template
+    from ..io import output_set, student_folder
 
     out = Path(args.out)
     earlier = earlier_run(out, force=args.force)   # before any work: refuse, or what to replace
@@ -333,25 +330,61 @@ def run(args: argparse.Namespace) -> int:
     if taken:
         raise SpecError(f"a student id maps to the folder name {taken[0]}, which the run's own "
                         "file has", file=args.students)
+    files, rejected, index_rows = variant_files(
+        template, students, folders, seed=args.seed, aliases=aliases,
+        roster=bool(args.students), sheets=not args.no_sheets, source=str(args.template))
+    data = {name: text.encode("utf-8") for name, text in files.items()}
+    data[MANIFEST] = manifest_text(data).encode("utf-8")
+    with output_set() as outputs:   # the whole run, beside the earlier one, then swapped in
+        outputs.folder(out, data, replaces=earlier.entries if earlier else ())
+    retired = outputs.retired.get(out)
+    left = remove_retired(retired, earlier) if retired is not None else []
+    if left:
+        print(f"planmethod: note: {retired} keeps what changed in the earlier run during this "
+              f"one ({', '.join(left[:3])}{', …' if len(left) > 3 else ''})", file=sys.stderr)
+    redrawn = sum(1 for row in index_rows if row[2])
+    print(f"Wrote {len(index_rows)} variants of {template.source} (seed {args.seed}) to {out}/ "
+          f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
+    if rejected:
+        print(f"{len(rejected)} draws rejected:")
+        for line in rejection_summary(rejected):
+            print(f"  {line}")
+    return 0
+
+
+def variant_files(template, students: list[str], folders: list[str], *, seed: int,
+                  aliases: dict[str, list[str]] | None = None, roster: bool = False,
+                  sheets: bool = True, source: str = "",
+                  progress: bool | None = None) -> tuple[dict[str, str], list[str], list[list]]:
+    """Everything a ``variants`` run writes, computed: (files by relative path, the reasons of
+    rejected draws, the rows of index.csv). ``folders`` are the students' folder names."""
+    import json
+
+    from ..grading.keys import build_key, bundle
+    from ..grading.templates import draw_variant, to_toml
+    from ..io import csv_text, json_text
+    from ..progress import Progress
+
+    aliases = aliases or {}
     files: dict[str, str] = {}
     rejected: list[str] = []
     keys = []
     index_rows = []
-    with Progress(len(students), "variants") as bar:
+    with Progress(len(students), "variants", enabled=progress) as bar:
         for student, folder in zip(students, folders, strict=True):
-            variant = draw_variant(template, seed=args.seed, student=student)
+            variant = draw_variant(template, seed=seed, student=student)
             rejected += list(variant.rejected)
             key = build_key(variant)
             # who the LMS may know the student as, and whether a roster named them (an
             # autograder matches submitters to variants by these)
             key["identities"] = aliases.get(student, [])
-            key["roster"] = bool(args.students)
+            key["roster"] = roster
             keys.append(key)
             # the description with its placeholders filled in, as the student reads it
             files[f"{folder}/exercise.toml"] = to_toml({**variant.data,
                                                         "description": variant.description})
             files[f"{folder}/key.json"] = json_text(key)
-            if not args.no_sheets:
+            if sheets:
                 from ..grading.sheets import plan_sheet_for_key, task_sheet_svg, task_text
                 from ..plans import draw_plans
 
@@ -364,26 +397,9 @@ def run(args: argparse.Namespace) -> int:
             index_rows.append([student, folder, variant.attempt,
                                json.dumps(variant.values, ensure_ascii=False)])
             bar.advance()
-    files["keys.json"] = json_text(bundle(keys, template=str(args.template), seed=args.seed,
-                                          count=len(keys)))
+    files["keys.json"] = json_text(bundle(keys, template=source, seed=seed, count=len(keys)))
     files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *index_rows])
-    data = {name: text.encode("utf-8") for name, text in files.items()}
-    data[MANIFEST] = manifest_text(data).encode("utf-8")
-    with output_set() as outputs:   # the whole run, beside the earlier one, then swapped in
-        outputs.folder(out, data, replaces=earlier.entries if earlier else ())
-    retired = outputs.retired.get(out)
-    left = remove_retired(retired, earlier) if retired is not None else []
-    if left:
-        print(f"planmethod: note: {retired} keeps what changed in the earlier run during this "
-              f"one ({', '.join(left[:3])}{', …' if len(left) > 3 else ''})", file=sys.stderr)
-    redrawn = sum(1 for row in index_rows if row[2])
-    print(f"Wrote {len(keys)} variants of {template.source} (seed {args.seed}) to {out}/ "
-          f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
-    if rejected:
-        print(f"{len(rejected)} draws rejected:")
-        for line in rejection_summary(rejected):
-            print(f"  {line}")
-    return 0
+    return files, rejected, index_rows
 
 
 #: a number in a reason (not a digit of a name such as O2)

@@ -575,6 +575,8 @@ def _toml_value(value: Any) -> str:
         text = repr(value)
         return text if ("." in text or "e" in text or "inf" in text) else text + ".0"
     if isinstance(value, str):
+        if _literal_block(value):   # a paragraph is written as it reads
+            return "'''\n" + value + "'''"
         return json.dumps(value, ensure_ascii=False)
     if isinstance(value, list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
@@ -582,6 +584,19 @@ def _toml_value(value: Any) -> str:
         return "{ " + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
                                 for k, v in value.items()) + " }"
     raise TypeError(f"cannot write {type(value).__name__} to TOML")
+
+
+def _literal_block(text: str) -> bool:
+    """True if ``text`` has several lines and reads back unchanged as a TOML multi-line literal
+    string: no three single quotes in it, no control character but newline and tab, not
+    ending in a quote.
+
+    >>> _literal_block("two\\nlines"), _literal_block("one line"), _literal_block("a\\r\\nb")
+    (True, False, False)
+    """
+    return ("\n" in text and "'''" not in text and not text.endswith("'")
+            and not any(ord(char) < 32 and char not in "\n\t" for char in text)
+            and "\x7f" not in text)
 
 
 def _toml_key(key: str) -> str:

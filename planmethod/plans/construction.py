@@ -356,7 +356,9 @@ class _Sheet:
                   group: int, angle: float) -> np.ndarray:
         (p1, e1), (p2, e2) = self.lines[first], self.lines[second]
         sine = cross(e1, e2)
-        degrees = math.degrees(math.asin(min(1.0, float(np.min(np.abs(sine))))))
+        # the angle between the lines, 0…90°: atan2 keeps its digits near 90°, where asin of
+        # the sine would lose half of them
+        degrees = math.degrees(float(np.min(np.arctan2(np.abs(sine), np.abs(dot(e1, e2))))))
         limit = max(TOGGLE_SINE, self.precision / SHEET_MM)
         if np.min(np.abs(sine)) < limit:
             raise ToggleError(

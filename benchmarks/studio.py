@@ -1,0 +1,289 @@
+"""The studio's speed while a point is dragged: the server's time per update and the browser's
+round trip.
+
+*Server* (in-process, ms per update, median and 90th percentile of 40 steps): the crank pin
+of the compressor slider-crank (B) and of the six-link conveyor (A) moved 0.5 mm at a time, as
+a hand drags it — every step a new mechanism (new lengths, new angle) written as drawn, and
+what ``POST /api/solve`` does with it: read the TOML, solve (structure, exact kinematics,
+plans, forces where masses are given), the JSON report, and the position, velocity and
+acceleration plans as SVG. Also each stage's share.
+
+*Browser* (ms): the studio started on a free port, its page opened in headless Chromium
+(Playwright) with the exercise, the pin moved the same way by the page's own drag code
+(``studio.movePoint``), one step after the previous plans were shown; the time the page itself
+records from sending the drawing to showing the plans (request, server, answer, putting the
+SVG into the page).
+
+Targets of issue 22: the server ≤ 16 ms (compressor) and ≤ 40 ms (conveyor) per update, the
+round trip ≤ 50 ms and ≤ 100 ms, on the benchmark machine.
+
+*Load*: the machine these run on is shared, and its load stretches wall times several times
+over, and CPU times too (two virtual CPUs shared by many processes). So the run also takes the
+workbook benchmark's reference measure — the compressor's plans + SVG at one position, its
+mechanism already solved — in wall and CPU time, before and after; its committed value
+(``results/workbook.json``) was measured on the idle machine. The ratios are the run's load
+factors; a time divided by its factor is shown as the idle estimate, and the targets are
+judged on those (the server's on its CPU time: the update is single-threaded computation; the
+round trip's on its wall time). Compare raw times only within one run.
+
+Examples
+--------
+>>> sorted(TARGETS_MS)
+['compressor', 'conveyor']
+>>> steps = drag_steps({"points": {"A": [0.0, 0.0], "B": [0.06, 0.0]},
+...                     "drive": {"pivot": "A", "angle": 0.0}}, "B", 2)
+>>> [step["points"]["B"] for step in steps]
+[[0.06, 0.0005], [0.06, 0.001]]
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import math
+import shutil
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+from planmethod.convert import drawn_tables
+from planmethod.grading.templates import to_toml
+from planmethod.spec import parse_toml, read_text
+from planmethod.studio import api
+
+from .common import FIGURES, ROOT, browser_launcher
+
+FILES = {"compressor": ("exercises/compressor_slider_crank.toml", "B"),
+         "conveyor": ("exercises/conveyor_sixbar.toml", "A")}
+
+#: issue 22's targets: the server's time per update and the browser's round trip (ms)
+TARGETS_MS = {"compressor": {"server": 16.0, "browser": 50.0},
+              "conveyor": {"server": 40.0, "browser": 100.0}}
+
+#: how far the pin moves per step (m), and how many steps
+STEP_M, STEPS = 0.0005, 40
+
+
+def drag_steps(tables: dict, pin: str, count: int, step_m: float = STEP_M) -> list[dict]:
+    """The drawing after each of ``count`` steps of ``step_m`` of the crank pin moved ⟂ to the
+    crank (the drive angle following the pin, as the page sets it)."""
+    out = []
+    pivot = tables["points"][tables["drive"]["pivot"]]
+    for number in range(1, count + 1):
+        step = copy.deepcopy(tables)
+        x, y = step["points"][pin]
+        angle = math.atan2(y - pivot[1], x - pivot[0])
+        x -= number * step_m * math.sin(angle)
+        y += number * step_m * math.cos(angle)
+        step["points"][pin] = [round(x, 12) + 0.0, round(y, 12) + 0.0]
+        step["drive"]["angle"] = math.degrees(math.atan2(y - pivot[1], x - pivot[0]))
+        out.append(step)
+    return out
+
+
+def _percentile(values: list[float], share: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, round(share * (len(ordered) - 1)))]
+
+
+def server_times(name: str, count: int = STEPS) -> dict:
+    """ms per update of ``api.solve`` along a drag, and each stage's median (ms)."""
+    from planmethod.render.svg import plan_svg, position_svg
+    from planmethod.report import analyse, report_dict
+    from planmethod.spec import parse_exercise
+
+    path, pin = FILES[name]
+    tables = drawn_tables(parse_toml(read_text(ROOT / path)))
+    texts = [to_toml(step) for step in drag_steps(tables, pin, count)]
+    api.solve(to_toml(tables))   # the imports and the first compilations
+    totals, cpu = [], []
+    for text in texts:
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        api.solve(text)
+        cpu.append(1000 * (time.thread_time() - start_cpu))
+        totals.append(1000 * (time.perf_counter() - start))
+    stages: dict[str, list[float]] = {"read": [], "solve": [], "report": [], "svg": []}
+    for step in drag_steps(tables, pin, count // 2, -0.7 * STEP_M):   # mechanisms not met yet
+        clock = [time.perf_counter()]
+        exercise = parse_exercise(to_toml(step))
+        clock.append(time.perf_counter())
+        analysis = analyse(exercise)
+        clock.append(time.perf_counter())
+        report_dict(analysis)
+        clock.append(time.perf_counter())
+        plans = analysis.plans
+        position_svg(plans.position, plans=plans)
+        plan_svg(plans.velocity, details=False)
+        plan_svg(plans.acceleration, details=False)
+        clock.append(time.perf_counter())
+        for stage, start, end in zip(stages, clock, clock[1:], strict=False):
+            stages[stage].append(1000 * (end - start))
+    return {"median_ms": statistics.median(totals), "p90_ms": _percentile(totals, 0.9),
+            "cpu_median_ms": statistics.median(cpu), "cpu_p90_ms": _percentile(cpu, 0.9),
+            "stages_ms": {stage: statistics.median(values) for stage, values in stages.items()}}
+
+
+@contextlib.contextmanager
+def studio_page(folder: Path, initial: str):
+    """A studio serving ``folder`` (``initial`` open) and its page in headless Chromium, the
+    first solve shown; None without Chromium and Playwright. Everything is stopped after."""
+    found = browser_launcher()
+    if found is None:
+        yield None
+        return
+    sync_playwright, chromium = found
+    from planmethod.studio.server import StudioServer
+
+    server = StudioServer(folder, 0, initial=initial)
+    server.start()
+    try:
+        with sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=chromium,
+                                                 args=["--no-sandbox"])
+            # the page's policy forbids eval; Playwright's waits evaluate their text
+            context = browser.new_context(bypass_csp=True,
+                                          viewport={"width": 1500, "height": 1000})
+            page = context.new_page()
+            page.goto(server.url("/", token=True))
+            page.wait_for_function("window.studio.ready && window.studio.solves > 0",
+                                   timeout=120_000)
+            yield page
+            browser.close()
+    finally:
+        server.stop()
+
+
+def browser_times(name: str, count: int = STEPS) -> dict | None:
+    """The page's round trip per drag step (ms), or None without Chromium and Playwright."""
+    path, pin = FILES[name]
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-bench-"))
+    tables = drawn_tables(parse_toml(read_text(ROOT / path)))
+    (folder / "exercise.toml").write_text(to_toml(tables), encoding="utf-8")
+    try:
+        with studio_page(folder, "exercise.toml") as page:
+            if page is None:
+                return None
+            for step in drag_steps(tables, pin, 5):   # warm the solver and the page
+                _move(page, pin, step["points"][pin])
+            page.evaluate("window.studio.timings = []")
+            for step in drag_steps(tables, pin, count):
+                _move(page, pin, step["points"][pin])
+            times = page.evaluate("window.studio.timings")
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    return {"median_ms": statistics.median(times), "p90_ms": _percentile(times, 0.9),
+            "steps": len(times)}
+
+
+def screenshot(path: Path, exercise: str = "exercises/fourbar_coupler_point.toml",
+               point: str = "C") -> bool:
+    """The studio with ``exercise`` open and ``point`` selected, 1500 × 1000 px, as a PNG at
+    ``path`` (the picture in README and docs/studio.md); False without a browser."""
+    from planmethod.io import write_bytes_atomic
+
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-shot-"))
+    shutil.copy(ROOT / exercise, folder / Path(exercise).name)
+    try:
+        with studio_page(folder, Path(exercise).name) as page:
+            if page is None:
+                return False
+            page.click(f'circle.point-hit[data-point="{point}"]')
+            for _ in range(3):   # solved again, warm
+                where = page.evaluate(f"window.studio.tables.points[{point!r}]")
+                _move(page, point, where)
+            # the status line tells the last update's time, which on a shared machine says
+            # more of the machine than of the studio (benchmarks/results/studio.md has it)
+            page.evaluate("document.getElementById('status').textContent = ''")
+            page.wait_for_timeout(500)
+            image = page.screenshot(clip={"x": 0, "y": 0, "width": 1500, "height": 1000})
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    write_bytes_atomic(path, image)
+    return True
+
+
+def _move(page, pin: str, xy: list[float]) -> None:
+    solves = page.evaluate("window.studio.solves")
+    page.evaluate("([name, x, y]) => window.studio.movePoint(name, x, y)", [pin, *xy])
+    page.wait_for_function(f"window.studio.solves > {solves}", timeout=60_000, polling=1)
+
+
+def load_factor(count: int = 12) -> dict:
+    """The workbook's reference measure (the compressor's plans + SVG at one position, its
+    mechanism already solved) now, in wall and CPU time, against its committed idle value:
+    the factors by which this run's load stretches wall and CPU times."""
+    import json
+
+    from planmethod.render.figures import plan_files
+    from planmethod.report import analyse
+    from planmethod.spec import load_exercise
+
+    from .common import RESULTS
+
+    committed = json.loads((RESULTS / "workbook.json").read_text(encoding="utf-8"))
+    idle = committed["mechanisms"]["compressor"]["per_position_ms"]["plan_files"]
+    exercise = load_exercise(ROOT / FILES["compressor"][0])
+    analyse(exercise, 0.0)
+    wall, cpu = [], []
+    for number in range(count):
+        analysis = analyse(exercise, 7.0 + number * 360.0 / count)
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        plan_files(analysis.plans, forces=analysis.forces, details=False, loaded=False)
+        cpu.append(1000 * (time.thread_time() - start_cpu))
+        wall.append(1000 * (time.perf_counter() - start))
+    wall_ms, cpu_ms = statistics.median(wall), statistics.median(cpu)
+    return {"reference_ms": wall_ms, "reference_cpu_ms": cpu_ms, "idle_reference_ms": idle,
+            "idle_machine": committed.get("machine", {}).get("cpu", "?"),
+            "factor": max(wall_ms / idle, 1.0), "cpu_factor": max(cpu_ms / idle, 1.0)}
+
+
+def run(*, quick: bool = False) -> dict:
+    count = 10 if quick else STEPS
+    result: dict = {"steps": count, "step_m": STEP_M, "mechanisms": {}}
+    before = load_factor()
+    for name in FILES:
+        entry = {"server": server_times(name, count), "browser": browser_times(name, count)}
+        print(f"  {name}: {entry}")
+        result["mechanisms"][name] = entry
+    after = load_factor()
+    result["load"] = {"before": before, "after": after,
+                      "factor": (before["factor"] + after["factor"]) / 2,
+                      "cpu_factor": (before["cpu_factor"] + after["cpu_factor"]) / 2}
+    if not quick:
+        screenshot(FIGURES / "studio.png")
+    return result
+
+
+def _mark(value: float, target: float) -> str:
+    return f"{value:.3g} ({'≤' if value <= target else '>'} {target:g})"
+
+
+def table(result: dict) -> str:
+    load = result["load"]
+    factor, cpu_factor = load["factor"], load["cpu_factor"]
+    lines = ["| mechanism | server per update, CPU ms: median / p90 (idle estimate) | wall ms: "
+             "median / p90 | wall: read / solve / report / SVG ms | browser round trip ms: "
+             "median / p90 (idle estimate) |", "|---|---|---|---|---|"]
+    for name, entry in result["mechanisms"].items():
+        target, server = TARGETS_MS[name], entry["server"]
+        stages = " / ".join(f"{value:.3g}" for value in server["stages_ms"].values())
+        browser = entry["browser"]
+        shown = ("browser absent" if browser is None else
+                 f"{browser['median_ms']:.3g} / {browser['p90_ms']:.3g} "
+                 f"({_mark(browser['median_ms'] / factor, target['browser'])})")
+        lines.append(f"| {name} | {server['cpu_median_ms']:.3g} / {server['cpu_p90_ms']:.3g} "
+                     f"({_mark(server['cpu_median_ms'] / cpu_factor, target['server'])}) | "
+                     f"{server['median_ms']:.3g} / {server['p90_ms']:.3g} | {stages} | "
+                     f"{shown} |")
+    idle_machine = load["before"].get("idle_machine", "?")
+    lines += ["", f"Load of this run: the reference measure (the compressor's plans + SVG at one "
+              f"position, {load['before']['idle_reference_ms']:.3g} ms on the idle machine, "
+              f"{idle_machine}) took "
+              f"{load['before']['reference_ms']:.3g} / {load['after']['reference_ms']:.3g} ms "
+              f"wall and {load['before']['reference_cpu_ms']:.3g} / "
+              f"{load['after']['reference_cpu_ms']:.3g} ms CPU before / after: factors "
+              f"{factor:.2f} (wall) and {cpu_factor:.2f} (CPU). An idle estimate is a time "
+              "divided by its factor: a rough one, the more so when the reference was measured "
+              "on another processor than the header's."]
+    return "\n".join(lines) + "\n"

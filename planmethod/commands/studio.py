@@ -1,0 +1,69 @@
+"""``planmethod studio [FILE]``: the instructor's studio, a local web app.
+
+Draw a mechanism on a grid — points, links, revolute and sliding pairs, the drive — and see its
+plans of positions, velocities and accelerations redraw as a point is dragged; pick what is
+asked, save the exercise (written as drawn), draw variants from ranges of its lengths and crank
+angle with their task sheets, export LMS packages. The server (:mod:`planmethod.studio`) listens
+on 127.0.0.1 only, serves the files under the folder it was started in, and needs the token
+printed with its address; Ctrl-C stops it. docs/studio.md walks through it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+#: the port tried first when none is given (a free one is taken if it is busy)
+DEFAULT_PORT = 8765
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", nargs="?",
+                        help="an exercise file under this folder to open (as drawn or in link "
+                             "frames; the studio saves as drawn)")
+    parser.add_argument("--port", type=int, metavar="N",
+                        help=f"the port to listen on (default {DEFAULT_PORT}, or a free one if "
+                             "it is busy); the address is always 127.0.0.1")
+    parser.add_argument("--no-browser", action="store_true",
+                        help="do not open the page in a browser (print its address only)")
+
+
+def run(args: argparse.Namespace) -> int:
+    import webbrowser
+    from pathlib import Path
+
+    from ..errors import SpecError
+    from ..studio.server import StudioServer
+
+    folder = Path.cwd()
+    initial = None
+    if args.file is not None:
+        path = Path(args.file).resolve()
+        if not path.is_relative_to(folder.resolve()):
+            raise SpecError("the studio reads and writes only under the folder it is started "
+                            f"in ({folder}): start it in the file's folder", file=args.file)
+        if not path.is_file():
+            raise SpecError("no such file", file=args.file)
+        initial = path.relative_to(folder.resolve()).as_posix()
+    if args.port is not None and not 0 <= args.port <= 65535:
+        raise SpecError(f"--port must be in 0…65535, got {args.port}")
+    try:
+        server = StudioServer(folder, DEFAULT_PORT if args.port is None else args.port,
+                              initial=initial)
+    except OSError as error:
+        if args.port is not None:
+            raise SpecError(f"cannot listen on 127.0.0.1:{args.port} ({error.strerror})",
+                            key="--port") from None
+        server = StudioServer(folder, 0, initial=initial)
+    address = server.url("/", token=True)
+    print(f"planmethod studio: serving {folder} at\n    {address}\n(Ctrl-C stops it)",
+          flush=True)
+    if not args.no_browser:
+        webbrowser.open(address)
+    try:
+        server.serve_forever(poll_interval=0.2)
+    except KeyboardInterrupt:
+        print("\nplanmethod studio: stopped", file=sys.stderr)
+    finally:
+        server.server_close()
+    return 0

@@ -1,0 +1,479 @@
+"""What the studio's page asks of the server, as functions of plain data.
+
+Every function takes text and numbers (what a request carries) and returns a JSON-able dict; a
+bad request is a :class:`~planmethod.errors.PlanmethodError` whose one-line message the server
+sends back as ``{"error": …, "kind": …}`` (:func:`error_payload`). Files are read and written
+only under the studio's folder (:class:`Workspace`), with the command line's rules: one path
+component at a time, no ``..``, nothing through a link out of the folder, every file written
+whole or not at all.
+
+Examples
+--------
+>>> from planmethod.spec import read_text
+>>> answer = solve(read_text("exercises/compressor_slider_crank.toml"))
+>>> sorted(answer["svg"]), answer["report"]["links"]["BC"]["omega"] < 0
+(['acceleration', 'position', 'velocity'], True)
+>>> error_payload(SpecError("must be a finite number, got nan", key="drive.omega"))
+{'error': 'drive.omega: must be a finite number, got nan', 'kind': 'input'}
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from collections.abc import Mapping
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from ..errors import (
+    AssemblyError,
+    BranchJumpError,
+    ConvergenceError,
+    ForceError,
+    PlanmethodError,
+    SpecError,
+    StructureError,
+    ToggleError,
+)
+from ..io import path_component, write_files, write_text_atomic
+from ..model import FRAME
+
+__all__ = [
+    "MAX_BODY",
+    "Workspace",
+    "error_payload",
+    "export",
+    "make_template",
+    "open_exercise",
+    "save_exercise",
+    "save_template",
+    "solve",
+    "turn",
+    "variants",
+]
+
+#: the largest request body, or file the studio opens (bytes)
+MAX_BODY = 1_000_000
+#: at most this many files are listed, this deep in the folder
+MAX_LISTED, MAX_DEPTH = 500, 4
+#: at most this many variants are previewed, or exported at once
+MAX_PREVIEW, MAX_EXPORT = 40, 2000
+#: the LMS packages "export" writes
+FORMATS = ("moodle", "prairielearn", "gradescope")
+
+#: what went wrong, in the course's words (the page shows it above the one-line message)
+KINDS = {StructureError: "structure", AssemblyError: "assembly", ConvergenceError: "assembly",
+         BranchJumpError: "assembly", ToggleError: "toggle", ForceError: "forces",
+         SpecError: "input"}
+
+
+def error_payload(error: BaseException) -> dict[str, str]:
+    """The JSON body of a refused request: the error's one line and its kind (``structure``:
+    W ≠ 1 or no Assur groups; ``assembly``: it cannot be assembled; ``toggle``; ``forces``;
+    ``input``: the file itself)."""
+    if isinstance(error, PlanmethodError):
+        kind = next((name for cls, name in KINDS.items() if isinstance(error, cls)), "input")
+        return {"error": str(error).replace("\n", " "), "kind": kind}
+    what = {OverflowError: "a number is too large to compute with",
+            RecursionError: "the input is nested too deeply",
+            MemoryError: "the input asks for more memory than there is"}
+    return {"error": what.get(type(error), f"cannot do that: {error}").replace("\n", " "),
+            "kind": "input"}
+
+
+# -- files under the folder ----------------------------------------------------------------------
+class Workspace:
+    """The folder the studio was started in: every path the page names is relative to it and
+    must stay inside it (each part one path component, no ``..``, no link leading out)."""
+
+    def __init__(self, root: str | Path) -> None:
+        self.root = Path(root).resolve()
+
+    def path(self, relative: Any, *, suffix: str | None = None, what: str = "path") -> Path:
+        """The file or folder ``relative`` names inside the folder, or a :class:`SpecError`."""
+        if not isinstance(relative, str) or not relative.strip():
+            raise SpecError(f"a {what} inside the studio's folder is needed", key=what)
+        pure = PurePosixPath(relative.strip())
+        if pure.is_absolute() or "\\" in relative:
+            raise SpecError(f"{relative!r} is not a path inside the studio's folder", key=what)
+        for part in pure.parts:
+            path_component(part, what)
+        target = self.root.joinpath(*pure.parts)
+        if not target.resolve().is_relative_to(self.root):
+            raise SpecError(f"{relative!r} leads out of the studio's folder", key=what)
+        if suffix is not None and target.suffix != suffix:
+            raise SpecError(f"{relative!r} must end in {suffix}", key=what)
+        return target
+
+    def relative(self, path: Path) -> str:
+        return path.relative_to(self.root).as_posix()
+
+    def files(self) -> list[str]:
+        """The exercise files (``*.toml``) under the folder, at most :data:`MAX_LISTED`, at most
+        :data:`MAX_DEPTH` folders deep, hidden folders left out."""
+        found: list[str] = []
+
+        def walk(folder: Path, depth: int) -> None:
+            try:
+                entries = sorted(folder.iterdir())
+            except OSError:
+                return
+            for entry in entries:
+                if len(found) >= MAX_LISTED or entry.name.startswith("."):
+                    continue
+                if entry.is_symlink() and not entry.resolve().is_relative_to(self.root):
+                    continue
+                if entry.is_dir() and depth < MAX_DEPTH:
+                    walk(entry, depth + 1)
+                elif entry.suffix == ".toml" and entry.is_file():
+                    found.append(self.relative(entry))
+
+        walk(self.root, 0)
+        return found
+
+    def read(self, relative: Any) -> str:
+        path = self.path(relative, suffix=".toml", what="path")
+        if not path.is_file():
+            raise SpecError("no such file", file=relative)
+        if path.stat().st_size > MAX_BODY:
+            raise SpecError(f"larger than {MAX_BODY // 1000} kB: the studio opens exercise "
+                            "files", file=relative)
+        try:
+            return path.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as error:
+            raise SpecError(f"cannot read the file ({error})", file=relative) from None
+
+
+# -- solving -------------------------------------------------------------------------------------
+def _exercise(text: str, file: str | None = None):
+    from ..spec import parse_exercise
+
+    return parse_exercise(text, file=file)
+
+
+def solve(text: str) -> dict[str, Any]:
+    """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
+    "server_ms": …}``: the report of ``planmethod solve --json`` and the plans as the command
+    line draws them (SVG for an HTML page: no XML declaration)."""
+    from ..render.svg import plan_svg, position_svg
+    from ..render.workbook import inline_svg
+    from ..report import analyse, report_dict
+
+    start = time.perf_counter()
+    analysis = analyse(_exercise(text))
+    report = report_dict(analysis)
+    svg = {}
+    plans = analysis.plans
+    if plans is not None:
+        svg["position"] = inline_svg(position_svg(plans.position, plans=plans))
+        svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
+        if plans.acceleration is not None:
+            svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
+    return {"report": report, "svg": svg,
+            "server_ms": round(1000 * (time.perf_counter() - start), 2)}
+
+
+def _drawn(text: str, file: str | None = None) -> dict[str, Any]:
+    """The tables of an exercise file, written as drawn (converted if it is in link frames)."""
+    from ..convert import drawn_tables, refuse_template
+    from ..spec import is_drawn, parse_toml
+
+    data = parse_toml(text, file=file)
+    refuse_template(data, "is not edited in the studio, one exercise is", file=file)
+    if is_drawn(data):
+        _exercise(text, file)    # it must be a whole exercise
+        return data
+    return drawn_tables(data, file=file)
+
+
+def open_exercise(workspace: Workspace, relative: Any) -> dict[str, Any]:
+    """A file of the folder, written as drawn: ``{"path", "tables", "converted"}`` (the page
+    edits the tables; ``converted`` says the file was in link frames)."""
+    from ..spec import is_drawn, parse_toml
+
+    text = workspace.read(relative)
+    tables = _drawn(text, file=relative)
+    return {"path": relative, "tables": tables,
+            "converted": not is_drawn(parse_toml(text, file=relative))}
+
+
+def save_exercise(workspace: Workspace, relative: Any, text: Any, *,
+                  overwrite: bool = False) -> dict[str, Any]:
+    """Write the page's as-drawn TOML to ``relative`` (a ``.toml`` file under the folder),
+    whole or not at all, once it reads as an exercise. An existing file is replaced only with
+    ``overwrite``."""
+    if not isinstance(text, str):
+        raise SpecError("the exercise must be TOML text", key="toml")
+    path = workspace.path(relative, suffix=".toml")
+    _exercise(text, file=relative)
+    if path.exists() and not overwrite:
+        raise FileExistsError(relative)
+    write_text_atomic(path, text)
+    return {"saved": workspace.relative(path)}
+
+
+def save_template(workspace: Workspace, relative: Any, text: Any, ranges: Any, *,
+                  overwrite: bool = False) -> dict[str, Any]:
+    """Write the template :func:`make_template` makes of the drawing and ``ranges`` to
+    ``relative`` (a ``.toml`` file under the folder), for ``planmethod variants``."""
+    if not isinstance(text, str):
+        raise SpecError("the exercise must be TOML text", key="toml")
+    path = workspace.path(relative, suffix=".toml")
+    template = make_template(text, ranges or {})
+    if path.exists() and not overwrite:
+        raise FileExistsError(relative)
+    write_text_atomic(path, template)
+    return {"saved": workspace.relative(path)}
+
+
+def turn(text: str, angle: Any) -> dict[str, Any]:
+    """The drawing turned to crank angle ``angle`` (deg): ``{"tables": …}``, every point where
+    the mechanism, kept on the drawn assembly, puts it."""
+    from ..convert import drawn_tables, frame_tables
+    from ..spec import MAX_ANGLE_DEG, parse_toml
+
+    angle = _number(angle, "angle", limit=MAX_ANGLE_DEG)
+    return {"tables": drawn_tables(frame_tables(parse_toml(text)), angle=angle)}
+
+
+def _number(value: Any, key: str, *, limit: float = 1e6, positive: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise SpecError(f"must be a finite number, got {value!r}", key=key)
+    if abs(value) > limit or (positive and value <= 0):
+        raise SpecError(f"must be {'positive and ' if positive else ''}at most {limit:g} in "
+                        f"magnitude, got {value!r}", key=key)
+    return float(value)
+
+
+def _whole(value: Any, key: str, low: int, high: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise SpecError(f"must be a whole number in {low}…{high}, got {value!r}", key=key)
+    return value
+
+
+# -- variants ------------------------------------------------------------------------------------
+def _range(value: Any, key: str, *, positive: bool = False) -> tuple[float, float]:
+    if not isinstance(value, list | tuple) or len(value) != 2:
+        raise SpecError(f"must be [low, high], got {value!r}", key=key)
+    low, high = (_number(v, key, positive=positive) for v in value)
+    if low > high:
+        raise SpecError(f"low {low:g} is above high {high:g}", key=key)
+    return low, high
+
+
+def make_template(text: str, ranges: Mapping[str, Any]) -> str:
+    """A template (in link frames) made of the drawing: each link listed in
+    ``ranges["lengths"]`` (``{"BC": [0.16, 0.20]}``, m) scaled to a length drawn from that
+    range (its first two points' distance; the frame's: its farthest point from the crank's
+    pivot), the crank angle from ``ranges["angle"]`` (``[from, to, step]``, deg) and ω1 from
+    ``ranges["omega"]`` (``[low, high, step]``, rad/s), each drawn on its grid. The assembly is
+    picked by the drawing's points (a ``[sketch]`` at the drawn angle).
+
+    Examples
+    --------
+    >>> from planmethod.spec import read_text
+    >>> text = read_text("exercises/compressor_slider_crank.toml")
+    >>> template = make_template(text, {"lengths": {"BC": [0.16, 0.2]}, "angle": [30, 60, 5]})
+    >>> "l_BC = { range = [0.16, 0.2], step = 0.001 }" in template
+    True
+    """
+    from ..convert import frame_tables
+    from ..grading.templates import to_toml
+    from ..spec import exercise_from_dict
+
+    if not isinstance(ranges, Mapping):
+        raise SpecError("must be a table of ranges", key="ranges")
+    frames = frame_tables(_drawn(text))
+    mechanism = exercise_from_dict(frames).mechanism
+    step = _number(ranges.get("step", 0.001), "ranges.step", positive=True)
+    lengths = ranges.get("lengths") or {}
+    if not isinstance(lengths, Mapping):
+        raise SpecError("must be a table of link → [low, high]", key="ranges.lengths")
+    variables: dict[str, Any] = {}
+    scaled: dict[str, tuple[str, float, tuple[float, float]]] = {}
+    for link, bounds in lengths.items():
+        if link not in mechanism.links:
+            raise SpecError(f"unknown link '{link}'", key=f"ranges.lengths.{link}")
+        low, high = _range(bounds, f"ranges.lengths.{link}", positive=True)
+        base, origin = _base_length(mechanism, link)
+        if base <= 0:
+            raise SpecError(f"'{link}' has no length to vary (one point)",
+                            key=f"ranges.lengths.{link}")
+        name = f"l_{link}"
+        variables[name] = {"range": [low, high], "step": step}
+        scaled[link] = (name, base, origin)
+    tables: dict[str, Any] = {"title": None}
+    tables["title"] = frames.get("title", "mechanism")
+    words = [f"{link.replace('_', ' ')} = {{{name}:.3f}} m" for link, (name, _, _) in
+             scaled.items()]
+    drive = dict(frames["drive"])
+    if ranges.get("angle") is not None:
+        low, high, angle_step = _grid(ranges["angle"], "ranges.angle", limit=36000)
+        variables["phi"] = {"range": [low, high], "step": angle_step}
+        drive["angle"] = "= phi"
+    if ranges.get("omega") is not None:
+        low, high, omega_step = _grid(ranges["omega"], "ranges.omega", limit=1e4)
+        variables["omega"] = {"range": [low, high], "step": omega_step}
+        drive["omega"] = "= omega"
+    angle_text = "{phi:g}" if "phi" in variables else f"{float(mechanism.drive.angle):g}"
+    omega_text = "{omega:g}" if "omega" in variables else f"{mechanism.drive.omega:g}"
+    tables["description"] = (
+        f"{tables['title']}. " + (f"Lengths: {', '.join(words)}. " if words else "")
+        + f"The crank {drive['link']} turns about {drive['pivot']} at ω1 = {omega_text} rad/s; "
+        f"at φ1 = {angle_text}° construct the plans and find the quantities asked.")
+    tables["vars"] = variables
+    tables["template"] = {"max_attempts": 400}
+    for key, value in frames.items():
+        if key in ("title", "description"):
+            continue
+        if key == "drive":
+            tables["drive"] = drive
+        elif key == "links":
+            tables["links"] = {link: {p: _scaled(xy, scaled.get(link)) for p, xy in points.items()}
+                               for link, points in value.items()}
+        elif key == "mass":
+            tables["mass"] = {link: (dict(props, S=_scaled(props["S"], scaled.get(link)))
+                                     if isinstance(props, Mapping) and "S" in props else props)
+                              for link, props in value.items()}
+        else:
+            tables[key] = value
+    return to_toml(tables)
+
+
+def _base_length(mechanism, link: str) -> tuple[float, tuple[float, float]]:
+    """(the length a range scales, the point it scales about): a moving link's first two
+    points' distance (about its first point); the frame's farthest point from the crank's
+    pivot (about the pivot)."""
+    points = mechanism.links[link].points
+    names = list(points)
+    if link == FRAME:
+        pivot = points[mechanism.drive.pivot]
+        far = max((math.hypot(x - pivot[0], y - pivot[1]) for x, y in points.values()),
+                  default=0.0)
+        return far, pivot
+    if len(names) < 2:
+        return 0.0, (0.0, 0.0)
+    (x1, y1), (x2, y2) = points[names[0]], points[names[1]]
+    return math.hypot(x2 - x1, y2 - y1), points[names[0]]
+
+
+def _scaled(xy, scaling) -> Any:
+    """A point's coordinates as expressions scaling them about ``origin`` by ``name/base``."""
+    if scaling is None:
+        return xy
+    name, base, origin = scaling
+    out = []
+    for value, centre in zip(xy, origin, strict=True):
+        offset = float(value) - float(centre)
+        if offset == 0:
+            out.append(float(value))
+        else:
+            prefix = f"{float(centre)!r} + " if centre else ""
+            out.append(f"= {prefix}{offset!r} * {name} / {base!r}")
+    return out
+
+
+def _grid(value: Any, key: str, *, limit: float) -> tuple[float, float, float]:
+    if not isinstance(value, list | tuple) or len(value) != 3:
+        raise SpecError(f"must be [from, to, step], got {value!r}", key=key)
+    low, high = _range(list(value[:2]), key)
+    step = _number(value[2], key, positive=True)
+    if max(abs(low), abs(high)) > limit:
+        raise SpecError(f"must be within ±{limit:g}", key=key)
+    if (high - low) / step > 1e6:
+        raise SpecError(f"gives more than a million values (step {step:g})", key=key)
+    return low, high, step
+
+
+def _students(count: int) -> list[str]:
+    width = max(2, len(str(count)))
+    return [str(number).zfill(width) for number in range(1, count + 1)]
+
+
+def variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
+             seed: Any = 0) -> dict[str, Any]:
+    """Draw ``count`` variants of the template :func:`make_template` makes, and their task
+    sheets: ``{"template": TOML, "variants": [{"student", "values", "attempt", "sheet",
+    "note"}], "rejected": [reasons]}``. ``note`` says when a variant is assembled otherwise
+    than drawn (a group on its other branch)."""
+    from ..commands.variants import rejection_summary
+    from ..grading.keys import build_key
+    from ..grading.sheets import task_sheet_svg
+    from ..grading.templates import draw_variant, parse_template
+    from ..kinematics import choose_branches
+    from ..plans import draw_plans
+    from ..render.workbook import inline_svg
+
+    count = _whole(count, "count", 1, MAX_PREVIEW)
+    seed = _whole(seed, "seed", 0, 2**31)
+    template_text = make_template(text, ranges)
+    template = parse_template(template_text, file="template.toml")
+    drawn = choose_branches(_exercise(text).mechanism)
+    out, rejected = [], []
+    for student in _students(count):
+        variant = draw_variant(template, seed=seed, student=student)
+        rejected += list(variant.rejected)
+        key = build_key(variant)
+        sheet = task_sheet_svg(key, draw_plans(variant.exercise, acceleration=False))
+        branches = choose_branches(variant.exercise.mechanism)
+        other = [index + 1 for index, branch in branches.items()
+                 if index in drawn and branch.sign != drawn[index].sign]
+        note = (f"assembled otherwise than drawn (group {', '.join(map(str, other))} on its "
+                "other branch): narrow the crank angle's range" if other else "")
+        out.append({"student": student, "values": dict(variant.values),
+                    "attempt": variant.attempt, "sheet": inline_svg(sheet), "note": note})
+    return {"template": template_text, "variants": out,
+            "rejected": rejection_summary(rejected)}
+
+
+def export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder: Any,
+           formats: Any = FORMATS, count: Any = 30, seed: Any = 0) -> dict[str, Any]:
+    """Write a whole teaching run into ``folder`` (new or empty, under the studio's folder):
+    ``template.toml``, the variants (``variants/``: as ``planmethod variants`` writes them)
+    and the LMS packages asked for (``moodle/quiz.xml``, ``prairielearn/``,
+    ``gradescope/``)."""
+    from ..commands.variants import MANIFEST, manifest_text, variant_files
+    from ..grading import exports
+    from ..grading.keys import bundle
+    from ..grading.templates import parse_template
+    from ..io import student_folder
+
+    count = _whole(count, "count", 1, MAX_EXPORT)
+    seed = _whole(seed, "seed", 0, 2**31)
+    if (not isinstance(formats, list | tuple)
+            or any(name not in FORMATS for name in formats)):
+        raise SpecError(f"must be a list of {', '.join(FORMATS)}", key="formats")
+    target = workspace.path(folder, what="folder")
+    if target.exists() and (not target.is_dir() or any(target.iterdir())):
+        raise FileExistsError(workspace.relative(target))
+    template_text = make_template(text, ranges)
+    template = parse_template(template_text, file="template.toml")
+    students = _students(count)
+    folders = [student_folder(student) for student in students]
+    files, rejected, _ = variant_files(template, students, folders, seed=seed,
+                                       source="template.toml", progress=False)
+    written: dict[str, str] = {"template.toml": template_text}
+    written |= {f"variants/{name}": data for name, data in files.items()}
+    # the manifest a later `planmethod variants --force` checks before it replaces this run
+    written[f"variants/{MANIFEST}"] = manifest_text(
+        {name: data.encode("utf-8") for name, data in files.items()})
+    keys = json.loads(files["keys.json"])["keys"]
+    the_bundle = bundle(keys, source="template.toml", seed=seed, count=len(keys))
+    if "moodle" in formats:
+        sheets = {student: files[f"{name}/task.svg"] for student, name in zip(students, folders,
+                                                                             strict=True)}
+        written["moodle/quiz.xml"] = exports.moodle_xml(keys, sheets=sheets)
+    if "prairielearn" in formats:
+        written |= {f"prairielearn/{name}": data for name, data in
+                    exports.prairielearn_questions(the_bundle).items()}
+    if "gradescope" in formats:
+        written |= {f"gradescope/{name}": data for name, data in
+                    exports.gradescope_autograder(the_bundle).items()}
+    paths = write_files(target, written)
+    for name in ("run_autograder", "setup.sh", "grade_submission.py"):
+        if f"gradescope/{name}" in written:
+            (target / "gradescope" / name).chmod(0o755)
+    return {"folder": workspace.relative(target), "written": len(paths),
+            "variants": count, "rejected": len(rejected)}
+

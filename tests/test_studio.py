@@ -1,0 +1,397 @@
+"""The studio's server: its safety rules and its JSON API (no browser; see
+``tests/test_studio_browser.py`` for the page).
+
+Each test talks to a real server on a free port of 127.0.0.1, started in a thread for the
+module and always stopped, serving a temporary folder.
+"""
+
+from __future__ import annotations
+
+import http.client
+import json
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from planmethod.spec import read_text
+from planmethod.studio import api
+from planmethod.studio.server import HOST, StudioServer
+
+ROOT = Path(__file__).resolve().parent.parent
+COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory) -> Path:
+    folder = tmp_path_factory.mktemp("studio")
+    shutil.copy(COMPRESSOR, folder / "compressor.toml")
+    (folder / "sub").mkdir()
+    return folder
+
+
+@pytest.fixture(scope="module")
+def server(folder):
+    server = StudioServer(folder, 0)
+    server.start()
+    yield server
+    server.stop()
+
+
+def request(server, method: str, path: str, body: bytes | str | None = None, *,
+            token: bool = True, headers: dict | None = None) -> tuple[int, dict, dict]:
+    """(status, JSON body or {}, headers) of one request; the token in its header unless
+    ``token`` is False."""
+    connection = http.client.HTTPConnection(HOST, server.port, timeout=60)
+    sent = {"Host": f"{HOST}:{server.port}"}
+    if token:
+        sent["X-Planmethod-Token"] = server.token
+    sent.update(headers or {})
+    data = body.encode("utf-8") if isinstance(body, str) else body
+    try:
+        connection.putrequest(method, path, skip_host=True, skip_accept_encoding=True)
+        for name, value in sent.items():
+            connection.putheader(name, value)
+        if data is not None:
+            connection.putheader("Content-Length", str(len(data)))
+        connection.endheaders()
+        if data:
+            connection.send(data)
+        response = connection.getresponse()
+        raw = response.read()
+    finally:
+        connection.close()
+    try:
+        payload = json.loads(raw) if raw and raw[:1] in (b"{", b"[") else {}
+    except json.JSONDecodeError:
+        payload = {}
+    return response.status, payload, dict(response.getheaders())
+
+
+def post_json(server, path: str, data: dict, **options):
+    return request(server, "POST", path, json.dumps(data), **options)
+
+
+def one_line(payload: dict) -> str:
+    message = payload["error"]
+    assert isinstance(message, str) and message
+    assert "\n" not in message and "Traceback" not in message
+    return message
+
+
+# -- safety ---------------------------------------------------------------------------------------
+def test_it_listens_on_loopback_only(server):
+    assert server.server_address[0] == "127.0.0.1"
+    assert server.socket.getsockname()[0] == "127.0.0.1"
+    try:   # another address of this machine, if it has one, is not answered
+        outside = socket.gethostbyname(socket.gethostname())
+    except OSError:
+        outside = "127.0.0.1"
+    if not outside.startswith("127."):
+        with pytest.raises(OSError), socket.create_connection((outside, server.port), timeout=2):
+            pass
+
+
+@pytest.mark.parametrize(("method", "path"), [("GET", "/"), ("GET", "/api/files"),
+                                              ("GET", "/api/state"), ("POST", "/api/solve")])
+def test_no_token_is_403(server, method, path):
+    body = read_text(COMPRESSOR) if method == "POST" else None
+    status, payload, _ = request(server, method, path, body, token=False)
+    assert status == 403
+    assert "token" in one_line(payload)
+    status, _, _ = request(server, method, path, body, token=False,
+                           headers={"X-Planmethod-Token": server.token[:-1] + "x"})
+    assert status == 403
+
+
+def test_the_first_load_sets_a_strict_cookie(server):
+    status, _, headers = request(server, "GET", f"/?token={server.token}", token=False)
+    assert status == 200 and headers["Content-Type"].startswith("text/html")
+    cookie = headers["Set-Cookie"]
+    assert cookie.startswith(f"{server.cookie_name}={server.token}")
+    assert "HttpOnly" in cookie and "SameSite=Strict" in cookie
+    assert "frame-ancestors 'none'" in headers["Content-Security-Policy"]
+    status, payload, _ = request(server, "GET", "/api/files", token=False,
+                                 headers={"Cookie": f"{server.cookie_name}={server.token}"})
+    assert status == 200 and "compressor.toml" in payload["files"]
+
+
+@pytest.mark.parametrize("host", ["evil.example:{port}", "127.0.0.1:1", "localhost",
+                                  "127.0.0.1.nip.io:{port}", ""])
+def test_another_host_is_refused(server, host):
+    status, payload, _ = request(server, "GET", "/api/files",
+                                 headers={"Host": host.format(port=server.port)})
+    assert status == 403 and "refused" in one_line(payload)
+
+
+def test_the_loopback_names_are_served(server):
+    for host in (f"127.0.0.1:{server.port}", f"localhost:{server.port}"):
+        assert request(server, "GET", "/api/files", headers={"Host": host})[0] == 200
+
+
+@pytest.mark.parametrize("headers", [{"Origin": "http://evil.example"},
+                                     {"Origin": "null"},
+                                     {"Origin": "http://127.0.0.1:1"},
+                                     {"Sec-Fetch-Site": "cross-site"},
+                                     {"Sec-Fetch-Site": "same-site"}])
+def test_another_origin_is_refused(server, headers):
+    status, payload, _ = request(server, "POST", "/api/solve", read_text(COMPRESSOR),
+                                 headers=headers)
+    assert status == 403 and "another site" in one_line(payload)
+
+
+def test_the_same_origin_is_served(server):
+    status, _, _ = request(server, "POST", "/api/solve", read_text(COMPRESSOR),
+                           headers={"Origin": f"http://127.0.0.1:{server.port}",
+                                    "Sec-Fetch-Site": "same-origin"})
+    assert status == 200
+
+
+def test_an_8_mb_body_is_413_and_the_server_goes_on(server):
+    status, payload, _ = request(server, "POST", "/api/solve", b"x" * 8_000_000)
+    assert status == 413 and "at most 1000000" in one_line(payload)
+    assert request(server, "POST", "/api/solve", b"y" * (api.MAX_BODY + 1))[0] == 413
+    assert request(server, "GET", "/api/files")[0] == 200
+
+
+def test_a_body_without_its_length_is_refused(server):
+    connection = http.client.HTTPConnection(HOST, server.port, timeout=30)
+    connection.request("POST", "/api/solve", body=iter([b"title = 'x'\n"]),
+                       headers={"X-Planmethod-Token": server.token,
+                                "Transfer-Encoding": "chunked"}, encode_chunked=True)
+    response = connection.getresponse()
+    assert response.status == 411
+    connection.close()
+
+
+HOSTILE = {
+    "not TOML": "title = = 1",
+    "nested 5000 deep": "x = " + "[" * 5000 + "1" + "]" * 5000 + "\n",
+    "nan omega": read_text(COMPRESSOR).replace("omega = 100", "omega = nan"),
+    "huge coordinate": read_text(COMPRESSOR).replace("[0.06, 0]", "[1e300, 0]"),
+    "huge integer": read_text(COMPRESSOR).replace("omega = 100", "omega = " + "9" * 400),
+    "a template": read_text(ROOT / "exercises" / "templates" / "slider_crank.toml"),
+    "W = 3": re.sub(r"\[\[slide\]\]\n(.+\n)+?\n", "", read_text(COMPRESSOR)),
+    "cannot assemble": read_text(COMPRESSOR).replace("C = [0.18, 0]", "C = [0.01, 0]").replace(
+        "D = [0.09, 0]", "D = [0.005, 0]"),
+    "unknown key": read_text(COMPRESSOR) + "\n[frobnicate]\nx = 1\n",
+    "empty": "",
+}
+
+
+@pytest.mark.parametrize("case", list(HOSTILE))
+def test_hostile_toml_is_400_with_one_line(server, case):
+    status, payload, _ = request(server, "POST", "/api/solve", HOSTILE[case])
+    assert status == 400
+    one_line(payload)
+    assert payload["kind"] in api.KINDS.values()
+
+
+def test_the_errors_say_what_went_wrong_in_the_courses_words(server):
+    kinds = {case: request(server, "POST", "/api/solve", HOSTILE[case])[1]["kind"]
+             for case in ("cannot assemble", "nan omega")}
+    assert kinds == {"cannot assemble": "assembly", "nan omega": "input"}
+    status, payload, _ = request(server, "POST", "/api/solve", HOSTILE["W = 3"])
+    assert status == 400 and payload["kind"] == "structure"
+    assert "W = 3n − 2p5 − p4 = 3·3 − 2·3 − 0 = 3, expected 1" in one_line(payload)
+
+
+@pytest.mark.parametrize("body", [b"\xff\xfe not utf-8", b'{"path": NaN}', b"[1, 2]",
+                                  b'{"path": ' + b"[" * 100 + b"]" * 100 + b"}"])
+def test_hostile_json_is_400_with_one_line(server, body):
+    status, payload, _ = request(server, "POST", "/api/open", body)
+    assert status == 400
+    one_line(payload)
+
+
+@pytest.mark.parametrize("path", ["../outside.toml", "/tmp/outside.toml", "sub/../../x.toml",
+                                  "sub\\..\\..\\x.toml", "..", "", "./../x.toml",
+                                  "link_out/x.toml"])
+def test_a_path_outside_the_folder_is_refused(server, folder, path):
+    if path.startswith("link_out") and not (folder / "link_out").exists():
+        (folder / "link_out").symlink_to(folder.parent, target_is_directory=True)
+    before = sorted(folder.parent.rglob("*"))
+    status, payload, _ = post_json(server, "/api/save", {"path": path,
+                                                        "toml": read_text(COMPRESSOR)})
+    assert status == 400
+    one_line(payload)
+    status, _, _ = post_json(server, "/api/open", {"path": path})
+    assert status == 400
+    status, _, _ = post_json(server, "/api/export", {"toml": read_text(COMPRESSOR),
+                                                     "folder": path, "count": 1})
+    assert status == 400
+    assert sorted(folder.parent.rglob("*")) == before
+
+
+@pytest.mark.parametrize(("method", "path", "expected"), [("GET", "/api/nothing", 404),
+                                                          ("GET", "/api/solve", 405),
+                                                          ("DELETE", "/api/files", 405)])
+def test_unknown_addresses_and_methods(server, method, path, expected):
+    status, payload, _ = request(server, method, path)
+    assert status == expected
+    one_line(payload)
+
+
+# -- the API --------------------------------------------------------------------------------------
+def test_solve_gives_the_reports_of_solve_json_with_the_plans(server):
+    status, payload, _ = request(server, "POST", "/api/solve", read_text(COMPRESSOR))
+    assert status == 200
+    done = subprocess.run([sys.executable, "-m", "planmethod", "solve", str(COMPRESSOR),
+                           "--json"], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert payload["report"] == json.loads(done.stdout)
+    for plan in ("position", "velocity", "acceleration"):
+        assert payload["svg"][plan].startswith("<svg")
+    assert payload["server_ms"] > 0
+
+
+def test_open_shows_a_file_in_link_frames_as_drawn(server):
+    status, payload, _ = post_json(server, "/api/open", {"path": "compressor.toml"})
+    assert status == 200 and payload["converted"] is True
+    tables = payload["tables"]
+    assert tables["links"]["BC"] == ["B", "C", "D"] and "sketch" not in tables
+    assert tables["points"]["C"][1] == 0.0
+
+
+def test_save_writes_the_drawing_whole_and_asks_before_replacing(server, folder):
+    from planmethod.grading.templates import to_toml
+
+    tables = post_json(server, "/api/open", {"path": "compressor.toml"})[1]["tables"]
+    text = to_toml(tables)
+    status, payload, _ = post_json(server, "/api/save", {"path": "sub/drawn.toml", "toml": text})
+    assert status == 200 and payload == {"saved": "sub/drawn.toml"}
+    assert (folder / "sub" / "drawn.toml").read_text(encoding="utf-8") == text
+    status, payload, _ = post_json(server, "/api/save", {"path": "sub/drawn.toml",
+                                                        "toml": text + "\n"})
+    assert status == 409 and "exists" in one_line(payload)
+    status, _, _ = post_json(server, "/api/save", {"path": "sub/drawn.toml", "toml": text,
+                                                   "overwrite": True})
+    assert status == 200
+    status, payload, _ = post_json(server, "/api/save", {"path": "sub/bad.toml",
+                                                        "toml": HOSTILE["nan omega"]})
+    assert status == 400 and not (folder / "sub" / "bad.toml").exists()
+    status, payload, _ = post_json(server, "/api/save", {"path": "sub/notes.txt", "toml": text})
+    assert status == 400 and "must end in .toml" in one_line(payload)
+    assert not [p for p in (folder / "sub").iterdir() if p.name.startswith(".")]
+
+
+def test_turn_keeps_the_drawn_assembly(server):
+    from planmethod.grading.templates import to_toml
+
+    tables = post_json(server, "/api/open", {"path": "compressor.toml"})[1]["tables"]
+    status, payload, _ = post_json(server, "/api/turn", {"toml": to_toml(tables), "angle": 120})
+    assert status == 200
+    turned = payload["tables"]
+    assert turned["drive"]["angle"] == 120.0
+    bx, by = turned["points"]["B"]
+    assert (bx, by) == pytest.approx((0.06 * -0.5, 0.06 * 3 ** 0.5 / 2), abs=1e-15)
+    assert turned["points"]["C"][0] > 0    # still on the drawn side of A
+
+
+def test_variants_preview_task_sheets(server):
+    ranges = {"lengths": {"AB": [0.05, 0.07], "BC": [0.16, 0.2]}, "angle": [30, 60, 5]}
+    status, payload, _ = post_json(server, "/api/variants", {"toml": read_text(COMPRESSOR),
+                                                            "ranges": ranges, "count": 3,
+                                                            "seed": 4})
+    assert status == 200
+    assert "l_AB = { range = [0.05, 0.07], step = 0.001 }" in payload["template"]
+    assert [v["student"] for v in payload["variants"]] == ["01", "02", "03"]
+    for variant in payload["variants"]:
+        assert 0.05 <= variant["values"]["l_AB"] <= 0.07
+        assert 30 <= variant["values"]["phi"] <= 60
+        assert variant["sheet"].startswith("<svg")
+        assert variant["note"] == ""
+    status, payload, _ = post_json(server, "/api/variants", {
+        "toml": read_text(COMPRESSOR), "ranges": {"lengths": {"AB": [0.07, 0.05]}}})
+    assert status == 400 and "above" in one_line(payload)
+
+
+def test_export_writes_the_lms_packages(server, folder):
+    status, payload, _ = post_json(server, "/api/export", {
+        "toml": read_text(COMPRESSOR), "folder": "run", "count": 2,
+        "ranges": {"lengths": {"BC": [0.17, 0.19]}, "angle": [40, 50, 5]}})
+    assert status == 200 and payload["folder"] == "run" and payload["variants"] == 2
+    run = folder / "run"
+    for name in ("template.toml", "variants/keys.json", "variants/01/task.svg",
+                 "moodle/quiz.xml", "prairielearn/planmethod/info.json",
+                 "gradescope/run_autograder"):
+        assert (run / name).is_file(), name
+    assert os.access(run / "gradescope" / "run_autograder", os.X_OK)
+    status, payload, _ = post_json(server, "/api/export", {"toml": read_text(COMPRESSOR),
+                                                          "folder": "run", "count": 1})
+    assert status == 409
+    # the exported run carries the manifest `variants --force` checks: it may replace it
+    done = subprocess.run([sys.executable, "-m", "planmethod", "variants",
+                           str(run / "template.toml"), "--count", "1", "--out",
+                           str(run / "variants"), "--no-sheets", "--force"],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr
+    assert not (run / "variants" / "01").exists() and (run / "variants" / "001").is_dir()
+
+
+def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folder):
+    status, _, _ = post_json(server, "/api/save", {
+        "template": True, "path": "template.toml", "toml": read_text(COMPRESSOR),
+        "ranges": {"lengths": {"AB": [0.055, 0.065]}, "angle": [30, 60, 10]}})
+    assert status == 200
+    done = subprocess.run([sys.executable, "-m", "planmethod", "variants",
+                           str(folder / "template.toml"), "--count", "2", "--out",
+                           str(folder / "cli-run"), "--no-sheets"],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr
+    assert (folder / "cli-run" / "keys.json").is_file()
+
+
+# -- the command ----------------------------------------------------------------------------------
+def test_the_command_prints_its_address_and_stops_on_ctrl_c(tmp_path):
+    process = subprocess.Popen(
+        [sys.executable, "-m", "planmethod", "studio", "--no-browser", "--port", "0"],
+        cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT)})
+    try:
+        lines = [process.stdout.readline() for _ in range(2)]
+        address = lines[1].strip()
+        assert address.startswith("http://127.0.0.1:") and "?token=" in address
+        port = int(address.split(":")[2].split("/")[0])
+        token = address.split("token=")[1]
+        assert len(token) >= 40
+        connection = http.client.HTTPConnection(HOST, port, timeout=30)
+        connection.request("GET", "/api/state", headers={"X-Planmethod-Token": token})
+        response = connection.getresponse()
+        assert response.status == 200 and json.loads(response.read())["initial"] is None
+        connection.close()
+        process.send_signal(signal.SIGINT)
+        assert process.wait(timeout=30) == 0
+        assert "stopped" in process.stderr.read()
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+
+
+def test_the_command_refuses_a_file_outside_its_folder(tmp_path):
+    done = subprocess.run([sys.executable, "-m", "planmethod", "studio", str(COMPRESSOR),
+                           "--no-browser"], cwd=tmp_path, capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=60)
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1 and "only under the folder" in done.stderr
+
+
+def test_a_busy_port_given_is_one_line(tmp_path):
+    with socket.socket() as busy:
+        busy.bind((HOST, 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        start = time.perf_counter()
+        done = subprocess.run([sys.executable, "-m", "planmethod", "studio", "--no-browser",
+                               "--port", str(port)], cwd=tmp_path, capture_output=True,
+                              text=True, env={**os.environ, "PYTHONPATH": str(ROOT)},
+                              timeout=60)
+    assert done.returncode == 2 and time.perf_counter() - start < 60
+    assert done.stderr.startswith("planmethod: error: --port: cannot listen on")

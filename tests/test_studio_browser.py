@@ -1,0 +1,193 @@
+"""The studio in a real browser: the compressor built from an empty page by clicks.
+
+A studio serves an empty temporary folder (started in a thread on a free port, always
+stopped). In headless Chromium (Playwright) the test places four points by clicking on the
+grid and types their exact coordinates, pins A to the frame, joins AB and BCD into links, puts
+a slider on C guided through A, makes AB the drive, sets ω1 = 100 rad/s, ticks what is asked
+and saves. ``planmethod solve`` on the saved file must give the compressor's numbers (those of
+``exercises/compressor_slider_crank.toml``); dragging B must change the velocity plan.
+
+Skipped, with the reason, where Playwright or the system Chromium is missing. Leave them out
+with ``pytest -m "not browser"``.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import chromium
+import pytest
+
+from planmethod.studio.server import StudioServer
+
+pytestmark = pytest.mark.browser
+
+ROOT = Path(__file__).resolve().parent.parent
+COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
+
+sync_api, CHROMIUM = chromium.require()
+
+#: the compressor as drawn at φ1 = 45° (planmethod convert of the shipped file), m
+DRAWN = {"A": ("0", "0"), "B": ("0.0424264068711929", "0.0424264068711928"),
+         "C": ("0.2173549637165519", "0"), "D": ("0.1298906852938724", "0.0212132034355964")}
+#: where the four points are first clicked on the grid (px from the editor's corner)
+CLICKS = {"A": (90, 330), "B": (150, 270), "C": (430, 330), "D": (300, 300)}
+
+
+def solve_json(path: Path) -> dict:
+    done = subprocess.run([sys.executable, "-m", "planmethod", "solve", str(path), "--json"],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+@pytest.fixture
+def studio_page(tmp_path):
+    server = StudioServer(tmp_path, 0)
+    server.start()
+    try:
+        with sync_api.sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=CHROMIUM,
+                                                 args=["--no-sandbox"])
+            # the page's policy forbids eval; Playwright's waits evaluate their text
+            context = browser.new_context(bypass_csp=True,
+                                          viewport={"width": 1500, "height": 1100})
+            page = context.new_page()
+            errors: list[str] = []
+            page.on("pageerror", lambda error: errors.append(str(error)))
+            page.on("console", lambda message: errors.append(message.text)
+                    if message.type == "error" else None)
+            page.on("request", lambda request: errors.append(f"request to {request.url}")
+                    if not request.url.startswith(server.url("/")) else None)
+            page.goto(server.url("/", token=True))
+            page.wait_for_function("window.studio && window.studio.ready", timeout=30_000)
+            yield page, tmp_path, errors
+            browser.close()
+    finally:
+        server.stop()
+
+
+def mode(page, name: str) -> None:
+    page.click(f'#tools [data-mode="{name}"]')
+
+
+def click_point(page, name: str) -> None:
+    page.click(f'circle.point-hit[data-point="{name}"]')
+
+
+def type_into(page, selector: str, value: str) -> None:
+    page.fill(selector, value)
+    page.dispatch_event(selector, "change")
+
+
+def settled(page) -> None:
+    """Wait until the last change is solved (no request in flight or pending)."""
+    page.wait_for_function("""() => {
+        const s = window.studio;
+        return s.report !== null && s.lastError === null
+            && document.querySelector('#plan-velocity-drawing svg') !== null
+            && !document.querySelector('#plan-velocity-drawing.stale');
+    }""", timeout=60_000)
+    before = -1
+    while before != page.evaluate("window.studio.solves"):
+        before = page.evaluate("window.studio.solves")
+        time.sleep(0.4)
+
+
+def test_the_compressor_built_by_clicks_solves_as_the_shipped_one(studio_page):
+    page, folder, errors = studio_page
+    box = page.locator("#editor").bounding_box()
+    mode(page, "point")
+    for x, y in CLICKS.values():
+        page.mouse.click(box["x"] + x, box["y"] + y)
+    assert page.evaluate("Object.keys(window.studio.tables.points)") == list(DRAWN)
+    mode(page, "move")
+    for name, (x, y) in DRAWN.items():   # the exact dimensions, typed as an instructor would
+        click_point(page, name)
+        type_into(page, "#point-x", x)
+        type_into(page, "#point-y", y)
+    mode(page, "fix")
+    click_point(page, "A")
+    mode(page, "link")
+    for group in (("A", "B"), ("B", "C", "D")):
+        for name in group:
+            click_point(page, name)
+        page.click("#finish-link")
+    mode(page, "slider")
+    click_point(page, "C")
+    click_point(page, "A")
+    mode(page, "drive")
+    page.click('polyline.link-hit[data-link="AB"]')
+    type_into(page, "#drive-omega", "100")
+    type_into(page, "#title", "Compressor slider-crank, drawn in the studio")
+    for kind, name in (("velocity", "C"), ("velocity", "D"), ("acceleration", "C"),
+                       ("acceleration", "D"), ("curvature", "D"), ("omega", "BC"),
+                       ("epsilon", "BC")):
+        page.check(f'input[data-ask="{kind}"][data-name="{name}"]')
+    settled(page)
+    tables = page.evaluate("window.studio.tables")
+    assert tables["links"] == {"frame": ["A"], "AB": ["A", "B"], "BC": ["B", "C", "D"],
+                               "slider": ["C"]}
+    assert tables["slide"] == [{"link": "slider", "along": "frame", "through": "A",
+                                "direction": 0, "point": "C"}]
+    assert (tables["drive"]["link"], tables["drive"]["pivot"]) == ("AB", "A")
+    page.fill("#save-path", "compressor_drawn.toml")
+    page.click("#save-button")
+    saved = folder / "compressor_drawn.toml"
+    page.wait_for_function("document.querySelector('#file').textContent === "
+                           "'compressor_drawn.toml'", timeout=30_000)
+    assert "[points]" in saved.read_text(encoding="utf-8")
+    built, shipped = solve_json(saved), solve_json(COMPRESSOR)
+    assert built["scales"] == shipped["scales"]
+    assert [c["quantity"] for c in built["checks"]] == [c["quantity"] for c in shipped["checks"]]
+    for mine, theirs in zip(built["checks"], shipped["checks"], strict=True):
+        assert mine["analytic"] == pytest.approx(theirs["analytic"], rel=1e-9)
+        assert mine["plan"] == pytest.approx(theirs["plan"], rel=1e-9)
+    for point in ("C", "D"):
+        for key in ("position", "velocity", "acceleration"):
+            assert built["points"][point][key] == pytest.approx(shipped["points"][point][key],
+                                                                rel=1e-9, abs=1e-12)
+    assert built["links"]["BC"]["omega"] == pytest.approx(shipped["links"]["BC"]["omega"],
+                                                          rel=1e-9)
+    # dragging B changes the velocity plan
+    velocity_before = page.inner_html("#plan-velocity-drawing")
+    speed_before = page.evaluate("window.studio.report.plans.velocity.points_mm.b")
+    solves = page.evaluate("window.studio.solves")
+    mode(page, "move")
+    handle = page.locator('circle.point-hit[data-point="B"]').bounding_box()
+    x, y = handle["x"] + handle["width"] / 2, handle["y"] + handle["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 25, y - 30, steps=8)
+    page.mouse.up()
+    settled(page)
+    assert page.evaluate("window.studio.solves") > solves
+    assert page.inner_html("#plan-velocity-drawing") != velocity_before
+    assert page.evaluate("window.studio.report.plans.velocity.points_mm.b") != speed_before
+    assert errors == []
+
+
+def test_a_mechanism_that_cannot_move_is_shown_in_course_words(studio_page):
+    page, folder, errors = studio_page
+    (folder / "compressor.toml").write_bytes(COMPRESSOR.read_bytes())
+    page.evaluate("""async () => {
+        const answer = await fetch('/api/open', {method: 'POST', credentials: 'same-origin',
+            body: JSON.stringify({path: 'compressor.toml'})});
+        window.studio.load((await answer.json()).tables);
+    }""")
+    settled(page)
+    # pin C to the frame as well: the slider-crank cannot move any more (W ≠ 1)
+    mode(page, "fix")
+    click_point(page, "C")
+    page.wait_for_selector("#problem:not([hidden])", timeout=30_000)
+    assert page.inner_text("#problem-kind") == ("The links do not make one mechanism with one "
+                                                "degree of freedom")
+    assert "W = 3n − 2p5 − p4" in page.inner_text("#problem-text")
+    assert "Traceback" not in page.inner_text("body")
+    assert page.locator("#plan-velocity-drawing.stale").count() == 1
+    # the browser logs the refused solve's status itself; nothing else went wrong
+    assert [e for e in errors if "status of 400" not in e] == []
