@@ -24,10 +24,12 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 __all__ = [
+    "PLAN_SCALES",
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
     "AppliedKind",
+    "DrawingScale",
     "EdgeKind",
     "GroupKind",
     "PairKind",
@@ -35,7 +37,10 @@ __all__ = [
     "Quantity",
     "QuantityKind",
     "link_numbers",
+    "point_text",
     "quantity",
+    "scale_text",
+    "subscript",
     "symbol",
 ]
 
@@ -128,9 +133,35 @@ _TYPE_NUMBERS = {GroupKind.RRR: 1, GroupKind.RRP: 2, GroupKind.RPR: 3, GroupKind
                  GroupKind.RPP: 5}
 _HIGHER_CLASSES = {GroupKind.DRIVE: 1, GroupKind.TRIAD: 3, GroupKind.TETRAD: 4}
 
+@dataclass(frozen=True, slots=True)
+class DrawingScale:
+    """A drawing scale as printed: its symbol (μv), its unit ((m/s)/mm) and the unit of what
+    one millimetre of the drawing stands for (m/s: a scale bar's unit)."""
+
+    symbol: str
+    unit: str
+    drawn: str
+
+
 #: the drawing scales, as printed, with their units
-SCALES = {"mu_l": ("μl", "m/mm"), "mu_v": ("μv", "(m/s)/mm"), "mu_a": ("μa", "(m/s²)/mm"),
-          "mu_f": ("μF", "N/mm")}
+SCALES = {"mu_l": DrawingScale("μl", "m/mm", "m"),
+          "mu_v": DrawingScale("μv", "(m/s)/mm", "m/s"),
+          "mu_a": DrawingScale("μa", "(m/s²)/mm", "m/s²"),
+          "mu_f": DrawingScale("μF", "N/mm", "N")}
+
+#: the scale each plan is drawn at
+PLAN_SCALES = {PlanKind.POSITION: "mu_l", PlanKind.VELOCITY: "mu_v",
+               PlanKind.ACCELERATION: "mu_a"}
+
+
+def scale_text(name: str, value: float, digits: int = 6) -> str:
+    """A scale as a drawing's header prints it, with its unit.
+
+    >>> scale_text("mu_v", 0.2), scale_text("mu_f", 12.5)
+    ('μv = 0.2 (m/s)/mm', 'μF = 12.5 N/mm')
+    """
+    scale = SCALES[name]
+    return f"{scale.symbol} = {value:.{digits}g} {scale.unit}"
 
 
 @dataclass(frozen=True, slots=True)
@@ -140,7 +171,9 @@ class QuantityKind:
     read off a plan at a scale), whether it is signed (counter-clockwise or along the guide
     positive) or a magnitude, and its subject (a ``point``, a ``link`` or a ``pair``).
     ``question`` is what a task asks, in words: ``{subject}`` is replaced by the quantity's
-    subject, ``{point}`` by the subject read aloud (``B@lever``: "B of link lever")."""
+    subject, ``{point}`` by the subject read aloud (``B@lever``: "B of link lever").
+    ``panel`` titles the panel of a full-turn plot that draws this kind's curves (empty: the
+    kind has no panel of its own)."""
 
     prefix: str
     symbol: str
@@ -150,26 +183,33 @@ class QuantityKind:
     signed: bool
     subject: str
     question: str = ""
+    panel: str = ""
 
 
 #: every quantity a check table, a key or a sweep names, by prefix
 QUANTITY_KINDS: dict[str, QuantityKind] = {kind.prefix: kind for kind in (
     QuantityKind("v", "v", "m/s", "speed of a point", "mu_v", False, "point",
-                 "speed of {point}, |v_{subject}|"),
+                 "speed of {point}, |v_{subject}|", "speed of points |v|"),
     QuantityKind("a", "a", "m/s²", "acceleration of a point", "mu_a", False, "point",
-                 "magnitude of the acceleration of {point}, |a_{subject}|"),
+                 "magnitude of the acceleration of {point}, |a_{subject}|",
+                 "acceleration of points |a|"),
     QuantityKind("omega", "ω", "rad/s", "angular velocity of a link", "mu_v", True, "link",
-                 "angular velocity ω of {subject} (counter-clockwise positive)"),
+                 "angular velocity ω of {subject} (counter-clockwise positive)",
+                 "angular velocity ω of links"),
     QuantityKind("epsilon", "ε", "rad/s²", "angular acceleration of a link", "mu_a", True,
-                 "link", "angular acceleration ε of {subject} (counter-clockwise positive)"),
-    QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
-                 "point", "radius of curvature ρ of the path of {point}"),
+                 "link", "angular acceleration ε of {subject} (counter-clockwise positive)",
+                 "angular acceleration ε of links"),
     QuantityKind("s", "s", "m", "travel of a prismatic pair", "mu_l", True, "pair",
-                 "travel s of the slide {subject}"),
+                 "travel s of the slide {subject}", "travel s of prismatic pairs"),
     QuantityKind("ds", "ds/dt", "m/s", "sliding velocity of a prismatic pair", "mu_v", True,
-                 "pair", "sliding velocity of {subject} (along the guide)"),
+                 "pair", "sliding velocity of {subject} (along the guide)",
+                 "sliding velocity ds/dt"),
     QuantityKind("dds", "d²s/dt²", "m/s²", "sliding acceleration of a prismatic pair", "mu_a",
-                 True, "pair", "sliding (relative) acceleration of {subject} (along the guide)"),
+                 True, "pair", "sliding (relative) acceleration of {subject} (along the guide)",
+                 "sliding acceleration d²s/dt²"),
+    QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
+                 "point", "radius of curvature ρ of the path of {point}",
+                 "radius of curvature ρ"),
     QuantityKind("coriolis", "aᵏ", "m/s²", "Coriolis acceleration of a prismatic pair",
                  "mu_a", False, "pair", "magnitude of the Coriolis acceleration of {subject}"),
 )}
@@ -235,6 +275,26 @@ STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities
 
 
 _SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+_SUBSCRIPT_TEXT = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")
+
+
+def subscript(text: str) -> str:
+    """Digits (and a comma) as Unicode subscripts, as a course sets a link's number.
+
+    >>> "R" + subscript("12"), "R" + subscript("1,12")
+    ('R₁₂', 'R₁‚₁₂')
+    """
+    return text.translate(_SUBSCRIPT_TEXT)
+
+
+def point_text(name: str) -> str:
+    """A point's name in plain text, its digits as subscripts (``O1`` → ``O₁``).
+
+    >>> point_text("O1"), point_text("C")
+    ('O₁', 'C')
+    """
+    head = name.rstrip("0123456789")
+    return head + subscript(name[len(head):])
 
 
 def link_numbers(links: list[str] | tuple[str, ...], drive: str,

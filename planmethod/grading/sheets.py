@@ -31,7 +31,7 @@ from typing import Any
 from ..render.canvas import Canvas
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
-from ..vocabulary import SCALES, link_numbers, symbol
+from ..vocabulary import link_numbers, scale_text, symbol
 
 __all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_sheet_svg", "task_text"]
 
@@ -55,8 +55,7 @@ def task_text(key: Mapping[str, Any]) -> str:
         lines.append("Given: " + ", ".join(f"{name} = {value:g}" if isinstance(value, float)
                                            else f"{name} = {value}"
                                            for name, value in given.items()))
-    scale_texts = (f"{SCALES[name][0]} = {scales.get(name, 0):.6g} {SCALES[name][1]}"
-                   for name in ("mu_l", "mu_v", "mu_a"))
+    scale_texts = (scale_text(name, scales.get(name, 0)) for name in ("mu_l", "mu_v", "mu_a"))
     lines.append(f"Crank angle φ1 = {key.get('angle', 0):g}°; scales {', '.join(scale_texts)}.")
     exercise = key.get("exercise") or {}
     links = list((exercise.get("links") or {}).keys())
@@ -109,11 +108,8 @@ def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: 
               f"{scale:.6g} {unit}. {given} Draw the plan from the pole {pole}; label every "
               f"point (b, c, …) next to it.")
     canvas = Canvas()
-    canvas.define("pattern", {"id": "grid", "width": "10", "height": "10",
-                              "patternUnits": "userSpaceOnUse"},
-                  [("path", {"d": "M 10 0 L 0 0 0 10", "fill": "none", "stroke": "#c9cede",
-                             "stroke-width": "0.2"}, [])])
-    canvas.rectangle((0.0, 12.0), (size, size), fill="url(#grid)", stroke="#99a", width=0.3,
+    grid = canvas.grid_pattern("grid", 10.0, color="#c9cede", width=0.2)
+    canvas.rectangle((0.0, 12.0), (size, size), fill=grid, stroke="#99a", width=0.3,
                      css="grid")
     for index, line in enumerate(textwrap.wrap(header + " (grid: 10 mm)",
                                                int(size / 1.45))[:3]):

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from ..errors import SpecError
 from ..model import Exercise, Mechanism, PlanSettings
-from ..vocabulary import SCALES
+from ..vocabulary import scale_text
 
 __all__ = ["STANDARD_MANTISSAS", "Scales", "choose_scales", "scale_point", "standard"]
 
@@ -90,19 +90,13 @@ class Scales:
 
     def describe(self) -> list[str]:
         """The scales as printed on a drawing, with units."""
-        lines = [_scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
+        lines = [scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
         if self.omega1:
             lines += [f"μφv = μv/ω1 = {self.mu_phi_v:.6g} m/mm",
                       f"μφa = μa/ω1² = {self.mu_phi_a:.6g} m/mm"]
         if self.mu_f is not None:
-            lines.append(_scale_text("mu_f", self.mu_f))
+            lines.append(scale_text("mu_f", self.mu_f))
         return lines
-
-
-def _scale_text(name: str, value: float) -> str:
-    """``μv = 0.2 (m/s)/mm``: a scale as printed, with its unit."""
-    symbol, unit = SCALES[name]
-    return f"{symbol} = {value:.6g} {unit}"
 
 
 def scale_point(mechanism: Mechanism, settings: PlanSettings) -> str:

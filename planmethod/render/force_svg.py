@@ -37,11 +37,12 @@ from typing import Any
 import numpy as np
 
 from ..plans.scales import standard
-from ..vocabulary import AppliedKind, EdgeKind, GroupKind, PlanKind
-from .canvas import Canvas, difference, fit_zoom, translate
+from ..vectors import cross, dot, norm, perp, unit
+from ..vocabulary import SCALES, AppliedKind, EdgeKind, GroupKind, PlanKind, scale_text, subscript
+from .canvas import Canvas, fit_zoom
 from .labels import RunKind, label_runs
-from .notation import ForceNotation, subscript
-from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, quantity
+from .notation import ForceNotation
+from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, significant
 from .svg import (
     MECHANISM_SIZE,
     PLAN_SIZE,
@@ -106,7 +107,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
     """One group's force polygon (see the module docstring); ``index`` picks the crank angle
     of a vectorised solve; ``notation`` prints the forces as a course writes them (R₁₂, G₃),
     else by their report names."""
-    edges = [edge for edge in group.polygon if float(np.hypot(*edge.vector[index])) > 0]
+    edges = [edge for edge in group.polygon if float(norm(edge.vector[index])) > 0]
     vectors = [edge.vector[index] / mu_f for edge in edges]
     corners = [np.zeros(2)]
     for vector in vectors:
@@ -120,7 +121,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
         if figure.arrow(start, end, style, layer="components", color=colour,
                         css=f"force {edge.kind}", step=number + 1):
             used.setdefault(_legend_key(edge), (style, colour))
-        middle = translate(start, difference(end, start), 0.5)
+        middle = start + 0.5 * (end - start)
         runs = notation.runs(edge.label, edge.link) if notation else _runs(edge.label)
         figure.request((edge.label,), middle, runs, mark=2.0)
     count = len(edges)
@@ -130,21 +131,21 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
         start, end = where[first], where[after if after <= count else after - count]
         if figure.arrow(start, end, "result", layer="results", css="force total"):
             used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
-            middle = translate(start, difference(end, start), 0.5)
+            middle = start + 0.5 * (end - start)
             figure.request((name,), middle,
                            notation.runs(name, on) if notation else _runs(name), mark=2.0)
     figure.circle(where[0], 3.4, fill=INK, css="start")
-    closure = float(np.hypot(*(corners[-1] - corners[0])))
+    closure = float(norm(corners[-1] - corners[0]))
     figure.place()
     _, y0, x1, _ = figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
     terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
                        for edge in edges)
-    lines = [f"μF = {quantity(mu_f, 6)} N/mm", f"ΣF = 0: {terms} = 0",
+    lines = [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",
              f"the polygon closes to {closure:.2g} mm"]
     lines += [notation.line(step, group.links) if notation else step for step in group.steps]
     lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
-    frame(figure, title, lines, (mu_f, "N", 0.3 * PLAN_SIZE), (), "force")
+    frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force")
     return figure.svg(title).svg
 
 
@@ -192,8 +193,7 @@ def combined_svg(forces, plans) -> str | None:
     if combined.gravity_image_mm > 0:
         figure.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
                      css="gravity image")
-        figure.request(("Z_g",), translate(pole_px, difference(new_px, pole_px), 0.5),
-                       _runs("Z_g"), mark=2.0)
+        figure.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"), mark=2.0)
     figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
     figure.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
     notation = ForceNotation(forces.solution)
@@ -202,7 +202,7 @@ def combined_svg(forces, plans) -> str | None:
         figure.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image")
         figure.request((f"s_{force.link}",), s,
                        (("s", RunKind.MAIN), (notation.number(force.link), RunKind.SUB)), mark=2.6)
-        if math.hypot(*force.segment_mm) * figure.zoom >= 1.0:
+        if float(norm(np.asarray(force.segment_mm))) * figure.zoom >= 1.0:
             figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
                          css=f"combined {force.link}")
     figure.place()
@@ -213,15 +213,15 @@ def combined_svg(forces, plans) -> str | None:
         "s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)": ("tangential", KNOWN_COLOURS["F"])},
         heading="Combined force (Aliyev)")
     figure.used.clear()
-    lines = [f"μa = {quantity(combined.mu_a, 6)} (m/s²)/mm; g = {combined.g:g} m/s², "
+    lines = [f"{scale_text('mu_a', combined.mu_a)}; g = {combined.g:g} m/s², "
              f"Z_g = g/μa = {combined.gravity_image_mm:.4g} mm"]
     for force in combined.forces:
-        length = math.hypot(*force.segment_mm)
-        q = math.hypot(*force.from_plan)
+        length = float(norm(np.asarray(force.segment_mm)))
+        q = float(norm(np.asarray(force.from_plan)))
         sub = subscript(notation.number(force.link))
         lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
-                     f"{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
+                     f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
              f"pole moved to π′, φ₁ = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION)
@@ -246,6 +246,95 @@ def _force_colour(name: str) -> str:
     return KNOWN_COLOURS.get(name[:1], KNOWN_COLOURS["l"])
 
 
+class _LeverFigure:
+    """Zhukovsky's lever being drawn: the turned velocity plan, the force scale of the
+    lever, and each force at the image of its point with its arm from the pole."""
+
+    def __init__(self, forces: Any, plans) -> None:
+        lever = forces.solution.lever
+        self.notation = ForceNotation(forces.solution)
+        self.plan = plan = plans.velocity
+        turned = {label: (float(y), float(-x)) for label, (x, y) in plan.points_mm.items()}
+        items = [(force.name, force.link, np.asarray(force.image_mm[0], float),
+                  np.asarray(force.force[0], float), float(force.moment[0]))
+                 for force in lever.forces]
+        #: (name, link, image mm, force N, moment N·mm) of each force that is not zero
+        self.items = [item for item in items if float(norm(item[3])) > 0]
+        self.balancing = np.asarray(lever.balancing_force[0], float)
+        self.pin = np.asarray(lever.balancing_image_mm[0], float)
+        largest = max([float(norm(force)) for _, _, _, force, _ in self.items]
+                      + [float(norm(self.balancing))])
+        points = list(turned.values())
+        extent = max(max(abs(c) for xy in points for c in xy), 1.0)
+        #: the force scale of the lever (N/mm)
+        self.mu_f = mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
+        ends = [tuple(image + force / mu_f) for _, _, image, force, _ in self.items]
+        self.figure = Canvas(fit_zoom(points + ends + [tuple(self.pin + self.balancing / mu_f)],
+                                      PLAN_SIZE))
+        plan_content(self.figure, turned, plan.steps, plan.pole, rotate_deg=-90.0)
+        self.pole = self.figure.px((0.0, 0.0))
+        self.used: dict[str, tuple[str, str | None]] = {}
+
+    def draw(self, name: str, image: np.ndarray, force: np.ndarray, colour: str, style: str,
+             runs) -> float:
+        """The force at its image with its arm from p; returns the arm h (mm)."""
+        figure, mu_f = self.figure, self.mu_f
+        start, end = figure.px(image), figure.px(image + force / mu_f)
+        figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
+        figure.request((f"force:{name}",), start + 0.6 * (end - start), runs, mark=2.0)
+        direction = unit(force)
+        foot = image - float(dot(image, direction)) * direction
+        arm = float(norm(foot))
+        if arm <= 1e-9 * max(float(norm(image)), 1.0):
+            arm = 0.0                    # the line passes through p (rounding left over)
+        if arm * figure.zoom >= 2.0:
+            figure.line(self.pole, figure.px(foot), color=colour, width=0.7, dash="1.5,2.5",
+                        layer="construction", css="arm", obstacle=False)
+            reach = max(4.0 / figure.zoom, float(dot(image - foot, direction)))
+            figure.line(figure.px(foot), figure.px(foot + direction * reach), color=colour,
+                        width=0.5, dash="4,3", layer="construction", css="line of action",
+                        obstacle=False)
+        return arm
+
+    def known_forces(self) -> tuple[list[str], float, float]:
+        """Each known force drawn; the sum's lines, Σ M and Σ |M| (N·mm)."""
+        lines = []
+        total = magnitude = 0.0      # the sum is zero to rounding of Σ|M|
+        couples: dict[str, float] = {}
+        for name, link, image, force, moment in self.items:
+            base, _, at = name.partition(" at ")
+            total += moment
+            magnitude += abs(moment)
+            if at:     # a couple, carried as two forces ±M/l ⊥ the link: listed, not drawn
+                couples[base] = couples.get(base, 0.0) + moment
+                continue
+            colour = _force_colour(base)
+            arm = self.draw(name, image, force, colour, "relative",
+                            self.notation.runs(base, link))
+            self.used.setdefault("known force at the image of its point, arm h from p",
+                                 ("relative", colour))
+            lines.append(f"  {self.notation.plain(base, link)}: {float(norm(force)):.4g} N × "
+                         f"h {arm:.4g} mm = {(moment if arm else 0.0) + 0.0:+.5g} N·mm")
+        for base, moment in couples.items():
+            lines.append(f"  {self.notation.plain(base)} (a couple, as ±M/l at two points of "
+                         f"its link): {moment + 0.0:+.5g} N·mm")
+        return lines, total, magnitude
+
+    def balancing_force(self, total: float, magnitude: float) -> tuple[str, float]:
+        """The balancing force drawn; its line of the sum and its size (N)."""
+        runs = (("F", RunKind.MAIN), ("b", RunKind.SUB))
+        arm = self.draw("F_b", self.pin, self.balancing, INK, "result", runs)
+        moment = float(cross(self.pin, self.balancing))
+        self.used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = (
+            "result", None)
+        size = float(norm(self.balancing))
+        remainder = total + moment
+        if abs(remainder) <= 1e-9 * (magnitude + abs(moment)):
+            remainder = 0.0                               # zero to the rounding of the terms
+        return (f"  F_b: {size:.4g} N × h {arm:.4g} mm = {moment + 0.0:+.5g} N·mm;  "
+                f"sum {remainder + 0.0:+.2g} N·mm"), size
+
+
 def lever_forces_svg(forces: Any, plans) -> str | None:
     """Zhukovsky's lever with its forces: the velocity plan turned 90° clockwise about its
     pole p, each known force drawn at the image of its point (unchanged in size and
@@ -256,101 +345,141 @@ def lever_forces_svg(forces: Any, plans) -> str | None:
     if plans is None or lever.source != "velocity plan" or not np.isfinite(
             lever.balancing_moment[0]):
         return None
-    notation = ForceNotation(forces.solution)
-    plan = plans.velocity
-    turned = {label: (float(y), float(-x)) for label, (x, y) in plan.points_mm.items()}
-    items = [(force.name, force.link, np.asarray(force.image_mm[0], float),
-              np.asarray(force.force[0], float), float(force.moment[0]))
-             for force in lever.forces]
-    items = [item for item in items if float(np.hypot(*item[3])) > 0]
-    balancing = np.asarray(lever.balancing_force[0], float)
-    largest = max([float(np.hypot(*f)) for _, _, _, f, _ in items]
-                  + [float(np.hypot(*balancing))])
-    points = list(turned.values())
-    extent = max(max(abs(c) for xy in points for c in xy), 1.0)
-    mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
-    ends = [tuple(image + force / mu_f) for _, _, image, force, _ in items]
-    pin = np.asarray(lever.balancing_image_mm[0], float)
-    figure = Canvas(fit_zoom(points + ends + [tuple(pin + balancing / mu_f)], PLAN_SIZE))
-    plan_content(figure, turned, plan.steps, plan.pole, rotate_deg=-90.0)
-    pole = figure.px((0.0, 0.0))
-    used: dict[str, tuple[str, str | None]] = {}
-
-    def draw(name: str, link: str | None, image, force, colour, style, runs) -> float:
-        """The force at its image with its arm from p; returns the arm h (mm)."""
-        start, end = figure.px(image), figure.px(image + force / mu_f)
-        figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
-        figure.request((f"force:{name}",), translate(start, difference(end, start), 0.6), runs,
-                       mark=2.0)
-        size = float(np.hypot(*force))
-        direction = force / size
-        foot = image - float(np.dot(image, direction)) * direction
-        arm = float(np.hypot(*foot))
-        if arm <= 1e-9 * max(float(np.hypot(*image)), 1.0):
-            arm = 0.0                    # the line passes through p (rounding left over)
-        if arm * figure.zoom >= 2.0:
-            figure.line(pole, figure.px(foot), color=colour, width=0.7, dash="1.5,2.5",
-                        layer="construction", css="arm", obstacle=False)
-            line_end = figure.px(foot + direction * max(4.0 / figure.zoom,
-                                                        float(np.dot(image - foot,
-                                                                     direction))))
-            figure.line(figure.px(foot), line_end, color=colour, width=0.5, dash="4,3",
-                        layer="construction", css="line of action", obstacle=False)
-        return arm
-
-    lines = [f"μv = {quantity(plan.scale, 6)} {plan.unit}; forces on the lever at "
-             f"μF = {quantity(mu_f, 6)} N/mm",
+    page = _LeverFigure(forces, plans)
+    figure, plan = page.figure, page.plan
+    lines = [f"{scale_text('mu_v', plan.scale)}; forces on the lever at "
+             f"{scale_text('mu_f', page.mu_f)}",
              "each force at the image of its point, turned with the plan (size and direction "
              "kept); arm h from the pole p",
              "ΣM_p = Σ ± F·h = 0 (N·mm on the lever, counter-clockwise +):"]
-    total = 0.0
-    magnitude = 0.0      # Σ|M|: the sum is zero to rounding of this
-    couples: dict[str, float] = {}
-    for name, link, image, force, moment in items:
-        base, _, at = name.partition(" at ")
-        total += moment
-        magnitude += abs(moment)
-        if at:     # a couple, carried as two forces ±M/l ⊥ the link: listed, not drawn
-            couples[base] = couples.get(base, 0.0) + moment
-            continue
-        colour = _force_colour(base)
-        arm = draw(name, link, image, force, colour, "relative", notation.runs(base, link))
-        used.setdefault("known force at the image of its point, arm h from p", ("relative",
-                                                                                 colour))
-        size = float(np.hypot(*force))
-        lines.append(f"  {notation.plain(base, link)}: {size:.4g} N × h {arm:.4g} mm = "
-                     f"{(moment if arm else 0.0) + 0.0:+.5g} N·mm")
-    for base, moment in couples.items():
-        lines.append(f"  {notation.plain(base)} (a couple, as ±M/l at two points of its "
-                     f"link): {moment + 0.0:+.5g} N·mm")
-    runs_b = (("F", RunKind.MAIN), ("b", RunKind.SUB))
-    arm_b = draw("F_b", None, pin, balancing, INK, "result", runs_b)
-    moment_b = float(pin[0] * balancing[1] - pin[1] * balancing[0])
-    used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = ("result", None)
-    size_b = float(np.hypot(*balancing))
-    remainder = total + moment_b
-    if abs(remainder) <= 1e-9 * (magnitude + abs(moment_b)):
-        remainder = 0.0                               # zero to the rounding of the terms
-    lines.append(f"  F_b: {size_b:.4g} N × h {arm_b:.4g} mm = {moment_b + 0.0:+.5g} N·mm;  "
-                 f"sum {remainder + 0.0:+.2g} N·mm")
+    terms, total, magnitude = page.known_forces()
+    balancing, size_b = page.balancing_force(total, magnitude)
+    lines += [*terms, balancing]
     mechanism = forces.solution.mechanism
     drive = mechanism.drive
-    crank = mechanism.links[drive.link]
-    length = crank.length(drive.pivot, lever.balancing_point)
-    value = float(lever.balancing_moment[0])
+    length = mechanism.links[drive.link].length(drive.pivot, lever.balancing_point)
     lines.append(f"|M_b| = F_b·l_{drive.pivot}{lever.balancing_point} = {size_b:.5g} N × "
-                 f"{length:.4g} m;  M_b = {value:.6g} N·m (Zhukovsky's lever), by the groups "
+                 f"{length:.4g} m;  M_b = {float(lever.balancing_moment[0]):.6g} N·m "
+                 f"(Zhukovsky's lever), by the groups "
                  f"{float(forces.solution.balancing_moment[0]):.6g} N·m")
     figure.place()
     _, y0, x1, _ = figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)    # the plan's styles first
-    _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), used,
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)   # the plan's styles
+    _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), page.used,
                   heading="Forces on the lever")
     figure.used.clear()
     title = (f"{mechanism.title} — Zhukovsky's lever with its forces, "
              f"φ₁ = {plans.angle:g}°").lstrip(" —")
-    frame(figure, title, lines, (plan.scale, "m/s", 0.3 * PLAN_SIZE), plan.flags, PlanKind.VELOCITY)
+    frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
+          plan.flags, PlanKind.VELOCITY)
     return figure.svg(title).svg
+
+
+class _LoadedFigure:
+    """The loaded mechanism being drawn: the mechanism at μl and a force scale, and one
+    method per kind of load (forces as arrows, moments as curved arrows, friction listed)."""
+
+    def __init__(self, forces: Any, plans) -> None:
+        self.position = position = plans.position
+        self.solution = solution = forces.solution
+        self.notation = ForceNotation(solution)
+        everything = [item for item in solution.applied.items if item.link != "frame"]
+        # friction (a force or moment in each pair, on both its links) is listed, not drawn
+        self.friction = [item for item in everything if item.kind == AppliedKind.FRICTION]
+        items = [item for item in everything if item.kind != AppliedKind.FRICTION]
+        mu_l = position.mu_l
+        #: (item, its point mm, its force N) of each force that is not zero
+        self.arrows = [(item, np.asarray(item.point[0], float) / mu_l,
+                        np.asarray(item.force[0], float))
+                       for item in items if item.force is not None
+                       and float(norm(np.asarray(item.force[0], float))) > 0]
+        self.couples = [(item, float(item.moment[0])) for item in items
+                        if item.moment is not None and float(item.moment[0]) != 0.0]
+        points = list(position.points_mm.values())
+        extent = max(max(p[0] for p in points) - min(p[0] for p in points),
+                     max(p[1] for p in points) - min(p[1] for p in points), 1.0)
+        largest = max((float(norm(force)) for _, _, force in self.arrows), default=0.0)
+        self.mu_f = mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
+        ends = [tuple(start + force / mu_f) for _, start, force in self.arrows]
+        self.figure = Canvas(position_zoom(position, ends))
+        mechanism_content(self.figure, position)
+        self.used: dict[str, tuple[str, str | None]] = {}
+
+    def forces(self) -> list[str]:
+        """Each force as an arrow at its point (an inertia force with the line of its single
+        equivalent force); a line of the list for each."""
+        figure, notation, mu_f, mu_l = self.figure, self.notation, self.mu_f, self.position.mu_l
+        lines = []
+        for item, start, force in self.arrows:
+            colour = _force_colour(item.name)
+            begin, end = figure.px(start), figure.px(start + force / mu_f)
+            figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
+            figure.request((f"force:{item.name}:{item.link}",), begin + 0.65 * (end - begin),
+                           notation.runs(item.name, item.link), mark=2.0)
+            self.used.setdefault(_legend_key_of(item.name), ("relative", colour))
+            line = (f"{notation.plain(item.name, item.link)} = {float(norm(force)):.4g} N on "
+                    f"{notation.link_name(item.link)}")
+            inertia = self.solution.applied.inertia.get(item.link)
+            if item.kind == AppliedKind.INERTIA_FORCE and inertia is not None and bool(
+                    inertia.single_force_defined[0]) and abs(float(inertia.offset[0])) > 0:
+                # the line of the single equivalent force Fᵘ (with Mᵘ), offset by h from S
+                shift = float(inertia.offset[0]) * perp(unit(force)) / mu_l
+                if float(norm(shift)) * figure.zoom >= 1.5:
+                    figure.line(figure.px(start + shift - 0.6 * force / mu_f),
+                                figure.px(start + shift + 1.2 * force / mu_f), color=colour,
+                                width=0.8, dash=STYLES["construction"].dash,
+                                layer="construction", css="inertia line", obstacle=False)
+                    self.used.setdefault("line of the single equivalent inertia force "
+                                         "(h from S)", ("construction", colour))
+                    line += (f"; with Mᵘ, one force on a line h = "
+                             f"{abs(float(inertia.offset[0])):.4g} m from S")
+            lines.append(line)
+        return lines
+
+    def moments(self) -> list[str]:
+        """Each moment as a curved arrow round its centre; a line of the list for each."""
+        notation, mu_l = self.notation, self.position.mu_l
+        lines = []
+        for item, moment in self.couples:
+            inertia = self.solution.applied.inertia.get(item.link)
+            centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
+                      else np.asarray(inertia.centre[0], float) / mu_l
+                      if item.kind == AppliedKind.INERTIA_MOMENT and inertia is not None
+                      else _link_centre(self.position, item.link))
+            colour = _force_colour(item.name)
+            turning_arrow(self.figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0,
+                          colour, f"moment:{item.name}:{item.link}",
+                          notation.runs(item.name, item.link), css="moment")
+            self.used.setdefault("moment (curved arrow: its sense)", ("relative", colour))
+            lines.append(f"{notation.plain(item.name, item.link)} = {abs(moment):.4g} N·m "
+                         f"{'counter-clockwise' if moment > 0 else 'clockwise'} on "
+                         f"{notation.link_name(item.link)}")
+        return lines
+
+    def friction_lines(self) -> list[str]:
+        """The friction in the pairs, listed (not drawn)."""
+        if not self.friction:
+            return []
+        listed = [f"{self.notation.plain(item.name, item.link)} {_size(item):.4g}"
+                  for item in self.friction]
+        lines = ["friction (not drawn; N·m, N): " + ", ".join(listed[:8])]
+        for start in range(8, len(listed), 10):
+            lines.append("  " + ", ".join(listed[start:start + 10]))
+        return lines
+
+    def balancing_moment(self) -> list[str]:
+        """The balancing moment on the crank as a curved arrow round its pivot."""
+        drive = self.solution.mechanism.drive
+        balancing = float(self.solution.balancing_moment[0])
+        if not balancing or drive.pivot not in self.position.points_mm:
+            return []
+        turning_arrow(self.figure, self.position.points_mm[drive.pivot], 40.0, -math.pi / 2,
+                      1.0 if balancing > 0 else -1.0, INK, "moment:M_b",
+                      (("M", RunKind.MAIN), ("b", RunKind.SUB)), css="balancing moment")
+        self.used["balancing moment M_b on the crank"] = ("result", None)
+        return [f"M_b = {abs(balancing):.6g} N·m "
+                f"{'counter-clockwise' if balancing > 0 else 'clockwise'} on "
+                f"{self.notation.link_name(drive.link)} (to be applied by the motor)"]
 
 
 def loaded_svg(forces: Any, plans) -> str | None:
@@ -361,91 +490,21 @@ def loaded_svg(forces: Any, plans) -> str | None:
     without plans)."""
     if plans is None:
         return None
-    position = plans.position
-    solution = forces.solution
-    notation = ForceNotation(solution)
-    mu_l = position.mu_l
-    everything = [item for item in solution.applied.items if item.link != "frame"]
-    # friction (a force or moment in each pair, on both its links) is listed, not drawn
-    friction = [item for item in everything if item.kind == AppliedKind.FRICTION]
-    items = [item for item in everything if item.kind != AppliedKind.FRICTION]
-    arrows = [(item, np.asarray(item.point[0], float) / mu_l, np.asarray(item.force[0], float))
-              for item in items if item.force is not None
-              and float(np.hypot(*item.force[0])) > 0]
-    couples = [(item, float(item.moment[0])) for item in items
-               if item.moment is not None and float(item.moment[0]) != 0.0]
-    points = list(position.points_mm.values())
-    extent = max(max(p[0] for p in points) - min(p[0] for p in points),
-                 max(p[1] for p in points) - min(p[1] for p in points), 1.0)
-    largest = max((float(np.hypot(*force)) for _, _, force in arrows), default=0.0)
-    mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
-    ends = [tuple(start + force / mu_f) for _, start, force in arrows]
-    figure = Canvas(position_zoom(position, ends))
-    mechanism_content(figure, position)
-    used: dict[str, tuple[str, str | None]] = {}
-    lines = [f"μl = {quantity(mu_l, 6)} m/mm; forces at μF = {quantity(mu_f, 6)} N/mm",
-             f"φ₁ = {plans.angle:g}°, ω₁ = {quantity(solution.mechanism.drive.omega, 6)} rad/s"]
-    for item, start, force in arrows:
-        colour = _force_colour(item.name)
-        begin, end = figure.px(start), figure.px(start + force / mu_f)
-        figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
-        figure.request((f"force:{item.name}:{item.link}",),
-                       translate(begin, difference(end, begin), 0.65),
-                       notation.runs(item.name, item.link), mark=2.0)
-        used.setdefault(_legend_key_of(item.name), ("relative", colour))
-        lines.append(f"{notation.plain(item.name, item.link)} = "
-                     f"{float(np.hypot(*force)):.4g} N on {notation.link_name(item.link)}")
-        inertia = solution.applied.inertia.get(item.link)
-        if item.kind == AppliedKind.INERTIA_FORCE and inertia is not None and bool(
-                inertia.single_force_defined[0]) and abs(float(inertia.offset[0])) > 0:
-            # the line of the single equivalent force Fᵘ (with Mᵘ), offset by h from S
-            unit = force / float(np.hypot(*force))
-            shift = float(inertia.offset[0]) * np.array([-unit[1], unit[0]]) / mu_l
-            if float(np.hypot(*shift)) * figure.zoom >= 1.5:
-                figure.line(figure.px(start + shift - 0.6 * force / mu_f),
-                            figure.px(start + shift + 1.2 * force / mu_f), color=colour,
-                            width=0.8, dash=STYLES["construction"].dash, layer="construction",
-                            css="inertia line", obstacle=False)
-                used.setdefault("line of the single equivalent inertia force (h from S)",
-                                ("construction", colour))
-                offset = abs(float(inertia.offset[0]))
-                lines[-1] += f"; with Mᵘ, one force on a line h = {offset:.4g} m from S"
-    mechanism = solution.mechanism
-    for item, moment in couples:
-        inertia = solution.applied.inertia.get(item.link)
-        centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
-                  else np.asarray(inertia.centre[0], float) / mu_l
-                  if item.kind == AppliedKind.INERTIA_MOMENT and inertia is not None
-                  else _link_centre(position, item.link))
-        colour = _force_colour(item.name)
-        turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0, colour,
-                      f"moment:{item.name}:{item.link}", notation.runs(item.name, item.link),
-                      css="moment")
-        used.setdefault("moment (curved arrow: its sense)", ("relative", colour))
-        lines.append(f"{notation.plain(item.name, item.link)} = {abs(moment):.4g} N·m "
-                     f"{'counter-clockwise' if moment > 0 else 'clockwise'} on "
-                     f"{notation.link_name(item.link)}")
-    if friction:
-        listed = [f"{notation.plain(item.name, item.link)} {_size(item):.4g}"
-                  for item in friction]
-        lines.append("friction (not drawn; N·m, N): " + ", ".join(listed[:8]))
-        for start in range(8, len(listed), 10):
-            lines.append("  " + ", ".join(listed[start:start + 10]))
-    drive = mechanism.drive
-    balancing = float(solution.balancing_moment[0])
-    if balancing and drive.pivot in position.points_mm:
-        turning_arrow(figure, position.points_mm[drive.pivot], 40.0, -math.pi / 2,
-                      1.0 if balancing > 0 else -1.0, INK, "moment:M_b",
-                      (("M", RunKind.MAIN), ("b", RunKind.SUB)), css="balancing moment")
-        used["balancing moment M_b on the crank"] = ("result", None)
-        lines.append(f"M_b = {abs(balancing):.6g} N·m "
-                     f"{'counter-clockwise' if balancing > 0 else 'clockwise'} on "
-                     f"{notation.link_name(drive.link)} (to be applied by the motor)")
+    page = _LoadedFigure(forces, plans)
+    figure, mechanism = page.figure, forces.solution.mechanism
+    lines = [f"{scale_text('mu_l', page.position.mu_l)}; forces at "
+             f"{scale_text('mu_f', page.mu_f)}",
+             f"φ₁ = {plans.angle:g}°, ω₁ = {significant(mechanism.drive.omega, 6)} rad/s"]
+    lines += page.forces()
+    lines += page.moments()
+    lines += page.friction_lines()
+    lines += page.balancing_moment()
     figure.place()
     _, y0, x1, _ = figure.extent
-    _force_legend(figure, (x1 + 34, y0 + 4), used, heading="Forces and moments")
+    _force_legend(figure, (x1 + 34, y0 + 4), page.used, heading="Forces and moments")
     title = f"{mechanism.title} — the loaded mechanism, φ₁ = {plans.angle:g}°".lstrip(" —")
-    frame(figure, title, lines, (mu_l, "m", 0.25 * MECHANISM_SIZE), solution.flags,
+    frame(figure, title, lines, (page.position.mu_l, SCALES["mu_l"].drawn,
+                                 0.25 * MECHANISM_SIZE), forces.solution.flags,
           PlanKind.POSITION)
     return figure.svg(title).svg
 
@@ -460,7 +519,7 @@ def _legend_key_of(name: str) -> str:
 def _size(item) -> float:
     """The size of a known force (N) or moment (N·m) at the first angle."""
     if item.force is not None:
-        return float(np.hypot(*item.force[0]))
+        return float(norm(np.asarray(item.force[0], float)))
     return abs(float(item.moment[0]))
 
 

@@ -36,26 +36,15 @@ from collections.abc import Iterable
 from typing import Any
 
 from ..model import FRAME
-from ..vocabulary import link_numbers
+from ..vocabulary import link_numbers, subscript
 from .labels import Run, RunKind, label_runs
 
-__all__ = ["ForceNotation", "subscript"]
-
-_DIGITS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")
+__all__ = ["ForceNotation"]
 
 #: a reaction or one of its components, by the pair's key
 _REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
 #: a force's report name inside a sentence
 _TOKEN = re.compile(r"load\[\d+\]|(?:F_u|M_u|M_f|F_f),[\w/:]+|(?:Rᵗ|Rⁿ|R∥|R⊥|R|N|G)_[\w/:]+")
-
-
-def subscript(text: str) -> str:
-    """Digits (and a comma) as Unicode subscripts.
-
-    >>> "R" + subscript("12")
-    'R₁₂'
-    """
-    return text.translate(_DIGITS)
 
 
 class ForceNotation:

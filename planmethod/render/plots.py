@@ -48,7 +48,7 @@ import numpy as np
 
 from ..errors import PlanmethodError
 from ..io import atomic_path
-from ..vocabulary import quantity, symbol
+from ..vocabulary import QUANTITY_KINDS, quantity, symbol
 
 __all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_force_plot",
            "save_study_plot", "save_sweep_plot"]
@@ -56,18 +56,10 @@ __all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_f
 #: file formats by suffix
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 
-#: (column prefix, panel title, y-axis label); a column joins the first panel whose prefix
-#: it has
-_PANELS = (
-    ("v_", "speed of points |v|", "m/s"),
-    ("a_", "acceleration of points |a|", "m/s²"),
-    ("omega_", "angular velocity ω of links", "rad/s"),
-    ("epsilon_", "angular acceleration ε of links", "rad/s²"),
-    ("s_", "travel s of prismatic pairs", "m"),
-    ("ds_", "sliding velocity ds/dt", "m/s"),
-    ("dds_", "sliding acceleration d²s/dt²", "m/s²"),
-    ("rho_", "radius of curvature ρ", "m"),
-)
+#: (column prefix, panel title, y-axis label) of each kind of quantity that has a panel
+#: (:data:`planmethod.vocabulary.QUANTITY_KINDS`); a column joins the panel of its prefix
+_PANELS = tuple((f"{kind.prefix}_", kind.panel, kind.unit) for kind in QUANTITY_KINDS.values()
+                if kind.panel)
 _LEFT_TO_CSV = ("x_", "y_", "vx_", "vy_", "ax_", "ay_", "theta_")
 
 _STYLE = {

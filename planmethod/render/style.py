@@ -35,7 +35,7 @@ __all__ = [
     "TITLE_SIZE",
     "LineStyle",
     "num",
-    "quantity",
+    "significant",
     "text_width",
 ]
 
@@ -108,8 +108,12 @@ def num(value: float) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def quantity(value: float, digits: int = 4) -> str:
-    """A printed value with ``digits`` significant digits (``0.002``, ``20``, ``5.272``)."""
+def significant(value: float, digits: int = 4) -> str:
+    """A printed value with ``digits`` significant digits (``0.002``, ``20``, ``5.272``).
+
+    >>> significant(5.27159), significant(0.002, 6)
+    ('5.272', '0.002')
+    """
     return f"{value:.{digits}g}"
 
 
