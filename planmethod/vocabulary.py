@@ -20,6 +20,7 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -37,8 +38,13 @@ __all__ = [
     "Quantity",
     "QuantityKind",
     "link_numbers",
+    "link_text",
+    "numbered",
+    "pair_number",
+    "point_name",
     "point_text",
     "quantity",
+    "question_text",
     "scale_text",
     "subscript",
     "symbol",
@@ -297,29 +303,95 @@ def point_text(name: str) -> str:
     return head + subscript(name[len(head):])
 
 
-def link_numbers(links: list[str] | tuple[str, ...], drive: str,
-                 frame: str = "frame") -> dict[str, int]:
-    """The links numbered as a course numbers them: the frame 1, the crank (drive link) 2, the
-    others 3, 4, … in the order the exercise lists them.
+def link_numbers(links: list[str] | tuple[str, ...], drive: str, frame: str = "frame", *,
+                 frame_place: int | str = 0, explicit: Mapping[str, int] | None = None
+                 ) -> dict[str, int]:
+    """The links numbered as a course numbers them, in the order of their numbers.
+
+    ``links`` are the moving links in the course's order (the order their Assur groups attach;
+    :func:`planmethod.numbering.course_numbers` finds it), ``drive`` the crank. The frame's
+    place is 0 (the frame 0, the crank 1, the others 2, 3, …), 1 (the frame 1, the crank 2, …)
+    or ``"last"`` (the crank 1, …, the frame after the last moving link); ``explicit`` numbers
+    win, and the other links take the free numbers in order.
 
     Examples
     --------
-    >>> link_numbers(["frame", "AB", "BC", "CD"], "AB")
-    {'frame': 1, 'AB': 2, 'BC': 3, 'CD': 4}
+    >>> link_numbers(["AB", "BC", "slider"], "AB")
+    {'frame': 0, 'AB': 1, 'BC': 2, 'slider': 3}
+    >>> link_numbers(["AB", "BC", "slider"], "AB", frame_place="last")
+    {'AB': 1, 'BC': 2, 'slider': 3, 'frame': 4}
+    >>> link_numbers(["AB", "BC", "slider"], "AB", frame_place=1)
+    {'frame': 1, 'AB': 2, 'BC': 3, 'slider': 4}
+    >>> link_numbers(["AB", "BC", "slider"], "AB", explicit={"slider": 7})
+    {'frame': 0, 'AB': 1, 'BC': 2, 'slider': 7}
     """
-    order = [frame, drive] + [name for name in links if name not in (frame, drive)]
-    return {name: number for number, name in enumerate(order, start=1)}
+    numbers = dict(explicit or {})
+    if frame not in numbers and frame_place != "last":
+        numbers[frame] = int(frame_place)
+    taken = set(numbers.values())
+    free = 2 if frame_place == 1 else 1
+    for link in [drive] + [name for name in links if name not in (frame, drive)]:
+        if link in numbers:
+            continue
+        while free in taken:
+            free += 1
+        numbers[link] = free
+        taken.add(free)
+    if frame not in numbers:
+        numbers[frame] = max(taken, default=0) + 1
+    return dict(sorted(numbers.items(), key=lambda item: item[1]))
 
 
-def symbol(name: str, numbers: dict[str, int] | None = None) -> str:
-    """A quantity as a course writes it: a link's by the link's number as a subscript (ω₃,
-    ε₄), a point's with the point's name (v_C, a_C, ρ_D), a pair's with its name; a name that is
-    no quantity is returned as it is.
+def numbered(symbol: str, number: int | str) -> str:
+    """A symbol with a link's number as a subscript: the drive's φ, ω, ε follow the crank's
+    number (φ₁ by default, θ₂ … in a course that numbers the frame 1).
+
+    >>> numbered("ω", 2), numbered("R", "12")
+    ('ω₂', 'R₁₂')
+    """
+    return symbol + subscript(str(number))
+
+
+def pair_number(first: int, second: int) -> str:
+    """The subscript of a pair of links (a reaction R₁₂: the force of link 1 on link 2),
+    with a comma once a number has two digits (R₁‚₁₂).
+
+    >>> pair_number(1, 2), pair_number(3, 12)
+    ('12', '3,12')
+    """
+    return f"{first}{second}" if max(first, second) < 10 else f"{first},{second}"
+
+
+def point_name(point: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A point as a course writes it: ``B@lever`` (point B taken as a point of link
+    ``lever``) is B with the lever's number, B₃; a plain point keeps its name (digits as
+    subscripts, O₁).
+
+    >>> point_name("B@lever", {"lever": 3}), point_name("O1"), point_name("B@lever")
+    ('B₃', 'O₁', 'B lever')
+    """
+    name, _, link = point.partition("@")
+    if not link:
+        return point_text(name)
+    if numbers and link in numbers:
+        return point_text(name) + subscript(str(numbers[link]))
+    return f"{point_text(name)} {link}"
+
+
+def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A quantity as a course writes it: a link's by the link's number as a subscript (ω₂,
+    ε₃), a point's with the point's name (v_C, a_C, ρ_D; a point of a link by the link's
+    number, v_B₃), a pair's by its two links' numbers (s₃₀: link 3 along link 0); a name that
+    is no quantity is returned as it is. Without ``numbers`` a link's and a pair's quantity
+    keep their names.
 
     Examples
     --------
-    >>> symbol("omega_BC", {"frame": 1, "AB": 2, "BC": 3}), symbol("a_C"), symbol("rho_D")
-    ('ω₃', 'a_C', 'ρ_D')
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "slider": 3, "lever": 4}
+    >>> symbol("omega_BC", numbers), symbol("a_C"), symbol("v_B@lever", numbers)
+    ('ω₂', 'a_C', 'v_B₄')
+    >>> symbol("ds_slider/frame", numbers), symbol("s_slider/frame")
+    ('ds/dt₃₀', 's (slider/frame)')
     """
     try:
         found = quantity(name)
@@ -327,7 +399,59 @@ def symbol(name: str, numbers: dict[str, int] | None = None) -> str:
         return name
     kind, subject = found.kind, found.subject
     if kind.subject == "link" and numbers and subject in numbers:
-        return f"{kind.symbol}{str(numbers[subject]).translate(_SUBSCRIPT)}"
+        return numbered(kind.symbol, numbers[subject])
     if kind.subject == "pair":
+        link, _, along = subject.partition("/")
+        if numbers and link in numbers and along in numbers:
+            return kind.symbol + subscript(pair_number(numbers[link], numbers[along]))
         return f"{kind.symbol} ({subject})"
-    return f"{kind.symbol}_{subject}"
+    return f"{kind.symbol}_{point_name(subject, numbers)}"
+
+
+def link_text(link: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A link named in words: ``link 2 (BC)`` by its number, its name in words (an
+    underscore a space); just the name without ``numbers``.
+
+    >>> link_text("rocker_EF", {"rocker_EF": 4}), link_text("BC")
+    ('link 4 (rocker EF)', 'BC')
+    """
+    words = link.replace("_", " ")
+    return f"link {numbers[link]} ({words})" if numbers and link in numbers else words
+
+
+def question_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """What a task asks for a quantity, in words and in a course's symbols.
+
+    Examples
+    --------
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "slider": 3}
+    >>> question_text("omega_BC", numbers)
+    'angular velocity ω₂ of link 2 (BC) (counter-clockwise positive)'
+    >>> question_text("v_C", numbers)
+    'speed of C, |v_C|'
+    >>> question_text("ds_slider/frame", numbers)
+    'sliding velocity ds/dt₃₀ of link 3 (slider) along link 0 (frame) (along the guide)'
+    >>> question_text("coriolis_slider/frame", numbers)
+    'magnitude of the Coriolis acceleration aᵏ₃₀ of link 3 (slider) along link 0 (frame)'
+    >>> question_text("omega_BC")
+    'angular velocity ω of BC (counter-clockwise positive)'
+    """
+    found = quantity(name)
+    kind, subject = found.kind, found.subject
+    if not numbers:
+        return found.question
+    if kind.subject == "link":
+        return kind.question.replace("{subject}", link_text(subject, numbers)).replace(
+            f"{kind.symbol} of", f"{symbol(name, numbers)} of")
+    if kind.subject == "pair":
+        link, _, along = subject.partition("/")
+        text = kind.question.replace("the slide {subject}", "{subject}")
+        shown = symbol(name, numbers)
+        if f" {kind.symbol} of " in text:
+            text = text.replace(f" {kind.symbol} of ", f" {shown} of ", 1)
+        else:
+            text = text.replace(" of {subject}", f" {shown} of {{subject}}")
+        return text.replace("{subject}", f"{link_text(link, numbers)} along "
+                                         f"{link_text(along, numbers)}")
+    point = point_name(subject, numbers)
+    return kind.question.format(subject=point, point=point)

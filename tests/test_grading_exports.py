@@ -337,7 +337,7 @@ def test_gradescope_hints_never_show_the_right_value(tmp_path):
     results = _submit(root, {"email": "ann@uni.edu"}, answers)
     assert results["score"] == 0
     for test, question in zip(results["tests"], keys[0]["questions"], strict=True):
-        assert test["output"].startswith(question["id"]) and "wrong" in test["output"]
+        assert test["output"].startswith(question["symbol"]) and "wrong" in test["output"]
         assert f"{question['value']:.6g}" not in test["output"], test["output"]
         assert "right" not in test["output"]
 

@@ -133,7 +133,7 @@ def test_animated_svg_shows_each_frame_once_per_turn(capsys, tmp_path):
                                            text)]
     assert delays == pytest.approx([0.5 * k for k in range(8)])
     assert "animation:planmethod-turn 4s step-end infinite" in text
-    assert text.count("φ₁ = 135°") == 1
+    assert text.count("position plan, φ₁ = 135°") == 1
 
 
 def test_animated_gif_has_one_frame_per_angle(capsys, tmp_path):

@@ -44,7 +44,10 @@ def run(args: argparse.Namespace) -> int:
     table = sweep_table(exercise, **sweep) if args.plot else None
     chunks = [table] if table is not None else sweep_chunks(exercise, **sweep)
     if args.plot:  # first: a bad plot file name then leaves no CSV behind
+        from ..numbering import course_numbers
         from ..render.plots import save_sweep_plot
+
+        numbers = course_numbers(exercise.mechanism)
 
         if args.forces:
             from ..render.notation import ForceNotation
@@ -59,13 +62,10 @@ def run(args: argparse.Namespace) -> int:
                 notation = ForceNotation(solved.solution)
                 names = {key: notation.plain(f"R_{key}") for key in solved.solution.reactions}
             save_force_plot(table, args.plot, title=exercise.mechanism.title, marks=marks,
-                            names=names)
+                            names=names, crank=numbers[exercise.mechanism.drive.link])
         else:
-            from ..vocabulary import link_numbers
-
-            mechanism = exercise.mechanism
-            save_sweep_plot(table, args.plot, title=mechanism.title,
-                            numbers=link_numbers(mechanism.moving_links, mechanism.drive.link))
+            save_sweep_plot(table, args.plot, title=exercise.mechanism.title, numbers=numbers,
+                            crank=numbers[exercise.mechanism.drive.link])
     extremes = Extremes()
     with contextlib.ExitStack() as stack:
         handle = None

@@ -26,7 +26,7 @@ DEFAULT_STEP = 5.0
 PANELS = ("position", "velocity", "acceleration", "lever")
 
 #: what a question of the key keeps in the page (its ``text`` is not shown)
-QUESTION_FIELDS = ("id", "value", "tolerance", "unit", "signed", "mistakes")
+QUESTION_FIELDS = ("id", "symbol", "value", "tolerance", "unit", "signed", "mistakes")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -151,8 +151,9 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     >>> page.count('data-quantity="'), 'id="angle"' in page
     (7, True)
     """
+    from ..numbering import course_numbers
     from ..render.workbook import curve_chart, workbook_html
-    from ..vocabulary import link_numbers, quantity
+    from ..vocabulary import point_name, quantity
 
     angles = turn_angles(step)
     jobs = default_jobs(len(angles)) if jobs is None else max(1, int(jobs))
@@ -175,13 +176,15 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
                     progress(len(frames), len(angles))
     first = frames[0]
     mechanism = exercise.mechanism
-    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link)
+    numbers = course_numbers(mechanism)
 
     def subscript(name: str) -> str:
-        """A link's quantity by the link's number (ω₃), others by their subject."""
+        """A link's quantity by the link's number (ω₂), a point's by its name (v_B₃)."""
         found = quantity(name)
         if found.kind.subject == "link" and found.subject in numbers:
             return str(numbers[found.subject])
+        if found.kind.subject == "point":
+            return point_name(found.subject, numbers)
         return found.subject.replace("_", " ")
 
     quantities = [{"name": name, "symbol": quantity(name).symbol,

@@ -5,7 +5,9 @@ scale set by a length is the value of the standard series (mantissa 1, 1.5, 2, 2
 7.5 × 10ᵏ, :func:`standard`) nearest to what the length asks — μl ≈ l_AB/(AB), μv ≈ v_B/(pb),
 μa ≈ a_B/(πb) — and the drawn length then follows from the scale, as course guides ask. At the
 crank scale (all three lengths equal: the textbook's (pb) = (πb) = (AB)) μl is standard and
-μv = ω1·μl, μa = μl·√(ω1⁴ + ε1²) follow from it exactly. ``exact_mm = true`` in ``[plan]`` keeps
+μv = ω1·μl, μa = ω1²·μl follow from it exactly; with ε1 ≠ 0 the crank pin's acceleration is
+longer than ω1²·l_AB, and μa is the standard value nearest a_B/(πb) (the crank's acceleration
+then drawn at its true length at that scale). ``exact_mm = true`` in ``[plan]`` keeps
 the lengths exactly as written (the scales then follow from them unrounded); a ``mu_*`` given is
 used as it is. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
 U. A. Abduvaliev and J. U. Abduxoshimov, "Kinematic study of a four-link mechanism for the
@@ -154,7 +156,8 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
     mu_a = pick(settings.mu_a, settings.acceleration_mm, a_b, "mu_a", "the acceleration")
     if crank_scale:   # (pb) = (πb) = (AB): μv and μa follow from the standard μl exactly
         mu_v = abs(drive.omega) * mu_l
-        mu_a = math.hypot(drive.omega ** 2, drive.epsilon) * mu_l
+        # with ε1 ≠ 0 that μa would be no value a student picks: the standard one instead
+        mu_a = drive.omega ** 2 * mu_l if drive.epsilon == 0 else standard(mu_a)
     else:
         mu_v, mu_a = rounded(settings.mu_v, mu_v), rounded(settings.mu_a, mu_a)
     return Scales(mu_l, mu_v, mu_a, drive.omega, drive.epsilon, point, settings.mu_f)

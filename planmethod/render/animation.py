@@ -28,7 +28,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from ..vocabulary import PlanKind
+from ..vocabulary import PlanKind, numbered
 from .canvas import Canvas, SvgFigure
 from .style import num
 
@@ -102,7 +102,9 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
             ax.set_yticks([])
             if kind == PlanKind.POSITION:
                 _draw_mechanism(ax, plans.position)
-                ax.set_title(f"φ₁ = {plans.position.angle:g}°", fontsize=10)
+                crank = plans.position.numbers.get(plans.position.drive[0], 1)
+                ax.set_title(f"{numbered('φ', crank)} = {plans.position.angle:g}°",
+                             fontsize=10)
             else:
                 _draw_plan(ax, getattr(plans, kind))
                 ax.set_title(f"{kind} plan", fontsize=10)

@@ -38,7 +38,16 @@ import numpy as np
 
 from ..plans.scales import standard
 from ..vectors import cross, dot, norm, perp, unit
-from ..vocabulary import SCALES, AppliedKind, EdgeKind, GroupKind, PlanKind, scale_text, subscript
+from ..vocabulary import (
+    SCALES,
+    AppliedKind,
+    EdgeKind,
+    GroupKind,
+    PlanKind,
+    numbered,
+    scale_text,
+    subscript,
+)
 from .canvas import Canvas, fit_zoom
 from .labels import RunKind, label_runs
 from .notation import ForceNotation
@@ -46,6 +55,7 @@ from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, significant
 from .svg import (
     MECHANISM_SIZE,
     PLAN_SIZE,
+    crank_number,
     frame,
     mechanism_content,
     plan_content,
@@ -188,7 +198,7 @@ def combined_svg(forces, plans) -> str | None:
     new_pole = combined.new_pole_mm
     extra = [new_pole] + [f.image_mm for f in combined.forces]
     figure = Canvas(fit_zoom(list(points.values()) + extra, PLAN_SIZE))
-    plan_content(figure, points, plan.steps, plan.pole)
+    plan_content(figure, points, plan.steps, plan.pole, numbers=plan.numbers)
     pole_px, new_px = figure.px((0.0, 0.0)), figure.px(new_pole)
     if combined.gravity_image_mm > 0:
         figure.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
@@ -223,7 +233,7 @@ def combined_svg(forces, plans) -> str | None:
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
                      f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
-             f"pole moved to π′, φ₁ = {plans.angle:g}°")
+             f"pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION)
     return figure.svg(title).svg
 
@@ -236,6 +246,11 @@ def combined_omitted(forces, plans) -> str | None:
         return None
     return ("combined_force.svg is not drawn: no gravity acts (g = 0), so the moved pole π′ "
             "is π and Q = G + Fᵘ is the inertia force alone")
+
+
+def _phi(plans, letter: str = "φ") -> str:
+    """The crank's φ (or ω, ε) with the crank's number, as the course writes it."""
+    return numbered(letter, crank_number(plans.position))
 
 
 def _force_colour(name: str) -> str:
@@ -271,7 +286,8 @@ class _LeverFigure:
         ends = [tuple(image + force / mu_f) for _, _, image, force, _ in self.items]
         self.figure = Canvas(fit_zoom(points + ends + [tuple(self.pin + self.balancing / mu_f)],
                                       PLAN_SIZE))
-        plan_content(self.figure, turned, plan.steps, plan.pole, rotate_deg=-90.0)
+        plan_content(self.figure, turned, plan.steps, plan.pole, rotate_deg=-90.0,
+                     numbers=plan.numbers)
         self.pole = self.figure.px((0.0, 0.0))
         self.used: dict[str, tuple[str, str | None]] = {}
 
@@ -369,7 +385,7 @@ def lever_forces_svg(forces: Any, plans) -> str | None:
                   heading="Forces on the lever")
     figure.used.clear()
     title = (f"{mechanism.title} — Zhukovsky's lever with its forces, "
-             f"φ₁ = {plans.angle:g}°").lstrip(" —")
+             f"{_phi(plans)} = {plans.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
           plan.flags, PlanKind.VELOCITY)
     return figure.svg(title).svg
@@ -494,7 +510,8 @@ def loaded_svg(forces: Any, plans) -> str | None:
     figure, mechanism = page.figure, forces.solution.mechanism
     lines = [f"{scale_text('mu_l', page.position.mu_l)}; forces at "
              f"{scale_text('mu_f', page.mu_f)}",
-             f"φ₁ = {plans.angle:g}°, ω₁ = {significant(mechanism.drive.omega, 6)} rad/s"]
+             f"{_phi(plans)} = {plans.angle:g}°, {_phi(plans, 'ω')} = "
+             f"{significant(mechanism.drive.omega, 6)} rad/s"]
     lines += page.forces()
     lines += page.moments()
     lines += page.friction_lines()
@@ -502,7 +519,8 @@ def loaded_svg(forces: Any, plans) -> str | None:
     figure.place()
     _, y0, x1, _ = figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), page.used, heading="Forces and moments")
-    title = f"{mechanism.title} — the loaded mechanism, φ₁ = {plans.angle:g}°".lstrip(" —")
+    title = (f"{mechanism.title} — the loaded mechanism, {_phi(plans)} = {plans.angle:g}°"
+             .lstrip(" —"))
     frame(figure, title, lines, (page.position.mu_l, SCALES["mu_l"].drawn,
                                  0.25 * MECHANISM_SIZE), forces.solution.flags,
           PlanKind.POSITION)
@@ -546,7 +564,8 @@ def force_files(forces: Any, plans, *, loaded: bool = True) -> dict[str, str]:
         files[_file_name(number, group)] = polygon_svg(
             group, forces.mu_f, angle=forces.angle, notation=notation,
             title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "
-                  f"φ₁ = {forces.angle:g}°")
+                  f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
+                  f"{forces.angle:g}°")
     combined = combined_svg(forces, plans)
     if combined is not None:
         files["combined_force.svg"] = combined

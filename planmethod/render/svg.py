@@ -49,7 +49,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..vectors import dot, norm, perp, unit_or_zero
-from ..vocabulary import PLAN_SCALES, SCALES, PlanKind, point_text, scale_text
+from ..vocabulary import (
+    PLAN_SCALES,
+    SCALES,
+    PlanKind,
+    link_text,
+    numbered,
+    point_text,
+    scale_text,
+)
 from .canvas import (
     Canvas,
     Point,
@@ -80,6 +88,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SvgFigure",
+    "crank_number",
     "dense_regions",
     "frame",
     "lever_drawing",
@@ -99,8 +108,11 @@ __all__ = [
 PLAN_SIZE = 440.0
 #: the longest side of the mechanism is drawn this long (px)
 MECHANISM_SIZE = 600.0
-#: points closer than this on the page (px) are one point, and their labels are merged
+#: segments closer than this on the page (px) are one segment, drawn once
 COINCIDENT = 1.0
+#: points closer than this on the drawing (mm) coincide by construction: one mark, one merged
+#: label (p ≡ a ≡ c₀); distinct points, however near, keep their own (a detail shows them)
+SAME_POINT_MM = 1e-6
 
 
 # -- geometry helpers -----------------------------------------------------------------------------
@@ -110,11 +122,11 @@ def _distances(points: Sequence[Point]) -> np.ndarray:
     return norm(xy[:, None, :] - xy[None, :, :])
 
 
-def _clusters(names, where: Mapping[str, Point]) -> list[list[str]]:
-    """Names grouped by coincidence on the page (within ``COINCIDENT`` px of a group's
+def _clusters(names, where: Mapping[str, Point], tolerance: float) -> list[list[str]]:
+    """Names grouped by coincidence on the page (within ``tolerance`` px of a group's
     first member), in the order of their first members."""
     names = list(names)
-    apart = _distances([where[name] for name in names]) >= COINCIDENT
+    apart = _distances([where[name] for name in names]) >= tolerance
     groups: list[list[int]] = []
     for index in range(len(names)):
         for group in groups:
@@ -142,11 +154,18 @@ class _PlanPage:
     step draws (:data:`_STEP_DRAWERS`)."""
 
     def __init__(self, figure: Canvas, points_mm: Mapping[str, Sequence[float]],
-                 steps: Sequence[Step], pole: str, rotate_deg: float) -> None:
+                 steps: Sequence[Step], pole: str, rotate_deg: float,
+                 numbers: Mapping[str, int] | None) -> None:
         from shapely.geometry import box
 
         self.figure, self.pole, self.rotate_deg = figure, pole, rotate_deg
-        self.points_mm = points_mm
+        self.points_mm, self.numbers = points_mm, numbers
+        #: Coriolis points of a zero Coriolis term: neither drawn nor named
+        self.hidden = {step.end for step in steps
+                       if step.action in ("lay_off", "coincide") and step.component == "coriolis"
+                       and step.start in points_mm and step.end in points_mm
+                       and float(norm(np.subtract(points_mm[step.end],
+                                                  points_mm[step.start]))) <= SAME_POINT_MM}
         self.where = where = {label: figure.px(xy) for label, xy in points_mm.items()}
         self.by_number = {step.number: step for step in steps}
         self.origin = origin = where[pole]
@@ -268,14 +287,15 @@ class _PlanPage:
     def points(self) -> None:
         """Points and labels: coincident points share one mark and one merged label."""
         order = {label: index for index, label in enumerate(self.points_mm)}
-        for members in _clusters(self.points_mm, self.where):
+        shown = [label for label in self.points_mm if label not in self.hidden]
+        for members in _clusters(shown, self.where, SAME_POINT_MM * self.figure.zoom):
             members.sort(key=lambda label: (0 if label == self.pole else 1, order[label]))
             centre = self.where[members[0]]
             is_pole = members[0] == self.pole
             self.figure.circle(centre, 3.4 if is_pole else 2.4, fill=INK, layer="points",
                                css="pole" if is_pole else "point")
-            self.figure.request(tuple(members), centre,
-                                merge_runs(label_runs(label) for label in members), mark=3.4)
+            self.figure.request(tuple(members), centre, merge_runs(
+                label_runs(label, self.numbers) for label in members), mark=3.4)
 
 
 #: what each kind of construction step draws (a step of another kind draws nothing)
@@ -285,9 +305,11 @@ _STEP_DRAWERS = {"lay_off": _PlanPage.lay_off, "line": _PlanPage.line,
 
 
 def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
-                 steps: Sequence[Step], pole: str, rotate_deg: float = 0.0) -> None:
-    """Draw a plan's steps, results, points and label requests into ``figure``."""
-    page = _PlanPage(figure, points_mm, steps, pole, rotate_deg)
+                 steps: Sequence[Step], pole: str, rotate_deg: float = 0.0,
+                 numbers: Mapping[str, int] | None = None) -> None:
+    """Draw a plan's steps, results, points and label requests into ``figure``; ``numbers``
+    (the links' numbers) name a point of a link as the course does (b₃)."""
+    page = _PlanPage(figure, points_mm, steps, pole, rotate_deg, numbers)
     for step in steps:
         drawer = _STEP_DRAWERS.get(step.action)
         if drawer is not None:
@@ -428,7 +450,7 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX,
     spots: list[np.ndarray] = []
     for xy in where.values():
         xy = page_point(xy)
-        if not spots or bool(np.all(norm(np.asarray(spots) - xy) >= COINCIDENT)):
+        if not spots or bool(np.all(norm(np.asarray(spots) - xy) > 1e-6)):
             spots.append(xy)
     near = _distances(spots) < gap
     group = np.arange(len(spots))
@@ -477,7 +499,7 @@ def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
     top = figure.extent[3] + 30.0
     for letter, (x0, y0, x1, y1), zoom in regions:
         detail = Canvas(figure.zoom * zoom)
-        plan_content(detail, plan.points_mm, plan.steps, plan.pole)
+        plan_content(detail, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
         reach = 60.0               # labels are placed for the points in and near the region
         detail.requests = [request for request in detail.requests
                            if x0 * zoom - reach <= request.anchor[0] <= x1 * zoom + reach
@@ -518,7 +540,7 @@ def plan_drawing(plan: Plan, *, details: bool = True) -> SvgFigure:
     """A velocity or acceleration plan as an :class:`SvgFigure` (see the module docstring);
     with ``details``, a region too dense to read is drawn again, enlarged, below the plan."""
     figure = Canvas(fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
-    plan_content(figure, plan.points_mm, plan.steps, plan.pole)
+    plan_content(figure, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
     regions = _detail_regions(figure, plan) if details else []
     figure.place()
     details = _detail_insets(figure, plan, regions)
@@ -660,7 +682,8 @@ class _MechanismPage:
                 for corner in ((4.0, 4.0), (4.0, -4.0)):
                     figure.line(at - corner, at + corner, color=ink, width=1.0,
                                 layer="points", obstacle=False)
-        for members in _clusters(self.position.points_mm, self.where):
+        for members in _clusters(self.position.points_mm, self.where,
+                                 SAME_POINT_MM * figure.zoom):
             figure.request(tuple(members), self.where[members[0]],
                            merge_runs(label_runs(name) for name in members), mark=4.5,
                            css="faint" if self.faint else "label")
@@ -744,8 +767,14 @@ def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
     figure.request((key,), arc[len(arc) // 2], runs, mark=1.0)
 
 
+def crank_number(position: PositionPlan) -> int:
+    """The crank's number in the course's notation (1 by default): the drive's symbols
+    φ, ω, ε carry it."""
+    return position.numbers.get(position.drive[0], 1)
+
+
 def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None:
-    """The crank's ω1 as a curved arrow round the drive pivot."""
+    """The crank's ω₁ as a curved arrow round the drive pivot."""
     link, pivot, omega = position.drive
     if not omega or pivot not in position.points_mm:
         return
@@ -757,8 +786,8 @@ def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None
     start = math.atan2(tip_mm[1] - centre_mm[1], tip_mm[0] - centre_mm[0])
     crank_px = math.hypot(tip_mm[0] - centre_mm[0], tip_mm[1] - centre_mm[1]) * figure.zoom
     turning_arrow(figure, centre_mm, min(max(0.42 * crank_px, 20.0), 44.0), start,
-                  1.0 if omega > 0 else -1.0, ink, "ω1",
-                  (("ω", RunKind.MAIN), ("1", RunKind.UPRIGHT)))
+                  1.0 if omega > 0 else -1.0, ink, f"ω{crank_number(position)}",
+                  (("ω", RunKind.MAIN), (str(crank_number(position)), RunKind.UPRIGHT)))
 
 
 def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float) -> None:
@@ -831,10 +860,12 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     lines = [scale_text("mu_l", position.mu_l)]
     link, _pivot, omega = position.drive
     if omega:
-        lines.append(f"ω₁ = {significant(omega, 6)} rad/s (link {link})")
+        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s "
+                     f"({link_text(link, position.numbers)})")
     if plans is not None:
         lines += [line for line in plans.scales.describe()[1:3]]
-    title = f"{position.title} — position plan, φ₁ = {position.angle:g}°".lstrip(" —")
+    title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "
+             f"{position.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (position.mu_l, SCALES["mu_l"].drawn, 0.25 * MECHANISM_SIZE),
           plans.flags if plans is not None else (), PlanKind.POSITION)
     y = figure.extent[3] + 24
@@ -858,13 +889,13 @@ def lever_drawing(plans: Plans) -> SvgFigure:
     rotated = plans.rotated_velocity_plan()
     figure = Canvas(position_zoom(position, list(rotated.values())))
     mechanism_content(figure, position, faint=True)
-    plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0)
+    plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0, numbers=plan.numbers)
     figure.place()
     lines = [scale_text("mu_l", position.mu_l), scale_text("mu_v", plan.scale),
              f"the velocity plan turned 90° clockwise, pole {plan.pole} at "
              f"{point_text(position.drive[1])} (Zhukovsky's lever)"]
-    title = (f"{position.title} — rotated velocity plan, φ₁ = {position.angle:g}°"
-             .lstrip(" —"))
+    title = (f"{position.title} — rotated velocity plan, "
+             f"{numbered('φ', crank_number(position))} = {position.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.25 * MECHANISM_SIZE),
           plan.flags, PlanKind.VELOCITY)
     return figure.svg(title)

@@ -42,13 +42,14 @@
     const unit = q.unit || "";
     const right = (numberText(q.value) + " " + unit + " ± " + fmt(q.tolerance, 3)).replace("  ", " ");
     const answer = parseAnswer(raw);
+    const name = q.symbol || q.id;  // as the course writes it (ω₂), as grade_question does
     const result = {id: q.id, correct: false, mistake: null, answer: null};
-    if (answer === null) { result.feedback = q.id + ": no answer (right: " + right + ")"; return result; }
+    if (answer === null) { result.feedback = name + ": no answer (right: " + right + ")"; return result; }
     if (typeof answer === "string") {
-      result.feedback = q.id + ": '" + answer + "' is not a number (right: " + right + ")"; return result;
+      result.feedback = name + ": '" + answer + "' is not a number (right: " + right + ")"; return result;
     }
     result.answer = answer;
-    const shown = (q.id + " = " + numberText(answer) + " " + unit).trimEnd();
+    const shown = (name + " = " + numberText(answer) + " " + unit).trimEnd();
     if (Math.abs(answer - q.value) <= q.tolerance) {
       result.correct = true;
       result.feedback = shown + ": correct (exact " + numberText(q.value) + ", tolerance ± " + fmt(q.tolerance, 3) + ")";
