@@ -79,7 +79,9 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
     readings = [[check.analytic, check.plan] for check in analysis.checks]
-    steps = {}
+    from ..render.svg import vector_equations
+
+    steps, equations = {}, {}
     if analysis.plans is not None:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
@@ -87,17 +89,20 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
                 steps[name] = [[step.number, step.text, step.action,
                                  [point for point in (step.start, step.end) if point]]
                                 for step in plan.steps]
+                equations[name] = vector_equations(plan)
     key = build_key(replace(variant, exercise=analysis.exercise))
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
-            "questions": questions, "tolerance_source": key["precision_mm"]}
+            "equations": equations, "questions": questions,
+            "tolerance_source": key["precision_mm"]}
 
 
-def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
+def solve_frames(exercise, angles: Sequence[float], views=None) -> list[dict[str, Any]]:
     """The frames of the given angles as plain data (:func:`frame_data`), each with its
     check quantities (``quantities``) and balancing moment (``moment``, None without
-    forces) for the full-turn curves."""
+    forces) for the full-turn curves; ``views`` keep each panel steady over the turn
+    (:func:`planmethod.render.steady.steady_views`)."""
     import numpy as np
 
     from ..render.figures import plan_files
@@ -109,7 +114,7 @@ def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
         analysis = analyse(exercise, angle)
         # many frames: no enlarged details and no loaded mechanism (solve --svg draws them)
         files = (plan_files(analysis.plans, forces=analysis.forces, details=False,
-                            loaded=False) if analysis.plans else {})
+                            loaded=False, views=views) if analysis.plans else {})
         frame = frame_data(analysis, variant, files)
         frame["quantities"] = [(check.quantity, check.unit) for check in analysis.checks]
         frame["moment"] = (None if analysis.forces is None else
@@ -120,8 +125,8 @@ def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
 
 
 def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
-    exercise, angles = job
-    return solve_frames(exercise, angles)
+    exercise, angles, views = job
+    return solve_frames(exercise, angles, views)
 
 
 def default_jobs(frames: int) -> int:
@@ -152,22 +157,24 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     (7, True)
     """
     from ..numbering import course_numbers
+    from ..render.steady import steady_views
     from ..render.workbook import curve_chart, workbook_html
-    from ..vocabulary import point_name, quantity
+    from ..vocabulary import numbered, point_name, quantity
 
     angles = turn_angles(step)
     jobs = default_jobs(len(angles)) if jobs is None else max(1, int(jobs))
+    views = steady_views(exercise, angles)      # one zoom and one page per panel
     frames: list[dict[str, Any]] = []
     if jobs == 1:
         for angle in angles:
-            frames += solve_frames(exercise, [angle])
+            frames += solve_frames(exercise, [angle], views)
             if progress is not None:
                 progress(len(frames), len(angles))
     else:
         from concurrent.futures import ProcessPoolExecutor
 
         size = math.ceil(len(angles) / (4 * jobs))
-        chunks = [(exercise, angles[start:start + size])
+        chunks = [(exercise, angles[start:start + size], views)
                   for start in range(0, len(angles), size)]
         with ProcessPoolExecutor(jobs) as pool:
             for done in pool.map(_solve_chunk, chunks):
@@ -202,7 +209,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
                                  for title, unit, curves in turn_charts(frames, numbers)],
-                         notes=notes)
+                         notes=notes, start=mechanism.drive.angle,
+                         phi=numbered("φ", numbers[mechanism.drive.link]))
 
 
 def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None

@@ -43,6 +43,7 @@ True
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
@@ -57,8 +58,10 @@ from ..vocabulary import (
     numbered,
     point_text,
     scale_text,
+    subscript,
 )
 from .canvas import (
+    MARGIN,
     Canvas,
     Point,
     SvgFigure,
@@ -69,6 +72,7 @@ from .canvas import (
     scale_bar,
 )
 from .labels import RunKind, label_runs, merge_runs
+from .steady import SteadyView
 from .style import (
     FAINT,
     FLAG,
@@ -76,11 +80,14 @@ from .style import (
     INK,
     LEGEND_ORDER,
     LINK_FILL,
+    SANS,
+    SANS_BOLD,
     SMALL_SIZE,
     STYLES,
     TEXT_SIZE,
     TITLE_SIZE,
     significant,
+    text_width,
 )
 
 if TYPE_CHECKING:
@@ -102,6 +109,7 @@ __all__ = [
     "position_svg",
     "position_zoom",
     "turning_arrow",
+    "vector_equations",
 ]
 
 #: the longest side of a plan's points is drawn this long (px); a scale bar keeps it honest
@@ -409,11 +417,22 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
 
 
 def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | None,
-          flags: Sequence[str], kind: str) -> None:
-    """Title above, legend at the right, scales, scale bar and flags below the content."""
-    x0, y0, x1, y1 = figure.extent
-    plan_legend(figure, (x1 + 34, y0 + 4), kind)
-    x0, y0, x1, y1 = figure.extent
+          flags: Sequence[str], kind: str, *, box: Sequence[float] | None = None,
+          equations: Sequence[str] = ()) -> None:
+    """Title above, legend and the plan's vector ``equations`` at the right, scales, scale bar
+    and flags below the content — the content drawn so far, or a fixed ``box`` (x0, y0, x1,
+    y1, px) that stays the same in every frame of a turn (:mod:`planmethod.render.steady`)."""
+    x0, y0, x1, y1 = box if box is not None else figure.extent
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), kind)
+    if equations:
+        y = bottom + 34 if bottom > y0 + 4 else y0 + 4
+        figure.text((x1 + 34, y), "Vector equations", size=TEXT_SIZE, bold=True, css="legend",
+                    area=False)
+        for equation in equations:
+            y += 20
+            figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False)
+    if box is None:
+        x0, y0, x1, y1 = figure.extent
     figure.text((x0, y0 - 16), title, size=TITLE_SIZE, bold=True, css="title", area=False)
     y = y1 + 26
     for line in scale_lines:
@@ -426,6 +445,36 @@ def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | N
     for flag in flags:
         figure.text((x0, y), "! " + flag, size=SMALL_SIZE, color=FLAG, css="flag", area=False)
         y += 17
+
+
+def steady_page(view: SteadyView, title: str, lines: int, kind: str, *,
+                legend: bool = True, equations: Sequence[str] = ()
+                ) -> tuple[float, float, float, float]:
+    """The viewBox of a panel kept steady over a turn: its content's fixed box with room for
+    the frame's furniture at every angle — the title (its angle written as wide as any), the
+    widest legend the kind can have and the plan's ``equations`` beside it, ``lines`` scale
+    lines, the scale bar and two flags."""
+    x0, y0, x1, y1 = view.box
+    widest = re.sub(r"= -?[\d.]+°", "= 888.8°", title)
+    column = max([_legend_width(kind) if legend else 0.0]
+                 + [text_width(text, TEXT_SIZE, SANS) for text in equations])
+    right = max(x1 + (34.0 + column if column else 0.0),
+                x0 + text_width(widest, TITLE_SIZE, SANS_BOLD))
+    top = y0 - 16.0 - TITLE_SIZE
+    rows = (len(LEGEND_ORDER) + 3 if legend else 0) * 20.0 + (34.0 + 20.0 * len(equations)
+                                                              if equations else 0.0)
+    bottom = max(y1 + 26.0 + 19.0 * lines + 40.0 + 2 * 17.0, y0 + 20.0 + rows)
+    return (x0 - MARGIN, top - MARGIN, right - x0 + 2 * MARGIN, bottom - top + 2 * MARGIN)
+
+
+def _legend_width(kind: str) -> float:
+    """The width (px) of the widest legend row a plan of this kind can have."""
+    texts = ["intersection at a small angle (flagged)"]
+    for key in LEGEND_ORDER:
+        name = (STYLES[key].legend_velocity if kind == PlanKind.VELOCITY
+                else STYLES[key].legend_acceleration)
+        texts += [name, f"construction line: direction of the {name}"]
+    return 44.0 + max(text_width(text, SMALL_SIZE, SANS) for text in texts)
 
 
 #: points of a plan nearer than this (px) to a neighbour crowd each other: three or more such
@@ -536,10 +585,12 @@ def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
     return lines
 
 
-def plan_drawing(plan: Plan, *, details: bool = True) -> SvgFigure:
+def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = None
+                 ) -> SvgFigure:
     """A velocity or acceleration plan as an :class:`SvgFigure` (see the module docstring);
-    with ``details``, a region too dense to read is drawn again, enlarged, below the plan."""
-    figure = Canvas(fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
+    with ``details``, a region too dense to read is drawn again, enlarged, below the plan;
+    ``view`` keeps the zoom and the page of every frame of a turn."""
+    figure = Canvas(view.zoom if view else fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
     plan_content(figure, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
     regions = _detail_regions(figure, plan) if details else []
     figure.place()
@@ -549,14 +600,74 @@ def plan_drawing(plan: Plan, *, details: bool = True) -> SvgFigure:
     if plan.precision_mm:
         lines.append(f"drafting precision {plan.precision_mm:g} mm")
     lines += details
-    frame(figure, plan.title or f"{plan.kind} plan", lines,
-          (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE), plan.flags, plan.kind)
-    return figure.svg(plan.title or f"{plan.kind} plan")
+    title = plan.title or f"{plan.kind} plan"
+    equations = vector_equations(plan)
+    frame(figure, title, lines, (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE), plan.flags,
+          plan.kind, box=view.box if view else None, equations=equations)
+    return figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
+                                              equations=equations) if view else None)
 
 
-def plan_svg(plan: Plan, *, details: bool = True) -> str:
+def plan_svg(plan: Plan, *, details: bool = True, view: SteadyView | None = None) -> str:
     """A velocity or acceleration plan as SVG text, drawn from the plan's data alone."""
-    return plan_drawing(plan, details=details).svg
+    return plan_drawing(plan, details=details, view=view).svg
+
+
+#: a point's name inside a vector's name, its digits to be set as subscripts (O2 → O₂)
+_POINT_DIGITS = re.compile(r"(?<=[A-Z])(\d+)")
+
+
+def vector_equations(plan: Plan) -> list[str]:
+    """The vector equations a plan solves, as textbooks print them beside it: for each pair
+    of construction lines intersected, the point's vector as the base image's vector plus the
+    components laid off from it plus the line's own — ``v_C = v_B + v_CB = v_C₀ + v_CC₀``,
+    ``a_B₃ = a_B + aᵏ_B₃ + aʳ_B₃ = a_O₂ + aⁿ_BO₂ + aᵗ_BO₂``. A component that is zero by
+    construction (a Coriolis term on a guide that does not turn) is left out.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> from planmethod.plans import draw_plans
+    >>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+    >>> vector_equations(plans.velocity), vector_equations(plans.acceleration)
+    (['v_C = v_B + v_CB = v_C₀ + v_CC₀'], ['a_C = a_B + aⁿ_CB + aᵗ_CB = a_C₀ + aʳ_C'])
+    """
+    from ..plans.construction import course_text
+
+    letter = "v" if plan.kind == PlanKind.VELOCITY else "a"
+    laid = {}
+    for step in plan.steps:
+        if step.action in ("lay_off", "coincide") and step.end and step.end not in laid:
+            laid[step.end] = step
+    by_number = {step.number: step for step in plan.steps}
+
+    def named(text: str) -> str:
+        return _POINT_DIGITS.sub(lambda m: subscript(m.group(1)),
+                                 course_text(text, plan.numbers))
+
+    def image(label: str) -> str:
+        name, at, link = label.partition("@")
+        return named(f"{letter}_{name.rstrip('′').upper()}{at}{link}")
+
+    out = []
+    for step in plan.steps:
+        if step.action != "intersect" or not step.end or len(step.lines or ()) != 2:
+            continue
+        sides = []
+        for number in step.lines:
+            line = by_number.get(number)
+            if line is None or not line.start:
+                break
+            terms = [named(line.vector)] if line.vector else []
+            point = line.start
+            while point.startswith(("n_", "k")) and "_" in point and point in laid:
+                if laid[point].action == "lay_off" and laid[point].vector:
+                    terms.insert(0, named(laid[point].vector))
+                point = laid[point].start or plan.pole
+            sides.append(" + ".join([image(point), *terms]))
+        else:
+            out.append(f"{image(step.end)} = {sides[0]} = {sides[1]}")
+    return out
 
 
 # -- the mechanism --------------------------------------------------------------------------------
@@ -838,11 +949,12 @@ def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ())
 
 
 def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
-                     notes: Sequence[str] = ()) -> SvgFigure:
+                     notes: Sequence[str] = (), view: SteadyView | None = None) -> SvgFigure:
     """The mechanism at μl as an :class:`SvgFigure` (see the module docstring).
 
     ``notes`` are lines of text printed under the figure (a task sheet's text); a line that
-    starts with two spaces is a table row and is set in a monospaced font.
+    starts with two spaces is a table row and is set in a monospaced font. ``view`` keeps the
+    zoom and the page of every frame of a turn (the fixed pivots stay where they are).
     """
     position = position_plan
     centres = []
@@ -852,7 +964,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
         if float(data["rho_mm"]) <= 1.6 * extent_mm:
             centres.append(tuple(data["center_mm"]))
         centres += [tuple(xy) for xy in data.get("path_mm") or ()]
-    figure = Canvas(position_zoom(position, centres))
+    figure = Canvas(view.zoom if view else position_zoom(position, centres))
     mechanism_content(figure, position)
     _omega_arrow(figure, position)
     _curvature_content(figure, position, MECHANISM_SIZE)
@@ -867,27 +979,31 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "
              f"{position.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (position.mu_l, SCALES["mu_l"].drawn, 0.25 * MECHANISM_SIZE),
-          plans.flags if plans is not None else (), PlanKind.POSITION)
+          plans.flags if plans is not None else (), PlanKind.POSITION,
+          box=view.box if view else None)
     y = figure.extent[3] + 24
     for line in notes:
         if line.strip():
             figure.text((figure.extent[0], y), line, size=TEXT_SIZE, css="task", area=False,
                         monospace=line.startswith("  "))
         y += 17
-    return figure.svg(title)
+    return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.POSITION,
+                                              legend=False) if view else None)
 
 
-def position_svg(position_plan: PositionPlan, *, plans: Plans | None = None) -> str:
+def position_svg(position_plan: PositionPlan, *, plans: Plans | None = None,
+                 view: SteadyView | None = None) -> str:
     """The mechanism at μl as SVG text (``plans`` adds the plans' scales and flags)."""
-    return position_drawing(position_plan, plans=plans).svg
+    return position_drawing(position_plan, plans=plans, view=view).svg
 
 
 # -- the rotated velocity plan --------------------------------------------------------------------
-def lever_drawing(plans: Plans) -> SvgFigure:
-    """The velocity plan turned 90° onto the faint mechanism, pole p at the drive's pivot."""
+def lever_drawing(plans: Plans, *, view: SteadyView | None = None) -> SvgFigure:
+    """The velocity plan turned 90° onto the faint mechanism, pole p at the drive's pivot
+    (``view``: the zoom and page of every frame of a turn)."""
     position, plan = plans.position, plans.velocity
     rotated = plans.rotated_velocity_plan()
-    figure = Canvas(position_zoom(position, list(rotated.values())))
+    figure = Canvas(view.zoom if view else position_zoom(position, list(rotated.values())))
     mechanism_content(figure, position, faint=True)
     plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0, numbers=plan.numbers)
     figure.place()
@@ -897,10 +1013,11 @@ def lever_drawing(plans: Plans) -> SvgFigure:
     title = (f"{position.title} — rotated velocity plan, "
              f"{numbered('φ', crank_number(position))} = {position.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.25 * MECHANISM_SIZE),
-          plan.flags, PlanKind.VELOCITY)
-    return figure.svg(title)
+          plan.flags, PlanKind.VELOCITY, box=view.box if view else None)
+    return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.VELOCITY)
+                      if view else None)
 
 
-def lever_svg(plans: Plans) -> str:
+def lever_svg(plans: Plans, *, view: SteadyView | None = None) -> str:
     """The rotated velocity plan on the mechanism as SVG text."""
-    return lever_drawing(plans).svg
+    return lever_drawing(plans, view=view).svg

@@ -180,6 +180,7 @@
       wb.step = null;
       document.getElementById("step-text").textContent = "";
       document.getElementById("step-number").textContent = "";
+      document.getElementById("equations").textContent = "";
       void document.body.offsetHeight;  // lay the page out: part of the switch
       const spent = performance.now() - t0;
       wb.switchTimes.push(spent);
@@ -229,6 +230,9 @@
       document.getElementById("step-number").textContent =
         "step " + (number + 1) + " of " + steps.length;
       document.getElementById("step-text").textContent = data.strings[steps[number][1]];
+      const equations = (data.frames[wb.frame].equations || {})[plan] || [];
+      document.getElementById("equations").textContent =
+        equations.map(k => data.strings[k]).join("\n");
     }
     wb.playStep = playStep;
     document.getElementById("step-first").addEventListener("click", () => playStep(0));
@@ -261,7 +265,7 @@
     wb.check = check;
     document.getElementById("check").addEventListener("click", check);
 
-    show(0);
+    show(stepOf(Number(slider.value)));  // the exercise's own angle
     status.textContent = "";
     wb.ready = true;
   }).catch(error => {
