@@ -33,6 +33,9 @@ def test_every_figure_passes_the_figure_check(drawn):
 
 
 def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
+    """Every force is drawn at its image and labelled — an inertia couple as the force pair
+    the sum counts — each arm from p is labelled h₁, h₂ …, and the sum is a table beside the
+    drawing ending in ΣM_p = 0 and the report's M_b."""
     _, analysis, files = drawn
     if analysis.forces is None:
         pytest.skip("no forces in this exercise")
@@ -41,23 +44,38 @@ def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
     lever = files["lever.svg"]
     assert f"M_b = {moment:.6g} N·m (Zhukovsky's lever)" in lever
     drawn_forces = {force.name for force in analysis.forces.solution.lever.forces
-                    if " at " not in force.name and any(force.force[0])}
+                    if not force.name.startswith("M_f") and any(force.force[0])}
     labelled = set(re.findall(r'data-points="force:([^"]+)"', lever))
     assert labelled == drawn_forces | {"F_b"}                 # each force named at its image
-    arrows = re.findall(r'<g class="arrow lever force"', lever)  # (too short ones not drawn)
+    from defusedxml import ElementTree
+
+    root = ElementTree.fromstring(lever.encode("utf-8"))
+    results = next(group for group in root if group.get("class") == "results")
+    arrows = [g for g in results if g.get("class") == "arrow lever force"]  # not the details'
     assert len(drawn_forces) // 2 < len(arrows) <= len(drawn_forces) + 1
-    assert "ΣM_p = Σ ± F·h = 0" in lever and "sum +0 N·mm" in lever
+    arms = set(re.findall(r'data-points="arm:([^"]+)"', lever))
+    assert arms and arms <= labelled                            # h₁, h₂ … on the arms
+    rows = re.findall(r'<text class="table"[^>]*>([^<]*)', lever)
+    assert "ΣM" in rows and "+0" in rows and "force" in rows    # the sum, term by term
 
 
 def test_every_exercise_with_forces_has_its_loaded_mechanism(drawn):
+    """The loaded mechanism draws each weight, marks every centre of mass S and lists every
+    force and moment in a table beside the drawing, down to M_b."""
     _, analysis, files = drawn
     assert ("loaded.svg" in files) == (analysis.forces is not None)
     if analysis.forces is not None:
         loaded = files["loaded.svg"]
-        assert "the loaded mechanism" in loaded and "M_b = " in loaded
+        assert "the loaded mechanism" in loaded
         weights = [item for item in analysis.forces.solution.applied.items
                    if item.kind == "weight"]
         assert loaded.count('class="arrow load"') >= len(weights)
+        masses = analysis.exercise.mechanism.masses
+        marked = set(re.findall(r'<circle class="centre of mass"[^>]*data-points="S:([^"]+)"',
+                                loaded))
+        assert marked == set(masses)
+        rows = re.findall(r'<text class="table"[^>]*>([^<]*)', loaded)
+        assert len(rows) >= 4 * (len(weights) + 1) and "M" in rows     # M_b's row
 
 
 def test_the_figure_check_can_fail():
@@ -96,14 +114,14 @@ def test_the_figure_check_follows_translations_and_clip_paths():
 
 def test_a_dense_region_gets_an_enlarged_detail(drawn):
     exercise, analysis, files = drawn
-    from planmethod.render.svg import dense_regions
+    from planmethod.render.details import dense_regions
 
     plan = analysis.plans.velocity
     where = {label: (x * 10.0, -y * 10.0) for label, (x, y) in plan.points_mm.items()}
     assert isinstance(dense_regions(where), list)
     if exercise.source.endswith("conveyor_sixbar.toml"):
         for name in ("velocity.svg", "acceleration.svg"):
-            assert 'class="detail"' in files[name] and "detail A" in files[name], name
+            assert 'class="detail"' in files[name] and "detail I:" in files[name], name
 
 
 @pytest.mark.parametrize("path", ["exercises/templates/slider_crank.toml",
@@ -162,7 +180,6 @@ def test_loads_are_printed_by_the_name_the_exercise_gives_them():
     from planmethod.testing.figures import text_boxes
 
     texts = [box.text for box in text_boxes(files["loaded.svg"])]
-    assert any(text.startswith("P_c = ") for text in texts)       # in the list of forces
-    assert "Pc" in texts                                          # the label: P, subscript c
+    assert texts.count("Pc") >= 2          # the label and the table's row: P, subscript c
     assert not any("load[" in text for text in texts)
     assert not figure_problems(files["loaded.svg"])

@@ -67,6 +67,7 @@ __all__ = [
     "SvgFigure",
     "arrowhead",
     "fit_zoom",
+    "formula_runs",
     "page_direction",
     "page_point",
     "points_attribute",
@@ -133,6 +134,10 @@ def round_scale_value(value: float) -> float:
             return mantissa * 10.0 ** exponent
     return 10.0 ** exponent  # pragma: no cover
 
+
+#: the room (px) other labels keep from a point's mark, so that no label reads as another
+#: point's (where points crowd closer than that, an enlarged detail shows them)
+KEEP_CLEAR = 5.0
 
 #: the side of the square whose area is a round mark's (its 16-gon's), per unit of radius
 _ROUND_MARK = math.sqrt(8.0 * math.sin(math.pi / 8.0))
@@ -210,19 +215,23 @@ class Canvas:
 
     def circle(self, centre: Point, radius: float, *, fill: str, stroke: str = "none",
                width: float = 0.0, layer: str = "points", area: bool = True,
-               css: str | None = None) -> None:
+               css: str | None = None, points: Sequence[str] = ()) -> None:
+        """A circle; the mark of the named ``points`` if any (written in ``data-points``):
+        other points' labels then keep :data:`KEEP_CLEAR` px from it."""
         centre = _pair(centre)
         attrs = {"cx": num(centre[0]), "cy": num(centre[1]), "r": num(radius), "fill": fill}
         if stroke != "none":
             attrs |= {"stroke": stroke, "stroke-width": num(width)}
         if css:
             attrs["class"] = css
+        if points:
+            attrs["data-points"] = " ".join(points)
         self.add(layer, "circle", attrs)
         self.grow((centre[0] - radius, centre[1] - radius),
                   (centre[0] + radius, centre[1] + radius))
         if area:
-            # a round mark as the square of the area of its 16-gon
-            half = _ROUND_MARK * radius / 2
+            # a round mark as the square of the area of its 16-gon (a point's, with room)
+            half = _ROUND_MARK * radius / 2 + (KEEP_CLEAR if points else 0.0)
             self.obstacle_areas.append((centre[0] - half, centre[1] - half, centre[0] + half,
                                         centre[1] + half))
 
@@ -325,13 +334,18 @@ class Canvas:
     def text(self, xy: Point, text: str, *, size: float = TEXT_SIZE, color: str = INK,
              anchor: str = "start", bold: bool = False, css: str = "note",
              layer: str = "text", area: bool = True, family: str = TEXT_FAMILY,
-             italic: bool = False, monospace: bool = False) -> float:
-        """Fixed text (sans, or monospaced with its spaces kept); returns its width."""
+             italic: bool = False, monospace: bool = False, formula: bool = False) -> float:
+        """Fixed text (sans, or monospaced with its spaces kept); returns its width. A
+        ``formula`` sets what follows an underscore as a subscript (``a_B₃`` → a with B₃
+        below, :func:`formula_runs`)."""
+        font = SANS_BOLD if bold else SANS
+        runs = formula_runs(text) if formula else [(text, False)]
         if monospace:
             family = MONO_FAMILY
             width = 0.6 * size * len(text)
         else:
-            width = text_width(text, size, SANS_BOLD if bold else SANS)
+            width = sum(text_width(part, size * SUB_SCALE if small else size, font)
+                        for part, small in runs)
         attrs = {"x": num(xy[0]), "y": num(xy[1]), "font-family": family,
                  "font-size": num(size), "fill": color, "class": css}
         if bold:
@@ -342,13 +356,57 @@ class Canvas:
             attrs["text-anchor"] = anchor
         if monospace:
             attrs["xml:space"] = "preserve"
-        self.add(layer, "text", attrs, [text])
+        if len(runs) > 1:
+            children: list = [runs[0][0]] if not runs[0][1] else []
+            shift = 0.0
+            for part, small in runs[1 if children else 0:]:
+                target = SUB_SHIFT * size if small else 0.0
+                span: dict[str, str] = {"dy": num(target - shift)} if target != shift else {}
+                if small:
+                    span["font-size"] = num(size * SUB_SCALE)
+                shift = target
+                children.append(("tspan", span, [part]))
+            self.add(layer, "text", attrs, children)
+        else:
+            self.add(layer, "text", attrs, [text])
         left = xy[0] - (width if anchor == "end" else width / 2 if anchor == "middle" else 0)
         self.grow((left, xy[1] - 0.8 * size), (left + width, xy[1] + 0.25 * size))
         if area:
             self.obstacle_areas.append((left, xy[1] - 0.8 * size, left + width,
                                         xy[1] + 0.25 * size))
         return width
+
+    def table(self, at: Point, rows: Sequence[Sequence[str]], *, header: Sequence[str],
+              right: Sequence[bool] = (), size: float = TEXT_SIZE, css: str = "table",
+              title: str = "") -> float:
+        """A table set at ``size`` (the figure's normal text), top-left at ``at``: an
+        optional bold ``title``, a bold header, a rule, one row a line; the columns flagged
+        in ``right`` (numbers) are aligned right. Cells are formulas (``F_b`` → F with b
+        below). Returns the y (px) under its last row."""
+        x, y = at
+        columns = len(header)
+        cells = [list(header)] + [list(row) + [""] * (columns - len(row)) for row in rows]
+        widths = [max(sum(text_width(part, size * SUB_SCALE if small else size,
+                                     SANS_BOLD if index == 0 else SANS)
+                          for part, small in formula_runs(row[column]))
+                      for index, row in enumerate(cells)) for column in range(columns)]
+        gap = 1.2 * size
+        if title:
+            self.text((x, y), title, size=size, bold=True, css=css, area=False, formula=True)
+            y += 1.6 * size
+        for index, row in enumerate(cells):
+            left = x
+            for column, cell in enumerate(row):
+                aligned = column < len(right) and right[column]
+                self.text((left + widths[column] if aligned else left, y), cell, size=size,
+                          bold=index == 0, css=css, anchor="end" if aligned else "start",
+                          area=False, formula=True)
+                left += widths[column] + gap
+            if index == 0:
+                self.line((x, y + 0.45 * size), (left - gap, y + 0.45 * size), color=INK,
+                          width=0.6, layer="text", obstacle=False, css="rule")
+            y += 1.5 * size
+        return y
 
     def request(self, points: tuple[str, ...], anchor: Point, runs: tuple[Run, ...], *,
                 size: float = LABEL_SIZE, mark: float = 3.0, css: str = "label") -> None:
@@ -452,6 +510,28 @@ def _append(parent, item) -> None:
     for child in children:
         if not isinstance(child, str):
             _append(element, child)
+
+
+#: a subscript in a formula: what follows an underscore up to a space, a sign or a bracket
+_SUBSCRIPT_RUN = re.compile(r"_([^\s=+−·×,;:()/]+)")
+
+
+def formula_runs(text: str) -> list[tuple[str, bool]]:
+    """A formula's runs: (text, set as a subscript).
+
+    >>> formula_runs("a_B₃ = a_B + aᵏ_B₃")
+    [('a', False), ('B₃', True), (' = a', False), ('B', True), (' + aᵏ', False), ('B₃', True)]
+    """
+    runs: list[tuple[str, bool]] = []
+    at = 0
+    for match in _SUBSCRIPT_RUN.finditer(text):
+        if match.start() > at:
+            runs.append((text[at:match.start()], False))
+        runs.append((match.group(1), True))
+        at = match.end()
+    if at < len(text):
+        runs.append((text[at:], False))
+    return runs
 
 
 def _label_attrs(label: PlacedLabel, color: str) -> dict[str, str]:

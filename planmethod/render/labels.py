@@ -95,6 +95,9 @@ LEADER_DISTANCE = 14.0
 LINE_COST = 30.0
 #: cost of one px² of a point mark or fixed text under a label
 AREA_COST = 2.0
+#: a label may come this near (px) its own point's mark: the room other labels keep from a
+#: point's mark (``planmethod.render.canvas.KEEP_CLEAR``) is not held against its own label
+OWN_ROOM = 5.0
 
 
 def _split_digits(name: str) -> tuple[str, str]:
@@ -317,7 +320,7 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         ax, ay = request.anchor
         half_w, half_h = width / 2 + PADDING, (ascent + descent) / 2 + PADDING
         # the label's own round mark, which it may touch: as the square of its area
-        own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2
+        own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
         best = None                         # (cost, box, distance)
         for batch, distance, directions, base in _CANDIDATES:

@@ -71,6 +71,7 @@ from .canvas import (
     page_point,
     scale_bar,
 )
+from .details import detail_insets, detail_regions
 from .labels import RunKind, label_runs, merge_runs
 from .steady import SteadyView
 from .style import (
@@ -96,7 +97,6 @@ if TYPE_CHECKING:
 __all__ = [
     "SvgFigure",
     "crank_number",
-    "dense_regions",
     "frame",
     "lever_drawing",
     "lever_svg",
@@ -301,7 +301,7 @@ class _PlanPage:
             centre = self.where[members[0]]
             is_pole = members[0] == self.pole
             self.figure.circle(centre, 3.4 if is_pole else 2.4, fill=INK, layer="points",
-                               css="pole" if is_pole else "point")
+                               css="pole" if is_pole else "point", points=members)
             self.figure.request(tuple(members), centre, merge_runs(
                 label_runs(label, self.numbers) for label in members), mark=3.4)
 
@@ -430,7 +430,8 @@ def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | N
                     area=False)
         for equation in equations:
             y += 20
-            figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False)
+            figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False,
+                        formula=True)
     if box is None:
         x0, y0, x1, y1 = figure.extent
     figure.text((x0, y0 - 16), title, size=TITLE_SIZE, bold=True, css="title", area=False)
@@ -477,124 +478,20 @@ def _legend_width(kind: str) -> float:
     return 44.0 + max(text_width(text, SMALL_SIZE, SANS) for text in texts)
 
 
-#: points of a plan nearer than this (px) to a neighbour crowd each other: three or more such
-#: (distinct) points make a region that gets an enlarged detail
-DENSE_PX = 16.0
-#: the longest side of a detail inset (px), and the least and most enlargement worth drawing
-DETAIL_SIZE = 300.0
-DETAIL_ZOOM = (2.5, 12.0)
-
-
-def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX,
-                  least: int = 3) -> list[tuple[float, float, float, float]]:
-    """Boxes (x0, y0, x1, y1, page px) round the groups of at least ``least`` distinct points
-    (coincident ones count once) each within ``gap`` of another of the group — the regions of
-    a plan too dense to read, largest group first.
-
-    Examples
-    --------
-    >>> dense_regions({"a": (0, 0), "b": (5, 0), "c": (5, 6), "d": (200, 0)})
-    [(0.0, 0.0, 5.0, 6.0)]
-    """
-    spots: list[np.ndarray] = []
-    for xy in where.values():
-        xy = page_point(xy)
-        if not spots or bool(np.all(norm(np.asarray(spots) - xy) > 1e-6)):
-            spots.append(xy)
-    near = _distances(spots) < gap
-    group = np.arange(len(spots))
-    for _ in range(len(spots)):          # join neighbours until the groups stop growing
-        joined = np.array([group[near[index]].min() for index in range(len(spots))],
-                          dtype=int) if len(spots) else group
-        joined = np.minimum(joined, joined[joined])
-        if np.array_equal(joined, group):
-            break
-        group = joined
-    members: dict[int, list[tuple[float, float]]] = {}
-    for index, xy in enumerate(spots):
-        members.setdefault(int(group[index]), []).append((float(xy[0]), float(xy[1])))
-    found = [points for points in members.values() if len(points) >= least]
-    found.sort(key=lambda points: (-len(points), points[0]))
-    return [(min(p[0] for p in points), min(p[1] for p in points),
-             max(p[0] for p in points), max(p[1] for p in points)) for points in found]
-
-
-def _detail_regions(figure: Canvas, plan: Plan) -> list[tuple[str, tuple, float]]:
-    """The plan's dense regions worth an enlarged detail: (letter, box in page px,
-    enlargement), each marked on the plan with a frame and its letter (placed with the
-    labels: call before :meth:`Canvas.place`)."""
-    where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    out = []
-    for x0, y0, x1, y1 in dense_regions(where)[:2]:
-        margin = max(10.0, 0.2 * max(x1 - x0, y1 - y0))
-        box = (x0 - margin, y0 - margin, x1 + margin, y1 + margin)
-        zoom = min(DETAIL_SIZE / max(box[2] - box[0], box[3] - box[1]), DETAIL_ZOOM[1])
-        if zoom < DETAIL_ZOOM[0]:
-            continue
-        letter = "ABCD"[len(out)]
-        figure.rectangle((box[0], box[1]), (box[2] - box[0], box[3] - box[1]), fill="none",
-                         stroke=INK, width=0.8, layer="marks", css="detail region")
-        figure.request((f"detail:{letter}",), (box[2], box[1]), ((letter, RunKind.SEP),),
-                       mark=0.0)
-        out.append((letter, box, float(math.floor(zoom))))     # a whole enlargement: ×6
-    return out
-
-
-def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
-    """Each marked region drawn again, enlarged, below the plan: the drawing clipped to the
-    region, the labels of the points inside it kept whole. Returns the lines that say so."""
-    lines = []
-    x = figure.extent[0]
-    top = figure.extent[3] + 30.0
-    for letter, (x0, y0, x1, y1), zoom in regions:
-        detail = Canvas(figure.zoom * zoom)
-        plan_content(detail, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
-        reach = 60.0               # labels are placed for the points in and near the region
-        detail.requests = [request for request in detail.requests
-                           if x0 * zoom - reach <= request.anchor[0] <= x1 * zoom + reach
-                           and y0 * zoom - reach <= request.anchor[1] <= y1 * zoom + reach]
-        detail.place()
-        width, height = (x1 - x0) * zoom, (y1 - y0) * zoom
-        inside = {" ".join(label.points) for label in detail.labels
-                  if x0 * zoom <= label.anchor[0] <= x1 * zoom
-                  and y0 * zoom <= label.anchor[1] <= y1 * zoom}
-        texts = [item for item in detail.layers["labels"]
-                 if item[1].get("data-points") in inside]
-        leaders = [item for item in detail.layers["leaders"]
-                   if x0 * zoom <= float(item[1]["x1"]) <= x1 * zoom
-                   and y0 * zoom <= float(item[1]["y1"]) <= y1 * zoom]
-        move = (x - x0 * zoom, top - y0 * zoom)
-        figure.clipped(detail, (x0 * zoom, y0 * zoom, x1 * zoom, y1 * zoom), move,
-                       layers=[name for name in detail.layers if name not in ("labels",
-                                                                              "leaders")],
-                       css="detail", ident=f"detail-{plan.kind}-{letter}")
-        figure.moved({"leaders": leaders, "labels": texts}, move, css="detail labels")
-        figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
-                         layer="marks", css="detail frame")
-        right, bottom = x + width, top + height
-        for label in detail.labels:           # labels kept whole may reach past the frame
-            if " ".join(label.points) in inside:
-                bx0, by0, bx1, by1 = label.box
-                corner = (x + bx1 - x0 * zoom, top + by1 - y0 * zoom)
-                figure.grow((x + bx0 - x0 * zoom, top + by0 - y0 * zoom), corner)
-                right, bottom = max(right, corner[0]), max(bottom, corner[1])
-        figure.text((x, bottom + 18), f"{letter}: detail ×{zoom:g}", size=TEXT_SIZE,
-                    bold=True, css="detail", area=False)
-        lines.append(f"detail {letter}: the marked region drawn {zoom:g} times larger")
-        x = right + 40.0
-    return lines
-
-
 def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = None
                  ) -> SvgFigure:
     """A velocity or acceleration plan as an :class:`SvgFigure` (see the module docstring);
     with ``details``, a region too dense to read is drawn again, enlarged, below the plan;
     ``view`` keeps the zoom and the page of every frame of a turn."""
     figure = Canvas(view.zoom if view else fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
-    plan_content(figure, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
-    regions = _detail_regions(figure, plan) if details else []
+    def content(canvas: Canvas) -> None:
+        plan_content(canvas, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
+
+    content(figure)
+    where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
+    regions = detail_regions(figure, where) if details else []
     figure.place()
-    details = _detail_insets(figure, plan, regions)
+    details = detail_insets(figure, content, regions, f"detail-{plan.kind}")
     scale = PLAN_SCALES[plan.kind]
     lines = [scale_text(scale, plan.scale)]
     if plan.precision_mm:
@@ -784,11 +681,12 @@ class _MechanismPage:
         nothing as crosses; then the labels (coincident points share one)."""
         figure, ink = self.figure, self.ink
         for name, at in self.where.items():
+            marks = () if self.faint else (name,)     # a faint mechanism only underlies
             if self.count.get(name, 0) >= 2:
                 figure.circle(at, 4.5, fill="#ffffff", stroke=ink, width=1.5, layer="points",
-                              css="pair")
+                              css="pair", points=marks)
             elif self.count.get(name, 0) == 1 and name not in self.links.get("frame", ()):
-                figure.circle(at, 2.6, fill=ink, layer="points", css="point")
+                figure.circle(at, 2.6, fill=ink, layer="points", css="point", points=marks)
             else:
                 for corner in ((4.0, 4.0), (4.0, -4.0)):
                     figure.line(at - corner, at + corner, color=ink, width=1.0,
