@@ -183,3 +183,79 @@ def test_loads_are_printed_by_the_name_the_exercise_gives_them():
     assert texts.count("Pc") >= 2          # the label and the table's row: P, subscript c
     assert not any("load[" in text for text in texts)
     assert not figure_problems(files["loaded.svg"])
+
+
+def test_the_crowding_check_can_fail():
+    """A label nearer than the readable distance to another point's mark is a problem, unless
+    the mark lies in a region drawn again as a detail."""
+    head = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">'
+    marks = ('<circle class="point" cx="50" cy="50" r="2.4" data-points="b"/>'
+             '<circle class="point" cx="62" cy="50" r="2.4" data-points="c"/>')
+    label = ('<g class="labels"><text class="label" data-points="b" x="52" y="47" '
+             'font-size="15">b</text></g>')
+    assert any("from the mark of c" in problem
+               for problem in figure_problems(head + marks + label + "</svg>"))
+    region = '<rect class="detail region" x="40" y="40" width="30" height="20" fill="none"/>'
+    assert not figure_problems(head + region + marks + label + "</svg>")
+    far = label.replace('x="52"', 'x="20"').replace('y="47"', 'y="30"')
+    assert not figure_problems(head + marks + far + "</svg>")
+
+
+#: the conventions a course may choose, as [notation] tables
+CONVENTIONS = {"papers": {}, "frame last": {"frame": "last"}, "frame 1": {"frame": 1}}
+
+
+@pytest.mark.parametrize("convention", CONVENTIONS)
+@pytest.mark.parametrize("name", ["conveyor_sixbar", "shaper_sixbar", "scotch_yoke"])
+def test_every_figure_numbers_links_as_its_convention_does(name, convention):
+    """The numbering rule, a test per convention: the crank's φ and ω, the points of links
+    (b₃), the weights, inertia forces and reactions carry the numbers the exercise's
+    [notation] gives — never a link's name, never another convention's number."""
+    import tomllib
+
+    from planmethod.numbering import course_numbers
+    from planmethod.spec import exercise_from_dict
+    from planmethod.testing.figures import numbering_problems
+
+    data = tomllib.loads((ROOT / "exercises" / f"{name}.toml").read_text(encoding="utf-8"))
+    if CONVENTIONS[convention]:
+        data["notation"] = CONVENTIONS[convention]
+    exercise = exercise_from_dict(data)
+    numbers = course_numbers(exercise.mechanism)
+    analysis = analyse(exercise)
+    files = plan_files(analysis.plans, analysis.forces)
+    drive = exercise.mechanism.drive.link
+    found = [f"{file}: {problem}" for file, svg in files.items()
+             for problem in numbering_problems(svg, numbers, drive)]
+    assert not found, "\n".join(found[:10])
+    other = "frame 1" if convention != "frame 1" else "papers"
+    data["notation"] = CONVENTIONS[other]
+    wrong = course_numbers(exercise_from_dict(data).mechanism)
+    assert any(numbering_problems(svg, wrong, drive) for svg in files.values())   # it bites
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda path: path.stem)
+def test_every_workbook_frame_passes_and_each_panel_keeps_one_page(path):
+    """The frames of a turn as the workbook draws them (every 45°, from the exercise's own
+    angle): each passes the figure check, and each panel has one viewBox over the turn."""
+    from planmethod.render.steady import steady_views
+    from planmethod.testing.figures import steady_problems
+
+    exercise = load_exercise(path)
+    start = exercise.mechanism.drive.angle
+    angles = [(start + step) % 360.0 for step in range(0, 360, 45)]
+    try:
+        views = steady_views(exercise, angles)
+    except Exception as error:                 # a group's toggle position on the way round
+        pytest.skip(f"{path.stem}: {error}")
+    panels: dict[str, list[str]] = {}
+    found = []
+    for angle in angles:
+        analysis = analyse(exercise, angle)
+        for file, svg in plan_files(analysis.plans, analysis.forces, details=False,
+                                    loaded=False, views=views).items():
+            panels.setdefault(file, []).append(svg)
+            found += [f"{angle:g}° {file}: {problem}" for problem in figure_problems(svg)]
+    for file, frames in panels.items():                      # every panel of the page
+        found += steady_problems(frames, file)
+    assert not found, "\n".join(found[:20])

@@ -48,5 +48,6 @@ def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
                                              view=views.get("acceleration"))
     files["lever.svg"] = lever_svg(plans, view=views.get("lever"))
     if forces is not None:
-        files.update(force_files(forces, plans, loaded=loaded))
+        files.update(force_files(forces, plans, loaded=loaded, details=details,
+                                 views=views or None))
     return files

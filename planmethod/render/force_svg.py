@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -53,6 +54,7 @@ from .canvas import Canvas, fit_zoom
 from .details import detail_insets, detail_regions
 from .labels import RunKind, label_runs
 from .notation import ForceNotation
+from .steady import SteadyView
 from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, significant
 from .svg import (
     MECHANISM_SIZE,
@@ -63,6 +65,7 @@ from .svg import (
     plan_content,
     plan_legend,
     position_zoom,
+    steady_page,
     turning_arrow,
 )
 
@@ -115,10 +118,15 @@ def _totals(edges, vectors):
 
 
 def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
-                notation: ForceNotation | None = None) -> str:
+                notation: ForceNotation | None = None, details: bool = True,
+                view: SteadyView | None = None) -> str:
     """One group's force polygon (see the module docstring); ``index`` picks the crank angle
     of a vectorised solve; ``notation`` prints the forces as a course writes them (R₁₂, G₃),
-    else by their report names. Where short forces crowd their corners, an enlarged detail."""
+    else by their report names. Where short forces crowd their corners, an enlarged detail
+    (with ``details``). ``view`` keeps the force scale, the zoom and the page of every frame of
+    a turn."""
+    if view is not None and view.scale:
+        mu_f = view.scale
     edges = [edge for edge in group.polygon if float(norm(edge.vector[index])) > 0]
     vectors = [edge.vector[index] / mu_f for edge in edges]
     corners = [np.zeros(2)]
@@ -147,24 +155,26 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
                                notation.runs(name, on) if notation else _runs(name), mark=2.0)
         figure.circle(where[0], 3.4, fill=INK, css="start")
 
-    figure = Canvas(fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
+    figure = Canvas(view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
     content(figure)
     where = {f"corner {k}": figure.px(c) for k, c in enumerate(corners[:-1])}
-    regions = detail_regions(figure, where)
+    regions = detail_regions(figure, where) if details else []
     closure = float(norm(corners[-1] - corners[0]))
     figure.place()
-    details = detail_insets(figure, content, regions, "detail-polygon")
-    _, y0, x1, _ = figure.extent
+    lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
+    _, y0, x1, _ = view.box if view else figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
     terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
                        for edge in edges)
     lines = [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",
              f"the polygon closes to {closure:.2g} mm"]
     lines += [notation.line(step, group.links) if notation else step for step in group.steps]
-    lines += details
+    lines += lines_of_details
     lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
-    frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force")
-    return figure.svg(title).svg
+    frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force",
+          box=view.box if view else None)
+    return figure.svg(title, view=steady_page(view, title, len(lines), "force")
+                      if view else None).svg
 
 
 def _legend_key(edge) -> str:
@@ -194,10 +204,11 @@ def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> fl
     return y
 
 
-def combined_svg(forces, plans) -> str | None:
+def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None:
     """Aliyev's combined-force construction on the acceleration plan (None without one, and
     None where no gravity acts: with g = 0 the moved pole π′ is π and the construction is the
-    inertia forces alone; see :func:`combined_omitted`)."""
+    inertia forces alone; see :func:`combined_omitted`); ``view`` keeps the zoom and page of
+    every frame of a turn."""
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None:
         return None
@@ -207,7 +218,7 @@ def combined_svg(forces, plans) -> str | None:
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure = Canvas(fit_zoom(list(points.values()) + extra, PLAN_SIZE))
+    figure = Canvas(view.zoom if view else fit_zoom(list(points.values()) + extra, PLAN_SIZE))
     plan_content(figure, points, plan.steps, plan.pole, numbers=plan.numbers)
     pole_px, new_px = figure.px((0.0, 0.0)), figure.px(new_pole)
     if combined.gravity_image_mm > 0:
@@ -226,7 +237,7 @@ def combined_svg(forces, plans) -> str | None:
             figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
                          css=f"combined {force.link}")
     figure.place()
-    _, y0, x1, _ = figure.extent
+    _, y0, x1, _ = view.box if view else figure.extent
     bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
         "image of g: π → π′, Z_g = g/μa": ("normal", KNOWN_COLOURS["G"]),
@@ -244,8 +255,10 @@ def combined_svg(forces, plans) -> str | None:
                      f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
              f"pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
-    frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION)
-    return figure.svg(title).svg
+    frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION,
+          box=view.box if view else None)
+    return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
+                                              PlanKind.ACCELERATION) if view else None).svg
 
 
 def combined_omitted(forces, plans) -> str | None:
@@ -656,21 +669,29 @@ def _file_name(index: int, group) -> str:
     return f"forces_{index}_{name}.svg"
 
 
-def force_files(forces: Any, plans, *, loaded: bool = True) -> dict[str, str]:
-    """``{"forces_<n>_<group>.svg": …, "combined_force.svg": …}`` for one crank angle."""
+def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True,
+                views: Mapping[str, SteadyView] | None = None) -> dict[str, str]:
+    """``{"forces_<n>_<group>.svg": …, "combined_force.svg": …, "lever.svg": …,
+    "loaded.svg": …}`` for one crank angle. With ``views`` (frames of a turn,
+    :func:`planmethod.render.steady.steady_views`) the polygons and the combined force keep
+    one force scale, zoom and page over the turn, and neither the lever with its forces nor
+    the loaded mechanism is drawn (their force scales follow each angle's forces)."""
     files: dict[str, str] = {}
     title = forces.solution.mechanism.title
     notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
         kind = "drive link" if group.kind == GroupKind.DRIVE else f"{group.kind} of"
         files[_file_name(number, group)] = polygon_svg(
-            group, forces.mu_f, angle=forces.angle, notation=notation,
+            group, forces.mu_f, angle=forces.angle, notation=notation, details=details,
+            view=(views or {}).get(f"forces_{number}"),
             title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "
                   f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
                   f"{forces.angle:g}°")
-    combined = combined_svg(forces, plans)
+    combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"))
     if combined is not None:
         files["combined_force.svg"] = combined
+    if views:
+        return files
     lever = lever_forces_svg(forces, plans)
     if lever is not None:
         files["lever.svg"] = lever

@@ -43,14 +43,17 @@ MECHANISM_ROOM = 72.0
 
 @dataclass(frozen=True, slots=True)
 class SteadyView:
-    """A panel kept steady over a turn: its zoom (px per mm of the drawing) and the box
-    ``(x0, y0, x1, y1)`` (page px, y down) its content stays in at every angle."""
+    """A panel kept steady over a turn: its zoom (px per mm of the drawing), the box
+    ``(x0, y0, x1, y1)`` (page px, y down) its content stays in at every angle, and for a
+    force polygon the force scale μF (N/mm) of the whole turn."""
 
     zoom: float
     box: tuple[float, float, float, float]
+    scale: float | None = None
 
 
-def _view(points_mm: np.ndarray, size: float, pad: bool) -> SteadyView:
+def _view(points_mm: np.ndarray, size: float, pad: bool, scale: float | None = None
+          ) -> SteadyView:
     """The zoom that draws the points' longest side ``size`` px long, and their box on the
     page with the construction lines' pad (plans) and room for labels."""
     points = np.asarray(points_mm, dtype=float).reshape(-1, 2)
@@ -62,20 +65,24 @@ def _view(points_mm: np.ndarray, size: float, pad: bool) -> SteadyView:
     y0, y1 = -high[1] * zoom, -low[1] * zoom          # the page's y runs down
     room = LABEL_ROOM + (max(0.16 * extent * zoom, 40.0) if pad else MECHANISM_ROOM)
     return SteadyView(float(zoom), (float(x0 - room), float(y0 - room), float(x1 + room),
-                                    float(y1 + room)))
+                                    float(y1 + room)), scale)
 
 
 def steady_views(exercise: Exercise, angles: Sequence[float]) -> dict[str, SteadyView]:
     """Each panel's :class:`SteadyView` over ``angles``: ``position`` (the mechanism at μl, with
     the centres of curvature it draws), ``velocity`` and ``acceleration`` (every point's image,
-    pole at the origin), ``lever`` (the velocity plan turned onto the mechanism)."""
+    pole at the origin), ``lever`` (the velocity plan turned onto the mechanism), and with
+    forces each group's polygon ``forces_<n>`` (at one force scale for the turn) and
+    ``combined_force``."""
     from ..kinematics import solve
     from ..plans import choose_scales
+    from ..scene import plan_scene
     from .svg import MECHANISM_SIZE, PLAN_SIZE
 
     mechanism = exercise.mechanism
     scales = choose_scales(exercise)
-    acceleration = exercise.ask.needs_acceleration
+    scene = plan_scene(exercise)
+    acceleration = exercise.ask.needs_acceleration or scene.forces
     motion = solve(mechanism, np.asarray(angles, dtype=float),
                    stage="acceleration" if acceleration else "velocity")
     where, velocity, accel = [], [np.zeros((1, 2))], [np.zeros((1, 2))]
@@ -109,6 +116,44 @@ def steady_views(exercise: Exercise, angles: Sequence[float]) -> dict[str, Stead
     pivot = np.asarray(mechanism.local(FRAME, mechanism.drive.pivot)) / scales.mu_l
     turned = pivot + velocity_mm @ np.array([[0.0, -1.0], [1.0, 0.0]])   # (x, y) → (y, −x)
     views["lever"] = _view(np.concatenate([position_mm, turned]), MECHANISM_SIZE, True)
+    if scene.forces:
+        views |= _force_views(exercise, motion, scales.mu_a)
+    return views
+
+
+def _force_views(exercise, motion, mu_a: float) -> dict[str, SteadyView]:
+    """The force polygons' views over the turn, at the one force scale that draws the
+    largest force of the turn as long as ``force_mm`` asks; the combined-force figure's."""
+    from ..forces import solve_forces
+    from ..forces.analysis import FORCE_MM
+    from ..plans.scales import standard
+    from .svg import PLAN_SIZE
+
+    solution = solve_forces(motion)
+    groups = solution.groups.groups
+    largest = max((float(norm(edge.vector).max()) for group in groups for edge in group.polygon),
+                  default=0.0)
+    plan = exercise.plan
+    mu_f = plan.mu_f if plan.mu_f is not None else (
+        1.0 if largest <= 0 else largest / (plan.force_mm or FORCE_MM) if plan.exact_mm
+        else standard(largest / (plan.force_mm or FORCE_MM)))
+    views = {}
+    for number, group in enumerate(groups, start=1):
+        vectors = np.stack([edge.vector for edge in group.polygon], axis=1) / mu_f  # (N, E, 2)
+        corners = np.concatenate([np.zeros((vectors.shape[0], 1, 2)),
+                                  np.cumsum(vectors, axis=1)], axis=1)
+        views[f"forces_{number}"] = _view(corners, PLAN_SIZE, False, mu_f)
+    gravity = exercise.mechanism.gravity or 0.0
+    if gravity:
+        images = [np.zeros((1, 2)), np.array([[0.0, -gravity / mu_a]])]
+        for link, props in exercise.mechanism.masses.items():
+            if link in motion.links:
+                images.append(motion.acceleration_of(link, props.S) / mu_a)
+        for link, points in ((name, link.points) for name, link in
+                             exercise.mechanism.links.items() if name in motion.links):
+            for local in points.values():
+                images.append(motion.acceleration_of(link, local) / mu_a)
+        views["combined_force"] = _view(np.concatenate(images), PLAN_SIZE, True)
     return views
 
 
