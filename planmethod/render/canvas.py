@@ -512,6 +512,8 @@ def _append(parent, item) -> None:
             _append(element, child)
 
 
+#: subscript digits inside a subscript are set as plain digits (the run is set small)
+_PLAIN_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 #: a subscript in a formula: what follows an underscore up to a space, a sign or a bracket
 _SUBSCRIPT_RUN = re.compile(r"_([^\s=+−·×,;:()/]+)")
 
@@ -520,14 +522,14 @@ def formula_runs(text: str) -> list[tuple[str, bool]]:
     """A formula's runs: (text, set as a subscript).
 
     >>> formula_runs("a_B₃ = a_B + aᵏ_B₃")
-    [('a', False), ('B₃', True), (' = a', False), ('B', True), (' + aᵏ', False), ('B₃', True)]
+    [('a', False), ('B3', True), (' = a', False), ('B', True), (' + aᵏ', False), ('B3', True)]
     """
     runs: list[tuple[str, bool]] = []
     at = 0
     for match in _SUBSCRIPT_RUN.finditer(text):
         if match.start() > at:
             runs.append((text[at:match.start()], False))
-        runs.append((match.group(1), True))
+        runs.append((match.group(1).translate(_PLAIN_DIGITS), True))   # already set small
         at = match.end()
     if at < len(text):
         runs.append((text[at:], False))
