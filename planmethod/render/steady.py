@@ -28,6 +28,7 @@ import numpy as np
 from ..model import FRAME
 from ..vectors import norm
 from ..vocabulary import PlanKind
+from .style import MECHANISM_SIZE, PLAN_SIZE
 
 if TYPE_CHECKING:
     from ..model import Exercise
@@ -77,8 +78,6 @@ def steady_views(exercise: Exercise, angles: Sequence[float]) -> dict[str, Stead
     from ..kinematics import solve
     from ..plans import choose_scales
     from ..scene import plan_scene
-    from .svg import MECHANISM_SIZE, PLAN_SIZE
-
     mechanism = exercise.mechanism
     scales = choose_scales(exercise)
     scene = plan_scene(exercise)
@@ -127,7 +126,6 @@ def _force_views(exercise, motion, mu_a: float) -> dict[str, SteadyView]:
     from ..forces import solve_forces
     from ..forces.analysis import FORCE_MM
     from ..plans.scales import standard
-    from .svg import PLAN_SIZE
 
     solution = solve_forces(motion)
     groups = solution.groups.groups

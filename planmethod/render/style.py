@@ -26,6 +26,8 @@ __all__ = [
     "LABEL",
     "LABEL_SIZE",
     "LEGEND_ORDER",
+    "MECHANISM_SIZE",
+    "PLAN_SIZE",
     "SANS",
     "SANS_BOLD",
     "STYLES",
@@ -54,6 +56,11 @@ TEXT_SIZE = 12.5         # scales, legend, notes
 TITLE_SIZE = 15.0
 SMALL_SIZE = 11.0
 NBSP = "\u00a0"         # kept by every SVG renderer, unlike a plain space at a tspan's edge
+
+#: the longest side of a plan's points is drawn this long (px); a scale bar keeps it honest
+PLAN_SIZE = 440.0
+#: the longest side of the mechanism is drawn this long (px)
+MECHANISM_SIZE = 600.0
 
 INK = "#000000"
 FAINT = "#9a9a9a"        # the mechanism under the rotated velocity plan

@@ -81,6 +81,8 @@ from .style import (
     INK,
     LEGEND_ORDER,
     LINK_FILL,
+    MECHANISM_SIZE,
+    PLAN_SIZE,
     SANS,
     SANS_BOLD,
     SMALL_SIZE,
@@ -112,10 +114,6 @@ __all__ = [
     "vector_equations",
 ]
 
-#: the longest side of a plan's points is drawn this long (px); a scale bar keeps it honest
-PLAN_SIZE = 440.0
-#: the longest side of the mechanism is drawn this long (px)
-MECHANISM_SIZE = 600.0
 #: segments closer than this on the page (px) are one segment, drawn once
 COINCIDENT = 1.0
 #: points closer than this on the drawing (mm) coincide by construction: one mark, one merged

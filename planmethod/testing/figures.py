@@ -335,14 +335,15 @@ def steady_problems(frames: Iterable[str], panel: str = "panel") -> list[str]:
     >>> steady_problems(['<svg viewBox="0 0 9 9"/>', '<svg viewBox="0 0 8 9"/>'], "plan")
     ['plan: 2 viewBoxes over the turn (0 0 9 9, 0 0 8 9)']
     """
-    boxes = list(dict.fromkeys(_VIEW_BOX.search(svg).group(1) if _VIEW_BOX.search(svg)
-                               else "none" for svg in frames))
+    from defusedxml import ElementTree
+
+    boxes = list(dict.fromkeys(ElementTree.fromstring(svg.encode("utf-8")).get("viewBox")
+                               or "none" for svg in frames))
     if len(boxes) <= 1:
         return []
     return [f"{panel}: {len(boxes)} viewBoxes over the turn ({', '.join(boxes[:3])})"]
 
 
-_VIEW_BOX = re.compile(r'<svg\b[^>]*\bviewBox="([^"]*)"')
 #: a drive symbol with its subscript, a force or a reaction with its link numbers
 _DRIVE = re.compile(r"([φω])([₀-₉]+)")
 _SUBSCRIPTS = str.maketrans("₀₁₂₃₄₅₆₇₈₉‚", "0123456789,")
