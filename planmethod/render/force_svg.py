@@ -432,7 +432,7 @@ class _LeverFigure:
 SMALL_LABEL = 12.0
 
 
-def lever_forces_svg(forces: Any, plans) -> str | None:
+def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     """Zhukovsky's lever with its forces: the velocity plan turned 90° clockwise about its
     pole p, each known force drawn at the image of its point (unchanged in size and
     direction, at a force scale of the lever) with its arm h₁, h₂ … from p, each inertia
@@ -447,7 +447,7 @@ def lever_forces_svg(forces: Any, plans) -> str | None:
     figure, plan = Canvas(page.zoom), page.plan
     page.content(figure)
     where = {label: figure.px(xy) for label, xy in page.turned.items()}
-    regions = detail_regions(figure, where)
+    regions = detail_regions(figure, where) if details else []
     figure.place()
     details = detail_insets(figure, page.content, regions, "detail-lever")
     rows, total, magnitude = page.rows()
@@ -611,7 +611,7 @@ class _LoadedFigure:
         return rows
 
 
-def loaded_svg(forces: Any, plans) -> str | None:
+def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     """The loaded mechanism: the mechanism at the solved position with every force and moment
     acting on it — weights G, inertia forces Fᵘ at the centres of mass S (each marked) with the
     line of their single equivalent force (offset h = J·ε/(m·a_S)), inertia moments Mᵘ,
@@ -623,7 +623,7 @@ def loaded_svg(forces: Any, plans) -> str | None:
     page = _LoadedFigure(forces, plans)
     figure, mechanism = Canvas(page.zoom), forces.solution.mechanism
     page.content(figure)
-    regions = detail_regions(figure, page.where(figure))
+    regions = detail_regions(figure, page.where(figure)) if details else []
     figure.place()
     details = detail_insets(figure, page.content, regions, "detail-loaded")
     _, y0, x1, _ = figure.extent
@@ -692,10 +692,10 @@ def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True
         files["combined_force.svg"] = combined
     if views:
         return files
-    lever = lever_forces_svg(forces, plans)
+    lever = lever_forces_svg(forces, plans, details=details)
     if lever is not None:
         files["lever.svg"] = lever
-    drawing = loaded_svg(forces, plans) if loaded else None
+    drawing = loaded_svg(forces, plans, details=details) if loaded else None
     if drawing is not None:
         files["loaded.svg"] = drawing
     return files

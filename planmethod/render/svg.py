@@ -6,23 +6,29 @@
   thin and dashed in the colour of their component and clipped to a margin around the plan, the
   vectors found by intersecting two lines, the images of links (similarity), the projection on
   the normal of a path, the results (pole → image of each point) bold, lower-case labels placed
-  clear of lines and of each other, coincident points merged ("p ≡ a ≡ c₄"), the scale printed
-  with its units and a scale bar, the title, a legend, and every flagged intersection ringed in
-  red with the angle of its lines.
+  clear of lines, of each other and of other points' marks, points that coincide by
+  construction merged ("p ≡ a ≡ c₀"), a Coriolis point only where the term is not zero, the
+  scale printed with its units and a scale bar, the title, a legend with the plan's vector
+  equations beside it (:func:`vector_equations`), an enlarged detail wherever points crowd
+  (:mod:`planmethod.render.details`), and every flagged intersection ringed in red with the
+  angle of its lines.
 * :func:`position_svg` — the mechanism at μl: links as bars (a link with three or more points
   not on one line as a filled polygon), revolute pairs as small circles, fixed pivots with the
   hatched-ground symbol, sliders as blocks on their guides, upper-case labels, μl, the crank's
-  ω1 arrow, and for each point whose curvature was read the tangent ττ, the normal ηη, the
+  ω₁ arrow, and for each point whose curvature was read the tangent ττ, the normal ηη, the
   centre of curvature and ρ.
 * :func:`lever_svg` — the velocity plan turned 90° onto the mechanism, pole p at the drive's
   pivot, the mechanism faint underneath (Zhukovsky's lever stands on it).
 * :func:`plan_content`, :func:`plan_legend`, :func:`frame` — the pieces other figures reuse
   (a force polygon is drawn as a plan; every figure has the same frame).
 
-Labels follow the textbook (see :mod:`planmethod.render.labels`): ``b@lever`` is printed as b
-with the link's name *lever* as an upright subscript, ``n_CB`` as n with subscript CB, ``O2``
-as O₂. Each label's ``<text>`` carries the plan labels it names in ``data-points``; each arrow
-of a construction step carries the step's number in ``data-step``.
+Labels follow the course (see :mod:`planmethod.render.labels` and README, "Notation"): links by
+the numbers of the exercise's notation, ``b@lever`` printed as b₃ (B of link 3), ``c@frame``
+as c₀, ``n_CB`` as n with subscript CB, ``O2`` as O₂; the crank's φ and ω carry its number.
+Each label's ``<text>`` and each point's mark carry the plan labels they name in
+``data-points``; each arrow of a construction step carries the step's number in
+``data-step``. With a :class:`~planmethod.render.steady.SteadyView` a drawing keeps the zoom
+and the page of every frame of a turn.
 
 Output is deterministic: no ids, no dates, coordinates written with two decimals, elements in a
 fixed order — the same input gives the same bytes. The ``*_drawing`` functions return the SVG
