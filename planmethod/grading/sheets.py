@@ -73,7 +73,9 @@ def task_text(key: Mapping[str, Any]) -> str:
     for question in key.get("questions", ()):
         unit = question.get("unit", "")
         shown = question.get("symbol") or symbol(question["id"], numbers)
-        lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {question['text']}"
+        # the heading says counter-clockwise is positive: the row need not say it again
+        text = question["text"].replace(" (counter-clockwise positive)", "")
+        lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {text}"
                      f"   [{question['id']}]")
     return "\n".join(lines).rstrip() + "\n"
 
