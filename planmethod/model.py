@@ -39,6 +39,7 @@ __all__ = [
     "Load",
     "MassProperties",
     "Mechanism",
+    "Notation",
     "PlanSettings",
     "Revolute",
     "Slide",
@@ -263,6 +264,30 @@ class Ask:
                     or self.sliding or self.everything)
 
 
+#: where the frame stands in a course's numbering: first (0, the crank then 1), first as 1
+#: (the crank 2, as English-language texts write θ₂, ω₂) or after the last moving link
+FRAME_PLACES = (0, 1, "last")
+
+
+@dataclass(frozen=True, slots=True)
+class Notation:
+    """How a course numbers the links (README, "Notation"): the frame's place
+    (:data:`FRAME_PLACES`; default 0: the frame 0, the crank 1, then the moving links in the
+    order their Assur groups attach) and explicit numbers of some links (the others take the
+    free numbers in that order). Only what a person reads follows it: JSON keys and CSV
+    headers keep the links' names.
+
+    >>> Notation(), Notation("last", {"AB": 1}).numbers["AB"]
+    (Notation(frame=0, numbers=FrozenMap({})), 1)
+    """
+
+    frame: int | str = 0
+    numbers: Mapping[str, int] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "numbers", _frozen_mapping(self.numbers))
+
+
 @dataclass(frozen=True, slots=True)
 class Mechanism:
     """A planar linkage: links, revolute and prismatic pairs, the drive, masses and loads.
@@ -281,6 +306,9 @@ class Mechanism:
     gravity: float | None = None
     loads: tuple[Load, ...] = ()
     friction: Mapping[str, object] = field(default_factory=dict)
+    #: how the course numbers the links (printed names only; equal mechanisms under two
+    #: notations hash alike)
+    notation: Notation = field(default_factory=Notation)
     _hash: int = field(default=0, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:

@@ -48,6 +48,7 @@ from .errors import SpecError
 from .io import read_text_bounded
 from .model import (
     FRAME,
+    FRAME_PLACES,
     Ask,
     Drive,
     Exercise,
@@ -55,6 +56,7 @@ from .model import (
     Load,
     MassProperties,
     Mechanism,
+    Notation,
     PlanSettings,
     Revolute,
     Slide,
@@ -71,7 +73,7 @@ LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 TOP_LEVEL_KEYS = (
     "title", "description", "drive", "links", "slide", "sketch", "plan", "ask",
-    "mass", "gravity", "load", "friction", "grading", "published", "points",
+    "mass", "gravity", "load", "friction", "grading", "published", "points", "notation",
 )
 PLAN_KEYS = (
     "crank_mm", "velocity_mm", "acceleration_mm", "mu_l", "mu_v", "mu_a", "force_mm", "mu_f",
@@ -468,9 +470,11 @@ class _Reader:
         gravity = self.gravity(data)
         loads = self.loads(data, links)
         friction = self.friction(data, links, revolutes, slides)
+        notation = self.notation(data, links)
         mechanism = Mechanism(
             title=title, links=links, revolutes=revolutes, slides=slides, drive=drive,
             sketch=sketch, masses=masses, gravity=gravity, loads=loads, friction=friction,
+            notation=notation,
         )
         plan = self.plan(data, mechanism)
         ask = self.ask(data, mechanism)
@@ -622,6 +626,35 @@ class _Reader:
             epsilon=self.number(table.get("epsilon", 0.0), "drive.epsilon", limit=MAX_EPSILON,
                                 what=" (rad/s²; the range planmethod is tested on)"),
         )
+
+    def notation(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> Notation:
+        """``[notation]``: how the course numbers the links — ``frame = 0`` (default: the
+        frame 0, the crank 1, …), ``1`` or ``"last"``, and ``numbers = { AB = 1, … }`` for any
+        links (README, "Notation")."""
+        table = self.table(data.get("notation", {}), "notation")
+        self.only_keys(table, ("frame", "numbers"), "notation")
+        place = table.get("frame", 0)
+        if isinstance(place, bool) or place not in FRAME_PLACES:
+            raise self.error("notation.frame", f'must be 0, 1 or "last", got {place!r}')
+        numbers: dict[str, int] = {}
+        owner: dict[int, str] = {}
+        for name, value in self.table(table.get("numbers", {}), "notation.numbers").items():
+            key = f"notation.numbers.{name}"
+            if name not in links:
+                raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
+            if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
+                raise self.error(key, f"must be a whole number from 0 to 99, got {value!r}")
+            if value in owner:
+                raise self.error(key, f"{value} is already the number of '{owner[value]}'")
+            if name == FRAME and "frame" in table:
+                raise self.error(key, "the frame's number is given twice: keep notation.frame "
+                                      "or notation.numbers.frame")
+            if name != FRAME and FRAME not in table.get("numbers", {}) and place == value:
+                raise self.error(key, f"{value} is the frame's number (notation.frame = "
+                                      f"{place})")
+            numbers[name] = value
+            owner[value] = name
+        return Notation(place, numbers)
 
     def sketch(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> dict:
         table = self.table(data.get("sketch", {}), "sketch")

@@ -20,14 +20,17 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
 __all__ = [
+    "PLAN_SCALES",
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
     "AppliedKind",
+    "DrawingScale",
     "EdgeKind",
     "GroupKind",
     "PairKind",
@@ -35,8 +38,15 @@ __all__ = [
     "Quantity",
     "QuantityKind",
     "link_numbers",
-    "number_subscript",
+    "link_text",
+    "numbered",
+    "pair_number",
+    "point_name",
+    "point_text",
     "quantity",
+    "question_text",
+    "scale_text",
+    "subscript",
     "symbol",
 ]
 
@@ -129,9 +139,35 @@ _TYPE_NUMBERS = {GroupKind.RRR: 1, GroupKind.RRP: 2, GroupKind.RPR: 3, GroupKind
                  GroupKind.RPP: 5}
 _HIGHER_CLASSES = {GroupKind.DRIVE: 1, GroupKind.TRIAD: 3, GroupKind.TETRAD: 4}
 
+@dataclass(frozen=True, slots=True)
+class DrawingScale:
+    """A drawing scale as printed: its symbol (μv), its unit ((m/s)/mm) and the unit of what
+    one millimetre of the drawing stands for (m/s: a scale bar's unit)."""
+
+    symbol: str
+    unit: str
+    drawn: str
+
+
 #: the drawing scales, as printed, with their units
-SCALES = {"mu_l": ("μl", "m/mm"), "mu_v": ("μv", "(m/s)/mm"), "mu_a": ("μa", "(m/s²)/mm"),
-          "mu_f": ("μF", "N/mm")}
+SCALES = {"mu_l": DrawingScale("μl", "m/mm", "m"),
+          "mu_v": DrawingScale("μv", "(m/s)/mm", "m/s"),
+          "mu_a": DrawingScale("μa", "(m/s²)/mm", "m/s²"),
+          "mu_f": DrawingScale("μF", "N/mm", "N")}
+
+#: the scale each plan is drawn at
+PLAN_SCALES = {PlanKind.POSITION: "mu_l", PlanKind.VELOCITY: "mu_v",
+               PlanKind.ACCELERATION: "mu_a"}
+
+
+def scale_text(name: str, value: float, digits: int = 6) -> str:
+    """A scale as a drawing's header prints it, with its unit.
+
+    >>> scale_text("mu_v", 0.2), scale_text("mu_f", 12.5)
+    ('μv = 0.2 (m/s)/mm', 'μF = 12.5 N/mm')
+    """
+    scale = SCALES[name]
+    return f"{scale.symbol} = {value:.{digits}g} {scale.unit}"
 
 
 @dataclass(frozen=True, slots=True)
@@ -141,7 +177,9 @@ class QuantityKind:
     read off a plan at a scale), whether it is signed (counter-clockwise or along the guide
     positive) or a magnitude, and its subject (a ``point``, a ``link`` or a ``pair``).
     ``question`` is what a task asks, in words: ``{subject}`` is replaced by the quantity's
-    subject, ``{point}`` by the subject read aloud (``B@lever``: "B of link lever")."""
+    subject, ``{point}`` by the subject read aloud (``B@lever``: "B of link lever").
+    ``panel`` titles the panel of a full-turn plot that draws this kind's curves (empty: the
+    kind has no panel of its own)."""
 
     prefix: str
     symbol: str
@@ -151,26 +189,33 @@ class QuantityKind:
     signed: bool
     subject: str
     question: str = ""
+    panel: str = ""
 
 
 #: every quantity a check table, a key or a sweep names, by prefix
 QUANTITY_KINDS: dict[str, QuantityKind] = {kind.prefix: kind for kind in (
     QuantityKind("v", "v", "m/s", "speed of a point", "mu_v", False, "point",
-                 "speed of {point}, |v_{subject}|"),
+                 "speed of {point}, |v_{subject}|", "speed of points |v|"),
     QuantityKind("a", "a", "m/s²", "acceleration of a point", "mu_a", False, "point",
-                 "magnitude of the acceleration of {point}, |a_{subject}|"),
+                 "magnitude of the acceleration of {point}, |a_{subject}|",
+                 "acceleration of points |a|"),
     QuantityKind("omega", "ω", "rad/s", "angular velocity of a link", "mu_v", True, "link",
-                 "angular velocity ω of {subject} (counter-clockwise positive)"),
+                 "angular velocity ω of {subject} (counter-clockwise positive)",
+                 "angular velocity ω of links"),
     QuantityKind("epsilon", "ε", "rad/s²", "angular acceleration of a link", "mu_a", True,
-                 "link", "angular acceleration ε of {subject} (counter-clockwise positive)"),
-    QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
-                 "point", "radius of curvature ρ of the path of {point}"),
+                 "link", "angular acceleration ε of {subject} (counter-clockwise positive)",
+                 "angular acceleration ε of links"),
     QuantityKind("s", "s", "m", "travel of a prismatic pair", "mu_l", True, "pair",
-                 "travel s of the slide {subject}"),
+                 "travel s of the slide {subject}", "travel s of prismatic pairs"),
     QuantityKind("ds", "ds/dt", "m/s", "sliding velocity of a prismatic pair", "mu_v", True,
-                 "pair", "sliding velocity of {subject} (along the guide)"),
+                 "pair", "sliding velocity of {subject} (along the guide)",
+                 "sliding velocity ds/dt"),
     QuantityKind("dds", "d²s/dt²", "m/s²", "sliding acceleration of a prismatic pair", "mu_a",
-                 True, "pair", "sliding (relative) acceleration of {subject} (along the guide)"),
+                 True, "pair", "sliding (relative) acceleration of {subject} (along the guide)",
+                 "sliding acceleration d²s/dt²"),
+    QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
+                 "point", "radius of curvature ρ of the path of {point}",
+                 "radius of curvature ρ"),
     QuantityKind("coriolis", "aᵏ", "m/s²", "Coriolis acceleration of a prismatic pair",
                  "mu_a", False, "pair", "magnitude of the Coriolis acceleration of {subject}"),
 )}
@@ -235,41 +280,117 @@ STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities
                                 "acceleration": "accelerations"}
 
 
-_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+_SUBSCRIPT_TEXT = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")
 
 
-def number_subscript(number: int) -> str:
-    """A link's number as a course writes it below a symbol.
+def subscript(text: str) -> str:
+    """Digits (and a comma) as Unicode subscripts, as a course sets a link's number.
 
-    >>> "ω" + number_subscript(12)
-    'ω₁₂'
+    >>> "R" + subscript("12"), "R" + subscript("1,12")
+    ('R₁₂', 'R₁‚₁₂')
     """
-    return str(number).translate(_SUBSCRIPT)
+    return text.translate(_SUBSCRIPT_TEXT)
 
 
-def link_numbers(links: list[str] | tuple[str, ...], drive: str,
-                 frame: str = "frame") -> dict[str, int]:
-    """The links numbered as a course numbers them: the frame 1, the crank (drive link) 2, the
-    others 3, 4, … in the order the exercise lists them.
+def point_text(name: str) -> str:
+    """A point's name in plain text, its digits as subscripts (``O1`` → ``O₁``).
+
+    >>> point_text("O1"), point_text("C")
+    ('O₁', 'C')
+    """
+    head = name.rstrip("0123456789")
+    return head + subscript(name[len(head):])
+
+
+def link_numbers(links: list[str] | tuple[str, ...], drive: str, frame: str = "frame", *,
+                 frame_place: int | str = 0, explicit: Mapping[str, int] | None = None
+                 ) -> dict[str, int]:
+    """The links numbered as a course numbers them, in the order of their numbers.
+
+    ``links`` are the moving links in the course's order (the order their Assur groups attach;
+    :func:`planmethod.numbering.course_numbers` finds it), ``drive`` the crank. The frame's
+    place is 0 (the frame 0, the crank 1, the others 2, 3, …), 1 (the frame 1, the crank 2, …)
+    or ``"last"`` (the crank 1, …, the frame after the last moving link); ``explicit`` numbers
+    win, and the other links take the free numbers in order.
 
     Examples
     --------
-    >>> link_numbers(["frame", "AB", "BC", "CD"], "AB")
-    {'frame': 1, 'AB': 2, 'BC': 3, 'CD': 4}
+    >>> link_numbers(["AB", "BC", "slider"], "AB")
+    {'frame': 0, 'AB': 1, 'BC': 2, 'slider': 3}
+    >>> link_numbers(["AB", "BC", "slider"], "AB", frame_place="last")
+    {'AB': 1, 'BC': 2, 'slider': 3, 'frame': 4}
+    >>> link_numbers(["AB", "BC", "slider"], "AB", frame_place=1)
+    {'frame': 1, 'AB': 2, 'BC': 3, 'slider': 4}
+    >>> link_numbers(["AB", "BC", "slider"], "AB", explicit={"slider": 7})
+    {'frame': 0, 'AB': 1, 'BC': 2, 'slider': 7}
     """
-    order = [frame, drive] + [name for name in links if name not in (frame, drive)]
-    return {name: number for number, name in enumerate(order, start=1)}
+    numbers = dict(explicit or {})
+    if frame not in numbers and frame_place != "last":
+        numbers[frame] = int(frame_place)
+    taken = set(numbers.values())
+    free = 2 if frame_place == 1 else 1
+    for link in [drive] + [name for name in links if name not in (frame, drive)]:
+        if link in numbers:
+            continue
+        while free in taken:
+            free += 1
+        numbers[link] = free
+        taken.add(free)
+    if frame not in numbers:
+        numbers[frame] = max(taken, default=0) + 1
+    return dict(sorted(numbers.items(), key=lambda item: item[1]))
 
 
-def symbol(name: str, numbers: dict[str, int] | None = None) -> str:
-    """A quantity as a course writes it: a link's by the link's number as a subscript (ω₃,
-    ε₄), a point's with the point's name (v_C, a_C, ρ_D), a pair's with its name; a name that is
-    no quantity is returned as it is.
+def numbered(symbol: str, number: int | str) -> str:
+    """A symbol with a link's number as a subscript: the drive's φ, ω, ε follow the crank's
+    number (φ₁ by default, θ₂ … in a course that numbers the frame 1).
+
+    >>> numbered("ω", 2), numbered("R", "12")
+    ('ω₂', 'R₁₂')
+    """
+    return symbol + subscript(str(number))
+
+
+def pair_number(first: int, second: int) -> str:
+    """The subscript of a pair of links (a reaction R₁₂: the force of link 1 on link 2),
+    with a comma once a number has two digits (R₁‚₁₂).
+
+    >>> pair_number(1, 2), pair_number(3, 12)
+    ('12', '3,12')
+    """
+    return f"{first}{second}" if max(first, second) < 10 else f"{first},{second}"
+
+
+def point_name(point: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A point as a course writes it: ``B@lever`` (point B taken as a point of link
+    ``lever``) is B with the lever's number, B₃; a plain point keeps its name (digits as
+    subscripts, O₁).
+
+    >>> point_name("B@lever", {"lever": 3}), point_name("O1"), point_name("B@lever")
+    ('B₃', 'O₁', 'B lever')
+    """
+    name, _, link = point.partition("@")
+    if not link:
+        return point_text(name)
+    if numbers and link in numbers:
+        return point_text(name) + subscript(str(numbers[link]))
+    return f"{point_text(name)} {link}"
+
+
+def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A quantity as a course writes it: a link's by the link's number as a subscript (ω₂,
+    ε₃), a point's with the point's name (v_C, a_C, ρ_D; a point of a link by the link's
+    number, v_B₃), a pair's by its two links' numbers (s₃₀: link 3 along link 0); a name that
+    is no quantity is returned as it is. Without ``numbers`` a link's and a pair's quantity
+    keep their names.
 
     Examples
     --------
-    >>> symbol("omega_BC", {"frame": 1, "AB": 2, "BC": 3}), symbol("a_C"), symbol("rho_D")
-    ('ω₃', 'a_C', 'ρ_D')
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "slider": 3, "lever": 4}
+    >>> symbol("omega_BC", numbers), symbol("a_C"), symbol("v_B@lever", numbers)
+    ('ω₂', 'a_C', 'v_B₄')
+    >>> symbol("ds_slider/frame", numbers), symbol("s_slider/frame")
+    ('ds/dt₃₀', 's (slider/frame)')
     """
     try:
         found = quantity(name)
@@ -277,7 +398,59 @@ def symbol(name: str, numbers: dict[str, int] | None = None) -> str:
         return name
     kind, subject = found.kind, found.subject
     if kind.subject == "link" and numbers and subject in numbers:
-        return f"{kind.symbol}{number_subscript(numbers[subject])}"
+        return numbered(kind.symbol, numbers[subject])
     if kind.subject == "pair":
+        link, _, along = subject.partition("/")
+        if numbers and link in numbers and along in numbers:
+            return kind.symbol + subscript(pair_number(numbers[link], numbers[along]))
         return f"{kind.symbol} ({subject})"
-    return f"{kind.symbol}_{subject}"
+    return f"{kind.symbol}_{point_name(subject, numbers)}"
+
+
+def link_text(link: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A link named in words: ``link 2 (BC)`` by its number, its name in words (an
+    underscore a space); just the name without ``numbers``.
+
+    >>> link_text("rocker_EF", {"rocker_EF": 4}), link_text("BC")
+    ('link 4 (rocker EF)', 'BC')
+    """
+    words = link.replace("_", " ")
+    return f"link {numbers[link]} ({words})" if numbers and link in numbers else words
+
+
+def question_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """What a task asks for a quantity, in words and in a course's symbols.
+
+    Examples
+    --------
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "slider": 3}
+    >>> question_text("omega_BC", numbers)
+    'angular velocity ω₂ of link 2 (BC) (counter-clockwise positive)'
+    >>> question_text("v_C", numbers)
+    'speed of C, |v_C|'
+    >>> question_text("ds_slider/frame", numbers)
+    'sliding velocity ds/dt₃₀ of link 3 (slider) along link 0 (frame) (along the guide)'
+    >>> question_text("coriolis_slider/frame", numbers)
+    'magnitude of the Coriolis acceleration aᵏ₃₀ of link 3 (slider) along link 0 (frame)'
+    >>> question_text("omega_BC")
+    'angular velocity ω of BC (counter-clockwise positive)'
+    """
+    found = quantity(name)
+    kind, subject = found.kind, found.subject
+    if not numbers:
+        return found.question
+    if kind.subject == "link":
+        return kind.question.replace("{subject}", link_text(subject, numbers)).replace(
+            f"{kind.symbol} of", f"{symbol(name, numbers)} of")
+    if kind.subject == "pair":
+        link, _, along = subject.partition("/")
+        text = kind.question.replace("the slide {subject}", "{subject}")
+        shown = symbol(name, numbers)
+        if f" {kind.symbol} of " in text:
+            text = text.replace(f" {kind.symbol} of ", f" {shown} of ", 1)
+        else:
+            text = text.replace(" of {subject}", f" {shown} of {{subject}}")
+        return text.replace("{subject}", f"{link_text(link, numbers)} along "
+                                         f"{link_text(along, numbers)}")
+    point = point_name(subject, numbers)
+    return kind.question.format(subject=point, point=point)

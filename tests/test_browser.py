@@ -255,12 +255,12 @@ def verdicts(page, plan: str) -> dict[str, tuple[str | None, str]]:
 def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slotted_report):
     page, errors = drawing
     names = page.evaluate("workbook.data.draw.names")
-    assert names["b@lever"] == "b₄"          # the course's name, shown on the button
+    assert names["b@lever"] == "b₃"          # the course's name, shown on the button
     for plan in ("velocity", "acceleration"):
         points = slotted_report["plans"][plan]["points_mm"]
         labels = place_by_clicks(page, plan, points)
         assert "b@lever" in labels and page.text_content(
-            f'[data-place="{plan}:b@lever"]') == "b₄"
+            f'[data-place="{plan}:b@lever"]') == "b₃"
         # the sheet's user units are the plan's mm, the pole at (0, 0): each point where
         # solve --json puts it, to the click's precision
         for label in labels:
@@ -293,7 +293,7 @@ def test_a_point_where_the_coriolis_term_is_left_out_is_named(drawing, slotted_r
     shown = verdicts(page, "acceleration")
     ok, sentence = shown["b@lever"]
     assert ok == "false"
-    assert sentence.startswith("b₄ is ") and "mm off" in sentence
+    assert sentence.startswith("b₃ is ") and "mm off" in sentence
     assert "Coriolis component aᵏ was left out" in sentence
     assert all(shown[label][0] == "true" for label in ("b", "c"))
     # hints only: the right position is never told
@@ -334,7 +334,7 @@ def test_a_reload_keeps_the_drawing_and_ignores_another_exercises(drawing, slott
     page, errors = drawing
     points = slotted_report["plans"]["velocity"]["points_mm"]
     labels = place_by_clicks(page, "velocity", points)
-    # drag b₄ 5 mm to the right, then nudge it back with the arrow keys (0.5 mm each)
+    # drag b₃ 5 mm to the right, then nudge it back with the arrow keys (0.5 mm each)
     x, y = points["b@lever"]
     page.click('[data-place="velocity:b@lever"]')
     page.eval_on_selector('svg[data-draw="velocity"]', "svg => svg.scrollIntoView()")

@@ -63,7 +63,7 @@ def test_the_key_puts_a_construction_mistakes_points_where_its_redrawn_plan_does
         x, y = redrawn.acceleration.points_mm[label]
         assert _candidates(key, "acceleration", label, "no_coriolis") == [
             (round(x, 2), round(y, 2))]
-    # the reversed Coriolis component puts b₄ on the other side
+    # the reversed Coriolis component puts b₃ on the other side
     assert _candidates(key, "acceleration", "b@lever", "coriolis_reversed")
 
 

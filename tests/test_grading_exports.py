@@ -337,7 +337,7 @@ def test_gradescope_hints_never_show_the_right_value(tmp_path):
     results = _submit(root, {"email": "ann@uni.edu"}, answers)
     assert results["score"] == 0
     for test, question in zip(results["tests"], keys[0]["questions"], strict=True):
-        assert test["output"].startswith(question["id"]) and "wrong" in test["output"]
+        assert test["output"].startswith(question["symbol"]) and "wrong" in test["output"]
         assert f"{question['value']:.6g}" not in test["output"], test["output"]
         assert "right" not in test["output"]
 
@@ -476,7 +476,7 @@ def test_prairielearn_grade_names_the_mistake_of_a_misplaced_point():
     data = {"params": {}, "correct_answers": {}, "variant_seed": 3}
     namespace["generate"](data)
     params = data["params"]
-    assert params["plan_labels"]["acceleration"]["b_lever"] == "b₄"
+    assert params["plan_labels"]["acceleration"]["b_lever"] == "b₃"
     points = params["plans"]["acceleration"]
     centre = float(re.search(r'answers-name="acceleration_plan"[^>]*width="(\d+)"',
                              files["slotted/question.html"]).group(1)) / 2
@@ -489,7 +489,7 @@ def test_prairielearn_grade_names_the_mistake_of_a_misplaced_point():
     namespace["grade"](data)
     part = data["partial_scores"]["acceleration_plan"]
     assert part["score"] == pytest.approx(2 / 3)
-    assert "b₄ is not where the construction puts it" in part["feedback"]
+    assert "b₃ is not where the construction puts it" in part["feedback"]
     assert "the Coriolis component aᵏ was left out" in part["feedback"]
     assert "more than the plan has" not in part["feedback"]
     # a point placed nowhere in particular is not named with any mistake

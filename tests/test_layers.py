@@ -36,6 +36,7 @@ LAYERS: dict[str, int] = {
     "spec": 2,
     # 3: structural analysis and what a scene asks
     "structure": 3, "scene": 3,
+    "numbering": 3,
     # 4: exact kinematics; 5: the plans; 6: kinetostatics
     "kinematics": 4,
     "plans": 5,

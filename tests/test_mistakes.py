@@ -114,8 +114,10 @@ def test_an_angular_velocity_read_with_the_other_links_length_is_named():
         if kind in ("omega", "epsilon"):
             ((_, ratio),) = other_lengths(motion, link)       # the dyad's other link
             answers[question["id"]] = question["value"] * ratio
-            expected.add(question["id"])
-    assert len(expected) == 4
+            # named where the key can tell it from a right answer (its 2× rule)
+            if abs(answers[question["id"]] - question["value"]) > 2 * question["tolerance"]:
+                expected.add(question["id"])
+    assert len(expected) >= 2
     for name, question in _graded(key, answers).items():
         if name not in expected:
             continue

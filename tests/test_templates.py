@@ -19,8 +19,9 @@ from planmethod.grading.templates import (
     parse_template,
     to_toml,
 )
+from planmethod.numbering import course_numbers
 from planmethod.spec import exercise_from_dict, load_exercise
-from planmethod.vocabulary import link_numbers, symbol
+from planmethod.vocabulary import symbol
 
 SLIDER = "exercises/templates/slider_crank.toml"
 FOUR_BAR = "exercises/templates/four_bar.toml"
@@ -209,20 +210,26 @@ def test_written_toml_reads_back_to_the_same_exercise():
 
 
 def test_task_sheets_write_quantities_as_the_course_does():
-    """The answer table leads with the course's symbol and unit (ω₃, rad/s; a_C, m/s²), links
-    numbered frame 1, crank 2, …; the answer id follows in brackets for typing answers."""
+    """The answer table leads with the course's symbol and unit (ω₂, rad/s; a_C, m/s²), links
+    numbered frame 0, crank 1, …; the answer id follows in brackets for typing answers; the
+    given data are in the course's symbols with units, never a template's variables."""
     from planmethod.grading.keys import build_key
     from planmethod.grading.sheets import task_text
     from planmethod.grading.templates import draw_variant, load_template
 
-    key = build_key(draw_variant(load_template("exercises/templates/four_bar.toml")))
+    variant = draw_variant(load_template("exercises/templates/four_bar.toml"))
+    key = build_key(variant)
     text = task_text(key)
-    assert "Links: 1 frame, 2 AB, 3 BC, 4 CD." in text
+    assert "Links: 0 frame, 1 AB, 2 BC, 3 CD." in text
     rows = {line.split()[0].rstrip(","): line for line in text.splitlines()
             if line.startswith("  ")}
-    assert rows["ω₃"].split()[1] == "rad/s" and rows["ω₃"].endswith("[omega_BC]")
-    assert rows["ε₄"].split()[1] == "rad/s²" and rows["a_C"].split()[1] == "m/s²"
+    assert rows["ω₂"].split()[1] == "rad/s" and rows["ω₂"].endswith("[omega_BC]")
+    assert rows["ε₃"].split()[1] == "rad/s²" and rows["a_C"].split()[1] == "m/s²"
     assert not any(row.lstrip().startswith(("omega_", "epsilon_")) for row in rows.values())
+    given = next(line for line in text.splitlines() if line.startswith("Given: "))
+    assert f"l_AB = {variant.values['l_AB']:.4g} m" in given
+    assert f"φ₁ = {variant.values['phi']:g}°" in given and "ω₁ = " in given
+    assert not any(f"{name} = " in given for name in variant.values if "_" not in name)
 
 
 def test_variants_a_student_cannot_measure_or_without_a_required_component_are_rejected():
@@ -255,7 +262,7 @@ def test_variants_whose_drawing_tolerance_is_too_large_are_rejected():
     assert reason is not None and "drafting tolerance of" in reason and "above 0.1 %" in reason
     shown = reason.split("tolerance of ")[1].split(" is")[0]     # as the course writes it
     mechanism = exercise.mechanism
-    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, "frame")
+    numbers = course_numbers(mechanism)
     quantity = next(q for q in found.values if symbol(q, numbers) == shown)
     assert found.tolerances[quantity] > 0.001 * abs(found.values[quantity])
     # every variant drawn keeps each drawing-derived tolerance within 10 % of its value, and
@@ -283,8 +290,8 @@ def test_bad_drawability_settings_are_named(table, fragment):
 
 
 def test_rejected_draws_are_summed_up_in_course_notation(tmp_path, capsys):
-    """``planmethod variants`` says why draws were rejected as a student reads a task — ω₃,
-    aʳ_CC₁, ρ_D, never a report name — with the range each number took."""
+    """``planmethod variants`` says why draws were rejected as a student reads a task — ω₂,
+    aʳ_CC₀, ρ_D, never a report name — with the range each number took."""
     from planmethod.cli import main
 
     assert main(["variants", str(SLIDER), "--count", "30", "--out", str(tmp_path / "out"),
@@ -295,4 +302,4 @@ def test_rejected_draws_are_summed_up_in_course_notation(tmp_path, capsys):
     for line in summary:
         assert "#" not in line and "_rel" not in line and "omega" not in line, line
         assert "epsilon" not in line and "rho_" not in line, line
-    assert any("ω₃" in line for line in summary), summary
+    assert any("ω₂" in line for line in summary), summary

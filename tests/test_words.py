@@ -16,9 +16,10 @@ import pytest
 from planmethod.grading.keys import build_key
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.grading.tolerances import scale_factor
+from planmethod.numbering import course_numbers
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
-from planmethod.vocabulary import QUANTITY_KINDS, quantity
+from planmethod.vocabulary import QUANTITY_KINDS, quantity, question_text, symbol
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -56,7 +57,11 @@ def test_report_and_key_name_quantities_alike(file):
         expected = quantity(question["id"])
         assert checks[question["id"]].unit == question["unit"] == expected.unit
         assert question["signed"] == expected.signed
-        assert question["text"] == expected.question
+        # the question's words, with the course's symbols and the links' numbers
+        numbers = course_numbers(exercise.mechanism)
+        assert question["text"] == question_text(question["id"], numbers)
+        assert question["symbol"] == symbol(question["id"], numbers)
+        assert "@" not in question["text"], question["text"]
 
 
 def test_scale_factors_turn_drawn_lengths_into_values():

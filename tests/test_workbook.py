@@ -76,14 +76,34 @@ def test_frames_hold_the_reports_checks_and_the_keys(compressor_page):
 
 
 def test_drawings_are_the_ones_solve_writes(compressor_page):
+    """Each frame's drawings are ``solve --svg``'s, drawn steady: at the turn's one zoom and
+    page per panel."""
     from planmethod.render.figures import plan_files
+    from planmethod.render.steady import steady_views
     from planmethod.render.workbook import inline_svg
 
     data = page_data(compressor_page)
-    analysis = analyse(load_exercise(COMPRESSOR), data["angles"][3])
-    files = plan_files(analysis.plans)
+    exercise = load_exercise(COMPRESSOR)
+    analysis = analyse(exercise, data["angles"][3])
+    files = plan_files(analysis.plans, details=False,
+                       views=steady_views(exercise, data["angles"]))
     for panel, lines in zip(data["panels"], data["frames"][3]["drawings"], strict=True):
         assert "\n".join(data["strings"][k] for k in lines) == inline_svg(files[panel + ".svg"])
+
+
+def test_every_panel_keeps_one_page_over_the_turn(compressor_page):
+    """One viewBox per panel for the whole turn: the pivots and poles stay put, the scale
+    does not change; and the page opens at the exercise's own angle."""
+    import re
+
+    data = page_data(compressor_page)
+    for index, panel in enumerate(data["panels"]):
+        boxes = {re.search(r'viewBox="([^"]+)"', data["strings"][frame["drawings"][index][0]])
+                 .group(1) for frame in data["frames"]}
+        assert len(boxes) == 1, (panel, boxes)
+    opening = float(re.search(r'id="angle"[^>]* value="([^"]+)"', compressor_page).group(1))
+    drive = load_exercise(COMPRESSOR).mechanism.drive.angle
+    assert opening == min(data["angles"], key=lambda angle: abs(angle - drive))
 
 
 def test_identical_svg_lines_are_stored_once(compressor_page):
@@ -133,7 +153,7 @@ def test_animated_svg_shows_each_frame_once_per_turn(capsys, tmp_path):
                                            text)]
     assert delays == pytest.approx([0.5 * k for k in range(8)])
     assert "animation:planmethod-turn 4s step-end infinite" in text
-    assert text.count("φ₁ = 135°") == 1
+    assert text.count("position plan, φ₁ = 135°") == 1
 
 
 def test_animated_gif_has_one_frame_per_angle(capsys, tmp_path):
@@ -190,7 +210,7 @@ def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
     data = page_data(text)
     draw = data["draw"]
     assert draw["title"] == "Crank and slotted lever" and draw["format"] == "planmethod-drawing"
-    assert draw["names"]["b@lever"] == "b₄" and draw["names"]["c"] == "c"
+    assert draw["names"]["b@lever"] == "b₃" and draw["names"]["c"] == "c"
     assert [mistake for mistake, _ in draw["mistakes"]] == list(DRAWN_MISTAKES)
     exercise = load_exercise(slotted)
     variant = exercise_variant(exercise)

@@ -72,14 +72,18 @@ def run(args: argparse.Namespace) -> int:
     title = exercise.mechanism.title
     if form == "svg":
         from ..render.animation import animated_svg
-        from ..render.svg import plan_svg, position_svg
+        from ..render.steady import steady_views
+        from ..render.svg import plan_drawing, position_drawing
 
+        views = steady_views(exercise, angles)     # one zoom and one page per panel
         frames = []
         for analysis in analyses:
             plans = analysis.plans
-            row = [position_svg(plans.position, plans=plans), plan_svg(plans.velocity)]
+            row = [position_drawing(plans.position, plans=plans, view=views["position"]),
+                   plan_drawing(plans.velocity, details=False, view=views["velocity"])]
             if plans.acceleration is not None:
-                row.append(plan_svg(plans.acceleration))
+                row.append(plan_drawing(plans.acceleration, details=False,
+                                        view=views["acceleration"]))
             frames.append(row)
         write_text_atomic(args.output, animated_svg(frames, seconds=args.seconds,
                                                     title=f"{title} — a full turn"))

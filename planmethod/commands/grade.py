@@ -68,18 +68,17 @@ def _stage_class_report(outputs: OutputSet, report: str, keys: dict, results: li
     from pathlib import Path
 
     from ..errors import SpecError
+    from ..grading.keys import key_numbers
     from ..grading.report import class_statistics, mistakes_csv, questions_csv
     from ..render.plots import save_class_report_plot
-    from ..vocabulary import link_numbers, symbol
+    from ..vocabulary import symbol
 
     rows = class_statistics(results)
     if not rows:
         raise SpecError("--report needs graded answers (give ANSWERS)")
     folder = Path(report)
     first = next(iter(keys.values()))
-    exercise = first.get("exercise") or {}
-    numbers = link_numbers(list(exercise.get("links") or ()),
-                           str((exercise.get("drive") or {}).get("link", "")))
+    numbers = key_numbers(first)
     symbols = {row["question"]: symbol(row["question"], numbers) for row in rows}
     words = {mistake["kind"]: textwrap.shorten(mistake["feedback"], 48, placeholder="…")
              for key in keys.values() for question in key.get("questions", ())

@@ -24,8 +24,11 @@ def _save_plot(exercise, table, path, *, forces: bool) -> None:
     ``path``."""
     import numpy as np
 
+    from ..numbering import course_numbers
     from ..render.plots import save_sweep_plot
 
+    numbers = course_numbers(exercise.mechanism)
+    crank = numbers[exercise.mechanism.drive.link]
     if forces:
         from ..render.notation import ForceNotation
         from ..render.plots import save_force_plot
@@ -39,13 +42,10 @@ def _save_plot(exercise, table, path, *, forces: bool) -> None:
             notation = ForceNotation(solved.solution)
             names = {key: notation.plain(f"R_{key}") for key in solved.solution.reactions}
         save_force_plot(table, path, title=exercise.mechanism.title, marks=marks,
-                        names=names)
+                        names=names, crank=crank)
     else:
-        from ..vocabulary import link_numbers
-
-        mechanism = exercise.mechanism
-        save_sweep_plot(table, path, title=mechanism.title,
-                        numbers=link_numbers(mechanism.moving_links, mechanism.drive.link))
+        save_sweep_plot(table, path, title=exercise.mechanism.title, numbers=numbers,
+                        crank=crank)
 
 
 def run(args: argparse.Namespace) -> int:

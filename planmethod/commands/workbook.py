@@ -26,7 +26,7 @@ DEFAULT_STEP = 5.0
 PANELS = ("position", "velocity", "acceleration", "lever")
 
 #: what a question of the key keeps in the page (its ``text`` is not shown)
-QUESTION_FIELDS = ("id", "value", "tolerance", "unit", "signed", "mistakes")
+QUESTION_FIELDS = ("id", "symbol", "value", "tolerance", "unit", "signed", "mistakes")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -77,10 +77,11 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     workbook_html`)."""
     from ..grading.keys import build_key
     from ..grading.plan_points import drawing_frame
+    from ..render.svg import vector_equations
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
     readings = [[check.analytic, check.plan] for check in analysis.checks]
-    steps = {}
+    steps, equations = {}, {}
     if analysis.plans is not None:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
@@ -88,18 +89,20 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
                 steps[name] = [[step.number, step.text, step.action,
                                  [point for point in (step.start, step.end) if point]]
                                 for step in plan.steps]
+                equations[name] = vector_equations(plan)
     key = build_key(replace(variant, exercise=analysis.exercise))
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
-            "questions": questions, "tolerance_source": key["precision_mm"],
-            "draw": drawing_frame(key)}
+            "equations": equations, "questions": questions,
+            "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
 
 
-def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
+def solve_frames(exercise, angles: Sequence[float], views=None) -> list[dict[str, Any]]:
     """The frames of the given angles as plain data (:func:`frame_data`), each with its
     check quantities (``quantities``) and balancing moment (``moment``, None without
-    forces) for the full-turn curves."""
+    forces) for the full-turn curves; ``views`` keep each panel steady over the turn
+    (:func:`planmethod.render.steady.steady_views`)."""
     import numpy as np
 
     from ..render.figures import plan_files
@@ -111,7 +114,7 @@ def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
         analysis = analyse(exercise, angle)
         # many frames: no enlarged details and no loaded mechanism (solve --svg draws them)
         files = (plan_files(analysis.plans, forces=analysis.forces, details=False,
-                            loaded=False) if analysis.plans else {})
+                            loaded=False, views=views) if analysis.plans else {})
         frame = frame_data(analysis, variant, files)
         frame["quantities"] = [(check.quantity, check.unit) for check in analysis.checks]
         frame["moment"] = (None if analysis.forces is None else
@@ -122,8 +125,8 @@ def solve_frames(exercise, angles: Sequence[float]) -> list[dict[str, Any]]:
 
 
 def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
-    exercise, angles = job
-    return solve_frames(exercise, angles)
+    exercise, angles, views = job
+    return solve_frames(exercise, angles, views)
 
 
 def usable_cpus() -> int:
@@ -184,7 +187,8 @@ def _end_with_parent(parent: int | None) -> None:
 
 
 def _solve_in_workers(exercise, angles: Sequence[float], workers: int,
-                      progress: Callable[[int, int], None] | None) -> list[dict[str, Any]]:
+                      progress: Callable[[int, int], None] | None, views=None
+                      ) -> list[dict[str, Any]]:
     """The frames of ``angles`` solved in ``workers`` processes, in order. The pool is
     terminated whenever this ends — done, failed, Ctrl-C or SIGTERM (the command line turns
     it into an exception here) — so that no worker outlives the command."""
@@ -193,7 +197,8 @@ def _solve_in_workers(exercise, angles: Sequence[float], workers: int,
     import sys
 
     size = math.ceil(len(angles) / (4 * workers))
-    chunks = [(exercise, angles[start:start + size]) for start in range(0, len(angles), size)]
+    chunks = [(exercise, angles[start:start + size], views)
+              for start in range(0, len(angles), size)]
     # fork on Linux: the workers are this process's children (the parent check above holds)
     method = "fork" if sys.platform.startswith("linux") else None
     context = multiprocessing.get_context(method)
@@ -223,28 +228,33 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     (7, True)
     """
     from ..grading.answers import magnitude_note
+    from ..numbering import course_numbers
+    from ..render.steady import steady_views
     from ..render.workbook import curve_chart, workbook_html
-    from ..vocabulary import link_numbers, quantity
+    from ..vocabulary import numbered, point_name, quantity
 
     angles = turn_angles(step)
     workers = worker_count(jobs, len(angles))
+    views = steady_views(exercise, angles)      # one zoom and one page per panel
     frames: list[dict[str, Any]] = []
     if workers == 1:
         for angle in angles:
-            frames += solve_frames(exercise, [angle])
+            frames += solve_frames(exercise, [angle], views)
             if progress is not None:
                 progress(len(frames), len(angles))
     else:
-        frames = _solve_in_workers(exercise, angles, workers, progress)
+        frames = _solve_in_workers(exercise, angles, workers, progress, views)
     first = frames[0]
     mechanism = exercise.mechanism
-    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link)
+    numbers = course_numbers(mechanism)
 
     def subscript(name: str) -> str:
-        """A link's quantity by the link's number (ω₃), others by their subject."""
+        """A link's quantity by the link's number (ω₂), a point's by its name (v_B₃)."""
         found = quantity(name)
         if found.kind.subject == "link" and found.subject in numbers:
             return str(numbers[found.subject])
+        if found.kind.subject == "point":
+            return point_name(found.subject, numbers)
         return found.subject.replace("_", " ")
 
     quantities = [{"name": name, "symbol": quantity(name).symbol,
@@ -263,7 +273,9 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
                                  for title, unit, curves in turn_charts(frames, numbers)],
-                         notes=notes, drawing=drawing_meta(exercise, frames))
+                         notes=notes, start=mechanism.drive.angle,
+                         phi=numbered("φ", numbers[mechanism.drive.link]),
+                         drawing=drawing_meta(exercise, frames))
 
 
 def exercise_fingerprint(exercise) -> str:
@@ -282,22 +294,21 @@ def exercise_fingerprint(exercise) -> str:
 
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
     """The drawing mode's data for the whole page (:func:`planmethod.render.workbook_draw.
-    drawing_data`): one sheet per plan for the turn, each point's course name (b₄), the
+    drawing_data`): one sheet per plan for the turn, each point's course name (b₃), the
     mistakes with what the student is told. None when no frame has a plan to draw.
 
     >>> from planmethod.spec import load_exercise
     >>> exercise = load_exercise("exercises/slotted_lever.toml")
     >>> meta = drawing_meta(exercise, solve_frames(exercise, [30.0]))
     >>> meta["names"]["b@lever"], meta["poles"]
-    ('b₄', {'velocity': 'p', 'acceleration': 'π'})
+    ('b₃', {'velocity': 'p', 'acceleration': 'π'})
     """
     from ..grading.drawings import DRAWING_FORMAT
     from ..grading.mistakes import drawn_explanation
     from ..grading.plan_points import DRAWN_MISTAKES, MISTAKE_WORDING, plan_extent
-    from ..model import FRAME
+    from ..numbering import course_numbers
     from ..plans.construction import course_text
     from ..render.workbook_draw import drawing_data
-    from ..vocabulary import link_numbers
 
     draws = [frame.get("draw", {}) for frame in frames]
     plans = [plan for plan in ("velocity", "acceleration")
@@ -305,7 +316,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     if not plans:
         return None
     mechanism = exercise.mechanism
-    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+    numbers = course_numbers(mechanism)
     labels = {label for draw in draws for entry in draw.values() for label in entry["points"]}
     poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
              for plan in plans}

@@ -22,7 +22,7 @@ Examples
 ([True], 1.0)
 >>> print(next(q for q in result["questions"] if q["id"] == "omega_BC")["feedback"])
 ... # doctest: +NORMALIZE_WHITESPACE
-omega_BC = 24.25 rad/s: wrong — it looks as if the sense (sign) is reversed
+ω₂ = 24.25 rad/s: wrong — it looks as if the sense (sign) is reversed
 (that gives 24.2536; right: -24.2536 rad/s ± 0.547)
 """
 
@@ -306,12 +306,13 @@ def _off(answer: float, right: float) -> str:
 
 
 def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
-    """Grade one answer; returns the question's result with its feedback."""
-    name, unit = question["id"], question.get("unit", "")
+    """Grade one answer; returns the question's result with its feedback (which names the
+    quantity as the course writes it, the key's ``symbol``, where the key has one)."""
+    name, unit = question.get("symbol") or question["id"], question.get("unit", "")
     value, tolerance = float(question["value"]), float(question["tolerance"])
     points = float(question.get("points", 1.0))
     right = f"{_number_text(value)} {unit} ± {tolerance:.3g}".replace("  ", " ")
-    result = {"id": name, "answer": None, "value": value, "tolerance": tolerance,
+    result = {"id": question["id"], "answer": None, "value": value, "tolerance": tolerance,
               "unit": unit, "max_score": points, "score": 0.0, "correct": False,
               "mistake": None}
     answer = _parse_number(raw)

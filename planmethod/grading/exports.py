@@ -273,7 +273,7 @@ def _canvas_mistakes(entry: Mapping[str, Any], size_px: float, labels: list[str]
 
 
 def _course_names(key: Mapping[str, Any]):
-    """A plan label as the course writes it (``b@lever`` → b₄), from the key's exercise."""
+    """A plan label as the course writes it (``b@lever`` → b₃), from the key's exercise."""
     from ..model import FRAME
     from ..plans.construction import course_text
     from ..vocabulary import link_numbers

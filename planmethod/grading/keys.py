@@ -49,11 +49,12 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from ..errors import SpecError
+from ..errors import PlanmethodError, SpecError
 from ..io import read_text_bounded
+from ..numbering import course_numbers
 from ..spec import checked_table, parse_json
-from ..vocabulary import QUANTITY_KINDS
-from ..vocabulary import quantity as named_quantity
+from ..vocabulary import QUANTITY_KINDS, symbol
+from ..vocabulary import question_text as course_question
 from .mistakes import (
     CONSTRUCTION_MISTAKES,
     MISTAKES,
@@ -73,6 +74,7 @@ __all__ = [
     "build_key",
     "bundle",
     "grading_settings",
+    "key_numbers",
     "load_keys",
     "question_text",
 ]
@@ -152,18 +154,35 @@ def grading_settings(data: Mapping[str, Any], file: str | None = None,
     return GradingSettings(precision, rel_floor, points, default_points, overrides)
 
 
-def question_text(quantity: str) -> str:
-    """What a quantity asks, in words.
+def question_text(quantity: str, numbers: Mapping[str, int] | None = None) -> str:
+    """What a quantity asks, in words and in the course's symbols (``numbers``: the links'
+    numbers, :func:`planmethod.numbering.course_numbers`).
 
     Examples
     --------
-    >>> question_text("omega_BC")
-    'angular velocity ω of BC (counter-clockwise positive)'
+    >>> question_text("omega_BC"), question_text("omega_BC", {"frame": 0, "AB": 1, "BC": 2})
+    ('angular velocity ω of BC (counter-clockwise positive)', \
+'angular velocity ω₂ of link 2 (BC) (counter-clockwise positive)')
     """
     try:
-        return named_quantity(quantity).question
+        return course_question(quantity, numbers)
     except KeyError:
         return quantity
+
+
+def key_numbers(key: Mapping[str, Any]) -> dict[str, int]:
+    """The links' numbers a key's texts use: its own ``numbers``, or for a key written
+    before they were kept, those of its exercise (empty if it has none)."""
+    if key.get("numbers"):
+        return {str(link): int(number) for link, number in key["numbers"].items()}
+    if not key.get("exercise"):
+        return {}
+    from ..spec import exercise_from_dict
+
+    try:
+        return course_numbers(exercise_from_dict(key["exercise"]).mechanism)
+    except PlanmethodError:
+        return {}
 
 
 def _drive_reference(exercise, kind: str) -> float:
@@ -297,6 +316,7 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
         if plans is not None:
             wrong_plans[mistake] = plans
     alternatives = {mistake: plans.readings for mistake, plans in wrong_plans.items()}
+    numbers = course_numbers(mechanism)
     questions = []
     for quantity in quantities:
         value = found.values[quantity]
@@ -306,7 +326,8 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
                                        settings)
         kind = QUANTITY_KINDS[kind_of(quantity)]
         questions.append({
-            "id": quantity, "text": question_text(quantity),
+            "id": quantity, "text": question_text(quantity, numbers),
+            "symbol": symbol(quantity, numbers),
             "unit": kind.unit, "value": value,
             "signed": kind.signed, "tolerance": tolerance,
             "tolerance_from": source,
@@ -319,7 +340,7 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
         "student": variant.student, "seed": variant.seed, "attempt": variant.attempt,
         "source": exercise.source, "task": variant.description.strip(),
         "given": dict(variant.values), "angle": mechanism.drive.angle,
-        "exercise": variant.data,
+        "exercise": variant.data, "numbers": numbers,
         "scales": scales.as_dict(), "precision_mm": settings.precision_mm,
         "rel_floor": settings.rel_floor,
         "questions": questions, "plans": plan_table,

@@ -22,23 +22,26 @@ Examples
 from __future__ import annotations
 
 import math
-import re
 import textwrap
 from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
+from ..model import FRAME
 from ..render.canvas import Canvas
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
-from ..vocabulary import SCALES, link_numbers, symbol
+from ..vocabulary import PLAN_SCALES, numbered, point_text, scale_text, symbol
+from .keys import key_numbers
+from .templates import drawn_lengths
 
 __all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_figure_svg", "task_sheet_svg",
            "task_text"]
 
 
 def task_text(key: Mapping[str, Any]) -> str:
-    """The text of the task: the description, the given data, the scales and the questions.
+    """The text of the task: the description, the given data in the course's symbols, the
+    scales and the lengths they draw, the links' numbers and the questions.
 
     Examples
     --------
@@ -49,20 +52,20 @@ def task_text(key: Mapping[str, Any]) -> str:
     T — variant for s1
     """
     scales = key.get("scales", {})
+    numbers = key_numbers(key)
+    exercise = _exercise(key)
+    crank = numbers.get(exercise.mechanism.drive.link, 1) if exercise is not None else 1
     lines = [f"{key.get('title', 'Exercise')} — variant for {key.get('student')}", "",
              key.get("task", "").strip(), ""]
-    given = key.get("given") or {}
-    if given:
-        lines.append("Given: " + ", ".join(f"{name} = {value:g}" if isinstance(value, float)
-                                           else f"{name} = {value}"
-                                           for name, value in given.items()))
-    scale_texts = (f"{SCALES[name][0]} = {scales.get(name, 0):.6g} {SCALES[name][1]}"
-                   for name in ("mu_l", "mu_v", "mu_a"))
-    lines.append(f"Crank angle φ1 = {key.get('angle', 0):g}°; scales {', '.join(scale_texts)}.")
-    exercise = key.get("exercise") or {}
-    links = list((exercise.get("links") or {}).keys())
-    drive = str((exercise.get("drive") or {}).get("link", ""))
-    numbers = link_numbers(links, drive) if links and drive else {}
+    if exercise is not None:
+        lines.append("Given: " + ", ".join(given_data(exercise, numbers)) + ".")
+    scale_texts = (scale_text(name, scales.get(name, 0)) for name in ("mu_l", "mu_v", "mu_a"))
+    lines.append(f"Crank angle {numbered('φ', crank)} = {key.get('angle', 0):g}°; scales "
+                 f"{', '.join(scale_texts)}.")
+    if exercise is not None and scales:
+        lines.append("At these scales: " + ", ".join(
+            f"{segment} = {length:.3g} mm" for segment, length in
+            drawn_lengths(exercise, scales).items()) + ".")
     if numbers:
         lines.append("Links: " + ", ".join(f"{number} {_words(name)}"
                                            for name, number in numbers.items()) + ".")
@@ -70,14 +73,71 @@ def task_text(key: Mapping[str, Any]) -> str:
               "named in brackets):"]
     for question in key.get("questions", ()):
         unit = question.get("unit", "")
-        shown = symbol(question["id"], numbers)
-        text = question["text"]
-        for name in numbers:
-            text = re.sub(rf"\b{re.escape(name)}\b", _words(name), text) if "_" in name \
-                else text
+        shown = question.get("symbol") or symbol(question["id"], numbers)
+        # the heading says counter-clockwise is positive: the row need not say it again
+        text = question["text"].replace(" (counter-clockwise positive)", "")
         lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {text}"
                      f"   [{question['id']}]")
     return "\n".join(lines).rstrip() + "\n"
+
+
+def _exercise(key: Mapping[str, Any]):
+    """The key's exercise as a model (None for a key without one)."""
+    from ..errors import PlanmethodError
+    from ..spec import exercise_from_dict
+
+    if not key.get("exercise"):
+        return None
+    try:
+        return exercise_from_dict(key["exercise"])
+    except PlanmethodError:
+        return None
+
+
+def _length(value: float) -> str:
+    return f"{value:.4g} m"
+
+
+def given_data(exercise, numbers: Mapping[str, int]) -> list[str]:
+    """What a task gives, in the course's symbols with units: the links' lengths (l_AB, from
+    each link's first point to its others), the fixed points and guides seen from the crank's
+    pivot, and the crank's φ, ω (and ε).
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    >>> given_data(exercise, {"frame": 0, "AB": 1, "BC": 2, "slider": 3})
+    ['l_AB = 0.06 m', 'l_BC = 0.18 m', 'l_BD = 0.09 m', 'φ₁ = 45°', 'ω₁ = 100 rad/s']
+    """
+    mechanism = exercise.mechanism
+    drive = mechanism.drive
+    order = sorted((link for link in mechanism.links if link != FRAME),
+                   key=lambda link: numbers.get(link, len(numbers)))
+    given = []
+    for name in order:
+        points = list(mechanism.links[name].points)
+        for other in points[1:]:
+            given.append(f"l_{point_text(points[0])}{point_text(other)} = "
+                         f"{_length(mechanism.links[name].length(points[0], other))}")
+    pivot = mechanism.local(FRAME, drive.pivot)
+    for point, (x, y) in mechanism.links[FRAME].points.items():
+        if point == drive.pivot:
+            continue
+        dx, dy = x - pivot[0], y - pivot[1]
+        where = f"{point_text(drive.pivot)}{point_text(point)}"
+        given.append(f"l_{where} = {_length(dx)}" if dy == 0 and dx > 0 else
+                     f"x_{where} = {_length(dx)}, y_{where} = {_length(dy)}")
+    for slide in mechanism.slides:
+        if slide.along == FRAME and (slide.through != drive.pivot or slide.direction):
+            given.append(f"the guide of {point_text(slide.point)} through "
+                         f"{point_text(slide.through)} at {slide.direction:g}°")
+    crank = numbers.get(drive.link, 1)
+    given += [f"{numbered('φ', crank)} = {drive.angle:g}°",
+              f"{numbered('ω', crank)} = {drive.omega:g} rad/s"]
+    if drive.epsilon:
+        given.append(f"{numbered('ε', crank)} = {drive.epsilon:g} rad/s²")
+    return given
 
 
 def _words(name: str) -> str:
@@ -120,15 +180,12 @@ def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: 
     """A square blank sheet (mm) with the pole at its centre and a 10 mm grid pattern."""
     size = float(size_mm)
     centre = size / 2
-    header = (f"{title} — {plan} plan — {student} — μ{'v' if plan == 'velocity' else 'a'} = "
-              f"{scale:.6g} {unit}. {given} Draw the plan from the pole {pole}; label every "
-              f"point (b, c, …) next to it.")
+    header = (f"{title} — {plan} plan — {student} — {scale_text(PLAN_SCALES[plan], scale)}. "
+              f"{given} Draw the plan from the pole {pole}; label every point (b, c, …) next "
+              "to it.")
     canvas = Canvas()
-    canvas.define("pattern", {"id": "grid", "width": "10", "height": "10",
-                              "patternUnits": "userSpaceOnUse"},
-                  [("path", {"d": "M 10 0 L 0 0 0 10", "fill": "none", "stroke": "#c9cede",
-                             "stroke-width": "0.2"}, [])])
-    canvas.rectangle((0.0, 12.0), (size, size), fill="url(#grid)", stroke="#99a", width=0.3,
+    grid = canvas.grid_pattern("grid", 10.0, color="#c9cede", width=0.2)
+    canvas.rectangle((0.0, 12.0), (size, size), fill=grid, stroke="#99a", width=0.3,
                      css="grid")
     for index, line in enumerate(textwrap.wrap(header + " (grid: 10 mm)",
                                                int(size / 1.45))[:3]):

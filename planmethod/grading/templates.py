@@ -55,11 +55,12 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
-from ..model import FRAME, Exercise
+from ..model import Exercise
+from ..numbering import course_numbers
 from ..plans.construction import course_text
 from ..spec import checked_table, leaves, parse_toml, read_text
 from ..vectors import angle_deg
-from ..vocabulary import PlanKind, link_numbers, symbol
+from ..vocabulary import PlanKind, point_text, symbol
 from .expressions import ExpressionError, evaluate, parse, references
 
 __all__ = [
@@ -68,6 +69,8 @@ __all__ = [
     "Variant",
     "check_variant",
     "draw_variant",
+    "drawing_values",
+    "drawn_lengths",
     "format_description",
     "load_template",
     "parse_template",
@@ -129,7 +132,12 @@ class Variant:
 
     @property
     def description(self) -> str:
-        return format_description(self.data.get("description", ""), self.values, self.data)
+        """The task as the student reads it: placeholders filled from the variant's values,
+        its file and the drawing its scales give (``{drawn.crank}``: (AB) in mm)."""
+        text = self.data.get("description", "")
+        drawing = drawing_values(self.exercise) if "{drawn." in str(text) or \
+            "{scales." in str(text) else None
+        return format_description(text, self.values, self.data, drawing)
 
 
 def load_template(path: str | Path) -> Template:
@@ -449,9 +457,9 @@ def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True) ->
     """The reason a variant's plans are unfit (see :func:`check_variant`), or None.
     ``drawable`` adds the rules a random draw must also pass (segments a student measures at
     least ``min_segment_mm``, required components drawn); an exercise set as written is not
-    held to them. Quantities are named as the course writes them (ω₃, aʳ_CC₁)."""
+    held to them. Quantities are named as the course writes them (ω₂, aʳ_CC₀)."""
     mechanism = plans.exercise.mechanism
-    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+    numbers = course_numbers(mechanism)
     problem = _plan_problem(plans, settings, drawable)
     return None if problem is None else course_text(problem, numbers)
 
@@ -500,7 +508,7 @@ def tolerance_problem(exercise: Exercise, data: Mapping[str, Any], settings: Tem
     precision = grading_settings(data, file).precision_mm
     found = propagate(exercise, precision)
     mechanism = exercise.mechanism
-    numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+    numbers = course_numbers(mechanism)
     for quantity, value in found.values.items():
         tolerance = found.tolerances.get(quantity)
         if value is None or tolerance is None or not value:
@@ -529,27 +537,73 @@ def dead_centre_angle(plans) -> float | None:
     return None
 
 
-def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any]) -> str:
-    """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values and file keys;
-    an unknown name is left as written.
+def drawn_lengths(exercise: Exercise, scales: Mapping[str, float]) -> dict[str, float]:
+    """The lengths the scales draw for the crank's scale point B (mm): (AB) = l_AB/μl,
+    (pb) = v_B/μv, (πb) = a_B/μa, by segment as a sheet prints it.
+
+    >>> from planmethod.spec import load_exercise
+    >>> drawn_lengths(load_exercise("exercises/compressor_slider_crank.toml"),
+    ...               {"mu_l": 0.002, "mu_v": 0.2, "mu_a": 20.0})
+    {'(AB)': 30.0, '(pb)': 30.0, '(πb)': 30.0}
+    """
+    from ..plans.scales import scale_point
+
+    mechanism = exercise.mechanism
+    drive = mechanism.drive
+    point = scale_point(mechanism, exercise.plan)
+    length = mechanism.links[drive.link].length(drive.pivot, point)
+    image = point.lower()
+    out = {f"({point_text(drive.pivot)}{point_text(point)})": length / scales["mu_l"]}
+    if scales.get("mu_v"):
+        out[f"(p{image})"] = abs(drive.omega) * length / scales["mu_v"]
+    if scales.get("mu_a"):
+        out[f"(π{image})"] = length * math.hypot(drive.omega ** 2, drive.epsilon) / \
+            scales["mu_a"]
+    return out
+
+
+def drawing_values(exercise: Exercise) -> dict[str, dict[str, float]]:
+    """What a description may quote of the drawing its scales give: ``scales.mu_l`` …
+    and the crank pin's drawn lengths ``drawn.crank`` ((AB), mm), ``drawn.velocity`` ((pb))
+    and ``drawn.acceleration`` ((πb)), so that a task states the lengths its scales draw.
+
+    >>> from planmethod.spec import load_exercise
+    >>> drawing_values(load_exercise("exercises/compressor_slider_crank.toml"))["drawn"]
+    {'crank': 30.0, 'velocity': 30.0, 'acceleration': 30.0}
+    """
+    from ..plans import choose_scales
+
+    scales = choose_scales(exercise).as_dict()
+    lengths = list(drawn_lengths(exercise, scales).values())
+    return {"scales": scales,
+            "drawn": dict(zip(("crank", "velocity", "acceleration"), lengths, strict=False))}
+
+
+def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any],
+                       drawing: Mapping[str, Any] | None = None) -> str:
+    """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values, file keys and
+    the ``drawing``'s values (:func:`drawing_values`); an unknown name is left as written.
 
     Examples
     --------
     >>> format_description("l = {l:.3g} m, {x}", {"l": 0.0612345}, {})
     'l = 0.0612 m, {x}'
+    >>> format_description("(AB) = {drawn.crank:.3g} mm", {}, {}, {"drawn": {"crank": 27.5}})
+    '(AB) = 27.5 mm'
     """
     if not isinstance(text, str):
         return ""
 
     def fill(match: re.Match) -> str:
         name, spec = match.group(1), match.group(2) or ""
-        try:
-            value = _lookup(values, name)
-        except KeyError:
+        for source in (values, data, drawing or {}):
             try:
-                value = _lookup(data, name)
+                value = _lookup(source, name)
+                break
             except KeyError:
-                return match.group(0)
+                continue
+        else:
+            return match.group(0)
         if isinstance(value, Mapping | list):
             return match.group(0)
         try:

@@ -38,8 +38,9 @@ from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
+from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
-from ..vocabulary import PlanKind, link_numbers, number_subscript, symbol
+from ..vocabulary import PlanKind, numbered, subscript, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -149,6 +150,8 @@ class Plan:
     flags: tuple[str, ...] = ()
     precision_mm: float = 0.0
     title: str = ""
+    #: the links' numbers in the course's notation (for printed names; not in the report)
+    numbers: Mapping[str, int] = field(default_factory=dict)
 
     def point(self, label: str) -> np.ndarray:
         return np.asarray(self.points_mm[label], dtype=float)
@@ -177,6 +180,8 @@ class PositionPlan:
     curvature: Mapping[str, dict] = field(default_factory=dict)
     angle: float = 0.0
     title: str = ""
+    #: the links' numbers in the course's notation (for printed names; not in the report)
+    numbers: Mapping[str, int] = field(default_factory=dict)
 
     def as_dict(self) -> dict:
         return {"mu_l": self.mu_l, "points_mm": {k: list(v) for k, v in self.points_mm.items()},
@@ -255,15 +260,15 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
 
     Examples
     --------
-    >>> numbers = {"frame": 1, "AB": 2, "BC": 3, "rocker_EF": 4}
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "rocker_EF": 3}
     >>> course_text("(c@framec) = 29 mm → v_CC@frame = 0.58; omega_BC, omega_rocker_EF",
     ...             numbers)
-    '(c₁c) = 29 mm → v_CC₁ = 0.58; ω₃, ω₄'
+    '(c₀c) = 29 mm → v_CC₀ = 0.58; ω₂, ω₃'
     """
     if "@" in text and numbers:   # a point on a link: its name, the link's number below
         names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
         text = re.sub(rf"@({names})",
-                      lambda match: number_subscript(numbers[match.group(1)]), text)
+                      lambda match: subscript(str(numbers[match.group(1)])), text)
 
     def quantity(match: re.Match) -> str:
         name = match.group(0)
@@ -408,7 +413,7 @@ class _Sheet:
         points = {k: (v if np.ndim(v) == 2 else (float(v[0]), float(v[1])))
                   for k, v in self.points.items()}    # copies of a drawing: (N, 2) each
         return Plan(self.kind, self.pole, self.scale, self.unit, points, tuple(self.steps),
-                    tuple(self.flags), self.precision, title)
+                    tuple(self.flags), self.precision, title, self.numbers)
 
 
 def _velocity_offset(image: LinkImage, point: np.ndarray, mu_v: float) -> np.ndarray:
@@ -446,7 +451,10 @@ class _Emulator:
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
         #: what a group kind's own drawing keeps between its velocity and acceleration plans
         self.memo: dict = {}
-        numbers = link_numbers(self.mechanism.moving_links, self.mechanism.drive.link, FRAME)
+        numbers = course_numbers(self.mechanism)
+        #: the drive's symbols follow the crank's number (ω₁ by default)
+        self.crank_symbols = {letter: numbered(letter, numbers[self.mechanism.drive.link])
+                              for letter in ("φ", "ω", "ε")}
         self.v = _Sheet(PlanKind.VELOCITY, "p", scales.mu_v, "(m/s)/mm", precision, min_angle,
                         perturb, record, numbers, turn)
         self.a = _Sheet(PlanKind.ACCELERATION, "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
@@ -551,6 +559,7 @@ class _Emulator:
     # -- drive ---------------------------------------------------------------------------------
     def drive(self) -> None:
         drive, scales = self.mechanism.drive, self.scales
+        crank = self.crank_symbols
         pivot = self.where(drive.link, drive.pivot)
         point = self.where(drive.link, scales.scale_point)
         radius = point - pivot
@@ -570,9 +579,9 @@ class _Emulator:
         b_vector = (unit(v_b) * pinned if pinned and omega else v_b / scales.mu_v)
         self.v.lay_off(pole_v, b_v, b_vector, component="absolute",
                        vector=f"v_{scales.scale_point}",
-                       text=f"v_{scales.scale_point} = ω1·l_{drive.pivot}{scales.scale_point} = "
-                            f"{abs(omega) * length:.6g} m/s, ⟂ {drive.pivot}"
-                            f"{scales.scale_point} in the sense of ω1")
+                       text=f"v_{scales.scale_point} = {crank['ω']}·l_{drive.pivot}"
+                            f"{scales.scale_point} = {abs(omega) * length:.6g} m/s, ⟂ "
+                            f"{drive.pivot}{scales.scale_point} in the sense of {crank['ω']}")
         self.vimages[drive.link] = LinkImage(pivot, self.v.points[a_label], a_label, omega)
         normal = -omega ** 2 * radius
         tangential = epsilon * perp(radius)
@@ -584,18 +593,19 @@ class _Emulator:
         if epsilon == 0:
             self.a.lay_off(pole_a, b_a, normal * factor, component="normal",
                            vector=f"a_{point_name}",
-                           text=f"a_{point_name} = aⁿ = ω1²·l = {omega ** 2 * length:.6g} m/s², "
-                                f"from {point_name} towards {drive.pivot}")
+                           text=f"a_{point_name} = aⁿ = {crank['ω']}²·l = "
+                                f"{omega ** 2 * length:.6g} m/s², from {point_name} towards "
+                                f"{drive.pivot}")
         else:
             n_label = f"n_{point_name}{drive.pivot}"
             self.a.lay_off(pole_a, n_label, normal * factor, component="normal",
                            vector=f"aⁿ_{point_name}{drive.pivot}",
-                           text=f"aⁿ = ω1²·l = {omega ** 2 * length:.6g} m/s², from "
-                                f"{point_name} towards {drive.pivot}")
+                           text=f"aⁿ = {crank['ω']}²·l = {omega ** 2 * length:.6g} m/s², "
+                                f"from {point_name} towards {drive.pivot}")
             self.a.lay_off(n_label, b_a, tangential * factor, component="tangential",
                            vector=f"aᵗ_{point_name}{drive.pivot}",
-                           text=f"aᵗ = ε1·l = {abs(epsilon) * length:.6g} m/s², ⟂ "
-                                f"{drive.pivot}{point_name} in the sense of ε1")
+                           text=f"aᵗ = {crank['ε']}·l = {abs(epsilon) * length:.6g} m/s², ⟂ "
+                                f"{drive.pivot}{point_name} in the sense of {crank['ε']}")
         a_pivot = self.label(drive.pivot, self.a)
         self.aimages[drive.link] = LinkImage(pivot, self.a.points[a_pivot], a_pivot, omega,
                                              epsilon)
@@ -795,7 +805,8 @@ def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: fl
                        "direction_deg": direction})
     drive = mechanism.drive
     return PositionPlan(scales.mu_l, points, links, pivots, tuple(slides),
-                        (drive.link, drive.pivot, drive.omega), {}, angle, mechanism.title)
+                        (drive.link, drive.pivot, drive.omega), {}, angle, mechanism.title,
+                        course_numbers(mechanism))
 
 
 def _curvature_readings(emulator: _Emulator, point: str,
@@ -1034,9 +1045,10 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         s.key for s in mechanism.slides if s.link in motion.links and s.along in motion.links)
     for key in sliding:
         _sliding_readings(emulator, key, acceleration)
-    velocity_plan = emulator.v.finish(f"{mechanism.title} — velocity plan, φ = {angle:g}°")
+    phi = emulator.crank_symbols["φ"]
+    velocity_plan = emulator.v.finish(f"{mechanism.title} — velocity plan, {phi} = {angle:g}°")
     acceleration_plan = (emulator.a.finish(f"{mechanism.title} — acceleration plan, "
-                                           f"φ = {angle:g}°") if acceleration else None)
+                                           f"{phi} = {angle:g}°") if acceleration else None)
     flags = tuple(velocity_plan.flags) + (tuple(acceleration_plan.flags)
                                           if acceleration_plan else ())
     return Plans(exercise, angle, scales, position_plan, velocity_plan, acceleration_plan,

@@ -5,7 +5,9 @@ scale set by a length is the value of the standard series (mantissa 1, 1.5, 2, 2
 7.5 × 10ᵏ, :func:`standard`) nearest to what the length asks — μl ≈ l_AB/(AB), μv ≈ v_B/(pb),
 μa ≈ a_B/(πb) — and the drawn length then follows from the scale, as course guides ask. At the
 crank scale (all three lengths equal: the textbook's (pb) = (πb) = (AB)) μl is standard and
-μv = ω1·μl, μa = μl·√(ω1⁴ + ε1²) follow from it exactly. ``exact_mm = true`` in ``[plan]`` keeps
+μv = ω1·μl, μa = ω1²·μl follow from it exactly; with ε1 ≠ 0 the crank pin's acceleration is
+longer than ω1²·l_AB, and μa is the standard value nearest a_B/(πb) (the crank's acceleration
+then drawn at its true length at that scale). ``exact_mm = true`` in ``[plan]`` keeps
 the lengths exactly as written (the scales then follow from them unrounded); a ``mu_*`` given is
 used as it is. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
 U. A. Abduvaliev and J. U. Abduxoshimov, "Kinematic study of a four-link mechanism for the
@@ -28,7 +30,7 @@ from dataclasses import dataclass
 
 from ..errors import SpecError
 from ..model import Exercise, Mechanism, PlanSettings
-from ..vocabulary import SCALES
+from ..vocabulary import scale_text
 
 __all__ = ["STANDARD_MANTISSAS", "Scales", "choose_scales", "scale_point", "standard"]
 
@@ -89,19 +91,13 @@ class Scales:
 
     def describe(self) -> list[str]:
         """The scales as printed on a drawing, with units."""
-        lines = [_scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
+        lines = [scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
         if self.omega1:
             lines += [f"μφv = μv/ω1 = {self.mu_phi_v:.6g} m/mm",
                       f"μφa = μa/ω1² = {self.mu_phi_a:.6g} m/mm"]
         if self.mu_f is not None:
-            lines.append(_scale_text("mu_f", self.mu_f))
+            lines.append(scale_text("mu_f", self.mu_f))
         return lines
-
-
-def _scale_text(name: str, value: float) -> str:
-    """``μv = 0.2 (m/s)/mm``: a scale as printed, with its unit."""
-    symbol, unit = SCALES[name]
-    return f"{symbol} = {value:.6g} {unit}"
 
 
 def scale_point(mechanism: Mechanism, settings: PlanSettings) -> str:
@@ -159,7 +155,8 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
     mu_a = pick(settings.mu_a, settings.acceleration_mm, a_b, "mu_a", "the acceleration")
     if crank_scale:   # (pb) = (πb) = (AB): μv and μa follow from the standard μl exactly
         mu_v = abs(drive.omega) * mu_l
-        mu_a = math.hypot(drive.omega ** 2, drive.epsilon) * mu_l
+        # with ε1 ≠ 0 that μa would be no value a student picks: the standard one instead
+        mu_a = drive.omega ** 2 * mu_l if drive.epsilon == 0 else standard(mu_a)
     else:
         mu_v, mu_a = rounded(settings.mu_v, mu_v), rounded(settings.mu_a, mu_a)
     return Scales(mu_l, mu_v, mu_a, drive.omega, point, settings.mu_f)

@@ -2,7 +2,8 @@
 
 * :func:`animated_svg` puts the project's own drawings of every frame side by side and shows
   one frame at a time with a CSS animation (no script; it plays in browsers and in slide
-  programs that show SVG).
+  programs that show SVG). It is drawn on the one canvas (:mod:`planmethod.render.canvas`),
+  which nests each drawing whole.
 * :func:`raster_frames` draws the mechanism and its plans from the plans' data with matplotlib
   (``Figure`` and ``FigureCanvasAgg``, never pyplot), with axes fixed over the whole turn so that
   nothing jumps; :func:`save_gif` writes them through Pillow and :func:`save_mp4` through
@@ -10,21 +11,25 @@
 
 Examples
 --------
->>> svg = animated_svg([['<svg viewBox="0 0 10 10"><circle r="1"/></svg>'],
-...                     ['<svg viewBox="0 0 10 10"><circle r="2"/></svg>']], seconds=2)
+>>> from planmethod.render.canvas import Canvas
+>>> def disc(radius):
+...     canvas = Canvas()
+...     canvas.circle((0.0, 0.0), radius, fill="#000000")
+...     return canvas.svg("a disc")
+>>> svg = animated_svg([[disc(1.0)], [disc(2.0)]], seconds=2)
 >>> svg.count('class="frame"'), "@keyframes" in svg
 (2, True)
 """
 
 from __future__ import annotations
 
-import re
 import subprocess
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from ..vocabulary import PlanKind
+from ..vocabulary import PlanKind, numbered
+from .canvas import Canvas, SvgFigure
 from .style import num
 
 __all__ = ["animated_svg", "raster_frames", "save_gif", "save_mp4"]
@@ -32,51 +37,25 @@ __all__ = ["animated_svg", "raster_frames", "save_gif", "save_mp4"]
 #: the size (px) of one drawing in an animated SVG
 CELL_WIDTH, CELL_HEIGHT = 520.0, 480.0
 
-_ROOT = re.compile(r"<svg\b([^>]*)>(.*)</svg>", re.DOTALL)
-_VIEW_BOX = re.compile(r'viewBox="([^"]*)"')
-_TITLE = re.compile(r"<title>.*?</title>", re.DOTALL)
 
-
-def _nested(svg: str, x: float) -> str:
-    """A drawing as an ``<svg>`` element placed at ``x`` in a cell of the animation."""
-    found = _ROOT.search(svg)
-    if found is None:
-        raise ValueError("not an SVG drawing")
-    view = _VIEW_BOX.search(found.group(1))
-    view_box = f' viewBox="{view.group(1)}"' if view else ""
-    body = _TITLE.sub("", found.group(2), count=1).strip()
-    return (f'<svg x="{num(x)}" y="0" width="{num(CELL_WIDTH)}" height="{num(CELL_HEIGHT)}"'
-            f'{view_box}>\n{body}\n</svg>')
-
-
-def animated_svg(frames: Sequence[Sequence[str]], *, seconds: float = 6.0,
+def animated_svg(frames: Sequence[Sequence[SvgFigure]], *, seconds: float = 6.0,
                  title: str = "") -> str:
-    """One SVG that shows ``frames`` (each a row of SVG drawings) in turn, looping, one full
+    """One SVG that shows ``frames`` (each a row of drawings) in turn, looping, one full
     turn in ``seconds``."""
     count = len(frames)
     columns = max(len(row) for row in frames)
     width, height = CELL_WIDTH * columns, CELL_HEIGHT
     share = 100.0 / count
     duration = seconds / count
-    parts = ['<?xml version="1.0" encoding="utf-8"?>',
-             f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{num(width)}" '
-             f'height="{num(height)}" viewBox="0 0 {num(width)} {num(height)}">',
-             f"<title>{_escape(title)}</title>" if title else "",
-             "<style>.frame{visibility:hidden;animation:planmethod-turn "
-             f"{num(seconds)}s step-end infinite}}"
-             f"@keyframes planmethod-turn{{0%{{visibility:visible}}"
-             f"{share:.6g}%{{visibility:hidden}}100%{{visibility:hidden}}}}</style>",
-             f'<rect width="{num(width)}" height="{num(height)}" fill="#ffffff"/>']
+    page = Canvas()
+    page.style_sheet(f".frame{{visibility:hidden;animation:planmethod-turn {num(seconds)}s "
+                     f"step-end infinite}}@keyframes planmethod-turn{{0%{{visibility:visible}}"
+                     f"{share:.6g}%{{visibility:hidden}}100%{{visibility:hidden}}}}")
     for number, row in enumerate(frames):
-        parts.append(f'<g class="frame" style="animation-delay:{number * duration:.6g}s">')
-        parts += [_nested(svg, CELL_WIDTH * column) for column, svg in enumerate(row)]
-        parts.append("</g>")
-    parts.append("</svg>")
-    return "\n".join(part for part in parts if part) + "\n"
-
-
-def _escape(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+        page.nest([(figure, (CELL_WIDTH * column, 0.0), (CELL_WIDTH, CELL_HEIGHT))
+                   for column, figure in enumerate(row)],
+                  css="frame", style=f"animation-delay:{number * duration:.6g}s")
+    return page.svg(title, view=(0.0, 0.0, width, height)).svg
 
 
 def _limits(points: Sequence[Sequence[float]]) -> tuple[float, float, float, float]:
@@ -123,7 +102,9 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
             ax.set_yticks([])
             if kind == PlanKind.POSITION:
                 _draw_mechanism(ax, plans.position)
-                ax.set_title(f"φ₁ = {plans.position.angle:g}°", fontsize=10)
+                crank = plans.position.numbers.get(plans.position.drive[0], 1)
+                ax.set_title(f"{numbered('φ', crank)} = {plans.position.angle:g}°",
+                             fontsize=10)
             else:
                 _draw_plan(ax, getattr(plans, kind))
                 ax.set_title(f"{kind} plan", fontsize=10)

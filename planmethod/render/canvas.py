@@ -17,10 +17,10 @@ Examples
 >>> canvas.line(canvas.px((0, 0)), canvas.px((50, 0)), color="#000000", width=1.0)
 >>> canvas.request(("B",), canvas.px((50, 0)), (("B", RunKind.MAIN),))
 >>> canvas.place()
->>> drawing = canvas.svg("a bar")
->>> drawing.svg.startswith("<?xml") and "<title>a bar</title>" in drawing.svg
+>>> figure = canvas.svg("a bar")
+>>> figure.svg.startswith("<?xml") and "<title>a bar</title>" in figure.svg
 True
->>> [label.text for label in drawing.labels]
+>>> [label.text for label in figure.labels]
 ['B']
 """
 
@@ -32,6 +32,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
+from ..vectors import norm, perp, unit_angle, unit_or_zero
 from .labels import (
     SMALL_RUNS,
     UPRIGHT_RUNS,
@@ -60,18 +63,16 @@ from .style import (
 
 __all__ = [
     "Canvas",
-    "Drawing",
     "Point",
+    "SvgFigure",
     "arrowhead",
-    "difference",
     "fit_zoom",
+    "formula_runs",
     "page_direction",
+    "page_point",
     "points_attribute",
     "round_scale_value",
     "scale_bar",
-    "translate",
-    "unit_vector",
-    "vector_length",
 ]
 
 #: the family of monospaced text (tables on task sheets)
@@ -80,52 +81,49 @@ MONO_FAMILY = "DejaVu Sans Mono, monospace"
 #: margin (px) round the whole figure
 MARGIN = 14.0
 
-Point = tuple[float, float]
+#: a point on the page (px, y down): a pair of numbers, or an array (2,) for vector arithmetic
+Point = Sequence[float]
 
 #: one element a line (diff-friendly), never inside a <text>: its tspans stay together
 _ONE_PER_LINE = re.compile(r"><(/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
-                           r"title\b|defs\b|/svg\b)")
+                           r"title\b|defs\b|/?svg\b|style\b)")
 
 
 @dataclass(frozen=True)
-class Drawing:
-    """An SVG figure and its layout: the text, its size (px), the placed labels and the
-    numbers of the construction steps drawn as arrows."""
+class SvgFigure:
+    """A figure written as SVG: its text, its size (px), the placed labels, the numbers of the
+    construction steps drawn as arrows, and what it is made of — its viewBox and its elements
+    (definitions, then the layers) — so that another figure can hold it whole
+    (:meth:`Canvas.nest`)."""
 
     svg: str
     width: float
     height: float
     labels: tuple[PlacedLabel, ...]
     arrow_steps: tuple[int, ...]
+    view: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+    elements: tuple = ()
 
 
-
-def difference(p: Point, q: Point) -> Point:
-    return (p[0] - q[0], p[1] - q[1])
-
-
-def translate(p: Point, q: Point, factor: float = 1.0) -> Point:
-    return (p[0] + factor * q[0], p[1] + factor * q[1])
-
-
-def vector_length(v: Point) -> float:
-    return math.hypot(v[0], v[1])
-
-
-def unit_vector(v: Point) -> Point:
-    length = vector_length(v)
-    return (v[0] / length, v[1] / length) if length else (0.0, 0.0)
-
-
-def page_direction(degrees: float) -> Point:
+def page_direction(degrees: float) -> np.ndarray:
     """A direction given in degrees counter-clockwise from +x, on the page (y down)."""
-    return (math.cos(math.radians(degrees)), -math.sin(math.radians(degrees)))
+    return unit_angle(-math.radians(degrees))
+
+
+def page_point(xy: Sequence[float]) -> np.ndarray:
+    """A point or a direction on the page as an array (for the vector arithmetic of
+    :mod:`planmethod.vectors`)."""
+    return np.asarray(xy, dtype=float)
+
+
+def _pair(xy: Point) -> tuple[float, float]:
+    """A point as two Python floats (an array's numbers cost more to write)."""
+    return (float(xy[0]), float(xy[1]))
 
 
 def points_attribute(points: Sequence[Point]) -> list[tuple[float, float]]:
     """Points rounded as written (svgwrite formats the list)."""
     return [(float(num(x)), float(num(y))) for x, y in points]
-
 
 
 def round_scale_value(value: float) -> float:
@@ -137,6 +135,9 @@ def round_scale_value(value: float) -> float:
     return 10.0 ** exponent  # pragma: no cover
 
 
+#: the room (px) other labels keep from a point's mark, so that no label reads as another
+#: point's (where points crowd closer than that, an enlarged detail shows them)
+KEEP_CLEAR = 5.0
 
 #: the side of the square whose area is a round mark's (its 16-gon's), per unit of radius
 _ROUND_MARK = math.sqrt(8.0 * math.sin(math.pi / 8.0))
@@ -163,8 +164,9 @@ class Canvas:
         self.labels: tuple[PlacedLabel, ...] = ()
 
     # coordinates
-    def px(self, xy: Sequence[float]) -> Point:
-        return (float(xy[0]) * self.zoom, -float(xy[1]) * self.zoom)
+    def px(self, xy: Sequence[float]) -> np.ndarray:
+        """A drawing's point (mm, y up) on the page (px, y down)."""
+        return np.array((float(xy[0]) * self.zoom, -float(xy[1]) * self.zoom))
 
     def grow(self, *points: Point) -> None:
         for x, y in points:
@@ -179,6 +181,7 @@ class Canvas:
     def line(self, p: Point, q: Point, *, color: str, width: float, dash: str | None = None,
              layer: str = "construction", obstacle: bool = True, cap: str = "butt",
              css: str | None = None, data: dict | None = None) -> None:
+        p, q = _pair(p), _pair(q)
         attrs = {"x1": num(p[0]), "y1": num(p[1]), "x2": num(q[0]), "y2": num(q[1]),
                  "stroke": color, "stroke-width": num(width)}
         if dash:
@@ -190,13 +193,14 @@ class Canvas:
         attrs.update(data or {})
         self.add(layer, "line", attrs)
         self.grow(p, q)
-        if obstacle and vector_length(difference(q, p)) > 0:
+        if obstacle and (p[0] != q[0] or p[1] != q[1]):
             self.obstacle_lines.append((p, q))
 
     def polyline(self, points: Sequence[Point], *, color: str, width: float,
                  dash: str | None = None, layer: str = "marks", obstacle: bool = True,
                  fill: str = "none", closed: bool = False, css: str | None = None,
                  data: dict | None = None) -> None:
+        points = [_pair(point) for point in points]
         attrs = {"points": points_attribute(points), "fill": fill, "stroke": color,
                  "stroke-width": num(width), "stroke-linejoin": "round"}
         if dash:
@@ -211,18 +215,23 @@ class Canvas:
 
     def circle(self, centre: Point, radius: float, *, fill: str, stroke: str = "none",
                width: float = 0.0, layer: str = "points", area: bool = True,
-               css: str | None = None) -> None:
+               css: str | None = None, points: Sequence[str] = ()) -> None:
+        """A circle; the mark of the named ``points`` if any (written in ``data-points``):
+        other points' labels then keep :data:`KEEP_CLEAR` px from it."""
+        centre = _pair(centre)
         attrs = {"cx": num(centre[0]), "cy": num(centre[1]), "r": num(radius), "fill": fill}
         if stroke != "none":
             attrs |= {"stroke": stroke, "stroke-width": num(width)}
         if css:
             attrs["class"] = css
+        if points:
+            attrs["data-points"] = " ".join(points)
         self.add(layer, "circle", attrs)
         self.grow((centre[0] - radius, centre[1] - radius),
                   (centre[0] + radius, centre[1] + radius))
         if area:
-            # a round mark as the square of the area of its 16-gon
-            half = _ROUND_MARK * radius / 2
+            # a round mark as the square of the area of its 16-gon (a point's, with room)
+            half = _ROUND_MARK * radius / 2 + (KEEP_CLEAR if points else 0.0)
             self.obstacle_areas.append((centre[0] - half, centre[1] - half, centre[0] + half,
                                         centre[1] + half))
 
@@ -230,23 +239,24 @@ class Canvas:
               color: str | None = None, css: str | None = None) -> bool:
         """A vector from p to q with its head at q; False if too short to draw."""
         style = STYLES[style_key]
-        vector = difference(q, p)
-        length = vector_length(vector)
+        p, q = page_point(p), page_point(q)
+        length = float(norm(q - p))
         if length < 0.5:
             return False
         color = color or style.color
-        u = unit_vector(vector)
-        n = (-u[1], u[0])
+        u = unit_or_zero(q - p, length)
+        n = perp(u)
         head = min(style.head, 0.55 * length)
         half = head * 0.36
-        base = translate(q, u, -head)
-        shaft_end = translate(q, u, -0.75 * head)
+        base = q - head * u
+        shaft_end = _pair(q - 0.75 * head * u)
+        wings = [_pair(base + half * n), _pair(base - half * n)]
+        p, q = _pair(p), _pair(q)
         line = {"x1": num(p[0]), "y1": num(p[1]), "x2": num(shaft_end[0]),
                 "y2": num(shaft_end[1]), "stroke": color, "stroke-width": num(style.width)}
         if style.dash:
             line["stroke-dasharray"] = style.dash
-        tip = {"points": points_attribute([q, translate(base, n, half), translate(base, n, -half)]),
-               "fill": color}
+        tip = {"points": points_attribute([q, *wings]), "fill": color}
         group = {"class": f"arrow {css or style_key}"}
         if step is not None:
             group["data-step"] = str(step)
@@ -266,22 +276,76 @@ class Canvas:
         if css:
             attrs["class"] = css
         self.add(layer, "rect", attrs)
-        self.grow(corner, translate(corner, size))
+        self.grow(corner, (corner[0] + size[0], corner[1] + size[1]))
 
     def define(self, tag: str, attrs: dict[str, Any], children: list | None = None) -> None:
         """An element of ``<defs>`` (a pattern, a marker), written before the layers."""
         self.definitions.append((tag, attrs, children or []))
 
+    def grid_pattern(self, ident: str, step: float, *, color: str, width: float) -> str:
+        """A square grid of ``step`` as a pattern of ``<defs>``; returns the fill that paints
+        with it (``url(#ident)``)."""
+        self.define("pattern", {"id": ident, "width": num(step), "height": num(step),
+                                "patternUnits": "userSpaceOnUse"},
+                    [("path", {"d": f"M {num(step)} 0 L 0 0 0 {num(step)}", "fill": "none",
+                               "stroke": color, "stroke-width": num(width)}, [])])
+        return f"url(#{ident})"
+
+    def style_sheet(self, css: str) -> None:
+        """A ``<style>`` sheet of the figure (an animation's keyframes), in ``<defs>``."""
+        self.definitions.append(("style", {}, [css]))
+
+    def nest(self, figures: Sequence[tuple[SvgFigure, Point, Point]], *, layer: str = "ground",
+             css: str, style: str | None = None) -> None:
+        """A group of whole figures (each with its own viewBox, its background and its
+        elements), each in the box ``(figure, corner, size)`` of this page."""
+        cells = []
+        for figure, corner, size in figures:
+            x0, y0, width, height = figure.view
+            cells.append(("svg", {"x": num(corner[0]), "y": num(corner[1]),
+                                  "width": num(size[0]), "height": num(size[1]),
+                                  "viewBox": f"{num(x0)} {num(y0)} {num(width)} {num(height)}"},
+                          list(figure.elements)))
+            self.grow(corner, (corner[0] + size[0], corner[1] + size[1]))
+        attrs = {"class": css}
+        if style:
+            attrs["style"] = style
+        self.add(layer, "g", attrs, cells)
+
+    def clipped(self, other: Canvas, box: Sequence[float], offset: Point, *,
+                layers: Sequence[str], css: str, ident: str) -> None:
+        """Another canvas's ``layers`` drawn on this one, moved by ``offset`` and clipped to
+        ``box`` (x0, y0, x1, y1 in the other canvas's px) — an enlarged detail."""
+        x0, y0, x1, y1 = box
+        self.define("clipPath", {"id": ident}, [
+            ("rect", {"x": num(x0), "y": num(y0), "width": num(x1 - x0),
+                      "height": num(y1 - y0)}, [])])
+        drawing = [("g", {"class": name}, items) for name, items in other.layers.items()
+                   if items and name in layers]
+        self.add("points", "g", {"class": css, "clip-path": f"url(#{ident})",
+                                 "transform": _move(offset)}, drawing)
+
+    def moved(self, items: Mapping[str, Sequence], offset: Point, *, css: str) -> None:
+        """Elements of another canvas (``{layer name: its elements}``) drawn on this one's
+        labels, moved by ``offset`` and not clipped (labels kept whole)."""
+        self.add("labels", "g", {"class": css, "transform": _move(offset)},
+                 [("g", {"class": name}, list(elements)) for name, elements in items.items()])
+
     def text(self, xy: Point, text: str, *, size: float = TEXT_SIZE, color: str = INK,
              anchor: str = "start", bold: bool = False, css: str = "note",
              layer: str = "text", area: bool = True, family: str = TEXT_FAMILY,
-             italic: bool = False, monospace: bool = False) -> float:
-        """Fixed text (sans, or monospaced with its spaces kept); returns its width."""
+             italic: bool = False, monospace: bool = False, formula: bool = False) -> float:
+        """Fixed text (sans, or monospaced with its spaces kept); returns its width. A
+        ``formula`` sets what follows an underscore as a subscript (``a_B₃`` → a with B₃
+        below, :func:`formula_runs`)."""
+        font = SANS_BOLD if bold else SANS
+        runs = formula_runs(text) if formula else [(text, False)]
         if monospace:
             family = MONO_FAMILY
             width = 0.6 * size * len(text)
         else:
-            width = text_width(text, size, SANS_BOLD if bold else SANS)
+            width = sum(text_width(part, size * SUB_SCALE if small else size, font)
+                        for part, small in runs)
         attrs = {"x": num(xy[0]), "y": num(xy[1]), "font-family": family,
                  "font-size": num(size), "fill": color, "class": css}
         if bold:
@@ -292,7 +356,19 @@ class Canvas:
             attrs["text-anchor"] = anchor
         if monospace:
             attrs["xml:space"] = "preserve"
-        self.add(layer, "text", attrs, [text])
+        if len(runs) > 1:
+            children: list = [runs[0][0]] if not runs[0][1] else []
+            shift = 0.0
+            for part, small in runs[1 if children else 0:]:
+                target = SUB_SHIFT * size if small else 0.0
+                span: dict[str, str] = {"dy": num(target - shift)} if target != shift else {}
+                if small:
+                    span["font-size"] = num(size * SUB_SCALE)
+                shift = target
+                children.append(("tspan", span, [part]))
+            self.add(layer, "text", attrs, children)
+        else:
+            self.add(layer, "text", attrs, [text])
         left = xy[0] - (width if anchor == "end" else width / 2 if anchor == "middle" else 0)
         self.grow((left, xy[1] - 0.8 * size), (left + width, xy[1] + 0.25 * size))
         if area:
@@ -300,9 +376,42 @@ class Canvas:
                                         xy[1] + 0.25 * size))
         return width
 
+    def table(self, at: Point, rows: Sequence[Sequence[str]], *, header: Sequence[str],
+              right: Sequence[bool] = (), size: float = TEXT_SIZE, css: str = "table",
+              title: str = "") -> float:
+        """A table set at ``size`` (the figure's normal text), top-left at ``at``: an
+        optional bold ``title``, a bold header, a rule, one row a line; the columns flagged
+        in ``right`` (numbers) are aligned right. Cells are formulas (``F_b`` → F with b
+        below). Returns the y (px) under its last row."""
+        x, y = at
+        columns = len(header)
+        cells = [list(header)] + [list(row) + [""] * (columns - len(row)) for row in rows]
+        widths = [max(sum(text_width(part, size * SUB_SCALE if small else size,
+                                     SANS_BOLD if index == 0 else SANS)
+                          for part, small in formula_runs(row[column]))
+                      for index, row in enumerate(cells)) for column in range(columns)]
+        gap = 1.2 * size
+        if title:
+            self.text((x, y), title, size=size, bold=True, css=css, area=False, formula=True)
+            y += 1.6 * size
+        for index, row in enumerate(cells):
+            left = x
+            for column, cell in enumerate(row):
+                aligned = column < len(right) and right[column]
+                self.text((left + widths[column] if aligned else left, y), cell, size=size,
+                          bold=index == 0, css=css, anchor="end" if aligned else "start",
+                          area=False, formula=True)
+                left += widths[column] + gap
+            if index == 0:
+                self.line((x, y + 0.45 * size), (left - gap, y + 0.45 * size), color=INK,
+                          width=0.6, layer="text", obstacle=False, css="rule")
+            y += 1.5 * size
+        return y
+
     def request(self, points: tuple[str, ...], anchor: Point, runs: tuple[Run, ...], *,
                 size: float = LABEL_SIZE, mark: float = 3.0, css: str = "label") -> None:
-        self.requests.append(LabelRequest(points, anchor, runs, size, mark, css))
+        self.requests.append(LabelRequest(points, (float(anchor[0]), float(anchor[1])), runs,
+                                          size, mark, css))
 
     # labels
     def place(self) -> None:
@@ -322,8 +431,8 @@ class Canvas:
 
     # output
     def svg(self, title: str, *, view: tuple[float, float, float, float] | None = None,
-            unit: str = "", attributes: Mapping[str, str] | None = None) -> Drawing:
-        """The SVG text of everything drawn, as a :class:`Drawing`.
+            unit: str = "", attributes: Mapping[str, str] | None = None) -> SvgFigure:
+        """The SVG text of everything drawn, as an :class:`SvgFigure`.
 
         ``view`` fixes the viewBox ``(x, y, width, height)`` (default: what was drawn plus a
         margin); ``unit`` is appended to the width and height (``"mm"`` prints at scale);
@@ -362,8 +471,19 @@ class Canvas:
                     _append(group, item)
         body = _ONE_PER_LINE.sub(r">\n<\1", ElementTree.tostring(root, encoding="unicode"))
         text = '<?xml version="1.0" encoding="utf-8"?>\n' + body + "\n"
-        return Drawing(text, float(num(width)), float(num(height)), self.labels,
-                       tuple(self.arrow_steps))
+        background = ("rect", {"x": num(x0), "y": num(y0), "width": num(width),
+                               "height": num(height), "fill": "#ffffff",
+                               "class": "background"}, [])
+        elements = ((("defs", {}, list(self.definitions)),) if self.definitions else ()) + (
+            background,) + tuple(("g", {"class": name}, self.layers[name])
+                                 for name in _LAYERS if self.layers[name])
+        return SvgFigure(text, float(num(width)), float(num(height)), self.labels,
+                         tuple(self.arrow_steps), (float(x0), float(y0), float(width),
+                                                   float(height)), elements)
+
+
+def _move(offset: Point) -> str:
+    return f"translate({num(offset[0])},{num(offset[1])})"
 
 
 #: the attributes svgwrite gives an element of these tags before its own
@@ -385,11 +505,35 @@ def _append(parent, item) -> None:
         attrs["points"] = " ".join("%s,%s" % point for point in attrs["points"])  # noqa: UP031
     values = ((key, str(value)) for key, value in sorted(attrs.items()) if value is not None)
     element = ElementTree.SubElement(parent, tag, {key: value for key, value in values if value})
-    if tag in ("text", "tspan"):
+    if tag in ("text", "tspan", "style"):
         element.text = "".join(child for child in children if isinstance(child, str))
     for child in children:
         if not isinstance(child, str):
             _append(element, child)
+
+
+#: subscript digits inside a subscript are set as plain digits (the run is set small)
+_PLAIN_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+#: a subscript in a formula: what follows an underscore up to a space, a sign or a bracket
+_SUBSCRIPT_RUN = re.compile(r"_([^\s=+−·×,;:()/]+)")
+
+
+def formula_runs(text: str) -> list[tuple[str, bool]]:
+    """A formula's runs: (text, set as a subscript).
+
+    >>> formula_runs("a_B₃ = a_B + aᵏ_B₃")
+    [('a', False), ('B3', True), (' = a', False), ('B', True), (' + aᵏ', False), ('B3', True)]
+    """
+    runs: list[tuple[str, bool]] = []
+    at = 0
+    for match in _SUBSCRIPT_RUN.finditer(text):
+        if match.start() > at:
+            runs.append((text[at:match.start()], False))
+        runs.append((match.group(1).translate(_PLAIN_DIGITS), True))   # already set small
+        at = match.end()
+    if at < len(text):
+        runs.append((text[at:], False))
+    return runs
 
 
 def _label_attrs(label: PlacedLabel, color: str) -> dict[str, str]:
@@ -420,10 +564,11 @@ def _label_spans(label: PlacedLabel) -> list:
 def arrowhead(figure: Canvas, tip: Point, direction: Point, size: float, color: str,
                layer: str) -> None:
     """A filled arrowhead at ``tip`` pointing along the page direction ``direction``."""
-    n = (-direction[1], direction[0])
-    base = translate(tip, direction, -size)
+    tip, direction = page_point(tip), page_point(direction)
+    n = perp(direction)
+    base = tip - size * direction
     figure.add(layer, "polygon", {"points": points_attribute(
-        [tip, translate(base, n, 0.36 * size), translate(base, n, -0.36 * size)]), "fill": color})
+        [tip, base + 0.36 * size * n, base - 0.36 * size * n]), "fill": color})
 
 
 

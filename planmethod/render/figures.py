@@ -15,9 +15,11 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from .force_svg import force_files
+from .steady import SteadyView
 from .svg import lever_svg, plan_svg, position_svg
 
 if TYPE_CHECKING:
@@ -27,17 +29,25 @@ __all__ = ["plan_files"]
 
 
 def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
-               loaded: bool = True) -> dict[str, str]:
+               loaded: bool = True, views: Mapping[str, SteadyView] | None = None
+               ) -> dict[str, str]:
     """Every drawing of one crank angle: ``{"position.svg": …, "velocity.svg": …,
     "acceleration.svg": … (if drawn), "lever.svg": …}`` plus the force drawings if
     ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given.
     ``details`` draws the enlarged details of dense plan regions, ``loaded`` the loaded
-    mechanism (a page of many frames, the workbook, leaves both out)."""
-    files = {"position.svg": position_svg(plans.position, plans=plans),
-             "velocity.svg": plan_svg(plans.velocity, details=details)}
+    mechanism (a page of many frames, the workbook, leaves both out); ``views``
+    (:func:`planmethod.render.steady.steady_views`, by panel) keep each panel's zoom and page
+    the same at every angle of a turn."""
+    views = views or {}
+    files = {"position.svg": position_svg(plans.position, plans=plans,
+                                          view=views.get("position")),
+             "velocity.svg": plan_svg(plans.velocity, details=details,
+                                      view=views.get("velocity"))}
     if plans.acceleration is not None:
-        files["acceleration.svg"] = plan_svg(plans.acceleration, details=details)
-    files["lever.svg"] = lever_svg(plans)
+        files["acceleration.svg"] = plan_svg(plans.acceleration, details=details,
+                                             view=views.get("acceleration"))
+    files["lever.svg"] = lever_svg(plans, view=views.get("lever"))
     if forces is not None:
-        files.update(force_files(forces, plans, loaded=loaded))
+        files.update(force_files(forces, plans, loaded=loaded, details=details,
+                                 views=views or None))
     return files

@@ -32,24 +32,40 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from ..plans.scales import standard
-from ..vocabulary import AppliedKind, EdgeKind, GroupKind, PlanKind
-from .canvas import Canvas, difference, fit_zoom, translate
+from ..vectors import cross, dot, norm, perp, unit
+from ..vocabulary import (
+    SCALES,
+    AppliedKind,
+    EdgeKind,
+    GroupKind,
+    PlanKind,
+    numbered,
+    scale_text,
+    subscript,
+)
+from .canvas import Canvas, fit_zoom
+from .details import detail_insets, detail_regions
 from .labels import RunKind, label_runs
-from .notation import ForceNotation, subscript
-from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, quantity
+from .notation import ForceNotation
+from .steady import SteadyView
+from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, significant
 from .svg import (
     MECHANISM_SIZE,
     PLAN_SIZE,
+    crank_number,
     frame,
     mechanism_content,
     plan_content,
     plan_legend,
     position_zoom,
+    steady_page,
     turning_arrow,
 )
 
@@ -102,50 +118,63 @@ def _totals(edges, vectors):
 
 
 def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
-                notation: ForceNotation | None = None) -> str:
+                notation: ForceNotation | None = None, details: bool = True,
+                view: SteadyView | None = None) -> str:
     """One group's force polygon (see the module docstring); ``index`` picks the crank angle
     of a vectorised solve; ``notation`` prints the forces as a course writes them (R₁₂, G₃),
-    else by their report names."""
-    edges = [edge for edge in group.polygon if float(np.hypot(*edge.vector[index])) > 0]
+    else by their report names. Where short forces crowd their corners, an enlarged detail
+    (with ``details``). ``view`` keeps the force scale, the zoom and the page of every frame of
+    a turn."""
+    if view is not None and view.scale:
+        mu_f = view.scale
+    edges = [edge for edge in group.polygon if float(norm(edge.vector[index])) > 0]
     vectors = [edge.vector[index] / mu_f for edge in edges]
     corners = [np.zeros(2)]
     for vector in vectors:
         corners.append(corners[-1] + vector)
-    figure = Canvas(fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
-    where = [figure.px(c) for c in corners]
     used: dict[str, tuple[str, str | None]] = {}
-    for number, (edge, start, end) in enumerate(zip(edges, where[:-1], where[1:],
-                                                    strict=True)):
-        style, colour = _edge_style(edge)
-        if figure.arrow(start, end, style, layer="components", color=colour,
-                        css=f"force {edge.kind}", step=number + 1):
-            used.setdefault(_legend_key(edge), (style, colour))
-        middle = translate(start, difference(end, start), 0.5)
-        runs = notation.runs(edge.label, edge.link) if notation else _runs(edge.label)
-        figure.request((edge.label,), middle, runs, mark=2.0)
     count = len(edges)
-    for name, first, _ in _totals(edges, vectors):
-        on = edges[first].link
-        after = first + 2  # the corner after the second component (cyclically)
-        start, end = where[first], where[after if after <= count else after - count]
-        if figure.arrow(start, end, "result", layer="results", css="force total"):
-            used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
-            middle = translate(start, difference(end, start), 0.5)
-            figure.request((name,), middle,
-                           notation.runs(name, on) if notation else _runs(name), mark=2.0)
-    figure.circle(where[0], 3.4, fill=INK, css="start")
-    closure = float(np.hypot(*(corners[-1] - corners[0])))
+
+    def content(figure: Canvas) -> None:
+        where = [figure.px(c) for c in corners]
+        for number, (edge, start, end) in enumerate(zip(edges, where[:-1], where[1:],
+                                                        strict=True)):
+            style, colour = _edge_style(edge)
+            if figure.arrow(start, end, style, layer="components", color=colour,
+                            css=f"force {edge.kind}", step=number + 1):
+                used.setdefault(_legend_key(edge), (style, colour))
+            runs = notation.runs(edge.label, edge.link) if notation else _runs(edge.label)
+            figure.request((edge.label,), start + 0.5 * (end - start), runs, mark=2.0)
+        for name, first, _ in _totals(edges, vectors):
+            on = edges[first].link
+            after = first + 2  # the corner after the second component (cyclically)
+            start, end = where[first], where[after if after <= count else after - count]
+            if figure.arrow(start, end, "result", layer="results", css="force total"):
+                used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
+                figure.request((name,), start + 0.5 * (end - start),
+                               notation.runs(name, on) if notation else _runs(name), mark=2.0)
+        figure.circle(where[0], 3.4, fill=INK, css="start")
+
+    figure = Canvas(view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
+    content(figure)
+    where = {f"corner {k}": figure.px(c) for k, c in enumerate(corners[:-1])}
+    regions = detail_regions(figure, where) if details else []
+    closure = float(norm(corners[-1] - corners[0]))
     figure.place()
-    _, y0, x1, _ = figure.extent
+    lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
+    _, y0, x1, _ = view.box if view else figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
     terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
                        for edge in edges)
-    lines = [f"μF = {quantity(mu_f, 6)} N/mm", f"ΣF = 0: {terms} = 0",
+    lines = [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",
              f"the polygon closes to {closure:.2g} mm"]
     lines += [notation.line(step, group.links) if notation else step for step in group.steps]
+    lines += lines_of_details
     lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
-    frame(figure, title, lines, (mu_f, "N", 0.3 * PLAN_SIZE), (), "force")
-    return figure.svg(title).svg
+    frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force",
+          box=view.box if view else None)
+    return figure.svg(title, view=steady_page(view, title, len(lines), "force")
+                      if view else None).svg
 
 
 def _legend_key(edge) -> str:
@@ -160,10 +189,11 @@ def _legend_key(edge) -> str:
                                                                   "external load")
 
 
-def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> None:
+def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> float:
+    """The legend of the forces drawn, top-left at ``at``; returns the y under it."""
     x, y = at
     if not used:
-        return
+        return y
     figure.text((x, y), heading, size=TEXT_SIZE, bold=True, css="legend", area=False)
     y += 8
     for text, (style, colour) in used.items():
@@ -171,12 +201,14 @@ def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> No
         figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour)
         figure.obstacle_lines.pop()
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
+    return y
 
 
-def combined_svg(forces, plans) -> str | None:
+def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None:
     """Aliyev's combined-force construction on the acceleration plan (None without one, and
     None where no gravity acts: with g = 0 the moved pole π′ is π and the construction is the
-    inertia forces alone; see :func:`combined_omitted`)."""
+    inertia forces alone; see :func:`combined_omitted`); ``view`` keeps the zoom and page of
+    every frame of a turn."""
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None:
         return None
@@ -186,14 +218,13 @@ def combined_svg(forces, plans) -> str | None:
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure = Canvas(fit_zoom(list(points.values()) + extra, PLAN_SIZE))
-    plan_content(figure, points, plan.steps, plan.pole)
+    figure = Canvas(view.zoom if view else fit_zoom(list(points.values()) + extra, PLAN_SIZE))
+    plan_content(figure, points, plan.steps, plan.pole, numbers=plan.numbers)
     pole_px, new_px = figure.px((0.0, 0.0)), figure.px(new_pole)
     if combined.gravity_image_mm > 0:
         figure.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
                      css="gravity image")
-        figure.request(("Z_g",), translate(pole_px, difference(new_px, pole_px), 0.5),
-                       _runs("Z_g"), mark=2.0)
+        figure.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"), mark=2.0)
     figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
     figure.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
     notation = ForceNotation(forces.solution)
@@ -202,30 +233,32 @@ def combined_svg(forces, plans) -> str | None:
         figure.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image")
         figure.request((f"s_{force.link}",), s,
                        (("s", RunKind.MAIN), (notation.number(force.link), RunKind.SUB)), mark=2.6)
-        if math.hypot(*force.segment_mm) * figure.zoom >= 1.0:
+        if float(norm(np.asarray(force.segment_mm))) * figure.zoom >= 1.0:
             figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
                          css=f"combined {force.link}")
     figure.place()
-    _, y0, x1, _ = figure.extent
+    _, y0, x1, _ = view.box if view else figure.extent
     bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
         "image of g: π → π′, Z_g = g/μa": ("normal", KNOWN_COLOURS["G"]),
         "s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)": ("tangential", KNOWN_COLOURS["F"])},
         heading="Combined force (Aliyev)")
     figure.used.clear()
-    lines = [f"μa = {quantity(combined.mu_a, 6)} (m/s²)/mm; g = {combined.g:g} m/s², "
+    lines = [f"{scale_text('mu_a', combined.mu_a)}; g = {combined.g:g} m/s², "
              f"Z_g = g/μa = {combined.gravity_image_mm:.4g} mm"]
     for force in combined.forces:
-        length = math.hypot(*force.segment_mm)
-        q = math.hypot(*force.from_plan)
+        length = float(norm(np.asarray(force.segment_mm)))
+        q = float(norm(np.asarray(force.from_plan)))
         sub = subscript(notation.number(force.link))
         lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
-                     f"{quantity(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
+                     f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
-             f"pole moved to π′, φ₁ = {plans.angle:g}°")
-    frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION)
-    return figure.svg(title).svg
+             f"pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
+    frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION,
+          box=view.box if view else None)
+    return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
+                                              PlanKind.ACCELERATION) if view else None).svg
 
 
 def combined_omitted(forces, plans) -> str | None:
@@ -238,6 +271,11 @@ def combined_omitted(forces, plans) -> str | None:
             "is π and Q = G + Fᵘ is the inertia force alone")
 
 
+def _phi(plans, letter: str = "φ") -> str:
+    """The crank's φ (or ω, ε) with the crank's number, as the course writes it."""
+    return numbered(letter, crank_number(plans.position))
+
+
 def _force_colour(name: str) -> str:
     if name.startswith(("M_f", "F_f")):
         return FRICTION
@@ -246,206 +284,360 @@ def _force_colour(name: str) -> str:
     return KNOWN_COLOURS.get(name[:1], KNOWN_COLOURS["l"])
 
 
-def lever_forces_svg(forces: Any, plans) -> str | None:
+@dataclass(frozen=True)
+class _LeverForce:
+    """A force on the lever, in mm of the turned plan: its image, its vector (N), its moment
+    about p (N·mm), its arm h and the arm's foot; ``couple`` names the couple whose force
+    pair it belongs to (Mᵘ₂ …), ``number`` the arm's index (h₁, h₂ …)."""
+
+    name: str
+    link: str | None
+    image: np.ndarray
+    force: np.ndarray
+    moment: float
+    arm: float
+    foot: np.ndarray
+    couple: str = ""
+    number: int = 0
+
+
+def _arm(image: np.ndarray, force: np.ndarray) -> tuple[float, np.ndarray]:
+    """The arm h (mm) of a force at ``image`` about the pole, and the foot of the
+    perpendicular from the pole to its line of action."""
+    direction = unit(force)
+    foot = image - float(dot(image, direction)) * direction
+    arm = float(norm(foot))
+    if arm <= 1e-9 * max(float(norm(image)), 1.0):
+        return 0.0, np.zeros(2)                  # the line passes through p (rounding)
+    return arm, foot
+
+
+class _LeverFigure:
+    """Zhukovsky's lever being drawn: the turned velocity plan, the force scale of the
+    lever, and each force at the image of its point with its arm from the pole — drawn on any
+    canvas (:meth:`content`), so that a crowded region can be drawn again as a detail."""
+
+    def __init__(self, forces: Any, plans) -> None:
+        lever = forces.solution.lever
+        self.notation = notation = ForceNotation(forces.solution)
+        self.plan = plan = plans.velocity
+        self.turned = {label: (float(y), float(-x)) for label, (x, y) in plan.points_mm.items()}
+        self.known: list[_LeverForce] = []
+        self.couples: list[_LeverForce] = []
+        self.friction: dict[str, float] = {}
+        for force in lever.forces:
+            vector = np.asarray(force.force[0], float)
+            if float(norm(vector)) == 0:
+                continue
+            base, _, at = force.name.partition(" at ")
+            image = np.asarray(force.image_mm[0], float)
+            moment = float(force.moment[0])
+            if at and base.startswith("M_f"):     # friction couples: in the sum, not drawn
+                self.friction[base] = self.friction.get(base, 0.0) + moment
+                continue
+            arm, foot = _arm(image, vector)
+            record = _LeverForce(force.name, force.link, image, vector, moment, arm, foot,
+                                 notation.plain(base, force.link) if at else "")
+            (self.couples if at else self.known).append(record)
+        balancing = np.asarray(lever.balancing_force[0], float)
+        pin = np.asarray(lever.balancing_image_mm[0], float)
+        arm, foot = _arm(pin, balancing)
+        balancing_force = _LeverForce("F_b", None, pin, balancing,
+                                      float(cross(pin, balancing)), arm, foot)
+        # the arms numbered h₁, h₂ … as the table lists them: known forces, couples, F_b
+        numbered = [replace(item, number=number) for number, item in
+                    enumerate([*self.known, *self.couples, balancing_force], start=1)]
+        self.known = numbered[:len(self.known)]
+        self.couples = numbered[len(self.known):-1]
+        self.balancing = numbered[-1]
+        drawn = [*self.known, self.balancing]
+        largest = max(float(norm(item.force)) for item in drawn)
+        points = list(self.turned.values())
+        extent = max(max(abs(c) for xy in points for c in xy), 1.0)
+        #: the force scale of the lever (N/mm), and the couples' own where theirs would
+        #: be too short to see at it
+        self.mu_f = mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
+        pair = max((float(norm(item.force)) for item in self.couples), default=0.0)
+        self.mu_couple = mu_f if pair / mu_f >= 0.08 * extent or not pair else \
+            standard(pair / (0.08 * extent))
+        ends = [tuple(item.image + item.force / mu_f) for item in drawn]
+        ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
+        self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        self.used: dict[str, tuple[str, str | None]] = {}
+
+    def content(self, figure: Canvas) -> None:
+        """The turned plan and every force with its arm, on ``figure`` at its zoom."""
+        plan = self.plan
+        plan_content(figure, self.turned, plan.steps, plan.pole, rotate_deg=-90.0,
+                     numbers=plan.numbers)
+        for item in self.known:
+            base = item.name.partition(" at ")[0]
+            colour = _force_colour(base)
+            self._draw(figure, item, self.mu_f, colour, "relative",
+                       self.notation.runs(base, item.link))
+            self.used.setdefault("known force at the image of its point, arm h from p",
+                                 ("relative", colour))
+        for item in self.couples:
+            colour = _force_colour(item.name)
+            symbol = self.notation.runs(item.name.partition(" at ")[0], item.link)
+            self._draw(figure, item, self.mu_couple, colour, "tangential", symbol)
+            self.used.setdefault("inertia couple Mᵘ as the force pair ±Mᵘ/l the sum counts",
+                                 ("tangential", colour))
+        self._draw(figure, self.balancing, self.mu_f, INK, "result",
+                   (("F", RunKind.MAIN), ("b", RunKind.SUB)))
+        self.used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = (
+            "result", None)
+
+    def _draw(self, figure: Canvas, item: _LeverForce, mu_f: float, colour: str, style: str,
+              runs) -> None:
+        """The force at its image, its arm from p labelled h₁, h₂ …, and its line."""
+        start, end = figure.px(item.image), figure.px(item.image + item.force / mu_f)
+        figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
+        figure.request((f"force:{item.name}",), start + 0.6 * (end - start), runs, mark=2.0)
+        if item.arm * figure.zoom < 2.0:
+            return
+        pole, foot = figure.px((0.0, 0.0)), figure.px(item.foot)
+        figure.line(pole, foot, color=colour, width=0.7, dash="1.5,2.5",
+                    layer="construction", css="arm", obstacle=False)
+        figure.request((f"arm:{item.name}",), pole + 0.5 * (foot - pole),
+                       (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
+                       size=SMALL_LABEL, mark=0.0, css="arm")
+        direction = unit(item.force)
+        reach = max(4.0 / figure.zoom, float(dot(item.image - item.foot, direction)))
+        figure.line(foot, figure.px(item.foot + direction * reach), color=colour, width=0.5,
+                    dash="4,3", layer="construction", css="line of action", obstacle=False)
+
+    def rows(self) -> tuple[list[list[str]], float, float]:
+        """The sum's table, term by term, and Σ M, Σ |M| (N·mm)."""
+        rows = []
+        total = magnitude = 0.0
+        for item in [*self.known, *self.couples]:
+            base = item.name.partition(" at ")[0]
+            shown = self.notation.plain(base, item.link)
+            where = f" (pair, {item.name.partition(' at ')[2]})" if item.couple else ""
+            rows.append([shown + where, f"{float(norm(item.force)):.4g}",
+                         f"h_{item.number}", f"{item.arm:.4g}",
+                         f"{(item.moment if item.arm else 0.0) + 0.0:+.5g}"])
+            total += item.moment
+            magnitude += abs(item.moment)
+        for name, moment in self.friction.items():
+            rows.append([self.notation.plain(name) + " (couple, not drawn)", "", "",
+                         "", f"{moment + 0.0:+.5g}"])
+            total += moment
+            magnitude += abs(moment)
+        return rows, total, magnitude
+
+
+#: a label's size for the arms h₁, h₂ … (smaller than the points' labels)
+SMALL_LABEL = 12.0
+
+
+def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     """Zhukovsky's lever with its forces: the velocity plan turned 90° clockwise about its
     pole p, each known force drawn at the image of its point (unchanged in size and
-    direction, at a force scale of the lever), its arm h from p, the balancing force F_b at the
-    image of the crank pin, and the moment sum ΣM_p = 0 that gives M_b (None without a lever
-    from the drawn plan)."""
+    direction, at a force scale of the lever) with its arm h₁, h₂ … from p, each inertia
+    couple as the force pair ±Mᵘ/l the sum counts, the balancing force F_b at the image of the
+    crank pin, and beside the drawing the table of the moment sum ΣM_p = 0 that gives M_b;
+    where points crowd, an enlarged detail (None without a lever from the drawn plan)."""
     lever = forces.solution.lever
     if plans is None or lever.source != "velocity plan" or not np.isfinite(
             lever.balancing_moment[0]):
         return None
-    notation = ForceNotation(forces.solution)
-    plan = plans.velocity
-    turned = {label: (float(y), float(-x)) for label, (x, y) in plan.points_mm.items()}
-    items = [(force.name, force.link, np.asarray(force.image_mm[0], float),
-              np.asarray(force.force[0], float), float(force.moment[0]))
-             for force in lever.forces]
-    items = [item for item in items if float(np.hypot(*item[3])) > 0]
-    balancing = np.asarray(lever.balancing_force[0], float)
-    largest = max([float(np.hypot(*f)) for _, _, _, f, _ in items]
-                  + [float(np.hypot(*balancing))])
-    points = list(turned.values())
-    extent = max(max(abs(c) for xy in points for c in xy), 1.0)
-    mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
-    ends = [tuple(image + force / mu_f) for _, _, image, force, _ in items]
-    pin = np.asarray(lever.balancing_image_mm[0], float)
-    figure = Canvas(fit_zoom(points + ends + [tuple(pin + balancing / mu_f)], PLAN_SIZE))
-    plan_content(figure, turned, plan.steps, plan.pole, rotate_deg=-90.0)
-    pole = figure.px((0.0, 0.0))
-    used: dict[str, tuple[str, str | None]] = {}
-
-    def draw(name: str, link: str | None, image, force, colour, style, runs) -> float:
-        """The force at its image with its arm from p; returns the arm h (mm)."""
-        start, end = figure.px(image), figure.px(image + force / mu_f)
-        figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
-        figure.request((f"force:{name}",), translate(start, difference(end, start), 0.6), runs,
-                       mark=2.0)
-        size = float(np.hypot(*force))
-        direction = force / size
-        foot = image - float(np.dot(image, direction)) * direction
-        arm = float(np.hypot(*foot))
-        if arm <= 1e-9 * max(float(np.hypot(*image)), 1.0):
-            arm = 0.0                    # the line passes through p (rounding left over)
-        if arm * figure.zoom >= 2.0:
-            figure.line(pole, figure.px(foot), color=colour, width=0.7, dash="1.5,2.5",
-                        layer="construction", css="arm", obstacle=False)
-            line_end = figure.px(foot + direction * max(4.0 / figure.zoom,
-                                                        float(np.dot(image - foot,
-                                                                     direction))))
-            figure.line(figure.px(foot), line_end, color=colour, width=0.5, dash="4,3",
-                        layer="construction", css="line of action", obstacle=False)
-        return arm
-
-    lines = [f"μv = {quantity(plan.scale, 6)} {plan.unit}; forces on the lever at "
-             f"μF = {quantity(mu_f, 6)} N/mm",
-             "each force at the image of its point, turned with the plan (size and direction "
-             "kept); arm h from the pole p",
-             "ΣM_p = Σ ± F·h = 0 (N·mm on the lever, counter-clockwise +):"]
-    total = 0.0
-    magnitude = 0.0      # Σ|M|: the sum is zero to rounding of this
-    couples: dict[str, float] = {}
-    for name, link, image, force, moment in items:
-        base, _, at = name.partition(" at ")
-        total += moment
-        magnitude += abs(moment)
-        if at:     # a couple, carried as two forces ±M/l ⊥ the link: listed, not drawn
-            couples[base] = couples.get(base, 0.0) + moment
-            continue
-        colour = _force_colour(base)
-        arm = draw(name, link, image, force, colour, "relative", notation.runs(base, link))
-        used.setdefault("known force at the image of its point, arm h from p", ("relative",
-                                                                                 colour))
-        size = float(np.hypot(*force))
-        lines.append(f"  {notation.plain(base, link)}: {size:.4g} N × h {arm:.4g} mm = "
-                     f"{(moment if arm else 0.0) + 0.0:+.5g} N·mm")
-    for base, moment in couples.items():
-        lines.append(f"  {notation.plain(base)} (a couple, as ±M/l at two points of its "
-                     f"link): {moment + 0.0:+.5g} N·mm")
-    runs_b = (("F", RunKind.MAIN), ("b", RunKind.SUB))
-    arm_b = draw("F_b", None, pin, balancing, INK, "result", runs_b)
-    moment_b = float(pin[0] * balancing[1] - pin[1] * balancing[0])
-    used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = ("result", None)
-    size_b = float(np.hypot(*balancing))
-    remainder = total + moment_b
-    if abs(remainder) <= 1e-9 * (magnitude + abs(moment_b)):
+    page = _LeverFigure(forces, plans)
+    figure, plan = Canvas(page.zoom), page.plan
+    page.content(figure)
+    where = {label: figure.px(xy) for label, xy in page.turned.items()}
+    regions = detail_regions(figure, where) if details else []
+    figure.place()
+    details = detail_insets(figure, page.content, regions, "detail-lever")
+    rows, total, magnitude = page.rows()
+    balancing = page.balancing
+    remainder = total + balancing.moment
+    if abs(remainder) <= 1e-9 * (magnitude + abs(balancing.moment)):
         remainder = 0.0                               # zero to the rounding of the terms
-    lines.append(f"  F_b: {size_b:.4g} N × h {arm_b:.4g} mm = {moment_b + 0.0:+.5g} N·mm;  "
-                 f"sum {remainder + 0.0:+.2g} N·mm")
+    rows.append(["F_b", f"{float(norm(balancing.force)):.4g}", f"h_{balancing.number}",
+                 f"{balancing.arm:.4g}", f"{balancing.moment + 0.0:+.5g}"])
+    rows.append(["ΣM_p", "", "", "", f"{remainder + 0.0:+.2g}"])
     mechanism = forces.solution.mechanism
     drive = mechanism.drive
-    crank = mechanism.links[drive.link]
-    length = crank.length(drive.pivot, lever.balancing_point)
-    value = float(lever.balancing_moment[0])
-    lines.append(f"|M_b| = F_b·l_{drive.pivot}{lever.balancing_point} = {size_b:.5g} N × "
-                 f"{length:.4g} m;  M_b = {value:.6g} N·m (Zhukovsky's lever), by the groups "
-                 f"{float(forces.solution.balancing_moment[0]):.6g} N·m")
-    figure.place()
+    length = mechanism.links[drive.link].length(drive.pivot, lever.balancing_point)
     _, y0, x1, _ = figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)    # the plan's styles first
-    _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), used,
-                  heading="Forces on the lever")
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)   # the plan's styles
+    bottom = _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4),
+                           page.used, heading="Forces on the lever")
+    figure.table((x1 + 34, bottom + 40), rows, header=["force", "F, N", "arm", "h, mm",
+                                                       "±F·h, N·mm"],
+                 right=[False, True, False, True, True],
+                 title="ΣM_p = Σ ± F·h = 0 (counter-clockwise +)")
     figure.used.clear()
+    couples = (f"; couples' force pairs at {scale_text('mu_f', page.mu_couple)}"
+               if page.couples and page.mu_couple != page.mu_f else "")
+    lines = [f"{scale_text('mu_v', plan.scale)}; forces on the lever at "
+             f"{scale_text('mu_f', page.mu_f)}{couples}",
+             "each force at the image of its point, turned with the plan (size and direction "
+             "kept); arm h from the pole p",
+             f"|M_b| = F_b·l_{drive.pivot}{lever.balancing_point} = "
+             f"{float(norm(balancing.force)):.5g} N × {length:.4g} m;  "
+             f"M_b = {float(lever.balancing_moment[0]):.6g} N·m (Zhukovsky's lever), by the "
+             f"groups {float(forces.solution.balancing_moment[0]):.6g} N·m", *details]
     title = (f"{mechanism.title} — Zhukovsky's lever with its forces, "
-             f"φ₁ = {plans.angle:g}°").lstrip(" —")
-    frame(figure, title, lines, (plan.scale, "m/s", 0.3 * PLAN_SIZE), plan.flags, PlanKind.VELOCITY)
+             f"{_phi(plans)} = {plans.angle:g}°").lstrip(" —")
+    frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
+          plan.flags, PlanKind.VELOCITY)
     return figure.svg(title).svg
 
 
-def loaded_svg(forces: Any, plans) -> str | None:
+class _LoadedFigure:
+    """The loaded mechanism being drawn: the mechanism at μl, a force scale, every force as
+    an arrow at its point, every moment as a curved arrow, every centre of mass S marked —
+    drawn on any canvas (:meth:`content`), so that a crowded region can be drawn again as a
+    detail — and the list of it all (:meth:`rows`)."""
+
+    def __init__(self, forces: Any, plans) -> None:
+        self.position = position = plans.position
+        self.solution = solution = forces.solution
+        self.notation = ForceNotation(solution)
+        everything = [item for item in solution.applied.items if item.link != "frame"]
+        # friction (a force or moment in each pair, on both its links) is listed, not drawn
+        self.friction = [item for item in everything if item.kind == AppliedKind.FRICTION]
+        items = [item for item in everything if item.kind != AppliedKind.FRICTION]
+        mu_l = position.mu_l
+        #: (item, its point mm, its force N) of each force that is not zero
+        self.arrows = [(item, np.asarray(item.point[0], float) / mu_l,
+                        np.asarray(item.force[0], float))
+                       for item in items if item.force is not None
+                       and float(norm(np.asarray(item.force[0], float))) > 0]
+        self.couples = [(item, float(item.moment[0])) for item in items
+                        if item.moment is not None and float(item.moment[0]) != 0.0]
+        #: each link's centre of mass (mm), by link
+        self.centres = {link: np.asarray(inertia.centre[0], float) / mu_l
+                        for link, inertia in solution.applied.inertia.items()
+                        if link in position.links}
+        points = list(position.points_mm.values())
+        extent = max(max(p[0] for p in points) - min(p[0] for p in points),
+                     max(p[1] for p in points) - min(p[1] for p in points), 1.0)
+        largest = max((float(norm(force)) for _, _, force in self.arrows), default=0.0)
+        self.mu_f = mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
+        ends = [tuple(start + force / mu_f) for _, start, force in self.arrows]
+        self.zoom = position_zoom(position, ends)
+        self.balancing = float(solution.balancing_moment[0])
+        self.used: dict[str, tuple[str, str | None]] = {}
+
+    def where(self, figure: Canvas) -> dict[str, np.ndarray]:
+        """The points a detail watches: the mechanism's points and the centres of mass."""
+        where = {name: figure.px(xy) for name, xy in self.position.points_mm.items()}
+        where |= {f"S:{link}": figure.px(xy) for link, xy in self.centres.items()}
+        return where
+
+    def content(self, figure: Canvas) -> None:
+        """The mechanism with its centres of mass, forces and moments, at ``figure``'s zoom."""
+        mechanism_content(figure, self.position)
+        for link, centre in self.centres.items():
+            runs = (("S", RunKind.MAIN), (self.notation.number(link), RunKind.UPRIGHT))
+            figure.circle(figure.px(centre), 3.0, fill="#ffffff", stroke=KNOWN_COLOURS["F"],
+                          width=1.4, css="centre of mass", points=(f"S:{link}",))
+            figure.request((f"S:{link}",), figure.px(centre), runs, mark=3.0)
+        for item, start, force in self.arrows:
+            self._force(figure, item, start, force)
+        for item, moment in self.couples:
+            inertia = self.solution.applied.inertia.get(item.link)
+            mu_l = self.position.mu_l
+            centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
+                      else np.asarray(inertia.centre[0], float) / mu_l
+                      if item.kind == AppliedKind.INERTIA_MOMENT and inertia is not None
+                      else _link_centre(self.position, item.link))
+            colour = _force_colour(item.name)
+            turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0,
+                          colour, f"moment:{item.name}:{item.link}",
+                          self.notation.runs(item.name, item.link), css="moment")
+            self.used.setdefault("moment (curved arrow: its sense)", ("relative", colour))
+        drive = self.solution.mechanism.drive
+        if self.balancing and drive.pivot in self.position.points_mm:
+            turning_arrow(figure, self.position.points_mm[drive.pivot], 40.0, -math.pi / 2,
+                          1.0 if self.balancing > 0 else -1.0, INK, "moment:M_b",
+                          (("M", RunKind.MAIN), ("b", RunKind.SUB)), css="balancing moment")
+            self.used["balancing moment M_b on the crank"] = ("result", None)
+
+    def _force(self, figure: Canvas, item, start: np.ndarray, force: np.ndarray) -> None:
+        """A force as an arrow at its point; an inertia force with the line of its single
+        equivalent force (with Mᵘ), h = J·ε/(m·a_S) from S."""
+        colour = _force_colour(item.name)
+        begin, end = figure.px(start), figure.px(start + force / self.mu_f)
+        figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
+        figure.request((f"force:{item.name}:{item.link}",), begin + 0.65 * (end - begin),
+                       self.notation.runs(item.name, item.link), mark=2.0)
+        self.used.setdefault(_legend_key_of(item.name), ("relative", colour))
+        shift = self._single_force_shift(item, force)
+        if shift is not None and float(norm(shift)) * figure.zoom >= 1.5:
+            figure.line(figure.px(start + shift - 0.6 * force / self.mu_f),
+                        figure.px(start + shift + 1.2 * force / self.mu_f), color=colour,
+                        width=0.8, dash=STYLES["construction"].dash, layer="construction",
+                        css="inertia line", obstacle=False)
+            self.used.setdefault("line of the single equivalent inertia force (h from S)",
+                                 ("construction", colour))
+
+    def _single_force_shift(self, item, force: np.ndarray) -> np.ndarray | None:
+        """How far (mm) the single equivalent inertia force's line lies from S, or None."""
+        inertia = self.solution.applied.inertia.get(item.link)
+        if item.kind != AppliedKind.INERTIA_FORCE or inertia is None or not bool(
+                inertia.single_force_defined[0]) or not abs(float(inertia.offset[0])) > 0:
+            return None
+        return float(inertia.offset[0]) * perp(unit(force)) / self.position.mu_l
+
+    def rows(self) -> list[list[str]]:
+        """The table beside the drawing: each force and moment, its size, its link."""
+        notation = self.notation
+        rows = []
+        for item, _, force in self.arrows:
+            shift = self._single_force_shift(item, force)
+            note = ("with Mᵘ: one force on a line "
+                    f"h = {abs(float(self.solution.applied.inertia[item.link].offset[0])):.4g} m"
+                    " from S" if shift is not None else "")
+            rows.append([notation.plain(item.name, item.link), f"{float(norm(force)):.4g} N",
+                         notation.link_name(item.link), note])
+        for item, moment in self.couples:
+            rows.append([notation.plain(item.name, item.link), f"{abs(moment):.4g} N·m",
+                         notation.link_name(item.link),
+                         "counter-clockwise" if moment > 0 else "clockwise"])
+        for item in self.friction:
+            unit_ = "N" if item.force is not None else "N·m"
+            rows.append([notation.plain(item.name, item.link), f"{_size(item):.4g} {unit_}",
+                         notation.link_name(item.link), "friction (not drawn)"])
+        if self.balancing:
+            rows.append(["M_b", f"{abs(self.balancing):.6g} N·m",
+                         notation.link_name(self.solution.mechanism.drive.link),
+                         f"{'counter-clockwise' if self.balancing > 0 else 'clockwise'}, "
+                         "applied by the motor"])
+        return rows
+
+
+def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     """The loaded mechanism: the mechanism at the solved position with every force and moment
-    acting on it — weights G, inertia forces Fᵘ at the centres of mass with the line of their
-    single equivalent force (offset h = J·ε/(m·a_S)), inertia moments Mᵘ, loads, friction, and
-    the balancing moment M_b on the crank — the picture a force analysis starts from (None
-    without plans)."""
+    acting on it — weights G, inertia forces Fᵘ at the centres of mass S (each marked) with the
+    line of their single equivalent force (offset h = J·ε/(m·a_S)), inertia moments Mᵘ,
+    loads, and the balancing moment M_b on the crank — with their list (friction too) in a
+    table beside the drawing, and an enlarged detail where points crowd: the picture a force
+    analysis starts from (None without plans)."""
     if plans is None:
         return None
-    position = plans.position
-    solution = forces.solution
-    notation = ForceNotation(solution)
-    mu_l = position.mu_l
-    everything = [item for item in solution.applied.items if item.link != "frame"]
-    # friction (a force or moment in each pair, on both its links) is listed, not drawn
-    friction = [item for item in everything if item.kind == AppliedKind.FRICTION]
-    items = [item for item in everything if item.kind != AppliedKind.FRICTION]
-    arrows = [(item, np.asarray(item.point[0], float) / mu_l, np.asarray(item.force[0], float))
-              for item in items if item.force is not None
-              and float(np.hypot(*item.force[0])) > 0]
-    couples = [(item, float(item.moment[0])) for item in items
-               if item.moment is not None and float(item.moment[0]) != 0.0]
-    points = list(position.points_mm.values())
-    extent = max(max(p[0] for p in points) - min(p[0] for p in points),
-                 max(p[1] for p in points) - min(p[1] for p in points), 1.0)
-    largest = max((float(np.hypot(*force)) for _, _, force in arrows), default=0.0)
-    mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
-    ends = [tuple(start + force / mu_f) for _, start, force in arrows]
-    figure = Canvas(position_zoom(position, ends))
-    mechanism_content(figure, position)
-    used: dict[str, tuple[str, str | None]] = {}
-    lines = [f"μl = {quantity(mu_l, 6)} m/mm; forces at μF = {quantity(mu_f, 6)} N/mm",
-             f"φ₁ = {plans.angle:g}°, ω₁ = {quantity(solution.mechanism.drive.omega, 6)} rad/s"]
-    for item, start, force in arrows:
-        colour = _force_colour(item.name)
-        begin, end = figure.px(start), figure.px(start + force / mu_f)
-        figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
-        figure.request((f"force:{item.name}:{item.link}",),
-                       translate(begin, difference(end, begin), 0.65),
-                       notation.runs(item.name, item.link), mark=2.0)
-        used.setdefault(_legend_key_of(item.name), ("relative", colour))
-        lines.append(f"{notation.plain(item.name, item.link)} = "
-                     f"{float(np.hypot(*force)):.4g} N on {notation.link_name(item.link)}")
-        inertia = solution.applied.inertia.get(item.link)
-        if item.kind == AppliedKind.INERTIA_FORCE and inertia is not None and bool(
-                inertia.single_force_defined[0]) and abs(float(inertia.offset[0])) > 0:
-            # the line of the single equivalent force Fᵘ (with Mᵘ), offset by h from S
-            unit = force / float(np.hypot(*force))
-            shift = float(inertia.offset[0]) * np.array([-unit[1], unit[0]]) / mu_l
-            if float(np.hypot(*shift)) * figure.zoom >= 1.5:
-                figure.line(figure.px(start + shift - 0.6 * force / mu_f),
-                            figure.px(start + shift + 1.2 * force / mu_f), color=colour,
-                            width=0.8, dash=STYLES["construction"].dash, layer="construction",
-                            css="inertia line", obstacle=False)
-                used.setdefault("line of the single equivalent inertia force (h from S)",
-                                ("construction", colour))
-                offset = abs(float(inertia.offset[0]))
-                lines[-1] += f"; with Mᵘ, one force on a line h = {offset:.4g} m from S"
-    mechanism = solution.mechanism
-    for item, moment in couples:
-        inertia = solution.applied.inertia.get(item.link)
-        centre = (np.asarray(item.point[0], float) / mu_l if item.point is not None
-                  else np.asarray(inertia.centre[0], float) / mu_l
-                  if item.kind == AppliedKind.INERTIA_MOMENT and inertia is not None
-                  else _link_centre(position, item.link))
-        colour = _force_colour(item.name)
-        turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0, colour,
-                      f"moment:{item.name}:{item.link}", notation.runs(item.name, item.link),
-                      css="moment")
-        used.setdefault("moment (curved arrow: its sense)", ("relative", colour))
-        lines.append(f"{notation.plain(item.name, item.link)} = {abs(moment):.4g} N·m "
-                     f"{'counter-clockwise' if moment > 0 else 'clockwise'} on "
-                     f"{notation.link_name(item.link)}")
-    if friction:
-        listed = [f"{notation.plain(item.name, item.link)} {_size(item):.4g}"
-                  for item in friction]
-        lines.append("friction (not drawn; N·m, N): " + ", ".join(listed[:8]))
-        for start in range(8, len(listed), 10):
-            lines.append("  " + ", ".join(listed[start:start + 10]))
-    drive = mechanism.drive
-    balancing = float(solution.balancing_moment[0])
-    if balancing and drive.pivot in position.points_mm:
-        turning_arrow(figure, position.points_mm[drive.pivot], 40.0, -math.pi / 2,
-                      1.0 if balancing > 0 else -1.0, INK, "moment:M_b",
-                      (("M", RunKind.MAIN), ("b", RunKind.SUB)), css="balancing moment")
-        used["balancing moment M_b on the crank"] = ("result", None)
-        lines.append(f"M_b = {abs(balancing):.6g} N·m "
-                     f"{'counter-clockwise' if balancing > 0 else 'clockwise'} on "
-                     f"{notation.link_name(drive.link)} (to be applied by the motor)")
+    page = _LoadedFigure(forces, plans)
+    figure, mechanism = Canvas(page.zoom), forces.solution.mechanism
+    page.content(figure)
+    regions = detail_regions(figure, page.where(figure)) if details else []
     figure.place()
+    details = detail_insets(figure, page.content, regions, "detail-loaded")
     _, y0, x1, _ = figure.extent
-    _force_legend(figure, (x1 + 34, y0 + 4), used, heading="Forces and moments")
-    title = f"{mechanism.title} — the loaded mechanism, φ₁ = {plans.angle:g}°".lstrip(" —")
-    frame(figure, title, lines, (mu_l, "m", 0.25 * MECHANISM_SIZE), solution.flags,
+    bottom = _force_legend(figure, (x1 + 34, y0 + 4), page.used, heading="Forces and moments")
+    figure.table((x1 + 34, bottom + 40), page.rows(), header=["force", "size", "on", ""],
+                 right=[False, True, False, False], title="Forces and moments on the links")
+    lines = [f"{scale_text('mu_l', page.position.mu_l)}; forces at "
+             f"{scale_text('mu_f', page.mu_f)}",
+             f"{_phi(plans)} = {plans.angle:g}°, {_phi(plans, 'ω')} = "
+             f"{significant(mechanism.drive.omega, 6)} rad/s", *details]
+    title = (f"{mechanism.title} — the loaded mechanism, {_phi(plans)} = {plans.angle:g}°"
+             .lstrip(" —"))
+    frame(figure, title, lines, (page.position.mu_l, SCALES["mu_l"].drawn,
+                                 0.25 * MECHANISM_SIZE), forces.solution.flags,
           PlanKind.POSITION)
     return figure.svg(title).svg
 
@@ -460,7 +652,7 @@ def _legend_key_of(name: str) -> str:
 def _size(item) -> float:
     """The size of a known force (N) or moment (N·m) at the first angle."""
     if item.force is not None:
-        return float(np.hypot(*item.force[0]))
+        return float(norm(np.asarray(item.force[0], float)))
     return abs(float(item.moment[0]))
 
 
@@ -477,24 +669,33 @@ def _file_name(index: int, group) -> str:
     return f"forces_{index}_{name}.svg"
 
 
-def force_files(forces: Any, plans, *, loaded: bool = True) -> dict[str, str]:
-    """``{"forces_<n>_<group>.svg": …, "combined_force.svg": …}`` for one crank angle."""
+def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True,
+                views: Mapping[str, SteadyView] | None = None) -> dict[str, str]:
+    """``{"forces_<n>_<group>.svg": …, "combined_force.svg": …, "lever.svg": …,
+    "loaded.svg": …}`` for one crank angle. With ``views`` (frames of a turn,
+    :func:`planmethod.render.steady.steady_views`) the polygons and the combined force keep
+    one force scale, zoom and page over the turn, and neither the lever with its forces nor
+    the loaded mechanism is drawn (their force scales follow each angle's forces)."""
     files: dict[str, str] = {}
     title = forces.solution.mechanism.title
     notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
         kind = "drive link" if group.kind == GroupKind.DRIVE else f"{group.kind} of"
         files[_file_name(number, group)] = polygon_svg(
-            group, forces.mu_f, angle=forces.angle, notation=notation,
+            group, forces.mu_f, angle=forces.angle, notation=notation, details=details,
+            view=(views or {}).get(f"forces_{number}"),
             title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "
-                  f"φ₁ = {forces.angle:g}°")
-    combined = combined_svg(forces, plans)
+                  f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
+                  f"{forces.angle:g}°")
+    combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"))
     if combined is not None:
         files["combined_force.svg"] = combined
-    lever = lever_forces_svg(forces, plans)
+    if views:
+        return files
+    lever = lever_forces_svg(forces, plans, details=details)
     if lever is not None:
         files["lever.svg"] = lever
-    drawing = loaded_svg(forces, plans) if loaded else None
+    drawing = loaded_svg(forces, plans, details=details) if loaded else None
     if drawing is not None:
         files["loaded.svg"] = drawing
     return files

@@ -5,7 +5,8 @@ Label text
 A plan label is written the way a textbook prints it: the letter in italics and what follows
 it as a subscript — ``c4`` → c₄, ``n_CB`` → n with subscript CB, ``b@lever`` → b with the link
 name *lever* as an upright subscript (the image of B taken as a point of the lever),
-``k_C@lever`` → k with subscript "C, lever". Digits and link names are upright, point names
+``k_C@lever`` → k with subscript "C, lever"; with the links' numbers (the course's notation) a
+point of link 3 is b₃ and k_B₃ instead. Digits and link names are upright, point names
 italic. Labels of points that coincide on the drawing are merged into one label joined by "≡"
 (``p ≡ a ≡ c_frame``), the pole first.
 
@@ -32,6 +33,8 @@ Examples
 "'O':main '2':upright"
 >>> show(label_runs("k_C@lever"))
 "'k':main 'C':sub ', lever':upright"
+>>> show(label_runs("b@lever", {"lever": 3})), show(label_runs("k_B@lever", {"lever": 3}))
+("'b':main '3':upright", "'k':main 'B':sub '3':upright")
 >>> plain(merge_runs([label_runs("p"), label_runs("c@frame")]))
 'p ≡ c frame'
 """
@@ -39,7 +42,7 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -92,6 +95,9 @@ LEADER_DISTANCE = 14.0
 LINE_COST = 30.0
 #: cost of one px² of a point mark or fixed text under a label
 AREA_COST = 2.0
+#: a label may come this near (px) its own point's mark: the room other labels keep from a
+#: point's mark (``planmethod.render.canvas.KEEP_CLEAR``) is not held against its own label
+OWN_ROOM = 5.0
 
 
 def _split_digits(name: str) -> tuple[str, str]:
@@ -99,8 +105,10 @@ def _split_digits(name: str) -> tuple[str, str]:
     return (head, name[len(head):]) if head else (name, "")
 
 
-def label_runs(label: str) -> tuple[Run, ...]:
-    """The runs of a label in textbook style (see the module docstring)."""
+def label_runs(label: str, numbers: Mapping[str, int] | None = None) -> tuple[Run, ...]:
+    """The runs of a label in textbook style (see the module docstring). With the links'
+    ``numbers`` a point taken as a point of a link carries the link's number: ``b@lever`` is
+    b₃, ``k_B@lever`` is k with subscript B₃."""
     name, at, link = label.partition("@")
     main, _, rest = name.partition("_")
     main, digits = _split_digits(main)
@@ -110,11 +118,13 @@ def label_runs(label: str) -> tuple[Run, ...]:
     if rest:
         # point names (C, CB, O2) are italic; link and pair names (lever, block/lever) upright
         parts.append((rest, RunKind.UPRIGHT if any(ch.islower() for ch in rest) else RunKind.SUB))
-    if at:
-        parts.append((link, RunKind.UPRIGHT))
     runs: list[Run] = [(main, RunKind.MAIN)]
     for index, (text, kind) in enumerate(parts):
         runs.append(((", " if index else "") + text, kind))
+    if at and numbers and link in numbers:
+        runs.append((str(numbers[link]), RunKind.UPRIGHT))      # b₃, k_B₃: no comma
+    elif at:
+        runs.append(((", " if parts else "") + link, RunKind.UPRIGHT))
     return tuple(runs)
 
 
@@ -310,7 +320,7 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         ax, ay = request.anchor
         half_w, half_h = width / 2 + PADDING, (ascent + descent) / 2 + PADDING
         # the label's own round mark, which it may touch: as the square of its area
-        own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2
+        own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
         best = None                         # (cost, box, distance)
         for batch, distance, directions, base in _CANDIDATES:

@@ -1,4 +1,4 @@
-"""Forces as a course writes them: links by number, reactions R₁₂, inertia Fᵘ₃ and Mᵘ₃.
+"""Forces as a course writes them: links by number, reactions R₁₂, inertia Fᵘ₂ and Mᵘ₂.
 
 The solver names its forces for the JSON report (``G_BC``, ``F_u,rocker_EF``, ``R_B``,
 ``load[1]``); a figure prints them in a mechanisms course's notation:
@@ -6,16 +6,17 @@ The solver names its forces for the JSON report (``G_BC``, ``F_u,rocker_EF``, ``
 =====================  ======================================================================
 report name            printed
 =====================  ======================================================================
-``G_BC``               G₃ — the weight of link 3
-``F_u,BC``             Fᵘ₃ — the inertia force (principal vector) of link 3
-``M_u,BC``             Mᵘ₃ — the inertia moment of link 3
-``R_B``, ``Rᵗ_B``      R₂₃, Rᵗ₂₃ … — the force of link 2 on link 3 (R₃₂ = −R₂₃); also Rⁿ, N
-``M_f,B``, ``F_f,B``   Mᶠ₂₃, Fᶠ₂₃ — the friction moment or force of link 2 on link 3
+``G_BC``               G₂ — the weight of link 2
+``F_u,BC``             Fᵘ₂ — the inertia force (principal vector) of link 2
+``M_u,BC``             Mᵘ₂ — the inertia moment of link 2
+``R_B``, ``Rᵗ_B``      R₁₂, Rᵗ₁₂ … — the force of link 1 on link 2 (R₂₁ = −R₁₂); also Rⁿ, N
+``M_f,B``, ``F_f,B``   Mᶠ₁₂, Fᶠ₁₂ — the friction moment or force of link 1 on link 2
 ``load[1]``            the load's ``name`` from the exercise, else P₁ (a force) or T₁ (a moment)
 =====================  ======================================================================
 
-Links are numbered as a course numbers them (:func:`planmethod.vocabulary.link_numbers`): the
-frame 1, the crank 2, the others in the order the exercise lists them.
+Links are numbered as the exercise's course numbers them
+(:func:`planmethod.numbering.course_numbers`): by default the frame 0, the crank 1, the others
+as their Assur groups attach.
 
 Examples
 --------
@@ -24,9 +25,9 @@ Examples
 >>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
 >>> notation = ForceNotation(analysis.forces.solution)
 >>> notation.plain("F_u,BC"), notation.plain("R_B", "BC"), notation.plain("R_B", "AB")
-('Fᵘ₃', 'R₂₃', 'R₃₂')
+('Fᵘ₂', 'R₁₂', 'R₂₁')
 >>> notation.line("Rᵗ_C ⟂ CD from ΣM_D(CD) = 0", ("BC", "CD"))
-'Rᵗ₃₄ ⟂ CD from ΣM_D(4) = 0'
+'Rᵗ₂₃ ⟂ CD from ΣM_D(3) = 0'
 """
 
 from __future__ import annotations
@@ -35,13 +36,11 @@ import re
 from collections.abc import Iterable
 from typing import Any
 
-from ..model import FRAME
-from ..vocabulary import link_numbers
+from ..numbering import course_numbers
+from ..vocabulary import pair_number, subscript
 from .labels import Run, RunKind, label_runs
 
-__all__ = ["ForceNotation", "subscript"]
-
-_DIGITS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")
+__all__ = ["ForceNotation"]
 
 #: a reaction or one of its components, by the pair's key
 _REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
@@ -49,21 +48,12 @@ _REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
 _TOKEN = re.compile(r"load\[\d+\]|(?:F_u|M_u|M_f|F_f),[\w/:]+|(?:Rᵗ|Rⁿ|R∥|R⊥|R|N|G)_[\w/:]+")
 
 
-def subscript(text: str) -> str:
-    """Digits (and a comma) as Unicode subscripts.
-
-    >>> "R" + subscript("12")
-    'R₁₂'
-    """
-    return text.translate(_DIGITS)
-
-
 class ForceNotation:
     """The printed names of one solution's forces (see the module docstring)."""
 
     def __init__(self, solution: Any) -> None:
         mechanism = solution.mechanism
-        self.numbers = link_numbers(mechanism.moving_links, mechanism.drive.link, FRAME)
+        self.numbers = course_numbers(mechanism)
         self.pairs = {key: (reaction.source, reaction.target)
                       for key, reaction in solution.reactions.items()}
         self.loads: dict[str, tuple[str, str]] = {}
@@ -107,7 +97,7 @@ class ForceNotation:
         first, second = self.numbers.get(source), self.numbers.get(target)
         if first is None or second is None:
             return None
-        return f"{first}{second}" if max(first, second) < 10 else f"{first},{second}"
+        return pair_number(first, second)
 
     # -- forces ------------------------------------------------------------------------------
     def parts(self, name: str, on: str | None = None) -> tuple[str, str] | None:

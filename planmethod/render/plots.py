@@ -48,7 +48,7 @@ import numpy as np
 
 from ..errors import PlanmethodError
 from ..io import atomic_path
-from ..vocabulary import quantity, symbol
+from ..vocabulary import QUANTITY_KINDS, numbered, quantity, symbol
 
 __all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_force_plot",
            "save_study_plot", "save_sweep_plot"]
@@ -56,18 +56,10 @@ __all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_f
 #: file formats by suffix
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 
-#: (column prefix, panel title, y-axis label); a column joins the first panel whose prefix
-#: it has
-_PANELS = (
-    ("v_", "speed of points |v|", "m/s"),
-    ("a_", "acceleration of points |a|", "m/s²"),
-    ("omega_", "angular velocity ω of links", "rad/s"),
-    ("epsilon_", "angular acceleration ε of links", "rad/s²"),
-    ("s_", "travel s of prismatic pairs", "m"),
-    ("ds_", "sliding velocity ds/dt", "m/s"),
-    ("dds_", "sliding acceleration d²s/dt²", "m/s²"),
-    ("rho_", "radius of curvature ρ", "m"),
-)
+#: (column prefix, panel title, y-axis label) of each kind of quantity that has a panel
+#: (:data:`planmethod.vocabulary.QUANTITY_KINDS`); a column joins the panel of its prefix
+_PANELS = tuple((f"{kind.prefix}_", kind.panel, kind.unit) for kind in QUANTITY_KINDS.values()
+                if kind.panel)
 _LEFT_TO_CSV = ("x_", "y_", "vx_", "vy_", "ax_", "ay_", "theta_")
 
 _STYLE = {
@@ -176,9 +168,9 @@ def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> str:
 
     Examples
     --------
-    >>> numbers = {"frame": 1, "crank": 2, "rod": 3}
+    >>> numbers = {"frame": 0, "crank": 1, "rod": 2}
     >>> curve_label("omega_rod", numbers), curve_label("v_C"), curve_label("a_B@rod", numbers)
-    ('ω₃ (rod)', 'v$_{\\\\mathregular{C}}$', 'a$_{\\\\mathregular{B}_{3}}$ (on rod)')
+    ('ω₂ (rod)', 'v$_{\\\\mathregular{C}}$', 'a$_{\\\\mathregular{B}_{2}}$ (on rod)')
     """
     try:
         found = quantity(name)
@@ -197,11 +189,12 @@ def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> str:
 
 
 def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str,
-                    numbers: Mapping[str, int] | None = None) -> None:
+                    numbers: Mapping[str, int] | None = None, crank: int = 1) -> None:
     """Draw a sweep table's curves against the crank angle into ``path`` (.png, .svg, .pdf).
     The legends name the curves in a course's notation (:func:`curve_label`; ``numbers`` are
-    the links' numbers, :func:`planmethod.vocabulary.link_numbers`) and list only the curves
-    drawn: a column with no finite value is left out.
+    the links' numbers, :func:`planmethod.numbering.course_numbers`; ``crank`` the crank's,
+    which φ carries) and list only the curves drawn: a column with no finite value is left
+    out.
 
     Raises
     ------
@@ -253,9 +246,9 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         for index in range(count, rows * columns_of_panels):
             axes[index // columns_of_panels][index % columns_of_panels].set_visible(False)
         for ax in axes[-1]:
-            ax.set_xlabel("crank angle φ₁, °")
+            ax.set_xlabel(f"crank angle {numbered('φ', crank)}, °")
         if count > 1 and count % 2 == 1:
-            axes[-2][1].set_xlabel("crank angle φ₁, °")
+            axes[-2][1].set_xlabel(f"crank angle {numbered('φ', crank)}, °")
             axes[-2][1].xaxis.set_tick_params(labelbottom=True)
         if angle.min() >= 0 and angle.max() <= 360 and np.ptp(angle) >= 90:
             axes[0][0].set_xticks(np.arange(0.0, 361.0, 45.0))     # shared by every panel
@@ -297,13 +290,14 @@ def sense_changes(table: Mapping[str, np.ndarray]) -> dict[str, list[float]]:
 
 def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title: str,
                     marks: Sequence[tuple[float, float]] = (),
-                    names: Mapping[str, str] | None = None) -> None:
+                    names: Mapping[str, str] | None = None, crank: int = 1) -> None:
     """Reaction components and magnitude per pair and the balancing moment versus crank angle,
     from the columns of ``planmethod sweep --forces`` (``Rx_K Ry_K R_K [M_K]``, ``M_b``…),
     on a landscape page. ``marks`` are (crank angle, M_b) of the positions the exercise solves,
     marked on the M_b curve with their values; with friction the frictionless M_b is drawn
     beside it and each sense change of the friction is marked. ``names`` titles each pair's
-    panel as a course writes its reaction (``R₁₂``), by pair key.
+    panel as a course writes its reaction (``R₁₂``), by pair key; ``crank`` is the crank's
+    number, which φ carries.
 
     Raises
     ------
@@ -367,7 +361,8 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
                       label="M_b without friction")
         for angle, value in marks:
             axis.plot([angle], [value], "o", color="#9467bd", ms=5)
-            axis.annotate(f"φ₁ = {angle:g}°: M_b = {value:.4g} N·m", (angle, value),
+            axis.annotate(f"{numbered('φ', crank)} = {angle:g}°: M_b = {value:.4g} N·m",
+                          (angle, value),
                           textcoords="offset points", xytext=(6, 6), fontsize=7)
         axis.set_title("balancing moment on the crank", loc="left")
         axis.set_ylabel("N·m")
@@ -375,7 +370,7 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         for extra in flat[count:]:
             extra.set_visible(False)
         for axis in axes[-1]:
-            axis.set_xlabel("crank angle φ₁, °")
+            axis.set_xlabel(f"crank angle {numbered('φ', crank)}, °")
         for axis in flat[:count]:
             axis.set_xlim(angles[0], angles[-1])
             axis.xaxis.set_tick_params(labelbottom=True)

@@ -26,6 +26,8 @@ __all__ = [
     "LABEL",
     "LABEL_SIZE",
     "LEGEND_ORDER",
+    "MECHANISM_SIZE",
+    "PLAN_SIZE",
     "SANS",
     "SANS_BOLD",
     "STYLES",
@@ -35,7 +37,7 @@ __all__ = [
     "TITLE_SIZE",
     "LineStyle",
     "num",
-    "quantity",
+    "significant",
     "text_width",
 ]
 
@@ -54,6 +56,11 @@ TEXT_SIZE = 12.5         # scales, legend, notes
 TITLE_SIZE = 15.0
 SMALL_SIZE = 11.0
 NBSP = "\u00a0"         # kept by every SVG renderer, unlike a plain space at a tspan's edge
+
+#: the longest side of a plan's points is drawn this long (px); a scale bar keeps it honest
+PLAN_SIZE = 440.0
+#: the longest side of the mechanism is drawn this long (px)
+MECHANISM_SIZE = 600.0
 
 INK = "#000000"
 FAINT = "#9a9a9a"        # the mechanism under the rotated velocity plan
@@ -108,8 +115,12 @@ def num(value: float) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def quantity(value: float, digits: int = 4) -> str:
-    """A printed value with ``digits`` significant digits (``0.002``, ``20``, ``5.272``)."""
+def significant(value: float, digits: int = 4) -> str:
+    """A printed value with ``digits`` significant digits (``0.002``, ``20``, ``5.272``).
+
+    >>> significant(5.27159), significant(0.002, 6)
+    ('5.272', '0.002')
+    """
     return f"{value:.{digits}g}"
 
 

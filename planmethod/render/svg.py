@@ -6,23 +6,29 @@
   thin and dashed in the colour of their component and clipped to a margin around the plan, the
   vectors found by intersecting two lines, the images of links (similarity), the projection on
   the normal of a path, the results (pole → image of each point) bold, lower-case labels placed
-  clear of lines and of each other, coincident points merged ("p ≡ a ≡ c₄"), the scale printed
-  with its units and a scale bar, the title, a legend, and every flagged intersection ringed in
-  red with the angle of its lines.
+  clear of lines, of each other and of other points' marks, points that coincide by
+  construction merged ("p ≡ a ≡ c₀"), a Coriolis point only where the term is not zero, the
+  scale printed with its units and a scale bar, the title, a legend with the plan's vector
+  equations beside it (:func:`vector_equations`), an enlarged detail wherever points crowd
+  (:mod:`planmethod.render.details`), and every flagged intersection ringed in red with the
+  angle of its lines.
 * :func:`position_svg` — the mechanism at μl: links as bars (a link with three or more points
   not on one line as a filled polygon), revolute pairs as small circles, fixed pivots with the
   hatched-ground symbol, sliders as blocks on their guides, upper-case labels, μl, the crank's
-  ω1 arrow, and for each point whose curvature was read the tangent ττ, the normal ηη, the
+  ω₁ arrow, and for each point whose curvature was read the tangent ττ, the normal ηη, the
   centre of curvature and ρ.
 * :func:`lever_svg` — the velocity plan turned 90° onto the mechanism, pole p at the drive's
   pivot, the mechanism faint underneath (Zhukovsky's lever stands on it).
 * :func:`plan_content`, :func:`plan_legend`, :func:`frame` — the pieces other figures reuse
   (a force polygon is drawn as a plan; every figure has the same frame).
 
-Labels follow the textbook (see :mod:`planmethod.render.labels`): ``b@lever`` is printed as b
-with the link's name *lever* as an upright subscript, ``n_CB`` as n with subscript CB, ``O2``
-as O₂. Each label's ``<text>`` carries the plan labels it names in ``data-points``; each arrow
-of a construction step carries the step's number in ``data-step``.
+Labels follow the course (see :mod:`planmethod.render.labels` and README, "Notation"): links by
+the numbers of the exercise's notation, ``b@lever`` printed as b₃ (B of link 3), ``c@frame``
+as c₀, ``n_CB`` as n with subscript CB, ``O2`` as O₂; the crank's φ and ω carry its number.
+Each label's ``<text>`` and each point's mark carry the plan labels they name in
+``data-points``; each arrow of a construction step carries the step's number in
+``data-step``. With a :class:`~planmethod.render.steady.SteadyView` a drawing keeps the zoom
+and the page of every frame of a turn.
 
 Output is deterministic: no ids, no dates, coordinates written with two decimals, elements in a
 fixed order — the same input gives the same bytes. The ``*_drawing`` functions return the SVG
@@ -47,21 +53,33 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
-from ..vocabulary import PlanKind
+import numpy as np
+
+from ..vectors import dot, norm, perp, unit_or_zero
+from ..vocabulary import (
+    PLAN_SCALES,
+    SCALES,
+    PlanKind,
+    link_text,
+    numbered,
+    point_text,
+    scale_text,
+    subscript,
+)
 from .canvas import (
+    MARGIN,
     Canvas,
-    Drawing,
     Point,
+    SvgFigure,
     arrowhead,
-    difference,
     fit_zoom,
     page_direction,
+    page_point,
     scale_bar,
-    translate,
-    unit_vector,
-    vector_length,
 )
+from .details import detail_insets, detail_regions
 from .labels import RunKind, label_runs, merge_runs
+from .steady import SteadyView
 from .style import (
     FAINT,
     FLAG,
@@ -69,20 +87,24 @@ from .style import (
     INK,
     LEGEND_ORDER,
     LINK_FILL,
+    MECHANISM_SIZE,
+    PLAN_SIZE,
+    SANS,
+    SANS_BOLD,
     SMALL_SIZE,
     STYLES,
     TEXT_SIZE,
     TITLE_SIZE,
-    num,
-    quantity,
+    significant,
+    text_width,
 )
 
 if TYPE_CHECKING:
     from ..plans import Plan, Plans, PositionPlan, Step
 
 __all__ = [
-    "Drawing",
-    "dense_regions",
+    "SvgFigure",
+    "crank_number",
     "frame",
     "lever_drawing",
     "lever_svg",
@@ -95,49 +117,37 @@ __all__ = [
     "position_svg",
     "position_zoom",
     "turning_arrow",
+    "vector_equations",
 ]
 
-#: the longest side of a plan's points is drawn this long (px); a scale bar keeps it honest
-PLAN_SIZE = 440.0
-#: the longest side of the mechanism is drawn this long (px)
-MECHANISM_SIZE = 600.0
-#: points closer than this on the page (px) are one point, and their labels are merged
+#: segments closer than this on the page (px) are one segment, drawn once
 COINCIDENT = 1.0
-_SYMBOLS = {"velocity": "μv", "acceleration": "μa", "force": "μF"}
-
-#: one element a line (diff-friendly), never inside a <text>: its tspans stay together
-_ONE_PER_LINE = re.compile(r"><(/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
-                           r"title\b|defs\b|/svg\b)")
+#: points closer than this on the drawing (mm) coincide by construction: one mark, one merged
+#: label (p ≡ a ≡ c₀); distinct points, however near, keep their own (a detail shows them)
+SAME_POINT_MM = 1e-6
 
 
 # -- geometry helpers -----------------------------------------------------------------------------
-def _unit_of(unit: str) -> str:
-    """The unit a plan's segment stands for: ``(m/s)/mm`` → ``m/s``."""
-    if unit.endswith("/mm"):
-        unit = unit[:-3].strip()
-        if unit.startswith("(") and unit.endswith(")"):
-            unit = unit[1:-1]
-    return unit
+def _distances(points: Sequence[Point]) -> np.ndarray:
+    """The page distance of every two points (n × n)."""
+    xy = np.asarray(points, dtype=float).reshape(-1, 2)
+    return norm(xy[:, None, :] - xy[None, :, :])
 
 
-def _clusters(names, where: Mapping[str, Point]) -> list[list[str]]:
-    """Names grouped by coincidence on the page (within ``COINCIDENT`` px of a group's
+def _clusters(names, where: Mapping[str, Point], tolerance: float) -> list[list[str]]:
+    """Names grouped by coincidence on the page (within ``tolerance`` px of a group's
     first member), in the order of their first members."""
-    groups: list[list[str]] = []
-    for name in names:
+    names = list(names)
+    apart = _distances([where[name] for name in names]) >= tolerance
+    groups: list[list[int]] = []
+    for index in range(len(names)):
         for group in groups:
-            if vector_length(difference(where[name], where[group[0]])) < COINCIDENT:
-                group.append(name)
+            if not apart[index, group[0]]:
+                group.append(index)
                 break
         else:
-            groups.append([name])
-    return groups
-
-
-def _sans_name(name: str) -> str:
-    """A point name for plain text, its digits as subscripts (``O1`` → ``O₁``)."""
-    head = name.rstrip("0123456789")
-    return head + name[len(head):].translate(str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"))
+            groups.append([index])
+    return [[names[index] for index in group] for group in groups]
 
 
 def _snap(xy: Point) -> tuple[int, int]:
@@ -150,119 +160,175 @@ def _is_image(label: str, pole: str) -> bool:
     return "_" not in label and label != pole
 
 
-def _order_key(label: str, pole: str, order: Mapping[str, int]) -> tuple[int, int]:
-    return (0 if label == pole else 1, order[label])
+class _PlanPage:
+    """One plan being drawn into a figure: where its points are on the page, which segments
+    are drawn already, the images of links collected from the steps, and what each kind of
+    step draws (:data:`_STEP_DRAWERS`)."""
+
+    def __init__(self, figure: Canvas, points_mm: Mapping[str, Sequence[float]],
+                 steps: Sequence[Step], pole: str, rotate_deg: float,
+                 numbers: Mapping[str, int] | None) -> None:
+        from shapely.geometry import box
+
+        self.figure, self.pole, self.rotate_deg = figure, pole, rotate_deg
+        self.points_mm, self.numbers = points_mm, numbers
+        #: Coriolis points of a zero Coriolis term: neither drawn nor named
+        self.hidden = {step.end for step in steps
+                       if step.action in ("lay_off", "coincide") and step.component == "coriolis"
+                       and step.start in points_mm and step.end in points_mm
+                       and float(norm(np.subtract(points_mm[step.end],
+                                                  points_mm[step.start]))) <= SAME_POINT_MM}
+        self.where = where = {label: figure.px(xy) for label, xy in points_mm.items()}
+        self.by_number = {step.number: step for step in steps}
+        self.origin = origin = where[pole]
+        xs = [p[0] for p in where.values()]
+        ys = [p[1] for p in where.values()]
+        pad = max(0.16 * max(max(xs) - min(xs), max(ys) - min(ys)), 40.0)
+        self.clip = box(min(xs) - pad, min(ys) - pad, max(xs) + pad, max(ys) + pad)
+        self.reach = 4 * (self.clip.length + 1)
+        #: pole → image arrows (results), by label: the step that lays it off, if one does
+        self.results: dict[str, int | None] = {
+            label: None for label in points_mm
+            if _is_image(label, pole) and float(norm(where[label] - origin)) >= 0.5}
+        self.drawn = {(_snap(origin), _snap(where[label])) for label in self.results}
+        self.images: dict[str, list[str]] = {}     # link → plan points of its image
+        #: label → the step that fixes its point (playback)
+        self.fixed: dict[str, int] = {}
+        for step in steps:
+            if step.end and step.end not in self.fixed and step.action != "read":
+                self.fixed[step.end] = step.number
+
+    def component_arrow(self, start: str, end: str, component: str, step: int | None,
+                        always: bool = False) -> None:
+        """An arrow unless the same segment is drawn already (a laid-off vector always)."""
+        key = (_snap(self.where[start]), _snap(self.where[end]))
+        if key in self.drawn and not always:
+            return
+        self.drawn.add(key)
+        if self.figure.arrow(self.where[start], self.where[end], component, layer="components",
+                             step=step):
+            self.figure.used.add(component)
+
+    # one method per kind of step
+    def lay_off(self, step: Step) -> None:
+        if step.start not in self.where or step.end not in self.where:
+            return
+        if step.start == self.pole and step.end in self.results:
+            self.results[step.end] = step.number
+        else:
+            self.component_arrow(step.start, step.end, step.component or "relative",
+                                 step.number, always=True)
+
+    def line(self, step: Step) -> None:
+        from shapely.geometry import LineString
+
+        if step.start not in self.where:
+            return
+        through = self.where[step.start]
+        direction = page_direction(step.direction_deg + self.rotate_deg)
+        far = LineString([through - self.reach * direction, through + self.reach * direction])
+        piece = far.intersection(self.clip)
+        if piece.is_empty:
+            return
+        (ax, ay), (bx, by) = piece.coords[0], piece.coords[-1]
+        style = STYLES.get(step.component or "", STYLES["construction"])
+        self.figure.line((ax, ay), (bx, by), color=style.color, width=0.8, dash="5,4",
+                         layer="construction", css="construction",
+                         data={"data-step": str(step.number)})
+        # the legend explains each colour of line drawn: "line of the … component"
+        self.figure.used.add(
+            f"construction:{step.component if step.component in STYLES else ''}")
+
+    def intersect(self, step: Step) -> None:
+        if step.end not in self.where:
+            return
+        for number in step.lines or ():
+            line = self.by_number.get(number)
+            if line is not None and line.start in self.where:
+                self.component_arrow(line.start, step.end, line.component or "relative",
+                                     step.number)
+        if step.flagged:
+            figure, at = self.figure, self.where[step.end]
+            figure.circle(at, 11.0, fill="none", stroke=FLAG, width=1.6, layer="marks",
+                          area=False, css="flagged")
+            figure.request((f"flag:{step.end}",), at, ((f"{step.angle_deg:.2g}°", RunKind.SEP),),
+                           size=SMALL_SIZE, mark=11.0, css="flag")
+            figure.used.add("flagged")
+
+    def similarity(self, step: Step) -> None:
+        if step.vector:
+            members = self.images.setdefault(step.vector, [])
+            members += [label for label in (*step.references, step.end) if label in self.where]
+
+    def read(self, step: Step) -> None:
+        if step.quantity and step.quantity.startswith(("omega_", "epsilon_")):
+            link = step.quantity.partition("_")[2]
+            self.images.setdefault(link, []).extend(
+                label for label in (step.start, step.end)
+                if label in self.where and _is_image(label, self.pole))
+
+    def project(self, step: Step) -> None:
+        if step.start not in self.where or step.end not in self.where:
+            return
+        start, foot = self.where[step.start], self.where[step.end]
+        style = STYLES["projection"]
+        if float(norm(start - foot)) >= 0.5:
+            self.figure.line(start, foot, color=style.color, width=style.width,
+                             dash=style.dash, layer="similarity", css="projection",
+                             data={"data-step": str(step.number)})
+            self.figure.used.add("projection")
+            _right_angle(self.figure, foot, start, self.origin, step.number)
+        self.component_arrow(self.pole, step.end, "normal", step.number)
+
+    # after the steps
+    def link_images(self) -> None:
+        for link, members in self.images.items():
+            members = list(dict.fromkeys(members))
+            known = [self.fixed[label] for label in members if label in self.fixed]
+            if _link_image(self.figure, [self.where[label] for label in members], link,
+                           max(known) if known else None):
+                self.figure.used.add("similarity")
+
+    def result_arrows(self) -> None:
+        for label, number in self.results.items():
+            number = number if number is not None else self.fixed.get(label)   # found
+            if self.figure.arrow(self.origin, self.where[label], "result", layer="results",
+                                 step=number):
+                self.figure.used.add("result")
+
+    def points(self) -> None:
+        """Points and labels: coincident points share one mark and one merged label."""
+        order = {label: index for index, label in enumerate(self.points_mm)}
+        shown = [label for label in self.points_mm if label not in self.hidden]
+        for members in _clusters(shown, self.where, SAME_POINT_MM * self.figure.zoom):
+            members.sort(key=lambda label: (0 if label == self.pole else 1, order[label]))
+            centre = self.where[members[0]]
+            is_pole = members[0] == self.pole
+            self.figure.circle(centre, 3.4 if is_pole else 2.4, fill=INK, layer="points",
+                               css="pole" if is_pole else "point", points=members)
+            self.figure.request(tuple(members), centre, merge_runs(
+                label_runs(label, self.numbers) for label in members), mark=3.4)
+
+
+#: what each kind of construction step draws (a step of another kind draws nothing)
+_STEP_DRAWERS = {"lay_off": _PlanPage.lay_off, "line": _PlanPage.line,
+                 "intersect": _PlanPage.intersect, "similarity": _PlanPage.similarity,
+                 "read": _PlanPage.read, "project": _PlanPage.project}
 
 
 def plan_content(figure: Canvas, points_mm: Mapping[str, Sequence[float]],
-                  steps: Sequence[Step], pole: str, rotate_deg: float = 0.0) -> None:
-    """Draw a plan's steps, results, points and label requests into ``figure``."""
-    from shapely.geometry import LineString, box
-
-    where = {label: figure.px(xy) for label, xy in points_mm.items()}
-    order = {label: index for index, label in enumerate(points_mm)}
-    by_number = {step.number: step for step in steps}
-    origin = where[pole]
-    xs = [p[0] for p in where.values()]
-    ys = [p[1] for p in where.values()]
-    pad = max(0.16 * max(max(xs) - min(xs), max(ys) - min(ys)), 40.0)
-    clip = box(min(xs) - pad, min(ys) - pad, max(xs) + pad, max(ys) + pad)
-    reach = 4 * (clip.length + 1)
-
-    results: dict[str, int | None] = {label: None for label in points_mm
-                                      if _is_image(label, pole)
-                                      and vector_length(difference(where[label], origin)) >= 0.5}
-    result_keys = {(_snap(origin), _snap(where[label])) for label in results}
-    drawn = set(result_keys)
-    images: dict[str, list[str]] = {}      # link → plan points of its image
-    fixed: dict[str, int] = {}             # label → the step that fixes its point (playback)
+                 steps: Sequence[Step], pole: str, rotate_deg: float = 0.0,
+                 numbers: Mapping[str, int] | None = None) -> None:
+    """Draw a plan's steps, results, points and label requests into ``figure``; ``numbers``
+    (the links' numbers) name a point of a link as the course does (b₃)."""
+    page = _PlanPage(figure, points_mm, steps, pole, rotate_deg, numbers)
     for step in steps:
-        if step.end and step.end not in fixed and step.action != "read":
-            fixed[step.end] = step.number
-
-    def component_arrow(start: str, end: str, component: str, step: int | None,
-                        always: bool = False) -> None:
-        """An arrow unless the same segment is drawn already (a laid-off vector always)."""
-        key = (_snap(where[start]), _snap(where[end]))
-        if key in drawn and not always:
-            return
-        drawn.add(key)
-        if figure.arrow(where[start], where[end], component, layer="components", step=step):
-            figure.used.add(component)
-
-    for step in steps:
-        if step.action == "lay_off" and step.start in where and step.end in where:
-            if step.start == pole and step.end in results:
-                results[step.end] = step.number
-            else:
-                component_arrow(step.start, step.end, step.component or "relative",
-                                step.number, always=True)
-        elif step.action == "line" and step.start in where:
-            through = where[step.start]
-            direction = page_direction(step.direction_deg + rotate_deg)
-            far = LineString([translate(through, direction, -reach),
-                              translate(through, direction, reach)])
-            piece = far.intersection(clip)
-            if piece.is_empty:
-                continue
-            (ax, ay), (bx, by) = piece.coords[0], piece.coords[-1]
-            style = STYLES.get(step.component or "", STYLES["construction"])
-            figure.line((ax, ay), (bx, by), color=style.color, width=0.8, dash="5,4",
-                        layer="construction", css="construction",
-                        data={"data-step": str(step.number)})
-            # the legend explains each colour of line drawn: "line of the … component"
-            figure.used.add(f"construction:{step.component if step.component in STYLES else ''}")
-        elif step.action == "intersect" and step.end in where:
-            for number in step.lines or ():
-                line = by_number.get(number)
-                if line is not None and line.start in where:
-                    component_arrow(line.start, step.end, line.component or "relative",
-                                    step.number)
-            if step.flagged:
-                figure.circle(where[step.end], 11.0, fill="none", stroke=FLAG, width=1.6,
-                              layer="marks", area=False, css="flagged")
-                figure.request((f"flag:{step.end}",), where[step.end],
-                               ((f"{step.angle_deg:.2g}°", RunKind.SEP),), size=SMALL_SIZE,
-                               mark=11.0, css="flag")
-                figure.used.add("flagged")
-        elif step.action == "similarity" and step.vector:
-            members = images.setdefault(step.vector, [])
-            members += [label for label in (*step.references, step.end) if label in where]
-        elif (step.action == "read" and step.quantity
-              and step.quantity.startswith(("omega_", "epsilon_"))):
-            link = step.quantity.partition("_")[2]
-            images.setdefault(link, []).extend(
-                label for label in (step.start, step.end)
-                if label in where and _is_image(label, pole))
-        elif step.action == "project" and step.start in where and step.end in where:
-            start, foot = where[step.start], where[step.end]
-            style = STYLES["projection"]
-            if vector_length(difference(start, foot)) >= 0.5:
-                figure.line(start, foot, color=style.color, width=style.width,
-                            dash=style.dash, layer="similarity", css="projection",
-                            data={"data-step": str(step.number)})
-                figure.used.add("projection")
-                _right_angle(figure, foot, start, origin, step.number)
-            component_arrow(pole, step.end, "normal", step.number)
-    for link, members in images.items():
-        members = list(dict.fromkeys(members))
-        known = [fixed[label] for label in members if label in fixed]
-        if _link_image(figure, [where[label] for label in members], link,
-                       max(known) if known else None):
-            figure.used.add("similarity")
-    for label, number in results.items():
-        number = number if number is not None else fixed.get(label)   # found, not laid off
-        if figure.arrow(origin, where[label], "result", layer="results", step=number):
-            figure.used.add("result")
-    # points and labels: coincident points share one mark and one merged label
-    for members in _clusters(points_mm, where):
-        members.sort(key=lambda label: _order_key(label, pole, order))
-        centre = where[members[0]]
-        is_pole = members[0] == pole
-        figure.circle(centre, 3.4 if is_pole else 2.4, fill=INK, layer="points",
-                      css="pole" if is_pole else "point")
-        figure.request(tuple(members), centre,
-                       merge_runs(label_runs(label) for label in members), mark=3.4)
+        drawer = _STEP_DRAWERS.get(step.action)
+        if drawer is not None:
+            drawer(page, step)
+    page.link_images()
+    page.result_arrows()
+    page.points()
 
 
 def _link_image(figure: Canvas, points: Sequence[Point], link: str,
@@ -271,16 +337,16 @@ def _link_image(figure: Canvas, points: Sequence[Point], link: str,
     light polygon when they do not lie on one line, shown in playback from ``step`` (the
     step that fixes the last of its points). False if it shrinks to a point."""
     data = {"data-step": str(step)} if step is not None else None
-    unique = list(dict.fromkeys((round(x, 2), round(y, 2)) for x, y in points))
+    unique = list(dict.fromkeys((round(float(x), 2), round(float(y), 2)) for x, y in points))
     if len(unique) < 2:
         return False
     first, second = _extremes(unique)
-    span = vector_length(difference(first, second))
+    span = float(norm(page_point(first) - second))
     if span < 0.5:
         return False
     style = STYLES["similarity"]
-    hull = _hull(unique)
-    if len(hull) >= 3 and _area(hull) > 1.5 * span:
+    hull, area = _hull(unique)
+    if len(hull) >= 3 and area > 1.5 * span:
         figure.polyline(hull, color=style.color, width=style.width, layer="similarity",
                         fill="#ececec", closed=True, css=f"image {link}", data=data)
     else:
@@ -292,13 +358,12 @@ def _link_image(figure: Canvas, points: Sequence[Point], link: str,
 def _right_angle(figure: Canvas, corner: Point, first: Point, second: Point,
                  step: int | None = None) -> None:
     """A small right-angle mark at ``corner`` between the directions to two points."""
-    a, b = difference(first, corner), difference(second, corner)
-    if vector_length(a) < 12 or vector_length(b) < 12:
+    a, b = first - corner, second - corner
+    if float(norm(a)) < 12 or float(norm(b)) < 12:
         return
-    u, v = unit_vector(a), unit_vector(b)
+    u, v = unit_or_zero(a), unit_or_zero(b)
     size = 6.0
-    points = [translate(corner, u, size), translate(translate(corner, u, size), v, size),
-              translate(corner, v, size)]
+    points = [corner + size * u, (corner + size * u) + size * v, corner + size * v]
     figure.polyline(points, color=STYLES["projection"].color, width=0.7, layer="similarity",
                     data={"data-step": str(step)} if step is not None else None,
                     obstacle=False)
@@ -356,11 +421,23 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
 
 
 def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | None,
-           flags: Sequence[str], kind: str) -> None:
-    """Title above, legend at the right, scales, scale bar and flags below the content."""
-    x0, y0, x1, y1 = figure.extent
-    plan_legend(figure, (x1 + 34, y0 + 4), kind)
-    x0, y0, x1, y1 = figure.extent
+          flags: Sequence[str], kind: str, *, box: Sequence[float] | None = None,
+          equations: Sequence[str] = ()) -> None:
+    """Title above, legend and the plan's vector ``equations`` at the right, scales, scale bar
+    and flags below the content — the content drawn so far, or a fixed ``box`` (x0, y0, x1,
+    y1, px) that stays the same in every frame of a turn (:mod:`planmethod.render.steady`)."""
+    x0, y0, x1, y1 = box if box is not None else figure.extent
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), kind)
+    if equations:
+        y = bottom + 34 if bottom > y0 + 4 else y0 + 4
+        figure.text((x1 + 34, y), "Vector equations", size=TEXT_SIZE, bold=True, css="legend",
+                    area=False)
+        for equation in equations:
+            y += 20
+            figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False,
+                        formula=True)
+    if box is None:
+        x0, y0, x1, y1 = figure.extent
     figure.text((x0, y0 - 16), title, size=TITLE_SIZE, bold=True, css="title", area=False)
     y = y1 + 26
     for line in scale_lines:
@@ -375,264 +452,277 @@ def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | N
         y += 17
 
 
-#: points of a plan nearer than this (px) to a neighbour crowd each other: three or more such
-#: (distinct) points make a region that gets an enlarged detail
-DENSE_PX = 16.0
-#: the longest side of a detail inset (px), and the least and most enlargement worth drawing
-DETAIL_SIZE = 300.0
-DETAIL_ZOOM = (2.5, 12.0)
+def steady_page(view: SteadyView, title: str, lines: int, kind: str, *,
+                legend: bool = True, equations: Sequence[str] = ()
+                ) -> tuple[float, float, float, float]:
+    """The viewBox of a panel kept steady over a turn: its content's fixed box with room for
+    the frame's furniture at every angle — the title (its angle written as wide as any), the
+    widest legend the kind can have and the plan's ``equations`` beside it, ``lines`` scale
+    lines, the scale bar and two flags."""
+    x0, y0, x1, y1 = view.box
+    widest = re.sub(r"= -?[\d.]+°", "= 888.8°", title)
+    column = max([_legend_width(kind) if legend else 0.0]
+                 + [text_width(text, TEXT_SIZE, SANS) for text in equations])
+    right = max(x1 + (34.0 + column if column else 0.0),
+                x0 + text_width(widest, TITLE_SIZE, SANS_BOLD))
+    top = y0 - 16.0 - TITLE_SIZE
+    rows = (len(LEGEND_ORDER) + 3 if legend else 0) * 20.0 + (34.0 + 20.0 * len(equations)
+                                                              if equations else 0.0)
+    bottom = max(y1 + 26.0 + 19.0 * lines + 40.0 + 2 * 17.0, y0 + 20.0 + rows)
+    return (x0 - MARGIN, top - MARGIN, right - x0 + 2 * MARGIN, bottom - top + 2 * MARGIN)
 
 
-def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX,
-                  least: int = 3) -> list[tuple[float, float, float, float]]:
-    """Boxes (x0, y0, x1, y1, page px) round the groups of at least ``least`` distinct points
-    (coincident ones count once) each within ``gap`` of another of the group — the regions of
-    a plan too dense to read, largest group first.
-
-    Examples
-    --------
-    >>> dense_regions({"a": (0, 0), "b": (5, 0), "c": (5, 6), "d": (200, 0)})
-    [(0.0, 0.0, 5.0, 6.0)]
-    """
-    spots: list[Point] = []
-    for xy in where.values():
-        if all(vector_length(difference(xy, other)) >= COINCIDENT for other in spots):
-            spots.append((float(xy[0]), float(xy[1])))
-    group = list(range(len(spots)))
-
-    def root(index: int) -> int:
-        while group[index] != index:
-            group[index] = group[group[index]]
-            index = group[index]
-        return index
-
-    for i, first in enumerate(spots):
-        for j in range(i + 1, len(spots)):
-            if vector_length(difference(first, spots[j])) < gap:
-                group[root(i)] = root(j)
-    members: dict[int, list[Point]] = {}
-    for index, xy in enumerate(spots):
-        members.setdefault(root(index), []).append(xy)
-    found = [points for points in members.values() if len(points) >= least]
-    found.sort(key=lambda points: (-len(points), points[0]))
-    return [(min(p[0] for p in points), min(p[1] for p in points),
-             max(p[0] for p in points), max(p[1] for p in points)) for points in found]
+def _legend_width(kind: str) -> float:
+    """The width (px) of the widest legend row a plan of this kind can have."""
+    texts = ["intersection at a small angle (flagged)"]
+    for key in LEGEND_ORDER:
+        name = (STYLES[key].legend_velocity if kind == PlanKind.VELOCITY
+                else STYLES[key].legend_acceleration)
+        texts += [name, f"construction line: direction of the {name}"]
+    return 44.0 + max(text_width(text, SMALL_SIZE, SANS) for text in texts)
 
 
-def _detail_regions(figure: Canvas, plan: Plan) -> list[tuple[str, tuple, float]]:
-    """The plan's dense regions worth an enlarged detail: (letter, box in page px,
-    enlargement), each marked on the plan with a frame and its letter (placed with the
-    labels: call before :meth:`Canvas.place`)."""
+def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = None
+                 ) -> SvgFigure:
+    """A velocity or acceleration plan as an :class:`SvgFigure` (see the module docstring);
+    with ``details``, a region too dense to read is drawn again, enlarged, below the plan;
+    ``view`` keeps the zoom and the page of every frame of a turn."""
+    figure = Canvas(view.zoom if view else fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
+    def content(canvas: Canvas) -> None:
+        plan_content(canvas, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
+
+    content(figure)
     where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    out = []
-    for x0, y0, x1, y1 in dense_regions(where)[:2]:
-        margin = max(10.0, 0.2 * max(x1 - x0, y1 - y0))
-        box = (x0 - margin, y0 - margin, x1 + margin, y1 + margin)
-        zoom = min(DETAIL_SIZE / max(box[2] - box[0], box[3] - box[1]), DETAIL_ZOOM[1])
-        if zoom < DETAIL_ZOOM[0]:
-            continue
-        letter = "ABCD"[len(out)]
-        figure.rectangle((box[0], box[1]), (box[2] - box[0], box[3] - box[1]), fill="none",
-                         stroke=INK, width=0.8, layer="marks", css="detail region")
-        figure.request((f"detail:{letter}",), (box[2], box[1]), ((letter, RunKind.SEP),),
-                       mark=0.0)
-        out.append((letter, box, float(math.floor(zoom))))     # a whole enlargement: ×6
-    return out
-
-
-def _detail_insets(figure: Canvas, plan: Plan, regions) -> list[str]:
-    """Each marked region drawn again, enlarged, below the plan: the drawing clipped to the
-    region, the labels of the points inside it kept whole. Returns the lines that say so."""
-    lines = []
-    x = figure.extent[0]
-    top = figure.extent[3] + 30.0
-    for letter, (x0, y0, x1, y1), zoom in regions:
-        detail = Canvas(figure.zoom * zoom)
-        plan_content(detail, plan.points_mm, plan.steps, plan.pole)
-        reach = 60.0               # labels are placed for the points in and near the region
-        detail.requests = [request for request in detail.requests
-                           if x0 * zoom - reach <= request.anchor[0] <= x1 * zoom + reach
-                           and y0 * zoom - reach <= request.anchor[1] <= y1 * zoom + reach]
-        detail.place()
-        width, height = (x1 - x0) * zoom, (y1 - y0) * zoom
-        inside = {" ".join(label.points) for label in detail.labels
-                  if x0 * zoom <= label.anchor[0] <= x1 * zoom
-                  and y0 * zoom <= label.anchor[1] <= y1 * zoom}
-        ident = f"detail-{plan.kind}-{letter}"
-        figure.define("clipPath", {"id": ident}, [
-            ("rect", {"x": num(x0 * zoom), "y": num(y0 * zoom), "width": num(width),
-                      "height": num(height)}, [])])
-        drawing = [("g", {"class": name}, items) for name, items in detail.layers.items()
-                   if items and name not in ("labels", "leaders")]
-        texts = [item for item in detail.layers["labels"]
-                 if item[1].get("data-points") in inside]
-        leaders = [item for item in detail.layers["leaders"]
-                   if x0 * zoom <= float(item[1]["x1"]) <= x1 * zoom
-                   and y0 * zoom <= float(item[1]["y1"]) <= y1 * zoom]
-        move = f"translate({num(x - x0 * zoom)},{num(top - y0 * zoom)})"
-        figure.add("points", "g", {"class": "detail", "clip-path": f"url(#{ident})",
-                                   "transform": move}, drawing)
-        figure.add("labels", "g", {"class": "detail labels", "transform": move},
-                   [("g", {"class": "leaders"}, leaders), ("g", {"class": "labels"}, texts)])
-        figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
-                         layer="marks", css="detail frame")
-        right, bottom = x + width, top + height
-        for label in detail.labels:           # labels kept whole may reach past the frame
-            if " ".join(label.points) in inside:
-                bx0, by0, bx1, by1 = label.box
-                corner = (x + bx1 - x0 * zoom, top + by1 - y0 * zoom)
-                figure.grow((x + bx0 - x0 * zoom, top + by0 - y0 * zoom), corner)
-                right, bottom = max(right, corner[0]), max(bottom, corner[1])
-        figure.text((x, bottom + 18), f"{letter}: detail ×{zoom:g}", size=TEXT_SIZE,
-                    bold=True, css="detail", area=False)
-        lines.append(f"detail {letter}: the marked region drawn {zoom:g} times larger")
-        x = right + 40.0
-    return lines
-
-
-def plan_drawing(plan: Plan, *, details: bool = True) -> Drawing:
-    """A velocity or acceleration plan as an SVG :class:`Drawing` (see the module docstring);
-    with ``details``, a region too dense to read is drawn again, enlarged, below the plan."""
-    figure = Canvas(fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
-    plan_content(figure, plan.points_mm, plan.steps, plan.pole)
-    regions = _detail_regions(figure, plan) if details else []
+    regions = detail_regions(figure, where) if details else []
     figure.place()
-    details = _detail_insets(figure, plan, regions)
-    symbol = _SYMBOLS.get(plan.kind, "μ")
-    lines = [f"{symbol} = {quantity(plan.scale, 6)} {plan.unit}"]
+    details = detail_insets(figure, content, regions, f"detail-{plan.kind}")
+    scale = PLAN_SCALES[plan.kind]
+    lines = [scale_text(scale, plan.scale)]
     if plan.precision_mm:
         lines.append(f"drafting precision {plan.precision_mm:g} mm")
     lines += details
-    frame(figure, plan.title or f"{plan.kind} plan", lines,
-           (plan.scale, _unit_of(plan.unit), 0.3 * PLAN_SIZE), plan.flags, plan.kind)
-    return figure.svg(plan.title or f"{plan.kind} plan")
+    title = plan.title or f"{plan.kind} plan"
+    equations = vector_equations(plan)
+    frame(figure, title, lines, (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE), plan.flags,
+          plan.kind, box=view.box if view else None, equations=equations)
+    return figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
+                                              equations=equations) if view else None)
 
 
-def plan_svg(plan: Plan, *, details: bool = True) -> str:
+def plan_svg(plan: Plan, *, details: bool = True, view: SteadyView | None = None) -> str:
     """A velocity or acceleration plan as SVG text, drawn from the plan's data alone."""
-    return plan_drawing(plan, details=details).svg
+    return plan_drawing(plan, details=details, view=view).svg
+
+
+#: a point's name inside a vector's name, its digits to be set as subscripts (O2 → O₂)
+_POINT_DIGITS = re.compile(r"(?<=[A-Z])(\d+)")
+
+
+def vector_equations(plan: Plan) -> list[str]:
+    """The vector equations a plan solves, as textbooks print them beside it: for each pair
+    of construction lines intersected, the point's vector as the base image's vector plus the
+    components laid off from it plus the line's own — ``v_C = v_B + v_CB = v_C₀ + v_CC₀``,
+    ``a_B₃ = a_B + aᵏ_B₃ + aʳ_B₃ = a_O₂ + aⁿ_BO₂ + aᵗ_BO₂``. A component that is zero by
+    construction (a Coriolis term on a guide that does not turn) is left out.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> from planmethod.plans import draw_plans
+    >>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+    >>> vector_equations(plans.velocity), vector_equations(plans.acceleration)
+    (['v_C = v_B + v_CB = v_C₀ + v_CC₀'], ['a_C = a_B + aⁿ_CB + aᵗ_CB = a_C₀ + aʳ_C'])
+    """
+    from ..plans.construction import course_text
+
+    letter = "v" if plan.kind == PlanKind.VELOCITY else "a"
+    laid = {}
+    for step in plan.steps:
+        if step.action in ("lay_off", "coincide") and step.end and step.end not in laid:
+            laid[step.end] = step
+    by_number = {step.number: step for step in plan.steps}
+
+    def named(text: str) -> str:
+        return _POINT_DIGITS.sub(lambda m: subscript(m.group(1)),
+                                 course_text(text, plan.numbers))
+
+    def image(label: str) -> str:
+        name, at, link = label.partition("@")
+        return named(f"{letter}_{name.rstrip('′').upper()}{at}{link}")
+
+    out = []
+    for step in plan.steps:
+        if step.action != "intersect" or not step.end or len(step.lines or ()) != 2:
+            continue
+        sides = []
+        for number in step.lines:
+            line = by_number.get(number)
+            if line is None or not line.start:
+                break
+            terms = [named(line.vector)] if line.vector else []
+            point = line.start
+            while point.startswith(("n_", "k")) and "_" in point and point in laid:
+                if laid[point].action == "lay_off" and laid[point].vector:
+                    terms.insert(0, named(laid[point].vector))
+                point = laid[point].start or plan.pole
+            sides.append(" + ".join([image(point), *terms]))
+        else:
+            out.append(f"{image(step.end)} = {sides[0]} = {sides[1]}")
+    return out
 
 
 # -- the mechanism --------------------------------------------------------------------------------
-def mechanism_content(figure: Canvas, position: PositionPlan, *, faint: bool = False) -> None:
-    """Links, pairs, pivots, sliders and guides of a position plan, with label requests."""
-    ink = FAINT if faint else INK
-    fill = "#f2f2f2" if faint else LINK_FILL
-    where = {name: figure.px(xy) for name, xy in position.points_mm.items()}
-    links = {name: points for name, points in position.links.items()}
-    moving = {name: points for name, points in links.items() if name != "frame"}
-    count: dict[str, int] = {}
-    for points in links.values():
-        for point in points:
-            count[point] = count.get(point, 0) + 1
-    centroid = (sum(p[0] for p in where.values()) / len(where),
-                sum(p[1] for p in where.values()) / len(where))
-    block_w, block_h = 36.0, 18.0
+#: a slider block's length along its guide and its width (px)
+BLOCK = (36.0, 18.0)
 
-    # guides of the prismatic pairs
-    for slide in position.slides:
-        point = slide.get("point")
-        if point not in where:
-            continue
-        through = figure.px(slide["through_mm"])
-        u = page_direction(slide["direction_deg"])
-        n = (-u[1], u[0])
-        at = where[point]
-        s = (at[0] - through[0]) * u[0] + (at[1] - through[1]) * u[1]
-        if slide.get("along") == "frame":
-            low, high = min(0.0, s) - block_w, max(0.0, s) + block_w
-        else:                   # on a moving guide: from its mark to just beyond the block
-            low, high = (0.0, s + block_w) if s >= 0 else (s - block_w, 0.0)
-        axis = [translate(through, u, low), translate(through, u, high)]
-        if slide.get("along") == "frame":
+
+class _MechanismPage:
+    """A position plan being drawn into a figure: where its points are on the page, and
+    one method per kind of part (guides, links, slider blocks, fixed pivots, pairs)."""
+
+    def __init__(self, figure: Canvas, position: PositionPlan, faint: bool) -> None:
+        self.figure, self.position, self.faint = figure, position, faint
+        self.ink = FAINT if faint else INK
+        self.fill = "#f2f2f2" if faint else LINK_FILL
+        self.where = {name: figure.px(xy) for name, xy in position.points_mm.items()}
+        self.links = dict(position.links)
+        self.moving = {name: points for name, points in self.links.items() if name != "frame"}
+        self.count: dict[str, int] = {}
+        for points in self.links.values():
+            for point in points:
+                self.count[point] = self.count.get(point, 0) + 1
+        where = self.where
+        self.centroid = np.array((sum(p[0] for p in where.values()) / len(where),
+                                  sum(p[1] for p in where.values()) / len(where)))
+
+    def guides(self) -> None:
+        """The guide of each prismatic pair: a dash-dotted line hatched on the side away
+        from the mechanism on the frame, a bar on a moving link."""
+        block_w, block_h = BLOCK
+        figure, ink = self.figure, self.ink
+        for slide in self.position.slides:
+            point = slide.get("point")
+            if point not in self.where:
+                continue
+            through = figure.px(slide["through_mm"])
+            u = page_direction(slide["direction_deg"])
+            n = perp(u)
+            at = self.where[point]
+            s = float(dot(at - through, u))
+            on_frame = slide.get("along") == "frame"
+            if on_frame:
+                low, high = min(0.0, s) - block_w, max(0.0, s) + block_w
+            else:               # on a moving guide: from its mark to just beyond the block
+                low, high = (0.0, s + block_w) if s >= 0 else (s - block_w, 0.0)
+            axis = [through + low * u, through + high * u]
+            if not on_frame:    # the guide is material of the moving link: a bar
+                figure.line(axis[0], axis[1], color=ink, width=3.0, layer="links", cap="round",
+                            css=f"guide {slide.get('along', '')}")
+                continue
             figure.line(axis[0], axis[1], color=ink, width=0.7, dash="14,3,2,3",
                         layer="ground", css="guide")
-        else:                   # the guide is material of the moving link: a bar
-            figure.line(axis[0], axis[1], color=ink, width=3.0, layer="links", cap="round",
-                        css=f"guide {slide.get('along', '')}")
-        if slide.get("along") == "frame":
-            lean = (centroid[0] - at[0]) * n[0] + (centroid[1] - at[1]) * n[1]
+            lean = float(dot(self.centroid - at, n))
             if abs(lean) < 1.0:         # the mechanism lies on the guide: hatch below/right
                 lean = -(n[1] if abs(n[1]) > 1e-9 else n[0])
-            away = (-n[0], -n[1]) if lean > 0 else n
-            base = translate(at, away, block_h / 2)
-            ends = [translate(base, u, -1.7 * block_w), translate(base, u, 1.7 * block_w)]
-            _hatch(figure, ends[0], ends[1], away, ink)
+            away = -n if lean > 0 else n
+            base = at + block_h / 2 * away
+            _hatch(figure, base - 1.7 * block_w * u, base + 1.7 * block_w * u, away, ink)
 
-    # links
-    for name, points in moving.items():
-        placed = [where[p] for p in points if p in where]
-        unique = list(dict.fromkeys((round(x, 3), round(y, 3)) for x, y in placed))
-        if len(unique) < 2:
-            continue
-        hull = _hull(unique)
-        if len(hull) >= 3 and _area(hull) > 2.0 * max(
-                vector_length(difference(a, b)) for a in unique for b in unique):
-            # under the bars, so that a ternary link never hides a bar drawn across it
-            figure.polyline(hull, color=ink, width=2.0, layer="ground", fill=fill, closed=True,
-                            css=f"link {name}")
-        else:
+    def bars(self) -> None:
+        """Each moving link: a bar, or a filled polygon when its points span an area."""
+        figure, ink = self.figure, self.ink
+        for name, points in self.moving.items():
+            placed = [self.where[p] for p in points if p in self.where]
+            unique = list(dict.fromkeys((round(float(x), 3), round(float(y), 3))
+                                        for x, y in placed))
+            if len(unique) < 2:
+                continue
+            hull, area = _hull(unique)
             a, b = _extremes(unique)
-            figure.line(a, b, color=ink, width=3.0, layer="links", cap="round",
-                        css=f"link {name}")
+            if len(hull) >= 3 and area > 2.0 * float(norm(page_point(a) - b)):
+                # under the bars, so that a ternary link never hides a bar drawn across it
+                figure.polyline(hull, color=ink, width=2.0, layer="ground", fill=self.fill,
+                                closed=True, css=f"link {name}")
+            else:
+                figure.line(a, b, color=ink, width=3.0, layer="links", cap="round",
+                            css=f"link {name}")
 
-    # slider blocks
-    for slide in position.slides:
-        point = slide.get("point")
-        if point not in where:
-            continue
-        u = page_direction(slide["direction_deg"])
-        n = (-u[1], u[0])
-        at = where[point]
-        corners = [translate(translate(at, u, sx * block_w / 2), n, sy * block_h / 2)
-                   for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-        figure.polyline(corners, color=ink, width=1.8, layer="links", fill="#ffffff",
-                        closed=True, css=f"slider {slide.get('link', '')}")
+    def blocks(self) -> None:
+        """A slider block on each prismatic pair's point."""
+        block_w, block_h = BLOCK
+        for slide in self.position.slides:
+            point = slide.get("point")
+            if point not in self.where:
+                continue
+            u = page_direction(slide["direction_deg"])
+            n = perp(u)
+            at = self.where[point]
+            corners = [(at + sx * block_w / 2 * u) + sy * block_h / 2 * n
+                       for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+            self.figure.polyline(corners, color=self.ink, width=1.8, layer="links",
+                                 fill="#ffffff", closed=True,
+                                 css=f"slider {slide.get('link', '')}")
 
-    # fixed pivots with the hatched ground
-    for pivot in position.pivots:
-        if pivot not in where:
-            continue
-        at = where[pivot]
-        spokes = [unit_vector(difference(where[other], at)) for name, points in moving.items()
-                  if pivot in points for other in points if other != pivot and other in where]
-        away = _support_direction(spokes)
-        n = (-away[1], away[0])
-        base = translate(at, away, 18.0)
-        figure.polyline([at, translate(base, n, 9.0), translate(base, n, -9.0)], color=ink,
-                        width=1.4, layer="ground", fill="#ffffff", closed=True, css="support")
-        _hatch(figure, translate(base, n, -16.0), translate(base, n, 16.0), away, ink)
+    def pivots(self) -> None:
+        """Each fixed pivot: a triangle on the hatched ground, on the side no link takes."""
+        figure, ink = self.figure, self.ink
+        for pivot in self.position.pivots:
+            if pivot not in self.where:
+                continue
+            at = self.where[pivot]
+            spokes = [unit_or_zero(self.where[other] - at) for points in self.moving.values()
+                      if pivot in points for other in points
+                      if other != pivot and other in self.where]
+            away = page_point(_support_direction(spokes))
+            n = perp(away)
+            base = at + 18.0 * away
+            figure.polyline([at, base + 9.0 * n, base - 9.0 * n], color=ink, width=1.4,
+                            layer="ground", fill="#ffffff", closed=True, css="support")
+            _hatch(figure, base - 16.0 * n, base + 16.0 * n, away, ink)
 
-    # pairs and points
-    for name, at in where.items():
-        if count.get(name, 0) >= 2:
-            figure.circle(at, 4.5, fill="#ffffff", stroke=ink, width=1.5, layer="points",
-                          css="pair")
-        elif count.get(name, 0) == 1 and name not in links.get("frame", ()):
-            figure.circle(at, 2.6, fill=ink, layer="points", css="point")
-        else:
-            figure.line(translate(at, (-4, -4)), translate(at, (4, 4)), color=ink, width=1.0,
-                        layer="points", obstacle=False)
-            figure.line(translate(at, (-4, 4)), translate(at, (4, -4)), color=ink, width=1.0,
-                        layer="points", obstacle=False)
-    for members in _clusters(position.points_mm, where):
-        figure.request(tuple(members), where[members[0]],
-                       merge_runs(label_runs(name) for name in members), mark=4.5,
-                       css="faint" if faint else "label")
+    def pairs(self) -> None:
+        """Revolute pairs as rings, other points of links as dots, frame points that join
+        nothing as crosses; then the labels (coincident points share one)."""
+        figure, ink = self.figure, self.ink
+        for name, at in self.where.items():
+            marks = () if self.faint else (name,)     # a faint mechanism only underlies
+            if self.count.get(name, 0) >= 2:
+                figure.circle(at, 4.5, fill="#ffffff", stroke=ink, width=1.5, layer="points",
+                              css="pair", points=marks)
+            elif self.count.get(name, 0) == 1 and name not in self.links.get("frame", ()):
+                figure.circle(at, 2.6, fill=ink, layer="points", css="point", points=marks)
+            else:
+                for corner in ((4.0, 4.0), (4.0, -4.0)):
+                    figure.line(at - corner, at + corner, color=ink, width=1.0,
+                                layer="points", obstacle=False)
+        for members in _clusters(self.position.points_mm, self.where,
+                                 SAME_POINT_MM * figure.zoom):
+            figure.request(tuple(members), self.where[members[0]],
+                           merge_runs(label_runs(name) for name in members), mark=4.5,
+                           css="faint" if self.faint else "label")
+
+
+def mechanism_content(figure: Canvas, position: PositionPlan, *, faint: bool = False) -> None:
+    """Links, pairs, pivots, sliders and guides of a position plan, with label requests."""
+    page = _MechanismPage(figure, position, faint)
+    page.guides()
+    page.bars()
+    page.blocks()
+    page.pivots()
+    page.pairs()
 
 
 def _hatch(figure: Canvas, start: Point, end: Point, away: Point, ink: str) -> None:
     """A ground line from ``start`` to ``end`` hatched on the side ``away``."""
-    figure.line(start, end, color=GROUND if ink == INK else ink, width=1.6, layer="ground",
-                css="ground")
-    u = unit_vector(difference(end, start))
-    length = vector_length(difference(end, start))
+    color = GROUND if ink == INK else ink
+    figure.line(start, end, color=color, width=1.6, layer="ground", css="ground")
+    length = float(norm(end - start))
+    u = unit_or_zero(end - start, length)
     count = max(2, int(length // 7))
     for index in range(count + 1):
-        foot = translate(start, u, index * length / count)
-        tip = translate(translate(foot, away, 6.0), u, -5.0)
-        figure.line(foot, tip, color=GROUND if ink == INK else ink, width=0.9, layer="ground",
-                    css="hatch")
+        foot = start + index * length / count * u
+        figure.line(foot, (foot + 6.0 * away) - 5.0 * u, color=color, width=0.9,
+                    layer="ground", css="hatch")
 
 
 def _support_direction(spokes: Sequence[Point]) -> Point:
@@ -641,7 +731,7 @@ def _support_direction(spokes: Sequence[Point]) -> Point:
     options = ((0.0, 1.0), (0.0, -1.0), (-1.0, 0.0), (1.0, 0.0))   # page: down, up, left, right
 
     def conflict(direction: Point) -> float:
-        return max((d[0] * direction[0] + d[1] * direction[1] for d in spokes), default=-1.0)
+        return max((float(dot(d, page_point(direction))) for d in spokes), default=-1.0)
 
     for option in options:
         if conflict(option) < 0.64:                                  # no link within 50°
@@ -650,40 +740,24 @@ def _support_direction(spokes: Sequence[Point]) -> Point:
 
 
 def _extremes(points: Sequence[Point]) -> tuple[Point, Point]:
-    """The two points furthest apart."""
-    best = (points[0], points[1])
-    for i, a in enumerate(points):
-        for b in points[i + 1:]:
-            if vector_length(difference(a, b)) > vector_length(difference(*best)):
-                best = (a, b)
-    return best
+    """The two points furthest apart (the first such pair)."""
+    distances = _distances(points)
+    first, second = divmod(int(np.argmax(np.triu(distances, 1))), len(points))
+    return points[first], points[second]
 
 
-def _hull(points: Sequence[Point]) -> list[Point]:
-    """Convex hull (monotone chain), counter-clockwise on the page."""
-    pts = sorted(set(points))
-    if len(pts) < 3:
-        return list(pts)
+def _hull(points: Sequence[Point]) -> tuple[list[Point], float]:
+    """The convex hull (shapely) of distinct points, counter-clockwise from the lowest
+    (x, y), and its area; fewer than three corners where the points lie on one line."""
+    from shapely.geometry import MultiPoint
+    from shapely.geometry.polygon import orient
 
-    def cross(o, a, b):
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    lower: list[Point] = []
-    for p in pts:
-        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
-            lower.pop()
-        lower.append(p)
-    upper: list[Point] = []
-    for p in reversed(pts):
-        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
-            upper.pop()
-        upper.append(p)
-    return lower[:-1] + upper[:-1]
-
-
-def _area(polygon: Sequence[Point]) -> float:
-    return abs(sum(a[0] * b[1] - b[0] * a[1]
-                   for a, b in zip(polygon, [*polygon[1:], polygon[0]], strict=True))) / 2
+    hull = MultiPoint(points).convex_hull
+    if hull.geom_type != "Polygon":
+        return [], 0.0
+    corners = list(orient(hull, sign=1.0).exterior.coords)[:-1]
+    first = corners.index(min(corners))
+    return corners[first:] + corners[:first], float(hull.area)
 
 
 def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
@@ -699,15 +773,21 @@ def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
     arc = [figure.px((centre_mm[0] + radius * math.cos(a), centre_mm[1] + radius * math.sin(a)))
            for a in angles]
     tip = arc[-1]
-    direction = unit_vector(difference(tip, arc[-2]))
-    figure.polyline([*arc[:-1], translate(tip, direction, -7.0)], color=color, width=1.4,
+    direction = unit_or_zero(tip - arc[-2])
+    figure.polyline([*arc[:-1], tip - 7.0 * direction], color=color, width=1.4,
                     layer="marks", css=css)
     arrowhead(figure, tip, direction, 10.0, color, "marks")
     figure.request((key,), arc[len(arc) // 2], runs, mark=1.0)
 
 
+def crank_number(position: PositionPlan) -> int:
+    """The crank's number in the course's notation (1 by default): the drive's symbols
+    φ, ω, ε carry it."""
+    return position.numbers.get(position.drive[0], 1)
+
+
 def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None:
-    """The crank's ω1 as a curved arrow round the drive pivot."""
+    """The crank's ω₁ as a curved arrow round the drive pivot."""
     link, pivot, omega = position.drive
     if not omega or pivot not in position.points_mm:
         return
@@ -719,8 +799,8 @@ def _omega_arrow(figure: Canvas, position: PositionPlan, ink: str = INK) -> None
     start = math.atan2(tip_mm[1] - centre_mm[1], tip_mm[0] - centre_mm[0])
     crank_px = math.hypot(tip_mm[0] - centre_mm[0], tip_mm[1] - centre_mm[1]) * figure.zoom
     turning_arrow(figure, centre_mm, min(max(0.42 * crank_px, 20.0), 44.0), start,
-                  1.0 if omega > 0 else -1.0, ink, "ω1",
-                  (("ω", RunKind.MAIN), ("1", RunKind.UPRIGHT)))
+                  1.0 if omega > 0 else -1.0, ink, f"ω{crank_number(position)}",
+                  (("ω", RunKind.MAIN), (str(crank_number(position)), RunKind.UPRIGHT)))
 
 
 def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float) -> None:
@@ -737,28 +817,30 @@ def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float)
             figure.polyline([figure.px(xy) for xy in data["path_mm"]], color=color, width=0.8,
                             dash="2,3", closed=True, obstacle=False, css="path")
         half = 60.0
-        ends = (translate(at, tangent, -half), translate(at, tangent, half))
+        ends = (at - half * tangent, at + half * tangent)
         figure.line(*ends, color=color, width=1.0, dash="10,3,2,3", layer="marks", css="tangent")
         for end in ends:
             figure.request(("τ",), end, (("τ", RunKind.MAIN),), size=TEXT_SIZE, mark=0.0)
         on_sheet = rho_px <= 1.6 * extent_px
         shown = rho_px if on_sheet else 0.5 * extent_px
-        ends = (translate(at, normal, -40.0), translate(at, normal, shown + 24.0))
+        ends = (at - 40.0 * normal, at + (shown + 24.0) * normal)
         figure.line(*ends, color=color, width=1.0, dash="10,3,2,3", layer="marks", css="normal")
         for end in ends:
             figure.request(("η",), end, (("η", RunKind.MAIN),), size=TEXT_SIZE, mark=0.0)
         rho_m = float(data["rho_mm"]) * position.mu_l
-        text = (("ρ", RunKind.MAIN), (name, RunKind.SUB), (f" = {quantity(rho_m)} m", RunKind.SEP))
+        text = (("ρ", RunKind.MAIN), (name, RunKind.SUB),
+                (f" = {significant(rho_m)} m", RunKind.SEP))
         if on_sheet:
-            centre = translate(at, normal, rho_px)
+            centre = at + rho_px * normal
             figure.arrow(at, centre, "normal", layer="marks", color=color, css="rho")
             figure.circle(centre, 3.0, fill="#ffffff", stroke=color, width=1.4,
                           layer="points", css="centre")
             figure.request((f"O_{name}",), centre, (("O", RunKind.MAIN), (name, RunKind.SUB)),
                            mark=3.0)
         else:
-            text = (*text[:-1], (f" = {quantity(rho_m)} m (centre off the sheet)", RunKind.SEP))
-        figure.request((f"rho_{name}",), translate(at, normal, 0.5 * shown), text, size=TEXT_SIZE,
+            text = (*text[:-1], (f" = {significant(rho_m)} m (centre off the sheet)",
+                                 RunKind.SEP))
+        figure.request((f"rho_{name}",), at + 0.5 * shown * normal, text, size=TEXT_SIZE,
                        mark=1.0)
 
 
@@ -769,11 +851,12 @@ def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ())
 
 
 def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
-                     notes: Sequence[str] = ()) -> Drawing:
-    """The mechanism at μl as an SVG :class:`Drawing` (see the module docstring).
+                     notes: Sequence[str] = (), view: SteadyView | None = None) -> SvgFigure:
+    """The mechanism at μl as an :class:`SvgFigure` (see the module docstring).
 
     ``notes`` are lines of text printed under the figure (a task sheet's text); a line that
-    starts with two spaces is a table row and is set in a monospaced font.
+    starts with two spaces is a table row and is set in a monospaced font. ``view`` keeps the
+    zoom and the page of every frame of a turn (the fixed pivots stay where they are).
     """
     position = position_plan
     centres = []
@@ -783,54 +866,60 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
         if float(data["rho_mm"]) <= 1.6 * extent_mm:
             centres.append(tuple(data["center_mm"]))
         centres += [tuple(xy) for xy in data.get("path_mm") or ()]
-    figure = Canvas(position_zoom(position, centres))
+    figure = Canvas(view.zoom if view else position_zoom(position, centres))
     mechanism_content(figure, position)
     _omega_arrow(figure, position)
     _curvature_content(figure, position, MECHANISM_SIZE)
     figure.place()
-    lines = [f"μl = {quantity(position.mu_l, 6)} m/mm"]
+    lines = [scale_text("mu_l", position.mu_l)]
     link, _pivot, omega = position.drive
     if omega:
-        lines.append(f"ω₁ = {quantity(omega, 6)} rad/s (link {link})")
+        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s "
+                     f"({link_text(link, position.numbers)})")
     if plans is not None:
         lines += [line for line in plans.scales.describe()[1:3]]
-    title = f"{position.title} — position plan, φ₁ = {position.angle:g}°".lstrip(" —")
-    frame(figure, title, lines, (position.mu_l, "m", 0.25 * MECHANISM_SIZE),
-           plans.flags if plans is not None else (), PlanKind.POSITION)
+    title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "
+             f"{position.angle:g}°").lstrip(" —")
+    frame(figure, title, lines, (position.mu_l, SCALES["mu_l"].drawn, 0.25 * MECHANISM_SIZE),
+          plans.flags if plans is not None else (), PlanKind.POSITION,
+          box=view.box if view else None)
     y = figure.extent[3] + 24
     for line in notes:
         if line.strip():
             figure.text((figure.extent[0], y), line, size=TEXT_SIZE, css="task", area=False,
                         monospace=line.startswith("  "))
         y += 17
-    return figure.svg(title)
+    return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.POSITION,
+                                              legend=False) if view else None)
 
 
-def position_svg(position_plan: PositionPlan, *, plans: Plans | None = None) -> str:
+def position_svg(position_plan: PositionPlan, *, plans: Plans | None = None,
+                 view: SteadyView | None = None) -> str:
     """The mechanism at μl as SVG text (``plans`` adds the plans' scales and flags)."""
-    return position_drawing(position_plan, plans=plans).svg
+    return position_drawing(position_plan, plans=plans, view=view).svg
 
 
 # -- the rotated velocity plan --------------------------------------------------------------------
-def lever_drawing(plans: Plans) -> Drawing:
-    """The velocity plan turned 90° onto the faint mechanism, pole p at the drive's pivot."""
+def lever_drawing(plans: Plans, *, view: SteadyView | None = None) -> SvgFigure:
+    """The velocity plan turned 90° onto the faint mechanism, pole p at the drive's pivot
+    (``view``: the zoom and page of every frame of a turn)."""
     position, plan = plans.position, plans.velocity
     rotated = plans.rotated_velocity_plan()
-    figure = Canvas(position_zoom(position, list(rotated.values())))
+    figure = Canvas(view.zoom if view else position_zoom(position, list(rotated.values())))
     mechanism_content(figure, position, faint=True)
-    plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0)
+    plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0, numbers=plan.numbers)
     figure.place()
-    lines = [f"μl = {quantity(position.mu_l, 6)} m/mm",
-             f"μv = {quantity(plan.scale, 6)} {plan.unit}",
+    lines = [scale_text("mu_l", position.mu_l), scale_text("mu_v", plan.scale),
              f"the velocity plan turned 90° clockwise, pole {plan.pole} at "
-             f"{_sans_name(position.drive[1])} (Zhukovsky's lever)"]
-    title = (f"{position.title} — rotated velocity plan, φ₁ = {position.angle:g}°"
-             .lstrip(" —"))
-    frame(figure, title, lines, (plan.scale, _unit_of(plan.unit), 0.25 * MECHANISM_SIZE),
-           plan.flags, PlanKind.VELOCITY)
-    return figure.svg(title)
+             f"{point_text(position.drive[1])} (Zhukovsky's lever)"]
+    title = (f"{position.title} — rotated velocity plan, "
+             f"{numbered('φ', crank_number(position))} = {position.angle:g}°").lstrip(" —")
+    frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.25 * MECHANISM_SIZE),
+          plan.flags, PlanKind.VELOCITY, box=view.box if view else None)
+    return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.VELOCITY)
+                      if view else None)
 
 
-def lever_svg(plans: Plans) -> str:
+def lever_svg(plans: Plans, *, view: SteadyView | None = None) -> str:
     """The rotated velocity plan on the mechanism as SVG text."""
-    return lever_drawing(plans).svg
+    return lever_drawing(plans, view=view).svg

@@ -44,13 +44,14 @@
     const unit = q.unit || "";
     const right = (numberText(q.value) + " " + unit + " ± " + fmt(q.tolerance, 3)).replace("  ", " ");
     const answer = parseAnswer(raw);
+    const name = q.symbol || q.id;  // as the course writes it (ω₂), as grade_question does
     const result = {id: q.id, correct: false, mistake: null, answer: null};
-    if (answer === null) { result.feedback = q.id + ": no answer (right: " + right + ")"; return result; }
+    if (answer === null) { result.feedback = name + ": no answer (right: " + right + ")"; return result; }
     if (typeof answer === "string") {
-      result.feedback = q.id + ": '" + answer + "' is not a number (right: " + right + ")"; return result;
+      result.feedback = name + ": '" + answer + "' is not a number (right: " + right + ")"; return result;
     }
     result.answer = answer;
-    const shown = (q.id + " = " + numberText(answer) + " " + unit).trimEnd();
+    const shown = (name + " = " + numberText(answer) + " " + unit).trimEnd();
     if (Math.abs(answer - q.value) <= q.tolerance) {
       result.correct = true;
       result.feedback = shown + ": correct (exact " + numberText(q.value) + ", tolerance ± " + fmt(q.tolerance, 3) + ")";
@@ -187,6 +188,7 @@
       wb.step = null;
       document.getElementById("step-text").textContent = "";
       document.getElementById("step-number").textContent = "";
+      document.getElementById("equations").textContent = "";
       // other parts of the page (the drawing mode) follow the frame: part of the switch
       document.dispatchEvent(new CustomEvent("workbook:frame", {detail: {frame: frame}}));
       void document.body.offsetHeight;  // lay the page out: part of the switch
@@ -238,6 +240,9 @@
       document.getElementById("step-number").textContent =
         "step " + (number + 1) + " of " + steps.length;
       document.getElementById("step-text").textContent = data.strings[steps[number][1]];
+      const equations = (data.frames[wb.frame].equations || {})[plan] || [];
+      document.getElementById("equations").textContent =
+        equations.map(k => data.strings[k]).join("\n");
     }
     wb.playStep = playStep;
     document.getElementById("step-first").addEventListener("click", () => playStep(0));
@@ -272,7 +277,7 @@
 
     // other parts of the page (the drawing mode) start from the loaded data
     document.dispatchEvent(new CustomEvent("workbook:load", {detail: wb}));
-    show(0);
+    show(stepOf(Number(slider.value)));  // the exercise's own angle
     status.textContent = "";
     wb.ready = true;
   }).catch(error => {

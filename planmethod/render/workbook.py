@@ -163,7 +163,8 @@ def _pack(data: Any) -> str:
 def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
                   frames: Sequence[Mapping[str, Any]], quantities: Sequence[Mapping[str, str]],
                   *, charts: Sequence[tuple[str, tuple[float, float]]] = (),
-                  notes: Sequence[str] = (), drawing: Mapping[str, Any] | None = None) -> str:
+                  notes: Sequence[str] = (), start: float | None = None,
+                  phi: str = "φ₁", drawing: Mapping[str, Any] | None = None) -> str:
     """The workbook page as HTML text.
 
     Parameters
@@ -186,6 +187,11 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         Full-turn charts from :func:`curve_chart`.
     notes
         Lines shown under the title (drafting precision, where the tolerances come from).
+    start
+        The crank angle the page opens at (the exercise's own; the frame nearest it), else
+        the first.
+    phi
+        The crank angle's symbol as the course writes it (φ₁).
     drawing
         The drawing mode's data (:func:`planmethod.render.workbook_draw.drawing_data`); each
         frame then holds its ``draw`` data too. None: no drawing mode.
@@ -198,8 +204,11 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         steps = {plan: [[number, table.add(text), action, *rest]
                         for number, text, action, *rest in listed]
                  for plan, listed in frame.get("steps", {}).items()}
+        equations = {plan: [table.add(text) for text in listed]
+                     for plan, listed in frame.get("equations", {}).items()}
         packed_frames.append({"drawings": drawings, "readings": frame["readings"],
-                              "steps": steps, "questions": frame.get("questions", [])})
+                              "steps": steps, "equations": equations,
+                              "questions": frame.get("questions", [])})
     draw_html, draw_extra = "", ""
     if drawing is not None:
         from .workbook_draw import DRAW_STYLE, draw_script, drawing_section, pack_frame
@@ -230,9 +239,12 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     step_count = len(angles)
     low, high = angles[0], angles[-1]
     step = (angles[1] - angles[0]) if step_count > 1 else 1.0
+    first = low if start is None else min(angles, key=lambda angle: (
+        abs((angle - start + 180.0) % 360.0 - 180.0), angle))
     note_html = "".join(f"<p class=\"note\">{html.escape(line)}</p>" for line in notes)
     return _PAGE.format(
         title=html.escape(title), notes=note_html, low=num(low), high=num(high),
+        first=num(first), phi=html.escape(phi),
         step=num(step), panels=panel_html, charts=chart_html, rows=rows,
         data=_pack(data), style=_STYLE, script=_script(), drawing=draw_html,
         drawing_script=draw_extra)
@@ -260,6 +272,7 @@ body.practising .reading,body.practising .plan-reading{visibility:hidden}
 .verdict.correct{color:#1a7f37}.verdict.wrong{color:#c0392b}
 #playback{margin-top:8px}
 #step-text{font-style:italic;min-height:1.3em}
+#equations{white-space:pre-line}
 .step-hidden{display:none}
 .step-current line,.step-current polygon,line.step-current{stroke:#d00000!important;
  fill:#d00000}
@@ -277,9 +290,9 @@ _PAGE = """<!DOCTYPE html>
 <h1>{title}</h1>
 {notes}
 <div id="controls">
-<label for="angle">crank angle φ₁</label>
-<input type="range" id="angle" min="{low}" max="{high}" step="{step}" value="{low}">
-<output id="angle-value">{low}°</output>
+<label for="angle">crank angle {phi}</label>
+<input type="range" id="angle" min="{low}" max="{high}" step="{step}" value="{first}">
+<output id="angle-value">{first}°</output>
 <button type="button" id="play">play</button>
 <label><input type="checkbox" id="practice"> practice</label>
 <span>frame switch: <output id="switch-time">—</output></span>
@@ -299,6 +312,7 @@ _PAGE = """<!DOCTYPE html>
 <button type="button" id="step-all">all</button>
 <output id="step-number"></output>
 <p id="step-text"></p>
+<p id="equations"></p>
 </section>
 <section>
 <table id="readings">

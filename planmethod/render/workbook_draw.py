@@ -85,12 +85,12 @@ def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
                  file_format: str) -> dict[str, Any]:
     """What the drawing mode needs besides each frame's points: the exercise's ``title`` and
     fingerprint (``exercise``: a kept drawing of another exercise is ignored), each point's
-    course name (``names``: b₄), the poles, one sheet per plan for the whole turn
+    course name (``names``: b₃), the poles, one sheet per plan for the whole turn
     (``extents``: left, bottom, right, top in mm, y up), the mistakes by index with what the
     student is told, the sentence that names them, and the ``format`` of a downloaded
     drawing.
 
-    >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₄"},
+    >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₃"},
     ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
     ...                     mistakes=[("sense", "ω1 reversed")], wording=("when {}", ", or "),
     ...                     file_format="planmethod-drawing")

@@ -12,7 +12,14 @@ it did not write itself) and lists, one line each:
 * **outside the viewBox**: a text box, line, polyline, polygon or circle that leaves the
   figure's viewBox;
 * **legend items not drawn**: a legend's sample (its stroke colour, dash and width, or its
-  fill) that no element of the figure itself has.
+  fill) that no element of the figure itself has;
+* **a label too near another point**: a point's label (``data-points``) whose text comes
+  nearer than :data:`READABLE_PX` to the mark of another point (a circle with
+  ``data-points``) outside any region the figure draws again as an enlarged detail (a
+  ``detail region`` frame) — the reader could take it for that point's.
+
+:func:`steady_problems` checks the frames of a turn: one viewBox per panel.
+:func:`numbering_problems` checks that a figure names links as a course's numbering does.
 
 Examples
 --------
@@ -33,7 +40,11 @@ from dataclasses import dataclass
 
 from ..render.style import LABEL, SANS, SANS_BOLD, text_width
 
-__all__ = ["CODE_WORD", "TextBox", "figure_problems", "text_boxes"]
+__all__ = ["CODE_WORD", "READABLE_PX", "TextBox", "figure_problems", "numbering_problems",
+           "steady_problems", "text_boxes"]
+
+#: a label's text keeps at least this far (px) from another point's mark
+READABLE_PX = 3.0
 
 #: a code identifier in text: ``name[1]`` or a snake_case name with two or more letters first
 CODE_WORD = re.compile(r"\b[A-Za-z_]\w*\[\d+\]|\b[A-Za-z]{2,}_\w+|\b\w+_\w+_\w+")
@@ -47,11 +58,13 @@ _EDGE = 1.5
 
 @dataclass(frozen=True)
 class TextBox:
-    """One ``<text>`` element: its whole text, its class and its box (x0, y0, x1, y1)."""
+    """One ``<text>`` element: its whole text, its class, its box (x0, y0, x1, y1) and the
+    points it labels (``data-points``)."""
 
     text: str
     css: str
     box: tuple[float, float, float, float]
+    points: tuple[str, ...] = ()
 
 
 def _number(value: str | None, default: float = 0.0) -> float:
@@ -94,7 +107,8 @@ def _text_box(element, css: str) -> TextBox:
         descent = max(descent, 0.25 * run_size + run_shift)
     anchor = element.get("text-anchor") or "start"
     left = x - (width if anchor == "end" else width / 2 if anchor == "middle" else 0.0)
-    return TextBox("".join(parts), css, (left, y - ascent, left + width, y + descent))
+    return TextBox("".join(parts), css, (left, y - ascent, left + width, y + descent),
+                   tuple((element.get("data-points") or "").split()))
 
 
 _TRANSLATE = re.compile(r"^\s*translate\(\s*(-?[\d.e-]+)[\s,]+(-?[\d.e-]+)\s*\)\s*$")
@@ -153,7 +167,7 @@ def text_boxes(svg: str) -> list[TextBox]:
     for element, classes, offset, _ in _walk(root, clips=_clip_boxes(root)):
         if _local(element.tag) == "text":
             box = _text_box(element, " ".join(classes))
-            out.append(TextBox(box.text, box.css, _moved(box.box, offset)))
+            out.append(TextBox(box.text, box.css, _moved(box.box, offset), box.points))
     return out
 
 
@@ -204,6 +218,8 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
     shapes: list[tuple[str, tuple[float, float], tuple[str, ...]]] = []
     legend_samples: list[tuple[str, ...]] = []
     drawn: set[tuple[str, ...]] = set()
+    marks: list[tuple[set[str], float, float, float]] = []
+    regions: list[tuple[float, float, float, float]] = []
     clip_shapes = {id(child) for clip in root.iter() if _local(clip.tag) == "clipPath"
                    for child in clip}      # a clip path's own shapes are not drawn
     for element, classes, offset, clip in _walk(root, clips=_clip_boxes(root)):
@@ -216,13 +232,13 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
             continue
         if tag == "text":
             box = _text_box(element, " ".join(classes))
-            box = TextBox(box.text, box.css, _moved(box.box, offset))
+            box = TextBox(box.text, box.css, _moved(box.box, offset), box.points)
             if clip is not None:          # what a clip path hides is not seen
                 visible = (max(box.box[0], clip[0]), max(box.box[1], clip[1]),
                            min(box.box[2], clip[2]), min(box.box[3], clip[3]))
                 if visible[0] >= visible[2] or visible[1] >= visible[3]:
                     continue
-                box = TextBox(box.text, box.css, visible)
+                box = TextBox(box.text, box.css, visible, box.points)
             boxes.append(box)
             for word in CODE_WORD.findall(box.text):
                 if not any(f"[{name}]" in box.text and word in name for name in allowed):
@@ -232,6 +248,15 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
             continue
         if "background" in classes or id(element) in clip_shapes:
             continue
+        if tag == "circle" and element.get("data-points"):
+            cx, cy = _number(element.get("cx")) + offset[0], _number(element.get("cy")) + offset[1]
+            if clip is None or (clip[0] <= cx <= clip[2] and clip[1] <= cy <= clip[3]):
+                marks.append((set(element.get("data-points").split()), cx, cy,
+                              _number(element.get("r"))))
+        if tag == "rect" and "region" in classes and "detail" in classes:
+            x, y = _number(element.get("x")) + offset[0], _number(element.get("y")) + offset[1]
+            regions.append((x, y, x + _number(element.get("width")),
+                            y + _number(element.get("height"))))
         for x, y in _points(element):
             x, y = x + offset[0], y + offset[1]
             if clip is not None:          # clipped: only what lies inside the clip is seen
@@ -239,7 +264,7 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
             shapes.append((tag, (x, y), classes))
         if "text" in classes:          # the text layer: legends' samples and scale bars
             if tag in ("line", "polyline", "circle", "rect", "polygon") and "bar" not in \
-                    classes and "scale" not in classes:
+                    classes and "scale" not in classes and "rule" not in classes:
                 legend_samples.append(_look(element))
         else:
             drawn.add(_look(element))
@@ -260,9 +285,114 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
                    if not (x0 - _EDGE <= x <= x1 + _EDGE and y0 - _EDGE <= y <= y1 + _EDGE)}
         for tag in sorted(outside):
             problems.append(f"a {tag} leaves the viewBox")
+    problems += _crowding(boxes, marks, regions)
     for sample in legend_samples:
         if sample[0] == "fill" and sample[1] in ("", "none", "#ffffff", "white"):
             continue
         if not any(sample[:3] == look[:3] for look in drawn):     # any width
             problems.append(f"legend item {' '.join(sample)} is not drawn in the figure")
     return list(dict.fromkeys(problems))
+
+
+def _inside(x: float, y: float, box) -> bool:
+    return box[0] <= x <= box[2] and box[1] <= y <= box[3]
+
+
+def _crowding(boxes, marks, regions) -> list[str]:
+    """Each point's label nearer than :data:`READABLE_PX` to another point's mark, where
+    neither that mark nor the label's own point lies in a region drawn as a detail."""
+    own = {}
+    for points, cx, cy, _ in marks:
+        for point in points:
+            own.setdefault(point, (cx, cy))
+    problems = []
+    for box in boxes:
+        if not box.points or "label" not in box.css.split():
+            continue
+        mine = set(box.points)
+        x0, y0, x1, y1 = box.box
+        home = next((own[point] for point in box.points if point in own), None)
+        if home is not None and any(_inside(*home, region) for region in regions):
+            continue
+        for points, cx, cy, radius in marks:
+            if points & mine or any(_inside(cx, cy, region) for region in regions):
+                continue
+            dx = max(x0 - cx, 0.0, cx - x1)
+            dy = max(y0 - cy, 0.0, cy - y1)
+            gap = (dx * dx + dy * dy) ** 0.5 - radius
+            if gap < READABLE_PX:
+                problems.append(f"label {box.text!r} is {max(gap, 0.0):.1f} px from the mark "
+                                f"of {' '.join(sorted(points))} (no detail)")
+    return problems
+
+
+def steady_problems(frames: Iterable[str], panel: str = "panel") -> list[str]:
+    """The frames of one panel over a turn drawn on more than one page (viewBox): the
+    drawing would jump as the crank turns.
+
+    >>> steady_problems(['<svg viewBox="0 0 9 9"/>', '<svg viewBox="0 0 9 9"/>'])
+    []
+    >>> steady_problems(['<svg viewBox="0 0 9 9"/>', '<svg viewBox="0 0 8 9"/>'], "plan")
+    ['plan: 2 viewBoxes over the turn (0 0 9 9, 0 0 8 9)']
+    """
+    from defusedxml import ElementTree
+
+    boxes = list(dict.fromkeys(ElementTree.fromstring(svg.encode("utf-8")).get("viewBox")
+                               or "none" for svg in frames))
+    if len(boxes) <= 1:
+        return []
+    return [f"{panel}: {len(boxes)} viewBoxes over the turn ({', '.join(boxes[:3])})"]
+
+
+#: a drive symbol with its subscript, a force or a reaction with its link numbers
+_DRIVE = re.compile(r"([φω])([₀-₉]+)")
+_SUBSCRIPTS = str.maketrans("₀₁₂₃₄₅₆₇₈₉‚", "0123456789,")
+
+
+def numbering_problems(svg: str, numbers: dict[str, int], crank: str) -> list[str]:
+    """Where a figure does not name links as the numbering ``numbers`` (link → number) does:
+    the drive's φ or ω with another number than the crank's, a label of a point or a force
+    whose subscript names a link (b lever) or is no link's number (G₇ of a four-bar),
+    a reaction whose subscript is no pair of link numbers.
+
+    >>> svg = ('<svg xmlns="http://www.w3.org/2000/svg"><text>plan, φ₂ = 30°</text>'
+    ...        '<text class="label" data-points="b@lever">b<tspan>lever</tspan></text></svg>')
+    >>> numbering_problems(svg, {"frame": 0, "crank": 1, "lever": 3}, "crank")
+    ["'φ₂': the crank is link 1", "label 'blever' names link lever, not its number"]
+    """
+    from defusedxml import ElementTree
+
+    root = ElementTree.fromstring(svg.encode("utf-8"))
+    valid = {str(number) for number in numbers.values()}
+    names = {name for name in numbers if not name.isupper()}
+    problems = []
+    for element in root.iter():
+        if _local(element.tag) != "text":
+            continue
+        whole = "".join(element.itertext())
+        for letter, digits in _DRIVE.findall(whole):
+            if digits.translate(_SUBSCRIPTS) != str(numbers[crank]):
+                problems.append(f"'{letter}{digits}': the crank is link {numbers[crank]}")
+        if not element.get("data-points"):
+            continue
+        runs = [run for run in [element.text or ""] + [
+            child.text or "" for child in element if _local(child.tag) == "tspan"] if run]
+        if not runs:
+            continue
+        head, subscripts = runs[0], [run.strip(", ") for run in runs[1:]]
+        for sub in subscripts:
+            if sub in names:
+                problems.append(f"label {whole!r} names link {sub}, not its number")
+            elif head in ("G", "Fᵘ", "Mᵘ") and sub.isdigit() and sub not in valid:
+                problems.append(f"label {whole!r}: {sub} is no link's number")
+            elif head in ("R", "Rⁿ", "Rᵗ", "N") and sub.replace(",", "").isdigit() and \
+                    not _pair_of(sub, valid):
+                problems.append(f"label {whole!r}: {sub} is no pair of link numbers")
+    return list(dict.fromkeys(problems))
+
+
+def _pair_of(text: str, valid: set[str]) -> bool:
+    if "," in text:
+        first, _, second = text.partition(",")
+        return first in valid and second in valid
+    return any(text[:cut] in valid and text[cut:] in valid for cut in range(1, len(text)))

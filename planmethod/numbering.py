@@ -1,0 +1,63 @@
+"""The links of a mechanism numbered as its course numbers them (README, "Notation").
+
+A course numbers the frame 0, the crank 1 and then the moving links in the order their Assur
+groups attach — group by group in build order, each group's links in the order the exercise
+lists them — as both papers the project reproduces do: the compressor's connecting rod BC is
+link 2 (ω₂, ε₂), its slider 3, the reactions R₀₁, R₁₂, R₂₃, R₀₃. An exercise's ``[notation]``
+table chooses another convention (:class:`planmethod.model.Notation`): the frame last (the
+compressor paper's "post 4") or first as 1 (the crank 2, as English-language texts write θ₂,
+ω₂), and explicit numbers. Every printed symbol takes its subscript from here; the drive's
+symbols (φ, ω, ε of the crank) follow the crank's number.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> course_numbers(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+{'frame': 0, 'AB': 1, 'BC': 2, 'slider': 3}
+>>> course_numbers(load_exercise("exercises/conveyor_sixbar.toml").mechanism)
+{'frame': 0, 'crank': 1, 'rod': 2, 'tray': 3, 'rocker_EF': 4, 'rocker_DG': 5}
+"""
+
+from __future__ import annotations
+
+import functools
+
+from .errors import StructureError
+from .model import FRAME, Mechanism
+from .structure import analyse_structure
+from .vocabulary import link_numbers
+
+__all__ = ["attach_order", "course_numbers"]
+
+
+def attach_order(mechanism: Mechanism) -> list[str]:
+    """The moving links in the order a course numbers them: the crank, then each Assur
+    group's links (in the exercise's order) as the groups attach. A mechanism whose
+    structure cannot be analysed keeps the exercise's order.
+
+    >>> from planmethod.spec import load_exercise
+    >>> attach_order(load_exercise("exercises/shaper_sixbar.toml").mechanism)
+    ['crank', 'block', 'lever', 'rod', 'ram']
+    """
+    try:
+        groups = analyse_structure(mechanism).groups
+    except StructureError:
+        return [mechanism.drive.link] + [link for link in mechanism.moving_links
+                                         if link != mechanism.drive.link]
+    listed = {link: index for index, link in enumerate(mechanism.links)}
+    order = [mechanism.drive.link]
+    for group in groups:
+        order += sorted(group.links, key=listed.__getitem__)
+    return order + [link for link in mechanism.moving_links if link not in order]
+
+
+@functools.lru_cache(maxsize=256)
+def _numbers(mechanism: Mechanism) -> tuple[tuple[str, int], ...]:
+    notation = mechanism.notation
+    return tuple(link_numbers(attach_order(mechanism), mechanism.drive.link, FRAME,
+                              frame_place=notation.frame, explicit=notation.numbers).items())
+
+
+def course_numbers(mechanism: Mechanism) -> dict[str, int]:
+    """Each link's number under the mechanism's notation, in the order of the numbers."""
+    return dict(_numbers(mechanism))
