@@ -168,7 +168,7 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
     >>> tables = parse_toml(read_text("exercises/fourbar_coupler_point.toml"))
     >>> drawn = drawn_tables(tables)
     >>> drawn["links"]["BC"], drawn["points"]["B"]
-    (['B', 'C', 'P'], [0.04, 0.0692820323027551])
+    (['B', 'C', 'E'], [0.04, 0.0692820323027551])
     """
     from .kinematics import solve
 

@@ -26,6 +26,7 @@ True
 
 from __future__ import annotations
 
+import html
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -598,3 +599,13 @@ def fit_zoom(points: Sequence[Sequence[float]], size: float) -> float:
     return size / extent if extent > 1e-9 else 10.0
 
 
+def empty_svg(attributes: Mapping[str, str]) -> str:
+    """An empty inline ``<svg>`` element for an HTML page whose script draws into it (the
+    workbook's drawing sheets), its attribute values escaped.
+
+    >>> empty_svg({"data-draw": "velocity", "aria-label": 'a "plan"'})
+    '<svg data-draw="velocity" aria-label="a &quot;plan&quot;"></svg>'
+    """
+    written = " ".join(f'{name}="{html.escape(str(value))}"'
+                       for name, value in attributes.items())
+    return f"<svg {written}></svg>"

@@ -32,6 +32,8 @@ import html
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from .canvas import empty_svg
+
 __all__ = ["DRAW_STYLE", "draw_script", "drawing_data", "drawing_section", "pack_frame"]
 
 #: what each plan is called on the page, and its scale's symbol
@@ -52,8 +54,9 @@ def drawing_section(plans: Sequence[str]) -> str:
 <button type="button" data-unline="{name}">remove the last line</button>
 <button type="button" data-clear="{name}">clear</button>
 </div>
-<div class="draw-sheet"><svg data-draw="{name}" tabindex="0" role="img"
- aria-label="your {title}: millimetre grid, the pole at the origin"></svg></div>
+<div class="draw-sheet">{empty_svg({
+    "data-draw": plan, "tabindex": "0", "role": "img",
+    "aria-label": f"your {title}: millimetre grid, the pole at the origin"})}</div>
 <ol class="draw-points"></ol>
 <div class="draw-actions">
 <button type="button" data-check="{name}">check</button>
