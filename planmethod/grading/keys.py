@@ -208,6 +208,13 @@ def _mistakes(quantity: str, value: float, tolerance: float, scales, alternative
 def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     """The answer key of a variant (:class:`~planmethod.grading.templates.Variant`).
 
+    Parameters
+    ----------
+    variant
+        The variant to key.
+    settings
+        The grading settings (default: the exercise's ``[grading]`` table).
+
     Raises
     ------
     SpecError
@@ -324,6 +331,11 @@ def _check_key(key: Any, where: str) -> dict:
 def load_keys(path: str | Path) -> dict[str, dict]:
     """Read a key or a bundle of keys: student → key (a single key is keyed ``*`` too, so
     that every student is graded against it).
+
+    Parameters
+    ----------
+    path
+        A key, a bundle (``keys.json``) or its folder.
 
     Raises
     ------

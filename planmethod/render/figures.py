@@ -32,7 +32,19 @@ def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
     "acceleration.svg": … (if drawn), "lever.svg": …}`` plus the force drawings if
     ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given.
     ``details`` draws the enlarged details of dense plan regions, ``loaded`` the loaded
-    mechanism (a page of many frames, the workbook, leaves both out)."""
+    mechanism (a page of many frames, the workbook, leaves both out).
+
+    Parameters
+    ----------
+    plans
+        The plans of one crank angle.
+    forces
+        Its force analysis, for the force drawings (optional).
+    details
+        Draw the enlarged details of dense plan regions.
+    loaded
+        Draw the loaded mechanism.
+    """
     files = {"position.svg": position_svg(plans.position, plans=plans),
              "velocity.svg": plan_svg(plans.velocity, details=details)}
     if plans.acceleration is not None:
