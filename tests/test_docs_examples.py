@@ -11,9 +11,9 @@ for authors in docs/contributing.md:
 - a ```` ```python ```` block is run as code, or as a doctest when it starts with ``>>>``;
 - a ```` ```toml ```` block must be valid TOML, and one with a ``[drive]`` table a valid
   exercise file;
-- ``<!-- skip: next if(not has_ffmpeg, reason="…") -->`` before a block skips it, with the
+- ``% skip: next if(not has_ffmpeg, reason="…")`` (a MyST comment) before a block skips it, with the
   reason, when an optional tool is missing (``has_cairosvg``, ``has_ffmpeg``, ``has_chromium``);
-  ``<!-- skip: next "reason" -->`` always skips it (say why in the reason).
+  ``% skip: next "reason"`` always skips it (say why in the reason).
 
 Each document runs in its own temporary copy of the repository, its blocks in order (a block
 may use what an earlier one of the same document wrote), with the copy's ``planmethod`` first on
@@ -42,7 +42,7 @@ OPTIONS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 COMMAND_TIMEOUT_S = 900
 
 sybil = pytest.importorskip("sybil", reason="Sybil is not installed (pip install '.[test]')")
-from sybil.parsers.markdown import (  # noqa: E402 (after the skip)
+from sybil.parsers.myst import (  # noqa: E402 (after the skip)
     CodeBlockParser,
     PythonCodeBlockParser,
     SkipParser,
