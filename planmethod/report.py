@@ -209,7 +209,13 @@ def _finite(value):
 
 
 def report_dict(analysis: Analysis) -> dict:
-    """The JSON report (see README, "The JSON report")."""
+    """The JSON report (docs/json-report.md).
+
+    Parameters
+    ----------
+    analysis
+        What :func:`analyse` returned.
+    """
     exercise, motion, structure = analysis.exercise, analysis.motion, analysis.structure
     mechanism = exercise.mechanism
     ask = exercise.ask

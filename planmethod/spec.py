@@ -100,7 +100,15 @@ def load_exercise(path: str | Path) -> Exercise:
 
 
 def parse_exercise(text: str, *, file: str | None = None) -> Exercise:
-    """Parse the text of an exercise file (see :func:`load_exercise`)."""
+    """Parse the text of an exercise file (see :func:`load_exercise`).
+
+    Parameters
+    ----------
+    text
+        The TOML text of the exercise file.
+    file
+        The file name that error messages name (default: none).
+    """
     return exercise_from_dict(parse_toml(text, file=file), file=file)
 
 

@@ -213,6 +213,11 @@ def _larger(index: int, links: tuple[str, ...], internal, external) -> AssurGrou
 def analyse_structure(mechanism: Mechanism) -> Structure:
     """Count the mobility and decompose the mechanism into Assur groups.
 
+    Parameters
+    ----------
+    mechanism
+        The mechanism to analyse.
+
     Raises
     ------
     StructureError
@@ -269,6 +274,11 @@ def analyse_structure(mechanism: Mechanism) -> Structure:
 
 def describe(structure: Structure) -> str:
     """The structural analysis as a course prints it.
+
+    Parameters
+    ----------
+    structure
+        What :func:`analyse_structure` returned.
 
     Examples
     --------

@@ -78,6 +78,24 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
 
     Angles of links (``theta_L``) are unwrapped continuously across chunks.
 
+    Parameters
+    ----------
+    exercise
+        The exercise to sweep.
+    step
+        The step between crank angles, degrees.
+    start
+        The first crank angle, degrees.
+    stop
+        The last crank angle (excluded), degrees.
+    angles
+        The crank angles in degrees, instead of ``step``, ``start`` and ``stop``.
+    progress
+        Show a progress line on stderr for more than ``CHUNK`` angles (default: when stderr
+        is a terminal).
+    extra
+        ``extra(motion) -> dict`` adds columns per chunk.
+
     Examples
     --------
     >>> from planmethod.spec import load_exercise
@@ -149,6 +167,24 @@ def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
 
     ``extra(motion) -> dict`` may add columns per chunk (the force sweep does). The whole table
     is held in memory; :func:`sweep_chunks` yields it chunk by chunk.
+
+    Parameters
+    ----------
+    exercise
+        The exercise to sweep.
+    step
+        The step between crank angles, degrees.
+    start
+        The first crank angle, degrees.
+    stop
+        The last crank angle (excluded), degrees.
+    angles
+        The crank angles in degrees, instead of ``step``, ``start`` and ``stop``.
+    progress
+        Show a progress line on stderr for more than ``CHUNK`` angles (default: when stderr
+        is a terminal).
+    extra
+        ``extra(motion) -> dict`` adds columns per chunk.
     """
     chunks: dict[str, list[np.ndarray]] = {"angle": []}
     for columns in sweep_chunks(exercise, step, start=start, stop=stop, angles=angles,

@@ -394,7 +394,17 @@ def _force_scale(exercise: Exercise, solution: ForceSolution) -> float:
 def analyse_forces(exercise: Exercise, motion: Motion, *, plans=None) -> ForceAnalysis:
     """Kinetostatics of ``exercise`` at the (single) angle of ``motion`` (see the module
     docstring); ``plans`` (drawn at that angle) adds Aliyev's construction and the lever on
-    the drawn velocity plan."""
+    the drawn velocity plan.
+
+    Parameters
+    ----------
+    exercise
+        The exercise, with its masses, gravity and loads.
+    motion
+        Its exact motion at one crank angle.
+    plans
+        The plans drawn at that angle (optional).
+    """
     solution = solve_forces(motion, plans=plans, file=exercise.source)
     mu_f = _force_scale(exercise, solution)
     g = exercise.mechanism.gravity or 0.0

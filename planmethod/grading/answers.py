@@ -79,6 +79,11 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     Every student of the file is in the list, or the file is refused: nothing is merged,
     dropped or kept twice without a word.
 
+    Parameters
+    ----------
+    path
+        The answers file, CSV or JSON.
+
     Raises
     ------
     SpecError
@@ -433,6 +438,15 @@ def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
 
     Answers keyed by an unknown id are reported in ``ignored``; a question id is matched
     exactly first, then ignoring case.
+
+    Parameters
+    ----------
+    key
+        The answer key of the student's variant.
+    answers
+        The answers, {question id: raw answer}.
+    student
+        The student named in the result (default: the key's).
     """
     by_lower = {}
     for name in answers:
@@ -458,6 +472,13 @@ def grade_many(keys: Mapping[str, Mapping[str, Any]],
     """Grade many students: each against the key of their own variant (or the key ``*``).
 
     A student with no key of their own and no common key gets a result with ``error``.
+
+    Parameters
+    ----------
+    keys
+        Student → key, as :func:`~planmethod.grading.keys.load_keys` returns.
+    rows
+        (student, answers) pairs, as :func:`read_answers` returns.
     """
     out = []
     for student, answers in rows:

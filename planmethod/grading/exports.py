@@ -230,6 +230,13 @@ def gradescope_autograder(bundle: Mapping[str, Any], *, feedback: str = "hints"
     made without a roster (``variants --count``) gives each submitter the variant picked by
     a hash of their e-mail. ``feedback`` is the level the student sees (``hints``: no right
     values). Every path is under ``$AUTOGRADER_ROOT`` (default ``/autograder``).
+
+    Parameters
+    ----------
+    bundle
+        The bundle of keys (``keys.json``).
+    feedback
+        The feedback level students see.
     """
     if feedback not in FEEDBACK_LEVELS:
         raise ValueError(f"feedback level {feedback!r} is not one of "
@@ -425,7 +432,17 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
                            topic: str = "Kinematics of mechanisms") -> dict[str, str]:
     """A PrairieLearn question folder ``<slug>/`` for a bundle of keys: one question whose
     ``server.py`` draws one of the bundle's variants, with each variant's task figure in
-    ``clientFilesQuestion/``."""
+    ``clientFilesQuestion/``.
+
+    Parameters
+    ----------
+    bundle
+        The bundle of keys (``keys.json``).
+    slug
+        The question folder's name.
+    topic
+        The question's topic.
+    """
     import inspect
 
     from .mistakes import REGISTRY, drawn_explanation
@@ -609,7 +626,17 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
     """A Moodle XML quiz: a category, then for every variant one embedded-answers (Cloze)
     question holding all its asked values (:func:`cloze_field`), with the task text and the
     variant's task sheet embedded as an SVG file (``@@PLUGINFILE@@``) when ``sheets`` maps the
-    student to it."""
+    student to it.
+
+    Parameters
+    ----------
+    keys
+        The keys of the variants.
+    category
+        The question category.
+    sheets
+        Student → task sheet SVG text, to embed (optional).
+    """
     import base64
 
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
@@ -649,7 +676,13 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
 # -- CSV gradebook ---------------------------------------------------------------------------
 def gradebook_csv(results: list[Mapping[str, Any]]) -> str:
     """One row per student: variant, score per question, total and maximum (text cells made
-    safe to open in a spreadsheet: :func:`~planmethod.io.csv_text`)."""
+    safe to open in a spreadsheet: :func:`~planmethod.io.csv_text`).
+
+    Parameters
+    ----------
+    results
+        Graded students, as :func:`~planmethod.grading.answers.grade_many` returns.
+    """
     ids: list[str] = []
     for result in results:
         for question in result.get("questions", ()):

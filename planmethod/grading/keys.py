@@ -287,6 +287,13 @@ def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict,
 def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     """The answer key of a variant (:class:`~planmethod.grading.templates.Variant`).
 
+    Parameters
+    ----------
+    variant
+        The variant to key.
+    settings
+        The grading settings (default: the exercise's ``[grading]`` table).
+
     Raises
     ------
     SpecError
@@ -377,6 +384,11 @@ def _check_key(key: Any, where: str) -> dict:
 def load_keys(path: str | Path) -> dict[str, dict]:
     """Read a key or a bundle of keys: student → key (a single key is keyed ``*`` too, so
     that every student is graded against it).
+
+    Parameters
+    ----------
+    path
+        A key, a bundle (``keys.json``) or its folder.
 
     Raises
     ------

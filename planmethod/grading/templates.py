@@ -143,6 +143,11 @@ class Variant:
 def load_template(path: str | Path) -> Template:
     """Read a template (or a plain exercise file, which is a template without randomness).
 
+    Parameters
+    ----------
+    path
+        The template file.
+
     Raises
     ------
     SpecError
@@ -382,6 +387,17 @@ def draw_variant(template: Template, seed: int = 0, student: str = "1",
     """Draw the variant of ``template`` for (``seed``, ``student``).
 
     Attempts 0, 1, 2, … are drawn in turn until one passes :func:`check_variant`.
+
+    Parameters
+    ----------
+    template
+        The template to draw from.
+    seed
+        The random number of the course (``variants --seed``).
+    student
+        The student's id.
+    check
+        Reject and redraw attempts that fail :func:`check_variant`.
 
     Raises
     ------

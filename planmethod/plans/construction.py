@@ -990,6 +990,10 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     scales
         The drawing scales, if already chosen for these settings (a tolerance analysis draws
         the same position many times).
+    position
+        Also make the position plan (the mechanism's drawing, with the paths of the points
+        whose ρ is read); without it ``Plans.position`` is None and only the points of the
+        velocity and acceleration plans and the readings are made (no steps).
     turn
         A direction model ``turn(direction, segment) -> direction`` for every construction
         line (``segment.action`` is ``line``, ``segment.name`` its component): a construction
@@ -999,10 +1003,6 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         similarity rule off its link's line (``segment.name`` its label, ``segment.vector``
         the link): True places it mirrored across the image of the link's line (a mistake).
         Default: as the rule says.
-    position
-        Also make the position plan (the mechanism's drawing, with the paths of the points
-        whose ρ is read); without it ``Plans.position`` is None and only the points of the
-        velocity and acceleration plans and the readings are made (no steps).
 
     Raises
     ------

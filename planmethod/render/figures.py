@@ -35,9 +35,22 @@ def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
     "acceleration.svg": … (if drawn), "lever.svg": …}`` plus the force drawings if
     ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given.
     ``details`` draws the enlarged details of dense plan regions, ``loaded`` the loaded
-    mechanism (a page of many frames, the workbook, leaves both out); ``views``
-    (:func:`planmethod.render.steady.steady_views`, by panel) keep each panel's zoom and page
-    the same at every angle of a turn."""
+    mechanism (a page of many frames, the workbook, leaves both out).
+
+    Parameters
+    ----------
+    plans
+        The plans of one crank angle.
+    forces
+        Its force analysis, for the force drawings (optional).
+    details
+        Draw the enlarged details of dense plan regions.
+    loaded
+        Draw the loaded mechanism.
+    views
+        Zoom and page by panel (:func:`planmethod.render.steady.steady_views`): each panel
+        keeps them at every angle of a turn.
+    """
     views = views or {}
     files = {"position.svg": position_svg(plans.position, plans=plans,
                                           view=views.get("position")),
