@@ -15,7 +15,7 @@ sys.path.insert(0, str(ROOT))
 
 project = "planmethod"
 author = "the planmethod authors"
-copyright = "the planmethod authors, MIT licence"  # noqa: A001 (Sphinx's name)
+copyright = "the planmethod authors, MIT licence"
 from planmethod import __version__  # noqa: E402 (after the path is set)
 
 release = version = __version__
