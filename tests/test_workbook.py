@@ -230,3 +230,17 @@ def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
                             if left <= c[1] <= right and bottom <= c[2] <= top]
                 assert frame[plan]["mistakes"].get(label, []) == on_sheet
     assert data["frames"][1]["draw"]["acceleration"]["mistakes"]["b@lever"]
+
+
+def test_readings_name_every_quantity_in_the_course_notation(tmp_path):
+    """The readings table writes each quantity as the course does: a link's by its number
+    (ω₃), a point of a link by that link's number (v_B₃), a slide by the numbers of its two
+    links (s₂₃) — never a link's name from the file (``block/lever``)."""
+    path = tmp_path / "slotted.html"
+    assert main(["workbook", str(ROOT / "exercises" / "slotted_lever.toml"), "-o", str(path),
+                 "--step", "90"]) == 0
+    shown = {q["name"]: q["symbol"] + "_" + q["subscript"]
+             for q in page_data(path.read_text(encoding="utf-8"))["quantities"]}
+    assert shown["omega_lever"] == "ω_3" and shown["v_B@lever"] == "v_B₃"
+    assert shown["s_block/lever"] == "s_23" and shown["ds_block/lever"] == "ds/dt_23"
+    assert not any("block" in text or "lever" in text for text in shown.values()), shown

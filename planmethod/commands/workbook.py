@@ -231,7 +231,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     from ..numbering import course_numbers
     from ..render.steady import steady_views
     from ..render.workbook import curve_chart, workbook_html
-    from ..vocabulary import numbered, point_name, quantity
+    from ..vocabulary import numbered, pair_number, point_name, quantity
 
     angles = turn_angles(step)
     workers = worker_count(jobs, len(angles))
@@ -249,12 +249,16 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     numbers = course_numbers(mechanism)
 
     def subscript(name: str) -> str:
-        """A link's quantity by the link's number (ω₂), a point's by its name (v_B₃)."""
+        """A link's quantity by the link's number (ω₂), a point's by its name (v_B₃), a
+        slide's by the numbers of its two links (s₂₃)."""
         found = quantity(name)
         if found.kind.subject == "link" and found.subject in numbers:
             return str(numbers[found.subject])
         if found.kind.subject == "point":
             return point_name(found.subject, numbers)
+        link, _, along = found.subject.partition("/")
+        if found.kind.subject == "pair" and link in numbers and along in numbers:
+            return pair_number(numbers[link], numbers[along])
         return found.subject.replace("_", " ")
 
     quantities = [{"name": name, "symbol": quantity(name).symbol,
