@@ -1,6 +1,6 @@
 """The two forms of an exercise file, each written from the other (``planmethod convert``).
 
-*Link frames* (README, "The exercise file"): each link's points in its own frame, a
+*Link frames* (docs/exercise-file.md): each link's points in its own frame, a
 ``[sketch]`` to pick the assembly. *As drawn*: every point's global position at
 ``drive.angle`` in ``[points]`` and each link as the list of its points; a slide's
 ``direction`` and a centre of mass ``S`` are global too, and the assembly is the one drawn.

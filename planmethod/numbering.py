@@ -1,4 +1,4 @@
-"""The links of a mechanism numbered as its course numbers them (README, "Notation").
+"""The links of a mechanism numbered as its course numbers them (docs/notation.md).
 
 A course numbers the frame 0, the crank 1 and then the moving links in the order their Assur
 groups attach — group by group in build order, each group's links in the order the exercise
