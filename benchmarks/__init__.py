@@ -1,5 +1,5 @@
 """Benchmarks and the long stress run of planmethod (not part of the installed package).
 
-Run everything with ``python -m benchmarks.run`` (``--quick`` for a short run); see README,
-"Speed and accuracy".
+Run everything with ``python -m benchmarks.run`` (``--quick`` for a short run); see
+docs/benchmarks.md.
 """

@@ -179,7 +179,7 @@ def browser_times(name: str, count: int = STEPS) -> dict | None:
 def screenshot(path: Path, exercise: str = "exercises/fourbar_coupler_point.toml",
                point: str = "C") -> bool:
     """The studio with ``exercise`` open and ``point`` selected, 1500 × 1000 px, as a PNG at
-    ``path`` (the picture in README and docs/studio.md); False without a browser."""
+    ``path`` (the picture in docs/studio.md); False without a browser."""
     from planmethod.io import write_bytes_atomic
 
     folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-shot-"))

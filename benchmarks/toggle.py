@@ -1,5 +1,5 @@
 """Near a group's toggle: how close each stage still solves, and the error estimate against the
-measured error — the numbers behind README's "Numerical stability" statements
+measured error — the numbers behind docs/accuracy.md's "What the error estimate is worth"
 (``python -m benchmarks.run --only toggle``).
 
 The four-bars of the stress suite whose RRR group reaches its toggle at φ* = 120° (BC and CD

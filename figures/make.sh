@@ -1,5 +1,5 @@
 #!/usr/bin/env sh
-# Regenerate every committed figure of README from the shipped exercises:  sh figures/make.sh
+# Regenerate every committed figure of README and docs/ from the shipped exercises:  sh figures/make.sh
 # (needs cairosvg for the PNGs: pip install ".[dev]"). The benchmark figures (bench_*) are
 # written by `python -m benchmarks.run`.
 set -eu

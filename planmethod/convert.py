@@ -1,6 +1,6 @@
 """The two forms of an exercise file, each written from the other (``planmethod convert``).
 
-*Link frames* (README, "The exercise file"): each link's points in its own frame, a
+*Link frames* (docs/exercise-file.md): each link's points in its own frame, a
 ``[sketch]`` to pick the assembly. *As drawn*: every point's global position at
 ``drive.angle`` in ``[points]`` and each link as the list of its points; a slide's
 ``direction`` and a centre of mass ``S`` are global too, and the assembly is the one drawn.
@@ -310,6 +310,33 @@ def convert_tables(data: Mapping[str, Any], *, to: str | None = None,
     """Exercise tables in the form ``to`` (``"drawn"`` or ``"frames"``; default: the other
     form). Tables already in that form go through the other one and back, which writes them
     as this module writes them (an as-drawn file with its points on the solved assembly).
+
+    Parameters
+    ----------
+    data
+        The exercise file's tables, as :func:`planmethod.spec.parse_toml` reads them.
+    to
+        ``"drawn"`` (global points at ``drive.angle``) or ``"frames"`` (each link in its own
+        frame, with a ``[sketch]``); ``None`` for the form the tables are not in.
+    file
+        The file's name, for error messages.
+
+    Returns
+    -------
+    dict
+        The tables of the same exercise in the form ``to``.
+
+    Raises
+    ------
+    SpecError
+        If ``to`` is unknown or the tables are not a valid exercise (naming the file and key).
+
+    Examples
+    --------
+    >>> from planmethod.spec import parse_toml
+    >>> data = parse_toml(open("exercises/compressor_slider_crank.toml").read())
+    >>> convert_tables(data, to="drawn")["points"]["B"]
+    [0.0424264068711929, 0.0424264068711928]
     """
     if to is not None and to not in FORMS:
         raise SpecError(f"unknown form {to!r}; expected one of {', '.join(FORMS)}", key="--to")
@@ -334,10 +361,30 @@ def convert_text(text: str, *, to: str | None = None, file: str | None = None) -
     """An exercise file's text in the form ``to`` (see :func:`convert_tables`), with its
     leading comment block kept.
 
+    Parameters
+    ----------
+    text
+        The exercise file's TOML text.
+    to
+        ``"drawn"`` or ``"frames"``; ``None`` for the form the file is not in.
+    file
+        The file's name, for error messages.
+
+    Returns
+    -------
+    str
+        The TOML text of the same exercise in the form ``to``: ``planmethod convert``'s output.
+
     Raises
     ------
     SpecError
-        If the text is not a valid exercise file (naming the file and key).
+        If the text is not a valid exercise file, or is a template (naming the file and key).
+
+    Examples
+    --------
+    >>> text = open("exercises/compressor_slider_crank.toml").read()
+    >>> [line for line in convert_text(text).splitlines() if line.startswith("C =")]
+    ['C = [0.2173549637165519, 0.0]']
     """
     from .grading.templates import to_toml
 

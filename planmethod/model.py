@@ -271,7 +271,7 @@ FRAME_PLACES = (0, 1, "last")
 
 @dataclass(frozen=True, slots=True)
 class Notation:
-    """How a course numbers the links (README, "Notation"): the frame's place
+    """How a course numbers the links (docs/notation.md): the frame's place
     (:data:`FRAME_PLACES`; default 0: the frame 0, the crank 1, then the moving links in the
     order their Assur groups attach) and explicit numbers of some links (the others take the
     free numbers in that order). Only what a person reads follows it: JSON keys and CSV

@@ -1,4 +1,4 @@
-"""The links of a mechanism numbered as its course numbers them (README, "Notation").
+"""The links of a mechanism numbered as its course numbers them (docs/notation.md).
 
 A course numbers the frame 0, the crank 1 and then the moving links in the order their Assur
 groups attach — group by group in build order, each group's links in the order the exercise
@@ -59,5 +59,24 @@ def _numbers(mechanism: Mechanism) -> tuple[tuple[str, int], ...]:
 
 
 def course_numbers(mechanism: Mechanism) -> dict[str, int]:
-    """Each link's number under the mechanism's notation, in the order of the numbers."""
+    """Each link's number under the mechanism's notation, in the order of the numbers.
+
+    Parameters
+    ----------
+    mechanism
+        The mechanism; its ``notation`` (the exercise's ``[notation]`` table) chooses the
+        convention: by default the frame 0, the crank 1, the other links 2, 3, … in the order
+        their Assur groups attach.
+
+    Returns
+    -------
+    dict
+        Link name → number.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> course_numbers(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+    {'frame': 0, 'AB': 1, 'BC': 2, 'slider': 3}
+    """
     return dict(_numbers(mechanism))

@@ -1,8 +1,8 @@
 """The solve of one exercise at one angle: exact values, plans, checks, and the JSON report.
 
 :func:`analyse` runs the scene (structure → exact kinematics → plans → forces when asked) and
-returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report (README, "The
-JSON report").
+returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report
+(docs/json-report.md).
 
 Examples
 --------

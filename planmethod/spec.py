@@ -1,6 +1,6 @@
 """Exercise files (TOML) → :class:`~planmethod.model.Exercise`, with file- and key-precise errors.
 
-The format is described in README, "The exercise file". Every problem is
+The format is described in docs/exercise-file.md. Every problem is
 reported as a :class:`~planmethod.errors.SpecError` naming the file and the dotted key, e.g.
 ``slider.toml: drive.omega: must be a finite number, got nan``.
 
@@ -118,7 +118,7 @@ def read_text(path: str | Path) -> str:
     return read_text_bounded(path, MAX_FILE_BYTES)
 
 
-#: input limits (README, "Bad input"): what the stress suite covers, and no more
+#: input limits (docs/commands.md, "Bad input"): what the stress suite covers, and no more
 #: — coordinates and lengths (m), the crank's ω (rad/s) and ε (rad/s²), crank angles (°)
 MAX_COORDINATE_M = 1e6
 #: a length (m) — two points of one moving link apart, a pin radius — that is not 0 is at least
@@ -638,7 +638,7 @@ class _Reader:
     def notation(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> Notation:
         """``[notation]``: how the course numbers the links — ``frame = 0`` (default: the
         frame 0, the crank 1, …), ``1`` or ``"last"``, and ``numbers = { AB = 1, … }`` for any
-        links (README, "Notation")."""
+        links (docs/notation.md)."""
         table = self.table(data.get("notation", {}), "notation")
         self.only_keys(table, ("frame", "numbers"), "notation")
         place = table.get("frame", 0)
@@ -879,7 +879,7 @@ class _Reader:
 # An exercise may give every point's global position at drive.angle ([points], m) and each link
 # as the list of its points; a slide's `direction` is then global too, and so is a centre of
 # mass S. The functions below turn those tables into the link-frame form that the rest of this
-# module reads (README, "The exercise file"; docs/studio.md). Each link's frame is derived:
+# module reads (docs/exercise-file.md, "The as-drawn form"). Each link's frame is derived:
 #   * frame: the global axes;
 #   * the drive link: origin at its pivot, +x at drive.angle (its pin must be drawn there);
 #   * a link that slides (the `link` of a [[slide]]): origin at its first point, +x along the
@@ -908,7 +908,7 @@ def frames_from_drawn(data: Mapping[str, Any], *, file: str | None = None) -> di
     link-frame form are returned as they are).
 
     Every link gets its own frame (origin and +x axis, see the comment above this function in
-    the source and docs/studio.md), its points their coordinates in it, each slide its
+    the source and docs/exercise-file.md), its points their coordinates in it, each slide its
     ``direction`` in the frame of ``along``, each centre of mass ``S`` its coordinates in its
     link's frame, and ``[sketch]`` the drawn positions of every point not on the frame, so
     that the assembly is the drawn one.

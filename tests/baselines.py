@@ -18,7 +18,7 @@ is compared by its sine (its arcsine has no digits to spare near 90°: a sine of
 paper instead. A sweep table may gain the columns ``ADDED_COLUMNS`` names (a later extension
 of the CSV); every column it had is compared.
 
-Drawing scales are now the standard series' values (README, "The exercise file"), so what
+Drawing scales are now the standard series' values (docs/exercise-file.md), so what
 depends on the scale alone is left out of the comparison — and nothing else: the scales
 themselves (``scale``, ``mu_*``), lengths and points on the drawings (every key ending in
 ``_mm``, with all it holds), a construction step's sentence (it quotes drawn lengths), and

@@ -10,7 +10,7 @@ for authors in docs/contributing.md:
   the command ends with the comment ``# exit status N``;
 - a ```` ```python ```` block is run as code, or as a doctest when it starts with ``>>>``;
 - a ```` ```toml ```` block must be valid TOML, and one with a ``[drive]`` table a valid
-  exercise file;
+  exercise file (or, with ``[vars]`` or ``[template]``, a template a variant can be drawn from);
 - ``% skip: next if(not has_ffmpeg, reason="…")`` (a MyST comment) before a block skips it, with the
   reason, when an optional tool is missing (``has_cairosvg``, ``has_ffmpeg``, ``has_chromium``);
   ``% skip: next "reason"`` always skips it (say why in the reason).
@@ -125,12 +125,18 @@ def run_console(example) -> None:
 
 
 def check_toml(example) -> None:
-    """A TOML block parses; one with a ``[drive]`` table is a valid exercise file."""
+    """A TOML block parses; one with a ``[drive]`` table is a valid exercise file, or, with
+    ``[vars]`` or ``[template]``, a template that ``planmethod variants`` can draw from."""
+    from planmethod.grading.templates import draw_variant, parse_template
     from planmethod.spec import parse_exercise, parse_toml
 
     where = f"{example.path}:{example.line}"
     data = parse_toml(str(example.parsed), file=where)
-    if "drive" in data:
+    if "drive" not in data:
+        return
+    if "vars" in data or "template" in data:
+        draw_variant(parse_template(str(example.parsed), file=where), student="001")
+    else:
         parse_exercise(str(example.parsed), file=where)
 
 

@@ -24,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = "planmethod"
 
-#: The layers, lowest first (README, "Architecture"): a module may import its own layer's
+#: The layers, lowest first (docs/architecture.md, "Layers"): a module may import its own layer's
 #: modules (without a cycle) and lower layers', never a higher layer's. A module's layer is
 #: that of the first name under ``planmethod`` (``planmethod.kinematics.groups.rrr`` →
 #: ``kinematics``); the package root ``planmethod/__init__.py`` is "".

@@ -2,7 +2,7 @@
 
 An exercise written *as drawn* gives every point's global position at ``drive.angle``
 (``[points]``) and each link as the list of its points; one in *link frames* gives each link's
-points in its own frame and a ``[sketch]`` to pick the assembly (README, "The exercise file").
+points in its own frame and a ``[sketch]`` to pick the assembly (docs/exercise-file.md).
 ``convert`` writes either from the other (default: the other form; ``--to`` chooses), to
 ``-o OUT`` or to the standard output. Converting back and forth writes the same bytes
 (:mod:`planmethod.convert` says how the numbers are written for that).

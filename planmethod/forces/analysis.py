@@ -202,7 +202,7 @@ class ForceAnalysis:
 
     # -- the report ------------------------------------------------------------------------
     def as_dict(self) -> dict:
-        """The ``forces`` block of the JSON report (README, "Kinetostatics"), and what else was
+        """The ``forces`` block of the JSON report (docs/kinetostatics.md), and what else was
         computed."""
         solution = self.solution
         out: dict = {"reactions": {}}

@@ -1,6 +1,6 @@
 """Exercise templates and their reproducible random variants.
 
-A template is an exercise file (README, "The exercise file") in which any number may instead be
+A template is an exercise file (docs/exercise-file.md) in which any number may instead be
 
 * a **range** ``{ range = [low, high], step = s }`` — drawn uniformly on the grid
   low, low + s, … ≤ high (without ``step``: uniformly in [low, high]);

@@ -1,8 +1,8 @@
 """Tolerances that follow from the drawing (the mistakes and their answers are in
 :mod:`planmethod.grading.mistakes`).
 
-The drafting-error model is the one of ``PlanSettings.precision_mm`` (README): every length
-laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
+The drafting-error model is the one of ``PlanSettings.precision_mm`` (docs/accuracy.md): every
+length laid off or read off a drawing — on the position plan, the velocity plan and the acceleration
 plan — carries an error uniform in ±precision/2; directions are drawn exactly. The plan
 emulator (:func:`planmethod.plans.draw_plans`) is run once exactly, recording the segments,
 and once more drawing one copy per segment, copy i with segment i lengthened by a small δ (its

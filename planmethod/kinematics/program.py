@@ -337,7 +337,7 @@ def _sketch_distance(mechanism: Mechanism, links, bodies: Mapping[str, Body]) ->
 def _branches_at_drive_angle(model: Model, groups: Iterable[AssurGroup]
                              ) -> dict[int, Branch]:
     """Pick each group's assembly at ``drive.angle``: nearest (least squares) to the group's
-    sketched points, else the default (+1 for a dyad; see README, "Branches")."""
+    sketched points, else the default (+1 for a dyad; see docs/exercise-file.md)."""
     mechanism = model.mechanism
     angles = np.array([float(mechanism.drive.angle)])
     bodies: dict[str, Body] = {FRAME: Body()}

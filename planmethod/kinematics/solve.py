@@ -399,7 +399,7 @@ class Motion:
 def choose_branches(mechanism: Mechanism, structure: Structure | None = None,
                     groups: Iterable[AssurGroup] | None = None) -> dict[int, Branch]:
     """Each group's assembly at ``drive.angle``: nearest to the sketch, else the default (see
-    README, "Branches"); chosen once per mechanism."""
+    docs/exercise-file.md, "Branches"); chosen once per mechanism."""
     found = model(mechanism)
     return dict(found.branches(found.groups() if groups is None else tuple(groups)))
 

@@ -100,7 +100,7 @@ class Segment:
 
 @dataclass(frozen=True, slots=True)
 class Step:
-    """One construction step of a plan (see README, "Plan steps").
+    """One construction step of a plan (docs/json-report.md, "Plan steps").
 
     ``action`` is one of ``pole``, ``lay_off`` (a vector from ``start`` to ``end``), ``line`` (a
     construction line through ``start`` at ``direction_deg``), ``intersect`` (``lines`` are the

@@ -22,7 +22,7 @@
 * :func:`plan_content`, :func:`plan_legend`, :func:`frame` — the pieces other figures reuse
   (a force polygon is drawn as a plan; every figure has the same frame).
 
-Labels follow the course (see :mod:`planmethod.render.labels` and README, "Notation"): links by
+Labels follow the course (see :mod:`planmethod.render.labels` and docs/notation.md): links by
 the numbers of the exercise's notation, ``b@lever`` printed as b₃ (B of link 3), ``c@frame``
 as c₀, ``n_CB`` as n with subscript CB, ``O2`` as O₂; the crank's φ and ω carry its number.
 Each label's ``<text>`` and each point's mark carry the plan labels they name in

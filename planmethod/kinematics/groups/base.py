@@ -79,7 +79,7 @@ MARGIN = 1.0 + 1e-6
 @dataclass(frozen=True, slots=True)
 class Branch:
     """The assembly a group takes: ``sign`` (±1 for a dyad, the assembly's number for a higher
-    group; see README, "Branches") and why (``sketch``, ``default`` or ``unique``)."""
+    group; see docs/exercise-file.md) and why (``sketch``, ``default`` or ``unique``)."""
 
     sign: int
     reason: str

@@ -62,8 +62,8 @@ def place(context: base.GroupInputs) -> base.Placed:
         base.toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
                        np.maximum(distance - a - b, np.maximum(abs(a - b) - distance, 0.0)))
 
-    # where the product exceeds this, no angle is a toggle, a miss or coinciding pins (README:
-    # a toggle's vanishing factor within 16ε of the terms' size)
+    # where the product exceeds this, no angle is a toggle, a miss or coinciding pins
+    # (docs/accuracy.md: a toggle's vanishing factor within 16ε of the terms' size)
     bound = max(192.0 * base.EPS, 1e-30) * (a + b) ** 4 * base.MARGIN
     context.guard(product, bound, check, p1.at.x, p1.at.y, p2.at.x, p2.at.y)
     twice = d * 2.0
