@@ -266,3 +266,22 @@ def test_near_a_toggle_the_error_estimate_is_reported_and_digitless_stages_refus
     report_groups = report_dict(flagged)["structure"]["groups"]
     assert 1e-6 < report_groups[0]["error_estimate"]["acceleration"] < 1
     assert report_groups[0]["line_angle_deg"] < 1
+
+
+def test_an_exercise_without_ask_reads_no_fixed_pivot():
+    """With no [ask] table everything is asked, but a fixed pivot's image is the pole: it is
+    placed (its links' images start there) and never read as a zero-length segment."""
+    exercise = load_exercise("exercises/combined_force_slider_crank.toml")
+    assert exercise.ask.everything
+    plans = draw_plans(exercise)
+    mechanism = exercise.mechanism
+    fixed = [p for p in mechanism.links["frame"].points
+             if len(mechanism.links_with_point(p)) > 1]
+    assert fixed
+    for plan in (plans.velocity, plans.acceleration):
+        read = {step.quantity for step in plan.steps if step.action == "read"}
+        for point in fixed:
+            assert image_label(point, plan.pole) in plan.points_mm
+            assert f"v_{point}" not in read and f"a_{point}" not in read
+    assert not any(f"_{point}" in name and name.startswith(("v_", "a_"))
+                   for name in plans.readings for point in fixed)

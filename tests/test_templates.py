@@ -139,6 +139,18 @@ def test_bad_templates_name_the_key(extra, angle, key, fragment):
     assert key in message and fragment in message
 
 
+def test_a_template_without_ask_is_refused_by_name():
+    """Without [ask] an exercise asks for everything, which is no student's task: a template
+    must say what is asked (a draw could otherwise never pass: v_A = 0 of the fixed pivot)."""
+    text = template_text().split("[ask]")[0]
+    with pytest.raises(SpecError) as caught:
+        parse_template(text, file="t.toml")
+    assert str(caught.value).startswith("t.toml: ask: a template with random values must say")
+    parse_template(template_text(), file="t.toml")   # with it: read
+    fixed = text.replace('l = { range = [0.05, 0.08], step = 0.005 }', "l = 0.06")
+    parse_template(fixed, file="t.toml")    # an exercise as written asks what it asks
+
+
 def test_bad_template_settings():
     with pytest.raises(SpecError, match=r"template\.max_attempts"):
         parse_template(template_text() + "\n[template]\nmax_attempts = 0\n", file="t.toml")

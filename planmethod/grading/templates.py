@@ -162,6 +162,12 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
     """Parse the text of a template (see :func:`load_template`)."""
     data = parse_toml(text, file=file)
     settings = _settings(data.get("template", {}), file)
+    if "ask" not in data and any(_is_random(value) for _, value in _walk(data)):
+        # without [ask] everything is asked, fixed pivots' zero speeds and zero Coriolis terms
+        # included: no drawn variant could pass the rules a random draw is held to
+        raise SpecError("a template with random values must say what its students are asked: "
+                        "add an [ask] table (velocity = [...], omega = [...] …)", file=file,
+                        key="ask")
     if "vars" in data and not isinstance(data["vars"], Mapping):
         raise SpecError("must be a table of named values", file=file, key="vars")
     for name in data.get("vars", {}):

@@ -1028,15 +1028,20 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     ask = exercise.ask
     for point in _asked_points(exercise, motion):
         link, position = motion.locate(point)
+        # a fixed pivot's image is the pole: placed (its links' images pass through it), but
+        # not read when nobody asked for it by name (no segment to measure)
+        read = not ask.everything or FRAME not in mechanism.links_with_point(point)
         emulator.image_at(emulator.v, emulator.vimages, link, position[0],
                           image_label(point, "p"))
-        emulator.readings[f"v_{point}"] = emulator.v.read(
-            "p", image_label(point, "p"), quantity=f"v_{point}", factor=scales.mu_v)
+        if read:
+            emulator.readings[f"v_{point}"] = emulator.v.read(
+                "p", image_label(point, "p"), quantity=f"v_{point}", factor=scales.mu_v)
         if acceleration:
             emulator.image_at(emulator.a, emulator.aimages, link, position[0],
                               image_label(point, "π"))
-            emulator.readings[f"a_{point}"] = emulator.a.read(
-                "π", image_label(point, "π"), quantity=f"a_{point}", factor=scales.mu_a)
+            if read:
+                emulator.readings[f"a_{point}"] = emulator.a.read(
+                    "π", image_label(point, "π"), quantity=f"a_{point}", factor=scales.mu_a)
     if acceleration:
         curvature = ask.curvature if not ask.everything else ()
         for point in curvature:
