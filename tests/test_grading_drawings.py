@@ -66,7 +66,8 @@ def test_a_point_off_along_its_construction_line_is_explained(key):
     assert "c is 4.0 mm off" in feedback
     assert "on the line v_CB ⟂ CB through b but 4.0 mm off along it" in feedback
     expected = 4.0 / float(np.hypot(*(c - b))) * 100
-    assert f"omega_BC read {expected:.0f} % high" in feedback
+    assert f"ω₂ read {expected:.0f} % high" in feedback      # BC is link 2: its ω₂
+    assert "omega_" not in feedback and "@" not in feedback and c_result["name"] == "c"
     assert by_point(result)["b"]["correct"] and result["score"] == 2
 
 
@@ -216,3 +217,22 @@ def test_no_pole_or_unknown_plan(key):
         grade_drawing(key, Drawing({"b": (1.0, 2.0)}, "velocity"))
     with pytest.raises(SubmissionError, match="cannot tell which plan"):
         grade_drawing(key, Drawing({"b": (1.0, 2.0)}, None))
+
+
+def test_drawing_feedback_names_points_and_quantities_as_the_course_does():
+    """The slotted lever's b@lever is b₃ (link 3), its ε is ε₃, the slide block/lever the pair
+    2–3: a misplaced point's feedback says so, never the key's ids."""
+    from planmethod.grading.templates import draw_variant, load_template
+
+    key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    plan = key["plans"]["acceleration"]
+    points = {label: tuple(xy) for label, xy in plan["points_mm"].items()}
+    x, y = points["b@lever"]
+    points["b@lever"] = (x + 10.0, y)
+    result = grade_drawing(key, Drawing(points, "acceleration"))
+    wrong = by_point(result)["b@lever"]
+    assert not wrong["correct"] and wrong["name"] == "b₃"
+    assert wrong["feedback"].startswith("b₃ is 10.0 mm off") and "ε₃ read" in wrong["feedback"]
+    assert "pair 2–3" in wrong["feedback"]
+    for text in [r["feedback"] for r in result["points"]] + result["feedback"]:
+        assert not any(word in text for word in ("@", "omega_", "epsilon_", "block", "lever"))

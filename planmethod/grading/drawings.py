@@ -41,7 +41,9 @@ import numpy as np
 
 from ..errors import SpecError
 from ..io import read_bytes_bounded
+from ..plans.construction import course_text
 from ..spec import parse_json
+from .keys import key_numbers
 from .plan_points import graded_labels, mistake_sentence, named_mistakes
 
 __all__ = [
@@ -580,6 +582,13 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             break
     score = sum(r["score"] for r in results)
     total = sum(r["max_score"] for r in results)
+    # what a student reads names points and quantities as the course does (b₃, ω₃), never
+    # as the key's ids (b@lever, omega_lever); "point" keeps the id a program matches
+    numbers = key_numbers(key)
+    for result in results:
+        result["name"] = course_text(result["point"], numbers)
+        result["feedback"] = course_text(result["feedback"], numbers)
+    feedback = [course_text(text, numbers) for text in feedback]
     return {"plan": plan, "student": key.get("student"), "score": score, "max_score": total,
             "scale_factor": factor, "points": results, "feedback": feedback}
 

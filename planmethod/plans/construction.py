@@ -264,6 +264,9 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     >>> course_text("(c@framec) = 29 mm → v_CC@frame = 0.58; omega_BC, omega_rocker_EF",
     ...             numbers)
     '(c₀c) = 29 mm → v_CC₀ = 0.58; ω₂, ω₃'
+    >>> course_text("aᵏ = 2·ω_BC·v_rel; along the guide of AB/BC; d by similarity on BC",
+    ...             numbers)
+    'aᵏ = 2·ω₂·v_rel; along the guide of pair 1–2; d by similarity on link 2'
     """
     if "@" in text and numbers:   # a point on a link: its name, the link's number below
         names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
@@ -277,6 +280,18 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
         return symbol(name, dict(numbers))
 
     text = _QUANTITY.sub(quantity, text)
+    if numbers:
+        names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
+        # a slide by its two links' numbers (the guide of pair 2–3), a link's ω or ε by its
+        # number (2·ω₂·v_rel), the link of a similarity rule by its number
+        text = re.sub(rf"(?<![\w/])({names})/({names})(?![\w/])",
+                      lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}",
+                      text)
+        text = re.sub(rf"([ωε])_({names})\b",
+                      lambda match: match.group(1) + subscript(str(numbers[match.group(2)])),
+                      text)
+        text = re.sub(rf"similarity on ({names})\b",
+                      lambda match: f"similarity on link {numbers[match.group(1)]}", text)
     for name in numbers:
         if "_" in name:
             text = re.sub(rf"\b{re.escape(name)}\b", name.replace("_", " "), text)
