@@ -69,7 +69,8 @@ class PlanmethodError(Exception):
     def _text(self) -> str:
         where = [part for part in (self.file, self.key) if part]
         context = [part for part in (
-            f"link {self.link}" if self.link else None,
+            # one link, or a group of them joined by ", " (the links of a locked structure)
+            f"{'links' if ', ' in self.link else 'link'} {self.link}" if self.link else None,
             _format_angle(self.angle),
         ) if part]
         text = self.message

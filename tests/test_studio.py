@@ -249,6 +249,9 @@ def test_solve_gives_the_reports_of_solve_json_with_the_plans(server):
     for plan in ("position", "velocity", "acceleration"):
         assert payload["svg"][plan].startswith("<svg")
     assert payload["server_ms"] > 0
+    # the page shows each quantity as the course writes it: the compressor's rod BC is link 2
+    assert payload["symbols"]["omega_BC"] == "ω₂" and payload["symbols"]["v_C"] == "v_C"
+    assert set(payload["symbols"]) == {check["quantity"] for check in payload["report"]["checks"]}
 
 
 def test_open_shows_a_file_in_link_frames_as_drawn(server):
@@ -381,6 +384,15 @@ def test_the_command_refuses_a_file_outside_its_folder(tmp_path):
                           env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=60)
     assert done.returncode == 2
     assert done.stderr.count("\n") == 1 and "only under the folder" in done.stderr
+
+
+def test_a_folder_given_as_the_file_says_how_to_serve_it(tmp_path):
+    (tmp_path / "course").mkdir()
+    done = subprocess.run([sys.executable, "-m", "planmethod", "studio", "course",
+                           "--no-browser"], cwd=tmp_path, capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=60)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1
+    assert "is a folder" in done.stderr and "cd into it" in done.stderr
 
 
 def test_a_busy_port_given_is_one_line(tmp_path):

@@ -191,3 +191,33 @@ def test_a_mechanism_that_cannot_move_is_shown_in_course_words(studio_page):
     assert page.locator("#plan-velocity-drawing.stale").count() == 1
     # the browser logs the refused solve's status itself; nothing else went wrong
     assert [e for e in errors if "status of 400" not in e] == []
+
+
+def test_a_typed_angle_is_saved_as_typed_and_the_table_speaks_the_course(studio_page):
+    page, folder, errors = studio_page
+    (folder / "conveyor.toml").write_bytes((ROOT / "exercises" / "conveyor_sixbar.toml")
+                                           .read_bytes())
+    page.evaluate("""async () => {
+        const answer = await fetch('/api/open', {method: 'POST', credentials: 'same-origin',
+            body: JSON.stringify({path: 'conveyor.toml'})});
+        window.studio.load((await answer.json()).tables);
+    }""")
+    settled(page)
+    # the drawn lengths are of the conveyor's own crank OA and its pin's images
+    assert page.inner_text("#plan-crank-label") == "(OA) crank"
+    assert page.inner_text("#plan-velocity-label") == "(pa) velocity"
+    type_into(page, "#drive-angle", "60")
+    page.wait_for_function("window.studio.tables.drive.angle === 60", timeout=30_000)
+    settled(page)
+    page.fill("#save-path", "turned.toml")
+    page.click("#save-button")
+    page.wait_for_function("document.querySelector('#file').textContent === 'turned.toml'",
+                           timeout=30_000)
+    text = (folder / "turned.toml").read_text(encoding="utf-8")
+    assert "\nangle = 60\n" in text or "\nangle = 60.0\n" in text, text[:400]
+    # the table of quantities names them as the course does, never by code names
+    names = page.eval_on_selector_all("#checks tr[data-quantity] td:first-child",
+                                      "cells => cells.map(c => c.textContent)")
+    assert names and not [name for name in names if "_" in name and name[0] in "ωε"]
+    assert not [name for name in names if "omega" in name or "@" in name]
+    assert errors == []

@@ -42,6 +42,10 @@ def run(args: argparse.Namespace) -> int:
         if not path.is_relative_to(folder.resolve()):
             raise SpecError("the studio reads and writes only under the folder it is started "
                             f"in ({folder}): start it in the file's folder", file=args.file)
+        if path.is_dir():
+            raise SpecError("is a folder, not an exercise file: the studio serves the folder it "
+                            "is started in (cd into it and run planmethod studio)",
+                            file=args.file)
         if not path.is_file():
             raise SpecError("no such file", file=args.file)
         initial = path.relative_to(folder.resolve()).as_posix()

@@ -154,11 +154,14 @@ def _exercise(text: str, file: str | None = None):
 
 def solve(text: str) -> dict[str, Any]:
     """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
-    "server_ms": …}``: the report of ``planmethod solve --json`` and the plans as the command
-    line draws them (SVG for an HTML page: no XML declaration)."""
+    "symbols": …, "server_ms": …}``: the report of ``planmethod solve --json``, the plans as the
+    command line draws them (SVG for an HTML page: no XML declaration) and each checked
+    quantity's course symbol under the exercise's numbering (``omega_BC`` → ω₂)."""
+    from ..numbering import course_numbers
     from ..render.svg import plan_svg, position_svg
     from ..render.workbook import inline_svg
     from ..report import analyse, report_dict
+    from ..vocabulary import symbol
 
     start = time.perf_counter()
     analysis = analyse(_exercise(text))
@@ -170,7 +173,10 @@ def solve(text: str) -> dict[str, Any]:
         svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
         if plans.acceleration is not None:
             svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
-    return {"report": report, "svg": svg,
+    numbers = course_numbers(analysis.exercise.mechanism)
+    symbols = {check["quantity"]: symbol(check["quantity"], numbers)
+               for check in report["checks"]}
+    return {"report": report, "svg": svg, "symbols": symbols,
             "server_ms": round(1000 * (time.perf_counter() - start), 2)}
 
 
