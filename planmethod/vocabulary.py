@@ -37,6 +37,7 @@ __all__ = [
     "PlanKind",
     "Quantity",
     "QuantityKind",
+    "coriolis_letter",
     "link_numbers",
     "link_text",
     "numbered",
@@ -416,6 +417,17 @@ def link_text(link: str, numbers: Mapping[str, int] | None = None) -> str:
     """
     words = link.replace("_", " ")
     return f"link {numbers[link]} ({words})" if numbers and link in numbers else words
+
+
+def coriolis_letter(index: int | str = 1) -> str:
+    """The letter of a Coriolis point as a course prints it: the end of the Coriolis
+    component of a point's first (or only) sliding side is k, of its second k′ — never the
+    report's side index (``k1_Q``, ``k2_Q`` are k_Q and k′_Q).
+
+    >>> coriolis_letter(), coriolis_letter("1"), coriolis_letter(2)
+    ('k', 'k', 'k′')
+    """
+    return "k" + "′" * (int(index or 1) - 1)
 
 
 def question_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
