@@ -20,7 +20,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -40,6 +40,7 @@ __all__ = [
     "coriolis_letter",
     "link_numbers",
     "link_text",
+    "links_text",
     "numbered",
     "pair_number",
     "point_name",
@@ -408,15 +409,34 @@ def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
     return f"{kind.symbol}_{point_name(subject, numbers)}"
 
 
-def link_text(link: str, numbers: Mapping[str, int] | None = None) -> str:
+def link_text(link: str, numbers: Mapping[str, int] | None = None, word: str = "link") -> str:
     """A link named in words: ``link 2 (BC)`` by its number, its name in words (an
-    underscore a space); just the name without ``numbers``.
+    underscore a space); just the name without ``numbers``. ``word`` says what the link is
+    (``drive link 1 (AB)``, never ``link 1 (AB)`` inside another bracket).
 
     >>> link_text("rocker_EF", {"rocker_EF": 4}), link_text("BC")
     ('link 4 (rocker EF)', 'BC')
+    >>> link_text("AB", {"AB": 1}, "drive link")
+    'drive link 1 (AB)'
     """
     words = link.replace("_", " ")
-    return f"link {numbers[link]} ({words})" if numbers and link in numbers else words
+    return f"{word} {numbers[link]} ({words})" if numbers and link in numbers else words
+
+
+def links_text(links: Iterable[str], numbers: Mapping[str, int] | None = None) -> str:
+    """Links named in words: ``links 2, 3 (BC, rocker EF)`` by their numbers (in the order
+    of the numbers), their names in words; just the names without ``numbers``.
+
+    >>> links_text(["rocker_EF", "BC"], {"BC": 2, "rocker_EF": 3}), links_text(["AB"])
+    ('links 2, 3 (BC, rocker EF)', 'AB')
+    """
+    links = list(links)
+    if not numbers or any(link not in numbers for link in links):
+        return ", ".join(link.replace("_", " ") for link in links)
+    links.sort(key=numbers.__getitem__)       # in the order of their numbers
+    names = ", ".join(link.replace("_", " ") for link in links)
+    listed = ", ".join(str(numbers[link]) for link in links)
+    return f"link{'s' if len(links) > 1 else ''} {listed} ({names})"
 
 
 def coriolis_letter(index: int | str = 1) -> str:

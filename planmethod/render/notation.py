@@ -37,7 +37,13 @@ from collections.abc import Iterable
 from typing import Any
 
 from ..numbering import course_numbers
-from ..vocabulary import pair_number, subscript
+from ..vocabulary import (
+    GroupKind,
+    link_text,
+    links_text,
+    pair_number,
+    subscript,
+)
 from .labels import Run, RunKind, label_runs
 
 __all__ = ["ForceNotation"]
@@ -71,16 +77,18 @@ class ForceNotation:
 
     def link_name(self, link: str) -> str:
         """``link 3 (rocker EF)``: the number, with the exercise's name in words."""
-        if link not in self.numbers:
-            return link.replace("_", " ")
-        return f"link {self.numbers[link]} ({link.replace('_', ' ')})"
+        return link_text(link, self.numbers)
 
     def links(self, links: Iterable[str]) -> str:
         """``links 3, 4 (BC, CD)``."""
-        links = list(links)
-        numbers = ", ".join(self.number(link) for link in links)
-        names = ", ".join(link.replace("_", " ") for link in links)
-        return f"link{'s' if len(links) > 1 else ''} {numbers} ({names})"
+        return links_text(links, self.numbers)
+
+    def group_name(self, group: Any) -> str:
+        """A group of the force analysis as a course names it: ``drive link 1 (AB)`` (the
+        drive with the frame, solved last), ``RRR of links 2, 3 (BC, CD)``."""
+        if group.kind == GroupKind.DRIVE:
+            return link_text(group.links[0], self.numbers, "drive link")
+        return f"{group.kind} of {self.links(group.links)}"
 
     def _pair(self, key: str, on: str | None) -> str | None:
         """The subscript ``ij`` of the pair ``key``: force of link i on link j, j = ``on``."""

@@ -869,8 +869,8 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     lines = [scale_text("mu_l", position.mu_l)]
     link, _pivot, omega = position.drive
     if omega:
-        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s "
-                     f"({link_text(link, position.numbers)})")
+        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s, "
+                     f"{link_text(link, position.numbers, 'drive link')}")
     if plans is not None:
         lines += [line for line in plans.scales.describe()[1:3]]
     title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "
