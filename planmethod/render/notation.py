@@ -42,6 +42,7 @@ from ..vocabulary import (
     link_text,
     links_text,
     pair_number,
+    point_text,
     subscript,
 )
 from .labels import Run, RunKind, label_runs
@@ -82,6 +83,17 @@ class ForceNotation:
     def links(self, links: Iterable[str]) -> str:
         """``links 3, 4 (BC, CD)``."""
         return links_text(links, self.numbers)
+
+    def pair_name(self, key: str) -> str:
+        """A pair by its report key as a course names it: a revolute pair by its point (O₂),
+        a prismatic pair by its two links' numbers (3–0: the slide on the guide)."""
+        point, _, links = key.partition(":")
+        if not links and "/" in key:
+            link, _, along = key.partition("/")
+            if link in self.numbers and along in self.numbers:
+                return f"{self.numbers[link]}–{self.numbers[along]}"
+            return key
+        return point_text(point)
 
     def group_name(self, group: Any) -> str:
         """A group of the force analysis as a course names it: ``drive link 1 (AB)`` (the
