@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 __all__ = [
+    "COLUMN_TEXTS",
     "PLAN_SCALES",
     "QUANTITY_KINDS",
     "SCALES",
@@ -37,6 +38,7 @@ __all__ = [
     "PlanKind",
     "Quantity",
     "QuantityKind",
+    "column_text",
     "coriolis_letter",
     "link_numbers",
     "link_text",
@@ -407,6 +409,32 @@ def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
             return kind.symbol + subscript(pair_number(numbers[link], numbers[along]))
         return f"{kind.symbol} ({subject})"
     return f"{kind.symbol}_{point_name(subject, numbers)}"
+
+
+#: columns of a sweep that are no quantity of a point, link or pair, as a table prints them
+COLUMN_TEXTS: dict[str, str] = {
+    "M_b": "M_b", "M_b_system": "M_b (whole system)", "M_b_no_friction": "M_b (no friction)",
+    "power_residual": "|ΣP|/Σ|P|", "friction_iterations": "friction iterations"}
+
+
+def column_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A sweep column as a table a person reads prints it: a quantity by its :func:`symbol`,
+    a link's angle ``theta_L`` as θ with the link's number, the balancing moment's columns in
+    words (:data:`COLUMN_TEXTS`); any other column keeps its name (the CSV header always
+    does).
+
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2}
+    >>> column_text("theta_BC", numbers), column_text("omega_BC", numbers)
+    ('θ₂', 'ω₂')
+    >>> column_text("M_b_system"), column_text("x_C")
+    ('M_b (whole system)', 'x_C')
+    """
+    if name in COLUMN_TEXTS:
+        return COLUMN_TEXTS[name]
+    head, _, link = name.partition("_")
+    if head == "theta" and numbers and link in numbers:
+        return numbered("θ", numbers[link])
+    return symbol(name, numbers)
 
 
 def link_text(link: str, numbers: Mapping[str, int] | None = None, word: str = "link") -> str:

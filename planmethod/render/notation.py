@@ -39,6 +39,7 @@ from typing import Any
 from ..numbering import course_numbers
 from ..vocabulary import (
     GroupKind,
+    column_text,
     link_text,
     links_text,
     pair_number,
@@ -53,6 +54,12 @@ __all__ = ["ForceNotation"]
 _REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
 #: a force's report name inside a sentence
 _TOKEN = re.compile(r"load\[\d+\]|(?:F_u|M_u|M_f|F_f),[\w/:]+|(?:Rᵗ|Rⁿ|R∥|R⊥|R|N|G)_[\w/:]+")
+
+
+def symbol_text(parts: tuple[str, str]) -> str:
+    """(symbol, subscript) in one string, the subscript in Unicode subscript digits."""
+    symbol, sub = parts
+    return symbol + subscript(sub)
 
 
 class ForceNotation:
@@ -94,6 +101,31 @@ class ForceNotation:
                 return f"{self.numbers[link]}–{self.numbers[along]}"
             return key
         return point_text(point)
+
+    def column(self, name: str) -> str:
+        """A sweep column as a table prints it: a pair's reaction by its printed name (``Rx_B``
+        → R₁₂ (x), ``R_B`` → |R₁₂|, a prismatic pair's couple ``M_K`` → M₀₃), any other
+        column as :func:`planmethod.vocabulary.column_text` prints it.
+
+        >>> from planmethod.spec import load_exercise
+        >>> from planmethod.report import analyse
+        >>> solved = analyse(load_exercise("exercises/fourbar_forces.toml")).forces
+        >>> notation = ForceNotation(solved.solution)
+        >>> [notation.column(name) for name in ("Rx_B", "R_B", "omega_BC", "M_b_system")]
+        ['R₁₂ (x)', '|R₁₂|', 'ω₂', 'M_b (whole system)']
+        """
+        head, _, key = name.partition("_")
+        if name.startswith("friction_sense_"):
+            key = name[len("friction_sense_"):]
+            reaction = self.parts(f"R_{key}")
+            return f"friction sense, {symbol_text(reaction)}" if reaction else name
+        reaction = self.parts(f"R_{key}") if head in ("Rx", "Ry", "R", "M") else None
+        if reaction is None:
+            return column_text(name, self.numbers)
+        printed = symbol_text(reaction)
+        if head == "M":
+            return "M" + subscript(reaction[1])
+        return {"Rx": f"{printed} (x)", "Ry": f"{printed} (y)"}.get(head, f"|{printed}|")
 
     def group_name(self, group: Any) -> str:
         """A group of the force analysis as a course names it: ``drive link 1 (AB)`` (the
@@ -152,10 +184,7 @@ class ForceNotation:
     def plain(self, name: str, on: str | None = None) -> str:
         """The printed name in one string, the subscript in Unicode subscript digits."""
         found = self.parts(name, on)
-        if found is None:
-            return name
-        symbol, sub = found
-        return symbol + subscript(sub)
+        return name if found is None else symbol_text(found)
 
     def line(self, text: str, links: Iterable[str] = ()) -> str:
         """A sentence of the solver (a group's step) in the course's notation: each force's
