@@ -243,3 +243,17 @@ def test_a_templates_task_quotes_the_cranks_symbols_by_its_number(notation, cran
     assert f"at ω{crank} = " in described and f"(ε{crank} = 0)" in described
     assert f"At φ{crank} = " in described and f"ω{rod} of the connecting rod" in described
     assert "{symbol." not in described
+
+
+def test_flags_name_groups_and_points_as_the_course_does():
+    """A plan's flag (construction lines meeting at a small angle; here the Scotch yoke's,
+    which meet at 80°, under min_angle_deg = 89.9) names the group by its links' numbers and
+    the point as the course does: "group of links 2, 3 (block, yoke) … point b₃", never
+    "block+yoke", "b@yoke"."""
+    data = tomllib.loads((ROOT / "exercises" / "scotch_yoke.toml").read_text(encoding="utf-8"))
+    data.setdefault("plan", {})["min_angle_deg"] = 89.9
+    analysis = analyse(exercise_from_dict(data, file="scotch_yoke.toml"))
+    flags = " ".join(analysis.flags)
+    assert "plan, group of links 2, 3 (block, yoke): the lines meet at 80°" in flags
+    assert "point b₃ is poorly defined" in flags
+    assert code_names(flags) == [] and "+" not in flags

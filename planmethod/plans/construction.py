@@ -40,7 +40,7 @@ from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
-from ..vocabulary import PlanKind, coriolis_letter, numbered, subscript, symbol
+from ..vocabulary import PlanKind, coriolis_letter, links_text, numbered, subscript, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -398,10 +398,11 @@ class _Sheet:
         t = cross(p2 - p1, e2) / sine
         self.points[end] = p1 + _times(t, e1)
         flagged = degrees < self.min_angle
-        if flagged:
-            self.flags.append(f"{self.kind} plan, group {group_name}: the lines meet at "
-                              f"{degrees:.3g}° (below {self.min_angle:g}°): point {end} is "
-                              "poorly defined")
+        if flagged:     # the group by its links' numbers, the point as the course names it
+            group_text = links_text(group_name.split("+"), self.numbers)
+            self.flags.append(f"{self.kind} plan, group of {group_text}: the lines meet at "
+                              f"{degrees:.3g}° (below {self.min_angle:g}°): point "
+                              f"{course_text(end, self.numbers)} is poorly defined")
         self.add(Step(0, "intersect", text, end=end, lines=(first, second),
                       angle_deg=degrees, flagged=flagged, group=group))
         return self.points[end]
