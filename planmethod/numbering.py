@@ -88,6 +88,16 @@ def course_symbols(mechanism: Mechanism) -> dict[str, str]:
     (φ₁, ω₁, ε₁ by default, φ₂ … where the frame is 1) and each moving link's ``omega_L`` and
     ``epsilon_L``.
 
+    Parameters
+    ----------
+    mechanism
+        The mechanism; its ``notation`` chooses the numbering (:func:`course_numbers`).
+
+    Returns
+    -------
+    dict
+        Name → symbol as printed.
+
     Examples
     --------
     >>> from planmethod.spec import load_exercise
