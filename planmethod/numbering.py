@@ -25,9 +25,9 @@ import functools
 from .errors import StructureError
 from .model import FRAME, Mechanism
 from .structure import analyse_structure
-from .vocabulary import link_numbers
+from .vocabulary import link_numbers, numbered
 
-__all__ = ["attach_order", "course_numbers"]
+__all__ = ["attach_order", "course_numbers", "course_symbols"]
 
 
 def attach_order(mechanism: Mechanism) -> list[str]:
@@ -80,3 +80,37 @@ def course_numbers(mechanism: Mechanism) -> dict[str, int]:
     {'frame': 0, 'AB': 1, 'BC': 2, 'slider': 3}
     """
     return dict(_numbers(mechanism))
+
+
+def course_symbols(mechanism: Mechanism) -> dict[str, str]:
+    """The symbols a task's text quotes by name (``{symbol.omega}`` in a template's
+    description), in the mechanism's notation: the crank's ``phi``, ``omega`` and ``epsilon``
+    (φ₁, ω₁, ε₁ by default, φ₂ … where the frame is 1) and each moving link's ``omega_L`` and
+    ``epsilon_L``.
+
+    Parameters
+    ----------
+    mechanism
+        The mechanism; its ``notation`` chooses the numbering (:func:`course_numbers`).
+
+    Returns
+    -------
+    dict
+        Name → symbol as printed.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> symbols = course_symbols(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+    >>> symbols["phi"], symbols["omega"], symbols["omega_BC"], symbols["epsilon_BC"]
+    ('φ₁', 'ω₁', 'ω₂', 'ε₂')
+    """
+    numbers = course_numbers(mechanism)
+    crank = numbers[mechanism.drive.link]
+    out = {"phi": numbered("φ", crank), "omega": numbered("ω", crank),
+           "epsilon": numbered("ε", crank)}
+    for link, number in numbers.items():
+        if link != FRAME:
+            out[f"omega_{link}"] = numbered("ω", number)
+            out[f"epsilon_{link}"] = numbered("ε", number)
+    return out

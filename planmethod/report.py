@@ -26,6 +26,7 @@ from .errors import PlanmethodError
 from .kinematics import Motion, solve
 from .kinematics.solve import FLAG_ERROR, pose
 from .model import FRAME, Exercise
+from .numbering import course_numbers
 from .plans import Plans, draw_plans
 from .plans.construction import PlansUnavailableError
 from .scene import Scene, plan_scene
@@ -79,12 +80,13 @@ class Analysis:
         """Plan flags (intersections at small angles) and groups whose exact values lose
         digits near their toggle (estimated relative error above 1e-6)."""
         flags = list(self.plans.flags) if self.plans else []
+        numbers = course_numbers(self.exercise.mechanism)
         for index, solved in sorted(self.motion.groups.items()):
             for stage, values in (solved.error_estimate or {}).items():
                 estimate = float(np.max(values))
                 if estimate > FLAG_ERROR:
-                    group = self.structure.groups[index]
-                    flags.append(f"group {group.name} is near its toggle: its exact "
+                    links = vocabulary.links_text(self.structure.groups[index].links, numbers)
+                    flags.append(f"group {index + 1} ({links}) is near its toggle: its exact "
                                  f"{vocabulary.STAGE_PLURAL.get(stage, stage)} "
                                  f"are good to about {estimate:.0e} relative")
         return tuple(flags)

@@ -24,13 +24,13 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from itertools import combinations
 
 from .errors import StructureError
 from .model import FRAME, Mechanism, Slide
-from .vocabulary import GroupKind, PairKind
+from .vocabulary import GroupKind, PairKind, link_text, links_text, point_text
 
 __all__ = ["AssurGroup", "Joint", "Structure", "analyse_structure", "describe"]
 
@@ -272,30 +272,54 @@ def analyse_structure(mechanism: Mechanism) -> Structure:
     return Structure(n, p5, mobility, driver, tuple(groups))
 
 
-def describe(structure: Structure) -> str:
+def describe(structure: Structure, numbers: Mapping[str, int] | None = None) -> str:
     """The structural analysis as a course prints it.
 
     Parameters
     ----------
     structure
         What :func:`analyse_structure` returned.
+    numbers
+        The links' numbers in the course's notation
+        (:func:`planmethod.numbering.course_numbers`): links are then named by number (links
+        2, 3 (BC, slider)), a prismatic pair by its two links (3–0); without them, by name.
 
     Examples
     --------
     >>> print(describe(Structure(3, 4, 1, "AB", ())))  # doctest: +NORMALIZE_WHITESPACE
     n = 3, p5 = 4, p4 = 0, W = 3n − 2p5 − p4 = 3·3 − 2·4 − 0 = 1
     drive link AB with the frame: class I mechanism
+    >>> print(describe(Structure(3, 4, 1, "AB", ()), {"frame": 0, "AB": 1}).splitlines()[1])
+    drive link 1 (AB) with the frame 0: class I mechanism
     """
+    numbered = bool(numbers) and all(link in numbers for link in (FRAME, structure.driver))
+    if numbered:
+        drive = (f"{link_text(structure.driver, numbers, 'drive link')} with the frame "
+                 f"{numbers[FRAME]}")
+    else:
+        drive = f"drive link {structure.driver} with the frame"
     lines = [f"n = {structure.n}, p5 = {structure.p5}, p4 = {structure.p4}, "
              f"W = 3n − 2p5 − p4 = 3·{structure.n} − 2·{structure.p5} − {structure.p4} = "
              f"{structure.mobility}",
-             f"drive link {structure.driver} with the frame: class I mechanism"]
+             f"{drive}: class I mechanism"]
     for group in structure.groups:
         kind = (f"{group.kind} (type {group.type_number})" if group.is_dyad else group.kind)
-        pairs = ", ".join(joint.label for joint in group.joints)
-        lines.append(f"group {group.index + 1}: links {', '.join(group.links)} — {kind}, "
+        known = numbered and all(link in numbers for link in group.links + group.attached_to)
+        if known:
+            pairs = ", ".join(
+                point_text(joint.point) if joint.slide is None else
+                f"{numbers[joint.slide.link]}–{numbers[joint.slide.along]}"
+                for joint in group.joints)
+            links = links_text(group.links, numbers)
+            attached = ("links " if len(group.attached_to) > 1 else "link ") + ", ".join(
+                str(numbers[link]) for link in group.attached_to)
+        else:
+            pairs = ", ".join(joint.label for joint in group.joints)
+            links = f"links {', '.join(group.links)}"
+            attached = ", ".join(group.attached_to)
+        lines.append(f"group {group.index + 1}: {links} — {kind}, "
                      f"class {group.group_class}, order {group.order}; pairs {pairs}; "
-                     f"attached to {', '.join(group.attached_to)}")
+                     f"attached to {attached}")
     mechanism_class = max([g.group_class for g in structure.groups] + [1])
     if structure.groups:
         lines.append(f"the mechanism is of class {mechanism_class}")

@@ -243,16 +243,44 @@ class Extremes:
                 high = max(known[1], high, key=lambda pair: pair[0])
             self.table[name] = (low, high)
 
-    def describe(self, title: str) -> str:
-        """The extremes as a printed table."""
+    def describe(self, title: str, names: Callable[[str], str] | None = None,
+                 phi: str = "φ") -> str:
+        """The extremes as a printed table.
+
+        Parameters
+        ----------
+        title
+            The exercise's title.
+        names
+            Each column's name as the table prints it (the course's symbol: ω₂ for
+            ``omega_BC``); the column's own name without it.
+        phi
+            The crank angle's symbol (φ₁: it carries the crank's number).
+
+        Examples
+        --------
+        >>> extremes = Extremes()
+        >>> extremes.feed({"angle": np.array([0.0, 90.0]), "omega_BC": np.array([-2.0, 3.0])})
+        >>> print(extremes.describe("Four-bar", {"omega_BC": "ω₂"}.get, "φ₁"))
+        Four-bar — 2 crank angles from 0° to 90°
+        <BLANKLINE>
+          quantity                min    at φ₁        max    at φ₁
+          ω₂                       -2       0°          3      90°
+        """
+        def shown(name: str) -> str:
+            return (names(name) if names else None) or name
+
+        width = max([16] + [len(shown(name)) for name in self.table])
+        at = f"at {phi}"
         lines = [f"{title} — {self.count} crank angles from {self.first:g}° to {self.last:g}°",
-                 "", "  quantity            min      at φ      max      at φ"]
+                 "", f"  {'quantity':<{width}} {'min':>10} {at:>8} {'max':>10} {at:>8}"]
         for name, found in self.table.items():
             if found is None:
-                lines.append(f"  {name:<16} (undefined)")
+                lines.append(f"  {shown(name):<{width}} (undefined)")
                 continue
             (low, at_low), (high, at_high) = found
-            lines.append(f"  {name:<16} {low:>10.5g} {at_low:>7g}° {high:>10.5g} {at_high:>7g}°")
+            lines.append(f"  {shown(name):<{width}} {low:>10.5g} {at_low:>7g}° {high:>10.5g} "
+                         f"{at_high:>7g}°")
         return "\n".join(lines)
 
 

@@ -20,11 +20,12 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
 __all__ = [
+    "COLUMN_TEXTS",
     "PLAN_SCALES",
     "QUANTITY_KINDS",
     "SCALES",
@@ -37,8 +38,11 @@ __all__ = [
     "PlanKind",
     "Quantity",
     "QuantityKind",
+    "column_text",
+    "coriolis_letter",
     "link_numbers",
     "link_text",
+    "links_text",
     "numbered",
     "pair_number",
     "point_name",
@@ -407,15 +411,71 @@ def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
     return f"{kind.symbol}_{point_name(subject, numbers)}"
 
 
-def link_text(link: str, numbers: Mapping[str, int] | None = None) -> str:
+#: columns of a sweep that are no quantity of a point, link or pair, as a table prints them
+COLUMN_TEXTS: dict[str, str] = {
+    "M_b": "M_b", "M_b_system": "M_b (whole system)", "M_b_no_friction": "M_b (no friction)",
+    "power_residual": "|ΣP|/Σ|P|", "friction_iterations": "friction iterations"}
+
+
+def column_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A sweep column as a table a person reads prints it: a quantity by its :func:`symbol`,
+    a link's angle ``theta_L`` as θ with the link's number, the balancing moment's columns in
+    words (:data:`COLUMN_TEXTS`); any other column keeps its name (the CSV header always
+    does).
+
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2}
+    >>> column_text("theta_BC", numbers), column_text("omega_BC", numbers)
+    ('θ₂', 'ω₂')
+    >>> column_text("M_b_system"), column_text("x_C")
+    ('M_b (whole system)', 'x_C')
+    """
+    if name in COLUMN_TEXTS:
+        return COLUMN_TEXTS[name]
+    head, _, link = name.partition("_")
+    if head == "theta" and numbers and link in numbers:
+        return numbered("θ", numbers[link])
+    return symbol(name, numbers)
+
+
+def link_text(link: str, numbers: Mapping[str, int] | None = None, word: str = "link") -> str:
     """A link named in words: ``link 2 (BC)`` by its number, its name in words (an
-    underscore a space); just the name without ``numbers``.
+    underscore a space); just the name without ``numbers``. ``word`` says what the link is
+    (``drive link 1 (AB)``, never ``link 1 (AB)`` inside another bracket).
 
     >>> link_text("rocker_EF", {"rocker_EF": 4}), link_text("BC")
     ('link 4 (rocker EF)', 'BC')
+    >>> link_text("AB", {"AB": 1}, "drive link")
+    'drive link 1 (AB)'
     """
     words = link.replace("_", " ")
-    return f"link {numbers[link]} ({words})" if numbers and link in numbers else words
+    return f"{word} {numbers[link]} ({words})" if numbers and link in numbers else words
+
+
+def links_text(links: Iterable[str], numbers: Mapping[str, int] | None = None) -> str:
+    """Links named in words: ``links 2, 3 (BC, rocker EF)`` by their numbers (in the order
+    of the numbers), their names in words; just the names without ``numbers``.
+
+    >>> links_text(["rocker_EF", "BC"], {"BC": 2, "rocker_EF": 3}), links_text(["AB"])
+    ('links 2, 3 (BC, rocker EF)', 'AB')
+    """
+    links = list(links)
+    if not numbers or any(link not in numbers for link in links):
+        return ", ".join(link.replace("_", " ") for link in links)
+    links.sort(key=numbers.__getitem__)       # in the order of their numbers
+    names = ", ".join(link.replace("_", " ") for link in links)
+    listed = ", ".join(str(numbers[link]) for link in links)
+    return f"link{'s' if len(links) > 1 else ''} {listed} ({names})"
+
+
+def coriolis_letter(index: int | str = 1) -> str:
+    """The letter of a Coriolis point as a course prints it: the end of the Coriolis
+    component of a point's first (or only) sliding side is k, of its second k′ — never the
+    report's side index (``k1_Q``, ``k2_Q`` are k_Q and k′_Q).
+
+    >>> coriolis_letter(), coriolis_letter("1"), coriolis_letter(2)
+    ('k', 'k', 'k′')
+    """
+    return "k" + "′" * (int(index or 1) - 1)
 
 
 def question_text(name: str, numbers: Mapping[str, int] | None = None) -> str:

@@ -29,14 +29,15 @@ def test_solve_prints_seed001_answers(capsys):
     assert code == 0 and not err
     for text in ("W = 3n − 2p5 − p4 = 3·3 − 2·4 − 0 = 1", "RRP (type 2), class 2, order 2",
                  "μl = 0.002 m/mm", "μv = 0.2 (m/s)/mm", "μa = 20 (m/s²)/mm",
-                 "μφv = μv/ω1 = 0.002 m/mm"):
+                 "μφv = μv/ω₁ = 0.002 m/mm", "crank angle φ₁ = 45°",
+                 "group 1: links 2, 3 (BC, slider) — RRP"):
         assert text in out
     table = out.split("Published values")[0]      # the check table, not the book's values
     rows = {line.split()[0]: line.split() for line in table.splitlines()
             if line.startswith("  ") and len(line.split()) >= 5}
     assert "v_C                              4       5.27163     -24.1 %   likely a slip" in out
-    expected = {"v_C": 5.2716, "omega_BC": -24.254, "a_C": 430.32, "epsilon_BC": 2282.7,
-                "rho_D": 0.0738}
+    # the course's symbols (the rod BC is link 2), never the report's names
+    expected = {"v_C": 5.2716, "ω₂": -24.254, "a_C": 430.32, "ε₂": 2282.7, "ρ_D": 0.0738}
     for quantity, value in expected.items():
         plan, exact = float(rows[quantity][1]), float(rows[quantity][2])
         assert plan == pytest.approx(exact, rel=1e-9)

@@ -162,7 +162,7 @@ def test_a_page_drawing_is_graded_at_its_own_scale(compressor):
 
 
 @pytest.mark.parametrize(("changes", "words"), [
-    ({"angle": 45.0}, "at φ1 = 45°, the key of 'Crank and slotted lever' at φ1 = 30°"),
+    ({"angle": 45.0}, "at φ₁ = 45°, the key of 'Crank and slotted lever' at φ₁ = 30°"),
     ({"title": "Another mechanism"}, "the drawing is of 'Another mechanism'"),
 ])
 def test_grade_drawing_refuses_a_page_drawing_of_another_exercise_in_one_line(

@@ -393,7 +393,7 @@ def test_report_never_holds_nan_when_the_crank_stands_still():
     json.dumps(report, allow_nan=False)
     assert report["forces"]["zhukovsky_moment"] is None
     assert report["forces"]["power_balance_moment"] is None
-    assert any("ω1 = 0" in flag for flag in report["forces"]["flags"])
+    assert any("ω₁ = 0" in flag for flag in report["forces"]["flags"])
 
 
 # -- properties ------------------------------------------------------------------------------------

@@ -42,8 +42,8 @@ def test_check_flags_the_papers_rows(capsys):
 def test_check_text_report(capsys):
     assert main(["check", CONVEYOR, TABLE2]) == 1
     text = capsys.readouterr().out
-    assert "φ1 = 135° (line 4): FLAGGED" in text and "flagged: D" in text
-    assert "rocker_EF: |FE| = 1.049 m, should be 0.44 m" in text
+    assert "φ₁ = 135° (line 4): FLAGGED" in text and "flagged: D" in text
+    assert "link 4 (rocker EF): |FE| = 1.049 m, should be 0.44 m" in text
 
 
 def test_check_accepts_exact_coordinates(tmp_path, capsys):
@@ -98,7 +98,9 @@ def test_study_command_table_csv_and_plot(tmp_path, capsys):
     csv, plot = tmp_path / "study.csv", tmp_path / "study.png"
     assert main(["study", STUDY, "--step", "10", "--csv", str(csv), "--plot", str(plot)]) == 0
     text = capsys.readouterr().out
-    assert "rocker weight G4 (N)" in text and "crank speed ω1 (rad/s)" in text
+    # the rocker CD is link 3 and the crank 1 in the course's numbering; reactions R₀₁ …
+    assert "rocker weight G₃ (N)" in text and "crank speed ω₁ (rad/s)" in text
+    assert "R₀₁        R₁₂        R₂₃        R₀₃" in text and "R_A" not in text
     assert text.count("the data support it") + text.count("the data do not support it") == 2
     assert "REFUTED" not in text and "CONFIRMED" not in text
     rows = csv.read_text().splitlines()

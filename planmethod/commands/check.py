@@ -33,6 +33,7 @@ from __future__ import annotations
 import argparse
 import csv
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -235,16 +236,24 @@ def check_row(exercise, row: Row, tolerance: float) -> RowFindings:
                        error_text)
 
 
-def text_report(title: str, findings: list[RowFindings]) -> str:
+def text_report(title: str, findings: list[RowFindings],
+                numbers: Mapping[str, int] | None = None, crank: int = 1) -> str:
+    """The findings as a person reads them: links by the course's numbers (``numbers``,
+    :func:`planmethod.numbering.course_numbers`), the crank angle φ with the crank's number,
+    points with the digits of their names as subscripts."""
+    from ..vocabulary import link_text, numbered, point_text
+
     lines = [f"{title}: {len(findings)} row(s) checked against the link lengths and the exact "
              "assembly"]
     for found in findings:
         verdict = "FLAGGED" if found.flagged else "ok"
-        lines += ["", f"φ1 = {found.angle:g}° (line {found.line}): {verdict}"]
+        lines += ["", f"{numbered('φ', crank)} = {found.angle:g}° (line {found.line}): "
+                      f"{verdict}"]
         lines.append(f"  lengths: {len(found.lengths)} checked, {len(found.violations)} "
                      f"off by more than {found.tolerance * 1000:g} mm")
         for check in found.violations:
-            lines.append(f"    {check.link}: |{check.first}{check.second}| = {check.given:.4g} m"
+            lines.append(f"    {link_text(check.link, numbers)}: |{point_text(check.first)}"
+                         f"{point_text(check.second)}| = {check.given:.4g} m"
                          f", should be {check.expected:.4g} m ({check.error * 1000:+.1f} mm)")
         if found.assembly_error:
             lines.append(f"  no exact assembly at this angle: {found.assembly_error}")
@@ -252,12 +261,12 @@ def text_report(title: str, findings: list[RowFindings]) -> str:
             lines.append(f"  points against the exact assembly ({found.branch}):")
             for check in found.positions:
                 mark = "FLAGGED" if check.error > found.tolerance else "ok"
-                lines.append(f"    {check.point:<4} given ({check.given[0]:>10.6f}, "
+                lines.append(f"    {point_text(check.point):<4} given ({check.given[0]:>10.6f}, "
                              f"{check.given[1]:>10.6f})  exact ({check.exact[0]:>10.6f}, "
                              f"{check.exact[1]:>10.6f})  off {check.error * 1000:8.2f} mm  "
                              f"{mark}")
         if found.flagged_points:
-            lines.append(f"  flagged: {', '.join(found.flagged_points)}")
+            lines.append(f"  flagged: {', '.join(map(point_text, found.flagged_points))}")
     return "\n".join(lines)
 
 
@@ -279,5 +288,9 @@ def run(args: argparse.Namespace) -> int:
                   indent=2, allow_nan=False)
         print()
     else:
-        print(text_report(exercise.mechanism.title, findings))
+        from ..numbering import course_numbers
+
+        numbers = course_numbers(exercise.mechanism)
+        print(text_report(exercise.mechanism.title, findings, numbers,
+                          numbers[exercise.mechanism.drive.link]))
     return 1 if any(f.flagged for f in findings) else 0

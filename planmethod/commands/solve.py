@@ -33,13 +33,19 @@ def _format(value: float | None, digits: int = 6) -> str:
 
 
 def text_report(analysis) -> str:
-    """The report a course prints: structure, scales, check table, flags."""
+    """The report a course prints: structure, scales, check table, flags — every quantity,
+    link and force in the course's notation (docs/notation.md: ω₂, v_B₃, R₀₁; the crank's
+    φ and ω by its number), never a report name (those are the JSON report's)."""
+    from ..numbering import course_numbers
     from ..structure import describe
+    from ..vocabulary import numbered, symbol
 
     exercise, motion = analysis.exercise, analysis.motion
-    lines = [f"{exercise.mechanism.title} — crank angle φ1 = {analysis.angle:g}°", "",
-             "Structural analysis"]
-    lines += ["  " + line for line in describe(analysis.structure).splitlines()]
+    numbers = course_numbers(exercise.mechanism)
+    crank = numbers[exercise.mechanism.drive.link]
+    lines = [f"{exercise.mechanism.title} — crank angle {numbered('φ', crank)} = "
+             f"{analysis.angle:g}°", "", "Structural analysis"]
+    lines += ["  " + line for line in describe(analysis.structure, numbers).splitlines()]
     for index, branch in sorted(motion.branches.items()):
         analysis.structure.groups[index]
         lines.append(f"  group {index + 1} assembly: branch {branch.sign:+d} ({branch.reason})")
@@ -48,12 +54,13 @@ def text_report(analysis) -> str:
         precision = analysis.plans.velocity.precision_mm
         lines.append(f"  drafting precision: {precision:g} mm" if precision else
                      "  drafting precision: exact construction")
-    width = max([len(check.quantity) for check in analysis.checks] + [8])
+    shown = {check.quantity: symbol(check.quantity, numbers) for check in analysis.checks}
+    width = max([len(text) for text in shown.values()] + [8])
     lines += ["", f"  {'quantity':<{width}} {'plan':>12}  {'exact':>12}  {'abs. error':>10}   "
                   f"{'rel. error':>10}  unit"]
     for check in analysis.checks:
         rel = "—" if check.rel_error is None else f"{check.rel_error:.2e}"
-        lines.append(f"  {check.quantity:<{width}} {_format(check.plan):>12}  "
+        lines.append(f"  {shown[check.quantity]:<{width}} {_format(check.plan):>12}  "
                      f"{_format(check.analytic):>12}  {_format(check.abs_error, 3):>10}   "
                      f"{rel:>10}  {check.unit}")
     if exercise.published:
@@ -67,12 +74,15 @@ def text_report(analysis) -> str:
             off = ("—" if row["difference_percent"] is None
                    else f"{row['difference_percent']:+.1f} %")
             slip = "   likely a slip (> 5 %)" if row["likely_slip"] else ""
-            lines.append(f"  {row['quantity']:<22}{row['published']:>12.6g}{exact:>14}"
+            lines.append(f"  {symbol(row['quantity'], numbers):<22}{row['published']:>12.6g}"
+                         f"{exact:>14}"
                          f"{off:>12}{slip}")
     if analysis.flags:
         lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.flags]
     if analysis.forces is not None:
-        lines += ["", analysis.forces.describe()]
+        from ..render.notation import ForceNotation
+
+        lines += ["", analysis.forces.describe(ForceNotation(analysis.forces.solution))]
     return "\n".join(lines)
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Mapping
 
 #: the most values a study takes per parameter (each is a full-turn force analysis)
 MAX_GRID = 200
@@ -98,11 +99,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plot", metavar="FILE", help="write the plots (PNG/SVG/PDF)")
 
 
-def table_text(study) -> str:
-    """The study as a course prints it: one table per parameter, then the conclusions."""
+def table_text(study, names: Mapping[str, str] | None = None,
+               rocker: str | None = None) -> str:
+    """The study as a course prints it: one table per parameter, then the conclusions;
+    ``names`` are the pairs' reactions as the course writes them (R₀₁ for the pair A),
+    ``rocker`` the rocker in words (link 3 (CD))."""
+    names = names or {}
     lines = [f"{study.title} — largest reactions over a full turn (N) and |M_b| (N·m)",
-             f"base case: {study.base_text()}; the rocker is {study.rocker}", ""]
-    header = "".join(f"{'R_' + pair:>11}" for pair in study.pairs) + f"{'|M_b|':>11}"
+             f"base case: {study.base_text()}; the rocker is {rocker or study.rocker}", ""]
+    header = "".join(f"{names.get(pair, 'R_' + pair):>11}" for pair in study.pairs)
+    header += f"{'|M_b|':>11}"
     for parameter in study.parameters:
         lines.append(f"{parameter.label} ({parameter.unit})".ljust(28) + header)
         for i, value in enumerate(parameter.values):
@@ -115,12 +121,24 @@ def table_text(study) -> str:
         lines.append("  change over the range".ljust(28) + change)
         lines.append("")
     lines.append("The conclusions of Jobborova et al. against these numbers:")
-    for number, (statement, confirmed, evidence) in enumerate(study.conclusions(), start=1):
+    for number, (statement, confirmed, evidence) in enumerate(study.conclusions(names),
+                                                              start=1):
         verdict = ("the data support it" if confirmed
                    else "the data do not support it")
         lines.append(f"  {number}. \"{statement}\": {verdict} — {evidence}")
     lines.append("  (the tables above are the figures that show it; --plot draws them)")
     return "\n".join(lines)
+
+
+def _printed_names(exercise, study) -> tuple[dict[str, str], str]:
+    """Each pair's reaction as the course writes it (R₀₁) and the rocker in words (link 3
+    (CD)), from the exercise's own solution at its angle."""
+    from ..render.notation import ForceNotation
+    from ..report import analyse
+
+    notation = ForceNotation(analyse(exercise, plans=False).forces.solution)
+    return ({pair: notation.plain(f"R_{pair}") for pair in study.pairs},
+            notation.link_name(study.rocker))
 
 
 def csv_text(study) -> str:
@@ -174,7 +192,7 @@ def run(args: argparse.Namespace) -> int:
         if args.csv:
             outputs.text(args.csv, csv_text(study))
     written = [path for path in (args.plot, args.csv) if path]
-    print(table_text(study))
+    print(table_text(study, *_printed_names(exercise, study)))
     if written:
         print("\nWrote " + ", ".join(written))
     return 0

@@ -48,6 +48,25 @@ def _save_plot(exercise, table, path, *, forces: bool) -> None:
                         crank=crank)
 
 
+def _printed_names(exercise, forces: bool) -> dict:
+    """What the printed table names its columns by (the CSV's header keeps the column
+    names): each quantity, reaction and link angle in the course's notation, and the crank
+    angle's symbol with the crank's number."""
+    from ..numbering import course_numbers
+    from ..vocabulary import column_text, numbered
+
+    numbers = course_numbers(exercise.mechanism)
+    phi = numbered("φ", numbers[exercise.mechanism.drive.link])
+    if forces:
+        from ..render.notation import ForceNotation
+        from ..report import analyse
+
+        solved = analyse(exercise, plans=False).forces
+        if solved is not None:
+            return {"names": ForceNotation(solved.solution).column, "phi": phi}
+    return {"names": lambda name: column_text(name, numbers), "phi": phi}
+
+
 def run(args: argparse.Namespace) -> int:
     import contextlib
 
@@ -84,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
                     handle.writelines(csv_rows(chunk))
                 extremes.feed(chunk)
     written = ([args.plot] if args.plot else []) + ([args.csv] if args.csv else [])
-    print(extremes.describe(exercise.mechanism.title))
+    print(extremes.describe(exercise.mechanism.title, **_printed_names(exercise, args.forces)))
     if written:
         print("\nWrote " + ", ".join(written))
     return 0

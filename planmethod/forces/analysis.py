@@ -33,9 +33,10 @@ import numpy as np
 from ..errors import SpecError
 from ..kinematics import Motion
 from ..model import Exercise, Mechanism
+from ..numbering import course_numbers
 from ..plans.scales import standard
 from ..vectors import norm
-from ..vocabulary import AppliedKind
+from ..vocabulary import AppliedKind, numbered, point_text, subscript
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
 from .combined import (
@@ -149,8 +150,9 @@ def solve_forces(motion: Motion, *, plans=None, file: str | None = None) -> Forc
                      f"{float(angles[index]):g}°: an ill-conditioned position")
     lever = zhukovsky_lever(mechanism, states, applied, plans=plans)
     if not np.all(np.isfinite(lever.balancing_moment)):
-        flags.append("Zhukovsky's lever is undefined where the crank does not move (ω1 = 0): "
-                     "every image lies at the pole")
+        omega = numbered("ω", course_numbers(mechanism)[mechanism.drive.link])
+        flags.append(f"Zhukovsky's lever is undefined where the crank does not move "
+                     f"({omega} = 0): every image lies at the pole")
     power = power_residual(mechanism, states, applied, groups.balancing_moment)
     by_power = power_moment(mechanism, states, applied)
     return ForceSolution(mechanism, angles, applied, groups, system, lever, power, by_power,
@@ -264,28 +266,47 @@ class ForceAnalysis:
                            for f in lever.forces]}
 
 
-    def describe(self) -> str:
-        """The force analysis as text (``planmethod solve``)."""
+    def describe(self, notation) -> str:
+        """The force analysis as text (``planmethod solve``), in the course's notation.
+
+        Parameters
+        ----------
+        notation
+            Names this solution's forces and links as the course writes them (R₀₁, Fᵘ₂, link
+            2 (BC)): a :class:`planmethod.render.notation.ForceNotation` of ``self.solution``.
+        """
         solution = self.solution
-        lines = [f"Kinetostatics (d'Alembert) at φ1 = {self.angle:g}°"]
+        numbers = notation.numbers
+        crank = numbers.get(solution.mechanism.drive.link, 1)
+        omega = numbered("ω", crank)
+
+        def link(name: str) -> str:      # "2 (BC)" in a column headed "link"
+            return f"{notation.number(name)} ({name.replace('_', ' ')})"
+
+        def sub(name: str) -> str:       # the link's number as a subscript (G₂, m₂, s₂)
+            return subscript(notation.number(name))
+
+        lines = [f"Kinetostatics (d'Alembert) at {numbered('φ', crank)} = {self.angle:g}°"]
         if solution.applied.inertia:
-            lines += ["  link      m kg    J kg·m²   |a_S| m/s²   F_u = −m·a_S (N)          "
-                      "M_u = −J·ε N·m"]
-            for link, item in solution.applied.inertia.items():
+            width = max(len(link(name)) for name in solution.applied.inertia)
+            lines += [f"  {'link':<{width}}   m kg    J kg·m²   |a_S| m/s²   Fᵘ = −m·a_S (N)"
+                      "          Mᵘ = −J·ε N·m"]
+            for name, item in solution.applied.inertia.items():
                 a = float(norm(item.acceleration[0]))
                 f = item.force[0]
-                lines.append(f"  {link:<8} {item.mass:>6.4g} {item.J:>10.4g} {a:>11.5g}   "
-                             f"({f[0]:>10.5g}, {f[1]:>10.5g})   {float(item.moment[0]):>10.5g}")
+                lines.append(f"  {link(name):<{width}} {item.mass:>6.4g} {item.J:>10.4g} "
+                             f"{a:>11.5g}   ({f[0]:>10.5g}, {f[1]:>10.5g})   "
+                             f"{float(item.moment[0]):>10.5g}")
         for group in solution.groups.groups:
-            lines.append(f"  {group.kind} {group.name}:")
-            lines += [f"    {step}" for step in group.steps]
-        lines.append("  pair           from → on            Fx N         Fy N        |R| N"
-                     "     couple N·m")
+            lines.append(f"  {notation.group_name(group)}:")
+            lines += [f"    {notation.line(step, group.links)}" for step in group.steps]
+        lines.append("  reaction  pair            Fx N         Fy N        |R| N     couple N·m")
         for key, r in self.reactions.items():
             couple = "" if r.moment is None else f"{float(r.moment):>12.6g}"
-            lines.append(f"  {key:<14} {r.source + ' → ' + r.target:<18} "
+            lines.append(f"  {notation.plain(f'R_{key}', r.target):<9} "
+                         f"{notation.pair_name(key):<10} "
                          f"{float(r.force[0]):>11.6g} {float(r.force[1]):>11.6g} "
-                         f"{float(r.magnitude):>11.6g} {couple}")
+                         f"{float(r.magnitude):>11.6g} {couple}".rstrip())
         lines.append(f"  balancing moment M_b = {self.balancing_moment:.6g} N·m (group method)")
         system = solution.system
         lines.append(f"  whole-system solve ({system.equations} equations): M_b = "
@@ -293,11 +314,11 @@ class ForceAnalysis:
                      f"{float(solution.agreement[0]):.2g} (relative)")
         z = self.zhukovsky_moment
         lines.append("  Zhukovsky's lever (" + solution.lever.source + "): " + (
-            "undefined (ω1 = 0)" if z is None else
+            f"undefined ({omega} = 0)" if z is None else
             f"M_b = {z:.6g} N·m, {z - self.balancing_moment:+.3g} from the group method"))
         by_power = _number(solution.power_moment[0])
         lines.append("  power balance: " + ("" if by_power is None else
-                                            f"M_b = −ΣP/ω1 = {by_power:.6g} N·m, ")
+                                            f"M_b = −ΣP/{omega} = {by_power:.6g} N·m, ")
                      + f"|ΣP|/Σ|P| = {self.power_residual:.2g}")
         if solution.friction is not None:
             lines.append(f"  friction: converged after {int(solution.friction.iterations[0])} "
@@ -308,25 +329,27 @@ class ForceAnalysis:
                          f"Z_g = g/μa = {c.gravity_image_mm:.4g} mm to π′")
             for f in c.forces:
                 length = float(norm(np.asarray(f.segment_mm)))
-                lines.append(f"    {f.link}: (s π′) = {length:.4g} mm → |Q| = "
+                lines.append(f"    {notation.link_name(f.link)}: (s{sub(f.link)}π′) = "
+                             f"{length:.4g} mm → |Q{sub(f.link)}| = "
                              f"{float(norm(np.asarray(f.from_plan))):.6g} N")
         if self.constants is not None and self.constants.force_moment is not None:
             k = self.constants
             lines.append(f"  constants for all positions (Aliyev): μF·μl = "
-                         f"{k.force_moment:.6g} N·m/mm²; m·μa·μl: "
-                         + ", ".join(f"{link} {value:.6g}"
-                                     for link, value in k.combined_moment.items())
+                         f"{k.force_moment:.6g} N·m/mm²; "
+                         + ", ".join(f"m{sub(name)}·μa·μl = {value:.6g}"
+                                     for name, value in k.combined_moment.items())
                          + " N·m/mm²")
             if k.inertia_moment:
-                lines.append("    J·μa/l: " + ", ".join(
-                    f"{link} {entry['constant']:.6g} N·m/mm (l = {entry['points'][0]}"
-                    f"{entry['points'][1]})" for link, entry in k.inertia_moment.items()))
+                lines.append("    " + ", ".join(
+                    f"J{sub(name)}·μa/l_{''.join(map(point_text, entry['points']))} = "
+                    f"{entry['constant']:.6g}"
+                    for name, entry in k.inertia_moment.items()) + " N·m/mm")
         for sense in self.epsilon:
             word = {1: "counter-clockwise", -1: "clockwise", 0: "zero", None: "undefined"}
-            lines.append(f"  ε of {sense.link} by the plan's rule: {word[sense.rule]} "
-                         f"(exact: {word[sense.exact]})")
+            lines.append(f"  {numbered('ε', notation.number(sense.link))} by the plan's rule: "
+                         f"{word[sense.rule]} (exact: {word[sense.exact]})")
         if self.flags:
-            lines += [f"  ! {flag}" for flag in self.flags]
+            lines += [f"  ! {notation.line(flag)}" for flag in self.flags]
         return "\n".join(lines)
 
 

@@ -28,7 +28,7 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -37,8 +37,9 @@ from ..errors import SpecError
 from ..kinematics import solve
 from ..kinematics.solve import choose_branches
 from ..model import Exercise, Load
+from ..numbering import course_numbers
 from ..structure import analyse_structure
-from ..vocabulary import QUANTITY_KINDS
+from ..vocabulary import QUANTITY_KINDS, numbered
 from .analysis import solve_forces
 
 __all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "moment_load", "run_study", "study_variant"]
@@ -53,11 +54,20 @@ MOMENTS = (80.0, 100.0, 120.0, 140.0, 160.0)
 
 @dataclass(frozen=True, slots=True)
 class Parameter:
+    """A parameter the study steps: its name, its label in words with its symbol (``rocker
+    weight G₃``: the symbol carries the link's number in the course's notation), unit, the
+    values and the base case's value."""
+
     name: str
     label: str
     unit: str
     values: tuple[float, ...]
     base: float
+
+    @property
+    def symbol(self) -> str:
+        """The symbol the label ends with (G₃, ω₁, Mc)."""
+        return self.label.rpartition(" ")[2]
 
 
 @dataclass(frozen=True)
@@ -86,26 +96,33 @@ class Study:
     def base_text(self) -> str:
         return ", ".join(f"{p.label} = {p.base:g} {p.unit}" for p in self.parameters)
 
-    def conclusions(self) -> list[tuple[str, bool, str]]:
-        """The paper's two conclusions: (statement, confirmed?, the numbers)."""
+    def conclusions(self, names: Mapping[str, str] | None = None
+                    ) -> list[tuple[str, bool, str]]:
+        """The paper's two conclusions: (statement, confirmed?, the numbers); ``names`` are
+        the pairs' reactions as the course writes them (R₀₁ for the pair A)."""
+        names = names or {}
         weight = self.relative_change("weight")
         changes = {p.name: self.relative_change(p.name) for p in self.parameters}
         labels = {p.name: p.label for p in self.parameters}
+        symbols = {p.name: p.symbol for p in self.parameters}
         first = ("The weight of the rocker does not significantly affect the reactions",
                  weight <= NOT_SIGNIFICANT,
-                 f"over G4 = {_span(self, 'weight')} the largest reactions change by up to "
-                 f"{100 * weight:.1f} % (threshold {100 * NOT_SIGNIFICANT:g} %; G4 also sets "
-                 "the rocker's mass, so its inertia grows with it)")
+                 f"over {symbols['weight']} = {_span(self, 'weight')} the largest reactions "
+                 f"change by up to {100 * weight:.1f} % (threshold "
+                 f"{100 * NOT_SIGNIFICANT:g} %; {symbols['weight']} also sets the rocker's "
+                 "mass, so its inertia grows with it)")
         strongest = max(changes, key=changes.get)
         ranking = ", ".join(f"{labels[name]} {100 * value:.0f} %"
                             for name, value in sorted(changes.items(), key=lambda kv: -kv[1]))
         per_pair = ", ".join(
-            f"{pair}: {labels[max(changes, key=lambda n, p=pair: self.relative_change(n, p))]}"
+            f"{names.get(pair, pair)}: "
+            f"{labels[max(changes, key=lambda n, p=pair: self.relative_change(n, p))]}"
             for pair in self.pairs)
         second = ("The resisting moment Mc has the greatest influence on the reactions",
                   strongest == "moment",
                   f"largest change of the maximum reactions over each range: {ranking} "
-                  f"(most influential per pair — {per_pair}); against G4 alone Mc "
+                  f"(most influential per pair — {per_pair}); against {symbols['weight']} "
+                  "alone Mc "
                   f"{'changes them more' if changes['moment'] > changes['weight'] else 'does not'}"
                   )
         return [first, second]
@@ -191,8 +208,11 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
             raise SpecError(f"the study's {name} must be positive numbers, got {list(values)}")
     base = {"weight": mechanism.masses[rocker].m * mechanism.gravity,
             "omega": mechanism.drive.omega, "moment": abs(load.moment)}
-    parameters = (Parameter("weight", "rocker weight G4", "N", tuple(weights), base["weight"]),
-                  Parameter("omega", "crank speed ω1", QUANTITY_KINDS["omega"].unit,
+    numbers = course_numbers(mechanism)
+    parameters = (Parameter("weight", f"rocker weight {numbered('G', numbers[rocker])}", "N",
+                            tuple(weights), base["weight"]),
+                  Parameter("omega", f"crank speed {numbered('ω', numbers[mechanism.drive.link])}",
+                            QUANTITY_KINDS["omega"].unit,
                             tuple(omegas), base["omega"]),
                   Parameter("moment", "resisting moment Mc", "N·m", tuple(moments),
                             base["moment"]))

@@ -43,6 +43,7 @@ from ..errors import SpecError
 from ..io import read_bytes_bounded
 from ..plans.construction import course_text
 from ..spec import parse_json
+from ..vocabulary import numbered
 from .keys import key_numbers
 from .plan_points import graded_labels, mistake_sentence, named_mistakes
 
@@ -454,9 +455,13 @@ def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
     other_angle = (drawing.angle is not None and isinstance(angle, int | float)
                    and abs((drawing.angle - angle + 180.0) % 360.0 - 180.0) > 1e-6)
     if other_title or other_angle:
-        raise SubmissionError(f"the drawing is of {drawing.title!r} at φ1 = {drawing.angle:g}°, "
-                              f"the key of {title!r} at φ1 = {angle:g}°: grade it against the "
-                              "key of its own exercise and angle", file=drawing.source)
+        drive = ((key.get("exercise") or {}).get("drive") or {}).get("link")
+        crank = key_numbers(key).get(drive, 1)
+        phi = numbered("φ", crank)      # the crank angle carries the crank's number
+        raise SubmissionError(f"the drawing is of {drawing.title!r} at {phi} = "
+                              f"{drawing.angle:g}°, the key of {title!r} at {phi} = {angle:g}°: "
+                              "grade it against the key of its own exercise and angle",
+                              file=drawing.source)
 
 
 def _steps_by_end(steps) -> dict[str, dict]:

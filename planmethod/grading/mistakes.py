@@ -320,7 +320,7 @@ _TEN_TIMES, _TENTH = _scaled_by(10.0), _scaled_by(-10.0)
 #: answer is named first)
 REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
     Mistake("sense", "the sense (sign) is reversed", value=_sense,
-            drawing="the sense of ω1 was reversed (the plan is turned 180°)"),
+            drawing="the crank's sense of rotation was reversed (the plan is turned 180°)"),
     Mistake("no_normal", "the normal component aⁿ was left out",
             construction=_left_out("normal")),
     Mistake("no_coriolis", "the Coriolis component aᵏ was left out",
@@ -441,7 +441,7 @@ def drawn_explanation(mistake: str) -> str:
     explanation, and for a reversed sense the plan turned 180°.
 
     >>> drawn_explanation("sense")
-    'the sense of ω1 was reversed (the plan is turned 180°)'
+    "the crank's sense of rotation was reversed (the plan is turned 180°)"
     >>> drawn_explanation("no_coriolis")
     'the Coriolis component aᵏ was left out'
     """

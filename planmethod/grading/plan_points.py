@@ -19,8 +19,8 @@ Examples
 ['b']
 >>> named_mistakes([["sense", 0.0, -30.0], ["scale_ten", 0.0, 3.0]], 0.1, -29.8, 0.5)
 ['sense']
->>> mistake_sentence(["sense"])
-'it lies where the construction puts it when the sense of ω1 was reversed (the plan is turned 180°)'
+>>> mistake_sentence(["sense"])  # doctest: +ELLIPSIS
+"it lies where the construction puts it when the crank's sense of rotation was reversed (..."
 """
 
 from __future__ import annotations

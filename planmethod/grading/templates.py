@@ -56,7 +56,7 @@ from typing import Any
 
 from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
 from ..model import Exercise
-from ..numbering import course_numbers
+from ..numbering import course_numbers, course_symbols
 from ..plans.construction import course_text
 from ..spec import checked_table, leaves, parse_toml, read_text
 from ..vectors import angle_deg
@@ -133,11 +133,15 @@ class Variant:
     @property
     def description(self) -> str:
         """The task as the student reads it: placeholders filled from the variant's values,
-        its file and the drawing its scales give (``{drawn.crank}``: (AB) in mm)."""
+        its file, the drawing its scales give (``{drawn.crank}``: (AB) in mm) and the
+        course's symbols (``{symbol.omega}``: the crank's ω by its number, ω₁ or ω₂;
+        :func:`planmethod.numbering.course_symbols`)."""
         text = self.data.get("description", "")
         drawing = drawing_values(self.exercise) if "{drawn." in str(text) or \
-            "{scales." in str(text) else None
-        return format_description(text, self.values, self.data, drawing)
+            "{scales." in str(text) else {}
+        if "{symbol." in str(text):
+            drawing = {**drawing, "symbol": course_symbols(self.exercise.mechanism)}
+        return format_description(text, self.values, self.data, drawing or None)
 
 
 def load_template(path: str | Path) -> Template:

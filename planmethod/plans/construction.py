@@ -40,7 +40,7 @@ from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
-from ..vocabulary import PlanKind, numbered, subscript, symbol
+from ..vocabulary import PlanKind, coriolis_letter, links_text, numbered, subscript, symbol
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -250,13 +250,19 @@ def _sign(value):
 
 #: a quantity's report name inside a sentence (``omega_BC``, ``v_CC@frame``, ``ds_slider/frame``)
 _QUANTITY = re.compile(r"\b(?:a_rel|omega|epsilon|coriolis|dds|ds|rho|v|a|s)_[A-Za-z0-9_@/:*]+")
+#: a Coriolis point's report name (``k1_Q``, ``k2_B@yoke``): its side's index
+_CORIOLIS = re.compile(r"k([0-9])_(?=[A-Z])")
+#: the digits of a point's name (``O2``, ``o2``, ``BO2``), set as subscripts (O₂, o₂, BO₂)
+_POINT_DIGITS = re.compile(r"(?<=[A-Za-z])[0-9]+")
 
 
 def course_text(text: str, numbers: Mapping[str, int]) -> str:
     """A construction step's sentence as a course writes it: a point on a link with the
     link's number (``c@frame`` → ``c₁``, ``v_CC@frame`` → ``v_CC₁``), a link's quantity by its
-    symbol (``omega_BC`` → ``ω₃``, ``a_rel_…`` → ``aʳ_…``), a link's name with an underscore in
-    words.
+    symbol (``omega_BC`` → ``ω₃``, ``a_rel_…`` → ``aʳ_…``), the digits of a point's name as
+    subscripts (``o2``, ``aᵗ_BO2`` → o₂, aᵗ_BO₂), a Coriolis point without its side's index
+    (``k1_Q``, ``k2_Q`` → k_Q, k′_Q: :func:`~planmethod.vocabulary.coriolis_letter`), a link's
+    name with an underscore in words.
 
     Examples
     --------
@@ -267,6 +273,9 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     >>> course_text("aᵏ = 2·ω_BC·v_rel; along the guide of AB/BC; d by similarity on BC",
     ...             numbers)
     'aᵏ = 2·ω₂·v_rel; along the guide of pair 1–2; d by similarity on link 2'
+    >>> course_text("aᵗ_B@BCO2 from o2; (q@ABk1_Q) = 12 mm; k2_Q coincides with q@frame",
+    ...             numbers)
+    'aᵗ_B₂O₂ from o₂; (q₁k_Q) = 12 mm; k′_Q coincides with q₀'
     """
     if "@" in text and numbers:   # a point on a link: its name, the link's number below
         names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
@@ -295,7 +304,8 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     for name in numbers:
         if "_" in name:
             text = re.sub(rf"\b{re.escape(name)}\b", name.replace("_", " "), text)
-    return text
+    text = _CORIOLIS.sub(lambda match: coriolis_letter(match.group(1)) + "_", text)
+    return _POINT_DIGITS.sub(lambda match: subscript(match.group(0)), text)
 
 
 class _Sheet:
@@ -388,10 +398,11 @@ class _Sheet:
         t = cross(p2 - p1, e2) / sine
         self.points[end] = p1 + _times(t, e1)
         flagged = degrees < self.min_angle
-        if flagged:
-            self.flags.append(f"{self.kind} plan, group {group_name}: the lines meet at "
-                              f"{degrees:.3g}° (below {self.min_angle:g}°): point {end} is "
-                              "poorly defined")
+        if flagged:     # the group by its links' numbers, the point as the course names it
+            group_text = links_text(group_name.split("+"), self.numbers)
+            self.flags.append(f"{self.kind} plan, group of {group_text}: the lines meet at "
+                              f"{degrees:.3g}° (below {self.min_angle:g}°): point "
+                              f"{course_text(end, self.numbers)} is poorly defined")
         self.add(Step(0, "intersect", text, end=end, lines=(first, second),
                       angle_deg=degrees, flagged=flagged, group=group))
         return self.points[end]
@@ -730,26 +741,31 @@ class _Emulator:
                 centre = side.base.partition("@")[0]
                 x_name = point.partition("@")[0]
                 n_label = (f"n_{point}" if "@" in point else f"n_{x_name}{centre}")
+                # the components of X (B@lever: B₃) about the centre, aⁿ_B₃O₂ and aᵗ_B₃O₂;
+                # the segment they are measured on is the position plan's BO₂
                 self.a.lay_off(
                     base_label, n_label, _times(-magnitude, unit(radius)),
-                    component="normal", vector=f"aⁿ_{x_name}{centre}", group=group.index,
-                    text=f"aⁿ_{x_name}{centre} from {base_label}: ({base_label}{n_label}) = "
+                    component="normal", vector=f"aⁿ_{point}{centre}", group=group.index,
+                    text=f"aⁿ_{point}{centre} from {base_label}: ({base_label}{n_label}) = "
                          f"(v-plan segment)²·μv²/(({x_name}{centre})·μl·μa), from "
                          f"{x_name} towards {centre}")
                 normals[index] = n_label
                 line_numbers.append(self.a.line(
                     n_label, direction, component="tangential", group=group.index,
-                    vector=f"aᵗ_{x_name}{centre}",
-                    text=f"through {n_label}: aᵗ_{x_name}{centre} ⟂ {x_name}{centre}"))
+                    vector=f"aᵗ_{point}{centre}",
+                    text=f"through {n_label}: aᵗ_{point}{centre} ⟂ {x_name}{centre}"))
             else:
                 carrier = side.link
                 omega_c = self.readings[f"omega_{carrier}"]
                 multi = sum(not s.rotation for s in construction.sides) > 1
                 k_label = f"k{index + 1}_{point}" if multi else f"k_{point}"
                 coriolis = _times(2 * omega_c * relative * mu_v, perp(direction)) / mu_a
+                # X relative to the side's base, as the velocity equation names it: v_B₃B
+                # there, aᵏ_B₃B and aʳ_B₃B here (each side its own relative motion)
+                relative_name = f"{point}{side.base}"
                 self.a.lay_off(
                     base_label, k_label, coriolis, component="coriolis", group=group.index,
-                    vector=f"aᵏ_{point}",
+                    vector=f"aᵏ_{relative_name}",
                     text=(f"aᵏ = 2·ω_{carrier}·v_rel from {base_label}, v_rel turned 90° in the "
                           f"sense of ω_{carrier}" if np.any(omega_c) else
                           f"aᵏ = 0: {carrier} does not turn; {k_label} coincides with "
@@ -758,9 +774,9 @@ class _Emulator:
                 self.sliding_sides[side.slide.key]["a"] = (base_label, k_label, x_label)
                 line_numbers.append(self.a.line(
                     k_label, direction, component="relative", group=group.index,
-                    vector=f"aʳ_{point}",
-                    text=f"through {k_label}: aʳ (relative) along the guide of "
-                         f"{side.slide.key}"))
+                    vector=f"aʳ_{relative_name}",
+                    text=f"through {k_label}: aʳ_{relative_name} (relative) along the guide "
+                         f"of {side.slide.key}"))
         self.a.intersect(*line_numbers, x_label,
                          text=f"{x_label}: a_{point} from both vector equations",
                          group_name=group.name, group=group.index, angle=self.angle)

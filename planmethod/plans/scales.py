@@ -30,7 +30,8 @@ from dataclasses import dataclass
 
 from ..errors import SpecError
 from ..model import Exercise, Mechanism, PlanSettings
-from ..vocabulary import scale_text
+from ..numbering import course_numbers
+from ..vocabulary import numbered, scale_text
 
 __all__ = ["STANDARD_MANTISSAS", "Scales", "choose_scales", "scale_point", "standard"]
 
@@ -62,7 +63,8 @@ def standard(value: float) -> float:
 
 @dataclass(frozen=True, slots=True)
 class Scales:
-    """Plan scales: μl (m/mm), μv ((m/s)/mm), μa ((m/s²)/mm), μF (N/mm, if set)."""
+    """Plan scales: μl (m/mm), μv ((m/s)/mm), μa ((m/s²)/mm), μF (N/mm, if set); ``crank``
+    is the crank's number in the course's notation (the ω of μφv = μv/ω₁ carries it)."""
 
     mu_l: float
     mu_v: float
@@ -70,6 +72,7 @@ class Scales:
     omega1: float
     scale_point: str
     mu_f: float | None = None
+    crank: int = 1
 
     @property
     def mu_phi_v(self) -> float:
@@ -90,11 +93,16 @@ class Scales:
         return out
 
     def describe(self) -> list[str]:
-        """The scales as printed on a drawing, with units."""
+        """The scales as printed on a drawing, with units; the crank's ω by its number.
+
+        >>> Scales(0.002, 0.2, 20.0, 100.0, "B", crank=2).describe()[3]
+        'μφv = μv/ω₂ = 0.002 m/mm'
+        """
         lines = [scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
         if self.omega1:
-            lines += [f"μφv = μv/ω1 = {self.mu_phi_v:.6g} m/mm",
-                      f"μφa = μa/ω1² = {self.mu_phi_a:.6g} m/mm"]
+            omega = numbered("ω", self.crank)
+            lines += [f"μφv = μv/{omega} = {self.mu_phi_v:.6g} m/mm",
+                      f"μφa = μa/{omega}² = {self.mu_phi_a:.6g} m/mm"]
         if self.mu_f is not None:
             lines.append(scale_text("mu_f", self.mu_f))
         return lines
@@ -159,4 +167,5 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
         mu_a = drive.omega ** 2 * mu_l if drive.epsilon == 0 else standard(mu_a)
     else:
         mu_v, mu_a = rounded(settings.mu_v, mu_v), rounded(settings.mu_a, mu_a)
-    return Scales(mu_l, mu_v, mu_a, drive.omega, point, settings.mu_f)
+    crank = course_numbers(mechanism)[drive.link]
+    return Scales(mu_l, mu_v, mu_a, drive.omega, point, settings.mu_f, crank)

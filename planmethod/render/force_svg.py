@@ -44,7 +44,6 @@ from ..vocabulary import (
     SCALES,
     AppliedKind,
     EdgeKind,
-    GroupKind,
     PlanKind,
     numbered,
     scale_text,
@@ -680,11 +679,10 @@ def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True
     title = forces.solution.mechanism.title
     notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
-        kind = "drive link" if group.kind == GroupKind.DRIVE else f"{group.kind} of"
         files[_file_name(number, group)] = polygon_svg(
             group, forces.mu_f, angle=forces.angle, notation=notation, details=details,
             view=(views or {}).get(f"forces_{number}"),
-            title=f"{title} — force polygon {number}: {kind} {notation.links(group.links)}, "
+            title=f"{title} — force polygon {number}: {notation.group_name(group)}, "
                   f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
                   f"{forces.angle:g}°")
     combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"))

@@ -35,6 +35,8 @@ Examples
 "'k':main 'C':sub ', lever':upright"
 >>> show(label_runs("b@lever", {"lever": 3})), show(label_runs("k_B@lever", {"lever": 3}))
 ("'b':main '3':upright", "'k':main 'B':sub '3':upright")
+>>> show(label_runs("k1_Q")), show(label_runs("k2_Q"))
+("'k':main 'Q':sub", "'k′':main 'Q':sub")
 >>> plain(merge_runs([label_runs("p"), label_runs("c@frame")]))
 'p ≡ c frame'
 """
@@ -48,6 +50,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from ..vocabulary import coriolis_letter
 from .style import LABEL, NBSP, SUB_SCALE, SUB_SHIFT, text_width
 
 __all__ = [
@@ -112,6 +115,8 @@ def label_runs(label: str, numbers: Mapping[str, int] | None = None) -> tuple[Ru
     name, at, link = label.partition("@")
     main, _, rest = name.partition("_")
     main, digits = _split_digits(main)
+    if main == "k" and digits and rest:     # a Coriolis point's side index: k1_Q is k_Q
+        main, digits = coriolis_letter(digits), ""
     parts: list[Run] = []
     if digits:
         parts.append((digits, RunKind.UPRIGHT))

@@ -37,7 +37,15 @@ from collections.abc import Iterable
 from typing import Any
 
 from ..numbering import course_numbers
-from ..vocabulary import pair_number, subscript
+from ..vocabulary import (
+    GroupKind,
+    column_text,
+    link_text,
+    links_text,
+    pair_number,
+    point_text,
+    subscript,
+)
 from .labels import Run, RunKind, label_runs
 
 __all__ = ["ForceNotation"]
@@ -46,6 +54,12 @@ __all__ = ["ForceNotation"]
 _REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
 #: a force's report name inside a sentence
 _TOKEN = re.compile(r"load\[\d+\]|(?:F_u|M_u|M_f|F_f),[\w/:]+|(?:Rᵗ|Rⁿ|R∥|R⊥|R|N|G)_[\w/:]+")
+
+
+def symbol_text(parts: tuple[str, str]) -> str:
+    """(symbol, subscript) in one string, the subscript in Unicode subscript digits."""
+    symbol, sub = parts
+    return symbol + subscript(sub)
 
 
 class ForceNotation:
@@ -71,16 +85,54 @@ class ForceNotation:
 
     def link_name(self, link: str) -> str:
         """``link 3 (rocker EF)``: the number, with the exercise's name in words."""
-        if link not in self.numbers:
-            return link.replace("_", " ")
-        return f"link {self.numbers[link]} ({link.replace('_', ' ')})"
+        return link_text(link, self.numbers)
 
     def links(self, links: Iterable[str]) -> str:
         """``links 3, 4 (BC, CD)``."""
-        links = list(links)
-        numbers = ", ".join(self.number(link) for link in links)
-        names = ", ".join(link.replace("_", " ") for link in links)
-        return f"link{'s' if len(links) > 1 else ''} {numbers} ({names})"
+        return links_text(links, self.numbers)
+
+    def pair_name(self, key: str) -> str:
+        """A pair by its report key as a course names it: a revolute pair by its point (O₂),
+        a prismatic pair by its two links' numbers (3–0: the slide on the guide)."""
+        point, _, links = key.partition(":")
+        if not links and "/" in key:
+            link, _, along = key.partition("/")
+            if link in self.numbers and along in self.numbers:
+                return f"{self.numbers[link]}–{self.numbers[along]}"
+            return key
+        return point_text(point)
+
+    def column(self, name: str) -> str:
+        """A sweep column as a table prints it: a pair's reaction by its printed name (``Rx_B``
+        → R₁₂ (x), ``R_B`` → |R₁₂|, a prismatic pair's couple ``M_K`` → M₀₃), any other
+        column as :func:`planmethod.vocabulary.column_text` prints it.
+
+        >>> from planmethod.spec import load_exercise
+        >>> from planmethod.report import analyse
+        >>> solved = analyse(load_exercise("exercises/fourbar_forces.toml")).forces
+        >>> notation = ForceNotation(solved.solution)
+        >>> [notation.column(name) for name in ("Rx_B", "R_B", "omega_BC", "M_b_system")]
+        ['R₁₂ (x)', '|R₁₂|', 'ω₂', 'M_b (whole system)']
+        """
+        head, _, key = name.partition("_")
+        if name.startswith("friction_sense_"):
+            key = name[len("friction_sense_"):]
+            reaction = self.parts(f"R_{key}")
+            return f"friction sense, {symbol_text(reaction)}" if reaction else name
+        reaction = self.parts(f"R_{key}") if head in ("Rx", "Ry", "R", "M") else None
+        if reaction is None:
+            return column_text(name, self.numbers)
+        printed = symbol_text(reaction)
+        if head == "M":
+            return "M" + subscript(reaction[1])
+        return {"Rx": f"{printed} (x)", "Ry": f"{printed} (y)"}.get(head, f"|{printed}|")
+
+    def group_name(self, group: Any) -> str:
+        """A group of the force analysis as a course names it: ``drive link 1 (AB)`` (the
+        drive with the frame, solved last), ``RRR of links 2, 3 (BC, CD)``."""
+        if group.kind == GroupKind.DRIVE:
+            return link_text(group.links[0], self.numbers, "drive link")
+        return f"{group.kind} of {self.links(group.links)}"
 
     def _pair(self, key: str, on: str | None) -> str | None:
         """The subscript ``ij`` of the pair ``key``: force of link i on link j, j = ``on``."""
@@ -132,10 +184,7 @@ class ForceNotation:
     def plain(self, name: str, on: str | None = None) -> str:
         """The printed name in one string, the subscript in Unicode subscript digits."""
         found = self.parts(name, on)
-        if found is None:
-            return name
-        symbol, sub = found
-        return symbol + subscript(sub)
+        return name if found is None else symbol_text(found)
 
     def line(self, text: str, links: Iterable[str] = ()) -> str:
         """A sentence of the solver (a group's step) in the course's notation: each force's

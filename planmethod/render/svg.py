@@ -64,7 +64,6 @@ from ..vocabulary import (
     numbered,
     point_text,
     scale_text,
-    subscript,
 )
 from .canvas import (
     MARGIN,
@@ -514,15 +513,12 @@ def plan_svg(plan: Plan, *, details: bool = True, view: SteadyView | None = None
     return plan_drawing(plan, details=details, view=view).svg
 
 
-#: a point's name inside a vector's name, its digits to be set as subscripts (O2 → O₂)
-_POINT_DIGITS = re.compile(r"(?<=[A-Z])(\d+)")
-
-
 def vector_equations(plan: Plan) -> list[str]:
     """The vector equations a plan solves, as textbooks print them beside it: for each pair
     of construction lines intersected, the point's vector as the base image's vector plus the
     components laid off from it plus the line's own — ``v_C = v_B + v_CB = v_C₀ + v_CC₀``,
-    ``a_B₃ = a_B + aᵏ_B₃ + aʳ_B₃ = a_O₂ + aⁿ_BO₂ + aᵗ_BO₂``. A component that is zero by
+    ``a_B₃ = a_B + aᵏ_B₃B + aʳ_B₃B = a_O₂ + aⁿ_B₃O₂ + aᵗ_B₃O₂`` (each relative motion named
+    by both its points, as the velocity equation names it). A component that is zero by
     construction (a Coriolis term on a guide that does not turn) is left out.
 
     Examples
@@ -531,7 +527,7 @@ def vector_equations(plan: Plan) -> list[str]:
     >>> from planmethod.plans import draw_plans
     >>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
     >>> vector_equations(plans.velocity), vector_equations(plans.acceleration)
-    (['v_C = v_B + v_CB = v_C₀ + v_CC₀'], ['a_C = a_B + aⁿ_CB + aᵗ_CB = a_C₀ + aʳ_C'])
+    (['v_C = v_B + v_CB = v_C₀ + v_CC₀'], ['a_C = a_B + aⁿ_CB + aᵗ_CB = a_C₀ + aʳ_CC₀'])
     """
     from ..plans.construction import course_text
 
@@ -543,8 +539,7 @@ def vector_equations(plan: Plan) -> list[str]:
     by_number = {step.number: step for step in plan.steps}
 
     def named(text: str) -> str:
-        return _POINT_DIGITS.sub(lambda m: subscript(m.group(1)),
-                                 course_text(text, plan.numbers))
+        return course_text(text, plan.numbers)
 
     def image(label: str) -> str:
         name, at, link = label.partition("@")
@@ -874,8 +869,8 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     lines = [scale_text("mu_l", position.mu_l)]
     link, _pivot, omega = position.drive
     if omega:
-        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s "
-                     f"({link_text(link, position.numbers)})")
+        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s, "
+                     f"{link_text(link, position.numbers, 'drive link')}")
     if plans is not None:
         lines += [line for line in plans.scales.describe()[1:3]]
     title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "

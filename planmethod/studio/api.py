@@ -326,8 +326,9 @@ def make_template(text: str, ranges: Mapping[str, Any]) -> str:
     omega_text = "{omega:g}" if "omega" in variables else f"{mechanism.drive.omega:g}"
     tables["description"] = (
         f"{tables['title']}. " + (f"Lengths: {', '.join(words)}. " if words else "")
-        + f"The crank {drive['link']} turns about {drive['pivot']} at ω1 = {omega_text} rad/s; "
-        f"at φ1 = {angle_text}° construct the plans and find the quantities asked.")
+        + f"The crank {drive['link']} turns about {drive['pivot']} at {{symbol.omega}} = "
+        f"{omega_text} rad/s; at {{symbol.phi}} = {angle_text}° construct the plans and find "
+        "the quantities asked.")     # the crank's symbols by its number (course_symbols)
     tables["vars"] = variables
     tables["template"] = {"max_attempts": 400}
     for key, value in frames.items():
