@@ -199,3 +199,17 @@ def test_every_drawn_mistake_has_what_the_student_is_told():
         assert drawn_explanation(mistake)
     assert "turned 180°" in drawn_explanation("sense")
     assert "wrong scale" in drawn_explanation("scale_none")
+
+
+@pytest.mark.parametrize(("path", "offered", "not_offered"), [
+    (COMPRESSOR, {"b", "n_CB", "c", "d", "n_D"}, {"k_C", "c@frame"}),   # slider on the frame
+    ("exercises/shaper_sixbar.toml", {"k_B@lever", "b@lever"}, {"k_D", "d@frame"}),
+    ("exercises/scotch_yoke.toml", {"b@yoke"}, {"k1_B@yoke", "k2_B@yoke", "b@frame"}),
+])
+def test_the_page_offers_only_the_points_the_construction_draws(path, offered, not_offered):
+    """A Coriolis point whose term is zero (it coincides with the point it would be laid off
+    from) and a frame point's image at the pole are neither drawn nor named: a student is
+    not asked to place them."""
+    key, _ = _key_and_variant(path)
+    labels = set(drawing_frame(key)["acceleration"]["points"])
+    assert offered <= labels and not labels & not_offered, labels

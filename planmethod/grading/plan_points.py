@@ -47,12 +47,26 @@ RIGHT_DECIMALS = 3
 
 
 def drawn_labels(entry: Mapping[str, Any]) -> list[str]:
-    """The points a student places on a plan of a key (``key["plans"][plan]``): every point
-    but the pole and the fixed points the construction puts at the pole."""
+    """The points a student places on a plan of a key (``key["plans"][plan]``): the points
+    the construction really draws. Not the pole, nor a point the construction puts where
+    another already is (a ``coincide`` step: a fixed point's image at the pole, c₀, or a
+    Coriolis point whose term is zero, k_C on c₀), nor the end of a vector laid off with
+    zero length (a Coriolis term that vanishes at this angle): those are neither drawn
+    nor named.
+
+    >>> drawn_labels({"pole": "π", "points_mm": {"π": [0, 0], "k_C": [0, 0], "c": [1, 0],
+    ...                                         "k_B": [2, 2], "b": [2, 2]},
+    ...               "steps": [{"action": "coincide", "start": "c@frame", "end": "k_C"},
+    ...                         {"action": "lay_off", "start": "b", "end": "k_B",
+    ...                          "length_mm": 0.0}]})
+    ['c', 'b']
+    """
     pole = entry["pole"]
-    fixed = {step.get("end") for step in entry.get("steps", ())
-             if step.get("action") == "coincide" and step.get("start") == pole}
-    return [label for label in entry["points_mm"] if label != pole and label not in fixed]
+    undrawn = {step.get("end") for step in entry.get("steps", ())
+               if step.get("action") == "coincide"
+               or (step.get("action") == "lay_off" and step.get("length_mm") is not None
+                   and abs(step["length_mm"]) < 1e-9)}
+    return [label for label in entry["points_mm"] if label != pole and label not in undrawn]
 
 
 def graded_labels(plan: Mapping[str, Any]) -> list[str]:
