@@ -263,7 +263,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
 
     quantities = [{"name": name, "symbol": quantity(name).symbol,
                    "subscript": subscript(name), "unit": unit,
-                   "negative": magnitude_note(name)}
+                   "negative": magnitude_note(name, numbers)}
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]
