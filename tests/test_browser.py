@@ -199,6 +199,38 @@ def slotted_page(tmp_path_factory):
     return workbook_page(tmp_path_factory, SLOTTED, 15)
 
 
+def test_practice_mode_tells_magnitudes_and_slides_as_the_cli(browser, slotted_page, tmp_path):
+    """A negative Coriolis magnitude and speed of B₃ are told they are magnitudes, in the
+    course's names (never v_B@lever, block/lever); a slide's travel with the wrong sign is
+    along or against its guide, not clockwise — the same sentences as ``planmethod grade``."""
+    report = json.loads(cli("solve", SLOTTED, "--json").stdout)
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    answers = {"coriolis_block/lever": -exact["coriolis_block/lever"],
+               "v_B@lever": -exact["v_B@lever"],
+               "s_block/lever": -0.8 * exact["s_block/lever"],
+               "dds_block/lever": -0.5 * exact["dds_block/lever"]}
+    sheet = tmp_path / "answers.json"
+    sheet.write_text(json.dumps({"s1": answers}))
+    cli("grade", SLOTTED, sheet, "--json", tmp_path / "graded.json")
+    graded = {q["id"]: q for q in json.loads(
+        (tmp_path / "graded.json").read_text())["answers"][0]["questions"]}
+    page, errors = open_page(browser, slotted_page)
+    page.check("#practice")
+    for name, value in answers.items():
+        page.fill(f'input[data-answer="{name}"]', repr(value))
+    page.click("#check")
+    results = page.evaluate("workbook.results")
+    for name in answers:
+        assert results[name]["feedback"] == graded[name]["feedback"]
+        assert "@" not in results[name]["feedback"] and "block/" not in results[name]["feedback"]
+    assert "aᵏ₂₃ is the magnitude" in results["coriolis_block/lever"]["feedback"]
+    assert "v_B₃ is the speed of B₃" in results["v_B@lever"]["feedback"]
+    assert "positive, along the guide" in results["s_block/lever"]["feedback"]
+    assert "negative, against the guide" in results["dds_block/lever"]["feedback"]
+    assert errors == []
+    page.close()
+
+
 @pytest.fixture(scope="module")
 def slotted_report():
     return json.loads(cli("solve", SLOTTED, "--json").stdout)

@@ -196,6 +196,26 @@ def test_a_negative_magnitude_is_told_in_the_courses_names():
     assert not any("@" in note or "/" in note for note in notes.values() if note)
 
 
+def test_a_reversed_sign_is_told_in_the_quantitys_own_sense():
+    """A slide's travel or sliding velocity with the wrong sign is not told "the right answer
+    is counter-clockwise": its sign is along or against the guide; a link's ω still turns
+    counter-clockwise or clockwise."""
+    key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    values = {q["id"]: q["value"] for q in key["questions"]}
+    assert values["s_block/lever"] > 0 and values["dds_block/lever"] < 0
+    result = by_id(grade_answers(key, {
+        "s_block/lever": -0.8 * values["s_block/lever"],
+        "dds_block/lever": -0.5 * values["dds_block/lever"],
+        "omega_lever": -0.5 * values["omega_lever"]}))
+    travel = result["s_block/lever"]["feedback"]
+    assert "the sense is reversed (the right answer is positive, along the guide, 0.360555 m" \
+        in travel and "clockwise" not in travel
+    assert "(the right answer is negative, against the guide, -5.60034 m/s²" in \
+        result["dds_block/lever"]["feedback"]
+    assert "(the right answer is counter-clockwise, 1.92308 rad/s" in \
+        result["omega_lever"]["feedback"]
+
+
 def test_junk_answers_are_reported_not_crashed(seed_key):
     (result,) = grade_many({"*": seed_key}, [r for r in read_answers(
         DATA / "compressor_mistakes.csv") if r[0] == "junk"])

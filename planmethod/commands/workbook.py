@@ -227,7 +227,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     >>> page.count('data-quantity="'), 'id="angle"' in page
     (7, True)
     """
-    from ..grading.answers import magnitude_note
+    from ..grading.answers import magnitude_note, sense_words
     from ..numbering import course_numbers
     from ..render.steady import steady_views
     from ..render.workbook import curve_chart, workbook_html
@@ -263,7 +263,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
 
     quantities = [{"name": name, "symbol": quantity(name).symbol,
                    "subscript": subscript(name), "unit": unit,
-                   "negative": magnitude_note(name, numbers)}
+                   "negative": magnitude_note(name, numbers),
+                   "senses": list(sense_words(name))}
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]

@@ -40,8 +40,9 @@ from ..io import read_text_bounded
 from ..spec import parse_json
 from ..vocabulary import quantity, question_text, symbol
 
-__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS", "answers_from_csv",
-           "feedback_text", "grade_answers", "grade_many", "magnitude_note", "read_answers"]
+__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "SENSE_WORDS", "STUDENT_COLUMNS",
+           "answers_from_csv", "feedback_text", "grade_answers", "grade_many",
+           "magnitude_note", "read_answers", "sense_words"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
@@ -294,8 +295,35 @@ def _no_student_twice(rows: list[tuple[str, dict[str, Any]]], where: str) -> Non
         seen[name] = index
 
 
-def _direction(value: float) -> str:
-    return "counter-clockwise" if value > 0 else "clockwise"
+#: how the sign of a signed quantity is told, by what the quantity is of (its kind's
+#: ``subject``): a link turns counter-clockwise or clockwise; a slide's travel, sliding
+#: velocity and acceleration are along or against its guide's direction
+SENSE_WORDS: dict[str, tuple[str, str]] = {
+    "link": ("counter-clockwise", "clockwise"),
+    "pair": ("positive, along the guide", "negative, against the guide"),
+}
+
+
+def sense_words(name: str) -> tuple[str, str]:
+    """What a positive and a negative value of the quantity ``name`` (an id: ``omega_BC``,
+    ``ds_slider/frame``) mean, in words (:data:`SENSE_WORDS`); ``grade`` and the workbook
+    page both tell a reversed sign with them.
+
+    >>> sense_words("omega_BC")
+    ('counter-clockwise', 'clockwise')
+    >>> sense_words("s_slider/frame")
+    ('positive, along the guide', 'negative, against the guide')
+    """
+    try:
+        subject = quantity(name).kind.subject
+    except KeyError:
+        return ("positive", "negative")
+    return SENSE_WORDS.get(subject, ("positive", "negative"))
+
+
+def _direction(name: str, value: float) -> str:
+    positive, negative = sense_words(name)
+    return positive if value > 0 else negative
 
 
 def _off(answer: float, right: float) -> str:
@@ -370,7 +398,7 @@ def grade_question(question: Mapping[str, Any], raw: Any,
         return result
     if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
         text = (f"{shown}: wrong — the sense is reversed (the right answer is "
-                f"{_direction(value)}, {right}) and the magnitude "
+                f"{_direction(question['id'], value)}, {right}) and the magnitude "
                 f"{_number_text(abs(answer))} is {_off(abs(answer), abs(value))}")
     else:
         tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")

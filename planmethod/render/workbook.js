@@ -37,8 +37,10 @@
     const magnitude = right < 0 && ratio > 0 ? " in magnitude" : "";
     return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
   }
-  // what a negative answer for a magnitude is told, by quantity (filled from the page's data)
-  const negativeNotes = {};
+  // what a negative answer for a magnitude is told, and what a positive and a negative value
+  // mean (counter-clockwise, along the guide), by quantity (filled from the page's data:
+  // planmethod.grading.answers.magnitude_note and sense_words)
+  const negativeNotes = {}, senseWords = {};
   // the rules of planmethod.grading.answers.grade_question, on the precomputed key
   function grade(q, raw) {
     const unit = q.unit || "";
@@ -82,7 +84,8 @@
     }
     if (q.signed && q.value !== 0 && answer !== 0 && (answer > 0) !== (q.value > 0)) {
       result.feedback = shown + ": wrong — the sense is reversed (the right answer is " +
-        (q.value > 0 ? "counter-clockwise" : "clockwise") + ", " + right + ") and the magnitude " +
+        (senseWords[q.id] || ["positive", "negative"])[q.value > 0 ? 0 : 1] + ", " + right +
+        ") and the magnitude " +
         numberText(Math.abs(answer)) + " is " + off(Math.abs(answer), Math.abs(q.value));
     } else {
       const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
@@ -102,7 +105,10 @@
 
   load().then(data => {
     wb.data = data;
-    data.quantities.forEach(q => { if (q.negative) negativeNotes[q.name] = q.negative; });
+    data.quantities.forEach(q => {
+      if (q.negative) negativeNotes[q.name] = q.negative;
+      if (q.senses) senseWords[q.name] = q.senses;
+    });
     const panels = data.panels.map(name => document.getElementById("panel-" + name));
     const cells = Array.from(document.querySelectorAll("#readings tbody td.reading"));
     const planCells = Array.from(document.querySelectorAll("#readings tbody td.plan-reading"));
