@@ -427,3 +427,49 @@ def test_show_the_construction_reveals_one_step_at_a_time(drawing, slotted_repor
     assert page.eval_on_selector_all('svg[data-draw="acceleration"] .right-point',
                                      "nodes => nodes.length") == 5
     assert errors == []
+
+
+def test_the_page_and_grade_give_the_same_verdicts_and_mistakes(drawing, slotted_report,
+                                                                tmp_path):
+    """Drawings of the acceleration plan — right, drawn without the Coriolis term, c alone
+    3 mm off at 45°, b₃ 2 mm off — get the same verdict and the same named mistakes for
+    every point, and the same whole-plan sentence (or none), in the page and from
+    ``planmethod grade --drawing`` on the downloaded drawing."""
+    import math
+
+    from planmethod.grading.mistakes import mistaken_plans
+    from planmethod.spec import load_exercise
+
+    right = slotted_report["plans"]["acceleration"]["points_mm"]
+    wrong = mistaken_plans(load_exercise(SLOTTED), "no_coriolis").acceleration.points_mm
+    shift = 3 / math.sqrt(2)
+    drawings = {"right": dict(right), "no Coriolis": dict(wrong),
+                "c off": {**right, "c": [right["c"][0] + shift, right["c"][1] + shift]},
+                "b₃ off": {**right, "b@lever": [right["b@lever"][0], right["b@lever"][1] + 2]}}
+    page, errors = drawing
+    labels = [place.partition(":")[2] for place in page.eval_on_selector_all(
+        '[data-place^="acceleration:"]', "buttons => buttons.map(b => b.dataset.place)")]
+    for number, (name, points) in enumerate(drawings.items()):
+        for label in labels:
+            page.evaluate("([label, x, y]) => workbook.draw.place('acceleration', label, x, y)",
+                          [label, *points[label]])
+        page.click('[data-check="acceleration"]')
+        results = page.evaluate("workbook.draw.results.acceleration")
+        summary = page.text_content('.draw-plan[data-plan="acceleration"] .draw-summary')
+        with page.expect_download() as download:
+            page.click('[data-download="acceleration"]')
+        path = tmp_path / f"drawing{number}.json"
+        download.value.save_as(path)
+        cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+        graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+        for point in graded["points"]:
+            mine = results[point["point"]]
+            assert mine["ok"] == point["correct"], (name, point)
+            assert mine["mistakes"] == point.get("mistakes", []), (name, point)
+        plan_lines = [line for line in graded["feedback"] if line.startswith("the wrong points")]
+        assert plan_lines == [line for line in [summary.partition("; ")[2]] if line], name
+        if name == "no Coriolis":
+            assert plan_lines and "Coriolis component aᵏ was left out" in plan_lines[0]
+        else:
+            assert plan_lines == [], name
+    assert errors == []

@@ -213,3 +213,28 @@ def test_the_page_offers_only_the_points_the_construction_draws(path, offered, n
     key, _ = _key_and_variant(path)
     labels = set(drawing_frame(key)["acceleration"]["points"])
     assert offered <= labels and not labels & not_offered, labels
+
+
+def test_one_misplaced_point_is_no_whole_plan_mistake(slotted):
+    """c alone 3 mm off at 45° lies where no mistake puts it: neither its verdict nor the
+    plan's names one (grade --drawing once said the wrong points 'fit the plan drawn when
+    the normal component aⁿ was left out', judged at twice the tolerance, which the page
+    never said); a plan drawn wholly without the Coriolis term is named so, point by point
+    and as a whole, by the rule the page applies (common_mistakes)."""
+    from planmethod.grading.plan_points import common_mistakes, plan_sentence
+
+    key, _ = slotted
+    points = _points(key, "acceleration")
+    x, y = points["c"]
+    points["c"] = (x + 3 * math.cos(math.pi / 4), y + 3 * math.sin(math.pi / 4))
+    result = grade_drawing(key, Drawing(points, "acceleration", exact_scale=True))
+    assert [p["point"] for p in result["points"] if not p["correct"]] == ["c"]
+    assert result["feedback"] == [] and result["plan_mistakes"] == []
+    entry = key["plans"]["acceleration"]
+    wrong = {label: tuple(xy) for label, xy in entry["mistakes"]["no_coriolis"].items()
+             if label in drawn_labels(entry) or label == entry["pole"]}
+    result = grade_drawing(key, Drawing(wrong, "acceleration", exact_scale=True))
+    named = [p["mistakes"] for p in result["points"] if not p["correct"]]
+    assert len(named) >= 2 and common_mistakes(named) == ["no_coriolis"]
+    assert result["plan_mistakes"] == ["no_coriolis"]
+    assert result["feedback"] == [plan_sentence(["no_coriolis"])]

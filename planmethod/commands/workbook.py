@@ -310,7 +310,12 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     """
     from ..grading.drawings import DRAWING_FORMAT
     from ..grading.mistakes import drawn_explanation
-    from ..grading.plan_points import DRAWN_MISTAKES, MISTAKE_WORDING, plan_extent
+    from ..grading.plan_points import (
+        DRAWN_MISTAKES,
+        MISTAKE_WORDING,
+        PLAN_WORDING,
+        plan_extent,
+    )
     from ..numbering import course_numbers
     from ..plans.construction import course_text
     from ..render.workbook_draw import drawing_data
@@ -330,7 +335,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
         names={label: course_text(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
-        wording=MISTAKE_WORDING, file_format=DRAWING_FORMAT)
+        wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT)
 
 
 def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None

@@ -44,7 +44,13 @@ from ..io import read_bytes_bounded
 from ..plans.construction import course_text
 from ..spec import parse_json
 from .keys import key_numbers
-from .plan_points import graded_labels, mistake_sentence, named_mistakes
+from .plan_points import (
+    common_mistakes,
+    graded_labels,
+    mistake_sentence,
+    named_mistakes,
+    plan_sentence,
+)
 
 __all__ = [
     "Drawing",
@@ -549,8 +555,8 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             continue
         right = points[label]
         radius = float(radii.get(label, 0.5))
-        distance = float(np.hypot(*(found - right)))
-        inside = Point(*right).buffer(radius, 32).covers(Point(*found))
+        distance = float(Point(*right).distance(Point(*found)))
+        inside = distance <= radius       # the disc itself, as the workbook page compares
         result = {"point": label, "found": True, "correct": bool(inside),
                   "distance_mm": distance, "tolerance_mm": radius,
                   "score": (1.0 if inside else 0.0) if required else 0.0,
@@ -567,19 +573,12 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
                 result["mistakes"] = named
                 result["feedback"] += f"; {mistake_sentence(named)}"
         results.append(result)
-    wrong = [r for r in results if r["found"] and not r["correct"]]
-    for mistake, alternative in entry.get("mistakes", {}).items():
-        if not wrong:
-            break
-        fits = [r for r in wrong if r["point"] in alternative and float(np.hypot(
-            *(student[r["point"]] if r["point"] in student else _match(student, r["point"]))
-            - np.asarray(alternative[r["point"]]))) <= 2 * r["tolerance_mm"]]
-        if len(fits) == len(wrong):
-            from .mistakes import REGISTRY, drawn_explanation
-
-            what = drawn_explanation(mistake) if mistake in REGISTRY else mistake
-            feedback.append(f"the wrong points fit the plan drawn when {what}")
-            break
+    # a whole-plan mistake only where every wrong point is named with it, by the one rule
+    # the workbook page applies to the same data (plan_points.common_mistakes)
+    common = common_mistakes([r.get("mistakes", []) for r in results
+                              if r["found"] and not r["correct"]])
+    if common:
+        feedback.append(plan_sentence(common))
     score = sum(r["score"] for r in results)
     total = sum(r["max_score"] for r in results)
     # what a student reads names points and quantities as the course does (b₃, ω₃), never
@@ -590,7 +589,8 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
         result["feedback"] = course_text(result["feedback"], numbers)
     feedback = [course_text(text, numbers) for text in feedback]
     return {"plan": plan, "student": key.get("student"), "score": score, "max_score": total,
-            "scale_factor": factor, "points": results, "feedback": feedback}
+            "scale_factor": factor, "points": results, "plan_mistakes": common,
+            "feedback": feedback}
 
 
 def _explain(label, found, right, distance, radius, student, points, step, lines, reads,

@@ -8,8 +8,8 @@
   const PLANS = ["velocity", "acceleration"];
   const ZOOMS = [4, 5, 6, 8, 10, 12, 16, 20, 24, 32];   // CSS px per drawing millimetre
   const NUDGE_MM = 0.5;
-  const draw = {results: {}, checkTimes: [], tool: {}, selected: {}, armed: {}, revealed: {},
-                shownPlan: {}, frame: -1, zoom: 6};
+  const draw = {results: {}, planMistakes: {}, checkTimes: [], tool: {}, selected: {}, armed: {},
+                revealed: {}, shownPlan: {}, frame: -1, zoom: 6};
   let wb = null, meta = null, store = null, drag = null;
 
   const element = id => document.getElementById(id);
@@ -333,6 +333,17 @@
     const [sentence, joint] = meta.wording;
     return "it lies " + sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
   }
+  // the one rule of planmethod.grading.plan_points.common_mistakes: a whole-plan mistake is
+  // one named on every wrong point, two or more of them
+  function commonMistakes(named) {
+    if (named.length < 2) return [];
+    return named[0].filter(mistake => named.slice(1).every(other => other.includes(mistake)));
+  }
+  function planSentence(mistakes) {
+    const texts = Object.fromEntries(meta.mistakes);
+    const [, joint, sentence] = meta.wording;
+    return sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
+  }
   function check(plan) {
     const t0 = performance.now();
     const frame = frameData(plan);
@@ -373,9 +384,12 @@
       if (result.ok === null) delete cell.dataset.ok; else cell.dataset.ok = String(result.ok);
     });
     const required = Object.values(results).filter(result => result.required);
+    const common = commonMistakes(Object.values(results).filter(
+      result => result.placed && result.ok === false).map(result => result.mistakes));
+    draw.planMistakes[plan] = common;
     planBox(plan).querySelector(".draw-summary").textContent =
       required.filter(result => result.ok).length + " of " + required.length +
-      " points of the " + plan + " plan right";
+      " points of the " + plan + " plan right" + (common.length ? "; " + planSentence(common) : "");
     render(plan);
     void document.body.offsetHeight;   // the verdicts laid out: part of the check
     draw.checkTimes.push(performance.now() - t0);

@@ -90,12 +90,15 @@ def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
     fingerprint (``exercise``: a kept drawing of another exercise is ignored), each point's
     course name (``names``: b₃), the poles, one sheet per plan for the whole turn
     (``extents``: left, bottom, right, top in mm, y up), the mistakes by index with what the
-    student is told, the sentence that names them, and the ``format`` of a downloaded
-    drawing.
+    student is told, the ``wording`` that names them (a point's sentence, the joint
+    between two mistakes, and the plan's sentence when every wrong point is named with
+    them: :data:`planmethod.grading.plan_points.MISTAKE_WORDING`, ``PLAN_WORDING``), and
+    the ``format`` of a downloaded drawing.
 
     >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₃"},
     ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
-    ...                     mistakes=[("sense", "ω1 reversed")], wording=("when {}", ", or "),
+    ...                     mistakes=[("sense", "ω1 reversed")],
+    ...                     wording=("when {}", ", or ", "all when {}"),
     ...                     file_format="planmethod-drawing")
     >>> data["scales"], data["extents"]["velocity"]
     ({'velocity': 'μv'}, [-20.0, -20.0, 20.0, 20.0])
