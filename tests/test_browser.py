@@ -473,3 +473,58 @@ def test_the_page_and_grade_give_the_same_verdicts_and_mistakes(drawing, slotted
         else:
             assert plan_lines == [], name
     assert errors == []
+
+
+def test_a_drawing_at_another_angle_is_graded_at_that_angle(drawing, tmp_path):
+    """The slotted lever's own angle is 30°: its plans drawn on the page at 45° download with
+    that angle and are graded by ``planmethod grade --drawing`` against the exercise file at
+    45°, every point scored."""
+    page, errors = drawing
+    move_slider(page, 45)
+    report = json.loads(cli("solve", SLOTTED, "--angle", 45, "--json").stdout)
+    for plan in ("velocity", "acceleration"):
+        place_by_clicks(page, plan, report["plans"][plan]["points_mm"])
+        with page.expect_download() as download:
+            page.click(f'[data-download="{plan}"]')
+        path = tmp_path / f"{plan}.json"
+        download.value.save_as(path)
+        assert json.loads(path.read_text())["angle"] == 45
+        cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+        graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+        assert graded["max_score"] >= 3 and graded["score"] == graded["max_score"], graded
+    assert errors == []
+
+
+def test_two_exercises_with_one_title_keep_their_own_drawings(browser, slotted_page,
+                                                              slotted_report, tmp_path):
+    """Two pages of exercises with the same title (a template's variants; here the lever
+    10 cm longer) keep their drawings apart: drawing on one leaves the other's kept drawing
+    as it was, and a page with no drawing of its own says that the other's is kept."""
+    longer = tmp_path / "slotted_longer.toml"
+    longer.write_text(SLOTTED.read_text().replace("C = [0.45, 0]", "C = [0.55, 0]"))
+    other = tmp_path / "slotted_longer.html"
+    cli("workbook", longer, "-o", other, "--step", 15)
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda error: errors.append(str(error)))
+
+    def open_at_30(path):
+        page.goto(path.as_uri())
+        page.wait_for_function("window.workbook && window.workbook.ready", timeout=30_000)
+        start_drawing(page, 30)
+
+    open_at_30(slotted_page)
+    labels = place_by_clicks(page, "velocity", slotted_report["plans"]["velocity"]["points_mm"])
+    kept = page.evaluate("workbook.draw.drawing('velocity').points")
+    assert sorted(kept) == sorted(labels)
+    open_at_30(other)
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == {}
+    assert "another exercise with this title" in page.text_content("#draw-notice")
+    page.evaluate("([label, x, y]) => workbook.draw.place('velocity', label, x, y)",
+                  ["b", 1.0, 2.0])
+    open_at_30(slotted_page)
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == kept
+    assert page.text_content("#draw-notice") == ""
+    assert errors == []
+    context.close()

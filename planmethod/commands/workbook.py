@@ -283,20 +283,6 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
                          drawing=drawing_meta(exercise, frames))
 
 
-def exercise_fingerprint(exercise) -> str:
-    """A short digest of the exercise's mechanism, drawing settings and scene: a drawing kept
-    by the page for another exercise (or another version of it) is told apart by it.
-
-    >>> from planmethod.spec import load_exercise
-    >>> len(exercise_fingerprint(load_exercise("exercises/slotted_lever.toml")))
-    16
-    """
-    import hashlib
-
-    text = repr((exercise.mechanism, exercise.plan, exercise.ask))
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
-
-
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
     """The drawing mode's data for the whole page (:func:`planmethod.render.workbook_draw.
     drawing_data`): one sheet per plan for the turn, each point's course name (b₃), the
@@ -308,7 +294,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     >>> meta["names"]["b@lever"], meta["poles"]
     ('b₃', {'velocity': 'p', 'acceleration': 'π'})
     """
-    from ..grading.drawings import DRAWING_FORMAT
+    from ..grading.drawings import DRAWING_FORMAT, exercise_digest
     from ..grading.mistakes import drawn_explanation
     from ..grading.plan_points import (
         DRAWN_MISTAKES,
@@ -319,6 +305,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     from ..numbering import course_numbers
     from ..plans.construction import course_text
     from ..render.workbook_draw import drawing_data
+    from ..vocabulary import numbered
 
     draws = [frame.get("draw", {}) for frame in frames]
     plans = [plan for plan in ("velocity", "acceleration")
@@ -331,11 +318,12 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
              for plan in plans}
     return drawing_data(
-        title=mechanism.title, exercise=exercise_fingerprint(exercise),
+        title=mechanism.title, exercise=exercise_digest(exercise),
         names={label: course_text(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
-        wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT)
+        wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT,
+        phi=numbered("φ", numbers[mechanism.drive.link]))
 
 
 def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None

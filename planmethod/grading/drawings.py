@@ -55,7 +55,10 @@ from .plan_points import (
 __all__ = [
     "Drawing",
     "SubmissionError",
+    "exercise_digest",
     "grade_drawing",
+    "key_at_angle",
+    "key_for_drawing",
     "parse_drawing_json",
     "parse_drawing_svg",
     "read_drawing",
@@ -94,6 +97,8 @@ class Drawing:
     angle: float | None = None
     #: drawn on a millimetre grid (the workbook page): its scale is never corrected
     exact_scale: bool = False
+    #: the digest of the exercise the page was made from (:func:`exercise_digest`), else None
+    exercise: str | None = None
 
 
 def read_drawing(path: str | Path) -> Drawing:
@@ -156,14 +161,20 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
     if parsed.get("format") != DRAWING_FORMAT:
         return Drawing(out, plan, (), source)
     title, angle = parsed.get("title"), parsed.get("angle")
+    digest = parsed.get("exercise")
     if not isinstance(title, str):
         raise SubmissionError(f"must be the exercise's title, got {title!r}"[:120],
                               file=source, key="title")
+    if digest is not None and (not isinstance(digest, str)
+                               or not re.fullmatch(r"[0-9a-f]{16}", digest)):
+        raise SubmissionError(f"must be the exercise's digest (16 hexadecimal digits), got "
+                              f"{digest!r}"[:120], file=source, key="exercise")
     if (isinstance(angle, bool) or not isinstance(angle, int | float)
             or not math.isfinite(angle)):
         raise SubmissionError(f"must be the crank angle in degrees, got {angle!r}"[:120],
                               file=source, key="angle")
-    return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True)
+    return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True,
+                   exercise=digest)
 
 
 # -- SVG -------------------------------------------------------------------------------------
@@ -453,6 +464,95 @@ def _read_svg(root, source: str | None) -> Drawing:
 
 
 # -- grading ---------------------------------------------------------------------------------
+def exercise_digest(exercise) -> str:
+    """A short digest of an exercise's mechanism, drawing settings and scene. The workbook
+    page keeps a drawing under it and writes it into the drawing it downloads, so that a
+    drawing of another exercise with the same title (a template's variant) or of an earlier
+    version of the exercise is told apart, in the page and by :func:`key_for_drawing`.
+
+    >>> from planmethod.spec import load_exercise
+    >>> len(exercise_digest(load_exercise("exercises/slotted_lever.toml")))
+    16
+    """
+    import hashlib
+
+    text = repr((exercise.mechanism, exercise.plan, exercise.ask))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
+
+def key_at_angle(key: Mapping[str, Any], angle: float) -> Mapping[str, Any]:
+    """The key of the same variant at another crank angle (deg): its exercise posed on the
+    assembly chosen at ``drive.angle`` and followed to ``angle``, as ``planmethod solve
+    --angle`` and each frame of the workbook page pose it; the key itself at its own angle.
+
+    Raises
+    ------
+    SubmissionError
+        If the key keeps no exercise to pose (a key written without its tables).
+    ToggleError, AssemblyError, BranchJumpError
+        As :func:`planmethod.kinematics.solve.pose` on the way to ``angle``.
+
+    Examples
+    --------
+    >>> from planmethod.grading.keys import build_key
+    >>> from planmethod.grading.templates import load_template, draw_variant
+    >>> key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    >>> key_at_angle(key, 45)["angle"], key_at_angle(key, 390) is key
+    (45.0, True)
+    """
+    from dataclasses import replace
+
+    from ..kinematics.solve import pose
+    from ..scene import plan_scene
+    from .keys import build_key, key_exercise
+    from .templates import Variant
+
+    if abs((float(angle) - float(key["angle"]) + 180.0) % 360.0 - 180.0) < 1e-9:
+        return key
+    exercise = key_exercise(key)
+    if exercise is None:
+        raise SubmissionError(f"the key of {key.get('title')!r} keeps no exercise tables: "
+                              f"it cannot be built at φ1 = {float(angle):g}°")
+    posed = pose(exercise.mechanism, float(angle), links=plan_scene(exercise).links)
+    variant = Variant(str(key.get("student")), int(key.get("seed", 0)),
+                      int(key.get("attempt", 0)), key["exercise"], dict(key.get("given", {})),
+                      replace(exercise, mechanism=posed.mechanism))
+    return build_key(variant)
+
+
+def key_for_drawing(key: Mapping[str, Any], drawing: Drawing) -> Mapping[str, Any]:
+    """The key a drawing is graded against: ``key``, or — for a drawing downloaded from the
+    workbook page at another crank angle — the key of the same exercise at the drawing's
+    angle (:func:`key_at_angle`: the page's key of that angle).
+
+    Raises
+    ------
+    SubmissionError
+        In one line, if the drawing names another title or another exercise digest than
+        the key's exercise (made from another exercise, or from another version of it).
+    """
+    from .keys import key_exercise
+
+    title = key.get("title")
+    if drawing.title is not None and title is not None and drawing.title != title:
+        raise SubmissionError(f"the drawing is of {drawing.title!r}, the key of {title!r}: "
+                              "grade it against the key of its own exercise",
+                              file=drawing.source)
+    if drawing.exercise is None and drawing.angle is None:
+        return key
+    exercise = key_exercise(key)
+    if drawing.exercise is not None and exercise is not None:
+        digest = exercise_digest(exercise)
+        if digest != drawing.exercise:
+            raise SubmissionError(
+                f"the drawing was made on the page of another version of {title!r} (exercise "
+                f"digest {drawing.exercise}, the key's exercise {digest}): grade it against "
+                "the exercise its page was made from", file=drawing.source)
+    if drawing.angle is None or exercise is None:
+        return key
+    return key_at_angle(key, drawing.angle)
+
+
 def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
     """Refuse, in one line, a drawing that says it is of another exercise or angle."""
     title, angle = key.get("title"), key.get("angle")

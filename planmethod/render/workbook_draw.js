@@ -24,9 +24,25 @@
   }
   function notice(text) { element("draw-notice").textContent = text; }
 
-  // -- keeping the drawing: localStorage, one record per exercise and angle ----------------
+  // -- keeping the drawing: localStorage, one record per exercise (its title and digest: two
+  // variants of a template share a title) and angle --------------------------------------
+  const STORE_PREFIX = "planmethod-drawing:";
   function storageKey() {
-    return "planmethod-drawing:" + meta.title + ":" + wb.data.angles[draw.frame];
+    return STORE_PREFIX + meta.title + ":" + meta.exercise + ":" + wb.data.angles[draw.frame];
+  }
+  // a drawing kept at this angle by the page of another exercise with this title
+  function keptByAnother() {
+    const head = STORE_PREFIX + meta.title + ":", tail = ":" + wb.data.angles[draw.frame];
+    try {
+      for (let k = 0; k < window.localStorage.length; k++) {
+        const key = window.localStorage.key(k);
+        if (key.startsWith(head) && key.endsWith(tail) && key !== storageKey() &&
+            /^[0-9a-f]{16}$/.test(key.slice(head.length, key.length - tail.length))) return true;
+      }
+    } catch (error) {
+      return false;
+    }
+    return false;
   }
   function emptyRecord() {
     const plans = {};
@@ -43,10 +59,17 @@
       notice("a drawing kept in this browser could not be read and is ignored (" + error + ")");
       return emptyRecord();
     }
-    if (record === null) return emptyRecord();
+    if (record === null) {
+      if (keptByAnother())
+        notice("a drawing kept in this browser for “" + meta.title + "” at " + meta.phi + " = " +
+               wb.data.angles[draw.frame] + "° was made on the page of another exercise with " +
+               "this title (another variant, or another version of it) and is not shown here; " +
+               "it stays kept for that page");
+      return emptyRecord();
+    }
     if (!record || record.format !== meta.format || record.exercise !== meta.exercise ||
         record.title !== meta.title || !record.plans) {
-      notice("a drawing kept in this browser for “" + meta.title + "” at φ₁ = " +
+      notice("a drawing kept in this browser for “" + meta.title + "” at " + meta.phi + " = " +
              wb.data.angles[draw.frame] + "° belongs to another exercise (or another " +
              "version of it) and is ignored; drawing here replaces it");
       return emptyRecord();

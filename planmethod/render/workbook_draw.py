@@ -85,15 +85,15 @@ def drawing_section(plans: Sequence[str]) -> str:
 def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
                  poles: Mapping[str, str], extents: Mapping[str, Sequence[float]],
                  mistakes: Sequence[tuple[str, str]], wording: Sequence[str],
-                 file_format: str) -> dict[str, Any]:
+                 file_format: str, phi: str = "φ₁") -> dict[str, Any]:
     """What the drawing mode needs besides each frame's points: the exercise's ``title`` and
     fingerprint (``exercise``: a kept drawing of another exercise is ignored), each point's
     course name (``names``: b₃), the poles, one sheet per plan for the whole turn
     (``extents``: left, bottom, right, top in mm, y up), the mistakes by index with what the
     student is told, the ``wording`` that names them (a point's sentence, the joint
     between two mistakes, and the plan's sentence when every wrong point is named with
-    them: :data:`planmethod.grading.plan_points.MISTAKE_WORDING`, ``PLAN_WORDING``), and
-    the ``format`` of a downloaded drawing.
+    them: :data:`planmethod.grading.plan_points.MISTAKE_WORDING`, ``PLAN_WORDING``), the
+    ``format`` of a downloaded drawing, and the crank angle's symbol (``phi``: φ₁).
 
     >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₃"},
     ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
@@ -107,7 +107,7 @@ def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
             "scales": {plan: PLAN_TITLES[plan][1] for plan in poles},
             "extents": {plan: [float(v) for v in extent] for plan, extent in extents.items()},
             "mistakes": [list(pair) for pair in mistakes], "wording": list(wording),
-            "format": file_format}
+            "format": file_format, "phi": phi}
 
 
 def pack_frame(draw: Mapping[str, Any], extents: Mapping[str, Sequence[float]]
