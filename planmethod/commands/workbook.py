@@ -41,11 +41,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default: every CPU, at least 12 frames each)")
 
 
-def turn_angles(step: float, option: str = "--step") -> list[float]:
-    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart.
+def turn_angles(step: float, option: str = "--step", start: float = 0.0) -> list[float]:
+    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart, one of them
+    ``start`` (the exercise's own ``drive.angle``: a page opens there).
 
     >>> turn_angles(90)
     [0.0, 90.0, 180.0, 270.0]
+    >>> turn_angles(10, start=45)[:3], 45.0 in turn_angles(10, start=45)
+    ([5.0, 15.0, 25.0], True)
     >>> turn_angles(0)
     Traceback (most recent call last):
     ...
@@ -56,8 +59,11 @@ def turn_angles(step: float, option: str = "--step") -> list[float]:
         raise SpecError(f"must be a number of degrees in [{MIN_STEP_DEG:g}, 180] (at most "
                         f"{round(360 / MIN_STEP_DEG)} frames), got {step:g}",
                         key=f"option {option}")
-    count = math.ceil(360.0 / step - 1e-9)
-    return [round(float(number * step), 9) for number in range(count)]
+    offset = float(start) % step
+    if step - offset < 1e-9:          # start a whole number of steps from 0, but for rounding
+        offset = 0.0
+    count = math.ceil((360.0 - offset) / step - 1e-9)
+    return [round(offset + number * step, 9) + 0.0 for number in range(count)]
 
 
 def exercise_variant(exercise):
@@ -233,7 +239,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     from ..render.workbook import curve_chart, workbook_html
     from ..vocabulary import numbered, pair_number, point_name, quantity
 
-    angles = turn_angles(step)
+    angles = turn_angles(step, start=exercise.mechanism.drive.angle)   # opens at its own angle
     workers = worker_count(jobs, len(angles))
     views = steady_views(exercise, angles)      # one zoom and one page per panel
     frames: list[dict[str, Any]] = []
