@@ -93,7 +93,7 @@ def conveyor_page(tmp_path_factory):
 
 @pytest.mark.parametrize("which, angles", [
     ("compressor", (0.0, 45.0, 135.0, 270.0, 345.0)),
-    ("conveyor", (0.0, 90.0, 210.0)),
+    ("conveyor", (15.0, 105.0, 225.0)),     # its own angle is 135°: its frames 15° + 30°·k
 ])
 def test_readings_follow_the_slider_and_equal_solve(browser, request, which, angles):
     path = request.getfixturevalue(f"{which}_page")
@@ -304,7 +304,9 @@ def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slot
         assert set(shown) == set(labels)
         for label, (ok, sentence) in shown.items():
             assert ok == "true", (label, sentence)
-            assert sentence.startswith(names[label] + ": right")
+            # the verdict opens with the point's name as its button sets it (b₃, k with B₃)
+            assert sentence.startswith(page.text_content(f'[data-place="{plan}:{label}"]') +
+                                       ": right")
     assert max(page.evaluate("workbook.draw.checkTimes")) < 50
     assert errors == []
 
@@ -528,3 +530,104 @@ def test_two_exercises_with_one_title_keep_their_own_drawings(browser, slotted_p
     assert page.text_content("#draw-notice") == ""
     assert errors == []
     context.close()
+
+
+def test_drawing_hides_every_value_read_off_a_plan(browser, compressor_page, tmp_path):
+    """While drawing, nothing gives a right position away: the readings (exact and read off
+    the plan), the curves, the radius of curvature on the mechanism, and the right value in a
+    typed answer's verdict (the hint instead, as ``grade --feedback hints``) stay hidden
+    until the student asks to see the plan they are read off; then that plan's show."""
+    report = json.loads(cli("solve", COMPRESSOR, "--json").stdout)
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    sheet = tmp_path / "answers.json"
+    sheet.write_text(json.dumps({"s1": {"v_C": 1.2 * exact["v_C"],
+                                        "a_C": 1.2 * exact["a_C"]}}))
+    cli("grade", COMPRESSOR, sheet, "--json", tmp_path / "graded.json")
+    graded = {q["id"]: q for q in json.loads(
+        (tmp_path / "graded.json").read_text())["answers"][0]["questions"]}
+    page, errors = open_page(browser, compressor_page)
+
+    def hidden_readings():
+        return {row: page.eval_on_selector(
+            f'td.reading[data-quantity="{row}"]',
+            "cell => getComputedStyle(cell).visibility === 'hidden' && getComputedStyle("
+            "cell.nextElementSibling).visibility === 'hidden'") for row in exact}
+
+    def shown_charts():
+        return page.eval_on_selector_all(
+            "#charts .chart", "charts => charts.filter(c => c.offsetParent !== null)"
+            ".map(c => c.querySelector('title').textContent)")
+
+    rho = '#panel-position [data-points="rho_D"]'
+    assert not any(hidden_readings().values()) and len(shown_charts()) == 4
+    assert page.is_visible(rho)
+    page.check("#draw-mode")
+    assert all(hidden_readings().values())
+    assert shown_charts() == [] and not page.is_visible(rho)
+    page.check("#practice")
+    for name in ("v_C", "a_C"):
+        page.fill(f'input[data-answer="{name}"]', repr(1.2 * exact[name]))
+    page.click("#check")
+    for name in ("v_C", "a_C"):
+        verdict = page.text_content(f'td.verdict[data-verdict-for="{name}"]')
+        assert verdict == graded[name]["hint"] and f"{exact[name]:.4g}" not in verdict
+    # the right velocity plan asked for: its values show, the acceleration plan's do not
+    page.click('[data-show-plan="velocity"]')
+    page.click("#check")
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]') == graded["v_C"]["feedback"]
+    assert page.text_content('td.verdict[data-verdict-for="a_C"]') == graded["a_C"]["hint"]
+    page.uncheck("#practice")
+    shown = {name for name, hidden in hidden_readings().items() if not hidden}
+    assert shown == {"v_C", "v_D", "omega_BC"}
+    assert [title.partition(" over")[0] for title in shown_charts()] == \
+        ["velocities", "angular velocities"]
+    page.uncheck("#draw-mode")
+    assert not any(hidden_readings().values()) and len(shown_charts()) == 4
+    assert page.is_visible(rho)
+    assert errors == []
+    page.close()
+
+
+def test_points_are_placed_anywhere_nudged_finely_and_named_as_the_course(drawing,
+                                                                         slotted_report):
+    """A chosen point is placed where the student clicks, even on another point (two points
+    may coincide); Shift + an arrow key nudges it 0.1 mm; moving a point clears the plan's
+    summary of the last check; every button and mark names its point with real subscripts
+    (k with B₃ below, never k_B₃), and so does the playback's vector equation."""
+    page, errors = drawing
+    points = slotted_report["plans"]["acceleration"]["points_mm"]
+    page.click('[data-place="acceleration:b"]')
+    click_plan_point(page, "acceleration", *points["b"])
+    page.click('[data-place="acceleration:k_B@lever"]')
+    click_plan_point(page, "acceleration", *points["b"])     # on b's mark: k is placed
+    placed = page.evaluate("workbook.draw.drawing('acceleration').points")
+    assert placed["k_B@lever"] == pytest.approx(placed["b"], abs=0.05)
+    assert placed["b"] == pytest.approx(points["b"], abs=0.05)
+    page.click('[data-check="acceleration"]')
+    summary = '.draw-plan[data-plan="acceleration"] .draw-summary'
+    assert page.text_content(summary).startswith("1 of 3 points")
+    page.click('[data-place="acceleration:k_B@lever"]')       # chosen again: the keys move it
+    page.focus('svg[data-draw="acceleration"]')
+    start = placed["k_B@lever"]
+    for _ in range(3):
+        page.keyboard.press("Shift+ArrowRight")
+    page.keyboard.press("ArrowUp")
+    moved = page.evaluate("workbook.draw.drawing('acceleration').points['k_B@lever']")
+    assert moved == pytest.approx([start[0] + 0.3, start[1] + 0.5], abs=1e-9)
+    assert "check again" in page.text_content(summary)
+    assert page.get_attribute('[data-verdict-for="acceleration:k_B@lever"]', "data-ok") is None
+    # course names with real subscripts, on the buttons, the marks and in the verdicts
+    texts = page.eval_on_selector_all(
+        "[data-place], [data-point] text, .draw-verdict", "nodes => nodes.map(n => n.textContent)")
+    assert texts and not any("_" in text for text in texts)
+    button = page.inner_html('[data-place="acceleration:k_B@lever"]')
+    assert "k<sub>B</sub>" in button and ">3</sub>" in button
+    assert page.text_content('[data-place="acceleration:k_B@lever"]') == "kB3"
+    assert page.text_content('[data-place="acceleration:b@lever"]') == "b₃"
+    assert page.eval_on_selector('[data-point="acceleration:k_B@lever"] text',
+                                 "t => t.querySelectorAll('tspan[font-size]').length") == 2
+    page.click('[data-show-step="acceleration"]')
+    equation = page.inner_html("#equations")
+    assert "<sub>" in equation and "_" not in page.text_content("#equations")
+    assert page.text_content("#equations").startswith("aB3 = aB + aᵏB3")
+    assert errors == []

@@ -80,14 +80,14 @@ def exercise_variant(exercise):
 
 def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     """One frame of the page as plain data (see :func:`planmethod.render.workbook.
-    workbook_html`)."""
+    workbook_html`), with the plan each quantity is read off (``reads``)."""
     from ..grading.keys import build_key
     from ..grading.plan_points import drawing_frame
     from ..render.svg import vector_equations
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
     readings = [[check.analytic, check.plan] for check in analysis.checks]
-    steps, equations = {}, {}
+    steps, equations, reads = {}, {}, {}
     if analysis.plans is not None:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
@@ -96,11 +96,13 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
                                  [point for point in (step.start, step.end) if point]]
                                 for step in plan.steps]
                 equations[name] = vector_equations(plan)
+                reads |= {step.quantity: name for step in plan.steps
+                          if step.action == "read" and step.quantity}
     key = build_key(replace(variant, exercise=analysis.exercise))
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
-            "equations": equations, "questions": questions,
+            "equations": equations, "reads": reads, "questions": questions,
             "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
 
 
@@ -267,8 +269,9 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
             return pair_number(numbers[link], numbers[along])
         return found.subject.replace("_", " ")
 
+    plans = reading_plans(frames)
     quantities = [{"name": name, "symbol": quantity(name).symbol,
-                   "subscript": subscript(name), "unit": unit,
+                   "subscript": subscript(name), "unit": unit, "plan": plans.get(name),
                    "negative": magnitude_note(name, numbers),
                    "senses": list(sense_words(name))}
                   for name, unit in first["quantities"]]
@@ -281,9 +284,12 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
              "construction",
              f"practice mode grades as `planmethod grade` does: tolerances from a drafting "
              f"precision of {first['tolerance_source']:g} mm (each tolerance is shown)"]
+    charts = turn_charts(frames, numbers)
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
-                                 for title, unit, curves in turn_charts(frames, numbers)],
+                                 for title, unit, curves, _ in charts],
+                         chart_plans=[sorted({plans[name] for name in names
+                                              if plans.get(name)}) for *_, names in charts],
                          notes=notes, start=mechanism.drive.angle,
                          phi=numbered("φ", numbers[mechanism.drive.link]),
                          drawing=drawing_meta(exercise, frames))
@@ -310,6 +316,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     )
     from ..numbering import course_numbers
     from ..plans.construction import course_text
+    from ..render.labels import label_runs
     from ..render.workbook_draw import drawing_data
     from ..vocabulary import numbered
 
@@ -326,31 +333,60 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     return drawing_data(
         title=mechanism.title, exercise=exercise_digest(exercise),
         names={label: course_text(label, numbers) for label in sorted(labels)},
+        runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
         wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT,
         phi=numbered("φ", numbers[mechanism.drive.link]))
 
 
+def reading_plans(frames: Sequence[dict[str, Any]]) -> dict[str, str]:
+    """The plan each check quantity of the ``frames`` is read off (``velocity`` or
+    ``acceleration``): where a frame's construction reads it (ρ off the acceleration plan),
+    else the plan drawn at the quantity's scale (μv, μa); a quantity of neither (the travel
+    s, at μl) is in none. The drawing mode hides their values until that plan is shown.
+
+    >>> reading_plans([{"quantities": [("v_C", "m/s"), ("rho_D", "m"), ("s_C/frame", "m")],
+    ...                 "reads": {"rho_D": "acceleration"}}])
+    {'v_C': 'velocity', 'rho_D': 'acceleration'}
+    """
+    from ..vocabulary import PLAN_SCALES, PlanKind, quantity
+
+    by_scale = {scale: kind.value for kind, scale in PLAN_SCALES.items()
+                if kind != PlanKind.POSITION}
+    reads: dict[str, str] = {}
+    for frame in frames:
+        reads |= frame.get("reads", {})
+    out = {}
+    for name, _ in frames[0]["quantities"]:
+        plan = reads.get(name) or by_scale.get(quantity(name).scale)
+        if plan is not None:
+            out[name] = plan
+    return out
+
+
 def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None
-                ) -> list[tuple[str, str, dict]]:
+                ) -> list[tuple[str, str, dict, list[str]]]:
     """The full-turn curves: speeds, accelerations, angular velocities and accelerations of
     the checks, and the balancing moment when forces are computed; each curve named as a
-    course writes it (ω₃ with the links' ``numbers``, v_C)."""
+    course writes it (ω₃ with the links' ``numbers``, v_C). Each chart is (title, unit,
+    {curve: values}, the check quantities it draws)."""
     from ..vocabulary import symbol
 
     titles = {"v": "velocities", "a": "accelerations", "omega": "angular velocities",
               "epsilon": "angular accelerations"}
-    charts: dict[str, tuple[str, str, dict]] = {}
+    charts: dict[str, tuple[str, str, dict, list[str]]] = {}
     for index, (name, unit) in enumerate(frames[0]["quantities"]):
         kind = name.partition("_")[0]
         if kind not in titles:
             continue
-        curves = charts.setdefault(kind, (titles[kind], unit, {}))[2]
+        _, _, curves, names = charts.setdefault(kind, (titles[kind], unit, {}, []))
         curves[symbol(name, numbers)] = [frame["readings"][index][0] for frame in frames]
+        names.append(name)
     out = list(charts.values())
     if frames[0]["moment"] is not None:
-        out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]}))
+        out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]},
+                    []))
     return out
 
 
