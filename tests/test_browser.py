@@ -631,3 +631,22 @@ def test_points_are_placed_anywhere_nudged_finely_and_named_as_the_course(drawin
     assert "<sub>" in equation and "_" not in page.text_content("#equations")
     assert page.text_content("#equations").startswith("aB3 = aB + aᵏB3")
     assert errors == []
+
+
+@pytest.mark.parametrize("which", ["compressor", "conveyor"])
+def test_panel_text_is_readable_in_a_1400_px_window(browser, request, which):
+    """Every drawing of the page shows at its own size in a 1400 px wide window: no text of
+    a panel (labels, legends, scales; subscripts aside) is smaller than 11 CSS px, as the
+    drawings set it; the small side-by-side view stays available."""
+    page, errors = open_page(browser, request.getfixturevalue(f"{which}_page"))
+    sizes = page.evaluate("""() => Array.from(document.querySelectorAll('.panel svg')).map(
+        svg => [svg.closest('.panel').id, Math.min(...Array.from(svg.querySelectorAll('text'))
+            .map(text => parseFloat(getComputedStyle(text).fontSize) * svg.getScreenCTM().a))])""")
+    assert len(sizes) >= 4
+    for panel, smallest in sizes:
+        assert smallest >= 11 - 0.05, (panel, smallest)
+    page.check("#compact")
+    widths = page.eval_on_selector_all(".panel", "panels => panels.map(p => p.offsetWidth)")
+    assert max(widths) < 700
+    assert errors == []
+    page.close()

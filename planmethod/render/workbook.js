@@ -285,6 +285,11 @@
     document.getElementById("step-all").addEventListener("click", () => show(wb.frame));
     document.getElementById("step-plan").addEventListener("change", () => show(wb.frame));
 
+    // the drawings at their own size (readable), or small, side by side
+    document.getElementById("compact").addEventListener("change", event => {
+      document.body.classList.toggle("compact", event.target.checked);
+    });
+
     // practice mode: readings hidden, answers graded against the key of this angle
     document.getElementById("practice").addEventListener("change", event => {
       document.body.classList.toggle("practising", event.target.checked);

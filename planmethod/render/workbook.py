@@ -46,6 +46,9 @@ from .style import INK, SMALL_SIZE, TEXT_SIZE, num
 
 __all__ = ["StringTable", "curve_chart", "formula_html", "inline_svg", "workbook_html"]
 
+#: a drawing's viewBox (its four numbers)
+_VIEW_BOX = re.compile(r'viewBox="([^"]+)"')
+
 #: the XML declaration and namespace declarations, not needed inside an HTML page
 _XML_HEAD = re.compile(r'<\?xml[^>]*\?>\s*')
 _NAMESPACES = re.compile(r'\s+xmlns(:\w+)?="[^"]*"')
@@ -165,6 +168,21 @@ def _quantity_label(entry: Mapping[str, str]) -> str:
     return (f"{html.escape(entry['symbol'])}<sub>{html.escape(entry['subscript'])}</sub>")
 
 
+def _panel_size(name: str, frames: Sequence[Mapping[str, Any]]) -> str:
+    """A panel's size on the page: its drawing's own size (one CSS px per px of the drawing,
+    so that its text — legends and scales at 12.5 px, the smallest at 11 px — reads at the
+    size it was set), no wider than the page, the height following the drawing's aspect
+    ratio. A drawing keeps one viewBox over the turn (render/steady.py): the first frame's
+    is every frame's."""
+    for frame in frames:
+        found = _VIEW_BOX.search(frame["drawings"].get(name, ""))
+        if found:
+            width, height = (float(value) for value in found.group(1).split()[2:4])
+            return (f' style="width:{num(width)}px;aspect-ratio:{num(width)} / '
+                    f'{num(height)}"')
+    return ""
+
+
 def _plan_attribute(plan: str | None, name: str = "data-plan") -> str:
     return f' {name}="{html.escape(plan)}"' if plan else ""
 
@@ -254,7 +272,8 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         f'<td class="verdict" data-verdict-for="{html.escape(q["name"])}"></td></tr>'
         for q in quantities)
     panel_html = "\n".join(f'<figure class="panel" id="panel-{html.escape(name)}" '
-                           f'data-panel="{html.escape(name)}"></figure>' for name in panels)
+                           f'data-panel="{html.escape(name)}"{_panel_size(name, frames)}>'
+                           '</figure>' for name in panels)
     chart_html = "\n".join(
         f'<div class="chart" data-chart="{number}"'
         f'{_plan_attribute(" ".join(plans), "data-plans") if plans else ""}>'
@@ -283,8 +302,11 @@ h1{font-size:1.25em;margin:0 0 4px}
  border-bottom:1px solid #ccc;display:flex;gap:12px;align-items:center;flex-wrap:wrap}
 #angle{width:360px}
 #panels{display:flex;flex-wrap:wrap;gap:8px;margin-top:8px}
-.panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:320px;height:430px}
-.panel svg{width:100%;height:100%}
+.panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:320px;height:430px;
+ max-width:calc(100% - 2px)}
+.panel[style]{height:auto}
+body.compact .panel{width:calc(50% - 8px)!important;height:430px;aspect-ratio:auto!important}
+.panel svg{display:block;width:100%;height:100%}
 #charts{display:flex;flex-wrap:wrap;gap:12px;margin-top:8px}
 .chart svg{width:520px;height:240px}
 table{border-collapse:collapse;margin-top:8px}
@@ -319,6 +341,7 @@ _PAGE = """<!DOCTYPE html>
 <output id="angle-value">{first}°</output>
 <button type="button" id="play">play</button>
 <label><input type="checkbox" id="practice"> practice</label>
+<label><input type="checkbox" id="compact"> small drawings side by side</label>
 <span>frame switch: <output id="switch-time">—</output></span>
 <span id="status">loading…</span>
 </div>
