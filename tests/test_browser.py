@@ -93,7 +93,7 @@ def conveyor_page(tmp_path_factory):
 
 @pytest.mark.parametrize("which, angles", [
     ("compressor", (0.0, 45.0, 135.0, 270.0, 345.0)),
-    ("conveyor", (0.0, 90.0, 210.0)),
+    ("conveyor", (15.0, 105.0, 225.0)),     # its own angle is 135°: its frames 15° + 30°·k
 ])
 def test_readings_follow_the_slider_and_equal_solve(browser, request, which, angles):
     path = request.getfixturevalue(f"{which}_page")
@@ -199,6 +199,38 @@ def slotted_page(tmp_path_factory):
     return workbook_page(tmp_path_factory, SLOTTED, 15)
 
 
+def test_practice_mode_tells_magnitudes_and_slides_as_the_cli(browser, slotted_page, tmp_path):
+    """A negative Coriolis magnitude and speed of B₃ are told they are magnitudes, in the
+    course's names (never v_B@lever, block/lever); a slide's travel with the wrong sign is
+    along or against its guide, not clockwise — the same sentences as ``planmethod grade``."""
+    report = json.loads(cli("solve", SLOTTED, "--json").stdout)
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    answers = {"coriolis_block/lever": -exact["coriolis_block/lever"],
+               "v_B@lever": -exact["v_B@lever"],
+               "s_block/lever": -0.8 * exact["s_block/lever"],
+               "dds_block/lever": -0.5 * exact["dds_block/lever"]}
+    sheet = tmp_path / "answers.json"
+    sheet.write_text(json.dumps({"s1": answers}))
+    cli("grade", SLOTTED, sheet, "--json", tmp_path / "graded.json")
+    graded = {q["id"]: q for q in json.loads(
+        (tmp_path / "graded.json").read_text())["answers"][0]["questions"]}
+    page, errors = open_page(browser, slotted_page)
+    page.check("#practice")
+    for name, value in answers.items():
+        page.fill(f'input[data-answer="{name}"]', repr(value))
+    page.click("#check")
+    results = page.evaluate("workbook.results")
+    for name in answers:
+        assert results[name]["feedback"] == graded[name]["feedback"]
+        assert "@" not in results[name]["feedback"] and "block/" not in results[name]["feedback"]
+    assert "aᵏ₂₃ is the magnitude" in results["coriolis_block/lever"]["feedback"]
+    assert "v_B₃ is the speed of B₃" in results["v_B@lever"]["feedback"]
+    assert "positive, along the guide" in results["s_block/lever"]["feedback"]
+    assert "negative, against the guide" in results["dds_block/lever"]["feedback"]
+    assert errors == []
+    page.close()
+
+
 @pytest.fixture(scope="module")
 def slotted_report():
     return json.loads(cli("solve", SLOTTED, "--json").stdout)
@@ -272,7 +304,9 @@ def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slot
         assert set(shown) == set(labels)
         for label, (ok, sentence) in shown.items():
             assert ok == "true", (label, sentence)
-            assert sentence.startswith(names[label] + ": right")
+            # the verdict opens with the point's name as its button sets it (b₃, k with B₃)
+            assert sentence.startswith(page.text_content(f'[data-place="{plan}:{label}"]') +
+                                       ": right")
     assert max(page.evaluate("workbook.draw.checkTimes")) < 50
     assert errors == []
 
@@ -395,3 +429,224 @@ def test_show_the_construction_reveals_one_step_at_a_time(drawing, slotted_repor
     assert page.eval_on_selector_all('svg[data-draw="acceleration"] .right-point',
                                      "nodes => nodes.length") == 5
     assert errors == []
+
+
+def test_the_page_and_grade_give_the_same_verdicts_and_mistakes(drawing, slotted_report,
+                                                                tmp_path):
+    """Drawings of the acceleration plan — right, drawn without the Coriolis term, c alone
+    3 mm off at 45°, b₃ 2 mm off — get the same verdict and the same named mistakes for
+    every point, and the same whole-plan sentence (or none), in the page and from
+    ``planmethod grade --drawing`` on the downloaded drawing."""
+    import math
+
+    from planmethod.grading.mistakes import mistaken_plans
+    from planmethod.spec import load_exercise
+
+    right = slotted_report["plans"]["acceleration"]["points_mm"]
+    wrong = mistaken_plans(load_exercise(SLOTTED), "no_coriolis").acceleration.points_mm
+    shift = 3 / math.sqrt(2)
+    drawings = {"right": dict(right), "no Coriolis": dict(wrong),
+                "c off": {**right, "c": [right["c"][0] + shift, right["c"][1] + shift]},
+                "b₃ off": {**right, "b@lever": [right["b@lever"][0], right["b@lever"][1] + 2]}}
+    page, errors = drawing
+    labels = [place.partition(":")[2] for place in page.eval_on_selector_all(
+        '[data-place^="acceleration:"]', "buttons => buttons.map(b => b.dataset.place)")]
+    for number, (name, points) in enumerate(drawings.items()):
+        for label in labels:
+            page.evaluate("([label, x, y]) => workbook.draw.place('acceleration', label, x, y)",
+                          [label, *points[label]])
+        page.click('[data-check="acceleration"]')
+        results = page.evaluate("workbook.draw.results.acceleration")
+        summary = page.text_content('.draw-plan[data-plan="acceleration"] .draw-summary')
+        with page.expect_download() as download:
+            page.click('[data-download="acceleration"]')
+        path = tmp_path / f"drawing{number}.json"
+        download.value.save_as(path)
+        cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+        graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+        for point in graded["points"]:
+            mine = results[point["point"]]
+            assert mine["ok"] == point["correct"], (name, point)
+            assert mine["mistakes"] == point.get("mistakes", []), (name, point)
+        plan_lines = [line for line in graded["feedback"] if line.startswith("the wrong points")]
+        assert plan_lines == [line for line in [summary.partition("; ")[2]] if line], name
+        if name == "no Coriolis":
+            assert plan_lines and "Coriolis component aᵏ was left out" in plan_lines[0]
+        else:
+            assert plan_lines == [], name
+    assert errors == []
+
+
+def test_a_drawing_at_another_angle_is_graded_at_that_angle(drawing, tmp_path):
+    """The slotted lever's own angle is 30°: its plans drawn on the page at 45° download with
+    that angle and are graded by ``planmethod grade --drawing`` against the exercise file at
+    45°, every point scored."""
+    page, errors = drawing
+    move_slider(page, 45)
+    report = json.loads(cli("solve", SLOTTED, "--angle", 45, "--json").stdout)
+    for plan in ("velocity", "acceleration"):
+        place_by_clicks(page, plan, report["plans"][plan]["points_mm"])
+        with page.expect_download() as download:
+            page.click(f'[data-download="{plan}"]')
+        path = tmp_path / f"{plan}.json"
+        download.value.save_as(path)
+        assert json.loads(path.read_text())["angle"] == 45
+        cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+        graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+        assert graded["max_score"] >= 3 and graded["score"] == graded["max_score"], graded
+    assert errors == []
+
+
+def test_two_exercises_with_one_title_keep_their_own_drawings(browser, slotted_page,
+                                                              slotted_report, tmp_path):
+    """Two pages of exercises with the same title (a template's variants; here the lever
+    10 cm longer) keep their drawings apart: drawing on one leaves the other's kept drawing
+    as it was, and a page with no drawing of its own says that the other's is kept."""
+    longer = tmp_path / "slotted_longer.toml"
+    longer.write_text(SLOTTED.read_text().replace("C = [0.45, 0]", "C = [0.55, 0]"))
+    other = tmp_path / "slotted_longer.html"
+    cli("workbook", longer, "-o", other, "--step", 15)
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda error: errors.append(str(error)))
+
+    def open_at_30(path):
+        page.goto(path.as_uri())
+        page.wait_for_function("window.workbook && window.workbook.ready", timeout=30_000)
+        start_drawing(page, 30)
+
+    open_at_30(slotted_page)
+    labels = place_by_clicks(page, "velocity", slotted_report["plans"]["velocity"]["points_mm"])
+    kept = page.evaluate("workbook.draw.drawing('velocity').points")
+    assert sorted(kept) == sorted(labels)
+    open_at_30(other)
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == {}
+    assert "another exercise with this title" in page.text_content("#draw-notice")
+    page.evaluate("([label, x, y]) => workbook.draw.place('velocity', label, x, y)",
+                  ["b", 1.0, 2.0])
+    open_at_30(slotted_page)
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == kept
+    assert page.text_content("#draw-notice") == ""
+    assert errors == []
+    context.close()
+
+
+def test_drawing_hides_every_value_read_off_a_plan(browser, compressor_page, tmp_path):
+    """While drawing, nothing gives a right position away: the readings (exact and read off
+    the plan), the curves, the radius of curvature on the mechanism, and the right value in a
+    typed answer's verdict (the hint instead, as ``grade --feedback hints``) stay hidden
+    until the student asks to see the plan they are read off; then that plan's show."""
+    report = json.loads(cli("solve", COMPRESSOR, "--json").stdout)
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    sheet = tmp_path / "answers.json"
+    sheet.write_text(json.dumps({"s1": {"v_C": 1.2 * exact["v_C"],
+                                        "a_C": 1.2 * exact["a_C"]}}))
+    cli("grade", COMPRESSOR, sheet, "--json", tmp_path / "graded.json")
+    graded = {q["id"]: q for q in json.loads(
+        (tmp_path / "graded.json").read_text())["answers"][0]["questions"]}
+    page, errors = open_page(browser, compressor_page)
+
+    def hidden_readings():
+        return {row: page.eval_on_selector(
+            f'td.reading[data-quantity="{row}"]',
+            "cell => getComputedStyle(cell).visibility === 'hidden' && getComputedStyle("
+            "cell.nextElementSibling).visibility === 'hidden'") for row in exact}
+
+    def shown_charts():
+        return page.eval_on_selector_all(
+            "#charts .chart", "charts => charts.filter(c => c.offsetParent !== null)"
+            ".map(c => c.querySelector('title').textContent)")
+
+    rho = '#panel-position [data-points="rho_D"]'
+    assert not any(hidden_readings().values()) and len(shown_charts()) == 4
+    assert page.is_visible(rho)
+    page.check("#draw-mode")
+    assert all(hidden_readings().values())
+    assert shown_charts() == [] and not page.is_visible(rho)
+    page.check("#practice")
+    for name in ("v_C", "a_C"):
+        page.fill(f'input[data-answer="{name}"]', repr(1.2 * exact[name]))
+    page.click("#check")
+    for name in ("v_C", "a_C"):
+        verdict = page.text_content(f'td.verdict[data-verdict-for="{name}"]')
+        assert verdict == graded[name]["hint"] and f"{exact[name]:.4g}" not in verdict
+    # the right velocity plan asked for: its values show, the acceleration plan's do not
+    page.click('[data-show-plan="velocity"]')
+    page.click("#check")
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]') == graded["v_C"]["feedback"]
+    assert page.text_content('td.verdict[data-verdict-for="a_C"]') == graded["a_C"]["hint"]
+    page.uncheck("#practice")
+    shown = {name for name, hidden in hidden_readings().items() if not hidden}
+    assert shown == {"v_C", "v_D", "omega_BC"}
+    assert [title.partition(" over")[0] for title in shown_charts()] == \
+        ["velocities", "angular velocities"]
+    page.uncheck("#draw-mode")
+    assert not any(hidden_readings().values()) and len(shown_charts()) == 4
+    assert page.is_visible(rho)
+    assert errors == []
+    page.close()
+
+
+def test_points_are_placed_anywhere_nudged_finely_and_named_as_the_course(drawing,
+                                                                         slotted_report):
+    """A chosen point is placed where the student clicks, even on another point (two points
+    may coincide); Shift + an arrow key nudges it 0.1 mm; moving a point clears the plan's
+    summary of the last check; every button and mark names its point with real subscripts
+    (k with B₃ below, never k_B₃), and so does the playback's vector equation."""
+    page, errors = drawing
+    points = slotted_report["plans"]["acceleration"]["points_mm"]
+    page.click('[data-place="acceleration:b"]')
+    click_plan_point(page, "acceleration", *points["b"])
+    page.click('[data-place="acceleration:k_B@lever"]')
+    click_plan_point(page, "acceleration", *points["b"])     # on b's mark: k is placed
+    placed = page.evaluate("workbook.draw.drawing('acceleration').points")
+    assert placed["k_B@lever"] == pytest.approx(placed["b"], abs=0.05)
+    assert placed["b"] == pytest.approx(points["b"], abs=0.05)
+    page.click('[data-check="acceleration"]')
+    summary = '.draw-plan[data-plan="acceleration"] .draw-summary'
+    assert page.text_content(summary).startswith("1 of 3 points")
+    page.click('[data-place="acceleration:k_B@lever"]')       # chosen again: the keys move it
+    page.focus('svg[data-draw="acceleration"]')
+    start = placed["k_B@lever"]
+    for _ in range(3):
+        page.keyboard.press("Shift+ArrowRight")
+    page.keyboard.press("ArrowUp")
+    moved = page.evaluate("workbook.draw.drawing('acceleration').points['k_B@lever']")
+    assert moved == pytest.approx([start[0] + 0.3, start[1] + 0.5], abs=1e-9)
+    assert "check again" in page.text_content(summary)
+    assert page.get_attribute('[data-verdict-for="acceleration:k_B@lever"]', "data-ok") is None
+    # course names with real subscripts, on the buttons, the marks and in the verdicts
+    texts = page.eval_on_selector_all(
+        "[data-place], [data-point] text, .draw-verdict", "nodes => nodes.map(n => n.textContent)")
+    assert texts and not any("_" in text for text in texts)
+    button = page.inner_html('[data-place="acceleration:k_B@lever"]')
+    assert "k<sub>B</sub>" in button and ">3</sub>" in button
+    assert page.text_content('[data-place="acceleration:k_B@lever"]') == "kB3"
+    assert page.text_content('[data-place="acceleration:b@lever"]') == "b₃"
+    assert page.eval_on_selector('[data-point="acceleration:k_B@lever"] text',
+                                 "t => t.querySelectorAll('tspan[font-size]').length") == 2
+    page.click('[data-show-step="acceleration"]')
+    equation = page.inner_html("#equations")
+    assert "<sub>" in equation and "_" not in page.text_content("#equations")
+    assert page.text_content("#equations").startswith("aB3 = aB + aᵏB3")
+    assert errors == []
+
+
+@pytest.mark.parametrize("which", ["compressor", "conveyor"])
+def test_panel_text_is_readable_in_a_1400_px_window(browser, request, which):
+    """Every drawing of the page shows at its own size in a 1400 px wide window: no text of
+    a panel (labels, legends, scales; subscripts aside) is smaller than 11 CSS px, as the
+    drawings set it; the small side-by-side view stays available."""
+    page, errors = open_page(browser, request.getfixturevalue(f"{which}_page"))
+    sizes = page.evaluate("""() => Array.from(document.querySelectorAll('.panel svg')).map(
+        svg => [svg.closest('.panel').id, Math.min(...Array.from(svg.querySelectorAll('text'))
+            .map(text => parseFloat(getComputedStyle(text).fontSize) * svg.getScreenCTM().a))])""")
+    assert len(sizes) >= 4
+    for panel, smallest in sizes:
+        assert smallest >= 11 - 0.05, (panel, smallest)
+    page.check("#compact")
+    widths = page.eval_on_selector_all(".panel", "panels => panels.map(p => p.offsetWidth)")
+    assert max(widths) < 700
+    assert errors == []
+    page.close()

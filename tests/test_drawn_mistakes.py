@@ -135,8 +135,12 @@ def test_the_page_frame_refers_to_mistakes_by_their_registry_index(slotted):
 
 
 def _page_drawing(key, plan, points, **changes) -> dict:
+    from planmethod.grading.drawings import exercise_digest
+    from planmethod.grading.keys import key_exercise
+
     drawing = {"format": "planmethod-drawing", "version": 1, "title": key["title"],
-               "exercise": "0123456789abcdef", "angle": key["angle"], "plan": plan,
+               "exercise": exercise_digest(key_exercise(key)), "angle": key["angle"],
+               "plan": plan,
                "points": {key["plans"][plan]["pole"]: [0, 0], **points}, "lines": []}
     drawing.update(changes)
     return drawing
@@ -162,8 +166,11 @@ def test_a_page_drawing_is_graded_at_its_own_scale(compressor):
 
 
 @pytest.mark.parametrize(("changes", "words"), [
-    ({"angle": 45.0}, "at φ₁ = 45°, the key of 'Crank and slotted lever' at φ₁ = 30°"),
-    ({"title": "Another mechanism"}, "the drawing is of 'Another mechanism'"),
+    ({"exercise": "0123456789abcdef"}, "the drawing was made on the page of another version "
+                                       "of 'Crank and slotted lever' (exercise digest "
+                                       "0123456789abcdef, the key's exercise "),
+    ({"title": "Another mechanism"}, "the drawing is of 'Another mechanism', the key of "
+                                     "'Crank and slotted lever'"),
 ])
 def test_grade_drawing_refuses_a_page_drawing_of_another_exercise_in_one_line(
         tmp_path, capsys, slotted, changes, words):
@@ -180,6 +187,7 @@ def test_grade_drawing_refuses_a_page_drawing_of_another_exercise_in_one_line(
 
 @pytest.mark.parametrize(("changes", "key_name"), [
     ({"angle": "thirty"}, "angle"), ({"angle": float("inf")}, "angle"), ({"title": 7}, "title"),
+    ({"exercise": 7}, "exercise"), ({"exercise": "not a digest"}, "exercise"),
 ])
 def test_a_page_drawing_with_a_bad_title_or_angle_names_the_key(tmp_path, capsys, slotted,
                                                                 changes, key_name):
@@ -199,3 +207,70 @@ def test_every_drawn_mistake_has_what_the_student_is_told():
         assert drawn_explanation(mistake)
     assert "turned 180°" in drawn_explanation("sense")
     assert "wrong scale" in drawn_explanation("scale_none")
+
+
+@pytest.mark.parametrize(("path", "offered", "not_offered"), [
+    (COMPRESSOR, {"b", "n_CB", "c", "d", "n_D"}, {"k_C", "c@frame"}),   # slider on the frame
+    ("exercises/shaper_sixbar.toml", {"k_B@lever", "b@lever"}, {"k_D", "d@frame"}),
+    ("exercises/scotch_yoke.toml", {"b@yoke"}, {"k1_B@yoke", "k2_B@yoke", "b@frame"}),
+])
+def test_the_page_offers_only_the_points_the_construction_draws(path, offered, not_offered):
+    """A Coriolis point whose term is zero (it coincides with the point it would be laid off
+    from) and a frame point's image at the pole are neither drawn nor named: a student is
+    not asked to place them."""
+    key, _ = _key_and_variant(path)
+    labels = set(drawing_frame(key)["acceleration"]["points"])
+    assert offered <= labels and not labels & not_offered, labels
+
+
+def test_one_misplaced_point_is_no_whole_plan_mistake(slotted):
+    """c alone 3 mm off at 45° lies where no mistake puts it: neither its verdict nor the
+    plan's names one (grade --drawing once said the wrong points 'fit the plan drawn when
+    the normal component aⁿ was left out', judged at twice the tolerance, which the page
+    never said); a plan drawn wholly without the Coriolis term is named so, point by point
+    and as a whole, by the rule the page applies (common_mistakes)."""
+    from planmethod.grading.plan_points import common_mistakes, plan_sentence
+
+    key, _ = slotted
+    points = _points(key, "acceleration")
+    x, y = points["c"]
+    points["c"] = (x + 3 * math.cos(math.pi / 4), y + 3 * math.sin(math.pi / 4))
+    result = grade_drawing(key, Drawing(points, "acceleration", exact_scale=True))
+    assert [p["point"] for p in result["points"] if not p["correct"]] == ["c"]
+    assert result["feedback"] == [] and result["plan_mistakes"] == []
+    entry = key["plans"]["acceleration"]
+    wrong = {label: tuple(xy) for label, xy in entry["mistakes"]["no_coriolis"].items()
+             if label in drawn_labels(entry) or label == entry["pole"]}
+    result = grade_drawing(key, Drawing(wrong, "acceleration", exact_scale=True))
+    named = [p["mistakes"] for p in result["points"] if not p["correct"]]
+    assert len(named) >= 2 and common_mistakes(named) == ["no_coriolis"]
+    assert result["plan_mistakes"] == ["no_coriolis"]
+    assert result["feedback"] == [plan_sentence(["no_coriolis"])]
+
+
+def test_a_page_drawing_at_another_angle_is_graded_at_that_angle(tmp_path, capsys, slotted):
+    """A drawing made on the page at 45° (the exercise's drive.angle is 30°) is graded
+    against the key of 45° — the assembly chosen at 30° followed there, as solve --angle
+    and the page pose it — from the exercise file and from its key.json alike; the same
+    drawing said to be of 30° is wrong point by point."""
+    from planmethod.grading.drawings import key_at_angle
+
+    key, _ = slotted
+    at45 = key_at_angle(key, 45.0)
+    assert at45["angle"] == 45.0 and at45["title"] == key["title"]
+    points = {label: list(xy) for label, xy in _points(at45, "acceleration").items()
+              if label in drawn_labels(at45["plans"]["acceleration"])}
+    path = tmp_path / "drawing.json"
+    path.write_text(json.dumps(_page_drawing(at45, "acceleration", points)))
+    (tmp_path / "key.json").write_text(json.dumps(key))
+    for graded_against in (ROOT / SLOTTED, tmp_path / "key.json"):
+        code = main(["grade", str(graded_against), "--drawing", str(path), "--json",
+                     str(tmp_path / "graded.json")])
+        assert code == 0, capsys.readouterr().err
+        graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+        assert graded["max_score"] == 3 and graded["score"] == 3, graded
+    path.write_text(json.dumps(_page_drawing(key, "acceleration", points)))
+    assert main(["grade", str(ROOT / SLOTTED), "--drawing", str(path), "--json",
+                 str(tmp_path / "graded.json")]) == 0
+    assert json.loads((tmp_path / "graded.json").read_text())["drawings"][0]["score"] == 0
+    capsys.readouterr()

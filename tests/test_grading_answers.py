@@ -165,6 +165,57 @@ def test_a_negative_magnitude_is_told_it_is_a_magnitude(seed_key):
     assert result["omega_BC"]["mistake"] == "sense"
 
 
+def test_a_negative_magnitude_is_told_in_the_courses_names():
+    """The Coriolis magnitude aᵏ₂₃ and the speed of B₃ of the slotted lever, given negative,
+    are told they are magnitudes in the course's symbols (never ``v_B@lever`` or
+    ``block/lever``), as the workbook page tells them (its note comes from the same
+    function)."""
+    from test_workbook import page_data
+
+    from planmethod.commands.workbook import build_workbook
+    from planmethod.grading.answers import magnitude_note
+    from planmethod.numbering import course_numbers
+
+    path = "exercises/slotted_lever.toml"
+    key = build_key(draw_variant(load_template(path)))
+    values = {q["id"]: q["value"] for q in key["questions"]}
+    result = by_id(grade_answers(key, {"coriolis_block/lever": -values["coriolis_block/lever"],
+                                       "v_B@lever": -values["v_B@lever"]}))
+    coriolis, speed = result["coriolis_block/lever"], result["v_B@lever"]
+    assert "%" not in coriolis["feedback"] and coriolis["feedback"].startswith(
+        "aᵏ₂₃ = -2.77145 m/s²: wrong — aᵏ₂₃ is the magnitude of the Coriolis acceleration "
+        "aᵏ₂₃ of link 2 (block) along link 3 (lever): a magnitude, never negative")
+    assert "v_B₃ is the speed of B₃, |v_B₃|: a magnitude, never negative" in speed["feedback"]
+    exercise = load_exercise(path)
+    notes = {q["name"]: q["negative"] for q in page_data(build_workbook(exercise, 120))
+             ["quantities"]}
+    numbers = course_numbers(exercise.mechanism)
+    assert notes["v_B@lever"] == magnitude_note("v_B@lever", numbers) and \
+        notes["v_B@lever"] in speed["feedback"]
+    assert notes["coriolis_block/lever"] in coriolis["feedback"]
+    assert not any("@" in note or "/" in note for note in notes.values() if note)
+
+
+def test_a_reversed_sign_is_told_in_the_quantitys_own_sense():
+    """A slide's travel or sliding velocity with the wrong sign is not told "the right answer
+    is counter-clockwise": its sign is along or against the guide; a link's ω still turns
+    counter-clockwise or clockwise."""
+    key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    values = {q["id"]: q["value"] for q in key["questions"]}
+    assert values["s_block/lever"] > 0 and values["dds_block/lever"] < 0
+    result = by_id(grade_answers(key, {
+        "s_block/lever": -0.8 * values["s_block/lever"],
+        "dds_block/lever": -0.5 * values["dds_block/lever"],
+        "omega_lever": -0.5 * values["omega_lever"]}))
+    travel = result["s_block/lever"]["feedback"]
+    assert "the sense is reversed (the right answer is positive, along the guide, 0.360555 m" \
+        in travel and "clockwise" not in travel
+    assert "(the right answer is negative, against the guide, -5.60034 m/s²" in \
+        result["dds_block/lever"]["feedback"]
+    assert "(the right answer is counter-clockwise, 1.92308 rad/s" in \
+        result["omega_lever"]["feedback"]
+
+
 def test_junk_answers_are_reported_not_crashed(seed_key):
     (result,) = grade_many({"*": seed_key}, [r for r in read_answers(
         DATA / "compressor_mistakes.csv") if r[0] == "junk"])

@@ -103,7 +103,23 @@ def test_every_panel_keeps_one_page_over_the_turn(compressor_page):
         assert len(boxes) == 1, (panel, boxes)
     opening = float(re.search(r'id="angle"[^>]* value="([^"]+)"', compressor_page).group(1))
     drive = load_exercise(COMPRESSOR).mechanism.drive.angle
-    assert opening == min(data["angles"], key=lambda angle: abs(angle - drive))
+    assert opening == drive and drive in data["angles"]
+
+
+def test_the_notebooks_page_holds_and_opens_at_the_exercises_own_angle():
+    """Jupyter shows the workbook every 10°: the compressor's own angle is 45°, so its frames
+    are 5°, 15° … 355° and the page opens at 45°, not at 40°."""
+    import html
+
+    from planmethod.notebook import NOTEBOOK_STEP, _exercise_html
+
+    exercise = load_exercise(COMPRESSOR)
+    assert exercise.mechanism.drive.angle == 45 and NOTEBOOK_STEP == 10
+    frame = _exercise_html(exercise)
+    page = html.unescape(re.search(r'srcdoc="([^"]*)"', frame).group(1))
+    data = page_data(page)
+    assert data["angles"] == [5.0 + 10 * k for k in range(36)]
+    assert re.search(r'id="angle"[^>]* min="5" max="355" step="10" value="45"', page)
 
 
 def test_identical_svg_lines_are_stored_once(compressor_page):

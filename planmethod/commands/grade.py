@@ -3,7 +3,10 @@ and drawn plans (``--drawing`` SVG or JSON) against a key, with feedback.
 
 KEY is a key (``key.json``), a bundle (``keys.json`` or the folder that holds it), or a plain
 exercise file (its key is built on the spot). Each student is graded against their own
-variant's key when the bundle has one, else against the single key.
+variant's key when the bundle has one, else against the single key. A drawing downloaded from
+the workbook page names its exercise (title and digest) and crank angle: it is refused in one
+line if it is of another exercise, and graded against the key of its own angle, built from the
+exercise the key keeps (docs/workbook-drawing.md).
 """
 
 from __future__ import annotations
@@ -19,7 +22,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("key", help="key.json, keys.json (or its folder), or an exercise file")
     parser.add_argument("answers", nargs="?", help="answers: CSV or JSON, one row per student")
     parser.add_argument("--drawing", action="append", default=[], metavar="FILE",
-                        help="a drawn plan (SVG or JSON of points in mm); may be repeated")
+                        help="a drawn plan (SVG or JSON of points in mm); may be repeated; "
+                             "one downloaded from the workbook page is graded at its own "
+                             "crank angle")
     parser.add_argument("--plan", choices=("velocity", "acceleration"),
                         help="which plan the drawing is (default: told by its pole label)")
     parser.add_argument("--student", help="grade as this student (picks the variant's key; "
@@ -96,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
 
     from ..errors import SpecError
     from ..grading.answers import feedback_text, grade_many, read_answers
-    from ..grading.drawings import grade_drawing, read_drawing
+    from ..grading.drawings import grade_drawing, key_for_drawing, read_drawing
     from ..grading.exports import gradebook_csv, gradescope_results
     from ..io import output_set
 
@@ -119,7 +124,9 @@ def run(args: argparse.Namespace) -> int:
         key = key_of_student or keys.get("*")
         if key is None:
             raise SpecError("grading a drawing against a bundle needs --student", file=path)
-        drawings.append(grade_drawing(key, read_drawing(path), args.plan))
+        drawing = read_drawing(path)
+        # a drawing from the workbook page is graded at its own angle, on its own exercise
+        drawings.append(grade_drawing(key_for_drawing(key, drawing), drawing, args.plan))
     lines = []
     for result in results:
         total = result.get("max_score")

@@ -41,11 +41,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default: every CPU, at least 12 frames each)")
 
 
-def turn_angles(step: float, option: str = "--step") -> list[float]:
-    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart.
+def turn_angles(step: float, option: str = "--step", start: float = 0.0) -> list[float]:
+    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart, one of them
+    ``start`` (the exercise's own ``drive.angle``: a page opens there).
 
     >>> turn_angles(90)
     [0.0, 90.0, 180.0, 270.0]
+    >>> turn_angles(10, start=45)[:3], 45.0 in turn_angles(10, start=45)
+    ([5.0, 15.0, 25.0], True)
     >>> turn_angles(0)
     Traceback (most recent call last):
     ...
@@ -56,8 +59,11 @@ def turn_angles(step: float, option: str = "--step") -> list[float]:
         raise SpecError(f"must be a number of degrees in [{MIN_STEP_DEG:g}, 180] (at most "
                         f"{round(360 / MIN_STEP_DEG)} frames), got {step:g}",
                         key=f"option {option}")
-    count = math.ceil(360.0 / step - 1e-9)
-    return [round(float(number * step), 9) for number in range(count)]
+    offset = float(start) % step
+    if step - offset < 1e-9:          # start a whole number of steps from 0, but for rounding
+        offset = 0.0
+    count = math.ceil((360.0 - offset) / step - 1e-9)
+    return [round(offset + number * step, 9) + 0.0 for number in range(count)]
 
 
 def exercise_variant(exercise):
@@ -74,14 +80,14 @@ def exercise_variant(exercise):
 
 def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     """One frame of the page as plain data (see :func:`planmethod.render.workbook.
-    workbook_html`)."""
+    workbook_html`), with the plan each quantity is read off (``reads``)."""
     from ..grading.keys import build_key
     from ..grading.plan_points import drawing_frame
     from ..render.svg import vector_equations
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
     readings = [[check.analytic, check.plan] for check in analysis.checks]
-    steps, equations = {}, {}
+    steps, equations, reads = {}, {}, {}
     if analysis.plans is not None:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
@@ -90,11 +96,13 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
                                  [point for point in (step.start, step.end) if point]]
                                 for step in plan.steps]
                 equations[name] = vector_equations(plan)
+                reads |= {step.quantity: name for step in plan.steps
+                          if step.action == "read" and step.quantity}
     key = build_key(replace(variant, exercise=analysis.exercise))
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
-            "equations": equations, "questions": questions,
+            "equations": equations, "reads": reads, "questions": questions,
             "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
 
 
@@ -227,13 +235,13 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     >>> page.count('data-quantity="'), 'id="angle"' in page
     (7, True)
     """
-    from ..grading.answers import magnitude_note
+    from ..grading.answers import magnitude_note, sense_words
     from ..numbering import course_numbers
     from ..render.steady import steady_views
     from ..render.workbook import curve_chart, workbook_html
     from ..vocabulary import numbered, pair_number, point_name, quantity
 
-    angles = turn_angles(step)
+    angles = turn_angles(step, start=exercise.mechanism.drive.angle)   # opens at its own angle
     workers = worker_count(jobs, len(angles))
     views = steady_views(exercise, angles)      # one zoom and one page per panel
     frames: list[dict[str, Any]] = []
@@ -261,9 +269,11 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
             return pair_number(numbers[link], numbers[along])
         return found.subject.replace("_", " ")
 
+    plans = reading_plans(frames)
     quantities = [{"name": name, "symbol": quantity(name).symbol,
-                   "subscript": subscript(name), "unit": unit,
-                   "negative": magnitude_note(name)}
+                   "subscript": subscript(name), "unit": unit, "plan": plans.get(name),
+                   "negative": magnitude_note(name, numbers),
+                   "senses": list(sense_words(name))}
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]
@@ -274,26 +284,15 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
              "construction",
              f"practice mode grades as `planmethod grade` does: tolerances from a drafting "
              f"precision of {first['tolerance_source']:g} mm (each tolerance is shown)"]
+    charts = turn_charts(frames, numbers)
     return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
                          charts=[curve_chart(angles, curves, title=title, unit=unit)
-                                 for title, unit, curves in turn_charts(frames, numbers)],
+                                 for title, unit, curves, _ in charts],
+                         chart_plans=[sorted({plans[name] for name in names
+                                              if plans.get(name)}) for *_, names in charts],
                          notes=notes, start=mechanism.drive.angle,
                          phi=numbered("φ", numbers[mechanism.drive.link]),
                          drawing=drawing_meta(exercise, frames))
-
-
-def exercise_fingerprint(exercise) -> str:
-    """A short digest of the exercise's mechanism, drawing settings and scene: a drawing kept
-    by the page for another exercise (or another version of it) is told apart by it.
-
-    >>> from planmethod.spec import load_exercise
-    >>> len(exercise_fingerprint(load_exercise("exercises/slotted_lever.toml")))
-    16
-    """
-    import hashlib
-
-    text = repr((exercise.mechanism, exercise.plan, exercise.ask))
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
 
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
@@ -307,12 +306,19 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     >>> meta["names"]["b@lever"], meta["poles"]
     ('b₃', {'velocity': 'p', 'acceleration': 'π'})
     """
-    from ..grading.drawings import DRAWING_FORMAT
+    from ..grading.drawings import DRAWING_FORMAT, exercise_digest
     from ..grading.mistakes import drawn_explanation
-    from ..grading.plan_points import DRAWN_MISTAKES, MISTAKE_WORDING, plan_extent
+    from ..grading.plan_points import (
+        DRAWN_MISTAKES,
+        MISTAKE_WORDING,
+        PLAN_WORDING,
+        plan_extent,
+    )
     from ..numbering import course_numbers
     from ..plans.construction import course_text
+    from ..render.labels import label_runs
     from ..render.workbook_draw import drawing_data
+    from ..vocabulary import numbered
 
     draws = [frame.get("draw", {}) for frame in frames]
     plans = [plan for plan in ("velocity", "acceleration")
@@ -325,32 +331,62 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
              for plan in plans}
     return drawing_data(
-        title=mechanism.title, exercise=exercise_fingerprint(exercise),
+        title=mechanism.title, exercise=exercise_digest(exercise),
         names={label: course_text(label, numbers) for label in sorted(labels)},
+        runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
-        wording=MISTAKE_WORDING, file_format=DRAWING_FORMAT)
+        wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT,
+        phi=numbered("φ", numbers[mechanism.drive.link]))
+
+
+def reading_plans(frames: Sequence[dict[str, Any]]) -> dict[str, str]:
+    """The plan each check quantity of the ``frames`` is read off (``velocity`` or
+    ``acceleration``): where a frame's construction reads it (ρ off the acceleration plan),
+    else the plan drawn at the quantity's scale (μv, μa); a quantity of neither (the travel
+    s, at μl) is in none. The drawing mode hides their values until that plan is shown.
+
+    >>> reading_plans([{"quantities": [("v_C", "m/s"), ("rho_D", "m"), ("s_C/frame", "m")],
+    ...                 "reads": {"rho_D": "acceleration"}}])
+    {'v_C': 'velocity', 'rho_D': 'acceleration'}
+    """
+    from ..vocabulary import PLAN_SCALES, PlanKind, quantity
+
+    by_scale = {scale: kind.value for kind, scale in PLAN_SCALES.items()
+                if kind != PlanKind.POSITION}
+    reads: dict[str, str] = {}
+    for frame in frames:
+        reads |= frame.get("reads", {})
+    out = {}
+    for name, _ in frames[0]["quantities"]:
+        plan = reads.get(name) or by_scale.get(quantity(name).scale)
+        if plan is not None:
+            out[name] = plan
+    return out
 
 
 def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None
-                ) -> list[tuple[str, str, dict]]:
+                ) -> list[tuple[str, str, dict, list[str]]]:
     """The full-turn curves: speeds, accelerations, angular velocities and accelerations of
     the checks, and the balancing moment when forces are computed; each curve named as a
-    course writes it (ω₃ with the links' ``numbers``, v_C)."""
+    course writes it (ω₃ with the links' ``numbers``, v_C). Each chart is (title, unit,
+    {curve: values}, the check quantities it draws)."""
     from ..vocabulary import symbol
 
     titles = {"v": "velocities", "a": "accelerations", "omega": "angular velocities",
               "epsilon": "angular accelerations"}
-    charts: dict[str, tuple[str, str, dict]] = {}
+    charts: dict[str, tuple[str, str, dict, list[str]]] = {}
     for index, (name, unit) in enumerate(frames[0]["quantities"]):
         kind = name.partition("_")[0]
         if kind not in titles:
             continue
-        curves = charts.setdefault(kind, (titles[kind], unit, {}))[2]
+        _, _, curves, names = charts.setdefault(kind, (titles[kind], unit, {}, []))
         curves[symbol(name, numbers)] = [frame["readings"][index][0] for frame in frames]
+        names.append(name)
     out = list(charts.values())
     if frames[0]["moment"] is not None:
-        out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]}))
+        out.append(("balancing moment", "N·m", {"M_b": [frame["moment"] for frame in frames]},
+                    []))
     return out
 
 

@@ -38,10 +38,11 @@ from typing import Any
 from ..errors import SpecError
 from ..io import read_text_bounded
 from ..spec import parse_json
-from ..vocabulary import quantity
+from ..vocabulary import quantity, question_text, symbol
 
-__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS", "answers_from_csv",
-           "feedback_text", "grade_answers", "grade_many", "magnitude_note", "read_answers"]
+__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "SENSE_WORDS", "STUDENT_COLUMNS",
+           "answers_from_csv", "feedback_text", "grade_answers", "grade_many",
+           "magnitude_note", "read_answers", "sense_words"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
@@ -294,8 +295,35 @@ def _no_student_twice(rows: list[tuple[str, dict[str, Any]]], where: str) -> Non
         seen[name] = index
 
 
-def _direction(value: float) -> str:
-    return "counter-clockwise" if value > 0 else "clockwise"
+#: how the sign of a signed quantity is told, by what the quantity is of (its kind's
+#: ``subject``): a link turns counter-clockwise or clockwise; a slide's travel, sliding
+#: velocity and acceleration are along or against its guide's direction
+SENSE_WORDS: dict[str, tuple[str, str]] = {
+    "link": ("counter-clockwise", "clockwise"),
+    "pair": ("positive, along the guide", "negative, against the guide"),
+}
+
+
+def sense_words(name: str) -> tuple[str, str]:
+    """What a positive and a negative value of the quantity ``name`` (an id: ``omega_BC``,
+    ``ds_slider/frame``) mean, in words (:data:`SENSE_WORDS`); ``grade`` and the workbook
+    page both tell a reversed sign with them.
+
+    >>> sense_words("omega_BC")
+    ('counter-clockwise', 'clockwise')
+    >>> sense_words("s_slider/frame")
+    ('positive, along the guide', 'negative, against the guide')
+    """
+    try:
+        subject = quantity(name).kind.subject
+    except KeyError:
+        return ("positive", "negative")
+    return SENSE_WORDS.get(subject, ("positive", "negative"))
+
+
+def _direction(name: str, value: float) -> str:
+    positive, negative = sense_words(name)
+    return positive if value > 0 else negative
 
 
 def _off(answer: float, right: float) -> str:
@@ -310,9 +338,11 @@ def _off(answer: float, right: float) -> str:
     return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}{magnitude}"
 
 
-def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
+def grade_question(question: Mapping[str, Any], raw: Any,
+                   numbers: Mapping[str, int] | None = None) -> dict:
     """Grade one answer; returns the question's result with its feedback (which names the
-    quantity as the course writes it, the key's ``symbol``, where the key has one)."""
+    quantity as the course writes it, the key's ``symbol``, where the key has one; the
+    links' ``numbers`` name it in what a negative magnitude is told)."""
     name, unit = question.get("symbol") or question["id"], question.get("unit", "")
     value, tolerance = float(question["value"]), float(question["tolerance"])
     points = float(question.get("points", 1.0))
@@ -361,14 +391,14 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
                 result["hint"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
                                   "and the sense is reversed")
                 return result
-    note = None if signed or answer >= 0 else magnitude_note(name)
+    note = None if signed or answer >= 0 else magnitude_note(question["id"], numbers)
     if note is not None:
         result["feedback"] = f"{shown}: wrong — {note} (right: {right})"
         result["hint"] = f"{shown}: wrong — {note}"
         return result
     if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
         text = (f"{shown}: wrong — the sense is reversed (the right answer is "
-                f"{_direction(value)}, {right}) and the magnitude "
+                f"{_direction(question['id'], value)}, {right}) and the magnitude "
                 f"{_number_text(abs(answer))} is {_off(abs(answer), abs(value))}")
     else:
         tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")
@@ -380,12 +410,15 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
     return result
 
 
-def magnitude_note(name: str) -> str | None:
-    """What a negative answer for a magnitude is told (None for a signed quantity or an
-    unknown name).
+def magnitude_note(name: str, numbers: Mapping[str, int] | None = None) -> str | None:
+    """What a negative answer for the magnitude ``name`` (a quantity id: ``v_B@lever``) is
+    told, in the course's symbols under the links' ``numbers`` (None for a signed quantity
+    or an unknown name). ``grade`` and the workbook page both say it from here.
 
     >>> magnitude_note("v_C")
     'v_C is the speed of C, |v_C|: a magnitude, never negative'
+    >>> magnitude_note("v_B@lever", {"frame": 0, "crank": 1, "block": 2, "lever": 3})
+    'v_B₃ is the speed of B₃, |v_B₃|: a magnitude, never negative'
     >>> magnitude_note("omega_BC") is None
     True
     """
@@ -395,7 +428,8 @@ def magnitude_note(name: str) -> str | None:
         return None
     if found.signed:
         return None
-    return f"{name} is the {found.question}: a magnitude, never negative"
+    return (f"{symbol(name, numbers)} is the {question_text(name, numbers)}: a magnitude, "
+            "never negative")
 
 
 def _way(answer: float, right: float, signed: bool) -> str:
@@ -451,6 +485,9 @@ def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
     by_lower = {}
     for name in answers:
         by_lower.setdefault(str(name).strip().lower(), name)
+    from .keys import key_numbers
+
+    numbers = key_numbers(key)
     results, used = [], set()
     for question in key["questions"]:
         name = question["id"]
@@ -458,7 +495,7 @@ def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
         if found is not None:
             used.add(found)
         results.append(grade_question(question, answers.get(found) if found is not None
-                                      else None))
+                                      else None, numbers))
     ignored = sorted(str(n) for n in answers if n not in used)
     score = sum(r["score"] for r in results)
     total = sum(r["max_score"] for r in results)

@@ -45,12 +45,21 @@ from ..plans.construction import course_text
 from ..spec import parse_json
 from ..vocabulary import numbered
 from .keys import key_numbers
-from .plan_points import graded_labels, mistake_sentence, named_mistakes
+from .plan_points import (
+    common_mistakes,
+    graded_labels,
+    mistake_sentence,
+    named_mistakes,
+    plan_sentence,
+)
 
 __all__ = [
     "Drawing",
     "SubmissionError",
+    "exercise_digest",
     "grade_drawing",
+    "key_at_angle",
+    "key_for_drawing",
     "parse_drawing_json",
     "parse_drawing_svg",
     "read_drawing",
@@ -89,6 +98,8 @@ class Drawing:
     angle: float | None = None
     #: drawn on a millimetre grid (the workbook page): its scale is never corrected
     exact_scale: bool = False
+    #: the digest of the exercise the page was made from (:func:`exercise_digest`), else None
+    exercise: str | None = None
 
 
 def read_drawing(path: str | Path) -> Drawing:
@@ -151,14 +162,20 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
     if parsed.get("format") != DRAWING_FORMAT:
         return Drawing(out, plan, (), source)
     title, angle = parsed.get("title"), parsed.get("angle")
+    digest = parsed.get("exercise")
     if not isinstance(title, str):
         raise SubmissionError(f"must be the exercise's title, got {title!r}"[:120],
                               file=source, key="title")
+    if digest is not None and (not isinstance(digest, str)
+                               or not re.fullmatch(r"[0-9a-f]{16}", digest)):
+        raise SubmissionError(f"must be the exercise's digest (16 hexadecimal digits), got "
+                              f"{digest!r}"[:120], file=source, key="exercise")
     if (isinstance(angle, bool) or not isinstance(angle, int | float)
             or not math.isfinite(angle)):
         raise SubmissionError(f"must be the crank angle in degrees, got {angle!r}"[:120],
                               file=source, key="angle")
-    return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True)
+    return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True,
+                   exercise=digest)
 
 
 # -- SVG -------------------------------------------------------------------------------------
@@ -448,6 +465,102 @@ def _read_svg(root, source: str | None) -> Drawing:
 
 
 # -- grading ---------------------------------------------------------------------------------
+def exercise_digest(exercise) -> str:
+    """A short digest of an exercise's mechanism, drawing settings and scene. The workbook
+    page keeps a drawing under it and writes it into the drawing it downloads, so that a
+    drawing of another exercise with the same title (a template's variant) or of an earlier
+    version of the exercise is told apart, in the page and by :func:`key_for_drawing`.
+
+    >>> from planmethod.spec import load_exercise
+    >>> len(exercise_digest(load_exercise("exercises/slotted_lever.toml")))
+    16
+    """
+    import hashlib
+
+    text = repr((exercise.mechanism, exercise.plan, exercise.ask))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
+
+def key_at_angle(key: Mapping[str, Any], angle: float) -> Mapping[str, Any]:
+    """The key of the same variant at another crank angle (deg): its exercise posed on the
+    assembly chosen at ``drive.angle`` and followed to ``angle``, as ``planmethod solve
+    --angle`` and each frame of the workbook page pose it; the key itself at its own angle.
+
+    Raises
+    ------
+    SubmissionError
+        If the key keeps no exercise to pose (a key written without its tables).
+    ToggleError, AssemblyError, BranchJumpError
+        As :func:`planmethod.kinematics.solve.pose` on the way to ``angle``.
+
+    Examples
+    --------
+    >>> from planmethod.grading.keys import build_key
+    >>> from planmethod.grading.templates import load_template, draw_variant
+    >>> key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    >>> key_at_angle(key, 45)["angle"], key_at_angle(key, 390) is key
+    (45.0, True)
+    """
+    from dataclasses import replace
+
+    from ..kinematics.solve import pose
+    from ..scene import plan_scene
+    from .keys import build_key, key_exercise
+    from .templates import Variant
+
+    if abs((float(angle) - float(key["angle"]) + 180.0) % 360.0 - 180.0) < 1e-9:
+        return key
+    exercise = key_exercise(key)
+    if exercise is None:
+        raise SubmissionError(f"the key of {key.get('title')!r} keeps no exercise tables: "
+                              f"it cannot be built at {_crank_angle_symbol(key)} = "
+                              f"{float(angle):g}°")
+    posed = pose(exercise.mechanism, float(angle), links=plan_scene(exercise).links)
+    variant = Variant(str(key.get("student")), int(key.get("seed", 0)),
+                      int(key.get("attempt", 0)), key["exercise"], dict(key.get("given", {})),
+                      replace(exercise, mechanism=posed.mechanism))
+    return build_key(variant)
+
+
+def key_for_drawing(key: Mapping[str, Any], drawing: Drawing) -> Mapping[str, Any]:
+    """The key a drawing is graded against: ``key``, or — for a drawing downloaded from the
+    workbook page at another crank angle — the key of the same exercise at the drawing's
+    angle (:func:`key_at_angle`: the page's key of that angle).
+
+    Raises
+    ------
+    SubmissionError
+        In one line, if the drawing names another title or another exercise digest than
+        the key's exercise (made from another exercise, or from another version of it).
+    """
+    from .keys import key_exercise
+
+    title = key.get("title")
+    if drawing.title is not None and title is not None and drawing.title != title:
+        raise SubmissionError(f"the drawing is of {drawing.title!r}, the key of {title!r}: "
+                              "grade it against the key of its own exercise",
+                              file=drawing.source)
+    if drawing.exercise is None and drawing.angle is None:
+        return key
+    exercise = key_exercise(key)
+    if drawing.exercise is not None and exercise is not None:
+        digest = exercise_digest(exercise)
+        if digest != drawing.exercise:
+            raise SubmissionError(
+                f"the drawing was made on the page of another version of {title!r} (exercise "
+                f"digest {drawing.exercise}, the key's exercise {digest}): grade it against "
+                "the exercise its page was made from", file=drawing.source)
+    if drawing.angle is None or exercise is None:
+        return key
+    return key_at_angle(key, drawing.angle)
+
+
+def _crank_angle_symbol(key: Mapping[str, Any]) -> str:
+    """φ with the number the key's exercise gives its crank (φ₁ by default)."""
+    drive = ((key.get("exercise") or {}).get("drive") or {}).get("link")
+    return numbered("φ", key_numbers(key).get(drive, 1))
+
+
 def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
     """Refuse, in one line, a drawing that says it is of another exercise or angle."""
     title, angle = key.get("title"), key.get("angle")
@@ -455,9 +568,7 @@ def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
     other_angle = (drawing.angle is not None and isinstance(angle, int | float)
                    and abs((drawing.angle - angle + 180.0) % 360.0 - 180.0) > 1e-6)
     if other_title or other_angle:
-        drive = ((key.get("exercise") or {}).get("drive") or {}).get("link")
-        crank = key_numbers(key).get(drive, 1)
-        phi = numbered("φ", crank)      # the crank angle carries the crank's number
+        phi = _crank_angle_symbol(key)
         raise SubmissionError(f"the drawing is of {drawing.title!r} at {phi} = "
                               f"{drawing.angle:g}°, the key of {title!r} at {phi} = {angle:g}°: "
                               "grade it against the key of its own exercise and angle",
@@ -554,8 +665,8 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             continue
         right = points[label]
         radius = float(radii.get(label, 0.5))
-        distance = float(np.hypot(*(found - right)))
-        inside = Point(*right).buffer(radius, 32).covers(Point(*found))
+        distance = float(Point(*right).distance(Point(*found)))
+        inside = distance <= radius       # the disc itself, as the workbook page compares
         result = {"point": label, "found": True, "correct": bool(inside),
                   "distance_mm": distance, "tolerance_mm": radius,
                   "score": (1.0 if inside else 0.0) if required else 0.0,
@@ -572,19 +683,12 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
                 result["mistakes"] = named
                 result["feedback"] += f"; {mistake_sentence(named)}"
         results.append(result)
-    wrong = [r for r in results if r["found"] and not r["correct"]]
-    for mistake, alternative in entry.get("mistakes", {}).items():
-        if not wrong:
-            break
-        fits = [r for r in wrong if r["point"] in alternative and float(np.hypot(
-            *(student[r["point"]] if r["point"] in student else _match(student, r["point"]))
-            - np.asarray(alternative[r["point"]]))) <= 2 * r["tolerance_mm"]]
-        if len(fits) == len(wrong):
-            from .mistakes import REGISTRY, drawn_explanation
-
-            what = drawn_explanation(mistake) if mistake in REGISTRY else mistake
-            feedback.append(f"the wrong points fit the plan drawn when {what}")
-            break
+    # a whole-plan mistake only where every wrong point is named with it, by the one rule
+    # the workbook page applies to the same data (plan_points.common_mistakes)
+    common = common_mistakes([r.get("mistakes", []) for r in results
+                              if r["found"] and not r["correct"]])
+    if common:
+        feedback.append(plan_sentence(common))
     score = sum(r["score"] for r in results)
     total = sum(r["max_score"] for r in results)
     # what a student reads names points and quantities as the course does (b₃, ω₃), never
@@ -595,7 +699,8 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
         result["feedback"] = course_text(result["feedback"], numbers)
     feedback = [course_text(text, numbers) for text in feedback]
     return {"plan": plan, "student": key.get("student"), "score": score, "max_score": total,
-            "scale_factor": factor, "points": results, "feedback": feedback}
+            "scale_factor": factor, "points": results, "plan_mistakes": common,
+            "feedback": feedback}
 
 
 def _explain(label, found, right, distance, radius, student, points, step, lines, reads,

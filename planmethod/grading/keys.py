@@ -354,6 +354,22 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     }
 
 
+def key_exercise(key: Mapping[str, Any]):
+    """The exercise a key was built for, from the resolved tables it keeps (``exercise``),
+    or None for a key that keeps none.
+
+    >>> from planmethod.grading.templates import load_template, draw_variant
+    >>> key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    >>> key_exercise(key).mechanism.drive.angle, key_exercise({"exercise": {}})
+    (30.0, None)
+    """
+    if not key.get("exercise"):
+        return None
+    from ..spec import exercise_from_dict
+
+    return exercise_from_dict(key["exercise"], file=key.get("source"))
+
+
 def bundle(keys: list[dict], **about: Any) -> dict:
     """A bundle of keys (one per variant), with ``about`` (template, seed, count)."""
     return {"format": KEYS_FORMAT, "version": VERSION, **about, "keys": keys}

@@ -31,9 +31,9 @@ from typing import Any
 
 from .mistakes import REGISTRY, drawn_explanation
 
-__all__ = ["DRAWN_MISTAKES", "MISTAKE_WORDING", "drawing_frame", "drawn_labels",
-           "graded_labels", "mistake_sentence", "named_mistakes", "plan_extent",
-           "word_mistakes"]
+__all__ = ["DRAWN_MISTAKES", "MISTAKE_WORDING", "PLAN_WORDING", "common_mistakes",
+           "drawing_frame", "drawn_labels", "graded_labels", "mistake_sentence",
+           "named_mistakes", "plan_extent", "plan_sentence", "word_mistakes"]
 
 #: the mistakes a drawn point can be named with, in the registry's order (the page refers to
 #: them by their index here)
@@ -42,17 +42,35 @@ DRAWN_MISTAKES: tuple[str, ...] = tuple(REGISTRY)
 #: how named mistakes are worded: where the point lies, and the joint between two mistakes
 MISTAKE_WORDING = ("where the construction puts it when {}", ", or when ")
 
+#: how the mistakes named on every wrong point of a plan are worded (joined as
+#: :data:`MISTAKE_WORDING` joins them)
+PLAN_WORDING = "the wrong points all lie where the construction puts them when {}"
+
 #: decimals of a millimetre kept of the right points and radii in the page
 RIGHT_DECIMALS = 3
 
 
 def drawn_labels(entry: Mapping[str, Any]) -> list[str]:
-    """The points a student places on a plan of a key (``key["plans"][plan]``): every point
-    but the pole and the fixed points the construction puts at the pole."""
+    """The points a student places on a plan of a key (``key["plans"][plan]``): the points
+    the construction really draws. Not the pole, nor a point the construction puts where
+    another already is (a ``coincide`` step: a fixed point's image at the pole, c₀, or a
+    Coriolis point whose term is zero, k_C on c₀), nor the end of a vector laid off with
+    zero length (a Coriolis term that vanishes at this angle): those are neither drawn
+    nor named.
+
+    >>> drawn_labels({"pole": "π", "points_mm": {"π": [0, 0], "k_C": [0, 0], "c": [1, 0],
+    ...                                         "k_B": [2, 2], "b": [2, 2]},
+    ...               "steps": [{"action": "coincide", "start": "c@frame", "end": "k_C"},
+    ...                         {"action": "lay_off", "start": "b", "end": "k_B",
+    ...                          "length_mm": 0.0}]})
+    ['c', 'b']
+    """
     pole = entry["pole"]
-    fixed = {step.get("end") for step in entry.get("steps", ())
-             if step.get("action") == "coincide" and step.get("start") == pole}
-    return [label for label in entry["points_mm"] if label != pole and label not in fixed]
+    undrawn = {step.get("end") for step in entry.get("steps", ())
+               if step.get("action") == "coincide"
+               or (step.get("action") == "lay_off" and step.get("length_mm") is not None
+                   and abs(step["length_mm"]) < 1e-9)}
+    return [label for label in entry["points_mm"] if label != pole and label not in undrawn]
 
 
 def graded_labels(plan: Mapping[str, Any]) -> list[str]:
@@ -87,6 +105,22 @@ def named_mistakes(candidates, x, y, radius):
     return out
 
 
+def common_mistakes(named):
+    """The mistakes named on every wrong point of a plan, when two or more points are wrong
+    (``named``: each wrong point's named mistakes, from :func:`named_mistakes`), in the
+    first point's order; none for fewer (one point's own verdict already names its
+    mistakes: a single misplaced point is no whole-plan mistake).
+
+    >>> common_mistakes([["no_coriolis", "sense"], ["sense", "no_coriolis"]])
+    ['no_coriolis', 'sense']
+    >>> common_mistakes([["no_normal"]]), common_mistakes([["no_normal"], []])
+    ([], [])
+    """
+    if len(named) < 2:
+        return []
+    return [mistake for mistake in named[0] if all(mistake in other for other in named[1:])]
+
+
 def word_mistakes(mistakes, texts, wording):
     """Where a point lies that ``mistakes`` put there, in words: ``texts`` maps a mistake to
     what the student is told, ``wording`` is :data:`MISTAKE_WORDING`.
@@ -102,6 +136,18 @@ def mistake_sentence(mistakes: Sequence[str]) -> str:
     """What a student is told of a point that lies where ``mistakes`` put it."""
     texts = {mistake: drawn_explanation(mistake) for mistake in mistakes}
     return "it lies " + word_mistakes(mistakes, texts, MISTAKE_WORDING)
+
+
+def plan_sentence(mistakes: Sequence[str]) -> str:
+    """What a student is told of a plan whose wrong points all lie where ``mistakes`` put
+    them (:func:`common_mistakes`).
+
+    >>> plan_sentence(["no_coriolis"]).endswith("puts them when the Coriolis component aᵏ "
+    ...                                        "was left out")
+    True
+    """
+    return PLAN_WORDING.format(MISTAKE_WORDING[1].join(drawn_explanation(mistake)
+                                                       for mistake in mistakes))
 
 
 def _rounded(values: Sequence[float], decimals: int = RIGHT_DECIMALS) -> list[float]:

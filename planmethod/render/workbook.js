@@ -37,24 +37,42 @@
     const magnitude = right < 0 && ratio > 0 ? " in magnitude" : "";
     return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
   }
-  // what a negative answer for a magnitude is told, by quantity (filled from the page's data)
-  const negativeNotes = {};
-  // the rules of planmethod.grading.answers.grade_question, on the precomputed key
+  // what a negative answer for a magnitude is told, and what a positive and a negative value
+  // mean (counter-clockwise, along the guide), by quantity (filled from the page's data:
+  // planmethod.grading.answers.magnitude_note and sense_words)
+  const negativeNotes = {}, senseWords = {};
+  // which way an answer is off, without the right value (planmethod.grading.answers._way)
+  function way(answer, right, signed) {
+    if (signed && right !== 0 && answer !== 0 && (answer > 0) !== (right > 0))
+      return "the sense is reversed";
+    if (right < 0 && answer < 0)
+      return answer < right ? "too large in magnitude" : "too small in magnitude";
+    return answer > right ? "too high" : "too low";
+  }
+  // the rules of planmethod.grading.answers.grade_question, on the precomputed key: the
+  // feedback with the right value, and the hint without it
   function grade(q, raw) {
     const unit = q.unit || "";
     const right = (numberText(q.value) + " " + unit + " ± " + fmt(q.tolerance, 3)).replace("  ", " ");
     const answer = parseAnswer(raw);
     const name = q.symbol || q.id;  // as the course writes it (ω₂), as grade_question does
     const result = {id: q.id, correct: false, mistake: null, answer: null};
-    if (answer === null) { result.feedback = name + ": no answer (right: " + right + ")"; return result; }
+    if (answer === null) {
+      result.feedback = name + ": no answer (right: " + right + ")";
+      result.hint = name + ": no answer";
+      return result;
+    }
     if (typeof answer === "string") {
-      result.feedback = name + ": '" + answer + "' is not a number (right: " + right + ")"; return result;
+      result.feedback = name + ": '" + answer + "' is not a number (right: " + right + ")";
+      result.hint = name + ": '" + answer + "' is not a number";
+      return result;
     }
     result.answer = answer;
     const shown = (name + " = " + numberText(answer) + " " + unit).trimEnd();
     if (Math.abs(answer - q.value) <= q.tolerance) {
       result.correct = true;
       result.feedback = shown + ": correct (exact " + numberText(q.value) + ", tolerance ± " + fmt(q.tolerance, 3) + ")";
+      result.hint = shown + ": correct";
       return result;
     }
     for (const m of q.mistakes || []) {
@@ -63,6 +81,8 @@
         const how = m.kind === "sense" ? "" : ", " + off(answer, q.value);
         result.feedback = shown + ": wrong" + how + " — it looks as if " + m.feedback +
           " (that gives " + numberText(m.value) + "; right: " + right + ")";
+        result.hint = shown + ": wrong (" + way(answer, q.value, false) + ") — it looks as if " +
+          m.feedback;
         return result;
       }
     }
@@ -71,6 +91,7 @@
         if (m.kind !== "sense" && Math.abs(-answer - m.value) <= m.tolerance) {
           result.mistake = m.kind + "+sense";
           result.feedback = shown + ": wrong — it looks as if " + m.feedback + ", and the sense is reversed (right: " + right + ")";
+          result.hint = shown + ": wrong — it looks as if " + m.feedback + ", and the sense is reversed";
           return result;
         }
       }
@@ -78,20 +99,27 @@
     const note = !q.signed && answer < 0 ? negativeNotes[q.id] : undefined;
     if (note) {   // a magnitude given with a sign (planmethod.grading.answers.magnitude_note)
       result.feedback = shown + ": wrong — " + note + " (right: " + right + ")";
+      result.hint = shown + ": wrong — " + note;
       return result;
     }
     if (q.signed && q.value !== 0 && answer !== 0 && (answer > 0) !== (q.value > 0)) {
       result.feedback = shown + ": wrong — the sense is reversed (the right answer is " +
-        (q.value > 0 ? "counter-clockwise" : "clockwise") + ", " + right + ") and the magnitude " +
+        (senseWords[q.id] || ["positive", "negative"])[q.value > 0 ? 0 : 1] + ", " + right +
+        ") and the magnitude " +
         numberText(Math.abs(answer)) + " is " + off(Math.abs(answer), Math.abs(q.value));
     } else {
       const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
       result.feedback = (shown + ": wrong — " + off(answer, q.value) + " (off by " +
         numberText(Math.abs(answer - q.value)) + " " + unit + "; right: " + right + tol + ")").replace("  ", " ");
     }
+    result.hint = shown + ": wrong (" + way(answer, q.value, q.signed) + ")";
     return result;
   }
   wb.grade = grade;
+  // whether a quantity's value is concealed now (the drawing mode sets this: a value is
+  // concealed until the student asks to see the plan it is read off); its verdict is then
+  // the hint, never the right value
+  wb.concealed = () => false;
 
   async function load() {
     const raw = document.getElementById("workbook-data").textContent.trim();
@@ -102,7 +130,10 @@
 
   load().then(data => {
     wb.data = data;
-    data.quantities.forEach(q => { if (q.negative) negativeNotes[q.name] = q.negative; });
+    data.quantities.forEach(q => {
+      if (q.negative) negativeNotes[q.name] = q.negative;
+      if (q.senses) senseWords[q.name] = q.senses;
+    });
     const panels = data.panels.map(name => document.getElementById("panel-" + name));
     const cells = Array.from(document.querySelectorAll("#readings tbody td.reading"));
     const planCells = Array.from(document.querySelectorAll("#readings tbody td.plan-reading"));
@@ -240,9 +271,10 @@
       document.getElementById("step-number").textContent =
         "step " + (number + 1) + " of " + steps.length;
       document.getElementById("step-text").textContent = data.strings[steps[number][1]];
+      // the plan's vector equations, typeset in Python (render/workbook.py formula_html)
       const equations = (data.frames[wb.frame].equations || {})[plan] || [];
-      document.getElementById("equations").textContent =
-        equations.map(k => data.strings[k]).join("\n");
+      document.getElementById("equations").innerHTML =
+        equations.map(k => data.strings[k]).join("<br>");
     }
     wb.playStep = playStep;
     document.getElementById("step-first").addEventListener("click", () => playStep(0));
@@ -252,6 +284,11 @@
       () => playStep(wb.step === null ? 0 : wb.step + 1));
     document.getElementById("step-all").addEventListener("click", () => show(wb.frame));
     document.getElementById("step-plan").addEventListener("change", () => show(wb.frame));
+
+    // the drawings at their own size (readable), or small, side by side
+    document.getElementById("compact").addEventListener("change", event => {
+      document.body.classList.toggle("compact", event.target.checked);
+    });
 
     // practice mode: readings hidden, answers graded against the key of this angle
     document.getElementById("practice").addEventListener("change", event => {
@@ -265,7 +302,7 @@
         if (!question) { verdicts[i].textContent = "not graded at this angle"; return; }
         const result = grade(question, input.value);
         results[name] = result;
-        verdicts[i].textContent = result.feedback;
+        verdicts[i].textContent = wb.concealed(name) ? result.hint : result.feedback;
         verdicts[i].className = "verdict " + (result.correct ? "correct" : "wrong");
         verdicts[i].dataset.correct = String(result.correct);
       });

@@ -41,10 +41,13 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from .canvas import Canvas
+from .canvas import Canvas, formula_runs
 from .style import INK, SMALL_SIZE, TEXT_SIZE, num
 
-__all__ = ["StringTable", "curve_chart", "inline_svg", "workbook_html"]
+__all__ = ["StringTable", "curve_chart", "formula_html", "inline_svg", "workbook_html"]
+
+#: a drawing's viewBox (its four numbers)
+_VIEW_BOX = re.compile(r'viewBox="([^"]+)"')
 
 #: the XML declaration and namespace declarations, not needed inside an HTML page
 _XML_HEAD = re.compile(r'<\?xml[^>]*\?>\s*')
@@ -150,8 +153,38 @@ def curve_chart(angles: Sequence[float], curves: Mapping[str, Sequence[float | N
     return figure.svg(f"{title} over a full turn").svg, (left, right)
 
 
+def formula_html(text: str) -> str:
+    """A vector equation as HTML, what follows an underscore set as a subscript as the
+    figures set it (:func:`planmethod.render.canvas.formula_runs`).
+
+    >>> formula_html("v_C = v_B + v_CB")
+    'v<sub>C</sub> = v<sub>B</sub> + v<sub>CB</sub>'
+    """
+    return "".join(f"<sub>{html.escape(part)}</sub>" if small else html.escape(part)
+                   for part, small in formula_runs(text))
+
+
 def _quantity_label(entry: Mapping[str, str]) -> str:
     return (f"{html.escape(entry['symbol'])}<sub>{html.escape(entry['subscript'])}</sub>")
+
+
+def _panel_size(name: str, frames: Sequence[Mapping[str, Any]]) -> str:
+    """A panel's size on the page: its drawing's own size (one CSS px per px of the drawing,
+    so that its text — legends and scales at 12.5 px, the smallest at 11 px — reads at the
+    size it was set), no wider than the page, the height following the drawing's aspect
+    ratio. A drawing keeps one viewBox over the turn (render/steady.py): the first frame's
+    is every frame's."""
+    for frame in frames:
+        found = _VIEW_BOX.search(frame["drawings"].get(name, ""))
+        if found:
+            width, height = (float(value) for value in found.group(1).split()[2:4])
+            return (f' style="width:{num(width)}px;aspect-ratio:{num(width)} / '
+                    f'{num(height)}"')
+    return ""
+
+
+def _plan_attribute(plan: str | None, name: str = "data-plan") -> str:
+    return f' {name}="{html.escape(plan)}"' if plan else ""
 
 
 def _pack(data: Any) -> str:
@@ -163,8 +196,9 @@ def _pack(data: Any) -> str:
 def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
                   frames: Sequence[Mapping[str, Any]], quantities: Sequence[Mapping[str, str]],
                   *, charts: Sequence[tuple[str, tuple[float, float]]] = (),
-                  notes: Sequence[str] = (), start: float | None = None,
-                  phi: str = "φ₁", drawing: Mapping[str, Any] | None = None) -> str:
+                  chart_plans: Sequence[Sequence[str]] = (), notes: Sequence[str] = (),
+                  start: float | None = None, phi: str = "φ₁",
+                  drawing: Mapping[str, Any] | None = None) -> str:
     """The workbook page as HTML text.
 
     Parameters
@@ -178,13 +212,18 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     frames
         One mapping per angle: ``drawings`` {panel: SVG text}, ``readings`` [[exact, plan
         or None], …] in the order of ``quantities``, ``steps`` {plan: [[number, sentence,
-        action, [the plan points it names]], …]} and ``questions`` (the answer key's
+        action, [the plan points it names]], …]}, ``equations`` {plan: [vector equation, …]}
+        (plain text; the page sets them with subscripts) and ``questions`` (the answer key's
         questions at that angle: ``id``, ``value``, ``tolerance``, ``unit``, ``signed``,
         ``mistakes``).
     quantities
-        The report's check quantities: ``name``, ``symbol``, ``subscript``, ``unit``.
+        The report's check quantities: ``name``, ``symbol``, ``subscript``, ``unit``, and
+        the ``plan`` it is read off (the drawing mode hides the value until the student
+        asks to see that plan; None: never hidden).
     charts
         Full-turn charts from :func:`curve_chart`.
+    chart_plans
+        For each chart, the plans its curves are read off (hidden alike).
     notes
         Lines shown under the title (drafting precision, where the tolerances come from).
     start
@@ -204,7 +243,7 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         steps = {plan: [[number, table.add(text), action, *rest]
                         for number, text, action, *rest in listed]
                  for plan, listed in frame.get("steps", {}).items()}
-        equations = {plan: [table.add(text) for text in listed]
+        equations = {plan: [table.add(formula_html(text)) for text in listed]
                      for plan, listed in frame.get("equations", {}).items()}
         packed_frames.append({"drawings": drawings, "readings": frame["readings"],
                               "steps": steps, "equations": equations,
@@ -224,7 +263,7 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     if drawing is not None:
         data["draw"] = dict(drawing)
     rows = "\n".join(
-        f'<tr><th scope="row">{_quantity_label(q)}</th>'
+        f'<tr{_plan_attribute(q.get("plan"))}><th scope="row">{_quantity_label(q)}</th>'
         f'<td class="reading" data-quantity="{html.escape(q["name"])}" data-value=""></td>'
         f'<td class="plan-reading"></td><td class="unit">{html.escape(q["unit"])}</td>'
         f'<td class="practice"><input class="answer" data-answer="{html.escape(q["name"])}"'
@@ -233,9 +272,14 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         f'<td class="verdict" data-verdict-for="{html.escape(q["name"])}"></td></tr>'
         for q in quantities)
     panel_html = "\n".join(f'<figure class="panel" id="panel-{html.escape(name)}" '
-                           f'data-panel="{html.escape(name)}"></figure>' for name in panels)
-    chart_html = "\n".join(f'<div class="chart" data-chart="{number}">{inline_svg(svg)}</div>'
-                           for number, (svg, _) in enumerate(charts))
+                           f'data-panel="{html.escape(name)}"{_panel_size(name, frames)}>'
+                           '</figure>' for name in panels)
+    chart_html = "\n".join(
+        f'<div class="chart" data-chart="{number}"'
+        f'{_plan_attribute(" ".join(plans), "data-plans") if plans else ""}>'
+        f'{inline_svg(svg)}</div>'
+        for number, ((svg, _), plans) in enumerate(
+            zip(charts, list(chart_plans) or [()] * len(charts), strict=True)))
     step_count = len(angles)
     low, high = angles[0], angles[-1]
     step = (angles[1] - angles[0]) if step_count > 1 else 1.0
@@ -258,8 +302,11 @@ h1{font-size:1.25em;margin:0 0 4px}
  border-bottom:1px solid #ccc;display:flex;gap:12px;align-items:center;flex-wrap:wrap}
 #angle{width:360px}
 #panels{display:flex;flex-wrap:wrap;gap:8px;margin-top:8px}
-.panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:320px;height:430px}
-.panel svg{width:100%;height:100%}
+.panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:320px;height:430px;
+ max-width:calc(100% - 2px)}
+.panel[style]{height:auto}
+body.compact .panel{width:calc(50% - 8px)!important;height:430px;aspect-ratio:auto!important}
+.panel svg{display:block;width:100%;height:100%}
 #charts{display:flex;flex-wrap:wrap;gap:12px;margin-top:8px}
 .chart svg{width:520px;height:240px}
 table{border-collapse:collapse;margin-top:8px}
@@ -272,7 +319,6 @@ body.practising .reading,body.practising .plan-reading{visibility:hidden}
 .verdict.correct{color:#1a7f37}.verdict.wrong{color:#c0392b}
 #playback{margin-top:8px}
 #step-text{font-style:italic;min-height:1.3em}
-#equations{white-space:pre-line}
 .step-hidden{display:none}
 .step-current line,.step-current polygon,line.step-current{stroke:#d00000!important;
  fill:#d00000}
@@ -295,6 +341,7 @@ _PAGE = """<!DOCTYPE html>
 <output id="angle-value">{first}°</output>
 <button type="button" id="play">play</button>
 <label><input type="checkbox" id="practice"> practice</label>
+<label><input type="checkbox" id="compact"> small drawings side by side</label>
 <span>frame switch: <output id="switch-time">—</output></span>
 <span id="status">loading…</span>
 </div>

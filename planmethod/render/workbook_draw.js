@@ -7,15 +7,60 @@
 (function () {
   const PLANS = ["velocity", "acceleration"];
   const ZOOMS = [4, 5, 6, 8, 10, 12, 16, 20, 24, 32];   // CSS px per drawing millimetre
-  const NUDGE_MM = 0.5;
-  const draw = {results: {}, checkTimes: [], tool: {}, selected: {}, armed: {}, revealed: {},
-                shownPlan: {}, frame: -1, zoom: 6};
+  const NUDGE_MM = 0.5, FINE_NUDGE_MM = 0.1;             // an arrow key; Shift + an arrow key
+  const MARK_PX = 5;          // a press this near a placed point's centre is on its mark
+  const GRAB_PX = 8;          // with Alt, a press this near a placed point grabs it
+  const draw = {results: {}, planMistakes: {}, checkTimes: [], tool: {}, selected: {}, armed: {},
+                revealed: {}, shownPlan: {}, frame: -1, zoom: 6};
   let wb = null, meta = null, store = null, drag = null;
 
   const element = id => document.getElementById(id);
   const round2 = value => Math.round(value * 100) / 100;
   const fixed = (value, digits) => Number(value).toFixed(digits);
   const nameOf = label => (meta.names[label] || label);
+  // a point's name typeset as the course writes it (meta.runs: planmethod.render.labels.
+  // label_runs): its main letter, then its subscripts — digits right after it as subscript
+  // digits (b₃), anything else lowered and smaller (n with CB below, k with B₃ below), never
+  // an underscore
+  const SUB_DIGITS = "₀₁₂₃₄₅₆₇₈₉";
+  const isSub = kind => kind === "sub" || kind === "upright";
+  function runsOf(label) { return meta.runs[label] || [[nameOf(label), "main"]]; }
+  // the runs as pieces [text, lowered, upright]: a subscript of digits only is set as
+  // subscript digits on the line unless it follows a lowered piece, where it joins it
+  function pieces(label) {
+    const out = [];
+    runsOf(label).forEach(([text, kind]) => {
+      const last = out[out.length - 1];
+      if (!isSub(kind)) out.push([text, false, false]);
+      else if (/^[0-9]+$/.test(text) && !(last && last[1]))
+        out.push([text.replace(/[0-9]/g, digit => SUB_DIGITS[Number(digit)]), false, false]);
+      else out.push([text, true, kind === "upright"]);
+    });
+    return out;
+  }
+  function typesetHtml(label) {
+    const out = document.createElement("span");
+    out.className = "course-name";
+    pieces(label).forEach(([text, lowered, upright]) => {
+      if (!lowered) { out.append(text); return; }
+      const sub = document.createElement("sub");
+      sub.textContent = text;
+      if (upright) sub.className = "upright";
+      out.append(sub);
+    });
+    return out;
+  }
+  function typesetSvg(node, label, size) {
+    let down = false;
+    pieces(label).forEach(([text, lowered, upright]) => {
+      const span = make("tspan", {}, node);
+      if (lowered !== down) span.setAttribute("dy", (lowered ? 0.3 : -0.3) * size);
+      if (lowered) span.setAttribute("font-size", 0.72 * size);
+      if (upright) span.setAttribute("font-style", "normal");
+      span.textContent = text;
+      down = lowered;
+    });
+  }
   const planBox = plan => document.querySelector('.draw-plan[data-plan="' + plan + '"]');
   const svgOf = plan => document.querySelector('svg[data-draw="' + plan + '"]');
   function frameData(plan) {
@@ -24,9 +69,25 @@
   }
   function notice(text) { element("draw-notice").textContent = text; }
 
-  // -- keeping the drawing: localStorage, one record per exercise and angle ----------------
+  // -- keeping the drawing: localStorage, one record per exercise (its title and digest: two
+  // variants of a template share a title) and angle --------------------------------------
+  const STORE_PREFIX = "planmethod-drawing:";
   function storageKey() {
-    return "planmethod-drawing:" + meta.title + ":" + wb.data.angles[draw.frame];
+    return STORE_PREFIX + meta.title + ":" + meta.exercise + ":" + wb.data.angles[draw.frame];
+  }
+  // a drawing kept at this angle by the page of another exercise with this title
+  function keptByAnother() {
+    const head = STORE_PREFIX + meta.title + ":", tail = ":" + wb.data.angles[draw.frame];
+    try {
+      for (let k = 0; k < window.localStorage.length; k++) {
+        const key = window.localStorage.key(k);
+        if (key.startsWith(head) && key.endsWith(tail) && key !== storageKey() &&
+            /^[0-9a-f]{16}$/.test(key.slice(head.length, key.length - tail.length))) return true;
+      }
+    } catch (error) {
+      return false;
+    }
+    return false;
   }
   function emptyRecord() {
     const plans = {};
@@ -43,10 +104,17 @@
       notice("a drawing kept in this browser could not be read and is ignored (" + error + ")");
       return emptyRecord();
     }
-    if (record === null) return emptyRecord();
+    if (record === null) {
+      if (keptByAnother())
+        notice("a drawing kept in this browser for “" + meta.title + "” at " + meta.phi + " = " +
+               wb.data.angles[draw.frame] + "° was made on the page of another exercise with " +
+               "this title (another variant, or another version of it) and is not shown here; " +
+               "it stays kept for that page");
+      return emptyRecord();
+    }
     if (!record || record.format !== meta.format || record.exercise !== meta.exercise ||
         record.title !== meta.title || !record.plans) {
-      notice("a drawing kept in this browser for “" + meta.title + "” at φ₁ = " +
+      notice("a drawing kept in this browser for “" + meta.title + "” at " + meta.phi + " = " +
              wb.data.angles[draw.frame] + "° belongs to another exercise (or another " +
              "version of it) and is ignored; drawing here replaces it");
       return emptyRecord();
@@ -103,12 +171,14 @@
     make("g", {"class": "points"}, svg);
     render(plan);
   }
-  function marker(parent, x, y, text, css, attributes) {
+  // a point's mark and its name (a point id typeset, or the pole's letter)
+  function marker(parent, x, y, label, css, attributes) {
     const group = make("g", Object.assign({"class": css}, attributes || {}), parent);
     make("circle", {cx: x, cy: -y, r: 3.5 / draw.zoom}, group);
-    const label = make("text", {x: x + 5 / draw.zoom, y: -y - 5 / draw.zoom,
-                                "font-size": 14 / draw.zoom}, group);
-    label.textContent = text;
+    const size = 14 / draw.zoom;
+    const text = make("text", {x: x + 5 / draw.zoom, y: -y - 5 / draw.zoom, "font-size": size},
+                      group);
+    if (label in meta.names) typesetSvg(text, label, size); else text.textContent = label;
     return group;
   }
   function render(plan) {
@@ -131,7 +201,7 @@
     right.replaceChildren();
     if (draw.shownPlan[plan] && frame) {
       Object.entries(frame.points).forEach(([label, [x, y]]) =>
-        marker(right, x, y, nameOf(label), "right-point"));
+        marker(right, x, y, label, "right-point"));
     }
     const points = svg.querySelector("g.points");
     points.replaceChildren();
@@ -140,7 +210,7 @@
       const result = (draw.results[plan] || {})[label];
       const css = "placed" + (label === draw.selected[plan] ? " selected" : "") +
         (result ? (result.ok ? " ok" : " off") : "");
-      marker(points, x, y, nameOf(label), css,
+      marker(points, x, y, label, css,
              {"data-point": plan + ":" + label, "data-x": x, "data-y": y});
     });
     planBox(plan).querySelectorAll("[data-place]").forEach(button => {
@@ -167,7 +237,7 @@
       const button = document.createElement("button");
       button.type = "button";
       button.dataset.place = plan + ":" + label;
-      button.textContent = nameOf(label);
+      button.append(typesetHtml(label));
       button.title = frame.required.includes(label) ? "a point of the plan" :
         "a construction point (checked when placed)";
       button.addEventListener("click", () => select(plan, label));
@@ -197,10 +267,14 @@
     }
     return null;
   }
+  // a point moved: its verdict, and the plan's summary of the last check, no longer hold
   function clearVerdict(plan, label) {
     const cell = document.querySelector('[data-verdict-for="' + plan + ":" + label + '"]');
     if (cell) { cell.textContent = ""; delete cell.dataset.ok; }
     if (draw.results[plan]) delete draw.results[plan][label];
+    draw.planMistakes[plan] = [];
+    const summary = planBox(plan).querySelector(".draw-summary");
+    if (summary.textContent) summary.textContent = "moved since the last check: check again";
   }
   function setTool(plan, tool) {
     draw.tool[plan] = tool;
@@ -245,11 +319,11 @@
               start: xy};
     } else {
       // the armed point (chosen by its button, or the next one not yet placed) goes where the
-      // student clicks; a press on another placed point drags that one
-      const hit = nearest(plan, xy, 8);
+      // student clicks, however near another point (points may coincide); with no point
+      // armed a press on a placed point's mark drags it, and with Alt a press near one does
       const label = draw.selected[plan];
-      const other = hit && hit !== meta.poles[plan] && hit !== label ? hit : null;
-      if (draw.armed[plan] && label !== undefined && !other) {
+      const hit = nearest(plan, xy, event.altKey ? GRAB_PX : MARK_PX);
+      if (draw.armed[plan] && label !== undefined && !event.altKey) {
         place(plan, label, xy[0], xy[1]);
         drag = {plan: plan, label: label, moved: false, placed: true};
       } else if (hit && hit !== meta.poles[plan]) {
@@ -306,7 +380,8 @@
     if (event.key in steps && label in points) {
       const [dx, dy] = steps[event.key];
       const [x, y] = points[label];
-      place(plan, label, x + dx * NUDGE_MM, y + dy * NUDGE_MM);
+      const nudge = event.shiftKey ? FINE_NUDGE_MM : NUDGE_MM;
+      place(plan, label, x + dx * nudge, y + dy * nudge);
       event.preventDefault();
     } else if ((event.key === "Delete" || event.key === "Backspace") && label in points &&
                event.target.tagName !== "INPUT") {
@@ -332,6 +407,17 @@
     const texts = Object.fromEntries(meta.mistakes);
     const [sentence, joint] = meta.wording;
     return "it lies " + sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
+  }
+  // the one rule of planmethod.grading.plan_points.common_mistakes: a whole-plan mistake is
+  // one named on every wrong point, two or more of them
+  function commonMistakes(named) {
+    if (named.length < 2) return [];
+    return named[0].filter(mistake => named.slice(1).every(other => other.includes(mistake)));
+  }
+  function planSentence(mistakes) {
+    const texts = Object.fromEntries(meta.mistakes);
+    const [, joint, sentence] = meta.wording;
+    return sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
   }
   function check(plan) {
     const t0 = performance.now();
@@ -369,17 +455,34 @@
     Object.values(results).forEach(result => {
       const cell = document.querySelector('[data-verdict-for="' + plan + ":" + result.label + '"]');
       if (!cell) return;
-      cell.textContent = result.sentence;
+      const name = nameOf(result.label);   // the sentence opens with it: typeset there
+      cell.replaceChildren(typesetHtml(result.label), result.sentence.slice(name.length));
       if (result.ok === null) delete cell.dataset.ok; else cell.dataset.ok = String(result.ok);
     });
     const required = Object.values(results).filter(result => result.required);
+    const common = commonMistakes(Object.values(results).filter(
+      result => result.placed && result.ok === false).map(result => result.mistakes));
+    draw.planMistakes[plan] = common;
     planBox(plan).querySelector(".draw-summary").textContent =
       required.filter(result => result.ok).length + " of " + required.length +
-      " points of the " + plan + " plan right";
+      " points of the " + plan + " plan right" + (common.length ? "; " + planSentence(common) : "");
     render(plan);
     void document.body.offsetHeight;   // the verdicts laid out: part of the check
     draw.checkTimes.push(performance.now() - t0);
     return results;
+  }
+
+  // -- what stays hidden while drawing: every value read off a plan (the readings, the curves,
+  // a radius of curvature on the mechanism, the right value in a typed answer's verdict)
+  // until the student asks to see that plan ----------------------------------------------------
+  const drawingOn = () => document.body.classList.contains("drawing");
+  function concealed(plan) { return drawingOn() && !!plan && !draw.shownPlan[plan]; }
+  function conceal() {
+    PLANS.forEach(plan => document.body.classList.toggle("shown-" + plan, !!draw.shownPlan[plan]));
+    document.querySelectorAll("#readings tbody tr").forEach(row =>
+      row.classList.toggle("concealed", concealed(row.dataset.plan)));
+    document.querySelectorAll("#charts .chart").forEach(chart =>
+      chart.classList.toggle("concealed", (chart.dataset.plans || "").split(" ").some(concealed)));
   }
 
   // -- help: the construction step by step, the right plan on request ------------------------
@@ -398,6 +501,7 @@
   }
   function showPlan(plan) {
     draw.shownPlan[plan] = true;
+    conceal();
     const panel = panelOf(plan);
     if (panel) {
       panel.classList.add("revealed");
@@ -436,6 +540,7 @@
     draw.revealed = {};
     draw.shownPlan = {};
     notice("");
+    conceal();
     store = restore();
     PLANS.forEach(plan => {
       if (!planBox(plan)) return;
@@ -480,13 +585,19 @@
       box.querySelector("[data-clear]").addEventListener("click", () => {
         store.plans[plan] = {points: {}, lines: []};
         draw.results[plan] = {};
+        draw.planMistakes[plan] = [];
+        planBox(plan).querySelector(".draw-summary").textContent = "";
         save();
         buildList(plan);
         render(plan);
       });
     });
-    element("draw-mode").addEventListener("change", event =>
-      document.body.classList.toggle("drawing", event.target.checked));
+    element("draw-mode").addEventListener("change", event => {
+      document.body.classList.toggle("drawing", event.target.checked);
+      conceal();
+    });
+    const planOf = Object.fromEntries(wb.data.quantities.map(q => [q.name, q.plan]));
+    wb.concealed = name => concealed(planOf[name]);
     document.querySelectorAll("[data-zoom]").forEach(button => button.addEventListener(
       "click", () => {
         const at = ZOOMS.indexOf(draw.zoom) + Number(button.dataset.zoom);

@@ -70,8 +70,10 @@ def drawing_section(plans: Sequence[str]) -> str:
     return f"""<section id="drawing">
 <h2>Draw the plans</h2>
 <p><label><input type="checkbox" id="draw-mode"> draw the plans of this angle yourself</label>
-(the plans' drawings are hidden; click to place a point, drag it, the arrow keys move it
-0.5 mm, Delete removes it)
+(the plans' drawings and the values read off them are hidden; a click places the chosen
+point, however near another; a press on a placed point's mark, or Alt + a press near it,
+drags it; the arrow keys move the chosen point 0.5 mm, Shift + an arrow key 0.1 mm; Delete
+removes it)
 <span class="draw-zoom">zoom <button type="button" data-zoom="-1" aria-label="zoom out">−</button>
 <output id="draw-zoom"></output>
 <button type="button" data-zoom="1" aria-label="zoom in">+</button></span></p>
@@ -83,28 +85,37 @@ def drawing_section(plans: Sequence[str]) -> str:
 
 
 def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
+                 runs: Mapping[str, Sequence[tuple[str, str]]] | None = None,
                  poles: Mapping[str, str], extents: Mapping[str, Sequence[float]],
                  mistakes: Sequence[tuple[str, str]], wording: Sequence[str],
-                 file_format: str) -> dict[str, Any]:
+                 file_format: str, phi: str = "φ₁") -> dict[str, Any]:
     """What the drawing mode needs besides each frame's points: the exercise's ``title`` and
-    fingerprint (``exercise``: a kept drawing of another exercise is ignored), each point's
-    course name (``names``: b₃), the poles, one sheet per plan for the whole turn
-    (``extents``: left, bottom, right, top in mm, y up), the mistakes by index with what the
-    student is told, the sentence that names them, and the ``format`` of a downloaded
-    drawing.
+    digest (``exercise``: a kept drawing of another exercise is ignored), each point's
+    course name in its sentences (``names``: b₃, n_CB) and typeset on its button and its
+    mark (``runs``: [text, kind] as :func:`planmethod.render.labels.label_runs` sets it —
+    ``main``, a ``sub`` subscript, an ``upright`` subscript), the poles, one sheet per plan
+    for the whole turn (``extents``: left, bottom, right, top in mm, y up), the mistakes
+    by index with what the student is told, the ``wording`` that names them (a point's
+    sentence, the joint between two mistakes, and the plan's sentence when every wrong
+    point is named with them: :data:`planmethod.grading.plan_points.MISTAKE_WORDING`,
+    ``PLAN_WORDING``), the ``format`` of a downloaded drawing, and the crank angle's
+    symbol (``phi``: φ₁).
 
     >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₃"},
     ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
-    ...                     mistakes=[("sense", "ω1 reversed")], wording=("when {}", ", or "),
+    ...                     mistakes=[("sense", "ω1 reversed")],
+    ...                     wording=("when {}", ", or ", "all when {}"),
     ...                     file_format="planmethod-drawing")
     >>> data["scales"], data["extents"]["velocity"]
     ({'velocity': 'μv'}, [-20.0, -20.0, 20.0, 20.0])
     """
-    return {"title": title, "exercise": exercise, "names": dict(names), "poles": dict(poles),
+    return {"title": title, "exercise": exercise, "names": dict(names),
+            "runs": {label: [[text, str(kind)] for text, kind in parts]
+                     for label, parts in (runs or {}).items()}, "poles": dict(poles),
             "scales": {plan: PLAN_TITLES[plan][1] for plan in poles},
             "extents": {plan: [float(v) for v in extent] for plan, extent in extents.items()},
             "mistakes": [list(pair) for pair in mistakes], "wording": list(wording),
-            "format": file_format}
+            "format": file_format, "phi": phi}
 
 
 def pack_frame(draw: Mapping[str, Any], extents: Mapping[str, Sequence[float]]
@@ -138,6 +149,11 @@ DRAW_STYLE = """
 body.drawing .draw-plans{display:flex;flex-wrap:wrap;gap:16px}
 body.drawing .draw-zoom{display:inline}
 body.drawing .panel[data-panel]:not([data-panel="position"]):not(.revealed){display:none}
+#readings tr.concealed td.reading,#readings tr.concealed td.plan-reading{visibility:hidden}
+#charts .chart.concealed{display:none}
+body.drawing:not(.shown-acceleration) #panel-position :is(.rho,.centre,[data-points^="rho_"],
+ [data-points^="O_"]){visibility:hidden}
+body.drawing #playback :is(label,button,#step-number,#step-text){display:none}
 body.drawing .panel.stepwise circle.point{visibility:hidden}
 .draw-plan{flex:1 1 560px;min-width:320px}
 .draw-plan.absent{display:none}
@@ -162,6 +178,8 @@ body.drawing .panel.stepwise circle.point{visibility:hidden}
 .draw-points{display:flex;flex-direction:column;gap:2px;padding-left:1.5em;margin:4px 0}
 .draw-points button{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;min-width:4em}
 .draw-points button.placed{background:#e8f0fb}
+.course-name sub{font-size:.75em;line-height:0}
+.course-name sub.upright{font-style:normal}
 .draw-points button.selected{outline:2px solid #d35400}
 .draw-verdict[data-ok="true"]{color:#1a7f37}
 .draw-verdict[data-ok="false"]{color:#c0392b}
