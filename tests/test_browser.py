@@ -648,5 +648,12 @@ def test_panel_text_is_readable_in_a_1400_px_window(browser, request, which):
     page.check("#compact")
     widths = page.eval_on_selector_all(".panel", "panels => panels.map(p => p.offsetWidth)")
     assert max(widths) < 700
+    # two to a row, each panel keeps its drawing's aspect ratio: no empty band around it
+    for panel, drawn, shown in page.evaluate("""() => Array.from(
+            document.querySelectorAll('.panel svg')).map(svg => {
+        const box = svg.viewBox.baseVal, panel = svg.closest('.panel');
+        return [panel.id, box.height / box.width, panel.clientHeight / panel.clientWidth];
+    })"""):
+        assert shown == pytest.approx(drawn, rel=0.02), panel
     assert errors == []
     page.close()

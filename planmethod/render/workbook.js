@@ -285,7 +285,7 @@
     document.getElementById("step-all").addEventListener("click", () => show(wb.frame));
     document.getElementById("step-plan").addEventListener("change", () => show(wb.frame));
 
-    // the drawings at their own size (readable), or small, side by side
+    // the drawings at their own size (their text readable), or two to a row, smaller
     document.getElementById("compact").addEventListener("change", event => {
       document.body.classList.toggle("compact", event.target.checked);
     });

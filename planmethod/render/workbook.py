@@ -147,7 +147,8 @@ def curve_chart(angles: Sequence[float], curves: Mapping[str, Sequence[float | N
         y = top + 4 + 16 * number
         figure.line((legend_x, y - 4), (legend_x + 18, y - 4), color=color, width=2.0,
                     layer="marks", obstacle=False)
-        figure.text((legend_x + 24, y), name, size=SMALL_SIZE, css="legend", area=False)
+        figure.text((legend_x + 24, y), name, size=SMALL_SIZE, css="legend", area=False,
+                    formula=True)
     figure.line((left, top), (left, bottom), color="#d00000", width=1.2, layer="marks",
                 obstacle=False, css="cursor")
     return figure.svg(f"{title} over a full turn").svg, (left, right)
@@ -169,17 +170,18 @@ def _quantity_label(entry: Mapping[str, str]) -> str:
 
 
 def _panel_size(name: str, frames: Sequence[Mapping[str, Any]]) -> str:
-    """A panel's size on the page: its drawing's own size (one CSS px per px of the drawing,
-    so that its text — legends and scales at 12.5 px, the smallest at 11 px — reads at the
-    size it was set), no wider than the page, the height following the drawing's aspect
-    ratio. A drawing keeps one viewBox over the turn (render/steady.py): the first frame's
-    is every frame's."""
+    """A panel's size on the page: never larger than its drawing's own size (one CSS px per
+    px of the drawing, its text — legends and scales at 12.5 px, the smallest at 11 px — at
+    the size it was set), no wider than the page, the height following the drawing's aspect
+    ratio, so that no band of the panel is empty; *two drawings to a row* halves the width.
+    A drawing keeps one viewBox over the turn (render/steady.py): the first frame's is every
+    frame's."""
     for frame in frames:
         found = _VIEW_BOX.search(frame["drawings"].get(name, ""))
         if found:
             width, height = (float(value) for value in found.group(1).split()[2:4])
-            return (f' style="width:{num(width)}px;aspect-ratio:{num(width)} / '
-                    f'{num(height)}"')
+            return (f' style="max-width:min({num(width)}px, 100% - 2px);'
+                    f'aspect-ratio:{num(width)} / {num(height)}"')
     return ""
 
 
@@ -301,11 +303,11 @@ h1{font-size:1.25em;margin:0 0 4px}
 #controls{position:sticky;top:0;background:#fff;padding:6px 0;z-index:2;
  border-bottom:1px solid #ccc;display:flex;gap:12px;align-items:center;flex-wrap:wrap}
 #angle{width:360px}
-#panels{display:flex;flex-wrap:wrap;gap:8px;margin-top:8px}
+#panels{display:flex;flex-wrap:wrap;gap:8px;margin-top:8px;align-items:flex-start}
 .panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:320px;height:430px;
  max-width:calc(100% - 2px)}
-.panel[style]{height:auto}
-body.compact .panel{width:calc(50% - 8px)!important;height:430px;aspect-ratio:auto!important}
+.panel[style]{height:auto;width:100%;min-height:0;overflow:hidden}
+body.compact .panel{width:calc(50% - 8px)}
 .panel svg{display:block;width:100%;height:100%}
 #charts{display:flex;flex-wrap:wrap;gap:12px;margin-top:8px}
 .chart svg{width:520px;height:240px}
@@ -341,7 +343,7 @@ _PAGE = """<!DOCTYPE html>
 <output id="angle-value">{first}°</output>
 <button type="button" id="play">play</button>
 <label><input type="checkbox" id="practice"> practice</label>
-<label><input type="checkbox" id="compact"> small drawings side by side</label>
+<label><input type="checkbox" id="compact"> two drawings to a row</label>
 <span>frame switch: <output id="switch-time">—</output></span>
 <span id="status">loading…</span>
 </div>
