@@ -49,7 +49,6 @@ import argparse
 import json
 import math
 import os
-import platform
 import random
 import shutil
 import sys
@@ -60,8 +59,8 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parent.parent
-RESULTS = ROOT / "benchmarks" / "results"
+from .common import RESULTS, ROOT, machine, written_by
+
 TEMPLATE = ROOT / "exercises" / "templates" / "slider_crank.toml"
 
 #: the sizes of the noise answers, in tolerances of the question
@@ -289,8 +288,7 @@ def run(variants: int, drawings: int) -> dict:
         "grade drawn plans (JSON points)": drawings,
     }
     return {
-        "machine": {"python": sys.version.split()[0], "platform": platform.platform(),
-                    "cpus": os.cpu_count()},
+        "machine": machine(),
         "template": str(TEMPLATE.relative_to(ROOT)),
         "variants": variants, "redrawn_variants": redrawn, "drawings": drawings,
         "questions_per_variant": len(keys[0]["questions"]),
@@ -311,8 +309,7 @@ def _share(part: int, whole: int) -> str:
 
 def markdown(result: dict) -> str:
     numeric = result["numeric"]
-    lines = [f"# Grading: throughput and mistakes named ({result['machine']['platform']}, "
-             f"Python {result['machine']['python']}, {result['machine']['cpus']} cpus)", "",
+    lines = [written_by("python -m benchmarks.bench_grading", result["machine"]).rstrip(), "",
              f"Template `{result['template']}`: {result['variants']} variants "
              f"({result['redrawn_variants']} redrawn after a rejected draw), "
              f"{result['questions_per_variant']} questions each; {result['drawings']} drawn "
@@ -402,15 +399,14 @@ def scale_run(count: int) -> dict:
             "ms_per_variant_cpu": round(1000 * cpu / count, 2),
             "variants_per_minute_wall": int(60 * count / wall),
             "variants_per_minute_cpu": int(60 * count / cpu)}
-    return {"machine": {"python": sys.version.split()[0], "platform": platform.platform(),
-                        "cpus": os.cpu_count()},
+    return {"machine": machine(),
             "template": str(TEMPLATE.relative_to(ROOT)), "variants": count,
             "count_limit": MAX_VARIANTS, "runs": runs}
 
 
 def scale_markdown(result: dict) -> str:
-    lines = [f"# `planmethod variants` at scale ({result['machine']['platform']}, Python "
-             f"{result['machine']['python']}, {result['machine']['cpus']} cpus)", "",
+    lines = [written_by(f"python -m benchmarks.bench_grading --scale {result['variants']}",
+                        result["machine"]).rstrip(), "",
              f"Template `{result['template']}`, {result['variants']} variants, the command "
              "run as a subprocess (`python -m benchmarks.bench_grading --scale "
              f"{result['variants']}`). The limit of `--count` (and of a roster): "

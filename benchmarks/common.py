@@ -123,6 +123,20 @@ def machine() -> dict:
     return info
 
 
+def written_by(command: str, about: dict | None = None) -> str:
+    """The first line of a results file, shown where the file is included: when, by which
+    command and on which machine its numbers were measured.
+
+    >>> print(written_by("python -m benchmarks.run", {"time": "2026-11-27 10:00:00",
+    ...     "cpu": "Xeon", "cpus": 2, "python": "3.11.7", "numpy": "2.4.6"}).strip())
+    *Written by `python -m benchmarks.run` on 2026-11-27 10:00:00 — Xeon, 2 cpus, Python ...*
+    """
+    about = about or machine()
+    processor = about.get("cpu") or about.get("machine", "")
+    return (f"*Written by `{command}` on {about['time']} — {processor}, {about['cpus']} cpus, "
+            f"Python {about['python']}, numpy {about['numpy']}.*\n\n")
+
+
 def write_json(name: str, data: dict) -> Path:
     """Write ``benchmarks/results/NAME`` atomically (pretty JSON, no NaN)."""
     path = RESULTS / name

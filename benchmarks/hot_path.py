@@ -25,7 +25,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from .common import RESULTS, ROOT, machine
+from .common import RESULTS, ROOT, machine, written_by
 
 DEFAULT_REV = "6008cc9"
 
@@ -116,8 +116,8 @@ def main(argv: list[str] | None = None) -> int:
                      f"(×{prepared / now[1]:.2f}) |")
     text = "\n".join(lines) + "\n"
     about = machine()
-    write_text_atomic(RESULTS / "hot_path.md", f"<!-- written by `python -m benchmarks.hot_path "
-                      f"{args.rev}` on {about['time']} -->\n\n" + text)
+    write_text_atomic(RESULTS / "hot_path.md",
+                      written_by(f"python -m benchmarks.hot_path {args.rev}", about) + text)
     write_text_atomic(RESULTS / "hot_path.json", json.dumps(
         {"rev": args.rev, "before": before, "after": after, "machine": about}, indent=1) + "\n")
     print(text)

@@ -45,7 +45,7 @@ import time
 from pathlib import Path
 
 from . import accuracy, continuation, memory, scene, speed, stress, studio, toggle, workbook
-from .common import FIGURES, RESULTS, machine
+from .common import FIGURES, RESULTS, machine, written_by
 
 SECTIONS = {
     "speed": (speed, "bench_speed"),
@@ -97,9 +97,8 @@ def main(argv: list[str] | None = None) -> int:
         text = module.table(result)
         write_text_atomic(results / f"{name}.json",
                           json.dumps(result, indent=1, ensure_ascii=False, default=float) + "\n")
-        header = (f"<!-- written by `python -m benchmarks.run{' --quick' if args.quick else ''}`"
-                  f" on {about['time']}; {about.get('cpu', '')}, {about['cpus']} cpus, Python "
-                  f"{about['python']}, numpy {about['numpy']} -->\n\n")
+        header = written_by(f"python -m benchmarks.run --only {name}"
+                            + (" --quick" if args.quick else ""), about)
         write_text_atomic(results / f"{name}.md", header + text)
         print(text)
         if figure_name:
