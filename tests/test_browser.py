@@ -117,6 +117,27 @@ def test_readings_follow_the_slider_and_equal_solve(browser, request, which, ang
     page.close()
 
 
+@pytest.mark.parametrize("omega", [100, -100])
+def test_play_turns_the_crank_the_way_omega_says(browser, tmp_path_factory, omega):
+    """*play* steps φ up when the crank turns counter-clockwise (ω₁ > 0), down when it turns
+    clockwise, starting at the exercise's own angle (45°)."""
+    folder = tmp_path_factory.mktemp("sense")
+    exercise = folder / "compressor.toml"
+    exercise.write_text(COMPRESSOR.read_text(encoding="utf-8").replace(
+        "omega = 100\n", f"omega = {omega}\n", 1), encoding="utf-8")
+    path = workbook_page(tmp_path_factory, exercise, 15)
+    page, errors = open_page(browser, path)
+    assert page.text_content("#angle-value") == "45°"
+    page.click("#play")
+    page.wait_for_function("document.querySelector('#angle-value').textContent !== '45°'",
+                           timeout=30_000)
+    page.click("#play")
+    shown = float(page.text_content("#angle-value").rstrip("°"))   # a step or a few on
+    assert (45 < shown <= 90) if omega > 0 else (0 <= shown < 45), shown
+    assert errors == []
+    page.close()
+
+
 def test_arrow_keys_step_one_frame(browser, compressor_page):
     page, errors = open_page(browser, compressor_page)
     move_slider(page, 90)

@@ -53,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
     from ..io import atomic_path, write_text_atomic
     from ..report import analyse
     from ..spec import load_exercise
-    from .workbook import turn_angles
+    from .workbook import turn_angles, turn_order
 
     form = animation_format(args.output)
     ffmpeg = shutil.which("ffmpeg") if form == "mp4" else None
@@ -63,8 +63,9 @@ def run(args: argparse.Namespace) -> int:
     if not (math.isfinite(args.seconds) and args.seconds > 0):
         raise SpecError(f"must be a positive number of seconds, got {args.seconds:g}",
                         key="option --seconds")
-    angles = turn_angles(args.step)
     exercise = load_exercise(args.file)
+    drive = exercise.mechanism.drive
+    angles = turn_order(turn_angles(args.step, start=drive.angle), drive.angle, drive.omega)
     analyses = [analyse(exercise, angle) for angle in angles]
     if any(analysis.plans is None for analysis in analyses):
         raise SpecError("this mechanism's plans are not drawn (a higher group): nothing to "

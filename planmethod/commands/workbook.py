@@ -66,6 +66,22 @@ def turn_angles(step: float, option: str = "--step", start: float = 0.0) -> list
     return [round(offset + number * step, 9) + 0.0 for number in range(count)]
 
 
+def turn_order(angles: Sequence[float], start: float, omega: float) -> list[float]:
+    """The frames of a turn in the order the crank passes them: from ``start`` (the
+    exercise's own angle), φ growing if ω ≥ 0 (counter-clockwise), else falling.
+
+    >>> turn_order([0.0, 90.0, 180.0, 270.0], 90, 10)
+    [90.0, 180.0, 270.0, 0.0]
+    >>> turn_order([0.0, 90.0, 180.0, 270.0], 90, -10)
+    [90.0, 0.0, 270.0, 180.0]
+    """
+    ordered = sorted(angles)
+    first = min(range(len(ordered)), key=lambda index: (
+        abs((ordered[index] - start + 180.0) % 360.0 - 180.0), index))
+    turned = ordered[first:] + ordered[:first]
+    return turned if omega >= 0 else turned[:1] + turned[1:][::-1]
+
+
 def exercise_variant(exercise):
     """The variant whose key ``planmethod grade`` builds for this exercise file (the file's
     own ``[grading]`` table), or a variant with default grading settings for an exercise
@@ -292,7 +308,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
                                               if plans.get(name)}) for *_, names in charts],
                          notes=notes, start=mechanism.drive.angle,
                          phi=numbered("φ", numbers[mechanism.drive.link]),
-                         drawing=drawing_meta(exercise, frames))
+                         drawing=drawing_meta(exercise, frames),
+                         sense=-1 if mechanism.drive.omega < 0 else 1)
 
 
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:

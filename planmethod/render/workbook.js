@@ -238,7 +238,9 @@
       if (timer) { clearInterval(timer); timer = null; play.textContent = "play"; return; }
       play.textContent = "pause";
       timer = setInterval(() => {
-        const next = (wb.frame + 1) % data.frames.length;
+        // the crank turns as ω₁ says: φ grows when it turns counter-clockwise
+        const count = data.frames.length;
+        const next = (wb.frame + (data.sense || 1) + count) % count;
         slider.value = data.angles[next];
         show(next);
       }, 60);

@@ -200,7 +200,7 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
                   *, charts: Sequence[tuple[str, tuple[float, float]]] = (),
                   chart_plans: Sequence[Sequence[str]] = (), notes: Sequence[str] = (),
                   start: float | None = None, phi: str = "φ₁",
-                  drawing: Mapping[str, Any] | None = None) -> str:
+                  drawing: Mapping[str, Any] | None = None, sense: int = 1) -> str:
     """The workbook page as HTML text.
 
     Parameters
@@ -236,6 +236,9 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     drawing
         The drawing mode's data (:func:`planmethod.render.workbook_draw.drawing_data`); each
         frame then holds its ``draw`` data too. None: no drawing mode.
+    sense
+        +1 if the crank turns counter-clockwise (ω₁ ≥ 0), −1 if clockwise: *play* turns it
+        that way.
     """
     table = StringTable()
     packed_frames = []
@@ -261,7 +264,7 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     data = {"angles": [float(a) for a in angles], "panels": list(panels),
             "strings": table.strings, "frames": packed_frames,
             "quantities": [dict(q) for q in quantities],
-            "charts": [list(span) for _, span in charts]}
+            "charts": [list(span) for _, span in charts], "sense": -1 if sense < 0 else 1}
     if drawing is not None:
         data["draw"] = dict(drawing)
     rows = "\n".join(
