@@ -298,6 +298,11 @@ class _LeverForce:
     foot: np.ndarray
     couple: str = ""
     number: int = 0
+    #: the arm's row among the arms on one line from p (0: on its own line), and the side
+    #: (+1, −1 along the force) the rows step to: arms that would lie on one another are
+    #: drawn as stacked dimension lines
+    row: int = 0
+    side: float = 1.0
 
 
 def _arm(image: np.ndarray, force: np.ndarray) -> tuple[float, np.ndarray]:
@@ -357,11 +362,15 @@ class _LeverFigure:
         #: be too short to see at it
         self.mu_f = mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
         pair = max((float(norm(item.force)) for item in self.couples), default=0.0)
-        self.mu_couple = mu_f if pair / mu_f >= 0.08 * extent or not pair else \
-            standard(pair / (0.08 * extent))
+        self.mu_couple = mu_f if pair / mu_f >= COUPLE_LENGTH * extent or not pair else \
+            standard(pair / (COUPLE_LENGTH * extent))
         ends = [tuple(item.image + item.force / mu_f) for item in drawn]
         ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
         self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        numbered = _stacked([*self.known, *self.couples, self.balancing], self.zoom)
+        self.known = numbered[:len(self.known)]
+        self.couples = numbered[len(self.known):-1]
+        self.balancing = numbered[-1]
         self.used: dict[str, tuple[str, str | None]] = {}
 
     def content(self, figure: Canvas) -> None:
@@ -392,19 +401,26 @@ class _LeverFigure:
         """The force at its image, its arm from p labelled h₁, h₂ …, and its line."""
         start, end = figure.px(item.image), figure.px(item.image + item.force / mu_f)
         figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
-        figure.request((f"force:{item.name}",), start + 0.6 * (end - start), runs, mark=2.0)
+        figure.request((f"force:{item.name}",), start + 0.6 * (end - start), runs, mark=2.0,
+                       span=(start, end))
         if item.arm * figure.zoom < 2.0:
             return
-        pole, foot = figure.px((0.0, 0.0)), figure.px(item.foot)
-        figure.line(pole, foot, color=colour, width=0.7, dash="1.5,2.5",
-                    layer="construction", css="arm", obstacle=False)
-        figure.request((f"arm:{item.name}",), pole + 0.5 * (foot - pole),
-                       (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
-                       size=SMALL_LABEL, mark=0.0, css="arm")
         direction = unit(item.force)
+        pole, foot = figure.px((0.0, 0.0)), figure.px(item.foot)
+        step = figure.px(direction * item.side * item.row * ROW_PX / figure.zoom)
+        if item.row:         # a dimension line beside the others: its extension lines
+            for end in (pole, foot):
+                figure.line(end, end + step, color=colour, width=0.5, dash="1.5,2.5",
+                            layer="construction", css="arm extension")
+        figure.line(pole + step, foot + step, color=colour, width=0.7, dash="1.5,2.5",
+                    layer="construction", css="arm")
+        figure.request((f"arm:{item.name}",), foot + step,        # at its end, beyond it
+                       (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
+                       size=SMALL_LABEL, mark=0.0, css="arm",
+                       lean=(foot - pole) / max(float(norm(foot - pole)), 1e-12))
         reach = max(4.0 / figure.zoom, float(dot(item.image - item.foot, direction)))
         figure.line(foot, figure.px(item.foot + direction * reach), color=colour, width=0.5,
-                    dash="4,3", layer="construction", css="line of action", obstacle=False)
+                    dash="4,3", layer="construction", css="line of action")
 
     def rows(self) -> tuple[list[list[str]], float, float]:
         """The sum's table, term by term, and Σ M, Σ |M| (N·mm)."""
@@ -427,8 +443,55 @@ class _LeverFigure:
         return rows, total, magnitude
 
 
+#: the couples' force pairs are drawn at least this fraction of the plan's extent long (the
+#: largest; at a scale of their own where the lever's would draw them shorter), so that their
+#: labels sit clear of the images they start at
+COUPLE_LENGTH = 0.2
 #: a label's size for the arms h₁, h₂ … (smaller than the points' labels)
 SMALL_LABEL = 12.0
+#: the step (px) between the rows of arms that lie on one line from p
+ROW_PX = 28.0
+#: arms from p whose lines part less than this (px) along the shorter lie on one line
+SAME_LINE_PX = 8.0
+
+
+def _stacked(items: list[_LeverForce], zoom: float) -> list[_LeverForce]:
+    """The arms numbered in rows: arms that leave p in one direction — their lines part less
+    than :data:`SAME_LINE_PX` along the shorter, drawn at ``zoom`` — would be drawn on one
+    another; the shortest stays on its line, each longer one is drawn :data:`ROW_PX` further
+    along the forces' direction (all to the side away from the forces' images), as a stack of
+    dimension lines, each labelled at its end.
+
+    >>> def force(foot):
+    ...     return _LeverForce("G", None, np.array([foot, 5.0]), np.array([0.0, -1.0]),
+    ...                        0.0, abs(foot), np.array([foot, 0.0]))
+    >>> rows = _stacked([force(-9.0), force(-4.0), force(6.0)], 10.0)
+    >>> [(item.row, item.side) for item in rows]
+    [(1, 1.0), (0, 1.0), (0, 1.0)]
+    """
+    angles = {index: math.atan2(item.foot[1], item.foot[0])
+              for index, item in enumerate(items) if item.arm * zoom >= 2.0}   # drawn
+    out = list(items)
+    done: set[int] = set()
+
+    def together(first: int, second: int) -> bool:
+        apart = abs((angles[first] - angles[second] + math.pi) % (2 * math.pi) - math.pi)
+        shorter = min(items[first].arm, items[second].arm) * zoom
+        return apart < math.pi / 2 and shorter * math.sin(apart) < SAME_LINE_PX
+
+    for index in sorted(angles, key=angles.get):
+        if index in done:
+            continue
+        group = [other for other in angles if other not in done and together(index, other)]
+        done.update(group)
+        direction = unit(items[group[0]].force)
+        # step away from the images: against where they lie along the group's direction
+        lean = sum(float(dot(items[k].image - items[k].foot, direction)) for k in group)
+        side = -1.0 if lean > 0 else 1.0
+        for row, k in enumerate(sorted(group, key=lambda k: (items[k].arm, items[k].number))):
+            along = 1.0 if float(dot(unit(items[k].force), direction)) >= 0 else -1.0
+            out[k] = replace(items[k], row=row, side=side * along)   # one side for all
+    return out
 
 
 def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
