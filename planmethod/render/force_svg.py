@@ -143,7 +143,8 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
                             css=f"force {edge.kind}", step=number + 1):
                 used.setdefault(_legend_key(edge), (style, colour))
             runs = notation.runs(edge.label, edge.link) if notation else _runs(edge.label)
-            figure.request((edge.label,), start + 0.5 * (end - start), runs, mark=2.0)
+            figure.request((edge.label,), start + 0.5 * (end - start), runs, mark=2.0,
+                           span=(start, end))
         for name, first, _ in _totals(edges, vectors):
             on = edges[first].link
             after = first + 2  # the corner after the second component (cyclically)
@@ -151,15 +152,15 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
             if figure.arrow(start, end, "result", layer="results", css="force total"):
                 used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
                 figure.request((name,), start + 0.5 * (end - start),
-                               notation.runs(name, on) if notation else _runs(name), mark=2.0)
+                               notation.runs(name, on) if notation else _runs(name), mark=2.0,
+                               span=(start, end))
         figure.circle(where[0], 3.4, fill=INK, css="start")
 
-    figure = Canvas(view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
-    content(figure)
-    where = {f"corner {k}": figure.px(c) for k, c in enumerate(corners[:-1])}
-    regions = detail_regions(figure, where) if details else []
+    figure, regions = _laid_out(
+        view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE), content,
+        lambda canvas: {f"corner {k}": canvas.px(c) for k, c in enumerate(corners[:-1])},
+        details and not view, view.box if view else None)
     closure = float(norm(corners[-1] - corners[0]))
-    figure.place()
     lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
     _, y0, x1, _ = view.box if view else figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
@@ -174,6 +175,41 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
           box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines), "force")
                       if view else None).svg
+
+
+def _laid_out(zoom: float, content, where_of, details: bool,
+              bounds: tuple[float, float, float, float] | None = None
+              ) -> tuple[Canvas, list]:
+    """A figure drawn by ``content`` at ``zoom``, its enlarged details' regions marked and its
+    labels placed (within ``bounds`` where they can: a steady page's box). The details watch
+    the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
+    again once the regions are marked (a frame may push a label off its spot: then the figure
+    is drawn once more with that label watched too)."""
+    extra: dict = {}
+    for _ in range(2):
+        figure = Canvas(zoom)
+        content(figure)
+        where = where_of(figure)
+        watched = (_crowded(figure, where) | extra) if details else where
+        regions = detail_regions(figure, watched, draw=details)
+        figure.place(bounds=bounds)
+        pushed = {" ".join(label.points): label.anchor for label in figure.labels
+                  if not label.clean and not set(label.points) & set(watched)
+                  and not label.points[0].startswith("detail:")}
+        if not details or not pushed:
+            break
+        extra |= pushed
+    return figure, regions
+
+
+def _crowded(figure: Canvas, where: dict) -> dict:
+    """The points a detail watches, ``where``, and where the other labels go (of forces,
+    arms, moments) that find no clean spot on the figure, placed on trial: such a label
+    crowds the points near it like a point, so an enlarged detail shows it where others are
+    near."""
+    return where | {" ".join(label.points): label.anchor for label in figure.trial()
+                    if not label.clean and not set(label.points) & set(where)
+                    and not label.points[0].startswith("detail:")}
 
 
 def _legend_key(edge) -> str:
@@ -197,17 +233,19 @@ def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> fl
     y += 8
     for text, (style, colour) in used.items():
         y += 20
-        figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour)
-        figure.obstacle_lines.pop()
+        figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour,
+                     obstacle=False)
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
     return y
 
 
-def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None:
+def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool = True
+                 ) -> str | None:
     """Aliyev's combined-force construction on the acceleration plan (None without one, and
     None where no gravity acts: with g = 0 the moved pole π′ is π and the construction is the
     inertia forces alone; see :func:`combined_omitted`); ``view`` keeps the zoom and page of
-    every frame of a turn."""
+    every frame of a turn; with ``details`` (and no ``view``) an enlarged detail where
+    points crowd."""
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None:
         return None
@@ -217,25 +255,38 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure = Canvas(view.zoom if view else fit_zoom(list(points.values()) + extra, PLAN_SIZE))
-    plan_content(figure, points, plan.steps, plan.pole, numbers=plan.numbers)
-    pole_px, new_px = figure.px((0.0, 0.0)), figure.px(new_pole)
-    if combined.gravity_image_mm > 0:
-        figure.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
-                     css="gravity image")
-        figure.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"), mark=2.0)
-    figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
-    figure.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
     notation = ForceNotation(forces.solution)
-    for force in combined.forces:
-        s = figure.px(force.image_mm)
-        figure.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image")
-        figure.request((f"s_{force.link}",), s,
-                       (("s", RunKind.MAIN), (notation.number(force.link), RunKind.SUB)), mark=2.6)
-        if float(norm(np.asarray(force.segment_mm))) * figure.zoom >= 1.0:
-            figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
-                         css=f"combined {force.link}")
-    figure.place()
+
+    def content(canvas: Canvas) -> None:
+        plan_content(canvas, points, plan.steps, plan.pole, numbers=plan.numbers)
+        pole_px, new_px = canvas.px((0.0, 0.0)), canvas.px(new_pole)
+        if combined.gravity_image_mm > 0:
+            canvas.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
+                         css="gravity image")
+            canvas.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"),
+                           mark=2.0, span=(pole_px, new_px))
+        canvas.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole", points=("π′",))
+        canvas.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
+        for force in combined.forces:
+            s = canvas.px(force.image_mm)
+            canvas.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image",
+                          points=(f"s_{force.link}",))
+            canvas.request((f"s_{force.link}",), s, (("s", RunKind.MAIN),
+                                                     (notation.number(force.link),
+                                                      RunKind.SUB)), mark=2.6)
+            if float(norm(np.asarray(force.segment_mm))) * canvas.zoom >= 1.0:
+                canvas.arrow(s, new_px, "tangential", layer="results",
+                             color=KNOWN_COLOURS["F"], css=f"combined {force.link}")
+
+    def where(canvas: Canvas) -> dict:
+        return ({label: canvas.px(xy) for label, xy in points.items()}
+                | {"π′": canvas.px(new_pole)}
+                | {f"s_{force.link}": canvas.px(force.image_mm) for force in combined.forces})
+
+    figure, regions = _laid_out(view.zoom if view else fit_zoom(
+        list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
+        view.box if view else None)
+    lines_of_details = detail_insets(figure, content, regions, "detail-combined")
     _, y0, x1, _ = view.box if view else figure.extent
     bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
@@ -252,6 +303,7 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None
         lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
                      f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
+    lines += lines_of_details
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
              f"pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION,
@@ -506,11 +558,9 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
             lever.balancing_moment[0]):
         return None
     page = _LeverFigure(forces, plans)
-    figure, plan = Canvas(page.zoom), page.plan
-    page.content(figure)
-    where = {label: figure.px(xy) for label, xy in page.turned.items()}
-    regions = detail_regions(figure, where) if details else []
-    figure.place()
+    plan = page.plan
+    figure, regions = _laid_out(page.zoom, page.content, lambda canvas: {
+        label: canvas.px(xy) for label, xy in page.turned.items()}, details)
     details = detail_insets(figure, page.content, regions, "detail-lever")
     rows, total, magnitude = page.rows()
     balancing = page.balancing
@@ -588,8 +638,7 @@ class _LoadedFigure:
     def where(self, figure: Canvas) -> dict[str, np.ndarray]:
         """The points a detail watches: the mechanism's points and the centres of mass."""
         where = {name: figure.px(xy) for name, xy in self.position.points_mm.items()}
-        where |= {f"S:{link}": figure.px(xy) for link, xy in self.centres.items()}
-        return where
+        return where | {f"S:{link}": figure.px(xy) for link, xy in self.centres.items()}
 
     def content(self, figure: Canvas) -> None:
         """The mechanism with its centres of mass, forces and moments, at ``figure``'s zoom."""
@@ -627,14 +676,14 @@ class _LoadedFigure:
         begin, end = figure.px(start), figure.px(start + force / self.mu_f)
         figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
         figure.request((f"force:{item.name}:{item.link}",), begin + 0.65 * (end - begin),
-                       self.notation.runs(item.name, item.link), mark=2.0)
+                       self.notation.runs(item.name, item.link), mark=2.0, span=(begin, end))
         self.used.setdefault(_legend_key_of(item.name), ("relative", colour))
         shift = self._single_force_shift(item, force)
         if shift is not None and float(norm(shift)) * figure.zoom >= 1.5:
             figure.line(figure.px(start + shift - 0.6 * force / self.mu_f),
                         figure.px(start + shift + 1.2 * force / self.mu_f), color=colour,
                         width=0.8, dash=STYLES["construction"].dash, layer="construction",
-                        css="inertia line", obstacle=False)
+                        css="inertia line")
             self.used.setdefault("line of the single equivalent inertia force (h from S)",
                                  ("construction", colour))
 
@@ -683,10 +732,8 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     if plans is None:
         return None
     page = _LoadedFigure(forces, plans)
-    figure, mechanism = Canvas(page.zoom), forces.solution.mechanism
-    page.content(figure)
-    regions = detail_regions(figure, page.where(figure)) if details else []
-    figure.place()
+    mechanism = forces.solution.mechanism
+    figure, regions = _laid_out(page.zoom, page.content, page.where, details)
     details = detail_insets(figure, page.content, regions, "detail-loaded")
     _, y0, x1, _ = figure.extent
     bottom = _force_legend(figure, (x1 + 34, y0 + 4), page.used, heading="Forces and moments")
@@ -748,7 +795,8 @@ def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True
             title=f"{title} — force polygon {number}: {notation.group_name(group)}, "
                   f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
                   f"{forces.angle:g}°")
-    combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"))
+    combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"),
+                            details=details)
     if combined is not None:
         files["combined_force.svg"] = combined
     if views:
