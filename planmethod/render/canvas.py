@@ -340,8 +340,11 @@ class Canvas:
         self.define("clipPath", {"id": ident}, [
             ("rect", {"x": num(x0), "y": num(y0), "width": num(x1 - x0),
                       "height": num(y1 - y0)}, [])])
-        drawing = [("g", {"class": name}, items) for name, items in other.layers.items()
-                   if items and name in layers]
+        seen = (x0 - _CULL, y0 - _CULL, x1 + _CULL, y1 + _CULL)
+        drawing = [("g", {"class": name}, shown) for name, items in other.layers.items()
+                   if name in layers
+                   for shown in [[item for item in items if _meets(_bounds(item), seen)]]
+                   if shown]             # what the clip hides entirely is not written
         self.add("points", "g", {"class": css, "clip-path": f"url(#{ident})",
                                  "transform": _move(offset)}, drawing)
 
@@ -515,6 +518,45 @@ class Canvas:
         return SvgFigure(text, float(num(width)), float(num(height)), self.labels,
                          tuple(self.arrow_steps), (float(x0), float(y0), float(width),
                                                    float(height)), elements)
+
+
+#: how far (px) beyond a clip box an element may reach and still be written: a stroke's width
+_CULL = 4.0
+
+
+def _bounds(item) -> tuple[float, float, float, float] | None:
+    """The box (x0, y0, x1, y1) an element ``(tag, attributes, children)`` covers, None if
+    unknown (a path, text: always written).
+
+    >>> _bounds(("g", {}, [("line", {"x1": "0", "y1": "0", "x2": "5", "y2": "2"}, []),
+    ...                    ("circle", {"cx": "9", "cy": "1", "r": "1"}, [])]))
+    (0.0, 0.0, 10.0, 2.0)
+    """
+    tag, attrs, children = item
+    if tag == "line":
+        xs, ys = (float(attrs["x1"]), float(attrs["x2"])), (float(attrs["y1"]), float(attrs["y2"]))
+    elif tag in ("polyline", "polygon"):
+        xs, ys = tuple(x for x, _ in attrs["points"]), tuple(y for _, y in attrs["points"])
+    elif tag == "circle":
+        cx, cy, r = (float(attrs[key]) for key in ("cx", "cy", "r"))
+        xs, ys = (cx - r, cx + r), (cy - r, cy + r)
+    elif tag == "rect":
+        x, y = float(attrs["x"]), float(attrs["y"])
+        xs, ys = (x, x + float(attrs["width"])), (y, y + float(attrs["height"]))
+    elif tag == "g" and children:
+        parts = [_bounds(child) for child in children if not isinstance(child, str)]
+        if not parts or any(part is None for part in parts):
+            return None
+        return (min(p[0] for p in parts), min(p[1] for p in parts),
+                max(p[2] for p in parts), max(p[3] for p in parts))
+    else:
+        return None
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def _meets(bounds, box) -> bool:
+    return bounds is None or (bounds[0] <= box[2] and box[0] <= bounds[2]
+                              and bounds[1] <= box[3] and box[1] <= bounds[3])
 
 
 def _move(offset: Point) -> str:
