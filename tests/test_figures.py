@@ -124,16 +124,42 @@ def test_a_dense_region_gets_an_enlarged_detail(drawn):
             assert 'class="detail"' in files[name] and "detail I:" in files[name], name
 
 
-@pytest.mark.parametrize("path", ["exercises/templates/slider_crank.toml",
-                                  "exercises/templates/four_bar.toml",
-                                  "exercises/conveyor_sixbar.toml"])
+TEMPLATES = sorted((ROOT / "exercises" / "templates").glob("*.toml"))
+
+
+@pytest.mark.parametrize("path", TEMPLATES, ids=lambda path: path.stem)
 def test_task_and_plan_sheets_pass_the_figure_check(path):
+    """The sheets of a template's first five variants, as ``planmethod variants --count 5``
+    writes them: each passes the figure check."""
+    import json
+
+    from planmethod.commands.variants import variant_files
+    from planmethod.grading.templates import load_template
+
+    students = [f"{number:03d}" for number in range(1, 6)]
+    files, _, _ = variant_files(load_template(path), students, students, seed=0,
+                                progress=False)
+    found = []
+    for name, text in files.items():
+        if not name.endswith(".svg"):
+            continue
+        key = json.loads(files[f"{name.partition('/')[0]}/key.json"])
+        answer_columns = [question["id"] for question in key["questions"]]
+        found += [f"{name}: {problem}"
+                  for problem in figure_problems(text, allowed=answer_columns)]
+    assert not found, "\n".join(found)
+    # the answer-file column names are the only names printed as they are, in brackets
+    assert figure_problems(files["001/task.svg"])
+
+
+def test_the_conveyors_sheets_pass_the_figure_check():
     from planmethod.grading.keys import build_key
     from planmethod.grading.sheets import plan_sheet_for_key, task_sheet_svg
     from planmethod.grading.templates import draw_variant, load_template
     from planmethod.plans import draw_plans
 
-    variant = draw_variant(load_template(path), seed=5, student="a")
+    variant = draw_variant(load_template(ROOT / "exercises/conveyor_sixbar.toml"), seed=5,
+                           student="a")
     key = build_key(variant)
     answer_columns = [question["id"] for question in key["questions"]]
     sheets = {"task": task_sheet_svg(key, draw_plans(variant.exercise)),
@@ -142,8 +168,6 @@ def test_task_and_plan_sheets_pass_the_figure_check(path):
     found = [f"{name}: {problem}" for name, svg in sheets.items()
              for problem in figure_problems(svg, allowed=answer_columns)]
     assert not found, "\n".join(found)
-    # the answer-file column names are the only names printed as they are, in brackets
-    assert figure_problems(sheets["task"])
 
 
 def test_construction_sentences_use_the_course_notation(drawn):
@@ -185,20 +209,105 @@ def test_loads_are_printed_by_the_name_the_exercise_gives_them():
     assert not figure_problems(files["loaded.svg"])
 
 
+_HEAD = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 200">'
+
+
+def _label(points: str, x: float, y: float, text: str = "", size: float = 15) -> str:
+    return (f'<text class="label" data-points="{points}" x="{x}" y="{y}" font-size="{size}">'
+            f'{text or points}</text>')
+
+
+def _mark(points: str, x: float, y: float) -> str:
+    return f'<circle class="point" cx="{x}" cy="{y}" r="2.4" data-points="{points}"/>'
+
+
+def _problems(*elements: str, **options) -> list[str]:
+    return figure_problems(_HEAD + "".join(elements) + "</svg>", **options)
+
+
 def test_the_crowding_check_can_fail():
-    """A label nearer than the readable distance to another point's mark is a problem, unless
-    the mark lies in a region drawn again as a detail."""
-    head = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">'
-    marks = ('<circle class="point" cx="50" cy="50" r="2.4" data-points="b"/>'
-             '<circle class="point" cx="62" cy="50" r="2.4" data-points="c"/>')
-    label = ('<g class="labels"><text class="label" data-points="b" x="52" y="47" '
-             'font-size="15">b</text></g>')
+    """A point's label nearer than the clearance (a quarter of the readable distance, 7.5 px
+    at 15 px labels) to another point's mark is a problem, unless the mark lies in a region
+    drawn again as a detail; a force's label only may not touch a mark."""
+    marks = _mark("b", 50, 50) + _mark("c", 90, 50)
+    near = _label("b", 75, 54)                       # its text 3 px from the mark of c
+    assert any("from the mark of c" in problem for problem in _problems(marks, near))
+    region = '<rect class="detail region" x="40" y="40" width="60" height="20" fill="none"/>'
+    assert not _problems(region, marks, near)
+    assert not _problems(marks, _label("b", 30, 40))
+    force = _label("force:G", 75, 54, "G")          # the same place, a force's label
+    assert not _problems(marks, force)
     assert any("from the mark of c" in problem
-               for problem in figure_problems(head + marks + label + "</svg>"))
-    region = '<rect class="detail region" x="40" y="40" width="30" height="20" fill="none"/>'
-    assert not figure_problems(head + region + marks + label + "</svg>")
-    far = label.replace('x="52"', 'x="20"').replace('y="47"', 'y="30"')
-    assert not figure_problems(head + marks + far + "</svg>")
+               for problem in _problems(marks, _label("force:G", 82, 56, "G")))
+
+
+def test_the_spacing_check_can_fail():
+    """Marks of distinct points nearer than the readable distance — 2 em of the figure's
+    point labels — need an enlarged detail; in a detail (a translated, clipped group) its own
+    marks are held to it too, unless a region of that detail is drawn again (nested)."""
+    labels = _label("b", 20, 20) + _label("c", 200, 20)
+    close = _mark("b", 50, 50) + _mark("c", 70, 50)
+    assert any("marks of b and c are 20.0 px apart, nearer than the readable 30 px" in problem
+               for problem in _problems(close, labels))
+    assert not _problems(_mark("b", 50, 50) + _mark("c", 85, 50), labels)
+    region = '<rect class="detail region" x="40" y="40" width="40" height="20" fill="none"/>'
+    assert not _problems(region, close, labels)
+    small = _label("b", 20, 20, size=10) + _label("c", 200, 20, size=10)
+    assert not _problems(close + _mark("d", 150, 50), small)       # 20 px at 10 px labels
+    assert not _problems(_mark("b", 50, 50) + _mark("c", 50, 50), labels)   # coincide
+    detail = ('<defs><clipPath id="k"><rect x="0" y="0" width="100" height="60"/></clipPath>'
+              '</defs><g class="detail" clip-path="url(#k)" transform="translate(150,100)">'
+              + _mark("b", 20, 20) + _mark("c", 28, 20) + '</g>')
+    assert any("marks of b and c are 8.0 px apart" in problem
+               for problem in _problems(region, close, labels, detail))
+    nested = ('<g class="detail" transform="translate(150,100)"><rect class="detail region" '
+              'x="10" y="10" width="30" height="20" fill="none"/></g>')
+    assert not _problems(region, close, labels, detail, nested)
+
+
+def test_the_line_and_leader_checks_can_fail():
+    """A label crossed by a line that is not its own leader, a leader that crosses another
+    leader or an arrow away from the point it starts at: each is a problem."""
+    label = _label("b", 40, 60)
+    assert any("label 'b' is crossed by a line (construction)" in problem for problem in
+               _problems(label, '<line class="construction" x1="30" y1="55" x2="70" y2="55" '
+                                'stroke="#777"/>'))
+    assert not _problems(label, '<line class="construction" x1="30" y1="75" x2="70" y2="75" '
+                                'stroke="#777"/>')
+    own = '<line class="leader" data-points="b" x1="80" y1="80" x2="45" y2="56" stroke="#000"/>'
+    assert not _problems(label, own)                          # its own leader ends on it
+    other = own.replace('data-points="b"', 'data-points="c"')
+    assert any("label 'b' is crossed by the leader of 'c'" in problem
+               for problem in _problems(label, _label("c", 200, 150), other))
+    first = '<line class="leader" data-points="b" x1="100" y1="100" x2="160" y2="160" ' \
+            'stroke="#000"/>'
+    second = '<line class="leader" data-points="c" x1="100" y1="160" x2="160" y2="100" ' \
+             'stroke="#000"/>'
+    found = _problems(_label("b", 162, 175), _label("c", 162, 95), first, second)
+    assert any("the leader of 'b' crosses the leader of 'c'" in problem for problem in found)
+    from_one = second.replace('x1="100" y1="160"', 'x1="100" y1="100"')
+    assert not _problems(_label("b", 162, 175), _label("c", 162, 95), first, from_one)
+    arrow = ('<g class="arrow result"><line x1="100" y1="140" x2="140" y2="140" '
+             'stroke="#000"/><polygon points="150,140 140,136 140,144" fill="#000"/></g>')
+    found = _problems(_label("b", 162, 175), first, arrow)
+    assert any("the leader of 'b' crosses an arrow (arrow result)" in problem
+               for problem in found)
+    through = ('<g class="arrow result"><line x1="100" y1="100" x2="60" y2="100" '
+               'stroke="#000"/><polygon points="50,100 60,96 60,104" fill="#000"/></g>')
+    assert not any("crosses an arrow" in problem          # it leaves its point across it
+                   for problem in _problems(_label("b", 162, 175), first, through))
+
+
+def test_a_figure_without_details_is_held_to_what_it_can_give():
+    """A workbook frame, drawn without details: crowded marks and leaders across a crowded
+    point's arrows are not its problems, a label touching another point's mark (3 px) and a
+    line through a label are."""
+    close = _mark("b", 50, 50) + _mark("c", 70, 50)
+    assert not _problems(close, _label("b", 20, 20), _label("c", 200, 20), details=False)
+    assert any("from the mark of c" in problem for problem in
+               _problems(close, _label("b", 58, 48), details=False))
+    assert _problems(_label("b", 40, 60), '<line x1="30" y1="55" x2="70" y2="55" '
+                                          'stroke="#777"/>', details=False)
 
 
 #: the conventions a course may choose, as [notation] tables
@@ -237,7 +346,8 @@ def test_every_figure_numbers_links_as_its_convention_does(name, convention):
 @pytest.mark.parametrize("path", EXERCISES, ids=lambda path: path.stem)
 def test_every_workbook_frame_passes_and_each_panel_keeps_one_page(path):
     """The frames of a turn as the workbook draws them (every 45°, from the exercise's own
-    angle): each passes the figure check, and each panel has one viewBox over the turn."""
+    angle): each passes the figure check of a figure without enlarged details (the page
+    draws none), and each panel has one viewBox over the turn."""
     from planmethod.render.steady import steady_views
     from planmethod.testing.figures import steady_problems
 
@@ -255,7 +365,8 @@ def test_every_workbook_frame_passes_and_each_panel_keeps_one_page(path):
         for file, svg in plan_files(analysis.plans, analysis.forces, details=False,
                                     loaded=False, views=views).items():
             panels.setdefault(file, []).append(svg)
-            found += [f"{angle:g}° {file}: {problem}" for problem in figure_problems(svg)]
+            found += [f"{angle:g}° {file}: {problem}"
+                      for problem in figure_problems(svg, details=False)]
     for file, frames in panels.items():                      # every panel of the page
         found += steady_problems(frames, file)
     assert not found, "\n".join(found[:20])

@@ -102,3 +102,60 @@ def test_combined_construction_needs_an_acceleration_plan():
     analysis = analyse(load_exercise("exercises/fourbar_forces.toml"), plans=False)
     assert combined_construction(None, analysis.forces.solution.applied, 9.81) is None
     assert analysis.forces.combined is None and analysis.forces.as_dict()
+
+
+def _visible(piece, box) -> float:
+    """The length of a segment inside a box."""
+    (x0, y0), (x1, y1) = piece
+    low, high = 0.0, 1.0
+    for p, q in ((x0 - x1, x0 - box[0]), (x1 - x0, box[2] - x0), (y0 - y1, y0 - box[1]),
+                 (y1 - y0, box[3] - y0)):
+        if p == 0:
+            if q < 0:
+                return 0.0
+            continue
+        low, high = (max(low, q / p), high) if p < 0 else (low, min(high, q / p))
+    return max(high - low, 0.0) * float(np.hypot(x1 - x0, y1 - y0))
+
+
+def _unnamed_in_details(svg: str, edges) -> list[tuple[str, str]]:
+    """(detail, force) of each force whose arrow a detail shows (8 px or more of it) and
+    that the detail does not name."""
+    root = ElementTree.fromstring(svg.encode("utf-8"))
+    clips = {clip.get("id"): [float(clip[0].get(k)) for k in ("x", "y", "width", "height")]
+             for clip in root.iter(SVG + "clipPath")}
+    labels = {group.get("transform"): {text.get("data-points")
+                                       for text in group.iter(SVG + "text")}
+              for group in root.iter(SVG + "g") if group.get("class") == "detail labels"}
+    out = []
+    for detail in root.iter(SVG + "g"):
+        if detail.get("class") != "detail":
+            continue
+        x, y, width, height = clips[detail.get("clip-path")[5:-1]]
+        box = (x, y, x + width, y + height)
+        named = labels.get(detail.get("transform"), set())
+        for arrow in detail.iter(SVG + "g"):
+            css = arrow.get("class") or ""
+            if not css.startswith("arrow force") or "total" in css:
+                continue
+            line = arrow.find(SVG + "line")
+            piece = ((float(line.get("x1")), float(line.get("y1"))),
+                     (float(line.get("x2")), float(line.get("y2"))))
+            label = edges[int(arrow.get("data-step")) - 1].label
+            if _visible(piece, box) >= 8.0 and label not in named:
+                out.append((detail.get("clip-path"), label))
+    return out
+
+
+def test_a_detail_names_every_force_it_shows():
+    """In an enlarged detail of a force polygon, every force whose arrow the detail shows
+    (8 px or more of it) is labelled there, by its own name: the label of a force whose
+    middle lies outside the detail goes on the part of its arrow the detail shows (the
+    conveyor's G₂ went unnamed in detail II, and Fᵘ₂'s label sat on its arrow)."""
+    analysis = analyse(load_exercise("exercises/conveyor_sixbar.toml"))
+    group = analysis.forces.solution.groups.groups[0]
+    edges = [edge for edge in group.polygon if float(np.linalg.norm(edge.vector[0])) > 0]
+    files = force_files(analysis.forces, analysis.plans)
+    svg = files[next(name for name in files if name.startswith("forces_1_"))]
+    assert 'class="detail"' in svg
+    assert _unnamed_in_details(svg, edges) == []

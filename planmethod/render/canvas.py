@@ -45,6 +45,7 @@ from .labels import (
     place_labels,
 )
 from .style import (
+    CLEARANCE_PX,
     FAINT,
     FLAG,
     INK,
@@ -137,8 +138,9 @@ def round_scale_value(value: float) -> float:
 
 
 #: the room (px) other labels keep from a point's mark, so that no label reads as another
-#: point's (where points crowd closer than that, an enlarged detail shows them)
-KEEP_CLEAR = 5.0
+#: point's (where points crowd closer than the readable distance, an enlarged detail shows
+#: them)
+KEEP_CLEAR = CLEARANCE_PX
 
 #: the side of the square whose area is a round mark's (its 16-gon's), per unit of radius
 _ROUND_MARK = math.sqrt(8.0 * math.sin(math.pi / 8.0))
@@ -158,6 +160,8 @@ class Canvas:
         #: rectangles (x0, y0, x1, y1)
         self.obstacle_lines: list[tuple[Point, ...]] = []
         self.obstacle_areas: list[tuple[float, float, float, float]] = []
+        #: the vectors' arrows among the obstacle lines: leaders keep off them
+        self.vector_lines: list[tuple[Point, ...]] = []
         self.requests: list[LabelRequest] = []
         self.used: set[str] = set()
         self.arrow_steps: list[int] = []
@@ -200,7 +204,9 @@ class Canvas:
     def polyline(self, points: Sequence[Point], *, color: str, width: float,
                  dash: str | None = None, layer: str = "marks", obstacle: bool = True,
                  fill: str = "none", closed: bool = False, css: str | None = None,
-                 data: dict | None = None) -> None:
+                 data: dict | None = None, vector: bool = False) -> None:
+        """A polyline (a polygon if ``closed``); labels keep clear of it if an ``obstacle``,
+        and leaders keep off it if it draws a ``vector`` (a curved arrow)."""
         points = [_pair(point) for point in points]
         attrs = {"points": points_attribute(points), "fill": fill, "stroke": color,
                  "stroke-width": num(width), "stroke-linejoin": "round"}
@@ -213,6 +219,8 @@ class Canvas:
         self.grow(*points)
         if obstacle:
             self.obstacle_lines.append(tuple(points) + ((points[0],) if closed else ()))
+        if vector:
+            self.vector_lines.append(tuple(points))
 
     def circle(self, centre: Point, radius: float, *, fill: str, stroke: str = "none",
                width: float = 0.0, layer: str = "points", area: bool = True,
@@ -237,8 +245,11 @@ class Canvas:
                                         centre[1] + half))
 
     def arrow(self, p: Point, q: Point, style_key: str, *, layer: str, step: int | None = None,
-              color: str | None = None, css: str | None = None) -> bool:
-        """A vector from p to q with its head at q; False if too short to draw."""
+              color: str | None = None, css: str | None = None, obstacle: bool = True
+              ) -> bool:
+        """A vector from p to q with its head at q; False if too short to draw. Labels keep
+        clear of it, and leaders keep off it (unless not an ``obstacle``: a legend's
+        sample)."""
         style = STYLES[style_key]
         p, q = page_point(p), page_point(q)
         length = float(norm(q - p))
@@ -264,12 +275,16 @@ class Canvas:
             self.arrow_steps.append(step)
         self.add(layer, "g", group, [("line", line, []), ("polygon", tip, [])])
         self.grow(p, q)
-        self.obstacle_lines.append((p, q))
+        if obstacle:                   # the shaft, and the head's outline
+            self.obstacle_lines += [(p, q), (q, wings[0], wings[1], q)]
+            self.vector_lines += [(p, q), (q, wings[0], wings[1], q)]
         return True
 
     def rectangle(self, corner: Point, size: Point, *, fill: str, stroke: str = "none",
-                  width: float = 0.0, layer: str = "ground", css: str | None = None) -> None:
-        """An axis-aligned rectangle, top-left at ``corner`` (page px)."""
+                  width: float = 0.0, layer: str = "ground", css: str | None = None,
+                  obstacle: bool = False) -> None:
+        """An axis-aligned rectangle, top-left at ``corner`` (page px); with ``obstacle``
+        labels keep clear of its outline."""
         attrs = {"x": num(corner[0]), "y": num(corner[1]), "width": num(size[0]),
                  "height": num(size[1]), "fill": fill}
         if stroke != "none":
@@ -277,7 +292,11 @@ class Canvas:
         if css:
             attrs["class"] = css
         self.add(layer, "rect", attrs)
-        self.grow(corner, (corner[0] + size[0], corner[1] + size[1]))
+        far = (corner[0] + size[0], corner[1] + size[1])
+        self.grow(corner, far)
+        if obstacle:
+            self.obstacle_lines.append(((corner[0], corner[1]), (far[0], corner[1]), far,
+                                        (corner[0], far[1]), (corner[0], corner[1])))
 
     def define(self, tag: str, attrs: dict[str, Any], children: list | None = None) -> None:
         """An element of ``<defs>`` (a pattern, a marker), written before the layers."""
@@ -321,8 +340,11 @@ class Canvas:
         self.define("clipPath", {"id": ident}, [
             ("rect", {"x": num(x0), "y": num(y0), "width": num(x1 - x0),
                       "height": num(y1 - y0)}, [])])
-        drawing = [("g", {"class": name}, items) for name, items in other.layers.items()
-                   if items and name in layers]
+        seen = (x0 - _CULL, y0 - _CULL, x1 + _CULL, y1 + _CULL)
+        drawing = [("g", {"class": name}, shown) for name, items in other.layers.items()
+                   if name in layers
+                   for shown in [[item for item in items if _meets(_bounds(item), seen)]]
+                   if shown]             # what the clip hides entirely is not written
         self.add("points", "g", {"class": css, "clip-path": f"url(#{ident})",
                                  "transform": _move(offset)}, drawing)
 
@@ -410,13 +432,27 @@ class Canvas:
         return y
 
     def request(self, points: tuple[str, ...], anchor: Point, runs: tuple[Run, ...], *,
-                size: float = LABEL_SIZE, mark: float = 3.0, css: str = "label") -> None:
+                size: float = LABEL_SIZE, mark: float = 3.0, css: str = "label",
+                span: tuple[Point, Point] | None = None, lean: Point | None = None) -> None:
+        """A label to place at ``anchor``; ``span`` is the vector (start, end) it names, if
+        it names one (an enlarged detail anchors it on the part it shows); ``lean`` the side
+        (a unit page direction) it prefers among equally clean spots."""
         self.requests.append(LabelRequest(points, (float(anchor[0]), float(anchor[1])), runs,
-                                          size, mark, css))
+                                          size, mark, css,
+                                          (_pair(span[0]), _pair(span[1])) if span else None,
+                                          _pair(lean) if lean is not None else None))
 
     # labels
-    def place(self) -> None:
-        self.labels = place_labels(self.requests, self.obstacle_lines, self.obstacle_areas)
+    def trial(self) -> tuple[PlacedLabel, ...]:
+        """Where the requested labels would go, without drawing them."""
+        return place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
+                            vectors=self.vector_lines)
+
+    def place(self, bounds: Sequence[float] | None = None) -> None:
+        """Place the requested labels (within ``bounds``, x0, y0, x1, y1, where they can) and
+        draw them with their leaders."""
+        self.labels = place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
+                                   vectors=self.vector_lines, bounds=bounds)
         for label in self.labels:
             x0, y0, x1, y1 = label.box
             self.grow((x0, y0), (x1, y1))
@@ -427,7 +463,8 @@ class Canvas:
                 cy = min(max(ay, y0), y1)
                 self.add("leaders", "line", {"x1": num(ax), "y1": num(ay), "x2": num(cx),
                                              "y2": num(cy), "stroke": color,
-                                             "stroke-width": "0.6", "class": "leader"})
+                                             "stroke-width": "0.6", "class": "leader",
+                                             "data-points": " ".join(label.points)})
             self.add("labels", "text", _label_attrs(label, color), _label_spans(label))
 
     # output
@@ -481,6 +518,45 @@ class Canvas:
         return SvgFigure(text, float(num(width)), float(num(height)), self.labels,
                          tuple(self.arrow_steps), (float(x0), float(y0), float(width),
                                                    float(height)), elements)
+
+
+#: how far (px) beyond a clip box an element may reach and still be written: a stroke's width
+_CULL = 4.0
+
+
+def _bounds(item) -> tuple[float, float, float, float] | None:
+    """The box (x0, y0, x1, y1) an element ``(tag, attributes, children)`` covers, None if
+    unknown (a path, text: always written).
+
+    >>> _bounds(("g", {}, [("line", {"x1": "0", "y1": "0", "x2": "5", "y2": "2"}, []),
+    ...                    ("circle", {"cx": "9", "cy": "1", "r": "1"}, [])]))
+    (0.0, 0.0, 10.0, 2.0)
+    """
+    tag, attrs, children = item
+    if tag == "line":
+        xs, ys = (float(attrs["x1"]), float(attrs["x2"])), (float(attrs["y1"]), float(attrs["y2"]))
+    elif tag in ("polyline", "polygon"):
+        xs, ys = tuple(x for x, _ in attrs["points"]), tuple(y for _, y in attrs["points"])
+    elif tag == "circle":
+        cx, cy, r = (float(attrs[key]) for key in ("cx", "cy", "r"))
+        xs, ys = (cx - r, cx + r), (cy - r, cy + r)
+    elif tag == "rect":
+        x, y = float(attrs["x"]), float(attrs["y"])
+        xs, ys = (x, x + float(attrs["width"])), (y, y + float(attrs["height"]))
+    elif tag == "g" and children:
+        parts = [_bounds(child) for child in children if not isinstance(child, str)]
+        if not parts or any(part is None for part in parts):
+            return None
+        return (min(p[0] for p in parts), min(p[1] for p in parts),
+                max(p[2] for p in parts), max(p[3] for p in parts))
+    else:
+        return None
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def _meets(bounds, box) -> bool:
+    return bounds is None or (bounds[0] <= box[2] and box[0] <= bounds[2]
+                              and bounds[1] <= box[3] and box[1] <= bounds[3])
 
 
 def _move(offset: Point) -> str:
@@ -563,13 +639,19 @@ def _label_spans(label: PlacedLabel) -> list:
 
 
 def arrowhead(figure: Canvas, tip: Point, direction: Point, size: float, color: str,
-               layer: str) -> None:
-    """A filled arrowhead at ``tip`` pointing along the page direction ``direction``."""
+              layer: str, css: str | None = None) -> None:
+    """A filled arrowhead at ``tip`` pointing along the page direction ``direction`` (of a
+    curved arrow: labels keep clear of it, leaders keep off it)."""
     tip, direction = page_point(tip), page_point(direction)
     n = perp(direction)
     base = tip - size * direction
-    figure.add(layer, "polygon", {"points": points_attribute(
-        [tip, base + 0.36 * size * n, base - 0.36 * size * n]), "fill": color})
+    corners = [_pair(tip), _pair(base + 0.36 * size * n), _pair(base - 0.36 * size * n)]
+    attrs = {"points": points_attribute(corners), "fill": color}
+    if css:
+        attrs["class"] = css
+    figure.add(layer, "polygon", attrs)
+    figure.obstacle_lines.append((*corners, corners[0]))
+    figure.vector_lines.append((*corners, corners[0]))
 
 
 
@@ -581,11 +663,12 @@ def scale_bar(figure: Canvas, at: Point, scale: float, unit: str, target_px: flo
     length = value / scale * figure.zoom
     x, y = at
     color = INK
-    figure.line((x, y), (x + length, y), color=color, width=1.4, layer="text", obstacle=False)
+    figure.line((x, y), (x + length, y), color=color, width=1.4, layer="text", obstacle=False,
+                css="scale bar")
     for t in (0.0, 0.5, 1.0):
         tick = 5.0 if t != 0.5 else 3.0
         figure.line((x + t * length, y - tick), (x + t * length, y + tick), color=color,
-                    width=1.0, layer="text", obstacle=False)
+                    width=1.0, layer="text", obstacle=False, css="scale bar")
     figure.text((x, y + 17), "0", size=SMALL_SIZE, anchor="middle", area=False, css="scale")
     figure.text((x + length, y + 17), f"{value:g} {unit}", size=SMALL_SIZE, anchor="middle",
                 area=False, css="scale")

@@ -1,12 +1,18 @@
 """Enlarged details wherever points crowd: any figure, drawn again larger, clipped to a region.
 
-Where two or more distinct points of a figure lie nearer each other than a readable distance
-(:data:`DENSE_PX`), the region round them is framed and numbered on the figure (I, II, …) and
-drawn again below it, enlarged by a whole factor (×6), clipped to the region, with the labels
-of the points inside it kept whole. Any figure can have details: it hands over the points to
-watch and a function that draws its content on a canvas of any zoom (a plan, the lever with its
-forces, the loaded mechanism, a force polygon), and the detail is that same drawing at a larger
-zoom — never a picture of a picture.
+Where two or more distinct points of a figure lie nearer each other than the readable distance
+(:data:`DENSE_PX`, :data:`planmethod.render.style.READABLE_PX`: 2 em of the labels), the region
+round them is framed and numbered on the figure (I, II, …) and drawn again below it, enlarged
+by a whole factor, clipped to the region, with the labels of the points inside it kept whole.
+The enlargement is the largest that keeps the detail within :data:`DETAIL_SIZE`; where the
+closest pair of the region is still nearer than the readable distance at it, the region round
+them is marked inside the detail and drawn again, larger still (a detail of a detail), down to
+:data:`RESOLUTION` of the figure: points nearer than that are one spot of the drawing (their
+labels are joined by ≈). Any figure can have details: it hands over the points to watch and a
+function that draws its content on a canvas of any zoom (a plan, the lever with its forces,
+the loaded mechanism, a force polygon), and the detail is that same drawing at a larger zoom —
+never a picture of a picture. A label that names a vector (a force) is anchored, in a detail,
+on the part of the vector the detail shows.
 
 Examples
 --------
@@ -20,37 +26,70 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..vectors import norm
 from .canvas import Canvas, Point, page_point
-from .labels import RunKind
-from .style import INK, TEXT_SIZE
+from .labels import RunKind, drawn_length
+from .style import INK, READABLE_PX, TEXT_SIZE
 
-__all__ = ["DENSE_PX", "DETAIL_SIZE", "DETAIL_ZOOM", "dense_regions", "detail_insets",
-           "detail_regions"]
+__all__ = ["DENSE_PX", "DETAIL_SIZE", "DETAIL_ZOOM", "RESOLUTION", "Detail", "dense_regions",
+           "detail_insets", "detail_regions", "one_spot"]
 
 #: distinct points nearer than this (px) to a neighbour crowd each other: two or more such make
-#: a region that gets an enlarged detail
-DENSE_PX = 16.0
-#: the longest side of a detail inset (px), and the least and most enlargement worth drawing
+#: a region that gets an enlarged detail (the readable distance)
+DENSE_PX = READABLE_PX
+#: the longest side of a detail inset (px), and the least and most enlargement of one step
 DETAIL_SIZE = 300.0
 DETAIL_ZOOM = (2.5, 12.0)
+#: details of details go this deep at most
+DEPTH = 3
+#: points of a figure nearer each other than this fraction of its extent are one spot of the
+#: drawing: no detail two steps deep (×144) would set them the readable distance apart
+RESOLUTION = 1.0 / 2000.0
+#: how far (px) round a region's corner its numeral looks for room
+NUMERAL_ROOM = 30.0
 #: at most this many details a figure, named by Roman numerals (no point is named so)
-MOST = 4
-ROMAN = ("I", "II", "III", "IV")
+ROMAN = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
+MOST = len(ROMAN)
 
 
-def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX,
-                  least: int = 2) -> list[tuple[float, float, float, float]]:
+@dataclass(frozen=True)
+class Detail:
+    """An enlarged detail: its numeral, its region (x0, y0, x1, y1) in the figure's px, its
+    enlargement of the figure, and the detail it is marked in (None: the figure)."""
+
+    letter: str
+    box: tuple[float, float, float, float]
+    zoom: float
+    parent: str | None = None
+
+
+def one_spot(where: Mapping[str, Point]) -> float:
+    """How near (px) two of the points ``where`` may lie and still be one spot of the
+    drawing: :data:`RESOLUTION` of their extent.
+
+    >>> one_spot({"a": (0, 0), "b": (400, 100)})
+    0.2
+    """
+    if not where:
+        return 0.0
+    xy = np.asarray([page_point(p) for p in where.values()], dtype=float)
+    extent = float(max(np.ptp(xy[:, 0]), np.ptp(xy[:, 1])))
+    return RESOLUTION * extent
+
+
+def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: int = 2,
+                  same: float = 1e-6) -> list[tuple[float, float, float, float]]:
     """Boxes (x0, y0, x1, y1, page px) round the groups of at least ``least`` distinct points
-    (coincident ones count once) each within ``gap`` of another of the group — the regions of
-    a figure too dense to read, largest group first."""
+    (points within ``same`` px of one another count once) each within ``gap`` of another of
+    the group — the regions of a figure too dense to read, largest group first."""
     spots: list[np.ndarray] = []
     for xy in where.values():
         xy = page_point(xy)
-        if not spots or bool(np.all(norm(np.asarray(spots) - xy) > 1e-6)):
+        if not spots or bool(np.all(norm(np.asarray(spots) - xy) > same)):
             spots.append(xy)
     if not spots:
         return []
@@ -72,25 +111,79 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX,
              max(p[0] for p in points), max(p[1] for p in points)) for points in found]
 
 
-def detail_regions(figure: Canvas, where: Mapping[str, Point]
-                   ) -> list[tuple[str, tuple[float, float, float, float], float]]:
-    """The figure's dense regions worth an enlarged detail: (letter, box in page px,
-    enlargement), each marked on the figure with a frame and its letter (placed with the
-    labels: call before :meth:`Canvas.place`)."""
-    out = []
-    for box in _merged([_framed(region) for region in dense_regions(where)]):
-        if len(out) == MOST:
-            break
-        zoom = min(DETAIL_SIZE / max(box[2] - box[0], box[3] - box[1]), DETAIL_ZOOM[1])
-        if zoom < DETAIL_ZOOM[0]:
+def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = True
+                   ) -> list[Detail]:
+    """The figure's dense regions worth an enlarged detail, and the regions of those details
+    still too dense at their enlargement (details of details), in the order they are drawn;
+    each region of the figure is marked on it with a frame and its numeral (placed with the
+    labels: call before :meth:`Canvas.place`), each region of a detail is marked on that
+    detail by :func:`detail_insets`. The labels of what a region holds go on the figure only
+    where they find a clean spot. A figure drawn without details (not ``draw``: a frame of a
+    workbook page) gets no region, but the labels of its crowded points are placed the same
+    way: where they find a clean spot."""
+    same = one_spot(where)
+    if not draw:
+        for box in _regions(where, 1.0, same):
+            figure.requests = [replace(request, optional=True) if _within(request, box)
+                               else request for request in figure.requests]
+        return []
+    out: list[Detail] = []
+    queue: list[tuple[tuple[float, float, float, float], float, str | None, int]] = [
+        (box, 1.0, None, 1) for box in _regions(where, 1.0, same)]
+    while queue and len(out) < MOST:
+        box, base, parent, depth = queue.pop(0)
+        step = math.floor(min(DETAIL_SIZE / (max(box[2] - box[0], box[3] - box[1]) * base),
+                              DETAIL_ZOOM[1]))
+        if step < DETAIL_ZOOM[0]:
             continue
-        letter = ROMAN[len(out)]
-        figure.rectangle((box[0], box[1]), (box[2] - box[0], box[3] - box[1]), fill="none",
-                         stroke=INK, width=0.8, layer="marks", css="detail region")
-        figure.request((f"detail:{letter}",), (box[2], box[1]), ((letter, RunKind.SEP),),
-                       mark=0.0)
-        out.append((letter, box, float(math.floor(zoom))))     # a whole enlargement: ×6
+        detail = Detail(ROMAN[len(out)], box, base * step, parent)
+        out.append(detail)
+        if parent is None:
+            _mark(figure, detail, 1.0)
+            # the labels of what the detail shows go on the figure only where they find a
+            # clean spot (the detail names it anyway)
+            figure.requests = [replace(request, optional=True) if _within(request, box)
+                               else request for request in figure.requests]
+        if depth < DEPTH:
+            inside = {name: xy for name, xy in where.items()
+                      if box[0] <= xy[0] <= box[2] and box[1] <= xy[1] <= box[3]}
+            queue += [(inner, detail.zoom, detail.letter, depth + 1)
+                      for inner in _regions(inside, detail.zoom, same)]
     return out
+
+
+def _regions(where: Mapping[str, Point], zoom: float, same: float
+             ) -> list[tuple[float, float, float, float]]:
+    """The framed dense regions (figure px) of the points ``where`` seen ``zoom`` times
+    larger, overlapping ones joined."""
+    scaled = {name: page_point(xy) * zoom for name, xy in where.items()}
+    boxes = [_framed(region) for region in dense_regions(scaled, same=same * zoom)]
+    return [tuple(value / zoom for value in box) for box in _merged(boxes)]
+
+
+def _within(request, box) -> bool:
+    """Whether a label request names something in ``box``: its anchor lies in it (not a
+    detail's own numeral)."""
+    x0, y0, x1, y1 = box
+    return (x0 <= request.anchor[0] <= x1 and y0 <= request.anchor[1] <= y1
+            and not request.points[0].startswith("detail:"))
+
+
+def _mark(canvas: Canvas, detail: Detail, zoom: float) -> None:
+    """A detail's region framed on ``canvas`` (drawn ``zoom`` times the figure's size) with
+    its numeral, at the corner with the least drawn round it outside the frame."""
+    x0, y0, x1, y1 = (value * zoom for value in detail.box)
+    corners = [(x1, y0, 1, -1), (x0, y0, -1, -1), (x1, y1, 1, 1), (x0, y1, -1, 1)]
+    reach = NUMERAL_ROOM
+    outside = [(min(x, x + sx * reach), min(y, y + sy * reach), max(x, x + sx * reach),
+                max(y, y + sy * reach)) for x, y, sx, sy in corners]
+    clutter = drawn_length(canvas.obstacle_lines, outside)
+    x, y, _, _ = corners[int(np.argmin(clutter))]       # the first of equals: top right
+    canvas.rectangle((x0, y0), (x1 - x0, y1 - y0), fill="none", stroke=INK, width=0.8,
+                     layer="marks", css="detail region", obstacle=True)
+    canvas.request((f"detail:{detail.letter}",), (x, y), ((detail.letter, RunKind.SEP),),
+                   mark=0.0)
+    canvas.requests.insert(0, canvas.requests.pop())    # placed first: it names the detail
 
 
 def _framed(region: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
@@ -127,48 +220,94 @@ def _merged(boxes: list[tuple[float, float, float, float]]
     return boxes
 
 
-def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions, ident: str
-                  ) -> list[str]:
-    """Each marked region drawn again, enlarged, below the figure: ``draw`` draws the
-    figure's content on a canvas of the detail's zoom, clipped to the region, the labels of
-    the points inside it kept whole. Returns the lines that say so."""
+def _anchored(request, box):
+    """A label request of a vector anchored on the part of it inside ``box`` (the middle of
+    that part), when its own anchor lies outside; else the request unchanged."""
+    x0, y0, x1, y1 = box
+    ax, ay = request.anchor
+    if request.span is None or (x0 <= ax <= x1 and y0 <= ay <= y1):
+        return request
+    (sx, sy), (ex, ey) = request.span
+    dx, dy = ex - sx, ey - sy
+    low, high = 0.0, 1.0
+    for p, q in ((-dx, sx - x0), (dx, x1 - sx), (-dy, sy - y0), (dy, y1 - sy)):
+        if p == 0:
+            if q < 0:
+                return request
+            continue
+        if p < 0:
+            low = max(low, q / p)
+        else:
+            high = min(high, q / p)
+    if high - low <= 0 or (high - low) * math.hypot(dx, dy) < 8.0:
+        return request                     # not shown, or too little of it to name
+    middle = 0.5 * (low + high)
+    return replace(request, anchor=(sx + middle * dx, sy + middle * dy))
+
+
+def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[Detail],
+                  ident: str) -> list[str]:
+    """Each marked region drawn again, enlarged, below the figure (in rows as wide as the
+    figure): ``draw`` draws the figure's content on a canvas of the detail's zoom, clipped to
+    the region, the regions of the details within it marked, the labels of the points inside
+    it placed inside it where they can and kept whole (a force's label on the part of its
+    arrow the detail shows; the frame widened to hold a label that reaches past the region).
+    Returns the lines that say so."""
     lines = []
-    x = figure.extent[0]
+    left = x = figure.extent[0]
+    row_width = max(figure.extent[2] - figure.extent[0], 2 * DETAIL_SIZE + 40.0)
     top = figure.extent[3] + 30.0
-    for letter, (x0, y0, x1, y1), zoom in regions:
+    row_bottom = top
+    for region in regions:
+        (x0, y0, x1, y1), zoom = region.box, region.zoom
         detail = Canvas(figure.zoom * zoom)
         draw(detail)
+        for inner in regions:
+            if inner.parent == region.letter:
+                _mark(detail, inner, zoom)
+                inner_box = tuple(value * zoom for value in inner.box)
+                detail.requests = [replace(request, optional=True)
+                                   if _within(request, inner_box) else request
+                                   for request in detail.requests]
+        box = (x0 * zoom, y0 * zoom, x1 * zoom, y1 * zoom)
         reach = 60.0               # labels are placed for the points in and near the region
+        detail.requests = [_anchored(request, box) for request in detail.requests]
         detail.requests = [request for request in detail.requests
-                           if x0 * zoom - reach <= request.anchor[0] <= x1 * zoom + reach
-                           and y0 * zoom - reach <= request.anchor[1] <= y1 * zoom + reach]
-        detail.place()
-        width, height = (x1 - x0) * zoom, (y1 - y0) * zoom
+                           if box[0] - reach <= request.anchor[0] <= box[2] + reach
+                           and box[1] - reach <= request.anchor[1] <= box[3] + reach]
+        detail.place(bounds=box)           # inside the frame where they can
         inside = {" ".join(label.points) for label in detail.labels
-                  if x0 * zoom <= label.anchor[0] <= x1 * zoom
-                  and y0 * zoom <= label.anchor[1] <= y1 * zoom}
+                  if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3]}
+        # the frame holds the labels kept whole: where one reaches past the region, the
+        # detail shows that much more of the drawing
+        view = list(box)
+        for label in detail.labels:
+            if " ".join(label.points) in inside:
+                view = [min(view[0], label.box[0] - 2.0), min(view[1], label.box[1] - 2.0),
+                        max(view[2], label.box[2] + 2.0), max(view[3], label.box[3] + 2.0)]
+        width, height = view[2] - view[0], view[3] - view[1]
+        if x > left and x + width > left + row_width:      # a new row
+            x, top = left, row_bottom + 40.0
         texts = [item for item in detail.layers["labels"]
                  if item[1].get("data-points") in inside]
         leaders = [item for item in detail.layers["leaders"]
-                   if x0 * zoom <= float(item[1]["x1"]) <= x1 * zoom
-                   and y0 * zoom <= float(item[1]["y1"]) <= y1 * zoom]
-        move = (x - x0 * zoom, top - y0 * zoom)
-        figure.clipped(detail, (x0 * zoom, y0 * zoom, x1 * zoom, y1 * zoom), move,
+                   if item[1].get("data-points") in inside]
+        move = (x - view[0], top - view[1])
+        figure.clipped(detail, view, move,
                        layers=[name for name in detail.layers if name not in ("labels",
                                                                               "leaders")],
-                       css="detail", ident=f"{ident}-{letter}")
+                       css="detail", ident=f"{ident}-{region.letter}")
         figure.moved({"leaders": leaders, "labels": texts}, move, css="detail labels")
         figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
                          layer="marks", css="detail frame")
         right, bottom = x + width, top + height
-        for label in detail.labels:           # labels kept whole may reach past the frame
-            if " ".join(label.points) in inside:
-                bx0, by0, bx1, by1 = label.box
-                corner = (x + bx1 - x0 * zoom, top + by1 - y0 * zoom)
-                figure.grow((x + bx0 - x0 * zoom, top + by0 - y0 * zoom), corner)
-                right, bottom = max(right, corner[0]), max(bottom, corner[1])
-        figure.text((x, bottom + 18), f"{letter}: detail ×{zoom:g}", size=TEXT_SIZE,
-                    bold=True, css="detail", area=False)
-        lines.append(f"detail {letter}: the marked region drawn {zoom:g} times larger")
+        where = f" (marked in detail {region.parent})" if region.parent else ""
+        caption = figure.text((x, bottom + 18), f"{region.letter}: detail ×{zoom:g}{where}",
+                              size=TEXT_SIZE, bold=True, css="detail", area=False)
+        right = max(right, x + caption)
+        lines.append(f"detail {region.letter}: the region marked in detail {region.parent}, "
+                     f"drawn {zoom:g} times larger than the figure" if region.parent else
+                     f"detail {region.letter}: the marked region drawn {zoom:g} times larger")
+        row_bottom = max(row_bottom, bottom + 18)
         x = right + 40.0
     return lines

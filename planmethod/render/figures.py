@@ -34,7 +34,7 @@ def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
     """Every drawing of one crank angle: ``{"position.svg": …, "velocity.svg": …,
     "acceleration.svg": … (if drawn), "lever.svg": …}`` plus the force drawings if
     ``forces`` (an analysis's :class:`~planmethod.forces.ForceAnalysis`) is given.
-    ``details`` draws the enlarged details of dense plan regions, ``loaded`` the loaded
+    ``details`` draws the enlarged details of dense regions, ``loaded`` the loaded
     mechanism (a page of many frames, the workbook, leaves both out).
 
     Parameters
@@ -53,13 +53,13 @@ def plan_files(plans: Plans, forces: Any = None, *, details: bool = True,
     """
     views = views or {}
     files = {"position.svg": position_svg(plans.position, plans=plans,
-                                          view=views.get("position")),
+                                          view=views.get("position"), details=details),
              "velocity.svg": plan_svg(plans.velocity, details=details,
                                       view=views.get("velocity"))}
     if plans.acceleration is not None:
         files["acceleration.svg"] = plan_svg(plans.acceleration, details=details,
                                              view=views.get("acceleration"))
-    files["lever.svg"] = lever_svg(plans, view=views.get("lever"))
+    files["lever.svg"] = lever_svg(plans, view=views.get("lever"), details=details)
     if forces is not None:
         files.update(force_files(forces, plans, loaded=loaded, details=details,
                                  views=views or None))

@@ -143,7 +143,8 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
                             css=f"force {edge.kind}", step=number + 1):
                 used.setdefault(_legend_key(edge), (style, colour))
             runs = notation.runs(edge.label, edge.link) if notation else _runs(edge.label)
-            figure.request((edge.label,), start + 0.5 * (end - start), runs, mark=2.0)
+            figure.request((edge.label,), start + 0.5 * (end - start), runs, mark=2.0,
+                           span=(start, end))
         for name, first, _ in _totals(edges, vectors):
             on = edges[first].link
             after = first + 2  # the corner after the second component (cyclically)
@@ -151,15 +152,15 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
             if figure.arrow(start, end, "result", layer="results", css="force total"):
                 used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
                 figure.request((name,), start + 0.5 * (end - start),
-                               notation.runs(name, on) if notation else _runs(name), mark=2.0)
+                               notation.runs(name, on) if notation else _runs(name), mark=2.0,
+                               span=(start, end))
         figure.circle(where[0], 3.4, fill=INK, css="start")
 
-    figure = Canvas(view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE))
-    content(figure)
-    where = {f"corner {k}": figure.px(c) for k, c in enumerate(corners[:-1])}
-    regions = detail_regions(figure, where) if details else []
+    figure, regions = _laid_out(
+        view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE), content,
+        lambda canvas: {f"corner {k}": canvas.px(c) for k, c in enumerate(corners[:-1])},
+        details and not view, view.box if view else None)
     closure = float(norm(corners[-1] - corners[0]))
-    figure.place()
     lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
     _, y0, x1, _ = view.box if view else figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
@@ -174,6 +175,41 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
           box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines), "force")
                       if view else None).svg
+
+
+def _laid_out(zoom: float, content, where_of, details: bool,
+              bounds: tuple[float, float, float, float] | None = None
+              ) -> tuple[Canvas, list]:
+    """A figure drawn by ``content`` at ``zoom``, its enlarged details' regions marked and its
+    labels placed (within ``bounds`` where they can: a steady page's box). The details watch
+    the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
+    again once the regions are marked (a frame may push a label off its spot: then the figure
+    is drawn once more with that label watched too)."""
+    extra: dict = {}
+    for _ in range(2):
+        figure = Canvas(zoom)
+        content(figure)
+        where = where_of(figure)
+        watched = (_crowded(figure, where) | extra) if details else where
+        regions = detail_regions(figure, watched, draw=details)
+        figure.place(bounds=bounds)
+        pushed = {" ".join(label.points): label.anchor for label in figure.labels
+                  if not label.clean and not set(label.points) & set(watched)
+                  and not label.points[0].startswith("detail:")}
+        if not details or not pushed:
+            break
+        extra |= pushed
+    return figure, regions
+
+
+def _crowded(figure: Canvas, where: dict) -> dict:
+    """The points a detail watches, ``where``, and where the other labels go (of forces,
+    arms, moments) that find no clean spot on the figure, placed on trial: such a label
+    crowds the points near it like a point, so an enlarged detail shows it where others are
+    near."""
+    return where | {" ".join(label.points): label.anchor for label in figure.trial()
+                    if not label.clean and not set(label.points) & set(where)
+                    and not label.points[0].startswith("detail:")}
 
 
 def _legend_key(edge) -> str:
@@ -197,17 +233,19 @@ def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> fl
     y += 8
     for text, (style, colour) in used.items():
         y += 20
-        figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour)
-        figure.obstacle_lines.pop()
+        figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour,
+                     obstacle=False)
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
     return y
 
 
-def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None:
+def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool = True
+                 ) -> str | None:
     """Aliyev's combined-force construction on the acceleration plan (None without one, and
     None where no gravity acts: with g = 0 the moved pole π′ is π and the construction is the
     inertia forces alone; see :func:`combined_omitted`); ``view`` keeps the zoom and page of
-    every frame of a turn."""
+    every frame of a turn; with ``details`` (and no ``view``) an enlarged detail where
+    points crowd."""
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None:
         return None
@@ -217,25 +255,38 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure = Canvas(view.zoom if view else fit_zoom(list(points.values()) + extra, PLAN_SIZE))
-    plan_content(figure, points, plan.steps, plan.pole, numbers=plan.numbers)
-    pole_px, new_px = figure.px((0.0, 0.0)), figure.px(new_pole)
-    if combined.gravity_image_mm > 0:
-        figure.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
-                     css="gravity image")
-        figure.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"), mark=2.0)
-    figure.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole")
-    figure.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
     notation = ForceNotation(forces.solution)
-    for force in combined.forces:
-        s = figure.px(force.image_mm)
-        figure.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image")
-        figure.request((f"s_{force.link}",), s,
-                       (("s", RunKind.MAIN), (notation.number(force.link), RunKind.SUB)), mark=2.6)
-        if float(norm(np.asarray(force.segment_mm))) * figure.zoom >= 1.0:
-            figure.arrow(s, new_px, "tangential", layer="results", color=KNOWN_COLOURS["F"],
-                         css=f"combined {force.link}")
-    figure.place()
+
+    def content(canvas: Canvas) -> None:
+        plan_content(canvas, points, plan.steps, plan.pole, numbers=plan.numbers)
+        pole_px, new_px = canvas.px((0.0, 0.0)), canvas.px(new_pole)
+        if combined.gravity_image_mm > 0:
+            canvas.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
+                         css="gravity image")
+            canvas.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"),
+                           mark=2.0, span=(pole_px, new_px))
+        canvas.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole", points=("π′",))
+        canvas.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
+        for force in combined.forces:
+            s = canvas.px(force.image_mm)
+            canvas.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image",
+                          points=(f"s_{force.link}",))
+            canvas.request((f"s_{force.link}",), s, (("s", RunKind.MAIN),
+                                                     (notation.number(force.link),
+                                                      RunKind.SUB)), mark=2.6)
+            if float(norm(np.asarray(force.segment_mm))) * canvas.zoom >= 1.0:
+                canvas.arrow(s, new_px, "tangential", layer="results",
+                             color=KNOWN_COLOURS["F"], css=f"combined {force.link}")
+
+    def where(canvas: Canvas) -> dict:
+        return ({label: canvas.px(xy) for label, xy in points.items()}
+                | {"π′": canvas.px(new_pole)}
+                | {f"s_{force.link}": canvas.px(force.image_mm) for force in combined.forces})
+
+    figure, regions = _laid_out(view.zoom if view else fit_zoom(
+        list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
+        view.box if view else None)
+    lines_of_details = detail_insets(figure, content, regions, "detail-combined")
     _, y0, x1, _ = view.box if view else figure.extent
     bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
@@ -252,6 +303,7 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None) -> str | None
         lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
                      f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
+    lines += lines_of_details
     title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
              f"pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION,
@@ -298,6 +350,11 @@ class _LeverForce:
     foot: np.ndarray
     couple: str = ""
     number: int = 0
+    #: the arm's row among the arms on one line from p (0: on its own line), and the side
+    #: (+1, −1 along the force) the rows step to: arms that would lie on one another are
+    #: drawn as stacked dimension lines
+    row: int = 0
+    side: float = 1.0
 
 
 def _arm(image: np.ndarray, force: np.ndarray) -> tuple[float, np.ndarray]:
@@ -357,11 +414,15 @@ class _LeverFigure:
         #: be too short to see at it
         self.mu_f = mu_f = standard(largest / (0.45 * extent)) if largest > 0 else 1.0
         pair = max((float(norm(item.force)) for item in self.couples), default=0.0)
-        self.mu_couple = mu_f if pair / mu_f >= 0.08 * extent or not pair else \
-            standard(pair / (0.08 * extent))
+        self.mu_couple = mu_f if pair / mu_f >= COUPLE_LENGTH * extent or not pair else \
+            standard(pair / (COUPLE_LENGTH * extent))
         ends = [tuple(item.image + item.force / mu_f) for item in drawn]
         ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
         self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        numbered = _stacked([*self.known, *self.couples, self.balancing], self.zoom)
+        self.known = numbered[:len(self.known)]
+        self.couples = numbered[len(self.known):-1]
+        self.balancing = numbered[-1]
         self.used: dict[str, tuple[str, str | None]] = {}
 
     def content(self, figure: Canvas) -> None:
@@ -392,19 +453,26 @@ class _LeverFigure:
         """The force at its image, its arm from p labelled h₁, h₂ …, and its line."""
         start, end = figure.px(item.image), figure.px(item.image + item.force / mu_f)
         figure.arrow(start, end, style, layer="results", color=colour, css="lever force")
-        figure.request((f"force:{item.name}",), start + 0.6 * (end - start), runs, mark=2.0)
+        figure.request((f"force:{item.name}",), start + 0.6 * (end - start), runs, mark=2.0,
+                       span=(start, end))
         if item.arm * figure.zoom < 2.0:
             return
-        pole, foot = figure.px((0.0, 0.0)), figure.px(item.foot)
-        figure.line(pole, foot, color=colour, width=0.7, dash="1.5,2.5",
-                    layer="construction", css="arm", obstacle=False)
-        figure.request((f"arm:{item.name}",), pole + 0.5 * (foot - pole),
-                       (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
-                       size=SMALL_LABEL, mark=0.0, css="arm")
         direction = unit(item.force)
+        pole, foot = figure.px((0.0, 0.0)), figure.px(item.foot)
+        step = figure.px(direction * item.side * item.row * ROW_PX / figure.zoom)
+        if item.row:         # a dimension line beside the others: its extension lines
+            for end in (pole, foot):
+                figure.line(end, end + step, color=colour, width=0.5, dash="1.5,2.5",
+                            layer="construction", css="arm extension")
+        figure.line(pole + step, foot + step, color=colour, width=0.7, dash="1.5,2.5",
+                    layer="construction", css="arm")
+        figure.request((f"arm:{item.name}",), foot + step,        # at its end, beyond it
+                       (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
+                       size=SMALL_LABEL, mark=0.0, css="arm",
+                       lean=(foot - pole) / max(float(norm(foot - pole)), 1e-12))
         reach = max(4.0 / figure.zoom, float(dot(item.image - item.foot, direction)))
         figure.line(foot, figure.px(item.foot + direction * reach), color=colour, width=0.5,
-                    dash="4,3", layer="construction", css="line of action", obstacle=False)
+                    dash="4,3", layer="construction", css="line of action")
 
     def rows(self) -> tuple[list[list[str]], float, float]:
         """The sum's table, term by term, and Σ M, Σ |M| (N·mm)."""
@@ -427,8 +495,55 @@ class _LeverFigure:
         return rows, total, magnitude
 
 
+#: the couples' force pairs are drawn at least this fraction of the plan's extent long (the
+#: largest; at a scale of their own where the lever's would draw them shorter), so that their
+#: labels sit clear of the images they start at
+COUPLE_LENGTH = 0.2
 #: a label's size for the arms h₁, h₂ … (smaller than the points' labels)
 SMALL_LABEL = 12.0
+#: the step (px) between the rows of arms that lie on one line from p
+ROW_PX = 28.0
+#: arms from p whose lines part less than this (px) along the shorter lie on one line
+SAME_LINE_PX = 8.0
+
+
+def _stacked(items: list[_LeverForce], zoom: float) -> list[_LeverForce]:
+    """The arms numbered in rows: arms that leave p in one direction — their lines part less
+    than :data:`SAME_LINE_PX` along the shorter, drawn at ``zoom`` — would be drawn on one
+    another; the shortest stays on its line, each longer one is drawn :data:`ROW_PX` further
+    along the forces' direction (all to the side away from the forces' images), as a stack of
+    dimension lines, each labelled at its end.
+
+    >>> def force(foot):
+    ...     return _LeverForce("G", None, np.array([foot, 5.0]), np.array([0.0, -1.0]),
+    ...                        0.0, abs(foot), np.array([foot, 0.0]))
+    >>> rows = _stacked([force(-9.0), force(-4.0), force(6.0)], 10.0)
+    >>> [(item.row, item.side) for item in rows]
+    [(1, 1.0), (0, 1.0), (0, 1.0)]
+    """
+    angles = {index: math.atan2(item.foot[1], item.foot[0])
+              for index, item in enumerate(items) if item.arm * zoom >= 2.0}   # drawn
+    out = list(items)
+    done: set[int] = set()
+
+    def together(first: int, second: int) -> bool:
+        apart = abs((angles[first] - angles[second] + math.pi) % (2 * math.pi) - math.pi)
+        shorter = min(items[first].arm, items[second].arm) * zoom
+        return apart < math.pi / 2 and shorter * math.sin(apart) < SAME_LINE_PX
+
+    for index in sorted(angles, key=angles.get):
+        if index in done:
+            continue
+        group = [other for other in angles if other not in done and together(index, other)]
+        done.update(group)
+        direction = unit(items[group[0]].force)
+        # step away from the images: against where they lie along the group's direction
+        lean = sum(float(dot(items[k].image - items[k].foot, direction)) for k in group)
+        side = -1.0 if lean > 0 else 1.0
+        for row, k in enumerate(sorted(group, key=lambda k: (items[k].arm, items[k].number))):
+            along = 1.0 if float(dot(unit(items[k].force), direction)) >= 0 else -1.0
+            out[k] = replace(items[k], row=row, side=side * along)   # one side for all
+    return out
 
 
 def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
@@ -443,11 +558,9 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
             lever.balancing_moment[0]):
         return None
     page = _LeverFigure(forces, plans)
-    figure, plan = Canvas(page.zoom), page.plan
-    page.content(figure)
-    where = {label: figure.px(xy) for label, xy in page.turned.items()}
-    regions = detail_regions(figure, where) if details else []
-    figure.place()
+    plan = page.plan
+    figure, regions = _laid_out(page.zoom, page.content, lambda canvas: {
+        label: canvas.px(xy) for label, xy in page.turned.items()}, details)
     details = detail_insets(figure, page.content, regions, "detail-lever")
     rows, total, magnitude = page.rows()
     balancing = page.balancing
@@ -525,8 +638,7 @@ class _LoadedFigure:
     def where(self, figure: Canvas) -> dict[str, np.ndarray]:
         """The points a detail watches: the mechanism's points and the centres of mass."""
         where = {name: figure.px(xy) for name, xy in self.position.points_mm.items()}
-        where |= {f"S:{link}": figure.px(xy) for link, xy in self.centres.items()}
-        return where
+        return where | {f"S:{link}": figure.px(xy) for link, xy in self.centres.items()}
 
     def content(self, figure: Canvas) -> None:
         """The mechanism with its centres of mass, forces and moments, at ``figure``'s zoom."""
@@ -564,14 +676,14 @@ class _LoadedFigure:
         begin, end = figure.px(start), figure.px(start + force / self.mu_f)
         figure.arrow(begin, end, "relative", layer="results", color=colour, css="load")
         figure.request((f"force:{item.name}:{item.link}",), begin + 0.65 * (end - begin),
-                       self.notation.runs(item.name, item.link), mark=2.0)
+                       self.notation.runs(item.name, item.link), mark=2.0, span=(begin, end))
         self.used.setdefault(_legend_key_of(item.name), ("relative", colour))
         shift = self._single_force_shift(item, force)
         if shift is not None and float(norm(shift)) * figure.zoom >= 1.5:
             figure.line(figure.px(start + shift - 0.6 * force / self.mu_f),
                         figure.px(start + shift + 1.2 * force / self.mu_f), color=colour,
                         width=0.8, dash=STYLES["construction"].dash, layer="construction",
-                        css="inertia line", obstacle=False)
+                        css="inertia line")
             self.used.setdefault("line of the single equivalent inertia force (h from S)",
                                  ("construction", colour))
 
@@ -620,10 +732,8 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     if plans is None:
         return None
     page = _LoadedFigure(forces, plans)
-    figure, mechanism = Canvas(page.zoom), forces.solution.mechanism
-    page.content(figure)
-    regions = detail_regions(figure, page.where(figure)) if details else []
-    figure.place()
+    mechanism = forces.solution.mechanism
+    figure, regions = _laid_out(page.zoom, page.content, page.where, details)
     details = detail_insets(figure, page.content, regions, "detail-loaded")
     _, y0, x1, _ = figure.extent
     bottom = _force_legend(figure, (x1 + 34, y0 + 4), page.used, heading="Forces and moments")
@@ -685,7 +795,8 @@ def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True
             title=f"{title} — force polygon {number}: {notation.group_name(group)}, "
                   f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
                   f"{forces.angle:g}°")
-    combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"))
+    combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"),
+                            details=details)
     if combined is not None:
         files["combined_force.svg"] = combined
     if views:

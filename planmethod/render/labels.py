@@ -51,12 +51,13 @@ from enum import StrEnum
 import numpy as np
 
 from ..vocabulary import coriolis_letter
-from .style import LABEL, NBSP, SUB_SCALE, SUB_SHIFT, text_width
+from .style import CLEARANCE_PX, LABEL, NBSP, SUB_SCALE, SUB_SHIFT, text_width
 
 __all__ = [
     "LabelRequest",
     "PlacedLabel",
     "RunKind",
+    "drawn_length",
     "label_runs",
     "merge_runs",
     "place_labels",
@@ -91,16 +92,29 @@ LABEL_GAP = 7.0
 DIRECTIONS = (45, 135, -45, -135, 0, 90, 180, -90,
               22.5, 67.5, 112.5, 157.5, -22.5, -67.5, -112.5, -157.5)
 #: distances (px) tried beyond the point's mark
-DISTANCES = (2.0, 6.0, 11.0, 17.0, 25.0, 35.0, 48.0, 64.0, 84.0)
+DISTANCES = (2.0, 6.0, 11.0, 17.0, 25.0, 35.0, 48.0, 64.0, 84.0, 110.0, 140.0, 180.0, 230.0)
 #: beyond this distance (px) a label gets a leader line to its point
 LEADER_DISTANCE = 14.0
+#: a leader may cross the lines through its own point within this distance (px) of it
+LEADER_START = 1.5
+#: cost of a leader crossing a vector's arrow (px of distance)
+VECTOR_CROSSING_COST = 250.0
+#: cost of a leader crossing another label or leader: a spot taken only where no other is
+CLASH_COST = 2000.0
 #: cost of one px of a drawn line under a label, relative to one px of distance
 LINE_COST = 30.0
 #: cost of one px² of a point mark or fixed text under a label
 AREA_COST = 2.0
+#: cost (px) of a spot on the side opposite a label's ``lean``, half of it at right angles
+LEAN_COST = 1.5
+#: cost (px) of a spot that leaves the bounds the labels keep within
+OUTSIDE_COST = 60.0
+#: a spot is clean if it costs no more than this (px) beyond its distance, side and leader's
+#: thin crossings: a hair of a line in its padding
+CLEAN_SLACK = 1.0
 #: a label may come this near (px) its own point's mark: the room other labels keep from a
 #: point's mark (``planmethod.render.canvas.KEEP_CLEAR``) is not held against its own label
-OWN_ROOM = 5.0
+OWN_ROOM = CLEARANCE_PX
 
 
 def _split_digits(name: str) -> tuple[str, str]:
@@ -133,12 +147,13 @@ def label_runs(label: str, numbers: Mapping[str, int] | None = None) -> tuple[Ru
     return tuple(runs)
 
 
-def merge_runs(labels: Iterable[Sequence[Run]]) -> tuple[Run, ...]:
-    """Join the runs of coincident points with " ≡ "."""
+def merge_runs(labels: Iterable[Sequence[Run]], sign: str = "≡") -> tuple[Run, ...]:
+    """Join the runs of coincident points with " ≡ " (or another ``sign``: " ≈ " for points
+    that only the drawing cannot tell apart)."""
     out: list[Run] = []
     for index, runs in enumerate(labels):
         if index:
-            out.append((f"{NBSP}≡{NBSP}", RunKind.SEP))
+            out.append((f"{NBSP}{sign}{NBSP}", RunKind.SEP))
         out.extend(runs)
     return tuple(out)
 
@@ -167,7 +182,8 @@ def runs_extent(runs: Sequence[Run], size: float) -> tuple[float, float, float]:
 @dataclass(frozen=True, slots=True)
 class LabelRequest:
     """A label to place: the points it names, its anchor (px, y down), its runs, its size,
-    the radius of the point's mark, and a style class (``label``, ``faint``, ``flag``)."""
+    the radius of the point's mark, a style class (``label``, ``faint``, ``flag``) and the
+    vector it names, if any."""
 
     points: tuple[str, ...]
     anchor: tuple[float, float]
@@ -175,12 +191,22 @@ class LabelRequest:
     size: float
     mark_radius: float = 3.0
     css: str = "label"
+    #: the vector a label names, (start, end) px, where it names one: an enlarged detail
+    #: that shows part of it anchors the label on that part
+    span: tuple[tuple[float, float], tuple[float, float]] | None = None
+    #: the side (a page direction) a label prefers, among spots as clean and as near: a
+    #: dimension's label above its line
+    lean: tuple[float, float] | None = None
+    #: a label shown elsewhere too (in an enlarged detail): left out where it finds no clean
+    #: spot (one with no line, label or leader in the way)
+    optional: bool = False
 
 
 @dataclass(frozen=True, slots=True)
 class PlacedLabel:
     """A placed label: its request's data, the baseline start (px), the box it covers
-    ``(x0, y0, x1, y1)`` (padding included) and whether a leader line joins it to the point."""
+    ``(x0, y0, x1, y1)`` (padding included), whether a leader line joins it to the point and
+    whether its spot is clean (no line, label or leader in the way)."""
 
     points: tuple[str, ...]
     anchor: tuple[float, float]
@@ -190,6 +216,7 @@ class PlacedLabel:
     box: tuple[float, float, float, float]
     leader: bool
     css: str
+    clean: bool = True
 
     @property
     def text(self) -> str:
@@ -254,14 +281,25 @@ def _meeting(items: np.ndarray, region) -> np.ndarray:
             & (np.maximum(items[:, 1], items[:, 3]) >= region[1]))
 
 
-def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray, split: int | None = None
+                     ) -> np.ndarray:
     """For each box (x0, y0, x1, y1), the length of the segments inside it (Liang–Barsky
-    clipping of every segment against every box at once).
+    clipping of every segment against every box at once); with ``split``, that of the
+    segments before it and that of the rest, as two rows.
 
     >>> _clipped_lengths(np.array([[-5.0, 0.0, 5.0, 0.0]]), np.array([[0.0, -1, 2, 1],
     ...                                                               [3, 3, 4, 4]]))
     array([2., 0.])
     """
+    if split is not None:
+        return np.stack((_clipped_lengths(segments, boxes),
+                         np.zeros(len(boxes)))) if split >= len(segments) else \
+            _split_lengths(segments, boxes, split)
+    return _split_lengths(segments, boxes, len(segments))[0]
+
+
+def _split_lengths(segments: np.ndarray, boxes: np.ndarray, split: int) -> np.ndarray:
+    """:func:`_clipped_lengths` of the segments before ``split`` and of the rest (2 × boxes)."""
     lo_x = np.minimum(segments[:, 0], segments[:, 2])[:, None]
     hi_x = np.maximum(segments[:, 0], segments[:, 2])[:, None]
     lo_y = np.minimum(segments[:, 1], segments[:, 3])[:, None]
@@ -270,7 +308,7 @@ def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     piece, which = np.nonzero((lo_x <= boxes[:, 2]) & (hi_x >= boxes[:, 0])
                               & (lo_y <= boxes[:, 3]) & (hi_y >= boxes[:, 1]))
     if not len(piece):
-        return np.zeros(len(boxes))
+        return np.zeros((2, len(boxes)))
     x0, y0 = segments[piece, 0], segments[piece, 1]
     dx, dy = segments[piece, 2] - x0, segments[piece, 3] - y0
     box = boxes[which]
@@ -283,7 +321,22 @@ def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     high = np.minimum(np.where(p > 0, ratio, np.inf).min(axis=0), 1.0)
     outside = ((p == 0) & (q < 0)).any(axis=0)      # parallel to an edge, beyond it
     span = np.where(outside, 0.0, np.maximum(high - low, 0.0))
-    return np.bincount(which, weights=span * np.hypot(dx, dy), minlength=len(boxes))
+    inside = span * np.hypot(dx, dy)
+    later = piece >= split
+    return np.stack((np.bincount(which[~later], weights=inside[~later], minlength=len(boxes)),
+                     np.bincount(which[later], weights=inside[later], minlength=len(boxes))))
+
+
+def drawn_length(lines: Sequence, boxes: Sequence) -> np.ndarray:
+    """For each box (x0, y0, x1, y1), the length of the drawn lines (point sequences) inside
+    it: how cluttered a place is.
+
+    >>> drawn_length([((-5, 0), (5, 0))], [(0, -1, 2, 1), (3, 3, 4, 4)]).round(9).tolist()
+    [2.0, 0.0]
+    """
+    segments = _segments(lines)
+    boxes = np.asarray(boxes, dtype=float).reshape(-1, 4)
+    return _clipped_lengths(segments, boxes) if len(segments) else np.zeros(len(boxes))
 
 
 def _overlap_areas(rectangles: np.ndarray, boxes: np.ndarray) -> np.ndarray:
@@ -295,9 +348,55 @@ def _overlap_areas(rectangles: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     return (np.maximum(width, 0.0) * np.maximum(height, 0.0)).sum(axis=0)
 
 
-def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence
+def _leaders(anchor, boxes: np.ndarray) -> np.ndarray:
+    """The leader (x0, y0, x1, y1) of a label in each box: from its point to the nearest
+    point of the box (as :meth:`planmethod.render.canvas.Canvas.place` draws it)."""
+    ax, ay = anchor
+    return np.stack((np.full(len(boxes), ax), np.full(len(boxes), ay),
+                     np.clip(ax, boxes[:, 0], boxes[:, 2]),
+                     np.clip(ay, boxes[:, 1], boxes[:, 3])), axis=-1)
+
+
+def _crossing(leaders: np.ndarray, segments: np.ndarray) -> np.ndarray:
+    """(leaders × segments): whether each leader crosses each segment, away from the point
+    it starts at (a leader may leave its point across the lines through it).
+
+    >>> _crossing(np.array([[0.0, 0, 10, 0], [0, 0, 0, 10]]),
+    ...           np.array([[5.0, -5, 5, 5], [0, 0, 3, 3]])).tolist()
+    [[True, False], [False, False]]
+    """
+    if not len(segments) or not len(leaders):
+        return np.zeros((len(leaders), len(segments)), dtype=bool)
+    reach = (min(leaders[:, 0].min(), leaders[:, 2].min()), min(leaders[:, 1].min(),
+             leaders[:, 3].min()), max(leaders[:, 0].max(), leaders[:, 2].max()),
+             max(leaders[:, 1].max(), leaders[:, 3].max()))
+    meeting = _meeting(segments, reach)
+    if not meeting.all():                 # only the segments near the leaders can cross
+        out = np.zeros((len(leaders), len(segments)), dtype=bool)
+        out[:, meeting] = _crossing(leaders, segments[meeting])
+        return out
+    ax, ay = leaders[:, 0, None], leaders[:, 1, None]
+    rx, ry = leaders[:, 2, None] - ax, leaders[:, 3, None] - ay
+    cx, cy = segments[:, 0], segments[:, 1]
+    sx, sy = segments[:, 2] - cx, segments[:, 3] - cy
+    denominator = rx * sy - ry * sx
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = ((cx - ax) * sy - (cy - ay) * sx) / denominator
+        u = ((cx - ax) * ry - (cy - ay) * rx) / denominator
+    length = np.hypot(rx, ry)
+    near = LEADER_START / np.maximum(length, 1e-9)      # where it leaves its point
+    return (np.abs(denominator) > 1e-12) & (t > near) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+
+
+def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence, *,
+                 vectors: Sequence = (), bounds: Sequence[float] | None = None
                  ) -> tuple[PlacedLabel, ...]:
     """Place labels so that no two overlap and as few drawn lines as possible run under them.
+
+    A label pushed far from its point gets a leader: a label's box never takes a leader drawn
+    before, and a leader crosses a label placed before or another leader only where no other
+    spot is free (:data:`CLASH_COST`); crossing a vector's arrow costs a leader
+    :data:`VECTOR_CROSSING_COST` (other drawn lines it may cross).
 
     Parameters
     ----------
@@ -308,6 +407,11 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     areas
         Point marks, symbols and fixed text as rectangles (x0, y0, x1, y1) (their area
         counts).
+    vectors
+        The vectors' arrows among the lines, as sequences of points: a leader keeps off them.
+    bounds
+        A box (x0, y0, x1, y1) the labels keep within where they can (an enlarged detail's
+        frame): a spot that leaves it costs :data:`OUTSIDE_COST`.
 
     Examples
     --------
@@ -317,9 +421,11 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     (2, True)
     """
     segments = _segments(lines)
+    arrows = _segments(vectors)
     rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
     placed: list[PlacedLabel] = []
     taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1)
+    drawn_leaders = np.empty((0, 4))        # placed leaders (x0, y0, x1, y1)
     for request in requests:
         width, ascent, descent = runs_extent(request.runs, request.size)
         ax, ay = request.anchor
@@ -327,11 +433,11 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         # the label's own round mark, which it may touch: as the square of its area
         own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
-        best = None                         # (cost, box, distance)
+        best = None                         # (cost, box, distance, what a clean spot costs)
         for batch, distance, directions, base in _CANDIDATES:
             boxes = _boxes((ax, ay), directions, request.mark_radius + distance, half_w,
                            half_h)
-            free = True
+            free = np.ones(len(boxes), dtype=bool)
             if len(taken):   # widened by the gap kept between labels; touching counts
                 free = ~np.any((boxes[:, 0, None] - LABEL_GAP <= taken[:, 2])
                                & (taken[:, 0] <= boxes[:, 2, None] + LABEL_GAP)
@@ -339,37 +445,100 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
                                & (taken[:, 1] <= boxes[:, 3, None] + LABEL_GAP / 2), axis=1)
             region = (boxes[:, 0].min(), boxes[:, 1].min(), boxes[:, 2].max(),
                       boxes[:, 3].max())
-            cost = base
+            before = drawn_leaders[_meeting(drawn_leaders, region)]   # leaders drawn before
+            # what a clean spot costs: its distance and its side; anything in the way makes a
+            # spot not clean (a leader may cross thin lines: construction lines, links)
+            clean = base + CLEAN_SLACK
+            if request.lean is not None:      # the preferred side first, among equals
+                ux, uy = directions[0], directions[1]
+                clean = clean + LEAN_COST * (1.0 - ux * request.lean[0] - uy * request.lean[1])
+            cost = clean - CLEAN_SLACK
             near = segments[_meeting(segments, region)]
-            if len(near):
-                cost = cost + LINE_COST * _clipped_lengths(near, boxes)
+            if len(near) or len(before):    # the lines under each spot; no label on a leader
+                lengths = _clipped_lengths(np.concatenate((near, before)), boxes, len(near))
+                cost = cost + LINE_COST * lengths[0]
+                free &= lengths[1] <= 0.0
             under = rectangles[_meeting(rectangles, region)]
             if len(under):
                 cost = cost + AREA_COST * np.maximum(
                     _overlap_areas(under, boxes) - _overlap_areas(own_mark, boxes), 0.0)
+            if bounds is not None:
+                cost = cost + OUTSIDE_COST * ((boxes[:, 0] < bounds[0]) | (boxes[:, 1] < bounds[1])
+                                              | (boxes[:, 2] > bounds[2])
+                                              | (boxes[:, 3] > bounds[3]))
+            # the leaders the spots that could still win would need
+            far = (distance > LEADER_DISTANCE) & free
+            if best is not None:
+                far &= cost < best[0]
+            if far.any():
+                leaders = _leaders((ax, ay), boxes[far])
+                extra = np.zeros(len(boxes))
+                # leaders drawn before and arrows crossed, at once
+                close = arrows[_meeting(arrows, region)]
+                weights = np.concatenate((np.full(len(before), CLASH_COST),
+                                          np.full(len(close), VECTOR_CROSSING_COST)))
+                extra[far] = _crossing(leaders, np.concatenate((before, close))) @ weights
+                others = taken[_meeting(taken, region)]
+                if len(others):              # through another label: only where nothing else
+                    extra[far] += CLASH_COST * _through(leaders, others)
+                cost = cost + extra
             # per distance of the batch, its cheapest free candidate (the first of equals)
             table = np.where(free, cost, np.inf).reshape(len(batch), len(DIRECTIONS))
             picks = table.argmin(axis=1)
             lowest = table[np.arange(len(batch)), picks].tolist()
             settled = False
             for row, step in enumerate(batch):   # the nearest distance with a clean spot wins
+                index = row * len(DIRECTIONS) + picks[row]
                 if lowest[row] < math.inf and (best is None or lowest[row] < best[0] - 1e-9):
-                    best = (lowest[row], boxes[row * len(DIRECTIONS) + picks[row]],
-                            DISTANCES[step])
-                if best is not None and best[0] <= DISTANCES[step] + 1.0:
+                    best = (lowest[row], boxes[index], DISTANCES[step], float(clean[index]))
+                if best is not None and best[0] <= best[3]:
                     settled = True
                     break
             if settled:
                 break
+        tidy = best is not None and best[0] <= best[3]
+        if request.optional and not tidy:
+            continue                        # no clean spot: the detail shows it
         if best is None:                    # every spot overlaps: put it below everything
             bottom = float(taken[:, 3].max()) if len(taken) else ay
             best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, half_w, half_h)[0],
-                    math.inf)
-        bounds = tuple(float(v) for v in best[1])
-        baseline = (bounds[0] + PADDING, bounds[1] + PADDING + ascent)
+                    math.inf, 0.0)
+        spot = tuple(float(v) for v in best[1])
+        baseline = (spot[0] + PADDING, spot[1] + PADDING + ascent)
         far = best[2] > LEADER_DISTANCE
-        taken = np.vstack((taken, [bounds]))
+        taken = np.vstack((taken, [spot]))
+        if far:
+            drawn_leaders = np.vstack((drawn_leaders,
+                                       _leaders((ax, ay), np.asarray([spot]))))
         placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
                                   (round(baseline[0], 2), round(baseline[1], 2)),
-                                  tuple(round(v, 2) for v in bounds), far, request.css))
+                                  tuple(round(v, 2) for v in spot), far, request.css, tidy))
     return tuple(placed)
+
+
+def _through(leaders: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """For each leader, how many of the boxes it runs through (Liang–Barsky, on the pairs
+    whose bounds meet).
+
+    >>> _through(np.array([[0.0, 0, 10, 0], [0, 5, 0, 9]]), np.array([[4.0, -1, 6, 1]]))
+    array([1, 0])
+    """
+    lo_x = np.minimum(leaders[:, 0], leaders[:, 2])[:, None]
+    hi_x = np.maximum(leaders[:, 0], leaders[:, 2])[:, None]
+    lo_y = np.minimum(leaders[:, 1], leaders[:, 3])[:, None]
+    hi_y = np.maximum(leaders[:, 1], leaders[:, 3])[:, None]
+    piece, which = np.nonzero((lo_x <= boxes[:, 2]) & (hi_x >= boxes[:, 0])
+                              & (lo_y <= boxes[:, 3]) & (hi_y >= boxes[:, 1]))
+    if not len(piece):
+        return np.zeros(len(leaders), dtype=int)
+    x0, y0 = leaders[piece, 0], leaders[piece, 1]
+    dx, dy = leaders[piece, 2] - x0, leaders[piece, 3] - y0
+    box = boxes[which]
+    p = np.stack((-dx, dx, -dy, dy))
+    q = np.stack((x0 - box[:, 0], box[:, 2] - x0, y0 - box[:, 1], box[:, 3] - y0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = q / p
+    low = np.maximum(np.where(p < 0, ratio, -np.inf).max(axis=0), 0.0)
+    high = np.minimum(np.where(p > 0, ratio, np.inf).min(axis=0), 1.0)
+    inside = ~((p == 0) & (q < 0)).any(axis=0) & (high - low > 1e-9)
+    return np.bincount(piece[inside], minlength=len(leaders))

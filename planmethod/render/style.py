@@ -23,11 +23,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = [
+    "CLEARANCE_PX",
     "LABEL",
     "LABEL_SIZE",
     "LEGEND_ORDER",
     "MECHANISM_SIZE",
     "PLAN_SIZE",
+    "READABLE_EM",
+    "READABLE_PX",
     "SANS",
     "SANS_BOLD",
     "STYLES",
@@ -50,6 +53,13 @@ SANS = "sans"
 SANS_BOLD = "sans-bold"
 
 LABEL_SIZE = 15.0        # plan and position labels
+#: the readable distance, in em of the point labels: marks of distinct points nearer each
+#: other than this crowd, and an enlarged detail shows them (docs/outputs.md, "Legible
+#: figures"): 2 em, 30 px at 15 px labels
+READABLE_EM = 2.0
+READABLE_PX = READABLE_EM * LABEL_SIZE
+#: the room (px) a label keeps from another point's mark: a quarter of the readable distance
+CLEARANCE_PX = READABLE_PX / 4.0
 SUB_SCALE = 0.72         # a subscript's size relative to its label
 SUB_SHIFT = 0.28         # a subscript's drop below the baseline, in em of the label
 TEXT_SIZE = 12.5         # scales, legend, notes

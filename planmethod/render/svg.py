@@ -76,7 +76,7 @@ from .canvas import (
     page_point,
     scale_bar,
 )
-from .details import detail_insets, detail_regions
+from .details import detail_insets, detail_regions, one_spot
 from .labels import RunKind, label_runs, merge_runs
 from .steady import SteadyView
 from .style import (
@@ -296,17 +296,26 @@ class _PlanPage:
                 self.figure.used.add("result")
 
     def points(self) -> None:
-        """Points and labels: coincident points share one mark and one merged label."""
+        """Points and labels: coincident points share one mark and one merged label (p ≡ a);
+        points the drawing cannot tell apart (nearer than its resolution,
+        :func:`~planmethod.render.details.one_spot`) share one mark, their labels joined by
+        ≈."""
         order = {label: index for index, label in enumerate(self.points_mm)}
+        first = {label: (0 if label == self.pole else 1, order[label]) for label in order}
         shown = [label for label in self.points_mm if label not in self.hidden]
-        for members in _clusters(shown, self.where, SAME_POINT_MM * self.figure.zoom):
-            members.sort(key=lambda label: (0 if label == self.pole else 1, order[label]))
+        exact = SAME_POINT_MM * self.figure.zoom
+        for spot in _clusters(shown, self.where, max(one_spot(self.where), exact)):
+            groups = [sorted(members, key=first.get)
+                      for members in _clusters(spot, self.where, exact)]
+            groups.sort(key=lambda members: first[members[0]])
+            members = [label for members in groups for label in members]
             centre = self.where[members[0]]
             is_pole = members[0] == self.pole
             self.figure.circle(centre, 3.4 if is_pole else 2.4, fill=INK, layer="points",
                                css="pole" if is_pole else "point", points=members)
             self.figure.request(tuple(members), centre, merge_runs(
-                label_runs(label, self.numbers) for label in members), mark=3.4)
+                (merge_runs(label_runs(label, self.numbers) for label in members)
+                 for members in groups), sign="≈"), mark=3.4)
 
 
 #: what each kind of construction step draws (a step of another kind draws nothing)
@@ -412,8 +421,7 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
             text = style.legend_velocity if kind == PlanKind.VELOCITY else style.legend_acceleration
         else:
             style = STYLES[key]
-            figure.arrow((x, y - 4), (x + 34, y - 4), key, layer="text")
-            figure.obstacle_lines.pop()
+            figure.arrow((x, y - 4), (x + 34, y - 4), key, layer="text", obstacle=False)
             text = style.legend_velocity if kind == PlanKind.VELOCITY else style.legend_acceleration
         figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
     return y
@@ -492,8 +500,8 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
 
     content(figure)
     where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    regions = detail_regions(figure, where) if details else []
-    figure.place()
+    regions = detail_regions(figure, where, draw=details and not view)
+    figure.place(bounds=view.box if view else None)      # a steady page holds them
     details = detail_insets(figure, content, regions, f"detail-{plan.kind}")
     scale = PLAN_SCALES[plan.kind]
     lines = [scale_text(scale, plan.scale)]
@@ -770,8 +778,8 @@ def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
     tip = arc[-1]
     direction = unit_or_zero(tip - arc[-2])
     figure.polyline([*arc[:-1], tip - 7.0 * direction], color=color, width=1.4,
-                    layer="marks", css=css)
-    arrowhead(figure, tip, direction, 10.0, color, "marks")
+                    layer="marks", css=f"arrow {css}", vector=True)
+    arrowhead(figure, tip, direction, 10.0, color, "marks", css=f"arrow {css}")
     figure.request((key,), arc[len(arc) // 2], runs, mark=1.0)
 
 
@@ -810,7 +818,7 @@ def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float)
         color = "#8a5a00"
         if data.get("path_mm"):
             figure.polyline([figure.px(xy) for xy in data["path_mm"]], color=color, width=0.8,
-                            dash="2,3", closed=True, obstacle=False, css="path")
+                            dash="2,3", closed=True, css="path")
         half = 60.0
         ends = (at - half * tangent, at + half * tangent)
         figure.line(*ends, color=color, width=1.0, dash="10,3,2,3", layer="marks", css="tangent")
@@ -846,12 +854,15 @@ def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ())
 
 
 def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
-                     notes: Sequence[str] = (), view: SteadyView | None = None) -> SvgFigure:
+                     notes: Sequence[str] = (), view: SteadyView | None = None,
+                     details: bool = True) -> SvgFigure:
     """The mechanism at μl as an :class:`SvgFigure` (see the module docstring).
 
     ``notes`` are lines of text printed under the figure (a task sheet's text); a line that
     starts with two spaces is a table row and is set in a monospaced font. ``view`` keeps the
-    zoom and the page of every frame of a turn (the fixed pivots stay where they are).
+    zoom and the page of every frame of a turn (the fixed pivots stay where they are). With
+    ``details`` (and no ``view``), points nearer each other than the readable distance are
+    drawn again, enlarged, below the mechanism.
     """
     position = position_plan
     centres = []
@@ -862,10 +873,16 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
             centres.append(tuple(data["center_mm"]))
         centres += [tuple(xy) for xy in data.get("path_mm") or ()]
     figure = Canvas(view.zoom if view else position_zoom(position, centres))
-    mechanism_content(figure, position)
-    _omega_arrow(figure, position)
-    _curvature_content(figure, position, MECHANISM_SIZE)
-    figure.place()
+
+    def content(canvas: Canvas) -> None:
+        mechanism_content(canvas, position)
+        _omega_arrow(canvas, position)
+        _curvature_content(canvas, position, MECHANISM_SIZE)
+
+    content(figure)
+    regions = detail_regions(figure, {name: figure.px(xy) for name, xy in
+                                      position.points_mm.items()}, draw=details and not view)
+    figure.place(bounds=view.box if view else None)
     lines = [scale_text("mu_l", position.mu_l)]
     link, _pivot, omega = position.drive
     if omega:
@@ -873,6 +890,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
                      f"{link_text(link, position.numbers, 'drive link')}")
     if plans is not None:
         lines += [line for line in plans.scales.describe()[1:3]]
+    lines += detail_insets(figure, content, regions, "detail-position")
     title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "
              f"{position.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (position.mu_l, SCALES["mu_l"].drawn, 0.25 * MECHANISM_SIZE),
@@ -889,24 +907,34 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
 
 
 def position_svg(position_plan: PositionPlan, *, plans: Plans | None = None,
-                 view: SteadyView | None = None) -> str:
+                 view: SteadyView | None = None, details: bool = True) -> str:
     """The mechanism at μl as SVG text (``plans`` adds the plans' scales and flags)."""
-    return position_drawing(position_plan, plans=plans, view=view).svg
+    return position_drawing(position_plan, plans=plans, view=view, details=details).svg
 
 
 # -- the rotated velocity plan --------------------------------------------------------------------
-def lever_drawing(plans: Plans, *, view: SteadyView | None = None) -> SvgFigure:
+def lever_drawing(plans: Plans, *, view: SteadyView | None = None, details: bool = True
+                  ) -> SvgFigure:
     """The velocity plan turned 90° onto the faint mechanism, pole p at the drive's pivot
-    (``view``: the zoom and page of every frame of a turn)."""
+    (``view``: the zoom and page of every frame of a turn; ``details``: where the plan's
+    points crowd, an enlarged detail, unless a ``view`` is given)."""
     position, plan = plans.position, plans.velocity
     rotated = plans.rotated_velocity_plan()
     figure = Canvas(view.zoom if view else position_zoom(position, list(rotated.values())))
-    mechanism_content(figure, position, faint=True)
-    plan_content(figure, rotated, plan.steps, plan.pole, rotate_deg=-90.0, numbers=plan.numbers)
-    figure.place()
+
+    def content(canvas: Canvas) -> None:
+        mechanism_content(canvas, position, faint=True)
+        plan_content(canvas, rotated, plan.steps, plan.pole, rotate_deg=-90.0,
+                     numbers=plan.numbers)
+
+    content(figure)
+    regions = detail_regions(figure, {label: figure.px(xy) for label, xy in rotated.items()},
+                             draw=details and not view)
+    figure.place(bounds=view.box if view else None)
     lines = [scale_text("mu_l", position.mu_l), scale_text("mu_v", plan.scale),
              f"the velocity plan turned 90° clockwise, pole {plan.pole} at "
-             f"{point_text(position.drive[1])} (Zhukovsky's lever)"]
+             f"{point_text(position.drive[1])} (Zhukovsky's lever)",
+             *detail_insets(figure, content, regions, "detail-lever")]
     title = (f"{position.title} — rotated velocity plan, "
              f"{numbered('φ', crank_number(position))} = {position.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.25 * MECHANISM_SIZE),
@@ -915,6 +943,6 @@ def lever_drawing(plans: Plans, *, view: SteadyView | None = None) -> SvgFigure:
                       if view else None)
 
 
-def lever_svg(plans: Plans, *, view: SteadyView | None = None) -> str:
+def lever_svg(plans: Plans, *, view: SteadyView | None = None, details: bool = True) -> str:
     """The rotated velocity plan on the mechanism as SVG text."""
-    return lever_drawing(plans, view=view).svg
+    return lever_drawing(plans, view=view, details=details).svg

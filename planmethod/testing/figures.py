@@ -13,10 +13,25 @@ it did not write itself) and lists, one line each:
   figure's viewBox;
 * **legend items not drawn**: a legend's sample (its stroke colour, dash and width, or its
   fill) that no element of the figure itself has;
+* **marks too near each other**: marks (circles with ``data-points``) of distinct points
+  nearer each other than the figure's readable distance — :data:`READABLE_EM` of its point
+  labels' size, 30 px at 15 px (docs/notation.md, "Legible figures") — neither in a region
+  the figure draws again as an enlarged detail (a ``detail region`` frame; a detail's own
+  marks are held to it too, unless a region of the detail is drawn again);
 * **a label too near another point**: a point's label (``data-points``) whose text comes
-  nearer than :data:`READABLE_PX` to the mark of another point (a circle with
-  ``data-points``) outside any region the figure draws again as an enlarged detail (a
-  ``detail region`` frame) — the reader could take it for that point's.
+  nearer than its clearance (:data:`CLEARANCE_EM` of the readable distance) to the mark of
+  another point outside such a region — the reader could take it for that point's — and any
+  other label (a force's, an arm's) on a point's mark;
+* **a label crossed by a line**: a drawn line, polyline, polygon outline (an arrowhead too) or
+  stroked rectangle, other than the label's own leader, running more than a hair through a
+  label's text;
+* **leaders crossing**: a leader (``class="leader"``, its label's ``data-points``) that crosses
+  another leader or a vector's arrow (``class="arrow …"``: a straight or a curved one) away
+  from the point it starts at.
+
+A figure drawn without enlarged details by design (``details=False``: a workbook frame) is not
+held to the readable distance, the clearance or leaders clear of arrows, but its point labels
+keep :data:`TOUCH_PX` from other points' marks.
 
 :func:`steady_problems` checks the frames of a turn: one viewBox per panel.
 :func:`numbering_problems` checks that a figure names links as a course's numbering does.
@@ -34,17 +49,35 @@ text 'rocker_EF' overlaps text 'B'
 
 from __future__ import annotations
 
+import itertools
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from ..render.style import LABEL, SANS, SANS_BOLD, text_width
+from ..render.style import (
+    LABEL,
+    LABEL_SIZE,
+    READABLE_EM,
+    READABLE_PX,
+    SANS,
+    SANS_BOLD,
+    text_width,
+)
 
-__all__ = ["CODE_WORD", "READABLE_PX", "TextBox", "figure_problems", "numbering_problems",
-           "steady_problems", "text_boxes"]
+__all__ = ["CLEARANCE_EM", "CODE_WORD", "READABLE_EM", "READABLE_PX", "TOUCH_PX", "TextBox",
+           "figure_problems", "numbering_problems", "readable_px", "steady_problems",
+           "text_boxes"]
 
-#: a label's text keeps at least this far (px) from another point's mark
-READABLE_PX = 3.0
+#: a point's label keeps this fraction of the readable distance (0.5 em) from another
+#: point's mark, so that it reads as its own point's
+CLEARANCE_EM = 0.25
+#: without enlarged details, a point's label still keeps this far (px) from another point's
+#: mark
+TOUCH_PX = 3.0
+#: the length (px) of a drawn line inside a label's text that counts as crossing it
+_CROSS_PX = 1.5
+#: marks nearer than this (px) are at one place: SVG coordinates are written to 0.01 px
+_SAME = 0.015
 
 #: a code identifier in text: ``name[1]`` or a snake_case name with two or more letters first
 CODE_WORD = re.compile(r"\b[A-Za-z_]\w*\[\d+\]|\b[A-Za-z]{2,}_\w+|\b\w+_\w+_\w+")
@@ -65,6 +98,7 @@ class TextBox:
     css: str
     box: tuple[float, float, float, float]
     points: tuple[str, ...] = ()
+    size: float = 0.0
 
 
 def _number(value: str | None, default: float = 0.0) -> float:
@@ -108,7 +142,7 @@ def _text_box(element, css: str) -> TextBox:
     anchor = element.get("text-anchor") or "start"
     left = x - (width if anchor == "end" else width / 2 if anchor == "middle" else 0.0)
     return TextBox("".join(parts), css, (left, y - ascent, left + width, y + descent),
-                   tuple((element.get("data-points") or "").split()))
+                   tuple((element.get("data-points") or "").split()), size)
 
 
 _TRANSLATE = re.compile(r"^\s*translate\(\s*(-?[\d.e-]+)[\s,]+(-?[\d.e-]+)\s*\)\s*$")
@@ -140,6 +174,16 @@ def _walk(element, classes: tuple[str, ...] = (), offset=(0.0, 0.0), clip=None, 
         yield from _walk(child, classes + own, offset, clip, clips)
 
 
+def _owner(element, parents: dict) -> str:
+    """What a drawn element is, for a message: its own class, else its nearest classed
+    ancestor's (an arrow's shaft is the arrow's)."""
+    while element is not None:
+        if element.get("class"):
+            return element.get("class")
+        element = parents.get(id(element))
+    return "a line"
+
+
 def _clip_boxes(root) -> dict[str, tuple[float, float, float, float]]:
     """id → box of each ``<clipPath>`` that is one rectangle."""
     out = {}
@@ -167,7 +211,7 @@ def text_boxes(svg: str) -> list[TextBox]:
     for element, classes, offset, _ in _walk(root, clips=_clip_boxes(root)):
         if _local(element.tag) == "text":
             box = _text_box(element, " ".join(classes))
-            out.append(TextBox(box.text, box.css, _moved(box.box, offset), box.points))
+            out.append(TextBox(box.text, box.css, _moved(box.box, offset), box.points, box.size))
     return out
 
 
@@ -200,10 +244,15 @@ def _look(element) -> tuple[str, ...]:
     return ("fill", (element.get("fill") or "").lower())
 
 
-def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
+def figure_problems(svg: str, *, allowed: Iterable[str] = (), details: bool = True
+                    ) -> list[str]:
     """Everything wrong with one figure, one line each (empty: nothing). ``allowed`` are
     names a figure must print as they are (a task sheet's answer-file column names,
-    ``[omega_BC]``): not code words there.
+    ``[omega_BC]``): not code words there. A figure drawn without enlarged details by design
+    (``details=False``: a frame of a workbook page) is not held to what only a detail can
+    give — the readable distance between marks, a point label's clearance, leaders clear of
+    the arrows of a crowded point — but its labels still never touch another point's mark
+    (:data:`TOUCH_PX`).
 
     Raises
     ------
@@ -220,11 +269,15 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
     drawn: set[tuple[str, ...]] = set()
     marks: list[tuple[set[str], float, float, float]] = []
     regions: list[tuple[float, float, float, float]] = []
+    strokes: list[_Stroke] = []
     clip_shapes = {id(child) for clip in root.iter() if _local(clip.tag) == "clipPath"
                    for child in clip}      # a clip path's own shapes are not drawn
+    parents = {id(child): parent for parent in root.iter() for child in parent}
+    defined = {id(item) for defs in root.iter() if _local(defs.tag) == "defs"
+               for item in defs.iter()}      # patterns, clip paths: not drawn themselves
     for element, classes, offset, clip in _walk(root, clips=_clip_boxes(root)):
         tag = _local(element.tag)
-        if tag in ("title", "desc", "clipPath"):
+        if tag in ("title", "desc", "clipPath") or id(element) in defined:
             continue
         if "unknown-transform" in classes:
             if tag in ("text", "line", "polyline", "polygon", "circle", "rect"):
@@ -232,13 +285,13 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
             continue
         if tag == "text":
             box = _text_box(element, " ".join(classes))
-            box = TextBox(box.text, box.css, _moved(box.box, offset), box.points)
+            box = TextBox(box.text, box.css, _moved(box.box, offset), box.points, box.size)
             if clip is not None:          # what a clip path hides is not seen
                 visible = (max(box.box[0], clip[0]), max(box.box[1], clip[1]),
                            min(box.box[2], clip[2]), min(box.box[3], clip[3]))
                 if visible[0] >= visible[2] or visible[1] >= visible[3]:
                     continue
-                box = TextBox(box.text, box.css, visible, box.points)
+                box = TextBox(box.text, box.css, visible, box.points, box.size)
             boxes.append(box)
             for word in CODE_WORD.findall(box.text):
                 if not any(f"[{name}]" in box.text and word in name for name in allowed):
@@ -262,6 +315,8 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
             if clip is not None:          # clipped: only what lies inside the clip is seen
                 x, y = min(max(x, clip[0]), clip[2]), min(max(y, clip[1]), clip[3])
             shapes.append((tag, (x, y), classes))
+        if "text" not in classes:      # drawn lines (not a legend's samples, a scale bar)
+            strokes += _strokes(element, _owner(element, parents), offset, clip)
         if "text" in classes:          # the text layer: legends' samples and scale bars
             if tag in ("line", "polyline", "circle", "rect", "polygon") and "bar" not in \
                     classes and "scale" not in classes and "rule" not in classes:
@@ -285,7 +340,11 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = ()) -> list[str]:
                    if not (x0 - _EDGE <= x <= x1 + _EDGE and y0 - _EDGE <= y <= y1 + _EDGE)}
         for tag in sorted(outside):
             problems.append(f"a {tag} leaves the viewBox")
-    problems += _crowding(boxes, marks, regions)
+    readable = readable_px(boxes)
+    problems += _crowding(boxes, marks, regions, readable if details else None)
+    problems += _crossings(boxes, strokes, arrows=details)
+    if details:
+        problems += _spacing(marks, regions, readable)
     for sample in legend_samples:
         if sample[0] == "fill" and sample[1] in ("", "none", "#ffffff", "white"):
             continue
@@ -298,9 +357,25 @@ def _inside(x: float, y: float, box) -> bool:
     return box[0] <= x <= box[2] and box[1] <= y <= box[3]
 
 
-def _crowding(boxes, marks, regions) -> list[str]:
-    """Each point's label nearer than :data:`READABLE_PX` to another point's mark, where
-    neither that mark nor the label's own point lies in a region drawn as a detail."""
+def readable_px(boxes: Iterable[TextBox]) -> float:
+    """The readable distance of a figure (px): :data:`READABLE_EM` times the size of its
+    point labels (the commonest size among the texts that name points; :data:`LABEL_SIZE`
+    when none does).
+
+    >>> readable_px([TextBox("b", "label", (0, 0, 9, 15), ("b",), 15.0)])
+    30.0
+    """
+    sizes = [box.size for box in boxes if box.points and "label" in box.css.split()
+             and box.size > 0]
+    size = max(set(sizes), key=sizes.count) if sizes else LABEL_SIZE
+    return READABLE_EM * size
+
+
+def _crowding(boxes, marks, regions, readable: float) -> list[str]:
+    """Each point's label nearer than the clearance (:data:`CLEARANCE_EM` of the readable
+    distance) to another point's mark, and any other label (a force's, an arm's) on a point's
+    mark, where neither that mark nor the label's own point lies in a region drawn as a
+    detail."""
     own = {}
     for points, cx, cy, _ in marks:
         for point in points:
@@ -312,17 +387,168 @@ def _crowding(boxes, marks, regions) -> list[str]:
         mine = set(box.points)
         x0, y0, x1, y1 = box.box
         home = next((own[point] for point in box.points if point in own), None)
+        clearance = (0.0 if home is None else TOUCH_PX if readable is None
+                     else CLEARANCE_EM * readable)
         if home is not None and any(_inside(*home, region) for region in regions):
             continue
         for points, cx, cy, radius in marks:
             if points & mine or any(_inside(cx, cy, region) for region in regions):
                 continue
+            if home is not None and abs(home[0] - cx) + abs(home[1] - cy) <= _SAME:
+                continue                      # a point at the label's own place
             dx = max(x0 - cx, 0.0, cx - x1)
             dy = max(y0 - cy, 0.0, cy - y1)
             gap = (dx * dx + dy * dy) ** 0.5 - radius
-            if gap < READABLE_PX:
+            if gap < clearance:
                 problems.append(f"label {box.text!r} is {max(gap, 0.0):.1f} px from the mark "
                                 f"of {' '.join(sorted(points))} (no detail)")
+    return problems
+
+
+def _spacing(marks, regions, readable: float) -> list[str]:
+    """Marks of distinct points nearer each other than the readable distance, neither in a
+    region drawn again as an enlarged detail: their labels cannot both sit clear. Marks at
+    one place (to the figure's two decimals) mark points that coincide."""
+    problems = []
+    for index, (first, x0, y0, _) in enumerate(marks):
+        for second, x1, y1, _ in marks[index + 1:]:
+            if first & second:
+                continue
+            gap = ((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5
+            if _SAME < gap < readable and not any(_inside(x, y, region) for region in regions
+                                          for x, y in ((x0, y0), (x1, y1))):
+                problems.append(f"marks of {' '.join(sorted(first))} and "
+                                f"{' '.join(sorted(second))} are {gap:.1f} px apart, nearer "
+                                f"than the readable {readable:g} px (no detail)")
+    return problems
+
+
+@dataclass(frozen=True)
+class _Stroke:
+    """A visible straight piece of a drawn line (x0, y0, x1, y1), what it belongs to, and
+    for a leader the points its label names."""
+
+    piece: tuple[float, float, float, float]
+    owner: str
+    points: tuple[str, ...] = ()
+
+    @property
+    def leader(self) -> bool:
+        return "leader" in self.owner.split()
+
+
+def _dark(paint: str | None) -> bool:
+    return paint not in (None, "", "none", "#ffffff", "white") and not paint.startswith("url(")
+
+
+def _strokes(element, owner: str, offset, clip) -> list[_Stroke]:
+    """The visible straight pieces of a line, a polyline, a polygon (its outline, also of a
+    filled one: an arrowhead) or a stroked rectangle."""
+    tag = _local(element.tag)
+    stroked = _dark(element.get("stroke"))
+    if tag in ("line", "polyline") and stroked:
+        corners = _points(element)
+    elif tag == "polygon" and (stroked or _dark(element.get("fill"))):
+        corners = _points(element)
+        corners = corners + corners[:1]
+    elif tag == "rect" and stroked:
+        x, y = _number(element.get("x")), _number(element.get("y"))
+        w, h = _number(element.get("width")), _number(element.get("height"))
+        corners = [(x, y), (x + w, y), (x + w, y + h), (x, y + h), (x, y)]
+    else:
+        return []
+    points = tuple((element.get("data-points") or "").split())
+    out = []
+    for (ax, ay), (bx, by) in itertools.pairwise(corners):
+        piece = (ax + offset[0], ay + offset[1], bx + offset[0], by + offset[1])
+        if clip is not None:
+            piece = _clip(piece, clip)
+        if piece is not None and (piece[0] != piece[2] or piece[1] != piece[3]):
+            out.append(_Stroke(piece, owner, points))
+    return out
+
+
+def _clip(piece, box):
+    """The part of a segment inside a box (Liang–Barsky), or None.
+
+    >>> _clip((-5.0, 0.0, 5.0, 0.0), (0.0, -1.0, 2.0, 1.0))
+    (0.0, 0.0, 2.0, 0.0)
+    """
+    x0, y0, x1, y1 = piece
+    dx, dy = x1 - x0, y1 - y0
+    low, high = 0.0, 1.0
+    for p, q in ((-dx, x0 - box[0]), (dx, box[2] - x0), (-dy, y0 - box[1]), (dy, box[3] - y0)):
+        if p == 0:
+            if q < 0:
+                return None
+            continue
+        t = q / p
+        if p < 0:
+            low = max(low, t)
+        else:
+            high = min(high, t)
+    if low > high:
+        return None
+    return (x0 + low * dx, y0 + low * dy, x0 + high * dx, y0 + high * dy)
+
+
+def _length_inside(piece, box) -> float:
+    inside = _clip(piece, box)
+    return 0.0 if inside is None else ((inside[2] - inside[0]) ** 2
+                                       + (inside[3] - inside[1]) ** 2) ** 0.5
+
+
+def _meet(first, second) -> tuple[float, float] | None:
+    """Where two segments cross (each at a parameter in [0, 1]), or None (parallel too)."""
+    ax, ay, bx, by = first
+    cx, cy, dx, dy = second
+    rx, ry, sx, sy = bx - ax, by - ay, dx - cx, dy - cy
+    denominator = rx * sy - ry * sx
+    if abs(denominator) < 1e-12:
+        return None
+    t = ((cx - ax) * sy - (cy - ay) * sx) / denominator
+    u = ((cx - ax) * ry - (cy - ay) * rx) / denominator
+    if 0.0 <= t <= 1.0 and 0.0 <= u <= 1.0:
+        return (ax + t * rx, ay + t * ry)
+    return None
+
+
+def _crossings(boxes, strokes, *, arrows: bool = True) -> list[str]:
+    """Point labels crossed by a drawn line that is not their own leader, and leaders that
+    cross another leader or (with ``arrows``) a vector's arrow, away from the point they
+    start at."""
+    labels = [box for box in boxes if box.points and box.text.strip()]
+    text_of = {box.points: box.text for box in labels}
+    problems = []
+    for box in labels:
+        inner = (box.box[0] + _HAIR, box.box[1] + _HAIR, box.box[2] - _HAIR,
+                 box.box[3] - _HAIR)
+        for stroke in strokes:
+            if stroke.leader and stroke.points == box.points:
+                continue
+            if _length_inside(stroke.piece, inner) > _CROSS_PX:
+                what = (f"the leader of {text_of.get(stroke.points, 'a label')!r}"
+                        if stroke.leader else f"a line ({stroke.owner})")
+                problems.append(f"label {box.text!r} is crossed by {what}")
+    leaders = [stroke for stroke in strokes if stroke.leader]
+    for index, leader in enumerate(leaders):
+        name = text_of.get(leader.points, "a label")
+        start = leader.piece[:2]
+        for other in leaders[index + 1:] + [stroke for stroke in strokes if arrows
+                                             and stroke.owner.startswith("arrow")]:
+            if other is leader:
+                continue
+            at = _meet(leader.piece, other.piece)
+            if at is None or (at[0] - start[0]) ** 2 + (at[1] - start[1]) ** 2 < _CROSS_PX ** 2:
+                continue
+            if other.leader:
+                if (at[0] - other.piece[0]) ** 2 + (at[1] - other.piece[1]) ** 2 < \
+                        _CROSS_PX ** 2:
+                    continue                    # two leaders from one point
+                what = f"the leader of {text_of.get(other.points, 'a label')!r}"
+            else:
+                what = f"an arrow ({other.owner})"
+            problems.append(f"the leader of {name!r} crosses {what}")
     return problems
 
 
