@@ -12,7 +12,9 @@ records it (swap the drawings and the readings, lay the page out; the page parse
 neighbouring frames while idle). *Drawing mode*: at 12 angles the right velocity and
 acceleration plans are placed and checked, each check as the page times it (compare every
 point with its disc and the mistakes' positions, write the verdicts, lay them out). A full run
-also writes ``figures/workbook.png``, the screenshot in README.
+also writes ``figures/workbook.png``, the screenshot in README. *Terminated*: SIGTERM to
+``planmethod workbook`` alone while two workers solve the conveyor's frames, the time until
+it has ended and the processes of it left.
 
 Targets of issue 13: plans + SVG ≤ 10 ms (compressor) and ≤ 40 ms (conveyor) per position, the
 conveyor's ``analyse`` ≤ 20 ms, 360 frames in ≤ 5 s (compressor) and ≤ 20 s (conveyor), the
@@ -50,6 +52,8 @@ TARGETS_MS = {"compressor": {"analyse": None, "plan_files": 10.0, "page_s": 5.0}
 PAGE_LIMIT_MB = 3.0
 SWITCH_LIMIT_MS = 16.0
 CHECK_LIMIT_MS = 5.0
+#: issue 24: SIGTERM to the command alone ends it and its workers within this (s)
+SIGTERM_LIMIT_S = 2.0
 
 #: the drawing mode in the page: place the right plans of an angle (the key's points, which the
 #: page holds) through the page's own placing function, then check each plan
@@ -138,6 +142,57 @@ def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
             "check_median_ms": statistics.median(checks), "check_max_ms": max(checks)}
 
 
+def _processes_holding(marker: str) -> list[int]:
+    """The live processes whose command line holds ``marker`` (a fork keeps its parent's)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                command = (entry / "cmdline").read_bytes()
+                state = (entry / "stat").read_text().rsplit(")", 1)[1].split()[0]
+            except (OSError, IndexError):
+                continue
+            if marker.encode() in command and state != "Z":
+                found.append(int(entry.name))
+    return found
+
+
+def terminated_mid_run(folder: Path) -> dict | None:
+    """SIGTERM to ``planmethod workbook`` alone while its two workers solve frames: how long
+    the command takes to end, and how many of its processes are left once it has (None
+    without /proc or two CPUs)."""
+    import signal
+    import subprocess
+    import sys
+
+    from planmethod.commands.workbook import usable_cpus
+
+    if not Path("/proc/self/cmdline").exists() or usable_cpus() < 2:
+        return None
+    page = folder / "terminated-page.html"
+    process = subprocess.Popen([sys.executable, "-m", "planmethod", "workbook",
+                                str(ROOT / FILES["conveyor"]), "-o", str(page), "--step", "1",
+                                "--jobs", "2"], cwd=ROOT, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 120
+        while (len([pid for pid in _processes_holding(str(page)) if pid != process.pid]) < 2
+               and time.monotonic() < deadline):
+            time.sleep(0.05)
+        time.sleep(0.5)                     # the workers are solving frames now
+        process.send_signal(signal.SIGTERM)
+        sent = time.perf_counter()
+        process.wait(timeout=120)
+        took = time.perf_counter() - sent
+        time.sleep(0.2)
+        return {"seconds": took, "left": len(_processes_holding(str(page))),
+                "exit": process.returncode}
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+
+
 def run(*, quick: bool = False) -> dict:
     step = 10.0 if quick else 1.0
     folder = Path(tempfile.mkdtemp(prefix="planmethod-workbook-"))
@@ -151,6 +206,7 @@ def run(*, quick: bool = False) -> dict:
     result["browser"] = {name: browser_switch(entry["page"]["path"],
                                               shot if name == "compressor" else None)
                          for name, entry in result["mechanisms"].items()}
+    result["terminated"] = terminated_mid_run(folder)
     return result
 
 
@@ -181,4 +237,10 @@ def table(result: dict) -> str:
                      f"{_mark(times['plan_files'], target['plan_files'])} | "
                      f"{times['key']:.3g} | {_mark(page['seconds'], page_target)} | "
                      f"{_mark(page['megabytes'], size_target)} | {shown} | {checked} |")
+    ended = result.get("terminated")
+    if ended is not None:
+        lines += ["", f"`kill -TERM` of `planmethod workbook` alone (the conveyor at 1°, two "
+                      f"workers mid-run): it ended in {_mark(ended['seconds'], SIGTERM_LIMIT_S)}"
+                      f" s with exit status {ended['exit']}, and {ended['left']} of its "
+                      "processes were left."]
     return "\n".join(lines) + "\n"
