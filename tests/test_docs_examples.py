@@ -192,3 +192,18 @@ def test_example(path, example, repository_copies, monkeypatch):
                          or shutil.which("chromium-browser") is not None)
     monkeypatch.chdir(copy)
     example.evaluate()
+
+
+#: README is the front door: what it is, the two set-up commands, three starts; guides go to docs/
+README_LIMIT_BYTES = 15_000
+#: a relative Markdown link's target, without its #anchor
+_LINK = re.compile(r"\]\((?!https?://|mailto:|#)([^)#\s]+)(?:#[^)]*)?\)")
+
+
+def test_readme_is_a_front_door_whose_links_resolve():
+    readme = ROOT / "README.md"
+    assert len(readme.read_bytes()) <= README_LIMIT_BYTES
+    targets = _LINK.findall(readme.read_text(encoding="utf-8"))
+    assert len(targets) >= 5, targets          # the three starts link to their guides
+    assert [target for target in targets if not (ROOT / target).exists()] == []
+    assert _LINK.findall("[a](docs/x.md#y) [b](https://e.org) [c](#top)") == ["docs/x.md"]
