@@ -26,6 +26,8 @@ from pathlib import Path
 import chromium
 import pytest
 
+from planmethod.render.workbook import formula_html
+
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -158,7 +160,9 @@ def test_construction_playback_shows_the_reports_steps(browser, compressor_page)
     page.select_option("#step-plan", "velocity")
     for number, step in enumerate(steps[:4]):
         page.click("#step-next")
-        assert page.text_content("#step-text") == step["text"]
+        # the report's sentence, its subscripts set (n_CB: CB below the n)
+        assert page.inner_html("#step-text") == formula_html(step["text"])
+        assert "_" not in page.text_content("#step-text")
         assert page.text_content("#step-number") == f"step {number + 1} of {len(steps)}"
         hidden = page.eval_on_selector_all(
             "#panel-velocity [data-step]",
@@ -439,8 +443,8 @@ def test_show_the_construction_reveals_one_step_at_a_time(drawing, slotted_repor
     for number in range(4):
         page.click('[data-show-step="acceleration"]')
         assert page.is_visible("#panel-acceleration")
-        assert page.text_content('.draw-plan[data-plan="acceleration"] .draw-step') == \
-            f"step {number + 1} of {len(steps)}: {steps[number]['text']}"
+        assert page.inner_html('.draw-plan[data-plan="acceleration"] .draw-step') == \
+            f"step {number + 1} of {len(steps)}: {formula_html(steps[number]['text'])}"
         hidden = page.eval_on_selector_all(
             "#panel-acceleration [data-step].step-hidden", "nodes => nodes.length")
         assert hidden > 0

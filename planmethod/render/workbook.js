@@ -272,7 +272,8 @@
       });
       document.getElementById("step-number").textContent =
         "step " + (number + 1) + " of " + steps.length;
-      document.getElementById("step-text").textContent = data.strings[steps[number][1]];
+      // the step's sentence, typeset in Python (render/workbook.py formula_html)
+      document.getElementById("step-text").innerHTML = data.strings[steps[number][1]];
       // the plan's vector equations, typeset in Python (render/workbook.py formula_html)
       const equations = (data.frames[wb.frame].equations || {})[plan] || [];
       document.getElementById("equations").innerHTML =

@@ -215,9 +215,9 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         One mapping per angle: ``drawings`` {panel: SVG text}, ``readings`` [[exact, plan
         or None], …] in the order of ``quantities``, ``steps`` {plan: [[number, sentence,
         action, [the plan points it names]], …]}, ``equations`` {plan: [vector equation, …]}
-        (plain text; the page sets them with subscripts) and ``questions`` (the answer key's
-        questions at that angle: ``id``, ``value``, ``tolerance``, ``unit``, ``signed``,
-        ``mistakes``).
+        (sentences and equations in plain text; the page sets their subscripts) and
+        ``questions`` (the answer key's questions at that angle: ``id``, ``value``,
+        ``tolerance``, ``unit``, ``signed``, ``mistakes``).
     quantities
         The report's check quantities: ``name``, ``symbol``, ``subscript``, ``unit``, and
         the ``plan`` it is read off (the drawing mode hides the value until the student
@@ -245,7 +245,7 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
     for frame in frames:
         drawings = [table.lines(inline_svg(frame["drawings"][name])) if name in
                     frame["drawings"] else [] for name in panels]
-        steps = {plan: [[number, table.add(text), action, *rest]
+        steps = {plan: [[number, table.add(formula_html(text)), action, *rest]
                         for number, text, action, *rest in listed]
                  for plan, listed in frame.get("steps", {}).items()}
         equations = {plan: [table.add(formula_html(text)) for text in listed]

@@ -496,7 +496,8 @@
     panelOf(plan).classList.add("revealed", "stepwise");
     element("step-plan").value = plan;
     wb.playStep(next);
-    planBox(plan).querySelector(".draw-step").textContent =
+    // the step's sentence is typeset HTML (render/workbook.py formula_html)
+    planBox(plan).querySelector(".draw-step").innerHTML =
       "step " + (next + 1) + " of " + steps.length + ": " + wb.data.strings[steps[next][1]];
   }
   function showPlan(plan) {
