@@ -133,6 +133,7 @@ def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
             for _ in range(5):
                 page.click("#step-next")
             page.set_viewport_size({"width": 1400, "height": 1200})
+            page.check("#compact")          # the four drawings at once, two to a row
             page.evaluate("window.scrollTo(0, 0)")
             page.screenshot(path=str(screenshot), clip={"x": 0, "y": 0, "width": 1400,
                                                         "height": 1200})
