@@ -143,21 +143,6 @@ def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
             "check_median_ms": statistics.median(checks), "check_max_ms": max(checks)}
 
 
-def _processes_holding(marker: str) -> list[int]:
-    """The live processes whose command line holds ``marker`` (a fork keeps its parent's)."""
-    found = []
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                command = (entry / "cmdline").read_bytes()
-                state = (entry / "stat").read_text().rsplit(")", 1)[1].split()[0]
-            except (OSError, IndexError):
-                continue
-            if marker.encode() in command and state != "Z":
-                found.append(int(entry.name))
-    return found
-
-
 def terminated_mid_run(folder: Path) -> dict | None:
     """SIGTERM to ``planmethod workbook`` alone while its two workers solve frames: how long
     the command takes to end, and how many of its processes are left once it has (None
@@ -167,6 +152,7 @@ def terminated_mid_run(folder: Path) -> dict | None:
     import sys
 
     from planmethod.commands.workbook import usable_cpus
+    from planmethod.testing.processes import processes_holding
 
     if not Path("/proc/self/cmdline").exists() or usable_cpus() < 2:
         return None
@@ -177,7 +163,7 @@ def terminated_mid_run(folder: Path) -> dict | None:
                                stderr=subprocess.DEVNULL)
     try:
         deadline = time.monotonic() + 120
-        while (len([pid for pid in _processes_holding(str(page)) if pid != process.pid]) < 2
+        while (len([pid for pid in processes_holding(str(page)) if pid != process.pid]) < 2
                and time.monotonic() < deadline):
             time.sleep(0.05)
         time.sleep(0.5)                     # the workers are solving frames now
@@ -186,7 +172,7 @@ def terminated_mid_run(folder: Path) -> dict | None:
         process.wait(timeout=120)
         took = time.perf_counter() - sent
         time.sleep(0.2)
-        return {"seconds": took, "left": len(_processes_holding(str(page))),
+        return {"seconds": took, "left": len(processes_holding(str(page))),
                 "exit": process.returncode}
     finally:
         if process.poll() is None:

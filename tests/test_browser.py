@@ -71,6 +71,15 @@ def move_slider(page, angle: float) -> None:
     }""", angle)
 
 
+def practise(page, answers: dict[str, float]) -> dict:
+    """Type ``answers`` into practice mode's fields, check them, and return the page's
+    verdicts by question id."""
+    for name, value in answers.items():
+        page.fill(f'input[data-answer="{name}"]', repr(value))
+    page.click("#check")
+    return page.evaluate("workbook.results")
+
+
 def shown_readings(page) -> dict[str, float]:
     return {quantity: float(value) for quantity, value in page.eval_on_selector_all(
         "[data-quantity]", "cells => cells.map(c => [c.dataset.quantity, c.dataset.value])")}
@@ -202,10 +211,7 @@ def test_practice_mode_grades_as_the_cli(browser, compressor_page, tmp_path):
     page.check("#practice")
     assert page.eval_on_selector("td.reading", "c => getComputedStyle(c).visibility") == \
         "hidden"
-    for name, value in answers.items():
-        page.fill(f'input[data-answer="{name}"]', repr(value))
-    page.click("#check")
-    results = page.evaluate("workbook.results")
+    results = practise(page, answers)
     for name in answers:
         assert results[name]["correct"] == graded[name]["correct"]
         assert results[name]["mistake"] == graded[name]["mistake"]
@@ -241,10 +247,7 @@ def test_practice_mode_tells_magnitudes_and_slides_as_the_cli(browser, slotted_p
         (tmp_path / "graded.json").read_text())["answers"][0]["questions"]}
     page, errors = open_page(browser, slotted_page)
     page.check("#practice")
-    for name, value in answers.items():
-        page.fill(f'input[data-answer="{name}"]', repr(value))
-    page.click("#check")
-    results = page.evaluate("workbook.results")
+    results = practise(page, answers)
     for name in answers:
         assert results[name]["feedback"] == graded[name]["feedback"]
         assert "@" not in results[name]["feedback"] and "block/" not in results[name]["feedback"]

@@ -33,6 +33,7 @@ import pytest
 from planmethod.cli import main
 from planmethod.errors import PlanmethodError
 from planmethod.io import output_set, read_bytes_bounded
+from planmethod.testing.processes import processes_holding
 
 ROOT = Path(__file__).resolve().parent.parent
 GOOD = str(ROOT / "exercises" / "compressor_slider_crank.toml")
@@ -487,21 +488,6 @@ def test_never_more_workers_than_frames():
     assert worker_count(1, 360) == 1
 
 
-def _processes_holding(marker: str) -> list[int]:
-    """The processes whose command line holds ``marker`` (a fork keeps its parent's)."""
-    found = []
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                command = (entry / "cmdline").read_bytes()
-                state = (entry / "stat").read_text().rsplit(")", 1)[1].split()[0]
-            except (OSError, IndexError):
-                continue
-            if marker.encode() in command and state != "Z":
-                found.append(int(entry.name))
-    return found
-
-
 @pytest.mark.skipif(not Path("/proc/self/cmdline").exists(), reason="needs /proc")
 def test_sigterm_ends_the_workbook_and_its_workers(tmp_path):
     """SIGTERM to the main process alone, mid-run with two workers: it exits (143) within
@@ -518,7 +504,7 @@ def test_sigterm_ends_the_workbook_and_its_workers(tmp_path):
         deadline = time.monotonic() + 120
 
         def workers() -> list[int]:
-            return [pid for pid in _processes_holding(str(page)) if pid != process.pid]
+            return [pid for pid in processes_holding(str(page)) if pid != process.pid]
 
         while len(workers()) < 2 and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -534,7 +520,7 @@ def test_sigterm_ends_the_workbook_and_its_workers(tmp_path):
             process.kill()
     assert process.returncode == 143 and err.strip() == "planmethod: terminated"
     assert took <= 2.0, f"took {took:.1f} s to end"
-    assert _processes_holding(str(page)) == []
+    assert processes_holding(str(page)) == []
     assert list(tmp_path.iterdir()) == []
 
 

@@ -298,17 +298,23 @@ def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray, split: int | None 
     return _split_lengths(segments, boxes, len(segments))[0]
 
 
-def _split_lengths(segments: np.ndarray, boxes: np.ndarray, split: int) -> np.ndarray:
-    """:func:`_clipped_lengths` of the segments before ``split`` and of the rest (2 × boxes)."""
+def _inside(segments: np.ndarray, boxes: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Liang–Barsky clipping of every segment (x0, y0, x1, y1) against every box (x0, y0,
+    x1, y1) at once, on the pairs whose bounds meet: the segment and the box of each such
+    pair, and the share (0 to 1) of the segment inside the box.
+
+    >>> _inside(np.array([[0.0, 0, 10, 0]]), np.array([[4.0, -1, 6, 1], [20, 0, 30, 1]]))
+    (array([0]), array([0]), array([0.2]))
+    """
     lo_x = np.minimum(segments[:, 0], segments[:, 2])[:, None]
     hi_x = np.maximum(segments[:, 0], segments[:, 2])[:, None]
     lo_y = np.minimum(segments[:, 1], segments[:, 3])[:, None]
     hi_y = np.maximum(segments[:, 1], segments[:, 3])[:, None]
-    # only the pairs whose bounds meet are clipped
     piece, which = np.nonzero((lo_x <= boxes[:, 2]) & (hi_x >= boxes[:, 0])
                               & (lo_y <= boxes[:, 3]) & (hi_y >= boxes[:, 1]))
     if not len(piece):
-        return np.zeros((2, len(boxes)))
+        return piece, which, np.zeros(0)
     x0, y0 = segments[piece, 0], segments[piece, 1]
     dx, dy = segments[piece, 2] - x0, segments[piece, 3] - y0
     box = boxes[which]
@@ -320,8 +326,16 @@ def _split_lengths(segments: np.ndarray, boxes: np.ndarray, split: int) -> np.nd
     low = np.maximum(np.where(p < 0, ratio, -np.inf).max(axis=0), 0.0)
     high = np.minimum(np.where(p > 0, ratio, np.inf).min(axis=0), 1.0)
     outside = ((p == 0) & (q < 0)).any(axis=0)      # parallel to an edge, beyond it
-    span = np.where(outside, 0.0, np.maximum(high - low, 0.0))
-    inside = span * np.hypot(dx, dy)
+    return piece, which, np.where(outside, 0.0, np.maximum(high - low, 0.0))
+
+
+def _split_lengths(segments: np.ndarray, boxes: np.ndarray, split: int) -> np.ndarray:
+    """:func:`_clipped_lengths` of the segments before ``split`` and of the rest (2 × boxes)."""
+    piece, which, share = _inside(segments, boxes)
+    if not len(piece):
+        return np.zeros((2, len(boxes)))
+    inside = share * np.hypot(segments[piece, 2] - segments[piece, 0],
+                              segments[piece, 3] - segments[piece, 1])
     later = piece >= split
     return np.stack((np.bincount(which[~later], weights=inside[~later], minlength=len(boxes)),
                      np.bincount(which[later], weights=inside[later], minlength=len(boxes))))
@@ -523,22 +537,5 @@ def _through(leaders: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     >>> _through(np.array([[0.0, 0, 10, 0], [0, 5, 0, 9]]), np.array([[4.0, -1, 6, 1]]))
     array([1, 0])
     """
-    lo_x = np.minimum(leaders[:, 0], leaders[:, 2])[:, None]
-    hi_x = np.maximum(leaders[:, 0], leaders[:, 2])[:, None]
-    lo_y = np.minimum(leaders[:, 1], leaders[:, 3])[:, None]
-    hi_y = np.maximum(leaders[:, 1], leaders[:, 3])[:, None]
-    piece, which = np.nonzero((lo_x <= boxes[:, 2]) & (hi_x >= boxes[:, 0])
-                              & (lo_y <= boxes[:, 3]) & (hi_y >= boxes[:, 1]))
-    if not len(piece):
-        return np.zeros(len(leaders), dtype=int)
-    x0, y0 = leaders[piece, 0], leaders[piece, 1]
-    dx, dy = leaders[piece, 2] - x0, leaders[piece, 3] - y0
-    box = boxes[which]
-    p = np.stack((-dx, dx, -dy, dy))
-    q = np.stack((x0 - box[:, 0], box[:, 2] - x0, y0 - box[:, 1], box[:, 3] - y0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = q / p
-    low = np.maximum(np.where(p < 0, ratio, -np.inf).max(axis=0), 0.0)
-    high = np.minimum(np.where(p > 0, ratio, np.inf).min(axis=0), 1.0)
-    inside = ~((p == 0) & (q < 0)).any(axis=0) & (high - low > 1e-9)
-    return np.bincount(piece[inside], minlength=len(leaders))
+    piece, _, share = _inside(leaders, boxes)
+    return np.bincount(piece[share > 1e-9], minlength=len(leaders))

@@ -9,7 +9,9 @@
   code) and the 40-digit closed forms :func:`exact_fourbar` and :func:`exact_slider_crank`
   (mpmath, from the ``test`` extra, imported only when called);
 * :mod:`planmethod.testing.stress` — the stress checker: a solve judged angle by angle against
-  the 40-digit closed forms within stated bounds.
+  the 40-digit closed forms within stated bounds;
+* :mod:`planmethod.testing.processes` — :func:`processes_holding`, the processes a command and
+  its workers left.
 
 Examples
 --------
