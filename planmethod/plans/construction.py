@@ -913,9 +913,15 @@ _PATHS_LOCK = threading.Lock()
 
 
 def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None:
+    """Read a prismatic pair's travel s off the position plan, and its sliding velocity,
+    Coriolis and relative acceleration off the segments its group drew.
+
+    Every prismatic pair a plan is drawn for is a side of a dyad (a higher group with one is
+    not drawn: :class:`PlansUnavailableError`), so its group has drawn its relative motion; a
+    pair no group drew is an internal error, never a reading made up here.
+    """
     mechanism = emulator.mechanism
     slide = mechanism.slide(key)
-    v, a, scales = emulator.v, emulator.a, emulator.scales
     mover, guide = emulator.motion.links[slide.link], emulator.motion.links[slide.along]
     point = mover.place(mechanism.local(slide.link, slide.point))[0]
     through = guide.place(mechanism.local(slide.along, slide.through))[0]
@@ -923,36 +929,13 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
                   math.sin(float(guide.theta[0]) + slide.direction_rad)])
     travel = float((point - through) @ d)
     emulator.readings[f"s_{key}"] = (math.copysign(1.0, travel)
-                                     * emulator.length_mm(through, point) * scales.mu_l)
+                                     * emulator.length_mm(through, point) * emulator.scales.mu_l)
     drawn = emulator.sliding_sides.get(key)
-    if drawn is not None:  # a side of a group already draws this pair's relative motion
-        _read_drawn_sliding(emulator, key, d, drawn, acceleration)
-        return
-    on_link = f"{slide.point}@{slide.link}"
-    on_guide = f"{slide.point}@{slide.along}"
-    lv = emulator.image_at(v, emulator.vimages, slide.link, point, image_label(on_link, "p"))
-    gv = emulator.image_at(v, emulator.vimages, slide.along, point, image_label(on_guide, "p"))
-    segment = v.points[lv] - v.points[gv]
-    sign = sense(segment, d)
-    ds = v.read(gv, lv, quantity=f"ds_{key}", factor=scales.mu_v, sign=sign)
-    emulator.readings[f"ds_{key}"] = ds
-    if not acceleration:
-        return
-    la = emulator.image_at(a, emulator.aimages, slide.link, point, image_label(on_link, "π"))
-    ga = emulator.image_at(a, emulator.aimages, slide.along, point, image_label(on_guide, "π"))
-    omega = emulator.readings[f"omega_{slide.along}"]
-    coriolis = _times(2 * omega * ds, perp(d))
-    k_label = f"k_{key}"
-    if k_label not in a.points:
-        a.lay_off(ga, k_label, coriolis / scales.mu_a, component="coriolis",
-                  vector=f"aᵏ_{key}", text=f"aᵏ of {key} = 2·ω_{slide.along}·v_rel from {ga}")
-    corio = a.round(norm(coriolis) / scales.mu_a,
-                    Segment("acceleration", "read", f"coriolis_{key}")) * scales.mu_a
-    emulator.readings[f"coriolis_{key}"] = corio
-    segment = a.points[la] - a.points[k_label]
-    sign = sense(segment, d)
-    emulator.readings[f"dds_{key}"] = a.read(k_label, la, quantity=f"dds_{key}",
-                                             factor=scales.mu_a, sign=sign)
+    if drawn is None:
+        raise PlanmethodError(f"internal error: no group drew the relative motion of the "
+                              f"prismatic pair {key}, so its sliding velocity cannot be read "
+                              "off the plans", link=slide.link)
+    _read_drawn_sliding(emulator, key, d, drawn, acceleration)
 
 
 def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dict,
