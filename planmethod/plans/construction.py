@@ -1024,22 +1024,21 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         for group in groups:
             _draw(emulator, motion, group, "acceleration")
     ask = exercise.ask
+    # each plan drawn: its quantity's letter, its sheet, its links' images and its scale
+    sheets = [("v", emulator.v, emulator.vimages, scales.mu_v)]
+    if acceleration:
+        sheets.append(("a", emulator.a, emulator.aimages, scales.mu_a))
     for point in _asked_points(exercise, motion):
         link, position = motion.locate(point)
         # a fixed pivot's image is the pole: placed (its links' images pass through it), but
         # not read when nobody asked for it by name (no segment to measure)
         read = not ask.everything or FRAME not in mechanism.links_with_point(point)
-        emulator.image_at(emulator.v, emulator.vimages, link, position[0],
-                          image_label(point, "p"))
-        if read:
-            emulator.readings[f"v_{point}"] = emulator.v.read(
-                "p", image_label(point, "p"), quantity=f"v_{point}", factor=scales.mu_v)
-        if acceleration:
-            emulator.image_at(emulator.a, emulator.aimages, link, position[0],
-                              image_label(point, "π"))
+        for letter, sheet, images, factor in sheets:
+            label = emulator.image_at(sheet, images, link, position[0],
+                                      image_label(point, sheet.pole))
             if read:
-                emulator.readings[f"a_{point}"] = emulator.a.read(
-                    "π", image_label(point, "π"), quantity=f"a_{point}", factor=scales.mu_a)
+                emulator.readings[f"{letter}_{point}"] = sheet.read(
+                    sheet.pole, label, quantity=f"{letter}_{point}", factor=factor)
     if acceleration:
         curvature = ask.curvature if not ask.everything else ()
         for point in curvature:
