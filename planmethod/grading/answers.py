@@ -361,7 +361,7 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
                 result["hint"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
                                   "and the sense is reversed")
                 return result
-    note = None if signed or answer >= 0 else magnitude_note(name)
+    note = None if signed or answer >= 0 else magnitude_note(question["id"], name)
     if note is not None:
         result["feedback"] = f"{shown}: wrong — {note} (right: {right})"
         result["hint"] = f"{shown}: wrong — {note}"
@@ -380,22 +380,24 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
     return result
 
 
-def magnitude_note(name: str) -> str | None:
+def magnitude_note(quantity_id: str, name: str | None = None) -> str | None:
     """What a negative answer for a magnitude is told (None for a signed quantity or an
-    unknown name).
+    unknown id); ``name`` is the quantity as the student reads it (default: its id).
 
     >>> magnitude_note("v_C")
     'v_C is the speed of C, |v_C|: a magnitude, never negative'
+    >>> magnitude_note("rho_D", "ρ_D")
+    'ρ_D is the radius of curvature ρ of the path of D: a magnitude, never negative'
     >>> magnitude_note("omega_BC") is None
     True
     """
     try:
-        found = quantity(name)
+        found = quantity(quantity_id)
     except KeyError:
         return None
     if found.signed:
         return None
-    return f"{name} is the {found.question}: a magnitude, never negative"
+    return f"{name or quantity_id} is the {found.question}: a magnitude, never negative"
 
 
 def _way(answer: float, right: float, signed: bool) -> str:
