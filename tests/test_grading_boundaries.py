@@ -216,6 +216,21 @@ def test_a_drawn_point_within_its_disc_is_right_and_one_just_outside_is_wrong(ke
     assert tried >= 6
 
 
+def test_a_drawn_points_disc_is_round_in_every_direction(keys):
+    """The disc is a circle, not a polygon drawn round it: 0.9999 of the radius is in and
+    1.0001 out in any direction (a 128-gon's edge lies 0.03 % inside the circle at its middle,
+    π/128 off its corners)."""
+    key = keys["exercises/compressor_slider_crank.toml"]
+    right = _plan_points(key, "velocity")
+    radius = key["plans"]["velocity"]["tolerance_mm"]["c"]
+    for angle in np.arange(0.0, 2 * np.pi, np.pi / 128) + np.pi / 256:
+        for factor, inside in ((0.9999, True), (1.0001, False)):
+            points = dict(right)
+            points["c"] = tuple(np.asarray(right["c"]) + factor * radius
+                                * np.array([np.cos(angle), np.sin(angle)]))
+            assert _graded(key, "velocity", points)["c"]["correct"] is inside, (angle, factor)
+
+
 def test_a_drawn_point_within_a_mistakes_disc_is_named_and_one_just_outside_is_not(keys):
     tried = 0
     for key in keys.values():
