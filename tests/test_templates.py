@@ -89,6 +89,28 @@ def test_evaluation_errors(text, fragment):
     assert fragment in str(caught.value)
 
 
+@pytest.mark.parametrize(("text", "expected"), [
+    ("sin(30)", 0.5), ("cos(60)", 0.5), ("tan(45)", 1.0),        # angles in degrees
+    ("asin(1)", 90.0), ("asin(-1)", -90.0), ("acos(-1)", 180.0), ("acos(1)", 0.0),
+    ("sqrt(0)", 0.0), ("2 ^ 64", 2.0 ** 64), ("2 ^ -64", 2.0 ** -64),
+])
+def test_functions_at_the_ends_of_their_domains(text, expected):
+    assert value(text) == pytest.approx(expected, rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("sqrt(-0.0001)", "sqrt(-0.0001) is undefined"),
+    ("asin(1.0001)", "asin(1.0001) is undefined"), ("asin(-1.0001)", "asin(-1.0001) is undefined"),
+    ("acos(1.0001)", "acos(1.0001) is undefined"), ("acos(-1.0001)", "acos(-1.0001) is undefined"),
+    ("2 ^ 64.5", "exponent 64.5 is out of range (|x| ≤ 64)"),
+    ("2 ^ -65", "exponent -65 is out of range (|x| ≤ 64)"),
+])
+def test_functions_just_outside_their_domains_say_so(text, message):
+    with pytest.raises(ExpressionError) as caught:
+        value(text)
+    assert str(caught.value) == message
+
+
 BASE = """
 [vars]
 l = {{ range = [0.05, 0.08], step = 0.005 }}
