@@ -11,6 +11,7 @@ import uuid
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from planmethod.cli import main
@@ -23,6 +24,7 @@ from planmethod.grading.exports import (
     prairielearn_questions,
 )
 from planmethod.grading.keys import build_key, bundle
+from planmethod.grading.plan_points import graded_labels
 from planmethod.grading.templates import draw_variant, load_template
 
 TEMPLATE = "exercises/templates/four_bar.toml"
@@ -106,6 +108,50 @@ def test_gradescope_results_structure(keys):
     json.dumps(results, allow_nan=False)
 
 
+def test_gradescope_results_list_each_question_then_each_drawn_plan(keys):
+    """Gradescope's results.json: one test per question, numbered from 1, then one per drawn
+    plan; a test passes when it has full marks; the total is the answers' score plus the
+    plans'; what each says follows the feedback level."""
+    from planmethod.grading.answers import feedback_text
+    from planmethod.grading.drawings import Drawing, grade_drawing
+
+    key = keys[0]
+    answers = {q["id"]: q["value"] for q in key["questions"]}
+    answers[key["questions"][0]["id"]] = 0.0
+    (result,) = grade_many({"ann": key}, [("ann", answers)])
+    right = {k: tuple(v) for k, v in key["plans"]["velocity"]["points_mm"].items()}
+    moved = dict(right, c=(right["c"][0] + 5.0, right["c"][1]))
+    drawings = [grade_drawing(key, Drawing(right, "velocity")),
+                grade_drawing(key, Drawing(moved, "velocity"))]
+    for level in ("full", "hints", "score"):
+        results = gradescope_results(result, drawings, feedback=level)
+        questions = [{"name": q["id"], "number": str(number), "score": q["score"],
+                      "max_score": q["max_score"],
+                      "status": "passed" if q["correct"] else "failed",
+                      "output": feedback_text(q, level), "visibility": "visible"}
+                     for number, q in enumerate(result["questions"], start=1)]
+        plans = [{"name": "velocity plan", "score": d["score"], "max_score": d["max_score"],
+                  "status": status,
+                  "output": "\n".join([p["feedback"] for p in d["points"]] + d["feedback"])
+                  if level == "full" else "", "visibility": "visible"}
+                 for d, status in zip(drawings, ("passed", "failed"), strict=True)]
+        total = result["score"] + drawings[0]["score"] + drawings[1]["score"]
+        assert results == {"score": total, "output": f"Variant {key['student']}: {total:g} points.",
+                           "visibility": "visible", "stdout_visibility": "hidden",
+                           "tests": questions + plans}
+    assert questions[0]["status"] == "failed" and questions[1]["status"] == "passed"
+    shown = gradescope_results(result, drawings, feedback="full")["tests"][-1]["output"]
+    assert shown.startswith("b: within") and "\nc is 5.0 mm off" in shown
+    # a student without a key: the error is the whole output, and nothing is scored
+    (lost,) = grade_many({"ann": key}, [("zed", answers)])
+    assert gradescope_results(lost) == {"score": 0.0, "output": "no key for student 'zed'",
+                                        "visibility": "visible", "stdout_visibility": "hidden",
+                                        "tests": []}
+    assert gradescope_results({}) == {"score": 0.0, "output": "Variant None: 0 points.",
+                                      "visibility": "visible", "stdout_visibility": "hidden",
+                                      "tests": []}
+
+
 def test_gradescope_autograder_folder(keys):
     files = gradescope_autograder(bundle(keys))
     assert {"setup.sh", "run_autograder", "keys.json"} <= set(files)
@@ -121,6 +167,46 @@ def test_gradescope_autograder_folder(keys):
     assert installs and updates and updates[0] < installs[0]   # the index before installing
     assert "sys.version_info < (3, 11)" in files["setup.sh"]
     assert json.loads(files["keys.json"])["format"] == "planmethod-keys"
+
+
+def test_prairielearn_canvas_holds_every_variants_plan_and_the_mistakes_on_it():
+    """The canvas is the smallest multiple of 40 px that keeps every variant's plan points
+    40 px inside its edges (at least a 30 mm radius round the pole, 4 px a millimetre); each
+    point is there in px, y down; every position a mistake gives that lies on the canvas is
+    exported, and none off it; the task's paragraphs become HTML paragraphs, escaped; the
+    drawing's hint tolerance is the largest point disc."""
+    key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    key["task"] = "Find x < y.\n\nThen draw."
+    files = prairielearn_questions(bundle([key]), slug="q")
+    info = json.loads(files["q/info.json"])
+    assert info["topic"] == "Kinematics of mechanisms" and info["type"] == "v3"
+    namespace: dict = {}
+    exec(compile(files["q/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 1}
+    namespace["generate"](data)
+    params = data["params"]
+    assert params["task_html"] == "<p>Find x &lt; y.</p><p>Then draw.</p>"
+    size = float(re.search(r'answers-name="velocity_plan"[^>]*width="(\d+)"',
+                           files["q/question.html"]).group(1))
+    extent = max([30.0] + [float(np.hypot(*key["plans"][plan]["points_mm"][label]))
+                           for plan in ("velocity", "acceleration")
+                           for label in graded_labels(key["plans"][plan])])
+    assert size % 40 == 0 and 2 * extent * 4 + 80 <= size < 2 * extent * 4 + 120
+    for plan in ("velocity", "acceleration"):
+        entry = key["plans"][plan]
+        for label in graded_labels(entry):
+            x, y = entry["points_mm"][label]
+            ident = label.replace("@", "_")
+            assert params["plans"][plan][ident] == {"x": round(size / 2 + 4 * x, 2),
+                                                    "y": round(size / 2 - 4 * y, 2)}
+            on_canvas = [[mistake, round(size / 2 + 4 * mx, 2), round(size / 2 - 4 * my, 2)]
+                         for mistake, mx, my in entry["mistake_points"].get(label, ())
+                         if 0 <= size / 2 + 4 * mx <= size and 0 <= size / 2 - 4 * my <= size]
+            assert params["mistakes_px"][plan].get(ident, []) == on_canvas
+        assert params["tol_px"][plan] == max(params["radius_px"][plan].values())
+    assert any(len(entry["mistake_points"].get(label, ())) > len(
+        params["mistakes_px"]["acceleration"].get(label.replace("@", "_"), []))
+        for entry in [key["plans"]["acceleration"]] for label in entry["mistake_points"])
 
 
 def _resolve(template: str, params: dict) -> str:
