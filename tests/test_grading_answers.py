@@ -281,3 +281,57 @@ def test_the_class_report_counts_right_answers_and_named_mistakes(tmp_path, caps
     assert top["top_mistake"] == mistake["kind"] and float(top["top_mistake_share"]) == 0.4
     assert all(float(row["correct"]) == 1.0 for row in rows[1:])
     assert (tmp_path / "report" / "class_report.png").stat().st_size > 5000
+
+
+_ONE_OBJECT = ("the file is either {\"student\": {\"question id\": answer, …}, …} or one "
+               "student's {\"question id\": answer, …}")
+
+
+@pytest.mark.parametrize(("name", "text", "message"), [
+    ("a.json", '{"s01": {"v_C": [1]}}', 's01.v_C: is a list, not an answer (a number): give '
+     '{"question id": answer, …} for each student'),
+    ("b.json", '{"s01": {"v_C": {"x": 1}}}', 's01.v_C: is an object, not an answer (a number): '
+     'give {"question id": answer, …} for each student'),
+    ("c.json", '{"s01": {"v_C": 1}, "s02": true}',
+     f"s02: is true/false, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("d.json", '{"s01": {"v_C": 1}, "s02": null}',
+     f"s02: is null, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("e.json", '{"s01": {"v_C": 1}, "s02": "x"}',
+     f"s02: is a text, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("f.json", '{"s01": {"v_C": 1}, "s02": 2.5}',
+     f"s02: is a number, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("h.csv", "v_C,omega_BC\n1,2\n3,4\n", "has no student column (student, student_id, id, …) "
+     "but 2 rows of answers: without one, the file holds one student's answers in one row"),
+    ("i.csv", "v_C,omega_BC\n1,2,3\n", "line 2: has 3 cells, the header 2"),
+])
+def test_a_refused_answers_file_is_told_exactly_why(tmp_path, name, text, message):
+    (tmp_path / name).write_text(text)
+    with pytest.raises(SpecError) as caught:
+        read_answers(tmp_path / name)
+    assert str(caught.value) == f"{tmp_path / name}: {message}"
+
+
+def test_a_reversed_sense_names_the_right_sense_in_words():
+    from planmethod.grading.answers import grade_question
+
+    question = {"id": "omega_BC", "symbol": "ω₂", "unit": "rad/s", "value": -24.25,
+                "tolerance": 0.5, "signed": True, "mistakes": []}
+    assert grade_question(question, 30.0)["feedback"] == (
+        "ω₂ = 30 rad/s: wrong — the sense is reversed (the right answer is clockwise, "
+        "-24.25 rad/s ± 0.5) and the magnitude 30 is 23.7 % high")
+    assert grade_question(dict(question, value=24.25), -30.0)["feedback"] == (
+        "ω₂ = -30 rad/s: wrong — the sense is reversed (the right answer is counter-clockwise, "
+        "24.25 rad/s ± 0.5) and the magnitude 30 is 23.7 % high")
+
+
+def test_feedback_levels_show_the_values_the_hint_or_nothing():
+    from planmethod.grading.answers import feedback_text, grade_question
+
+    graded = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
+    assert feedback_text(graded) == graded["feedback"] == feedback_text(graded, "full")
+    assert feedback_text(graded, "hints") == "v_C = 6: wrong (too high)"
+    assert feedback_text(graded, "score") == ""
+    assert feedback_text({"feedback": "kept"}, "hints") == ""     # no hint: nothing shown
+    with pytest.raises(ValueError) as caught:
+        feedback_text(graded, "all")
+    assert str(caught.value) == "feedback level 'all' is not one of full, hints, score"
