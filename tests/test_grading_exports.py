@@ -583,3 +583,61 @@ def test_prairielearn_grade_names_the_mistake_of_a_misplaced_point():
     data.update(submitted_answers={"acceleration_plan": placed}, partial_scores={})
     namespace["grade"](data)
     assert "left out" not in data["partial_scores"]["acceleration_plan"]["feedback"]
+
+
+def test_moodle_xml_of_two_variants_whole():
+    """Moodle XML as Moodle reads it, for two small variants: the category path (its slashes
+    doubled, a leading and a trailing one set off by a space), each variant's Cloze question
+    (task paragraphs, braces as references, the sheet as an embedded file, one row a
+    question with its field — Moodle's special characters escaped in the feedback — and its
+    unit), weight at least 1."""
+    keys = [{"title": "Lever / crank <A&B>", "student": "s/01",
+             "task": "Find ω.\n\nUse {braces} ]]> here.",
+             "questions": [{"id": "omega_BC", "text": "angular velocity ω₂", "unit": "rad/s",
+                            "value": -24.5, "tolerance": 0.5, "points": 2,
+                            "mistakes": [{"kind": "sense", "value": 24.5, "tolerance": 0.5,
+                                          "feedback": 'the sense "~#/}\\ was reversed'}]},
+                           {"id": "rho_D", "text": "ρ of D", "unit": "m", "value": 0.07,
+                            "tolerance": 0.006, "mistakes": []}]},
+            {"title": "not read", "student": "s02", "task": "t",
+             "questions": [{"id": "n", "text": "n", "value": 1.0, "tolerance": 0.1,
+                            "points": 0.4}]}]
+    assert moodle_xml(keys, category="/Course/2026/", sheets={"s/01": "<svg/>"}) == (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<quiz>\n'
+        '  <question type="category">\n'
+        '    <category><text>$course$/top/ //Course//2026// /Lever // crank &lt;A&amp;B&gt;</te'
+        'xt></category>\n'
+        '  </question>\n'
+        '  <question type="cloze">\n'
+        '    <name><text>Lever / crank &lt;A&amp;B&gt; — s/01</text></name>\n'
+        '    <questiontext format="html"><text><![CDATA[<p><b>Lever / crank &lt;A&amp;B&gt;</b>'
+        ' — variant s/01</p><p>Find ω.</p><p>Use &#123;braces&#125; ]]&gt; here.</p><p><img src'
+        '="@@PLUGINFILE@@/sheet_s_01.svg" alt="the mechanism, task sheet" /></p><p>Give in SI u'
+        'nits (counter-clockwise positive):</p><table><tr><td>angular velocity ω₂</td><td>{2:NU'
+        "MERICAL:=-24.5:0.5#Right: within the drawing's tolerance ± 0.5 rad\\/s.~%0%24.5:0.5#It"
+        ' looks as if the sense \\"\\~\\#\\/\\}\\\\ was reversed.}</td><td>rad/s</td></tr><tr><'
+        "td>ρ of D</td><td>{1:NUMERICAL:=0.07:0.006#Right: within the drawing's tolerance ± 0.0"
+        '06 m.}</td><td>m</td></tr></table>]]></text><file name="sheet_s_01.svg" path="/" encod'
+        'ing="base64">PHN2Zy8+</file></questiontext>\n'
+        '    <generalfeedback format="html"><text></text></generalfeedback>\n'
+        '    <penalty>0.3333333</penalty>\n'
+        '    <hidden>0</hidden>\n'
+        '    <idnumber>s/01</idnumber>\n'
+        '  </question>\n'
+        '  <question type="cloze">\n'
+        '    <name><text>Lever / crank &lt;A&amp;B&gt; — s02</text></name>\n'
+        '    <questiontext format="html"><text><![CDATA[<p><b>Lever / crank &lt;A&amp;B&gt;</b>'
+        ' — variant s02</p><p>t</p><p>Give in SI units (counter-clockwise positive):</p><table>'
+        "<tr><td>n</td><td>{1:NUMERICAL:=1.0:0.1#Right: within the drawing's tolerance ± 0.1.}<"
+        '/td><td></td></tr></table>]]></text></questiontext>\n'
+        '    <generalfeedback format="html"><text></text></generalfeedback>\n'
+        '    <penalty>0.3333333</penalty>\n'
+        '    <hidden>0</hidden>\n'
+        '    <idnumber>s02</idnumber>\n'
+        '  </question>\n'
+        '</quiz>\n')
+    assert moodle_xml([]) == (
+        '<?xml version="1.0" encoding="UTF-8"?>\n<quiz>\n  <question type="category">\n'
+        "    <category><text>$course$/top/planmethod/planmethod</text></category>\n"
+        "  </question>\n</quiz>\n")
