@@ -298,3 +298,79 @@ def test_a_drawing_is_rescaled_only_beyond_two_percent_of_its_first_vector(key):
                 f"30.0 mm; it was graded after scaling by {1 / factor:.4g}"]
         else:
             assert result["feedback"] == []
+
+
+# -- SVG: transforms, units, what marks a point --------------------------------------------------
+def _svg(inner: str, root: str = 'width="100mm" height="100mm" viewBox="0 0 100 100"',
+         pole: str = '<text x="0" y="0">p</text>') -> str:
+    return f'<svg xmlns="http://www.w3.org/2000/svg" {root}>{pole}{inner}</svg>'
+
+
+@pytest.mark.parametrize(("transform", "local", "mm"), [
+    ("translate(5,7)", (10, 0), (15, -7)), ("translate(5)", (10, 0), (15, 0)),
+    ("scale(2)", (10, 0), (20, 0)), ("scale(2,3)", (10, 10), (20, -30)),
+    ("rotate(90)", (10, 0), (0, -10)), ("rotate(90, 10, 10)", (10, 0), (20, -10)),
+    ("skewX(45)", (10, 10), (20, -10)), ("skewY(45)", (10, 0), (10, -10)),
+    ("matrix(1,2,3,4,5,6)", (10, 0), (15, -26)),
+    ("translate(100,0) scale(2)", (10, 0), (120, 0)),
+    ("translate(100 0), scale(2)", (10, 0), (120, 0)),
+])
+def test_every_svg_transform_moves_a_point_as_svg_says(transform, local, mm):
+    x, y = local
+    drawing = parse_drawing_svg(_svg(f'<g transform="{transform}"><circle cx="{x}" cy="{y}" '
+                                     f'r="0.3"/><text x="{x + 0.5}" y="{y + 0.5}">b</text></g>'))
+    assert drawing.points["b"] == pytest.approx(mm, abs=1e-12)       # mm, y up
+
+
+@pytest.mark.parametrize(("root", "mm"), [
+    ('width="10cm" height="10cm" viewBox="0 0 100 100"', (10, -10)),
+    ('width="4in" height="4in" viewBox="0 0 101.6 101.6"', (10, -10)),
+    ('width="72pt" height="72pt" viewBox="0 0 25.4 25.4"', (10, -10)),
+    ('width="6pc" height="6pc" viewBox="0 0 25.4 25.4"', (10, -10)),
+    ('width="96px" height="96px" viewBox="0 0 25.4 25.4"', (10, -10)),
+    ('width="96" height="96" viewBox="0 0 25.4 25.4"', (10, -10)),
+    ('width="100mm" height="50mm" viewBox="0 0 100 100"', (10, -5)),
+    ('width="100mm" viewBox="0 0 100 100"', (10, -10)),
+    ("", (10 * 25.4 / 96, -10 * 25.4 / 96)), ('width="100mm"', (10 * 25.4 / 96, -10 * 25.4 / 96)),
+])
+def test_the_root_size_and_view_box_fix_the_millimetre(root, mm):
+    drawing = parse_drawing_svg(_svg('<circle cx="10" cy="10" r="0.3"/><text x="10" y="10">b'
+                                     "</text>", root))
+    assert drawing.points["b"] == pytest.approx(mm, rel=1e-12)
+
+
+def test_what_marks_a_point_and_what_is_passed_over():
+    """A label marks the nearest drawn point within 8 mm — a line's end, a polyline's or
+    polygon's vertex, an ellipse's centre, a path's end point — or else its own anchor (a
+    tspan's when the text has none); the first of two labels alike is kept; labels longer
+    than 12 characters, definitions and metadata are passed over, scripts and other outside
+    content are ignored and said to be."""
+    drawing = parse_drawing_svg(_svg(
+        '<line x1="30" y1="0" x2="40" y2="5"/><text x="41" y="6">b</text>'
+        '<polyline points="50,0 60,10 70,0"/><text x="61" y="11">c</text>'
+        '<polygon points="0,50 10,60"/><text x="11" y="61">d</text>'
+        '<ellipse cx="80" cy="80" rx="2" ry="1"/><text x="81" y="81">e</text>'
+        '<path d="M 20 90 L 25 95"/><text x="26" y="96">f</text>'
+        '<text x="0" y="30">g</text><text x="0" y="40">far too long a label</text>'
+        '<text><tspan x="12" y="30">h</tspan></text><text x="31" y="1">b</text>'
+        '<defs><circle cx="0" cy="20"/></defs><text x="1" y="21">k</text>'
+        "<script>x</script><image/><use/><style/><a/><iframe/><foreignObject/>"
+        "<metadata><text>q</text></metadata>"), source="plan.svg")
+    assert drawing == Drawing(
+        {"p": (0.0, 0.0), "b": (40.0, -5.0), "c": (60.0, -10.0), "d": (10.0, -60.0),
+         "e": (80.0, -80.0), "f": (25.0, -95.0), "g": (0.0, -30.0), "h": (12.0, -30.0),
+         "k": (1.0, -21.0)}, "velocity",
+        ("<a> ignored", "<foreignObject> ignored", "<iframe> ignored", "<image> ignored",
+         "<script> ignored", "<style> ignored", "<use> ignored"), "plan.svg")
+
+
+@pytest.mark.parametrize(("svg", "plan"), [
+    (_svg("", pole='<text x="0" y="0">π</text>'), "acceleration"),
+    (_svg("", pole='<text x="0" y="0">pi</text>'), "acceleration"),
+    (_svg("", pole='<text x="0" y="0">p</text>'), "velocity"),
+    (_svg("", pole='<text x="0" y="0">π</text><text x="5" y="5">p</text>'), None),
+    ('<svg><text>b</text></svg>', None),
+    ('<svg data-planmethod-plan="acceleration"><text>p</text></svg>', "acceleration"),
+])
+def test_the_plan_is_told_by_its_pole_or_said(svg, plan):
+    assert parse_drawing_svg(svg).plan == plan
