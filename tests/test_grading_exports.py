@@ -641,3 +641,97 @@ def test_moodle_xml_of_two_variants_whole():
         '<?xml version="1.0" encoding="UTF-8"?>\n<quiz>\n  <question type="category">\n'
         "    <category><text>$course$/top/planmethod/planmethod</text></category>\n"
         "  </question>\n</quiz>\n")
+
+
+def _small_key() -> dict:
+    """A hand-made key: two questions (one of value 0), a velocity plan with a helper point
+    and a point that mistakes put on and off the canvas."""
+    return {"format": "planmethod-key", "title": 'Lever "L" & crank ω₁', "student": "s01",
+            "task": "Find it.",
+            "questions": [{"id": "v_C", "text": 'speed of C, "v"', "unit": "m/s", "value": 2.0,
+                           "tolerance": 0.1, "mistakes": []},
+                          {"id": "omega_BC", "text": "angular velocity <ω>", "unit": "rad/s",
+                           "value": 0.0, "tolerance": 0.2, "mistakes": []}],
+            "plans": {"velocity": {
+                "pole": "p", "scale": 0.1, "unit": "(m/s)/mm", "steps": [],
+                "points_mm": {"p": [0, 0], "b": [10.0, 0.0], "c": [0.0, -20.0],
+                              "n_CB": [1.0, 1.0]},
+                "tolerance_mm": {"p": 0.0, "b": 0.25, "c": 0.75, "n_CB": 0.3},
+                "mistake_points": {"c": [["sense", 0.0, 20.0], ["scale_ten", 0.0, -2.0],
+                                         ["scale_tenth", 0.0, -200.0]]}}}}
+
+
+def test_prairielearn_question_of_a_small_key_whole():
+    """info.json and question.html as PrairieLearn reads them (attributes escaped, one number
+    input per question, one drawing per plan on a 320 px canvas — a 30 mm plan and its
+    margin — with the pole given and the graded points to place), and the variant's
+    parameters: relabs tolerances (a zero answer's in atol), discs of at least 0.5 mm, the
+    mistakes on the canvas, the points' names."""
+    files = prairielearn_questions(bundle([_small_key()], seed=3), slug="lever",
+                                   topic="Mechanisms")
+    assert sorted(files) == ["lever/info.json", "lever/question.html", "lever/server.py"]
+    seed = 'planmethod:lever:Lever "L" & crank ω₁:3:1'
+    assert json.loads(files["lever/info.json"]) == {
+        "uuid": str(uuid.uuid5(uuid.NAMESPACE_URL, seed)), "title": 'Lever "L" & crank ω₁',
+        "topic": "Mechanisms", "tags": ["planmethod", "graphical-method"], "type": "v3",
+        "gradingMethod": "Internal"}
+    assert files["lever/info.json"] == json.dumps(json.loads(files["lever/info.json"]), indent=2,
+                                                  ensure_ascii=False) + "\n"
+    assert "ω₁" in files["lever/info.json"]                           # written as it is
+    assert files["lever/question.html"] == "\n".join([
+        "<pl-question-panel>", "  <p><b>{{params.title}}</b></p>", "  {{{params.task_html}}}",
+        "</pl-question-panel>", "",
+        '<pl-number-input answers-name="v_C" comparison="relabs" rtol="{{params.rtol.v_C}}" '
+        'atol="{{params.atol.v_C}}" label="speed of C, &quot;v&quot; =" suffix="m/s">'
+        "</pl-number-input>",
+        '<pl-number-input answers-name="omega_BC" comparison="relabs" '
+        'rtol="{{params.rtol.omega_BC}}" atol="{{params.atol.omega_BC}}" '
+        'label="angular velocity &lt;ω&gt; =" suffix="rad/s"></pl-number-input>', "",
+        "<p>Draw the velocity plan at the given scale (one grid square is 10 mm of the drawing; "
+        "the pole p is marked): place the points b, c.</p>",
+        '<pl-drawing answers-name="velocity_plan" gradable="true" width="320" height="320" '
+        'grid-size="40" tol="{{params.tol_px.velocity}}" show-tolerance-hint="true">',
+        "  <pl-drawing-initial>", '    <pl-point x1="160" y1="160" label="p"></pl-point>',
+        "  </pl-drawing-initial>", '  <pl-drawing-answer draw-error-box="true">',
+        '    <pl-point x1="{{params.plans.velocity.b.x}}" y1="{{params.plans.velocity.b.y}}" '
+        'label="b"></pl-point>',
+        '    <pl-point x1="{{params.plans.velocity.c.x}}" y1="{{params.plans.velocity.c.y}}" '
+        'label="c"></pl-point>',
+        "  </pl-drawing-answer>", "  <pl-controls>",
+        '    <pl-controls-group label="Plan points:">',
+        '      <pl-drawing-button type="pl-point"></pl-drawing-button>',
+        "    </pl-controls-group>", '    <pl-controls-group label="Delete:">',
+        '      <pl-drawing-button type="delete"></pl-drawing-button>',
+        "    </pl-controls-group>", "  </pl-controls>", "</pl-drawing>", ""])
+    namespace: dict = {}
+    exec(compile(files["lever/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 1}
+    namespace["generate"](data)
+    assert data["correct_answers"] == {"v_C": 2.0, "omega_BC": 0.0}
+    assert data["params"] == {
+        "student": "s01", "title": 'Lever "L" & crank ω₁', "task_html": "<p>Find it.</p>",
+        "rtol": {"v_C": 0.1 / 2.0, "omega_BC": 0.0}, "atol": {"v_C": 1e-12, "omega_BC": 0.2},
+        "tolerance": {"v_C": 0.1, "omega_BC": 0.2},
+        "plans": {"velocity": {"b": {"x": 200.0, "y": 160.0}, "c": {"x": 160.0, "y": 240.0}}},
+        "radius_px": {"velocity": {"b": 2.0, "c": 3.0}}, "tol_px": {"velocity": 3.0},
+        "plan_labels": {"velocity": {"b": "b", "c": "c"}},
+        "mistakes_px": {"velocity": {"c": [["sense", 160.0, 80.0],
+                                           ["scale_ten", 160.0, 168.0]]}}}
+
+
+def test_gradebook_csv_whole():
+    """One row a student: each question's score in the first-seen order of the questions
+    (empty where a student has none), the total, the maximum (empty when unknown) and the
+    note (an error)."""
+    assert gradebook_csv([
+        {"student": "s01", "variant": "v1", "score": 1.5, "max_score": 2.0,
+         "questions": [{"id": "a", "score": 1.0}, {"id": "b", "score": 0.5}]},
+        {"student": "s02", "score": 0.0, "max_score": None, "questions": [],
+         "error": "no key for student 's02'"},
+        {"student": "s03", "variant": "v3", "score": 1.0, "max_score": 3.0,
+         "questions": [{"id": "c", "score": 1.0}, {"id": "a", "score": 0.0}]},
+        {"student": "s04"}]) == ("student,variant,a,b,c,total,max,note\n"
+                                 "s01,v1,1,0.5,,1.5,2,\n"
+                                 "s02,,,,,0,,no key for student 's02'\n"
+                                 "s03,v3,0,,1,1,3,\n"
+                                 "s04,,,,,0,,\n")
