@@ -355,7 +355,9 @@ def test_what_marks_a_point_and_what_is_passed_over():
         '<text><tspan x="12" y="30">h</tspan></text><text x="31" y="1">b</text>'
         '<defs><circle cx="0" cy="20"/></defs><text x="1" y="21">k</text>'
         "<script>x</script><image/><use/><style/><a/><iframe/><foreignObject/>"
-        "<metadata><text>q</text></metadata>"), source="plan.svg")
+        + "".join(f'<{tag}><circle cx="0" cy="30"/><text x="5" y="5">q</text></{tag}>'
+                  for tag in ("metadata", "title", "desc", "clipPath", "mask", "marker",
+                              "pattern", "symbol"))), source="plan.svg")
     assert drawing == Drawing(
         {"p": (0.0, 0.0), "b": (40.0, -5.0), "c": (60.0, -10.0), "d": (10.0, -60.0),
          "e": (80.0, -80.0), "f": (25.0, -95.0), "g": (0.0, -30.0), "h": (12.0, -30.0),
@@ -374,3 +376,31 @@ def test_what_marks_a_point_and_what_is_passed_over():
 ])
 def test_the_plan_is_told_by_its_pole_or_said(svg, plan):
     assert parse_drawing_svg(svg).plan == plan
+
+
+def test_a_label_marks_a_drawn_point_up_to_8_mm_away_and_has_up_to_12_characters():
+    for dx, snapped in ((7.99, True), (8.01, False)):
+        drawing = parse_drawing_svg(_svg(f'<circle cx="20" cy="20"/><text x="{20 + dx}" '
+                                         'y="20">b</text>'))
+        assert drawing.points["b"] == ((20.0, -20.0) if snapped else (20 + dx, -20.0))
+    for label, read in (("b" * 12, True), ("b" * 13, False)):
+        assert (label in parse_drawing_svg(_svg(f"<text>{label}</text>")).points) is read
+
+
+def test_an_svg_is_read_up_to_its_element_and_depth_limits():
+    from planmethod.grading.drawings import MAX_DEPTH, MAX_ELEMENTS
+
+    def nested(depth):       # the root and the text at depth 0 and 1; groups to ``depth``
+        return ("<svg>" + "<g>" * (depth - 1) + "<text>p</text>" + "</g>" * (depth - 1)
+                + "</svg>")
+
+    assert parse_drawing_svg(nested(MAX_DEPTH)).points == {"p": (0.0, 0.0)}
+    assert _refusal(parse_drawing_svg, nested(MAX_DEPTH + 1)) == \
+        f"plan.svg: elements nested deeper than {MAX_DEPTH}"
+
+    def many(count):         # the root, the text and circles: ``count`` elements in all
+        return "<svg><text>p</text>" + "<circle/>" * (count - 2) + "</svg>"
+
+    assert parse_drawing_svg(many(MAX_ELEMENTS)).points == {"p": (0.0, 0.0)}
+    assert _refusal(parse_drawing_svg, many(MAX_ELEMENTS + 1)) == \
+        f"plan.svg: more than {MAX_ELEMENTS} elements"
