@@ -199,3 +199,29 @@ def test_every_drawn_mistake_has_what_the_student_is_told():
         assert drawn_explanation(mistake)
     assert "turned 180°" in drawn_explanation("sense")
     assert "wrong scale" in drawn_explanation("scale_none")
+
+
+def test_the_page_frame_of_a_small_plan_whole():
+    """A plan's frame for the workbook page: its pole, scale (6 digits) and unit; every point a
+    student places (not the pole, not a fixed point at it) to 0.001 mm with its disc, never
+    −0.0; those scored; the mistakes' positions by registry index; no acceleration plan, no
+    entry."""
+    from math import copysign
+
+    from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
+
+    key = {"plans": {"velocity": {
+        "pole": "p", "scale": 0.123456789, "unit": "(m/s)/mm",
+        "points_mm": {"p": [0, 0], "a": [0, 0], "b": [10.00049, -0.0], "c": [-0.0001, -20.0],
+                      "n_CB": [1.0, 1.0]},
+        "tolerance_mm": {"p": 0.0, "a": 0.25, "b": 0.25, "c": 0.7549, "n_CB": 0.3},
+        "steps": [{"action": "coincide", "start": "p", "end": "a"}],
+        "mistake_points": {"c": [["sense", 0.0, 20.0], ["scale_ten", 0.0, -2.0]], "b": []}}}}
+    frame = drawing_frame(key)
+    sense, ten = DRAWN_MISTAKES.index("sense"), DRAWN_MISTAKES.index("scale_ten")
+    assert frame == {"velocity": {
+        "pole": "p", "scale": "0.123457", "unit": "(m/s)/mm",
+        "points": {"b": [10.0, 0.0, 0.25], "c": [0.0, -20.0, 0.755], "n_CB": [1.0, 1.0, 0.3]},
+        "required": ["b", "c"], "mistakes": {"c": [[sense, 0.0, 20.0], [ten, 0.0, -2.0]]}}}
+    b_y, c_x = frame["velocity"]["points"]["b"][1], frame["velocity"]["points"]["c"][0]
+    assert copysign(1.0, b_y) == copysign(1.0, c_x) == 1.0

@@ -335,3 +335,40 @@ def test_feedback_levels_show_the_values_the_hint_or_nothing():
     with pytest.raises(ValueError) as caught:
         feedback_text(graded, "all")
     assert str(caught.value) == "feedback level 'all' is not one of full, hints, score"
+
+
+def test_the_class_report_of_five_results_whole():
+    """Per question in the order first met: students graded, answers given, the mean share of
+    the points (a question worth nothing counts 0), the share right, each named mistake's
+    share sorted by name, the share wrong and unexplained; the most common mistake in the
+    CSV; a result without questions (no key) counts nowhere."""
+    from planmethod.grading.report import class_statistics, mistakes_csv, questions_csv
+
+    def graded(question, score, points, correct, answer, mistake):
+        return {"id": question, "score": score, "max_score": points, "correct": correct,
+                "answer": answer, "mistake": mistake}
+
+    results = [
+        {"questions": [graded("v_C", 2.0, 2.0, True, 5.2, None),
+                       graded("w", 0.0, 0.0, False, None, None)]},
+        {"questions": [graded("v_C", 0.0, 2.0, False, 2.6, "sense"),
+                       graded("w", 0.0, 0.0, False, 3.0, "sense")]},
+        {"questions": [graded("v_C", 1.0, 2.0, False, -1.0, "scale_twice")]},
+        {"questions": [graded("v_C", 0.0, 2.0, False, 9.9, "sense")]},
+        {"error": "no key"}]
+    rows = class_statistics(results)
+    assert rows == [
+        {"question": "v_C", "students": 4, "answered": 4, "mean_score": 0.375, "correct": 0.25,
+         "mistakes": {"scale_twice": 0.25, "sense": 0.5}, "unexplained": 0.0},
+        {"question": "w", "students": 2, "answered": 1, "mean_score": 0.0, "correct": 0.0,
+         "mistakes": {"sense": 0.5}, "unexplained": 0.5}]
+    assert list(rows[0]["mistakes"]) == ["scale_twice", "sense"]
+    assert questions_csv(rows) == (
+        "question,students,answered,mean_score,correct,unexplained,top_mistake,"
+        "top_mistake_share\n"
+        "v_C,4,4,0.3750,0.2500,0.0000,sense,0.5000\n"
+        "w,2,1,0.0000,0.0000,0.5000,sense,0.5000\n")
+    assert mistakes_csv(rows) == ("question,mistake,share\nv_C,scale_twice,0.2500\n"
+                                  "v_C,sense,0.5000\nw,sense,0.5000\n")
+    no_mistakes = [dict(rows[0], mistakes={})]
+    assert questions_csv(no_mistakes).splitlines()[1] == "v_C,4,4,0.3750,0.2500,0.0000,,0.0000"
