@@ -372,3 +372,34 @@ def test_the_class_report_of_five_results_whole():
                                   "v_C,sense,0.5000\nw,sense,0.5000\n")
     no_mistakes = [dict(rows[0], mistakes={})]
     assert questions_csv(no_mistakes).splitlines()[1] == "v_C,4,4,0.3750,0.2500,0.0000,,0.0000"
+
+
+@pytest.mark.parametrize(("right", "answer", "signed", "feedback", "hint"), [
+    (0.0, 0.5, True, "0.5 off (off by 0.5 m; right: 0 m ± 0.001)", "too high"),
+    (2.0, 20.0, False, "10 times the right value (off by 18 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too high"),
+    (2.0, 19.98, False, "899.0 % high (off by 17.98 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too high"),
+    (2.0, 0.2, False, "0.1 times the right value (off by 1.8 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too low"),
+    (2.0, 0.2002, False, "90.0 % low (off by 1.7998 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too low"),
+    (-2.0, -3.0, True, "50.0 % high in magnitude (off by 1 m; right: -2 m ± 0.001 = ± 0.05 %)",
+     "too large in magnitude"),
+    (-2.0, -1.0, True, "50.0 % low in magnitude (off by 1 m; right: -2 m ± 0.001 = ± 0.05 %)",
+     "too small in magnitude"),
+    (-2.0, 0.0, True, "100.0 % low in magnitude (off by 2 m; right: -2 m ± 0.001 = ± 0.05 %)",
+     "too small in magnitude"),
+    (2.0, 0.0, False, "100.0 % low (off by 2 m; right: 2 m ± 0.001 = ± 0.05 %)", "too low"),
+])
+def test_how_far_off_an_answer_is_told(right, answer, signed, feedback, hint):
+    """Off by a factor of 10 or more (or 0.1 or less): so many times the right value; else
+    the percentage, in magnitude for a negative right answer (an answer of 0 for −2 is 100 %
+    low in magnitude, and too small in magnitude — not "too high"); a right answer of 0: by
+    how much."""
+    from planmethod.grading.answers import grade_question
+
+    graded = grade_question({"id": "x", "unit": "m", "value": right, "tolerance": 0.001,
+                             "signed": signed}, answer)
+    assert graded["feedback"] == f"x = {answer:g} m: wrong — {feedback}"
+    assert graded["hint"] == f"x = {answer:g} m: wrong ({hint})"

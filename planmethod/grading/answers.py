@@ -306,7 +306,7 @@ def _off(answer: float, right: float) -> str:
     if ratio >= 10 or 0 < ratio <= 0.1:
         return f"{ratio:.4g} times the right value"
     relative = ratio - 1.0
-    magnitude = " in magnitude" if right < 0 and ratio > 0 else ""
+    magnitude = " in magnitude" if right < 0 and ratio >= 0 else ""
     return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}{magnitude}"
 
 
@@ -405,7 +405,7 @@ def _way(answer: float, right: float, signed: bool) -> str:
     magnitude``, ``the sense is reversed``."""
     if signed and right != 0 and answer != 0 and (answer > 0) != (right > 0):
         return "the sense is reversed"
-    if right < 0 and answer < 0:
+    if right < 0 and answer <= 0:
         return "too large in magnitude" if answer < right else "too small in magnitude"
     return "too high" if answer > right else "too low"
 

@@ -34,7 +34,7 @@
     const ratio = answer / right;
     if (ratio >= 10 || (ratio > 0 && ratio <= 0.1)) return fmt(ratio, 4) + " times the right value";
     const relative = ratio - 1;
-    const magnitude = right < 0 && ratio > 0 ? " in magnitude" : "";
+    const magnitude = right < 0 && ratio >= 0 ? " in magnitude" : "";
     return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
   }
   // what a negative answer for a magnitude is told, by quantity (filled from the page's data)
