@@ -303,6 +303,26 @@ _ONE_OBJECT = ("the file is either {\"student\": {\"question id\": answer, …},
     ("h.csv", "v_C,omega_BC\n1,2\n3,4\n", "has no student column (student, student_id, id, …) "
      "but 2 rows of answers: without one, the file holds one student's answers in one row"),
     ("i.csv", "v_C,omega_BC\n1,2,3\n", "line 2: has 3 cells, the header 2"),
+    ("j.json", "[1]", "[0]: each entry must be an object"),
+    ("k.json", '[{"v_C": 1}]', "[0]: no student id (give 'student')"),
+    ("l.json", '[{"student": "", "v_C": 1}]', "[0].student: no student id (give 'student')"),
+    ("m.json", '[{"student": {"a": 1}}]', "[0].student: no student id (give 'student')"),
+    ("n.json", '[{"student": "s1", "answers": [1]}]', "[0].answers: must be an object of answers"),
+    ("o.json", '[{"id": "s1", "answers": {"v_C": [1]}}]', '[0].answers.v_C: is a list, not an '
+     'answer (a number): give {"question id": answer, …} for each student'),
+    ("p.json", '{"answers": 1, "drawings": 2}',
+     "this is planmethod grade's --json output (graded results), not an answers file"),
+    ("q.json", '{"s1": {"score": 1, "max_score": 2, "questions": []}}',
+     "s1: this is planmethod grade's --json output (graded results), not an answers file"),
+    ("r.json", '{"v_C": 1, "a_C": 2, "w": {"x": 1}}',
+     f"w: is an object, not an answer like the 2 others: {_ONE_OBJECT}"),
+    ("s.json", '{"s1": {"v_C": 1}, "s2": {"v_C": 2}, "s3": 5}',
+     f"s3: is a number, not an object of one student's answers like the 2 others: {_ONE_OBJECT}"),
+    ("t.json", '[{"sid": "s1", "v_C": 1}, {"email": "S1", "v_C": 2}]',
+     "student 'S1' answers twice (entries 1 and 2); keep one"),
+    ("u.json", "{}", "no student's answers (the object is empty)"),
+    ("v.json", "[]", "no student's answers (the list is empty)"),
+    ("w.json", '"x"', "must be an object or a list of objects"),
 ])
 def test_a_refused_answers_file_is_told_exactly_why(tmp_path, name, text, message):
     (tmp_path / name).write_text(text)
