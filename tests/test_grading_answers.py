@@ -423,3 +423,85 @@ def test_how_far_off_an_answer_is_told(right, answer, signed, feedback, hint):
                              "signed": signed}, answer)
     assert graded["feedback"] == f"x = {answer:g} m: wrong — {feedback}"
     assert graded["hint"] == f"x = {answer:g} m: wrong ({hint})"
+
+
+_OMEGA = {"id": "omega_BC", "symbol": "ω₂", "unit": "rad/s", "value": -2.0, "tolerance": 0.5,
+          "signed": True, "points": 2.0,
+          "mistakes": [{"kind": "sense", "value": 2.0, "tolerance": 0.5,
+                        "feedback": "the sense (sign) is reversed"},
+                       {"kind": "scale_ten", "value": -20.0, "tolerance": 5.0, "also": ["degrees"],
+                        "feedback": "the plan's scale was misread ten times too large"}]}
+_RIGHT = "-2 rad/s ± 0.5"
+
+
+@pytest.mark.parametrize(("answer", "fields", "feedback", "hint"), [
+    (None, {}, f"ω₂: no answer (right: {_RIGHT})", "ω₂: no answer"),
+    ("  ", {}, f"ω₂: no answer (right: {_RIGHT})", "ω₂: no answer"),
+    ("abc", {}, f"ω₂: 'abc' is not a number (right: {_RIGHT})", "ω₂: 'abc' is not a number"),
+    (True, {}, f"ω₂: 'True' is not a number (right: {_RIGHT})", "ω₂: 'True' is not a number"),
+    (float("nan"), {}, f"ω₂: 'nan' is not a number (right: {_RIGHT})",
+     "ω₂: 'nan' is not a number"),
+    ("1e999", {}, f"ω₂: '1e999' is not a number (right: {_RIGHT})",
+     "ω₂: '1e999' is not a number"),
+    ("x" * 50, {}, f"ω₂: {'x' * 40!r} is not a number (right: {_RIGHT})",
+     f"ω₂: {'x' * 40!r} is not a number"),
+    ("\u22122,4", {"answer": -2.4, "correct": True, "score": 2.0},
+     "ω₂ = -2.4 rad/s: correct (exact -2, tolerance ± 0.5)", "ω₂ = -2.4 rad/s: correct"),
+    ("- 2 . 5", {"answer": -2.5, "correct": True, "score": 2.0},     # exactly at the tolerance
+     "ω₂ = -2.5 rad/s: correct (exact -2, tolerance ± 0.5)", "ω₂ = -2.5 rad/s: correct"),
+    ("1,000.5", {}, f"ω₂: '1,000.5' is not a number (right: {_RIGHT})",
+     "ω₂: '1,000.5' is not a number"),
+    (-2.51, {"answer": -2.51},
+     "ω₂ = -2.51 rad/s: wrong — 25.5 % high in magnitude (off by 0.51 rad/s; right: "
+     f"{_RIGHT} = ± 25 %)", "ω₂ = -2.51 rad/s: wrong (too large in magnitude)"),
+    (2.5, {"answer": 2.5, "mistake": "sense"},      # at the sense mistake's tolerance
+     f"ω₂ = 2.5 rad/s: wrong — it looks as if the sense (sign) is reversed (that gives 2; right: "
+     f"{_RIGHT})", "ω₂ = 2.5 rad/s: wrong (too high) — it looks as if the sense (sign) is "
+     "reversed"),
+    (-25.0, {"answer": -25.0, "mistake": "scale_ten", "also": ["degrees"]},
+     "ω₂ = -25 rad/s: wrong, 12.5 times the right value — it looks as if the plan's scale was "
+     f"misread ten times too large (that gives -20; right: {_RIGHT})",
+     "ω₂ = -25 rad/s: wrong (too large in magnitude) — it looks as if the plan's scale was "
+     "misread ten times too large"),
+    (25.0, {"answer": 25.0, "mistake": "scale_ten+sense"},
+     "ω₂ = 25 rad/s: wrong — it looks as if the plan's scale was misread ten times too large, "
+     f"and the sense is reversed (right: {_RIGHT})",
+     "ω₂ = 25 rad/s: wrong — it looks as if the plan's scale was misread ten times too large, "
+     "and the sense is reversed"),
+    (6.0, {"answer": 6.0},
+     f"ω₂ = 6 rad/s: wrong — the sense is reversed (the right answer is clockwise, {_RIGHT}) "
+     "and the magnitude 6 is 200.0 % high", "ω₂ = 6 rad/s: wrong (the sense is reversed)"),
+])
+def test_a_graded_answer_field_by_field(answer, fields, feedback, hint):
+    """Every branch of the grader on one question: nothing or no number given (cut to 40
+    characters), a minus sign and a decimal comma read, right up to exactly the tolerance,
+    wrong, a named mistake up to exactly its tolerance (and the others it stands for), a
+    mistake with the sense reversed too, the sense reversed; with the errors against the
+    right value."""
+    from planmethod.grading.answers import grade_question
+
+    graded = grade_question(_OMEGA, answer)
+    given = fields.get("answer")
+    expected = {"id": "omega_BC", "answer": None, "value": -2.0, "tolerance": 0.5,
+                "unit": "rad/s", "max_score": 2.0, "score": 0.0, "correct": False,
+                "mistake": None, **fields, "feedback": feedback, "hint": hint}
+    if given is not None:
+        expected["error_abs"] = pytest.approx(abs(given + 2.0), rel=1e-12)
+        expected["error_rel"] = pytest.approx(abs(given + 2.0) / 2.0, rel=1e-12)
+    assert graded == expected
+
+
+def test_a_question_without_unit_symbol_or_points_and_a_right_value_of_zero():
+    from planmethod.grading.answers import grade_question
+
+    assert grade_question({"id": "v_C", "value": 0.0, "tolerance": 0.1}, 0.3) == {
+        "id": "v_C", "answer": 0.3, "value": 0.0, "tolerance": 0.1, "unit": "",
+        "max_score": 1.0, "score": 0.0, "correct": False, "mistake": None,
+        "error_abs": 0.3, "error_rel": None,
+        "feedback": "v_C = 0.3: wrong — 0.3 off (off by 0.3; right: 0 ± 0.1)",
+        "hint": "v_C = 0.3: wrong (too high)"}
+    assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, -5.0)["feedback"] == (
+        "v_C = -5: wrong — v_C is the speed of C, |v_C|: a magnitude, never negative "
+        "(right: 5 ± 0.1)")
+    assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, 0.0)["feedback"] == (
+        "v_C = 0: wrong — 100.0 % low (off by 5; right: 5 ± 0.1 = ± 2 %)")

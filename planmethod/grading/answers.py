@@ -372,9 +372,9 @@ def grade_question(question: Mapping[str, Any], raw: Any) -> dict:
                 f"{_number_text(abs(answer))} is {_off(abs(answer), abs(value))}")
     else:
         tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")
-        text = (f"{shown}: wrong — {_off(answer, value)} (off by "
-                f"{_number_text(abs(answer - value))} {unit}; right: {right}"
-                f"{tolerance_text})").replace("  ", " ")
+        off_by = f"{_number_text(abs(answer - value))} {unit}".rstrip()
+        text = (f"{shown}: wrong — {_off(answer, value)} (off by {off_by}; right: {right}"
+                f"{tolerance_text})")
     result["feedback"] = text
     result["hint"] = f"{shown}: wrong ({_way(answer, value, signed)})"
     return result

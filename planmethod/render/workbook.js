@@ -86,8 +86,8 @@
         numberText(Math.abs(answer)) + " is " + off(Math.abs(answer), Math.abs(q.value));
     } else {
       const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
-      result.feedback = (shown + ": wrong — " + off(answer, q.value) + " (off by " +
-        numberText(Math.abs(answer - q.value)) + " " + unit + "; right: " + right + tol + ")").replace("  ", " ");
+      result.feedback = shown + ": wrong — " + off(answer, q.value) + " (off by " +
+        (numberText(Math.abs(answer - q.value)) + " " + unit).trimEnd() + "; right: " + right + tol + ")";
     }
     return result;
   }
