@@ -505,3 +505,50 @@ def test_a_question_without_unit_symbol_or_points_and_a_right_value_of_zero():
         "(right: 5 ± 0.1)")
     assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, 0.0)["feedback"] == (
         "v_C = 0: wrong — 100.0 % low (off by 5; right: 5 ± 0.1 = ± 2 %)")
+
+
+@pytest.mark.parametrize(("name", "text", "rows"), [
+    ("a.csv", "\ufeffstudent,v_C\ns1,5.2\n", [("s1", {"v_C": "5.2"})]),          # a BOM
+    ("b.JSON", '{"s1": {"v_C": 5}}', [("s1", {"v_C": 5})]),
+    ("c.txt", '  [{"student": "s1", "v_C": 5}]', [("s1", {"v_C": 5})]),     # JSON by content
+    ("d.csv", "student;v_C;a_C\ns1;5,2;7\n", [("s1", {"v_C": "5,2", "a_C": "7"})]),
+    ("e.csv", "student\tv_C\ns1\t5.2\n", [("s1", {"v_C": "5.2"})]),
+    ("k.csv", "student, v_C\ns1, 5.2\n", [("s1", {"v_C": "5.2"})]),        # spaces after
+])
+def test_answers_files_in_every_form_read_alike(tmp_path, name, text, rows):
+    (tmp_path / name).write_text(text, encoding="utf-8")
+    assert read_answers(tmp_path / name) == rows
+
+
+@pytest.mark.parametrize(("name", "text", "message"), [
+    ("f.csv", 'student,v_C\ns1,"5.2\ns2,3\n', 'line 2: not valid CSV: unexpected end of data (is '
+     'a quote (") left open or a cell quoted twice?)'),
+    ("g.csv", 'student,v_C\ns1,"5.2\n3"\n',
+     'line 2: a quoted cell runs on to line 3: is a closing quote (") missing?'),
+    ("h.csv", "", "the file is empty"),
+    ("i.csv", "student\ns1\n", "needs a header row with a student column and question columns "
+     "(e.g. student,v_C,omega_BC)"),
+    ("l.csv", "student,v_C\n\n,5\n", "line 3: no student id (column 'student')"),
+])
+def test_a_broken_csv_is_told_where_and_why(tmp_path, name, text, message):
+    (tmp_path / name).write_text(text, encoding="utf-8")
+    with pytest.raises(SpecError) as caught:
+        read_answers(tmp_path / name)
+    assert str(caught.value) == f"{tmp_path / name}: {message}"
+
+
+def test_a_class_of_at_most_max_rows_students_is_read(tmp_path, monkeypatch):
+    """MAX_ROWS students (200,000; here set to 3) are read, one more is refused by name, in
+    CSV and in JSON."""
+    from planmethod.grading import answers
+
+    monkeypatch.setattr(answers, "MAX_ROWS", 3)
+    rows = "".join(f"s{i},1\n" for i in range(3))
+    (tmp_path / "all.csv").write_text("student,v_C\n" + rows, encoding="utf-8")
+    assert len(read_answers(tmp_path / "all.csv")) == 3
+    (tmp_path / "more.csv").write_text(f"student,v_C\n{rows}x,1\n", encoding="utf-8")
+    (tmp_path / "more.json").write_text(json.dumps({f"s{i}": {"v_C": 1} for i in range(4)}))
+    for name in ("more.csv", "more.json"):
+        with pytest.raises(SpecError) as caught:
+            read_answers(tmp_path / name)
+        assert str(caught.value) == f"{tmp_path / name}: more than 3 students"
