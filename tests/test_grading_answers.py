@@ -552,3 +552,40 @@ def test_a_class_of_at_most_max_rows_students_is_read(tmp_path, monkeypatch):
         with pytest.raises(SpecError) as caught:
             read_answers(tmp_path / name)
         assert str(caught.value) == f"{tmp_path / name}: more than 3 students"
+
+
+_NOT_A_KEY = "not a planmethod answer key (format must be 'planmethod-key')"
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("[1]", _NOT_A_KEY), ('{"format": "x"}', _NOT_A_KEY),
+    ('{"format": "planmethod-key"}', "questions: the key has no list of questions"),
+    ('{"format": "planmethod-key", "questions": [1]}', "questions[0]: must be a table"),
+    ('{"format": "planmethod-key", "questions": [{"id": "v", "value": 1}]}',
+     "questions[0].tolerance: missing"),
+    ('{"format": "planmethod-key", "questions": [{"id": "v", "value": true, "tolerance": 1}]}',
+     "questions[0].value: must be a finite number, got True"),
+    ('{"format": "planmethod-key", "questions": [{"id": "v", "value": 1, "tolerance": NaN}]}',
+     "questions[0].tolerance: must be a finite number, got nan"),
+    ('{"format": "planmethod-keys", "keys": 1}', "keys: the bundle has no list of keys"),
+    ('{"format": "planmethod-keys", "keys": [{"format": "planmethod-key", "questions": []}, '
+     '{"format": "y"}]}', f"keys[1]: {_NOT_A_KEY}"),
+])
+def test_a_refused_key_is_told_exactly_why(tmp_path, text, message):
+    (tmp_path / "keys.json").write_text(text)
+    with pytest.raises(SpecError) as caught:
+        load_keys(tmp_path)                     # a folder: its keys.json
+    assert str(caught.value) == f"{tmp_path / 'keys.json'}: {message}"
+
+
+def test_a_single_key_grades_everyone_and_names_the_links_it_was_written_with(tmp_path):
+    from planmethod.grading.keys import key_numbers
+
+    key = {"format": "planmethod-key", "student": "s9", "questions": []}
+    (tmp_path / "key.json").write_text(json.dumps(key))
+    assert load_keys(tmp_path / "key.json") == {"s9": key, "*": key}
+    assert key_numbers({"numbers": {"AB": "1", "frame": 0}}) == {"AB": 1, "frame": 0}
+    assert key_numbers({}) == {} and key_numbers({"exercise": {"bad": 1}}) == {}
+    written = build_key(draw_variant(load_template(SEED)))
+    assert key_numbers({"exercise": written["exercise"]}) == written["numbers"] == {
+        "frame": 0, "AB": 1, "BC": 2, "slider": 3}
