@@ -434,3 +434,33 @@ def test_the_task_sheet_shows_the_figure_without_rho_and_the_text_wrapped_but_it
         parts.append(shown[start + len(parts)])
     assert "".join(parts) == given and all(len(part) <= 100 for part in parts)
     assert len(parts) == 2
+
+
+def test_resolved_tables_written_as_toml_whole():
+    """Every kind of value as a person would write it — a whole-number float with its .0, a
+    paragraph as a literal block (unless it holds ''' or a control character, or ends in a
+    quote), a key that needs quotes quoted, tables and arrays of tables after the plain keys,
+    nested tables inline — and read back equal; a value TOML cannot hold is refused by name."""
+    from planmethod.grading.templates import to_toml
+
+    data = {"title": "Lever ω", "flag": True, "off": False, "n": 3, "whole": 2.0, "x": 0.5,
+            "big": 1e300, "text": "line one\nline two", "quoted": "it's\n'''", "endq": "ab\n'",
+            "ctrl": "x\n\x01", "tabs": "a\n\tb", "odd key": 1, "ключ": 2,
+            "list": [1, 2.5, "s"], "empty": [], "drive": {"link": "AB", "omega": 10.0},
+            "load": [{"link": "BC", "force": [1, 2]}, {"link": "CD", "moment": -1.5}],
+            "nested": {"inner": {"k": "v", "w": [True]}}}
+    text = to_toml(data)
+    assert text == (
+        'title = "Lever ω"\nflag = true\noff = false\nn = 3\nwhole = 2.0\nx = 0.5\n'
+        "big = 1e+300\ntext = '''\nline one\nline two'''\nquoted = \"it's\\n'''\"\n"
+        'endq = "ab\\n\'"\nctrl = "x\\n\\u0001"\ntabs = \'\'\'\na\n\tb\'\'\'\n'
+        '"odd key" = 1\n"ключ" = 2\nlist = [1, 2.5, "s"]\nempty = []\n\n'
+        '[drive]\nlink = "AB"\nomega = 10.0\n\n[[load]]\nlink = "BC"\nforce = [1, 2]\n\n'
+        '[[load]]\nlink = "CD"\nmoment = -1.5\n\n[nested]\ninner = { k = "v", w = [true] }\n')
+    assert tomllib.loads(text) == data
+    for value, error, message in ((math.nan, ValueError, "cannot write nan to TOML"),
+                                  (-math.inf, ValueError, "cannot write -inf to TOML"),
+                                  (object(), TypeError, "cannot write object to TOML")):
+        with pytest.raises(error) as caught:
+            to_toml({"a": value})
+        assert str(caught.value) == message
