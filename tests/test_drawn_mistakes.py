@@ -225,3 +225,27 @@ def test_the_page_frame_of_a_small_plan_whole():
         "required": ["b", "c"], "mistakes": {"c": [[sense, 0.0, 20.0], [ten, 0.0, -2.0]]}}}
     b_y, c_x = frame["velocity"]["points"]["b"][1], frame["velocity"]["points"]["c"][0]
     assert copysign(1.0, b_y) == copysign(1.0, c_x) == 1.0
+
+
+def test_the_sheet_of_a_turn_holds_every_frames_plan_and_the_pole():
+    """(left, bottom, right, top): the extreme points of all frames and the pole, widened by
+    the margin (15 mm by default) and rounded out to 10 mm."""
+    from planmethod.grading.plan_points import plan_extent
+
+    frames = [{"velocity": {"points": {"b": [12.0, -3.0, 0.5]}}},
+              {"velocity": {"points": {"b": [31.0, 4.0, 0.5], "c": [-6.0, 22.0, 0.5]}}},
+              {"acceleration": {"points": {"b": [99.0, 99.0, 0.5]}}}, {}]
+    assert plan_extent(frames, "velocity") == (-30.0, -20.0, 50.0, 40.0)
+    assert plan_extent(frames, "velocity", margin=0.0) == (-10.0, -10.0, 40.0, 30.0)
+    assert plan_extent([{"velocity": {"points": {"b": [-41.0, -52.0, 0.5]}}}], "velocity",
+                       margin=5.0) == (-50.0, -60.0, 10.0, 10.0)
+    assert plan_extent([], "velocity") == (-20.0, -20.0, 20.0, 20.0)
+
+
+def test_the_points_scored_on_a_plan_are_the_images_off_the_pole():
+    from planmethod.grading.plan_points import graded_labels
+
+    plan = {"pole": "π", "points_mm": {"π": [0, 0], "b": [0, 30], "n_CB": [1, 2],
+                                       "c@frame": [0, 0], "d@frame": [3, 4], "a": [0, 0],
+                                       "e": [5e-10, 0.0], "f": [2e-9, 0.0], "p": [5, 5]}}
+    assert graded_labels(plan) == ["b", "f", "p"]
