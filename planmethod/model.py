@@ -341,17 +341,12 @@ class Mechanism:
         return self.links[link].points[point]
 
     def revolute_at(self, point: str) -> Revolute | None:
-        for pair in self.revolutes:
-            if pair.point == point:
-                return pair
-        return None
+        """The revolute pair at ``point``, or None."""
+        return next((pair for pair in self.revolutes if pair.point == point), None)
 
     def slide(self, key: str) -> Slide | None:
         """The prismatic pair keyed ``link/along``, or None."""
-        for pair in self.slides:
-            if pair.key == key:
-                return pair
-        return None
+        return next((pair for pair in self.slides if pair.key == key), None)
 
 
 @dataclass(frozen=True, slots=True)

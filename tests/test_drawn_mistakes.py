@@ -274,3 +274,53 @@ def test_a_page_drawing_at_another_angle_is_graded_at_that_angle(tmp_path, capsy
                  str(tmp_path / "graded.json")]) == 0
     assert json.loads((tmp_path / "graded.json").read_text())["drawings"][0]["score"] == 0
     capsys.readouterr()
+
+
+def test_the_page_frame_of_a_small_plan_whole():
+    """A plan's frame for the workbook page: its pole, scale (6 digits) and unit; every point a
+    student places (not the pole, not a fixed point at it) to 0.001 mm with its disc, never
+    −0.0; those scored; the mistakes' positions by registry index; no acceleration plan, no
+    entry."""
+    from math import copysign
+
+    from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
+
+    key = {"plans": {"velocity": {
+        "pole": "p", "scale": 0.123456789, "unit": "(m/s)/mm",
+        "points_mm": {"p": [0, 0], "a": [0, 0], "b": [10.00049, -0.0], "c": [-0.0001, -20.0],
+                      "n_CB": [1.0, 1.0]},
+        "tolerance_mm": {"p": 0.0, "a": 0.25, "b": 0.25, "c": 0.7549, "n_CB": 0.3},
+        "steps": [{"action": "coincide", "start": "p", "end": "a"}],
+        "mistake_points": {"c": [["sense", 0.0, 20.0], ["scale_ten", 0.0, -2.0]], "b": []}}}}
+    frame = drawing_frame(key)
+    sense, ten = DRAWN_MISTAKES.index("sense"), DRAWN_MISTAKES.index("scale_ten")
+    assert frame == {"velocity": {
+        "pole": "p", "scale": "0.123457", "unit": "(m/s)/mm",
+        "points": {"b": [10.0, 0.0, 0.25], "c": [0.0, -20.0, 0.755], "n_CB": [1.0, 1.0, 0.3]},
+        "required": ["b", "c"], "mistakes": {"c": [[sense, 0.0, 20.0], [ten, 0.0, -2.0]]}}}
+    b_y, c_x = frame["velocity"]["points"]["b"][1], frame["velocity"]["points"]["c"][0]
+    assert copysign(1.0, b_y) == copysign(1.0, c_x) == 1.0
+
+
+def test_the_sheet_of_a_turn_holds_every_frames_plan_and_the_pole():
+    """(left, bottom, right, top): the extreme points of all frames and the pole, widened by
+    the margin (15 mm by default) and rounded out to 10 mm."""
+    from planmethod.grading.plan_points import plan_extent
+
+    frames = [{"velocity": {"points": {"b": [12.0, -3.0, 0.5]}}},
+              {"velocity": {"points": {"b": [31.0, 4.0, 0.5], "c": [-6.0, 22.0, 0.5]}}},
+              {"acceleration": {"points": {"b": [99.0, 99.0, 0.5]}}}, {}]
+    assert plan_extent(frames, "velocity") == (-30.0, -20.0, 50.0, 40.0)
+    assert plan_extent(frames, "velocity", margin=0.0) == (-10.0, -10.0, 40.0, 30.0)
+    assert plan_extent([{"velocity": {"points": {"b": [-41.0, -52.0, 0.5]}}}], "velocity",
+                       margin=5.0) == (-50.0, -60.0, 10.0, 10.0)
+    assert plan_extent([], "velocity") == (-20.0, -20.0, 20.0, 20.0)
+
+
+def test_the_points_scored_on_a_plan_are_the_images_off_the_pole():
+    from planmethod.grading.plan_points import graded_labels
+
+    plan = {"pole": "π", "points_mm": {"π": [0, 0], "b": [0, 30], "n_CB": [1, 2],
+                                       "c@frame": [0, 0], "d@frame": [3, 4], "a": [0, 0],
+                                       "e": [5e-10, 0.0], "f": [2e-9, 0.0], "p": [5, 5]}}
+    assert graded_labels(plan) == ["b", "f", "p"]

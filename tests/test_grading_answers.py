@@ -332,3 +332,311 @@ def test_the_class_report_counts_right_answers_and_named_mistakes(tmp_path, caps
     assert top["top_mistake"] == mistake["kind"] and float(top["top_mistake_share"]) == 0.4
     assert all(float(row["correct"]) == 1.0 for row in rows[1:])
     assert (tmp_path / "report" / "class_report.png").stat().st_size > 5000
+
+
+_ONE_OBJECT = ("the file is either {\"student\": {\"question id\": answer, …}, …} or one "
+               "student's {\"question id\": answer, …}")
+
+
+@pytest.mark.parametrize(("name", "text", "message"), [
+    ("a.json", '{"s01": {"v_C": [1]}}', 's01.v_C: is a list, not an answer (a number): give '
+     '{"question id": answer, …} for each student'),
+    ("b.json", '{"s01": {"v_C": {"x": 1}}}', 's01.v_C: is an object, not an answer (a number): '
+     'give {"question id": answer, …} for each student'),
+    ("c.json", '{"s01": {"v_C": 1}, "s02": true}',
+     f"s02: is true/false, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("d.json", '{"s01": {"v_C": 1}, "s02": null}',
+     f"s02: is null, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("e.json", '{"s01": {"v_C": 1}, "s02": "x"}',
+     f"s02: is a text, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("f.json", '{"s01": {"v_C": 1}, "s02": 2.5}',
+     f"s02: is a number, not an object of one student's answers like the 1 other: {_ONE_OBJECT}"),
+    ("h.csv", "v_C,omega_BC\n1,2\n3,4\n", "has no student column (student, student_id, id, …) "
+     "but 2 rows of answers: without one, the file holds one student's answers in one row"),
+    ("i.csv", "v_C,omega_BC\n1,2,3\n", "line 2: has 3 cells, the header 2"),
+    ("j.json", "[1]", "[0]: each entry must be an object"),
+    ("k.json", '[{"v_C": 1}]', "[0]: no student id (give 'student')"),
+    ("l.json", '[{"student": "", "v_C": 1}]', "[0].student: no student id (give 'student')"),
+    ("m.json", '[{"student": {"a": 1}}]', "[0].student: no student id (give 'student')"),
+    ("n.json", '[{"student": "s1", "answers": [1]}]', "[0].answers: must be an object of answers"),
+    ("o.json", '[{"id": "s1", "answers": {"v_C": [1]}}]', '[0].answers.v_C: is a list, not an '
+     'answer (a number): give {"question id": answer, …} for each student'),
+    ("p.json", '{"answers": 1, "drawings": 2}',
+     "this is planmethod grade's --json output (graded results), not an answers file"),
+    ("q.json", '{"s1": {"score": 1, "max_score": 2, "questions": []}}',
+     "s1: this is planmethod grade's --json output (graded results), not an answers file"),
+    ("r.json", '{"v_C": 1, "a_C": 2, "w": {"x": 1}}',
+     f"w: is an object, not an answer like the 2 others: {_ONE_OBJECT}"),
+    ("s.json", '{"s1": {"v_C": 1}, "s2": {"v_C": 2}, "s3": 5}',
+     f"s3: is a number, not an object of one student's answers like the 2 others: {_ONE_OBJECT}"),
+    ("t.json", '[{"sid": "s1", "v_C": 1}, {"email": "S1", "v_C": 2}]',
+     "student 'S1' answers twice (entries 1 and 2); keep one"),
+    ("u.json", "{}", "no student's answers (the object is empty)"),
+    ("v.json", "[]", "no student's answers (the list is empty)"),
+    ("w.json", '"x"', "must be an object or a list of objects"),
+])
+def test_a_refused_answers_file_is_told_exactly_why(tmp_path, name, text, message):
+    (tmp_path / name).write_text(text)
+    with pytest.raises(SpecError) as caught:
+        read_answers(tmp_path / name)
+    assert str(caught.value) == f"{tmp_path / name}: {message}"
+
+
+def test_a_reversed_sense_names_the_right_sense_in_words():
+    from planmethod.grading.answers import grade_question
+
+    question = {"id": "omega_BC", "symbol": "ω₂", "unit": "rad/s", "value": -24.25,
+                "tolerance": 0.5, "signed": True, "mistakes": []}
+    assert grade_question(question, 30.0)["feedback"] == (
+        "ω₂ = 30 rad/s: wrong — the sense is reversed (the right answer is clockwise, "
+        "-24.25 rad/s ± 0.5) and the magnitude 30 is 23.7 % high")
+    assert grade_question(dict(question, value=24.25), -30.0)["feedback"] == (
+        "ω₂ = -30 rad/s: wrong — the sense is reversed (the right answer is counter-clockwise, "
+        "24.25 rad/s ± 0.5) and the magnitude 30 is 23.7 % high")
+
+
+def test_feedback_levels_show_the_values_the_hint_or_nothing():
+    from planmethod.grading.answers import feedback_text, grade_question
+
+    graded = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
+    assert feedback_text(graded) == graded["feedback"] == feedback_text(graded, "full")
+    assert feedback_text(graded, "hints") == "v_C = 6: wrong (too high)"
+    assert feedback_text(graded, "score") == ""
+    assert feedback_text({"feedback": "kept"}, "hints") == ""     # no hint: nothing shown
+    with pytest.raises(ValueError) as caught:
+        feedback_text(graded, "all")
+    assert str(caught.value) == "feedback level 'all' is not one of full, hints, score"
+
+
+def test_the_class_report_of_five_results_whole():
+    """Per question in the order first met: students graded, answers given, the mean share of
+    the points (a question worth nothing counts 0), the share right, each named mistake's
+    share sorted by name, the share wrong and unexplained; the most common mistake in the
+    CSV; a result without questions (no key) counts nowhere."""
+    from planmethod.grading.report import class_statistics, mistakes_csv, questions_csv
+
+    def graded(question, score, points, correct, answer, mistake):
+        return {"id": question, "score": score, "max_score": points, "correct": correct,
+                "answer": answer, "mistake": mistake}
+
+    results = [
+        {"questions": [graded("v_C", 2.0, 2.0, True, 5.2, None),
+                       graded("w", 0.0, 0.0, False, None, None)]},
+        {"questions": [graded("v_C", 0.0, 2.0, False, 2.6, "sense"),
+                       graded("w", 0.0, 0.0, False, 3.0, "sense")]},
+        {"questions": [graded("v_C", 1.0, 2.0, False, -1.0, "scale_twice")]},
+        {"questions": [graded("v_C", 0.0, 2.0, False, 9.9, "sense")]},
+        {"error": "no key"}]
+    rows = class_statistics(results)
+    assert rows == [
+        {"question": "v_C", "students": 4, "answered": 4, "mean_score": 0.375, "correct": 0.25,
+         "mistakes": {"scale_twice": 0.25, "sense": 0.5}, "unexplained": 0.0},
+        {"question": "w", "students": 2, "answered": 1, "mean_score": 0.0, "correct": 0.0,
+         "mistakes": {"sense": 0.5}, "unexplained": 0.5}]
+    assert list(rows[0]["mistakes"]) == ["scale_twice", "sense"]
+    assert questions_csv(rows) == (
+        "question,students,answered,mean_score,correct,unexplained,top_mistake,"
+        "top_mistake_share\n"
+        "v_C,4,4,0.3750,0.2500,0.0000,sense,0.5000\n"
+        "w,2,1,0.0000,0.0000,0.5000,sense,0.5000\n")
+    assert mistakes_csv(rows) == ("question,mistake,share\nv_C,scale_twice,0.2500\n"
+                                  "v_C,sense,0.5000\nw,sense,0.5000\n")
+    no_mistakes = [dict(rows[0], mistakes={})]
+    assert questions_csv(no_mistakes).splitlines()[1] == "v_C,4,4,0.3750,0.2500,0.0000,,0.0000"
+
+
+@pytest.mark.parametrize(("right", "answer", "signed", "feedback", "hint"), [
+    (0.0, 0.5, True, "0.5 off (off by 0.5 m; right: 0 m ± 0.001)", "too high"),
+    (2.0, 20.0, False, "10 times the right value (off by 18 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too high"),
+    (2.0, 19.98, False, "899.0 % high (off by 17.98 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too high"),
+    (2.0, 0.2, False, "0.1 times the right value (off by 1.8 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too low"),
+    (2.0, 0.2002, False, "90.0 % low (off by 1.7998 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "too low"),
+    (-2.0, -3.0, True, "50.0 % high in magnitude (off by 1 m; right: -2 m ± 0.001 = ± 0.05 %)",
+     "too large in magnitude"),
+    (-2.0, -1.0, True, "50.0 % low in magnitude (off by 1 m; right: -2 m ± 0.001 = ± 0.05 %)",
+     "too small in magnitude"),
+    (-2.0, 0.0, True, "100.0 % low in magnitude (off by 2 m; right: -2 m ± 0.001 = ± 0.05 %)",
+     "too small in magnitude"),
+    (2.0, 0.0, False, "100.0 % low (off by 2 m; right: 2 m ± 0.001 = ± 0.05 %)", "too low"),
+])
+def test_how_far_off_an_answer_is_told(right, answer, signed, feedback, hint):
+    """Off by a factor of 10 or more (or 0.1 or less): so many times the right value; else
+    the percentage, in magnitude for a negative right answer (an answer of 0 for −2 is 100 %
+    low in magnitude, and too small in magnitude — not "too high"); a right answer of 0: by
+    how much."""
+    from planmethod.grading.answers import grade_question
+
+    graded = grade_question({"id": "x", "unit": "m", "value": right, "tolerance": 0.001,
+                             "signed": signed}, answer)
+    assert graded["feedback"] == f"x = {answer:g} m: wrong — {feedback}"
+    assert graded["hint"] == f"x = {answer:g} m: wrong ({hint})"
+
+
+_OMEGA = {"id": "omega_BC", "symbol": "ω₂", "unit": "rad/s", "value": -2.0, "tolerance": 0.5,
+          "signed": True, "points": 2.0,
+          "mistakes": [{"kind": "sense", "value": 2.0, "tolerance": 0.5,
+                        "feedback": "the sense (sign) is reversed"},
+                       {"kind": "scale_ten", "value": -20.0, "tolerance": 5.0, "also": ["degrees"],
+                        "feedback": "the plan's scale was misread ten times too large"}]}
+_RIGHT = "-2 rad/s ± 0.5"
+
+
+@pytest.mark.parametrize(("answer", "fields", "feedback", "hint"), [
+    (None, {}, f"ω₂: no answer (right: {_RIGHT})", "ω₂: no answer"),
+    ("  ", {}, f"ω₂: no answer (right: {_RIGHT})", "ω₂: no answer"),
+    ("abc", {}, f"ω₂: 'abc' is not a number (right: {_RIGHT})", "ω₂: 'abc' is not a number"),
+    (True, {}, f"ω₂: 'True' is not a number (right: {_RIGHT})", "ω₂: 'True' is not a number"),
+    (float("nan"), {}, f"ω₂: 'nan' is not a number (right: {_RIGHT})",
+     "ω₂: 'nan' is not a number"),
+    ("1e999", {}, f"ω₂: '1e999' is not a number (right: {_RIGHT})",
+     "ω₂: '1e999' is not a number"),
+    ("x" * 50, {}, f"ω₂: {'x' * 40!r} is not a number (right: {_RIGHT})",
+     f"ω₂: {'x' * 40!r} is not a number"),
+    ("\u22122,4", {"answer": -2.4, "correct": True, "score": 2.0},
+     "ω₂ = -2.4 rad/s: correct (exact -2, tolerance ± 0.5)", "ω₂ = -2.4 rad/s: correct"),
+    ("- 2 . 5", {"answer": -2.5, "correct": True, "score": 2.0},     # exactly at the tolerance
+     "ω₂ = -2.5 rad/s: correct (exact -2, tolerance ± 0.5)", "ω₂ = -2.5 rad/s: correct"),
+    ("1,000.5", {}, f"ω₂: '1,000.5' is not a number (right: {_RIGHT})",
+     "ω₂: '1,000.5' is not a number"),
+    (-2.51, {"answer": -2.51},
+     "ω₂ = -2.51 rad/s: wrong — 25.5 % high in magnitude (off by 0.51 rad/s; right: "
+     f"{_RIGHT} = ± 25 %)", "ω₂ = -2.51 rad/s: wrong (too large in magnitude)"),
+    (2.5, {"answer": 2.5, "mistake": "sense"},      # at the sense mistake's tolerance
+     f"ω₂ = 2.5 rad/s: wrong — it looks as if the sense (sign) is reversed (that gives 2; right: "
+     f"{_RIGHT})", "ω₂ = 2.5 rad/s: wrong (too high) — it looks as if the sense (sign) is "
+     "reversed"),
+    (-25.0, {"answer": -25.0, "mistake": "scale_ten", "also": ["degrees"]},
+     "ω₂ = -25 rad/s: wrong, 12.5 times the right value — it looks as if the plan's scale was "
+     f"misread ten times too large (that gives -20; right: {_RIGHT})",
+     "ω₂ = -25 rad/s: wrong (too large in magnitude) — it looks as if the plan's scale was "
+     "misread ten times too large"),
+    (25.0, {"answer": 25.0, "mistake": "scale_ten+sense"},
+     "ω₂ = 25 rad/s: wrong — it looks as if the plan's scale was misread ten times too large, "
+     f"and the sense is reversed (right: {_RIGHT})",
+     "ω₂ = 25 rad/s: wrong — it looks as if the plan's scale was misread ten times too large, "
+     "and the sense is reversed"),
+    (6.0, {"answer": 6.0},
+     f"ω₂ = 6 rad/s: wrong — the sense is reversed (the right answer is clockwise, {_RIGHT}) "
+     "and the magnitude 6 is 200.0 % high", "ω₂ = 6 rad/s: wrong (the sense is reversed)"),
+])
+def test_a_graded_answer_field_by_field(answer, fields, feedback, hint):
+    """Every branch of the grader on one question: nothing or no number given (cut to 40
+    characters), a minus sign and a decimal comma read, right up to exactly the tolerance,
+    wrong, a named mistake up to exactly its tolerance (and the others it stands for), a
+    mistake with the sense reversed too, the sense reversed; with the errors against the
+    right value."""
+    from planmethod.grading.answers import grade_question
+
+    graded = grade_question(_OMEGA, answer)
+    given = fields.get("answer")
+    expected = {"id": "omega_BC", "answer": None, "value": -2.0, "tolerance": 0.5,
+                "unit": "rad/s", "max_score": 2.0, "score": 0.0, "correct": False,
+                "mistake": None, **fields, "feedback": feedback, "hint": hint}
+    if given is not None:
+        expected["error_abs"] = pytest.approx(abs(given + 2.0), rel=1e-12)
+        expected["error_rel"] = pytest.approx(abs(given + 2.0) / 2.0, rel=1e-12)
+    assert graded == expected
+
+
+def test_a_question_without_unit_symbol_or_points_and_a_right_value_of_zero():
+    from planmethod.grading.answers import grade_question
+
+    assert grade_question({"id": "v_C", "value": 0.0, "tolerance": 0.1}, 0.3) == {
+        "id": "v_C", "answer": 0.3, "value": 0.0, "tolerance": 0.1, "unit": "",
+        "max_score": 1.0, "score": 0.0, "correct": False, "mistake": None,
+        "error_abs": 0.3, "error_rel": None,
+        "feedback": "v_C = 0.3: wrong — 0.3 off (off by 0.3; right: 0 ± 0.1)",
+        "hint": "v_C = 0.3: wrong (too high)"}
+    assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, -5.0)["feedback"] == (
+        "v_C = -5: wrong — v_C is the speed of C, |v_C|: a magnitude, never negative "
+        "(right: 5 ± 0.1)")
+    assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, 0.0)["feedback"] == (
+        "v_C = 0: wrong — 100.0 % low (off by 5; right: 5 ± 0.1 = ± 2 %)")
+
+
+@pytest.mark.parametrize(("name", "text", "rows"), [
+    ("a.csv", "\ufeffstudent,v_C\ns1,5.2\n", [("s1", {"v_C": "5.2"})]),          # a BOM
+    ("b.JSON", '{"s1": {"v_C": 5}}', [("s1", {"v_C": 5})]),
+    ("c.txt", '  [{"student": "s1", "v_C": 5}]', [("s1", {"v_C": 5})]),     # JSON by content
+    ("d.csv", "student;v_C;a_C\ns1;5,2;7\n", [("s1", {"v_C": "5,2", "a_C": "7"})]),
+    ("e.csv", "student\tv_C\ns1\t5.2\n", [("s1", {"v_C": "5.2"})]),
+    ("k.csv", "student, v_C\ns1, 5.2\n", [("s1", {"v_C": "5.2"})]),        # spaces after
+])
+def test_answers_files_in_every_form_read_alike(tmp_path, name, text, rows):
+    (tmp_path / name).write_text(text, encoding="utf-8")
+    assert read_answers(tmp_path / name) == rows
+
+
+@pytest.mark.parametrize(("name", "text", "message"), [
+    ("f.csv", 'student,v_C\ns1,"5.2\ns2,3\n', 'line 2: not valid CSV: unexpected end of data (is '
+     'a quote (") left open or a cell quoted twice?)'),
+    ("g.csv", 'student,v_C\ns1,"5.2\n3"\n',
+     'line 2: a quoted cell runs on to line 3: is a closing quote (") missing?'),
+    ("h.csv", "", "the file is empty"),
+    ("i.csv", "student\ns1\n", "needs a header row with a student column and question columns "
+     "(e.g. student,v_C,omega_BC)"),
+    ("l.csv", "student,v_C\n\n,5\n", "line 3: no student id (column 'student')"),
+])
+def test_a_broken_csv_is_told_where_and_why(tmp_path, name, text, message):
+    (tmp_path / name).write_text(text, encoding="utf-8")
+    with pytest.raises(SpecError) as caught:
+        read_answers(tmp_path / name)
+    assert str(caught.value) == f"{tmp_path / name}: {message}"
+
+
+def test_a_class_of_at_most_max_rows_students_is_read(tmp_path, monkeypatch):
+    """MAX_ROWS students (200,000; here set to 3) are read, one more is refused by name, in
+    CSV and in JSON."""
+    from planmethod.grading import answers
+
+    monkeypatch.setattr(answers, "MAX_ROWS", 3)
+    rows = "".join(f"s{i},1\n" for i in range(3))
+    (tmp_path / "all.csv").write_text("student,v_C\n" + rows, encoding="utf-8")
+    assert len(read_answers(tmp_path / "all.csv")) == 3
+    (tmp_path / "more.csv").write_text(f"student,v_C\n{rows}x,1\n", encoding="utf-8")
+    (tmp_path / "more.json").write_text(json.dumps({f"s{i}": {"v_C": 1} for i in range(4)}))
+    for name in ("more.csv", "more.json"):
+        with pytest.raises(SpecError) as caught:
+            read_answers(tmp_path / name)
+        assert str(caught.value) == f"{tmp_path / name}: more than 3 students"
+
+
+_NOT_A_KEY = "not a planmethod answer key (format must be 'planmethod-key')"
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("[1]", _NOT_A_KEY), ('{"format": "x"}', _NOT_A_KEY),
+    ('{"format": "planmethod-key"}', "questions: the key has no list of questions"),
+    ('{"format": "planmethod-key", "questions": [1]}', "questions[0]: must be a table"),
+    ('{"format": "planmethod-key", "questions": [{"id": "v", "value": 1}]}',
+     "questions[0].tolerance: missing"),
+    ('{"format": "planmethod-key", "questions": [{"id": "v", "value": true, "tolerance": 1}]}',
+     "questions[0].value: must be a finite number, got True"),
+    ('{"format": "planmethod-key", "questions": [{"id": "v", "value": 1, "tolerance": NaN}]}',
+     "questions[0].tolerance: must be a finite number, got nan"),
+    ('{"format": "planmethod-keys", "keys": 1}', "keys: the bundle has no list of keys"),
+    ('{"format": "planmethod-keys", "keys": [{"format": "planmethod-key", "questions": []}, '
+     '{"format": "y"}]}', f"keys[1]: {_NOT_A_KEY}"),
+])
+def test_a_refused_key_is_told_exactly_why(tmp_path, text, message):
+    (tmp_path / "keys.json").write_text(text)
+    with pytest.raises(SpecError) as caught:
+        load_keys(tmp_path)                     # a folder: its keys.json
+    assert str(caught.value) == f"{tmp_path / 'keys.json'}: {message}"
+
+
+def test_a_single_key_grades_everyone_and_names_the_links_it_was_written_with(tmp_path):
+    from planmethod.grading.keys import key_numbers
+
+    key = {"format": "planmethod-key", "student": "s9", "questions": []}
+    (tmp_path / "key.json").write_text(json.dumps(key))
+    assert load_keys(tmp_path / "key.json") == {"s9": key, "*": key}
+    assert key_numbers({"numbers": {"AB": "1", "frame": 0}}) == {"AB": 1, "frame": 0}
+    assert key_numbers({}) == {} and key_numbers({"exercise": {"bad": 1}}) == {}
+    written = build_key(draw_variant(load_template(SEED)))
+    assert key_numbers({"exercise": written["exercise"]}) == written["numbers"] == {
+        "frame": 0, "AB": 1, "BC": 2, "slider": 3}

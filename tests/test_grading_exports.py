@@ -11,6 +11,7 @@ import uuid
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from planmethod.cli import main
@@ -23,6 +24,7 @@ from planmethod.grading.exports import (
     prairielearn_questions,
 )
 from planmethod.grading.keys import build_key, bundle
+from planmethod.grading.plan_points import graded_labels
 from planmethod.grading.templates import draw_variant, load_template
 
 TEMPLATE = "exercises/templates/four_bar.toml"
@@ -106,6 +108,50 @@ def test_gradescope_results_structure(keys):
     json.dumps(results, allow_nan=False)
 
 
+def test_gradescope_results_list_each_question_then_each_drawn_plan(keys):
+    """Gradescope's results.json: one test per question, numbered from 1, then one per drawn
+    plan; a test passes when it has full marks; the total is the answers' score plus the
+    plans'; what each says follows the feedback level."""
+    from planmethod.grading.answers import feedback_text
+    from planmethod.grading.drawings import Drawing, grade_drawing
+
+    key = keys[0]
+    answers = {q["id"]: q["value"] for q in key["questions"]}
+    answers[key["questions"][0]["id"]] = 0.0
+    (result,) = grade_many({"ann": key}, [("ann", answers)])
+    right = {k: tuple(v) for k, v in key["plans"]["velocity"]["points_mm"].items()}
+    moved = dict(right, c=(right["c"][0] + 5.0, right["c"][1]))
+    drawings = [grade_drawing(key, Drawing(right, "velocity")),
+                grade_drawing(key, Drawing(moved, "velocity"))]
+    for level in ("full", "hints", "score"):
+        results = gradescope_results(result, drawings, feedback=level)
+        questions = [{"name": q["id"], "number": str(number), "score": q["score"],
+                      "max_score": q["max_score"],
+                      "status": "passed" if q["correct"] else "failed",
+                      "output": feedback_text(q, level), "visibility": "visible"}
+                     for number, q in enumerate(result["questions"], start=1)]
+        plans = [{"name": "velocity plan", "score": d["score"], "max_score": d["max_score"],
+                  "status": status,
+                  "output": "\n".join([p["feedback"] for p in d["points"]] + d["feedback"])
+                  if level == "full" else "", "visibility": "visible"}
+                 for d, status in zip(drawings, ("passed", "failed"), strict=True)]
+        total = result["score"] + drawings[0]["score"] + drawings[1]["score"]
+        assert results == {"score": total, "output": f"Variant {key['student']}: {total:g} points.",
+                           "visibility": "visible", "stdout_visibility": "hidden",
+                           "tests": questions + plans}
+    assert questions[0]["status"] == "failed" and questions[1]["status"] == "passed"
+    shown = gradescope_results(result, drawings, feedback="full")["tests"][-1]["output"]
+    assert shown.startswith("b: within") and "\nc is 5.0 mm off" in shown
+    # a student without a key: the error is the whole output, and nothing is scored
+    (lost,) = grade_many({"ann": key}, [("zed", answers)])
+    assert gradescope_results(lost) == {"score": 0.0, "output": "no key for student 'zed'",
+                                        "visibility": "visible", "stdout_visibility": "hidden",
+                                        "tests": []}
+    assert gradescope_results({}) == {"score": 0.0, "output": "Variant None: 0 points.",
+                                      "visibility": "visible", "stdout_visibility": "hidden",
+                                      "tests": []}
+
+
 def test_gradescope_autograder_folder(keys):
     files = gradescope_autograder(bundle(keys))
     assert {"setup.sh", "run_autograder", "keys.json"} <= set(files)
@@ -121,6 +167,46 @@ def test_gradescope_autograder_folder(keys):
     assert installs and updates and updates[0] < installs[0]   # the index before installing
     assert "sys.version_info < (3, 11)" in files["setup.sh"]
     assert json.loads(files["keys.json"])["format"] == "planmethod-keys"
+
+
+def test_prairielearn_canvas_holds_every_variants_plan_and_the_mistakes_on_it():
+    """The canvas is the smallest multiple of 40 px that keeps every variant's plan points
+    40 px inside its edges (at least a 30 mm radius round the pole, 4 px a millimetre); each
+    point is there in px, y down; every position a mistake gives that lies on the canvas is
+    exported, and none off it; the task's paragraphs become HTML paragraphs, escaped; the
+    drawing's hint tolerance is the largest point disc."""
+    key = build_key(draw_variant(load_template("exercises/slotted_lever.toml")))
+    key["task"] = "Find x < y.\n\nThen draw."
+    files = prairielearn_questions(bundle([key]), slug="q")
+    info = json.loads(files["q/info.json"])
+    assert info["topic"] == "Kinematics of mechanisms" and info["type"] == "v3"
+    namespace: dict = {}
+    exec(compile(files["q/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 1}
+    namespace["generate"](data)
+    params = data["params"]
+    assert params["task_html"] == "<p>Find x &lt; y.</p><p>Then draw.</p>"
+    size = float(re.search(r'answers-name="velocity_plan"[^>]*width="(\d+)"',
+                           files["q/question.html"]).group(1))
+    extent = max([30.0] + [float(np.hypot(*key["plans"][plan]["points_mm"][label]))
+                           for plan in ("velocity", "acceleration")
+                           for label in graded_labels(key["plans"][plan])])
+    assert size % 40 == 0 and 2 * extent * 4 + 80 <= size < 2 * extent * 4 + 120
+    for plan in ("velocity", "acceleration"):
+        entry = key["plans"][plan]
+        for label in graded_labels(entry):
+            x, y = entry["points_mm"][label]
+            ident = label.replace("@", "_")
+            assert params["plans"][plan][ident] == {"x": round(size / 2 + 4 * x, 2),
+                                                    "y": round(size / 2 - 4 * y, 2)}
+            on_canvas = [[mistake, round(size / 2 + 4 * mx, 2), round(size / 2 - 4 * my, 2)]
+                         for mistake, mx, my in entry["mistake_points"].get(label, ())
+                         if 0 <= size / 2 + 4 * mx <= size and 0 <= size / 2 - 4 * my <= size]
+            assert params["mistakes_px"][plan].get(ident, []) == on_canvas
+        assert params["tol_px"][plan] == max(params["radius_px"][plan].values())
+    assert any(len(entry["mistake_points"].get(label, ())) > len(
+        params["mistakes_px"]["acceleration"].get(label.replace("@", "_"), []))
+        for entry in [key["plans"]["acceleration"]] for label in entry["mistake_points"])
 
 
 def _resolve(template: str, params: dict) -> str:
@@ -497,3 +583,155 @@ def test_prairielearn_grade_names_the_mistake_of_a_misplaced_point():
     data.update(submitted_answers={"acceleration_plan": placed}, partial_scores={})
     namespace["grade"](data)
     assert "left out" not in data["partial_scores"]["acceleration_plan"]["feedback"]
+
+
+def test_moodle_xml_of_two_variants_whole():
+    """Moodle XML as Moodle reads it, for two small variants: the category path (its slashes
+    doubled, a leading and a trailing one set off by a space), each variant's Cloze question
+    (task paragraphs, braces as references, the sheet as an embedded file, one row a
+    question with its field — Moodle's special characters escaped in the feedback — and its
+    unit), weight at least 1."""
+    keys = [{"title": "Lever / crank <A&B>", "student": "s/01",
+             "task": "Find ω.\n\nUse {braces} ]]> here.",
+             "questions": [{"id": "omega_BC", "text": "angular velocity ω₂", "unit": "rad/s",
+                            "value": -24.5, "tolerance": 0.5, "points": 2,
+                            "mistakes": [{"kind": "sense", "value": 24.5, "tolerance": 0.5,
+                                          "feedback": 'the sense "~#/}\\ was reversed'}]},
+                           {"id": "rho_D", "text": "ρ of D", "unit": "m", "value": 0.07,
+                            "tolerance": 0.006, "mistakes": []}]},
+            {"title": "not read", "student": "s02", "task": "t",
+             "questions": [{"id": "n", "text": "n", "value": 1.0, "tolerance": 0.1,
+                            "points": 0.4}]}]
+    assert moodle_xml(keys, category="/Course/2026/", sheets={"s/01": "<svg/>"}) == (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<quiz>\n'
+        '  <question type="category">\n'
+        '    <category><text>$course$/top/ //Course//2026// /Lever // crank &lt;A&amp;B&gt;</te'
+        'xt></category>\n'
+        '  </question>\n'
+        '  <question type="cloze">\n'
+        '    <name><text>Lever / crank &lt;A&amp;B&gt; — s/01</text></name>\n'
+        '    <questiontext format="html"><text><![CDATA[<p><b>Lever / crank &lt;A&amp;B&gt;</b>'
+        ' — variant s/01</p><p>Find ω.</p><p>Use &#123;braces&#125; ]]&gt; here.</p><p><img src'
+        '="@@PLUGINFILE@@/sheet_s_01.svg" alt="the mechanism, task sheet" /></p><p>Give in SI u'
+        'nits (counter-clockwise positive):</p><table><tr><td>angular velocity ω₂</td><td>{2:NU'
+        "MERICAL:=-24.5:0.5#Right: within the drawing's tolerance ± 0.5 rad\\/s.~%0%24.5:0.5#It"
+        ' looks as if the sense \\"\\~\\#\\/\\}\\\\ was reversed.}</td><td>rad/s</td></tr><tr><'
+        "td>ρ of D</td><td>{1:NUMERICAL:=0.07:0.006#Right: within the drawing's tolerance ± 0.0"
+        '06 m.}</td><td>m</td></tr></table>]]></text><file name="sheet_s_01.svg" path="/" encod'
+        'ing="base64">PHN2Zy8+</file></questiontext>\n'
+        '    <generalfeedback format="html"><text></text></generalfeedback>\n'
+        '    <penalty>0.3333333</penalty>\n'
+        '    <hidden>0</hidden>\n'
+        '    <idnumber>s/01</idnumber>\n'
+        '  </question>\n'
+        '  <question type="cloze">\n'
+        '    <name><text>Lever / crank &lt;A&amp;B&gt; — s02</text></name>\n'
+        '    <questiontext format="html"><text><![CDATA[<p><b>Lever / crank &lt;A&amp;B&gt;</b>'
+        ' — variant s02</p><p>t</p><p>Give in SI units (counter-clockwise positive):</p><table>'
+        "<tr><td>n</td><td>{1:NUMERICAL:=1.0:0.1#Right: within the drawing's tolerance ± 0.1.}<"
+        '/td><td></td></tr></table>]]></text></questiontext>\n'
+        '    <generalfeedback format="html"><text></text></generalfeedback>\n'
+        '    <penalty>0.3333333</penalty>\n'
+        '    <hidden>0</hidden>\n'
+        '    <idnumber>s02</idnumber>\n'
+        '  </question>\n'
+        '</quiz>\n')
+    assert moodle_xml([]) == (
+        '<?xml version="1.0" encoding="UTF-8"?>\n<quiz>\n  <question type="category">\n'
+        "    <category><text>$course$/top/planmethod/planmethod</text></category>\n"
+        "  </question>\n</quiz>\n")
+
+
+def _small_key() -> dict:
+    """A hand-made key: two questions (one of value 0), a velocity plan with a helper point
+    and a point that mistakes put on and off the canvas."""
+    return {"format": "planmethod-key", "title": 'Lever "L" & crank ω₁', "student": "s01",
+            "task": "Find it.",
+            "questions": [{"id": "v_C", "text": 'speed of C, "v"', "unit": "m/s", "value": 2.0,
+                           "tolerance": 0.1, "mistakes": []},
+                          {"id": "omega_BC", "text": "angular velocity <ω>", "unit": "rad/s",
+                           "value": 0.0, "tolerance": 0.2, "mistakes": []}],
+            "plans": {"velocity": {
+                "pole": "p", "scale": 0.1, "unit": "(m/s)/mm", "steps": [],
+                "points_mm": {"p": [0, 0], "b": [10.0, 0.0], "c": [0.0, -20.0],
+                              "n_CB": [1.0, 1.0]},
+                "tolerance_mm": {"p": 0.0, "b": 0.25, "c": 0.75, "n_CB": 0.3},
+                "mistake_points": {"c": [["sense", 0.0, 20.0], ["scale_ten", 0.0, -2.0],
+                                         ["scale_tenth", 0.0, -200.0]]}}}}
+
+
+def test_prairielearn_question_of_a_small_key_whole():
+    """info.json and question.html as PrairieLearn reads them (attributes escaped, one number
+    input per question, one drawing per plan on a 320 px canvas — a 30 mm plan and its
+    margin — with the pole given and the graded points to place), and the variant's
+    parameters: relabs tolerances (a zero answer's in atol), discs of at least 0.5 mm, the
+    mistakes on the canvas, the points' names."""
+    files = prairielearn_questions(bundle([_small_key()], seed=3), slug="lever",
+                                   topic="Mechanisms")
+    assert sorted(files) == ["lever/info.json", "lever/question.html", "lever/server.py"]
+    seed = 'planmethod:lever:Lever "L" & crank ω₁:3:1'
+    assert json.loads(files["lever/info.json"]) == {
+        "uuid": str(uuid.uuid5(uuid.NAMESPACE_URL, seed)), "title": 'Lever "L" & crank ω₁',
+        "topic": "Mechanisms", "tags": ["planmethod", "graphical-method"], "type": "v3",
+        "gradingMethod": "Internal"}
+    assert files["lever/info.json"] == json.dumps(json.loads(files["lever/info.json"]), indent=2,
+                                                  ensure_ascii=False) + "\n"
+    assert "ω₁" in files["lever/info.json"]                           # written as it is
+    assert files["lever/question.html"] == "\n".join([
+        "<pl-question-panel>", "  <p><b>{{params.title}}</b></p>", "  {{{params.task_html}}}",
+        "</pl-question-panel>", "",
+        '<pl-number-input answers-name="v_C" comparison="relabs" rtol="{{params.rtol.v_C}}" '
+        'atol="{{params.atol.v_C}}" label="speed of C, &quot;v&quot; =" suffix="m/s">'
+        "</pl-number-input>",
+        '<pl-number-input answers-name="omega_BC" comparison="relabs" '
+        'rtol="{{params.rtol.omega_BC}}" atol="{{params.atol.omega_BC}}" '
+        'label="angular velocity &lt;ω&gt; =" suffix="rad/s"></pl-number-input>', "",
+        "<p>Draw the velocity plan at the given scale (one grid square is 10 mm of the drawing; "
+        "the pole p is marked): place the points b, c.</p>",
+        '<pl-drawing answers-name="velocity_plan" gradable="true" width="320" height="320" '
+        'grid-size="40" tol="{{params.tol_px.velocity}}" show-tolerance-hint="true">',
+        "  <pl-drawing-initial>", '    <pl-point x1="160" y1="160" label="p"></pl-point>',
+        "  </pl-drawing-initial>", '  <pl-drawing-answer draw-error-box="true">',
+        '    <pl-point x1="{{params.plans.velocity.b.x}}" y1="{{params.plans.velocity.b.y}}" '
+        'label="b"></pl-point>',
+        '    <pl-point x1="{{params.plans.velocity.c.x}}" y1="{{params.plans.velocity.c.y}}" '
+        'label="c"></pl-point>',
+        "  </pl-drawing-answer>", "  <pl-controls>",
+        '    <pl-controls-group label="Plan points:">',
+        '      <pl-drawing-button type="pl-point"></pl-drawing-button>',
+        "    </pl-controls-group>", '    <pl-controls-group label="Delete:">',
+        '      <pl-drawing-button type="delete"></pl-drawing-button>',
+        "    </pl-controls-group>", "  </pl-controls>", "</pl-drawing>", ""])
+    namespace: dict = {}
+    exec(compile(files["lever/server.py"], "server.py", "exec"), namespace)  # our own code
+    data = {"params": {}, "correct_answers": {}, "variant_seed": 1}
+    namespace["generate"](data)
+    assert data["correct_answers"] == {"v_C": 2.0, "omega_BC": 0.0}
+    assert data["params"] == {
+        "student": "s01", "title": 'Lever "L" & crank ω₁', "task_html": "<p>Find it.</p>",
+        "rtol": {"v_C": 0.1 / 2.0, "omega_BC": 0.0}, "atol": {"v_C": 1e-12, "omega_BC": 0.2},
+        "tolerance": {"v_C": 0.1, "omega_BC": 0.2},
+        "plans": {"velocity": {"b": {"x": 200.0, "y": 160.0}, "c": {"x": 160.0, "y": 240.0}}},
+        "radius_px": {"velocity": {"b": 2.0, "c": 3.0}}, "tol_px": {"velocity": 3.0},
+        "plan_labels": {"velocity": {"b": "b", "c": "c"}},
+        "mistakes_px": {"velocity": {"c": [["sense", 160.0, 80.0],
+                                           ["scale_ten", 160.0, 168.0]]}}}
+
+
+def test_gradebook_csv_whole():
+    """One row a student: each question's score in the first-seen order of the questions
+    (empty where a student has none), the total, the maximum (empty when unknown) and the
+    note (an error)."""
+    assert gradebook_csv([
+        {"student": "s01", "variant": "v1", "score": 1.5, "max_score": 2.0,
+         "questions": [{"id": "a", "score": 1.0}, {"id": "b", "score": 0.5}]},
+        {"student": "s02", "score": 0.0, "max_score": None, "questions": [],
+         "error": "no key for student 's02'"},
+        {"student": "s03", "variant": "v3", "score": 1.0, "max_score": 3.0,
+         "questions": [{"id": "c", "score": 1.0}, {"id": "a", "score": 0.0}]},
+        {"student": "s04"}]) == ("student,variant,a,b,c,total,max,note\n"
+                                 "s01,v1,1,0.5,,1.5,2,\n"
+                                 "s02,,,,,0,,no key for student 's02'\n"
+                                 "s03,v3,0,,1,1,3,\n"
+                                 "s04,,,,,0,,\n")

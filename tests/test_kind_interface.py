@@ -53,6 +53,7 @@ def test_every_registered_kind_is_described_by_its_module():
     (rrr, (), {"evaluate": higher.evaluate, "choose": higher.choose},
      "defines both place (ClosedFormKind) and evaluate/choose"),
     (rrr, (), {"KIND": "RRRR"}, "KIND 'RRRR' is no GroupKind"),
+    (rrr, ("reactions",), {}, "a closed-form kind defines reactions (Reactions)"),
 ])
 def test_a_module_that_breaks_the_interface_is_refused(module, without, extra, message):
     fake = _copy(module, without=without, **extra)
@@ -81,3 +82,34 @@ def test_the_registry_checks_every_module_when_it_loads(monkeypatch):
     monkeypatch.setattr(groups, "_modules", lambda: real)
     assert sorted(str(kind) for kind in registered()) == [
         "PRP", "RPP", "RPR", "RRP", "RRR", "tetrad", "triad"]
+
+
+def test_a_higher_kind_without_reactions_is_solved_by_its_linear_system(monkeypatch):
+    """Reactions are optional for an iterative kind: a triad module without them is accepted
+    (``reactions`` None), and the force analysis then solves the group's 3k equilibrium
+    equations at once — the same reactions as the triad's textbook sequence."""
+    import dataclasses
+
+    import numpy as np
+
+    from planmethod.forces import solve_forces
+    from planmethod.kinematics import solve
+    from planmethod.spec import load_exercise
+
+    assert describe(_copy(triad, without=("reactions",))).reactions is None
+    motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism,
+                   np.arange(0.0, 360.0, 30.0))
+    textbook = solve_forces(motion)
+    plain = {kind: tuple(dataclasses.replace(module, reactions=None) for module in modules)
+             for kind, modules in registered().items()}
+    monkeypatch.setattr(groups, "_REGISTRY", {**registered(),
+                                              GroupKind.TRIAD: plain[GroupKind.TRIAD]})
+    linear = solve_forces(motion)
+    steps = [group.steps for group in linear.groups.groups if group.kind is GroupKind.TRIAD]
+    assert steps and "solved at once" in steps[0][0]
+    assert "solved at once" not in next(group.steps[0] for group in textbook.groups.groups
+                                        if group.kind is GroupKind.TRIAD)
+    scale = max(float(np.abs(r.force).max()) for r in textbook.reactions.values())
+    for key, reaction in textbook.reactions.items():
+        assert np.allclose(linear.reactions[key].force, reaction.force, rtol=0,
+                           atol=1e-12 * scale)

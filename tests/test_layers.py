@@ -333,9 +333,6 @@ VECTOR_HELPERS = {"angle_deg", "cross", "dot", "norm", "perp", "rotate", "turn_o
                   "unit_angle", "unit_or_zero"}
 #: where they may be defined: the one module, and the tracer's symbolic Vec (its own type)
 VECTOR_HOMES = {"planmethod/vectors.py", "planmethod/kinematics/algebra.py"}
-#: copies still being replaced by their owner's task (issue 25, the render layer); each goes
-#: from here when it goes from the code
-PENDING_VECTOR_COPIES = {"planmethod/render/svg.py: cross"}
 
 
 def vector_helper_copies(root: Path) -> list[str]:
@@ -373,8 +370,7 @@ def private_imports(root: Path) -> list[str]:
 
 
 def test_no_planar_vector_helper_is_written_outside_planmethod_vectors():
-    found = set(vector_helper_copies(ROOT / PACKAGE))
-    assert found <= PENDING_VECTOR_COPIES, sorted(found - PENDING_VECTOR_COPIES)
+    assert vector_helper_copies(ROOT / PACKAGE) == []
 
 
 def test_no_module_imports_another_modules_private_names():

@@ -285,3 +285,26 @@ def test_an_exercise_without_ask_reads_no_fixed_pivot():
             assert f"v_{point}" not in read and f"a_{point}" not in read
     assert not any(f"_{point}" in name and name.startswith(("v_", "a_"))
                    for name in plans.readings for point in fixed)
+
+
+
+def test_a_sliding_pair_no_group_drew_is_an_internal_error(monkeypatch):
+    """A prismatic pair's ds, aᵏ and dds are read off the segments its dyad drew (every pair a
+    plan is drawn for is a side of a dyad); a pair no group drew is an internal error naming
+    the pair, never a reading made up on the side."""
+    from planmethod.errors import PlanmethodError
+    from planmethod.plans import construction
+
+    exercise = load_exercise("exercises/slotted_crank_crosshead.toml")
+    assert {"ds_block/crank", "ds_crosshead/frame"} <= set(
+        draw_plans(exercise, acceleration=False).readings)
+    drawn = construction._Emulator.velocity_group
+
+    def forgetting(emulator, group):       # a group that drew its sides but kept no record
+        drawn(emulator, group)
+        emulator.sliding_sides.clear()
+
+    monkeypatch.setattr(construction._Emulator, "velocity_group", forgetting)
+    with pytest.raises(PlanmethodError, match=r"internal error: no group drew the relative "
+                                              r"motion of the prismatic pair block/crank"):
+        draw_plans(exercise, acceleration=False)

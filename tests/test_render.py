@@ -507,3 +507,59 @@ def test_labels_that_find_no_free_spot_go_below_all_others():
         ax0, ay0, ax1, ay1 = first.box
         bx0, by0, bx1, by1 = second.box
         assert ax1 <= bx0 or bx1 <= ax0 or ay1 <= by0 or by1 <= ay0, (first.text, second.text)
+
+
+def test_a_keys_blank_sheet_whole():
+    """The blank velocity sheet of the compressor's key, as a student prints it: 120 mm
+    square (the plan and a 20 mm margin, at least 120 mm) under a 12 mm header of three
+    lines at most — title, plan, student, scale, the given first vector, what to do, the
+    grid — a faint 10 mm grid in a frame, the pole p marked at the centre."""
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.sheets import plan_sheet_for_key
+    from planmethod.grading.templates import draw_variant, load_template
+
+    key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
+    assert plan_sheet_for_key(key, "velocity") == (
+        '<?xml version="1.0" encoding="utf-8"?>\n'
+        '<svg baseProfile="full" data-planmethod-plan="velocity" data-planmethod-student="1" '
+        'height="132mm" version="1.1" viewBox="0 0 120 132" width="120mm" xmlns="http://www.w'
+        '3.org/2000/svg" xmlns:ev="http://www.w3.org/2001/xml-events" xmlns:xlink="http://www'
+        '.w3.org/1999/xlink">\n'
+        '<title>Compressor slider-crank (Abduvaliev &amp; Abduxoshimov) — blank velocity plan'
+        ' sheet</title>\n'
+        '<defs><pattern height="10" id="grid" patternUnits="userSpaceOnUse" width="10"><path '
+        'd="M 10 0 L 0 0 0 10" fill="none" stroke="#c9cede" stroke-width="0.2" /></pattern></'
+        'defs>\n'
+        '<rect class="background" fill="#ffffff" height="132" width="120" x="0" y="0" />\n'
+        '<g class="ground">\n'
+        '<rect class="grid" fill="url(#grid)" height="120" stroke="#99a" stroke-width="0.3" w'
+        'idth="120" x="0" y="12" />\n'
+        '</g>\n'
+        '<g class="points">\n'
+        '<circle class="pole" cx="60" cy="72" fill="#000000" r="0.8" />\n'
+        '</g>\n'
+        '<g class="text">\n'
+        '<text class="header" fill="#000000" font-family="DejaVu Sans, Verdana, Arial, Helvet'
+        'ica, sans-serif" font-size="2.6" x="3" y="4">Compressor slider-crank (Abduvaliev &am'
+        'p; Abduxoshimov) — velocity plan — 1 — μv = 0.2</text>\n'
+        '<text class="header" fill="#000000" font-family="DejaVu Sans, Verdana, Arial, Helvet'
+        'ica, sans-serif" font-size="2.6" x="3" y="7.2">(m/s)/mm. (pb) = 30 mm. Draw the plan'
+        ' from the pole p; label every point (b, c, …)</text>\n'
+        '<text class="header" fill="#000000" font-family="DejaVu Sans, Verdana, Arial, Helvet'
+        'ica, sans-serif" font-size="2.6" x="3" y="10.4">next to it. (grid: 10 mm)</text>\n'
+        '<text class="pole-label" fill="#000000" font-family="DejaVu Serif, Georgia, Times Ne'
+        'w Roman, serif" font-size="5" x="61.5" y="70.5">p</text>\n'
+        '</g>\n'
+        '</svg>\n')
+    # a plan of 79 mm from the pole gets a sheet of 2·79 + 40 → 200 mm; no lay-off: no given
+    wide = {**key, "student": "s9", "title": "W"}
+    entry = dict(key["plans"]["acceleration"], steps=[])
+    entry["points_mm"] = {**entry["points_mm"], "far": [0.0, 79.0]}
+    wide["plans"] = {**key["plans"], "acceleration": entry}
+    root = ET.fromstring(plan_sheet_for_key(wide, "acceleration").encode("utf-8"))
+    assert (root.get("width"), root.get("viewBox")) == ("200mm", "0 0 200 212")
+    header = " ".join(text.text for text in root.iter(f"{SVG}text")
+                      if text.get("class") == "header")
+    assert header == ("W — acceleration plan — s9 — μa = " + f"{entry['scale']:g}" + " (m/s²)/mm.  "
+                      "Draw the plan from the pole π; label every point (b, c, …) next to it. "
+                      "(grid: 10 mm)")

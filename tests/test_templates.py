@@ -89,6 +89,28 @@ def test_evaluation_errors(text, fragment):
     assert fragment in str(caught.value)
 
 
+@pytest.mark.parametrize(("text", "expected"), [
+    ("sin(30)", 0.5), ("cos(60)", 0.5), ("tan(45)", 1.0),        # angles in degrees
+    ("asin(1)", 90.0), ("asin(-1)", -90.0), ("acos(-1)", 180.0), ("acos(1)", 0.0),
+    ("sqrt(0)", 0.0), ("2 ^ 64", 2.0 ** 64), ("2 ^ -64", 2.0 ** -64),
+])
+def test_functions_at_the_ends_of_their_domains(text, expected):
+    assert value(text) == pytest.approx(expected, rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("sqrt(-0.0001)", "sqrt(-0.0001) is undefined"),
+    ("asin(1.0001)", "asin(1.0001) is undefined"), ("asin(-1.0001)", "asin(-1.0001) is undefined"),
+    ("acos(1.0001)", "acos(1.0001) is undefined"), ("acos(-1.0001)", "acos(-1.0001) is undefined"),
+    ("2 ^ 64.5", "exponent 64.5 is out of range (|x| ≤ 64)"),
+    ("2 ^ -65", "exponent -65 is out of range (|x| ≤ 64)"),
+])
+def test_functions_just_outside_their_domains_say_so(text, message):
+    with pytest.raises(ExpressionError) as caught:
+        value(text)
+    assert str(caught.value) == message
+
+
 BASE = """
 [vars]
 l = {{ range = [0.05, 0.08], step = 0.005 }}
@@ -315,3 +337,130 @@ def test_rejected_draws_are_summed_up_in_course_notation(tmp_path, capsys):
         assert "#" not in line and "_rel" not in line and "omega" not in line, line
         assert "epsilon" not in line and "rho_" not in line, line
     assert any("ω₂" in line for line in summary), summary
+
+
+def test_a_task_text_whole():
+    """The task of the offset slider-crank's variant as a student reads it: the exercise's
+    words, the given data (lengths from the crank's pivot, the guide that does not pass
+    through it, φ₁, ω₁, ε₁), the scales and the lengths they give, the links' numbers, and one
+    row a question — its symbol and unit, its words, its column in an answers file."""
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.sheets import task_text
+
+    key = build_key(draw_variant(load_template("exercises/offset_slider_crank.toml")))
+    assert task_text(key) == (
+        'Offset slider-crank — variant for 1\n'
+        '\n'
+        'The crank AB = 0.05 m turns about A at ω1 = 150 rad/s counter-clockwise with ε1 = 200 '
+        'rad/s².\n'
+        'The connecting rod BC = 0.20 m drives the slider C along a horizontal guide that passe'
+        's\n'
+        'e = 0.02 m below A (through the frame point G). Its midpoint is E. At φ1 = 120° constr'
+        'uct the\n'
+        "plans and find the slider's velocity and acceleration, ω and ε of the rod, the velocit"
+        'y and\n'
+        "acceleration of E, and the radius of curvature of E's path. Note the tangential compon"
+        'ent of\n'
+        "the crank pin's acceleration, aᵗ_B = ε1·l_AB.\n"
+        '\n'
+        'Given: l_AB = 0.05 m, l_BC = 0.2 m, l_BE = 0.1 m, x_AG = 0 m, y_AG = -0.02 m, the guid'
+        'e of C through G at 0°, φ₁ = 120°, ω₁ = 150 rad/s, ε₁ = 200 rad/s².\n'
+        'Crank angle φ₁ = 120°; scales μl = 0.002 m/mm, μv = 0.2 (m/s)/mm, μa = 25 (m/s²)/mm.\n'
+        'At these scales: (AB) = 25 mm, (pb) = 37.5 mm, (πb) = 45 mm.\n'
+        'Links: 0 frame, 1 AB, 2 BC, 3 slider.\n'
+        '\n'
+        'Answer (SI units, counter-clockwise positive; in an answers file, the column named in '
+        'brackets):\n'
+        '  v_C, m/s         speed of C, |v_C|   [v_C]\n'
+        '  v_E, m/s         speed of E, |v_E|   [v_E]\n'
+        '  a_C, m/s²        magnitude of the acceleration of C, |a_C|   [a_C]\n'
+        '  a_E, m/s²        magnitude of the acceleration of E, |a_E|   [a_E]\n'
+        '  ω₂, rad/s        angular velocity ω₂ of link 2 (BC)   [omega_BC]\n'
+        '  ε₂, rad/s²       angular acceleration ε₂ of link 2 (BC)   [epsilon_BC]\n'
+        '  ρ_E, m           radius of curvature ρ of the path of E   [rho_E]\n'
+        '  s₃₀, m           travel s₃₀ of link 3 (slider) along link 0 (frame)   [s_slider/fram'
+        'e]\n'
+        '  ds/dt₃₀, m/s     sliding velocity ds/dt₃₀ of link 3 (slider) along link 0 (frame) (a'
+        'long the guide)   [ds_slider/frame]\n'
+        '  d²s/dt²₃₀, m/s²  sliding (relative) acceleration d²s/dt²₃₀ of link 3 (slider) along '
+        'link 0 (frame) (along the guide)   [dds_slider/frame]\n'
+        '  aᵏ₃₀, m/s²       magnitude of the Coriolis acceleration aᵏ₃₀ of link 3 (slider) alon'
+        'g link 0 (frame)   [coriolis_slider/frame]\n')
+
+
+def test_a_task_text_of_a_key_without_its_exercise():
+    from planmethod.grading.sheets import task_text
+
+    key = {"title": "T", "student": "s1", "task": "  Do it.  ", "angle": 30,
+           "questions": [{"id": "omega_BC", "unit": "rad/s",
+                          "text": "angular velocity ω of BC (counter-clockwise positive)"},
+                         {"id": "n", "text": "plain", "symbol": "n₁"}]}
+    assert task_text(key) == (
+        "T — variant for s1\n\nDo it.\n\n"
+        "Crank angle φ₁ = 30°; scales μl = 0 m/mm, μv = 0 (m/s)/mm, μa = 0 (m/s²)/mm.\n\n"
+        "Answer (SI units, counter-clockwise positive; in an answers file, the column named in "
+        "brackets):\n"
+        "  ω_BC, rad/s      angular velocity ω of BC   [omega_BC]\n"
+        "  n₁               plain   [n]\n")
+    assert task_text({}).startswith("Exercise — variant for None\n\n\n\nCrank angle φ₁ = 0°")
+
+
+def test_the_task_sheet_shows_the_figure_without_rho_and_the_text_wrapped_but_its_rows():
+    """The task figure is the position plan without its curvature construction (it would
+    give ρ away); the task text under it is wrapped at 100 characters, its answer rows kept
+    whole however long."""
+    import xml.etree.ElementTree as ElementTree
+
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.sheets import task_figure_svg, task_sheet_svg, task_text
+    from planmethod.plans import draw_plans
+    from planmethod.render.svg import position_drawing
+
+    variant = draw_variant(load_template("exercises/offset_slider_crank.toml"))
+    plans = draw_plans(variant.exercise)
+    assert "ρ" in position_drawing(plans.position, notes=[]).svg     # ρ_E is asked
+    assert "ρ" not in task_figure_svg(plans)
+    key = build_key(variant)
+    root = ElementTree.fromstring(task_sheet_svg(key, plans).encode("utf-8"))
+    shown = ["".join(text.itertext()) for text in root.iter("{http://www.w3.org/2000/svg}text")]
+    lines = task_text(key).splitlines()
+    given = next(line for line in lines if line.startswith("Given: "))
+    row = next(line for line in lines if "[dds_slider/frame]" in line)
+    assert len(given) > 100 and len(row) > 100
+    assert row in shown and given not in shown
+    start = next(index for index, text in enumerate(shown) if text.startswith("Given: "))
+    parts = []
+    while len("".join(parts)) < len(given):
+        parts.append(shown[start + len(parts)])
+    assert "".join(parts) == given and all(len(part) <= 100 for part in parts)
+    assert len(parts) == 2
+
+
+def test_resolved_tables_written_as_toml_whole():
+    """Every kind of value as a person would write it — a whole-number float with its .0, a
+    paragraph as a literal block (unless it holds ''' or a control character, or ends in a
+    quote), a key that needs quotes quoted, tables and arrays of tables after the plain keys,
+    nested tables inline — and read back equal; a value TOML cannot hold is refused by name."""
+    from planmethod.grading.templates import to_toml
+
+    data = {"title": "Lever ω", "flag": True, "off": False, "n": 3, "whole": 2.0, "x": 0.5,
+            "big": 1e300, "text": "line one\nline two", "quoted": "it's\n'''", "endq": "ab\n'",
+            "ctrl": "x\n\x01", "tabs": "a\n\tb", "odd key": 1, "ключ": 2,
+            "list": [1, 2.5, "s"], "empty": [], "drive": {"link": "AB", "omega": 10.0},
+            "load": [{"link": "BC", "force": [1, 2]}, {"link": "CD", "moment": -1.5}],
+            "nested": {"inner": {"k": "v", "w": [True]}}}
+    text = to_toml(data)
+    assert text == (
+        'title = "Lever ω"\nflag = true\noff = false\nn = 3\nwhole = 2.0\nx = 0.5\n'
+        "big = 1e+300\ntext = '''\nline one\nline two'''\nquoted = \"it's\\n'''\"\n"
+        'endq = "ab\\n\'"\nctrl = "x\\n\\u0001"\ntabs = \'\'\'\na\n\tb\'\'\'\n'
+        '"odd key" = 1\n"ключ" = 2\nlist = [1, 2.5, "s"]\nempty = []\n\n'
+        '[drive]\nlink = "AB"\nomega = 10.0\n\n[[load]]\nlink = "BC"\nforce = [1, 2]\n\n'
+        '[[load]]\nlink = "CD"\nmoment = -1.5\n\n[nested]\ninner = { k = "v", w = [true] }\n')
+    assert tomllib.loads(text) == data
+    for value, error, message in ((math.nan, ValueError, "cannot write nan to TOML"),
+                                  (-math.inf, ValueError, "cannot write -inf to TOML"),
+                                  (object(), TypeError, "cannot write object to TOML")):
+        with pytest.raises(error) as caught:
+            to_toml({"a": value})
+        assert str(caught.value) == message

@@ -334,7 +334,7 @@ def _off(answer: float, right: float) -> str:
     if ratio >= 10 or 0 < ratio <= 0.1:
         return f"{ratio:.4g} times the right value"
     relative = ratio - 1.0
-    magnitude = " in magnitude" if right < 0 and ratio > 0 else ""
+    magnitude = " in magnitude" if right < 0 and ratio >= 0 else ""
     return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}{magnitude}"
 
 
@@ -402,9 +402,9 @@ def grade_question(question: Mapping[str, Any], raw: Any,
                 f"{_number_text(abs(answer))} is {_off(abs(answer), abs(value))}")
     else:
         tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")
-        text = (f"{shown}: wrong — {_off(answer, value)} (off by "
-                f"{_number_text(abs(answer - value))} {unit}; right: {right}"
-                f"{tolerance_text})").replace("  ", " ")
+        off_by = f"{_number_text(abs(answer - value))} {unit}".rstrip()
+        text = (f"{shown}: wrong — {_off(answer, value)} (off by {off_by}; right: {right}"
+                f"{tolerance_text})")
     result["feedback"] = text
     result["hint"] = f"{shown}: wrong ({_way(answer, value, signed)})"
     return result
@@ -437,7 +437,7 @@ def _way(answer: float, right: float, signed: bool) -> str:
     magnitude``, ``the sense is reversed``."""
     if signed and right != 0 and answer != 0 and (answer > 0) != (right > 0):
         return "the sense is reversed"
-    if right < 0 and answer < 0:
+    if right < 0 and answer <= 0:
         return "too large in magnitude" if answer < right else "too small in magnitude"
     return "too high" if answer > right else "too low"
 

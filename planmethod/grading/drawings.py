@@ -43,6 +43,7 @@ from ..errors import SpecError
 from ..io import read_bytes_bounded
 from ..plans.construction import course_text
 from ..spec import parse_json
+from ..vectors import cross
 from ..vocabulary import numbered
 from .keys import key_numbers
 from .plan_points import (
@@ -603,15 +604,13 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     The drawing is moved so that its pole is at the key's pole; with ``rescale`` a drawing
     whose laid-off first vector (pb or πb, given data) has the wrong length is scaled to it
     first (an editor's unit mix-up), and the feedback says so. Each graded point scores if it
-    lies in its tolerance disc.
+    lies in its tolerance disc: no further from its right place than the disc's radius.
 
     Raises
     ------
     SubmissionError
         If the plan kind cannot be told, or the pole is not labelled.
     """
-    from shapely.geometry import LineString, Point
-
     plan = plan or drawing.plan
     _check_exercise(key, drawing)
     if plan not in ("velocity", "acceleration"):
@@ -665,7 +664,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             continue
         right = points[label]
         radius = float(radii.get(label, 0.5))
-        distance = float(Point(*right).distance(Point(*found)))
+        distance = float(np.hypot(*(found - right)))
         inside = distance <= radius       # the disc itself, as the workbook page compares
         result = {"point": label, "found": True, "correct": bool(inside),
                   "distance_mm": distance, "tolerance_mm": radius,
@@ -675,8 +674,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             result["feedback"] = f"{label}: within {radius:.2g} mm ({distance:.2g} mm off)"
         else:
             result["feedback"] = _explain(label, found, right, distance, radius, student,
-                                          points, by_end.get(label), lines, reads,
-                                          LineString)
+                                          points, by_end.get(label), lines, reads)
             named = named_mistakes(entry.get("mistake_points", {}).get(label, ()),
                                    float(found[0]), float(found[1]), radius)
             if named:
@@ -703,8 +701,8 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
             "feedback": feedback}
 
 
-def _explain(label, found, right, distance, radius, student, points, step, lines, reads,
-             LineString) -> str:
+def _explain(label, found, right, distance, radius, student, points, step, lines,
+             reads) -> str:
     text = f"{label} is {distance:.1f} mm off (tolerance {radius:.2g} mm)"
     if step is not None and step["action"] == "intersect":
         parts = []
@@ -716,11 +714,7 @@ def _explain(label, found, right, distance, radius, student, points, step, lines
             base = start if start is not None else points[line["start"]]
             angle = math.radians(line["direction_deg"])
             direction = np.array([math.cos(angle), math.sin(angle)])
-            far = 10_000.0
-            drawn_line = LineString([tuple(base - far * direction), tuple(base + far * direction)])
-            from shapely.geometry import Point
-
-            off_line = drawn_line.distance(Point(*found))
+            off_line = abs(float(cross(found - base, direction)))   # from the whole line
             along = float((found - right) @ direction)
             if off_line <= radius and abs(along) > radius:
                 parts.append(f"it lies on {_line_name(line)} but {abs(along):.1f} mm off "

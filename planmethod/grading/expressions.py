@@ -43,6 +43,7 @@ import operator
 import re
 from collections.abc import Callable
 from enum import StrEnum
+from functools import partial
 
 __all__ = ["FUNCTIONS", "ExpressionError", "evaluate", "parse", "references"]
 
@@ -91,8 +92,11 @@ _BINARY: dict[str, Callable[[float, float], float]] = {
     "+": operator.add, "-": operator.sub, "*": operator.mul, "/": _divide, "^": _power}
 
 
-def _degrees(function: Callable[[float], float]) -> Callable[[float], float]:
-    return lambda x: function(math.radians(x))
+# the functions below that take a function or a name first are bound to it with
+# functools.partial in FUNCTIONS (not built as closures when the module loads)
+def _degrees(function: Callable[[float], float], x: float) -> float:
+    """``function`` of an angle given in degrees."""
+    return function(math.radians(x))
 
 
 def _round(x: float, digits: float = 0) -> float:
@@ -102,14 +106,13 @@ def _round(x: float, digits: float = 0) -> float:
     return float(round(x, int(digits)))
 
 
-def _checked(name: str, function: Callable[..., float], low: float | None = None,
-             high: float | None = None) -> Callable[..., float]:
-    def call(x: float) -> float:
-        if (low is not None and x < low) or (high is not None and x > high):
-            raise ExpressionError(f"{name}({x:g}) is undefined")
-        return function(x)
-
-    return call
+def _checked(name: str, function: Callable[[float], float], low: float | None,
+             high: float | None, x: float) -> float:
+    """``function(x)``, or an :class:`ExpressionError` naming ``name`` where ``x`` lies outside
+    [``low``, ``high``] (None: no bound)."""
+    if (low is not None and x < low) or (high is not None and x > high):
+        raise ExpressionError(f"{name}({x:g}) is undefined")
+    return function(x)
 
 
 #: name → (function, least and most arguments)
@@ -118,12 +121,12 @@ FUNCTIONS: dict[str, tuple[Callable[..., float], int, int]] = {
     "max": (max, 1, 64),
     "abs": (abs, 1, 1),
     "round": (_round, 1, 2),
-    "sqrt": (_checked("sqrt", math.sqrt, low=0.0), 1, 1),
-    "sin": (_degrees(math.sin), 1, 1),
-    "cos": (_degrees(math.cos), 1, 1),
-    "tan": (_degrees(math.tan), 1, 1),
-    "asin": (_checked("asin", lambda x: math.degrees(math.asin(x)), -1.0, 1.0), 1, 1),
-    "acos": (_checked("acos", lambda x: math.degrees(math.acos(x)), -1.0, 1.0), 1, 1),
+    "sqrt": (partial(_checked, "sqrt", math.sqrt, 0.0, None), 1, 1),
+    "sin": (partial(_degrees, math.sin), 1, 1),
+    "cos": (partial(_degrees, math.cos), 1, 1),
+    "tan": (partial(_degrees, math.tan), 1, 1),
+    "asin": (partial(_checked, "asin", lambda x: math.degrees(math.asin(x)), -1.0, 1.0), 1, 1),
+    "acos": (partial(_checked, "acos", lambda x: math.degrees(math.acos(x)), -1.0, 1.0), 1, 1),
     "atan2": (lambda y, x: math.degrees(math.atan2(y, x)), 2, 2),
     "hypot": (math.hypot, 2, 2),
 }

@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -115,31 +116,29 @@ class Mistake:
         return (self.construction or self.direction or self.mirror) is not None
 
 
-def _left_out(name: str) -> Rule:
+# The rules below that depend on a name or a factor are bound to it with functools.partial in
+# the registry (not built as closures when the module loads), so each runs, as written, when a
+# key is built.
+def _left_out(name: str, length: float, segment: Segment) -> float | None:
     """The component ``name`` not laid off: a group's normal component (the drive's own is
     drawn as the crank's acceleration), or a Coriolis component that is drawn."""
-    def rule(length: float, segment: Segment) -> float | None:
-        if segment.name != name:
-            return None
-        if name == "normal":
-            return 0.0 if segment.group is not None else None
-        return 0.0 if length > 0 else None
-    return rule
-
-
-def _reversed(name: str) -> Rule:
-    def rule(length: float, segment: Segment) -> float | None:
-        return -length if segment.name == name and length > 0 else None
-    return rule
-
-
-def _along(name: str):
-    """A group's ``name`` construction line drawn along the link instead of across it."""
-    def rule(direction, segment: Segment):
-        if segment.name == name and segment.group is not None:
-            return perp(direction)            # turned 90°: along the link
+    if segment.name != name:
         return None
-    return rule
+    if name == "normal":
+        return 0.0 if segment.group is not None else None
+    return 0.0 if length > 0 else None
+
+
+def _reversed(name: str, length: float, segment: Segment) -> float | None:
+    """The component ``name`` laid off the wrong way (where it is drawn)."""
+    return -length if segment.name == name and length > 0 else None
+
+
+def _along(name: str, direction, segment: Segment):
+    """A group's ``name`` construction line drawn along the link instead of across it."""
+    if segment.name == name and segment.group is not None:
+        return perp(direction)            # turned 90°: along the link
+    return None
 
 
 def _mirrored(segment: Segment) -> bool:
@@ -184,15 +183,13 @@ def _scale_inverted(quantity, value, tolerance, given):
             else [])
 
 
-def _scaled_by(times: float) -> Answers:
+def _scaled_by(times: float, quantity, value, tolerance, given):
     """Ten times too large (10) or too small (-10: divided, exactly)."""
-    def rule(quantity, value, tolerance, given):
-        if QUANTITY_KINDS[kind_of(quantity)].scale is None:    # not read off a plan
-            return []
-        if times < 0:
-            return [(value / -times, tolerance / -times)]
-        return [(value * times, tolerance * times)]
-    return rule
+    if QUANTITY_KINDS[kind_of(quantity)].scale is None:    # not read off a plan
+        return []
+    if times < 0:
+        return [(value / -times, tolerance / -times)]
+    return [(value * times, tolerance * times)]
 
 
 def _link_length(mechanism, link: str) -> float | None:
@@ -282,18 +279,16 @@ def _relative_placed(label: str, plan: PlanContext) -> list[tuple[float, float]]
     return out
 
 
-def _at_scale(rule: Answers) -> Placed:
+def _at_scale(rule: Answers, label: str, plan: PlanContext) -> list[tuple[float, float]]:
     """The whole plan laid off at a wrong scale: the slip that turns a reading into ``rule``'s
     wrong answer, made when the drive's vector is turned into a length, draws every point at
     (right reading / wrong reading) times its right place."""
-    def placed(label: str, plan: PlanContext) -> list[tuple[float, float]]:
-        if plan.first is None:
-            return []
-        quantity, value = plan.first
-        x, y = plan.points_mm[label]
-        return [(x * value / wrong, y * value / wrong)
-                for wrong, _ in rule(quantity, value, 0.0, plan.context) if wrong]
-    return placed
+    if plan.first is None:
+        return []
+    quantity, value = plan.first
+    x, y = plan.points_mm[label]
+    return [(x * value / wrong, y * value / wrong)
+            for wrong, _ in rule(quantity, value, 0.0, plan.context) if wrong]
 
 
 def _degrees(quantity, value, tolerance, given):
@@ -314,7 +309,7 @@ def _millimetres(quantity, value, tolerance, given):
     return [(value * 1000.0, tolerance * 1000.0)]
 
 
-_TEN_TIMES, _TENTH = _scaled_by(10.0), _scaled_by(-10.0)
+_TEN_TIMES, _TENTH = partial(_scaled_by, 10.0), partial(_scaled_by, -10.0)
 
 #: every known mistake, in the order a key lists them (the first of two that give the same
 #: answer is named first)
@@ -322,13 +317,13 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
     Mistake("sense", "the sense (sign) is reversed", value=_sense,
             drawing="the crank's sense of rotation was reversed (the plan is turned 180°)"),
     Mistake("no_normal", "the normal component aⁿ was left out",
-            construction=_left_out("normal")),
+            construction=partial(_left_out, "normal")),
     Mistake("no_coriolis", "the Coriolis component aᵏ was left out",
-            construction=_left_out("coriolis")),
+            construction=partial(_left_out, "coriolis")),
     Mistake("coriolis_reversed", "the Coriolis component aᵏ was laid off the wrong way",
-            construction=_reversed("coriolis")),
+            construction=partial(_reversed, "coriolis")),
     Mistake("tangential_along", "the tangential component aᵗ was drawn along the link "
-            "instead of across it", direction=_along("tangential")),
+            "instead of across it", direction=partial(_along, "tangential")),
     Mistake("mirrored_similarity", "the image of a point was placed by the similarity rule "
             "with its triangle turned over (mirrored across the image of the link's line)",
             mirror=_mirrored),
@@ -343,23 +338,23 @@ REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
     Mistake("wrong_length", "the angular velocity or acceleration was read off with the "
             "length of the group's other link", value=_wrong_length),
     Mistake("scale_none", "the plan's scale was not applied (the answer is a drawn length)",
-            value=_scale_none, placed=_at_scale(_scale_none),
+            value=_scale_none, placed=partial(_at_scale, _scale_none),
             drawing="the plan was drawn at a wrong scale: the drive's vector laid off as its "
                     "value in mm, without the scale"),
     Mistake("scale_twice", "the plan's scale was applied twice", value=_scale_twice,
-            placed=_at_scale(_scale_twice),
+            placed=partial(_at_scale, _scale_twice),
             drawing="the plan was drawn at a wrong scale: the drive's vector divided by the "
                     "scale twice"),
     Mistake("scale_inverted", "the drawn length was divided by the plan's scale instead of "
-            "multiplied", value=_scale_inverted, placed=_at_scale(_scale_inverted),
+            "multiplied", value=_scale_inverted, placed=partial(_at_scale, _scale_inverted),
             drawing="the plan was drawn at a wrong scale: the drive's vector multiplied by "
                     "the scale instead of divided"),
     Mistake("scale_ten", "the plan's scale was misread ten times too large",
-            value=_TEN_TIMES, placed=_at_scale(_TEN_TIMES),
+            value=_TEN_TIMES, placed=partial(_at_scale, _TEN_TIMES),
             drawing="the plan was drawn at a wrong scale, misread ten times too large "
                     "(every length ten times too short)"),
     Mistake("scale_tenth", "the plan's scale was misread ten times too small",
-            value=_TENTH, placed=_at_scale(_TENTH),
+            value=_TENTH, placed=partial(_at_scale, _TENTH),
             drawing="the plan was drawn at a wrong scale, misread ten times too small "
                     "(every length ten times too long)"),
     Mistake("degrees", "degrees were given for radians", value=_degrees),

@@ -93,6 +93,9 @@ def graded_labels(plan: Mapping[str, Any]) -> list[str]:
     return out
 
 
+# the next two functions go into PrairieLearn's server.py as their source text, which a
+# mutant cannot reach: they are not mutated (docs/contributing.md, mutation testing)
+# pragma: no mutate start
 def named_mistakes(candidates, x, y, radius):
     """The mistakes whose position of a point lies within ``radius`` of the drawn point
     (``x``, ``y``): ``candidates`` are ``[mistake, x, y]`` (mm); each mistake named once, in
@@ -130,6 +133,7 @@ def word_mistakes(mistakes, texts, wording):
     """
     sentence, joint = wording
     return sentence.format(joint.join(texts[mistake] for mistake in mistakes))
+# pragma: no mutate end
 
 
 def mistake_sentence(mistakes: Sequence[str]) -> str:

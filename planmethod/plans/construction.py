@@ -929,9 +929,15 @@ _PATHS_LOCK = threading.Lock()
 
 
 def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None:
+    """Read a prismatic pair's travel s off the position plan, and its sliding velocity,
+    Coriolis and relative acceleration off the segments its group drew.
+
+    Every prismatic pair a plan is drawn for is a side of a dyad (a higher group with one is
+    not drawn: :class:`PlansUnavailableError`), so its group has drawn its relative motion; a
+    pair no group drew is an internal error, never a reading made up here.
+    """
     mechanism = emulator.mechanism
     slide = mechanism.slide(key)
-    v, a, scales = emulator.v, emulator.a, emulator.scales
     mover, guide = emulator.motion.links[slide.link], emulator.motion.links[slide.along]
     point = mover.place(mechanism.local(slide.link, slide.point))[0]
     through = guide.place(mechanism.local(slide.along, slide.through))[0]
@@ -939,36 +945,13 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
                   math.sin(float(guide.theta[0]) + slide.direction_rad)])
     travel = float((point - through) @ d)
     emulator.readings[f"s_{key}"] = (math.copysign(1.0, travel)
-                                     * emulator.length_mm(through, point) * scales.mu_l)
+                                     * emulator.length_mm(through, point) * emulator.scales.mu_l)
     drawn = emulator.sliding_sides.get(key)
-    if drawn is not None:  # a side of a group already draws this pair's relative motion
-        _read_drawn_sliding(emulator, key, d, drawn, acceleration)
-        return
-    on_link = f"{slide.point}@{slide.link}"
-    on_guide = f"{slide.point}@{slide.along}"
-    lv = emulator.image_at(v, emulator.vimages, slide.link, point, image_label(on_link, "p"))
-    gv = emulator.image_at(v, emulator.vimages, slide.along, point, image_label(on_guide, "p"))
-    segment = v.points[lv] - v.points[gv]
-    sign = sense(segment, d)
-    ds = v.read(gv, lv, quantity=f"ds_{key}", factor=scales.mu_v, sign=sign)
-    emulator.readings[f"ds_{key}"] = ds
-    if not acceleration:
-        return
-    la = emulator.image_at(a, emulator.aimages, slide.link, point, image_label(on_link, "π"))
-    ga = emulator.image_at(a, emulator.aimages, slide.along, point, image_label(on_guide, "π"))
-    omega = emulator.readings[f"omega_{slide.along}"]
-    coriolis = _times(2 * omega * ds, perp(d))
-    k_label = f"k_{key}"
-    if k_label not in a.points:
-        a.lay_off(ga, k_label, coriolis / scales.mu_a, component="coriolis",
-                  vector=f"aᵏ_{key}", text=f"aᵏ of {key} = 2·ω_{slide.along}·v_rel from {ga}")
-    corio = a.round(norm(coriolis) / scales.mu_a,
-                    Segment("acceleration", "read", f"coriolis_{key}")) * scales.mu_a
-    emulator.readings[f"coriolis_{key}"] = corio
-    segment = a.points[la] - a.points[k_label]
-    sign = sense(segment, d)
-    emulator.readings[f"dds_{key}"] = a.read(k_label, la, quantity=f"dds_{key}",
-                                             factor=scales.mu_a, sign=sign)
+    if drawn is None:
+        raise PlanmethodError(f"internal error: no group drew the relative motion of the "
+                              f"prismatic pair {key}, so its sliding velocity cannot be read "
+                              "off the plans", link=slide.link)
+    _read_drawn_sliding(emulator, key, d, drawn, acceleration)
 
 
 def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dict,
@@ -1057,22 +1040,21 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         for group in groups:
             _draw(emulator, motion, group, "acceleration")
     ask = exercise.ask
+    # each plan drawn: its quantity's letter, its sheet, its links' images and its scale
+    sheets = [("v", emulator.v, emulator.vimages, scales.mu_v)]
+    if acceleration:
+        sheets.append(("a", emulator.a, emulator.aimages, scales.mu_a))
     for point in _asked_points(exercise, motion):
         link, position = motion.locate(point)
         # a fixed pivot's image is the pole: placed (its links' images pass through it), but
         # not read when nobody asked for it by name (no segment to measure)
         read = not ask.everything or FRAME not in mechanism.links_with_point(point)
-        emulator.image_at(emulator.v, emulator.vimages, link, position[0],
-                          image_label(point, "p"))
-        if read:
-            emulator.readings[f"v_{point}"] = emulator.v.read(
-                "p", image_label(point, "p"), quantity=f"v_{point}", factor=scales.mu_v)
-        if acceleration:
-            emulator.image_at(emulator.a, emulator.aimages, link, position[0],
-                              image_label(point, "π"))
+        for letter, sheet, images, factor in sheets:
+            label = emulator.image_at(sheet, images, link, position[0],
+                                      image_label(point, sheet.pole))
             if read:
-                emulator.readings[f"a_{point}"] = emulator.a.read(
-                    "π", image_label(point, "π"), quantity=f"a_{point}", factor=scales.mu_a)
+                emulator.readings[f"{letter}_{point}"] = sheet.read(
+                    sheet.pole, label, quantity=f"{letter}_{point}", factor=factor)
     if acceleration:
         curvature = ask.curvature if not ask.everything else ()
         for point in curvature:

@@ -34,7 +34,7 @@
     const ratio = answer / right;
     if (ratio >= 10 || (ratio > 0 && ratio <= 0.1)) return fmt(ratio, 4) + " times the right value";
     const relative = ratio - 1;
-    const magnitude = right < 0 && ratio > 0 ? " in magnitude" : "";
+    const magnitude = right < 0 && ratio >= 0 ? " in magnitude" : "";
     return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
   }
   // what a negative answer for a magnitude is told, and what a positive and a negative value
@@ -45,7 +45,7 @@
   function way(answer, right, signed) {
     if (signed && right !== 0 && answer !== 0 && (answer > 0) !== (right > 0))
       return "the sense is reversed";
-    if (right < 0 && answer < 0)
+    if (right < 0 && answer <= 0)
       return answer < right ? "too large in magnitude" : "too small in magnitude";
     return answer > right ? "too high" : "too low";
   }
@@ -109,8 +109,8 @@
         numberText(Math.abs(answer)) + " is " + off(Math.abs(answer), Math.abs(q.value));
     } else {
       const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
-      result.feedback = (shown + ": wrong — " + off(answer, q.value) + " (off by " +
-        numberText(Math.abs(answer - q.value)) + " " + unit + "; right: " + right + tol + ")").replace("  ", " ");
+      result.feedback = shown + ": wrong — " + off(answer, q.value) + " (off by " +
+        (numberText(Math.abs(answer - q.value)) + " " + unit).trimEnd() + "; right: " + right + tol + ")";
     }
     result.hint = shown + ": wrong (" + way(answer, q.value, q.signed) + ")";
     return result;

@@ -12,12 +12,13 @@ provides is written once, here, as protocols:
   outputs)`` and ``choose(context, model)`` (Newton continued along the crank angle, see
   :mod:`.higher`);
 
-and, optionally, :class:`Accepts` (``accepts(group)``: which groups of its kind it solves;
-default every one) with ``PRIORITY`` (higher first), :class:`Reactions` (``reactions(solver,
-group)``, the textbook sequence the force analysis runs; without it the group's equilibrium
-equations are solved at once) and :class:`OwnPlans` (``draw_velocity(emulator, group)`` and
-``draw_acceleration(emulator, group)``, the construction the plan emulator runs for a higher
-group; a dyad is drawn from its two vector equations).
+with :class:`Reactions` (``reactions(solver, group)``, the textbook sequence the force analysis
+runs) — required of a dyad, optional for a higher group (without it the group's 3k equilibrium
+equations are solved at once); and, optionally, :class:`Accepts` (``accepts(group)``: which
+groups of its kind it solves; default every one) with ``PRIORITY`` (higher first) and
+:class:`OwnPlans` (``draw_velocity(emulator, group)`` and ``draw_acceleration(emulator,
+group)``, the construction the plan emulator runs for a higher group; a dyad is drawn from its
+two vector equations).
 
 When the registry loads the modules, :func:`describe` checks each one against the protocols —
 every function present, callable with the protocol's arguments — and records what it found as a
@@ -81,7 +82,10 @@ class Accepts(Protocol):
 
 
 class Reactions(Protocol):
-    """A kind's textbook reaction sequence, run by :mod:`planmethod.forces.groups`."""
+    """A kind's textbook reaction sequence, run by :mod:`planmethod.forces.groups`: required of
+    a :class:`ClosedFormKind` (every dyad has one), optional for an :class:`IterativeKind`
+    (without it, :attr:`KindModule.reactions` is None and the force analysis solves the group's
+    3k equilibrium equations at once)."""
 
     def reactions(self, solver: ForceSolver, group: AssurGroup) -> Any: ...
 
@@ -108,6 +112,7 @@ class KindModule:
     place: Callable[[GroupInputs], Placed] | None = None
     evaluate: Callable[..., Any] | None = None
     choose: Callable[..., tuple[Branch, dict[str, Body]]] | None = None
+    #: None only for an iterative kind without one: its linear system is solved instead
     reactions: Callable[[ForceSolver, AssurGroup], Any] | None = None
     drawings: Mapping[PlanKind, Callable[[PlanDrawer, AssurGroup], None]] = field(
         default_factory=dict)
@@ -195,6 +200,9 @@ def describe(module: ModuleType) -> KindModule:
                         "(IterativeKind)")
     elif closed and branches not in (1, 2):
         problems.append(f"BRANCHES must be 1 or 2 for a closed-form kind, not {branches!r}")
+    if closed and reactions is None:
+        problems.append("a closed-form kind defines reactions (Reactions): a dyad's textbook "
+                        "reaction sequence")
     if closed and drawings:
         problems.append("a closed-form kind is drawn from its two vector equations: it "
                         "defines no draw_velocity or draw_acceleration")

@@ -42,6 +42,7 @@ from ...errors import ToggleError
 from ...structure import AssurGroup
 from ...vectors import cross, norm, perp, turn_onto, unit, unit_angle
 from ...vocabulary import EdgeKind, GroupKind, PairKind
+from .. import algebra
 from ..algebra import Body, Vec, absolute, cos, maximum, sin, sqrt
 from .base import Branch, ForceSolver, GroupInputs, PlanDrawer, Theta, ThetaKind, sense, split
 from .higher import Solved, System, choose_with, higher_evaluate, wrap
@@ -162,11 +163,13 @@ class TriadSystem(System):
         return maximum(maximum(absolute(m1), absolute(m2)), absolute(m3))
 
     def _rows(self, pose) -> list[tuple]:
-        return [(dx, dy, rx * dy - ry * dx) for rx, ry, dx, dy, _ in pose[4]]
+        return [(dx, dy, algebra.cross(Vec(rx, ry), Vec(dx, dy)))
+                for rx, ry, dx, dy, _ in pose[4]]
 
     def step(self, pose) -> tuple:
         # Φ_i = misfit_i, ∂Φ_i/∂q = (dx, dy, r × d)/l_i: the rows scaled by 1/l_i
-        rows = [(dx / side.length, dy / side.length, (rx * dy - ry * dx) / side.length)
+        rows = [(dx / side.length, dy / side.length,
+                 algebra.cross(Vec(rx, ry), Vec(dx, dy)) / side.length)
                 for (rx, ry, dx, dy, _), side in zip(pose[4], self.sides, strict=True)]
         return _cramer(rows, [-misfit for *_, misfit in pose[4]])
 
@@ -193,7 +196,7 @@ class TriadSystem(System):
         """|det| of the rows (d̂_i, r_i × d̂_i / L) over the product of their lengths."""
         rows, norms = [], []
         for (rx, ry, dx, dy, _), side in zip(pose[4], self.sides, strict=True):
-            turn = (rx * dy - ry * dx) / (side.length * self.length)
+            turn = algebra.cross(Vec(rx, ry), Vec(dx, dy)) / (side.length * self.length)
             rows.append((dx / side.length, dy / side.length, turn))
             norms.append((dx * dx + dy * dy) / (side.length * side.length) + turn * turn)
         return absolute(_det(rows)) / sqrt(norms[0] * norms[1] * norms[2])
@@ -217,8 +220,8 @@ class TriadSystem(System):
         for (rx, ry, dx, dy, _), side, values in zip(geometry, self.sides, known, strict=True):
             # the side link's axes turn its own outer → inner direction onto d = Q − P
             ux, uy = side.unit
-            sc = (dx * ux + dy * uy) / side.length
-            ss = (dy * ux - dx * uy) / side.length
+            d, u = Vec(dx, dy), Vec(ux, uy)
+            sc, ss = algebra.dot(d, u) / side.length, algebra.cross(u, d) / side.length
             turned = Vec(*side.outer_local).turned(sc, ss)
             tx, ty = -turned.x, -turned.y   # origin − P
             px, py = values[0], values[1]
@@ -226,13 +229,13 @@ class TriadSystem(System):
             if level >= 1:
                 square = dx * dx + dy * dy
                 wx, wy = vx - omega * ry - values[2], vy + omega * rx - values[3]
-                turn = (dx * wy - dy * wx) / square
+                turn = algebra.cross(Vec(dx, dy), Vec(wx, wy)) / square
                 out += [turn, values[2] - turn * ty, values[3] + turn * tx]
             if level >= 2:
                 big = omega * omega
                 qx = ax - epsilon * ry - big * rx - values[4]
                 qy = ay + epsilon * rx - big * ry - values[5]
-                spin = (dx * qy - dy * qx) / square
+                spin = algebra.cross(Vec(dx, dy), Vec(qx, qy)) / square
                 small = turn * turn
                 out += [spin, values[4] - spin * ty - small * tx,
                         values[5] + spin * tx - small * ty]

@@ -1,0 +1,191 @@
+"""The mutation-testing report: ``python -m benchmarks.mutation [--root DIR]``.
+
+Reads what ``mutmut run`` found — ``mutants/**/*.py.meta`` under ``--root`` (default: the
+repository), each mutant's exit code as mutmut 3 keeps it — and writes
+``benchmarks/results/mutation.{md,json}``: when, on which machine and with which mutmut, what
+was mutated, the mutants counted by outcome per module and in all, the share that survived,
+and every survivor with the note of ``benchmarks/mutation_notes.toml`` that says why it is
+equivalent to the code. A survivor without a note stops the report: each one is looked at.
+
+``--baseline`` records the survivors of a first run in ``results/mutation_baseline.json``;
+later reports list, for each of them killed since, the test added for it (the notes'
+``[killed_by]`` table). The counts are read, never typed.
+
+Examples
+--------
+>>> outcome(1), outcome(0), outcome(36), outcome(-24), outcome(None)
+('killed', 'survived', 'timeout', 'timeout', 'not checked')
+>>> note_for("pkg.mod.x_f__mutmut_3", {"pkg.mod.x_f__mutmut_*": "why"})
+'why'
+>>> module_of("planmethod.grading.keys.x__mistakes__mutmut_12"), function_of(
+...     "planmethod.grading.keys.xǁGradingSettingsǁ__init____mutmut_2")
+('planmethod.grading.keys', 'GradingSettings.__init__')
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import json
+import sys
+import tomllib
+from collections import Counter
+from pathlib import Path
+
+from .common import RESULTS, ROOT, machine, write_json, write_text
+
+#: notes on survivors: why each is equivalent, and which test kills those killed since
+NOTES = Path(__file__).resolve().parent / "mutation_notes.toml"
+BASELINE = "mutation_baseline.json"
+#: the command that produced the results (the report says it)
+COMMAND = "mutmut run --max-children 2"
+#: mutmut 3's exit codes (``mutmut.stats.status_by_exit_code``); any other is suspicious
+OUTCOMES = {1: "killed", 3: "killed", 0: "survived", 5: "no tests", 33: "no tests",
+            2: "interrupted", None: "not checked", 34: "skipped", 35: "suspicious",
+            36: "timeout", 37: "caught by type check", -24: "timeout", 24: "timeout",
+            152: "timeout", 255: "timeout", -11: "segfault", -9: "segfault"}
+#: the outcomes counted in the report's table, in its order
+COLUMNS = ("killed", "survived", "timeout", "suspicious", "skipped", "no tests",
+           "not checked")
+
+
+def outcome(exit_code: int | None) -> str:
+    """What an exit code of a mutant's test run means."""
+    return OUTCOMES.get(exit_code, "suspicious")
+
+
+def module_of(mutant: str) -> str:
+    """The module a mutant is in (its name without the mangled function)."""
+    return mutant.rpartition(".")[0]
+
+
+def function_of(mutant: str) -> str:
+    """The function a mutant changes: ``f`` or ``Class.method``."""
+    mangled = mutant.rpartition(".")[2].rpartition("__mutmut_")[0]
+    if mangled.startswith("xǁ"):
+        return ".".join(mangled[2:].split("ǁ", 1))
+    return mangled.removeprefix("x_")
+
+
+def note_for(mutant: str, notes: dict[str, str]) -> str | None:
+    """The note whose name or glob pattern matches ``mutant`` (the first one), else None."""
+    if mutant in notes:
+        return notes[mutant]
+    return next((text for pattern, text in notes.items()
+                 if fnmatch.fnmatchcase(mutant, pattern)), None)
+
+
+def read_results(root: Path) -> dict[str, int | None]:
+    """Every mutant's exit code: mutant name → exit code (None: not yet run)."""
+    found: dict[str, int | None] = {}
+    for meta in sorted((root / "mutants").rglob("*.py.meta")):
+        found.update(json.loads(meta.read_text(encoding="utf-8"))["exit_code_by_key"])
+    return found
+
+
+def _mutated(root: Path) -> list[str]:
+    data = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))
+    return list(data["tool"]["mutmut"].get("only_mutate", []))
+
+
+def _table(by_module: dict[str, Counter]) -> list[str]:
+    lines = ["| module | mutants | " + " | ".join(COLUMNS) + " | survived % |",
+             "| --- | ---: | " + " | ".join("---:" for _ in COLUMNS) + " | ---: |"]
+    total: Counter = Counter()
+    for module, counts in sorted(by_module.items()):
+        total.update(counts)
+        lines.append(_row(f"`{module}`", counts))
+    lines.append(_row("**all**", total))
+    return lines
+
+
+def _row(name: str, counts: Counter) -> str:
+    run = sum(counts[c] for c in COLUMNS if c not in ("not checked", "skipped", "no tests"))
+    share = f"{100 * counts['survived'] / run:.1f}" if run else "–"
+    return (f"| {name} | {sum(counts.values())} | "
+            + " | ".join(str(counts[c]) for c in COLUMNS) + f" | {share} |")
+
+
+def report(root: Path, *, baseline: bool = False) -> tuple[str, dict]:
+    """The report's Markdown and JSON from the results under ``root``.
+
+    Raises
+    ------
+    SystemExit
+        If a survivor has no note (every survivor is looked at).
+    """
+    import mutmut
+
+    notes = tomllib.loads(NOTES.read_text(encoding="utf-8"))
+    equivalent, killed_by = notes.get("equivalent", {}), notes.get("killed_by", {})
+    results = read_results(root)
+    if not results:
+        raise SystemExit(f"no mutmut results under {root / 'mutants'}: run `{COMMAND}` first")
+    by_module: dict[str, Counter] = {}
+    for mutant, code in results.items():
+        by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
+    survivors = sorted(m for m, code in results.items() if outcome(code) == "survived")
+    if baseline:
+        write_json(BASELINE, {"survived": survivors})
+    first = json.loads((RESULTS / BASELINE).read_text()).get("survived", []) \
+        if (RESULTS / BASELINE).exists() else []
+    missing = [m for m in survivors if note_for(m, equivalent) is None]
+    if missing:
+        raise SystemExit(f"{len(missing)} survivor(s) without a note in {NOTES.name} "
+                         f"[equivalent], e.g. {', '.join(missing[:5])}")
+    total: Counter = Counter(outcome(code) for code in results.values())
+    run = sum(total[c] for c in COLUMNS if c not in ("not checked", "skipped", "no tests"))
+    share = total["survived"] / run if run else 0.0
+    since = [m for m in first if results.get(m) is not None and outcome(results[m]) == "killed"]
+    about = machine()
+    lines = [f"<!-- written by `python -m benchmarks.mutation` on {about['time']} from the "
+             f"results of `{COMMAND}`; {about.get('cpu', '?')}, {about['cpus']} cpus, "
+             f"Python {about['python']}, mutmut {mutmut.__version__} -->", "",
+             f"Mutated: {', '.join(f'`{path}`' for path in _mutated(root))} "
+             f"({len(results)} mutants); tests: `[tool.mutmut]` of pyproject.toml.", "",
+             *_table(by_module), "",
+             f"Survived: {total['survived']} of {run} run ({100 * share:.2f} %; the bound is "
+             f"5 %).", ""]
+    if total["not checked"]:
+        lines += [f"Not yet run: {total['not checked']} mutants.", ""]
+    if survivors:
+        lines += ["Every survivor, and why it is equivalent to the code:", "",
+                  "| mutant | function | why it survives |", "| --- | --- | --- |"]
+        lines += [f"| `{m.rpartition('.')[2]}` | `{module_of(m)}.{function_of(m)}` | "
+                  f"{note_for(m, equivalent)} |" for m in survivors]
+        lines.append("")
+    if since:
+        tests: dict[str, list[str]] = {}
+        for mutant in since:
+            tests.setdefault(note_for(mutant, killed_by) or "a test added since", []).append(
+                mutant)
+        lines += [f"Killed since the first run ({len(since)} of its {len(first)} survivors), "
+                  "by the tests added for them:", "", "| test | mutants |", "| --- | ---: |"]
+        lines += [f"| {test} | {len(names)} |" for test, names in sorted(tests.items())]
+        lines.append("")
+    data = {"machine": about, "mutmut": mutmut.__version__, "command": COMMAND,
+            "mutated": _mutated(root), "counts": {c: total[c] for c in COLUMNS},
+            "run": run, "survived_share": share,
+            "by_module": {m: dict(c) for m, c in sorted(by_module.items())},
+            "survivors": {m: note_for(m, equivalent) for m in survivors},
+            "killed_since_first_run": len(since)}
+    return "\n".join(lines), data
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.mutation",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("--root", type=Path, default=ROOT,
+                        help="the folder mutmut ran in (default: the repository)")
+    parser.add_argument("--baseline", action="store_true",
+                        help="record the current survivors as the first run's")
+    args = parser.parse_args(argv)
+    text, data = report(args.root, baseline=args.baseline)
+    write_text("mutation.md", text + "\n")
+    write_json("mutation.json", data)
+    print(text.split("\n\n")[2].splitlines()[-1], file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
