@@ -119,22 +119,26 @@ def machine() -> dict:
                 break
     except OSError:
         pass
+    if hasattr(os, "getloadavg"):  # other work on a shared machine (not on Windows)
+        info["load"] = round(os.getloadavg()[0], 2)
     info["time"] = time.strftime("%Y-%m-%d %H:%M:%S")
     return info
 
 
 def written_by(command: str, about: dict | None = None) -> str:
     """The first line of a results file, shown where the file is included: when, by which
-    command and on which machine its numbers were measured.
+    command and on which machine its numbers were measured, and how busy the machine was when
+    the run began (its one-minute load average, where the system tells it).
 
     >>> print(written_by("python -m benchmarks.run", {"time": "2026-11-27 10:00:00",
-    ...     "cpu": "Xeon", "cpus": 2, "python": "3.11.7", "numpy": "2.4.6"}).strip())
-    *Written by `python -m benchmarks.run` on 2026-11-27 10:00:00 — Xeon, 2 cpus, Python ...*
+    ...     "cpu": "Xeon", "cpus": 2, "python": "3.11.7", "numpy": "2.4.6", "load": 1.5}).strip())
+    *Written by `python -m benchmarks.run` on 2026-11-27 10:00:00 — Xeon, 2 cpus, load 1.5, ...*
     """
     about = about or machine()
     processor = about.get("cpu") or about.get("machine", "")
+    load = f"load {about['load']:g}, " if "load" in about else ""
     return (f"*Written by `{command}` on {about['time']} — {processor}, {about['cpus']} cpus, "
-            f"Python {about['python']}, numpy {about['numpy']}.*\n\n")
+            f"{load}Python {about['python']}, numpy {about['numpy']}.*\n\n")
 
 
 def write_json(name: str, data: dict) -> Path:
