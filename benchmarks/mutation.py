@@ -5,7 +5,8 @@ repository), each mutant's exit code as mutmut 3 keeps it — and writes
 ``benchmarks/results/mutation.{md,json}``: when, on which machine and with which mutmut, what
 was mutated, the mutants counted by outcome per module and in all, the share that survived,
 and every survivor with the note of ``benchmarks/mutation_notes.toml`` that says why it is
-equivalent to the code. A survivor without a note stops the report: each one is looked at.
+equivalent to the code; survivors without a note are counted by function as not yet looked
+at (their names go to the JSON).
 
 ``--baseline`` records the survivors of a first run in ``results/mutation_baseline.json``;
 later reports list, for each of them killed since, the test added for it (the notes'
@@ -32,12 +33,12 @@ import tomllib
 from collections import Counter
 from pathlib import Path
 
-from .common import RESULTS, ROOT, machine, write_json, write_text
+from .common import RESULTS, ROOT, machine, write_json, write_text, written_by
 
 #: notes on survivors: why each is equivalent, and which test kills those killed since
 NOTES = Path(__file__).resolve().parent / "mutation_notes.toml"
 BASELINE = "mutation_baseline.json"
-#: the command that produced the results (the report says it)
+#: the command that produced the results, by default (the report says it; ``--command``)
 COMMAND = "mutmut run --max-children 2"
 #: mutmut 3's exit codes (``mutmut.stats.status_by_exit_code``); any other is suspicious
 OUTCOMES = {1: "killed", 3: "killed", 0: "survived", 5: "no tests", 33: "no tests",
@@ -106,13 +107,13 @@ def _row(name: str, counts: Counter) -> str:
             + " | ".join(str(counts[c]) for c in COLUMNS) + f" | {share} |")
 
 
-def report(root: Path, *, baseline: bool = False) -> tuple[str, dict]:
+def report(root: Path, *, baseline: bool = False, command: str = COMMAND) -> tuple[str, dict]:
     """The report's Markdown and JSON from the results under ``root``.
 
     Raises
     ------
     SystemExit
-        If a survivor has no note (every survivor is looked at).
+        If there are no results to read.
     """
     import mutmut
 
@@ -120,7 +121,7 @@ def report(root: Path, *, baseline: bool = False) -> tuple[str, dict]:
     equivalent, killed_by = notes.get("equivalent", {}), notes.get("killed_by", {})
     results = read_results(root)
     if not results:
-        raise SystemExit(f"no mutmut results under {root / 'mutants'}: run `{COMMAND}` first")
+        raise SystemExit(f"no mutmut results under {root / 'mutants'}: run `{command}` first")
     by_module: dict[str, Counter] = {}
     for mutant, code in results.items():
         by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
@@ -130,29 +131,36 @@ def report(root: Path, *, baseline: bool = False) -> tuple[str, dict]:
     first = json.loads((RESULTS / BASELINE).read_text()).get("survived", []) \
         if (RESULTS / BASELINE).exists() else []
     missing = [m for m in survivors if note_for(m, equivalent) is None]
-    if missing:
-        raise SystemExit(f"{len(missing)} survivor(s) without a note in {NOTES.name} "
-                         f"[equivalent], e.g. {', '.join(missing[:5])}")
     total: Counter = Counter(outcome(code) for code in results.values())
     run = sum(total[c] for c in COLUMNS if c not in ("not checked", "skipped", "no tests"))
     share = total["survived"] / run if run else 0.0
     since = [m for m in first if results.get(m) is not None and outcome(results[m]) == "killed"]
     about = machine()
-    lines = [f"<!-- written by `python -m benchmarks.mutation` on {about['time']} from the "
-             f"results of `{COMMAND}`; {about.get('cpu', '?')}, {about['cpus']} cpus, "
-             f"Python {about['python']}, mutmut {mutmut.__version__} -->", "",
+    lines = [written_by("python -m benchmarks.mutation", about).strip(), "",
+             f"From the results of `{command}` (mutmut {mutmut.__version__}).", "",
              f"Mutated: {', '.join(f'`{path}`' for path in _mutated(root))} "
              f"({len(results)} mutants); tests: `[tool.mutmut]` of pyproject.toml.", "",
              *_table(by_module), "",
              f"Survived: {total['survived']} of {run} run ({100 * share:.2f} %; the bound is "
              f"5 %).", ""]
     if total["not checked"]:
-        lines += [f"Not yet run: {total['not checked']} mutants.", ""]
-    if survivors:
-        lines += ["Every survivor, and why it is equivalent to the code:", "",
+        lines += [f"**Not yet run: {total['not checked']} mutants** (the run covered the "
+                  "modules whose *not checked* column is 0).", ""]
+    noted = [m for m in survivors if m not in missing]
+    if noted:
+        lines += ["The survivors looked at, and why each is equivalent to the code:", "",
                   "| mutant | function | why it survives |", "| --- | --- | --- |"]
         lines += [f"| `{m.rpartition('.')[2]}` | `{module_of(m)}.{function_of(m)}` | "
-                  f"{note_for(m, equivalent)} |" for m in survivors]
+                  f"{note_for(m, equivalent)} |" for m in noted]
+        lines.append("")
+    if missing:
+        by_function = Counter(f"{module_of(m)}.{function_of(m)}" for m in missing)
+        lines += [f"**Not yet looked at: {len(missing)} survivors** (each needs a test that "
+                  f"kills it or a note in `{NOTES.name}`; their names are in "
+                  "`mutation.json`), by function:", "",
+                  "| function | survivors |", "| --- | ---: |"]
+        lines += [f"| `{name}` | {count} |" for name, count in sorted(
+            by_function.items(), key=lambda item: (-item[1], item[0]))]
         lines.append("")
     if since:
         tests: dict[str, list[str]] = {}
@@ -163,11 +171,12 @@ def report(root: Path, *, baseline: bool = False) -> tuple[str, dict]:
                   "by the tests added for them:", "", "| test | mutants |", "| --- | ---: |"]
         lines += [f"| {test} | {len(names)} |" for test, names in sorted(tests.items())]
         lines.append("")
-    data = {"machine": about, "mutmut": mutmut.__version__, "command": COMMAND,
+    data = {"machine": about, "mutmut": mutmut.__version__, "command": command,
             "mutated": _mutated(root), "counts": {c: total[c] for c in COLUMNS},
             "run": run, "survived_share": share,
             "by_module": {m: dict(c) for m, c in sorted(by_module.items())},
             "survivors": {m: note_for(m, equivalent) for m in survivors},
+            "not_looked_at": missing,
             "killed_since_first_run": len(since)}
     return "\n".join(lines), data
 
@@ -179,8 +188,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="the folder mutmut ran in (default: the repository)")
     parser.add_argument("--baseline", action="store_true",
                         help="record the current survivors as the first run's")
+    parser.add_argument("--command", default=COMMAND,
+                        help="the mutmut command that was run (the report says it)")
     args = parser.parse_args(argv)
-    text, data = report(args.root, baseline=args.baseline)
+    text, data = report(args.root, baseline=args.baseline, command=args.command)
     write_text("mutation.md", text + "\n")
     write_json("mutation.json", data)
     print(text.split("\n\n")[2].splitlines()[-1], file=sys.stderr)
