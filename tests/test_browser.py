@@ -294,6 +294,17 @@ def click_plan_point(page, plan: str, x: float, y: float) -> None:
     page.mouse.click(*where)
 
 
+def draw_and_download(page, plan: str, report: dict, folder: Path) -> Path:
+    """Place the right points of ``plan`` (from a solve report) by clicks and save the drawing
+    the page downloads as ``folder/PLAN.json``."""
+    place_by_clicks(page, plan, report["plans"][plan]["points_mm"])
+    with page.expect_download() as download:
+        page.click(f'[data-download="{plan}"]')
+    path = folder / f"{plan}.json"
+    download.value.save_as(path)
+    return path
+
+
 def place_by_clicks(page, plan: str, points: dict) -> list[str]:
     """Choose every point the page offers for ``plan`` and click where ``points`` (mm) put
     it; returns the points placed."""
@@ -376,11 +387,7 @@ def test_a_point_where_the_coriolis_term_is_left_out_is_named(drawing, slotted_r
 def test_the_downloaded_drawing_is_graded_by_the_cli(drawing, slotted_report, tmp_path):
     page, errors = drawing
     for plan in ("velocity", "acceleration"):
-        place_by_clicks(page, plan, slotted_report["plans"][plan]["points_mm"])
-        with page.expect_download() as download:
-            page.click(f'[data-download="{plan}"]')
-        path = tmp_path / f"{plan}.json"
-        download.value.save_as(path)
+        path = draw_and_download(page, plan, slotted_report, tmp_path)
         drawing = json.loads(path.read_text())
         assert drawing["title"] == slotted_report["title"] and drawing["angle"] == 30
         assert drawing["plan"] == plan
@@ -513,11 +520,7 @@ def test_a_drawing_at_another_angle_is_graded_at_that_angle(drawing, tmp_path):
     move_slider(page, 45)
     report = json.loads(cli("solve", SLOTTED, "--angle", 45, "--json").stdout)
     for plan in ("velocity", "acceleration"):
-        place_by_clicks(page, plan, report["plans"][plan]["points_mm"])
-        with page.expect_download() as download:
-            page.click(f'[data-download="{plan}"]')
-        path = tmp_path / f"{plan}.json"
-        download.value.save_as(path)
+        path = draw_and_download(page, plan, report, tmp_path)
         assert json.loads(path.read_text())["angle"] == 45
         cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
         graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
