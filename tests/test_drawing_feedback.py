@@ -174,13 +174,13 @@ def test_a_drawing_of_the_same_angle_a_turn_later_is_of_the_same_exercise(key):
         assert grade_drawing(key, drawing)["score"] == 3
     for other, says in ((Drawing(points, "velocity", source="d.json", title=title,
                                  angle=angle + 0.5, exact_scale=True),
-                         f"d.json: the drawing is of {title!r} at φ1 = {angle + 0.5:g}°, the "
-                         f"key of {title!r} at φ1 = {angle:g}°: grade it against the key of its "
+                         f"d.json: the drawing is of {title!r} at φ₁ = {angle + 0.5:g}°, the "
+                         f"key of {title!r} at φ₁ = {angle:g}°: grade it against the key of its "
                          "own exercise and angle"),
                         (Drawing(points, "velocity", source="d.json", title="Other",
                                  angle=angle, exact_scale=True),
-                         f"d.json: the drawing is of 'Other' at φ1 = {angle:g}°, the key of "
-                         f"{title!r} at φ1 = {angle:g}°: grade it against the key of its own "
+                         f"d.json: the drawing is of 'Other' at φ₁ = {angle:g}°, the key of "
+                         f"{title!r} at φ₁ = {angle:g}°: grade it against the key of its own "
                          "exercise and angle")):
         with pytest.raises(SubmissionError) as caught:
             grade_drawing(key, other)
