@@ -257,21 +257,28 @@ def test_a_drawn_point_within_a_mistakes_disc_is_named_and_one_just_outside_is_n
     assert tried >= 20
 
 
-def test_a_whole_plan_fits_a_mistakes_plan_within_twice_each_points_radius(keys):
-    """The velocity plan drawn turned 180° (the sense of ω1 reversed), each point then moved
-    across by 1.99 of its radius, still fits that plan; by 2.01 it does not."""
+def test_a_whole_plan_is_named_when_each_wrong_point_lies_within_its_radius_of_the_mistake(
+        keys):
+    """The velocity plan drawn turned 180° (the sense of ω₁ reversed), each point then moved
+    across by 0.99 of its radius from where that mistake puts it, is named as a whole (every
+    wrong point names the mistake: the page's rule too); by 1.01 neither a point nor the plan
+    names it."""
+    from planmethod.grading.plan_points import plan_sentence
+
     key = keys["exercises/compressor_slider_crank.toml"]
     entry = key["plans"]["velocity"]
     turned = {label: tuple(xy) for label, xy in entry["mistakes"]["sense"].items()}
-    for factor, fits in ((1.99, True), (2.01, False)):
+    for factor, named in ((INSIDE, True), (OUTSIDE, False)):
         points = {label: tuple(np.asarray(xy) + factor * entry["tolerance_mm"][label]
                                * _across(xy)) if label != entry["pole"] else xy
                   for label, xy in turned.items()}
         result = grade_drawing(key, Drawing(points, "velocity"), rescale=False)
         assert result["score"] == 0.0
-        said = any("fit the plan drawn when the sense of ω1 was reversed" in line
-                   for line in result["feedback"])
-        assert said is fits, factor
+        wrong = [point for point in result["points"] if not point["correct"]]
+        assert len(wrong) >= 2
+        assert all(("sense" in point.get("mistakes", [])) is named for point in wrong), factor
+        assert result["plan_mistakes"] == (["sense"] if named else []), factor
+        assert (plan_sentence(["sense"]) in result["feedback"]) is named, factor
 
 
 # -- PrairieLearn's grade() ----------------------------------------------------------------------
