@@ -238,7 +238,7 @@ def _boxes(anchor, directions, distance, half_w: float, half_h: float) -> np.nda
     ux, uy, sx, sy = directions
     cx = anchor[0] + ux * distance + sx * half_w
     cy = anchor[1] + uy * distance + sy * half_h
-    return np.stack((cx - half_w, cy - half_h, cx + half_w, cy + half_h), axis=-1)
+    return np.array((cx - half_w, cy - half_h, cx + half_w, cy + half_h)).T
 
 
 #: the distances costed together (a label mostly settles within the first batch), and per
@@ -253,6 +253,9 @@ for _batch in _BATCHES:
                         np.asarray(DISTANCES)[_steps] + 0.05 * _order))
 #: where a label goes when every spot overlaps: straight below
 _BELOW = _directions(np.array([-90.0]))
+#: how far the gap kept between labels widens a box (x0, y0, x1, y1), touching counting
+_GAP_LOW = np.array([-LABEL_GAP, -LABEL_GAP / 2])
+_GAP_HIGH = np.array([LABEL_GAP, LABEL_GAP / 2])
 
 
 def _segments(lines: Sequence[Sequence[tuple[float, float]]]) -> np.ndarray:
@@ -273,72 +276,94 @@ def _segments(lines: Sequence[Sequence[tuple[float, float]]]) -> np.ndarray:
     return np.unique(out, axis=0)
 
 
-def _meeting(items: np.ndarray, region) -> np.ndarray:
-    """Which segments' or rectangles' bounds meet the region (x0, y0, x1, y1)."""
-    return ((np.minimum(items[:, 0], items[:, 2]) <= region[2])
-            & (np.maximum(items[:, 0], items[:, 2]) >= region[0])
-            & (np.minimum(items[:, 1], items[:, 3]) <= region[3])
-            & (np.maximum(items[:, 1], items[:, 3]) >= region[1]))
+def _bounds(items: np.ndarray) -> np.ndarray:
+    """The bounds (x0, y0, x1, y1), low corner first, of segments or rectangles given by two
+    corners (x0, y0, x1, y1).
+
+    >>> _bounds(np.array([[3.0, 0, 1, 2]])).tolist()
+    [[1.0, 0.0, 3.0, 2.0]]
+    """
+    return np.concatenate((np.minimum(items[:, :2], items[:, 2:]),
+                           np.maximum(items[:, :2], items[:, 2:])), axis=1)
 
 
-def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray, split: int | None = None
-                     ) -> np.ndarray:
+def _meeting(bounds: np.ndarray, region) -> np.ndarray:
+    """Which of the segments' or rectangles' ``bounds`` (see :func:`_bounds`) meet the region
+    (x0, y0, x1, y1)."""
+    return ((bounds[:, 0] <= region[2]) & (bounds[:, 2] >= region[0])
+            & (bounds[:, 1] <= region[3]) & (bounds[:, 3] >= region[1]))
+
+
+def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray, split: int | None = None,
+                     bounds: np.ndarray | None = None) -> np.ndarray:
     """For each box (x0, y0, x1, y1), the length of the segments inside it (Liang–Barsky
     clipping of every segment against every box at once); with ``split``, that of the
-    segments before it and that of the rest, as two rows.
+    segments before it and that of the rest, as two rows. ``bounds`` are the segments'
+    (see :func:`_bounds`), where known.
 
     >>> _clipped_lengths(np.array([[-5.0, 0.0, 5.0, 0.0]]), np.array([[0.0, -1, 2, 1],
     ...                                                               [3, 3, 4, 4]]))
     array([2., 0.])
     """
-    if split is not None:
-        return np.stack((_clipped_lengths(segments, boxes),
-                         np.zeros(len(boxes)))) if split >= len(segments) else \
-            _split_lengths(segments, boxes, split)
-    return _split_lengths(segments, boxes, len(segments))[0]
+    piece, which, share = _inside(segments, boxes, bounds)
+    if not len(piece):
+        return np.zeros(len(boxes)) if split is None else np.zeros((2, len(boxes)))
+    inside = share * np.hypot(segments[piece, 2] - segments[piece, 0],
+                              segments[piece, 3] - segments[piece, 1])
+    if split is None:
+        return np.bincount(which, weights=inside, minlength=len(boxes))
+    # the segments from ``split`` on count in a second row: bins len(boxes) onwards
+    return np.bincount(which + len(boxes) * (piece >= split), weights=inside,
+                       minlength=2 * len(boxes)).reshape(2, len(boxes))
 
 
-def _inside(segments: np.ndarray, boxes: np.ndarray
+def _inside(segments: np.ndarray, boxes: np.ndarray, bounds: np.ndarray | None = None
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Liang–Barsky clipping of every segment (x0, y0, x1, y1) against every box (x0, y0,
     x1, y1) at once, on the pairs whose bounds meet: the segment and the box of each such
-    pair, and the share (0 to 1) of the segment inside the box.
+    pair, and the share (0 to 1) of the segment inside the box. ``bounds`` are the segments'
+    (see :func:`_bounds`), where known.
 
     >>> _inside(np.array([[0.0, 0, 10, 0]]), np.array([[4.0, -1, 6, 1], [20, 0, 30, 1]]))
     (array([0]), array([0]), array([0.2]))
     """
-    lo_x = np.minimum(segments[:, 0], segments[:, 2])[:, None]
-    hi_x = np.maximum(segments[:, 0], segments[:, 2])[:, None]
-    lo_y = np.minimum(segments[:, 1], segments[:, 3])[:, None]
-    hi_y = np.maximum(segments[:, 1], segments[:, 3])[:, None]
-    piece, which = np.nonzero((lo_x <= boxes[:, 2]) & (hi_x >= boxes[:, 0])
-                              & (lo_y <= boxes[:, 3]) & (hi_y >= boxes[:, 1]))
+    if bounds is None:
+        bounds = _bounds(segments)
+    low_x, low_y, high_x, high_y = np.ascontiguousarray(bounds.T)
+    left, top, right, bottom = np.ascontiguousarray(boxes.T)
+    if len(segments) >= len(boxes):         # the longer of the two along the rows
+        meet = low_x <= right[:, None]
+        meet &= high_x >= left[:, None]
+        meet &= low_y <= bottom[:, None]
+        meet &= high_y >= top[:, None]
+        which, piece = np.nonzero(meet)
+    else:
+        meet = low_x[:, None] <= right
+        meet &= high_x[:, None] >= left
+        meet &= low_y[:, None] <= bottom
+        meet &= high_y[:, None] >= top
+        piece, which = np.nonzero(meet)
     if not len(piece):
         return piece, which, np.zeros(0)
-    x0, y0 = segments[piece, 0], segments[piece, 1]
-    dx, dy = segments[piece, 2] - x0, segments[piece, 3] - y0
-    box = boxes[which]
-    # the four edges at once: p·t ≤ q along the segment x0 + t·dx (t in [0, 1])
-    p = np.stack((-dx, dx, -dy, dy))
-    q = np.stack((x0 - box[:, 0], box[:, 2] - x0, y0 - box[:, 1], box[:, 3] - y0))
+    ends = np.take(segments, piece, axis=0).T
+    start = ends[:2]
+    delta = ends[2:] - start
+    box = np.take(boxes, which, axis=0).T
+    # along each axis the t (0 to 1 along the segment) where it meets the box's low edge and
+    # its high edge; the nearer bounds t from below, the farther from above. A segment
+    # parallel to an axis gives ±inf or nan there, which bounds nothing (fmax and fmin
+    # pass over nan)
+    before = start - box[:2]
+    after = box[2:] - start
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = q / p
-    low = np.maximum(np.where(p < 0, ratio, -np.inf).max(axis=0), 0.0)
-    high = np.minimum(np.where(p > 0, ratio, np.inf).min(axis=0), 1.0)
-    outside = ((p == 0) & (q < 0)).any(axis=0)      # parallel to an edge, beyond it
-    return piece, which, np.where(outside, 0.0, np.maximum(high - low, 0.0))
-
-
-def _split_lengths(segments: np.ndarray, boxes: np.ndarray, split: int) -> np.ndarray:
-    """:func:`_clipped_lengths` of the segments before ``split`` and of the rest (2 × boxes)."""
-    piece, which, share = _inside(segments, boxes)
-    if not len(piece):
-        return np.zeros((2, len(boxes)))
-    inside = share * np.hypot(segments[piece, 2] - segments[piece, 0],
-                              segments[piece, 3] - segments[piece, 1])
-    later = piece >= split
-    return np.stack((np.bincount(which[~later], weights=inside[~later], minlength=len(boxes)),
-                     np.bincount(which[later], weights=inside[later], minlength=len(boxes))))
+        at_low = before / -delta
+        at_high = after / delta
+    low = np.fmax(np.minimum(at_low, at_high), 0.0)
+    high = np.fmin(np.maximum(at_low, at_high), 1.0)
+    share = np.fmin(high[0], high[1]) - np.fmax(low[0], low[1])
+    outside = (delta == 0) & ((before < 0) | (after < 0))   # parallel to an edge, beyond it
+    share[outside[0] | outside[1]] = 0.0
+    return piece, which, np.maximum(share, 0.0)
 
 
 def drawn_length(lines: Sequence, boxes: Sequence) -> np.ndarray:
@@ -354,26 +379,30 @@ def drawn_length(lines: Sequence, boxes: Sequence) -> np.ndarray:
 
 
 def _overlap_areas(rectangles: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """For each box, the area of the rectangles under it."""
+    """For each box, the area of the rectangles under it, added up in the rectangles' order
+    (as a sum down the columns is; one over a single column would be taken pairwise)."""
     width = (np.minimum(rectangles[:, 2, None], boxes[:, 2])
              - np.maximum(rectangles[:, 0, None], boxes[:, 0]))
     height = (np.minimum(rectangles[:, 3, None], boxes[:, 3])
               - np.maximum(rectangles[:, 1, None], boxes[:, 1]))
-    return (np.maximum(width, 0.0) * np.maximum(height, 0.0)).sum(axis=0)
+    areas = np.maximum(width, 0.0) * np.maximum(height, 0.0)
+    return areas.sum(axis=0) if len(boxes) > 1 else np.cumsum(areas, axis=0)[-1]
 
 
 def _leaders(anchor, boxes: np.ndarray) -> np.ndarray:
     """The leader (x0, y0, x1, y1) of a label in each box: from its point to the nearest
     point of the box (as :meth:`planmethod.render.canvas.Canvas.place` draws it)."""
     ax, ay = anchor
-    return np.stack((np.full(len(boxes), ax), np.full(len(boxes), ay),
+    return np.array((np.full(len(boxes), ax), np.full(len(boxes), ay),
                      np.clip(ax, boxes[:, 0], boxes[:, 2]),
-                     np.clip(ay, boxes[:, 1], boxes[:, 3])), axis=-1)
+                     np.clip(ay, boxes[:, 1], boxes[:, 3]))).T
 
 
-def _crossing(leaders: np.ndarray, segments: np.ndarray) -> np.ndarray:
+def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | None = None
+              ) -> np.ndarray:
     """(leaders × segments): whether each leader crosses each segment, away from the point
-    it starts at (a leader may leave its point across the lines through it).
+    it starts at (a leader may leave its point across the lines through it). ``bounds`` are
+    the segments' (see :func:`_bounds`), where known.
 
     >>> _crossing(np.array([[0.0, 0, 10, 0], [0, 0, 0, 10]]),
     ...           np.array([[5.0, -5, 5, 5], [0, 0, 3, 3]])).tolist()
@@ -381,13 +410,14 @@ def _crossing(leaders: np.ndarray, segments: np.ndarray) -> np.ndarray:
     """
     if not len(segments) or not len(leaders):
         return np.zeros((len(leaders), len(segments)), dtype=bool)
-    reach = (min(leaders[:, 0].min(), leaders[:, 2].min()), min(leaders[:, 1].min(),
-             leaders[:, 3].min()), max(leaders[:, 0].max(), leaders[:, 2].max()),
-             max(leaders[:, 1].max(), leaders[:, 3].max()))
-    meeting = _meeting(segments, reach)
+    if bounds is None:
+        bounds = _bounds(segments)
+    low = np.minimum(leaders[:, :2], leaders[:, 2:]).min(axis=0)
+    high = np.maximum(leaders[:, :2], leaders[:, 2:]).max(axis=0)
+    meeting = _meeting(bounds, (low[0], low[1], high[0], high[1]))
     if not meeting.all():                 # only the segments near the leaders can cross
         out = np.zeros((len(leaders), len(segments)), dtype=bool)
-        out[:, meeting] = _crossing(leaders, segments[meeting])
+        out[:, meeting] = _crossing(leaders, segments[meeting], bounds[meeting])
         return out
     ax, ay = leaders[:, 0, None], leaders[:, 1, None]
     rx, ry = leaders[:, 2, None] - ax, leaders[:, 3, None] - ay
@@ -435,11 +465,15 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     (2, True)
     """
     segments = _segments(lines)
+    segment_bounds = _bounds(segments)
     arrows = _segments(vectors)
+    arrow_bounds = _bounds(arrows)
     rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
+    rectangle_bounds = _bounds(rectangles)
     placed: list[PlacedLabel] = []
-    taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1)
+    taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1), their own bounds
     drawn_leaders = np.empty((0, 4))        # placed leaders (x0, y0, x1, y1)
+    leader_bounds = np.empty((0, 4))        # and their bounds
     for request in requests:
         width, ascent, descent = runs_extent(request.runs, request.size)
         ax, ay = request.anchor
@@ -451,15 +485,6 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         for batch, distance, directions, base in _CANDIDATES:
             boxes = _boxes((ax, ay), directions, request.mark_radius + distance, half_w,
                            half_h)
-            free = np.ones(len(boxes), dtype=bool)
-            if len(taken):   # widened by the gap kept between labels; touching counts
-                free = ~np.any((boxes[:, 0, None] - LABEL_GAP <= taken[:, 2])
-                               & (taken[:, 0] <= boxes[:, 2, None] + LABEL_GAP)
-                               & (boxes[:, 1, None] - LABEL_GAP / 2 <= taken[:, 3])
-                               & (taken[:, 1] <= boxes[:, 3, None] + LABEL_GAP / 2), axis=1)
-            region = (boxes[:, 0].min(), boxes[:, 1].min(), boxes[:, 2].max(),
-                      boxes[:, 3].max())
-            before = drawn_leaders[_meeting(drawn_leaders, region)]   # leaders drawn before
             # what a clean spot costs: its distance and its side; anything in the way makes a
             # spot not clean (a leader may cross thin lines: construction lines, links)
             clean = base + CLEAN_SLACK
@@ -467,37 +492,71 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
                 ux, uy = directions[0], directions[1]
                 clean = clean + LEAN_COST * (1.0 - ux * request.lean[0] - uy * request.lean[1])
             cost = clean - CLEAN_SLACK
-            near = segments[_meeting(segments, region)]
-            if len(near) or len(before):    # the lines under each spot; no label on a leader
-                lengths = _clipped_lengths(np.concatenate((near, before)), boxes, len(near))
-                cost = cost + LINE_COST * lengths[0]
-                free &= lengths[1] <= 0.0
-            under = rectangles[_meeting(rectangles, region)]
-            if len(under):
-                cost = cost + AREA_COST * np.maximum(
-                    _overlap_areas(under, boxes) - _overlap_areas(own_mark, boxes), 0.0)
-            if bounds is not None:
-                cost = cost + OUTSIDE_COST * ((boxes[:, 0] < bounds[0]) | (boxes[:, 1] < bounds[1])
-                                              | (boxes[:, 2] > bounds[2])
-                                              | (boxes[:, 3] > bounds[3]))
-            # the leaders the spots that could still win would need
-            far = (distance > LEADER_DISTANCE) & free
+            # only the spots that can win are costed: those clear of the labels placed (their
+            # boxes widened by the gap kept between labels; touching counts) and, once a spot
+            # is found, cheaper than it before any obstacle's cost is added
+            if len(taken):
+                low = boxes[:, :2] + _GAP_LOW
+                high = boxes[:, 2:] + _GAP_HIGH
+                contending = ~np.any((low[:, 0, None] <= taken[:, 2])
+                                     & (taken[:, 0] <= high[:, 0, None])
+                                     & (low[:, 1, None] <= taken[:, 3])
+                                     & (taken[:, 1] <= high[:, 1, None]), axis=1)
+            else:
+                contending = np.ones(len(boxes), dtype=bool)
             if best is not None:
-                far &= cost < best[0]
-            if far.any():
-                leaders = _leaders((ax, ay), boxes[far])
-                extra = np.zeros(len(boxes))
-                # leaders drawn before and arrows crossed, at once
-                close = arrows[_meeting(arrows, region)]
-                weights = np.concatenate((np.full(len(before), CLASH_COST),
-                                          np.full(len(close), VECTOR_CROSSING_COST)))
-                extra[far] = _crossing(leaders, np.concatenate((before, close))) @ weights
-                others = taken[_meeting(taken, region)]
-                if len(others):              # through another label: only where nothing else
-                    extra[far] += CLASH_COST * _through(leaders, others)
-                cost = cost + extra
+                contending &= cost < best[0]
+            chosen = np.flatnonzero(contending)
+            table = np.full(len(boxes), np.inf)
+            if len(chosen):
+                spots = boxes[chosen]
+                cost = cost[chosen]
+                free = np.ones(len(chosen), dtype=bool)
+                # the region of the spots costed and of the leaders they would need
+                low = spots[:, :2].min(axis=0)
+                high = spots[:, 2:].max(axis=0)
+                region = (min(low[0], ax), min(low[1], ay), max(high[0], ax), max(high[1], ay))
+                meeting = _meeting(leader_bounds, region)
+                before, before_bounds = drawn_leaders[meeting], leader_bounds[meeting]
+                meeting = _meeting(segment_bounds, region)
+                near = segments[meeting]
+                if len(near) or len(before):  # the lines under each spot; no label on a leader
+                    lengths = _clipped_lengths(np.concatenate((near, before)), spots, len(near),
+                                               np.concatenate((segment_bounds[meeting],
+                                                               before_bounds)))
+                    cost = cost + LINE_COST * lengths[0]
+                    free &= lengths[1] <= 0.0
+                under = rectangles[_meeting(rectangle_bounds, region)]
+                if len(under):
+                    cost = cost + AREA_COST * np.maximum(
+                        _overlap_areas(under, spots) - _overlap_areas(own_mark, spots), 0.0)
+                if bounds is not None:
+                    cost = cost + OUTSIDE_COST * ((spots[:, 0] < bounds[0])
+                                                  | (spots[:, 1] < bounds[1])
+                                                  | (spots[:, 2] > bounds[2])
+                                                  | (spots[:, 3] > bounds[3]))
+                # the leaders the spots that could still win would need
+                far = (distance[chosen] > LEADER_DISTANCE) & free
+                if best is not None:
+                    far &= cost < best[0]
+                if far.any():
+                    leaders = _leaders((ax, ay), spots[far])
+                    extra = np.zeros(len(spots))
+                    # leaders drawn before and arrows crossed, at once
+                    meeting = _meeting(arrow_bounds, region)
+                    close = arrows[meeting]
+                    weights = np.concatenate((np.full(len(before), CLASH_COST),
+                                              np.full(len(close), VECTOR_CROSSING_COST)))
+                    extra[far] = _crossing(leaders, np.concatenate((before, close)),
+                                           np.concatenate((before_bounds,
+                                                           arrow_bounds[meeting]))) @ weights
+                    others = taken[_meeting(taken, region)]
+                    if len(others):          # through another label: only where nothing else
+                        extra[far] += CLASH_COST * _through(leaders, others)
+                    cost = cost + extra
+                table[chosen] = np.where(free, cost, np.inf)
             # per distance of the batch, its cheapest free candidate (the first of equals)
-            table = np.where(free, cost, np.inf).reshape(len(batch), len(DIRECTIONS))
+            table = table.reshape(len(batch), len(DIRECTIONS))
             picks = table.argmin(axis=1)
             lowest = table[np.arange(len(batch)), picks].tolist()
             settled = False
@@ -522,8 +581,9 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         far = best[2] > LEADER_DISTANCE
         taken = np.vstack((taken, [spot]))
         if far:
-            drawn_leaders = np.vstack((drawn_leaders,
-                                       _leaders((ax, ay), np.asarray([spot]))))
+            leader = _leaders((ax, ay), np.asarray([spot]))
+            drawn_leaders = np.vstack((drawn_leaders, leader))
+            leader_bounds = np.vstack((leader_bounds, _bounds(leader)))
         placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
                                   (round(baseline[0], 2), round(baseline[1], 2)),
                                   tuple(round(v, 2) for v in spot), far, request.css, tidy))
