@@ -94,3 +94,25 @@ def test_a_keys_broken_exercise_is_told_with_the_keys_source():
     with pytest.raises(SpecError) as caught:
         key_exercise({"exercise": {"title": "x"}, "source": "variant-07.toml"})
     assert str(caught.value).startswith("variant-07.toml: ")
+
+
+# -- the drawing data of the page --------------------------------------------------------------
+def test_a_points_mistake_is_told_in_one_sentence():
+    from planmethod.grading.plan_points import mistake_sentence
+
+    assert mistake_sentence(["sense"]) == (
+        "it lies where the construction puts it when the crank's sense of rotation was "
+        "reversed (the plan is turned 180°)")
+
+
+def test_a_frame_of_an_acceleration_plan_alone_with_no_radii_or_mistakes_given():
+    """A key without a velocity plan still gives its acceleration plan; a point without a
+    tolerance gets the default disc (0.5 mm), and a plan without mistakes' positions none."""
+    from planmethod.grading.plan_points import drawing_frame
+
+    key = {"plans": {"acceleration": {
+        "pole": "π", "scale": 2.0, "unit": "(m/s²)/mm", "tolerance_mm": {},
+        "points_mm": {"π": [0, 0], "b": [3.0, 4.0]}, "steps": []}}}
+    assert drawing_frame(key) == {"acceleration": {
+        "pole": "π", "scale": "2", "unit": "(m/s²)/mm", "points": {"b": [3.0, 4.0, 0.5]},
+        "required": ["b"], "mistakes": {}}}
