@@ -116,3 +116,14 @@ def test_a_frame_of_an_acceleration_plan_alone_with_no_radii_or_mistakes_given()
     assert drawing_frame(key) == {"acceleration": {
         "pole": "π", "scale": "2", "unit": "(m/s²)/mm", "points": {"b": [3.0, 4.0, 0.5]},
         "required": ["b"], "mistakes": {}}}
+
+
+def test_a_reversed_sense_of_the_right_magnitude_says_the_magnitude_is_right():
+    """Not 'the magnitude 2 is 0.0 % low' (found by a mutant of the high/low boundary)."""
+    graded = grade_question({"id": "x", "unit": "m", "value": -2.0, "tolerance": 0.01,
+                             "signed": True}, 2.005)
+    assert graded["feedback"] == ("x = 2.005 m: wrong — the sense is reversed (the right answer "
+                                  "is negative, -2 m ± 0.01) and the magnitude 2.005 is right")
+    graded = grade_question({"id": "x", "unit": "m", "value": -2.0, "tolerance": 0.01,
+                             "signed": True}, 2.02)
+    assert graded["feedback"].endswith("and the magnitude 2.02 is 1.0 % high")

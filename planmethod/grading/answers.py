@@ -397,9 +397,11 @@ def grade_question(question: Mapping[str, Any], raw: Any,
         result["hint"] = f"{shown}: wrong — {note}"
         return result
     if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
+        size = ("right" if abs(abs(answer) - abs(value)) <= tolerance
+                else _off(abs(answer), abs(value)))
         text = (f"{shown}: wrong — the sense is reversed (the right answer is "
                 f"{_direction(question['id'], value)}, {right}) and the magnitude "
-                f"{_number_text(abs(answer))} is {_off(abs(answer), abs(value))}")
+                f"{_number_text(abs(answer))} is {size}")
     else:
         tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")
         off_by = f"{_number_text(abs(answer - value))} {unit}".rstrip()

@@ -106,7 +106,9 @@
       result.feedback = shown + ": wrong — the sense is reversed (the right answer is " +
         (senseWords[q.id] || ["positive", "negative"])[q.value > 0 ? 0 : 1] + ", " + right +
         ") and the magnitude " +
-        numberText(Math.abs(answer)) + " is " + off(Math.abs(answer), Math.abs(q.value));
+        numberText(Math.abs(answer)) + " is " +
+        (Math.abs(Math.abs(answer) - Math.abs(q.value)) <= q.tolerance ? "right"
+          : off(Math.abs(answer), Math.abs(q.value)));
     } else {
       const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
       result.feedback = shown + ": wrong — " + off(answer, q.value) + " (off by " +
