@@ -127,3 +127,28 @@ def test_a_reversed_sense_of_the_right_magnitude_says_the_magnitude_is_right():
     graded = grade_question({"id": "x", "unit": "m", "value": -2.0, "tolerance": 0.01,
                              "signed": True}, 2.02)
     assert graded["feedback"].endswith("and the magnitude 2.02 is 1.0 % high")
+
+
+def test_a_quantity_without_sense_words_is_positive_or_negative():
+    from planmethod.grading.answers import sense_words
+
+    assert sense_words("not_a_quantity") == ("positive", "negative")
+    assert sense_words("x") == ("positive", "negative")
+
+
+@pytest.mark.parametrize("text", ["v_C,student\n5.2\n", "student,v_C\n,5.2\n"])
+def test_a_csv_row_without_its_student_is_refused_at_its_line(tmp_path, text):
+    path = tmp_path / "answers.csv"
+    path.write_text(text)
+    assert _refusal(path) == f"{path}: line 2: no student id (column 'student')"
+
+
+def test_a_plans_sheet_holds_the_pole_where_every_point_lies_to_one_side():
+    """The pole (0, 0) is on the sheet even when all points lie to its right and above: with
+    a margin of 0.5 mm the sheet starts at −10 mm, not at 0."""
+    from planmethod.grading.plan_points import plan_extent
+
+    right = [{"velocity": {"points": {"b": [12.0, 3.0, 0.5]}}}]
+    assert plan_extent(right, "velocity", margin=0.5) == (-10.0, -10.0, 20.0, 10.0)
+    left = [{"velocity": {"points": {"b": [-12.0, -3.0, 0.5]}}}]
+    assert plan_extent(left, "velocity", margin=0.5) == (-20.0, -10.0, 10.0, 10.0)
