@@ -367,14 +367,15 @@ def _shares(segments: np.ndarray, boxes: np.ndarray, piece: np.ndarray, which: n
     ...         np.array([0]))
     array([0.2])
     """
-    ends = np.take(segments, piece, axis=0).T
+    # the pairs' coordinates as contiguous rows (x, y), so that every step runs on whole rows
+    ends = np.take(np.ascontiguousarray(segments.T), piece, axis=1)
+    box = np.take(np.ascontiguousarray(boxes.T), which, axis=1)
     start = ends[:2]
     delta = ends[2:] - start
-    box = np.take(boxes, which, axis=0).T
     # along each axis the t (0 to 1 along the segment) where it meets the box's low edge and
     # its high edge; the nearer bounds t from below, the farther from above. A segment
-    # parallel to an axis gives ±inf or nan there, which bounds nothing (fmax and fmin
-    # pass over nan)
+    # parallel to an axis gives ±inf or nan there: nan bounds nothing (fmax and fmin pass
+    # over it), and beyond an edge both are +inf (or both -inf), so nothing of it is inside
     before = start - box[:2]
     after = box[2:] - start
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -383,8 +384,6 @@ def _shares(segments: np.ndarray, boxes: np.ndarray, piece: np.ndarray, which: n
     low = np.fmax(np.minimum(at_low, at_high), 0.0)
     high = np.fmin(np.maximum(at_low, at_high), 1.0)
     share = np.fmin(high[0], high[1]) - np.fmax(low[0], low[1])
-    outside = (delta == 0) & ((before < 0) | (after < 0))   # parallel to an edge, beyond it
-    share[outside[0] | outside[1]] = 0.0
     return np.maximum(share, 0.0)
 
 
@@ -443,12 +442,15 @@ def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | No
         return out
     ax, ay = leaders[:, 0, None], leaders[:, 1, None]
     rx, ry = leaders[:, 2, None] - ax, leaders[:, 3, None] - ay
+    if (ax == ax[0]).all() and (ay == ay[0]).all():   # from one point: one row does for all
+        ax, ay = ax[:1], ay[:1]
     cx, cy = segments[:, 0], segments[:, 1]
     sx, sy = segments[:, 2] - cx, segments[:, 3] - cy
+    away_x, away_y = cx - ax, cy - ay
     denominator = rx * sy - ry * sx
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = ((cx - ax) * sy - (cy - ay) * sx) / denominator
-        u = ((cx - ax) * ry - (cy - ay) * rx) / denominator
+        t = (away_x * sy - away_y * sx) / denominator
+        u = (away_x * ry - away_y * rx) / denominator
     length = np.hypot(rx, ry)
     near = LEADER_START / np.maximum(length, 1e-9)      # where it leaves its point
     return (np.abs(denominator) > 1e-12) & (t > near) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
