@@ -18,8 +18,10 @@ drawn lines inside it, the least area of point marks and other text under it and
 distance wins (ties: the first direction tried, up-right first). The costs are plain array
 arithmetic, every candidate of the first three distances at once (then the rest): the drawn
 lines as straight pieces clipped to each box, the marks and text as rectangles (a round mark
-as the square of its area). Labels are placed in a fixed order, so the result is
-deterministic. A label pushed far from its point gets a thin leader.
+as the square of its area). The first three distances need no leader, so what their spots
+cost before the labels placed come in is costed for all labels together, up front. Labels
+are placed in a fixed order, so the result is deterministic. A label pushed far from its
+point gets a thin leader.
 
 Examples
 --------
@@ -287,6 +289,15 @@ def _bounds(items: np.ndarray) -> np.ndarray:
                            np.maximum(items[:, :2], items[:, 2:])), axis=1)
 
 
+def _lengths(segments: np.ndarray) -> np.ndarray:
+    """The length of each segment (x0, y0, x1, y1).
+
+    >>> _lengths(np.array([[0.0, 0, 3, 4]])).tolist()
+    [5.0]
+    """
+    return np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
+
+
 def _meeting(bounds: np.ndarray, region) -> np.ndarray:
     """Which of the segments' or rectangles' ``bounds`` (see :func:`_bounds`) meet the region
     (x0, y0, x1, y1)."""
@@ -308,8 +319,7 @@ def _clipped_lengths(segments: np.ndarray, boxes: np.ndarray, split: int | None 
     piece, which, share = _inside(segments, boxes, bounds)
     if not len(piece):
         return np.zeros(len(boxes)) if split is None else np.zeros((2, len(boxes)))
-    inside = share * np.hypot(segments[piece, 2] - segments[piece, 0],
-                              segments[piece, 3] - segments[piece, 1])
+    inside = share * _lengths(segments)[piece]
     if split is None:
         return np.bincount(which, weights=inside, minlength=len(boxes))
     # the segments from ``split`` on count in a second row: bins len(boxes) onwards
@@ -345,14 +355,27 @@ def _inside(segments: np.ndarray, boxes: np.ndarray, bounds: np.ndarray | None =
         piece, which = np.nonzero(meet)
     if not len(piece):
         return piece, which, np.zeros(0)
-    ends = np.take(segments, piece, axis=0).T
+    return piece, which, _shares(segments, boxes, piece, which)
+
+
+def _shares(segments: np.ndarray, boxes: np.ndarray, piece: np.ndarray, which: np.ndarray
+            ) -> np.ndarray:
+    """The share (0 to 1) of each segment ``piece`` inside its box ``which`` (Liang–Barsky
+    clipping of the pairs given, which must not be empty).
+
+    >>> _shares(np.array([[0.0, 0, 10, 0]]), np.array([[4.0, -1, 6, 1]]), np.array([0]),
+    ...         np.array([0]))
+    array([0.2])
+    """
+    # the pairs' coordinates as contiguous rows (x, y), so that every step runs on whole rows
+    ends = np.take(np.ascontiguousarray(segments.T), piece, axis=1)
+    box = np.take(np.ascontiguousarray(boxes.T), which, axis=1)
     start = ends[:2]
     delta = ends[2:] - start
-    box = np.take(boxes, which, axis=0).T
     # along each axis the t (0 to 1 along the segment) where it meets the box's low edge and
     # its high edge; the nearer bounds t from below, the farther from above. A segment
-    # parallel to an axis gives ±inf or nan there, which bounds nothing (fmax and fmin
-    # pass over nan)
+    # parallel to an axis gives ±inf or nan there: nan bounds nothing (fmax and fmin pass
+    # over it), and beyond an edge both are +inf (or both -inf), so nothing of it is inside
     before = start - box[:2]
     after = box[2:] - start
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -361,9 +384,7 @@ def _inside(segments: np.ndarray, boxes: np.ndarray, bounds: np.ndarray | None =
     low = np.fmax(np.minimum(at_low, at_high), 0.0)
     high = np.fmin(np.maximum(at_low, at_high), 1.0)
     share = np.fmin(high[0], high[1]) - np.fmax(low[0], low[1])
-    outside = (delta == 0) & ((before < 0) | (after < 0))   # parallel to an edge, beyond it
-    share[outside[0] | outside[1]] = 0.0
-    return piece, which, np.maximum(share, 0.0)
+    return np.maximum(share, 0.0)
 
 
 def drawn_length(lines: Sequence, boxes: Sequence) -> np.ndarray:
@@ -421,15 +442,115 @@ def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | No
         return out
     ax, ay = leaders[:, 0, None], leaders[:, 1, None]
     rx, ry = leaders[:, 2, None] - ax, leaders[:, 3, None] - ay
+    if (ax == ax[0]).all() and (ay == ay[0]).all():   # from one point: one row does for all
+        ax, ay = ax[:1], ay[:1]
     cx, cy = segments[:, 0], segments[:, 1]
     sx, sy = segments[:, 2] - cx, segments[:, 3] - cy
+    away_x, away_y = cx - ax, cy - ay
     denominator = rx * sy - ry * sx
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = ((cx - ax) * sy - (cy - ay) * sx) / denominator
-        u = ((cx - ax) * ry - (cy - ay) * rx) / denominator
+        t = (away_x * sy - away_y * sx) / denominator
+        u = (away_x * ry - away_y * rx) / denominator
     length = np.hypot(rx, ry)
     near = LEADER_START / np.maximum(length, 1e-9)      # where it leaves its point
     return (np.abs(denominator) > 1e-12) & (t > near) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+
+
+def _clear(boxes: np.ndarray, taken: np.ndarray) -> np.ndarray:
+    """Which boxes (x0, y0, x1, y1) are clear of the labels placed in ``taken``: their boxes
+    widened by the gap kept between labels, touching counting.
+
+    >>> _clear(np.array([[0.0, 0, 10, 10], [30, 0, 40, 10]]), np.array([[12.0, 0, 20, 10]]))
+    array([False,  True])
+    """
+    if not len(taken):
+        return np.ones(len(boxes), dtype=bool)
+    low = boxes[:, :2] + _GAP_LOW
+    high = boxes[:, 2:] + _GAP_HIGH
+    return ~np.any((low[:, 0, None] <= taken[:, 2]) & (taken[:, 0] <= high[:, 0, None])
+                   & (low[:, 1, None] <= taken[:, 3]) & (taken[:, 1] <= high[:, 1, None]),
+                   axis=1)
+
+
+def _near_spots(anchors: np.ndarray, reaches: np.ndarray, halves: np.ndarray,
+                leans: np.ndarray, segments: np.ndarray, segment_bounds: np.ndarray,
+                rectangles: np.ndarray, bounds: Sequence[float] | None
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The spots of the first batch of distances (no leader there) for every label at once,
+    with what each costs before the labels and leaders placed come in.
+
+    Parameters
+    ----------
+    anchors
+        Each label's point (x, y), one row a label.
+    reaches
+        Each label's mark radius (px), where its distances start.
+    halves
+        Each label's box half width and half height, padding included.
+    leans
+        Each label's preferred side (x, y), or nan where it has none.
+    segments, segment_bounds
+        The drawn lines' straight pieces and their bounds (see :func:`_bounds`).
+    rectangles
+        The marks and text (x0, y0, x1, y1) whose area under a spot counts.
+    bounds
+        The box the labels keep within where they can, if any.
+
+    Returns
+    -------
+    boxes, clean, cost
+        Per label (first axis) and candidate: the box (x0, y0, x1, y1), what a clean spot
+        there costs and what the spot costs, each the same float as when costed alone.
+    """
+    _, distance, (ux, uy, sx, sy), base = _CANDIDATES[0]
+    count, per_label = len(anchors), len(distance)
+    half_w, half_h = halves[:, 0, None], halves[:, 1, None]
+    reach = reaches[:, None] + distance
+    cx = anchors[:, 0, None] + ux * reach + sx * half_w
+    cy = anchors[:, 1, None] + uy * reach + sy * half_h
+    # each edge of every box as one contiguous (label, spot) block
+    corners = np.array((cx - half_w, cy - half_h, cx + half_w, cy + half_h))
+    left, top, right, bottom = corners
+    flat = corners.reshape(4, -1).T
+    clean = np.broadcast_to(base + CLEAN_SLACK, (count, per_label))
+    leaning = ~np.isnan(leans[:, 0])
+    if leaning.any():                   # the preferred side first, among equals
+        clean = np.where(leaning[:, None], clean + LEAN_COST * (
+            1.0 - ux * leans[:, 0, None] - uy * leans[:, 1, None]), clean)
+    cost = clean - CLEAN_SLACK
+    if len(segments):  # the lines under each spot: the pieces near a label, then per spot
+        label, piece = np.nonzero((segment_bounds[:, 0] <= right.max(axis=1)[:, None])
+                                  & (segment_bounds[:, 2] >= left.min(axis=1)[:, None])
+                                  & (segment_bounds[:, 1] <= bottom.max(axis=1)[:, None])
+                                  & (segment_bounds[:, 3] >= top.min(axis=1)[:, None]))
+        # pairs by label, piece, then spot: each spot's pieces in their order
+        near = np.take(np.ascontiguousarray(segment_bounds.T), piece, axis=1)[:, :, None]
+        meet = near[0] <= np.take(right, label, axis=0)
+        meet &= near[2] >= np.take(left, label, axis=0)
+        meet &= near[1] <= np.take(bottom, label, axis=0)
+        meet &= near[3] >= np.take(top, label, axis=0)
+        rows, spots = np.nonzero(meet)
+        piece, which = piece[rows], label[rows] * per_label + spots
+        lengths = np.zeros(len(flat))
+        if len(piece):
+            inside = _shares(segments, flat, piece, which) * _lengths(segments)[piece]
+            lengths = np.bincount(which, weights=inside, minlength=len(flat))
+        cost = cost + LINE_COST * lengths.reshape(count, per_label)
+    if len(rectangles):
+        own = (reaches + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
+        own_low = anchors - own[:, None]
+        own_high = anchors + own[:, None]
+        width = (np.minimum(own_high[:, 0, None], right)
+                 - np.maximum(own_low[:, 0, None], left))
+        height = (np.minimum(own_high[:, 1, None], bottom)
+                  - np.maximum(own_low[:, 1, None], top))
+        mine = np.maximum(width, 0.0) * np.maximum(height, 0.0)
+        cost = cost + AREA_COST * np.maximum(
+            _overlap_areas(rectangles, flat).reshape(count, per_label) - mine, 0.0)
+    if bounds is not None:
+        cost = cost + OUTSIDE_COST * ((left < bounds[0]) | (top < bounds[1])
+                                      | (right > bounds[2]) | (bottom > bounds[3]))
+    return np.moveaxis(corners, 0, -1), clean, cost
 
 
 def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence, *,
@@ -474,41 +595,60 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1), their own bounds
     drawn_leaders = np.empty((0, 4))        # placed leaders (x0, y0, x1, y1)
     leader_bounds = np.empty((0, 4))        # and their bounds
-    for request in requests:
-        width, ascent, descent = runs_extent(request.runs, request.size)
+    extents = [runs_extent(request.runs, request.size) for request in requests]
+    halves = [(width / 2 + PADDING, (ascent + descent) / 2 + PADDING)
+              for width, ascent, descent in extents]
+    # the first distances need no leader, so what their spots cost before the labels placed
+    # come in is costed for every label at once
+    near_boxes, near_clean, near_cost = _near_spots(
+        np.array([request.anchor for request in requests], dtype=float).reshape(-1, 2),
+        np.array([request.mark_radius for request in requests], dtype=float),
+        np.array(halves, dtype=float).reshape(-1, 2),
+        np.array([request.lean if request.lean is not None else (np.nan, np.nan)
+                  for request in requests], dtype=float).reshape(-1, 2),
+        segments, segment_bounds, rectangles, bounds)
+    for number, request in enumerate(requests):
+        ascent = extents[number][1]
         ax, ay = request.anchor
-        half_w, half_h = width / 2 + PADDING, (ascent + descent) / 2 + PADDING
+        half_w, half_h = halves[number]
         # the label's own round mark, which it may touch: as the square of its area
         own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
         best = None                         # (cost, box, distance, what a clean spot costs)
         for batch, distance, directions, base in _CANDIDATES:
-            boxes = _boxes((ax, ay), directions, request.mark_radius + distance, half_w,
-                           half_h)
-            # what a clean spot costs: its distance and its side; anything in the way makes a
-            # spot not clean (a leader may cross thin lines: construction lines, links)
-            clean = base + CLEAN_SLACK
-            if request.lean is not None:      # the preferred side first, among equals
-                ux, uy = directions[0], directions[1]
-                clean = clean + LEAN_COST * (1.0 - ux * request.lean[0] - uy * request.lean[1])
-            cost = clean - CLEAN_SLACK
-            # only the spots that can win are costed: those clear of the labels placed (their
-            # boxes widened by the gap kept between labels; touching counts) and, once a spot
-            # is found, cheaper than it before any obstacle's cost is added
-            if len(taken):
-                low = boxes[:, :2] + _GAP_LOW
-                high = boxes[:, 2:] + _GAP_HIGH
-                contending = ~np.any((low[:, 0, None] <= taken[:, 2])
-                                     & (taken[:, 0] <= high[:, 0, None])
-                                     & (low[:, 1, None] <= taken[:, 3])
-                                     & (taken[:, 1] <= high[:, 1, None]), axis=1)
+            first = batch is _BATCHES[0]
+            if first:   # costed up front: only the labels and leaders placed since come in
+                boxes, clean = near_boxes[number], near_clean[number]
+                contending = _clear(boxes, taken)
+                if len(drawn_leaders):      # no label on a leader
+                    low = boxes[:, :2].min(axis=0)
+                    high = boxes[:, 2:].max(axis=0)
+                    meeting = _meeting(leader_bounds, (low[0], low[1], high[0], high[1]))
+                    if meeting.any():
+                        contending &= _clipped_lengths(drawn_leaders[meeting], boxes,
+                                                       bounds=leader_bounds[meeting]) <= 0.0
+                table = np.where(contending, near_cost[number], np.inf)
             else:
-                contending = np.ones(len(boxes), dtype=bool)
-            if best is not None:
-                contending &= cost < best[0]
-            chosen = np.flatnonzero(contending)
-            table = np.full(len(boxes), np.inf)
-            if len(chosen):
+                boxes = _boxes((ax, ay), directions, request.mark_radius + distance, half_w,
+                               half_h)
+                # what a clean spot costs: its distance and its side; anything in the way
+                # makes a spot not clean (a leader may cross thin lines: construction lines,
+                # links)
+                clean = base + CLEAN_SLACK
+                if request.lean is not None:      # the preferred side first, among equals
+                    ux, uy = directions[0], directions[1]
+                    clean = clean + LEAN_COST * (1.0 - ux * request.lean[0]
+                                                 - uy * request.lean[1])
+                cost = clean - CLEAN_SLACK
+                # only the spots that can win are costed: those clear of the labels placed
+                # and, once a spot is found, cheaper than it before any obstacle's cost is
+                # added
+                contending = _clear(boxes, taken)
+                if best is not None:
+                    contending &= cost < best[0]
+                chosen = np.flatnonzero(contending)
+                table = np.full(len(boxes), np.inf)
+            if not first and len(chosen):
                 spots = boxes[chosen]
                 cost = cost[chosen]
                 free = np.ones(len(chosen), dtype=bool)
