@@ -252,6 +252,15 @@ def test_solve_gives_the_reports_of_solve_json_with_the_plans(server):
     # the page shows each quantity as the course writes it: the compressor's rod BC is link 2
     assert payload["symbols"]["omega_BC"] == "ω₂" and payload["symbols"]["v_C"] == "v_C"
     assert set(payload["symbols"]) == {check["quantity"] for check in payload["report"]["checks"]}
+    assert payload["drive_symbols"] == {"phi": "φ₁", "omega": "ω₁", "epsilon": "ε₁"}
+
+
+def test_the_drives_symbols_follow_the_cranks_number(server):
+    """Where the course numbers the frame 1, the crank is 2: the Drive box says φ₂, ω₂, ε₂."""
+    text = read_text(COMPRESSOR) + "\n[notation]\nframe = 1\n"
+    status, payload, _ = request(server, "POST", "/api/solve", text)
+    assert status == 200
+    assert payload["drive_symbols"] == {"phi": "φ₂", "omega": "ω₂", "epsilon": "ε₂"}
 
 
 def test_open_shows_a_file_in_link_frames_as_drawn(server):

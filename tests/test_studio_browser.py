@@ -220,4 +220,9 @@ def test_a_typed_angle_is_saved_as_typed_and_the_table_speaks_the_course(studio_
                                       "cells => cells.map(c => c.textContent)")
     assert names and not [name for name in names if "_" in name and name[0] in "ωε"]
     assert not [name for name in names if "omega" in name or "@" in name]
+    # the drive's fields and the crank's arrow carry the crank's own symbols
+    drive = page.eval_on_selector_all("[data-drive-symbol]",
+                                      "nodes => nodes.map(n => n.textContent)")
+    assert set(drive) == {"φ₁", "ω₁", "ε₁"}
+    assert page.text_content("#editor text.omega") == "ω₁"
     assert errors == []

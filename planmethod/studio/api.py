@@ -154,10 +154,11 @@ def _exercise(text: str, file: str | None = None):
 
 def solve(text: str) -> dict[str, Any]:
     """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
-    "symbols": …, "server_ms": …}``: the report of ``planmethod solve --json``, the plans as the
-    command line draws them (SVG for an HTML page: no XML declaration) and each checked
-    quantity's course symbol under the exercise's numbering (``omega_BC`` → ω₂)."""
-    from ..numbering import course_numbers
+    "symbols": …, "drive_symbols": …, "server_ms": …}``: the report of ``planmethod solve
+    --json``, the plans as the command line draws them (SVG for an HTML page: no XML
+    declaration), each checked quantity's course symbol under the exercise's numbering
+    (``omega_BC`` → ω₂) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁)."""
+    from ..numbering import course_numbers, course_symbols
     from ..render.svg import plan_svg, position_svg
     from ..render.workbook import inline_svg
     from ..report import analyse, report_dict
@@ -176,7 +177,9 @@ def solve(text: str) -> dict[str, Any]:
     numbers = course_numbers(analysis.exercise.mechanism)
     symbols = {check["quantity"]: symbol(check["quantity"], numbers)
                for check in report["checks"]}
+    drive = course_symbols(analysis.exercise.mechanism)
     return {"report": report, "svg": svg, "symbols": symbols,
+            "drive_symbols": {name: drive[name] for name in ("phi", "omega", "epsilon")},
             "server_ms": round(1000 * (time.perf_counter() - start), 2)}
 
 
