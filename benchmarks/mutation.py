@@ -48,6 +48,8 @@ OUTCOMES = {1: "killed", 3: "killed", 0: "survived", 5: "no tests", 33: "no test
 #: the outcomes counted in the report's table, in its order
 COLUMNS = ("killed", "survived", "timeout", "suspicious", "skipped", "no tests",
            "not checked")
+#: the outcomes of mutants whose tests did not run: not counted among those run
+NOT_RUN = ("not checked", "skipped", "no tests")
 
 
 def outcome(exit_code: int | None) -> str:
@@ -100,8 +102,17 @@ def _table(by_module: dict[str, Counter]) -> list[str]:
     return lines
 
 
+def ran(counts: Counter) -> int:
+    """How many of the mutants counted had their tests run.
+
+    >>> ran(Counter({"killed": 3, "survived": 1, "not checked": 9}))
+    4
+    """
+    return sum(counts[c] for c in COLUMNS if c not in NOT_RUN)
+
+
 def _row(name: str, counts: Counter) -> str:
-    run = sum(counts[c] for c in COLUMNS if c not in ("not checked", "skipped", "no tests"))
+    run = ran(counts)
     share = f"{100 * counts['survived'] / run:.1f}" if run else "–"
     return (f"| {name} | {sum(counts.values())} | "
             + " | ".join(str(counts[c]) for c in COLUMNS) + f" | {share} |")
@@ -132,7 +143,7 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND) -> tup
         if (RESULTS / BASELINE).exists() else []
     missing = [m for m in survivors if note_for(m, equivalent) is None]
     total: Counter = Counter(outcome(code) for code in results.values())
-    run = sum(total[c] for c in COLUMNS if c not in ("not checked", "skipped", "no tests"))
+    run = ran(total)
     share = total["survived"] / run if run else 0.0
     since = [m for m in first if results.get(m) is not None and outcome(results[m]) == "killed"]
     about = machine()
