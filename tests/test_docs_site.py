@@ -3,7 +3,7 @@
 ``python -m sphinx -W --keep-going -n`` on docs/: a broken link or reference, a page outside
 the table of contents, or a function of the API reference whose docstring does not list its
 parameters (numpydoc's validation) fails the build. Skipped, with the reason, where the ``docs``
-extra is not installed (``pip install ".[docs]"``; .ci/run installs it).
+extra is not installed (``pip install ".[docs]"``; the test extra has it too).
 """
 
 from __future__ import annotations
