@@ -578,13 +578,27 @@ _SVGWRITE_DEFAULTS = {"line": {"x1": "0", "y1": "0", "x2": "0", "y2": "0"},
                       "ellipse": {"cx": "0", "cy": "0", "rx": "1", "ry": "1"}}
 
 
+#: a character ElementTree escapes in an attribute's value (most values have none)
+_ATTRIBUTE_SPECIAL = re.compile('[&<>"\r\n\t]')
+
+
 def _escape_text(text: str) -> str:
-    """Text as XML character data (what ElementTree escapes in it)."""
+    """Text as XML character data (what ElementTree escapes in it).
+
+    >>> _escape_text("a<b & c>d")
+    'a&lt;b &amp; c&gt;d'
+    """
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
 def _escape_attribute(text: str) -> str:
-    """An attribute's value as ElementTree writes it."""
+    """An attribute's value as ElementTree writes it.
+
+    >>> _escape_attribute('x="1" & 2')
+    'x=&quot;1&quot; &amp; 2'
+    """
+    if _ATTRIBUTE_SPECIAL.search(text) is None:
+        return text
     return (_escape_text(text).replace('"', "&quot;").replace("\r", "&#13;")
             .replace("\n", "&#10;").replace("\t", "&#09;"))
 
