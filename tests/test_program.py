@@ -201,6 +201,33 @@ def test_a_sweep_compiles_the_mechanism_once(path):
     assert found.compilations == 1
 
 
+@pytest.mark.parametrize("path, shared", [("exercises/compressor_slider_crank.toml", True),
+                                          ("exercises/shaper_sixbar.toml", True),
+                                          ("exercises/conveyor_sixbar.toml", False)])
+def test_a_posed_mechanism_shares_its_dyads_program(path, shared):
+    """Posed at another crank angle (drive.angle and the sketch changed), a mechanism of dyads
+    runs the program compiled for it before; a class III group follows its path from
+    drive.angle, so the conveyor's posed mechanism compiles its own."""
+    from planmethod.kinematics.solve import pose
+
+    exercise = _fresh(path, f"posed {path}")
+    solve(exercise.mechanism, stage="acceleration")
+    posed = pose(exercise.mechanism, 100.0).mechanism
+    assert posed.drive.angle == 100.0 and posed.sketch != exercise.mechanism.sketch
+    motion = solve(posed, stage="acceleration")
+    assert (model(posed).compilations == 0) is shared
+    exact = solve(exercise.mechanism, 100.0, stage="acceleration", reference=True)
+    for point in motion.mechanism.links[posed.drive.link].points:
+        assert np.allclose(motion.acceleration(point), exact.acceleration(point), rtol=1e-12,
+                           atol=0.0)
+    for link in motion.solved:
+        for point in posed.links[link].points:
+            assert np.allclose(motion.position(point), exact.position(point), rtol=1e-12,
+                               atol=1e-15)
+            assert np.allclose(motion.acceleration(point), exact.acceleration(point),
+                               rtol=1e-11, atol=1e-12)
+
+
 def test_results_are_read_only_values():
     mechanism = exercise_from_dict(fourbar()).mechanism
     motion = solve(mechanism, [0.0, 60.0])

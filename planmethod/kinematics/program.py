@@ -28,6 +28,7 @@ Branch(sign=1, reason='sketch')
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import threading
 from collections import OrderedDict
@@ -51,6 +52,27 @@ STAGES = ("position", "velocity", "acceleration")
 CACHE_SIZE = 64
 _MODELS: OrderedDict[Mechanism, Model] = OrderedDict()
 _LOCK = threading.Lock()
+
+
+#: the dyads' programs of mechanisms alike but for ``drive.angle`` and the sketch (a mechanism
+#: posed at another crank angle and the one it was posed from), most recent first
+_DYAD_PROGRAMS: OrderedDict[Mechanism, tuple[dict, threading.Lock]] = OrderedDict()
+
+
+def _dyad_programs(mechanism: Mechanism) -> tuple[dict, threading.Lock]:
+    """The programs (and their lock) that every mechanism alike but for ``drive.angle`` and
+    the sketch shares: a dyad's formulas read neither (the angles are the program's input, the
+    assembly is its branch), so their traced program is the same."""
+    key = dataclasses.replace(mechanism, sketch={},
+                              drive=dataclasses.replace(mechanism.drive, angle=0.0))
+    with _LOCK:
+        found = _DYAD_PROGRAMS.get(key)
+        if found is None:
+            found = _DYAD_PROGRAMS[key] = ({}, threading.Lock())
+        _DYAD_PROGRAMS.move_to_end(key)
+        while len(_DYAD_PROGRAMS) > CACHE_SIZE:
+            _DYAD_PROGRAMS.popitem(last=False)
+    return found
 
 
 def model(mechanism: Mechanism) -> Model:
@@ -82,6 +104,7 @@ class Model:
         self._branches: dict[tuple, dict[int, Branch]] = {}
         self._programs: dict[tuple, Compiled] = {}
         self._lock = threading.Lock()
+        self._dyad_programs = _dyad_programs(mechanism)
         #: point → the links that carry it, in file order
         self.carriers: dict[str, tuple[str, ...]] = {}
         for name, link in mechanism.links.items():
@@ -116,10 +139,14 @@ class Model:
         """The compiled program of ``groups`` up to stage ``level`` on ``branches``."""
         key = (level, tuple(group.index for group in groups),
                tuple(branches[group.index] for group in groups))
-        found = self._programs.get(key)
+        # a higher group's program follows its path from drive.angle: its model's own
+        programs, lock = ((self._programs, self._lock)
+                          if not all(group.is_dyad for group in groups)
+                          else self._dyad_programs)
+        found = programs.get(key)
         if found is None:
-            with self._lock:
-                found = self._programs.get(key)
+            with lock:
+                found = programs.get(key)
                 if found is None:
                     tracer = Tracer()
                     placements = build(self, groups, branches, level, tracer.angles(),
@@ -128,9 +155,9 @@ class Model:
                     compiled.redo = _Redo(self, level, groups, branches, compiled)
                     found = (compiled, _thetas(placements))
                     self.compilations += 1
-                    if len(self._programs) > 64:
-                        self._programs.clear()
-                    self._programs[key] = found
+                    if len(programs) > 64:
+                        programs.clear()
+                    programs[key] = found
         return found
 
     def direct(self, level: int, groups: tuple[AssurGroup, ...],
