@@ -1,7 +1,8 @@
 """The answer grader at the edges mutation testing found unchecked: one student's JSON file,
 results refused by their exact keys, the row limit, which way a wrong answer is off at 0 and
-between 0 and 1, the exact match of a question id before its case-folded one, and the entries
-of students without a key."""
+between 0 and 1, the exact match of a question id before its case-folded one, the entries
+of students without a key, what a CSV's cells are and where a bad one is, a JSON file by its
+content, and a plans sheet's margins."""
 
 from __future__ import annotations
 
@@ -134,6 +135,8 @@ def test_a_quantity_without_sense_words_is_positive_or_negative():
 
     assert sense_words("not_a_quantity") == ("positive", "negative")
     assert sense_words("x") == ("positive", "negative")
+    # a quantity of a point (no sense of its own) has the plain words too
+    assert sense_words("v_B") == ("positive", "negative")
 
 
 @pytest.mark.parametrize("text", ["v_C,student\n5.2\n", "student,v_C\n,5.2\n"])
@@ -152,3 +155,86 @@ def test_a_plans_sheet_holds_the_pole_where_every_point_lies_to_one_side():
     assert plan_extent(right, "velocity", margin=0.5) == (-10.0, -10.0, 20.0, 10.0)
     left = [{"velocity": {"points": {"b": [-12.0, -3.0, 0.5]}}}]
     assert plan_extent(left, "velocity", margin=0.5) == (-20.0, -10.0, 10.0, 10.0)
+
+
+_SIGNED = {"id": "x", "unit": "m", "value": 2.0, "tolerance": 0.5, "signed": True}
+
+
+@pytest.mark.parametrize("answer, told", [
+    pytest.param(0, "x = 0 m: wrong — 100.0 % low (off by 2 m; right: 2 m ± 0.5 = ± 25 %)",
+                 id="zero"),
+    pytest.param(0.75, "x = 0.75 m: wrong — 62.5 % low (off by 1.25 m; right: 2 m ± 0.5 = "
+                       "± 25 %)", id="below one"),
+    pytest.param(-2.5, "x = -2.5 m: wrong — the sense is reversed (the right answer is "
+                       "positive, 2 m ± 0.5) and the magnitude 2.5 is right",
+                 id="reversed, magnitude off by the tolerance"),
+])
+def test_a_signed_answer_is_reversed_only_when_its_sign_is_the_other(answer, told):
+    """0 and a value between 0 and 1 of the right sign are not a reversed sense; a reversed
+    answer whose magnitude is off by exactly the tolerance has the right magnitude."""
+    graded = grade_question(_SIGNED, answer)
+    assert graded["feedback"] == told
+
+
+def test_a_reversed_answer_of_1_for_a_negative_value_is_a_reversed_sense():
+    graded = grade_question({**_SIGNED, "value": -2.0}, 1)
+    assert graded["hint"] == "x = 1 m: wrong (the sense is reversed)"
+    assert "the sense is reversed (the right answer is negative" in graded["feedback"]
+
+
+def test_an_answer_that_overflows_is_quoted_to_40_characters():
+    text = "1" + "0" * 400          # a number beyond a float's range: not a number
+    graded = grade_question({"id": "v_C", "value": 2.0, "tolerance": 0.1}, text)
+    assert graded["hint"] == f"v_C: {text[:40]!r} is not a number"
+
+
+def test_a_csv_row_with_more_cells_than_its_header_is_refused_at_its_line(tmp_path):
+    path = tmp_path / "answers.csv"
+    path.write_text("student,v_C\ns01,5.2\ns02,5.3,7\n")
+    assert _refusal(path) == f"{path}: line 3: has 3 cells, the header 2"
+
+
+def test_a_quoted_cell_holding_a_bare_carriage_return_is_refused(tmp_path):
+    path = tmp_path / "answers.csv"
+    path.write_bytes(b'student,v_C\ns01,"5\r2"\n')
+    assert _refusal(path) == (f"{path}: line 2: a quoted cell runs on to line 2: is a "
+                              "closing quote (\") missing?")
+
+
+def test_a_json_object_is_read_as_json_whatever_the_files_suffix(tmp_path):
+    path = tmp_path / "answers.txt"
+    path.write_text(json.dumps({"s01": {"v_C": 5.2}}))
+    assert read_answers(path) == [("s01", {"v_C": 5.2})]
+
+
+def test_only_commas_semicolons_and_tabs_separate_cells():
+    """A letter is never taken for the separator, however regular its use."""
+    from planmethod.grading.answers import answers_from_csv
+
+    assert answers_from_csv("studentXv_C\ns01X5.2\n", "a.csv") == [
+        ("*", {"studentXv_C": "s01X5.2"})]
+
+
+def test_a_cell_keeps_its_leading_space_where_no_separator_is_found():
+    from planmethod.grading.answers import answers_from_csv
+
+    assert answers_from_csv("v_C\n 5.2\n", "a.csv") == [("*", {"v_C": " 5.2"})]
+
+
+def test_student_ids_that_differ_only_in_case_are_one_student(tmp_path):
+    """Compared in lower case: the Kelvin sign K (U+212A) is a capital k."""
+    path = tmp_path / "answers.csv"
+    path.write_text("student,v_C\nk,5.2\n\u212a,5.3\n", encoding="utf-8")
+    assert _refusal(path) == (f"{path}: student '\u212a' answers twice (entries 1 and 2); "
+                              "keep one")
+
+
+def test_a_plans_sheet_has_a_15_mm_margin_rounded_out_to_10_mm():
+    from planmethod.grading.plan_points import plan_extent
+
+    # 15 + 15 = 30 mm is on a 10 mm line: not widened further
+    frames = [{"velocity": {"points": {"b": [15.0, -3.0, 0.5]}}}]
+    assert plan_extent(frames, "velocity") == (-20.0, -20.0, 30.0, 20.0)
+    # 10.5 mm below the pole rounds out to 20 mm
+    frames = [{"velocity": {"points": {"b": [3.0, -10.0, 0.5]}}}]
+    assert plan_extent(frames, "velocity", margin=0.5) == (-10.0, -20.0, 10.0, 10.0)

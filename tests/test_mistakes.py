@@ -11,6 +11,7 @@ from planmethod.grading.keys import build_key
 from planmethod.grading.mistakes import CONSTRUCTION_MISTAKES, MISTAKES, mistaken_plans
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.kinematics import solve
+from planmethod.spec import exercise_from_dict, load_exercise
 
 #: exercises where each construction mistake can be made (Coriolis: a slide on a turning link)
 WHERE = {"no_normal": "exercises/compressor_slider_crank.toml",
@@ -141,3 +142,110 @@ def test_a_relative_velocity_read_for_the_absolute_one_is_named():
     for name in answers:
         named = [graded[name]["mistake"], *graded[name].get("also", ())]
         assert "relative_for_absolute" in named, (name, graded[name]["feedback"])
+
+
+# -- the value rules, each against the plan or the mechanism itself --------------------------
+def test_the_full_acceleration_for_the_normal_one_gives_v_squared_over_a():
+    """ρ = v²/aⁿ read with the full acceleration: v²/|a|, from the exact vectors."""
+    import numpy as np
+
+    variant, key = _key_and_variant("exercises/compressor_slider_crank.toml")
+    mechanism = variant.exercise.mechanism
+    motion = solve(mechanism, mechanism.drive.angle)
+    found = {}
+    for question in key["questions"]:
+        values = {m["kind"]: m["value"] for m in question["mistakes"]}
+        if question["id"].startswith("rho_"):
+            point = question["id"].removeprefix("rho_")
+            speed = float(np.hypot(*np.ravel(motion.velocity(point))[:2]))
+            accel = float(np.hypot(*np.ravel(motion.acceleration(point))[:2]))
+            found[point] = values["full_acceleration"]
+            assert values["full_acceleration"] == pytest.approx(speed ** 2 / accel, rel=1e-12)
+        else:
+            assert "full_acceleration" not in values, question["id"]
+    assert found
+
+
+def test_a_point_without_acceleration_has_no_full_acceleration_mistake(monkeypatch):
+    """a = 0: no radius is read with it (not a division by zero)."""
+    import planmethod.report
+    from planmethod.grading.mistakes import REGISTRY
+
+    monkeypatch.setattr(planmethod.report, "exact_value",
+                        lambda motion, name: 0.0 if name.startswith("a_") else 3.0)
+    from types import SimpleNamespace
+
+    rule = REGISTRY["full_acceleration"].value
+    assert rule("rho_D", 0.07, 0.001, SimpleNamespace(motion=None)) == []
+
+
+def test_the_other_links_length_ratio_comes_from_the_links_themselves():
+    """In each dyad of a six-bar (a second RRR dyad on the coupler point), ω read with the
+    other link's length is scaled by l_link / l_other."""
+    from planmethod.grading.mistakes import other_lengths
+    from planmethod.testing import fourbar
+
+    data = fourbar()
+    data["links"]["frame"]["E"] = [0.35, 0.25]
+    data["links"]["PQ"] = {"P": [0, 0], "Q": [0.2, 0]}
+    data["links"]["QE"] = {"Q": [0, 0], "E": [0.15, 0]}
+    data["sketch"]["Q"] = [0.25, 0.38]
+    mechanism = exercise_from_dict(data).mechanism
+    motion = solve(mechanism, mechanism.drive.angle)
+    assert [group.links for group in motion.structure.groups] == [("BC", "CD"), ("PQ", "QE")]
+    lengths = {"BC": 0.22, "CD": 0.18, "PQ": 0.2, "QE": 0.15}
+    for link, other in (("BC", "CD"), ("CD", "BC"), ("PQ", "QE"), ("QE", "PQ")):
+        ((name, ratio),) = other_lengths(motion, link)
+        assert name == other and ratio == pytest.approx(lengths[link] / lengths[other],
+                                                        rel=1e-12)
+    assert other_lengths(motion, "AB") == [] and other_lengths(motion, "nowhere") == []
+
+
+def test_links_of_one_length_give_no_wrong_length_at_any_size():
+    """The other link of the same length (to 1e-10 of it, at 1 mm or at 1 km) reads ω the
+    same: no mistake to name."""
+    from planmethod.grading.mistakes import other_lengths
+    from planmethod.testing import fourbar
+
+    for size in (0.001, 1000.0):
+        mechanism = exercise_from_dict(fourbar(
+            ground=0.30 * size, crank=0.08 * size, coupler=0.2 * size,
+            rocker=0.2 * size * (1 + 1e-10), point=(0.1 * size, 0.05 * size))).mechanism
+        motion = solve(mechanism, mechanism.drive.angle)
+        coupler = next(link for link in motion.structure.groups[0].links)
+        assert other_lengths(motion, coupler) == [], size
+
+
+# -- the construction rules, on the plans drawn again ------------------------------------------
+def test_the_tangential_component_along_the_link_turns_that_line_only():
+    """The slider's relative acceleration still runs along its guide (the pole's horizontal):
+    only the rod's tangential line is turned."""
+    import numpy as np
+
+    from planmethod.report import analyse
+
+    analysis = analyse(load_exercise("exercises/compressor_slider_crank.toml"))
+    right = analysis.plans.acceleration.points_mm
+    wrong = mistaken_plans(analysis.exercise, "tangential_along").acceleration.points_mm
+    assert right["c"][1] == pytest.approx(0.0, abs=1e-9)
+    assert wrong["c"][1] == pytest.approx(0.0, abs=1e-9)
+    assert abs(wrong["c"][0] - right["c"][0]) > 10.0       # along the guide, elsewhere
+    assert np.allclose(wrong["b"], right["b"])
+
+
+@pytest.mark.parametrize("mistake, moved", [("no_coriolis", 1.0), ("coriolis_reversed", 2.0)])
+def test_a_coriolis_component_drawn_under_a_millimetre_is_still_left_out_or_reversed(
+        mistake, moved):
+    """At 88° the slotted lever's aᵏ is drawn 0.52 mm long: left out it moves b₃ by that
+    length, reversed by twice it."""
+    import numpy as np
+
+    from planmethod.report import analyse
+
+    analysis = analyse(load_exercise("exercises/slotted_lever.toml"), 88.0)
+    right = analysis.plans.acceleration.points_mm
+    coriolis = float(np.hypot(*(np.asarray(right["k_B@lever"]) - np.asarray(right["b"]))))
+    assert 0.1 < coriolis < 1.0
+    wrong = mistaken_plans(analysis.exercise, mistake).acceleration.points_mm
+    away = float(np.hypot(*(np.asarray(wrong["b@lever"]) - np.asarray(right["b@lever"]))))
+    assert away == pytest.approx(moved * coriolis, rel=1e-6)
