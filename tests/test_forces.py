@@ -143,6 +143,30 @@ def equilibrium_residual(mechanism, solution, applied) -> float:
 
 
 @pytest.mark.parametrize("name", list(KINDS))
+def test_each_groups_force_polygon_closes_edge_by_named_edge(name):
+    """Each group's polygon, as its force plan draws it: every edge named, of a kind, on one
+    of the group's links, and the edges closing to zero (the group is in equilibrium), edge by
+    edge — a component or a reaction of the wrong size or sign leaves it open."""
+    from planmethod.vocabulary import EdgeKind
+
+    build, angles, _ = KINDS[name]
+    exercise = exercise_from_dict(loaded(build()))
+    solution = solve_forces(solve(exercise.mechanism, angles))
+    for group in solution.groups.groups:
+        assert group.polygon, group.name
+        total = np.zeros((len(angles), 2))
+        for edge in group.polygon:
+            assert isinstance(edge.label, str) and edge.label.strip(), (group.name, edge)
+            assert isinstance(edge.kind, EdgeKind), (group.name, edge.label)
+            assert edge.link in group.links, (group.name, edge.label, edge.link)
+            total = total + edge.vector
+        scale = max(float(np.abs(edge.vector).max()) for edge in group.polygon)
+        assert np.abs(total).max() <= 1e-9 * scale, (name, group.name)
+        kinds = {edge.kind for edge in group.polygon}
+        assert EdgeKind.KNOWN in kinds, (name, group.name)
+
+
+@pytest.mark.parametrize("name", list(KINDS))
 def test_group_method_matches_whole_system(name):
     build, angles, kinds = KINDS[name]
     exercise = exercise_from_dict(loaded(build()))

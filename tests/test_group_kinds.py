@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from planmethod.errors import ToggleError
 from planmethod.kinematics import solve
 from planmethod.kinematics.constraints import ConstraintSystem
 from planmethod.kinematics.groups import kind_module, registered
@@ -69,16 +70,28 @@ def _lever(rng: np.random.Generator) -> dict:
     return data
 
 
+def _offset(rng: np.random.Generator) -> list[float]:
+    """A point's place in its link's own frame, away from the frame's origin (a formula that
+    forgot the offset would still hold at the origin)."""
+    return [float(rng.uniform(-0.04, 0.04)), float(rng.uniform(-0.04, 0.04))]
+
+
 def _yoke(rng: np.random.Generator) -> dict:
-    return scotch_yoke(crank=rng.uniform(0.05, 0.15), slot=rng.uniform(60, 120),
+    data = scotch_yoke(crank=rng.uniform(0.05, 0.15), slot=rng.uniform(60, 120),
                        guide=rng.uniform(-20, 20), omega=rng.uniform(-15, 15),
                        epsilon=rng.uniform(-40, 40))
+    y = _offset(rng)
+    data["links"]["block"] = {"B": _offset(rng)}
+    data["links"]["yoke"] = {"Y": y, "Z": [y[0] + 0.2, y[1] + 0.1]}
+    return data
 
 
 def _guides(rng: np.random.Generator) -> dict:
     data = two_guides(omega=rng.uniform(-15, 15), epsilon=rng.uniform(-40, 40))
     data["slide"][0]["direction"] = rng.uniform(40, 80)
     data["slide"][1]["direction"] = rng.uniform(-20, 20)
+    data["links"]["s1"] = {"Q": _offset(rng)}
+    data["links"]["s2"] = {"Q": _offset(rng)}
     return data
 
 
@@ -242,3 +255,23 @@ def test_long_sweeps_run_chunk_by_chunk_with_the_same_numbers():
     for start in (0, CHUNK - 3, 2 * CHUNK + 5):
         part = solve(mechanism, angles[start:start + 40])
         assert np.array_equal(part.acceleration("C"), whole.acceleration("C")[start:start + 40])
+
+
+@pytest.mark.parametrize("data, angles, told", [
+    pytest.param(two_guides(), [100.0, 120.0, 130.0],
+                 "link s1+s2, crank angle 120°: the guides of s1/crank and s2/frame are "
+                 "parallel: Q has no definite position", id="PRP"),
+    pytest.param(scotch_yoke(slot=0.0), [30.0, 40.0],
+                 "link block+yoke, crank angle 30°: the guides of block/yoke and yoke/frame "
+                 "are parallel: yoke has no definite position", id="RPP"),
+])
+def test_parallel_guides_are_a_named_toggle_at_the_first_angle_they_meet(data, angles, told):
+    """Both paths (the compiled program's guard and the kind's formulas) stop at the angle,
+    naming the group and the guides."""
+    mechanism = exercise_from_dict(data).mechanism
+    for reference in (False, True):
+        with pytest.raises(ToggleError) as caught:
+            solve(mechanism, np.array(angles), reference=reference)
+        assert str(caught.value) == told
+        assert (caught.value.link, caught.value.angle) == (told.split()[1].rstrip(","),
+                                                           float(told.split()[4][:-2]))
