@@ -99,7 +99,25 @@ KINDS = {
     "scotch_yoke": (testing.scotch_yoke, np.arange(0, 360, 15.0), ["RPP"]),
     "two_guides": (testing.two_guides, np.array([0, 30, 60, 90, 150, 200, 250.0]), ["PRP"]),
     "shaper": (testing.shaper, np.arange(0, 360, 15.0), ["RPR", "RRP"]),
+    # sliders that touch their guide at a point of their own away from the pin: the
+    # reaction's couple about that point has an arm
+    "slider_off_its_pin": (lambda: _off_the_pin(testing.slider_crank(), {"slider": "C"}),
+                           np.arange(0, 360, 15.0), ["RRP"]),
+    "two_guides_off_their_pin": (lambda: _off_the_pin(testing.two_guides(),
+                                                      {"s1": "Q", "s2": "Q"}),
+                                 np.array([0, 30, 60, 90, 150, 200, 250.0]), ["PRP"]),
 }
+
+
+def _off_the_pin(data: dict, pins: dict[str, str]) -> dict:
+    """Each slider of ``pins`` touches its guide at a point T of its own, 20 mm along and
+    8 mm across from its pin; the guide passes through the same fixed point as before."""
+    for number, (link, pin) in enumerate(pins.items()):
+        x, y = data["links"][link][pin]
+        data["links"][link][f"T{number}"] = [x + 0.02, y + 0.008]
+        slide = next(slide for slide in data["slide"] if slide["link"] == link)
+        slide["point"] = f"T{number}"
+    return data
 
 
 def loaded(data: dict, seed: int = 3) -> dict:
