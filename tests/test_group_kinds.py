@@ -66,7 +66,17 @@ def _lever(rng: np.random.Generator) -> dict:
     crank = rng.uniform(0.05, 0.12)
     data = slotted_lever(crank=crank, centres=rng.uniform(1.3, 3.0) * crank,
                          omega=rng.uniform(-15, 15), epsilon=rng.uniform(-40, 40))
-    data["slide"][0]["direction"] = rng.uniform(-40, 40)   # the slot at an angle in the lever
+    slot = rng.uniform(-40, 40)                 # the slot at an angle in the lever …
+    data["slide"][0]["direction"] = slot
+    # … and off its pivot: through T, a few mm beside the line through O2; the block's pin
+    # and the lever's points away from their links' origins
+    o2 = _offset(rng)
+    aside, u = rng.uniform(-0.005, 0.005), np.radians(slot)
+    data["links"]["lever"] = {"O2": o2, "C": [o2[0] + 1.5 * (crank + 0.3), o2[1]],
+                              "T": [o2[0] + 0.1 * np.cos(u) - aside * np.sin(u),
+                                    o2[1] + 0.1 * np.sin(u) + aside * np.cos(u)]}
+    data["links"]["block"] = {"B": _offset(rng)}
+    data["slide"][0]["through"] = "T"
     return data
 
 
@@ -235,8 +245,14 @@ def test_against_the_whole_mechanism_linear_solve(name):
         for link, state in motion.links.items():   # each link's axes are (cos θ, sin θ)
             axes = np.stack((np.cos(state.theta), np.sin(state.theta)), axis=-1)
             assert np.abs(state.basis - axes).max() <= 1e-13, (name, link)
-        # … and the velocities and accelerations are the whole mechanism's linear solve's
-        reference = reference_motion(mechanism, angles)
+        # … and the velocities and accelerations are the whole mechanism's linear solve's,
+        # on the assembly the solver chose at drive.angle (a link's two assemblies can put
+        # its points alike and its origin apart)
+        chosen = solve(mechanism, stage="position")
+        near = {point: tuple(float(v) for v in chosen.position(point))
+                for link in chosen.solved if link != "frame"
+                for point in mechanism.links[link].points}
+        reference = reference_motion(mechanism, angles, near=near)
         for quantity in ("omega", "epsilon", "velocity", "acceleration"):
             # relative to the largest such quantity of any link (a pivot's zero velocity
             # is compared with the mechanism's speeds)
