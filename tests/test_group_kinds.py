@@ -291,3 +291,38 @@ def test_parallel_guides_are_a_named_toggle_at_the_first_angle_they_meet(data, a
         assert str(caught.value) == told
         assert (caught.value.link, caught.value.angle) == (told.split()[1].rstrip(","),
                                                            float(told.split()[4][:-2]))
+
+
+def _slot_beside_the_pivot(aside: float, **lever) -> dict:
+    data = slotted_lever(**lever)
+    data["links"]["lever"]["T"] = [0.1, aside]
+    data["slide"][0]["through"] = "T"
+    return data
+
+
+@pytest.mark.parametrize("data, angles, told", [
+    pytest.param(_slot_beside_the_pivot(0.25, crank=0.1, centres=0.3),
+                 [30.0, 200.0, 250.0, 270.0],
+                 "link block+lever, crank angle 250°: the guide of lever passes 0.25 m from "
+                 "its pivot O2; it cannot reach B: short by 0.0411497 m",
+                 id="slot beyond the pin's reach"),
+    pytest.param(slotted_lever(crank=0.3, centres=0.3, angle=0.0), [0.0, 180.0, 270.0],
+                 "link block+lever, crank angle 270°: B and O2 coincide: the group has no "
+                 "definite position", id="pin on the pivot"),
+    pytest.param(fourbar(ground=0.3, crank=0.3, coupler=0.2, rocker=0.2), [60.0, 30.0, 0.0],
+                 "link BC+CD, crank angle 0°: B and D coincide: the group has no definite "
+                 "position", id="four-bar's crank pin on the rocker's pivot"),
+])
+def test_a_dyad_that_cannot_be_placed_says_where_and_why(data, angles, told):
+    """The refusals of the RPR and RRR kinds, on both paths, at the first angle where they
+    hold: a slot passing its pivot farther than the pin can come, and a pin on the pivot (two
+    points that coincide are no shortfall: nothing is said to be short)."""
+    from planmethod.errors import AssemblyError
+
+    mechanism = exercise_from_dict(data).mechanism
+    for reference in (False, True):
+        with pytest.raises(AssemblyError) as caught:
+            solve(mechanism, np.array(angles), reference=reference)
+        assert str(caught.value) == told
+        assert caught.value.link == told.split()[1].rstrip(",")
+    assert solve(mechanism, np.array(angles[:2])).position("B").shape == (2, 2)

@@ -468,8 +468,10 @@ def assembly_error(group: AssurGroup, angles, bad, text: str, shortfall) -> Asse
     index = first(bad)
     amount = float(np.broadcast_to(np.asarray(shortfall, dtype=float),
                                    np.shape(np.atleast_1d(bad)))[index])
-    return AssemblyError(f"{text}: short by {amount:.6g} m", shortfall=amount,
-                         link=group.name, angle=float(np.atleast_1d(angles)[index]))
+    # two points that coincide are no shortfall: the text says what is wrong
+    told = f"{text}: short by {amount:.6g} m" if amount else text
+    return AssemblyError(told, shortfall=amount, link=group.name,
+                         angle=float(np.atleast_1d(angles)[index]))
 
 
 def toggle_or_miss(group: AssurGroup, angles, vanishing, scale, text: str, shortfall) -> None:
