@@ -118,7 +118,8 @@ def _row(name: str, counts: Counter) -> str:
             + " | ".join(str(counts[c]) for c in COLUMNS) + f" | {share} |")
 
 
-def report(root: Path, *, baseline: bool = False, command: str = COMMAND) -> tuple[str, dict]:
+def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
+           name: str = "mutation") -> tuple[str, dict]:
     """The report's Markdown and JSON from the results under ``root``.
 
     Raises
@@ -137,10 +138,11 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND) -> tup
     for mutant, code in results.items():
         by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
     survivors = sorted(m for m, code in results.items() if outcome(code) == "survived")
+    first_run = BASELINE if name == "mutation" else f"{name}_baseline.json"
     if baseline:
-        write_json(BASELINE, {"survived": survivors})
-    first = json.loads((RESULTS / BASELINE).read_text()).get("survived", []) \
-        if (RESULTS / BASELINE).exists() else []
+        write_json(first_run, {"survived": survivors})
+    first = json.loads((RESULTS / first_run).read_text()).get("survived", []) \
+        if (RESULTS / first_run).exists() else []
     missing = [m for m in survivors if note_for(m, equivalent) is None]
     total: Counter = Counter(outcome(code) for code in results.values())
     run = ran(total)
@@ -201,10 +203,14 @@ def main(argv: list[str] | None = None) -> int:
                         help="record the current survivors as the first run's")
     parser.add_argument("--command", default=COMMAND,
                         help="the mutmut command that was run (the report says it)")
+    parser.add_argument("--name", default="mutation",
+                        help="the report's file name, without .md / .json (default: mutation; "
+                             "a run of other modules, in another folder, keeps its own)")
     args = parser.parse_args(argv)
-    text, data = report(args.root, baseline=args.baseline, command=args.command)
-    write_text("mutation.md", text + "\n")
-    write_json("mutation.json", data)
+    text, data = report(args.root, baseline=args.baseline, command=args.command,
+                        name=args.name)
+    write_text(f"{args.name}.md", text + "\n")
+    write_json(f"{args.name}.json", data)
     print(text.split("\n\n")[2].splitlines()[-1], file=sys.stderr)
     return 0
 
