@@ -54,12 +54,21 @@ def _fourbar(rng: np.random.Generator) -> dict:
                    point=tuple(rng.uniform(-0.1, 0.2, size=2)))
 
 
+def _offset(rng: np.random.Generator) -> list[float]:
+    """A point's place in its link's own frame, away from the frame's origin (a formula that
+    forgot the offset would still hold at the origin)."""
+    return [float(rng.uniform(-0.04, 0.04)), float(rng.uniform(-0.04, 0.04))]
+
+
 def _slider(rng: np.random.Generator) -> dict:
     crank = rng.uniform(0.03, 0.08)
     offset = rng.uniform(-0.02, 0.02)
-    return slider_crank(crank=crank, rod=rng.uniform(2.5, 5) * crank + abs(offset),
+    data = slider_crank(crank=crank, rod=rng.uniform(2.5, 5) * crank + abs(offset),
                         offset=offset, omega=rng.uniform(-150, 150),
                         epsilon=rng.uniform(-500, 500))
+    data["links"]["slider"] = {"C": _offset(rng)}     # the pin away from the slider's origin
+    data["slide"][0]["direction"] = float(rng.uniform(-20, 20))    # a guide at an angle
+    return data
 
 
 def _lever(rng: np.random.Generator) -> dict:
@@ -78,12 +87,6 @@ def _lever(rng: np.random.Generator) -> dict:
     data["links"]["block"] = {"B": _offset(rng)}
     data["slide"][0]["through"] = "T"
     return data
-
-
-def _offset(rng: np.random.Generator) -> list[float]:
-    """A point's place in its link's own frame, away from the frame's origin (a formula that
-    forgot the offset would still hold at the origin)."""
-    return [float(rng.uniform(-0.04, 0.04)), float(rng.uniform(-0.04, 0.04))]
 
 
 def _yoke(rng: np.random.Generator) -> dict:
