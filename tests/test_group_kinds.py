@@ -84,8 +84,11 @@ def _lever(rng: np.random.Generator) -> dict:
     data["links"]["lever"] = {"O2": o2, "C": [o2[0] + 1.5 * (crank + 0.3), o2[1]],
                               "T": [o2[0] + 0.1 * np.cos(u) - aside * np.sin(u),
                                     o2[1] + 0.1 * np.sin(u) + aside * np.cos(u)]}
-    data["links"]["block"] = {"B": _offset(rng)}
+    # the block touches the slot at S, a few mm from its pin B
+    pin = _offset(rng)
+    data["links"]["block"] = {"B": pin, "S": [pin[0] + 0.004, pin[1] - 0.003]}
     data["slide"][0]["through"] = "T"
+    data["slide"][0]["point"] = "S"
     return data
 
 
