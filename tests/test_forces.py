@@ -106,6 +106,11 @@ KINDS = {
     "two_guides_off_their_pin": (lambda: _off_the_pin(testing.two_guides(),
                                                       {"s1": "Q", "s2": "Q"}),
                                  np.array([0, 30, 60, 90, 150, 200, 250.0]), ["PRP"]),
+    "slotted_lever_off_its_pin": (lambda: _off_the_pin(testing.slotted_lever(),
+                                                       {"block": "B"}),
+                                  np.arange(0, 360, 15.0), ["RPR"]),
+    "scotch_yoke_off_its_pin": (lambda: _off_the_pin(testing.scotch_yoke(), {"block": "B"}),
+                                np.arange(0, 360, 15.0), ["RPP"]),
 }
 
 
