@@ -170,7 +170,7 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
         by_function = Counter(f"{module_of(m)}.{function_of(m)}" for m in missing)
         lines += [f"**Not yet looked at: {len(missing)} survivors** (each needs a test that "
                   f"kills it or a note in `{NOTES.name}`; their names are in "
-                  "`mutation.json`), by function:", "",
+                  f"`{name}.json`), by function:", "",
                   "| function | survivors |", "| --- | ---: |"]
         lines += [f"| `{name}` | {count} |" for name, count in sorted(
             by_function.items(), key=lambda item: (-item[1], item[0]))]
