@@ -49,9 +49,16 @@ def _fourbar(rng: np.random.Generator) -> dict:
     coupler, rocker, ground = rng.uniform(0.15, 0.3, size=3)
     while crank + max(coupler, rocker, ground) >= sum(sorted((coupler, rocker, ground))[:2]):
         coupler, rocker, ground = rng.uniform(0.15, 0.3, size=3)   # Grashof: a crank-rocker
-    return fourbar(ground=ground, crank=crank, coupler=coupler, rocker=rocker,
+    data = fourbar(ground=ground, crank=crank, coupler=coupler, rocker=rocker,
                    omega=rng.uniform(-20, 20), epsilon=rng.uniform(-50, 50),
                    point=tuple(rng.uniform(-0.1, 0.2, size=2)))
+    for link in ("BC", "CD"):     # each link's own frame turned and moved off its points
+        turn = rng.uniform(-np.pi, np.pi)
+        shift = np.array([rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05)])
+        rotation = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+        data["links"][link] = {point: (rotation @ np.asarray(xy, dtype=float) + shift).tolist()
+                               for point, xy in data["links"][link].items()}
+    return data
 
 
 def _offset(rng: np.random.Generator) -> list[float]:
