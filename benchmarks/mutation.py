@@ -37,7 +37,6 @@ from .common import RESULTS, ROOT, machine, write_json, write_text, written_by
 
 #: notes on survivors: why each is equivalent, and which test kills those killed since
 NOTES = Path(__file__).resolve().parent / "mutation_notes.toml"
-BASELINE = "mutation_baseline.json"
 #: the command that produced the results, by default (the report says it; ``--command``)
 COMMAND = "mutmut run --max-children 2"
 #: mutmut 3's exit codes (``mutmut.stats.status_by_exit_code``); any other is suspicious
@@ -138,7 +137,7 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
     for mutant, code in results.items():
         by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
     survivors = sorted(m for m, code in results.items() if outcome(code) == "survived")
-    first_run = BASELINE if name == "mutation" else f"{name}_baseline.json"
+    first_run = f"{name}_baseline.json"
     if baseline:
         write_json(first_run, {"survived": survivors})
     first = json.loads((RESULTS / first_run).read_text()).get("survived", []) \

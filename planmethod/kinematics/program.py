@@ -59,36 +59,35 @@ _LOCK = threading.Lock()
 _DYAD_PROGRAMS: OrderedDict[Mechanism, tuple[dict, threading.Lock]] = OrderedDict()
 
 
+def _remembered(table: OrderedDict, key, make):
+    """``table[key]``, made by ``make()`` (outside the lock) the first time; the most recently
+    used :data:`CACHE_SIZE` entries are kept."""
+    with _LOCK:
+        found = table.get(key)
+        if found is not None:
+            table.move_to_end(key)
+            return found
+    made = make()
+    with _LOCK:
+        found = table.setdefault(key, made)
+        table.move_to_end(key)
+        while len(table) > CACHE_SIZE:
+            table.popitem(last=False)
+    return found
+
+
 def _dyad_programs(mechanism: Mechanism) -> tuple[dict, threading.Lock]:
     """The programs (and their lock) that every mechanism alike but for ``drive.angle`` and
     the sketch shares: a dyad's formulas read neither (the angles are the program's input, the
     assembly is its branch), so their traced program is the same."""
     key = dataclasses.replace(mechanism, sketch={},
                               drive=dataclasses.replace(mechanism.drive, angle=0.0))
-    with _LOCK:
-        found = _DYAD_PROGRAMS.get(key)
-        if found is None:
-            found = _DYAD_PROGRAMS[key] = ({}, threading.Lock())
-        _DYAD_PROGRAMS.move_to_end(key)
-        while len(_DYAD_PROGRAMS) > CACHE_SIZE:
-            _DYAD_PROGRAMS.popitem(last=False)
-    return found
+    return _remembered(_DYAD_PROGRAMS, key, lambda: ({}, threading.Lock()))
 
 
 def model(mechanism: Mechanism) -> Model:
     """The model of ``mechanism`` (made once per mechanism value, remembered)."""
-    with _LOCK:
-        found = _MODELS.get(mechanism)
-        if found is not None:
-            _MODELS.move_to_end(mechanism)
-            return found
-    made = Model(mechanism)
-    with _LOCK:
-        found = _MODELS.setdefault(mechanism, made)
-        _MODELS.move_to_end(mechanism)
-        while len(_MODELS) > CACHE_SIZE:
-            _MODELS.popitem(last=False)
-    return found
+    return _remembered(_MODELS, mechanism, lambda: Model(mechanism))
 
 
 class Model:
@@ -104,7 +103,8 @@ class Model:
         self._branches: dict[tuple, dict[int, Branch]] = {}
         self._programs: dict[tuple, Compiled] = {}
         self._lock = threading.Lock()
-        self._dyad_programs = _dyad_programs(mechanism)
+        #: the programs shared with the mechanism's posed copies (found at the first use)
+        self._dyad_programs: tuple[dict, threading.Lock] | None = None
         #: point → the links that carry it, in file order
         self.carriers: dict[str, tuple[str, ...]] = {}
         for name, link in mechanism.links.items():
@@ -140,9 +140,12 @@ class Model:
         key = (level, tuple(group.index for group in groups),
                tuple(branches[group.index] for group in groups))
         # a higher group's program follows its path from drive.angle: its model's own
-        programs, lock = ((self._programs, self._lock)
-                          if not all(group.is_dyad for group in groups)
-                          else self._dyad_programs)
+        if not all(group.is_dyad for group in groups):
+            programs, lock = self._programs, self._lock
+        else:
+            if self._dyad_programs is None:
+                self._dyad_programs = _dyad_programs(self.mechanism)
+            programs, lock = self._dyad_programs
         found = programs.get(key)
         if found is None:
             with lock:
