@@ -259,25 +259,25 @@ class Side:
 
 @dataclass(frozen=True, slots=True)
 class Anchor:
-    """The point a group link's motion is referred to: its pin ``name`` on the known link
-    ``known`` (at ``position``, ``offset`` from the known link's origin), or X itself
-    (``known`` None). ``local``: the point's coordinates on the group link (None: not a named
-    point of it)."""
+    """The pin a group link's motion is referred to: ``name`` on the known link ``known``
+    (at ``position``, ``offset`` from the known link's origin), at ``local`` on the group link.
+    A group link without one is referred to X (at ``Placed.x_local`` on it, where X is one of
+    its named points)."""
 
     name: str
     position: Vec
-    known: str | None
-    offset: Vec | None
-    local: tuple[float, float] | None
+    known: str
+    offset: Vec
+    local: tuple[float, float]
 
 
 @dataclass(slots=True)
 class Placed:
     """A dyad at its closed-form positions: its links' bodies (positions), X (named ``point``)
     at ``x``, the two sides, how each link's ω follows (``rotating``: link → side index;
-    ``tied``: link → the link it cannot turn against), each link's :class:`Anchor`, the
-    positions of the named points the kind computed, how each θ is read, and an upper bound of
-    the size ratio R = L/l at every assembled position (see :func:`size_ratio`)."""
+    ``tied``: link → the link it cannot turn against), the :class:`Anchor` of each link pinned
+    to a known link, how each θ is read, and an upper bound of the size ratio R = L/l at every
+    assembled position (see :func:`size_ratio`)."""
 
     bodies: dict[str, Body]
     point: str
@@ -286,7 +286,6 @@ class Placed:
     rotating: dict[str, int]
     tied: dict[str, str]
     anchors: dict[str, Anchor]
-    points: dict[str, Vec]
     thetas: dict[str, Theta]
     ratio_bound: float
     x_links: tuple[str, ...] = ()
@@ -294,24 +293,32 @@ class Placed:
     x_local: dict[str, tuple[float, float]] = field(default_factory=dict)
 
 
-def rotation_side(link: str, pin: Pin, x: Vec, length, radius: Vec | None = None) -> Side:
-    """A side turning about ``pin`` to X at ``x``; ``radius`` = X − pin where the kind has it
-    already (else computed)."""
-    if radius is None:
-        radius = x - pin.at
+def rotation_side(link: str, pin: Pin, radius: Vec, length) -> Side:
+    """A side turning about ``pin`` to X: ``radius`` = X − pin, ``length`` = |radius|."""
     return Side(True, link, pin.joint.point, pin.known, pin.at, pin.offset, radius.perp(),
                 radius, length)
 
 
 def sliding_side(context: GroupInputs, slide: Slide, carrier: str, base: str, base_link: str,
-                 position: Vec, placed: Mapping[str, Body], offset: Vec | None = None) -> Side:
-    """A side along the guide of ``slide`` (the guide's direction from its ``along`` link, a
-    known link or one of the group's ``placed`` bodies)."""
+                 position: Vec, placed: Mapping[str, Body]) -> Side:
+    """A side along the guide of ``slide`` from the point of the known ``base_link`` at
+    ``position`` (the guide's direction from its ``along`` link, a known link or one of the
+    group's ``placed`` bodies)."""
+    offset = position - context.bodies[base_link].origin
+    return Side(False, carrier, base, base_link, position, offset,
+                _guide_direction(context, slide, placed), None, 1.0, slide)
+
+
+def pinned_sliding_side(context: GroupInputs, slide: Slide, carrier: str, pin: Pin,
+                        placed: Mapping[str, Body]) -> Side:
+    """A side along the guide of ``slide`` from ``pin`` (see :func:`sliding_side`)."""
+    return Side(False, carrier, pin.joint.point, pin.known, pin.at, pin.offset,
+                _guide_direction(context, slide, placed), None, 1.0, slide)
+
+
+def _guide_direction(context: GroupInputs, slide: Slide, placed: Mapping[str, Body]) -> Vec:
     body = placed.get(slide.along) or context.bodies[slide.along]
-    c, s = turned_axes(body.cos, body.sin, slide.direction_rad)
-    if offset is None:
-        offset = position - context.bodies[base_link].origin
-    return Side(False, carrier, base, base_link, position, offset, Vec(c, s), None, 1.0, slide)
+    return Vec(*turned_axes(body.cos, body.sin, slide.direction_rad))
 
 
 def sense(segment, direction):
@@ -440,9 +447,8 @@ def _reference(context: GroupInputs, placed: Placed, link: str, v_x: Vec, a_x: V
     acceleration) of a group link's motion: its pin on a known link, or X — whichever is the
     link's origin, else the pin."""
     anchor = placed.anchors.get(link)
-    pinned = anchor is not None and anchor.known is not None
-    on_x = placed.x_local.get(link, anchor.local if anchor is not None and not pinned else None)
-    if pinned and not (anchor.local != (0.0, 0.0) and on_x == (0.0, 0.0)):
+    on_x = placed.x_local.get(link)
+    if anchor is not None and not (anchor.local != (0.0, 0.0) and on_x == (0.0, 0.0)):
         known = context.bodies[anchor.known]
         velocity = known.velocity(anchor.offset)
         acceleration = known.acceleration(anchor.offset) if a_x is not None else None
@@ -627,7 +633,7 @@ def construction(placed: Placed, group: AssurGroup, count: int) -> Construction:
             _array(side.position, count), direction,
             _array(side.radius, count) if side.radius is not None else None, side.slide))
     anchors = {link: (anchor.name, _array(anchor.position, count), anchor.known)
-               for link, anchor in placed.anchors.items() if anchor.known is not None}
+               for link, anchor in placed.anchors.items()}
     return Construction(group, placed.point, _array(placed.x, count), tuple(sides),
                         dict(placed.rotating), dict(placed.tied), anchors, placed.x_links)
 

@@ -69,9 +69,7 @@ def place(context: base.GroupInputs) -> base.Placed:
     return base.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={}, tied={l1: k1, l2: k2},
-        anchors={l1: base.Anchor(internal.point, x, None, None, q1),
-                 l2: base.Anchor(internal.point, x, None, None, q2)},
-        points={internal.point: x},
+        anchors={},
         thetas={l1: base.Theta(base.ThetaKind.TIED, alpha=delta(ext1, l1), link=k1),
                 l2: base.Theta(base.ThetaKind.TIED, alpha=delta(ext2, l2), link=k2)},
         ratio_bound=1.0, x_links=(l1, l2), x_local={l1: q1, l2: q2})

@@ -61,15 +61,13 @@ def place(context: base.GroupInputs) -> base.Placed:
     placed = {l1: body1, l2: body2}
     x = p1.at
     x_name = f"{ext1.point}@{l2}"
-    sides = (base.sliding_side(context, inner, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
+    sides = (base.pinned_sliding_side(context, inner, l1, p1, placed),
              base.sliding_side(context, ext2.slide, k2, f"{ext1.point}@{k2}", k2, x, placed))
     outer = ext2.slide.direction_rad if l2 == ext2.slide.link else -ext2.slide.direction_rad
     return base.Placed(
         bodies=placed, point=x_name, x=x, sides=sides,
         rotating={}, tied={l2: k2, l1: l2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: base.Anchor(x_name, x, None, None, None)},
-        points={},
+        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
         thetas={l2: base.Theta(base.ThetaKind.TIED, alpha=outer, link=k2),
                 l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
         ratio_bound=1.0, x_links=(l2,))

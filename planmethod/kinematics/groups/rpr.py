@@ -86,14 +86,13 @@ def place(context: base.GroupInputs) -> base.Placed:
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     x = p1.at
-    sides = (base.sliding_side(context, slide, l1, ext1.point, p1.known, p1.at, placed, p1.offset),
-             base.rotation_side(l2, p2, x, length))
+    sides = (base.pinned_sliding_side(context, slide, l1, p1, placed),
+             base.rotation_side(l2, p2, span, length))
     return base.Placed(
         bodies=placed, point=f"{ext1.point}@{l2}", x=x, sides=sides,
         rotating={l2: 1}, tied={l1: l2},
         anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
                  l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
-        points={},
         thetas={l2: base.Theta(base.ThetaKind.SPAN, ext1.point, ext2.point, link=l2),
                 l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
         ratio_bound=2.0 * base.MARGIN, x_links=(l2,))

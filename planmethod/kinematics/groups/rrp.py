@@ -74,15 +74,13 @@ def place(context: base.GroupInputs) -> base.Placed:
     origin2 = x if q2 == (0.0, 0.0) else x - turned
     body2.x, body2.y = origin2.x, origin2.y
     placed = {l1: body1, l2: body2}
-    sides = (base.rotation_side(l1, p1, x, a, r1),
+    sides = (base.rotation_side(l1, p1, r1, a),
              base.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
     delta = slide.direction_rad if l2 == slide.link else -slide.direction_rad
     return base.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={l1: 0}, tied={l2: k2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: base.Anchor(internal.point, x, None, None, q2)},
-        points={internal.point: x},
+        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
         thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                           float(np.arctan2(q1[1] - p1.local[1], q1[0] - p1.local[0]))),
                 l2: base.Theta(base.ThetaKind.TIED, alpha=delta, link=k2)},

@@ -79,11 +79,10 @@ def place(context: base.GroupInputs) -> base.Placed:
     base.place_origin(body2, ((p2.at, p2.local), (x, q2)))
     return base.Placed(
         bodies={l1: body1, l2: body2}, point=internal.point, x=x,
-        sides=(base.rotation_side(l1, p1, x, a, r1), base.rotation_side(l2, p2, x, b, r2)),
+        sides=(base.rotation_side(l1, p1, r1, a), base.rotation_side(l2, p2, r2, b)),
         rotating={l1: 0, l2: 1}, tied={},
         anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
                  l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
-        points={internal.point: x},
         thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                                _angle(p1.local, q1)),
                 l2: base.Theta(base.ThetaKind.TWO, ext2.point, internal.point,
