@@ -53,8 +53,7 @@ def place(context: base.GroupInputs) -> base.Placed:
             f"{internal.point} along {slide.along}'s guide")
 
     def check(angles, x1, y1, height, line) -> None:
-        height, line = np.asarray(height, dtype=float), np.asarray(line, dtype=float)
-        size = np.maximum(np.abs(np.asarray(x1, dtype=float)), np.abs(np.asarray(y1, dtype=float)))
+        size = np.maximum(np.abs(x1), np.abs(y1))
         base.toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
                        np.abs(height) - a)
 
