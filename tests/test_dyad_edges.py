@@ -114,12 +114,14 @@ def test_stretched_out_by_rounding_units_is_a_toggle_beyond_them_a_miss(units, t
 
 
 @pytest.mark.parametrize("units, toggle", [(100, True), (142, True), (146, False)])
-def test_stretched_short_of_its_reach_by_rounding_units_is_a_toggle(units, toggle):
+@pytest.mark.parametrize("size", [1.0, 0.125])
+def test_stretched_short_of_its_reach_by_rounding_units_is_a_toggle(units, toggle, size):
     """From inside: a = b = 1.5, |BD| = 3 − kε (the group does close): the factor kε is lost
     in rounding up to 16ε·(a + b + 2|BD|) ≈ 144ε — a toggle, refused before any number is taken
-    from it (the compiled program's guard must let the exact check see it); beyond, the
-    dyad's position is solved."""
-    data = _four_bar(4.0 - units * EPS, 1.0, 1.5, 1.5)
+    from it (the compiled program's guard must let the exact check see it, for links longer
+    and shorter than 1 m: the same mechanism at 1/8 size, exactly); beyond, the dyad's
+    position is solved."""
+    data = _four_bar((4.0 - units * EPS) * size, size, 1.5 * size, 1.5 * size)
     if toggle:
         assert isinstance(_refusal(data, [0.0], stage="position"), ToggleError)
     else:
