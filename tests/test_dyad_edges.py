@@ -64,21 +64,24 @@ def _placed(data: dict, angles):
 
 # -- RRR: the coupler and the rocker of a four-bar ---------------------------------------------
 def _four_bar(ground: float, crank: float, coupler: float, rocker: float,
-              angle: float = 0.0) -> dict:
-    """A four-bar A = (0, 0), D = (ground, 0), driven from ``angle`` (where it must close)."""
-    return fourbar(ground=ground, crank=crank, coupler=coupler, rocker=rocker, angle=angle)
+              angle: float = 0.0, lift: float = 0.0) -> dict:
+    """A four-bar A = (0, 0), D = (ground, ``lift``), driven from ``angle`` (where it must
+    close)."""
+    data = fourbar(ground=ground, crank=crank, coupler=coupler, rocker=rocker, angle=angle)
+    data["links"]["frame"]["D"] = [ground, lift]
+    return data
 
 
 @pytest.mark.parametrize("coupler, rocker", [(0.2, 0.15), (0.15, 0.2)])
 def test_a_four_bar_too_short_to_close_says_by_how_much(coupler, rocker):
     """Stretched out: the coupler and the rocker fall short of B→D by |BD| − (a + b), first
-    at the first angle in the order given (B off the frame's axis there: 100°)."""
-    crank, ground = 0.1, 0.32
+    at the first angle in the order given (B and D off the frame's x-axis there: 100°)."""
+    crank, ground, lift = 0.1, 0.31, -0.05
     angles = [0.0, 100.0, 180.0]
-    error = _refusal(_four_bar(ground, crank, coupler, rocker), angles)
+    error = _refusal(_four_bar(ground, crank, coupler, rocker, lift=lift), angles)
     assert isinstance(error, AssemblyError) and not isinstance(error, ToggleError)
     b = crank * np.array([math.cos(math.radians(100.0)), math.sin(math.radians(100.0))])
-    short = math.dist(b, (ground, 0.0)) - coupler - rocker
+    short = math.dist(b, (ground, lift)) - coupler - rocker
     assert error.angle == 100.0 and error.link == "BC+CD"
     assert error.shortfall == pytest.approx(short, rel=1e-12)
     assert str(error) == (f"link BC+CD, crank angle 100°: BC (BC = {coupler:g} m) and CD (CD = "

@@ -58,12 +58,11 @@ def place(context: base.GroupInputs) -> base.Placed:
                        np.abs(height) - a)
 
     # a² − h² = (a − |h|)(a + |h|): where it exceeds 2a·16ε·(scale) no angle is a toggle or a
-    # miss; the scale a + |offset| + |P1| is at most 2a + 2|P1| while |h| < a
-    if p1.bound is None:
-        context.guard(square, np.inf, check, p1.at.x, p1.at.y, h, offset)
-    else:
-        bound = 2.0 * a * 16.0 * base.EPS * (2.0 * a + 2.0 * p1.bound) * 1.01 * base.MARGIN
-        context.guard(square, bound, check, p1.at.x, p1.at.y, h, offset)
+    # miss; the scale a + |offset| + |P1| is at most 2a + 2|P1| while |h| < a (|P1| unbounded:
+    # the check runs at every angle)
+    far = np.inf if p1.bound is None else p1.bound
+    bound = 2.0 * a * 16.0 * base.EPS * (2.0 * a + 2.0 * far) * 1.01 * base.MARGIN
+    context.guard(square, bound, check, p1.at.x, p1.at.y, h, offset)
     along = sqrt(square) * context.sign
     r1 = d * along - n * h
     x = p1.at + r1
