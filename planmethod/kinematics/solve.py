@@ -304,13 +304,16 @@ class Motion:
             return np.zeros(self.angles.shape[0])
         if recipe is None:  # the drive, or a link whose θ is a result of its own
             return self._read(f"theta:{link}")
-        if recipe.kind is ThetaKind.TWO:
-            first, second = self._read(f"p:{recipe.first}"), self._read(f"p:{recipe.second}")
-            return np.arctan2(second[:, 1] - first[:, 1], second[:, 0] - first[:, 0]) - (
-                recipe.alpha)
-        if recipe.kind is ThetaKind.TIED:
-            return self._theta(recipe.link) + recipe.alpha
-        # ThetaKind.SPAN
+        return _THETA_READERS[recipe.kind](self, link, recipe)
+
+    def _theta_two(self, link: str, recipe) -> np.ndarray:
+        first, second = self._read(f"p:{recipe.first}"), self._read(f"p:{recipe.second}")
+        return np.arctan2(second[:, 1] - first[:, 1], second[:, 0] - first[:, 0]) - recipe.alpha
+
+    def _theta_tied(self, link: str, recipe) -> np.ndarray:
+        return self._theta(recipe.link) + recipe.alpha
+
+    def _theta_span(self, link: str, recipe) -> np.ndarray:
         span = self._read(f"p:{recipe.first}") - self._read(f"p:{recipe.second}")
         axes = self._read(f"axes:{link}")
         c, s = axes[:, 0], axes[:, 1]
@@ -793,6 +796,10 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
                     f"{away:.3g} m away)", angle=angle)
     return Posed(posed, branches, start)
 
+
+#: how a link's θ is read from the solved points, by the recipe's kind
+_THETA_READERS = {ThetaKind.TWO: Motion._theta_two, ThetaKind.TIED: Motion._theta_tied,
+                  ThetaKind.SPAN: Motion._theta_span}
 
 def _construction(motion: Motion, group: AssurGroup) -> Construction:
     """The group's construction from the solved positions: the kind's closed form run directly
