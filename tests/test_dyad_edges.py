@@ -221,12 +221,14 @@ def test_a_rod_too_short_for_its_guide_says_by_how_much(direction, pin):
                           f"the line of C along frame's guide: short by {short:.6g} m")
 
 
-@pytest.mark.parametrize("units, toggle", [(60, True), (94, True), (98, False)])
-def test_a_rod_across_its_guide_by_rounding_units_is_a_toggle(units, toggle):
-    """The rod (a = 2) just reaches the guide y = 3 − kε from B = (≈0, 1) at 90°: the factor
-    a − |h| = kε is lost in rounding up to 16ε·(a + |line| + |B|) ≈ 96ε — a toggle (the rod
-    across the guide); beyond it the slider's position is solved."""
-    data = _slider(1.0, 2.0, -(3.0 - units * EPS))
+@pytest.mark.parametrize("crank, units, toggle", [
+    (1.0, 60, True), (1.0, 94, True), (1.0, 98, False), (2.0, 126, True), (2.0, 130, False)])
+def test_a_rod_across_its_guide_by_rounding_units_is_a_toggle(crank, units, toggle):
+    """The rod (a = 2) just reaches the guide y = r + 2 − kε from B = (≈0, r) at 90°: the
+    factor a − |h| = kε is lost in rounding up to 16ε·(a + |line| + |B|) ≈ 16ε·(4 + 2r) — a
+    toggle (the rod across the guide), for a crank r of 1 m and of 2 m (the guard's bound
+    grows with it); beyond it the slider's position is solved."""
+    data = _slider(crank, 2.0, -(crank + 2.0 - units * EPS))
     if toggle:
         error = _refusal(data, [90.0], stage="position")
         assert isinstance(error, ToggleError) and error.angle == 90.0
@@ -234,7 +236,7 @@ def test_a_rod_across_its_guide_by_rounding_units_is_a_toggle(units, toggle):
         for reference in (False, True):
             motion = solve(exercise_from_dict(data).mechanism, np.array([90.0]),
                            stage="position", reference=reference)
-            assert motion.position("C")[0, 1] == 3.0 - units * EPS
+            assert motion.position("C")[0, 1] == crank + 2.0 - units * EPS
 
 
 @pytest.mark.parametrize("units, toggle", [(90, True), (100, False)])
@@ -246,3 +248,22 @@ def test_a_rod_missing_its_guide_by_rounding_units(units, toggle):
         assert isinstance(error, ToggleError)
     else:
         assert isinstance(error, AssemblyError) and error.shortfall == units * EPS
+
+
+@pytest.mark.parametrize("pin", [(1.0, 0.0), (0.0, 1.0), (0.0, 0.0)])
+def test_a_slider_whose_pin_is_off_its_origin_keeps_its_origin_on_the_guide(pin):
+    """The slider's frame at its origin S, which runs on the guide through G = (0, −0.3) at
+    20°; its pin C at ``pin`` in that frame (1 m along or across it, or at S): on both paths,
+    S stays on the guide, C sits at ``pin`` turned by the guide's angle from S, and the rod
+    keeps its length."""
+    direction = 20.0
+    data = _slider(0.2, 1.5, 0.3, direction, pin, angle=30.0)
+    u = math.radians(direction)
+    along, normal = np.array([math.cos(u), math.sin(u)]), np.array([-math.sin(u), math.cos(u)])
+    angles = np.array([30.0, 75.0, 160.0, 250.0])
+    for reference in (False, True):
+        motion = solve(exercise_from_dict(data).mechanism, angles, reference=reference)
+        s, c, b = motion.position("S"), motion.position("C"), motion.position("B")
+        assert np.allclose((s - [0.0, -0.3]) @ normal, 0.0, atol=1e-12)
+        assert np.allclose(c - s, pin[0] * along + pin[1] * normal, atol=1e-12)
+        assert np.allclose(np.hypot(*(c - b).T), 1.5, rtol=1e-12)
