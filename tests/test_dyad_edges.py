@@ -267,3 +267,27 @@ def test_a_slider_whose_pin_is_off_its_origin_keeps_its_origin_on_the_guide(pin)
         assert np.allclose((s - [0.0, -0.3]) @ normal, 0.0, atol=1e-12)
         assert np.allclose(c - s, pin[0] * along + pin[1] * normal, atol=1e-12)
         assert np.allclose(np.hypot(*(c - b).T), 1.5, rtol=1e-12)
+
+
+@pytest.mark.parametrize("reversed_slide", [False, True])
+def test_the_rod_and_the_slider_turn_as_their_frames_say(reversed_slide):
+    """θ of a link is the angle of its own +x axis: the rod's frame turned and moved off its
+    pins (B at (0.02, 0.01), C beyond it at 37°), so θ_rod = angle(BC) − 37°; the slider turned
+    by the guide's 25° against the frame — written either way round (the slider along the
+    frame's guide, or the frame along the slider's), so θ_slider = ±25° as the pair says."""
+    data = _slider(0.2, 0.6, 0.1, 25.0, angle=40.0)
+    turn = math.radians(37.0)
+    b_local = (0.02, 0.01)
+    data["links"]["BC"] = {"B": list(b_local),
+                           "C": [b_local[0] + 0.6 * math.cos(turn),
+                                 b_local[1] + 0.6 * math.sin(turn)]}
+    if reversed_slide:      # the guide is the slider's, and the frame's point G runs on it
+        data["slide"][0] = {"link": "frame", "along": "slider", "through": "S", "point": "G",
+                            "direction": -25.0}
+    angles = np.array([40.0, 130.0, 220.0, 310.0])
+    for reference in (False, True):
+        motion = solve(exercise_from_dict(data).mechanism, angles, reference=reference)
+        rod = motion.position("C") - motion.position("B")
+        assert np.allclose(motion.theta("BC"), np.arctan2(rod[:, 1], rod[:, 0]) - turn,
+                           atol=1e-12)
+        assert np.allclose(motion.theta("slider"), math.radians(25.0), atol=1e-12)
