@@ -801,6 +801,7 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
 _THETA_READERS = {ThetaKind.TWO: Motion._theta_two, ThetaKind.TIED: Motion._theta_tied,
                   ThetaKind.SPAN: Motion._theta_span}
 
+
 def _construction(motion: Motion, group: AssurGroup) -> Construction:
     """The group's construction from the solved positions: the kind's closed form run directly
     on the motion's arrays (the same numbers)."""
