@@ -210,14 +210,22 @@ class Motion:
             raise PlanmethodError(f"link {link} was not solved in this scene")
 
     def _state(self, link: str) -> LinkState:
+        """The link's :class:`LinkState`, made once (its arrays read-only: it is shared)."""
+        key = ("state", link)
+        found = self._kept.get(key)
+        if found is not None:
+            return found
         level = _LEVELS[self.stage]
         read = self._read
-        return LinkState(
-            self._theta(link), read(f"origin:{link}"),
+        theta = self._theta(link)
+        theta.flags.writeable = False
+        found = self._kept[key] = LinkState(
+            theta, read(f"origin:{link}"),
             read(f"omega:{link}") if level >= 1 else None,
             read(f"velocity:{link}") if level >= 1 else None,
             read(f"epsilon:{link}") if level >= 2 else None,
             read(f"acceleration:{link}") if level >= 2 else None, read(f"axes:{link}"))
+        return found
 
     def link_state(self, link: str) -> LinkState:
         self._check_link(link)
