@@ -213,6 +213,9 @@ class _DirectOutputs:
         self.values: dict[str, np.ndarray] = {}
 
     def _array(self, value) -> np.ndarray:
+        if (type(value) is np.ndarray and value.dtype == np.float64
+                and value.shape == (self.count,)):
+            return value.view()    # (a view of its own: a reader may make it read-only)
         return np.broadcast_to(np.asarray(value, dtype=float), (self.count,))
 
     def scalar(self, name: str, value) -> None:

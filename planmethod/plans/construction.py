@@ -25,11 +25,13 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -256,6 +258,29 @@ _CORIOLIS = re.compile(r"k([0-9])_(?=[A-Z])")
 _POINT_DIGITS = re.compile(r"(?<=[A-Za-z])[0-9]+")
 
 
+class _LinkPatterns(NamedTuple):
+    """The patterns of :func:`course_text` that name a mechanism's links."""
+
+    on_link: re.Pattern
+    pair: re.Pattern
+    rate: re.Pattern
+    similarity: re.Pattern
+    #: a link's name with an underscore, and it in words
+    worded: tuple[tuple[re.Pattern, str], ...]
+
+
+@functools.lru_cache(maxsize=64)
+def _link_patterns(names: tuple[str, ...]) -> _LinkPatterns:
+    """The patterns for links ``names`` (compiled once per mechanism; longest name first)."""
+    joined = "|".join(re.escape(name) for name in sorted(names, key=len, reverse=True))
+    return _LinkPatterns(re.compile(rf"@({joined})"),
+                         re.compile(rf"(?<![\w/])({joined})/({joined})(?![\w/])"),
+                         re.compile(rf"([ωε])_({joined})\b"),
+                         re.compile(rf"similarity on ({joined})\b"),
+                         tuple((re.compile(rf"\b{re.escape(name)}\b"), name.replace("_", " "))
+                               for name in names if "_" in name))
+
+
 def course_text(text: str, numbers: Mapping[str, int]) -> str:
     """A construction step's sentence as a course writes it: a point on a link with the
     link's number (``c@frame`` → ``c₁``, ``v_CC@frame`` → ``v_CC₁``), a link's quantity by its
@@ -277,10 +302,10 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     ...             numbers)
     'aᵗ_B₂O₂ from o₂; (q₁k_Q) = 12 mm; k′_Q coincides with q₀'
     """
-    if "@" in text and numbers:   # a point on a link: its name, the link's number below
-        names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
-        text = re.sub(rf"@({names})",
-                      lambda match: subscript(str(numbers[match.group(1)])), text)
+    patterns = _link_patterns(tuple(numbers)) if numbers else None
+    if "@" in text and patterns:   # a point on a link: its name, the link's number below
+        text = patterns.on_link.sub(
+            lambda match: subscript(str(numbers[match.group(1)])), text)
 
     def quantity(match: re.Match) -> str:
         name = match.group(0)
@@ -289,21 +314,17 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
         return symbol(name, dict(numbers))
 
     text = _QUANTITY.sub(quantity, text)
-    if numbers:
-        names = "|".join(re.escape(name) for name in sorted(numbers, key=len, reverse=True))
+    if patterns:
         # a slide by its two links' numbers (the guide of pair 2–3), a link's ω or ε by its
         # number (2·ω₂·v_rel), the link of a similarity rule by its number
-        text = re.sub(rf"(?<![\w/])({names})/({names})(?![\w/])",
-                      lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}",
-                      text)
-        text = re.sub(rf"([ωε])_({names})\b",
-                      lambda match: match.group(1) + subscript(str(numbers[match.group(2)])),
-                      text)
-        text = re.sub(rf"similarity on ({names})\b",
-                      lambda match: f"similarity on link {numbers[match.group(1)]}", text)
-    for name in numbers:
-        if "_" in name:
-            text = re.sub(rf"\b{re.escape(name)}\b", name.replace("_", " "), text)
+        text = patterns.pair.sub(
+            lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}", text)
+        text = patterns.rate.sub(
+            lambda match: match.group(1) + subscript(str(numbers[match.group(2)])), text)
+        text = patterns.similarity.sub(
+            lambda match: f"similarity on link {numbers[match.group(1)]}", text)
+        for pattern, words in patterns.worded:
+            text = pattern.sub(words, text)
     text = _CORIOLIS.sub(lambda match: coriolis_letter(match.group(1)) + "_", text)
     return _POINT_DIGITS.sub(lambda match: subscript(match.group(0)), text)
 

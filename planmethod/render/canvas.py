@@ -174,9 +174,16 @@ class Canvas:
         return np.array((float(xy[0]) * self.zoom, -float(xy[1]) * self.zoom))
 
     def grow(self, *points: Point) -> None:
+        extent = self.extent
         for x, y in points:
-            self.extent = [min(self.extent[0], x), min(self.extent[1], y),
-                           max(self.extent[2], x), max(self.extent[3], y)]
+            if x < extent[0]:
+                extent[0] = x
+            if x > extent[2]:
+                extent[2] = x
+            if y < extent[1]:
+                extent[1] = y
+            if y > extent[3]:
+                extent[3] = y
 
     # primitives
     def add(self, layer: str, tag: str, attrs: dict[str, Any], children: list | None = None
@@ -618,8 +625,12 @@ def _write(item, out: list[str]) -> None:
     attrs = {**_SVGWRITE_DEFAULTS.get(tag, {}), **attrs}
     if tag in ("polygon", "polyline"):
         attrs["points"] = " ".join("%s,%s" % point for point in attrs["points"])  # noqa: UP031
-    head = "".join(f' {key}="{_escape_attribute(text)}"' for key, value in sorted(attrs.items())
+    head = "".join(f' {key}="{text}"' for key, value in sorted(attrs.items())
                    if value is not None and (text := str(value)))
+    if _ATTRIBUTE_SPECIAL.search(head) is not None:   # (rare: most values are numbers)
+        head = "".join(f' {key}="{_escape_attribute(text)}"'
+                       for key, value in sorted(attrs.items())
+                       if value is not None and (text := str(value)))
     text = ("".join(child for child in children if isinstance(child, str))
             if tag in ("text", "tspan", "style") else "")
     elements = [child for child in children if not isinstance(child, str)]

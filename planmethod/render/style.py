@@ -120,8 +120,15 @@ LEGEND_ORDER = ("result", "normal", "tangential", "coriolis", "relative", "const
 
 
 def num(value: float) -> str:
-    """A coordinate as written into the SVG: two decimals, no trailing zeros, no ``-0``."""
-    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    """A coordinate as written into the SVG: two decimals, no trailing zeros, no ``-0``.
+
+    >>> num(1.5), num(-0.001), num(12.0), num(3.14159)
+    ('1.5', '0', '12', '3.14')
+    """
+    text = "%.2f" % value  # noqa: UP031  (the quickest formatting: called per coordinate)
+    if text[-1] != "0":
+        return text
+    text = text.rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
 
 
