@@ -506,37 +506,67 @@ def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:
     both are recorded (one a result's negation, say) and every use of one is a sum or a
     difference that takes the other instead — a + P = a − N, a − P = a + N, exact in IEEE
     arithmetic (N = −P to the bit, signed zeros included) — that one is not computed; the other
-    is computed where the first was (it needs only x)."""
-    ops = list(ops)
-    while True:
-        products: dict[tuple[int, float], int] = {}
-        uses: dict[int, list[tuple[int, int]]] = {}
-        for position, op in enumerate(ops):
-            if (op.name == "mul" and isinstance(op.args[0], int)
-                    and isinstance(op.args[1], float)):
-                products[(op.args[0], op.args[1])] = position
-            for place, arg in enumerate(op.args):
-                if isinstance(arg, int):
-                    uses.setdefault(arg, []).append((position, place))
-        for (x, factor), gone in products.items():
-            kept = products.get((x, -factor))
-            dropped = ops[gone].out[0]
-            if kept is None or dropped in pinned or not all(
-                    _takes_negation(ops[position], place) for position, place in
-                    uses.get(dropped, ())):
+    is computed where the first was (it needs only x).
+
+    The pairs are taken in order, each checked against the operations as rewritten so far
+    (a rewrite may let a pair passed over before share), until a pass shares none.
+
+    >>> ops = [_Op("mul", (2,), (1, 3.0)), _Op("mul", (3,), (1, -3.0)),
+    ...        _Op("add", (4,), (0, 2)), _Op("sub", (5,), (0, 3))]
+    >>> [(op.name, op.out, op.args) for op in _share_negated_products(ops, {4, 5})]
+    [('mul', (3,), (1, -3.0)), ('sub', (4,), (0, 3)), ('sub', (5,), (0, 3))]
+    """
+    work: list[_Op | None] = list(ops)
+    products: dict[tuple[int, float], int] = {}   # (x, c) → where x·c is (the last recorded)
+    uses: dict[int, set[tuple[int, int]]] = {}    # a value → where it is read (op, argument)
+    for position, op in enumerate(work):
+        if op.name == "mul" and isinstance(op.args[0], int) and isinstance(op.args[1], float):
+            products[(op.args[0], op.args[1])] = position
+        for place, arg in enumerate(op.args):
+            if isinstance(arg, int):
+                uses.setdefault(arg, set()).add((position, place))
+
+    def unread(position: int, op: _Op) -> None:
+        for place, arg in enumerate(op.args):
+            if isinstance(arg, int):
+                uses[arg].discard((position, place))
+
+    def read(position: int, op: _Op) -> None:
+        for place, arg in enumerate(op.args):
+            if isinstance(arg, int):
+                uses.setdefault(arg, set()).add((position, place))
+
+    shared = True
+    while shared:
+        shared = False
+        for key in list(products):
+            gone = products.get(key)
+            kept = products.get((key[0], -key[1]))
+            if gone is None or kept is None or kept == gone:
                 continue
-            other = ops[kept].out[0]
-            for position, place in uses.get(dropped, ()):
-                op = ops[position]
-                rest = op.args[1 - place]
-                args = (rest, other)
-                ops[position] = _Op("sub" if op.name == "add" else "add", op.out, args,
-                                    op.extra)
-            ops[min(gone, kept)] = ops[kept]
-            del ops[max(gone, kept)]
-            break
-        else:
-            return ops
+            dropped = work[gone].out[0]
+            readers = sorted(uses.get(dropped, ()))
+            if dropped in pinned or not all(_takes_negation(work[position], place)
+                                            for position, place in readers):
+                continue
+            other = work[kept].out[0]
+            for position, place in readers:
+                op = work[position]
+                turned = _Op("sub" if op.name == "add" else "add", op.out,
+                             (op.args[1 - place], other), op.extra)
+                unread(position, op)
+                read(position, turned)
+                work[position] = turned
+            first, last = min(gone, kept), max(gone, kept)
+            unread(gone, work[gone])
+            unread(kept, work[kept])
+            work[first], work[last] = work[kept], None
+            read(first, work[first])
+            del products[key]
+            products[(key[0], -key[1])] = first
+            uses.pop(dropped, None)
+            shared = True
+    return [op for op in work if op is not None]
 
 
 def _takes_negation(op: _Op, place: int) -> bool:
