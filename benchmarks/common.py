@@ -107,6 +107,74 @@ def browser_launcher():
     return None if chromium is None else (sync_playwright, chromium)
 
 
+#: the load reference's fastest times seen on this machine (see :func:`load_factor`)
+LOAD_REFERENCE = "load_reference.json"
+
+
+def reference_workload() -> int:
+    """A fixed piece of work of the kind the package does — small numpy calls on a few dozen
+    points, floats formatted, a dict filled — written here, so that no change to the package
+    changes it: its time measures how busy the machine is, not how fast planmethod is.
+
+    >>> reference_workload()
+    19549
+    """
+    points = np.random.default_rng(12345).random((48, 2)) * 100.0
+    texts, table = [], {}
+    for index in range(1800):
+        here = points[index % 48]
+        distances = np.sqrt(((points - here) ** 2).sum(axis=1))
+        nearest = int(np.argsort(distances)[1])
+        table[(index % 48, nearest)] = float(distances[nearest])
+        texts.append("%.2f,%.2f" % (float(here[0]), float(here[1])))  # noqa: UP031
+    return len("".join(texts)) + len(table)
+
+
+def load_factor(count: int = 15, *, record: bool = False) -> dict:
+    """How much this run's load stretches wall and CPU times: the median of ``count`` runs
+    of :func:`reference_workload` now, against the fastest median ever seen here (kept in
+    ``results/load_reference.json``; with ``record``, a faster median found now replaces
+    it). A time divided by its factor is its *idle estimate*.
+
+    >>> found = load_factor(3)
+    >>> found["factor"] >= 1.0 and found["cpu_factor"] >= 1.0
+    True
+    """
+    wall, cpu = [], []
+    reference_workload()
+    for _ in range(count):
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        reference_workload()
+        cpu.append(1000 * (time.thread_time() - start_cpu))
+        wall.append(1000 * (time.perf_counter() - start))
+    wall_ms, cpu_ms = statistics.median(wall), statistics.median(cpu)
+    path = RESULTS / LOAD_REFERENCE
+    try:
+        fastest = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        fastest = {}
+    idle_wall = min(float(fastest.get("wall_ms", wall_ms)), wall_ms)
+    idle_cpu = min(float(fastest.get("cpu_ms", cpu_ms)), cpu_ms)
+    if record and (idle_wall, idle_cpu) != (fastest.get("wall_ms"), fastest.get("cpu_ms")):
+        write_json(LOAD_REFERENCE, {"wall_ms": idle_wall, "cpu_ms": idle_cpu,
+                                    "machine": machine().get("cpu", "?")})
+    return {"reference_ms": wall_ms, "reference_cpu_ms": cpu_ms, "idle_reference_ms": idle_wall,
+            "idle_reference_cpu_ms": idle_cpu, "idle_machine": fastest.get("machine", "?"),
+            "factor": wall_ms / idle_wall, "cpu_factor": cpu_ms / idle_cpu}
+
+
+def load_sentence(load: dict) -> str:
+    """The run's load, as the tables of the studio and the workbook state it."""
+    before, after = load["before"], load["after"]
+    return (f"Load of this run: the reference workload (benchmarks/common.py, no planmethod "
+            f"code in it; fastest seen here {before['idle_reference_ms']:.3g} ms wall, "
+            f"{before['idle_reference_cpu_ms']:.3g} ms CPU, {before['idle_machine']}) took "
+            f"{before['reference_ms']:.3g} / {after['reference_ms']:.3g} ms wall and "
+            f"{before['reference_cpu_ms']:.3g} / {after['reference_cpu_ms']:.3g} ms CPU before "
+            f"/ after: factors {load['factor']:.2f} (wall) and {load['cpu_factor']:.2f} (CPU). "
+            "An idle estimate is a time divided by its factor: a rough one.")
+
+
 def machine() -> dict:
     """What the numbers were measured on."""
     info = {"python": platform.python_version(), "numpy": np.__version__,

@@ -18,13 +18,14 @@ Targets of issue 22: the server ≤ 16 ms (compressor) and ≤ 40 ms (conveyor) 
 round trip ≤ 50 ms and ≤ 100 ms, on the benchmark machine.
 
 *Load*: the machine these run on is shared, and its load stretches wall times several times
-over, and CPU times too (two virtual CPUs shared by many processes). So the run also takes the
-workbook benchmark's reference measure — the compressor's plans + SVG at one position, its
-mechanism already solved — in wall and CPU time, before and after; its committed value
-(``results/workbook.json``) was measured on the idle machine. The ratios are the run's load
-factors; a time divided by its factor is shown as the idle estimate, and the targets are
-judged on those (the server's on its CPU time: the update is single-threaded computation; the
-round trip's on its wall time). Compare raw times only within one run.
+over, and CPU times too (two virtual CPUs shared by many processes). So the run also times
+a reference workload (:func:`~benchmarks.common.reference_workload`: numpy calls, formatting
+and dicts, no planmethod code, so that speeding the package up does not move it) in wall and
+CPU time, before and after, against the fastest it was ever seen to run here
+(``results/load_reference.json``, lowered by a full run that finds it faster). The ratios are
+the run's load factors; a time divided by its factor is shown as the idle estimate, and the
+targets are judged on those (the server's on its CPU time: the update is single-threaded
+computation; the round trip's on its wall time). Compare raw times only within one run.
 
 Examples
 --------
@@ -52,7 +53,7 @@ from planmethod.grading.templates import to_toml
 from planmethod.spec import parse_toml, read_text
 from planmethod.studio import api
 
-from .common import FIGURES, ROOT, browser_launcher
+from .common import FIGURES, ROOT, browser_launcher, load_factor, load_sentence
 
 FILES = {"compressor": ("exercises/compressor_slider_crank.toml", "B"),
          "conveyor": ("exercises/conveyor_sixbar.toml", "A")}
@@ -209,44 +210,15 @@ def _move(page, pin: str, xy: list[float]) -> None:
     page.wait_for_function(f"window.studio.solves > {solves}", timeout=60_000, polling=1)
 
 
-def load_factor(count: int = 12) -> dict:
-    """The workbook's reference measure (the compressor's plans + SVG at one position, its
-    mechanism already solved) now, in wall and CPU time, against its committed idle value:
-    the factors by which this run's load stretches wall and CPU times."""
-    import json
-
-    from planmethod.render.figures import plan_files
-    from planmethod.report import analyse
-    from planmethod.spec import load_exercise
-
-    from .common import RESULTS
-
-    committed = json.loads((RESULTS / "workbook.json").read_text(encoding="utf-8"))
-    idle = committed["mechanisms"]["compressor"]["per_position_ms"]["plan_files"]
-    exercise = load_exercise(ROOT / FILES["compressor"][0])
-    analyse(exercise, 0.0)
-    wall, cpu = [], []
-    for number in range(count):
-        analysis = analyse(exercise, 7.0 + number * 360.0 / count)
-        start, start_cpu = time.perf_counter(), time.thread_time()
-        plan_files(analysis.plans, forces=analysis.forces, details=False, loaded=False)
-        cpu.append(1000 * (time.thread_time() - start_cpu))
-        wall.append(1000 * (time.perf_counter() - start))
-    wall_ms, cpu_ms = statistics.median(wall), statistics.median(cpu)
-    return {"reference_ms": wall_ms, "reference_cpu_ms": cpu_ms, "idle_reference_ms": idle,
-            "idle_machine": committed.get("machine", {}).get("cpu", "?"),
-            "factor": max(wall_ms / idle, 1.0), "cpu_factor": max(cpu_ms / idle, 1.0)}
-
-
 def run(*, quick: bool = False) -> dict:
     count = 10 if quick else STEPS
     result: dict = {"steps": count, "step_m": STEP_M, "mechanisms": {}}
-    before = load_factor()
+    before = load_factor(record=not quick)
     for name in FILES:
         entry = {"server": server_times(name, count), "browser": browser_times(name, count)}
         print(f"  {name}: {entry}")
         result["mechanisms"][name] = entry
-    after = load_factor()
+    after = load_factor(record=not quick)
     result["load"] = {"before": before, "after": after,
                       "factor": (before["factor"] + after["factor"]) / 2,
                       "cpu_factor": (before["cpu_factor"] + after["cpu_factor"]) / 2}
@@ -276,14 +248,5 @@ def table(result: dict) -> str:
                      f"({_mark(server['cpu_median_ms'] / cpu_factor, target['server'])}) | "
                      f"{server['median_ms']:.3g} / {server['p90_ms']:.3g} | {stages} | "
                      f"{shown} |")
-    idle_machine = load["before"].get("idle_machine", "?")
-    lines += ["", f"Load of this run: the reference measure (the compressor's plans + SVG at one "
-              f"position, {load['before']['idle_reference_ms']:.3g} ms on the idle machine, "
-              f"{idle_machine}) took "
-              f"{load['before']['reference_ms']:.3g} / {load['after']['reference_ms']:.3g} ms "
-              f"wall and {load['before']['reference_cpu_ms']:.3g} / "
-              f"{load['after']['reference_cpu_ms']:.3g} ms CPU before / after: factors "
-              f"{factor:.2f} (wall) and {cpu_factor:.2f} (CPU). An idle estimate is a time "
-              "divided by its factor: a rough one, the more so when the reference was measured "
-              "on another processor than the header's."]
+    lines += ["", load_sentence(load)]
     return "\n".join(lines) + "\n"
