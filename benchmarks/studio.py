@@ -114,7 +114,7 @@ def server_times(name: str, count: int = STEPS) -> dict:
         report_dict(analysis)
         clock.append(time.perf_counter())
         plans = analysis.plans
-        position_svg(plans.position, plans=plans)
+        position_svg(plans.position, plans=plans, details=False)
         plan_svg(plans.velocity, details=False)
         plan_svg(plans.acceleration, details=False)
         clock.append(time.perf_counter())

@@ -255,6 +255,20 @@ def test_solve_gives_the_reports_of_solve_json_with_the_plans(server):
     assert payload["drive_symbols"] == {"phi": "φ₁", "omega": "ω₁", "epsilon": "ε₁"}
 
 
+def test_the_live_mechanism_is_drawn_without_the_enlarged_details():
+    """Redrawn at every step of a drag, the studio's position plan leaves out the enlarged
+    details of crowded points (they would jump about below it); the command line's has them."""
+    from planmethod.render.svg import position_svg
+    from planmethod.report import analyse
+    from planmethod.spec import load_exercise
+
+    conveyor = ROOT / "exercises" / "conveyor_sixbar.toml"
+    plans = analyse(load_exercise(conveyor)).plans
+    assert 'class="detail frame"' in position_svg(plans.position, plans=plans)
+    live = api.solve(read_text(conveyor))["svg"]["position"]
+    assert live.startswith("<svg") and 'class="detail' not in live
+
+
 def test_the_drives_symbols_follow_the_cranks_number(server):
     """Where the course numbers the frame 1, the crank is 2: the Drive box says φ₂, ω₂, ε₂."""
     text = read_text(COMPRESSOR) + "\n[notation]\nframe = 1\n"

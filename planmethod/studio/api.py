@@ -155,7 +155,9 @@ def _exercise(text: str, file: str | None = None):
 def solve(text: str) -> dict[str, Any]:
     """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
     "symbols": …, "drive_symbols": …, "server_ms": …}``: the report of ``planmethod solve
-    --json``, the plans as the command line draws them (SVG for an HTML page: no XML
+    --json``, the plans as the command line draws them but without the enlarged details of
+    crowded points (a live picture, redrawn at every step of a drag: the details would jump
+    about below it; ``planmethod solve --svg`` draws them) as SVG for an HTML page (no XML
     declaration), each checked quantity's course symbol under the exercise's numbering
     (``omega_BC`` → ω₂) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁)."""
     from ..numbering import course_numbers, course_symbols
@@ -170,7 +172,7 @@ def solve(text: str) -> dict[str, Any]:
     svg = {}
     plans = analysis.plans
     if plans is not None:
-        svg["position"] = inline_svg(position_svg(plans.position, plans=plans))
+        svg["position"] = inline_svg(position_svg(plans.position, plans=plans, details=False))
         svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
         if plans.acceleration is not None:
             svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
