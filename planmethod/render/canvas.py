@@ -502,9 +502,6 @@ class Canvas:
         drawing.set_desc(title=title)
         drawing.add(drawing.rect(insert=(num(x0), num(y0)), size=(num(width), num(height)),
                                  fill="#ffffff", class_="background"))
-        # the document (its root, title, definitions, background) is svgwrite's; the drawn
-        # elements go into its ElementTree as they would from svgwrite's own elements
-        # (attributes sorted, svgwrite's defaults first), a third of the time
         # the document's shell (its root, title, definitions, background) is svgwrite's;
         # the drawn elements are written into it as ElementTree would write them from
         # svgwrite's own elements (attributes sorted, svgwrite's defaults first), at a
