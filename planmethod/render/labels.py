@@ -267,15 +267,18 @@ def _segments(lines: Sequence[Sequence[tuple[float, float]]]) -> np.ndarray:
     >>> _segments([((0, 0), (1, 0), (1, 1)), ((1, 0), (0, 0))]).tolist()
     [[0.0, 0.0, 1.0, 0.0], [1.0, 0.0, 1.0, 1.0]]
     """
-    pieces = [(*line[k], *line[k + 1]) for line in lines for k in range(len(line) - 1)]
+    pieces = set()      # (a few dozen pieces: plain tuples are quicker than np.unique)
+    for line in lines:
+        for k in range(len(line) - 1):
+            start = (float(line[k][0]), float(line[k][1]))
+            end = (float(line[k + 1][0]), float(line[k + 1][1]))
+            if end < start:     # each piece from its lower end (x, then y): drawn both ways,
+                start, end = end, start                                     # it is one
+            if start != end:                                   # no zero-length pieces
+                pieces.add(start + end)
     if not pieces:
         return np.empty((0, 4))
-    out = np.asarray(pieces, dtype=float)
-    # each piece from its lower end (x, then y), so that a piece drawn both ways is one
-    swap = (out[:, 2] < out[:, 0]) | ((out[:, 2] == out[:, 0]) & (out[:, 3] < out[:, 1]))
-    out[swap] = out[swap][:, [2, 3, 0, 1]]
-    out = out[np.any(out[:, :2] != out[:, 2:], axis=1)]           # no zero-length pieces
-    return np.unique(out, axis=0)
+    return np.array(sorted(pieces), dtype=float)
 
 
 def _bounds(items: np.ndarray) -> np.ndarray:
