@@ -47,6 +47,7 @@ def test_every_registered_kind_is_described_by_its_module():
     (rrr, (), {"reactions": lambda solver: None},
      "reactions cannot be called with the 2 arguments of Reactions.reactions"),
     (rrr, (), {"BRANCHES": 3}, "BRANCHES must be 1 or 2 for a closed-form kind, not 3"),
+    (rrr, ("BRANCHES",), {}, "BRANCHES must be 1 or 2 for a closed-form kind, not 0"),
     (rrr, (), {"draw_velocity": triad.draw_velocity,
                "draw_acceleration": triad.draw_acceleration},
      "a closed-form kind is drawn from its two vector equations"),
@@ -54,6 +55,11 @@ def test_every_registered_kind_is_described_by_its_module():
      "defines both place (ClosedFormKind) and evaluate/choose"),
     (rrr, (), {"KIND": "RRRR"}, "KIND 'RRRR' is no GroupKind"),
     (rrr, ("reactions",), {}, "a closed-form kind defines reactions (Reactions)"),
+    (rrr, ("KIND",), {}, "defines neither KIND nor KINDS"),
+    (rrr, (), {"PRIORITY": 1.5}, "PRIORITY must be a whole number, not 1.5"),
+    (higher, ("evaluate",), {"choose": lambda: None},   # the function there is checked too
+     "defines choose but not evaluate (IterativeKind); choose cannot be called with the 2 "
+     "arguments of IterativeKind.choose"),
 ])
 def test_a_module_that_breaks_the_interface_is_refused(module, without, extra, message):
     fake = _copy(module, without=without, **extra)
@@ -61,6 +67,32 @@ def test_a_module_that_breaks_the_interface_is_refused(module, without, extra, m
         describe(fake)
     assert str(error.value).startswith(f"group kind module {fake.__name__}: ")
     assert message in str(error.value)
+
+
+def test_every_way_a_module_breaks_the_interface_is_named_at_once():
+    fake = _copy(rrr, without=("KIND", "reactions"), PRIORITY="high")
+    with pytest.raises(TypeError) as error:
+        describe(fake)
+    assert str(error.value) == (
+        f"group kind module {fake.__name__}: defines neither KIND nor KINDS; a closed-form "
+        "kind defines reactions (Reactions): a dyad's textbook reaction sequence; PRIORITY "
+        "must be a whole number, not 'high'")
+
+
+def test_what_a_module_leaves_out_takes_its_default():
+    """Named by the last part of its module's name; without PRIORITY, 0; a kind without
+    ``accepts`` takes every group of its kinds; an iterative kind has no branches of its own
+    and no ``place``; a closed-form kind no ``evaluate`` or ``choose``."""
+    closed = describe(_copy(rrr, without=("PRIORITY",)))
+    assert (closed.name, closed.priority, closed.accepts, closed.branches) == (
+        "fake_rrr", 0, None, 2)
+    assert (closed.place, closed.evaluate, closed.choose, closed.reactions) == (
+        rrr.place, None, None, rrr.reactions)
+    iterative = describe(_copy(triad))
+    assert (iterative.name, iterative.branches, iterative.place) == ("fake_triad", 0, None)
+    assert (iterative.evaluate, iterative.choose, iterative.reactions) == (
+        triad.evaluate, triad.choose, triad.reactions)
+    assert iterative.accepts is triad.accepts and iterative.priority == triad.PRIORITY
 
 
 def test_a_whole_copy_is_accepted():
