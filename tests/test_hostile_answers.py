@@ -176,6 +176,9 @@ LOST_OR_MERGED = {
                                        "answers.json: [0].student: no student id"),
     "a 5,000-digit answer": ('{"s1": {"v_C": ' + HUGE + "}}",
                              "answers.json: s1.v_C: a whole number of 5000 digits"),
+    # the keys of grade's own output, whatever their values, are no class of students
+    "grade's keys alone": ('{"answers": {}, "drawings": {}}',
+                           "answers.json: this is planmethod grade's --json output"),
 }
 
 
