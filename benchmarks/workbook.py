@@ -202,15 +202,17 @@ def run(*, quick: bool = False) -> dict:
     return result
 
 
-def _mark(value: float, target: float | None, factor: float = 1.0) -> str:
-    """A time, and where it has a target its idle estimate (divided by the run's load
-    ``factor``) judged against it.
+def _mark(value: float, target: float | None, factor: float | None = None) -> str:
+    """A measure judged against its target, if it has one: a time by its idle estimate
+    (divided by the run's load ``factor``), anything else (a size) as it is.
 
-    >>> _mark(12.0, 10.0, 1.5), _mark(2.0, None)
-    ('12 (idle 8 ≤ 10)', '2')
+    >>> _mark(12.0, 10.0, 1.5), _mark(2.5, 3.0), _mark(2.0, None)
+    ('12 (idle 8 ≤ 10)', '2.5 (≤ 3)', '2')
     """
     if target is None:
         return f"{value:.3g}"
+    if factor is None:
+        return f"{value:.3g} ({'≤' if value <= target else '>'} {target:g})"
     estimate = value / factor
     return f"{value:.3g} (idle {estimate:.3g} {'≤' if estimate <= target else '>'} {target:g})"
 
