@@ -317,15 +317,21 @@ def course_text(text: str, numbers: Mapping[str, int]) -> str:
     if patterns:
         # a slide by its two links' numbers (the guide of pair 2–3), a link's ω or ε by its
         # number (2·ω₂·v_rel), the link of a similarity rule by its number
-        text = patterns.pair.sub(
-            lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}", text)
-        text = patterns.rate.sub(
-            lambda match: match.group(1) + subscript(str(numbers[match.group(2)])), text)
-        text = patterns.similarity.sub(
-            lambda match: f"similarity on link {numbers[match.group(1)]}", text)
+        # (each only where its mark is in the text: most steps have none of them)
+        if "/" in text:
+            text = patterns.pair.sub(
+                lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}",
+                text)
+        if "ω_" in text or "ε_" in text:
+            text = patterns.rate.sub(
+                lambda match: match.group(1) + subscript(str(numbers[match.group(2)])), text)
+        if "similarity on " in text:
+            text = patterns.similarity.sub(
+                lambda match: f"similarity on link {numbers[match.group(1)]}", text)
         for pattern, words in patterns.worded:
             text = pattern.sub(words, text)
-    text = _CORIOLIS.sub(lambda match: coriolis_letter(match.group(1)) + "_", text)
+    if "_" in text:
+        text = _CORIOLIS.sub(lambda match: coriolis_letter(match.group(1)) + "_", text)
     return _POINT_DIGITS.sub(lambda match: subscript(match.group(0)), text)
 
 

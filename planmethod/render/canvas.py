@@ -622,12 +622,15 @@ def _write(item, out: list[str]) -> None:
     attrs = {**_SVGWRITE_DEFAULTS.get(tag, {}), **attrs}
     if tag in ("polygon", "polyline"):
         attrs["points"] = " ".join("%s,%s" % point for point in attrs["points"])  # noqa: UP031
-    head = "".join(f' {key}="{text}"' for key, value in sorted(attrs.items())
-                   if value is not None and (text := str(value)))
-    if _ATTRIBUTE_SPECIAL.search(head) is not None:   # (rare: most values are numbers)
-        head = "".join(f' {key}="{_escape_attribute(text)}"'
-                       for key, value in sorted(attrs.items())
-                       if value is not None and (text := str(value)))
+    keys, values = [], []
+    for key, value in sorted(attrs.items()):
+        if value is not None and (value := str(value)):
+            keys.append(key)
+            values.append(value)
+    # one search over the values joined (most are numbers, with nothing to escape)
+    if _ATTRIBUTE_SPECIAL.search("".join(values)) is not None:
+        values = [_escape_attribute(value) for value in values]
+    head = "".join([f' {key}="{value}"' for key, value in zip(keys, values, strict=True)])
     text = ("".join(child for child in children if isinstance(child, str))
             if tag in ("text", "tspan", "style") else "")
     elements = [child for child in children if not isinstance(child, str)]
