@@ -57,6 +57,10 @@ def test_every_registered_kind_is_described_by_its_module():
     (rrr, ("reactions",), {}, "a closed-form kind defines reactions (Reactions)"),
     (rrr, ("KIND",), {}, "defines neither KIND nor KINDS"),
     (rrr, (), {"PRIORITY": 1.5}, "PRIORITY must be a whole number, not 1.5"),
+    (rrr, (), {"place": lambda: None},
+     "place cannot be called with the 1 arguments of ClosedFormKind.place"),
+    (triad, (), {"accepts": lambda: None},
+     "accepts cannot be called with the 1 arguments of Accepts.accepts"),
     (higher, ("evaluate",), {"choose": lambda: None},   # the function there is checked too
      "defines choose but not evaluate (IterativeKind); choose cannot be called with the 2 "
      "arguments of IterativeKind.choose"),
