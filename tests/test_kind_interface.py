@@ -99,6 +99,8 @@ def test_what_a_module_leaves_out_takes_its_default():
     assert (iterative.evaluate, iterative.choose, iterative.reactions) == (
         triad.evaluate, triad.choose, triad.reactions)
     assert iterative.accepts is triad.accepts and iterative.priority == triad.PRIORITY
+    # branches are a closed-form kind's: an iterative one counts its assemblies as it finds them
+    assert describe(_copy(triad, BRANCHES=2)).branches == 0
 
 
 def test_a_whole_copy_is_accepted():
