@@ -104,3 +104,12 @@ def test_published_values_are_compared_and_checked(capsys):
     data["published"] = {"speed_C": 4.0}
     with pytest.raises(Exception, match=r"published\.speed_C: is not a quantity"):
         exercise_from_dict(data)
+
+
+def test_the_force_scale_is_printed_with_the_others_when_it_is_set():
+    from planmethod.plans.scales import Scales
+
+    lines = Scales(0.002, 0.2, 20.0, 100.0, "B", mu_f=50.0).describe()
+    assert lines[-1] == "μF = 50 N/mm" and len(lines) == 6
+    assert not any(line.startswith("μF") for line in Scales(0.002, 0.2, 20.0, 100.0,
+                                                           "B").describe())
