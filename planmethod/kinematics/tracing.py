@@ -519,12 +519,6 @@ def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:
     work: list[_Op | None] = list(ops)
     products: dict[tuple[int, float], int] = {}   # (x, c) → where x·c is (the last recorded)
     uses: dict[int, set[tuple[int, int]]] = {}    # a value → where it is read (op, argument)
-    for position, op in enumerate(work):
-        if op.name == "mul" and isinstance(op.args[0], int) and isinstance(op.args[1], float):
-            products[(op.args[0], op.args[1])] = position
-        for place, arg in enumerate(op.args):
-            if isinstance(arg, int):
-                uses.setdefault(arg, set()).add((position, place))
 
     def unread(position: int, op: _Op) -> None:
         for place, arg in enumerate(op.args):
@@ -536,6 +530,10 @@ def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:
             if isinstance(arg, int):
                 uses.setdefault(arg, set()).add((position, place))
 
+    for position, op in enumerate(work):
+        if op.name == "mul" and isinstance(op.args[0], int) and isinstance(op.args[1], float):
+            products[(op.args[0], op.args[1])] = position
+        read(position, op)
     shared = True
     while shared:
         shared = False
