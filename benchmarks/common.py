@@ -163,6 +163,17 @@ def load_factor(count: int = 15, *, record: bool = False) -> dict:
             "factor": wall_ms / idle_wall, "cpu_factor": cpu_ms / idle_cpu}
 
 
+def run_load(before: dict, after: dict) -> dict:
+    """A run's load: :func:`load_factor` taken before and after it, and the mean factors.
+
+    >>> run_load({"factor": 1.0, "cpu_factor": 1.2}, {"factor": 2.0, "cpu_factor": 1.4})["factor"]
+    1.5
+    """
+    return {"before": before, "after": after,
+            "factor": (before["factor"] + after["factor"]) / 2,
+            "cpu_factor": (before["cpu_factor"] + after["cpu_factor"]) / 2}
+
+
 def load_sentence(load: dict) -> str:
     """The run's load, as the tables of the studio and the workbook state it."""
     before, after = load["before"], load["after"]

@@ -53,7 +53,7 @@ from planmethod.grading.templates import to_toml
 from planmethod.spec import parse_toml, read_text
 from planmethod.studio import api
 
-from .common import FIGURES, ROOT, browser_launcher, load_factor, load_sentence
+from .common import FIGURES, ROOT, browser_launcher, load_factor, load_sentence, run_load
 
 FILES = {"compressor": ("exercises/compressor_slider_crank.toml", "B"),
          "conveyor": ("exercises/conveyor_sixbar.toml", "A")}
@@ -219,9 +219,7 @@ def run(*, quick: bool = False) -> dict:
         print(f"  {name}: {entry}")
         result["mechanisms"][name] = entry
     after = load_factor(record=not quick)
-    result["load"] = {"before": before, "after": after,
-                      "factor": (before["factor"] + after["factor"]) / 2,
-                      "cpu_factor": (before["cpu_factor"] + after["cpu_factor"]) / 2}
+    result["load"] = run_load(before, after)
     if not quick:
         screenshot(FIGURES / "studio.png")
     return result

@@ -41,7 +41,7 @@ from planmethod.render.figures import plan_files
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
 
-from .common import FIGURES, ROOT, browser_launcher, load_factor, load_sentence
+from .common import FIGURES, ROOT, browser_launcher, load_factor, load_sentence, run_load
 
 FILES = {"compressor": "exercises/compressor_slider_crank.toml",
          "conveyor": "exercises/conveyor_sixbar.toml"}
@@ -196,9 +196,7 @@ def run(*, quick: bool = False) -> dict:
                          for name, entry in result["mechanisms"].items()}
     result["terminated"] = terminated_mid_run(folder)
     after = load_factor(record=not quick)
-    result["load"] = {"before": before, "after": after,
-                      "factor": (before["factor"] + after["factor"]) / 2,
-                      "cpu_factor": (before["cpu_factor"] + after["cpu_factor"]) / 2}
+    result["load"] = run_load(before, after)
     return result
 
 
