@@ -160,6 +160,8 @@ class Canvas:
         #: rectangles (x0, y0, x1, y1)
         self.obstacle_lines: list[tuple[Point, ...]] = []
         self.obstacle_areas: list[tuple[float, float, float, float]] = []
+        #: the points' marks (x, y, radius), whose areas are among the obstacle areas
+        self.point_marks: list[tuple[float, float, float]] = []
         #: the vectors' arrows among the obstacle lines: leaders keep off them
         self.vector_lines: list[tuple[Point, ...]] = []
         self.requests: list[LabelRequest] = []
@@ -250,6 +252,8 @@ class Canvas:
             half = _ROUND_MARK * radius / 2 + (KEEP_CLEAR if points else 0.0)
             self.obstacle_areas.append((centre[0] - half, centre[1] - half, centre[0] + half,
                                         centre[1] + half))
+            if points:
+                self.point_marks.append((centre[0], centre[1], float(radius)))
 
     def arrow(self, p: Point, q: Point, style_key: str, *, layer: str, step: int | None = None,
               color: str | None = None, css: str | None = None, obstacle: bool = True
@@ -453,13 +457,14 @@ class Canvas:
     def trial(self) -> tuple[PlacedLabel, ...]:
         """Where the requested labels would go, without drawing them."""
         return place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
-                            vectors=self.vector_lines)
+                            vectors=self.vector_lines, marks=self.point_marks)
 
     def place(self, bounds: Sequence[float] | None = None) -> None:
         """Place the requested labels (within ``bounds``, x0, y0, x1, y1, where they can) and
         draw them with their leaders."""
         self.labels = place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
-                                   vectors=self.vector_lines, bounds=bounds)
+                                   vectors=self.vector_lines, marks=self.point_marks,
+                                   bounds=bounds)
         for label in self.labels:
             x0, y0, x1, y1 = label.box
             self.grow((x0, y0), (x1, y1))

@@ -119,12 +119,14 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
     labels: call before :meth:`Canvas.place`), each region of a detail is marked on that
     detail by :func:`detail_insets`. The labels of what a region holds go on the figure only
     where they find a clean spot. A figure drawn without details (not ``draw``: a frame of a
-    workbook page) gets no region, but the labels of its crowded points are placed the same
-    way: where they find a clean spot."""
+    workbook page, the studio) gets no region; the labels of its crowded points that find no
+    clean spot go on leaders, after the others (``crowded``, see
+    :func:`planmethod.render.labels.place_labels`)."""
     same = one_spot(where)
     if not draw:
         for box in _regions(where, 1.0, same):
-            figure.requests = [replace(request, optional=True) if _within(request, box)
+            figure.requests = [replace(request, optional=True, crowded=True)
+                               if _within(request, box)
                                else request for request in figure.requests]
         return []
     out: list[Detail] = []

@@ -53,7 +53,7 @@ from enum import StrEnum
 import numpy as np
 
 from ..vocabulary import coriolis_letter
-from .style import CLEARANCE_PX, LABEL, NBSP, SUB_SCALE, SUB_SHIFT, text_width
+from .style import CLEARANCE_PX, LABEL, NBSP, SUB_SCALE, SUB_SHIFT, TOUCH_PX, text_width
 
 __all__ = [
     "LabelRequest",
@@ -117,6 +117,18 @@ CLEAN_SLACK = 1.0
 #: a label may come this near (px) its own point's mark: the room other labels keep from a
 #: point's mark (``planmethod.render.canvas.KEEP_CLEAR``) is not held against its own label
 OWN_ROOM = CLEARANCE_PX
+#: a crowded label on a leader (no details) keeps its box, padding included, this far (px)
+#: from every mark and fixed text: the touching distance of a figure without details and
+#: one px more, for a round mark counted as the square of its area
+CROWDED_ROOM = TOUCH_PX + 1.0
+#: what an arrow crossed by a crowded label's leader costs (px of distance): a leader may
+#: cross arrows in a figure without details, but a spot a little farther that crosses none
+#: is taken first
+CROWDED_CROSSING_COST = 20.0
+#: the directions tried for a crowded label on a leader: those of every label, then the
+#: ones halfway between them
+CROWDED_DIRECTIONS = np.concatenate((DIRECTIONS, np.asarray(DIRECTIONS[8:]) + 11.25,
+                                     np.asarray(DIRECTIONS[8:]) - 11.25))
 
 
 def _split_digits(name: str) -> tuple[str, str]:
@@ -202,6 +214,10 @@ class LabelRequest:
     #: a label shown elsewhere too (in an enlarged detail): left out where it finds no clean
     #: spot (one with no line, label or leader in the way)
     optional: bool = False
+    #: a crowded point's label in a figure drawn without details: where it finds no clean
+    #: spot, it goes after the others to the nearest spot with nothing in its box, on a
+    #: leader (see :func:`place_labels`), and is left out only where there is none
+    crowded: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -422,11 +438,11 @@ def _leaders(anchor, boxes: np.ndarray) -> np.ndarray:
                      np.clip(ay, boxes[:, 1], boxes[:, 3]))).T
 
 
-def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | None = None
-              ) -> np.ndarray:
-    """(leaders × segments): whether each leader crosses each segment, away from the point
-    it starts at (a leader may leave its point across the lines through it). ``bounds`` are
-    the segments' (see :func:`_bounds`), where known.
+def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | None = None,
+              start: float = LEADER_START) -> np.ndarray:
+    """(leaders × segments): whether each leader crosses each segment, more than ``start``
+    px away from the point it starts at (a leader may leave its point across the lines
+    through it). ``bounds`` are the segments' (see :func:`_bounds`), where known.
 
     >>> _crossing(np.array([[0.0, 0, 10, 0], [0, 0, 0, 10]]),
     ...           np.array([[5.0, -5, 5, 5], [0, 0, 3, 3]])).tolist()
@@ -441,7 +457,7 @@ def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | No
     meeting = _meeting(bounds, (low[0], low[1], high[0], high[1]))
     if not meeting.all():                 # only the segments near the leaders can cross
         out = np.zeros((len(leaders), len(segments)), dtype=bool)
-        out[:, meeting] = _crossing(leaders, segments[meeting], bounds[meeting])
+        out[:, meeting] = _crossing(leaders, segments[meeting], bounds[meeting], start)
         return out
     ax, ay = leaders[:, 0, None], leaders[:, 1, None]
     rx, ry = leaders[:, 2, None] - ax, leaders[:, 3, None] - ay
@@ -455,7 +471,7 @@ def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | No
         t = (away_x * sy - away_y * sx) / denominator
         u = (away_x * ry - away_y * rx) / denominator
     length = np.hypot(rx, ry)
-    near = LEADER_START / np.maximum(length, 1e-9)      # where it leaves its point
+    near = start / np.maximum(length, 1e-9)             # where it leaves its point
     return (np.abs(denominator) > 1e-12) & (t > near) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
 
 
@@ -557,9 +573,13 @@ def _near_spots(anchors: np.ndarray, reaches: np.ndarray, halves: np.ndarray,
 
 
 def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence, *,
-                 vectors: Sequence = (), bounds: Sequence[float] | None = None
-                 ) -> tuple[PlacedLabel, ...]:
+                 vectors: Sequence = (), marks: Sequence = (),
+                 bounds: Sequence[float] | None = None) -> tuple[PlacedLabel, ...]:
     """Place labels so that no two overlap and as few drawn lines as possible run under them.
+
+    A label shown elsewhere too (``optional``: in an enlarged detail) is left out where it
+    finds no clean spot; a crowded point's label of a figure without details (``crowded``)
+    then goes, after all the others, on a leader (:func:`_crowded_spot`).
 
     A label pushed far from its point gets a leader: a label's box never takes a leader drawn
     before, and a leader crosses a label placed before or another leader only where no other
@@ -577,6 +597,10 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         counts).
     vectors
         The vectors' arrows among the lines, as sequences of points: a leader keeps off them.
+    marks
+        The points' round marks (x, y, radius), whose areas (with the room other labels keep
+        from them) are among ``areas``: a crowded label keeps only :data:`CROWDED_ROOM` from
+        them.
     bounds
         A box (x0, y0, x1, y1) the labels keep within where they can (an enlarged detail's
         frame): a spot that leaves it costs :data:`OUTSIDE_COST`.
@@ -594,7 +618,9 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     arrow_bounds = _bounds(arrows)
     rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
     rectangle_bounds = _bounds(rectangles)
+    marks = np.asarray(marks, dtype=float).reshape(-1, 3)
     placed: list[PlacedLabel] = []
+    crowded: list[int] = []                 # crowded labels with no clean spot: placed last
     taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1), their own bounds
     drawn_leaders = np.empty((0, 4))        # placed leaders (x0, y0, x1, y1)
     leader_bounds = np.empty((0, 4))        # and their bounds
@@ -714,6 +740,8 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
                 break
         tidy = best is not None and best[0] <= best[3]
         if request.optional and not tidy:
+            if request.crowded:
+                crowded.append(number)
             continue                        # no clean spot: the detail shows it
         if best is None:                    # every spot overlaps: put it below everything
             bottom = float(taken[:, 3].max()) if len(taken) else ay
@@ -730,7 +758,87 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
         placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
                                   (round(baseline[0], 2), round(baseline[1], 2)),
                                   tuple(round(v, 2) for v in spot), far, request.css, tidy))
+    for number in crowded:                  # on a leader, after every other label
+        request = requests[number]
+        found = _crowded_spot(request, halves[number], segments, segment_bounds, arrows,
+                              rectangles, marks, taken, drawn_leaders, bounds)
+        if found is None:
+            continue                        # nowhere free: left out, as before
+        spot = tuple(float(v) for v in found)
+        leader = _leaders(request.anchor, np.asarray([spot]))
+        taken = np.vstack((taken, [spot]))
+        drawn_leaders = np.vstack((drawn_leaders, leader))
+        baseline = (spot[0] + PADDING, spot[1] + PADDING + extents[number][1])
+        placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
+                                  (round(baseline[0], 2), round(baseline[1], 2)),
+                                  tuple(round(v, 2) for v in spot), True, request.css, False))
     return tuple(placed)
+
+
+def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np.ndarray,
+                  segment_bounds: np.ndarray, arrows: np.ndarray, rectangles: np.ndarray,
+                  marks: np.ndarray, taken: np.ndarray, drawn_leaders: np.ndarray,
+                  bounds: Sequence[float] | None) -> np.ndarray | None:
+    """The box (x0, y0, x1, y1) of a crowded label that found no clean spot, on a leader:
+    among the spots beyond :data:`LEADER_DISTANCE` in :data:`CROWDED_DIRECTIONS`, the
+    nearest (an arrow its leader crosses counting :data:`CROWDED_CROSSING_COST`) whose box
+    has no drawn line, label or leader in it, keeps :data:`CROWDED_ROOM` from every point's
+    mark (``marks``: x, y, radius) and overlaps no other area, whose leader crosses no other
+    leader and runs through no label, no area and no other point's mark, and which stays
+    within ``bounds``, if given; None where there is none. The room other labels keep round
+    a point's mark (its area among the ``rectangles``) is not held against it: a crowded
+    point has no such room to give.
+
+    >>> request = LabelRequest(("b",), (0.0, 0.0), label_runs("b"), 15.0, crowded=True)
+    >>> lines = np.array([[-40.0, 0, 40, 0], [0, -40, 0, 40]])
+    >>> marks = np.array([[0.0, 0, 3], [5, 5, 3]])
+    >>> box = _crowded_spot(request, (6.0, 9.0), lines, _bounds(lines), np.empty((0, 4)),
+    ...                     np.empty((0, 4)), marks, np.empty((0, 4)), np.empty((0, 4)), None)
+    >>> box.round(1).tolist()            # up and to the right, clear of both lines
+    [14.1, -32.1, 26.1, -14.1]
+    """
+    far = [distance for distance in DISTANCES if distance > LEADER_DISTANCE]
+    distance = np.repeat(np.asarray(far), len(CROWDED_DIRECTIONS))
+    order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(far))
+    boxes = _boxes(request.anchor, _directions(CROWDED_DIRECTIONS[order]),
+                   request.mark_radius + distance, half[0], half[1])
+    free = _clear(boxes, taken)
+    if bounds is not None:
+        free &= ((boxes[:, 0] >= bounds[0]) & (boxes[:, 1] >= bounds[1])
+                 & (boxes[:, 2] <= bounds[2]) & (boxes[:, 3] <= bounds[3]))
+    lines = np.concatenate((segments, drawn_leaders))
+    if len(lines):
+        free &= _clipped_lengths(lines, boxes, bounds=np.concatenate(
+            (segment_bounds, _bounds(drawn_leaders)))) <= 0.0
+    # the marks as their bounding squares, and the areas that are not a mark's room
+    squares = np.column_stack((marks[:, :2] - marks[:, 2:], marks[:, :2] + marks[:, 2:]))
+    centres = (rectangles[:, :2] + rectangles[:, 2:]) / 2
+    areas = rectangles[~np.any(np.all(np.abs(centres[:, None, :] - marks[None, :, :2])
+                                      < 1e-6, axis=2), axis=1)]
+    obstacles = np.concatenate((squares, areas))
+    if len(obstacles):
+        grown = boxes + np.array([-CROWDED_ROOM, -CROWDED_ROOM, CROWDED_ROOM, CROWDED_ROOM])
+        free &= _overlap_areas(obstacles, grown) <= 0.0
+    if not free.any():
+        return None
+    boxes, cost = boxes[free], (distance + 0.05 * order)[free]
+    leaders = _leaders(request.anchor, boxes)
+    free = np.ones(len(boxes), dtype=bool)
+    if len(drawn_leaders):      # (a crowded point's neighbour may start its leader a px off)
+        free &= ~_crossing(leaders, drawn_leaders, start=LEADER_START / 3).any(axis=1)
+    # labels, areas and other points' marks the leader runs through (not a mark that touches
+    # its own point's: it cannot leave its point without)
+    ax, ay = request.anchor
+    reach = marks[:, 2] + request.mark_radius
+    others = squares[(np.abs(marks[:, 0] - ax) > reach) | (np.abs(marks[:, 1] - ay) > reach)]
+    crossed = np.concatenate((taken, areas, others))
+    if len(crossed):
+        free &= _through(leaders, crossed) == 0
+    if len(arrows):
+        cost = cost + CROWDED_CROSSING_COST * _crossing(leaders, arrows).sum(axis=1)
+    if not free.any():
+        return None
+    return boxes[int(np.argmin(np.where(free, cost, np.inf)))]
 
 
 def _through(leaders: np.ndarray, boxes: np.ndarray) -> np.ndarray:

@@ -39,6 +39,7 @@ __all__ = [
     "SUB_SHIFT",
     "TEXT_SIZE",
     "TITLE_SIZE",
+    "TOUCH_PX",
     "LineStyle",
     "num",
     "significant",
@@ -61,6 +62,9 @@ READABLE_EM = 2.0
 READABLE_PX = READABLE_EM * LABEL_SIZE
 #: the room (px) a label keeps from another point's mark: a quarter of the readable distance
 CLEARANCE_PX = READABLE_PX / 4.0
+#: without enlarged details (a workbook frame, the studio), a point's label still keeps this
+#: far (px) from another point's mark
+TOUCH_PX = 3.0
 SUB_SCALE = 0.72         # a subscript's size relative to its label
 SUB_SHIFT = 0.28         # a subscript's drop below the baseline, in em of the label
 TEXT_SIZE = 12.5         # scales, legend, notes

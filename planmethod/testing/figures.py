@@ -61,6 +61,7 @@ from ..render.style import (
     READABLE_PX,
     SANS,
     SANS_BOLD,
+    TOUCH_PX,
     text_width,
 )
 
@@ -71,9 +72,6 @@ __all__ = ["CLEARANCE_EM", "CODE_WORD", "READABLE_EM", "READABLE_PX", "TOUCH_PX"
 #: a point's label keeps this fraction of the readable distance (0.5 em) from another
 #: point's mark, so that it reads as its own point's
 CLEARANCE_EM = 0.25
-#: without enlarged details, a point's label still keeps this far (px) from another point's
-#: mark
-TOUCH_PX = 3.0
 #: the length (px) of a drawn line inside a label's text that counts as crossing it
 _CROSS_PX = 1.5
 #: marks nearer than this (px) are at one place: SVG coordinates are written to 0.01 px
