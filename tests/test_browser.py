@@ -190,6 +190,15 @@ def test_construction_playback_shows_the_reports_steps(browser, compressor_page)
             "#panel-velocity text.label:not(.step-hidden)",
             "nodes => nodes.map(n => n.dataset.points.split(' '))")
         assert labels and all(named.intersection(points) for points in labels)
+        # a point not yet found has no mark (nor a leader) on the plan either
+        marks = page.eval_on_selector_all(
+            "#panel-velocity circle[data-points]:not(.step-hidden), "
+            "#panel-velocity line.leader[data-points]:not(.step-hidden)",
+            "nodes => nodes.map(n => n.dataset.points.split(' '))")
+        assert marks and all(named.intersection(points) for points in marks)
+        if number == 0:
+            assert page.eval_on_selector_all("#panel-velocity circle.step-hidden",
+                                             "nodes => nodes.length") > 0
     page.click("#step-all")
     assert page.eval_on_selector_all("#panel-velocity .step-hidden", "nodes => nodes.length") == 0
     assert errors == []

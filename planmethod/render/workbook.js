@@ -265,10 +265,12 @@
         node.classList.toggle("step-hidden", n > current);
         node.classList.toggle("step-current", n === current);
       });
-      // a label shows once a step has named one of its points
+      // a point's label, mark and leader show once a step has named one of its points
       const named = new Set();
       steps.slice(0, number + 1).forEach(step => (step[3] || []).forEach(p => named.add(p)));
-      element.querySelectorAll("text.label[data-points]").forEach(label => {
+      element.querySelectorAll(
+          "text.label[data-points], circle[data-points], line.leader[data-points]"
+      ).forEach(label => {
         const points = label.dataset.points.split(" ");
         label.classList.toggle("step-hidden", !points.some(p => named.has(p)));
       });
