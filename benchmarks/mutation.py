@@ -85,6 +85,20 @@ def read_results(root: Path) -> dict[str, int | None]:
     return found
 
 
+def sample(names: list[str], count: int, seed: int) -> list[str]:
+    """A uniform random sample of ``count`` of the mutants ``names`` (all of them if fewer),
+    drawn with ``seed`` from their sorted list, in that order: a run of them estimates the
+    share that would survive a run of all.
+
+    >>> sample(["m.x_f__mutmut_1", "m.x_f__mutmut_2", "m.x_g__mutmut_1"], 2, seed=1)
+    ['m.x_f__mutmut_1', 'm.x_g__mutmut_1']
+    """
+    import random
+
+    chosen = random.Random(seed).sample(sorted(names), min(count, len(names)))
+    return sorted(chosen)
+
+
 def _mutated(root: Path) -> list[str]:
     data = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))
     return list(data["tool"]["mutmut"].get("only_mutate", []))
@@ -205,7 +219,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--name", default="mutation",
                         help="the report's file name, without .md / .json (default: mutation; "
                              "a run of other modules, in another folder, keeps its own)")
+    parser.add_argument("--sample", type=int, metavar="N",
+                        help="print N mutants drawn at random from those under --root (after "
+                             "mutmut has generated them) for `mutmut run`, and stop")
+    parser.add_argument("--seed", type=int, default=2026,
+                        help="the seed of --sample's draw (default: 2026)")
     args = parser.parse_args(argv)
+    if args.sample is not None:
+        names = list(read_results(args.root))
+        if not names:
+            raise SystemExit(f"no mutants under {args.root / 'mutants'}: let `mutmut run` "
+                             "generate them first")
+        print("\n".join(sample(names, args.sample, args.seed)))
+        return 0
     text, data = report(args.root, baseline=args.baseline, command=args.command,
                         name=args.name)
     write_text(f"{args.name}.md", text + "\n")

@@ -261,3 +261,23 @@ def test_readings_name_every_quantity_in_the_course_notation(tmp_path):
     assert shown["omega_lever"] == "ω_3" and shown["v_B@lever"] == "v_B₃"
     assert shown["s_block/lever"] == "s_23" and shown["ds_block/lever"] == "ds/dt_23"
     assert not any("block" in text or "lever" in text for text in shown.values()), shown
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_page_draws_its_exercises_variant_once(monkeypatch, jobs):
+    """The variant a frame keys at its own angle is the exercise file's, the same for every
+    frame: a page draws it once (in one process it was drawn again for each of 360 frames,
+    about a fifth of the page's time), and hands it to its workers."""
+    from planmethod.commands import workbook
+
+    calls = []
+    drawn = workbook.exercise_variant
+
+    def counted(exercise):
+        calls.append(exercise.mechanism.title)
+        return drawn(exercise)
+
+    monkeypatch.setattr(workbook, "exercise_variant", counted)
+    exercise = load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml")
+    page = workbook.build_workbook(exercise, 60.0, jobs=jobs)
+    assert len(calls) == 1 and page.count('data-quantity="') == 7

@@ -122,17 +122,20 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
             "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
 
 
-def solve_frames(exercise, angles: Sequence[float], views=None) -> list[dict[str, Any]]:
+def solve_frames(exercise, angles: Sequence[float], views=None, variant=None
+                 ) -> list[dict[str, Any]]:
     """The frames of the given angles as plain data (:func:`frame_data`), each with its
     check quantities (``quantities``) and balancing moment (``moment``, None without
     forces) for the full-turn curves; ``views`` keep each panel steady over the turn
-    (:func:`planmethod.render.steady.steady_views`)."""
+    (:func:`planmethod.render.steady.steady_views`); ``variant`` is the exercise's
+    (:func:`exercise_variant`, drawn here if not given: a page draws it once)."""
     import numpy as np
 
     from ..render.figures import plan_files
     from ..report import analyse
 
-    variant = exercise_variant(exercise)
+    if variant is None:
+        variant = exercise_variant(exercise)
     out = []
     for angle in angles:
         analysis = analyse(exercise, angle)
@@ -149,8 +152,8 @@ def solve_frames(exercise, angles: Sequence[float], views=None) -> list[dict[str
 
 
 def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
-    exercise, angles, views = job
-    return solve_frames(exercise, angles, views)
+    exercise, angles, views, variant = job
+    return solve_frames(exercise, angles, views, variant)
 
 
 def usable_cpus() -> int:
@@ -211,7 +214,7 @@ def _end_with_parent(parent: int | None) -> None:
 
 
 def _solve_in_workers(exercise, angles: Sequence[float], workers: int,
-                      progress: Callable[[int, int], None] | None, views=None
+                      progress: Callable[[int, int], None] | None, views=None, variant=None
                       ) -> list[dict[str, Any]]:
     """The frames of ``angles`` solved in ``workers`` processes, in order. The pool is
     terminated whenever this ends — done, failed, Ctrl-C or SIGTERM (the command line turns
@@ -221,7 +224,7 @@ def _solve_in_workers(exercise, angles: Sequence[float], workers: int,
     import sys
 
     size = math.ceil(len(angles) / (4 * workers))
-    chunks = [(exercise, angles[start:start + size], views)
+    chunks = [(exercise, angles[start:start + size], views, variant)
               for start in range(0, len(angles), size)]
     # fork on Linux: the workers are this process's children (the parent check above holds)
     method = "fork" if sys.platform.startswith("linux") else None
@@ -260,14 +263,15 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     angles = turn_angles(step, start=exercise.mechanism.drive.angle)   # opens at its own angle
     workers = worker_count(jobs, len(angles))
     views = steady_views(exercise, angles)      # one zoom and one page per panel
+    variant = exercise_variant(exercise)        # once: a frame keys it at its own angle
     frames: list[dict[str, Any]] = []
     if workers == 1:
         for angle in angles:
-            frames += solve_frames(exercise, [angle], views)
+            frames += solve_frames(exercise, [angle], views, variant)
             if progress is not None:
                 progress(len(frames), len(angles))
     else:
-        frames = _solve_in_workers(exercise, angles, workers, progress, views)
+        frames = _solve_in_workers(exercise, angles, workers, progress, views, variant)
     first = frames[0]
     mechanism = exercise.mechanism
     numbers = course_numbers(mechanism)
