@@ -70,7 +70,9 @@ def test_every_refusal_of_a_json_drawing_is_one_exact_line(data, message):
 
 def test_a_long_junk_value_is_cut_to_one_short_line():
     for data, where in (({"points": {"b": ["y" * 300, 1]}}, "points.b"),
-                        ({"points": {"p": [0, 0]}, "plan": "z" * 300}, "plan")):
+                        ({"points": {"p": [0, 0]}, "plan": "z" * 300}, "plan"),
+                        ({"format": "planmethod-drawing", "points": {"p": [0, 0]},
+                          "title": ["t" * 300], "angle": 0}, "title")):
         message = _refusal(parse_drawing_json, json.dumps(data))
         prefix = f"plan.json: {where}: "
         assert message.startswith(prefix) and len(message) == len(prefix) + 120
@@ -156,6 +158,8 @@ def test_a_path_counts_against_the_coordinate_budget():
      "plan.svg: unreadable transform 'translate(1,2) junk'"),
     ("<svg width='-3mm' viewBox='0 0 10 10'><text>p</text></svg>",
      "plan.svg: the drawing's width is '-3mm': a drawing has a positive size"),
+    ("<svg width='10mm' height='0' viewBox='0 0 10 10'><text>p</text></svg>",
+     "plan.svg: the drawing's height is '0': a drawing has a positive size"),
     ("<svg viewBox='0 0 0 10'><text>p</text></svg>",
      "plan.svg: the viewBox '0 0 0 10' has no positive, finite size"),
     ("<svg><rect/></svg>", "plan.svg: no labelled points: label the plan's points with text (p "
@@ -163,6 +167,13 @@ def test_a_path_counts_against_the_coordinate_budget():
 ])
 def test_every_refusal_of_an_svg_drawing_is_one_exact_line(svg, message):
     assert _refusal(parse_drawing_svg, svg) == message
+
+
+def test_an_svg_drawing_is_read_up_to_its_size_limit():
+    svg = b"<svg><text>p</text></svg>"
+    assert _refusal(parse_drawing_svg, svg + b" " * (MAX_BYTES - len(svg) + 1)) == \
+        f"plan.svg: larger than {MAX_BYTES} bytes"
+    assert parse_drawing_svg(svg + b" " * (MAX_BYTES - len(svg)), source="x").points
 
 
 # -- grading: the exercise, the pole, the result -------------------------------------------------
