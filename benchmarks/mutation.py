@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import fnmatch
 import json
+import math
 import sys
 import tomllib
 from collections import Counter
@@ -92,6 +93,12 @@ def sample(names: list[str], count: int, seed: int) -> list[str]:
 
     >>> sample(["m.x_f__mutmut_1", "m.x_f__mutmut_2", "m.x_g__mutmut_1"], 2, seed=1)
     ['m.x_f__mutmut_1', 'm.x_g__mutmut_1']
+
+    The draws of one seed grow: a smaller sample is part of a larger one.
+
+    >>> names = [f"m.x_f__mutmut_{number}" for number in range(1, 20000)]
+    >>> set(sample(names, 160, seed=7)) <= set(sample(names, 500, seed=7))
+    True
     """
     import random
 
@@ -131,8 +138,23 @@ def _row(name: str, counts: Counter) -> str:
             + " | ".join(str(counts[c]) for c in COLUMNS) + f" | {share} |")
 
 
+def wilson(survived: int, run: int, z: float = 1.96) -> tuple[float, float]:
+    """The 95 % (Wilson score) interval of the share that survives, from ``survived`` of a
+    random sample of ``run`` mutants.
+
+    >>> [round(bound, 4) for bound in wilson(5, 200)]
+    [0.0107, 0.0572]
+    """
+    if not run:
+        return 0.0, 1.0
+    share = survived / run
+    middle = (share + z * z / (2 * run)) / (1 + z * z / run)
+    half = z * math.sqrt(share * (1 - share) / run + z * z / (4 * run * run)) / (1 + z * z / run)
+    return max(0.0, middle - half), min(1.0, middle + half)
+
+
 def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
-           name: str = "mutation") -> tuple[str, dict]:
+           name: str = "mutation", sampled: bool = False) -> tuple[str, dict]:
     """The report's Markdown and JSON from the results under ``root``.
 
     Raises
@@ -169,7 +191,13 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
              *_table(by_module), "",
              f"Survived: {total['survived']} of {run} run ({100 * share:.2f} %; the bound is "
              f"5 %).", ""]
-    if total["not checked"]:
+    if sampled:
+        low, high = wilson(total["survived"], run)
+        lines += [f"The mutants run are a random sample of all {len(results)} (`--sample`: "
+                  f"each equally likely; the other {total['not checked']} were not run), so "
+                  f"the share that survived is an estimate of the whole's: 95 % interval "
+                  f"(Wilson) {100 * low:.1f}–{100 * high:.1f} %.", ""]
+    elif total["not checked"]:
         lines += [f"**Not yet run: {total['not checked']} mutants** (the run covered the "
                   "modules whose *not checked* column is 0).", ""]
     noted = [m for m in survivors if m not in missing]
@@ -199,7 +227,8 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
         lines.append("")
     data = {"machine": about, "mutmut": mutmut.__version__, "command": command,
             "mutated": _mutated(root), "counts": {c: total[c] for c in COLUMNS},
-            "run": run, "survived_share": share,
+            "run": run, "survived_share": share, "sampled": sampled,
+            "interval_95": list(wilson(total["survived"], run)) if sampled else None,
             "by_module": {m: dict(c) for m, c in sorted(by_module.items())},
             "survivors": {m: note_for(m, equivalent) for m in survivors},
             "not_looked_at": missing,
@@ -219,6 +248,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--name", default="mutation",
                         help="the report's file name, without .md / .json (default: mutation; "
                              "a run of other modules, in another folder, keeps its own)")
+    parser.add_argument("--sampled", action="store_true",
+                        help="the run was of a --sample: say so, with the interval of the "
+                             "share that survives")
     parser.add_argument("--sample", type=int, metavar="N",
                         help="print N mutants drawn at random from those under --root (after "
                              "mutmut has generated them) for `mutmut run`, and stop")
@@ -233,7 +265,7 @@ def main(argv: list[str] | None = None) -> int:
         print("\n".join(sample(names, args.sample, args.seed)))
         return 0
     text, data = report(args.root, baseline=args.baseline, command=args.command,
-                        name=args.name)
+                        name=args.name, sampled=args.sampled)
     write_text(f"{args.name}.md", text + "\n")
     write_json(f"{args.name}.json", data)
     print(text.split("\n\n")[2].splitlines()[-1], file=sys.stderr)
