@@ -249,3 +249,38 @@ def test_a_coriolis_component_drawn_under_a_millimetre_is_still_left_out_or_reve
     wrong = mistaken_plans(analysis.exercise, mistake).acceleration.points_mm
     away = float(np.hypot(*(np.asarray(wrong["b@lever"]) - np.asarray(right["b@lever"]))))
     assert away == pytest.approx(moved * coriolis, rel=1e-6)
+
+
+@pytest.mark.parametrize("name", ["compressor_slider_crank", "slotted_lever", "shaper_sixbar"])
+def test_a_mistake_that_changes_no_length_of_the_exact_drawing_is_not_drawn(name, monkeypatch):
+    """Given the exact drawing's lengths (as a key has them from the tolerance analysis), a
+    mistake made only in the lengths laid off that changes none of them gives None without
+    drawing the plans again (the compressor's Coriolis components are all 0: no_coriolis and
+    coriolis_reversed); every other answer is the one drawn without them."""
+    import planmethod.plans as plans_module
+    from planmethod.grading.tolerances import propagate
+
+    exercise = load_exercise(f"exercises/{name}.toml")
+    motion = solve(exercise.mechanism, exercise.mechanism.drive.angle, stage="acceleration")
+    found = propagate(exercise, 0.5, motion=motion)
+    drawn = tuple(zip(found.lengths, found.segments, strict=True))
+    assert [segment for _, segment in drawn] == list(found.segments)
+    draws = []
+    original = plans_module.draw_plans
+
+    def counted(*args, **kwargs):
+        draws.append(1)
+        return original(*args, **kwargs)
+
+    for mistake in CONSTRUCTION_MISTAKES:
+        alone = mistaken_plans(exercise, mistake, motion=motion)
+        monkeypatch.setattr(plans_module, "draw_plans", counted)
+        draws.clear()
+        given = mistaken_plans(exercise, mistake, motion=motion, drawn=drawn)
+        monkeypatch.setattr(plans_module, "draw_plans", original)
+        assert (given is None) == (alone is None)
+        if given is not None:
+            assert given.readings == alone.readings and draws == [1]
+        skipped = (name == "compressor_slider_crank"
+                   and mistake in ("no_coriolis", "coriolis_reversed"))
+        assert (draws == []) == skipped, mistake

@@ -318,8 +318,9 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
         found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
     scales = choose_scales(exercise)
     wrong_plans = {}
+    drawn = tuple(zip(found.lengths, found.segments, strict=True)) if found.lengths else None
     for mistake in CONSTRUCTION_MISTAKES:
-        plans = mistaken_plans(exercise, mistake, motion=motion)
+        plans = mistaken_plans(exercise, mistake, motion=motion, drawn=drawn)
         if plans is not None:
             wrong_plans[mistake] = plans
     alternatives = {mistake: plans.readings for mistake, plans in wrong_plans.items()}

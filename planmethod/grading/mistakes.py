@@ -368,10 +368,16 @@ MISTAKES: dict[str, str] = {key: mistake.explanation for key, mistake in REGISTR
 CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items() if mistake.redraws)
 
 
-def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
+def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None, drawn=None):
     """The plans as drawn with a construction mistake of :data:`REGISTRY`: their points and
     readings (no position plan, no steps: ``draw_plans(position=False)``). None if the
     exercise has no step the mistake changes (or asks for no acceleration plan).
+
+    ``drawn`` are the exact drawing's (length, :class:`~planmethod.plans.construction.
+    Segment`) pairs in construction order, if known (a
+    :class:`~planmethod.grading.tolerances.Propagation`'s ``lengths`` and ``segments``): a
+    mistake made only in the lengths laid off that changes none of them changes nothing
+    (until one length changes, the drawing is the exact one), and gives None undrawn.
 
     Raises
     ------
@@ -410,6 +416,10 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None):
         return False
 
     if not exercise.ask.needs_acceleration:
+        return None
+    if (drawn is not None and rule is not None and turning is None and mirroring is None
+            and not any(rule(length, segment) is not None for length, segment in drawn
+                        if segment.plan == "acceleration" and segment.action == "lay_off")):
         return None
     settings = replace(exercise.plan, precision_mm=0.0)
     try:

@@ -61,7 +61,8 @@ class Propagation:
     ``values``: quantity → exact value; ``tolerances``: quantity → absolute tolerance from the
     drawing (before floors); ``sensitivity``: quantity → array of ∂q/∂e_i; ``points``:
     plan → label → exact point (mm); ``radii``: plan → label → tolerance radius (mm);
-    ``segments``: the :class:`~planmethod.plans.construction.Segment` of each e_i.
+    ``segments``: the :class:`~planmethod.plans.construction.Segment` of each e_i;
+    ``lengths``: the exact length (mm) drawn for each.
     """
 
     values: Mapping[str, float]
@@ -73,6 +74,7 @@ class Propagation:
     segments: tuple[Segment, ...]
     precision_mm: float
     plans: object
+    lengths: tuple[float, ...] = ()
 
 
 class _Recorder:
@@ -84,10 +86,12 @@ class _Recorder:
     def __init__(self, errors=None) -> None:
         self.errors = None if errors is None else np.asarray(errors, dtype=float)
         self.segments: list[Segment] = []
+        self.lengths: list = []
 
     def __call__(self, length, segment: Segment):
         index = len(self.segments)
         self.segments.append(segment)
+        self.lengths.append(length)
         if self.errors is None or index >= self.errors.shape[-1]:
             return length
         return length + self.errors[..., index]
@@ -156,7 +160,8 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
         sensitivity=sensitivity,
         points={plan: {k: (float(v[0]), float(v[1])) for k, v in labels.items()}
                 for plan, labels in points.items()},
-        radii=radii, segments=tuple(recorder.segments), precision_mm=precision_mm, plans=base)
+        radii=radii, segments=tuple(recorder.segments), precision_mm=precision_mm, plans=base,
+        lengths=tuple(float(length) for length in recorder.lengths))
 
 
 def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, seed: int = 0,
