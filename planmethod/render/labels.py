@@ -747,32 +747,33 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
             bottom = float(taken[:, 3].max()) if len(taken) else ay
             best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, half_w, half_h)[0],
                     math.inf, 0.0)
-        spot = tuple(float(v) for v in best[1])
-        baseline = (spot[0] + PADDING, spot[1] + PADDING + ascent)
         far = best[2] > LEADER_DISTANCE
-        taken = np.vstack((taken, [spot]))
+        placed.append(_placed(request, best[1], ascent, far, tidy))
+        taken = np.vstack((taken, [best[1]]))
         if far:
-            leader = _leaders((ax, ay), np.asarray([spot]))
+            leader = _leaders((ax, ay), best[1][None, :])
             drawn_leaders = np.vstack((drawn_leaders, leader))
             leader_bounds = np.vstack((leader_bounds, _bounds(leader)))
-        placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
-                                  (round(baseline[0], 2), round(baseline[1], 2)),
-                                  tuple(round(v, 2) for v in spot), far, request.css, tidy))
     for number in crowded:                  # on a leader, after every other label
         request = requests[number]
         found = _crowded_spot(request, halves[number], segments, segment_bounds, arrows,
                               rectangles, marks, taken, drawn_leaders, bounds)
         if found is None:
             continue                        # nowhere free: left out, as before
-        spot = tuple(float(v) for v in found)
-        leader = _leaders(request.anchor, np.asarray([spot]))
-        taken = np.vstack((taken, [spot]))
-        drawn_leaders = np.vstack((drawn_leaders, leader))
-        baseline = (spot[0] + PADDING, spot[1] + PADDING + extents[number][1])
-        placed.append(PlacedLabel(request.points, request.anchor, request.runs, request.size,
-                                  (round(baseline[0], 2), round(baseline[1], 2)),
-                                  tuple(round(v, 2) for v in spot), True, request.css, False))
+        placed.append(_placed(request, found, extents[number][1], True, False))
+        taken = np.vstack((taken, [found]))
+        drawn_leaders = np.vstack((drawn_leaders, _leaders(request.anchor, found[None, :])))
     return tuple(placed)
+
+
+def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool, clean: bool
+            ) -> PlacedLabel:
+    """The label of ``request`` placed in ``box`` (x0, y0, x1, y1, padding included): its
+    baseline starts inside the padding, ``ascent`` below the box's top edge."""
+    x0, y0 = float(box[0]), float(box[1])
+    return PlacedLabel(request.points, request.anchor, request.runs, request.size,
+                       (round(x0 + PADDING, 2), round(y0 + PADDING + ascent, 2)),
+                       tuple(round(float(v), 2) for v in box), leader, request.css, clean)
 
 
 def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np.ndarray,
