@@ -150,8 +150,11 @@ def test_a_branch_jump_is_an_error_not_a_flip(exercise, monkeypatch):
     monkeypatch.setattr(higher, "accept", lambda length, q, converged, *rest: (
         converged & False, np.ones(len(q))))
     monkeypatch.setattr(higher, "allowed", lambda length, expected: -1.0)
-    with pytest.raises(BranchJumpError, match="jump to another branch"):
+    with pytest.raises(BranchJumpError, match="jump to another branch") as caught:
         solve(mechanism, 150.0, stage="position", branches=branches)
+    # where, as every refusal says it: the group's links and the crank angle
+    assert "tray" in (caught.value.link or "") and "tray" in str(caught.value)
+    assert caught.value.angle is not None
 
 
 def test_an_unreachable_angle_in_a_sweep_is_a_named_error():
