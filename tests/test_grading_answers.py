@@ -97,6 +97,8 @@ a_C = 20.0
     ("[grading.tolerance]\nv_X = { rel = 0.1 }\n", "grading.tolerance.v_X"),
     ("[grading.tolerance]\nv_C = { rel = 0 }\n", "grading.tolerance.v_C.rel"),
     ("[grading.tolerance]\nv_C = \"wide\"\n", "grading.tolerance.v_C"),
+    ("[grading.points]\nv_C = -1\n", "grading.points.v_C"),
+    ("[grading]\npoints = -2\n", "grading.points"),
 ])
 def test_bad_grading_tables_name_the_key(table, key):
     text = Path(SEED).read_text() + "\n" + table
@@ -640,3 +642,13 @@ def test_a_single_key_grades_everyone_and_names_the_links_it_was_written_with(tm
     written = build_key(draw_variant(load_template(SEED)))
     assert key_numbers({"exercise": written["exercise"]}) == written["numbers"] == {
         "frame": 0, "AB": 1, "BC": 2, "slider": 3}
+
+
+def test_a_key_records_the_variant_it_keys():
+    """Who and which draw a key is for (student, seed, attempt): what a later step builds
+    the same variant from (a drawing's key at another angle, the instructor's re-grade)."""
+    from dataclasses import replace
+
+    variant = draw_variant(load_template(SEED), seed=3, student="s07")
+    key = build_key(replace(variant, attempt=2))
+    assert (key["student"], key["seed"], key["attempt"]) == ("s07", 3, 2)

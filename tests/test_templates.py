@@ -75,6 +75,17 @@ def test_bad_expressions_are_rejected(text, fragment):
     assert fragment in str(caught.value)
 
 
+@pytest.mark.parametrize(("text", "message"), [
+    ("(1 + 2", "at character 7: expected ')', got the end"),
+    ("round(1 2)", "at character 9: expected ')', got '2'"),
+])
+def test_a_missing_bracket_is_placed_at_its_character(text, message):
+    """The character named is the one where the bracket was due, counted from 1."""
+    with pytest.raises(ExpressionError) as caught:
+        parse(text)
+    assert str(caught.value) == message
+
+
 @pytest.mark.parametrize(("text", "fragment"), [
     ("1 / 0", "division by zero"),
     ("sqrt(-1)", "sqrt(-1) is undefined"),
