@@ -241,6 +241,9 @@ def test_near_parallel_lines_are_a_toggle_within_the_drawings_precision():
     with pytest.raises(ToggleError) as caught:
         draw_plans(rough)
     assert "precision" in str(caught.value)
+    # where, as every refusal says it: the crank angle (the velocity plan's lines already)
+    assert caught.value.angle == rough.mechanism.drive.angle
+    assert f"crank angle {rough.mechanism.drive.angle:g}°" in str(caught.value)
 
 
 def test_rotated_velocity_plan_puts_b_along_the_crank():
