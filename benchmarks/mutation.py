@@ -14,8 +14,8 @@ later reports list, for each of them killed since, the test added for it (the no
 
 Examples
 --------
->>> outcome(1), outcome(0), outcome(36), outcome(-24), outcome(None)
-('killed', 'survived', 'timeout', 'timeout', 'not checked')
+>>> outcome(1), outcome(2), outcome(0), outcome(36), outcome(-24), outcome(None)
+('killed', 'killed', 'survived', 'timeout', 'timeout', 'not checked')
 >>> note_for("pkg.mod.x_f__mutmut_3", {"pkg.mod.x_f__mutmut_*": "why"})
 'why'
 >>> module_of("planmethod.grading.keys.x__mistakes__mutmut_12"), function_of(
@@ -40,9 +40,12 @@ from .common import RESULTS, ROOT, machine, write_json, write_text, written_by
 NOTES = Path(__file__).resolve().parent / "mutation_notes.toml"
 #: the command that produced the results, by default (the report says it; ``--command``)
 COMMAND = "mutmut run --max-children 2"
-#: mutmut 3's exit codes (``mutmut.stats.status_by_exit_code``); any other is suspicious
+#: mutmut 3's exit codes (``mutmut.stats.status_by_exit_code``); any other is suspicious.
+#: pytest's 2, which mutmut calls "interrupted", is a test module that failed to be collected:
+#: with a mutant, one that computes with the package as it is collected (tests/test_convert.py
+#: drafts its exercises then) broke on it — the mutant is noticed, as by a failing test
 OUTCOMES = {1: "killed", 3: "killed", 0: "survived", 5: "no tests", 33: "no tests",
-            2: "interrupted", None: "not checked", 34: "skipped", 35: "suspicious",
+            2: "killed", None: "not checked", 34: "skipped", 35: "suspicious",
             36: "timeout", 37: "caught by type check", -24: "timeout", 24: "timeout",
             152: "timeout", 255: "timeout", -11: "segfault", -9: "segfault"}
 #: the outcomes counted in the report's table, in its order
