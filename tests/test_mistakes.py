@@ -4,6 +4,9 @@ with the mistake (every downstream quantity follows), value mistakes from the ri
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import numpy as np
 import pytest
 
 from planmethod.grading.answers import grade_answers
@@ -11,6 +14,7 @@ from planmethod.grading.keys import build_key
 from planmethod.grading.mistakes import CONSTRUCTION_MISTAKES, MISTAKES, mistaken_plans
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.kinematics import solve
+from planmethod.plans import draw_plans
 from planmethod.spec import exercise_from_dict, load_exercise
 
 #: exercises where each construction mistake can be made (Coriolis: a slide on a turning link)
@@ -284,3 +288,21 @@ def test_a_mistake_that_changes_no_length_of_the_exact_drawing_is_not_drawn(name
         skipped = (name == "compressor_slider_crank"
                    and mistake in ("no_coriolis", "coriolis_reversed"))
         assert (draws == []) == skipped, mistake
+
+
+def test_a_mirrored_similarity_puts_the_image_at_its_mirror_image_across_the_links_line():
+    """The coupler point's image placed by the similarity rule with its triangle turned over
+    lands at the right image reflected across the line of the link's other images (b, c), on
+    both plans; the images that rule does not place stay where they are."""
+    exercise = load_exercise(WHERE["mirrored_similarity"])
+    wrong = mistaken_plans(exercise, "mirrored_similarity")
+    right = draw_plans(exercise, settings=replace(exercise.plan, precision_mm=0.0))
+    for plan in ("velocity", "acceleration"):
+        drawn = getattr(wrong, plan).points_mm
+        exact = getattr(right, plan).points_mm
+        b, c, e = (np.asarray(exact[label]) for label in "bce")
+        along = (c - b) / np.linalg.norm(c - b)
+        foot = b + along * np.dot(e - b, along)
+        assert np.allclose(drawn["e"], 2.0 * foot - e, rtol=0, atol=1e-9), plan
+        assert not np.allclose(drawn["e"], e, atol=1.0)         # off the line: it moved
+        assert np.allclose(drawn["b"], b) and np.allclose(drawn["c"], c)
