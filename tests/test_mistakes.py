@@ -306,3 +306,18 @@ def test_a_mirrored_similarity_puts_the_image_at_its_mirror_image_across_the_lin
         assert np.allclose(drawn["e"], 2.0 * foot - e, rtol=0, atol=1e-9), plan
         assert not np.allclose(drawn["e"], e, atol=1.0)         # off the line: it moved
         assert np.allclose(drawn["b"], b) and np.allclose(drawn["c"], c)
+
+
+def test_a_similarity_model_is_shown_each_image_by_its_label_and_link():
+    """draw_plans shows a ``mirror`` model each image the similarity rule places off its link's
+    line as a segment naming the image's label and the link (as draw_plans documents it)."""
+    exercise = load_exercise(WHERE["mirrored_similarity"])
+    seen = []
+
+    def watch(segment) -> bool:
+        seen.append((str(segment.plan), segment.action, segment.name, segment.vector))
+        return False
+
+    draw_plans(exercise, mirror=watch)
+    assert ("velocity", "similarity", "e", "BC") in seen
+    assert ("acceleration", "similarity", "e", "BC") in seen

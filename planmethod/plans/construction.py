@@ -484,7 +484,6 @@ class _Emulator:
     def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
                  motion: Motion, scales: Scales, perturb=None, record: bool = True,
                  turn=None, mirror=None) -> None:
-        self.exercise = exercise
         self.mechanism = exercise.mechanism
         self.settings = settings
         self.angle = angle
