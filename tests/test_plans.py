@@ -311,3 +311,24 @@ def test_a_sliding_pair_no_group_drew_is_an_internal_error(monkeypatch):
     with pytest.raises(PlanmethodError, match=r"internal error: no group drew the relative "
                                               r"motion of the prismatic pair block/crank"):
         draw_plans(exercise, acceleration=False)
+
+
+def test_a_point_of_a_link_under_another_links_pin_is_placed_by_similarity_and_read():
+    """C@AB, the crank's material point under the slider's pin C, is on no group's drawing:
+    the plans place its image by the similarity rule on the crank and read it off — ω₁·AC and
+    ω₁²·AC for the crank turning at a constant rate."""
+    import tomllib
+
+    with open("exercises/compressor_slider_crank.toml", "rb") as file:
+        data = tomllib.load(file)
+    for stage in ("velocity", "acceleration"):
+        data["ask"][stage] = ["C", "C@AB"]
+    exercise = exercise_from_dict(data)
+    plans = draw_plans(exercise, settings=dataclasses.replace(exercise.plan, precision_mm=0.0))
+    motion = solve(exercise.mechanism, stage="acceleration")
+    a, c = (np.asarray(motion.position(name)).reshape(-1, 2)[0] for name in ("A", "C"))
+    omega = exercise.mechanism.drive.omega
+    distance = float(np.linalg.norm(c - a))
+    assert plans.readings["v_C@AB"] == pytest.approx(abs(omega) * distance, rel=1e-12)
+    assert plans.readings["a_C@AB"] == pytest.approx(omega ** 2 * distance, rel=1e-12)
+    assert plans.readings["v_C"] != pytest.approx(plans.readings["v_C@AB"], rel=1e-3)
