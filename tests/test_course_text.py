@@ -154,6 +154,17 @@ def test_the_compressors_rod_is_omega_2_by_default_and_omega_3_with_the_frame_1(
     assert _row(default, "R₀₁")[1] == "A" and _row(english, "R₁₂")[1] == "A"
 
 
+def test_a_point_placed_by_similarity_names_its_link_by_number():
+    """The compressor's d is placed by the similarity rule on the rod: its step says so by
+    the rod's number, as the course does, on both plans — link 2 by default, link 3 where
+    the frame is 1."""
+    for notation, number in (({}, 2), ({"frame": 1}, 3)):
+        plans = draw_plans(exercise_from_dict(_compressor(notation), file="c.toml"))
+        for plan in (plans.velocity, plans.acceleration):
+            said = [step.text for step in plan.steps if step.action == "similarity"]
+            assert said == [f"d by similarity on link {number} from b"], said
+
+
 @pytest.mark.parametrize("path", EXERCISES, ids=lambda path: path.stem)
 def test_each_vector_equation_names_each_relative_motion_once(path):
     """Beside each plan, an equation names two different relative accelerations by two
