@@ -281,6 +281,17 @@ def test_an_intersection_is_told_how_far_it_is_off_each_line(key):
         "1.9 mm off the line v_CC₀")
 
 
+def test_an_intersection_is_measured_from_the_lines_through_the_students_own_points(key):
+    """b drawn 2 mm off and c on the line ⟂ CB through that b: c is told it lies on the
+    line through (the student's) b, off along it — not off the line through the right b."""
+    points = _points(key)
+    for label in ("b", "c"):
+        points[label] = tuple(np.asarray(points[label]) + np.array([0.0, 2.0]))
+    result = grade_drawing(key, Drawing(points, "velocity"), rescale=False)
+    told = next(p["feedback"] for p in result["points"] if p["point"] == "c")
+    assert told.startswith("c is 2.0 mm off: it lies on the line v_CB ⟂ CB through b but "), told
+
+
 def test_a_reading_changed_by_less_than_half_a_percent_is_not_named(key):
     """c moved 1 mm across pc (out of its disc) and along it so that |pc| is 0.49 % or 0.51 %
     long: v_C is named as read high only in the second case."""
