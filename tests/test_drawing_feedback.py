@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -33,8 +34,12 @@ def _points(key, plan="velocity") -> dict[str, tuple[float, float]]:
 
 
 def _refusal(parse, data) -> str:
-    with pytest.raises(SubmissionError) as caught:
-        parse(data, source="plan.json" if parse is parse_drawing_json else "plan.svg")
+    """The one-line refusal of ``data``, which raises no warning on its way (a numpy
+    overflow in a student's transform is a refusal, never a RuntimeWarning)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(SubmissionError) as caught:
+            parse(data, source="plan.json" if parse is parse_drawing_json else "plan.svg")
     return str(caught.value)
 
 
@@ -156,6 +161,14 @@ def test_a_path_counts_against_the_coordinate_budget():
      "point)"),
     ("<svg><g transform='translate(1,2) junk'><text>p</text></g></svg>",
      "plan.svg: unreadable transform 'translate(1,2) junk'"),
+    ("<html><svg/></html>", "plan.svg: the root element is <html>, not <svg>"),
+    ("<svg><g transform='scale(1e200)'><text x='1' y='0'>p</text></g></svg>",
+     "plan.svg: the transform 'scale(1e200)' scales the drawing beyond any finite size"),
+    ("<svg><g transform='scale(1e150)'><g transform='scale(1e150)'><g transform='scale(1e150)'>"
+     "<text x='1' y='0'>p</text></g></g></g></svg>",
+     "plan.svg: <text> 'p': a coordinate is not a finite number"),
+    ("<svg><g transform='scale(1e150)'><text x='1e200' y='0'>p</text></g></svg>",
+     "plan.svg: <text> 'p': a coordinate is not a finite number"),
     ("<svg width='-3mm' viewBox='0 0 10 10'><text>p</text></svg>",
      "plan.svg: the drawing's width is '-3mm': a drawing has a positive size"),
     ("<svg width='10mm' height='0' viewBox='0 0 10 10'><text>p</text></svg>",

@@ -229,11 +229,17 @@ def _transform(text: str | None, budget) -> np.ndarray:
                 raise SubmissionError(f"unreadable transform {text[:60]!r}")
         except (OverflowError, ValueError) as error:
             raise SubmissionError(f"unreadable transform {text[:60]!r}") from error
-        determinant = step[0, 0] * step[1, 1] - step[0, 1] * step[1, 0]
-        if not (math.isfinite(determinant) and abs(determinant) > 1e-12):
+        # in Python floats: an overflow is inf, never a numpy warning
+        determinant = (float(step[0, 0]) * float(step[1, 1])
+                       - float(step[0, 1]) * float(step[1, 0]))
+        if not math.isfinite(determinant):
+            raise SubmissionError(f"the transform {text[:60]!r} scales the drawing beyond any "
+                                  "finite size")
+        if abs(determinant) <= 1e-12:
             raise SubmissionError(f"the transform {text[:60]!r} is singular (it flattens the "
                                   "drawing onto a line or a point)")
-        matrix = matrix @ step
+        with np.errstate(over="ignore", invalid="ignore"):     # a coordinate then says so
+            matrix = matrix @ step
     if text[position:].strip():
         raise SubmissionError(f"unreadable transform {text[:60]!r}")
     return matrix
@@ -406,7 +412,8 @@ def _read_svg(root, source: str | None) -> Drawing:
         if tag in ("defs", "metadata", "title", "desc", "clipPath", "mask", "marker",
                    "pattern", "symbol"):
             continue
-        matrix = matrix @ _transform(element.get("transform"), budget)
+        with np.errstate(over="ignore", invalid="ignore"):     # a coordinate then says so
+            matrix = matrix @ _transform(element.get("transform"), budget)
 
         def place(x: float, y: float, m=matrix, e=element) -> tuple[float, float]:
             with np.errstate(invalid="ignore", over="ignore"):
