@@ -276,3 +276,32 @@ def test_triad_with_a_prismatic_pair():
     analysis = analyse(exercise)
     assert analysis.plans is None and analysis.forces is not None
     assert analysis.checks and all(c.plan is None for c in analysis.checks)
+
+
+def test_a_chunk_the_straight_line_cannot_polish_is_redone_the_same(exercise, monkeypatch):
+    """The compiled straight-line step guards its result (polished, no jump, not singular);
+    a chunk that fails a guard is redone along the path. With no result counting as polished
+    every chunk is redone, and the sweep gives the same positions and rates."""
+    angles = np.arange(135.0, 200.0, 5.0)
+    expected = solve(exercise.mechanism, angles, stage="velocity")
+    mechanism = _fresh(exercise.mechanism, "redo every chunk")
+    monkeypatch.setattr(higher, "POLISHED", 0.0)
+    redone = solve(mechanism, angles, stage="velocity", branches=choose_branches(mechanism))
+    for point in ("B", "C", "D", "E"):
+        assert np.allclose(redone.position(point), expected.position(point), rtol=0, atol=1e-9)
+        assert np.allclose(redone.velocity(point), expected.velocity(point), rtol=0, atol=1e-7)
+
+
+def test_a_side_link_drawn_in_a_frame_of_its_own_moves_the_same():
+    """A side link's local frame is the file's choice: rocker EF written with F at (0.1, 0.2)
+    instead of at its origin (and a point M of it, moved alike) moves exactly as written the
+    usual way — positions, velocities and accelerations of M through a sweep."""
+    usual, shifted = conveyor(), conveyor()
+    usual["links"]["rocker_EF"] = {"F": [0, 0], "E": [0.44, 0], "M": [0.22, 0.05]}
+    shifted["links"]["rocker_EF"] = {"F": [0.1, 0.2], "E": [0.54, 0.2], "M": [0.32, 0.25]}
+    angles = np.arange(135.0, 200.0, 5.0)
+    first, second = (solve(exercise_from_dict(data).mechanism, angles, stage="acceleration")
+                     for data in (usual, shifted))
+    for read in ("position", "velocity", "acceleration"):
+        assert np.allclose(getattr(second, read)("M"), getattr(first, read)("M"),
+                           rtol=1e-9, atol=1e-12), read
