@@ -277,6 +277,42 @@ def test_against_the_whole_mechanism_linear_solve(name):
                     name, link, quantity)
 
 
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_a_velocity_stage_computes_what_the_acceleration_stage_does(name):
+    """Solving to the velocities only stops earlier: positions and velocities (ω included)
+    are those of the solve to accelerations, for every kind of group."""
+    mechanism = next(_mechanisms(name))
+    angles = _grid(mechanism)
+    velocity = solve(mechanism, angles, stage="velocity")
+    acceleration = solve(mechanism, angles, stage="acceleration")
+    for link, state in acceleration.links.items():
+        fast = velocity.links[link]
+        assert np.array_equal(fast.origin, state.origin), (name, link)
+        assert np.allclose(fast.velocity, state.velocity, rtol=0, atol=1e-12), (name, link)
+        assert np.allclose(fast.omega, state.omega, rtol=0, atol=1e-12), (name, link)
+
+
+def test_a_dyad_hung_on_a_general_higher_group_closes_every_pair():
+    """The general higher group (the triad with a block) with a dyad hung on its tray's point
+    T: the group's equations are its own pairs and those with the links known before it,
+    never the later dyad's; every pair of the mechanism closes over the turn, and the fast
+    path is the reference path."""
+    data = _slider_triad(np.random.default_rng(sum(map(ord, "higher"))))
+    data["links"]["tray"]["T"] = [0.3, 0.0]
+    data["links"]["frame"]["W"] = [0.2514386, -0.18159618]      # 0.3 m right of T at 135°
+    data["links"]["arm1"] = {"T": [0, 0], "V": [0.2, 0]}
+    data["links"]["arm2"] = {"V": [0, 0], "W": [0.2, 0]}
+    data["sketch"]["V"] = [0.1014386, -0.05159618]
+    data["mass"] |= {"arm1": {"m": 1.0, "J": 0.001}, "arm2": {"m": 1.0, "J": 0.001}}
+    mechanism = exercise_from_dict(data).mechanism
+    angles = np.arange(0.0, 360.0, 30.0) + 0.123
+    motion = solve(mechanism, angles)
+    moving = [link for link in mechanism.moving_links if link != mechanism.drive.link]
+    system = ConstraintSystem.between(mechanism, moving)
+    assert np.abs(system.residual(motion.links)).max() <= 1e-13
+    _compare(motion, solve(mechanism, angles, reference=True), mechanism, "hung dyad")
+
+
 def test_long_sweeps_run_chunk_by_chunk_with_the_same_numbers():
     mechanism = exercise_from_dict(fourbar()).mechanism
     angles = np.linspace(0.0, 720.0, 3 * CHUNK + 17)
