@@ -305,3 +305,22 @@ def test_a_side_link_drawn_in_a_frame_of_its_own_moves_the_same():
     for read in ("position", "velocity", "acceleration"):
         assert np.allclose(getattr(second, read)("M"), getattr(first, read)("M"),
                            rtol=1e-9, atol=1e-12), read
+
+
+def test_a_step_along_the_path_is_judged_by_the_move_its_prediction_expects(exercise,
+                                                                             monkeypatch):
+    """Each step of the march is accepted only if the corrected solution stays near its
+    prediction, measured against the predicted move q′·Δφ: over steps of at most 1° that
+    move is well under 5 % of the group's size (under 0.1 % for the conveyor, size 1.7 m)."""
+    mechanism = _fresh(exercise.mechanism, "judged steps")
+    seen = []
+    judged = higher.accept
+
+    def watched(length, q, converged, prediction, expected, weights):
+        seen.append((float(np.max(expected)), length))
+        return judged(length, q, converged, prediction, expected, weights)
+
+    monkeypatch.setattr(higher, "accept", watched)
+    solve(mechanism, np.arange(135.0, 160.0, 5.0), stage="position",
+          branches=choose_branches(mechanism))
+    assert seen and max(expected / length for expected, length in seen) < 0.05
