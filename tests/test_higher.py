@@ -324,3 +324,16 @@ def test_a_step_along_the_path_is_judged_by_the_move_its_prediction_expects(exer
     solve(mechanism, np.arange(135.0, 160.0, 5.0), stage="position",
           branches=choose_branches(mechanism))
     assert seen and max(expected / length for expected, length in seen) < 0.05
+
+
+def test_the_groups_assemblies_are_found_distinct_and_without_a_warning(exercise):
+    """At drive.angle the conveyor's group has four distinct assemblies; the sketch picks the
+    fourth (the paper's). Finding and sorting them raises no numpy warning."""
+    import warnings
+
+    mechanism = _fresh(exercise.mechanism, "assemblies")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        chosen = choose_branches(mechanism)
+    (branch,) = chosen.values()
+    assert (branch.sign, branch.reason, branch.count) == (4, "sketch", 4)
