@@ -277,14 +277,13 @@ class Path:
         ok, jump = accept(system.length, found, converged, prediction,
                           system.norm(first * step), system.weights)
         if bool(ok[0]):
-            health = float(np.asarray(system.conditioning(pose)).reshape(-1)[0])
+            health = float(np.ravel(system.conditioning(pose))[0])
             if not health > SINGULAR:
                 raise _toggle(system, health, stop)
             return (found, *self._derivatives(found, known))
         if abs(stop - start) < MIN_STEP_DEG:
             here = self.upstream(np.array([start]))
-            health = float(np.asarray(system.conditioning(system.at(tuple(q.T), here)))
-                           .reshape(-1)[0])
+            health = float(np.ravel(system.conditioning(system.at(tuple(q.T), here)))[0])
             name = system.group.name
             if health < LIMIT:
                 raise ToggleError(

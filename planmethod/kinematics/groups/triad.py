@@ -259,8 +259,8 @@ class TriadSystem(System):
         theta = -np.pi + 2.0 * np.pi * np.arange(SAMPLES + 1) / SAMPLES
         axes = unit_angle(theta)
         first, second, third = self.sides
-        p1, p2, p3 = (np.array([float(np.asarray(v[0]).reshape(-1)[0]),
-                                float(np.asarray(v[1]).reshape(-1)[0])]) for v in known)
+        p1, p2, p3 = (np.array([float(np.ravel(v[0])[0]), float(np.ravel(v[1])[0])])
+                      for v in known)
 
         def turned(local):   # (2, N): x and y apart
             return turn_onto(axes, local).T
