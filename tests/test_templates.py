@@ -75,6 +75,17 @@ def test_bad_expressions_are_rejected(text, fragment):
     assert fragment in str(caught.value)
 
 
+def test_round_takes_whole_digits_from_minus_12_to_12_and_0_by_default():
+    assert value("round(2.567)") == 3.0
+    assert value("round(0.1234567890125, 12)") == 0.123456789012
+    assert value("round(123456789012345, -12)") == 123e12
+    for digits in ("13", "-13", "0.5"):
+        with pytest.raises(ExpressionError) as caught:
+            value(f"round(1, {digits})")
+        assert str(caught.value) == ("round(x, digits) needs a whole number of digits in "
+                                     f"-12…12, got {float(digits):g}")
+
+
 @pytest.mark.parametrize(("text", "message"), [
     ("(1 + 2", "at character 7: expected ')', got the end"),
     ("round(1 2)", "at character 9: expected ')', got '2'"),
