@@ -324,3 +324,29 @@ def test_the_points_scored_on_a_plan_are_the_images_off_the_pole():
                                        "c@frame": [0, 0], "d@frame": [3, 4], "a": [0, 0],
                                        "e": [5e-10, 0.0], "f": [2e-9, 0.0], "p": [5, 5]}}
     assert graded_labels(plan) == ["b", "f", "p"]
+
+
+def test_a_plan_drawn_at_a_wrong_scale_is_its_own_plans_points_scaled():
+    """The wrong-scale mistakes place each point of a plan at its right place times that
+    plan's own scale factor: without the scale (× μ), the scale applied twice (÷ μ) — μv on
+    the velocity plan, μa on the acceleration plan (the compressor: 0.2 and 20)."""
+    key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
+    for plan, mu in (("velocity", key["scales"]["mu_v"]), ("acceleration", key["scales"]["mu_a"])):
+        entry = key["plans"][plan]
+        x, y = entry["points_mm"]["c"]
+        placed = {mistake: (px, py) for mistake, px, py in entry["mistake_points"]["c"]}
+        assert placed["scale_none"] == pytest.approx((round(x * mu, 2), round(y * mu, 2)),
+                                                     abs=0.006), plan
+        assert placed["scale_twice"] == pytest.approx((round(x / mu, 2), round(y / mu, 2)),
+                                                      abs=0.006), plan
+
+
+def test_a_short_vector_laid_off_is_drawn_and_a_zero_one_is_not():
+    """A vector laid off 0.5 mm long is drawn (its end is a point to place); only one of zero
+    length (to 1e-9 mm) leaves nothing to draw."""
+    entry = {"pole": "π", "points_mm": {"π": [0, 0], "b": [0.5, 0], "k_B": [0.5, 0],
+                                        "c": [0.5, 1e-12]},
+             "steps": [{"action": "lay_off", "start": "π", "end": "b", "length_mm": 0.5},
+                       {"action": "lay_off", "start": "b", "end": "k_B", "length_mm": 1e-10},
+                       {"action": "lay_off", "start": "b", "end": "c", "length_mm": 2e-9}]}
+    assert drawn_labels(entry) == ["b", "c"]
