@@ -332,3 +332,26 @@ def test_a_point_of_a_link_under_another_links_pin_is_placed_by_similarity_and_r
     assert plans.readings["v_C@AB"] == pytest.approx(abs(omega) * distance, rel=1e-12)
     assert plans.readings["a_C@AB"] == pytest.approx(omega ** 2 * distance, rel=1e-12)
     assert plans.readings["v_C"] != pytest.approx(plans.readings["v_C@AB"], rel=1e-3)
+
+
+@pytest.mark.parametrize("sense", [1.0, -1.0])
+def test_the_radius_of_curvature_is_read_right_with_the_crank_turning_either_way(sense):
+    """ρ = (pd)²μv²/((πn)μa) off an exact drawing is the exact ρ at every angle, the crank
+    turning counter-clockwise or clockwise (the path is then run the other way round: the
+    normal component lies on the other side of the velocity)."""
+    import tomllib
+
+    from planmethod.report import exact_value
+
+    with open("exercises/fourbar_coupler_point.toml", "rb") as file:
+        data = tomllib.load(file)
+    data["drive"]["omega"] = sense * abs(data["drive"]["omega"])
+    for angle in range(0, 360, 30):
+        data["drive"]["angle"] = angle
+        exercise = exercise_from_dict(data)
+        plans = draw_plans(exercise,
+                           settings=dataclasses.replace(exercise.plan, precision_mm=0.0))
+        motion = solve(exercise.mechanism, stage="acceleration")
+        for point in ("E", "C"):
+            assert plans.readings[f"rho_{point}"] == pytest.approx(
+                exact_value(motion, f"rho_{point}"), rel=1e-9), (angle, point)
