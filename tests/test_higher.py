@@ -337,3 +337,17 @@ def test_the_groups_assemblies_are_found_distinct_and_without_a_warning(exercise
         chosen = choose_branches(mechanism)
     (branch,) = chosen.values()
     assert (branch.sign, branch.reason, branch.count) == (4, "sketch", 4)
+
+
+def test_a_requested_angle_whose_pose_is_singular_is_a_toggle(monkeypatch):
+    """The march's nodes are checked as they are made; a requested angle between them is
+    checked too. Near the conveyor's limit with a 0.3 m crank (287.494°) the pose at the
+    angle itself is the least healthy (its normalised determinant about 2.8e-5): with the
+    singular bound set between it and the nodes', that angle alone is refused, by name."""
+    data = conveyor()
+    data["links"]["crank"]["A"] = [0.3, 0.0]
+    limit = 287.49396896362305
+    monkeypatch.setattr(higher, "SINGULAR", 5e-5)
+    with pytest.raises(ToggleError, match="its motion is not determined") as caught:
+        solve(exercise_from_dict(data).mechanism, limit, stage="position")
+    assert caught.value.angle == limit and "tray" in (caught.value.link or "")
