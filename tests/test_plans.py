@@ -355,3 +355,15 @@ def test_the_radius_of_curvature_is_read_right_with_the_crank_turning_either_way
         for point in ("E", "C"):
             assert plans.readings[f"rho_{point}"] == pytest.approx(
                 exact_value(motion, f"rho_{point}"), rel=1e-9), (angle, point)
+
+
+def test_the_intersection_step_states_the_groups_vector_equation():
+    """The velocity plan's intersection step says which point it finds and by which vector
+    equation, as the course writes them (b₃ of the slotted lever); the position plan draws a
+    slide's guide through the guide's own point, in mm of the drawing (O₂ at 120 mm below O₁)."""
+    plans = draw_plans(load_exercise("exercises/slotted_lever.toml"))
+    said = [step.text for step in plans.velocity.steps if step.action == "intersect"]
+    assert said == ["b₃: v_B₃ = v_B + v_B₃B = v_O₂ + v_B₃O₂"]
+    (slide,) = plans.position.slides
+    assert slide["through"] == "O2"
+    assert slide["through_mm"] == pytest.approx(list(plans.position.points_mm["O2"]), abs=1e-9)
