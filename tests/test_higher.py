@@ -351,3 +351,40 @@ def test_a_requested_angle_whose_pose_is_singular_is_a_toggle(monkeypatch):
     with pytest.raises(ToggleError, match="its motion is not determined") as caught:
         solve(exercise_from_dict(data).mechanism, limit, stage="position")
     assert caught.value.angle == limit and "tray" in (caught.value.link or "")
+
+
+def test_a_group_with_one_assembly_takes_it_without_the_sketch(exercise, monkeypatch):
+    """Where the search finds a single assembly at drive.angle it is the group's, 'unique',
+    whatever the sketch says (the conveyor's search cut down to its first assembly)."""
+    mechanism = _fresh(exercise.mechanism, "one assembly")
+    found = higher.sort_assemblies
+    monkeypatch.setattr(higher, "sort_assemblies",
+                        lambda system, assemblies, known: found(system, assemblies, known)[:1])
+    (branch,) = choose_branches(mechanism).values()
+    assert (branch.sign, branch.reason, branch.count) == (1, "unique", 1)
+
+
+def test_newton_stops_stepping_an_angle_whose_residual_reached_a_million_sizes():
+    """Newton steps every angle but one that diverged: a residual of 1e6 times the group's
+    size or more. At exactly that residual the angle is left where it is; just under it, it
+    steps."""
+
+    class Diverging:
+        length = 2.0
+
+        def __init__(self, residual):
+            self.value = residual
+
+        def at(self, q, known):
+            return q
+
+        def residual(self, pose):
+            return np.array([self.value])
+
+        def step(self, pose):
+            return (np.array([1.0]),)
+
+    for residual, moved in ((1e6 * 2.0, False), (np.nextafter(1e6 * 2.0, 0.0), True)):
+        q, converged, _, _ = higher.System.newton(Diverging(residual), np.zeros((1, 1)), None,
+                                                  iterations=1)
+        assert bool(q[0, 0] != 0.0) is moved and not converged[0]

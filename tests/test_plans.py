@@ -367,3 +367,23 @@ def test_the_intersection_step_states_the_groups_vector_equation():
     (slide,) = plans.position.slides
     assert slide["through"] == "O2"
     assert slide["through_mm"] == pytest.approx(list(plans.position.points_mm["O2"]), abs=1e-9)
+
+
+def test_a_mirrored_image_uses_any_pin_farther_than_a_rounding_unit_from_the_reference():
+    """The mirror line runs through the image's reference and another pin of the link; a pin
+    within 1e-12 (of the larger of 1 m and |ref|) of the reference is the reference itself and
+    is passed over. A pin 1.5e-12 m away still gives the line (here the x axis)."""
+    from types import SimpleNamespace
+
+    from planmethod.plans.construction import LinkImage, _Emulator
+
+    pins = {"R": np.zeros(2), "Q": np.array([1.5e-12, 0.0])}
+    fake = SimpleNamespace(
+        mirror=lambda segment: True,
+        mechanism=SimpleNamespace(links={"bar": SimpleNamespace(points={"R": 0, "Q": 0})},
+                                  links_with_point=lambda name: ("bar", "other")),
+        where=lambda link, name: pins[name])
+    image = LinkImage(np.zeros(2), np.zeros(2), "r", 0.0)
+    sheet = SimpleNamespace(kind="velocity")
+    mirrored = _Emulator.similar(fake, sheet, "bar", image, np.array([0.3, 0.4]), "e")
+    assert np.allclose(mirrored, [0.3, -0.4], rtol=0, atol=1e-15)

@@ -234,6 +234,21 @@ def test_rejected_draws_are_redrawn_deterministically():
         draw_variant(template, seed=3, student=str(i)).attempt for i in range(30)]
 
 
+def test_a_refusal_sums_up_the_three_most_frequent_kinds_of_rejection(monkeypatch):
+    """Every attempt rejected, four ways (numbers aside: 'lines meet at 3°' and 'at 5°' are
+    one kind): the refusal names the three most frequent kinds, most frequent first."""
+    from planmethod.grading import templates
+
+    cycle = ["a", "a", "a", "a", "b", "b", "b", "c", "c", "d"]
+    kinds = iter(f"kind {cycle[n % len(cycle)]} at {n}°" for n in range(1000))
+    monkeypatch.setattr(templates, "check_variant", lambda *args, **kwargs: next(kinds))
+    template = parse_template(template_text(), file="t.toml")
+    with pytest.raises(SpecError) as caught:
+        draw_variant(template, seed=1, student="x")
+    summary = str(caught.value).rpartition("): ")[2]
+    assert summary == "80× kind a at #°; 60× kind b at #°; 40× kind c at #°"
+
+
 def test_a_template_that_never_assembles_fails_with_the_reasons():
     text = template_text(rod='"= 0.5 * l"', angle="90")  # the rod is shorter than the crank
     template = parse_template(text, file="t.toml")
