@@ -181,10 +181,15 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
         write_json(first_run, {"survived": survivors})
     first = json.loads((RESULTS / first_run).read_text()).get("survived", []) \
         if (RESULTS / first_run).exists() else []
-    missing = [m for m in survivors if note_for(m, equivalent) is None]
+    # survivors of this run that a test added since kills, each checked by running the
+    # mutant by name in a fresh process against that test (the notes' [killed_by])
+    by_name = [m for m in survivors if note_for(m, equivalent) is None
+               and note_for(m, killed_by) is not None and m not in first]
+    missing = [m for m in survivors if note_for(m, equivalent) is None and m not in by_name]
     total: Counter = Counter(outcome(code) for code in results.values())
     run = ran(total)
     share = total["survived"] / run if run else 0.0
+    left = total["survived"] - len(by_name)
     since = [m for m in first if results.get(m) is not None and outcome(results[m]) == "killed"]
     about = machine()
     lines = [written_by("python -m benchmarks.mutation", about).strip(), "",
@@ -192,18 +197,24 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
              f"Mutated: {', '.join(f'`{path}`' for path in _mutated(root))} "
              f"({len(results)} mutants); tests: `[tool.mutmut]` of pyproject.toml.", "",
              *_table(by_module), "",
-             f"Survived: {total['survived']} of {run} run ({100 * share:.2f} %; the bound is "
-             f"5 %).", ""]
+             f"Survived: {total['survived']} of {run} run ({100 * share:.2f} %)."
+             + (f" Killed since by a test added for it: {len(by_name)} (each mutant run by "
+                "name in a fresh process, `MUTANT_UNDER_TEST=NAME python -m pytest "
+                "tests/FILE`, fails that test). **Survive now: "
+                f"{left} of {run} ({100 * left / run:.2f} %; the bound is 5 %)**, each "
+                "listed below with why it is equivalent to the code or, marked *not "
+                "killed*, why no test tells it apart yet." if by_name else
+                " The bound is 5 %."), ""]
     if sampled:
-        low, high = wilson(total["survived"], run)
+        low, high = wilson(left, run)
         lines += [f"The mutants run are a random sample of all {len(results)} (`--sample`: "
                   f"each equally likely; the other {total['not checked']} were not run), so "
-                  f"the share that survived is an estimate of the whole's: 95 % interval "
+                  f"the share that survives is an estimate of the whole's: 95 % interval "
                   f"(Wilson) {100 * low:.1f}–{100 * high:.1f} %.", ""]
     elif total["not checked"]:
         lines += [f"**Not yet run: {total['not checked']} mutants** (the run covered the "
                   "modules whose *not checked* column is 0).", ""]
-    noted = [m for m in survivors if m not in missing]
+    noted = [m for m in survivors if m not in missing and m not in by_name]
     if noted:
         lines += ["The survivors looked at, and why each is equivalent to the code:", "",
                   "| mutant | function | why it survives |", "| --- | --- | --- |"]
@@ -219,6 +230,13 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
         lines += [f"| `{name}` | {count} |" for name, count in sorted(
             by_function.items(), key=lambda item: (-item[1], item[0]))]
         lines.append("")
+    if by_name:
+        lines += [f"Killed since the run ({len(by_name)} of its survivors), by the tests "
+                  "added for them:", "", "| mutant | function | killed by |",
+                  "| --- | --- | --- |"]
+        lines += [f"| `{m.rpartition('.')[2]}` | `{module_of(m)}.{function_of(m)}` | "
+                  f"{note_for(m, killed_by)} |" for m in by_name]
+        lines.append("")
     if since:
         tests: dict[str, list[str]] = {}
         for mutant in since:
@@ -231,7 +249,9 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
     data = {"machine": about, "mutmut": mutmut.__version__, "command": command,
             "mutated": _mutated(root), "counts": {c: total[c] for c in COLUMNS},
             "run": run, "survived_share": share, "sampled": sampled,
-            "interval_95": list(wilson(total["survived"], run)) if sampled else None,
+            "interval_95": list(wilson(left, run)) if sampled else None,
+            "killed_since_by_name": {m: note_for(m, killed_by) for m in by_name},
+            "survive_now": left,
             "by_module": {m: dict(c) for m, c in sorted(by_module.items())},
             "survivors": {m: note_for(m, equivalent) for m in survivors},
             "not_looked_at": missing,
