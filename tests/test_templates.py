@@ -86,17 +86,6 @@ def test_round_takes_whole_digits_from_minus_12_to_12_and_0_by_default():
                                      f"-12…12, got {float(digits):g}")
 
 
-@pytest.mark.parametrize(("text", "message"), [
-    ("(1 + 2", "at character 7: expected ')', got the end"),
-    ("round(1 2)", "at character 9: expected ')', got '2'"),
-])
-def test_a_missing_bracket_is_placed_at_its_character(text, message):
-    """The character named is the one where the bracket was due, counted from 1."""
-    with pytest.raises(ExpressionError) as caught:
-        parse(text)
-    assert str(caught.value) == message
-
-
 @pytest.mark.parametrize(("text", "fragment"), [
     ("1 / 0", "division by zero"),
     ("sqrt(-1)", "sqrt(-1) is undefined"),
@@ -126,8 +115,11 @@ def test_functions_at_the_ends_of_their_domains(text, expected):
     ("acos(1.0001)", "acos(1.0001) is undefined"), ("acos(-1.0001)", "acos(-1.0001) is undefined"),
     ("2 ^ 64.5", "exponent 64.5 is out of range (|x| ≤ 64)"),
     ("2 ^ -65", "exponent -65 is out of range (|x| ≤ 64)"),
+    # a missing bracket: the character where it was due, counted from 1
+    ("(1 + 2", "at character 7: expected ')', got the end"),
+    ("round(1 2)", "at character 9: expected ')', got '2'"),
 ])
-def test_functions_just_outside_their_domains_say_so(text, message):
+def test_functions_just_outside_their_domains_and_missing_brackets_say_so(text, message):
     with pytest.raises(ExpressionError) as caught:
         value(text)
     assert str(caught.value) == message
