@@ -25,7 +25,9 @@ MARKUP = re.compile(r"</?(?:" + "|".join(tag for tag in SVG_TAGS if tag != "text
 
 def _not_written(tree: ast.AST) -> set[int]:
     """The ids of the string constants that write nothing: docstrings (their doctests may
-    show SVG), what a comparison reads (``"<svg" in text``) and an error's message."""
+    show SVG), what a comparison reads (``"<svg" in text``), an error's message and the
+    pattern a regular expression is compiled from (``re.compile(r"<svg\\b[^>]*>")``: it
+    reads SVG)."""
     found = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
@@ -35,6 +37,10 @@ def _not_written(tree: ast.AST) -> set[int]:
                 found.add(id(body[0].value))
         elif isinstance(node, ast.Compare | ast.Raise):
             found.update(id(inner) for inner in ast.walk(node))
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+              and node.func.attr == "compile" and isinstance(node.func.value, ast.Name)
+              and node.func.value.id == "re" and node.args):
+            found.update(id(inner) for inner in ast.walk(node.args[0]))
     return found
 
 
@@ -90,8 +96,11 @@ def test_the_writer_check_passes_docstrings_reads_messages_and_html():
     source = ('def f(text):\n    """>>> f("<svg><line /></svg>")"""\n'
               '    if "<svg" not in text:\n'
               '        raise ValueError(f"not <svg>: {text}")\n'
-              '    return "<p>text</p><title>page</title>" + "<table>"\n')
+              '    return "<p>text</p><title>page</title>" + "<table>"\n'
+              'TAG = re.compile(r"<svg\\b[^>]*>")\n')
     assert not svg_written_outside_the_canvas(source)
+    # a pattern is read only where it is compiled: the same string written is markup
+    assert svg_written_outside_the_canvas('TAG = "<svg>"\n')
 
 
 #: a drawing scale's header written by hand: ``μv = {…} (m/s)/mm``
