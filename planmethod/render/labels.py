@@ -475,6 +475,17 @@ def _crossing(leaders: np.ndarray, segments: np.ndarray, bounds: np.ndarray | No
     return (np.abs(denominator) > 1e-12) & (t > near) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
 
 
+def _leaving(left, top, right, bottom, bounds: Sequence[float]) -> np.ndarray:
+    """Where a box, given by its edges (arrays of one shape), leaves ``bounds`` (x0, y0, x1,
+    y1).
+
+    >>> _leaving(np.array([0.0, -1]), np.array([0.0, 0]), np.array([5.0, 5]),
+    ...          np.array([5.0, 5]), (0, 0, 10, 10)).tolist()
+    [False, True]
+    """
+    return (left < bounds[0]) | (top < bounds[1]) | (right > bounds[2]) | (bottom > bounds[3])
+
+
 def _clear(boxes: np.ndarray, taken: np.ndarray) -> np.ndarray:
     """Which boxes (x0, y0, x1, y1) are clear of the labels placed in ``taken``: their boxes
     widened by the gap kept between labels, touching counting.
@@ -567,8 +578,7 @@ def _near_spots(anchors: np.ndarray, reaches: np.ndarray, halves: np.ndarray,
         cost = cost + AREA_COST * np.maximum(
             _overlap_areas(rectangles, flat).reshape(count, per_label) - mine, 0.0)
     if bounds is not None:
-        cost = cost + OUTSIDE_COST * ((left < bounds[0]) | (top < bounds[1])
-                                      | (right > bounds[2]) | (bottom > bounds[3]))
+        cost = cost + OUTSIDE_COST * _leaving(left, top, right, bottom, bounds)
     return np.moveaxis(corners, 0, -1), clean, cost
 
 
@@ -700,10 +710,7 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
                     cost = cost + AREA_COST * np.maximum(
                         _overlap_areas(under, spots) - _overlap_areas(own_mark, spots), 0.0)
                 if bounds is not None:
-                    cost = cost + OUTSIDE_COST * ((spots[:, 0] < bounds[0])
-                                                  | (spots[:, 1] < bounds[1])
-                                                  | (spots[:, 2] > bounds[2])
-                                                  | (spots[:, 3] > bounds[3]))
+                    cost = cost + OUTSIDE_COST * _leaving(*spots.T, bounds)
                 # the leaders the spots that could still win would need
                 far = (distance[chosen] > LEADER_DISTANCE) & free
                 if best is not None:
@@ -805,8 +812,7 @@ def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np
                    request.mark_radius + distance, half[0], half[1])
     free = _clear(boxes, taken)
     if bounds is not None:
-        free &= ((boxes[:, 0] >= bounds[0]) & (boxes[:, 1] >= bounds[1])
-                 & (boxes[:, 2] <= bounds[2]) & (boxes[:, 3] <= bounds[3]))
+        free &= ~_leaving(*boxes.T, bounds)
     lines = np.concatenate((segments, drawn_leaders))
     if len(lines):
         free &= _clipped_lengths(lines, boxes, bounds=np.concatenate(
