@@ -8,6 +8,10 @@ and every survivor with the note of ``benchmarks/mutation_notes.toml`` that says
 equivalent to the code; survivors without a note are counted by function as not yet looked
 at (their names go to the JSON).
 
+``--recorded`` reads a run's outcomes again from its committed JSON report (the counts per
+module and the survivors' names) when the ``mutants`` folder it ran in is gone, and applies
+the notes as they are now: a survivor killed since by a new test is counted so.
+
 ``--baseline`` records the survivors of a first run in ``results/mutation_baseline.json``;
 later reports list, for each of them killed since, the test added for it (the notes'
 ``[killed_by]`` table). The counts are read, never typed.
@@ -157,26 +161,44 @@ def wilson(survived: int, run: int, z: float = 1.96) -> tuple[float, float]:
 
 
 def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
-           name: str = "mutation", sampled: bool = False) -> tuple[str, dict]:
-    """The report's Markdown and JSON from the results under ``root``.
+           name: str = "mutation", sampled: bool = False,
+           recorded: dict | None = None) -> tuple[str, dict]:
+    """The report's Markdown and JSON from the results under ``root`` or, ``recorded``, from
+    the JSON report of a run whose ``mutants`` folder is gone (its counts per module and its
+    survivors, read again with today's notes).
 
     Raises
     ------
     SystemExit
-        If there are no results to read.
+        If there are no results to read, or a recorded report has a first run to compare
+        with (which of its survivors were killed is not recorded).
     """
-    import mutmut
-
     notes = tomllib.loads(NOTES.read_text(encoding="utf-8"))
     equivalent, killed_by = notes.get("equivalent", {}), notes.get("killed_by", {})
-    results = read_results(root)
-    if not results:
-        raise SystemExit(f"no mutmut results under {root / 'mutants'}: run `{command}` first")
-    by_module: dict[str, Counter] = {}
-    for mutant, code in results.items():
-        by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
-    survivors = sorted(m for m, code in results.items() if outcome(code) == "survived")
     first_run = f"{name}_baseline.json"
+    results: dict[str, int | None] = {}
+    if recorded is None:
+        results = read_results(root)
+        if not results:
+            raise SystemExit(f"no mutmut results under {root / 'mutants'}: run `{command}` "
+                             "first")
+        by_module: dict[str, Counter] = {}
+        for mutant, code in results.items():
+            by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
+        survivors = sorted(m for m, code in results.items() if outcome(code) == "survived")
+        import mutmut
+
+        mutated, about, reread = _mutated(root), machine(), ""
+        version = mutmut.__version__
+    else:
+        if baseline or (RESULTS / first_run).exists():
+            raise SystemExit(f"{name}.json: a recorded report cannot be compared with a first "
+                             "run (which of its survivors were killed is not recorded)")
+        by_module = {module: Counter(counts) for module, counts in recorded["by_module"].items()}
+        survivors = sorted(recorded["survivors"])
+        mutated, about, command = recorded["mutated"], recorded["machine"], recorded["command"]
+        version = recorded["mutmut"]
+        reread = machine()["time"]
     if baseline:
         write_json(first_run, {"survived": survivors})
     first = json.loads((RESULTS / first_run).read_text()).get("survived", []) \
@@ -186,16 +208,20 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
     by_name = [m for m in survivors if note_for(m, equivalent) is None
                and note_for(m, killed_by) is not None and m not in first]
     missing = [m for m in survivors if note_for(m, equivalent) is None and m not in by_name]
-    total: Counter = Counter(outcome(code) for code in results.values())
+    total: Counter = sum(by_module.values(), Counter())
+    mutants = sum(total.values())
     run = ran(total)
     share = total["survived"] / run if run else 0.0
     left = total["survived"] - len(by_name)
     since = [m for m in first if results.get(m) is not None and outcome(results[m]) == "killed"]
-    about = machine()
     lines = [written_by("python -m benchmarks.mutation", about).strip(), "",
-             f"From the results of `{command}` (mutmut {mutmut.__version__}).", "",
-             f"Mutated: {', '.join(f'`{path}`' for path in _mutated(root))} "
-             f"({len(results)} mutants); tests: `[tool.mutmut]` of pyproject.toml.", "",
+             f"From the results of `{command}` (mutmut {version}).", ""]
+    if reread:
+        lines += [f"Read again from this report's JSON (`--recorded`: the run's mutants folder "
+                  f"is gone) on {reread}, with the notes of that day: the counts "
+                  "are the run's, which survivors a test added since kills is new.", ""]
+    lines += [f"Mutated: {', '.join(f'`{path}`' for path in mutated)} "
+              f"({mutants} mutants); tests: `[tool.mutmut]` of pyproject.toml.", "",
              *_table(by_module), "",
              f"Survived: {total['survived']} of {run} run ({100 * share:.2f} %)."
              + (f" Killed since by a test added for it: {len(by_name)} (each mutant run by "
@@ -207,7 +233,7 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
                 " The bound is 5 %."), ""]
     if sampled:
         low, high = wilson(left, run)
-        lines += [f"The mutants run are a random sample of all {len(results)} (`--sample`: "
+        lines += [f"The mutants run are a random sample of all {mutants} (`--sample`: "
                   f"each equally likely; the other {total['not checked']} were not run), so "
                   f"the share that survives is an estimate of the whole's: 95 % interval "
                   f"(Wilson) {100 * low:.1f}–{100 * high:.1f} %.", ""]
@@ -246,8 +272,8 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
                   "by the tests added for them:", "", "| test | mutants |", "| --- | ---: |"]
         lines += [f"| {test} | {len(names)} |" for test, names in sorted(tests.items())]
         lines.append("")
-    data = {"machine": about, "mutmut": mutmut.__version__, "command": command,
-            "mutated": _mutated(root), "counts": {c: total[c] for c in COLUMNS},
+    data = {"machine": about, "mutmut": version, "command": command,
+            "mutated": mutated, "counts": {c: total[c] for c in COLUMNS},
             "run": run, "survived_share": share, "sampled": sampled,
             "interval_95": list(wilson(left, run)) if sampled else None,
             "killed_since_by_name": {m: note_for(m, killed_by) for m in by_name},
@@ -256,6 +282,8 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
             "survivors": {m: note_for(m, equivalent) for m in survivors},
             "not_looked_at": missing,
             "killed_since_first_run": len(since)}
+    if reread:
+        data["reread"] = reread
     return "\n".join(lines), data
 
 
@@ -279,6 +307,9 @@ def main(argv: list[str] | None = None) -> int:
                              "mutmut has generated them) for `mutmut run`, and stop")
     parser.add_argument("--seed", type=int, default=2026,
                         help="the seed of --sample's draw (default: 2026)")
+    parser.add_argument("--recorded", action="store_true",
+                        help="read the run's outcomes from the committed report's JSON (when "
+                             "its mutants folder is gone) and apply today's notes to them")
     args = parser.parse_args(argv)
     if args.sample is not None:
         names = list(read_results(args.root))
@@ -287,11 +318,20 @@ def main(argv: list[str] | None = None) -> int:
                              "generate them first")
         print("\n".join(sample(names, args.sample, args.seed)))
         return 0
+    recorded = None
+    if args.recorded:
+        path = RESULTS / f"{args.name}.json"
+        try:
+            recorded = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as error:
+            raise SystemExit(f"{path}: no recorded report to read again ({error})") from None
+        args.sampled = bool(recorded.get("sampled"))
     text, data = report(args.root, baseline=args.baseline, command=args.command,
-                        name=args.name, sampled=args.sampled)
+                        name=args.name, sampled=args.sampled, recorded=recorded)
     write_text(f"{args.name}.md", text + "\n")
     write_json(f"{args.name}.json", data)
-    print(text.split("\n\n")[2].splitlines()[-1], file=sys.stderr)
+    print(next(line for line in text.splitlines() if line.startswith("Survived:")),
+          file=sys.stderr)
     return 0
 
 
