@@ -161,7 +161,7 @@ class Canvas:
         self.obstacle_lines: list[tuple[Point, ...]] = []
         self.obstacle_areas: list[tuple[float, float, float, float]] = []
         #: the points' marks (x, y, radius), whose areas are among the obstacle areas
-        self.point_marks: list[tuple[float, float, float]] = []
+        self.point_marks: list[tuple[float, float, float, int]] = []
         #: the vectors' arrows among the obstacle lines: leaders keep off them
         self.vector_lines: list[tuple[Point, ...]] = []
         self.requests: list[LabelRequest] = []
@@ -252,8 +252,9 @@ class Canvas:
             half = _ROUND_MARK * radius / 2 + (KEEP_CLEAR if points else 0.0)
             self.obstacle_areas.append((centre[0] - half, centre[1] - half, centre[0] + half,
                                         centre[1] + half))
-            if points:
-                self.point_marks.append((centre[0], centre[1], float(radius)))
+            if points:      # with the index of its room among the areas
+                self.point_marks.append((centre[0], centre[1], float(radius),
+                                         len(self.obstacle_areas) - 1))
 
     def arrow(self, p: Point, q: Point, style_key: str, *, layer: str, step: int | None = None,
               color: str | None = None, css: str | None = None, obstacle: bool = True

@@ -608,9 +608,9 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     vectors
         The vectors' arrows among the lines, as sequences of points: a leader keeps off them.
     marks
-        The points' round marks (x, y, radius), whose areas (with the room other labels keep
-        from them) are among ``areas``: a crowded label keeps only :data:`CROWDED_ROOM` from
-        them.
+        The points' round marks (x, y, radius, i): each one's area, with the room other
+        labels keep from it, is ``areas[i]``; a crowded label keeps only
+        :data:`CROWDED_ROOM` from them.
     bounds
         A box (x0, y0, x1, y1) the labels keep within where they can (an enlarged detail's
         frame): a spot that leaves it costs :data:`OUTSIDE_COST`.
@@ -628,7 +628,7 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     arrow_bounds = _bounds(arrows)
     rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
     rectangle_bounds = _bounds(rectangles)
-    marks = np.asarray(marks, dtype=float).reshape(-1, 3)
+    marks = np.asarray(marks, dtype=float).reshape(-1, 4)
     placed: list[PlacedLabel] = []
     crowded: list[int] = []                 # crowded labels with no clean spot: placed last
     taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1), their own bounds
@@ -791,17 +791,18 @@ def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np
     among the spots beyond :data:`LEADER_DISTANCE` in :data:`CROWDED_DIRECTIONS`, the
     nearest (an arrow its leader crosses counting :data:`CROWDED_CROSSING_COST`) whose box
     has no drawn line, label or leader in it, keeps :data:`CROWDED_ROOM` from every point's
-    mark (``marks``: x, y, radius) and overlaps no other area, whose leader crosses no other
-    leader and runs through no label, no area and no other point's mark, and which stays
-    within ``bounds``, if given; None where there is none. The room other labels keep round
-    a point's mark (its area among the ``rectangles``) is not held against it: a crowded
-    point has no such room to give.
+    mark (``marks``: x, y, radius, the index of its room among the ``rectangles``) and
+    overlaps no other area, whose leader crosses no other leader and runs through no label,
+    no area and no other point's mark, and which stays within ``bounds``, if given; None where
+    there is none. The room other labels keep round a point's mark is not held against it: a
+    crowded point has no such room to give.
 
     >>> request = LabelRequest(("b",), (0.0, 0.0), label_runs("b"), 15.0, crowded=True)
     >>> lines = np.array([[-40.0, 0, 40, 0], [0, -40, 0, 40]])
-    >>> marks = np.array([[0.0, 0, 3], [5, 5, 3]])
+    >>> marks = np.array([[0.0, 0, 3, 0], [5, 5, 3, 1]])
+    >>> rooms = np.array([[-7.0, -7, 7, 7], [-2, -2, 12, 12]])
     >>> box = _crowded_spot(request, (6.0, 9.0), lines, _bounds(lines), np.empty((0, 4)),
-    ...                     np.empty((0, 4)), marks, np.empty((0, 4)), np.empty((0, 4)), None)
+    ...                     rooms, marks, np.empty((0, 4)), np.empty((0, 4)), None)
     >>> box.round(1).tolist()            # up and to the right, clear of both lines
     [14.1, -32.1, 26.1, -14.1]
     """
@@ -818,10 +819,9 @@ def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np
         free &= _clipped_lengths(lines, boxes, bounds=np.concatenate(
             (segment_bounds, _bounds(drawn_leaders)))) <= 0.0
     # the marks as their bounding squares, and the areas that are not a mark's room
-    squares = np.column_stack((marks[:, :2] - marks[:, 2:], marks[:, :2] + marks[:, 2:]))
-    centres = (rectangles[:, :2] + rectangles[:, 2:]) / 2
-    areas = rectangles[~np.any(np.all(np.abs(centres[:, None, :] - marks[None, :, :2])
-                                      < 1e-6, axis=2), axis=1)]
+    radius = marks[:, 2:3]
+    squares = np.column_stack((marks[:, :2] - radius, marks[:, :2] + radius))
+    areas = np.delete(rectangles, marks[:, 3].astype(int), axis=0)
     obstacles = np.concatenate((squares, areas))
     if len(obstacles):
         grown = boxes + np.array([-CROWDED_ROOM, -CROWDED_ROOM, CROWDED_ROOM, CROWDED_ROOM])
