@@ -160,7 +160,7 @@ class Canvas:
         #: rectangles (x0, y0, x1, y1)
         self.obstacle_lines: list[tuple[Point, ...]] = []
         self.obstacle_areas: list[tuple[float, float, float, float]] = []
-        #: the points' marks (x, y, radius), whose areas are among the obstacle areas
+        #: the points' marks (x, y, radius, i): each one's area is ``obstacle_areas[i]``
         self.point_marks: list[tuple[float, float, float, int]] = []
         #: the vectors' arrows among the obstacle lines: leaders keep off them
         self.vector_lines: list[tuple[Point, ...]] = []
@@ -252,7 +252,7 @@ class Canvas:
             half = _ROUND_MARK * radius / 2 + (KEEP_CLEAR if points else 0.0)
             self.obstacle_areas.append((centre[0] - half, centre[1] - half, centre[0] + half,
                                         centre[1] + half))
-            if points:      # with the index of its room among the areas
+            if points:
                 self.point_marks.append((centre[0], centre[1], float(radius),
                                          len(self.obstacle_areas) - 1))
 
