@@ -178,6 +178,8 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
     first_run = f"{name}_baseline.json"
     results: dict[str, int | None] = {}
     if recorded is None:
+        import mutmut
+
         results = read_results(root)
         if not results:
             raise SystemExit(f"no mutmut results under {root / 'mutants'}: run `{command}` "
@@ -186,8 +188,6 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
         for mutant, code in results.items():
             by_module.setdefault(module_of(mutant), Counter())[outcome(code)] += 1
         survivors = sorted(m for m, code in results.items() if outcome(code) == "survived")
-        import mutmut
-
         mutated, about, reread = _mutated(root), machine(), ""
         version = mutmut.__version__
     else:
@@ -218,8 +218,8 @@ def report(root: Path, *, baseline: bool = False, command: str = COMMAND,
              f"From the results of `{command}` (mutmut {version}).", ""]
     if reread:
         lines += [f"Read again from this report's JSON (`--recorded`: the run's mutants folder "
-                  f"is gone) on {reread}, with the notes of that day: the counts "
-                  "are the run's, which survivors a test added since kills is new.", ""]
+                  f"is gone) on {reread}: the counts are the run's; the notes, and with "
+                  "them which of its survivors a test added since kills, are that day's.", ""]
     lines += [f"Mutated: {', '.join(f'`{path}`' for path in mutated)} "
               f"({mutants} mutants); tests: `[tool.mutmut]` of pyproject.toml.", "",
              *_table(by_module), "",
