@@ -325,6 +325,10 @@ def main(argv: list[str] | None = None) -> int:
             recorded = json.loads(path.read_text(encoding="utf-8"))
         except (OSError, ValueError) as error:
             raise SystemExit(f"{path}: no recorded report to read again ({error})") from None
+        missing = [key for key in ("by_module", "survivors", "mutated", "machine", "command",
+                                   "mutmut") if key not in recorded]
+        if missing:
+            raise SystemExit(f"{path}: not a report to read again (no {', '.join(missing)})")
         args.sampled = bool(recorded.get("sampled"))
     text, data = report(args.root, baseline=args.baseline, command=args.command,
                         name=args.name, sampled=args.sampled, recorded=recorded)
