@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planmethod.errors import AssemblyError, ToggleError
+from planmethod.errors import AssemblyError, SpecError, ToggleError
 from planmethod.kinematics import solve
 from planmethod.plans import draw_plans, image_label
 from planmethod.report import analyse, report_dict
@@ -206,6 +206,26 @@ def test_drafting_precision_rounds_lengths_and_costs_accuracy():
               for q in ("v_C", "a_C", "omega_BC", "epsilon_BC", "rho_D")}
     assert max(errors.values()) > 1e-4  # a real drawing is not exact…
     assert max(errors.values()) < 0.05  # …but a careful one is within a few per cent
+
+
+@pytest.mark.parametrize(("name", "precision", "radius"), [
+    ("compressor_slider_crank", 900.0, "90"),     # a dyad's ω read off the plan
+    ("conveyor_sixbar", 30.0, "11.9"),            # the triad's
+])
+def test_a_precision_that_draws_a_radius_as_0_mm_is_refused(name, precision, radius):
+    """A reading that divides by a radius drawn on the position plan refuses a drafting
+    precision that rounds the radius to 0 mm, naming the key and the crank angle (it was a
+    ZeroDivisionError)."""
+    exercise = load_exercise(f"exercises/{name}.toml")
+    coarse = dataclasses.replace(exercise.plan, precision_mm=precision)
+    with pytest.raises(SpecError) as caught:
+        draw_plans(exercise, settings=coarse)
+    assert (caught.value.key, caught.value.angle) == ("plan.precision_mm",
+                                                      exercise.mechanism.drive.angle)
+    assert str(caught.value) == (
+        f"plan.precision_mm: crank angle {exercise.mechanism.drive.angle:g}°: a precision of "
+        f"{precision:g} mm draws a radius of {radius} mm on the position plan as 0 mm, and a "
+        "reading divides by it: the precision must be finer than the drawing")
 
 
 def _near_toggle_fourbar(offset_deg: float) -> dict:

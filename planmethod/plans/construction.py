@@ -35,7 +35,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import PlanmethodError, ToggleError
+from ..errors import PlanmethodError, SpecError, ToggleError
 from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
 from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
@@ -524,6 +524,24 @@ class _Emulator:
         return self.v.round(float(norm(second - first)) / self.scales.mu_l,
                             Segment("position", "measure"))
 
+    def radius_mm(self, centre: np.ndarray, point: np.ndarray) -> float:
+        """A radius read off the position plan to divide a reading by (ω, ε, aⁿ).
+
+        Raises
+        ------
+        SpecError
+            If the drafting precision rounds it to 0 mm (a precision coarser than the
+            drawing's lengths).
+        """
+        drawn = self.length_mm(centre, point)
+        if np.any(np.asarray(drawn) == 0):
+            exact = float(norm(point - centre)) / self.scales.mu_l
+            raise SpecError(f"a precision of {self.v.precision:g} mm draws a radius of "
+                            f"{exact:.3g} mm on the position plan as 0 mm, and a reading "
+                            "divides by it: the precision must be finer than the drawing",
+                            key="plan.precision_mm", angle=self.angle)
+        return drawn
+
     def label(self, point: str, sheet: _Sheet) -> str:
         return image_label(point, sheet.pole)
 
@@ -716,7 +734,7 @@ class _Emulator:
             sign = sense(segment, direction)
             if side.rotation:
                 radius = x - side.base_position[0]
-                length_mm = self.length_mm(side.base_position[0], x)
+                length_mm = self.radius_mm(side.base_position[0], x)
                 omega = self.v.read(
                     base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
                     factor=mu_v / (length_mm * mu_l))
@@ -762,7 +780,7 @@ class _Emulator:
             relative = self.rel_velocity[(group.index, index)]  # signed, mm on the v-plan
             if side.rotation:
                 radius = x - base
-                length_mm = self.length_mm(base, x)
+                length_mm = self.radius_mm(base, x)
                 magnitude = (relative ** 2) * mu_v ** 2 / (length_mm * mu_l * mu_a)
                 centre = side.base.partition("@")[0]
                 x_name = point.partition("@")[0]
@@ -813,7 +831,7 @@ class _Emulator:
             direction = side.direction[0]
             sign = sense(segment, direction)
             if side.rotation:
-                length_mm = self.length_mm(side.base_position[0], x)
+                length_mm = self.radius_mm(side.base_position[0], x)
                 epsilons[side.link] = self.a.read(
                     start, x_label, quantity=f"epsilon_{side.link}", sign=sign,
                     factor=mu_a / (length_mm * mu_l))

@@ -455,7 +455,7 @@ def _read_turn(emulator: PlanDrawer, sheet, start: str, end: str, centre, point,
     segment = sheet.points[end] - sheet.points[start]
     direction = perp(unit(point - centre))
     sign = sense(segment, direction)
-    length_mm = emulator.length_mm(centre, point)
+    length_mm = emulator.radius_mm(centre, point)
     return sheet.read(start, end, quantity=f"{what}_{link}", sign=sign,
                       factor=factor / length_mm)
 
@@ -467,7 +467,7 @@ def _normal(emulator: PlanDrawer, start: str, end: str, centre, point, v_from: s
     scales = emulator.scales
     a = emulator.a
     segment = emulator.drawn_length(emulator.v, v_from, v_to)
-    length_mm = emulator.length_mm(centre, point)
+    length_mm = emulator.radius_mm(centre, point)
     magnitude = segment ** 2 * scales.mu_v ** 2 / (length_mm * scales.mu_l * scales.mu_a)
     a.lay_off(start, end, np.asarray(magnitude)[..., None] * unit(centre - point),
               component="normal",
