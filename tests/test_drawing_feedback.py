@@ -169,6 +169,10 @@ def test_a_path_counts_against_the_coordinate_budget():
      "plan.svg: <text> 'p': a coordinate is not a finite number"),
     ("<svg><g transform='scale(1e150)'><text x='1e200' y='0'>p</text></g></svg>",
      "plan.svg: <text> 'p': a coordinate is not a finite number"),
+    # an entry overflowed to inf, then times a 0 of the next step: nan, and no warning
+    ("<svg><g transform='matrix(1e200 0 0 1e-200 0 0) matrix(1e200 0 0 1e-200 0 0) "
+     "translate(0)'><text x='1' y='0'>p</text></g></svg>",
+     "plan.svg: <text> 'p': a coordinate is not a finite number"),
     ("<svg width='-3mm' viewBox='0 0 10 10'><text>p</text></svg>",
      "plan.svg: the drawing's width is '-3mm': a drawing has a positive size"),
     ("<svg width='10mm' height='0' viewBox='0 0 10 10'><text>p</text></svg>",

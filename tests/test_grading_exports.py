@@ -166,6 +166,9 @@ def test_gradescope_autograder_folder(keys):
     updates = [i for i, line in enumerate(setup) if line.strip() == "apt-get update"]
     assert installs and updates and updates[0] < installs[0]   # the index before installing
     assert "sys.version_info < (3, 11)" in files["setup.sh"]
+    # the deadsnakes Python it falls back on is named in full, no placeholder left
+    assert "  apt-get install -y python3.11 python3.11-venv" in setup
+    assert "  python=python3.11" in setup and "@" not in files["setup.sh"]
     assert json.loads(files["keys.json"])["format"] == "planmethod-keys"
 
 
