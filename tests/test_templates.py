@@ -161,6 +161,8 @@ def template_text(extra: str = "", angle: str = "45", rod: str = '"= 4 * l"') ->
     ("", '"= nope + 1"', "drive.angle", "refers to 'nope'"),
     ("", "{ range = [50, 10] }", "drive.angle.range", "low above high"),
     ("", '{ range = [10, 50], step = -1 }', "drive.angle.step", "positive"),
+    ("", '{ range = [10, 50], step = 0 }', "drive.angle.step", "positive number, got 0"),
+    ("", '{ range = [10, 50], step = 1e-6 }', "drive.angle.step", "more than 10 million"),
     ("", "{ choice = [] }", "drive.angle.choice", "non-empty"),
     ("", '{ range = [10, "x"] }', "drive.angle.range", "finite numbers"),
     ("a = \"= b\"\nb = \"= a\"", '"= a"', "vars.", "cycle"),
