@@ -292,6 +292,29 @@ def test_a_velocity_stage_computes_what_the_acceleration_stage_does(name):
         assert np.allclose(fast.omega, state.omega, rtol=0, atol=1e-12), (name, link)
 
 
+@pytest.mark.parametrize("name", ["triad", "higher"])
+def test_a_higher_groups_move_is_measured_in_metres(name):
+    """How far Newton moved a solution from its prediction (judged against half the predicted
+    move) is measured in metres: a link's x and y as they are, its angle θ times the group's
+    size; the plain triad's q is its central link's (x, y, θ), the general system's every
+    group link's."""
+    from planmethod.kinematics.groups.base import GroupInputs
+    from planmethod.kinematics.groups.higher import GeneralSystem
+    from planmethod.kinematics.groups.triad import TriadSystem
+    from planmethod.structure import analyse_structure
+
+    mechanism = exercise_from_dict(CASES[name](np.random.default_rng(7))).mechanism
+    (group,) = [g for g in analyse_structure(mechanism).groups if len(g.links) == 4]
+    make = TriadSystem if name == "triad" else GeneralSystem
+    system = make(GroupInputs(mechanism, group, {}, 1.0, np.array([0.0]), {}))
+    assert system.size == 3 * (1 if name == "triad" else len(group.links))
+    for index in range(system.size):
+        move = np.zeros((1, system.size))
+        move[0, index] = 1e-3
+        metres = 1e-3 * (system.length if index % 3 == 2 else 1.0)
+        assert float(system.norm(move)[0]) == pytest.approx(metres, rel=1e-12), index
+
+
 def test_a_dyad_hung_on_a_general_higher_group_closes_every_pair():
     """The general higher group (the triad with a block) with a dyad hung on its tray's point
     T: the group's equations are its own pairs and those with the links known before it,

@@ -190,6 +190,25 @@ def test_triad_plans_equal_exact_vectors(exercise, angle):
     assert [s.end for s in intersections] == [SPECIAL, intersections[1].end]
 
 
+def test_points_on_the_triads_side_links_are_placed_by_similarity_and_exact():
+    """A point of each side link off the line of its pins (M on the rod, K and L on the
+    rockers) is placed on both plans by similarity from that link's images, which the triad
+    fixes once it has read the link's ω and ε: each equals the exact vector."""
+    data = conveyor()
+    data["links"]["rod"]["M"] = [0.2, 0.05]
+    data["links"]["rocker_EF"]["K"] = [0.3, -0.04]
+    data["links"]["rocker_DG"]["L"] = [0.25, 0.06]
+    exercise = exercise_from_dict(data)
+    for angle in (60.0, 225.0):
+        plans = draw_plans(exercise, angle)
+        motion = solve(exercise.mechanism, angle)
+        for point in "MKL":
+            assert np.allclose(plans.velocity.vector(point.lower()), motion.velocity(point),
+                               atol=1e-12), (angle, point)
+            assert np.allclose(plans.acceleration.vector(point.lower()),
+                               motion.acceleration(point), atol=1e-11), (angle, point)
+
+
 def test_triad_plan_at_drafting_precision_is_close(exercise):
     plans = draw_plans(exercise, 135.0, settings=exercise.plan.__class__(
         crank_mm=6, velocity_mm=40, acceleration_mm=40, precision_mm=0.5))
@@ -324,6 +343,25 @@ def test_a_step_along_the_path_is_judged_by_the_move_its_prediction_expects(exer
     solve(mechanism, np.arange(135.0, 160.0, 5.0), stage="position",
           branches=choose_branches(mechanism))
     assert seen and max(expected / length for expected, length in seen) < 0.05
+
+
+def test_a_corrected_solution_may_move_half_its_predicted_step():
+    """A step of the march is the continuation of its prediction if Newton moved it by at
+    most half the predicted move (weighted), within 10⁻⁴ and 2 % of the group's size: a
+    move of 0.49 of the predicted one is kept, 0.51 is a jump to another assembly."""
+    weights = np.array([1.0, 1.0, 2.0])
+    prediction = np.array([[0.3, -0.2, 0.1]])
+    expected = np.array([0.01])               # the predicted move, group size 2 m
+    converged = np.array([True])
+    for share, kept in ((0.49, True), (0.51, False)):
+        q = prediction + np.array([[share * 0.01, 0.0, 0.0]])
+        ok, jump = higher.accept(2.0, q, converged, prediction, expected, weights)
+        assert bool(ok[0]) is kept and float(jump[0]) == pytest.approx(share * 0.01)
+    # the floor and the cap: 10⁻⁴ and 2 % of the size, whatever the prediction expects
+    assert float(higher.allowed(2.0, np.array(1e-9))) == pytest.approx(2e-4)
+    assert float(higher.allowed(2.0, np.array(5.0))) == pytest.approx(0.04)
+    assert not bool(higher.accept(2.0, prediction, np.array([False]), prediction, expected,
+                                  weights)[0][0])     # not converged: never kept
 
 
 def test_the_groups_assemblies_are_found_distinct_and_without_a_warning(exercise):

@@ -107,7 +107,12 @@ def accept(length: float, q: np.ndarray, converged: np.ndarray, prediction: np.n
 
 def allowed(length: float, expected):
     """How far a solution may move from its prediction, ``expected`` the prediction's own
-    step (numbers, arrays or traced values)."""
+    step (numbers, arrays or traced values): half that step, but at least 10⁻⁴ and at most
+    2 % of the group's size ``length``.
+
+    >>> allowed(2.0, 0.01), allowed(2.0, 1e-6), allowed(2.0, 1.0)
+    (0.005, 0.0002, 0.04)
+    """
     return minimum(0.02 * length, maximum(0.5 * expected, 1e-4 * length))
 
 
