@@ -81,14 +81,24 @@ points = { rho_D = 3 }
 [grading.tolerance]
 v_C = { rel = 0.05 }
 a_C = 20.0
+epsilon_BC = { abs = 30.0 }
 """
     key = build_key(draw_variant(parse_template(text, file="seed.toml")))
     questions = by_id(key)
     assert questions["v_C"]["tolerance"] == pytest.approx(0.05 * 5.27163, rel=1e-4)
     assert questions["a_C"]["tolerance"] == 20.0
+    assert (questions["epsilon_BC"]["tolerance"], questions["epsilon_BC"]["tolerance_from"]) == (
+        30.0, "override (abs)")
     assert questions["v_D"]["tolerance_from"] == "floor"          # an exact drawing
     assert questions["v_D"]["tolerance"] == pytest.approx(0.01 * 5.20868, rel=1e-4)
     assert questions["rho_D"]["points"] == 3 and questions["v_D"]["points"] == 1
+
+
+def test_a_sheet_worth_no_points_is_read():
+    """points = 0 (a practice sheet): every question is worth 0 and is still graded."""
+    text = Path(SEED).read_text() + "\n[grading]\npoints = 0\n"
+    key = build_key(draw_variant(parse_template(text, file="seed.toml")))
+    assert key["questions"] and all(q["points"] == 0 for q in key["questions"])
 
 
 @pytest.mark.parametrize(("table", "key"), [
