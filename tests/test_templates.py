@@ -259,6 +259,16 @@ def test_small_line_angles_are_rejected():
                                                     dead_centre_deg=0)) is None
 
 
+def test_a_random_draw_is_held_to_the_measuring_rules_and_a_written_exercise_is_not():
+    """A drawn variant (drawable, the default) must have segments long enough to measure; an
+    exercise set as written is not held to that rule."""
+    exercise = draw_variant(load_template(SLIDER), seed=1, student="a").exercise
+    strict = TemplateSettings(min_line_angle_deg=0, dead_centre_deg=0, min_segment_mm=1000)
+    problem = check_variant(exercise, strict)
+    assert problem is not None and "below 1000 mm" in problem
+    assert check_variant(exercise, strict, drawable=False) is None
+
+
 def test_a_plain_exercise_is_a_template_without_randomness():
     template = load_template("exercises/compressor_slider_crank.toml")
     assert not template.is_random
