@@ -118,6 +118,17 @@ def test_grade_drawing_names_the_mistake_a_misplaced_point_lies_at(slotted):
     assert verdicts["c"]["correct"] and "mistakes" not in verdicts["c"]
 
 
+def test_a_velocity_plan_turned_180_degrees_names_the_reversed_sense_on_every_point(slotted):
+    key, _ = slotted
+    right = _points(key, "velocity")
+    pole = key["plans"]["velocity"]["pole"]
+    turned = {label: (-x, -y) for label, (x, y) in right.items()}
+    result = grade_drawing(key, Drawing(turned, "velocity"))
+    wrong = [p for p in result["points"] if p["point"] != pole and not p["correct"]]
+    assert wrong and all(p["mistakes"] == ["sense"] for p in wrong), wrong
+    assert all("turned 180°" in p["feedback"] for p in wrong)
+
+
 def test_the_page_frame_refers_to_mistakes_by_their_registry_index(slotted):
     key, _ = slotted
     frame = drawing_frame(key)["acceleration"]
