@@ -78,21 +78,24 @@ def test_one_drawing_in_copies_gives_each_segments_sensitivity(path):
         assert abs(radii[plan][label] - radius) <= 1e-8 * max(1.0, radius), (plan, label)
 
 
-def test_random_drawings_carry_their_own_errors_whatever_the_exercises_precision():
-    """The random drawings draw exactly and add the errors given: the exercise's own drafting
-    precision plays no part — one of 1000 mm, at which no plan can be drawn (the links'
-    lengths round to 0 mm, and any two construction lines are parallel to within the
-    precision of a 1000 mm sheet), changes nothing."""
+def test_the_tolerance_analysis_carries_its_own_errors_whatever_the_exercises_precision():
+    """The tolerance analysis and the random drawings draw exactly and add the errors given:
+    the exercise's own drafting precision plays no part — one of 1000 mm, at which no plan
+    can be drawn (the links' lengths round to 0 mm, and any two construction lines are
+    parallel to within the precision of a 1000 mm sheet), changes nothing."""
     exercise = load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml")
     coarse = replace(exercise, plan=replace(exercise.plan, precision_mm=1000.0))
+    fine = replace(exercise, plan=replace(exercise.plan, precision_mm=0.0))
     with pytest.raises(PlanmethodError, match="precision"):
         draw_plans(coarse, position=False)
-    exact = emulate_drawings(replace(exercise, plan=replace(exercise.plan, precision_mm=0.0)),
-                             0.5, 5, seed=11)
+    exact = emulate_drawings(fine, 0.5, 5, seed=11)
     drawn = emulate_drawings(coarse, 0.5, 5, seed=11)
     assert drawn.keys() == exact.keys()
     for name, values in exact.items():
         assert np.array_equal(drawn[name], values, equal_nan=True), name
+    found, expected = propagate(coarse, 0.5), propagate(fine, 0.5)
+    assert (found.readings, found.tolerances, found.radii, found.lengths) == (
+        expected.readings, expected.tolerances, expected.radii, expected.lengths)
 
 
 def test_random_drawings_in_copies_equal_the_drawings_one_by_one():
