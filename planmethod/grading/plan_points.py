@@ -66,7 +66,7 @@ def drawn_labels(entry: Mapping[str, Any]) -> list[str]:
     ['c', 'b']
     """
     pole = entry["pole"]
-    undrawn = {step.get("end") for step in entry.get("steps", ())
+    undrawn = {step.get("end") for step in entry["steps"]
                if step.get("action") == "coincide"
                or (step.get("action") == "lay_off" and step.get("length_mm") is not None
                    and abs(step["length_mm"]) < 1e-9)}
