@@ -189,11 +189,24 @@ def test_a_template_without_ask_is_refused_by_name():
     parse_template(fixed, file="t.toml")    # an exercise as written asks what it asks
 
 
+@pytest.mark.parametrize(("line", "message"), [
+    ("min_line_angle_deg = 90", "min_line_angle_deg: must be an angle in [0, 90) degrees, got 90"),
+    ("dead_centre_deg = -1", "dead_centre_deg: must be an angle in [0, 90) degrees, got -1"),
+    ("max_attempts = 0", "max_attempts: must be a whole number in 1…10000, got 0"),
+    ("min_segment_mm = 300", "min_segment_mm: must be a length in [0, 200] mm, got 300"),
+    ("max_tolerance = 0", "max_tolerance: must be a share in (0, 1] (0.1 = 10 %), got 0"),
+])
+def test_bad_template_settings_are_one_exact_line(line, message):
+    with pytest.raises(SpecError) as caught:
+        parse_template(template_text() + f"\n[template]\n{line}\n", file="t.toml")
+    assert str(caught.value) == f"t.toml: template.{message}"
+
+
 def test_bad_template_settings():
-    with pytest.raises(SpecError, match=r"template\.max_attempts"):
-        parse_template(template_text() + "\n[template]\nmax_attempts = 0\n", file="t.toml")
     with pytest.raises(SpecError, match=r"template\.colour"):
         parse_template(template_text() + "\n[template]\ncolour = 1\n", file="t.toml")
+    with pytest.raises(SpecError, match=r"template\.require: must be a list of components"):
+        parse_template(template_text() + '\n[template]\nrequire = ["spin"]\n', file="t.toml")
 
 
 def test_variants_are_reproducible_and_differ_between_students():
