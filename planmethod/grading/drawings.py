@@ -412,8 +412,9 @@ def _read_svg(root, source: str | None) -> Drawing:
         if tag in ("defs", "metadata", "title", "desc", "clipPath", "mask", "marker",
                    "pattern", "symbol"):
             continue
+        step = _transform(element.get("transform"), budget)   # its own errstate inside
         with np.errstate(over="ignore", invalid="ignore"):     # a coordinate then says so
-            matrix = matrix @ _transform(element.get("transform"), budget)
+            matrix = matrix @ step
 
         def place(x: float, y: float, m=matrix, e=element) -> tuple[float, float]:
             with np.errstate(invalid="ignore", over="ignore"):
