@@ -166,6 +166,7 @@ def template_text(extra: str = "", angle: str = "45", rod: str = '"= 4 * l"') ->
     ("", "{ choice = [] }", "drive.angle.choice", "non-empty"),
     ("", '{ range = [10, "x"] }', "drive.angle.range", "finite numbers"),
     ("a = \"= b\"\nb = \"= a\"", '"= a"', "vars.", "cycle"),
+    ('"2x" = 1', "45", "vars.2x", "a variable name must be an identifier"),
 ])
 def test_bad_templates_name_the_key(extra, angle, key, fragment):
     text = template_text(extra, angle)
