@@ -366,11 +366,11 @@ class _Sheet:
             self.steps.append(Step(self.count, *fields))
         return self.count
 
-    def round(self, length: float, segment: Segment | None = None) -> float:
-        """A length as laid off or read off the drawing (``perturb`` replaces the rounding,
-        and may return one length per copy of the drawing)."""
+    def round(self, length: float, segment: Segment) -> float:
+        """A length as laid off or read off the drawing, ``segment`` saying which (``perturb``
+        replaces the rounding, and may return one length per copy of the drawing)."""
         if self.perturb is not None:
-            drawn = self.perturb(length, segment or Segment(self.kind, "read"))
+            drawn = self.perturb(length, segment)
             return float(drawn) if np.ndim(drawn) == 0 else drawn
         if self.precision > 0:
             return round(float(length) / self.precision) * self.precision
