@@ -18,6 +18,7 @@ from planmethod.kinematics.groups import higher
 from planmethod.kinematics.groups.triad import SPECIAL
 from planmethod.kinematics.solve import Branch, choose_branches
 from planmethod.plans import draw_plans
+from planmethod.plans.construction import PlansUnavailableError
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict
 from planmethod.structure import analyse_structure
@@ -295,6 +296,12 @@ def test_triad_with_a_prismatic_pair():
     analysis = analyse(exercise)
     assert analysis.plans is None and analysis.forces is not None
     assert analysis.checks and all(c.plan is None for c in analysis.checks)
+    with pytest.raises(PlansUnavailableError) as caught:   # and why, when plans are asked
+        draw_plans(exercise)
+    assert str(caught.value) == (
+        "link tray+rod+rocker_EF+block: plans are drawn for class III triads of revolute "
+        "pairs only; this triad has other pairs — its exact kinematics is reported "
+        "(planmethod solve --json)")
 
 
 def test_a_chunk_the_straight_line_cannot_polish_is_redone_the_same(exercise, monkeypatch):

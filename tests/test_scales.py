@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from planmethod.cli import main
+from planmethod.errors import SpecError
 from planmethod.plans.scales import STANDARD_MANTISSAS, choose_scales, standard
 from planmethod.spec import exercise_from_dict, load_exercise
 
@@ -113,3 +114,16 @@ def test_the_force_scale_is_printed_with_the_others_when_it_is_set():
     assert lines[-1] == "μF = 50 N/mm" and len(lines) == 6
     assert not any(line.startswith("μF") for line in Scales(0.002, 0.2, 20.0, 100.0,
                                                            "B").describe())
+
+
+def test_a_scale_point_where_the_pivot_is_is_refused_by_its_key():
+    """A scale point of the crank other than its pivot but at the pivot's place gives no
+    reference length to choose the scales from: refused by key, with the file."""
+    data = tomllib.loads((ROOT / "exercises" / "compressor_slider_crank.toml").read_text())
+    data["links"]["AB"]["P"] = [0, 0]
+    data["plan"]["scale_point"] = "P"
+    exercise = exercise_from_dict(data, file="slider.toml")
+    with pytest.raises(SpecError) as caught:
+        choose_scales(exercise)
+    assert str(caught.value) == ("slider.toml: plan.scale_point: the scale point P coincides "
+                                 "with the pivot A")
