@@ -103,6 +103,23 @@ def test_missing_points_and_wrong_scale(key):
     assert grade_drawing(key, Drawing(doubled, "velocity"), rescale=False)["score"] < 3
 
 
+def test_a_drawing_is_rescaled_only_beyond_its_first_vectors_own_tolerance(key):
+    """The first vector laid off (pb) tells an editor's unit mix-up from a drafting error: the
+    drawing is rescaled only where pb's length is off by more than pb's own tolerance disc
+    (or 2 %, whichever is more). With b's disc at 6 % of pb, a drawing 4 % too large is
+    graded as drawn; one 8 % too large is rescaled."""
+    import copy
+
+    wide = copy.deepcopy(key)
+    right = float(np.hypot(*wide["plans"]["velocity"]["points_mm"]["b"]))
+    wide["plans"]["velocity"]["tolerance_mm"]["b"] = 0.06 * right
+    for stretch, rescaled in ((1.04, False), (1.08, True)):
+        points = {k: (stretch * x, stretch * y) for k, (x, y) in key_points(wide).items()}
+        result = grade_drawing(wide, Drawing(points, "velocity"))
+        assert any("scale is off" in line for line in result["feedback"]) is rescaled, stretch
+        assert (result["scale_factor"] == pytest.approx(1 / stretch)) is rescaled
+
+
 def test_an_editor_svg_with_px_units_groups_and_transforms(key):
     drawing = read_drawing(DATA / "compressor_velocity_inkscape.svg")
     assert drawing.plan == "velocity"
