@@ -601,7 +601,7 @@ def _match(points: Mapping[str, tuple[float, float]], label: str):
 
 def _line_name(step: Mapping[str, Any]) -> str:
     """``through b: v_CB ⟂ CB`` → ``the line v_CB ⟂ CB through b``."""
-    text = step.get("text", "").partition(": ")[2]
+    text = step["text"].partition(": ")[2]
     return f"the line {text} through {step.get('start')}".replace("  ", " ")
 
 
