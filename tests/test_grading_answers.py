@@ -84,6 +84,7 @@ a_C = 20.0
 epsilon_BC = { abs = 30.0 }
 """
     key = build_key(draw_variant(parse_template(text, file="seed.toml")))
+    assert (key["precision_mm"], key["rel_floor"]) == (0, 0.01)   # the key records them
     questions = by_id(key)
     assert questions["v_C"]["tolerance"] == pytest.approx(0.05 * 5.27163, rel=1e-4)
     assert questions["a_C"]["tolerance"] == 20.0

@@ -118,6 +118,8 @@ def test_functions_at_the_ends_of_their_domains(text, expected):
     # a missing bracket: the character where it was due, counted from 1
     ("(1 + 2", "at character 7: expected ')', got the end"),
     ("round(1 2)", "at character 9: expected ')', got '2'"),
+    # a wrong count of arguments: the character where the function's name starts
+    ("1 + sqrt(1, 2)", "at character 5: sqrt() takes 1 argument(s), got 2"),
 ])
 def test_functions_just_outside_their_domains_and_missing_brackets_say_so(text, message):
     with pytest.raises(ExpressionError) as caught:
