@@ -13,10 +13,9 @@ neighbouring frames while idle). *Drawing mode*: at 12 angles the right velocity
 acceleration plans are placed, the page drawn, and each plan's check button clicked, each
 check as the page times it (compare every point with its disc and the mistakes' positions,
 write the verdicts, lay them out): best of three passes per angle, and the page's first check
-apart. A full run
-also writes ``figures/workbook.png``, the screenshot in README. *Terminated*: SIGTERM to
-``planmethod workbook`` alone while two workers solve the conveyor's frames, the time until
-it has ended and the processes of it left.
+apart. A full run also writes ``figures/workbook.png``, the screenshot in README.
+*Terminated*: SIGTERM to ``planmethod workbook`` alone while two workers solve the conveyor's
+frames, the time until it has ended and the processes of it left.
 
 Targets of issue 13: plans + SVG ≤ 10 ms (compressor) and ≤ 40 ms (conveyor) per position, the
 conveyor's ``analyse`` ≤ 20 ms, 360 frames in ≤ 5 s (compressor) and ≤ 20 s (conveyor), the
