@@ -125,8 +125,7 @@ def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
         page.evaluate("localStorage.clear()")
         page.uncheck("#draw-mode")
         if screenshot is not None:
-            page.eval_on_selector("#angle", """slider => {
-                slider.value = 60; slider.dispatchEvent(new Event("input"));}""")
+            page.eval_on_selector("#angle", _TO_ANGLE, 60)
             page.select_option("#step-plan", "velocity")
             for _ in range(5):
                 page.click("#step-next")
