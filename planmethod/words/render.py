@@ -1,0 +1,114 @@
+"""The one place where a sentence becomes text: :func:`render`.
+
+A :class:`~planmethod.words.message.Message` is looked up in the language's catalogue (its
+template is the key; a plural's form is chosen by its count, as the language's rule says),
+and its fields are filled in: a number with the template's format specification and the
+language's decimal sign (``0,002`` in Russian), a message rendered in turn, a list joined with
+commas, text as it is. A translation that does not fit its fields (a catalogue written for
+another version) is not shown half-filled: the English template is used instead.
+
+Examples
+--------
+>>> from planmethod.words.message import message, plural
+>>> render(message("μl = {scale:g} m/mm", scale=0.002))
+'μl = 0.002 m/mm'
+>>> render(plural("{count} variant", "{count} variants", count=3))
+'3 variants'
+>>> render(message("{what}: {where}", what=message("angle"), where=["B", "C"]))
+'angle: B, C'
+>>> decimal_number("0.002", ",")
+'0,002'
+"""
+
+from __future__ import annotations
+
+import numbers
+import string
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from .language import ENGLISH, catalogue, current
+from .message import Message, message
+
+__all__ = ["DECIMAL_SIGN", "decimal_number", "number_text", "render"]
+
+#: the decimal sign, as a catalogue translates it ("," in Russian)
+DECIMAL_SIGN = message(".", context="decimal sign")
+
+
+def render(text: Message | str, language: str | None = None) -> str:
+    """``text`` in ``language`` (default: the one spoken now); a plain string is returned as
+    it is (a name, a symbol, text the user wrote)."""
+    if not isinstance(text, Message):
+        return text
+    language = language or current()
+    translations = catalogue(language)
+    template = _translated(text, translations, language)
+    formatter = _Formatter(language, _decimal_sign(language))
+    values = text.values
+    try:
+        return formatter.vformat(template, (), values)
+    except (KeyError, IndexError, ValueError):
+        if template is text.template:
+            raise
+        return formatter.vformat(_english(text), (), values)
+
+
+def _english(text: Message) -> str:
+    if text.plural_template is not None and text.field(text.count) != 1:
+        return text.plural_template
+    return text.template
+
+
+def _translated(text: Message, translations, language: str) -> str:
+    if language == ENGLISH:
+        return _english(text)
+    if text.plural_template is None:
+        if text.context is None:
+            return translations.gettext(text.template)
+        return translations.pgettext(text.context, text.template)
+    count = int(text.field(text.count))
+    if text.context is None:
+        return translations.ngettext(text.template, text.plural_template, count)
+    return translations.npgettext(text.context, text.template, text.plural_template, count)
+
+
+def _decimal_sign(language: str) -> str:
+    if language == ENGLISH:
+        return "."
+    sign = catalogue(language).pgettext(DECIMAL_SIGN.context, DECIMAL_SIGN.template)
+    return sign if sign else "."
+
+
+def decimal_number(text: str, sign: str) -> str:
+    """A number already formatted with a decimal point, written with ``sign`` instead."""
+    return text if sign == "." else text.replace(".", sign)
+
+
+def number_text(value: float, specification: str = "g", language: str | None = None) -> str:
+    """A number as the language writes it (``number_text(0.25, "g", "ru")`` → ``'0,25'``)."""
+    language = language or current()
+    return decimal_number(format(value, specification), _decimal_sign(language))
+
+
+class _Formatter(string.Formatter):
+    """``str.format`` with the fields of a message: named only, numbers in the language's
+    writing, messages and lists rendered."""
+
+    def __init__(self, language: str, sign: str) -> None:
+        super().__init__()
+        self.language, self.sign = language, sign
+
+    def get_value(self, key: int | str, args: Sequence[Any], kwargs: Mapping[str, Any]) -> Any:
+        if isinstance(key, int):
+            raise KeyError(key)       # a template's fields are named, never positional
+        return kwargs[key]
+
+    def format_field(self, value: Any, format_spec: str) -> str:
+        if isinstance(value, Message):
+            return format(render(value, self.language), format_spec)
+        if isinstance(value, (list, tuple)):
+            return ", ".join(self.format_field(item, format_spec) for item in value)
+        if isinstance(value, numbers.Number) and not isinstance(value, bool):
+            return decimal_number(format(value, format_spec), self.sign)
+        return format(value, format_spec)
