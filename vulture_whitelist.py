@@ -10,6 +10,7 @@ from planmethod.grading.templates import variant_exercise
 from planmethod.kinematics.program import Model
 from planmethod.kinematics.solve import Motion
 from planmethod.studio.server import StudioHandler, StudioServer
+from planmethod.testing.pseudo import _PageText
 
 # argparse's parser reads this attribute: negative numbers in any float notation are values
 _Parser._negative_number_matcher  # noqa: B018
@@ -37,3 +38,8 @@ StudioHandler.do_DELETE  # noqa: B018
 StudioHandler.do_HEAD  # noqa: B018
 StudioHandler.log_message  # noqa: B018
 StudioHandler.close_connection  # noqa: B018
+# the standard library's HTML parser calls these methods by name (html.parser): the
+# pseudo-translation's reader of a page's visible text
+_PageText.handle_starttag  # noqa: B018
+_PageText.handle_endtag  # noqa: B018
+_PageText.handle_data  # noqa: B018

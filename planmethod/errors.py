@@ -9,11 +9,16 @@ so that the command line can print it without a traceback.
 Examples
 --------
 >>> from planmethod.errors import SpecError
->>> str(SpecError("must be a finite number, got 'abc'", file="slider.toml", key="drive.angle"))
-"slider.toml: drive.angle: must be a finite number, got 'abc'"
+>>> from planmethod.words import message
+>>> str(SpecError(message("must be a finite number, got '{given}'", given="abc"),
+...               file="slider.toml", key="drive.angle", angle=45))
+"slider.toml: drive.angle: crank angle 45°: must be a finite number, got 'abc'"
 """
 
 from __future__ import annotations
+
+from .words.message import Message, message
+from .words.render import render
 
 __all__ = [
     "AssemblyError",
@@ -27,10 +32,16 @@ __all__ = [
 ]
 
 
-def _format_angle(angle: float | None) -> str | None:
-    if angle is None:
-        return None
-    return f"crank angle {float(angle):g}°"
+def _context(link: str | None, angle: float | None) -> list[Message]:
+    """Where in the mechanism: the link (or group of links joined by ", ": the links of a
+    locked structure) and the crank angle."""
+    parts = []
+    if link:
+        parts.append(message("links {links}", links=link) if ", " in link
+                     else message("link {link}", link=link))
+    if angle is not None:
+        parts.append(message("crank angle {angle:g}°", angle=float(angle)))
+    return parts
 
 
 class PlanmethodError(Exception):
@@ -39,7 +50,8 @@ class PlanmethodError(Exception):
     Parameters
     ----------
     message
-        What is wrong, expected and got.
+        What is wrong, expected and got: a :class:`~planmethod.words.Message` (a template
+        and its fields, shown in the course's language), or text shown as it is.
     file
         The exercise file, when the error comes from one.
     key
@@ -52,7 +64,7 @@ class PlanmethodError(Exception):
 
     def __init__(
         self,
-        message: str,
+        message: Message | str,
         *,
         file: str | None = None,
         key: str | None = None,
@@ -67,13 +79,11 @@ class PlanmethodError(Exception):
         super().__init__(self._text())
 
     def _text(self) -> str:
+        """The one line: file and key, then link and crank angle, then what is wrong — in
+        the language spoken now."""
         where = [part for part in (self.file, self.key) if part]
-        context = [part for part in (
-            # one link, or a group of them joined by ", " (the links of a locked structure)
-            f"{'links' if ', ' in self.link else 'link'} {self.link}" if self.link else None,
-            _format_angle(self.angle),
-        ) if part]
-        text = self.message
+        context = [render(part) for part in _context(self.link, self.angle)]
+        text = render(self.message)
         if context:
             text = f"{', '.join(context)}: {text}"
         if where:
@@ -107,7 +117,8 @@ class AssemblyError(PlanmethodError, ValueError):
     ``shortfall`` is by how much (m) the links fail to reach.
     """
 
-    def __init__(self, message: str, *, shortfall: float | None = None, **context) -> None:
+    def __init__(self, message: Message | str, *, shortfall: float | None = None,
+                 **context) -> None:
         self.shortfall = shortfall
         super().__init__(message, **context)
 
@@ -118,7 +129,8 @@ class ToggleError(PlanmethodError, ArithmeticError):
     ``line_angle_deg`` is the angle between the two lines in degrees.
     """
 
-    def __init__(self, message: str, *, line_angle_deg: float | None = None, **context) -> None:
+    def __init__(self, message: Message | str, *, line_angle_deg: float | None = None,
+                 **context) -> None:
         self.line_angle_deg = line_angle_deg
         super().__init__(message, **context)
 
@@ -129,7 +141,8 @@ class ConvergenceError(PlanmethodError, RuntimeError):
     ``residual`` is how far from a solution it stopped.
     """
 
-    def __init__(self, message: str, *, residual: float | None = None, **context) -> None:
+    def __init__(self, message: Message | str, *, residual: float | None = None,
+                 **context) -> None:
         self.residual = residual
         super().__init__(message, **context)
 
