@@ -38,7 +38,7 @@ def run(args: argparse.Namespace) -> int:
     import os
     from pathlib import Path
 
-    from ..errors import SpecError
+    from ..errors import SpecError, about
     from ..grading import exports
     from ..grading.answers import grade_many, read_answers
     from ..grading.keys import bundle
@@ -55,16 +55,18 @@ def run(args: argparse.Namespace) -> int:
     if args.format == "csv":
         if not args.answers:
             raise SpecError("--format csv needs --answers (the gradebook scores them)")
-        files[""] = exports.gradebook_csv(grade_many(keys, read_answers(args.answers)))
+        with about(args.answers):   # an error here is about the answers, not the key
+            files[""] = exports.gradebook_csv(grade_many(keys, read_answers(args.answers)))
     elif args.format == "gradescope":
         if args.answers:
-            rows = read_answers(args.answers)
-            if args.student is not None:
-                rows = [(args.student, a) for _, a in rows]
-            if len(rows) != 1:
-                raise SpecError(f"results.json is for one student; the answers hold "
-                                f"{len(rows)}", file=args.answers)
-            result = grade_many(keys, rows)[0]
+            with about(args.answers):   # an error here is about the answers, not the key
+                rows = read_answers(args.answers)
+                if args.student is not None:
+                    rows = [(args.student, a) for _, a in rows]
+                if len(rows) != 1:
+                    raise SpecError(f"results.json is for one student; the answers hold "
+                                    f"{len(rows)}", file=args.answers)
+                result = grade_many(keys, rows)[0]
             files["results.json"] = json.dumps(
                 exports.gradescope_results(result, feedback=args.feedback),
                 ensure_ascii=False, indent=1)

@@ -296,13 +296,12 @@ def _task_figure(key: Mapping[str, Any]) -> str | None:
     """The task figure of a key's variant (:func:`~planmethod.grading.sheets.task_figure_svg`),
     or None for a key that does not carry its exercise."""
     from ..plans import draw_plans
-    from ..spec import exercise_from_dict
+    from .keys import key_exercise
     from .sheets import task_figure_svg
 
-    data = key.get("exercise")
-    if not data:
+    exercise = key_exercise(key)   # an error in its tables names the key's file
+    if exercise is None:
         return None
-    exercise = exercise_from_dict(data, file=key.get("source"))
     return task_figure_svg(draw_plans(exercise, acceleration=False))
 
 
