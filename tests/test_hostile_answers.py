@@ -154,7 +154,12 @@ LOST_OR_MERGED = {
     "a column twice": ("student,v_C,v_C\ns1,1,5.27\n", "answers.csv: line 1: column 'v_C' "
                                                       "is given twice (columns 2 and 3)"),
     "a column twice in another case": ("student,v_C,V_c \ns1,1,5.27\n",
-                                       "answers.csv: line 1: column 'V_c'"),
+                                       "answers.csv: line 1: column 'v_C' and column 'V_c' "
+                                       "are one column, compared ignoring case (columns 2 "
+                                       "and 3)"),
+    "an answer twice in another case": ('{"s1": {"v_C": 1, " V_c": 2}}',
+                                        "answers.json: s1: answer 'v_C' and answer ' V_c' are "
+                                        "one answer, question ids compared ignoring case"),
     # a header and no student graded an empty class
     "a header and no student": ("student,v_C,omega_BC\n", "answers.csv: a header (line 1) and "
                                                          "no student's answers"),
