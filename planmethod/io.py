@@ -457,12 +457,13 @@ class OutputSet:
         return list(targets.values())
 
     def folder(self, target: str | Path, files: Mapping[str, str | bytes], *,
-               replaces: tuple[str, ...] = ()) -> Path:
+               replaces: tuple[str, ...] = (), modes: Mapping[str, int] | None = None) -> Path:
         """Stage a whole folder: ``files`` (relative path → text or bytes) written into a
         private staging folder beside the entries of ``target``; at the commit the entries of
         ``target`` named in ``replaces`` (those of an earlier run) are moved to a hidden folder
         (:attr:`retired`) and the staged entries moved in. Any other entry of ``target`` is
-        left alone, and one a staged entry would land on is an error before the commit."""
+        left alone, and one a staged entry would land on is an error before the commit.
+        ``modes`` gives some files their permission bits (``0o755``)."""
         target = Path(target)
         final = Path(os.path.realpath(target)) if os.path.islink(target) else target
         for name in files:
@@ -495,6 +496,8 @@ class OutputSet:
             try:
                 path.parent.mkdir(parents=True, exist_ok=True)
                 path.write_bytes(data if isinstance(data, bytes) else data.encode("utf-8"))
+                if name in (modes or {}):
+                    os.chmod(path, modes[name])
             except OSError as error:   # named as it will be: the file inside the folder
                 raise _cannot_write(error, target / name) from None
         return final

@@ -1,5 +1,13 @@
 """``planmethod export KEY --format gradescope|prairielearn|moodle|csv``: the keys of a run
-as an LMS import (see :mod:`planmethod.grading.exports`)."""
+as an LMS import (see :mod:`planmethod.grading.exports`).
+
+A folder it writes — a PrairieLearn question ``OUT/SLUG/``, a Gradescope autograder ``OUT/``
+— is a run folder (:mod:`planmethod.runs`) with a ``manifest.json``: a later export into it
+replaces it whole (no file of the earlier run is left, say a task figure of a student the new
+keys no longer have), and only when everything there is what that manifest lists, unchanged;
+a folder holding anything else is refused, never emptied. A single file (Moodle's quiz, a CSV
+gradebook, Gradescope's ``results.json``) is replaced whole, as every output is.
+"""
 
 from __future__ import annotations
 
@@ -33,20 +41,61 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="PrairieLearn question folder name (default planmethod)")
 
 
+def _prairielearn_file(name: str) -> bool:
+    """Whether ``name`` is a file of a PrairieLearn question folder an export writes."""
+    from ..grading.exports import PRAIRIELEARN_FIGURES, PRAIRIELEARN_FILES
+
+    parts = name.split("/")
+    return (name in PRAIRIELEARN_FILES
+            or (len(parts) == 2 and parts[0] == PRAIRIELEARN_FIGURES
+                and parts[1].endswith(".svg") and parts[1] not in ("", ".svg")))
+
+
+def _gradescope_file(name: str) -> bool:
+    """Whether ``name`` is a file of a Gradescope autograder folder an export writes."""
+    from ..grading.exports import GRADESCOPE_FILES
+
+    return name in GRADESCOPE_FILES
+
+
+def _run_folder(args: argparse.Namespace):
+    """(the folder, its :class:`~planmethod.runs.RunKind`) of an export that writes a run
+    folder, else None (a single file). The files of a PrairieLearn export are named with
+    the slug in front (``SLUG/info.json``): its run folder is ``OUT/SLUG``."""
+    from pathlib import Path
+
+    from ..io import path_component
+    from ..runs import RunKind
+
+    if args.format == "prairielearn":
+        path_component(args.slug, "--slug")  # before any work: it becomes a folder name
+        return Path(args.out) / args.slug, RunKind(
+            "export --format prairielearn", "planmethod-prairielearn-manifest",
+            _prairielearn_file, force=None)
+    if args.format == "gradescope" and not args.answers:
+        return Path(args.out), RunKind("export --format gradescope",
+                                       "planmethod-gradescope-manifest", _gradescope_file,
+                                       force=None)
+    return None
+
+
 def run(args: argparse.Namespace) -> int:
     import json
     import os
+    import sys
     from pathlib import Path
 
     from ..errors import SpecError, about
     from ..grading import exports
     from ..grading.answers import grade_many, read_answers
     from ..grading.keys import bundle
-    from ..io import output_set, path_component, read_text_bounded, student_folder
+    from ..io import output_set, read_text_bounded, student_folder
+    from ..runs import earlier_run, write_run
     from .grade import load_any_key
 
-    if args.format == "prairielearn":
-        path_component(args.slug, "--slug")  # before any work: it becomes a folder name
+    run_folder = _run_folder(args)
+    # before any work: refuse a folder that holds what no export wrote, or find its earlier run
+    earlier = earlier_run(*run_folder) if run_folder is not None else None
     keys = load_any_key(args.key)
     unique = list({id(k): k for k in keys.values()}.values())
     the_bundle = bundle(unique, source=str(args.key))
@@ -82,11 +131,21 @@ def run(args: argparse.Namespace) -> int:
             if os.path.lexists(sheet):
                 sheets[str(key.get("student"))] = read_text_bounded(sheet, MAX_SHEET_BYTES)
         files[""] = exports.moodle_xml(unique, sheets=sheets)
-    with output_set() as outputs:   # every file or none
-        if "" in files:  # one output file
-            written = [str(outputs.text(out, files[""]))]
-        else:  # files inside the output folder, none of them outside it
-            written = [str(path) for path in outputs.files(
-                out, files, modes={name: 0o755 for name in EXECUTABLES if name in files})]
+    if run_folder is not None:   # the run folder, whole, in place of an earlier export
+        folder, kind = run_folder
+        prefix = f"{args.slug}/" if args.format == "prairielearn" else ""
+        inside = {name.removeprefix(prefix): text.encode("utf-8") for name, text in files.items()}
+        note = write_run(folder, kind, inside, earlier,
+                         modes={name: 0o755 for name in EXECUTABLES if name in inside})
+        if note:
+            print(f"planmethod: note: {note}", file=sys.stderr)
+        written = [str(folder / name) for name in inside]
+        out = folder
+    else:
+        with output_set() as outputs:   # every file or none
+            if "" in files:  # one output file
+                written = [str(outputs.text(out, files[""]))]
+            else:  # results.json inside the output folder
+                written = [str(path) for path in outputs.files(out, files)]
     print(f"Wrote {', '.join(written) if len(written) <= 4 else f'{len(written)} files in {out}'}")
     return 0
