@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import argparse
 
+from ..runs import RunKind
+
 #: the files of a Gradescope autograder that must be executable
 EXECUTABLES = ("run_autograder", "setup.sh", "grade_submission.py")
 
@@ -58,6 +60,15 @@ def _gradescope_file(name: str) -> bool:
     return name in GRADESCOPE_FILES
 
 
+#: the run folders export writes, by format (their manifests' tags, the files they may
+#: list): a PrairieLearn question ``OUT/SLUG/``, a Gradescope autograder ``OUT/``
+RUNS = {"prairielearn": RunKind("export --format prairielearn",
+                                "planmethod-prairielearn-manifest", _prairielearn_file,
+                                force=None),
+        "gradescope": RunKind("export --format gradescope", "planmethod-gradescope-manifest",
+                              _gradescope_file, force=None)}
+
+
 def _run_folder(args: argparse.Namespace):
     """(the folder, its :class:`~planmethod.runs.RunKind`) of an export that writes a run
     folder, else None (a single file). The files of a PrairieLearn export are named with
@@ -65,17 +76,12 @@ def _run_folder(args: argparse.Namespace):
     from pathlib import Path
 
     from ..io import path_component
-    from ..runs import RunKind
 
     if args.format == "prairielearn":
         path_component(args.slug, "--slug")  # before any work: it becomes a folder name
-        return Path(args.out) / args.slug, RunKind(
-            "export --format prairielearn", "planmethod-prairielearn-manifest",
-            _prairielearn_file, force=None)
+        return Path(args.out) / args.slug, RUNS["prairielearn"]
     if args.format == "gradescope" and not args.answers:
-        return Path(args.out), RunKind("export --format gradescope",
-                                       "planmethod-gradescope-manifest", _gradescope_file,
-                                       force=None)
+        return Path(args.out), RUNS["gradescope"]
     return None
 
 
