@@ -638,9 +638,9 @@ def _one_place_each(drawing: Drawing, labels) -> None:
         places = {(round(x, 3), round(y, 3)): mark for mark in marks for x, y in [mark[2]]}
         if len(places) > 1:
             (first, _, one), (second, _, other) = list(places.values())[:2]
-            raise SubmissionError(
-                f"<text> {first!r} at ({one[0]:.1f}, {one[1]:.1f}) mm and <text> {second!r} "
-                f"at ({other[0]:.1f}, {other[1]:.1f}) mm both mark the point {label} "
+            raise SubmissionError(   # where the SVG puts them, in mm: its y points down
+                f"<text> {first!r} at ({one[0]:.1f}, {-one[1]:.1f}) mm and <text> {second!r} "
+                f"at ({other[0]:.1f}, {-other[1]:.1f}) mm both mark the point {label} "
                 f"({LABELS_COMPARED}): keep one", file=drawing.source)
 
 
