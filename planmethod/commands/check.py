@@ -154,32 +154,17 @@ def _column_name(name: str) -> str:
     return f"{axis.lower()}_{point}"
 
 
-def read_coordinates(path: str | Path, exercise) -> list[Row]:
-    """The rows of a coordinates CSV (see the module docstring).
-
-    Raises
-    ------
-    SpecError
-        For a missing file, a missing angle column, an unknown point, a lone x or y column, or
-        a value that is not a finite number — naming the file, line and column.
-    """
+def _columns(header: list[str], line: int, exercise, file: str) -> tuple[int, dict]:
+    """(the crank angle's column, point → {"x": column, "y": column}) of a table's header on
+    ``line``, or a :class:`SpecError`: no angle column, a column that is not x_P or y_P of a
+    point of the exercise, a lone x or y, a column given twice (one of two values would be
+    kept without a word)."""
     from ..errors import SpecError
     from ..grading.answers import refuse_twice
-    from ..io import read_text_bounded
-    from ..spec import MAX_ANGLE_DEG, MAX_COORDINATE_M, did_you_mean
+    from ..spec import did_you_mean
 
-    path = Path(path)
-    file = str(path)
-    text = read_text_bounded(path, MAX_TABLE_BYTES)
-    lines = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
-             if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise SpecError("no header and no rows", file=file)
-    reader = csv.reader([line for _, line in lines])
-    header = [name.strip() for name in next(reader)]
-    # a column given twice would keep one of two values without a word
     refuse_twice([name if "_" in name else "" for name in header], _column_name, "column",
-                 file=file, key=f"line {lines[0][0]}", places="columns",
+                 file=file, key=f"line {line}", places="columns",
                  compared="the axis compared ignoring case")
     lowered = [name.lower() for name in header]
     angle_column = next((lowered.index(name) for name in ANGLE_COLUMNS if name in lowered), None)
@@ -201,6 +186,32 @@ def read_coordinates(path: str | Path, exercise) -> list[Row]:
     for point, axes in columns.items():
         if set(axes) != {"x", "y"}:
             raise SpecError(f"point {point} has only a {next(iter(axes))} column", file=file)
+    return angle_column, columns
+
+
+def read_coordinates(path: str | Path, exercise) -> list[Row]:
+    """The rows of a coordinates CSV (see the module docstring).
+
+    Raises
+    ------
+    SpecError
+        For a missing file, a missing angle column, an unknown point, a lone x or y column, or
+        a value that is not a finite number — naming the file, line and column.
+    """
+    from ..errors import SpecError
+    from ..io import read_text_bounded
+    from ..spec import MAX_ANGLE_DEG, MAX_COORDINATE_M
+
+    path = Path(path)
+    file = str(path)
+    text = read_text_bounded(path, MAX_TABLE_BYTES)
+    lines = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
+             if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise SpecError("no header and no rows", file=file)
+    reader = csv.reader([line for _, line in lines])
+    header = [name.strip() for name in next(reader)]
+    angle_column, columns = _columns(header, lines[0][0], exercise, file)
     rows = []
     for (number, _), values in zip(lines[1:], reader, strict=False):
         if len(values) != len(header):

@@ -85,18 +85,51 @@ def _run_folder(args: argparse.Namespace):
     return None
 
 
+def _task_sheets(key_path: str, keys: list) -> dict[str, str]:
+    """Each student's task sheet (SVG text) that variants wrote beside the keys, by student,
+    for those that are there."""
+    import os
+    from pathlib import Path
+
+    from ..io import read_text_bounded, student_folder
+
+    sheets = {}
+    folder = Path(key_path) if Path(key_path).is_dir() else Path(key_path).parent
+    for key in keys:
+        sheet = folder / student_folder(str(key.get("student"))) / "task.svg"
+        if os.path.lexists(sheet):
+            sheets[str(key.get("student"))] = read_text_bounded(sheet, MAX_SHEET_BYTES)
+    return sheets
+
+
+def _write_run_folder(args: argparse.Namespace, files: dict[str, str], folder, kind,
+                      earlier) -> list[str]:
+    """Write an export's run folder whole, in place of the ``earlier`` export there; the
+    files written (a note on stderr if a file of the earlier one changed meanwhile and stays
+    in a hidden folder)."""
+    import sys
+
+    from ..runs import write_run
+
+    prefix = f"{args.slug}/" if args.format == "prairielearn" else ""
+    inside = {name.removeprefix(prefix): text.encode("utf-8") for name, text in files.items()}
+    note = write_run(folder, kind, inside, earlier,
+                     modes={name: 0o755 for name in EXECUTABLES if name in inside})
+    if note:
+        print(f"planmethod: note: {note}", file=sys.stderr)
+    return [str(folder / name) for name in inside]
+
+
 def run(args: argparse.Namespace) -> int:
     import json
-    import os
-    import sys
     from pathlib import Path
 
     from ..errors import SpecError, about
     from ..grading import exports
     from ..grading.answers import grade_many, read_answers
     from ..grading.keys import bundle
-    from ..io import output_set, read_text_bounded, student_folder
-    from ..runs import earlier_run, write_run
+    from ..io import output_set
+    from ..runs import earlier_run
     from .grade import load_any_key
 
     run_folder = _run_folder(args)
@@ -130,23 +163,10 @@ def run(args: argparse.Namespace) -> int:
     elif args.format == "prairielearn":
         files.update(exports.prairielearn_questions(the_bundle, slug=args.slug))
     else:
-        sheets = {}
-        folder = Path(args.key) if Path(args.key).is_dir() else Path(args.key).parent
-        for key in unique:   # each student's task sheet that variants wrote, if it is there
-            sheet = folder / student_folder(str(key.get("student"))) / "task.svg"
-            if os.path.lexists(sheet):
-                sheets[str(key.get("student"))] = read_text_bounded(sheet, MAX_SHEET_BYTES)
-        files[""] = exports.moodle_xml(unique, sheets=sheets)
+        files[""] = exports.moodle_xml(unique, sheets=_task_sheets(args.key, unique))
     if run_folder is not None:   # the run folder, whole, in place of an earlier export
-        folder, kind = run_folder
-        prefix = f"{args.slug}/" if args.format == "prairielearn" else ""
-        inside = {name.removeprefix(prefix): text.encode("utf-8") for name, text in files.items()}
-        note = write_run(folder, kind, inside, earlier,
-                         modes={name: 0o755 for name in EXECUTABLES if name in inside})
-        if note:
-            print(f"planmethod: note: {note}", file=sys.stderr)
-        written = [str(folder / name) for name in inside]
-        out = folder
+        out = run_folder[0]
+        written = _write_run_folder(args, files, *run_folder, earlier)
     else:
         with output_set() as outputs:   # every file or none
             if "" in files:  # one output file

@@ -95,12 +95,38 @@ def _stage_class_report(outputs: OutputSet, report: str, keys: dict, results: li
                                symbols=symbols, mistakes=words)
 
 
+def _printed(args: argparse.Namespace, results: list, drawings: list) -> list[str]:
+    """The lines grade prints: each student's score and, unless ``--quiet``, each question's
+    feedback; each drawing's score and each point's feedback."""
+    from ..grading.answers import feedback_text
+
+    lines = []
+    for result in results:
+        total = result.get("max_score")
+        who = "the answers" if result["student"] == "*" else result["student"]
+        head = (f"{who}: {result['score']:g}/{total:g}" if total is not None
+                else f"{who}: {result['error']}")
+        lines.append(head)
+        if not args.quiet:
+            lines += [f"  {'ok ' if q['correct'] else 'XX '} "
+                      f"{feedback_text(q, args.feedback or 'full')}"
+                      for q in result["questions"]]
+    for path, drawing in zip(args.drawing, drawings, strict=True):
+        lines.append(f"{path} ({drawing['plan']} plan): {drawing['score']:g}/"
+                     f"{drawing['max_score']:g}")
+        if not args.quiet:
+            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
+                      for p in drawing["points"]]
+            lines += [f"  !  {line}" for line in drawing["feedback"]]
+    return lines
+
+
 def run(args: argparse.Namespace) -> int:
     import json
     import sys
 
     from ..errors import SpecError, about
-    from ..grading.answers import feedback_text, grade_many, read_answers
+    from ..grading.answers import grade_many, read_answers
     from ..grading.drawings import grade_drawing, key_for_drawing, read_drawing
     from ..grading.exports import gradebook_csv, gradescope_results
     from ..io import output_set
@@ -129,24 +155,7 @@ def run(args: argparse.Namespace) -> int:
             drawing = read_drawing(path)
             # a drawing from the workbook page is graded at its own angle, on its own exercise
             drawings.append(grade_drawing(key_for_drawing(key, drawing), drawing, args.plan))
-    lines = []
-    for result in results:
-        total = result.get("max_score")
-        who = "the answers" if result["student"] == "*" else result["student"]
-        head = (f"{who}: {result['score']:g}/{total:g}" if total is not None
-                else f"{who}: {result['error']}")
-        lines.append(head)
-        if not args.quiet:
-            lines += [f"  {'ok ' if q['correct'] else 'XX '} "
-                      f"{feedback_text(q, args.feedback or 'full')}"
-                      for q in result["questions"]]
-    for path, drawing in zip(args.drawing, drawings, strict=True):
-        lines.append(f"{path} ({drawing['plan']} plan): {drawing['score']:g}/"
-                     f"{drawing['max_score']:g}")
-        if not args.quiet:
-            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
-                      for p in drawing["points"]]
-            lines += [f"  !  {line}" for line in drawing["feedback"]]
+    lines = _printed(args, results, drawings)
     if args.gradescope and len(results) > 1:
         raise SpecError(f"--gradescope writes one student's results; the answers hold "
                         f"{len(results)}", file=args.answers)
