@@ -86,15 +86,16 @@ def manifest_text(kind: RunKind, files: Mapping[str, bytes]) -> str:
     >>> print(manifest_text(kind, {"001/key.json": b"{}"}))  # doctest: +ELLIPSIS
     {
      "format": "planmethod-variants-manifest",
-     "note": "written by planmethod variants: ...",
+     "note": "written by planmethod variants: the files `variants --force` may remove, ...",
      "files": [
       ["001/key.json", 2, "44136fa355b3678a1146ad16f7e8649e94fb4fc21fe77e8310c060f61caaff8a"]
      ]
     }
     """
+    who = f"`{kind.command} {kind.force}`" if kind.force else f"a later `{kind.command}`"
     return json_text({"format": kind.format,
-                      "note": f"written by planmethod {kind.command}: the files a later run "
-                              "may remove, each only while its size and SHA-256 are these",
+                      "note": f"written by planmethod {kind.command}: the files {who} may "
+                              "remove, each only while its size and SHA-256 are these",
                       "files": [[name, len(data), hashlib.sha256(data).hexdigest()]
                                 for name, data in sorted(files.items())]})
 
