@@ -43,6 +43,13 @@ LIMIT_WORDS: dict[type[BaseException], str] = {
 def limit_words(error: BaseException) -> str:
     """The line of :data:`LIMIT_WORDS` for ``error`` (of one of its kinds, or a subclass).
 
+    Parameters
+    ----------
+    error
+        An ``OverflowError``, ``RecursionError`` or ``MemoryError``.
+
+    Examples
+    --------
     >>> limit_words(OverflowError(34, "Numerical result out of range"))
     'a number is too large to compute with'
     """
@@ -183,6 +190,13 @@ def about(file: str | None, key: str | None = None) -> Iterator[None]:
     :class:`SpecError` naming it. A command wraps it round the work on each of its inputs
     after the first (a drawing, an answers file, a coordinates table), so that an error
     names the input it is about, never the exercise the command line would name otherwise.
+
+    Parameters
+    ----------
+    file
+        The input the block works on.
+    key
+        The key in it the block reads (``angle``), if one.
 
     Examples
     --------
