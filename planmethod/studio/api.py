@@ -140,8 +140,10 @@ class Workspace:
     def _here(self, error: PlanmethodError, relative: Any) -> SpecError:
         """``error`` of the command line's reader or writer, naming the path as the page gave
         it (never the folder's absolute path)."""
-        message = error.message.replace(f"{self.root}{os.sep}", "")
-        return SpecError(message, file=str(relative).strip(), key=error.key)
+        root = f"{self.root}{os.sep}"
+        shown = str(PlanmethodError(error.message))   # its words alone, as they are shown
+        return SpecError(shown.replace(root, "") if root in shown else error.message,
+                         file=str(relative).strip(), key=error.key)
 
     def files(self) -> list[str]:
         """The exercise files (``*.toml``) under the folder (see :meth:`listing`)."""
