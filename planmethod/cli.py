@@ -21,7 +21,7 @@ import threading
 import warnings
 from typing import NoReturn
 
-from .errors import PlanmethodError
+from .errors import LIMIT_WORDS, PlanmethodError, limit_words
 
 __all__ = ["COMMANDS", "main"]
 
@@ -126,10 +126,8 @@ def _run(args: argparse.Namespace) -> int:
             # numpy's warnings never reach the terminal as lines of source code
             warnings.simplefilter("ignore", RuntimeWarning)
             return int(importlib.import_module(args._module).run(args) or 0)
-    except (OverflowError, RecursionError, MemoryError) as error:
-        what = {OverflowError: "a number is too large to compute with",
-                RecursionError: "the input is nested too deeply",
-                MemoryError: "the input asks for more memory than there is"}[type(error)]
+    except tuple(LIMIT_WORDS) as error:
+        what = limit_words(error)
         source = getattr(args, "file", None) or getattr(args, "key", None)
         print(f"planmethod: error: {source + ': ' if source else ''}{what}", file=sys.stderr)
         return EXIT_BAD_INPUT

@@ -17,10 +17,14 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
+
 from .words.message import Message, message
 from .words.render import render
 
 __all__ = [
+    "LIMIT_WORDS",
     "AssemblyError",
     "BranchJumpError",
     "ConvergenceError",
@@ -29,7 +33,32 @@ __all__ = [
     "SpecError",
     "StructureError",
     "ToggleError",
+    "about",
+    "limit_words",
 ]
+
+#: what a computation that met one of Python's own limits says, in one line (no traceback)
+LIMIT_WORDS: dict[type[BaseException], str] = {
+    OverflowError: "a number is too large to compute with",
+    RecursionError: "the input is nested too deeply",
+    MemoryError: "the input asks for more memory than there is",
+}
+
+
+def limit_words(error: BaseException) -> str:
+    """The line of :data:`LIMIT_WORDS` for ``error`` (of one of its kinds, or a subclass).
+
+    Parameters
+    ----------
+    error
+        An ``OverflowError``, ``RecursionError`` or ``MemoryError``.
+
+    Examples
+    --------
+    >>> limit_words(OverflowError(34, "Numerical result out of range"))
+    'a number is too large to compute with'
+    """
+    return next(words for kind, words in LIMIT_WORDS.items() if isinstance(error, kind))
 
 
 def _context(link: str | None, angle: float | None) -> list[Message]:
@@ -102,6 +131,17 @@ class PlanmethodError(Exception):
         self.args = (self._text(),)
         return self
 
+    def under(self, prefix: str) -> PlanmethodError:
+        """Return the same error with its key read inside the table ``prefix``: a table of
+        one file kept inside another (a key's ``exercise``).
+
+        >>> str(SpecError("too large", file="key.json", key="drive.omega").under("exercise"))
+        'key.json: exercise.drive.omega: too large'
+        """
+        self.key = f"{prefix}.{self.key}" if self.key else prefix
+        self.args = (self._text(),)
+        return self
+
 
 class SpecError(PlanmethodError, ValueError):
     """The exercise file (or a value given in code) is malformed or inconsistent."""
@@ -153,3 +193,42 @@ class BranchJumpError(PlanmethodError, RuntimeError):
 
 class ForceError(PlanmethodError, ArithmeticError):
     """The force system of a group (or of the whole mechanism) is singular or ill-posed."""
+
+
+@contextlib.contextmanager
+def about(file: str | None, key: str | None = None) -> Iterator[None]:
+    """``with about(path):`` the errors raised in the block are about ``path`` (and ``key``)
+    where they name no file of their own; a number too large to compute with (Python's
+    ``OverflowError``, and its other limits of :data:`LIMIT_WORDS`) becomes a
+    :class:`SpecError` naming it. A command wraps it round the work on each of its inputs
+    after the first (a drawing, an answers file, a coordinates table), so that an error
+    names the input it is about, never the exercise the command line would name otherwise.
+
+    Parameters
+    ----------
+    file
+        The input the block works on.
+    key
+        The key in it the block reads (``angle``), if one.
+
+    Examples
+    --------
+    >>> with about("plan.json", key="angle"):
+    ...     raise SpecError("out of range")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: plan.json: angle: out of range
+    >>> with about("plan.json", key="angle"):
+    ...     raise SpecError("out of range", file="key.json")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: key.json: out of range
+    """
+    try:
+        yield
+    except PlanmethodError as error:
+        if error.file:   # about a file of its own (and its own key there)
+            raise
+        raise error.located(file=file, key=key) from None
+    except tuple(LIMIT_WORDS) as error:
+        raise SpecError(limit_words(error), file=file, key=key) from None

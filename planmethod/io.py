@@ -338,17 +338,22 @@ class OutputSet:
                                   file=str(target))
         self._seen[key] = target
 
-    def path(self, target: str | Path, suffix: str | None = None, *,
-             mode: int | None = None) -> Path:
-        """A temporary path to write ``target``'s content into (for writers that take a
-        path: matplotlib, Pillow, ffmpeg); ``mode`` sets the file's permission bits
-        (default: those of the file it replaces, or an ordinary new file's)."""
+    def _stage(self, target: str | Path, suffix: str | None = None, *,
+               mode: int | None = None, devices: bool = True) -> Path:
+        """A temporary path to write ``target``'s content into; ``mode`` sets the file's
+        permission bits (default: those of the file it replaces, or an ordinary new file's).
+        With ``devices`` False a target that is a device or a FIFO is refused like a socket:
+        only a regular file (or nothing yet) is written."""
         target = Path(target)
         suffix = (target.suffix if suffix is None else suffix)[:16]
         status = _status(target, target)
         if status is not None and stat.S_ISDIR(status.st_mode):
             raise PlanmethodError("is a folder, not a file", file=str(target))
-        descriptor = None if status is None else _standard_stream(status)
+        if status is not None and not devices and not stat.S_ISREG(status.st_mode):
+            raise PlanmethodError(f"is {_special_kind(status.st_mode)}, not a regular file: "
+                                  "it is never replaced, and only a regular file is written "
+                                  "here", file=str(target))
+        descriptor = None if status is None or not devices else _standard_stream(status)
         if status is not None and (descriptor is not None
                                    or not stat.S_ISREG(status.st_mode)):
             how = WriteMode.STREAM if descriptor is not None else WriteMode.IN_PLACE
@@ -388,18 +393,51 @@ class OutputSet:
             os.chmod(temporary, mode)
         return temporary
 
-    def binary(self, target: str | Path, data: bytes, *, mode: int | None = None) -> Path:
-        """Stage ``data`` as the content of ``target``; returns ``target``."""
-        temporary = self.path(target, mode=mode)
+    @contextlib.contextmanager
+    def writing(self, target: str | Path, suffix: str | None = None, *,
+                mode: int | None = None) -> Iterator[Path]:
+        """``with outputs.writing(target) as temporary:`` a temporary path to write
+        ``target``'s content into, for writers that take a path (matplotlib, Pillow, ffmpeg,
+        a CSV streamed row by row); ``mode`` sets the file's permission bits (default: those
+        of the file it replaces, or an ordinary new file's).
+
+        A write that fails in the block (a full disk, a file too large) names ``target``, not
+        the command's input nor the temporary file: the error is about this output.
+
+        >>> import errno, tempfile, pathlib
+        >>> target = pathlib.Path(tempfile.mkdtemp()) / "table.csv"
+        >>> with output_set() as outputs, outputs.writing(target) as temporary:
+        ...     raise OSError(errno.ENOSPC, "No space left on device")  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        planmethod.errors.PlanmethodError: .../table.csv: cannot write the file: No space left...
+        """
+        temporary = self._stage(target, suffix, mode=mode)
+        try:
+            yield temporary
+        except OSError as error:
+            raise _cannot_write(error, target) from None
+        except PlanmethodError as error:
+            if error.file == str(temporary):   # a writer that stages its own file into this one
+                error.file = None
+                raise error.located(file=str(target)) from None
+            raise
+
+    def binary(self, target: str | Path, data: bytes, *, mode: int | None = None,
+               devices: bool = True) -> Path:
+        """Stage ``data`` as the content of ``target``; returns ``target``. With ``devices``
+        False, a target that is a device or a FIFO is refused (see :meth:`_stage`)."""
+        temporary = self._stage(target, mode=mode, devices=devices)
         try:
             temporary.write_bytes(data)
         except OSError as error:
             raise _cannot_write(error, target) from None
         return Path(target)
 
-    def text(self, target: str | Path, text: str, *, mode: int | None = None) -> Path:
+    def text(self, target: str | Path, text: str, *, mode: int | None = None,
+             devices: bool = True) -> Path:
         """Stage ``text`` (UTF-8) as the content of ``target``; returns ``target``."""
-        return self.binary(target, text.encode("utf-8"), mode=mode)
+        return self.binary(target, text.encode("utf-8"), mode=mode, devices=devices)
 
     def files(self, folder: str | Path, files: Mapping[str, str | bytes], *,
               modes: Mapping[str, int] | None = None) -> list[Path]:
@@ -419,12 +457,13 @@ class OutputSet:
         return list(targets.values())
 
     def folder(self, target: str | Path, files: Mapping[str, str | bytes], *,
-               replaces: tuple[str, ...] = ()) -> Path:
+               replaces: tuple[str, ...] = (), modes: Mapping[str, int] | None = None) -> Path:
         """Stage a whole folder: ``files`` (relative path → text or bytes) written into a
         private staging folder beside the entries of ``target``; at the commit the entries of
         ``target`` named in ``replaces`` (those of an earlier run) are moved to a hidden folder
         (:attr:`retired`) and the staged entries moved in. Any other entry of ``target`` is
-        left alone, and one a staged entry would land on is an error before the commit."""
+        left alone, and one a staged entry would land on is an error before the commit.
+        ``modes`` gives some files their permission bits (``0o755``)."""
         target = Path(target)
         final = Path(os.path.realpath(target)) if os.path.islink(target) else target
         for name in files:
@@ -452,13 +491,15 @@ class OutputSet:
                                   file=str(target)) from None
         self._folders.append(_StagedFolder(target, final, staged, tuple(replaces),
                                            status is not None, tuple(missing)))
-        try:
-            for name, data in files.items():
-                path = staged.joinpath(*PurePosixPath(name).parts)
+        for name, data in files.items():
+            path = staged.joinpath(*PurePosixPath(name).parts)
+            try:
                 path.parent.mkdir(parents=True, exist_ok=True)
                 path.write_bytes(data if isinstance(data, bytes) else data.encode("utf-8"))
-        except OSError as error:
-            raise _cannot_write(error, target) from None
+                if name in (modes or {}):
+                    os.chmod(path, modes[name])
+            except OSError as error:   # named as it will be: the file inside the folder
+                raise _cannot_write(error, target / name) from None
         return final
 
     def discard(self) -> None:
@@ -575,7 +616,7 @@ class OutputSet:
 @contextlib.contextmanager
 def output_set() -> Iterator[OutputSet]:
     """``with output_set() as outputs:`` stage files with ``outputs.text(…)``,
-    ``outputs.path(…)``, ``outputs.files(…)``; they are committed together when the block
+    ``outputs.writing(…)``, ``outputs.files(…)``; they are committed together when the block
     ends, and none of them is written if it raises (see :class:`OutputSet`).
 
     Examples
@@ -596,10 +637,12 @@ def output_set() -> Iterator[OutputSet]:
     try:
         yield outputs
         outputs.commit()
-    except OSError as error:
+    except OSError as error:   # never the command's input: the outputs it was writing
         staged = {item.temporary: item.target for item in outputs._files}
-        where = staged.get(Path(error.filename or ""), error.filename)
-        raise _cannot_write(error, where or "") from None
+        targets = dict.fromkeys(str(target) for target in
+                                [*staged.values(), *(item.target for item in outputs._folders)])
+        where = staged.get(Path(error.filename or ""), error.filename) or ", ".join(targets)
+        raise _cannot_write(error, where) from None
     finally:
         outputs.discard()
 
@@ -615,14 +658,16 @@ def write_files(folder: str | Path, files: Mapping[str, str | bytes]) -> list[Pa
 def atomic_path(target: str | Path, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path to write ``target`` into; it becomes ``target`` on success (a
     set of one file: see :class:`OutputSet`)."""
-    with output_set() as outputs:
-        yield outputs.path(target, suffix)
+    with output_set() as outputs, outputs.writing(target, suffix) as temporary:
+        yield temporary
 
 
-def write_text_atomic(target: str | Path, text: str) -> None:
-    """Write ``text`` (UTF-8) to ``target`` whole or not at all."""
+def write_text_atomic(target: str | Path, text: str, *, devices: bool = True) -> None:
+    """Write ``text`` (UTF-8) to ``target`` whole or not at all; with ``devices`` False a
+    target that is a device or a FIFO is refused rather than written in place (the studio
+    saves an exercise only as a regular file)."""
     with output_set() as outputs:
-        outputs.text(target, text)
+        outputs.text(target, text, devices=devices)
 
 
 def write_bytes_atomic(target: str | Path, data: bytes) -> None:

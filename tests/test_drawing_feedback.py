@@ -63,9 +63,22 @@ def _refusal(parse, data) -> str:
     ('{"format": "planmethod-drawing", "points": {"p": [0, 0]}, "angle": 45}',
      "plan.json: title: must be the exercise's title, got None"),
     ('{"format": "planmethod-drawing", "points": {"p": [0, 0]}, "title": "T", "angle": "45"}',
-     "plan.json: angle: must be the crank angle in degrees, got '45'"),
+     "plan.json: angle: must be the crank angle in degrees, within ±36000°, got '45'"),
     ('{"format": "planmethod-drawing", "points": {"p": [0, 0]}, "title": "T", "angle": true}',
-     "plan.json: angle: must be the crank angle in degrees, got True"),
+     "plan.json: angle: must be the crank angle in degrees, within ±36000°, got True"),
+    ('{"format": "planmethod-drawing", "points": {"p": [0, 0]}, "title": "T", "angle": 1e6}',
+     "plan.json: angle: must be the crank angle in degrees, within ±36000°, got 1000000.0"),
+    ('{"points": {"p": [0, 0], "b": [1, 1e308]}}',
+     "plan.json: points.b: is at (1, 1e+308) mm, beyond ±1e+06 mm of the origin: a drawn "
+     "plan fits on a sheet"),
+    ('{"points": {"p": [0, 0], "c": [1, 2], "c": [3, 4]}}',
+     "plan.json: c: the key is given twice in one object"),
+    ('{"points": {"p": [0, 0], "c": [1, 2], " c": [3, 4]}}',
+     "plan.json: points: point 'c' and point ' c' are one point, labels compared without "
+     "spaces, pi for π; keep one"),
+    ('{"plan": "acceleration", "points": {"π": [0, 0], "pi": [3, 4]}}',
+     "plan.json: points: point 'π' and point 'pi' are one point, labels compared without "
+     "spaces, pi for π; keep one"),
     ("{", "plan.json: not valid JSON: Expecting property name enclosed in double quotes: line 1 "
           "column 2 (char 1)"),
 ])
@@ -381,9 +394,10 @@ def test_the_root_size_and_view_box_fix_the_millimetre(root, mm):
 def test_what_marks_a_point_and_what_is_passed_over():
     """A label marks the nearest drawn point within 8 mm — a line's end, a polyline's or
     polygon's vertex, an ellipse's centre, a path's end point — or else its own anchor (a
-    tspan's when the text has none); the first of two labels alike is kept; labels longer
-    than 12 characters, definitions and metadata are passed over, scripts and other outside
-    content are ignored and said to be."""
+    tspan's when the text has none); of two labels alike the first gives the point, and both
+    are kept with their places (grading refuses a graded point marked at two places); labels
+    longer than 12 characters, definitions and metadata are passed over, scripts and other
+    outside content are ignored and said to be."""
     drawing = parse_drawing_svg(_svg(
         '<line x1="30" y1="0" x2="40" y2="5"/><text x="41" y="6">b</text>'
         '<polyline points="50,0 60,10 70,0"/><text x="61" y="11">c</text>'
@@ -402,7 +416,11 @@ def test_what_marks_a_point_and_what_is_passed_over():
          "e": (80.0, -80.0), "f": (25.0, -95.0), "g": (0.0, -30.0), "h": (12.0, -30.0),
          "k": (1.0, -21.0)}, "velocity",
         ("<a> ignored", "<foreignObject> ignored", "<iframe> ignored", "<image> ignored",
-         "<script> ignored", "<style> ignored", "<use> ignored"), "plan.svg")
+         "<script> ignored", "<style> ignored", "<use> ignored"), "plan.svg",
+        labels=(("p", "p", (0.0, 0.0)), ("b", "b", (40.0, -5.0)), ("c", "c", (60.0, -10.0)),
+                ("d", "d", (10.0, -60.0)), ("e", "e", (80.0, -80.0)), ("f", "f", (25.0, -95.0)),
+                ("g", "g", (0.0, -30.0)), ("h", "h", (12.0, -30.0)), ("b", "b", (30.0, 0.0)),
+                ("k", "k", (1.0, -21.0))))
 
 
 @pytest.mark.parametrize(("svg", "plan"), [

@@ -225,8 +225,8 @@ def test_student_ids_that_differ_only_in_case_are_one_student(tmp_path):
     """Compared in lower case: the Kelvin sign K (U+212A) is a capital k."""
     path = tmp_path / "answers.csv"
     path.write_text("student,v_C\nk,5.2\n\u212a,5.3\n", encoding="utf-8")
-    assert _refusal(path) == (f"{path}: student '\u212a' answers twice (entries 1 and 2); "
-                              "keep one")
+    assert _refusal(path) == (f"{path}: student 'k' and student '\u212a' are one student, "
+                              "compared ignoring case (entries 1 and 2); keep one")
 
 
 def test_a_plans_sheet_has_a_15_mm_margin_rounded_out_to_10_mm():

@@ -302,7 +302,8 @@ def test_a_csv_without_a_student_column_is_one_students_answers(tmp_path, capsys
 
 @pytest.mark.parametrize(("text", "fragment"), [
     ("v_C,omega_BC\n5.27,-24.25\n5.3,-24\n", "no student column"),
-    ("student,v_C\ns1,5\ns2,6\nS1,7\n", "student 'S1' answers twice (entries 1 and 3)"),
+    ("student,v_C\ns1,5\ns2,6\nS1,7\n", "student 's1' and student 'S1' are one student, "
+                                       "compared ignoring case (entries 1 and 3)"),
     ('[{"student": "a", "v_C": 1}, {"student": "a", "v_C": 2}]', "student 'a' answers twice"),
 ])
 def test_ambiguous_answer_files_are_refused(tmp_path, text, fragment):
@@ -383,7 +384,8 @@ _ONE_OBJECT = ("the file is either {\"student\": {\"question id\": answer, …},
     ("s.json", '{"s1": {"v_C": 1}, "s2": {"v_C": 2}, "s3": 5}',
      f"s3: is a number, not an object of one student's answers like the 2 others: {_ONE_OBJECT}"),
     ("t.json", '[{"sid": "s1", "v_C": 1}, {"email": "S1", "v_C": 2}]',
-     "student 'S1' answers twice (entries 1 and 2); keep one"),
+     "student 's1' and student 'S1' are one student, compared ignoring case (entries 1 and "
+     "2); keep one"),
     ("u.json", "{}", "no student's answers (the object is empty)"),
     ("v.json", "[]", "no student's answers (the list is empty)"),
     ("w.json", '"x"', "must be an object or a list of objects"),

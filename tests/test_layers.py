@@ -30,7 +30,7 @@ PACKAGE = "planmethod"
 #: ``kinematics``); the package root ``planmethod/__init__.py`` is "".
 LAYERS: dict[str, int] = {
     # 0: words and plumbing every layer may use
-    "words": 0, "errors": 0, "vocabulary": 0, "io": 0, "progress": 0, "vectors": 0,
+    "words": 0, "errors": 0, "vocabulary": 0, "io": 0, "progress": 0, "vectors": 0, "runs": 0,
     # 1: the frozen model; 2: reading exercise files into it
     "model": 1,
     "spec": 2,

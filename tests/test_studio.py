@@ -14,6 +14,7 @@ import re
 import shutil
 import signal
 import socket
+import stat
 import subprocess
 import sys
 import time
@@ -372,6 +373,148 @@ def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folde
                           capture_output=True, text=True, cwd=ROOT)
     assert done.returncode == 0, done.stderr
     assert (folder / "cli-run" / "keys.json").is_file()
+
+
+# -- the file system's odd corners (issue 35) ------------------------------------------------------
+@pytest.fixture
+def odd(tmp_path):
+    """A studio serving a folder with the file system's odd corners beside two good exercise
+    files: a link that loops, one named as an exercise, a link to nothing, a FIFO named as an
+    exercise, a folder linked back to its parent."""
+    folder = tmp_path / "odd"
+    (folder / "sub").mkdir(parents=True)
+    shutil.copy(COMPRESSOR, folder / "good.toml")
+    shutil.copy(COMPRESSOR, folder / "sub" / "inner.toml")
+    (folder / "loop").symlink_to("loop")
+    (folder / "loop.toml").symlink_to("loop.toml")
+    (folder / "nothing.toml").symlink_to("gone.toml")
+    os.mkfifo(folder / "pipe.toml")
+    (folder / "sub" / "up").symlink_to("..", target_is_directory=True)
+    server = StudioServer(folder, 0)
+    server.start()
+    yield server
+    server.stop()
+
+
+def _kinds(folder: Path) -> dict[str, str]:
+    """What each entry of ``folder`` is (links not followed), and a regular file's bytes."""
+    def kind(path: Path) -> str:
+        mode = os.lstat(path).st_mode
+        if stat.S_ISREG(mode):
+            return path.read_text(encoding="utf-8")
+        return {stat.S_IFLNK: "link", stat.S_IFIFO: "FIFO", stat.S_IFCHR: "device",
+                stat.S_IFDIR: "folder"}[stat.S_IFMT(mode)]
+
+    return {str(path.relative_to(folder)): kind(path) for path in sorted(folder.rglob("*"))
+            if "up" not in path.relative_to(folder).parts[1:]}
+
+
+def test_the_listing_goes_around_what_it_cannot_follow(odd):
+    """/api/files and /api/state answered 500 for a link that loops: they list the other
+    files, and the listing says what it passed over and why."""
+    for path in ("/api/files", "/api/state"):
+        status, payload, _ = request(odd, "GET", path)
+        assert status == 200 and payload["files"] == ["good.toml", "sub/inner.toml"]
+    skipped = {entry["path"]: entry["why"] for entry in odd.workspace.listing()["skipped"]}
+    assert skipped == {"loop": "a symbolic link that loops",
+                       "loop.toml": "a symbolic link that loops",
+                       "nothing.toml": "a symbolic link to nothing",
+                       "pipe.toml": "not a regular file",
+                       "sub/up": "a folder listed already (a link back to it)"}
+
+
+@pytest.mark.parametrize("path", ["loop.toml", "loop/x.toml"])
+def test_a_path_through_a_loop_is_one_line(odd, path):
+    before = _kinds(odd.workspace.root)
+    for call, body in (("/api/open", {"path": path}),
+                       ("/api/save", {"path": path, "toml": read_text(COMPRESSOR),
+                                      "overwrite": True})):
+        status, payload, _ = post_json(odd, call, body)
+        assert status == 400, (call, payload)
+        assert one_line(payload) == f"path: {path!r} cannot be followed: a symbolic link that loops"
+    assert _kinds(odd.workspace.root) == before
+
+
+def _fifo_read_end(path: Path) -> int:
+    """A reader on the FIFO (without it, writing refuses at once anyway)."""
+    return os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+
+
+@pytest.mark.parametrize("special", ["FIFO", "device"])
+def test_an_exercise_is_never_saved_into_a_fifo_or_a_device(odd, special):
+    """Saved over a FIFO that a program reads (or a device) it answered 200 "saved" and
+    saved nothing: refused in one line; the FIFO is still a FIFO and got nothing, the device
+    is still the device, and the listing still lists the other files."""
+    folder = odd.workspace.root
+    target = folder / ("pipe.toml" if special == "FIFO" else "null.toml")
+    if special == "device":
+        try:
+            os.mknod(target, stat.S_IFCHR | 0o666, os.makedev(1, 3))   # a twin of /dev/null
+        except PermissionError:
+            pytest.skip("making a device needs CAP_MKNOD (root)")
+    reader = _fifo_read_end(target) if special == "FIFO" else None
+    try:
+        for body in ({"path": target.name, "toml": read_text(COMPRESSOR), "overwrite": True},
+                     {"path": target.name, "toml": read_text(COMPRESSOR), "overwrite": True,
+                      "template": True, "ranges": {"angle": [30, 60, 10]}}):
+            status, payload, _ = post_json(odd, "/api/save", body)
+            assert status == 400
+            kind = "a FIFO" if special == "FIFO" else "a character device"
+            assert one_line(payload).startswith(f"{target.name}: is {kind}, not a regular file")
+        status, payload, _ = post_json(odd, "/api/open", {"path": target.name})
+        assert status == 400 and "not a regular file" in one_line(payload)
+        if reader is not None:   # nothing was written into it
+            assert os.read(reader, 1 << 16) == b""
+    finally:
+        if reader is not None:
+            os.close(reader)
+    mode = os.lstat(target).st_mode
+    assert stat.S_ISFIFO(mode) if special == "FIFO" else (
+        stat.S_ISCHR(mode) and os.lstat(target).st_rdev == os.makedev(1, 3))
+    assert request(odd, "GET", "/api/files")[1]["files"] == ["good.toml", "sub/inner.toml"]
+
+
+def test_any_file_system_condition_is_a_4xx_of_one_line(odd, monkeypatch):
+    """Permission denied (made here by the test: the tests run as root), a name too long, a
+    file where a folder is expected, a folder where a file is: 400 with one line naming the
+    path as the page gave it, never 500, never the folder's absolute path."""
+    folder = odd.workspace.root
+    (folder / "box.toml").mkdir()
+    real_scandir, real_open = os.scandir, os.open
+
+    def scandir(path="."):
+        if Path(path).name == "sub":
+            raise PermissionError(13, "Permission denied", str(path))
+        return real_scandir(path)
+
+    def opening(path, flags, *arguments, **keywords):
+        if Path(path).name == "good.toml" and not flags & (os.O_WRONLY | os.O_RDWR):
+            raise PermissionError(13, "Permission denied", str(path))
+        return real_open(path, flags, *arguments, **keywords)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    monkeypatch.setattr(os, "open", opening)
+    status, payload, _ = request(odd, "GET", "/api/files")
+    assert status == 200 and payload["files"] == ["good.toml"]
+    assert {"path": "sub", "why": "the folder cannot be read: permission denied"} in \
+        odd.workspace.listing()["skipped"]
+    cases = {
+        ("/api/open", "good.toml"): "good.toml: cannot read the file (Permission denied)",
+        ("/api/open", "box.toml"): "box.toml: is a folder, not a file",
+        ("/api/save", "box.toml"): "box.toml: is a folder, not a file",
+        ("/api/save", "good.toml/x.toml"): "good.toml/x.toml: good.toml is a file, not a folder",
+        ("/api/open", "good.toml/x.toml"): "good.toml/x.toml: no such file",
+        ("/api/save", "/".join(["d" * 250] * 20) + ".toml"): "name too long",
+    }
+    for (call, path), expected in cases.items():
+        status, payload, _ = post_json(odd, call, {"path": path, "toml": read_text(COMPRESSOR),
+                                                   "overwrite": True})
+        assert status == 400, (call, path, payload)
+        message = one_line(payload)
+        assert message.startswith(expected) or expected in message, (call, path, message)
+        assert str(folder) not in message
+    monkeypatch.undo()
+    assert (folder / "good.toml").read_text(encoding="utf-8") == read_text(COMPRESSOR)
 
 
 # -- the command ----------------------------------------------------------------------------------

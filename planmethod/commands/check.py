@@ -130,7 +130,9 @@ class RowFindings:
                               for c in self.positions]}
 
 
-def _number(text: str, file: str, line: int, column: str) -> float:
+def _number(text: str, file: str, line: int, column: str, limit: float, unit: str) -> float:
+    """A cell's number, finite and at most ``limit`` in magnitude (the exercise file's limits
+    for a crank angle and a coordinate), or a :class:`SpecError` naming its line and column."""
     from ..errors import SpecError
 
     try:
@@ -140,31 +142,30 @@ def _number(text: str, file: str, line: int, column: str) -> float:
                         file=file) from None
     if not math.isfinite(value):
         raise SpecError(f"line {line}, column {column}: must be finite, got {text}", file=file)
+    if abs(value) > limit:
+        raise SpecError(f"line {line}, column {column}: must be within ±{limit:g}{unit}, got "
+                        f"{text.strip()[:40]}", file=file)
     return value
 
 
-def read_coordinates(path: str | Path, exercise) -> list[Row]:
-    """The rows of a coordinates CSV (see the module docstring).
+def _column_name(name: str) -> str:
+    """A point's column as it is read: ``X_B`` is ``x_B``."""
+    axis, _, point = name.partition("_")
+    return f"{axis.lower()}_{point}"
 
-    Raises
-    ------
-    SpecError
-        For a missing file, a missing angle column, an unknown point, a lone x or y column, or
-        a value that is not a finite number — naming the file, line and column.
-    """
+
+def _columns(header: list[str], line: int, exercise, file: str) -> tuple[int, dict]:
+    """(the crank angle's column, point → {"x": column, "y": column}) of a table's header on
+    ``line``, or a :class:`SpecError`: no angle column, a column that is not x_P or y_P of a
+    point of the exercise, a lone x or y, a column given twice (one of two values would be
+    kept without a word)."""
     from ..errors import SpecError
-    from ..io import read_text_bounded
+    from ..grading.answers import refuse_twice
     from ..spec import did_you_mean
 
-    path = Path(path)
-    file = str(path)
-    text = read_text_bounded(path, MAX_TABLE_BYTES)
-    lines = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
-             if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise SpecError("no header and no rows", file=file)
-    reader = csv.reader([line for _, line in lines])
-    header = [name.strip() for name in next(reader)]
+    refuse_twice([name if "_" in name else "" for name in header], _column_name, "column",
+                 file=file, key=f"line {line}", places="columns",
+                 compared="the axis compared ignoring case")
     lowered = [name.lower() for name in header]
     angle_column = next((lowered.index(name) for name in ANGLE_COLUMNS if name in lowered), None)
     if angle_column is None:
@@ -185,14 +186,41 @@ def read_coordinates(path: str | Path, exercise) -> list[Row]:
     for point, axes in columns.items():
         if set(axes) != {"x", "y"}:
             raise SpecError(f"point {point} has only a {next(iter(axes))} column", file=file)
+    return angle_column, columns
+
+
+def read_coordinates(path: str | Path, exercise) -> list[Row]:
+    """The rows of a coordinates CSV (see the module docstring).
+
+    Raises
+    ------
+    SpecError
+        For a missing file, a missing angle column, an unknown point, a lone x or y column, or
+        a value that is not a finite number — naming the file, line and column.
+    """
+    from ..errors import SpecError
+    from ..io import read_text_bounded
+    from ..spec import MAX_ANGLE_DEG, MAX_COORDINATE_M
+
+    path = Path(path)
+    file = str(path)
+    text = read_text_bounded(path, MAX_TABLE_BYTES)
+    lines = [(number, line) for number, line in enumerate(text.splitlines(), start=1)
+             if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise SpecError("no header and no rows", file=file)
+    reader = csv.reader([line for _, line in lines])
+    header = [name.strip() for name in next(reader)]
+    angle_column, columns = _columns(header, lines[0][0], exercise, file)
     rows = []
     for (number, _), values in zip(lines[1:], reader, strict=False):
         if len(values) != len(header):
             raise SpecError(f"line {number}: {len(values)} values for {len(header)} columns",
                             file=file)
-        angle = _number(values[angle_column], file, number, header[angle_column])
-        points = {point: (_number(values[axes["x"]], file, number, header[axes["x"]]),
-                          _number(values[axes["y"]], file, number, header[axes["y"]]))
+        angle = _number(values[angle_column], file, number, header[angle_column],
+                        MAX_ANGLE_DEG, "°")
+        points = {point: tuple(_number(values[axes[axis]], file, number, header[axes[axis]],
+                                       MAX_COORDINATE_M, " m") for axis in ("x", "y"))
                   for point, axes in columns.items()}
         rows.append(Row(angle, points, number))
     if not rows:
@@ -274,14 +302,17 @@ def run(args: argparse.Namespace) -> int:
     import json
     import sys
 
-    from ..errors import SpecError
+    from ..errors import SpecError, about
     from ..spec import load_exercise
 
     if not (math.isfinite(args.tolerance) and args.tolerance > 0):
         raise SpecError(f"--tolerance must be a positive number of mm, got {args.tolerance}")
     exercise = load_exercise(args.file)
     rows = read_coordinates(args.coordinates, exercise)
-    findings = [check_row(exercise, row, args.tolerance / 1000.0) for row in rows]
+    findings = []
+    for row in rows:   # an error at a row's angle is about that row of the table
+        with about(args.coordinates, key=f"line {row.line}"):
+            findings.append(check_row(exercise, row, args.tolerance / 1000.0))
     if args.json:
         json.dump({"title": exercise.mechanism.title, "tolerance_mm": args.tolerance,
                    "rows": [f.as_dict() for f in findings]}, sys.stdout, ensure_ascii=False,

@@ -90,43 +90,16 @@ def _stage_class_report(outputs: OutputSet, report: str, keys: dict, results: li
              for mistake in question.get("mistakes", ())}
     outputs.text(folder / "questions.csv", questions_csv(rows))
     outputs.text(folder / "mistakes.csv", mistakes_csv(rows))
-    save_class_report_plot(rows, outputs.path(folder / "class_report.png"),
-                           title=str(first.get("title", "")), symbols=symbols,
-                           mistakes=words)
+    with outputs.writing(folder / "class_report.png") as temporary:
+        save_class_report_plot(rows, temporary, title=str(first.get("title", "")),
+                               symbols=symbols, mistakes=words)
 
 
-def run(args: argparse.Namespace) -> int:
-    import json
-    import sys
+def _printed(args: argparse.Namespace, results: list, drawings: list) -> list[str]:
+    """The lines grade prints: each student's score and, unless ``--quiet``, each question's
+    feedback; each drawing's score and each point's feedback."""
+    from ..grading.answers import feedback_text
 
-    from ..errors import SpecError
-    from ..grading.answers import feedback_text, grade_many, read_answers
-    from ..grading.drawings import grade_drawing, key_for_drawing, read_drawing
-    from ..grading.exports import gradebook_csv, gradescope_results
-    from ..io import output_set
-
-    if not args.answers and not args.drawing:
-        raise SpecError("give ANSWERS and/or --drawing FILE")
-    keys = load_any_key(args.key)
-    key_of_student = None
-    if args.student is not None:
-        key_of_student = keys.get(args.student, keys.get("*"))
-        if key_of_student is None:
-            raise SpecError(f"no key for student {args.student!r}", file=args.key)
-    results = []
-    if args.answers:
-        rows = read_answers(args.answers)
-        if args.student is not None:
-            rows = [(args.student if s == "*" or len(rows) == 1 else s, a) for s, a in rows]
-        results = grade_many(keys, rows)
-    drawings = []
-    for path in args.drawing:
-        key = key_of_student or keys.get("*")
-        if key is None:
-            raise SpecError("grading a drawing against a bundle needs --student", file=path)
-        drawing = read_drawing(path)
-        # a drawing from the workbook page is graded at its own angle, on its own exercise
-        drawings.append(grade_drawing(key_for_drawing(key, drawing), drawing, args.plan))
     lines = []
     for result in results:
         total = result.get("max_score")
@@ -145,6 +118,44 @@ def run(args: argparse.Namespace) -> int:
             lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
                       for p in drawing["points"]]
             lines += [f"  !  {line}" for line in drawing["feedback"]]
+    return lines
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+    import sys
+
+    from ..errors import SpecError, about
+    from ..grading.answers import grade_many, read_answers
+    from ..grading.drawings import grade_drawing, key_for_drawing, read_drawing
+    from ..grading.exports import gradebook_csv, gradescope_results
+    from ..io import output_set
+
+    if not args.answers and not args.drawing:
+        raise SpecError("give ANSWERS and/or --drawing FILE")
+    keys = load_any_key(args.key)
+    key_of_student = None
+    if args.student is not None:
+        key_of_student = keys.get(args.student, keys.get("*"))
+        if key_of_student is None:
+            raise SpecError(f"no key for student {args.student!r}", file=args.key)
+    results = []
+    if args.answers:
+        with about(args.answers):   # an error here is about the answers, not the key
+            rows = read_answers(args.answers)
+            if args.student is not None:
+                rows = [(args.student if s == "*" or len(rows) == 1 else s, a) for s, a in rows]
+            results = grade_many(keys, rows)
+    drawings = []
+    for path in args.drawing:
+        key = key_of_student or keys.get("*")
+        if key is None:
+            raise SpecError("grading a drawing against a bundle needs --student", file=path)
+        with about(path):   # an error here is about this drawing, not the key
+            drawing = read_drawing(path)
+            # a drawing from the workbook page is graded at its own angle, on its own exercise
+            drawings.append(grade_drawing(key_for_drawing(key, drawing), drawing, args.plan))
+    lines = _printed(args, results, drawings)
     if args.gradescope and len(results) > 1:
         raise SpecError(f"--gradescope writes one student's results; the answers hold "
                         f"{len(results)}", file=args.answers)

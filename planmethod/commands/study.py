@@ -188,7 +188,8 @@ def run(args: argparse.Namespace) -> int:
         if args.plot:
             from ..render.plots import save_study_plot
 
-            save_study_plot(study, outputs.path(args.plot))
+            with outputs.writing(args.plot) as temporary:
+                save_study_plot(study, temporary)
         if args.csv:
             outputs.text(args.csv, csv_text(study))
     written = [path for path in (args.plot, args.csv) if path]

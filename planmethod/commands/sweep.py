@@ -92,9 +92,11 @@ def run(args: argparse.Namespace) -> int:
     extremes = Extremes()
     with output_set() as outputs:   # the plot and the CSV together, or neither
         if args.plot:
-            _save_plot(exercise, table, outputs.path(args.plot), forces=args.forces)
-        with contextlib.ExitStack() as stack:
-            handle = (stack.enter_context(outputs.path(args.csv).open("w", encoding="utf-8"))
+            with outputs.writing(args.plot) as temporary:
+                _save_plot(exercise, table, temporary, forces=args.forces)
+        with contextlib.ExitStack() as stack:   # a failed write names the CSV, not the exercise
+            handle = (stack.enter_context(stack.enter_context(outputs.writing(args.csv))
+                                          .open("w", encoding="utf-8"))
                       if args.csv else None)   # streamed: a sweep of millions of rows fits
             for chunk in chunks:
                 if handle is not None:

@@ -18,23 +18,19 @@ from __future__ import annotations
 import argparse
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 from pathlib import Path
+
+from ..runs import MANIFEST, RunKind, earlier_run, write_run
 
 #: the files of a run beside its student folders
 RUN_FILES = ("keys.json", "index.csv")
-
-#: the run's list of its own files (what ``--force`` may remove), and its format tag
-MANIFEST = "manifest.json"
-MANIFEST_FORMAT = "planmethod-variants-manifest"
 
 #: the files variants writes into a student's folder
 STUDENT_FILES = ("exercise.toml", "key.json", "task.svg", "task.txt", "velocity_sheet.svg",
                  "acceleration_sheet.svg")
 
-#: the largest roster (as the answers files: 200,000 students) and manifest read, bytes
+#: the largest roster (as the answers files: 200,000 students) read, bytes
 MAX_ROSTER_BYTES = 20_000_000
-MAX_MANIFEST_BYTES = 200_000_000
 
 #: the most variants one run draws: about a minute of CPU time, with sheets, on the 2-CPU
 #: machine of ``python -m benchmarks.bench_grading --scale`` even when it is shared (48 ms a
@@ -111,46 +107,30 @@ def read_roster(path: str) -> list[tuple[str, list[str]]]:
     return students
 
 
-@dataclass(frozen=True)
-class EarlierRun:
-    """A run of ``variants`` found in ``--out``: its entries there (student folders, run files,
-    manifest) and every file its manifest lists, relative path → (bytes, SHA-256)."""
-
-    entries: tuple[str, ...]
-    files: Mapping[str, tuple[int, str]]
-
-
 def manifest_text(files: Mapping[str, bytes]) -> str:
-    """The manifest of a run: each file's relative path, size in bytes and SHA-256.
+    """The manifest of a run (:func:`planmethod.runs.manifest_text`): each file's relative
+    path, size in bytes and SHA-256.
 
     >>> print(manifest_text({"001/key.json": b"{}"}))  # doctest: +ELLIPSIS
     {
      "format": "planmethod-variants-manifest",
-     "note": "...",
+     "note": "written by planmethod variants: ...",
      "files": [
       ["001/key.json", 2, "44136fa355b3678a1146ad16f7e8649e94fb4fc21fe77e8310c060f61caaff8a"]
      ]
     }
     """
-    import hashlib
+    from ..runs import manifest_text as run_manifest
 
-    from ..io import json_text
-
-    return json_text({"format": MANIFEST_FORMAT,
-                      "note": "written by planmethod variants: the files `variants --force` may "
-                              "remove, each only while its size and SHA-256 are these",
-                      "files": [[name, len(data), hashlib.sha256(data).hexdigest()]
-                                for name, data in sorted(files.items())]})
+    return run_manifest(RUN, files)
 
 
-def _manifest_path(name: object) -> bool:
+def _manifest_path(name: str) -> bool:
     """Whether ``name`` is a path variants writes: a run file, or a student file in a
     student folder."""
     from ..errors import SpecError
     from ..io import path_component
 
-    if not isinstance(name, str):
-        return False
     parts = name.split("/")
     if len(parts) == 1:
         return name in RUN_FILES
@@ -162,136 +142,8 @@ def _manifest_path(name: object) -> bool:
             and parts[0] not in (*RUN_FILES, MANIFEST))
 
 
-def _read_manifest(out: Path) -> dict[str, tuple[int, str]]:
-    """The files the manifest in ``out`` lists, or a :class:`SpecError`."""
-    import json
-    import os
-
-    from ..errors import SpecError
-    from ..io import read_text_bounded
-
-    path = out / MANIFEST
-    if not os.path.lexists(path):
-        raise SpecError(f"--out {out} holds no {MANIFEST}, so no variants run of this version "
-                        "wrote it: --force replaces only such a run; choose another folder")
-    if os.path.islink(path):
-        raise SpecError("is a symbolic link, which variants never writes: --force replaces "
-                        "only an earlier run", file=str(path))
-    try:
-        data = json.loads(read_text_bounded(path, MAX_MANIFEST_BYTES))
-    except json.JSONDecodeError as error:
-        raise SpecError(f"not valid JSON ({error})", file=str(path)) from None
-    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
-        raise SpecError(f"not a manifest of variants (format {MANIFEST_FORMAT!r})",
-                        file=str(path))
-    files: dict[str, tuple[int, str]] = {}
-    rows = data.get("files")
-    for index, row in enumerate(rows if isinstance(rows, list) else [None]):
-        if not (isinstance(row, list) and len(row) == 3 and _manifest_path(row[0])
-                and type(row[1]) is int and isinstance(row[2], str)
-                and re.fullmatch(r"[0-9a-f]{64}", row[2])):
-            raise SpecError(f"lists {str(row)[:60]!r}, not a file variants writes with its "
-                            "size and SHA-256", file=str(path), key=f"files[{index}]")
-        files[row[0]] = (row[1], row[2])
-    return files
-
-
-def _unchanged(path: Path, size: int, digest: str) -> bool:
-    """Whether ``path`` is a regular file (not a link) of ``size`` bytes and SHA-256
-    ``digest``."""
-    import os
-    import stat
-
-    from ..io import sha256_of_file
-
-    try:
-        status = os.lstat(path)
-    except OSError:
-        return False
-    return (stat.S_ISREG(status.st_mode) and status.st_size == size
-            and sha256_of_file(path) == digest)
-
-
-def earlier_run(out: str | Path, *, force: bool) -> EarlierRun | None:
-    """The earlier run in ``out`` that ``--force`` may replace; None for a folder that is
-    missing or empty. A :class:`SpecError` if ``out`` is not empty and ``force`` is not given,
-    or if anything there is not what the run's manifest lists, unchanged: another file, a
-    symbolic link, an edited file (an ``index.csv`` edited to name ``notes.txt`` is one)."""
-    import os
-
-    from ..errors import SpecError
-
-    out = Path(out)
-    if not os.path.lexists(out):
-        return None
-    if not out.is_dir():
-        raise SpecError(f"--out {out} is a file, not a folder")
-    entries = sorted(os.listdir(out))
-    if not entries:
-        return None
-    if not force:
-        raise SpecError(f"--out {out} is not empty ({len(entries)} entries): choose an empty "
-                        "folder, or give --force to replace an earlier variants run there")
-    files = _read_manifest(out)
-    tops = {name.split("/")[0] for name in files}
-    foreign, linked, changed = [], [], []
-    for name in entries:
-        path = out / name
-        if os.path.islink(path):
-            linked.append(name)
-        elif name == MANIFEST:
-            continue
-        elif name not in tops:
-            foreign.append(name)
-        elif path.is_dir():
-            for inner in sorted(os.listdir(path)):
-                relative = f"{name}/{inner}"
-                if os.path.islink(path / inner):
-                    linked.append(relative)
-                elif relative not in files:
-                    foreign.append(relative)
-                elif not _unchanged(path / inner, *files[relative]):
-                    changed.append(relative)
-        elif name not in files or not _unchanged(path, *files[name]):
-            changed.append(name)
-    if foreign:
-        raise SpecError(f"--out {out} holds files no variants run wrote ({', '.join(foreign[:3])}"
-                        f"{', …' if len(foreign) > 3 else ''}): --force only replaces an "
-                        "earlier run; choose another folder")
-    if linked:
-        raise SpecError(f"--out {out} holds symbolic links ({', '.join(linked[:3])}), which "
-                        "variants never writes: --force only replaces an earlier run; choose "
-                        "another folder")
-    if changed:
-        raise SpecError(f"--out {out}: {', '.join(changed[:3])} changed since variants wrote "
-                        f"{'them' if len(changed) > 1 else 'it'} (size or SHA-256 differs from "
-                        f"{MANIFEST}): --force removes only what variants wrote; move "
-                        f"{'them' if len(changed) > 1 else 'it'} away or choose another folder")
-    return EarlierRun(tuple(entries), files)
-
-
-def remove_retired(retired: Path, earlier: EarlierRun | None) -> list[str]:
-    """Remove an earlier run moved aside into ``retired``: each file its manifest lists, if
-    still unchanged, then the manifest and the emptied folders. Returns what is left there
-    (changed since the check), which stays."""
-    import contextlib
-    import os
-
-    files = earlier.files if earlier is not None else {}
-    for name, (size, digest) in files.items():
-        path = retired / name
-        if _unchanged(path, size, digest):
-            os.unlink(path)
-    manifest = retired / MANIFEST
-    if os.path.lexists(manifest) and not os.path.islink(manifest) and manifest.is_file():
-        os.unlink(manifest)
-    for name in sorted({name.split("/")[0] for name in files if "/" in name}):
-        with contextlib.suppress(OSError):
-            os.rmdir(retired / name)
-    left = sorted(os.listdir(retired))
-    if not left:
-        os.rmdir(retired)
-    return left
+#: what a run of variants is (its manifest's tag, the files it may list), for planmethod.runs
+RUN = RunKind("variants", "planmethod-variants-manifest", _manifest_path)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -299,10 +151,11 @@ def run(args: argparse.Namespace) -> int:
 
     from ..errors import SpecError
     from ..grading.templates import load_template
-    from ..io import output_set, student_folder
+    from ..io import student_folder
 
     out = Path(args.out)
-    earlier = earlier_run(out, force=args.force)   # before any work: refuse, or what to replace
+    # before any work: refuse, or find the earlier run to replace
+    earlier = earlier_run(out, RUN, force=args.force, name=f"--out {out}")
     template = load_template(args.template)
     aliases: dict[str, list[str]] = {}
     if args.students:
@@ -333,15 +186,10 @@ def run(args: argparse.Namespace) -> int:
     files, rejected, index_rows = variant_files(
         template, students, folders, seed=args.seed, aliases=aliases,
         roster=bool(args.students), sheets=not args.no_sheets, source=str(args.template))
-    data = {name: text.encode("utf-8") for name, text in files.items()}
-    data[MANIFEST] = manifest_text(data).encode("utf-8")
-    with output_set() as outputs:   # the whole run, beside the earlier one, then swapped in
-        outputs.folder(out, data, replaces=earlier.entries if earlier else ())
-    retired = outputs.retired.get(out)
-    left = remove_retired(retired, earlier) if retired is not None else []
-    if left:
-        print(f"planmethod: note: {retired} keeps what changed in the earlier run during this "
-              f"one ({', '.join(left[:3])}{', …' if len(left) > 3 else ''})", file=sys.stderr)
+    note = write_run(out, RUN, {name: text.encode("utf-8") for name, text in files.items()},
+                     earlier)
+    if note:
+        print(f"planmethod: note: {note}", file=sys.stderr)
     redrawn = sum(1 for row in index_rows if row[2])
     print(f"Wrote {len(index_rows)} variants of {template.source} (seed {args.seed}) to {out}/ "
           f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")

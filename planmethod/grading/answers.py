@@ -31,7 +31,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -42,7 +42,7 @@ from ..vocabulary import quantity, question_text, symbol
 
 __all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "SENSE_WORDS", "STUDENT_COLUMNS",
            "answers_from_csv", "feedback_text", "grade_answers", "grade_many",
-           "magnitude_note", "read_answers", "sense_words"]
+           "magnitude_note", "read_answers", "refuse_twice", "sense_words"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
@@ -129,6 +129,9 @@ def _one_answer_each(answers: Mapping[str, Any], where: str, prefix: str) -> dic
             raise SpecError(f"is {_kind(value)}, not an answer (a number): give "
                             "{\"question id\": answer, …} for each student", file=where,
                             key=f"{prefix}.{name}" if prefix else str(name))
+    # graded by id compared as grade_answers compares them: one of two would be lost
+    refuse_twice([str(name) for name in answers], _folded, "answer", file=where,
+                 key=prefix or None, compared="question ids compared ignoring case")
     return dict(answers)
 
 
@@ -221,13 +224,8 @@ def _header(records, where: str) -> tuple[int, list[str]]:
     except StopIteration:
         raise SpecError("the file is empty", file=where) from None
     header = [h.strip() for h in header]
-    seen: dict[str, int] = {}
-    for number, name in enumerate(header, start=1):
-        if name and name.lower() in seen:
-            raise SpecError(f"column {name!r} is given twice (columns {seen[name.lower()]} "
-                            f"and {number}): which one holds the answers?", file=where,
-                            key=f"line {line}")
-        seen.setdefault(name.lower(), number)
+    refuse_twice(header, str.lower, "column", file=where, key=f"line {line}",
+                 places="columns", advice=": which one holds the answers?")
     return line, header
 
 
@@ -286,13 +284,55 @@ def _one_student_csv(records, header: list[str], where: str) -> list[tuple[str, 
 
 def _no_student_twice(rows: list[tuple[str, dict[str, Any]]], where: str) -> None:
     """Refuse a file that answers for the same student twice (it would be graded twice)."""
+    refuse_twice([student for student, _ in rows], _folded, "student", file=where,
+                 verb="answers", places="entries")
+
+
+def _folded(name: str) -> str:
+    """A name as ids are compared: without the spaces around it, ignoring case."""
+    return name.strip().lower()
+
+
+def refuse_twice(names: Sequence[str], normal: Callable[[str], str], what: str, *,
+                 file: str | None, key: str | None = None, verb: str = "is given",
+                 compared: str = "compared ignoring case", places: str | None = None,
+                 advice: str = "; keep one", error: type[SpecError] = SpecError) -> None:
+    """Refuse two of ``names`` that are one after ``normal`` (how they are compared): one
+    value would be kept and the other lost without a word. The :class:`SpecError` names
+    both as written, and their places (``places``: what the 1-based positions count,
+    ``columns``; None for names whose order says nothing, the keys of a JSON object).
+    Empty names are not compared. Answers files, drawn plans and ``check``'s coordinate
+    tables are read through it; ``error`` is the kind of error raised (a drawing's
+    :class:`~planmethod.grading.drawings.SubmissionError`).
+
+    Examples
+    --------
+    >>> refuse_twice(["student", "v_C", "V_c"], str.lower, "column", file="a.csv",
+    ...              places="columns")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: a.csv: column 'v_C' and column 'V_c' are one column, \
+compared ignoring case (columns 2 and 3); keep one
+    >>> refuse_twice(["s1", "s1"], str.lower, "student", file="a.csv", verb="answers",
+    ...              places="entries")
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: a.csv: student 's1' answers twice (entries 1 and 2); keep one
+    """
     seen: dict[str, int] = {}
-    for index, (student, _) in enumerate(rows, start=1):
-        name = student.strip().lower()
-        if name in seen:
-            raise SpecError(f"student {student!r} answers twice (entries {seen[name]} and "
-                            f"{index}); keep one", file=where)
-        seen[name] = index
+    for number, name in enumerate(names, start=1):
+        form = normal(name) if name else ""
+        if form in seen:
+            first = names[seen[form] - 1]
+            where = f" ({places} {seen[form]} and {number})" if places else ""
+            if first == name:
+                text = f"{what} {name!r} {verb} twice{where}"
+            else:
+                text = (f"{what} {first!r} and {what} {name!r} are one {what}, {compared}"
+                        f"{where}")
+            raise error(text + advice, file=file, key=key)
+        if form:
+            seen[form] = number
 
 
 #: how the sign of a signed quantity is told, by what the quantity is of (its kind's
@@ -486,7 +526,7 @@ def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
     """
     by_lower = {}
     for name in answers:
-        by_lower.setdefault(str(name).strip().lower(), name)
+        by_lower.setdefault(_folded(str(name)), name)
     from .keys import key_numbers
 
     numbers = key_numbers(key)

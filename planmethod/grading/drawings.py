@@ -39,12 +39,13 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import SpecError, about
 from ..io import read_bytes_bounded
 from ..plans.construction import course_text
-from ..spec import parse_json
+from ..spec import MAX_ANGLE_DEG, parse_json
 from ..vectors import cross
 from ..vocabulary import numbered
+from .answers import refuse_twice
 from .keys import key_numbers
 from .plan_points import (
     common_mistakes,
@@ -71,6 +72,13 @@ MAX_ELEMENTS = 20_000
 MAX_DEPTH = 64
 MAX_NUMBERS = 200_000
 LABEL_REACH_MM = 8.0
+#: a drawn point further than this from the origin (mm) is on no sheet: refused, naming it
+MAX_COORDINATE_MM = 1e6
+#: a drawing whose first vector is more than this many times too long or too short is graded
+#: as drawn, not rescaled (a slip of the scale is 10 times, or 1000 for mm as m)
+MAX_RESCALE = 1e4
+#: how labels that name one point are compared: without spaces, ``pi`` for π, ``p'`` for p′
+LABELS_COMPARED = "labels compared without spaces, pi for π"
 #: the ``format`` of a drawing downloaded from the workbook page
 DRAWING_FORMAT = "planmethod-drawing"
 PX_MM = 25.4 / 96.0
@@ -101,6 +109,9 @@ class Drawing:
     exact_scale: bool = False
     #: the digest of the exercise the page was made from (:func:`exercise_digest`), else None
     exercise: str | None = None
+    #: every label an SVG drawing holds: (its text as written, the point it names, where it
+    #: marks in mm); two that name one point at two places are refused when it is graded
+    labels: tuple[tuple[str, str, tuple[float, float]], ...] = ()
 
 
 def read_drawing(path: str | Path) -> Drawing:
@@ -125,7 +136,18 @@ def _finite_pair(value: Any, where: str, source: str | None) -> tuple[float, flo
                        and math.isfinite(v) for v in value)):
         raise SubmissionError(f"must be [x, y] in mm with finite numbers, got {value!r}"[:120],
                               file=source, key=where)
-    return (float(value[0]), float(value[1]))
+    return _on_a_sheet((float(value[0]), float(value[1])), where, source)
+
+
+def _on_a_sheet(xy: tuple[float, float], where: str, source: str | None
+                ) -> tuple[float, float]:
+    """``xy`` (mm), or a :class:`SubmissionError` naming ``where`` if it lies beyond
+    :data:`MAX_COORDINATE_MM` of the origin: on no sheet, and too large to grade with."""
+    if max(abs(xy[0]), abs(xy[1])) > MAX_COORDINATE_MM:
+        raise SubmissionError(f"is at ({xy[0]:.6g}, {xy[1]:.6g}) mm, beyond ±"
+                              f"{MAX_COORDINATE_MM:g} mm of the origin: a drawn plan fits on a "
+                              "sheet", file=source, key=where)
+    return xy
 
 
 def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawing:
@@ -137,9 +159,9 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
             data = data.decode("utf-8-sig")
         except UnicodeDecodeError:
             raise SubmissionError("not UTF-8 text", file=source) from None
-    try:
-        parsed = parse_json(data, file=source)
-    except SpecError as error:    # too deep, not JSON, or a whole number beyond 64 bits
+    try:   # a key given twice would keep one of two points without a word
+        parsed = parse_json(data, file=source, unique_keys=True)
+    except SpecError as error:    # too deep, not JSON, a key twice, or a number beyond 64 bits
         message = error.message if error.key or error.message.startswith("not valid JSON") \
             else f"not valid JSON: {error.message}"
         raise SubmissionError(message[:200], file=source, key=error.key) from None
@@ -155,11 +177,11 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
                               file=source, key="points")
     if len(points) > 1000:
         raise SubmissionError("more than 1000 points", file=source, key="points")
-    out = {}
-    for label, xy in points.items():
-        if label == "plan":
-            continue
-        out[_normal_label(str(label))] = _finite_pair(xy, f"points.{label}", source)
+    names = [str(label) for label in points if label != "plan"]
+    refuse_twice(names, _normal_label, "point", file=source, key="points",
+                 compared=LABELS_COMPARED, error=SubmissionError)
+    out = {_normal_label(label): _finite_pair(points[label], f"points.{label}", source)
+           for label in names}
     if parsed.get("format") != DRAWING_FORMAT:
         return Drawing(out, plan, (), source)
     title, angle = parsed.get("title"), parsed.get("angle")
@@ -172,9 +194,9 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
         raise SubmissionError(f"must be the exercise's digest (16 hexadecimal digits), got "
                               f"{digest!r}"[:120], file=source, key="exercise")
     if (isinstance(angle, bool) or not isinstance(angle, int | float)
-            or not math.isfinite(angle)):
-        raise SubmissionError(f"must be the crank angle in degrees, got {angle!r}"[:120],
-                              file=source, key="angle")
+            or not math.isfinite(angle) or abs(angle) > MAX_ANGLE_DEG):
+        raise SubmissionError(f"must be the crank angle in degrees, within ±{MAX_ANGLE_DEG:g}°, "
+                              f"got {angle!r}"[:120], file=source, key="angle")
     return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True,
                    exercise=digest)
 
@@ -393,7 +415,7 @@ def _read_svg(root, source: str | None) -> Drawing:
     budget = [MAX_NUMBERS]
     to_mm = np.diag([sx, -sy, 1.0])  # y up
     points: list[tuple[float, float]] = []
-    labels: list[tuple[str, tuple[float, float]]] = []
+    labels: list[tuple[str, tuple[float, float]]] = []   # (text as written, its anchor)
     notes: set[str] = set()
     plan = root.get("data-planmethod-plan")
     count = 0
@@ -448,7 +470,8 @@ def _read_svg(root, source: str | None) -> Drawing:
                             None)
                 if span is not None and not element.get("x"):
                     x, y = attr("x", span), attr("y", span)
-                labels.append((_normal_label(content), place(x, y)))
+                labels.append((content, _on_a_sheet(place(x, y), _element_name(element),
+                                                    None)))
             continue
         for child in reversed(list(element)):
             stack.append((child, matrix, depth + 1))
@@ -457,20 +480,24 @@ def _read_svg(root, source: str | None) -> Drawing:
                               "(p or π for the pole, b, c, …) next to them")
     drawn = np.asarray(points, dtype=float).reshape(-1, 2)
     out: dict[str, tuple[float, float]] = {}
-    for label, anchor in labels:
+    marked: list[tuple[str, str, tuple[float, float]]] = []
+    for written, anchor in labels:
         xy = np.asarray(anchor)
         if len(drawn):
-            distances = np.hypot(*(drawn - xy).T)
+            with np.errstate(over="ignore", invalid="ignore"):   # far geometry is just far
+                distances = np.hypot(*(drawn - xy).T)
             nearest = int(np.argmin(distances))
             if distances[nearest] <= LABEL_REACH_MM:
                 xy = drawn[nearest]
-        out.setdefault(label, (float(xy[0]), float(xy[1])))
+        label = _normal_label(written)
+        marked.append((written, label, (float(xy[0]), float(xy[1]))))
+        out.setdefault(label, marked[-1][2])
     if plan is None:
         if "π" in out and "p" not in out:
             plan = "acceleration"
         elif "p" in out and "π" not in out:
             plan = "velocity"
-    return Drawing(out, plan, tuple(sorted(notes)), source, ())
+    return Drawing(out, plan, tuple(sorted(notes)), source, (), labels=tuple(marked))
 
 
 # -- grading ---------------------------------------------------------------------------------
@@ -561,7 +588,8 @@ def key_for_drawing(key: Mapping[str, Any], drawing: Drawing) -> Mapping[str, An
                 "the exercise its page was made from", file=drawing.source)
     if drawing.angle is None or exercise is None:
         return key
-    return key_at_angle(key, drawing.angle)
+    with about(drawing.source, key="angle"):   # e.g. cannot be assembled at that angle
+        return key_at_angle(key, drawing.angle)
 
 
 def _crank_angle_symbol(key: Mapping[str, Any]) -> str:
@@ -599,6 +627,23 @@ def _match(points: Mapping[str, tuple[float, float]], label: str):
     return folded.get(label.casefold())
 
 
+def _one_place_each(drawing: Drawing, labels) -> None:
+    """Refuse a drawing in which two labels mark two places for one of ``labels`` (the
+    points a plan is graded on), matched as :func:`_match` matches them: one of the two
+    would be graded and the other lost without a word. Labels that name no graded point
+    (a scale's text, a mechanism's letters) are left alone."""
+    for label in labels:
+        marks = [mark for mark in drawing.labels if mark[1] == label] or [
+            mark for mark in drawing.labels if mark[1].casefold() == label.casefold()]
+        places = {(round(x, 3), round(y, 3)): mark for mark in marks for x, y in [mark[2]]}
+        if len(places) > 1:
+            (first, _, one), (second, _, other) = list(places.values())[:2]
+            raise SubmissionError(   # where the SVG puts them, in mm: its y points down
+                f"<text> {first!r} at ({one[0]:.1f}, {-one[1]:.1f}) mm and <text> {second!r} "
+                f"at ({other[0]:.1f}, {-other[1]:.1f}) mm both mark the point {label} "
+                f"({LABELS_COMPARED}): keep one", file=drawing.source)
+
+
 def _line_name(step: Mapping[str, Any]) -> str:
     """``through b: v_CB ⟂ CB`` → ``the line v_CB ⟂ CB through b``."""
     text = step["text"].partition(": ")[2]
@@ -628,6 +673,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     if entry is None:
         raise SubmissionError(f"the key has no {plan} plan", file=drawing.source)
     pole = entry["pole"]
+    _one_place_each(drawing, [pole, *(["p"] if pole == "π" else []), *entry["points_mm"]])
     origin = _match(drawing.points, pole)
     if origin is None and pole == "π":
         origin = _match(drawing.points, "p")  # a pole labelled p on an acceleration sheet
@@ -647,7 +693,12 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
         if found is not None and np.hypot(*found) > 0:
             ratio = float(np.hypot(*found) / np.hypot(*right))
             tolerance = entry["tolerance_mm"].get(end, 0.5) / float(np.hypot(*right))
-            if abs(ratio - 1) > max(tolerance, 0.02):
+            if not 1 / MAX_RESCALE <= ratio <= MAX_RESCALE:
+                feedback.append(f"the drawing's scale is off: ({pole}{end}) measures "
+                                f"{np.hypot(*found):.4g} mm instead of {np.hypot(*right):.1f} "
+                                f"mm, more than {MAX_RESCALE:g} times off; it was graded as "
+                                "drawn")
+            elif abs(ratio - 1) > max(tolerance, 0.02):
                 factor = 1.0 / ratio
                 feedback.append(f"the drawing's scale is off: ({pole}{end}) measures "
                                 f"{np.hypot(*found):.1f} mm instead of {np.hypot(*right):.1f} mm"

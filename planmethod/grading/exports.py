@@ -61,6 +61,14 @@ _QUOTE = {'"': "&quot;"}
 #: PrairieLearn canvas pixels per drawn millimetre.
 PX_PER_MM = 4.0
 
+#: the files of a Gradescope autograder folder (:func:`gradescope_autograder`)
+GRADESCOPE_FILES = ("setup.sh", "run_autograder", "grade_submission.py", "README.txt",
+                    "keys.json")
+#: the files of a PrairieLearn question folder (:func:`prairielearn_questions`), and the
+#: folder of its task figures in it
+PRAIRIELEARN_FILES = ("info.json", "question.html", "server.py")
+PRAIRIELEARN_FIGURES = "clientFilesQuestion"
+
 
 def _identifier(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_]", "_", name)
@@ -250,9 +258,9 @@ def gradescope_autograder(bundle: Mapping[str, Any], *, feedback: str = "hints"
               f"3. setup.sh installs Python {AUTOGRADER_PYTHON} if the image's is older.\n"
               "4. Students submit answers.json or answers.csv with the question ids:\n   "
               + ", ".join(q["id"] for q in bundle["keys"][0]["questions"]) + "\n")
-    return {"setup.sh": setup, "run_autograder": _RUN_AUTOGRADER,
-            "grade_submission.py": _GRADE_SUBMISSION.replace("@FEEDBACK@", feedback),
-            "README.txt": readme, "keys.json": json_text(bundle)}
+    return dict(zip(GRADESCOPE_FILES, (setup, _RUN_AUTOGRADER,
+                                       _GRADE_SUBMISSION.replace("@FEEDBACK@", feedback),
+                                       readme, json_text(bundle)), strict=True))
 
 
 # -- PrairieLearn ----------------------------------------------------------------------------
@@ -296,13 +304,12 @@ def _task_figure(key: Mapping[str, Any]) -> str | None:
     """The task figure of a key's variant (:func:`~planmethod.grading.sheets.task_figure_svg`),
     or None for a key that does not carry its exercise."""
     from ..plans import draw_plans
-    from ..spec import exercise_from_dict
+    from .keys import key_exercise
     from .sheets import task_figure_svg
 
-    data = key.get("exercise")
-    if not data:
+    exercise = key_exercise(key)   # an error in its tables names the key's file
+    if exercise is None:
         return None
-    exercise = exercise_from_dict(data, file=key.get("source"))
     return task_figure_svg(draw_plans(exercise, acceleration=False))
 
 
@@ -470,7 +477,7 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
         if figure is not None:
             # numbered: two students whose ids differ only in punctuation get two files
             params["task_figure"] = f"task_{number}_{_identifier(str(key.get('student')))}.svg"
-            figures[f"{slug}/clientFilesQuestion/{params['task_figure']}"] = figure
+            figures[f"{slug}/{PRAIRIELEARN_FIGURES}/{params['task_figure']}"] = figure
         name_of = _course_names(key)
         correct: dict[str, Any] = {}
         for name in question_ids:
@@ -554,9 +561,10 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
             "title": str(first.get("title")), "topic": topic,
             "tags": ["planmethod", "graphical-method"], "type": "v3",
             "gradingMethod": "Internal"}
-    return {f"{slug}/info.json": json.dumps(info, indent=2, ensure_ascii=False) + "\n",
-            f"{slug}/question.html": "\n".join(html) + "\n",
-            f"{slug}/server.py": server, **figures}
+    texts = (json.dumps(info, indent=2, ensure_ascii=False) + "\n", "\n".join(html) + "\n",
+             server)
+    return {**{f"{slug}/{name}": text
+               for name, text in zip(PRAIRIELEARN_FILES, texts, strict=True)}, **figures}
 
 
 # -- Moodle ----------------------------------------------------------------------------------

@@ -71,6 +71,7 @@ __all__ = [
     "KEYS_FORMAT",
     "KEY_FORMAT",
     "GradingSettings",
+    "ReadKey",
     "build_key",
     "bundle",
     "grading_settings",
@@ -91,6 +92,19 @@ GRADING_KEYS = ("precision_mm", "rel_floor", "points", "tolerance")
 
 #: Absolute floor of a tolerance, as a fraction of the drive's own value of the same kind.
 ABS_FLOOR = 1e-3
+
+
+class ReadKey(dict):
+    """A key as read from a file: its tables, and where they are — ``file``, and the key's
+    ``place`` in a bundle (``keys[3]``; empty for a key file of its own) — so that an error
+    in the exercise the key keeps names the file it was read from, not the exercise file it
+    was built from long ago (:func:`key_exercise`)."""
+
+    __slots__ = ("file", "place")
+
+    def __init__(self, tables: Mapping[str, Any], file: str, place: str = "") -> None:
+        super().__init__(tables)
+        self.file, self.place = file, place
 
 
 class GradingSettings:
@@ -368,7 +382,12 @@ def key_exercise(key: Mapping[str, Any]):
         return None
     from ..spec import exercise_from_dict
 
-    return exercise_from_dict(key["exercise"], file=key.get("source"))
+    if not isinstance(key, ReadKey):   # built here: its tables are of its source file
+        return exercise_from_dict(key["exercise"], file=key.get("source"))
+    try:
+        return exercise_from_dict(key["exercise"], file=key.file)
+    except PlanmethodError as error:   # a key file's own table: named as its key there
+        raise error.under(f"{key.place}.exercise" if key.place else "exercise") from None
 
 
 def bundle(keys: list[dict], **about: Any) -> dict:
@@ -423,8 +442,8 @@ def load_keys(path: str | Path) -> dict[str, dict]:
             raise SpecError("the bundle has no list of keys", file=str(path), key="keys")
         out = {}
         for index, key in enumerate(keys):
-            key = _check_key(key, f"{path}: keys[{index}]")
+            key = ReadKey(_check_key(key, f"{path}: keys[{index}]"), str(path), f"keys[{index}]")
             out[str(key.get("student"))] = key
         return out
-    key = _check_key(data, str(path))
+    key = ReadKey(_check_key(data, str(path)), str(path))
     return {str(key.get("student")): key, "*": key}

@@ -19,8 +19,11 @@ Examples
 
 from __future__ import annotations
 
+import errno
 import json
 import math
+import os
+import stat
 import time
 from collections.abc import Mapping
 from pathlib import Path, PurePosixPath
@@ -36,7 +39,7 @@ from ..errors import (
     StructureError,
     ToggleError,
 )
-from ..io import path_component, write_files, write_text_atomic
+from ..io import path_component, read_text_bounded, write_files, write_text_atomic
 from ..model import FRAME
 
 __all__ = [
@@ -83,9 +86,29 @@ def error_payload(error: BaseException) -> dict[str, str]:
 
 
 # -- files under the folder ----------------------------------------------------------------------
+#: at most this many entries the listing passes over are named in its answer
+MAX_SKIPPED = 50
+
+
+def _why(error: BaseException) -> str:
+    """A file-system condition in words: a link that loops (Python before 3.13 says so with
+    a RuntimeError), permission denied, a name too long…"""
+    if isinstance(error, RuntimeError) or getattr(error, "errno", None) == errno.ELOOP:
+        return "a symbolic link that loops"
+    return (getattr(error, "strerror", None) or str(error)).lower()
+
+
 class Workspace:
     """The folder the studio was started in: every path the page names is relative to it and
-    must stay inside it (each part one path component, no ``..``, no link leading out)."""
+    must stay inside it (each part one path component, no ``..``, no link leading out).
+
+    A condition of the file system — a link that loops, permission denied, a name too long, a
+    file where a folder is expected, a device or a FIFO where an exercise is — is a
+    :class:`SpecError` of one line naming the path as the page gave it (a 400), never an
+    internal error; the listing passes over what it cannot read, and says so
+    (:meth:`listing`). Exercises are written by the command line's writer, whole or not at
+    all, and only as regular files (``write_text_atomic(…, devices=False)``).
+    """
 
     def __init__(self, root: str | Path) -> None:
         self.root = Path(root).resolve()
@@ -100,7 +123,12 @@ class Workspace:
         for part in pure.parts:
             path_component(part, what)
         target = self.root.joinpath(*pure.parts)
-        if not target.resolve().is_relative_to(self.root):
+        try:
+            inside = target.resolve().is_relative_to(self.root)
+        except (OSError, RuntimeError) as error:   # a loop, a name too long, no permission
+            raise SpecError(f"{relative!r} cannot be followed: {_why(error)}",
+                            key=what) from None
+        if not inside:
             raise SpecError(f"{relative!r} leads out of the studio's folder", key=what)
         if suffix is not None and target.suffix != suffix:
             raise SpecError(f"{relative!r} must end in {suffix}", key=what)
@@ -109,40 +137,107 @@ class Workspace:
     def relative(self, path: Path) -> str:
         return path.relative_to(self.root).as_posix()
 
+    def _here(self, error: PlanmethodError, relative: Any) -> SpecError:
+        """``error`` of the command line's reader or writer, naming the path as the page gave
+        it (never the folder's absolute path)."""
+        root = f"{self.root}{os.sep}"
+        shown = str(PlanmethodError(error.message))   # its words alone, as they are shown
+        return SpecError(shown.replace(root, "") if root in shown else error.message,
+                         file=str(relative).strip(), key=error.key)
+
     def files(self) -> list[str]:
-        """The exercise files (``*.toml``) under the folder, at most :data:`MAX_LISTED`, at most
-        :data:`MAX_DEPTH` folders deep, hidden folders left out."""
+        """The exercise files (``*.toml``) under the folder (see :meth:`listing`)."""
+        return self.listing()["files"]
+
+    def listing(self) -> dict[str, list]:
+        """``{"files": [...], "skipped": [{"path", "why"}, ...]}``: the exercise files
+        (``*.toml``, regular files) under the folder, at most :data:`MAX_LISTED`, at most
+        :data:`MAX_DEPTH` folders deep, hidden entries and links out of the folder left out;
+        and what was passed over because the file system would not say what it is (a link
+        that loops or leads to nothing, a folder that cannot be read, a folder reached again
+        through a link), at most :data:`MAX_SKIPPED` of them."""
         found: list[str] = []
+        skipped: list[dict[str, str]] = []
+        seen: set[tuple[int, int]] = set()
+
+        def skip(path: Path, why: str) -> None:
+            if len(skipped) < MAX_SKIPPED:
+                skipped.append({"path": self.relative(path) if path != self.root else ".",
+                                "why": why})
 
         def walk(folder: Path, depth: int) -> None:
             try:
-                entries = sorted(folder.iterdir())
-            except OSError:
-                return
+                status = os.stat(folder)
+                if (status.st_dev, status.st_ino) in seen:
+                    return skip(folder, "a folder listed already (a link back to it)")
+                seen.add((status.st_dev, status.st_ino))
+                entries = sorted(os.scandir(folder), key=lambda entry: entry.name)
+            except OSError as error:
+                return skip(folder, f"the folder cannot be read: {_why(error)}")
             for entry in entries:
                 if len(found) >= MAX_LISTED or entry.name.startswith("."):
                     continue
-                if entry.is_symlink() and not entry.resolve().is_relative_to(self.root):
+                path = Path(entry.path)
+                try:
+                    if entry.is_symlink() and not path.resolve(strict=True).is_relative_to(
+                            self.root):
+                        continue
+                    mode = os.stat(path).st_mode
+                except (OSError, RuntimeError) as error:
+                    skip(path, _why(error) if not isinstance(error, FileNotFoundError)
+                         else "a symbolic link to nothing")
                     continue
-                if entry.is_dir() and depth < MAX_DEPTH:
-                    walk(entry, depth + 1)
-                elif entry.suffix == ".toml" and entry.is_file():
-                    found.append(self.relative(entry))
+                if stat.S_ISDIR(mode):
+                    if depth < MAX_DEPTH:
+                        walk(path, depth + 1)
+                elif entry.name.endswith(".toml"):
+                    if stat.S_ISREG(mode):
+                        found.append(self.relative(path))
+                    else:
+                        skip(path, "not a regular file")
 
         walk(self.root, 0)
-        return found
+        return {"files": found, "skipped": skipped}
 
     def read(self, relative: Any) -> str:
+        """The text of the exercise file ``relative`` (``.toml``), read as the command line
+        reads its inputs: a regular file of at most :data:`MAX_BODY` bytes, UTF-8."""
         path = self.path(relative, suffix=".toml", what="path")
-        if not path.is_file():
-            raise SpecError("no such file", file=relative)
-        if path.stat().st_size > MAX_BODY:
-            raise SpecError(f"larger than {MAX_BODY // 1000} kB: the studio opens exercise "
-                            "files", file=relative)
         try:
-            return path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as error:
-            raise SpecError(f"cannot read the file ({error})", file=relative) from None
+            return read_text_bounded(path, MAX_BODY)
+        except PlanmethodError as error:
+            raise self._here(error, relative) from None
+
+    def write(self, relative: Any, text: str, *, overwrite: bool = False) -> str:
+        """Write ``text`` to the exercise file ``relative`` (``.toml``), whole or not at all,
+        as a regular file (a device or a FIFO there is refused, never written into); an
+        existing file only with ``overwrite`` (else a :class:`FileExistsError`). Returns the
+        path written, relative to the folder."""
+        path = self.path(relative, suffix=".toml")
+        try:
+            exists = os.path.lexists(path)
+        except OSError as error:
+            raise SpecError(f"cannot be written: {_why(error)}", file=str(relative)) from None
+        if exists and not overwrite:
+            raise FileExistsError(relative)
+        try:
+            write_text_atomic(path, text, devices=False)
+        except PlanmethodError as error:
+            raise self._here(error, relative) from None
+        return self.relative(path)
+
+    def new_folder(self, relative: Any) -> Path:
+        """The folder ``relative`` names, missing or empty (else a :class:`FileExistsError`),
+        for a run written whole into it."""
+        target = self.path(relative, what="folder")
+        try:
+            taken = os.path.lexists(target) and (not target.is_dir()
+                                                 or any(target.iterdir()))
+        except OSError as error:
+            raise SpecError(f"cannot be written: {_why(error)}", file=str(relative)) from None
+        if taken:
+            raise FileExistsError(self.relative(target))
+        return target
 
 
 # -- solving -------------------------------------------------------------------------------------
@@ -216,12 +311,9 @@ def save_exercise(workspace: Workspace, relative: Any, text: Any, *,
     ``overwrite``."""
     if not isinstance(text, str):
         raise SpecError("the exercise must be TOML text", key="toml")
-    path = workspace.path(relative, suffix=".toml")
+    workspace.path(relative, suffix=".toml")
     _exercise(text, file=relative)
-    if path.exists() and not overwrite:
-        raise FileExistsError(relative)
-    write_text_atomic(path, text)
-    return {"saved": workspace.relative(path)}
+    return {"saved": workspace.write(relative, text, overwrite=overwrite)}
 
 
 def save_template(workspace: Workspace, relative: Any, text: Any, ranges: Any, *,
@@ -230,12 +322,9 @@ def save_template(workspace: Workspace, relative: Any, text: Any, ranges: Any, *
     ``relative`` (a ``.toml`` file under the folder), for ``planmethod variants``."""
     if not isinstance(text, str):
         raise SpecError("the exercise must be TOML text", key="toml")
-    path = workspace.path(relative, suffix=".toml")
+    workspace.path(relative, suffix=".toml")
     template = make_template(text, ranges or {})
-    if path.exists() and not overwrite:
-        raise FileExistsError(relative)
-    write_text_atomic(path, template)
-    return {"saved": workspace.relative(path)}
+    return {"saved": workspace.write(relative, template, overwrite=overwrite)}
 
 
 def turn(text: str, angle: Any) -> dict[str, Any]:
@@ -456,9 +545,7 @@ def export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder
     if (not isinstance(formats, list | tuple)
             or any(name not in FORMATS for name in formats)):
         raise SpecError(f"must be a list of {', '.join(FORMATS)}", key="formats")
-    target = workspace.path(folder, what="folder")
-    if target.exists() and (not target.is_dir() or any(target.iterdir())):
-        raise FileExistsError(workspace.relative(target))
+    target = workspace.new_folder(folder)
     template_text = make_template(text, ranges)
     template = parse_template(template_text, file="template.toml")
     students = _students(count)
