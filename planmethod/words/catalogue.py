@@ -6,7 +6,8 @@ and :func:`~planmethod.words.message.plural` call of the package (with :mod:`ast
 template is a literal string at its call), writes the catalogue template
 ``planmethod/locale/planmethod.pot``, brings each language's ``.po`` up to date with it (a
 template that changed keeps its old translation marked fuzzy) and compiles every ``.po`` to
-the ``.mo`` that :mod:`gettext` reads. The English ``.mo`` translates each template to itself:
+the ``.mo`` that :mod:`gettext` reads. A template's place is written as its file without the
+line, so that moving code does not change the catalogues. The English ``.mo`` translates each template to itself:
 it is the list of templates a language's catalogue is measured against
 (:func:`planmethod.words.language.missing`).
 
@@ -136,7 +137,7 @@ def new(language: str, folder: Path) -> str:
         sys.exit(f"planmethod: error: {target} exists already (compile it, or remove it to "
                  "start again)")
     return _write(target, lambda file: pofile.write_po(file, fresh, sort_output=True,
-                                                       width=100))
+                                                       width=100, include_lineno=False))
 
 
 def compile_folder(folder: Path) -> list[str]:
@@ -159,7 +160,8 @@ def build(root: Path = PACKAGE) -> list[str]:
     template = _template_catalogue(package_templates(root))
     locale = root / "locale"
     written = [_write(locale / f"{DOMAIN}.pot", lambda file: pofile.write_po(
-        file, template, omit_header=False, sort_output=True, width=100))]
+        file, template, omit_header=False, sort_output=True, width=100,
+        include_lineno=False))]
     english = catalog.Catalog(locale="en", domain=DOMAIN, charset="utf-8",
                               creation_date=_DATE, revision_date=_DATE)
     for entry in template:
@@ -172,7 +174,8 @@ def build(root: Path = PACKAGE) -> list[str]:
             language = pofile.read_po(file)
         language.update(template, update_header_comment=False)
         written.append(_write(po, lambda file, language=language: pofile.write_po(
-            file, language, sort_output=True, width=100, ignore_obsolete=True)))
+            file, language, sort_output=True, width=100, ignore_obsolete=True,
+            include_lineno=False)))
     return written + compile_folder(locale)
 
 
