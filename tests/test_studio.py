@@ -320,12 +320,36 @@ def test_turn_keeps_the_drawn_assembly(server):
     assert turned["points"]["C"][0] > 0    # still on the drawn side of A
 
 
-def test_variants_preview_task_sheets(server):
+def wait_for(server, job: dict, *, until=lambda job: job["state"] != "running",
+             seconds: float = 600) -> dict:
+    """The job (as ``GET /api/job`` gives it) once ``until`` holds (by default: it ended)."""
+    end = time.monotonic() + seconds
+    while True:
+        status, payload, _ = request(server, "GET", f"/api/job?id={job['id']}")
+        assert status == 200, payload
+        if until(payload) or time.monotonic() > end:
+            return payload
+        time.sleep(0.2)
+
+
+def start_job(server, path: str, data: dict) -> dict:
+    status, payload, _ = post_json(server, path, data)
+    assert status == 202, payload
+    assert payload["job"]["state"] == "running"
+    return payload["job"]
+
+
+RANGES = {"lengths": {"BC": [0.17, 0.19]}, "angle": [40, 50, 5]}
+
+
+def test_variants_preview_task_sheets_as_a_job(server):
     ranges = {"lengths": {"AB": [0.05, 0.07], "BC": [0.16, 0.2]}, "angle": [30, 60, 5]}
-    status, payload, _ = post_json(server, "/api/variants", {"toml": read_text(COMPRESSOR),
-                                                            "ranges": ranges, "count": 3,
-                                                            "seed": 4})
-    assert status == 200
+    job = start_job(server, "/api/variants", {"toml": read_text(COMPRESSOR), "ranges": ranges,
+                                             "count": 3, "seed": 4})
+    assert job["kind"] == "variants" and job["total"] == 3
+    ended = wait_for(server, job)
+    assert ended["state"] == "done" and ended["done"] == 3, ended
+    payload = ended["result"]
     assert "l_AB = { range = [0.05, 0.07], step = 0.001 }" in payload["template"]
     assert [v["student"] for v in payload["variants"]] == ["01", "02", "03"]
     for variant in payload["variants"]:
@@ -333,25 +357,35 @@ def test_variants_preview_task_sheets(server):
         assert 30 <= variant["values"]["phi"] <= 60
         assert variant["sheet"].startswith("<svg")
         assert variant["note"] == ""
+    # a mistake in the request is its 400 at once, not a failed job
     status, payload, _ = post_json(server, "/api/variants", {
         "toml": read_text(COMPRESSOR), "ranges": {"lengths": {"AB": [0.07, 0.05]}}})
     assert status == 400 and "above" in one_line(payload)
+    listed = request(server, "GET", "/api/jobs")[1]["jobs"]
+    assert job["id"] in [entry["id"] for entry in listed]
+    assert all("result" not in entry for entry in listed)   # the list stays small
 
 
-def test_export_writes_the_lms_packages(server, folder):
-    status, payload, _ = post_json(server, "/api/export", {
-        "toml": read_text(COMPRESSOR), "folder": "run", "count": 2,
-        "ranges": {"lengths": {"BC": [0.17, 0.19]}, "angle": [40, 50, 5]}})
-    assert status == 200 and payload["folder"] == "run" and payload["variants"] == 2
+def test_export_writes_the_lms_packages_as_a_job(server, folder):
+    job = start_job(server, "/api/export", {"toml": read_text(COMPRESSOR), "folder": "run",
+                                            "count": 2, "ranges": RANGES})
+    assert job["kind"] == "export" and job["folder"] == "run"
+    ended = wait_for(server, job)
+    assert ended["state"] == "done", ended
+    assert ended["result"] == {"folder": "run", "written": ended["result"]["written"],
+                               "variants": 2, "rejected": 0}
     run = folder / "run"
     for name in ("template.toml", "variants/keys.json", "variants/01/task.svg",
                  "moodle/quiz.xml", "prairielearn/planmethod/info.json",
                  "gradescope/run_autograder"):
         assert (run / name).is_file(), name
     assert os.access(run / "gradescope" / "run_autograder", os.X_OK)
+    # one run's files, nothing else: every file written is one the result counts
+    assert len([path for path in run.rglob("*") if path.is_file()]) == ended["result"]["written"]
+    assert not [path for path in folder.iterdir() if path.name.startswith(".run.")]
     status, payload, _ = post_json(server, "/api/export", {"toml": read_text(COMPRESSOR),
                                                           "folder": "run", "count": 1})
-    assert status == 409
+    assert status == 409 and "exists" in one_line(payload)
     # the exported run carries the manifest `variants --force` checks: it may replace it
     done = subprocess.run([sys.executable, "-m", "planmethod", "variants",
                            str(run / "template.toml"), "--count", "1", "--out",
@@ -359,6 +393,125 @@ def test_export_writes_the_lms_packages(server, folder):
                           capture_output=True, text=True, cwd=ROOT)
     assert done.returncode == 0, done.stderr
     assert not (run / "variants" / "01").exists() and (run / "variants" / "001").is_dir()
+
+
+@pytest.mark.parametrize(("path", "count", "limit"), [("/api/export", 1001, "1…1000"),
+                                                      ("/api/export", 2000, "1…1000"),
+                                                      ("/api/export", 0, "1…1000"),
+                                                      ("/api/variants", 41, "1…40")])
+def test_counts_are_limited_as_on_the_command_line(server, folder, path, count, limit):
+    from planmethod.commands.variants import MAX_VARIANTS
+
+    assert f"1…{MAX_VARIANTS}" == "1…1000"   # the command line's limit, shared
+    status, payload, _ = post_json(server, path, {"toml": read_text(COMPRESSOR),
+                                                  "folder": "too-many", "count": count}
+                                   if path == "/api/export" else
+                                   {"toml": read_text(COMPRESSOR), "count": count})
+    assert status == 400
+    assert one_line(payload).startswith(f"count: must be a whole number in {limit}, got {count}")
+    assert not (folder / "too-many").exists()
+
+
+def hidden_leftovers(folder: Path) -> list[str]:
+    return sorted(path.name for path in folder.iterdir() if ".export-" in path.name)
+
+
+def test_a_long_export_leaves_solves_and_listings_answering_and_cancels_cleanly(server,
+                                                                               folder):
+    """A 200-variant export runs as a job; meanwhile a solve and a file listing answer before
+    it ends (how soon is the benchmark's: benchmarks/studio.py); cancelled, it leaves no
+    folder, and its process has ended."""
+    job = start_job(server, "/api/export", {"toml": read_text(COMPRESSOR), "folder": "big",
+                                            "count": 200, "ranges": RANGES})
+    running = wait_for(server, job, until=lambda job: job["done"] >= 1 or
+                       job["state"] != "running")
+    assert running["state"] == "running" and running["phase"] == "variants", running
+    status, solved, _ = request(server, "POST", "/api/solve", read_text(COMPRESSOR))
+    assert status == 200 and solved["svg"]["velocity"].startswith("<svg")
+    status, listed, _ = request(server, "GET", "/api/files")
+    assert status == 200 and "compressor.toml" in listed["files"]
+    from planmethod.grading.templates import to_toml
+
+    tables = post_json(server, "/api/open", {"path": "compressor.toml"})[1]["tables"]
+    status, _, _ = post_json(server, "/api/turn", {"toml": to_toml(tables), "angle": 90})
+    assert status == 200
+    still = request(server, "GET", f"/api/job?id={job['id']}")[1]
+    assert still["state"] == "running" and still["done"] < 200, still   # before it ended
+    status, cancelled, _ = post_json(server, "/api/cancel", {"id": job["id"]})
+    assert status == 200 and cancelled["state"] == "cancelled"
+    assert not (folder / "big").exists()
+    assert hidden_leftovers(folder) == []
+    assert server.jobs.get(job["id"]).process.poll() is not None
+    # cancelling again, or a job that ended, leaves it as it ended
+    assert post_json(server, "/api/cancel", {"id": job["id"]})[1]["state"] == "cancelled"
+    status, payload, _ = post_json(server, "/api/cancel", {"id": "no-such-job"})
+    assert status == 404 and "no job" in one_line(payload)
+
+
+def test_a_third_job_is_refused_and_one_folder_gets_one_export(server, folder):
+    first = start_job(server, "/api/export", {"toml": read_text(COMPRESSOR), "folder": "one",
+                                              "count": 200})
+    try:
+        status, payload, _ = post_json(server, "/api/export", {
+            "toml": read_text(COMPRESSOR), "folder": "one", "count": 1})
+        assert status == 409 and "running" in one_line(payload)
+        second = start_job(server, "/api/variants", {"toml": read_text(COMPRESSOR),
+                                                     "count": 40})
+        status, payload, _ = post_json(server, "/api/export", {
+            "toml": read_text(COMPRESSOR), "folder": "three", "count": 1})
+        assert status == 429 and payload["kind"] == "busy"
+        assert "at most 2 at once" in one_line(payload)
+        assert not (folder / "three").exists()
+        post_json(server, "/api/cancel", {"id": second["id"]})
+    finally:
+        post_json(server, "/api/cancel", {"id": first["id"]})
+    assert not (folder / "one").exists() and hidden_leftovers(folder) == []
+
+
+# -- typed fields ---------------------------------------------------------------------------------
+TYPED = {
+    "overwrite as text": ("/api/save", {"path": "compressor.toml", "toml": "x",
+                                        "overwrite": "false"}, "overwrite: must be true or false"),
+    "template as text": ("/api/save", {"path": "t.toml", "toml": "x", "template": "false"},
+                         "template: must be true or false"),
+    "misspelt field": ("/api/save", {"path": "t.toml", "toml": "x", "overwite": True},
+                       "overwite: unknown field"),
+    "path as a number": ("/api/open", {"path": 5}, "path: must be text, got the number 5"),
+    "toml missing": ("/api/turn", {"toml": None, "angle": 3}, "toml: is missing"),
+    "angle as text": ("/api/turn", {"toml": "x", "angle": "120"},
+                      "angle: must be a finite number, got the text '120'"),
+    "count as text": ("/api/variants", {"toml": "x", "count": "3"}, "count: must be a whole"),
+    "seed as a fraction": ("/api/variants", {"toml": "x", "seed": 1.5}, "seed: must be a whole"),
+    "ranges as a list": ("/api/variants", {"toml": "x", "ranges": []},
+                         "ranges: must be a table"),
+    "a length as text": ("/api/variants", {"toml": "x", "ranges": {"lengths": {"BC": ["a", 1]}}},
+                         "ranges.lengths.BC[0]: must be a finite number"),
+    "a range misspelt": ("/api/variants", {"toml": "x", "ranges": {"angel": [1, 2, 1]}},
+                         "ranges.angel: unknown field"),
+    "formats as text": ("/api/export", {"toml": "x", "folder": "f", "formats": "moodle"},
+                        "formats: must be a list"),
+    "a format as a number": ("/api/export", {"toml": "x", "folder": "f", "formats": [1]},
+                             "formats[0]: must be text"),
+    "folder as a flag": ("/api/export", {"toml": "x", "folder": True},
+                         "folder: must be text, got true"),
+    "job id as a number": ("/api/cancel", {"id": 3}, "id: must be text"),
+}
+
+
+@pytest.mark.parametrize("case", list(TYPED))
+def test_a_field_of_the_wrong_type_is_400_naming_it(server, folder, case):
+    path, body, expected = TYPED[case]
+    before = {p: p.read_bytes() for p in folder.rglob("*") if p.is_file()}
+    status, payload, _ = post_json(server, path, body)
+    assert status == 400 and payload["kind"] == "input"
+    assert one_line(payload).startswith(expected), payload
+    # nothing written: the instructor's file is as it was, no template appeared
+    assert {p: p.read_bytes() for p in folder.rglob("*") if p.is_file()} == before
+
+
+def test_a_job_asked_for_without_its_id_is_400(server):
+    status, payload, _ = request(server, "GET", "/api/job")
+    assert status == 400 and one_line(payload) == "id: is missing"
 
 
 def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folder):
