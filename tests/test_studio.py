@@ -7,6 +7,7 @@ module and always stopped, serving a temporary folder.
 
 from __future__ import annotations
 
+import contextlib
 import http.client
 import json
 import os
@@ -14,8 +15,10 @@ import re
 import shutil
 import signal
 import socket
+import struct
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -237,6 +240,111 @@ def test_unknown_addresses_and_methods(server, method, path, expected):
     status, payload, _ = request(server, method, path)
     assert status == expected
     one_line(payload)
+
+
+def raw_exchange(server, data: bytes, *, timeout: float = 30) -> bytes:
+    """Send ``data`` as it is on a new connection; everything the server answers until it
+    closes the connection (or ``timeout`` passes with nothing more)."""
+    with socket.create_connection((HOST, server.port), timeout=timeout) as connection:
+        connection.sendall(data)
+        answer = b""
+        with contextlib.suppress(TimeoutError, ConnectionResetError):
+            while chunk := connection.recv(65536):
+                answer += chunk
+    return answer
+
+
+def head(server, method: str = "POST", path: str = "/api/solve") -> bytes:
+    return (f"{method} {path} HTTP/1.1\r\nHost: {HOST}:{server.port}\r\n"
+            f"X-Planmethod-Token: {server.token}\r\n").encode()
+
+
+def test_two_content_lengths_are_refused(server):
+    body = read_text(COMPRESSOR).encode()
+    answer = raw_exchange(server, head(server) + f"Content-Length: {len(body)}\r\n"
+                          f"Content-Length: 5\r\n\r\n".encode() + body)
+    status_line, _, rest = answer.partition(b"\r\n")
+    assert status_line == b"HTTP/1.1 400 Bad Request"
+    assert b"Connection: close" in rest   # nothing more is read from that connection
+    payload = json.loads(rest.split(b"\r\n\r\n", 1)[1])
+    assert one_line(payload) == "2 Content-Length headers: a request has one"
+    # the same length twice is two headers too; a GET's body is refused
+    answer = raw_exchange(server, head(server) + b"Content-Length: 3\r\nContent-Length: 3\r\n"
+                          b"\r\nabc")
+    assert answer.startswith(b"HTTP/1.1 400 ")
+    answer = raw_exchange(server, head(server, "GET", "/api/files")
+                          + b"Content-Length: 4\r\n\r\nGET ")
+    assert answer.startswith(b"HTTP/1.1 400 ") and b"has no body" in answer
+    assert answer.count(b"HTTP/1.1") == 1   # its body was not read as a second request
+
+
+@pytest.fixture
+def strict_server(tmp_path):
+    """A studio with a short deadline per request (1 s) and four places for connections."""
+    server = StudioServer(tmp_path, 0, request_seconds=1.0, idle_seconds=5.0, connections=4)
+    server.start()
+    yield server
+    server.stop()
+
+
+def test_a_slow_client_is_cut_off_at_the_deadline_of_its_whole_request(strict_server):
+    """A byte every 0.1 s never leaves a read waiting as long as the deadline (1 s); a
+    deadline per read would serve it for ever, the deadline of the whole request cuts it off."""
+    server = strict_server
+    data = head(server, "GET", "/api/files") + b"X-Pad: " + b"a" * 10_000
+    sent, cut = 0, False
+    with socket.create_connection((HOST, server.port), timeout=30) as connection:
+        started = time.monotonic()
+        while time.monotonic() - started < 60:
+            try:
+                connection.sendall(data[sent:sent + 1])
+            except OSError:
+                cut = True
+                break
+            sent += 1
+            connection.settimeout(0.1)
+            try:
+                if connection.recv(1) == b"":
+                    cut = True
+                    break
+            except TimeoutError:
+                pass
+    assert cut and sent < len(data)
+    # a client that sends its request whole is served by the same server
+    assert request(server, "GET", "/api/files")[0] == 200
+
+
+def test_a_slow_body_is_408(strict_server):
+    server = strict_server
+    with socket.create_connection((HOST, server.port), timeout=30) as connection:
+        connection.sendall(head(server) + b"Content-Length: 100\r\n\r\n" + b"x" * 10)
+        answer = b""
+        with contextlib.suppress(ConnectionResetError):
+            while chunk := connection.recv(65536):
+                answer += chunk
+    assert answer.startswith(b"HTTP/1.1 408 ")
+    assert b"did not arrive within 1 s" in answer
+
+
+def test_connections_are_bounded(strict_server):
+    server = strict_server
+    idle = [socket.create_connection((HOST, server.port), timeout=30) for _ in range(12)]
+    try:
+        time.sleep(1.5)   # the first four are being served, the others wait or were refused
+        handlers = [thread for thread in threading.enumerate()
+                    if "process_request_thread" in thread.name]
+        assert len(handlers) <= 4
+        answer = raw_exchange(server, head(server, "GET", "/api/files") + b"\r\n")
+        assert answer.startswith(b"HTTP/1.1 503 ")
+        payload = json.loads(answer.split(b"\r\n\r\n", 1)[1])
+        assert payload["kind"] == "busy" and "4 connections" in one_line(payload)
+    finally:
+        for connection in idle:
+            connection.close()
+    deadline = time.monotonic() + 30
+    while request(server, "GET", "/api/files")[0] != 200 and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert request(server, "GET", "/api/files")[0] == 200
 
 
 # -- the API --------------------------------------------------------------------------------------
@@ -552,6 +660,132 @@ def test_the_command_prints_its_address_and_stops_on_ctrl_c(tmp_path):
         if process.poll() is None:
             process.kill()
             process.wait()
+
+
+class Command:
+    """``planmethod studio`` started in a process of its own on a free port (with SIGINT
+    ignored if asked, as a shell's background job has it), serving ``folder``."""
+
+    def __init__(self, folder: Path, *, sigint_ignored: bool = False) -> None:
+        def ignore_sigint() -> None:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "planmethod", "studio", "--no-browser", "--port", "0"],
+            cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+            env={**os.environ, "PYTHONPATH": str(ROOT)},
+            preexec_fn=ignore_sigint if sigint_ignored else None)
+        lines = [self.process.stdout.readline() for _ in range(2)]
+        address = lines[1].strip()
+        assert address.startswith("http://127.0.0.1:") and "?token=" in address, lines
+        self.port = int(address.split(":")[2].split("/")[0])
+        self.token = address.split("token=")[1]
+
+    def children(self) -> list[int]:
+        """The process ids of the studio's jobs (Linux)."""
+        found = []
+        for task in Path(f"/proc/{self.process.pid}/task").iterdir():
+            with contextlib.suppress(OSError):
+                found += [int(pid) for pid in (task / "children").read_text().split()]
+        return found
+
+    def stop(self) -> None:
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+
+
+@pytest.fixture
+def command(tmp_path):
+    started: list[Command] = []
+
+    def start(**options) -> Command:
+        started.append(Command(tmp_path, **options))
+        return started[-1]
+
+    shutil.copy(COMPRESSOR, tmp_path / "compressor.toml")
+    yield start
+    for each in started:
+        each.stop()
+
+
+def ended(pid: int, seconds: float = 60) -> bool:
+    """Whether process ``pid`` has ended (gone, or a zombie nobody reaped) within
+    ``seconds``."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        try:
+            state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            return True
+        if state in ("Z", "X"):
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def start_export_job(studio: Command, folder: str = "big") -> dict:
+    """Start a 200-variant export on ``studio`` and wait until it computes."""
+    job = start_job(studio, "/api/export", {"toml": read_text(COMPRESSOR), "folder": folder,
+                                            "count": 200})
+    running = wait_for(studio, job, until=lambda job: job["done"] >= 1
+                       or job["state"] != "running")
+    assert running["state"] == "running", running
+    return running
+
+
+needs_proc = pytest.mark.skipif(not Path("/proc/self/task").is_dir(),
+                                reason="lists a process's children through /proc (Linux)")
+
+
+@needs_proc
+def test_ctrl_c_stops_the_command_and_its_jobs_even_with_sigint_ignored(command, tmp_path):
+    studio = command(sigint_ignored=True)
+    start_export_job(studio)
+    jobs = studio.children()
+    assert len(jobs) == 1
+    studio.process.send_signal(signal.SIGINT)
+    assert studio.process.wait(timeout=60) == 0
+    assert "stopped" in studio.process.stderr.read()
+    assert ended(jobs[0])
+    assert not (tmp_path / "big").exists() and hidden_leftovers(tmp_path) == []
+
+
+@needs_proc
+def test_a_job_ends_with_its_studio_even_killed(command, tmp_path):
+    studio = command()
+    start_export_job(studio)
+    jobs = studio.children()
+    assert len(jobs) == 1
+    studio.process.kill()   # no chance to stop its jobs: they see it gone
+    studio.process.wait()
+    assert ended(jobs[0])
+    assert not (tmp_path / "big").exists() and hidden_leftovers(tmp_path) == []
+
+
+def test_dropped_connections_leave_one_line_each_and_no_traceback(command):
+    """200 clients hang up mid-request (a reset in the middle of a body, a close in the middle
+    of the headers): the studio goes on serving, and its terminal shows no traceback."""
+    studio = command()
+    start = (f"POST /api/solve HTTP/1.1\r\nHost: {HOST}:{studio.port}\r\n"
+             f"X-Planmethod-Token: {studio.token}\r\n").encode()
+    for number in range(200):
+        connection = socket.create_connection((HOST, studio.port), timeout=30)
+        if number % 2:
+            connection.sendall(start + b"Content-Length: 1000\r\n\r\n" + b"x" * 10)
+            connection.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER,
+                                  struct.pack("ii", 1, 0))   # close with a reset
+        else:
+            connection.sendall(start[:30])
+        connection.close()
+    assert request(studio, "GET", "/api/files")[0] == 200
+    studio.process.send_signal(signal.SIGINT)
+    assert studio.process.wait(timeout=60) == 0
+    terminal = studio.process.stderr.read()
+    assert "Traceback" not in terminal and "File \"" not in terminal
+    lines = [line for line in terminal.splitlines() if line]
+    assert all(line.startswith("planmethod studio: ") for line in lines), lines[:5]
+    assert len(lines) <= 201   # at most one line a connection, and "stopped"
 
 
 def test_the_command_refuses_a_file_outside_its_folder(tmp_path):
