@@ -254,8 +254,11 @@ def _given(fields: dict[str, Any], *names: str) -> dict[str, Any]:
 
 
 def _state(server: StudioServer, fields: dict) -> dict:
+    from ..commands.variants import MAX_VARIANTS
+
     return {"folder": server.workspace.root.name, "initial": server.initial,
-            "files": server.workspace.files(), "jobs": server.jobs.listing()}
+            "files": server.workspace.files(), "jobs": server.jobs.listing(),
+            "limits": {"variants": api.MAX_PREVIEW, "export": MAX_VARIANTS}}
 
 
 def _files(server: StudioServer, fields: dict) -> dict:
