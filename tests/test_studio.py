@@ -742,12 +742,12 @@ needs_proc = pytest.mark.skipif(not Path("/proc/self/task").is_dir(),
 def test_ctrl_c_stops_the_command_and_its_jobs_even_with_sigint_ignored(command, tmp_path):
     studio = command(sigint_ignored=True)
     start_export_job(studio)
-    jobs = studio.children()
-    assert len(jobs) == 1
+    jobs = studio.children()   # the job's, and one started ahead for the next job
+    assert 1 <= len(jobs) <= 2
     studio.process.send_signal(signal.SIGINT)
     assert studio.process.wait(timeout=60) == 0
     assert "stopped" in studio.process.stderr.read()
-    assert ended(jobs[0])
+    assert all(ended(pid) for pid in jobs)
     assert not (tmp_path / "big").exists() and hidden_leftovers(tmp_path) == []
 
 
@@ -756,10 +756,10 @@ def test_a_job_ends_with_its_studio_even_killed(command, tmp_path):
     studio = command()
     start_export_job(studio)
     jobs = studio.children()
-    assert len(jobs) == 1
+    assert 1 <= len(jobs) <= 2
     studio.process.kill()   # no chance to stop its jobs: they see it gone
     studio.process.wait()
-    assert ended(jobs[0])
+    assert all(ended(pid) for pid in jobs)
     assert not (tmp_path / "big").exists() and hidden_leftovers(tmp_path) == []
 
 

@@ -104,14 +104,23 @@ class Job:
         return out
 
 
-def _command() -> tuple[list[str], dict[str, str]]:
-    """A job's command line and environment: this Python, this copy of planmethod first on its
-    path, and nothing taken from the current folder (``-P``)."""
+def _start_process() -> tuple[subprocess.Popen, IO[bytes]]:
+    """A job's process, started (it imports what a job needs, then waits for its task), and
+    the file its standard error goes to: this Python, this copy of planmethod first on its
+    path, nothing taken from the current folder (``-P``), in a session of its own."""
     package_root = str(Path(__file__).resolve().parents[2])
     environment = dict(os.environ)
     environment["PYTHONPATH"] = os.pathsep.join(
         part for part in (package_root, environment.get("PYTHONPATH")) if part)
-    return [sys.executable, "-P", "-m", "planmethod.studio.worker"], environment
+    errors = tempfile.TemporaryFile()   # noqa: SIM115 - closed when the job ends
+    try:
+        process = subprocess.Popen([sys.executable, "-P", "-m", "planmethod.studio.worker"],
+                                   stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                   stderr=errors, env=environment, start_new_session=True)
+    except OSError:
+        errors.close()
+        raise
+    return process, errors
 
 
 class Jobs:
@@ -123,6 +132,25 @@ class Jobs:
         self._jobs: dict[str, Job] = {}
         self._lock = threading.Lock()
         self._closed = False
+        self._standby: tuple[subprocess.Popen, IO[bytes]] | None = None
+
+    def warm(self) -> None:
+        """Have a job's process started and waiting, its imports done, so that the next job
+        starts at once (the page's first load asks for it, and every job started)."""
+        with self._lock:
+            if self._closed or (self._standby is not None
+                                and self._standby[0].poll() is None):
+                return
+            with contextlib.suppress(OSError):   # then the next job starts its own
+                self._standby = _start_process()
+
+    def _take_standby(self) -> tuple[subprocess.Popen, IO[bytes]] | None:
+        """The waiting process, if it still waits (its lock held)."""
+        standby, self._standby = self._standby, None
+        if standby is not None and standby[0].poll() is not None:
+            standby[1].close()
+            return None
+        return standby
 
     def listing(self) -> list[dict[str, Any]]:
         """Every job kept, oldest first, without results."""
@@ -159,20 +187,19 @@ class Jobs:
                 job.staging = api.stage_folder(target)
             self._jobs[job.id] = job
             self._forget_ended()
+            standby = self._take_standby()
         with job.lock:
             self._spawn(job, {"kind": kind, "arguments": arguments,
-                              "staging": str(job.staging) if job.staging else None})
+                              "staging": str(job.staging) if job.staging else None}, standby)
+        self.warm()
         return job
 
-    def _spawn(self, job: Job, task: dict[str, Any]) -> None:
-        command, environment = _command()
-        errors = tempfile.TemporaryFile()   # noqa: SIM115 - closed when the job ends
+    def _spawn(self, job: Job, task: dict[str, Any],
+               standby: tuple[subprocess.Popen, IO[bytes]] | None) -> None:
+        """Give ``task`` to the waiting process, or to a new one."""
         try:
-            job.process = subprocess.Popen(command, stdin=subprocess.PIPE,
-                                           stdout=subprocess.PIPE, stderr=errors,
-                                           env=environment, start_new_session=True)
+            job.process, errors = standby if standby is not None else _start_process()
         except OSError as error:
-            errors.close()
             self._end(job, "failed", error={"error": "cannot start the job's process "
                                                      f"({error.strerror})", "kind": "internal"})
             return
@@ -251,12 +278,17 @@ class Jobs:
         return job
 
     def close(self) -> None:
-        """Cancel every running job and refuse new ones (the studio stops)."""
+        """Cancel every running job, end the waiting process and refuse new jobs (the studio
+        stops)."""
         with self._lock:
             self._closed = True
             running = [job.id for job in self._jobs.values() if job.state == "running"]
+            standby = self._take_standby()
         for job_id in running:
             self.cancel(job_id)
+        if standby is not None:
+            _stop(standby[0])
+            standby[1].close()
 
     def _forget_ended(self) -> None:
         """Keep at most :data:`MAX_KEPT` ended jobs (the oldest go first)."""

@@ -522,6 +522,7 @@ class StudioHandler(BaseHTTPRequestHandler):
             if split.path == "/" and method in ("GET", "HEAD"):
                 self._send(200, self.server.page, "text/html; charset=utf-8", cookie=cookie,
                            page=True, head=method == "HEAD")
+                self.server.jobs.warm()   # a job's process, ready for the page's first job
                 return
             route = ROUTES.get((method, split.path))
             if route is None:

@@ -33,8 +33,8 @@ MAX_TASK = 8_000_000
 def _lifeline(staging: str | None) -> None:
     """End the process when its standard input closes (the studio is gone), removing the
     folder it was writing (the studio, killed, cannot)."""
-    try:
-        while sys.stdin.buffer.read(65536):
+    try:   # the descriptor itself: no lock of sys.stdin held at the process's end
+        while os.read(0, 65536):
             pass
     finally:
         if staging is not None:
@@ -52,6 +52,19 @@ def _channel() -> IO[bytes]:
     return channel
 
 
+def _prepare() -> None:
+    """Import what a job needs, before its task comes (a process may be started ahead of its
+    job: :meth:`planmethod.studio.jobs.Jobs.warm`)."""
+    import importlib
+
+    for module in ("planmethod.studio.api", "planmethod.commands.variants",
+                   "planmethod.commands.export", "planmethod.grading.exports",
+                   "planmethod.grading.keys", "planmethod.grading.sheets",
+                   "planmethod.grading.templates", "planmethod.kinematics", "planmethod.plans",
+                   "planmethod.render.workbook", "planmethod.spec", "svgwrite"):
+        importlib.import_module(module)
+
+
 def run(task: dict[str, Any], tell) -> dict[str, Any]:
     """Do ``task``, telling its progress with ``tell(message)``; its result."""
     from . import api
@@ -65,7 +78,8 @@ def run(task: dict[str, Any], tell) -> dict[str, Any]:
 
 
 def main() -> int:
-    """Read the task, do it, say how it ended; 0 (every failure is a message)."""
+    """Read the task, do it, say how it ended, and end with status 0 (every failure is a
+    message)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     channel = _channel()
 
@@ -73,7 +87,11 @@ def main() -> int:
         channel.write(json.dumps(message, ensure_ascii=False, allow_nan=False).encode() + b"\n")
         channel.flush()
 
-    task = json.loads(sys.stdin.buffer.readline(MAX_TASK))
+    _prepare()
+    line = sys.stdin.buffer.readline(MAX_TASK)
+    if not line:   # the studio ended before it had a task for this process
+        return 0
+    task = json.loads(line)
     threading.Thread(target=_lifeline, args=(task.get("staging"),), daemon=True,
                      name="planmethod-lifeline").start()
     from ..errors import PlanmethodError
@@ -88,7 +106,7 @@ def main() -> int:
     except Exception as error:   # a bug: its one line, for the page and the terminal
         message = f"internal error ({type(error).__name__}): {error}".replace("\n", " ")
         tell({"error": {"error": message, "kind": "internal"}})
-    return 0
+    os._exit(0)   # said and flushed: nothing is left to finish (the lifeline still reads)
 
 
 if __name__ == "__main__":
