@@ -170,7 +170,7 @@ class Jobs:
         ``export``: :func:`~planmethod.studio.api.run_export`) on ``arguments`` as the
         request's ``prepare_*`` checked them; :class:`BusyError` if :attr:`running` jobs run, a
         :class:`FileExistsError` if a running export writes the same folder."""
-        target = Path(arguments["target"]) if kind == "export" else None
+        target = Path(arguments["target"]) if "target" in arguments else None
         with self._lock:
             active = [job for job in self._jobs.values() if job.state == "running"]
             if self._closed:

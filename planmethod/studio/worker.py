@@ -72,9 +72,10 @@ def run(task: dict[str, Any], tell) -> dict[str, Any]:
     def progress(phase: str, done: int, total: int) -> None:
         tell({"progress": {"phase": phase, "done": done, "total": total}})
 
-    if task["kind"] == "variants":
-        return api.run_variants(task["arguments"], progress)
-    return api.run_export(task["arguments"], Path(task["staging"]), progress)
+    runs = {"variants": lambda arguments: api.run_variants(arguments, progress),
+            "export": lambda arguments: api.run_export(arguments, Path(task["staging"]),
+                                                       progress)}
+    return runs[task["kind"]](task["arguments"])
 
 
 def main() -> int:
