@@ -573,6 +573,9 @@ def stage_folder(target: Path) -> Path:
             return staging
         except FileExistsError:
             continue
+        except OSError as error:
+            raise SpecError(f"cannot create a folder beside it ({error.strerror})",
+                            key="folder") from None
 
 
 def commit_folder(staging: Path, target: Path, relative: str) -> None:
