@@ -428,8 +428,9 @@ def _seed(seed: Any) -> int:
 def prepare_variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
                      seed: Any = 0) -> dict[str, Any]:
     """Check a preview of variants before it starts (the count, at most :data:`MAX_PREVIEW`;
-    the seed; the template :func:`make_template` makes of the drawing and ``ranges``): the
-    arguments of :func:`run_variants`, plain data that a job's process receives."""
+    the random seed of the draw; the template :func:`make_template` makes of the drawing and
+    ``ranges``): the arguments of :func:`run_variants`, plain data that a job's process
+    receives."""
     from ..grading.templates import parse_template
 
     count = _whole(count, "count", 1, MAX_PREVIEW)
@@ -486,9 +487,10 @@ def variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
 def prepare_export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder: Any,
                    formats: Any = FORMATS, count: Any = 30, seed: Any = 0) -> dict[str, Any]:
     """Check an export before it starts: the count as ``planmethod variants`` allows it
-    (:data:`~planmethod.commands.variants.MAX_VARIANTS`), the seed, the packages, the folder
-    (under the studio's, new or empty: a :class:`FileExistsError` otherwise) and the template.
-    The arguments of :func:`run_export`, plain data that a job's process receives."""
+    (:data:`~planmethod.commands.variants.MAX_VARIANTS`), the random seed of the draw, the
+    packages, the folder (under the studio's, new or empty: a :class:`FileExistsError`
+    otherwise) and the template. The arguments of :func:`run_export`, plain data that a job's
+    process receives."""
     from ..commands.variants import MAX_VARIANTS
     from ..grading.templates import parse_template
 
