@@ -599,7 +599,7 @@ def _failure(error: Exception) -> tuple[int, dict[str, str]]:
     """A failed request's status and one-line answer; a bug is also one line in the
     terminal."""
     if isinstance(error, RefusedError):
-        return error.status, {"error": error.message, "kind": error.kind}
+        return error.status, {"error": str(error), "kind": error.kind}
     if isinstance(error, BusyError):
         return 429, {"error": str(error), "kind": "busy"}
     if isinstance(error, NoSuchJobError):
