@@ -9,7 +9,7 @@ from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
 from planmethod.kinematics.program import Model
 from planmethod.kinematics.solve import Motion
-from planmethod.studio.server import StudioHandler, StudioServer
+from planmethod.studio.server import StudioHandler, StudioServer, _DeadlineReader
 from planmethod.testing.pseudo import _PageText
 
 # argparse's parser reads this attribute: negative numbers in any float notation are values
@@ -27,6 +27,8 @@ variant_exercise  # noqa: B018
 # name (socketserver, http.server): the studio's server and its request handler
 StudioServer.daemon_threads  # noqa: B018
 StudioServer.allow_reuse_address  # noqa: B018
+StudioServer.request_queue_size  # noqa: B018
+StudioServer.handle_error  # noqa: B018
 StudioHandler.server_version  # noqa: B018
 StudioHandler.sys_version  # noqa: B018
 StudioHandler.protocol_version  # noqa: B018
@@ -37,9 +39,13 @@ StudioHandler.do_PUT  # noqa: B018
 StudioHandler.do_DELETE  # noqa: B018
 StudioHandler.do_HEAD  # noqa: B018
 StudioHandler.log_message  # noqa: B018
+StudioHandler.log_error  # noqa: B018
 StudioHandler.close_connection  # noqa: B018
 # the standard library's HTML parser calls these methods by name (html.parser): the
 # pseudo-translation's reader of a page's visible text
 _PageText.handle_starttag  # noqa: B018
 _PageText.handle_endtag  # noqa: B018
 _PageText.handle_data  # noqa: B018
+# the io module's buffered reader calls a raw stream's readinto by name: the studio's reader
+# that keeps a request's deadline
+_DeadlineReader.readinto  # noqa: B018

@@ -5,7 +5,7 @@ plans of positions, velocities and accelerations redraw as a point is dragged; p
 asked, save the exercise (written as drawn), draw variants from ranges of its lengths and crank
 angle with their task sheets, export LMS packages. The server (:mod:`planmethod.studio`) listens
 on 127.0.0.1 only, serves the files under the folder it was started in, and needs the token
-printed with its address; Ctrl-C stops it. docs/studio.md walks through it.
+printed with its address; Ctrl-C stops it (and its jobs). docs/studio.md walks through it.
 """
 
 from __future__ import annotations
@@ -29,11 +29,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    import signal
+    import threading
     import webbrowser
     from pathlib import Path
 
     from ..errors import SpecError
-    from ..studio.server import StudioServer
 
     folder = Path.cwd()
     initial = None
@@ -51,23 +52,36 @@ def run(args: argparse.Namespace) -> int:
         initial = path.relative_to(folder.resolve()).as_posix()
     if args.port is not None and not 0 <= args.port <= 65535:
         raise SpecError(f"--port must be in 0…65535, got {args.port}")
-    try:
-        server = StudioServer(folder, DEFAULT_PORT if args.port is None else args.port,
-                              initial=initial)
-    except OSError as error:
-        if args.port is not None:
-            raise SpecError(f"cannot listen on 127.0.0.1:{args.port} ({error.strerror})",
-                            key="--port") from None
-        server = StudioServer(folder, 0, initial=initial)
+    server = _listen(folder, args.port, initial)
     address = server.url("/", token=True)
     print(f"planmethod studio: serving {folder} at\n    {address}\n(Ctrl-C stops it)",
           flush=True)
-    if not args.no_browser:
-        webbrowser.open(address)
+    # Ctrl-C stops the studio even where it was started with SIGINT ignored (a background
+    # job of a shell); its jobs' processes, in sessions of their own, are stopped by it
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler) if main else None
     try:
+        if not args.no_browser:
+            webbrowser.open(address)
         server.serve_forever(poll_interval=0.2)
     except KeyboardInterrupt:
         print("\nplanmethod studio: stopped", file=sys.stderr)
     finally:
-        server.server_close()
+        if main:
+            signal.signal(signal.SIGINT, previous)
+        server.close()
     return 0
+
+
+def _listen(folder, port: int | None, initial: str | None):
+    """The studio listening on ``port`` (the default, or a free one if that is busy)."""
+    from ..errors import SpecError
+    from ..studio.server import StudioServer
+
+    try:
+        return StudioServer(folder, DEFAULT_PORT if port is None else port, initial=initial)
+    except OSError as error:
+        if port is not None:
+            raise SpecError(f"cannot listen on 127.0.0.1:{port} ({error.strerror})",
+                            key="--port") from None
+        return StudioServer(folder, 0, initial=initial)

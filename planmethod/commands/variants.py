@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import argparse
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 from ..runs import MANIFEST, RunKind, earlier_run, write_run
@@ -203,9 +203,12 @@ def run(args: argparse.Namespace) -> int:
 def variant_files(template, students: list[str], folders: list[str], *, seed: int,
                   aliases: dict[str, list[str]] | None = None, roster: bool = False,
                   sheets: bool = True, source: str = "",
-                  progress: bool | None = None) -> tuple[dict[str, str], list[str], list[list]]:
+                  progress: bool | None = None,
+                  on_advance: Callable[[int, int], None] | None = None,
+                  ) -> tuple[dict[str, str], list[str], list[list]]:
     """Everything a ``variants`` run writes, computed: (files by relative path, the reasons of
-    rejected draws, the rows of index.csv). ``folders`` are the students' folder names."""
+    rejected draws, the rows of index.csv). ``folders`` are the students' folder names;
+    ``on_advance(done, total)`` is told each variant drawn (the studio's jobs show it)."""
     import json
 
     from ..grading.keys import build_key, bundle
@@ -218,7 +221,7 @@ def variant_files(template, students: list[str], folders: list[str], *, seed: in
     rejected: list[str] = []
     keys = []
     index_rows = []
-    with Progress(len(students), "variants", enabled=progress) as bar:
+    with Progress(len(students), "variants", enabled=progress, on_advance=on_advance) as bar:
         for student, folder in zip(students, folders, strict=True):
             variant = draw_variant(template, seed=seed, student=student)
             rejected += list(variant.rejected)

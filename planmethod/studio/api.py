@@ -23,9 +23,11 @@ import errno
 import json
 import math
 import os
+import secrets
+import shutil
 import stat
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path, PurePosixPath
 from typing import Any
 
@@ -45,13 +47,19 @@ from ..model import FRAME
 __all__ = [
     "MAX_BODY",
     "Workspace",
+    "commit_folder",
     "error_payload",
     "export",
     "make_template",
     "open_exercise",
+    "prepare_export",
+    "prepare_variants",
+    "run_export",
+    "run_variants",
     "save_exercise",
     "save_template",
     "solve",
+    "stage_folder",
     "turn",
     "variants",
 ]
@@ -60,8 +68,9 @@ __all__ = [
 MAX_BODY = 1_000_000
 #: at most this many files are listed, this deep in the folder
 MAX_LISTED, MAX_DEPTH = 500, 4
-#: at most this many variants are previewed, or exported at once
-MAX_PREVIEW, MAX_EXPORT = 40, 2000
+#: at most this many variants are previewed (the page shows each one's task sheet); an export
+#: draws as many as ``planmethod variants`` (:data:`~planmethod.commands.variants.MAX_VARIANTS`)
+MAX_PREVIEW = 40
 #: the LMS packages "export" writes
 FORMATS = ("moodle", "prairielearn", "gradescope")
 
@@ -492,12 +501,38 @@ def _students(count: int) -> list[str]:
     return [str(number).zfill(width) for number in range(1, count + 1)]
 
 
-def variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
-             seed: Any = 0) -> dict[str, Any]:
-    """Draw ``count`` variants of the template :func:`make_template` makes, and their task
-    sheets: ``{"template": TOML, "variants": [{"student", "values", "attempt", "sheet",
-    "note"}], "rejected": [reasons]}``. ``note`` says when a variant is assembled otherwise
-    than drawn (a group on its other branch)."""
+#: what a job tells of its progress: (the phase, steps done, steps in all)
+Progress = Callable[[str, int, int], None]
+
+
+def _seed(seed: Any) -> int:
+    """A seed as the command line takes it: a whole number within 64 bits."""
+    from ..spec import MAX_INTEGER
+
+    return _whole(seed, "seed", -MAX_INTEGER, MAX_INTEGER)
+
+
+def prepare_variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
+                     seed: Any = 0) -> dict[str, Any]:
+    """Check a preview of variants before it starts (the count, at most :data:`MAX_PREVIEW`;
+    the random seed of the draw; the template :func:`make_template` makes of the drawing and
+    ``ranges``): the arguments of :func:`run_variants`, plain data that a job's process
+    receives."""
+    from ..grading.templates import parse_template
+
+    count = _whole(count, "count", 1, MAX_PREVIEW)
+    seed = _seed(seed)
+    template_text = make_template(text, ranges)
+    parse_template(template_text, file="template.toml")
+    return {"text": text, "template": template_text, "count": count, "seed": seed}
+
+
+def run_variants(arguments: Mapping[str, Any],
+                 on_progress: Progress | None = None) -> dict[str, Any]:
+    """Draw the variants :func:`prepare_variants` checked, and their task sheets:
+    ``{"template": TOML, "variants": [{"student", "values", "attempt", "sheet", "note"}],
+    "rejected": [reasons]}``. ``note`` says when a variant is assembled otherwise than drawn
+    (a group on its other branch); ``on_progress("variants", done, total)`` after each."""
     from ..commands.variants import rejection_summary
     from ..grading.keys import build_key
     from ..grading.sheets import task_sheet_svg
@@ -506,14 +541,12 @@ def variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
     from ..plans import draw_plans
     from ..render.workbook import inline_svg
 
-    count = _whole(count, "count", 1, MAX_PREVIEW)
-    seed = _whole(seed, "seed", 0, 2**31)
-    template_text = make_template(text, ranges)
-    template = parse_template(template_text, file="template.toml")
-    drawn = choose_branches(_exercise(text).mechanism)
+    template = parse_template(arguments["template"], file="template.toml")
+    drawn = choose_branches(_exercise(arguments["text"]).mechanism)
+    students = _students(arguments["count"])
     out, rejected = [], []
-    for student in _students(count):
-        variant = draw_variant(template, seed=seed, student=student)
+    for student in students:
+        variant = draw_variant(template, seed=arguments["seed"], student=student)
         rejected += list(variant.rejected)
         key = build_key(variant)
         sheet = task_sheet_svg(key, draw_plans(variant.exercise, acceleration=False))
@@ -524,37 +557,72 @@ def variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
                 "other branch): narrow the crank angle's range" if other else "")
         out.append({"student": student, "values": dict(variant.values),
                     "attempt": variant.attempt, "sheet": inline_svg(sheet), "note": note})
-    return {"template": template_text, "variants": out,
+        if on_progress is not None:
+            on_progress("variants", len(out), len(students))
+    return {"template": arguments["template"], "variants": out,
             "rejected": rejection_summary(rejected)}
 
 
-def export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder: Any,
-           formats: Any = FORMATS, count: Any = 30, seed: Any = 0) -> dict[str, Any]:
-    """Write a whole teaching run into ``folder`` (new or empty, under the studio's folder):
-    ``template.toml``, the variants (``variants/``: as ``planmethod variants`` writes them)
-    and the LMS packages asked for (``moodle/quiz.xml``, ``prairielearn/``,
-    ``gradescope/``)."""
+def variants(text: str, ranges: Mapping[str, Any], *, count: Any = 6,
+             seed: Any = 0) -> dict[str, Any]:
+    """Draw ``count`` variants of the template :func:`make_template` makes, and their task
+    sheets, here and now (the studio runs :func:`prepare_variants` in the request and
+    :func:`run_variants` as a job)."""
+    return run_variants(prepare_variants(text, ranges, count=count, seed=seed))
+
+
+def prepare_export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder: Any,
+                   formats: Any = FORMATS, count: Any = 30, seed: Any = 0) -> dict[str, Any]:
+    """Check an export before it starts: the count as ``planmethod variants`` allows it
+    (:data:`~planmethod.commands.variants.MAX_VARIANTS`), the random seed of the draw, the
+    packages, the folder (under the studio's, new or empty: a :class:`FileExistsError`
+    otherwise) and the template. The arguments of :func:`run_export`, plain data that a job's
+    process receives."""
+    from ..commands.variants import MAX_VARIANTS
+    from ..grading.templates import parse_template
+
+    if not isinstance(count, int) or isinstance(count, bool) or not 1 <= count <= MAX_VARIANTS:
+        raise SpecError(f"must be a whole number in 1…{MAX_VARIANTS}, got {count!r} (as "
+                        f"planmethod variants: a run of {MAX_VARIANTS} takes about a minute)",
+                        key="count")
+    seed = _seed(seed)
+    if (not isinstance(formats, list | tuple)
+            or any(name not in FORMATS for name in formats)):
+        raise SpecError(f"must be a list of {', '.join(FORMATS)}", key="formats")
+    target = workspace.new_folder(folder)
+    template_text = make_template(text, ranges)
+    parse_template(template_text, file="template.toml")
+    return {"template": template_text, "count": count, "seed": seed, "formats": list(formats),
+            "folder": workspace.relative(target), "target": str(target)}
+
+
+def run_export(arguments: Mapping[str, Any], staging: Path,
+               on_progress: Progress | None = None) -> dict[str, Any]:
+    """Write the teaching run :func:`prepare_export` checked into ``staging`` (an empty folder,
+    renamed into place by :func:`commit_folder` when it is whole): ``template.toml``, the
+    variants (``variants/``: as ``planmethod variants`` writes them, with the manifest a later
+    ``variants --force`` checks) and the LMS packages asked for (``moodle/quiz.xml``,
+    ``prairielearn/``, ``gradescope/``). ``on_progress(phase, done, total)`` tells each
+    variant drawn, then the ``packages`` and the ``writing``."""
+    from ..commands.export import EXECUTABLES, RUNS
     from ..commands.variants import MANIFEST, manifest_text, variant_files
     from ..grading import exports
     from ..grading.keys import bundle
     from ..grading.templates import parse_template
     from ..io import student_folder
 
-    count = _whole(count, "count", 1, MAX_EXPORT)
-    seed = _whole(seed, "seed", 0, 2**31)
-    if (not isinstance(formats, list | tuple)
-            or any(name not in FORMATS for name in formats)):
-        raise SpecError(f"must be a list of {', '.join(FORMATS)}", key="formats")
-    target = workspace.new_folder(folder)
-    template_text = make_template(text, ranges)
-    template = parse_template(template_text, file="template.toml")
+    count, seed, formats = arguments["count"], arguments["seed"], arguments["formats"]
+    template = parse_template(arguments["template"], file="template.toml")
     students = _students(count)
     folders = [student_folder(student) for student in students]
+    told = (None if on_progress is None else
+            lambda done, total: on_progress("variants", done, total))
     files, rejected, _ = variant_files(template, students, folders, seed=seed,
-                                       source="template.toml", progress=False)
-    written: dict[str, str] = {"template.toml": template_text}
+                                       source="template.toml", progress=False, on_advance=told)
+    if on_progress is not None:
+        on_progress("packages", count, count)
+    written: dict[str, str] = {"template.toml": arguments["template"]}
     written |= {f"variants/{name}": data for name, data in files.items()}
-    # the manifest a later `planmethod variants --force` checks before it replaces this run
     written[f"variants/{MANIFEST}"] = manifest_text(
         {name: data.encode("utf-8") for name, data in files.items()})
     keys = json.loads(files["keys.json"])["keys"]
@@ -564,15 +632,89 @@ def export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder
                                                                              strict=True)}
         written["moodle/quiz.xml"] = exports.moodle_xml(keys, sheets=sheets)
     if "prairielearn" in formats:
-        written |= {f"prairielearn/{name}": data for name, data in
-                    exports.prairielearn_questions(the_bundle).items()}
+        written |= _run_files("prairielearn", exports.prairielearn_questions(the_bundle),
+                              RUNS["prairielearn"], in_slug=True)
     if "gradescope" in formats:
-        written |= {f"gradescope/{name}": data for name, data in
-                    exports.gradescope_autograder(the_bundle).items()}
-    paths = write_files(target, written)
-    for name in ("run_autograder", "setup.sh", "grade_submission.py"):
+        written |= _run_files("gradescope", exports.gradescope_autograder(the_bundle),
+                              RUNS["gradescope"], in_slug=False)
+    if on_progress is not None:
+        on_progress("writing", count, count)
+    paths = write_files(staging, written)
+    for name in EXECUTABLES:
         if f"gradescope/{name}" in written:
-            (target / "gradescope" / name).chmod(0o755)
-    return {"folder": workspace.relative(target), "written": len(paths),
-            "variants": count, "rejected": len(rejected)}
+            (staging / "gradescope" / name).chmod(0o755)
+    return {"written": len(paths), "variants": count, "rejected": len(rejected)}
 
+
+def _run_files(folder: str, files: Mapping[str, str], kind, *, in_slug: bool
+               ) -> dict[str, str]:
+    """An LMS package's files under ``folder``, with the manifest that ``planmethod export``
+    writes beside them (in the question's folder ``SLUG/`` for PrairieLearn, in the
+    autograder's folder for Gradescope), so that a later ``export`` into it replaces the run
+    whole instead of refusing a folder it did not write."""
+    from ..runs import MANIFEST, manifest_text
+
+    runs: dict[str, dict[str, bytes]] = {}
+    for name, data in files.items():
+        run, _, inside = name.partition("/") if in_slug else ("", "", name)
+        runs.setdefault(run, {})[inside] = data.encode("utf-8")
+    written = {f"{folder}/{name}": data for name, data in files.items()}
+    for run, content in runs.items():
+        prefix = f"{folder}/{run}/" if run else f"{folder}/"
+        written[prefix + MANIFEST] = manifest_text(kind, content)
+    return written
+
+
+def stage_folder(target: Path) -> Path:
+    """A new hidden folder to write ``target``'s content into: beside it, or beside the
+    nearest folder above it that exists (so that a cancelled run leaves no folder made for
+    it); :func:`commit_folder` renames it into place."""
+    parent = target.parent
+    while not parent.is_dir():
+        parent = parent.parent
+    while True:
+        staging = parent / f".{target.name[:40]}.export-{secrets.token_hex(4)}"
+        try:
+            staging.mkdir()   # an ordinary folder's mode, as the one it becomes
+            return staging
+        except FileExistsError:
+            continue
+        except OSError as error:
+            raise SpecError(f"cannot create a folder beside it ({error.strerror})",
+                            key="folder") from None
+
+
+def commit_folder(staging: Path, target: Path, relative: str) -> None:
+    """Rename the whole ``staging`` folder onto ``target`` (named ``relative`` in messages),
+    which must still be missing or empty: a :class:`FileExistsError` otherwise, and
+    ``staging`` stays for the caller to remove."""
+    if target.is_symlink() or (target.exists() and (not target.is_dir()
+                                                    or any(target.iterdir()))):
+        raise FileExistsError(relative)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    if target.exists():
+        target.rmdir()
+    try:
+        os.rename(staging, target)
+    except OSError as error:
+        if error.errno in (errno.EEXIST, errno.ENOTEMPTY):
+            raise FileExistsError(relative) from None
+        raise
+
+
+def export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *, folder: Any,
+           formats: Any = FORMATS, count: Any = 30, seed: Any = 0) -> dict[str, Any]:
+    """Write a whole teaching run into ``folder`` (new or empty, under the studio's folder)
+    here and now, whole or not at all (the studio runs :func:`prepare_export` in the request,
+    :func:`run_export` as a job and :func:`commit_folder` when it ends):
+    ``{"folder", "written", "variants", "rejected"}``."""
+    arguments = prepare_export(workspace, text, ranges, folder=folder, formats=formats,
+                               count=count, seed=seed)
+    target = Path(arguments["target"])
+    staging = stage_folder(target)
+    try:
+        result = run_export(arguments, staging)
+        commit_folder(staging, target, arguments["folder"])
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return {"folder": arguments["folder"], **result}

@@ -7,8 +7,8 @@ template is a literal string at its call), writes the catalogue template
 ``planmethod/locale/planmethod.pot``, brings each language's ``.po`` up to date with it (a
 template that changed keeps its old translation marked fuzzy) and compiles every ``.po`` to
 the ``.mo`` that :mod:`gettext` reads. A template's place is written as its file without the
-line, so that moving code does not change the catalogues. The English ``.mo`` translates each template to itself:
-it is the list of templates a language's catalogue is measured against
+line, so that moving code does not change the catalogues. The English ``.mo`` translates each
+template to itself: it is the list of templates a language's catalogue is measured against
 (:func:`planmethod.words.language.missing`).
 
 Reading the templates needs only the standard library; writing the files uses Babel (the
