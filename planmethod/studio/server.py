@@ -41,7 +41,7 @@ Examples
 >>> request = urllib.request.Request(server.url("/api/files"),
 ...                                  headers={"X-Planmethod-Token": server.token})
 >>> json.load(urllib.request.urlopen(request))
-{'files': []}
+{'files': [], 'skipped': []}
 >>> server.stop()
 """
 
