@@ -46,6 +46,7 @@ True
 
 from __future__ import annotations
 
+import datetime
 import hashlib
 import math
 import re
@@ -642,12 +643,34 @@ def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, 
 
 
 # -- writing a resolved exercise back as TOML -----------------------------------------------
-def _toml_value(value: Any) -> str:
-    import json
+#: how a basic string writes each character TOML does not take as it is: the quote and the
+#: backslash escaped, every control character (U+0000–U+001F, and DEL, U+007F, which JSON leaves
+#: bare and TOML refuses) as its short escape or \uXXXX
+_BASIC_ESCAPES = {**{code: f"\\u{code:04x}" for code in [*range(0x20), 0x7F]},
+                  **{ord(char): escaped for char, escaped in (
+                      ('"', '\\"'), ("\\", "\\\\"), ("\b", "\\b"), ("\t", "\\t"),
+                      ("\n", "\\n"), ("\f", "\\f"), ("\r", "\\r"))}}
+#: a UTF-16 surrogate: no character, and no UTF-8 file holds one (JSON text may: "\ud800")
+_SURROGATE = re.compile("[\ud800-\udfff]")
 
+
+def _toml_string(text: str) -> str:
+    r"""``text`` as a TOML basic string, which reads back as exactly ``text``.
+
+    >>> print(_toml_string('say "hi" \\ \x7f\n'))
+    "say \"hi\" \\ \u007f\n"
+    """
+    if _SURROGATE.search(text):
+        raise ValueError("cannot write a lone surrogate (not a character) to TOML")
+    return '"' + text.translate(_BASIC_ESCAPES) + '"'
+
+
+def _toml_value(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
+        if abs(value) > 2**63 - 1:
+            raise ValueError("cannot write a whole number beyond 64 bits to TOML")
         return str(value)
     if isinstance(value, float):
         if not math.isfinite(value):
@@ -657,7 +680,10 @@ def _toml_value(value: Any) -> str:
     if isinstance(value, str):
         if _literal_block(value):   # a paragraph is written as it reads
             return "'''\n" + value + "'''"
-        return json.dumps(value, ensure_ascii=False)
+        return _toml_string(value)
+    if isinstance(value, datetime.date | datetime.time) and not (
+            isinstance(value, datetime.time) and value.tzinfo is not None):
+        return value.isoformat()    # a date-time is a date too; TOML has no time with offset
     if isinstance(value, list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     if isinstance(value, Mapping):
@@ -668,21 +694,19 @@ def _toml_value(value: Any) -> str:
 
 def _literal_block(text: str) -> bool:
     """True if ``text`` has several lines and reads back unchanged as a TOML multi-line literal
-    string: no three single quotes in it, no control character but newline and tab, not
-    ending in a quote.
+    string: no three single quotes in it, no control character but newline and tab (nor DEL),
+    no surrogate, not ending in a quote.
 
     >>> _literal_block("two\\nlines"), _literal_block("one line"), _literal_block("a\\r\\nb")
     (True, False, False)
     """
     return ("\n" in text and "'''" not in text and not text.endswith("'")
             and not any(ord(char) < 32 and char not in "\n\t" for char in text)
-            and "\x7f" not in text)
+            and "\x7f" not in text and not _SURROGATE.search(text))
 
 
 def _toml_key(key: str) -> str:
-    import json
-
-    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False)
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else _toml_string(key)
 
 
 def to_toml(data: Mapping[str, Any]) -> str:
