@@ -10,7 +10,6 @@ nothing written.
 from __future__ import annotations
 
 import datetime
-import math
 import re
 import tomllib
 from pathlib import Path
@@ -114,3 +113,181 @@ def test_variants_write_exercises_with_del_that_solve_reads(tmp_path, capsys):
         assert tomllib.loads(path.read_text(encoding="utf-8"))["title"] == "Press\x7f"
         assert main(["solve", str(path)]) == 0
     capsys.readouterr()
+
+
+# ---------------------------------------------------------------------------------------------
+# a file that starts with a UTF-8 byte-order mark (Notepad, Excel) is read as UTF-8
+
+BOM = "\ufeff"
+
+
+def test_every_reader_drops_a_byte_order_mark(tmp_path, capsys):
+    """The exercise, the template, the answers (CSV and JSON), the roster, the keys, the
+    coordinate table and a drawing, each written with a byte-order mark first, read as
+    without it."""
+    from planmethod.commands.check import read_coordinates
+    from planmethod.commands.variants import read_roster
+    from planmethod.grading.answers import read_answers
+    from planmethod.grading.drawings import read_drawing
+    from planmethod.grading.keys import load_keys
+    from planmethod.grading.templates import load_template
+    from planmethod.spec import load_exercise
+
+    def marked(name: str, text: str) -> Path:
+        path = tmp_path / name
+        path.write_text(BOM + text, encoding="utf-8")
+        return path
+
+    exercise = marked("exercise.toml", BASE)
+    assert load_exercise(exercise).mechanism.title == "Compressor slider-crank " \
+        "(Abduvaliev & Abduxoshimov)"
+    assert main(["solve", str(exercise)]) == 0
+    template = marked("template.toml", TEMPLATE)
+    assert load_template(template).data["title"] == tomllib.loads(TEMPLATE)["title"]
+    assert read_answers(marked("answers.csv", "student,v_C\ns1,5\n")) == [("s1", {"v_C": "5"})]
+    assert read_answers(marked("answers.json", '{"s1": {"v_C": 5}}')) == [("s1", {"v_C": 5})]
+    assert read_roster(str(marked("roster.csv", "student\ns1\n"))) == [("s1", [])]
+    course = tmp_path / "course"
+    assert main(["variants", str(template), "--count", "1", "--out", str(course),
+                 "--no-sheets"]) == 0
+    keys = marked("keys.json", (course / "keys.json").read_text(encoding="utf-8"))
+    assert len(load_keys(keys)) == 1
+    table = ROOT / "exercises" / "conveyor_sixbar_table2.csv"
+    conveyor = load_exercise(ROOT / "exercises" / "conveyor_sixbar.toml")
+    assert len(read_coordinates(marked("table.csv", table.read_text(encoding="utf-8")),
+                                conveyor)) == len(read_coordinates(table, conveyor))
+    drawing = marked("plan.json", '{"plan": "velocity", "points": {"p": [0, 0], "b": [1, 2]}}')
+    assert read_drawing(drawing).points["b"] == (1.0, 2.0)
+    capsys.readouterr()
+
+
+def test_the_studio_opens_a_file_with_a_byte_order_mark(tmp_path):
+    from planmethod.studio.api import Workspace, open_exercise
+
+    (tmp_path / "marked.toml").write_text(BOM + BASE, encoding="utf-8")
+    opened = open_exercise(Workspace(tmp_path), "marked.toml")
+    assert opened["tables"]["title"].startswith("Compressor slider-crank")
+
+
+def test_text_parsed_in_memory_drops_a_byte_order_mark():
+    from planmethod.spec import parse_json, parse_toml
+
+    assert parse_toml(BOM + 'title = "x"') == {"title": "x"}
+    assert parse_json(BOM + '{"a": [1]}') == {"a": [1]}
+
+
+def test_a_lone_surrogate_in_toml_text_is_one_line():
+    """Text that came through JSON (the studio) may hold half a UTF-16 pair: refused, naming
+    its line, never written into a file that cannot be encoded."""
+    from planmethod.errors import SpecError
+    from planmethod.spec import parse_toml
+
+    with pytest.raises(SpecError, match=r"^x\.toml: not valid TOML: U\+D800 .* \(line 2\)$"):
+        parse_toml('a = 1\ntitle = "\ud800"', file="x.toml")
+
+
+# ---------------------------------------------------------------------------------------------
+# the nesting guard reads TOML's strings and comments as TOML does
+
+
+def _depth(value) -> int:
+    """How deep lists and tables nest in ``value`` (a scalar: 0)."""
+    if isinstance(value, dict | list):
+        children = value.values() if isinstance(value, dict) else value
+        return 1 + max((_depth(child) for child in children), default=0)
+    return 0
+
+
+def _document_depth(data: dict) -> int:
+    """The nesting of the TOML document :func:`to_toml` writes of ``data``: a ``[table]``
+    header is one level and an ``[[array]]`` two, and the keys under them are below them."""
+    deepest = 0
+    for value in data.values():
+        if isinstance(value, dict):
+            deepest = max(deepest, 1 + max(map(_depth, value.values()), default=0))
+        elif isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
+            deepest = max(deepest, 2 + max((_depth(v) for item in value
+                                            for v in item.values()), default=0))
+        else:
+            deepest = max(deepest, _depth(value))
+    return deepest
+
+
+#: text made of what a nesting guard could mistake: brackets, quotes, comments, escapes, dots
+TRICKY = st.text(alphabet=st.sampled_from("[]{}\"'#\\\n\t .=,a1"), max_size=30) | TEXT
+TRICKY_VALUES = st.recursive(TRICKY | st.floats(allow_nan=False, allow_infinity=False)
+                             | st.integers(-5, 5) | st.times(), lambda inner:
+                             st.lists(inner, max_size=3)
+                             | st.dictionaries(TRICKY, inner, max_size=3), max_leaves=10)
+TRICKY_TABLES = st.dictionaries(TRICKY, TRICKY_VALUES
+                                | st.dictionaries(TRICKY, TRICKY_VALUES, max_size=3)
+                                | st.lists(st.dictionaries(TRICKY, TRICKY_VALUES, max_size=3),
+                                           min_size=1, max_size=2), max_size=4)
+
+
+@settings(max_examples=400, deadline=None)
+@given(TRICKY_TABLES)
+def test_the_guard_counts_only_the_brackets_toml_reads(data):
+    """For any document, the guard's depth is the document's own: no bracket, quote or #
+    inside a string counts, and every real level does."""
+    from planmethod.spec import nesting_depth
+
+    text = to_toml(data)
+    assert tomllib.loads(text) == data
+    assert nesting_depth(text) == _document_depth(data)
+
+
+@settings(max_examples=300, deadline=None)
+@given(TRICKY_VALUES)
+def test_the_guard_counts_only_the_brackets_json_reads(value):
+    import json
+
+    from planmethod.spec import nesting_depth
+
+    assert nesting_depth(json.dumps(value, default=str), syntax="json") == _depth(value)
+
+
+#: valid files whose strings and comments hold brackets, each read by solve
+VALID_TEXTS = {
+    "the issue's description": 'description = """He wrote " and then ' + "[" * 40 + '"""',
+    "a multi-line literal": "description = '''He wrote ' and then " + "[" * 40 + "''''",
+    "closing quotes inside": 'description = """a [[[[""""',
+    "an escaped quote": 'description = "say \\" ' + "[" * 40 + '"',
+    "an escaped backslash": 'description = "C:\\\\"  # ' + "[" * 40,
+    "a literal backslash": "description = 'C:\\' # " + "[" * 40,
+    "a comment": "# it's a [[[[ " + "{" * 40 + "\ndescription = 'x'",
+    "a line-ending backslash": 'description = """a \\\n  ' + "[" * 40 + '"""',
+}
+
+
+@pytest.mark.parametrize("case", list(VALID_TEXTS))
+def test_brackets_in_strings_and_comments_never_count(tmp_path, capsys, case):
+    path = tmp_path / "valid.toml"
+    text = re.sub(r'^description = """.*?"""\n', "", BASE, count=1, flags=re.M | re.S)
+    path.write_text(VALID_TEXTS[case] + "\n" + text, encoding="utf-8")
+    assert main(["solve", str(path)]) == 0, capsys.readouterr().err
+    capsys.readouterr()
+
+
+#: really deep files, each refused before it is parsed (no RecursionError, no long stall)
+DEEP_TEXTS = {
+    "brackets": "x = " + "[" * 40 + "]" * 40,
+    "brackets after a string": 'a = "]]]]"\nx = ' + "[" * 40 + "]" * 40,
+    "brackets after a literal string": "a = 'C:\\'\nx = " + "[" * 40 + "]" * 40,
+    "inline tables": "x = " + "{a = " * 40 + "1" + "}" * 40,
+    "a dotted key": "a" + ".a" * 50_000 + " = 1",
+    "a dotted key of numbers": "1" + ".1" * 50_000 + " = 1",
+    "a quoted dotted key": '"a"' + '."a"' * 50_000 + " = 1",
+    "a dotted table header": "[" + ".".join(["a"] * 50_000) + "]\nx = 1",
+    "dotted keys under a header": "[" + ".".join(["a"] * 20) + "]\n" + ".".join(["b"] * 20)
+                                  + " = 1",
+    "dotted keys in inline tables": "x = " + "{a.a.a = " * 20 + "1" + "}" * 20,
+}
+
+
+@pytest.mark.parametrize("case", list(DEEP_TEXTS))
+def test_deep_nesting_is_still_refused(tmp_path, capsys, case):
+    path = tmp_path / "deep.toml"
+    path.write_text(DEEP_TEXTS[case] + "\n", encoding="utf-8")
+    line = _fails(capsys, ["solve", path], tmp_path)
+    assert "deep.toml: tables or arrays nested" in line and "at most 32" in line

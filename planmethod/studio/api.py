@@ -140,7 +140,7 @@ class Workspace:
             raise SpecError(f"larger than {MAX_BODY // 1000} kB: the studio opens exercise "
                             "files", file=relative)
         try:
-            return path.read_text(encoding="utf-8")
+            return path.read_text(encoding="utf-8-sig")   # a byte-order mark dropped
         except (OSError, UnicodeDecodeError) as error:
             raise SpecError(f"cannot read the file ({error})", file=relative) from None
 
