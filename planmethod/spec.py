@@ -44,7 +44,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import SpecError
+from .errors import SpecError, value_text
 from .io import read_text_bounded
 from .model import (
     FRAME,
@@ -483,7 +483,7 @@ class _Reader:
                what: str = "") -> float:
         """A finite number of magnitude at most ``limit`` (``what`` names the limit)."""
         if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.error(key, f"must be a finite number, got {value!r}")
+            raise self.error(key, f"must be a finite number, got {value_text(value)}")
         try:
             value = float(value)
         except OverflowError:   # an integer too large for a float
@@ -502,7 +502,7 @@ class _Reader:
     def vector(self, value: Any, key: str, *, limit: float = MAX_MAGNITUDE,
                what: str = "") -> tuple[float, float]:
         if not isinstance(value, list | tuple) or len(value) != 2:
-            raise self.error(key, f"must be a pair of numbers [x, y], got {value!r}")
+            raise self.error(key, f"must be a pair of numbers [x, y], got {value_text(value)}")
         return (self.number(value[0], f"{key}[0]", limit=limit, what=what),
                 self.number(value[1], f"{key}[1]", limit=limit, what=what))
 
@@ -520,12 +520,12 @@ class _Reader:
 
     def string(self, value: Any, key: str) -> str:
         if not isinstance(value, str) or not value:
-            raise self.error(key, f"must be a non-empty string, got {value!r}")
+            raise self.error(key, f"must be a non-empty string, got {value_text(value)}")
         return value
 
     def table(self, value: Any, key: str) -> Mapping[str, Any]:
         if not isinstance(value, Mapping):
-            raise self.error(key, f"must be a table, got {value!r}")
+            raise self.error(key, f"must be a table, got {value_text(value)}")
         return value
 
     def tables(self, data: Mapping[str, Any], name: str
@@ -558,6 +558,9 @@ class _Reader:
         data = frames_from_drawn(data, file=self.file)
         title = data.get("title", Path(self.file).stem if self.file else "mechanism")
         title = self.string(title, "title")
+        if not isinstance(data.get("description", ""), str):
+            raise self.error("description", "must be a string (the task in words), got "
+                                            f"{value_text(data['description'])}")
         links = self.links(data)
         revolutes = self.revolutes(links)
         slides = self.slides(data, links)
@@ -732,7 +735,7 @@ class _Reader:
         self.only_keys(table, ("frame", "numbers"), "notation")
         place = table.get("frame", 0)
         if isinstance(place, bool) or place not in FRAME_PLACES:
-            raise self.error("notation.frame", f'must be 0, 1 or "last", got {place!r}')
+            raise self.error("notation.frame", f'must be 0, 1 or "last", got {value_text(place)}')
         numbers: dict[str, int] = {}
         owner: dict[int, str] = {}
         for name, value in self.table(table.get("numbers", {}), "notation.numbers").items():
@@ -740,7 +743,8 @@ class _Reader:
             if name not in links:
                 raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
             if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
-                raise self.error(key, f"must be a whole number from 0 to 99, got {value!r}")
+                raise self.error(key, "must be a whole number from 0 to 99, got "
+                                      f"{value_text(value)}")
             if value in owner:
                 raise self.error(key, f"{value} is already the number of '{owner[value]}'")
             if name == FRAME and "frame" in table:
@@ -822,13 +826,14 @@ class _Reader:
                                      f"{did_you_mean(point, links[link].points)}")
             oppose = table.get("oppose_velocity", False)
             if not isinstance(oppose, bool):
-                raise self.error(f"{key}.oppose_velocity", f"must be true or false, got {oppose!r}")
+                raise self.error(f"{key}.oppose_velocity",
+                                 f"must be true or false, got {value_text(oppose)}")
             name = None
             if "name" in table:
                 name = self.string(table["name"], f"{key}.name")
                 if not re.fullmatch(r"[^\W\d][\w,′']{0,15}", name):
-                    raise self.error(f"{key}.name", f"{name!r} is not a symbol: a letter, then up "
-                                     "to 15 letters, digits or _ (P, P_c, F_res)")
+                    raise self.error(f"{key}.name", f"{value_text(name)} is not a symbol: a "
+                                     "letter, then up to 15 letters, digits or _ (P, P_c, F_res)")
             loads.append(Load(
                 link=link, point=point,
                 force=self.vector(table["force"], f"{key}.force") if has_force else None,
@@ -862,7 +867,7 @@ class _Reader:
             if (isinstance(value, bool) or not isinstance(value, int)
                     or not 1 <= value <= MAX_FRICTION_ITERATIONS):
                 raise self.error("friction.max_iterations", f"must be an integer from 1 to "
-                                 f"{MAX_FRICTION_ITERATIONS}, got {value!r}")
+                                 f"{MAX_FRICTION_ITERATIONS}, got {value_text(value)}")
             result["max_iterations"] = value
         pair_keys = {pair.point for pair in revolutes} | {pair.key for pair in revolutes}
         pair_keys |= {pair.key for pair in slides}
@@ -910,7 +915,7 @@ class _Reader:
         if "exact_mm" in table:
             if not isinstance(table["exact_mm"], bool):
                 raise self.error("plan.exact_mm", f"must be true or false, got "
-                                                  f"{table['exact_mm']!r}")
+                                                  f"{value_text(table['exact_mm'])}")
             values["exact_mm"] = table["exact_mm"]
         return PlanSettings(**values)
 
@@ -940,7 +945,7 @@ class _Reader:
         values["sliding"] = tuple(items)
         forces = table.get("forces", False)
         if not isinstance(forces, bool):
-            raise self.error("ask.forces", f"must be true or false, got {forces!r}")
+            raise self.error("ask.forces", f"must be true or false, got {value_text(forces)}")
         values["forces"] = forces
         return Ask(**values)
 
@@ -949,7 +954,7 @@ class _Reader:
         if isinstance(items, str):
             items = [items]
         if not isinstance(items, list):
-            raise self.error(f"ask.{name}", f"must be a list of names, got {items!r}")
+            raise self.error(f"ask.{name}", f"must be a list of names, got {value_text(items)}")
         for i, item in enumerate(items):
             self.string(item, f"ask.{name}[{i}]")
         return items
@@ -1096,7 +1101,8 @@ class _Drawing:
                                         f"link is the list of its points, e.g. {name} = "
                                         f"{list(names)!r}".replace("'", '"'))
             if not isinstance(names, list):
-                raise self.reader.error(key, f"must be a list of point names, got {names!r}")
+                raise self.reader.error(key, "must be a list of point names, got "
+                                        f"{value_text(names)}")
             for index, point in enumerate(names):
                 point = self.reader.string(point, f"{key}[{index}]")
                 if point not in self.points:

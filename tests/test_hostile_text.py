@@ -291,3 +291,63 @@ def test_deep_nesting_is_still_refused(tmp_path, capsys, case):
     path.write_text(DEEP_TEXTS[case] + "\n", encoding="utf-8")
     line = _fails(capsys, ["solve", path], tmp_path)
     assert "deep.toml: tables or arrays nested" in line and "at most 32" in line
+
+
+# ---------------------------------------------------------------------------------------------
+# a value of the wrong kind is named in the file's words, never as Python writes it
+
+#: (key, TOML value given, what the error says it got)
+WRONG_KINDS = [
+    ("title", "1979-05-27T07:32:00", "got a date-time 1979-05-27T07:32:00"),
+    ("title", "1979-05-27", "got a date 1979-05-27"),
+    ("title", "07:32:00", "got a time 07:32:00"),
+    ("title", "true", "got true"),
+    ("title", '["a", 1979-05-27]', "got ['a', 1979-05-27]"),
+    ("title", "{ a = 1 }", "got {a = 1}"),
+    ("description", "1979-05-27T07:32:00Z", "got a date-time 1979-05-27T07:32:00+00:00"),
+    ("description", "[1, 2]", "got [1, 2]"),
+]
+
+
+@pytest.mark.parametrize(("key", "value", "said"), WRONG_KINDS)
+def test_a_wrong_kind_is_said_in_the_files_words(tmp_path, capsys, key, value, said):
+    path = tmp_path / "kinds.toml"
+    path.write_text(_with(BASE, key, value), encoding="utf-8")
+    line = _fails(capsys, ["solve", path], tmp_path)
+    assert line.startswith(f"planmethod: error: {path}: {key}: must be ") and line.endswith(said)
+    assert "datetime" not in line and "True" not in line
+
+
+@pytest.mark.parametrize("case", ["omega", "angle", "link", "published"])
+def test_a_date_anywhere_is_said_as_a_date(tmp_path, capsys, case):
+    """Every key that expects a number, text or a list says what it got the same way."""
+    lines = {"omega": ("omega = 100", "omega = 1979-05-27"),
+             "angle": ("angle = 45", "angle = [1979-05-27, 2]"),
+             "link": ('link = "AB"', "link = 07:32:00"),
+             "published": ("v_B = 6.0", "v_B = 1979-05-27T07:32:00")}
+    old, new = lines[case]
+    assert old in BASE
+    path = tmp_path / "kinds.toml"
+    path.write_text(BASE.replace(old, new, 1), encoding="utf-8")
+    line = _fails(capsys, ["solve", path], tmp_path)
+    assert re.search(r"got (a date 1979-05-27|\[1979-05-27, 2\]|a time 07:32:00|"
+                     r"a date-time 1979-05-27T07:32:00)$", line), line
+    assert "datetime" not in line
+
+
+def test_a_template_setting_of_the_wrong_kind_is_said_in_the_files_words(tmp_path, capsys):
+    path = tmp_path / "template.toml"
+    path.write_text(TEMPLATE.replace("[template]", "[template]\nmax_attempts = 1979-05-27", 1),
+                    encoding="utf-8")
+    assert "[template]" in TEMPLATE
+    line = _fails(capsys, ["variants", path, "--out", tmp_path / "out"], tmp_path)
+    assert line.endswith("template.max_attempts: must be a whole number in 1…10000, got a date "
+                         "1979-05-27")
+
+
+def test_a_long_wrong_value_is_cut_in_its_error(tmp_path, capsys):
+    path = tmp_path / "long.toml"
+    path.write_text(BASE.replace("omega = 100", f'omega = "{"x" * 500_000}"', 1),
+                    encoding="utf-8")
+    line = _fails(capsys, ["solve", path], tmp_path)
+    assert line.endswith("drive.omega: must be a finite number, got '" + "x" * 60 + "'…")

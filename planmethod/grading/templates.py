@@ -55,7 +55,14 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
+from ..errors import (
+    AssemblyError,
+    ConvergenceError,
+    PlanmethodError,
+    SpecError,
+    ToggleError,
+    value_text,
+)
 from ..model import Exercise
 from ..numbering import course_numbers, course_symbols
 from ..plans.construction import course_text
@@ -173,6 +180,9 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
         raise SpecError("a template with random values must say what its students are asked: "
                         "add an [ask] table (velocity = [...], omega = [...] …)", file=file,
                         key="ask")
+    if not isinstance(data.get("description", ""), str):
+        raise SpecError("must be a string (the task in words, with {name} placeholders), got "
+                        f"{value_text(data['description'])}", file=file, key="description")
     if "vars" in data and not isinstance(data["vars"], Mapping):
         raise SpecError("must be a table of named values", file=file, key="vars")
     for name in data.get("vars", {}):
@@ -187,11 +197,11 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
             try:
                 tree = parse(value[1:])
             except ExpressionError as error:
-                raise SpecError(f"bad expression {value!r}: {error}", file=file,
+                raise SpecError(f"bad expression {value_text(value)}: {error}", file=file,
                                 key=key) from None
             for name in references(tree):
                 if not _exists(data, name):
-                    raise SpecError(f"expression {value!r} refers to '{name}', which is "
+                    raise SpecError(f"expression {value_text(value)} refers to '{name}', which is "
                                     "neither in [vars] nor a key of the file", file=file,
                                     key=key)
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
@@ -206,32 +216,32 @@ def _settings(table: Any, file: str | None) -> TemplateSettings:
             value = table[name]
             if (isinstance(value, bool) or not isinstance(value, int | float)
                     or not 0 <= value < 90):
-                raise SpecError(f"must be an angle in [0, 90) degrees, got {value!r}",
+                raise SpecError(f"must be an angle in [0, 90) degrees, got {value_text(value)}",
                                 file=file, key=f"template.{name}")
             values[name] = float(value)
     if "max_attempts" in table:
         value = table["max_attempts"]
         if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 10000:
-            raise SpecError(f"must be a whole number in 1…10000, got {value!r}", file=file,
-                            key="template.max_attempts")
+            raise SpecError(f"must be a whole number in 1…10000, got {value_text(value)}",
+                            file=file, key="template.max_attempts")
         values["max_attempts"] = value
     if "min_segment_mm" in table:
         value = table["min_segment_mm"]
         if isinstance(value, bool) or not isinstance(value, int | float) or not 0 <= value <= 200:
-            raise SpecError(f"must be a length in [0, 200] mm, got {value!r}", file=file,
+            raise SpecError(f"must be a length in [0, 200] mm, got {value_text(value)}", file=file,
                             key="template.min_segment_mm")
         values["min_segment_mm"] = float(value)
     if "max_tolerance" in table:
         value = table["max_tolerance"]
         if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value <= 1:
-            raise SpecError(f"must be a share in (0, 1] (0.1 = 10 %), got {value!r}", file=file,
-                            key="template.max_tolerance")
+            raise SpecError(f"must be a share in (0, 1] (0.1 = 10 %), got {value_text(value)}",
+                            file=file, key="template.max_tolerance")
         values["max_tolerance"] = float(value)
     if "require" in table:
         value = table["require"]
         if not isinstance(value, list) or any(item not in COMPONENTS for item in value):
             raise SpecError(f"must be a list of components from {', '.join(COMPONENTS)}, got "
-                            f"{value!r}", file=file, key="template.require")
+                            f"{value_text(value)}", file=file, key="template.require")
         values["require"] = tuple(value)
     return TemplateSettings(**values)
 
@@ -261,13 +271,13 @@ def _check_random(spec: Mapping[str, Any], key: str, file: str | None) -> None:
         if not isinstance(options, list) or not options:
             raise SpecError("choice must be a non-empty list", file=file, key=f"{key}.choice")
         if not all(_number(o) or isinstance(o, str) for o in options):
-            raise SpecError(f"choice holds numbers or strings, got {options!r}", file=file,
-                            key=f"{key}.choice")
+            raise SpecError(f"choice holds numbers or strings, got {value_text(options)}",
+                            file=file, key=f"{key}.choice")
         return
     bounds = spec["range"]
     if (not isinstance(bounds, list) or len(bounds) != 2
             or not all(_number(b) for b in bounds)):
-        raise SpecError(f"range must be [low, high] with finite numbers, got {bounds!r}",
+        raise SpecError(f"range must be [low, high] with finite numbers, got {value_text(bounds)}",
                         file=file, key=f"{key}.range")
     low, high = bounds
     if low > high:
@@ -276,7 +286,7 @@ def _check_random(spec: Mapping[str, Any], key: str, file: str | None) -> None:
     if "step" in spec:
         step = spec["step"]
         if not _number(step) or step <= 0:
-            raise SpecError(f"step must be a positive number, got {step!r}", file=file,
+            raise SpecError(f"step must be a positive number, got {value_text(step)}", file=file,
                             key=f"{key}.step")
         if (high - low) / step > 1e7:
             raise SpecError(f"range/step gives more than 10 million values ({step:g})",
@@ -361,7 +371,7 @@ class _Resolver:
                 try:
                     result = evaluate(parse(raw[1:]), self.reference)
                 except ExpressionError as error:
-                    raise SpecError(f"{raw!r}: {error}", file=self.template.source,
+                    raise SpecError(f"{value_text(raw)}: {error}", file=self.template.source,
                                     key=key) from None
             elif isinstance(raw, str) and raw.startswith("=="):
                 result = raw[1:]
