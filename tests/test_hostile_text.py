@@ -351,3 +351,74 @@ def test_a_long_wrong_value_is_cut_in_its_error(tmp_path, capsys):
                     encoding="utf-8")
     line = _fails(capsys, ["solve", path], tmp_path)
     assert line.endswith("drive.omega: must be a finite number, got '" + "x" * 60 + "'…")
+
+
+# ---------------------------------------------------------------------------------------------
+# no unbounded work from a short input: a placeholder's format and a task's length are bounded
+
+#: a placeholder appended to the template's description → what the refusal says
+FORMATS = {
+    "a precision of 100000000": ("{l_AB:.100000000f}", "has a precision of 100000000; at most 15"),
+    "a width of 100000000": ("{l_AB:100000000}", "has a width of 100000000; at most 40"),
+    "a width of 5000 digits": ("{l_AB:" + "9" * 5000 + "}", "has a width of 5000 digits"),
+    "a zero-padded width": ("{l_AB:041.3f}", "has a width of 41; at most 40"),
+    "a precision of 16": ("{omega:.16g}", "has a precision of 16; at most 15"),
+}
+
+
+def _described(extra: str) -> str:
+    """The shipped template with ``extra`` at the end of its description."""
+    start = TEMPLATE.index('description = """') + len('description = """')
+    end = TEMPLATE.index('"""', start)
+    return TEMPLATE[:end] + extra + TEMPLATE[end:]
+
+
+@pytest.mark.parametrize("case", list(FORMATS))
+def test_a_placeholder_asking_for_too_much_is_refused(tmp_path, capsys, case):
+    placeholder, said = FORMATS[case]
+    path = tmp_path / "template.toml"
+    path.write_text(_described(placeholder), encoding="utf-8")
+    line = _fails(capsys, ["variants", path, "--count", "2", "--out", tmp_path / "out"],
+                  tmp_path)
+    assert f"{path}: description: the placeholder '" in line and said in line
+    assert len(line) < 300
+
+
+def test_a_placeholder_at_its_bounds_is_filled(tmp_path, capsys):
+    path = tmp_path / "template.toml"
+    path.write_text(_described(" [{l_AB:40.15f}]"), encoding="utf-8")
+    assert main(["variants", str(path), "--count", "1", "--out", str(tmp_path / "out"),
+                 "--no-sheets"]) == 0
+    written = tomllib.loads((tmp_path / "out" / "001" / "exercise.toml").read_text("utf-8"))
+    filled = re.search(r"\[( *\d\.\d+)\]", written["description"]).group(1)
+    assert len(filled) == 40 and len(filled.split(".")[1]) == 15
+    capsys.readouterr()
+
+
+def test_a_task_that_grows_beyond_its_bound_is_refused(tmp_path, capsys):
+    """A placeholder may quote the file's keys, the description itself among them: the text
+    filled in is bounded, however it grows."""
+    from planmethod.errors import SpecError
+    from planmethod.grading.templates import MAX_TASK_CHARACTERS, format_description
+
+    text = "x" * 300 + " {description}" * 100
+    with pytest.raises(SpecError, match=f"more than {MAX_TASK_CHARACTERS} characters"):
+        format_description(text, {}, {"description": text})
+    path = tmp_path / "template.toml"
+    path.write_text(_with(_described(" {title}" * 100), "title", '"' + "T" * 1000 + '"'),
+                    encoding="utf-8")
+    line = _fails(capsys, ["variants", path, "--count", "1", "--out", tmp_path / "out"],
+                  tmp_path)
+    assert f"{path}: description: the task's text is more than" in line
+
+
+def test_the_studio_quotes_a_title_and_never_reads_it_as_a_placeholder():
+    """The studio's template quotes the drawing's title by ``{title}``: a title that looks
+    like a placeholder is printed as it is, at once."""
+    from planmethod.studio.api import variants
+
+    title = "{l_BC:.100000000f}"
+    answer = variants(_with(BASE, "title", f'"{title}"'), {"lengths": {"BC": [0.16, 0.2]}},
+                      count=1)
+    assert tomllib.loads(answer["template"])["description"].startswith("{title}. ")
+    assert title in answer["variants"][0]["sheet"]

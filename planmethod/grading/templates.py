@@ -90,6 +90,14 @@ TEMPLATE_KEYS = ("min_line_angle_deg", "dead_centre_deg", "max_attempts", "min_s
 #: plan components a template may require to be drawn (not to vanish) in every variant
 COMPONENTS = ("normal", "tangential", "coriolis", "relative")
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_.\[\]]*)(?::([-+ #0]?\d*(?:\.\d+)?[efgd%]?))?\}")
+#: a placeholder's format: its width (the characters it is padded to) and its precision (the
+#: digits after the point, or significant ones) are at most these (``{l_AB:.100000000f}``
+#: would write 100 MB)
+MAX_FORMAT_WIDTH = 40
+MAX_FORMAT_PRECISION = 15
+#: a task's text, its placeholders filled in, is at most this many characters (a sheet, a key
+#: and a quiz print it for every student)
+MAX_TASK_CHARACTERS = 20_000
 _PATH_PART = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]")
 
 
@@ -149,7 +157,10 @@ class Variant:
             "{scales." in str(text) else {}
         if "{symbol." in str(text):
             drawing = {**drawing, "symbol": course_symbols(self.exercise.mechanism)}
-        return format_description(text, self.values, self.data, drawing or None)
+        try:
+            return format_description(text, self.values, self.data, drawing or None)
+        except SpecError as error:
+            raise error.located(file=self.exercise.source) from None
 
 
 def load_template(path: str | Path) -> Template:
@@ -183,6 +194,14 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
     if not isinstance(data.get("description", ""), str):
         raise SpecError("must be a string (the task in words, with {name} placeholders), got "
                         f"{value_text(data['description'])}", file=file, key="description")
+    description = data.get("description", "")
+    if len(description) > MAX_TASK_CHARACTERS:
+        raise SpecError(f"the task's text is {len(description)} characters; at most "
+                        f"{MAX_TASK_CHARACTERS}", file=file, key="description")
+    for placeholder in _PLACEHOLDER.finditer(description):
+        problem = _format_problem(placeholder)
+        if problem:
+            raise SpecError(problem, file=file, key="description")
     if "vars" in data and not isinstance(data["vars"], Mapping):
         raise SpecError("must be a table of named values", file=file, key="vars")
     for name in data.get("vars", {}):
@@ -619,7 +638,15 @@ def drawing_values(exercise: Exercise) -> dict[str, dict[str, float]]:
 def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any],
                        drawing: Mapping[str, Any] | None = None) -> str:
     """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values, file keys and
-    the ``drawing``'s values (:func:`drawing_values`); an unknown name is left as written.
+    the ``drawing``'s values (:func:`drawing_values`); an unknown name is left as written, and
+    so is a value inserted (a ``{name}`` in it is not filled in again).
+
+    Raises
+    ------
+    SpecError
+        If a placeholder's width is above :data:`MAX_FORMAT_WIDTH` or its precision above
+        :data:`MAX_FORMAT_PRECISION`, or the text filled in would be longer than
+        :data:`MAX_TASK_CHARACTERS` (key ``description``).
 
     Examples
     --------
@@ -627,11 +654,20 @@ def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, 
     'l = 0.0612 m, {x}'
     >>> format_description("(AB) = {drawn.crank:.3g} mm", {}, {}, {"drawn": {"crank": 27.5}})
     '(AB) = 27.5 mm'
+    >>> format_description("{l:.100000000f}", {"l": 0.06}, {})
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: description: the placeholder '{l:.100000000f}' has a \
+precision of 100000000; at most 15
     """
     if not isinstance(text, str):
         return ""
+    written = [0]    # the characters the text has grown by so far
 
     def fill(match: re.Match) -> str:
+        problem = _format_problem(match)
+        if problem:
+            raise SpecError(problem, key="description")
         name, spec = match.group(1), match.group(2) or ""
         for source in (values, data, drawing or {}):
             try:
@@ -644,12 +680,39 @@ def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, 
         if isinstance(value, Mapping | list):
             return match.group(0)
         try:
-            return format(value, spec) if spec else (f"{value:g}" if _number(value)
-                                                      else str(value))
+            filled = format(value, spec) if spec else (f"{value:g}" if _number(value)
+                                                       else str(value))
         except (ValueError, TypeError):
             return match.group(0)
+        written[0] += len(filled) - len(match.group(0))
+        if len(text) + written[0] > MAX_TASK_CHARACTERS:
+            raise SpecError(f"the task's text is more than {MAX_TASK_CHARACTERS} characters "
+                            "once its placeholders are filled in", key="description")
+        return filled
 
+    if len(text) > MAX_TASK_CHARACTERS:
+        raise SpecError(f"the task's text is {len(text)} characters; at most "
+                        f"{MAX_TASK_CHARACTERS}", key="description")
     return _PLACEHOLDER.sub(fill, text)
+
+
+def _format_problem(placeholder: re.Match) -> str | None:
+    """Why a placeholder's format asks for too much (its width or precision above the
+    bounds), or None.
+
+    >>> _format_problem(_PLACEHOLDER.search("{l_AB:1000.3f}"))
+    "the placeholder '{l_AB:1000.3f}' has a width of 1000; at most 40"
+    """
+    found = re.fullmatch(r"[-+ #0]?(\d*)(?:\.(\d+))?[efgd%]?", placeholder.group(2) or "")
+    if found is None:
+        return None
+    for digits, what, limit in ((found.group(1), "width", MAX_FORMAT_WIDTH),
+                                (found.group(2), "precision", MAX_FORMAT_PRECISION)):
+        if digits and (len(digits) > 6 or int(digits) > limit):
+            amount = digits if len(digits) <= 12 else f"{len(digits)} digits"
+            return (f"the placeholder {value_text(placeholder.group(0))} has a {what} of "
+                    f"{amount}; at most {limit}")
+    return None
 
 
 # -- writing a resolved exercise back as TOML -----------------------------------------------

@@ -330,8 +330,8 @@ def make_template(text: str, ranges: Mapping[str, Any]) -> str:
         drive["omega"] = "= omega"
     angle_text = "{phi:g}" if "phi" in variables else f"{float(mechanism.drive.angle):g}"
     omega_text = "{omega:g}" if "omega" in variables else f"{mechanism.drive.omega:g}"
-    tables["description"] = (
-        f"{tables['title']}. " + (f"Lengths: {', '.join(words)}. " if words else "")
+    tables["description"] = (       # the title by its placeholder: its text is never read
+        "{title}. " + (f"Lengths: {', '.join(words)}. " if words else "")
         + f"The crank {drive['link']} turns about {drive['pivot']} at {{symbol.omega}} = "
         f"{omega_text} rad/s; at {{symbol.phi}} = {angle_text}° construct the plans and find "
         "the quantities asked.")     # the crank's symbols by its number (course_symbols)
