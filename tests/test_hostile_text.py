@@ -422,3 +422,127 @@ def test_the_studio_quotes_a_title_and_never_reads_it_as_a_placeholder():
                       count=1)
     assert tomllib.loads(answer["template"])["description"].startswith("{title}. ")
     assert title in answer["variants"][0]["sheet"]
+
+
+# ---------------------------------------------------------------------------------------------
+# user text is never read as markup: matplotlib's mathtext, XML, HTML
+
+FOURBAR = (ROOT / "exercises" / "fourbar_forces.toml").read_text(encoding="utf-8")
+STUDY = (ROOT / "exercises" / "fourbar_study.toml").read_text(encoding="utf-8")
+#: titles a library could read as markup, each shown as written
+MARKUP_TITLES = ["Mechanism $^^^$", "$5 and $6", r"cost \$5 $x", "<b>&amp;</b> ]]> {{x}}"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet=st.sampled_from("$\\^_{}ab ")) | TEXT)
+def test_matplotlib_shows_plain_text_as_written(text):
+    """What the plotting module gives matplotlib for a file's text is never mathtext, and is
+    shown exactly as written."""
+    from matplotlib.text import Text
+
+    from planmethod.render.plots import _plain_text
+
+    shown = Text(0, 0, _plain_text(text))
+    assert shown._preprocess_math(shown.get_text()) == (text, False)
+
+
+@pytest.mark.parametrize("title", MARKUP_TITLES)
+def test_plots_show_a_title_with_dollars_as_written(tmp_path, capsys, title):
+    """sweep --plot, sweep --forces --plot, study --plot and grade --report draw a title that
+    holds $…$ (mathtext would stop them with a parse error, or set $5 and $6 as math)."""
+    from xml.sax.saxutils import escape
+
+    value = '"' + title.replace("\\", "\\\\") + '"'
+    files = {name: tmp_path / f"{name}.toml" for name in ("base", "forces", "study")}
+    for name, text in (("base", BASE), ("forces", FOURBAR), ("study", STUDY)):
+        files[name].write_text(_with(text, "title", value), encoding="utf-8")
+    (tmp_path / "answers.csv").write_text("student,v_C,a_C\ns1,5.2,430\ns2,4,300\n")
+    assert main(["sweep", str(files["base"]), "--step", "30", "--plot",
+                 str(tmp_path / "curves.png")]) == 0
+    assert main(["sweep", str(files["forces"]), "--forces", "--step", "30", "--plot",
+                 str(tmp_path / "forces.svg")]) == 0
+    assert main(["study", str(files["study"]), "--step", "30", "--plot",
+                 str(tmp_path / "study.svg")]) == 0
+    assert main(["grade", str(files["base"]), str(tmp_path / "answers.csv"), "--report",
+                 str(tmp_path / "report")]) == 0
+    capsys.readouterr()
+    assert (tmp_path / "curves.png").stat().st_size > 1000
+    assert (tmp_path / "report" / "class_report.png").stat().st_size > 1000
+    for name in ("forces.svg", "study.svg"):     # these keep their text as text
+        assert escape(title) in (tmp_path / name).read_text(encoding="utf-8")
+
+
+def _xml_files(folder: Path) -> list[Path]:
+    return sorted([*folder.rglob("*.svg"), *folder.rglob("*.xml")])
+
+
+def test_control_characters_never_make_a_file_unreadable(tmp_path, capsys):
+    """A title and a task holding control characters (TOML's \\u0001, \\u001b): every SVG
+    and the Moodle quiz written stay XML a browser and Moodle read, the text shown with the
+    character replaced."""
+    from xml.etree import ElementTree
+
+    template = tmp_path / "template.toml"
+    template.write_text(_with(_described("\\u0001 \\u001b[2J end."), "title",
+                              '"Press\\u0001\\u001b[31m"'), encoding="utf-8")
+    course = tmp_path / "course"
+    assert main(["variants", str(template), "--count", "2", "--out", str(course)]) == 0
+    assert main(["export", str(course / "keys.json"), "--format", "moodle", "--out",
+                 str(tmp_path / "quiz.xml")]) == 0
+    assert main(["solve", str(course / "001" / "exercise.toml"), "--svg",
+                 str(tmp_path / "figures")]) == 0
+    capsys.readouterr()
+    written = _xml_files(tmp_path)
+    assert len(written) >= 8
+    for path in written:
+        ElementTree.parse(path)        # well-formed, or it raises
+    task = (course / "001" / "task.svg").read_text(encoding="utf-8")
+    assert "\ufffd \ufffd[2J end." in task and "Press  [31m" in task   # title: spaces
+    quiz = (tmp_path / "quiz.xml").read_text(encoding="utf-8")
+    assert "\x01" not in quiz and "\x1b" not in quiz
+
+
+def test_a_title_is_shown_cut_the_same_way_everywhere(tmp_path, capsys):
+    """A title of 500 kB (inside the file limit) is shown cut to 80 characters with an
+    ellipsis by every figure, sheet, page and report line — one function — and kept whole
+    where it is data (the key, the JSON report)."""
+    import json
+    from xml.sax.saxutils import escape
+
+    from planmethod.vocabulary import TITLE_SHOWN_CHARACTERS, shown_title
+
+    title = "Long & <b>" + "x" * 500_000
+    shown = shown_title(title)
+    assert len(shown) == TITLE_SHOWN_CHARACTERS and shown.endswith("…")
+    exercise = tmp_path / "long.toml"
+    exercise.write_text(_with(BASE, "title", f'"{title}"'), encoding="utf-8")
+    template = tmp_path / "template.toml"
+    template.write_text(_with(TEMPLATE, "title", f'"{title}"'), encoding="utf-8")
+    assert main(["solve", str(exercise), "--svg", str(tmp_path / "figures")]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith(f"{shown} — crank angle") and "x" * 100 not in printed
+    assert main(["solve", str(exercise), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["title"] == title
+    assert main(["workbook", str(exercise), "-o", str(tmp_path / "page.html"), "--step",
+                 "90"]) == 0
+    assert main(["sweep", str(exercise), "--step", "90", "--plot",
+                 str(tmp_path / "curves.png")]) == 0
+    assert main(["variants", str(template), "--count", "1", "--out", str(tmp_path / "course")
+                 ]) == 0
+    assert main(["export", str(tmp_path / "course" / "keys.json"), "--format", "moodle",
+                 "--out", str(tmp_path / "quiz.xml")]) == 0
+    capsys.readouterr()
+    escaped = escape(shown)
+    page = (tmp_path / "page.html").read_text(encoding="utf-8")
+    assert f"<h1>{escaped}</h1>" in page and f"<title>{escaped} — workbook</title>" in page
+    for path in sorted((tmp_path / "figures").glob("*.svg")):
+        assert f"<title>{escaped} — " in path.read_text(encoding="utf-8"), path.name
+    sheets = sorted((tmp_path / "course" / "001").glob("*.svg"))
+    assert len(sheets) >= 2
+    for path in [*sheets, tmp_path / "quiz.xml"]:
+        text = path.read_text(encoding="utf-8")
+        assert escaped in text and "x" * 100 not in text, path.name
+    task = (tmp_path / "course" / "001" / "task.txt").read_text(encoding="utf-8")
+    assert task.startswith(f"{shown} — variant for")
+    key = json.loads((tmp_path / "course" / "keys.json").read_text(encoding="utf-8"))
+    assert key["keys"][0]["title"] == title
