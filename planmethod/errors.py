@@ -42,6 +42,13 @@ def value_text(value: object, limit: int = VALUE_TEXT_LIMIT) -> str:
     written inline — cut at about ``limit`` characters with an ellipsis, so that a value of a
     megabyte gives a line of an error.
 
+    Parameters
+    ----------
+    value
+        What the file gave (as tomllib or json read it).
+    limit
+        The most characters of it written (default :data:`VALUE_TEXT_LIMIT`).
+
     Examples
     --------
     >>> import datetime
