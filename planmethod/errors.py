@@ -18,7 +18,9 @@ Examples
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterator
+import datetime
+import math
+from collections.abc import Iterator, Mapping
 
 from .words.message import Message, message
 from .words.render import render
@@ -35,6 +37,7 @@ __all__ = [
     "ToggleError",
     "about",
     "limit_words",
+    "value_text",
 ]
 
 #: what a computation that met one of Python's own limits says, in one line (no traceback)
@@ -43,6 +46,81 @@ LIMIT_WORDS: dict[type[BaseException], str] = {
     RecursionError: "the input is nested too deeply",
     MemoryError: "the input asks for more memory than there is",
 }
+
+#: the longest description of a value an error gives (characters; a longer one is cut with …)
+VALUE_TEXT_LIMIT = 60
+
+
+def value_text(value: object, limit: int = VALUE_TEXT_LIMIT) -> str:
+    """A value read from a file, as an error's "got …" says it, in the file's words: text in
+    quotes (its control characters escaped), a number, ``true`` or ``false``, ``null``, a
+    date or time with its kind (``a date-time 1979-05-27T07:32:00``), a list or a table
+    written inline — cut at about ``limit`` characters with an ellipsis, so that a value of a
+    megabyte gives a line of an error.
+
+    Parameters
+    ----------
+    value
+        What the file gave (as tomllib or json read it).
+    limit
+        The most characters of it written (default :data:`VALUE_TEXT_LIMIT`).
+
+    Examples
+    --------
+    >>> import datetime
+    >>> value_text(datetime.datetime(1979, 5, 27, 7, 32)), value_text(True), value_text(None)
+    ('a date-time 1979-05-27T07:32:00', 'true', 'null')
+    >>> value_text([0, "x", {"a": 1.5}]), value_text("fast"), value_text(float("nan"))
+    ("[0, 'x', {a = 1.5}]", "'fast'", 'nan')
+    >>> value_text("x" * 1000, limit=10), value_text(list(range(1000)), limit=10)
+    ("'xxxxxxxxxx'…", '[0, 1, 2, …')
+    """
+    kinds = ((datetime.datetime, "a date-time"), (datetime.date, "a date"),
+             (datetime.time, "a time"))
+    kind = next((words for kind, words in kinds if isinstance(value, kind)), None)
+    if isinstance(value, str) and len(value) > limit:
+        return repr(value[:limit]) + "…"
+    written = _written(value, limit + 1)
+    text = written if len(written) <= limit else written[:limit] + "…"
+    return f"{kind} {text}" if kind else text
+
+
+def _written(value: object, budget: int) -> str:
+    """``value`` written inline, stopping once more than ``budget`` characters are written."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if value is None:
+        return "null"
+    if isinstance(value, int):
+        if value.bit_length() > 200:   # Python refuses to write more than 4,300 digits
+            return f"a whole number of {math.ceil(value.bit_length() * math.log10(2))} digits"
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, str):
+        return repr(value[:budget])
+    if isinstance(value, datetime.date | datetime.time):
+        return value.isoformat()
+    if isinstance(value, list | tuple | Mapping):
+        items = value.items() if isinstance(value, Mapping) else value
+        parts: list[str] = []
+        used = 2
+        for item in items:
+            if used > budget:
+                break
+            part = (f"{_key_written(str(item[0]), budget)} = {_written(item[1], budget)}"
+                    if isinstance(value, Mapping) else _written(item, budget))
+            parts.append(part)
+            used += len(part) + 2
+        opening, closing = "{}" if isinstance(value, Mapping) else "[]"
+        return opening + ", ".join(parts) + closing
+    return f"a {type(value).__name__}"
+
+
+def _key_written(key: str, budget: int) -> str:
+    """A table's key: bare if it may be (letters, digits, ``_`` and ``-``), else quoted."""
+    bare = key and all(char.isascii() and (char.isalnum() or char in "_-") for char in key)
+    return key[:budget] if bare else repr(key[:budget])
 
 
 def limit_words(error: BaseException) -> str:

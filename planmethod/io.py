@@ -732,10 +732,11 @@ def read_bytes_bounded(path: str | Path, limit: int, *,
     return b"".join(chunks)
 
 
-def read_text_bounded(path: str | Path, limit: int, *, encoding: str = "utf-8",
+def read_text_bounded(path: str | Path, limit: int, *, encoding: str = "utf-8-sig",
                       error: type[PlanmethodError] = SpecError) -> str:
-    """The text of the regular file ``path`` (``encoding``; ``utf-8-sig`` drops a byte-order
-    mark), at most ``limit`` bytes of it (see :func:`read_bytes_bounded`).
+    """The text of the regular file ``path`` (UTF-8, a byte-order mark at its start dropped, as
+    Windows' Notepad and Excel write one; or ``encoding``), at most ``limit`` bytes of it (see
+    :func:`read_bytes_bounded`).
 
     >>> import tempfile, pathlib
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "big.csv"

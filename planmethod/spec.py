@@ -44,7 +44,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import SpecError
+from .errors import SpecError, value_text
 from .io import read_text_bounded
 from .model import (
     FRAME,
@@ -134,6 +134,11 @@ MAX_MAGNITUDE = 1e12
 MAX_FILE_BYTES = 1_000_000
 #: tables and arrays nested deeper than this are refused before they are read
 MAX_NESTING = 32
+#: what Windows' Notepad and Excel may write first in a UTF-8 file (U+FEFF): dropped wherever
+#: text is read (:func:`planmethod.io.read_text_bounded` drops it from files)
+BYTE_ORDER_MARK = "\ufeff"
+#: half of a UTF-16 pair: no character, and in no UTF-8 file (JSON text may hold "\\ud800")
+_SURROGATE = re.compile("[\ud800-\udfff]")
 #: whole numbers in TOML and JSON are 64-bit (TOML's own range); larger ones are refused where
 #: they are read, before Python's limit on converting long digit strings can be met
 MAX_INTEGER = 2**63 - 1
@@ -143,43 +148,120 @@ MAX_FRICTION_ITERATIONS = 10_000
 MAX_FRICTION_COEFFICIENT = 2.0
 
 
-def nesting_depth(text: str) -> int:
-    """How deep brackets and braces nest in TOML or JSON text (strings skipped), found without
-    a parser, so that a file nested 100,000 deep is refused before it can exhaust the stack.
+#: what a bare word is made of in TOML (keys, numbers, dates, dots)
+_WORD = r"""[^\s"'#\[\]{},=]"""
+#: the tokens of TOML text that nesting is read from — a comment, a string's opening
+#: (multi-line first), a bracket or brace, a comma, a line's end, a bare word holding a dot
+#: (found from its first character only, so that a long word is read once) — by whether the
+#: commas and the line ends count (they do while a dotted key is open)
+_TOML_TOKENS = {
+    (commas, lines): re.compile(
+        r"""(#[^\n]*)|("{3}|'{3}|"|')|([\[{])|([\]}])|""" + ("(,)" if commas else "((?!))")
+        + "|" + (r"(\n)" if lines else "((?!))")
+        + rf"|(?<!{_WORD})(?={_WORD}*?\.)({_WORD}+)")
+    for commas in (False, True) for lines in (False, True)}
+#: the rest of a string after its opening, closing included, as tomllib reads it: a basic
+#: string has escapes, a literal one none; a multi-line string ends at its first closing
+#: triple, which takes up to two more quotes into the string; a single-line string left open
+#: ends at its line's end (where tomllib stops with an error)
+_TOML_STRING_REST = {
+    '"': re.compile(r'(?:[^"\\\n]|\\.)*"?'),
+    "'": re.compile(r"[^'\n]*'?"),
+    '"""': re.compile(r'(?:[^"\\]|\\.|"(?!""))*(?:"""(?:""|")?)?', re.DOTALL),
+    "'''": re.compile(r"(?:[^']|'(?!''))*(?:'''(?:''|')?)?"),
+}
+#: JSON's tokens for nesting: a string's opening, a bracket or brace; a string's rest
+_JSON_TOKEN = re.compile(r'(")|([\[{])|[\]}]')
+_JSON_STRING_REST = re.compile(r'(?:[^"\\]|\\.)*"?', re.DOTALL)
+#: a word that is a number with a decimal point (``1.5``, ``07:32:00.25``): its dot is no key's
+_DECIMAL = re.compile(r"[^.]*\d\.\d[^.]*")
+
+
+def nesting_depth(text: str, syntax: str = "toml") -> int:
+    r"""How deep tables and arrays nest in TOML text (or JSON: ``syntax="json"``), found
+    without a parser and in linear time, so that a file nested 100,000 deep is refused before
+    it can exhaust the stack.
+
+    Strings and comments are read as TOML reads them — basic strings with their escapes,
+    literal strings without, multi-line strings to their closing triple, ``#`` to the end of
+    the line outside strings — so that no bracket in them counts. A level is a bracket or a
+    brace, and each dot of a dotted key or a table header (``a.b.c = 1`` is two tables deep);
+    a table header's levels hold for the keys under it.
 
     Examples
     --------
     >>> nesting_depth('a = [[1, 2], {b = "[[["}]  # [[[[')
     2
+    >>> nesting_depth("d = '''He wrote ' and [[[['''"), nesting_depth("p = 'C:\\' # [[")
+    (0, 0)
+    >>> nesting_depth("[a.b]\nc.d = [1.5]"), nesting_depth('["[[", [1]]', syntax="json")
+    (4, 2)
     """
-    depth = deepest = 0
-    quote = None
-    escaped = comment = False
-    for char in text:
-        if comment:
-            comment = char != "\n"
-        elif quote is not None:
-            if escaped:
-                escaped = False
-            elif char == "\\" and quote == '"':
-                escaped = True
-            elif char == quote:
-                quote = None
-        elif char in "\"'":
-            quote = char
-        elif char in "[{":
+    if syntax == "json":
+        return _json_depth(text)
+    deepest = header = 0    # header: the levels of the last table header, which keys are under
+    pending = None          # the levels of a table header being read
+    dots = [0]              # the dots of the key being read, outside brackets and in each one
+    levels = 0              # the brackets open and the dots of their keys: sum(dots) + len - 1
+    position = 0
+    while (found := _TOML_TOKENS[dots[-1] > 0, len(dots) == 1 and dots[0] > 0].search(
+            text, position)) is not None:
+        position = found.end()
+        kind = found.lastindex
+        if kind == 2:           # a string
+            position = _TOML_STRING_REST[found.group(2)].match(text, position).end()
+        elif kind == 3:         # [ or {
+            if len(dots) == 1 and found.group(3) == "[" and _starts_line(text, found.start()):
+                pending = 0     # a table header
+            dots.append(0)
+            levels += 1
+        elif kind == 4 and len(dots) > 1:   # ] or }
+            levels -= dots.pop() + 1
+            if len(dots) == 1 and pending is not None:   # the header's end
+                header, pending = pending, None
+                deepest = max(deepest, header)
+                continue
+        elif kind in (5, 6):    # a comma, a line's end: the dotted key is done
+            levels -= dots[-1]
+            dots[-1] = 0
+        elif kind == 7:         # a dotted key (or a number with its decimal point)
+            added = found.group(7).count(".") - (_DECIMAL.fullmatch(found.group(7)) is not None)
+            dots[-1] += added
+            levels += added
+        if pending is not None:
+            pending = max(pending, levels)
+        elif levels + header > deepest:
+            deepest = levels + header
+    return max(deepest, pending or 0)
+
+
+def _starts_line(text: str, position: int) -> bool:
+    """True if only spaces and tabs are before ``position`` on its line."""
+    while position > 0 and text[position - 1] in " \t":
+        position -= 1
+    return position == 0 or text[position - 1] in "\n\ufeff"
+
+
+def _json_depth(text: str) -> int:
+    """:func:`nesting_depth` of JSON text (strings with escapes; no comments)."""
+    depth = deepest = position = 0
+    while (found := _JSON_TOKEN.search(text, position)) is not None:
+        position = found.end()
+        quote, opening = found.groups()
+        if quote is not None:
+            position = _JSON_STRING_REST.match(text, position).end()
+        elif opening is not None:
             depth += 1
             deepest = max(deepest, depth)
-        elif char in "]}":
+        else:
             depth = max(depth - 1, 0)
-        elif char == "#":           # a TOML comment, to the end of the line
-            comment = True
     return deepest
 
 
-def check_nesting(text: str, *, file: str | None = None) -> None:
-    """A :class:`SpecError` if ``text`` nests deeper than :data:`MAX_NESTING`."""
-    depth = nesting_depth(text)
+def check_nesting(text: str, *, file: str | None = None, syntax: str = "toml") -> None:
+    """A :class:`SpecError` if ``text`` nests deeper than :data:`MAX_NESTING` (see
+    :func:`nesting_depth`)."""
+    depth = nesting_depth(text, syntax)
     if depth > MAX_NESTING:
         raise SpecError(f"tables or arrays nested {depth} deep; at most {MAX_NESTING} are "
                         "read", file=file)
@@ -223,6 +305,12 @@ def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
     planmethod.errors.SpecError: x.toml: line 1: a whole number of 5000 digits, beyond the \
 64-bit range (at most 9223372036854775807 in magnitude)
     """
+    text = text.removeprefix(BYTE_ORDER_MARK)
+    surrogate = _SURROGATE.search(text)
+    if surrogate is not None:   # text that came through JSON ("\\ud800"), never from a file
+        line = text.count("\n", 0, surrogate.start()) + 1
+        raise SpecError(f"not valid TOML: U+{ord(surrogate.group()):04X} is half of a UTF-16 "
+                        f"pair, not a character (line {line})", file=file)
     check_nesting(text, file=file)
     try:
         data = tomllib.loads(text)
@@ -323,7 +411,8 @@ def parse_json(text: str, *, file: str | None = None, unique_keys: bool = False)
     planmethod.errors.SpecError: a.json: s1.v_C: a whole number of 31 digits, beyond the \
 64-bit range (at most 9223372036854775807 in magnitude)
     """
-    check_nesting(text, file=file)
+    text = text.removeprefix(BYTE_ORDER_MARK)
+    check_nesting(text, file=file, syntax="json")
     long_integers: list[_LongInteger] = []
 
     def integer(digits: str) -> int | _LongInteger:
@@ -394,7 +483,7 @@ class _Reader:
                what: str = "") -> float:
         """A finite number of magnitude at most ``limit`` (``what`` names the limit)."""
         if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.error(key, f"must be a finite number, got {value!r}")
+            raise self.error(key, f"must be a finite number, got {value_text(value)}")
         try:
             value = float(value)
         except OverflowError:   # an integer too large for a float
@@ -413,7 +502,7 @@ class _Reader:
     def vector(self, value: Any, key: str, *, limit: float = MAX_MAGNITUDE,
                what: str = "") -> tuple[float, float]:
         if not isinstance(value, list | tuple) or len(value) != 2:
-            raise self.error(key, f"must be a pair of numbers [x, y], got {value!r}")
+            raise self.error(key, f"must be a pair of numbers [x, y], got {value_text(value)}")
         return (self.number(value[0], f"{key}[0]", limit=limit, what=what),
                 self.number(value[1], f"{key}[1]", limit=limit, what=what))
 
@@ -431,12 +520,12 @@ class _Reader:
 
     def string(self, value: Any, key: str) -> str:
         if not isinstance(value, str) or not value:
-            raise self.error(key, f"must be a non-empty string, got {value!r}")
+            raise self.error(key, f"must be a non-empty string, got {value_text(value)}")
         return value
 
     def table(self, value: Any, key: str) -> Mapping[str, Any]:
         if not isinstance(value, Mapping):
-            raise self.error(key, f"must be a table, got {value!r}")
+            raise self.error(key, f"must be a table, got {value_text(value)}")
         return value
 
     def tables(self, data: Mapping[str, Any], name: str
@@ -469,6 +558,9 @@ class _Reader:
         data = frames_from_drawn(data, file=self.file)
         title = data.get("title", Path(self.file).stem if self.file else "mechanism")
         title = self.string(title, "title")
+        if not isinstance(data.get("description", ""), str):
+            raise self.error("description", "must be a string (the task in words), got "
+                                            f"{value_text(data['description'])}")
         links = self.links(data)
         revolutes = self.revolutes(links)
         slides = self.slides(data, links)
@@ -643,7 +735,7 @@ class _Reader:
         self.only_keys(table, ("frame", "numbers"), "notation")
         place = table.get("frame", 0)
         if isinstance(place, bool) or place not in FRAME_PLACES:
-            raise self.error("notation.frame", f'must be 0, 1 or "last", got {place!r}')
+            raise self.error("notation.frame", f'must be 0, 1 or "last", got {value_text(place)}')
         numbers: dict[str, int] = {}
         owner: dict[int, str] = {}
         for name, value in self.table(table.get("numbers", {}), "notation.numbers").items():
@@ -651,7 +743,8 @@ class _Reader:
             if name not in links:
                 raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
             if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
-                raise self.error(key, f"must be a whole number from 0 to 99, got {value!r}")
+                raise self.error(key, "must be a whole number from 0 to 99, got "
+                                      f"{value_text(value)}")
             if value in owner:
                 raise self.error(key, f"{value} is already the number of '{owner[value]}'")
             if name == FRAME and "frame" in table:
@@ -733,13 +826,14 @@ class _Reader:
                                      f"{did_you_mean(point, links[link].points)}")
             oppose = table.get("oppose_velocity", False)
             if not isinstance(oppose, bool):
-                raise self.error(f"{key}.oppose_velocity", f"must be true or false, got {oppose!r}")
+                raise self.error(f"{key}.oppose_velocity",
+                                 f"must be true or false, got {value_text(oppose)}")
             name = None
             if "name" in table:
                 name = self.string(table["name"], f"{key}.name")
                 if not re.fullmatch(r"[^\W\d][\w,′']{0,15}", name):
-                    raise self.error(f"{key}.name", f"{name!r} is not a symbol: a letter, then up "
-                                     "to 15 letters, digits or _ (P, P_c, F_res)")
+                    raise self.error(f"{key}.name", f"{value_text(name)} is not a symbol: a "
+                                     "letter, then up to 15 letters, digits or _ (P, P_c, F_res)")
             loads.append(Load(
                 link=link, point=point,
                 force=self.vector(table["force"], f"{key}.force") if has_force else None,
@@ -773,7 +867,7 @@ class _Reader:
             if (isinstance(value, bool) or not isinstance(value, int)
                     or not 1 <= value <= MAX_FRICTION_ITERATIONS):
                 raise self.error("friction.max_iterations", f"must be an integer from 1 to "
-                                 f"{MAX_FRICTION_ITERATIONS}, got {value!r}")
+                                 f"{MAX_FRICTION_ITERATIONS}, got {value_text(value)}")
             result["max_iterations"] = value
         pair_keys = {pair.point for pair in revolutes} | {pair.key for pair in revolutes}
         pair_keys |= {pair.key for pair in slides}
@@ -821,7 +915,7 @@ class _Reader:
         if "exact_mm" in table:
             if not isinstance(table["exact_mm"], bool):
                 raise self.error("plan.exact_mm", f"must be true or false, got "
-                                                  f"{table['exact_mm']!r}")
+                                                  f"{value_text(table['exact_mm'])}")
             values["exact_mm"] = table["exact_mm"]
         return PlanSettings(**values)
 
@@ -851,7 +945,7 @@ class _Reader:
         values["sliding"] = tuple(items)
         forces = table.get("forces", False)
         if not isinstance(forces, bool):
-            raise self.error("ask.forces", f"must be true or false, got {forces!r}")
+            raise self.error("ask.forces", f"must be true or false, got {value_text(forces)}")
         values["forces"] = forces
         return Ask(**values)
 
@@ -860,7 +954,7 @@ class _Reader:
         if isinstance(items, str):
             items = [items]
         if not isinstance(items, list):
-            raise self.error(f"ask.{name}", f"must be a list of names, got {items!r}")
+            raise self.error(f"ask.{name}", f"must be a list of names, got {value_text(items)}")
         for i, item in enumerate(items):
             self.string(item, f"ask.{name}[{i}]")
         return items
@@ -1007,7 +1101,8 @@ class _Drawing:
                                         f"link is the list of its points, e.g. {name} = "
                                         f"{list(names)!r}".replace("'", '"'))
             if not isinstance(names, list):
-                raise self.reader.error(key, f"must be a list of point names, got {names!r}")
+                raise self.reader.error(key, "must be a list of point names, got "
+                                        f"{value_text(names)}")
             for index, point in enumerate(names):
                 point = self.reader.string(point, f"{key}[{index}]")
                 if point not in self.points:

@@ -25,6 +25,7 @@ from .progress import Progress
 from .scene import plan_scene
 from .structure import analyse_structure
 from .vectors import norm
+from .vocabulary import shown_title
 
 __all__ = ["CHUNK", "Extremes", "csv_rows", "sweep_angles", "sweep_chunks", "sweep_columns",
            "sweep_table"]
@@ -272,7 +273,8 @@ class Extremes:
 
         width = max([16] + [len(shown(name)) for name in self.table])
         at = f"at {phi}"
-        lines = [f"{title} — {self.count} crank angles from {self.first:g}° to {self.last:g}°",
+        lines = [f"{shown_title(title)} — {self.count} crank angles from {self.first:g}° to "
+                 f"{self.last:g}°",
                  "", f"  {'quantity':<{width}} {'min':>10} {at:>8} {'max':>10} {at:>8}"]
         for name, found in self.table.items():
             if found is None:

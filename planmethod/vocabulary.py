@@ -20,6 +20,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
@@ -30,6 +31,7 @@ __all__ = [
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
+    "TITLE_SHOWN_CHARACTERS",
     "AppliedKind",
     "DrawingScale",
     "EdgeKind",
@@ -50,8 +52,10 @@ __all__ = [
     "quantity",
     "question_text",
     "scale_text",
+    "shown_title",
     "subscript",
     "symbol",
+    "xml_characters",
 ]
 
 
@@ -282,6 +286,47 @@ def quantity(name: str) -> Quantity:
 #: a kinematic stage's quantities as a sentence names them ("its velocities would …")
 STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities",
                                 "acceleration": "accelerations"}
+
+
+#: the longest title a figure, a sheet, a page or a line of a report shows (characters): a
+#: longer one is cut, with an ellipsis; the shipped exercises' titles are at most 66
+TITLE_SHOWN_CHARACTERS = 80
+#: a control character (C0, DEL, C1): none is shown in a title, and no XML file may hold one
+#: but tab, line feed and carriage return
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f]")
+#: what XML 1.0 cannot hold (C0 controls but tab, line feed and carriage return; surrogates;
+#: U+FFFE and U+FFFF)
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+
+
+def shown_title(title: str) -> str:
+    r"""A title as every figure, sheet, page and report shows it: on one line (a control
+    character, a line break among them, shown as a space) and at most
+    :data:`TITLE_SHOWN_CHARACTERS` long, a longer one cut with an ellipsis. The title itself
+    (what a key and a drawing are matched by) is never changed.
+
+    Examples
+    --------
+    >>> shown_title("Compressor slider-crank"), shown_title("two\nlines\x1b[2J")
+    ('Compressor slider-crank', 'two lines [2J')
+    >>> shown_title("Mechanism " * 20)
+    'Mechanism Mechanism Mechanism Mechanism Mechanism Mechanism Mechanism Mechanism…'
+    """
+    text = str(title)
+    if len(text) > TITLE_SHOWN_CHARACTERS:
+        text = text[:TITLE_SHOWN_CHARACTERS - 1].rstrip() + "…"
+    return _CONTROL.sub(" ", text)
+
+
+def xml_characters(text: str) -> str:
+    r"""``text`` with every character XML cannot hold (a control character but tab, line feed
+    and carriage return; a lone surrogate; U+FFFE, U+FFFF) replaced by U+FFFD: what an SVG or
+    a Moodle quiz may be given, so that it stays a file a browser and Moodle read.
+
+    >>> xml_characters("a\x01b\tc") == "a\ufffdb\tc"
+    True
+    """
+    return _NOT_XML.sub("\ufffd", text) if _NOT_XML.search(text) else text
 
 
 _SUBSCRIPT_TEXT = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")

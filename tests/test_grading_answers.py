@@ -630,7 +630,7 @@ _NOT_A_KEY = "not a planmethod answer key (format must be 'planmethod-key')"
     ('{"format": "planmethod-key", "questions": [{"id": "v", "value": 1}]}',
      "questions[0].tolerance: missing"),
     ('{"format": "planmethod-key", "questions": [{"id": "v", "value": true, "tolerance": 1}]}',
-     "questions[0].value: must be a finite number, got True"),
+     "questions[0].value: must be a finite number, got true"),
     ('{"format": "planmethod-key", "questions": [{"id": "v", "value": 1, "tolerance": NaN}]}',
      "questions[0].tolerance: must be a finite number, got nan"),
     ('{"format": "planmethod-keys", "keys": 1}', "keys: the bundle has no list of keys"),

@@ -11,6 +11,7 @@ import argparse
 from pathlib import Path
 
 from ..errors import SpecError
+from ..vocabulary import shown_title
 
 #: suffix → format
 FORMATS = {".svg": "svg", ".gif": "gif", ".mp4": "mp4"}
@@ -70,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
     if any(analysis.plans is None for analysis in analyses):
         raise SpecError("this mechanism's plans are not drawn (a higher group): nothing to "
                         "animate", file=args.file)
-    title = exercise.mechanism.title
+    title = shown_title(exercise.mechanism.title)
     if form == "svg":
         from ..render.animation import animated_svg
         from ..render.steady import steady_views

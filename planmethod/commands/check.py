@@ -269,10 +269,10 @@ def text_report(title: str, findings: list[RowFindings],
     """The findings as a person reads them: links by the course's numbers (``numbers``,
     :func:`planmethod.numbering.course_numbers`), the crank angle φ with the crank's number,
     points with the digits of their names as subscripts."""
-    from ..vocabulary import link_text, numbered, point_text
+    from ..vocabulary import link_text, numbered, point_text, shown_title
 
-    lines = [f"{title}: {len(findings)} row(s) checked against the link lengths and the exact "
-             "assembly"]
+    lines = [f"{shown_title(title)}: {len(findings)} row(s) checked against the link lengths "
+             "and the exact assembly"]
     for found in findings:
         verdict = "FLAGGED" if found.flagged else "ok"
         lines += ["", f"{numbered('φ', crank)} = {found.angle:g}° (line {found.line}): "

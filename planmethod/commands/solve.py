@@ -38,12 +38,12 @@ def text_report(analysis) -> str:
     φ and ω by its number), never a report name (those are the JSON report's)."""
     from ..numbering import course_numbers
     from ..structure import describe
-    from ..vocabulary import numbered, symbol
+    from ..vocabulary import numbered, shown_title, symbol
 
     exercise, motion = analysis.exercise, analysis.motion
     numbers = course_numbers(exercise.mechanism)
     crank = numbers[exercise.mechanism.drive.link]
-    lines = [f"{exercise.mechanism.title} — crank angle {numbered('φ', crank)} = "
+    lines = [f"{shown_title(exercise.mechanism.title)} — crank angle {numbered('φ', crank)} = "
              f"{analysis.angle:g}°", "", "Structural analysis"]
     lines += ["  " + line for line in describe(analysis.structure, numbers).splitlines()]
     for index, branch in sorted(motion.branches.items()):

@@ -15,6 +15,8 @@ import argparse
 import math
 from collections.abc import Mapping
 
+from ..vocabulary import shown_title
+
 #: the most values a study takes per parameter (each is a full-turn force analysis)
 MAX_GRID = 200
 
@@ -105,7 +107,7 @@ def table_text(study, names: Mapping[str, str] | None = None,
     ``names`` are the pairs' reactions as the course writes them (R₀₁ for the pair A),
     ``rocker`` the rocker in words (link 3 (CD))."""
     names = names or {}
-    lines = [f"{study.title} — largest reactions over a full turn (N) and |M_b| (N·m)",
+    lines = [f"{shown_title(study.title)} — largest reactions over a full turn (N) and |M_b| (N·m)",
              f"base case: {study.base_text()}; the rocker is {rocker or study.rocker}", ""]
     header = "".join(f"{names.get(pair, 'R_' + pair):>11}" for pair in study.pairs)
     header += f"{'|M_b|':>11}"

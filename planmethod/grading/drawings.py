@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SpecError, about
+from ..errors import SpecError, about, value_text
 from ..io import read_bytes_bounded
 from ..plans.construction import course_text
 from ..spec import MAX_ANGLE_DEG, parse_json
@@ -134,8 +134,8 @@ def _finite_pair(value: Any, where: str, source: str | None) -> tuple[float, flo
     if (not isinstance(value, list | tuple) or len(value) != 2
             or not all(isinstance(v, int | float) and not isinstance(v, bool)
                        and math.isfinite(v) for v in value)):
-        raise SubmissionError(f"must be [x, y] in mm with finite numbers, got {value!r}"[:120],
-                              file=source, key=where)
+        raise SubmissionError("must be [x, y] in mm with finite numbers, got "
+                              f"{value_text(value)}", file=source, key=where)
     return _on_a_sheet((float(value[0]), float(value[1])), where, source)
 
 
@@ -169,8 +169,8 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
         raise SubmissionError("must be an object {\"plan\": …, \"points\": {…}}", file=source)
     plan = parsed.get("plan")
     if plan is not None and plan not in ("velocity", "acceleration"):
-        raise SubmissionError(f"plan must be 'velocity' or 'acceleration', got {plan!r}"[:120],
-                              file=source, key="plan")
+        raise SubmissionError("plan must be 'velocity' or 'acceleration', got "
+                              f"{value_text(plan)}", file=source, key="plan")
     points = parsed.get("points", parsed if plan is None else None)
     if not isinstance(points, Mapping) or not points:
         raise SubmissionError("no labelled points (give \"points\": {\"p\": [0, 0], …})",
@@ -187,7 +187,7 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
     title, angle = parsed.get("title"), parsed.get("angle")
     digest = parsed.get("exercise")
     if not isinstance(title, str):
-        raise SubmissionError(f"must be the exercise's title, got {title!r}"[:120],
+        raise SubmissionError(f"must be the exercise's title, got {value_text(title)}"[:120],
                               file=source, key="title")
     if digest is not None and (not isinstance(digest, str)
                                or not re.fullmatch(r"[0-9a-f]{16}", digest)):
@@ -196,7 +196,7 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
     if (isinstance(angle, bool) or not isinstance(angle, int | float)
             or not math.isfinite(angle) or abs(angle) > MAX_ANGLE_DEG):
         raise SubmissionError(f"must be the crank angle in degrees, within ±{MAX_ANGLE_DEG:g}°, "
-                              f"got {angle!r}"[:120], file=source, key="angle")
+                              f"got {value_text(angle)}"[:120], file=source, key="angle")
     return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True,
                    exercise=digest)
 

@@ -44,6 +44,7 @@ from typing import Any
 from xml.sax.saxutils import escape
 
 from ..io import csv_text, json_text
+from ..vocabulary import shown_title, xml_characters
 from .answers import FEEDBACK_LEVELS, feedback_text
 
 __all__ = [
@@ -469,7 +470,7 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
     for number, key in enumerate(keys, start=1):
         questions = {q["id"]: q for q in key["questions"]}
         params: dict[str, Any] = {
-            "student": key.get("student"), "title": key.get("title"),
+            "student": key.get("student"), "title": shown_title(str(key.get("title", ""))),
             "task_html": "<p>" + escape(key.get("task", "")).replace("\n\n", "</p><p>")
             + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}, "radius_px": {},
             "plan_labels": {}, "mistakes_px": {}}
@@ -558,7 +559,7 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
                  "    </pl-controls-group>", "  </pl-controls>", "</pl-drawing>"]
     seed = f"planmethod:{slug}:{first.get('title')}:{bundle.get('seed')}:{len(keys)}"
     info = {"uuid": str(uuid.uuid5(uuid.NAMESPACE_URL, seed)),
-            "title": str(first.get("title")), "topic": topic,
+            "title": shown_title(str(first.get("title"))), "topic": topic,
             "tags": ["planmethod", "graphical-method"], "type": "v3",
             "gradingMethod": "Internal"}
     texts = (json.dumps(info, indent=2, ensure_ascii=False) + "\n", "\n".join(html) + "\n",
@@ -648,7 +649,7 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
     import base64
 
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
-    title = str(keys[0].get("title", "planmethod")) if keys else "planmethod"
+    title = shown_title(str(keys[0].get("title", "planmethod")) if keys else "planmethod")
     out += ['  <question type="category">',
             f"    <category><text>$course$/top/{_category_name(category)}/"
             f"{_category_name(title)}</text>"
@@ -678,7 +679,7 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
                 "    <penalty>0.3333333</penalty>", "    <hidden>0</hidden>",
                 f"    <idnumber>{escape(student)}</idnumber>", "  </question>"]
     out.append("</quiz>")
-    return "\n".join(out) + "\n"
+    return xml_characters("\n".join(out) + "\n")     # no control character of a file
 
 
 # -- CSV gradebook ---------------------------------------------------------------------------

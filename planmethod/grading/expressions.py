@@ -45,6 +45,8 @@ from collections.abc import Callable
 from enum import StrEnum
 from functools import partial
 
+from ..errors import value_text
+
 __all__ = ["FUNCTIONS", "ExpressionError", "evaluate", "parse", "references"]
 
 #: The longest expression accepted (characters) and the deepest nesting.
@@ -295,7 +297,7 @@ def evaluate(node, resolve: Callable[[str], float]) -> float:
     if kind is Node.REF:
         value = resolve(node[1])
         if isinstance(value, bool) or not isinstance(value, int | float):
-            raise ExpressionError(f"{node[1]} is not a number ({value!r})")
+            raise ExpressionError(f"{node[1]} is not a number ({value_text(value)})")
         return float(value)
     if kind is Node.NEG:
         return -evaluate(node[1], resolve)

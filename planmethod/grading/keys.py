@@ -49,7 +49,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from ..errors import PlanmethodError, SpecError
+from ..errors import PlanmethodError, SpecError, value_text
 from ..io import read_text_bounded
 from ..numbering import course_numbers
 from ..spec import checked_table, parse_json
@@ -125,7 +125,7 @@ def _positive(value: Any, key: str, file: str | None, *, zero: bool = False) -> 
     if (isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value)
             or value < 0 or (value == 0 and not zero)):
         raise SpecError(f"must be a {'non-negative' if zero else 'positive'} number, "
-                        f"got {value!r}", file=file, key=key)
+                        f"got {value_text(value)}", file=file, key=key)
     return float(value)
 
 
@@ -163,7 +163,7 @@ def grading_settings(data: Mapping[str, Any], file: str | None = None,
         elif isinstance(value, int | float) and not isinstance(value, bool):
             overrides[name] = ("abs", _positive(value, key, file))
         else:
-            raise SpecError(f"must be {{ rel = r }} or {{ abs = a }}, got {value!r}",
+            raise SpecError(f"must be {{ rel = r }} or {{ abs = a }}, got {value_text(value)}",
                             file=file, key=key)
     return GradingSettings(precision, rel_floor, points, default_points, overrides)
 
@@ -412,7 +412,7 @@ def _check_key(key: Any, where: str) -> dict:
             value = question[name]
             if (isinstance(value, bool) or not isinstance(value, int | float)
                     or not math.isfinite(value)):
-                raise SpecError(f"must be a finite number, got {value!r}", file=where,
+                raise SpecError(f"must be a finite number, got {value_text(value)}", file=where,
                                 key=f"questions[{index}].{name}")
     return dict(key)
 

@@ -31,7 +31,7 @@ from ..model import FRAME
 from ..render.canvas import Canvas
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
-from ..vocabulary import PLAN_SCALES, numbered, point_text, scale_text, symbol
+from ..vocabulary import PLAN_SCALES, numbered, point_text, scale_text, shown_title, symbol
 from .keys import key_numbers
 from .templates import drawn_lengths
 
@@ -55,7 +55,7 @@ def task_text(key: Mapping[str, Any]) -> str:
     numbers = key_numbers(key)
     exercise = _exercise(key)
     crank = numbers.get(exercise.mechanism.drive.link, 1) if exercise is not None else 1
-    lines = [f"{key.get('title', 'Exercise')} — variant for {key.get('student')}", "",
+    lines = [f"{shown_title(key.get('title', 'Exercise'))} — variant for {key.get('student')}", "",
              key.get("task", "").strip(), ""]
     if exercise is not None:
         lines.append("Given: " + ", ".join(given_data(exercise, numbers)) + ".")
@@ -180,6 +180,7 @@ def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: 
     """A square blank sheet (mm) with the pole at its centre and a 10 mm grid pattern."""
     size = float(size_mm)
     centre = size / 2
+    title = shown_title(title)
     header = (f"{title} — {plan} plan — {student} — {scale_text(PLAN_SCALES[plan], scale)}. "
               f"{given} Draw the plan from the pole {pole}; label every point (b, c, …) next "
               "to it.")

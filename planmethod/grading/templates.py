@@ -46,6 +46,7 @@ True
 
 from __future__ import annotations
 
+import datetime
 import hashlib
 import math
 import re
@@ -54,7 +55,14 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from ..errors import AssemblyError, ConvergenceError, PlanmethodError, SpecError, ToggleError
+from ..errors import (
+    AssemblyError,
+    ConvergenceError,
+    PlanmethodError,
+    SpecError,
+    ToggleError,
+    value_text,
+)
 from ..model import Exercise
 from ..numbering import course_numbers, course_symbols
 from ..plans.construction import course_text
@@ -82,6 +90,14 @@ TEMPLATE_KEYS = ("min_line_angle_deg", "dead_centre_deg", "max_attempts", "min_s
 #: plan components a template may require to be drawn (not to vanish) in every variant
 COMPONENTS = ("normal", "tangential", "coriolis", "relative")
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_.\[\]]*)(?::([-+ #0]?\d*(?:\.\d+)?[efgd%]?))?\}")
+#: a placeholder's format: its width (the characters it is padded to) and its precision (the
+#: digits after the point, or significant ones) are at most these (``{l_AB:.100000000f}``
+#: would write 100 MB)
+MAX_FORMAT_WIDTH = 40
+MAX_FORMAT_PRECISION = 15
+#: a task's text, its placeholders filled in, is at most this many characters (a sheet, a key
+#: and a quiz print it for every student)
+MAX_TASK_CHARACTERS = 20_000
 _PATH_PART = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]")
 
 
@@ -141,7 +157,10 @@ class Variant:
             "{scales." in str(text) else {}
         if "{symbol." in str(text):
             drawing = {**drawing, "symbol": course_symbols(self.exercise.mechanism)}
-        return format_description(text, self.values, self.data, drawing or None)
+        try:
+            return format_description(text, self.values, self.data, drawing or None)
+        except SpecError as error:
+            raise error.located(file=self.exercise.source) from None
 
 
 def load_template(path: str | Path) -> Template:
@@ -172,6 +191,17 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
         raise SpecError("a template with random values must say what its students are asked: "
                         "add an [ask] table (velocity = [...], omega = [...] …)", file=file,
                         key="ask")
+    if not isinstance(data.get("description", ""), str):
+        raise SpecError("must be a string (the task in words, with {name} placeholders), got "
+                        f"{value_text(data['description'])}", file=file, key="description")
+    description = data.get("description", "")
+    if len(description) > MAX_TASK_CHARACTERS:
+        raise SpecError(f"the task's text is {len(description)} characters; at most "
+                        f"{MAX_TASK_CHARACTERS}", file=file, key="description")
+    for placeholder in _PLACEHOLDER.finditer(description):
+        problem = _format_problem(placeholder)
+        if problem:
+            raise SpecError(problem, file=file, key="description")
     if "vars" in data and not isinstance(data["vars"], Mapping):
         raise SpecError("must be a table of named values", file=file, key="vars")
     for name in data.get("vars", {}):
@@ -186,11 +216,11 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
             try:
                 tree = parse(value[1:])
             except ExpressionError as error:
-                raise SpecError(f"bad expression {value!r}: {error}", file=file,
+                raise SpecError(f"bad expression {value_text(value)}: {error}", file=file,
                                 key=key) from None
             for name in references(tree):
                 if not _exists(data, name):
-                    raise SpecError(f"expression {value!r} refers to '{name}', which is "
+                    raise SpecError(f"expression {value_text(value)} refers to '{name}', which is "
                                     "neither in [vars] nor a key of the file", file=file,
                                     key=key)
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
@@ -205,32 +235,32 @@ def _settings(table: Any, file: str | None) -> TemplateSettings:
             value = table[name]
             if (isinstance(value, bool) or not isinstance(value, int | float)
                     or not 0 <= value < 90):
-                raise SpecError(f"must be an angle in [0, 90) degrees, got {value!r}",
+                raise SpecError(f"must be an angle in [0, 90) degrees, got {value_text(value)}",
                                 file=file, key=f"template.{name}")
             values[name] = float(value)
     if "max_attempts" in table:
         value = table["max_attempts"]
         if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 10000:
-            raise SpecError(f"must be a whole number in 1…10000, got {value!r}", file=file,
-                            key="template.max_attempts")
+            raise SpecError(f"must be a whole number in 1…10000, got {value_text(value)}",
+                            file=file, key="template.max_attempts")
         values["max_attempts"] = value
     if "min_segment_mm" in table:
         value = table["min_segment_mm"]
         if isinstance(value, bool) or not isinstance(value, int | float) or not 0 <= value <= 200:
-            raise SpecError(f"must be a length in [0, 200] mm, got {value!r}", file=file,
+            raise SpecError(f"must be a length in [0, 200] mm, got {value_text(value)}", file=file,
                             key="template.min_segment_mm")
         values["min_segment_mm"] = float(value)
     if "max_tolerance" in table:
         value = table["max_tolerance"]
         if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value <= 1:
-            raise SpecError(f"must be a share in (0, 1] (0.1 = 10 %), got {value!r}", file=file,
-                            key="template.max_tolerance")
+            raise SpecError(f"must be a share in (0, 1] (0.1 = 10 %), got {value_text(value)}",
+                            file=file, key="template.max_tolerance")
         values["max_tolerance"] = float(value)
     if "require" in table:
         value = table["require"]
         if not isinstance(value, list) or any(item not in COMPONENTS for item in value):
             raise SpecError(f"must be a list of components from {', '.join(COMPONENTS)}, got "
-                            f"{value!r}", file=file, key="template.require")
+                            f"{value_text(value)}", file=file, key="template.require")
         values["require"] = tuple(value)
     return TemplateSettings(**values)
 
@@ -260,13 +290,13 @@ def _check_random(spec: Mapping[str, Any], key: str, file: str | None) -> None:
         if not isinstance(options, list) or not options:
             raise SpecError("choice must be a non-empty list", file=file, key=f"{key}.choice")
         if not all(_number(o) or isinstance(o, str) for o in options):
-            raise SpecError(f"choice holds numbers or strings, got {options!r}", file=file,
-                            key=f"{key}.choice")
+            raise SpecError(f"choice holds numbers or strings, got {value_text(options)}",
+                            file=file, key=f"{key}.choice")
         return
     bounds = spec["range"]
     if (not isinstance(bounds, list) or len(bounds) != 2
             or not all(_number(b) for b in bounds)):
-        raise SpecError(f"range must be [low, high] with finite numbers, got {bounds!r}",
+        raise SpecError(f"range must be [low, high] with finite numbers, got {value_text(bounds)}",
                         file=file, key=f"{key}.range")
     low, high = bounds
     if low > high:
@@ -275,7 +305,7 @@ def _check_random(spec: Mapping[str, Any], key: str, file: str | None) -> None:
     if "step" in spec:
         step = spec["step"]
         if not _number(step) or step <= 0:
-            raise SpecError(f"step must be a positive number, got {step!r}", file=file,
+            raise SpecError(f"step must be a positive number, got {value_text(step)}", file=file,
                             key=f"{key}.step")
         if (high - low) / step > 1e7:
             raise SpecError(f"range/step gives more than 10 million values ({step:g})",
@@ -360,7 +390,7 @@ class _Resolver:
                 try:
                     result = evaluate(parse(raw[1:]), self.reference)
                 except ExpressionError as error:
-                    raise SpecError(f"{raw!r}: {error}", file=self.template.source,
+                    raise SpecError(f"{value_text(raw)}: {error}", file=self.template.source,
                                     key=key) from None
             elif isinstance(raw, str) and raw.startswith("=="):
                 result = raw[1:]
@@ -608,7 +638,15 @@ def drawing_values(exercise: Exercise) -> dict[str, dict[str, float]]:
 def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any],
                        drawing: Mapping[str, Any] | None = None) -> str:
     """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values, file keys and
-    the ``drawing``'s values (:func:`drawing_values`); an unknown name is left as written.
+    the ``drawing``'s values (:func:`drawing_values`); an unknown name is left as written, and
+    so is a value inserted (a ``{name}`` in it is not filled in again).
+
+    Raises
+    ------
+    SpecError
+        If a placeholder's width is above :data:`MAX_FORMAT_WIDTH` or its precision above
+        :data:`MAX_FORMAT_PRECISION`, or the text filled in would be longer than
+        :data:`MAX_TASK_CHARACTERS` (key ``description``).
 
     Examples
     --------
@@ -616,11 +654,20 @@ def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, 
     'l = 0.0612 m, {x}'
     >>> format_description("(AB) = {drawn.crank:.3g} mm", {}, {}, {"drawn": {"crank": 27.5}})
     '(AB) = 27.5 mm'
+    >>> format_description("{l:.100000000f}", {"l": 0.06}, {})
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: description: the placeholder '{l:.100000000f}' has a \
+precision of 100000000; at most 15
     """
     if not isinstance(text, str):
         return ""
+    written = [0]    # the characters the text has grown by so far
 
     def fill(match: re.Match) -> str:
+        problem = _format_problem(match)
+        if problem:
+            raise SpecError(problem, key="description")
         name, spec = match.group(1), match.group(2) or ""
         for source in (values, data, drawing or {}):
             try:
@@ -633,21 +680,70 @@ def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, 
         if isinstance(value, Mapping | list):
             return match.group(0)
         try:
-            return format(value, spec) if spec else (f"{value:g}" if _number(value)
-                                                      else str(value))
+            filled = format(value, spec) if spec else (f"{value:g}" if _number(value)
+                                                       else str(value))
         except (ValueError, TypeError):
             return match.group(0)
+        written[0] += len(filled) - len(match.group(0))
+        if len(text) + written[0] > MAX_TASK_CHARACTERS:
+            raise SpecError(f"the task's text is more than {MAX_TASK_CHARACTERS} characters "
+                            "once its placeholders are filled in", key="description")
+        return filled
 
+    if len(text) > MAX_TASK_CHARACTERS:
+        raise SpecError(f"the task's text is {len(text)} characters; at most "
+                        f"{MAX_TASK_CHARACTERS}", key="description")
     return _PLACEHOLDER.sub(fill, text)
 
 
-# -- writing a resolved exercise back as TOML -----------------------------------------------
-def _toml_value(value: Any) -> str:
-    import json
+def _format_problem(placeholder: re.Match) -> str | None:
+    """Why a placeholder's format asks for too much (its width or precision above the
+    bounds), or None.
 
+    >>> _format_problem(_PLACEHOLDER.search("{l_AB:1000.3f}"))
+    "the placeholder '{l_AB:1000.3f}' has a width of 1000; at most 40"
+    """
+    found = re.fullmatch(r"[-+ #0]?(\d*)(?:\.(\d+))?[efgd%]?", placeholder.group(2) or "")
+    if found is None:
+        return None
+    for digits, what, limit in ((found.group(1), "width", MAX_FORMAT_WIDTH),
+                                (found.group(2), "precision", MAX_FORMAT_PRECISION)):
+        if digits and (len(digits) > 6 or int(digits) > limit):
+            amount = digits if len(digits) <= 12 else f"{len(digits)} digits"
+            return (f"the placeholder {value_text(placeholder.group(0))} has a {what} of "
+                    f"{amount}; at most {limit}")
+    return None
+
+
+# -- writing a resolved exercise back as TOML -----------------------------------------------
+#: how a basic string writes each character TOML does not take as it is: the quote and the
+#: backslash escaped, every control character (U+0000–U+001F, and DEL, U+007F, which JSON leaves
+#: bare and TOML refuses) as its short escape or \uXXXX
+_BASIC_ESCAPES = {**{code: f"\\u{code:04x}" for code in [*range(0x20), 0x7F]},
+                  **{ord(char): escaped for char, escaped in (
+                      ('"', '\\"'), ("\\", "\\\\"), ("\b", "\\b"), ("\t", "\\t"),
+                      ("\n", "\\n"), ("\f", "\\f"), ("\r", "\\r"))}}
+#: a UTF-16 surrogate: no character, and no UTF-8 file holds one (JSON text may: "\ud800")
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def _toml_string(text: str) -> str:
+    r"""``text`` as a TOML basic string, which reads back as exactly ``text``.
+
+    >>> print(_toml_string('say "hi" \\ \x7f\n'))
+    "say \"hi\" \\ \u007f\n"
+    """
+    if _SURROGATE.search(text):
+        raise ValueError("cannot write a lone surrogate (not a character) to TOML")
+    return '"' + text.translate(_BASIC_ESCAPES) + '"'
+
+
+def _toml_value(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
+        if abs(value) > 2**63 - 1:
+            raise ValueError("cannot write a whole number beyond 64 bits to TOML")
         return str(value)
     if isinstance(value, float):
         if not math.isfinite(value):
@@ -657,7 +753,10 @@ def _toml_value(value: Any) -> str:
     if isinstance(value, str):
         if _literal_block(value):   # a paragraph is written as it reads
             return "'''\n" + value + "'''"
-        return json.dumps(value, ensure_ascii=False)
+        return _toml_string(value)
+    if isinstance(value, datetime.date | datetime.time) and not (
+            isinstance(value, datetime.time) and value.tzinfo is not None):
+        return value.isoformat()    # a date-time is a date too; TOML has no time with offset
     if isinstance(value, list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     if isinstance(value, Mapping):
@@ -668,21 +767,19 @@ def _toml_value(value: Any) -> str:
 
 def _literal_block(text: str) -> bool:
     """True if ``text`` has several lines and reads back unchanged as a TOML multi-line literal
-    string: no three single quotes in it, no control character but newline and tab, not
-    ending in a quote.
+    string: no three single quotes in it, no control character but newline and tab (nor DEL),
+    no surrogate, not ending in a quote.
 
     >>> _literal_block("two\\nlines"), _literal_block("one line"), _literal_block("a\\r\\nb")
     (True, False, False)
     """
     return ("\n" in text and "'''" not in text and not text.endswith("'")
             and not any(ord(char) < 32 and char not in "\n\t" for char in text)
-            and "\x7f" not in text)
+            and "\x7f" not in text and not _SURROGATE.search(text))
 
 
 def _toml_key(key: str) -> str:
-    import json
-
-    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False)
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else _toml_string(key)
 
 
 def to_toml(data: Mapping[str, Any]) -> str:

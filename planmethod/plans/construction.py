@@ -42,7 +42,15 @@ from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
-from ..vocabulary import PlanKind, coriolis_letter, links_text, numbered, subscript, symbol
+from ..vocabulary import (
+    PlanKind,
+    coriolis_letter,
+    links_text,
+    numbered,
+    shown_title,
+    subscript,
+    symbol,
+)
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -880,7 +888,8 @@ def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: fl
                        "direction_deg": direction})
     drive = mechanism.drive
     return PositionPlan(scales.mu_l, points, links, pivots, tuple(slides),
-                        (drive.link, drive.pivot, drive.omega), {}, angle, mechanism.title,
+                        (drive.link, drive.pivot, drive.omega), {}, angle,
+                        shown_title(mechanism.title),
                         course_numbers(mechanism))
 
 
@@ -1108,8 +1117,9 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     for key in sliding:
         _sliding_readings(emulator, key, acceleration)
     phi = emulator.crank_symbols["φ"]
-    velocity_plan = emulator.v.finish(f"{mechanism.title} — velocity plan, {phi} = {angle:g}°")
-    acceleration_plan = (emulator.a.finish(f"{mechanism.title} — acceleration plan, "
+    title = shown_title(mechanism.title)     # as the figures show it
+    velocity_plan = emulator.v.finish(f"{title} — velocity plan, {phi} = {angle:g}°")
+    acceleration_plan = (emulator.a.finish(f"{title} — acceleration plan, "
                                            f"{phi} = {angle:g}°") if acceleration else None)
     flags = tuple(velocity_plan.flags) + (tuple(acceleration_plan.flags)
                                           if acceleration_plan else ())

@@ -40,6 +40,7 @@ from ..errors import (
     SpecError,
     StructureError,
     ToggleError,
+    value_text,
 )
 from ..io import path_component, read_text_bounded, write_files, write_text_atomic
 from ..model import FRAME
@@ -348,23 +349,23 @@ def turn(text: str, angle: Any) -> dict[str, Any]:
 
 def _number(value: Any, key: str, *, limit: float = 1e6, positive: bool = False) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise SpecError(f"must be a finite number, got {value!r}", key=key)
+        raise SpecError(f"must be a finite number, got {value_text(value)}", key=key)
     if abs(value) > limit or (positive and value <= 0):
         raise SpecError(f"must be {'positive and ' if positive else ''}at most {limit:g} in "
-                        f"magnitude, got {value!r}", key=key)
+                        f"magnitude, got {value_text(value)}", key=key)
     return float(value)
 
 
 def _whole(value: Any, key: str, low: int, high: int) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-        raise SpecError(f"must be a whole number in {low}…{high}, got {value!r}", key=key)
+        raise SpecError(f"must be a whole number in {low}…{high}, got {value_text(value)}", key=key)
     return value
 
 
 # -- variants ------------------------------------------------------------------------------------
 def _range(value: Any, key: str, *, positive: bool = False) -> tuple[float, float]:
     if not isinstance(value, list | tuple) or len(value) != 2:
-        raise SpecError(f"must be [low, high], got {value!r}", key=key)
+        raise SpecError(f"must be [low, high], got {value_text(value)}", key=key)
     low, high = (_number(v, key, positive=positive) for v in value)
     if low > high:
         raise SpecError(f"low {low:g} is above high {high:g}", key=key)
@@ -427,8 +428,8 @@ def make_template(text: str, ranges: Mapping[str, Any]) -> str:
         drive["omega"] = "= omega"
     angle_text = "{phi:g}" if "phi" in variables else f"{float(mechanism.drive.angle):g}"
     omega_text = "{omega:g}" if "omega" in variables else f"{mechanism.drive.omega:g}"
-    tables["description"] = (
-        f"{tables['title']}. " + (f"Lengths: {', '.join(words)}. " if words else "")
+    tables["description"] = (       # the title by its placeholder: its text is never read
+        "{title}. " + (f"Lengths: {', '.join(words)}. " if words else "")
         + f"The crank {drive['link']} turns about {drive['pivot']} at {{symbol.omega}} = "
         f"{omega_text} rad/s; at {{symbol.phi}} = {angle_text}° construct the plans and find "
         "the quantities asked.")     # the crank's symbols by its number (course_symbols)
@@ -486,7 +487,7 @@ def _scaled(xy, scaling) -> Any:
 
 def _grid(value: Any, key: str, *, limit: float) -> tuple[float, float, float]:
     if not isinstance(value, list | tuple) or len(value) != 3:
-        raise SpecError(f"must be [from, to, step], got {value!r}", key=key)
+        raise SpecError(f"must be [from, to, step], got {value_text(value)}", key=key)
     low, high = _range(list(value[:2]), key)
     step = _number(value[2], key, positive=True)
     if max(abs(low), abs(high)) > limit:
