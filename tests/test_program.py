@@ -136,7 +136,7 @@ def test_mechanisms_that_differ_in_their_numbers_share_one_compiled_code(monkeyp
     compiled = []
     for mechanism in (first, second):
         solve(mechanism, angles)
-        compiled.append(model(mechanism).whole[2][2])
+        compiled.append(model(mechanism).program(2).compiled)
     assert len(compiled_sources) == 1                    # the second found it compiled
     assert compiled[0].function.__code__.co_code == compiled[1].function.__code__.co_code
     assert compiled[0].function.__code__.co_consts != compiled[1].function.__code__.co_consts
@@ -179,8 +179,11 @@ def test_a_redo_evaluates_the_chunk_again():
     tracer.guard(c, 0.0, check, c)
     tracer.output("c", c)
     compiled = tracer.compile()
-    compiled.redo = lambda angles, rows: rows[0].__setitem__(Ellipsis, -1.0)
-    assert compiled.read(compiled.evaluate(np.array([0.0, 120.0])), "c").tolist() == [-1, -1]
+    with pytest.raises(Redo):                        # nothing to hand the chunk back to
+        compiled.evaluate(np.array([0.0, 120.0]))
+    rows = compiled.evaluate(np.array([0.0, 120.0]),
+                             redo=lambda angles, rows: rows[0].__setitem__(Ellipsis, -1.0))
+    assert compiled.read(rows, "c").tolist() == [-1, -1]
 
 
 # -- the program of a mechanism ---------------------------------------------------------------

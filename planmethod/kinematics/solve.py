@@ -27,7 +27,6 @@ import heapq
 import math
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
@@ -38,8 +37,15 @@ from ..structure import AssurGroup, Structure
 from ..vectors import cross, norm, perp
 from .algebra import Body
 from .groups import kind_module
-from .groups.base import Construction, GroupInputs, ThetaKind, construction, error_estimate
-from .program import STAGES, Branch, model, owners
+from .groups.base import (
+    Construction,
+    GroupInputs,
+    Theta,
+    ThetaKind,
+    construction,
+    error_estimate,
+)
+from .program import STAGES, Branch, Result, model
 from .state import LinkState
 from .tracing import CHUNK
 
@@ -90,8 +96,8 @@ class GroupMotion:
 
     def __init__(self, motion: Motion, group: AssurGroup) -> None:
         self._motion, self._group = motion, group
-        level = _LEVELS[motion.stage]
-        self.line_sine = motion._read(f"sine:{group.index}") if level >= 1 else None
+        sine = motion._result.schema.sines.get(group.index)
+        self.line_sine = motion._result.read(sine) if sine is not None else None
 
     @property
     def construction(self) -> Construction | None:
@@ -127,16 +133,16 @@ class _Groups(Mapping):
         self._motion = motion
 
     def __getitem__(self, index: int) -> GroupMotion:
-        for group in self._motion._groups:
+        for group in self._motion._result.schema.groups:
             if group.index == index:
                 return GroupMotion(self._motion, group)
         raise KeyError(index)
 
     def __iter__(self) -> Iterator[int]:
-        return (group.index for group in self._motion._groups)
+        return (group.index for group in self._motion._result.schema.groups)
 
     def __len__(self) -> int:
-        return len(self._motion._groups)
+        return len(self._motion._result.schema.groups)
 
 
 class _Links(Mapping):
@@ -173,12 +179,10 @@ class Motion:
     stage: str
     branches: Mapping[int, Branch]
     solved: tuple[str, ...]
-    _groups: tuple[AssurGroup, ...] = field(repr=False)
-    _values: Any = field(repr=False)   # name → read-only array (see program.py's names)
-    _thetas: Mapping = field(repr=False)
+    #: what the program wrote, read through its schema
+    _result: Result = field(repr=False)
+    #: each point → the links that carry it, in file order
     _carriers: Mapping[str, tuple[str, ...]] = field(repr=False)
-    #: each point of the solved links → the first of them (in file order) that carries it
-    _owners: Mapping[str, str] = field(repr=False)
     #: what is computed when first read (constructions, error estimates), kept
     _kept: dict = field(repr=False, default_factory=dict, compare=False, init=False)
 
@@ -195,8 +199,6 @@ class Motion:
     def _out(self, array: np.ndarray) -> np.ndarray:
         return array[0] if self.scalar else array
 
-    def _read(self, name: str) -> np.ndarray:
-        return self._values(name)
 
     def _need(self, stage: str, what: str) -> None:
         if _LEVELS[self.stage] < _LEVELS[stage]:
@@ -215,16 +217,15 @@ class Motion:
         found = self._kept.get(key)
         if found is not None:
             return found
-        level = _LEVELS[self.stage]
-        read = self._read
+        rows, read = self._result.schema.links[link], self._result.read
         theta = self._theta(link)
         theta.flags.writeable = False
         found = self._kept[key] = LinkState(
-            theta, read(f"origin:{link}"),
-            read(f"omega:{link}") if level >= 1 else None,
-            read(f"velocity:{link}") if level >= 1 else None,
-            read(f"epsilon:{link}") if level >= 2 else None,
-            read(f"acceleration:{link}") if level >= 2 else None, read(f"axes:{link}"))
+            theta, read(rows.origin),
+            None if rows.omega is None else read(rows.omega),
+            None if rows.velocity is None else read(rows.velocity),
+            None if rows.epsilon is None else read(rows.epsilon),
+            None if rows.acceleration is None else read(rows.acceleration), read(rows.axes))
         return found
 
     def link_state(self, link: str) -> LinkState:
@@ -234,17 +235,7 @@ class Motion:
     def body(self, link: str) -> Body:
         """The link's :class:`~planmethod.kinematics.algebra.Body` (arrays)."""
         self._check_link(link)
-        level, read = _LEVELS[self.stage], self._read
-        axes, origin = read(f"axes:{link}"), read(f"origin:{link}")
-        body = Body(axes[:, 0], axes[:, 1], origin[:, 0], origin[:, 1])
-        if level >= 1:
-            velocity = read(f"velocity:{link}")
-            body.omega, body.vx, body.vy = read(f"omega:{link}"), velocity[:, 0], velocity[:, 1]
-        if level >= 2:
-            acceleration = read(f"acceleration:{link}")
-            body.epsilon, body.ax, body.ay = (read(f"epsilon:{link}"), acceleration[:, 0],
-                                        acceleration[:, 1])
-        return body
+        return self._result.body(link)
 
     def locate(self, ref: str) -> tuple[str, np.ndarray]:
         """(the link whose material point ``ref`` means, its global position (N, 2)): the first
@@ -259,34 +250,37 @@ class Motion:
                 break
         else:
             raise PlanmethodError(f"point {name} was not solved in this scene")
+        position = self._result.read(self._result.schema.points[name].position)
         if on:
             self._check_link(on)
-            return on, self._values(f"p:{name}")
-        return owner, self._values(f"p:{name}")
+            return on, position
+        return owner, position
 
     def position(self, ref: str) -> np.ndarray:
         """Global position (m) of a point (``"C"``) or of a link's point under another
         (``"B@lever"``)."""
-        if ref in self._owners:
-            found = self._values("p:" + ref)
+        rows = self._result.schema.points.get(ref)
+        if rows is not None:
+            found = self._result.read(rows.position)
             return found[0] if self.scalar else found
         return self._out(self.locate(ref)[1])
 
     def velocity(self, ref: str) -> np.ndarray:
         """Absolute velocity (m/s) of a point."""
-        return self._point_motion(ref, "velocity", "v:", LinkState.velocity_at)
+        return self._point_motion(ref, "velocity", LinkState.velocity_at)
 
     def acceleration(self, ref: str) -> np.ndarray:
         """Absolute acceleration (m/s²) of a point."""
-        return self._point_motion(ref, "acceleration", "a:", LinkState.acceleration_at)
+        return self._point_motion(ref, "acceleration", LinkState.acceleration_at)
 
-    def _point_motion(self, ref: str, stage: str, prefix: str, rigid) -> np.ndarray:
-        """A named point's velocity or acceleration as solved (``prefix`` + its name), or a
-        link's point under another (``"B@lever"``) by the link's rigid motion (``rigid``)."""
+    def _point_motion(self, ref: str, stage: str, rigid) -> np.ndarray:
+        """A named point's velocity or acceleration (``stage``) as solved, or a link's point
+        under another (``"B@lever"``) by the link's rigid motion (``rigid``)."""
         if _LEVELS[self.stage] < _LEVELS[stage]:
             self._need(stage, f"the {stage} of {ref}")
-        if ref in self._owners:
-            found = self._values(prefix + ref)
+        rows = self._result.schema.points.get(ref)
+        if rows is not None:
+            found = self._result.read(getattr(rows, stage))
             return found[0] if self.scalar else found
         link, position = self.locate(ref)   # a point under another, or an error
         return self._out(rigid(self._state(link), position))
@@ -307,23 +301,28 @@ class Motion:
 
     # -- links -----------------------------------------------------------------------------------
     def _theta(self, link: str) -> np.ndarray:
-        recipe = self._thetas.get(link)
+        schema = self._result.schema
+        recipe = schema.recipes.get(link)
         if link == FRAME:
             return np.zeros(self.angles.shape[0])
         if recipe is None:  # the drive, or a link whose θ is a result of its own
-            return self._read(f"theta:{link}")
+            return self._result.read(schema.thetas[link])
         return _THETA_READERS[recipe.kind](self, link, recipe)
 
-    def _theta_two(self, link: str, recipe) -> np.ndarray:
-        first, second = self._read(f"p:{recipe.first}"), self._read(f"p:{recipe.second}")
+    def _at(self, point: str) -> np.ndarray:
+        """A named point's position (N, 2)."""
+        return self._result.read(self._result.schema.points[point].position)
+
+    def _theta_two(self, link: str, recipe: Theta) -> np.ndarray:
+        first, second = self._at(recipe.first), self._at(recipe.second)
         return np.arctan2(second[:, 1] - first[:, 1], second[:, 0] - first[:, 0]) - recipe.alpha
 
-    def _theta_tied(self, link: str, recipe) -> np.ndarray:
+    def _theta_tied(self, link: str, recipe: Theta) -> np.ndarray:
         return self._theta(recipe.link) + recipe.alpha
 
-    def _theta_span(self, link: str, recipe) -> np.ndarray:
-        span = self._read(f"p:{recipe.first}") - self._read(f"p:{recipe.second}")
-        axes = self._read(f"axes:{link}")
+    def _theta_span(self, link: str, recipe: Theta) -> np.ndarray:
+        span = self._at(recipe.first) - self._at(recipe.second)
+        axes = self._result.read(self._result.schema.links[link].axes)
         c, s = axes[:, 0], axes[:, 1]
         inside_x = c * span[:, 0] + s * span[:, 1]
         inside_y = c * span[:, 1] - s * span[:, 0]
@@ -338,13 +337,13 @@ class Motion:
         """Angular velocity (rad/s, counter-clockwise positive)."""
         self._need("velocity", f"ω of {link}")
         self._check_link(link)
-        return self._out(self._read(f"omega:{link}"))
+        return self._out(self._result.read(self._result.schema.links[link].omega))
 
     def epsilon(self, link: str) -> np.ndarray:
         """Angular acceleration (rad/s², counter-clockwise positive)."""
         self._need("acceleration", f"ε of {link}")
         self._check_link(link)
-        return self._out(self._read(f"epsilon:{link}"))
+        return self._out(self._result.read(self._result.schema.links[link].epsilon))
 
     # -- pairs and paths -------------------------------------------------------------------------
     def sliding(self, key: str) -> Sliding:
@@ -357,7 +356,7 @@ class Motion:
         point = mover.place(self.mechanism.local(slide.link, slide.point))
         through = guide.place(self.mechanism.local(slide.along, slide.through))
         c, s = np.cos(slide.direction_rad), np.sin(slide.direction_rad)
-        axes = guide.basis
+        axes = guide.axes()
         d = np.stack((axes[:, 0] * c - axes[:, 1] * s, axes[:, 0] * s + axes[:, 1] * c), axis=-1)
         travel = np.einsum("...i,...i->...", point - through, d)
         level = _LEVELS[self.stage]
@@ -390,7 +389,8 @@ class Motion:
             state = self._state(link)
             v, a = state.velocity_at(position), state.acceleration_at(position)
         else:
-            v, a = self._read(f"v:{name}"), self._read(f"a:{name}")
+            rows = self._result.schema.points[name]
+            v, a = self._result.read(rows.velocity), self._result.read(rows.acceleration)
         speed = norm(v)
         turn = cross(v, a)
         scale = np.maximum(speed * norm(a), np.finfo(float).tiny)
@@ -423,33 +423,6 @@ def _angles(mechanism: Mechanism, angles) -> tuple[bool, np.ndarray]:
     values = np.atleast_1d(np.asarray(mechanism.drive.angle if angles is None else angles,
                                       dtype=float)).ravel()
     return scalar, np.ascontiguousarray(values)
-
-
-class _Rows:
-    """Reads a compiled program's result rows by name (read-only views)."""
-
-    __slots__ = ("_read", "_rows")
-
-    def __init__(self, program, rows: np.ndarray) -> None:
-        self._rows, self._read = rows, program.read
-
-    def __call__(self, name: str) -> np.ndarray:
-        return self._read(self._rows, name)
-
-
-class _Direct:
-    """Reads the direct evaluation's outputs by name (read-only)."""
-
-    __slots__ = ("_values",)
-
-    def __init__(self, values: dict) -> None:
-        for array in values.values():
-            if array.flags.writeable:
-                array.flags.writeable = False
-        self._values = values
-
-    def __call__(self, name: str) -> np.ndarray:
-        return self._values[name]
 
 
 def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
@@ -488,37 +461,26 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
     if not np.isfinite(angles_deg).all():
         raise SpecError("crank angles must be finite numbers")
     level = _LEVELS[stage]
-    whole = found.whole.get(level) if links is None and branches is None else None
-    if whole is None:
+    if links is None and branches is None:
+        program = found.program(level)
+    else:
         groups = found.groups(links)
-        chosen = found.branches(groups) if branches is None else {
-            group.index: branches[group.index] for group in groups}
-        solved = (FRAME, mechanism.drive.link, *(link for g in groups for link in g.links))
-        point_owners = owners(mechanism, solved)
-        if not reference:
-            program, thetas = found.program(level, groups, chosen)
-            if links is None and branches is None:
-                found.whole[level] = (groups, chosen, program, thetas, solved, point_owners)
-    else:
-        groups, chosen, program, thetas, solved, point_owners = whole
+        program = found.program(level, groups, found.branches(groups) if branches is None else {
+            group.index: branches[group.index] for group in groups})
     if reference:
-        values, thetas = found.direct(level, groups, chosen, angles_deg)
-        read = _Direct(values)
+        result = program.direct(angles_deg)
     else:
-        rows = np.empty((program.layout.count, angles_deg.shape[0]))
         try:
-            program.run(angles_deg, list(rows))
+            result = program.run(angles_deg)
         except PlanmethodError:
             if angles_deg.shape[0] <= CHUNK:
                 raise
             # a chunk came near a refused position: the direct evaluation over every angle
             # finds the first angle refused, group by group in build order
-            found.direct(level, groups, chosen, angles_deg)
+            program.direct(angles_deg)
             raise
-        rows.flags.writeable = False
-        read = _Rows(program, rows)
-    return Motion(mechanism, found.structure, angles_deg, scalar, stage, chosen, solved,
-                  tuple(groups), read, thetas, found.carriers, point_owners)
+    return Motion(mechanism, found.structure, angles_deg, scalar, stage, program.branches,
+                  result.schema.solved, result, found.carriers)
 
 
 # -- following the assembly from drive.angle to another crank angle --------------------------
@@ -796,7 +758,8 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
                       reference=True)
         size = max(math.hypot(*xy) for xy in points.values())
         for point, xy in points.items():
-            away = math.dist(check.position(point), xy) if point in check._owners else 0.0
+            away = (math.dist(check.position(point), xy)
+                    if point in check._result.schema.points else 0.0)
             if away > 1e-9 * size:
                 raise PlanmethodError(
                     f"the assembly followed from drive.angle {start:g}° is not among the "

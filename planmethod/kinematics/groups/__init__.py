@@ -8,9 +8,8 @@ provides is written once, here, as protocols:
 * :class:`ClosedFormKind` — a dyad: ``BRANCHES`` (how many assemblies it has) and
   ``place(context)``, its closed-form positions and its two vector equations (see
   :mod:`~planmethod.kinematics.groups.base`); or
-* :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch,
-  outputs)`` and ``choose(context, model)`` (Newton continued along the crank angle, see
-  :mod:`.higher`);
+* :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch)`` and
+  ``choose(context, model)`` (Newton continued along the crank angle, see :mod:`.higher`);
 
 with :class:`Reactions` (``reactions(solver, group)``, the textbook sequence the force analysis
 runs) — required of a dyad, optional for a higher group (without it the group's 3k equilibrium
@@ -49,7 +48,7 @@ from ...errors import StructureError
 from ...structure import AssurGroup
 from ...vocabulary import GroupKind, PlanKind
 from ..algebra import Body
-from .base import Branch, ForceSolver, GroupInputs, Placed, PlanDrawer
+from .base import Branch, ForceSolver, GroupInputs, KindModel, Placed, PlanDrawer, SolvedGroup
 
 __all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "OwnPlans", "Reactions",
            "describe", "kind_module", "registered"]
@@ -69,10 +68,10 @@ class IterativeKind(Protocol):
     """A higher group kind: its links' motion by Newton continued from ``drive.angle``
     (``evaluate``), and its assembly there (``choose``)."""
 
-    def evaluate(self, context: GroupInputs, level: int, model: Any, branch: Branch,
-                 outputs: Any) -> Any: ...
+    def evaluate(self, context: GroupInputs, level: int, model: KindModel,
+                 branch: Branch) -> SolvedGroup: ...
 
-    def choose(self, context: GroupInputs, model: Any) -> tuple[Branch, dict[str, Body]]: ...
+    def choose(self, context: GroupInputs, model: KindModel) -> tuple[Branch, dict[str, Body]]: ...
 
 
 class Accepts(Protocol):
@@ -110,8 +109,8 @@ class KindModule:
     accepts: Callable[[AssurGroup], bool] | None = None
     branches: int = 0
     place: Callable[[GroupInputs], Placed] | None = None
-    evaluate: Callable[..., Any] | None = None
-    choose: Callable[..., tuple[Branch, dict[str, Body]]] | None = None
+    evaluate: Callable[[GroupInputs, int, KindModel, Branch], SolvedGroup] | None = None
+    choose: Callable[[GroupInputs, KindModel], tuple[Branch, dict[str, Body]]] | None = None
     #: None only for an iterative kind without one: its linear system is solved instead
     reactions: Callable[[ForceSolver, AssurGroup], Any] | None = None
     drawings: Mapping[PlanKind, Callable[[PlanDrawer, AssurGroup], None]] = field(

@@ -28,7 +28,7 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any, NamedTuple, Protocol
@@ -38,9 +38,9 @@ import numpy as np
 from ... import vectors
 from ...errors import AssemblyError, StructureError, ToggleError
 from ...model import Mechanism, Slide
-from ...structure import AssurGroup, Joint
+from ...structure import AssurGroup, Joint, Structure
 from ...vocabulary import STAGE_PLURAL, EdgeKind
-from ..algebra import Body, Vec, cross, dot
+from ..algebra import Body, Number, Vec, cross, dot
 from ..tracing import Traced
 
 __all__ = [
@@ -50,12 +50,15 @@ __all__ = [
     "Anchor",
     "Branch",
     "Construction",
+    "DyadRates",
     "ForceSolver",
     "GroupInputs",
+    "KindModel",
     "Pin",
     "Placed",
     "PlanDrawer",
     "Side",
+    "SolvedGroup",
     "Theta",
     "ThetaKind",
     "evaluate_dyad",
@@ -86,6 +89,25 @@ class Branch:
 
 
 # -- the context -----------------------------------------------------------------------------
+class KindModel(Protocol):
+    """What a higher group kind is given of the mechanism's model
+    (:class:`planmethod.kinematics.program.Model`): the mechanism and its structure, the
+    branches chosen at ``drive.angle``, the direct evaluation of the groups before it, the
+    model of a sibling mechanism (the same at unit crank speed), and ``memo``, where a kind
+    keeps what it finds once per model (its assemblies, its continuation path)."""
+
+    mechanism: Mechanism
+    structure: Structure
+    memo: dict[Hashable, object]
+
+    def sibling(self, mechanism: Mechanism) -> KindModel: ...
+
+    def branches(self, groups: Iterable[AssurGroup] | None = None) -> dict[int, Branch]: ...
+
+    def bodies(self, level: int, groups: tuple[AssurGroup, ...],
+               branches: Mapping[int, Branch], angles_deg: np.ndarray) -> dict[str, Body]: ...
+
+
 @dataclass(frozen=True, slots=True)
 class Pin:
     """A revolute pair of a group with a known link: ``link`` (of the group) carries the pin at
@@ -234,6 +256,17 @@ class Theta:
     link: str | None = None
 
 
+class SolvedGroup(NamedTuple):
+    """A higher group solved (what an iterative kind's ``evaluate`` returns, its links' bodies
+    put into the context): the θ of its links that are results of their own (``thetas``:
+    link → value), how the others' angles are read (``recipes``), and the conditioning of its
+    Jacobian (``sine``: 1 at best, 0 at a toggle)."""
+
+    thetas: Mapping[str, Number]
+    recipes: Mapping[str, Theta]
+    sine: Number
+
+
 # -- a placed dyad ---------------------------------------------------------------------------
 @dataclass(slots=True)
 class Side:
@@ -348,21 +381,29 @@ def axes_towards(r: Vec, first: tuple[float, float], second: tuple[float, float]
 
 
 # -- the generic solve of the two vector equations ---------------------------------------------
-def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage: Callable) -> dict:
+class DyadRates(NamedTuple):
+    """What :func:`evaluate_dyad` finds besides the bodies: the sine of the angle between the
+    dyad's two construction lines, X's velocity and acceleration (None: not solved)."""
+
+    sine: Number | None = None
+    velocity: Vec | None = None
+    acceleration: Vec | None = None
+
+
+def evaluate_dyad(context: GroupInputs, placed: Placed, level: int,
+                  check_stage: Callable) -> DyadRates:
     """Velocities (``level`` ≥ 1) and accelerations (``level`` 2) of a placed dyad: fills the
-    group links' bodies in ``context.bodies`` and returns X's velocity and acceleration and the
-    sine of the angle between the two lines (``{"v_x", "a_x", "sine"}``)."""
+    group links' bodies in ``context.bodies`` and returns the lines' sine and X's velocity and
+    acceleration."""
     bodies = context.bodies
     for link, body in placed.bodies.items():
         bodies[link] = body
-    out: dict[str, Any] = {}
     if level < 1:
-        return out
+        return DyadRates()
     s1, s2 = placed.sides
     e1, e2 = s1.direction, s2.direction
     det = cross(e1, e2)
     sine = det / (s1.length * s2.length)
-    out["sine"] = sine
     # the digits left near the toggle: ε·R/s³ (velocities), ε·R/s⁵ (accelerations) below 1
     power = 3.0 if level == 1 else 5.0
     bound = (EPS * placed.ratio_bound) ** (1.0 / power) * MARGIN
@@ -378,7 +419,6 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage:
     # often (a guide fixed in the frame: v_X = u2·e2 exactly, no rounding across it)
     second = _constants(vb2, e2) > _constants(vb1, e1)
     v_x = vb2 + e2 * u2 if second else vb1 + e1 * u1
-    out["v_x"] = v_x
     omegas = _follow(placed, {link: (u1, u2)[index] for link, index in placed.rotating.items()},
                      lambda link: bodies[link].omega)
     for link, body in placed.bodies.items():
@@ -391,7 +431,7 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage:
             moved = velocity + r.perp() * body.omega
             body.vx, body.vy = moved.x, moved.y
     if level < 2:
-        return out
+        return DyadRates(sine, v_x)
     ab1 = bodies[s1.base_link].acceleration(s1.offset)
     ab2 = bodies[s2.base_link].acceleration(s2.offset)
     known = []
@@ -404,7 +444,6 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage:
     du1 = cross(rhs, e2) / det
     du2 = cross(rhs, e1) / det
     a_x = ab2 + known[1] + e2 * du2 if second else ab1 + known[0] + e1 * du1
-    out["a_x"] = a_x
     epsilons = _follow(placed, {link: (du1, du2)[index]
                                 for link, index in placed.rotating.items()},
                        lambda link: bodies[link].epsilon)
@@ -418,7 +457,7 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int, check_stage:
             square = body.omega * body.omega
             moved = acceleration + r.perp() * body.epsilon - r * square
             body.ax, body.ay = moved.x, moved.y
-    return out
+    return DyadRates(sine, v_x, a_x)
 
 
 def _constants(*vectors: Vec) -> int:

@@ -44,8 +44,19 @@ from ...vectors import cross, norm, perp, turn_onto, unit, unit_angle
 from ...vocabulary import EdgeKind, GroupKind, PairKind
 from .. import algebra
 from ..algebra import Body, Vec, absolute, cos, maximum, sin, sqrt
-from .base import Branch, ForceSolver, GroupInputs, PlanDrawer, Theta, ThetaKind, sense, split
-from .higher import Solved, System, choose_with, higher_evaluate, wrap
+from .base import (
+    Branch,
+    ForceSolver,
+    GroupInputs,
+    KindModel,
+    PlanDrawer,
+    SolvedGroup,
+    Theta,
+    ThetaKind,
+    sense,
+    split,
+)
+from .higher import System, choose_with, higher_evaluate, wrap
 
 __all__ = ["KIND", "PRIORITY", "SPECIAL", "TriadSystem", "accepts", "choose",
            "draw_acceleration", "draw_velocity", "evaluate", "reactions", "sides"]
@@ -319,12 +330,12 @@ def _cramer(rows, rhs) -> tuple:
     return u0, u1, u2
 
 
-def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model: KindModel, branch: Branch) -> SolvedGroup:
     """Solve the triad at the context's angles (see the module docstring)."""
-    return higher_evaluate(context, level, model, branch, outputs, TriadSystem)
+    return higher_evaluate(context, level, model, branch, TriadSystem)
 
 
-def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model: KindModel) -> tuple[Branch, dict[str, Body]]:
     """The triad's assembly at ``drive.angle``."""
     return choose_with(context, model, TriadSystem)
 
