@@ -7,8 +7,8 @@ Read by vulture, never imported (an attribute set in ``__init__`` is not on its 
 
 from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
+from planmethod.kinematics.motion import Motion
 from planmethod.kinematics.program import Model
-from planmethod.kinematics.solve import Motion
 from planmethod.studio.server import StudioHandler, StudioServer
 
 # argparse's parser reads this attribute: negative numbers in any float notation are values

@@ -956,7 +956,7 @@ def _path_mm(motion: Motion, point: str, mu_l: float) -> list[list[float]] | Non
     angles = np.arange(0.0, 360.0, 2.0)
     try:
         path = solve(motion.mechanism, angles, stage="position", links=list(motion.links),
-                     structure=motion.structure, branches=motion.branches).position(point)
+                     branches=motion.branches).position(point)
         found = [[float(x) / mu_l, float(y) / mu_l] for x, y in path]
     except PlanmethodError:
         found = None

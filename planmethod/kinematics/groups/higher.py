@@ -37,7 +37,7 @@ Examples
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
 >>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0)
->>> motion.position("D").round(6)
+>>> motion.at(0).position("D").round(6)
 array([ 0.793156, -0.183194])
 >>> motion.branches[0].reason, motion.branches[0].count
 ('sketch', 4)

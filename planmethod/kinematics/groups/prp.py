@@ -13,7 +13,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/slotted_crank_crosshead.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/slotted_crank_crosshead.toml").mechanism).at(0)
 >>> motion.position("Q").round(6)
 array([0.175279, 0.530906])
 """

@@ -15,7 +15,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/scotch_yoke.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/scotch_yoke.toml").mechanism).at(0)
 >>> round(float(motion.omega("yoke")), 6)
 0.0
 """

@@ -15,7 +15,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism).at(0)
 >>> round(float(motion.omega("lever")), 6)
 1.923077
 """

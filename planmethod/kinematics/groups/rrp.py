@@ -14,7 +14,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/compressor_slider_crank.toml").mechanism).at(0)
 >>> round(float(motion.velocity("C")[0]), 4)
 -5.2716
 """

@@ -13,7 +13,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/fourbar_coupler_point.toml").mechanism, 60.0)
+>>> motion = solve(load_exercise("exercises/fourbar_coupler_point.toml").mechanism, 60.0).at(0)
 >>> motion.position("C").round(6)
 array([0.23641 , 0.168393])
 """

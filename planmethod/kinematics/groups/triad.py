@@ -25,7 +25,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0)
+>>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0).at(0)
 >>> round(float(np.degrees(motion.theta("rocker_EF"))), 5)
 -18.29342
 """
