@@ -38,14 +38,9 @@ from ..structure import AssurGroup, Structure
 from ..vectors import cross, norm, perp
 from .algebra import Body
 from .groups import kind_module
-from .groups.base import (
-    Construction,
-    GroupInputs,
-    Theta,
-    ThetaKind,
-    construction,
-    error_estimate,
-)
+from .groups.base import GroupInputs, Theta, ThetaKind
+from .groups.checks import error_estimate
+from .groups.dyad import Construction, construction
 from .program import STAGES, Branch, Result, model
 from .state import LinkState
 from .tracing import CHUNK
@@ -87,7 +82,7 @@ class GroupMotion:
     """A solved group: the sine of the angle between its two construction lines
     (``line_sine``; for a class III group the reciprocal condition number of its Jacobian),
     and — computed when first read, and kept by the motion — its :class:`~planmethod.
-    kinematics.groups.base.Construction` (what the plans draw; None for a higher group) and
+    kinematics.groups.dyad.Construction` (what the plans draw; None for a higher group) and
     ``error_estimate``, the estimated relative error of its velocities and accelerations near
     its toggle, ε·R/s³ and ε·R/s⁵ (per stage solved)."""
 

@@ -50,7 +50,9 @@ from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, analyse_structure
 from .algebra import Body, Number, Vec, cos, sin
 from .groups import kind_module
-from .groups.base import Branch, GroupInputs, Theta, evaluate_dyad, stage_check
+from .groups.base import Branch, GroupInputs, Theta
+from .groups.checks import stage_check
+from .groups.dyad import evaluate_dyad
 from .tracing import Compiled, Layout, Tracer
 
 __all__ = ["STAGES", "Branch", "LinkRows", "Model", "PointRows", "Program", "Result", "Schema",

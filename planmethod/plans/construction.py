@@ -1,7 +1,7 @@
 """The plan emulator: velocity and acceleration plans built the way a student draws them.
 
 For one crank angle the plans are drawn group by group in build order from the groups' vector
-equations (see :mod:`planmethod.kinematics.groups.base`): a known vector is laid off from a
+equations (see :mod:`planmethod.kinematics.groups.dyad`): a known vector is laid off from a
 known plan point; an unknown one is a line of known direction through a known plan point; two
 such lines are intersected. The acceleration plan lays off the normal components computed from
 velocity-plan segments, (bn) = (bc)²·μv²/((BC)·μl·μa), and the Coriolis components 2ω·v_rel
@@ -38,7 +38,9 @@ import numpy as np
 from ..errors import PlanmethodError, SpecError, ToggleError
 from ..kinematics import Motion, solve
 from ..kinematics.groups import kind_module
-from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
+from ..kinematics.groups.base import sense
+from ..kinematics.groups.checks import TOGGLE_SINE
+from ..kinematics.groups.dyad import Construction, follow_tied
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
@@ -705,7 +707,7 @@ class _Emulator:
         equation = " = ".join([f"v_{construction.point}"] + [
             f"v_{side.base} + v_{construction.point}{side.base}" for side in sides])
         for side in sides:
-            base = side.base_position[0]
+            base = side.position[0]
             base_label = self.image_at(self.v, self.vimages, side.base_link, base,
                                        self._base_label(side, self.v))
             direction = side.direction[0]
@@ -728,13 +730,13 @@ class _Emulator:
         rel: list[float] = []
         for _index, side in enumerate(sides):
             base_label = self.image_at(self.v, self.vimages, side.base_link,
-                                       side.base_position[0], self._base_label(side, self.v))
+                                       side.position[0], self._base_label(side, self.v))
             segment = self.v.points[x_label] - self.v.points[base_label]
             direction = side.direction[0]
             sign = sense(segment, direction)
             if side.rotation:
-                radius = x - side.base_position[0]
-                length_mm = self.radius_mm(side.base_position[0], x)
+                radius = x - side.position[0]
+                length_mm = self.radius_mm(side.position[0], x)
                 omega = self.v.read(
                     base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
                     factor=mu_v / (length_mm * mu_l))
@@ -753,7 +755,7 @@ class _Emulator:
                     "v": (base_label, x_label), "reverse": side.link == side.slide.link}
         self.rel_velocity[(group.index, 0)] = rel[0]
         self.rel_velocity[(group.index, 1)] = rel[1]
-        construction.follow_tied(omegas, lambda link: self.readings.get(f"omega_{link}"))
+        follow_tied(construction.tied, omegas, lambda link: self.readings.get(f"omega_{link}"))
         for link in group.links:
             self.readings[f"omega_{link}"] = omegas[link]
             name, ref, known = construction.reference(link)
@@ -773,7 +775,7 @@ class _Emulator:
         line_numbers = []
         normals: dict[int, str] = {}
         for index, side in enumerate(construction.sides):
-            base = side.base_position[0]
+            base = side.position[0]
             base_label = self.image_at(self.a, self.aimages, side.base_link, base,
                                        self._base_label(side, self.a))
             direction = side.direction[0]
@@ -831,14 +833,15 @@ class _Emulator:
             direction = side.direction[0]
             sign = sense(segment, direction)
             if side.rotation:
-                length_mm = self.radius_mm(side.base_position[0], x)
+                length_mm = self.radius_mm(side.position[0], x)
                 epsilons[side.link] = self.a.read(
                     start, x_label, quantity=f"epsilon_{side.link}", sign=sign,
                     factor=mu_a / (length_mm * mu_l))
             else:
                 self.a.read(start, x_label, quantity=f"a_rel_{point}{side.base}", sign=sign,
                             factor=mu_a)
-        construction.follow_tied(epsilons, lambda link: self.readings.get(f"epsilon_{link}"))
+        follow_tied(construction.tied, epsilons,
+                    lambda link: self.readings.get(f"epsilon_{link}"))
         for link in group.links:
             self.readings[f"epsilon_{link}"] = epsilons[link]
             omega = self.readings[f"omega_{link}"]

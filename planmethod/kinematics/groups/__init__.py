@@ -7,7 +7,7 @@ provides is written once, here, as protocols:
 
 * :class:`ClosedFormKind` — a dyad: ``BRANCHES`` (how many assemblies it has) and
   ``place(context)``, its closed-form positions and its two vector equations (see
-  :mod:`~planmethod.kinematics.groups.base`); or
+  :mod:`~planmethod.kinematics.groups.dyad`); or
 * :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch)`` and
   ``choose(context, model)`` (Newton continued along the crank angle, see :mod:`.higher`);
 
@@ -48,7 +48,8 @@ from ...errors import StructureError
 from ...structure import AssurGroup
 from ...vocabulary import GroupKind, PlanKind
 from ..algebra import Body
-from .base import Branch, ForceSolver, GroupInputs, KindModel, Placed, PlanDrawer, SolvedGroup
+from .base import Branch, ForceSolver, GroupInputs, KindModel, PlanDrawer, SolvedGroup
+from .dyad import Placed
 
 __all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "OwnPlans", "Reactions",
            "describe", "kind_module", "registered"]

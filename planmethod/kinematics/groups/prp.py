@@ -24,7 +24,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec, cross, dot
-from . import base
+from . import base, checks, dyad
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -32,7 +32,7 @@ KIND = GroupKind.PRP
 BRANCHES = 1
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     lines = []
@@ -50,23 +50,23 @@ def place(context: base.GroupInputs) -> base.Placed:
             f"{internal.point} has no definite position")
 
     def check(angles, value) -> None:
-        base.parallel_guides(group, angles, value, text)
+        checks.parallel_guides(group, angles, value, text)
 
-    context.guard(det * det, base.TOGGLE_SINE * base.TOGGLE_SINE, check, det)
+    context.guard(det * det, checks.TOGGLE_SINE * checks.TOGGLE_SINE, check, det)
     x = Vec((c1 * n2.y - c2 * n1.y) / det, (n1.x * c2 - n2.x * c1) / det)
     for body, turned, local in ((body1, t1, q1), (body2, t2, q2)):
         origin = x if local == (0.0, 0.0) else x - turned
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     k1, k2 = ext1.other(l1), ext2.other(l2)
-    sides = tuple(base.sliding_side(context, joint.slide, known, f"{internal.point}@{known}", known,
+    sides = tuple(dyad.sliding_side(context, joint.slide, known, f"{internal.point}@{known}", known,
                                x, placed) for joint, known in ((ext1, k1), (ext2, k2)))
 
     def delta(joint, link) -> float:
         return joint.slide.direction_rad if link == joint.slide.link else (
             -joint.slide.direction_rad)
 
-    return base.Placed(
+    return dyad.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={}, tied={l1: k1, l2: k2},
         anchors={},

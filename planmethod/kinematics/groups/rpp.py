@@ -26,7 +26,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, cross
-from . import base
+from . import base, checks, dyad
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -34,7 +34,7 @@ KIND = GroupKind.RPP
 BRANCHES = 1
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     k2 = ext2.other(l2)
@@ -53,21 +53,21 @@ def place(context: base.GroupInputs) -> base.Placed:
             "definite position")
 
     def check(angles, value) -> None:
-        base.parallel_guides(group, angles, value, text)
+        checks.parallel_guides(group, angles, value, text)
 
-    context.guard(det * det, base.TOGGLE_SINE * base.TOGGLE_SINE, check, det)
+    context.guard(det * det, checks.TOGGLE_SINE * checks.TOGGLE_SINE, check, det)
     body2.x = (line1 * n2.y - line2 * n1.y) / det
     body2.y = (n1.x * line2 - n2.x * line1) / det
     placed = {l1: body1, l2: body2}
     x = p1.at
     x_name = f"{ext1.point}@{l2}"
-    sides = (base.pinned_sliding_side(context, inner, l1, p1, placed),
-             base.sliding_side(context, ext2.slide, k2, f"{ext1.point}@{k2}", k2, x, placed))
+    sides = (dyad.pinned_sliding_side(context, inner, l1, p1, placed),
+             dyad.sliding_side(context, ext2.slide, k2, f"{ext1.point}@{k2}", k2, x, placed))
     outer = ext2.slide.direction_rad if l2 == ext2.slide.link else -ext2.slide.direction_rad
-    return base.Placed(
+    return dyad.Placed(
         bodies=placed, point=x_name, x=x, sides=sides,
         rotating={}, tied={l2: k2, l1: l2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
         thetas={l2: base.Theta(base.ThetaKind.TIED, alpha=outer, link=k2),
                 l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
         ratio_bound=1.0, x_links=(l2,))

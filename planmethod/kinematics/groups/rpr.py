@@ -30,7 +30,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, Vec, cross, dot, sqrt
-from . import base
+from . import base, checks, dyad
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -38,7 +38,7 @@ KIND = GroupKind.RPR
 BRANCHES = 2
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()   # l1 is the block (the slide's link)
     slide = internal.slide
@@ -60,16 +60,16 @@ def place(context: base.GroupInputs) -> base.Placed:
         distance = np.atleast_1d(np.asarray(distance, dtype=float))
         close = distance <= 1e-15
         if np.any(close):
-            raise base.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
+            raise checks.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
                                  "coincide: the group has no definite position", 0.0)
         if offset != 0:
             size = np.maximum(np.abs(np.asarray(sx)), np.abs(np.asarray(sy)))
-            base.toggle_or_miss(group, angles, distance - abs(offset),
+            checks.toggle_or_miss(group, angles, distance - abs(offset),
                            distance + abs(offset) + size, text, abs(offset) - distance)
 
     # |P1P2| − |offset| must exceed 16ε·(|P1P2| + |offset| + |span|) ≤ 16ε·(3|P1P2| + |offset|)
     # (and 1e-15 m): a margin proportional to the length itself
-    rounding = 16.0 * base.EPS * base.MARGIN
+    rounding = 16.0 * checks.EPS * checks.MARGIN
     gap = length * (1.0 - 3.0 * rounding) - abs(offset) * (1.0 + rounding)
     context.guard(gap, 1e-15, check, length, span.x, span.y)
     projection = -dot(c0, u)
@@ -86,16 +86,16 @@ def place(context: base.GroupInputs) -> base.Placed:
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     x = p1.at
-    sides = (base.pinned_sliding_side(context, slide, l1, p1, placed),
-             base.rotation_side(l2, p2, span, length))
-    return base.Placed(
+    sides = (dyad.pinned_sliding_side(context, slide, l1, p1, placed),
+             dyad.rotation_side(l2, p2, span, length))
+    return dyad.Placed(
         bodies=placed, point=f"{ext1.point}@{l2}", x=x, sides=sides,
         rotating={l2: 1}, tied={l1: l2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: dyad.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         thetas={l2: base.Theta(base.ThetaKind.SPAN, ext1.point, ext2.point, link=l2),
                 l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
-        ratio_bound=2.0 * base.MARGIN, x_links=(l2,))
+        ratio_bound=2.0 * checks.MARGIN, x_links=(l2,))
 
 
 # -- the reactions ---------------------------------------------------------------------------

@@ -27,7 +27,7 @@ from ...structure import AssurGroup
 from ...vectors import cross, perp
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, dot, sqrt
-from . import base
+from . import base, checks, dyad
 
 __all__ = ["BRANCHES", "KIND", "place", "reactions"]
 
@@ -35,7 +35,7 @@ KIND = GroupKind.RRP
 BRANCHES = 2
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     slide = ext2.slide
@@ -54,35 +54,35 @@ def place(context: base.GroupInputs) -> base.Placed:
 
     def check(angles, x1, y1, height, line) -> None:
         size = np.maximum(np.abs(x1), np.abs(y1))
-        base.toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
+        checks.toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
                        np.abs(height) - a)
 
     # a² − h² = (a − |h|)(a + |h|): where it exceeds 2a·16ε·(scale) no angle is a toggle or a
     # miss; the scale a + |offset| + |P1| is at most 2a + 2|P1| while |h| < a (|P1| unbounded:
     # the check runs at every angle)
     far = np.inf if p1.bound is None else p1.bound
-    bound = 2.0 * a * 16.0 * base.EPS * (2.0 * a + 2.0 * far) * 1.01 * base.MARGIN
+    bound = 2.0 * a * 16.0 * checks.EPS * (2.0 * a + 2.0 * far) * 1.01 * checks.MARGIN
     context.guard(square, bound, check, p1.at.x, p1.at.y, h, offset)
     along = sqrt(square) * context.sign
     r1 = d * along - n * h
     x = p1.at + r1
-    body1 = Body(*base.axes_towards(r1, p1.local, q1, a))
-    base.place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    body1 = Body(*dyad.axes_towards(r1, p1.local, q1, a))
+    dyad.place_origin(body1, ((p1.at, p1.local), (x, q1)))
     body2 = Body(c2, s2)
     origin2 = x if q2 == (0.0, 0.0) else x - turned
     body2.x, body2.y = origin2.x, origin2.y
     placed = {l1: body1, l2: body2}
-    sides = (base.rotation_side(l1, p1, r1, a),
-             base.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
+    sides = (dyad.rotation_side(l1, p1, r1, a),
+             dyad.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
     delta = slide.direction_rad if l2 == slide.link else -slide.direction_rad
-    return base.Placed(
+    return dyad.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={l1: 0}, tied={l2: k2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
         thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                           float(np.arctan2(q1[1] - p1.local[1], q1[0] - p1.local[0]))),
                 l2: base.Theta(base.ThetaKind.TIED, alpha=delta, link=k2)},
-        ratio_bound=2.0 * base.MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})
+        ratio_bound=2.0 * checks.MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})
 
 
 # -- the reactions ---------------------------------------------------------------------------

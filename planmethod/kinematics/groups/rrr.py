@@ -28,13 +28,13 @@ from ...structure import AssurGroup
 from ...vectors import perp
 from ...vocabulary import EdgeKind, GroupKind
 from ..algebra import Body, dot, sqrt
-from . import base
+from . import base, checks, dyad
 
 KIND = GroupKind.RRR
 BRANCHES = 2
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     p1, p2 = context.pin(ext1), context.pin(ext2)
@@ -54,17 +54,17 @@ def place(context: base.GroupInputs) -> base.Placed:
         distance = np.atleast_1d(np.sqrt(dx * dx + dy * dy))
         close = distance <= 1e-15 * (a + b)
         if np.any(close):
-            raise base.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
+            raise checks.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
                                  "coincide: the group has no definite position", 0.0)
         stretched, folded = a + b - distance, distance - abs(a - b)
         vanishing = np.where(np.abs(stretched) <= np.abs(folded), stretched, folded)
         reach = np.maximum(np.abs(dx), np.abs(dy))
-        base.toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
+        checks.toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
                        np.maximum(distance - a - b, np.maximum(abs(a - b) - distance, 0.0)))
 
     # where the product exceeds this, no angle is a toggle, a miss or coinciding pins
     # (docs/accuracy.md: a toggle's vanishing factor within 16ε of the terms' size)
-    bound = max(192.0 * base.EPS, 1e-30) * (a + b) ** 4 * base.MARGIN
+    bound = max(192.0 * checks.EPS, 1e-30) * (a + b) ** 4 * checks.MARGIN
     context.guard(product, bound, check, p1.at.x, p1.at.y, p2.at.x, p2.at.y)
     twice = d * 2.0
     along = (a * a - b * b + square) / twice
@@ -73,21 +73,21 @@ def place(context: base.GroupInputs) -> base.Placed:
     r1 = unit * along + unit.perp() * height
     x = p1.at + r1
     r2 = x - p2.at
-    body1 = Body(*base.axes_towards(r1, p1.local, q1, a))
-    body2 = Body(*base.axes_towards(r2, p2.local, q2, b))
-    base.place_origin(body1, ((p1.at, p1.local), (x, q1)))
-    base.place_origin(body2, ((p2.at, p2.local), (x, q2)))
-    return base.Placed(
+    body1 = Body(*dyad.axes_towards(r1, p1.local, q1, a))
+    body2 = Body(*dyad.axes_towards(r2, p2.local, q2, b))
+    dyad.place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    dyad.place_origin(body2, ((p2.at, p2.local), (x, q2)))
+    return dyad.Placed(
         bodies={l1: body1, l2: body2}, point=internal.point, x=x,
-        sides=(base.rotation_side(l1, p1, r1, a), base.rotation_side(l2, p2, r2, b)),
+        sides=(dyad.rotation_side(l1, p1, r1, a), dyad.rotation_side(l2, p2, r2, b)),
         rotating={l1: 0, l2: 1}, tied={},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: dyad.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                                _angle(p1.local, q1)),
                 l2: base.Theta(base.ThetaKind.TWO, ext2.point, internal.point,
                                _angle(p2.local, q2))},
-        ratio_bound=2.0 * (a + b) / min(a, b) * base.MARGIN, x_links=(l1, l2),
+        ratio_bound=2.0 * (a + b) / min(a, b) * checks.MARGIN, x_links=(l1, l2),
         x_local={l1: q1, l2: q2})
 
 
