@@ -15,9 +15,9 @@ from planmethod.errors import AssemblyError, BranchJumpError, ConvergenceError, 
 from planmethod.forces import solve_forces
 from planmethod.kinematics import Branch, choose_branches, solve
 from planmethod.kinematics.groups import higher
-from planmethod.kinematics.groups.triad import SPECIAL
 from planmethod.plans import draw_plans
 from planmethod.plans.construction import PlansUnavailableError
+from planmethod.plans.groups.triad import SPECIAL
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict
 from planmethod.structure import analyse_structure

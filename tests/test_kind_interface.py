@@ -1,6 +1,8 @@
-"""The group-kind interface (planmethod.kinematics.groups): every registered module provides
-what its protocols name, and a module that lacks a function or takes other arguments is refused
-when the registry loads — naming the module and what is missing."""
+"""The group-kind interface, one face per layer (planmethod.kinematics.groups,
+planmethod.plans.groups): every registered module provides what its layer's protocols name, and
+a module that lacks a function or takes other arguments — or a kind without the face a later
+layer needs — is refused when that layer's registry loads, naming the module and what is
+missing."""
 
 from __future__ import annotations
 
@@ -9,13 +11,20 @@ from types import ModuleType
 import pytest
 
 import planmethod.kinematics.groups as groups
+import planmethod.plans.groups as plan_groups
 from planmethod.kinematics.groups import KindModule, describe, higher, registered, rrr, triad
-from planmethod.vocabulary import GroupKind, PlanKind
+from planmethod.plans.groups import PlanFace
+from planmethod.plans.groups import higher as higher_plans
+from planmethod.plans.groups import triad as triad_plans
+from planmethod.vocabulary import GroupKind
 
 
-def _copy(module: ModuleType, *, without: tuple[str, ...] = (), **extra) -> ModuleType:
-    """A fake kind module: ``module``'s names, some left out, some added or replaced."""
-    fake = ModuleType(f"planmethod.kinematics.groups.fake_{module.__name__.rpartition('.')[2]}")
+def _copy(module: ModuleType, *, without: tuple[str, ...] = (), name: str | None = None,
+          **extra) -> ModuleType:
+    """A fake kind module: ``module``'s names, some left out, some added or replaced; in the
+    module's own package, named ``fake_<its name>`` (or ``name``)."""
+    package, _, own = module.__name__.rpartition(".")
+    fake = ModuleType(f"{package}.{name or 'fake_' + own}")
     for name, value in vars(module).items():
         if not name.startswith("__") and name not in without:
             setattr(fake, name, value)
@@ -29,30 +38,34 @@ def test_every_registered_kind_is_described_by_its_module():
     assert set(found) == {"rrr", "rrp", "rpr", "prp", "rpp", "triad", "higher"}
     for name in ("rrr", "rrp", "rpr", "prp", "rpp"):
         kind = found[name]
-        assert isinstance(kind, KindModule) and kind.closed_form and kind.drawings == {}
+        assert isinstance(kind, KindModule) and kind.closed_form
         assert kind.kinds == (GroupKind(name.upper()),) and kind.reactions is not None
     assert found["rrr"].branches == 2 and found["prp"].branches == 1
-    assert found["triad"].drawings == {PlanKind.VELOCITY: triad.draw_velocity,
-                                       PlanKind.ACCELERATION: triad.draw_acceleration}
     assert found["triad"].evaluate is triad.evaluate and found["triad"].priority == 10
-    assert found["higher"].reactions is None and found["higher"].drawings == {}
+    assert found["higher"].reactions is None
     assert registered()[GroupKind.TRIAD] == (found["triad"], found["higher"])   # by priority
+
+
+def test_every_kind_has_its_plans_face():
+    """A dyad is drawn from its two vector equations (no face); each higher kind by its own
+    module of planmethod.plans.groups — the general higher group's says it is not drawn."""
+    faces = plan_groups.registered()
+    assert set(faces) == {"rrr", "rrp", "rpr", "prp", "rpp", "triad", "higher"}
+    assert all(faces[name] is None for name in ("rrr", "rrp", "rpr", "prp", "rpp"))
+    assert faces["triad"] == PlanFace("triad", triad_plans.draw_velocity,
+                                      triad_plans.draw_acceleration)
+    assert faces["higher"] == PlanFace("higher", higher_plans.draw_velocity,
+                                       higher_plans.draw_acceleration)
 
 
 @pytest.mark.parametrize(("module", "without", "extra", "message"), [
     (rrr, ("place",), {},
      "defines neither place (ClosedFormKind) nor evaluate and choose (IterativeKind)"),
     (higher, ("choose",), {}, "defines evaluate but not choose (IterativeKind)"),
-    (triad, ("draw_acceleration",), {},
-     "defines draw_velocity but not draw_acceleration (OwnPlans)"),
     (rrr, (), {"reactions": lambda solver: None},
      "reactions cannot be called with the 2 arguments of Reactions.reactions"),
     (rrr, (), {"BRANCHES": 3}, "BRANCHES must be 1 or 2 for a closed-form kind, not 3"),
     (rrr, ("BRANCHES",), {}, "BRANCHES must be 1 or 2 for a closed-form kind, not 0"),
-    (rrr, (), {"draw_velocity": triad.draw_velocity,
-               "draw_acceleration": triad.draw_acceleration},
-     "a closed-form kind is drawn from its two vector equations: it defines no "
-     "draw_velocity or draw_acceleration"),
     (rrr, (), {"evaluate": higher.evaluate, "choose": higher.choose},
      "defines both place (ClosedFormKind) and evaluate/choose (IterativeKind)"),
     (rrr, (), {"KIND": "RRRR"}, "KIND 'RRRR' is no GroupKind"),
@@ -111,17 +124,72 @@ def test_a_whole_copy_is_accepted():
 
 
 def test_the_registry_checks_every_module_when_it_loads(monkeypatch):
-    broken = _copy(triad, without=("draw_velocity",))
+    broken = _copy(triad, without=("choose",))
     real = groups._modules()
     monkeypatch.setattr(groups, "_REGISTRY", None)
     monkeypatch.setattr(groups, "_modules", lambda: [*real, broken])
-    with pytest.raises(TypeError, match=r"fake_triad: defines draw_acceleration but not "
-                                        r"draw_velocity \(OwnPlans\)"):
+    with pytest.raises(TypeError, match=r"fake_triad: defines evaluate but not "
+                                        r"choose \(IterativeKind\)"):
         registered()
     assert groups._REGISTRY is None        # nothing half-registered
     monkeypatch.setattr(groups, "_modules", lambda: real)
     assert sorted(str(kind) for kind in registered()) == [
         "PRP", "RPP", "RPR", "RRP", "RRR", "tetrad", "triad"]
+
+
+def _plan_faces(monkeypatch, kinds: list[ModuleType], faces: dict[str, ModuleType]):
+    """The plans registry loaded afresh over the kinematic kind modules ``kinds`` (beside the
+    real ones) and the face modules ``faces`` (beside, or instead of, the real ones)."""
+    real = groups._modules()
+    monkeypatch.setattr(groups, "_REGISTRY", None)
+    monkeypatch.setattr(groups, "_modules", lambda: [*real, *kinds])
+    modules = {**plan_groups._modules(), **faces}
+    monkeypatch.setattr(plan_groups, "_REGISTRY", None)
+    monkeypatch.setattr(plan_groups, "_modules", lambda: modules)
+    return plan_groups.registered
+
+
+@pytest.mark.parametrize(("kinds", "faces", "message"), [
+    # a higher kind the kinematics knows, without its plans face
+    ([_copy(triad)], {},
+     "group kind module planmethod.kinematics.groups.fake_triad: no plans face "
+     "(planmethod.plans.groups.fake_triad with draw_velocity and draw_acceleration: "
+     "PlanDrawing); only a closed-form kind is drawn from its two vector equations"),
+    # a face that lacks a function, or takes other arguments
+    ([_copy(triad)], {"fake_triad": _copy(triad_plans, without=("draw_velocity",))},
+     "plans face planmethod.plans.groups.fake_triad: defines draw_acceleration but not "
+     "draw_velocity (PlanDrawing)"),
+    ([_copy(triad)], {"fake_triad": _copy(triad_plans, draw_acceleration=lambda drawer: None)},
+     "plans face planmethod.plans.groups.fake_triad: draw_acceleration cannot be called with "
+     "the 2 arguments of PlanDrawing.draw_acceleration"),
+    ([_copy(triad)], {"fake_triad": _copy(triad_plans, without=("draw_velocity",
+                                                                 "draw_acceleration"))},
+     "plans face planmethod.plans.groups.fake_triad: defines neither draw_velocity nor "
+     "draw_acceleration (PlanDrawing)"),
+    # a face of a dyad (drawn from its two vector equations), a face of no kind
+    ([], {"rrr": _copy(triad_plans, name="rrr")},
+     "plans face planmethod.plans.groups.rrr: rrr is a closed-form kind: it is drawn from its "
+     "two vector equations, by no face of its own"),
+    ([], {"tetrad": _copy(triad_plans, name="tetrad")},
+     "plans face planmethod.plans.groups.tetrad: no group kind module "
+     "planmethod.kinematics.groups.tetrad"),
+])
+def test_the_plans_registry_refuses_a_kind_without_its_face(monkeypatch, kinds, faces,
+                                                            message):
+    registered_faces = _plan_faces(monkeypatch, kinds, faces)
+    with pytest.raises(TypeError) as error:
+        registered_faces()
+    assert str(error.value) == message
+    assert plan_groups._REGISTRY is None          # nothing half-registered
+
+
+def test_a_new_higher_kind_with_its_plans_face_is_drawn_by_it(monkeypatch):
+    """The registries find a kind and its face by their modules alone: a copy of the triad
+    with a copy of its plans face is registered in both layers."""
+    kind, face = _copy(triad), _copy(triad_plans)
+    faces = _plan_faces(monkeypatch, [kind], {"fake_triad": face})()
+    assert faces["fake_triad"] == PlanFace("fake_triad", triad_plans.draw_velocity,
+                                           triad_plans.draw_acceleration)
 
 
 def test_a_higher_kind_without_reactions_is_solved_by_its_linear_system(monkeypatch):

@@ -37,14 +37,14 @@ import numpy as np
 
 from ..errors import PlanmethodError, SpecError, ToggleError
 from ..kinematics import Motion, solve
-from ..kinematics.groups import kind_module
-from ..kinematics.groups.base import sense
 from ..kinematics.groups.checks import TOGGLE_SINE
 from ..kinematics.groups.dyad import Construction, follow_tied
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
 from ..vocabulary import PlanKind, coriolis_letter, links_text, numbered, subscript, symbol
+from .groups import plan_face
+from .groups.base import PlansUnavailableError, sense
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -58,10 +58,6 @@ __all__ = [
     "draw_plans",
     "image_label",
 ]
-
-class PlansUnavailableError(PlanmethodError):
-    """The plans of a group cannot be drawn (its exact kinematics is still available)."""
-
 
 #: A drawing sheet is never larger than this (mm): lines that would meet further away than
 #: this, given the drafting precision, are parallel to within the drawing's precision.
@@ -552,15 +548,22 @@ class _Emulator:
         return sheet.round(norm(sheet.points[end] - sheet.points[start]),
                            Segment(sheet.kind, "read", "relative"))
 
+    def omega(self, link: str) -> float:
+        """A link's ω as read off the velocity plan (its images fixed)."""
+        return self.vimages[link].omega
+
     def fix_velocity(self, link: str, ref: np.ndarray, label: str, omega: float) -> None:
-        """The link's velocity image is known (its point ``ref`` at ``label``, its ω): its other
-        points follow by similarity."""
+        """The link's velocity image is known (its point ``ref`` at ``label``, its ω read off):
+        the reading is kept, its other points follow by similarity."""
+        self.readings[f"omega_{link}"] = omega
         self.vimages[link] = LinkImage(ref, self.v.points[label], label, omega)
         self.image_points(link, self.v, self.vimages[link], _velocity_offset, self.scales.mu_v)
 
     def fix_acceleration(self, link: str, ref: np.ndarray, label: str, omega: float,
                          epsilon: float) -> None:
-        """The link's acceleration image is known: its other points follow by similarity."""
+        """The link's acceleration image is known (its ε read off): the reading is kept, its
+        other points follow by similarity."""
+        self.readings[f"epsilon_{link}"] = epsilon
         self.aimages[link] = LinkImage(ref, self.a.points[label], label, omega, epsilon)
         self.image_points(link, self.a, self.aimages[link], _acceleration_offset,
                           self.scales.mu_a)
@@ -581,6 +584,12 @@ class _Emulator:
             position = self.similar(sheet, link, image, position, label)
             sheet.place_image(label, offset(image, position, scale), image, link,
                               f"{label} by similarity on {link} from {image.ref_label}")
+
+    def image_of(self, sheet: _Sheet, link: str, position: np.ndarray, label: str) -> str:
+        """The label of the image of ``link``'s material point at ``position`` on ``sheet``
+        (placed if new, from the link's images on that sheet)."""
+        images = self.vimages if sheet is self.v else self.aimages
+        return self.image_at(sheet, images, link, position, label)
 
     def image_at(self, sheet: _Sheet, images: dict, link: str, position: np.ndarray,
                  label: str) -> str:
@@ -1121,23 +1130,17 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
 
 
 def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
-    """Draw one group on one plan: a dyad from its two vector equations, a higher group by its
-    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``: see
-    :class:`~planmethod.kinematics.groups.OwnPlans`)."""
-    if group.is_dyad:
+    """Draw one group on one plan: a dyad from its two vector equations, any other group by
+    its kind's plans face (:mod:`planmethod.plans.groups`)."""
+    face = plan_face(group)
+    if face is None:
         construction = motion.groups[group.index].construction
         if plan == "velocity":
             emulator.velocity_group(construction)
         else:
             emulator.acceleration_group(construction)
         return
-    drawing = kind_module(group).drawings.get(PlanKind(plan))
-    if drawing is None:
-        raise PlansUnavailableError(
-            f"plans are drawn for class III triads of revolute pairs only; this {group.kind} "
-            "has other pairs — its exact kinematics is reported (planmethod solve --json)",
-            link=group.name)
-    drawing(emulator, group)
+    face.draw(PlanKind(plan), emulator, group)
 
 
 def _asked_points(exercise: Exercise, motion: Motion) -> tuple[str, ...]:

@@ -32,8 +32,8 @@ from ...vocabulary import EdgeKind
 from ..algebra import Body, Number, Vec, dot
 from ..tracing import Traced
 
-__all__ = ["Branch", "Dyad", "ForceSolver", "GroupInputs", "KindModel", "Pin", "PlanDrawer",
-           "SolvedGroup", "Theta", "ThetaKind", "sense", "split", "turned_axes"]
+__all__ = ["Branch", "Dyad", "ForceSolver", "GroupInputs", "KindModel", "Pin", "SolvedGroup",
+           "Theta", "ThetaKind", "split", "turned_axes"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -224,58 +224,7 @@ class SolvedGroup(NamedTuple):
     sine: Number
 
 
-def sense(segment, direction):
-    """+1 where a segment drawn on a plan points along ``direction`` (a unit vector), −1 where
-    against it: the sense a student reads an ω, ε or sliding speed with. A segment across the
-    direction (a construction drawn with a mistake) has no sense; +1 (counter-clockwise) is
-    taken there, whatever the rounding. ``segment`` may hold one vector per copy of a drawing
-    (N, 2): one sense per copy.
-
-    >>> sense(np.array([0.0, -2.0]), np.array([0.0, 1.0])), sense(np.array([3.0, 1e-17]),
-    ...                                                           np.array([0.0, 1.0]))
-    (-1.0, 1.0)
-    """
-    along = vectors.dot(segment, direction)
-    across = 1e-9 * vectors.norm(segment)
-    positive = (along >= 0) | (np.abs(along) <= across)
-    return np.where(positive, 1.0, -1.0) if np.ndim(positive) else (1.0 if positive else -1.0)
-
-
 # -- the protocols later layers implement ------------------------------------------------------
-class PlanDrawer(Protocol):
-    """What a group kind's own plan construction (a module's ``draw_velocity(drawer, group)``
-    and ``draw_acceleration``: a class III triad's) is given by the plan emulator
-    (:mod:`planmethod.plans.construction`): the two plan sheets ``v`` and ``a`` (``line``,
-    ``intersect``, ``lay_off``, ``read``, ``points``), the scales, the readings so far, the
-    images of the links solved so far, and a ``memo`` kept between the two plans."""
-
-    v: Any
-    a: Any
-    scales: Any
-    readings: dict
-    vimages: dict
-    aimages: dict
-    memo: dict
-    angle: float
-
-    def where(self, link: str, point: str) -> np.ndarray: ...
-
-    def label(self, point: str, sheet) -> str: ...
-
-    def image_at(self, sheet, images: dict, link: str, position, label: str) -> str: ...
-
-    def length_mm(self, first, second) -> float: ...
-
-    def radius_mm(self, centre, point) -> float: ...
-
-    def drawn_length(self, sheet, start: str, end: str) -> float: ...
-
-    def fix_velocity(self, link: str, ref, label: str, omega: float) -> None: ...
-
-    def fix_acceleration(self, link: str, ref, label: str, omega: float,
-                         epsilon: float) -> None: ...
-
-
 class ForceSolver(Protocol):
     """What a group kind's textbook reaction sequence (its module's ``reactions(solver,
     group)``) is given by the force analysis (:mod:`planmethod.forces.groups`): the solved
