@@ -15,10 +15,8 @@ protocols:
 * :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch)`` and
   ``choose(context, model)`` (Newton continued along the crank angle, see :mod:`.higher`);
 
-with :class:`Reactions` (``reactions(solver, group)``, the textbook sequence the force analysis
-runs) — required of a dyad, optional for a higher group (without it the group's 3k equilibrium
-equations are solved at once); and, optionally, :class:`Accepts` (``accepts(group)``: which
-groups of its kind it solves; default every one) with ``PRIORITY`` (higher first).
+and, optionally, :class:`Accepts` (``accepts(group)``: which groups of its kind it solves;
+default every one) with ``PRIORITY`` (higher first).
 
 When the registry loads the modules, :func:`describe` checks each one against the protocols —
 every function present, callable with the protocol's arguments — and records what it found as a
@@ -44,16 +42,16 @@ import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 from types import ModuleType
-from typing import Any, Protocol
+from typing import Protocol
 
 from ...errors import StructureError
 from ...structure import AssurGroup
 from ...vocabulary import GroupKind
 from ..algebra import Body
-from .base import Branch, ForceSolver, GroupInputs, KindModel, SolvedGroup
+from .base import Branch, GroupInputs, KindModel, SolvedGroup
 from .dyad import Placed
 
-__all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "Reactions", "describe",
+__all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "describe",
            "face_modules", "kind_module", "kinds_by_name", "protocol_functions", "registered"]
 
 
@@ -83,15 +81,6 @@ class Accepts(Protocol):
     def accepts(self, group: AssurGroup) -> bool: ...
 
 
-class Reactions(Protocol):
-    """A kind's textbook reaction sequence, run by :mod:`planmethod.forces.groups`: required of
-    a :class:`ClosedFormKind` (every dyad has one), optional for an :class:`IterativeKind`
-    (without it, :attr:`KindModule.reactions` is None and the force analysis solves the group's
-    3k equilibrium equations at once)."""
-
-    def reactions(self, solver: ForceSolver, group: AssurGroup) -> Any: ...
-
-
 @dataclass(frozen=True, eq=False)
 class KindModule:
     """A group kind's module as the registry checked it (see the module docstring): its short
@@ -106,8 +95,6 @@ class KindModule:
     place: Callable[[GroupInputs], Placed] | None = None
     evaluate: Callable[[GroupInputs, int, KindModel, Branch], SolvedGroup] | None = None
     choose: Callable[[GroupInputs, KindModel], tuple[Branch, dict[str, Body]]] | None = None
-    #: None only for an iterative kind without one: its linear system is solved instead
-    reactions: Callable[[ForceSolver, AssurGroup], Any] | None = None
 
     @property
     def closed_form(self) -> bool:
@@ -182,7 +169,6 @@ def describe(module: ModuleType) -> KindModule:
     closed = protocol_functions(module, ClosedFormKind, problems)
     iterative = protocol_functions(module, IterativeKind, problems)
     accepts = protocol_functions(module, Accepts, problems)
-    reactions = protocol_functions(module, Reactions, problems)
     branches = getattr(module, "BRANCHES", 0)
     if closed and iterative:
         problems.append("defines both place (ClosedFormKind) and evaluate/choose "
@@ -192,9 +178,6 @@ def describe(module: ModuleType) -> KindModule:
                         "(IterativeKind)")
     elif closed and branches not in (1, 2):
         problems.append(f"BRANCHES must be 1 or 2 for a closed-form kind, not {branches!r}")
-    if closed and reactions is None:
-        problems.append("a closed-form kind defines reactions (Reactions): a dyad's textbook "
-                        "reaction sequence")
     priority = getattr(module, "PRIORITY", 0)
     if not isinstance(priority, int):
         problems.append(f"PRIORITY must be a whole number, not {priority!r}")
@@ -204,7 +187,7 @@ def describe(module: ModuleType) -> KindModule:
         name=module.__name__.rpartition(".")[2], kinds=tuple(kinds), priority=priority,
         accepts=(accepts or {}).get("accepts"), branches=branches if closed else 0,
         place=(closed or {}).get("place"), evaluate=(iterative or {}).get("evaluate"),
-        choose=(iterative or {}).get("choose"), reactions=(reactions or {}).get("reactions"))
+        choose=(iterative or {}).get("choose"))
 
 
 # -- the registry -----------------------------------------------------------------------------

@@ -20,20 +20,18 @@ import math
 from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
-from typing import Any, NamedTuple, Protocol
+from typing import NamedTuple, Protocol
 
 import numpy as np
 
-from ... import vectors
 from ...errors import StructureError
 from ...model import Mechanism, Slide
 from ...structure import AssurGroup, Joint, Structure
-from ...vocabulary import EdgeKind
 from ..algebra import Body, Number, Vec, dot
 from ..tracing import Traced
 
-__all__ = ["Branch", "Dyad", "ForceSolver", "GroupInputs", "KindModel", "Pin", "SolvedGroup",
-           "Theta", "ThetaKind", "split", "turned_axes"]
+__all__ = ["Branch", "Dyad", "GroupInputs", "KindModel", "Pin", "SolvedGroup", "Theta",
+           "ThetaKind", "turned_axes"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -146,7 +144,7 @@ class GroupInputs:
             check(self.angles, *args)
 
     def guide(self, slide: Slide, unknown: str, body: Body | None = None
-              ) -> tuple[Vec, Vec, Any]:
+              ) -> tuple[Vec, Vec, Number]:
         """A prismatic pair's guide as a line for the *unknown* link's frame: (d, n, c) with d
         the guide's global direction, n = J·d, and n·(origin of ``unknown``) = c. The guide's
         orientation comes from the known link's axes (``body``, default its known body)."""
@@ -168,7 +166,7 @@ class GroupInputs:
         own = Vec(*self.local(slide.along, slide.through)).turned(c, s)
         return d, n, dot(n, point - own)
 
-    def slide_axes(self, slide: Slide, unknown: str) -> tuple[Any, Any]:
+    def slide_axes(self, slide: Slide, unknown: str) -> tuple[Number, Number]:
         """The axes (cos θ, sin θ) of ``unknown``, held by a prismatic pair to a known link."""
         if unknown == slide.link:
             body = self.bodies[slide.along]
@@ -177,7 +175,7 @@ class GroupInputs:
         return turned_axes(body.cos, body.sin, -slide.direction_rad)
 
 
-def turned_axes(c, s, angle: float) -> tuple[Any, Any]:
+def turned_axes(c: Number, s: Number, angle: float) -> tuple[Number, Number]:
     """(cos, sin) of θ + ``angle`` (rad, a constant) from (cos θ, sin θ).
 
     >>> turned_axes(1.0, 0.0, math.pi / 2)
@@ -222,40 +220,3 @@ class SolvedGroup(NamedTuple):
     thetas: Mapping[str, Number]
     recipes: Mapping[str, Theta]
     sine: Number
-
-
-# -- the protocols later layers implement ------------------------------------------------------
-class ForceSolver(Protocol):
-    """What a group kind's textbook reaction sequence (its module's ``reactions(solver,
-    group)``) is given by the force analysis (:mod:`planmethod.forces.groups`): the solved
-    positions, each link's known wrench (``wrench[link]``: ``force`` and ``moment_about``), the
-    2 × 2 solve with its singularity check, and the recording of reactions, polygon edges and
-    the group's result. Arrays are over the crank angles."""
-
-    count: int
-    wrench: Mapping[str, Any]
-
-    def at(self, link: str, point: str) -> np.ndarray: ...
-
-    def guide(self, joint: Joint) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
-
-    def solve2(self, e1, e2, w, group: str, what: str): ...
-
-    def singular(self, value, scale, group: str, what: str) -> None: ...
-
-    def record(self, joint: Joint, group_links, target: str, source: str, point, force,
-               moment=None): ...
-
-    def known_edges(self, links) -> list: ...
-
-    def edge(self, label: str, vector, kind: EdgeKind, link: str): ...
-
-    def total(self, links) -> Any: ...
-
-    def result(self, group: AssurGroup, steps, edges, keys, special=None): ...
-
-
-def split(vector: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(unit vector, length) of arrays of 2-vectors."""
-    length = vectors.norm(vector)
-    return vector / length[..., None], length
