@@ -17,7 +17,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
->>> round(plans.readings["v_C"], 4), round(plans.readings["omega_BC"], 3)
+>>> round(plans.readings["v_C"], 4), round(plans.omega("BC"), 3)
 (5.2716, -24.254)
 >>> [round(x, 3) for x in plans.velocity.points_mm["b"]]
 [-21.213, 21.213]
@@ -205,6 +205,14 @@ class Plans:
     readings: Mapping[str, float]
     flags: tuple[str, ...]
     motion: Motion
+
+    def omega(self, link: str) -> float | None:
+        """ω of ``link`` as read off the velocity plan (None: not read)."""
+        return self.readings.get(f"omega_{link}")
+
+    def epsilon(self, link: str) -> float | None:
+        """ε of ``link`` as read off the acceleration plan (None: not read)."""
+        return self.readings.get(f"epsilon_{link}")
 
     def rotated_velocity_plan(self) -> dict[str, tuple[float, float]]:
         """The velocity plan turned 90° clockwise onto the position plan, pole p at the drive's
