@@ -168,7 +168,8 @@ class Result:
 
     __slots__ = ("_constants", "_rows", "count", "schema")
 
-    def __init__(self, schema: Schema, rows, count: int, constants: dict) -> None:
+    def __init__(self, schema: Schema, rows: np.ndarray | list[np.ndarray], count: int,
+                 constants: dict[tuple[int, int], np.ndarray]) -> None:
         self.schema, self._rows, self.count, self._constants = schema, rows, count, constants
 
     def read(self, slot: Slot) -> np.ndarray:
