@@ -7,8 +7,8 @@ Read by vulture, never imported (an attribute set in ``__init__`` is not on its 
 
 from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
+from planmethod.kinematics.motion import Motion
 from planmethod.kinematics.program import Model
-from planmethod.kinematics.solve import Motion
 from planmethod.studio.server import StudioHandler, StudioServer, _DeadlineReader
 from planmethod.testing.pseudo import _PageText
 

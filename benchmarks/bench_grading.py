@@ -96,7 +96,8 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
     if kind == "rho":
         from planmethod.report import exact_value
 
-        speed, accel = exact_value(motion, f"v_{subject}"), exact_value(motion, f"a_{subject}")
+        here = motion.at(0)
+        speed, accel = exact_value(here, f"v_{subject}"), exact_value(here, f"a_{subject}")
         out["full_acceleration"] = speed ** 2 / accel * value / question["value"]
     if kind in ("omega", "epsilon") and motion is not None:
         from planmethod.grading.mistakes import other_lengths

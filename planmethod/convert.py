@@ -177,9 +177,9 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
     exercise = exercise_from_dict(data, file=file)
     mechanism = exercise.mechanism
     if angle is None:
-        motion = solve(mechanism, mechanism.drive.angle, stage="position")
+        motion = solve(mechanism, mechanism.drive.angle, stage="position").at(0)
     else:   # the assembly chosen at drive.angle, followed to the new angle
-        motion = solve(mechanism, float(angle), stage="position")
+        motion = solve(mechanism, float(angle), stage="position").at(0)
         mechanism = replace(mechanism, drive=replace(mechanism.drive, angle=float(angle)))
     orders = {link: list(mechanism.links[link].points) for link in mechanism.links}
     names = list(dict.fromkeys(p for order in orders.values() for p in order))

@@ -18,8 +18,7 @@ from collections.abc import Callable, Iterable, Iterator
 import numpy as np
 
 from .errors import SpecError
-from .kinematics import solve
-from .kinematics.solve import choose_branches
+from .kinematics import choose_branches, solve
 from .model import FRAME, Exercise
 from .progress import Progress
 from .scene import plan_scene
@@ -115,7 +114,7 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
     stage = "acceleration" if extra is not None else scene.stage
     links_needed = None if extra is not None else scene.links
     groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
-    branches = choose_branches(mechanism, structure, groups)
+    branches = choose_branches(mechanism, groups)
     points, links, slides, curvature, _ = sweep_columns(exercise)
     last_theta: dict[str, float] = {}
     with Progress(len(angles), "sweep", enabled=progress if len(angles) > CHUNK else False
@@ -123,7 +122,7 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
         for begin in range(0, len(angles), CHUNK):
             part = angles[begin:begin + CHUNK]
             motion = solve(mechanism, part, stage=stage, links=links_needed,
-                           structure=structure, branches=branches)
+                           branches=branches)
             columns: dict[str, np.ndarray] = {"angle": part}
             for point in points:
                 xy = motion.position(point)

@@ -129,9 +129,9 @@ def test_the_solve_report_speaks_each_notation(name):
     assert f"group 1: links {rod}, {slider} (BC, slider) — RRP" in text
     # BC's ω and ε by its number, with the exact values the JSON report keeps as omega_BC
     assert float(_row(text, f"ω{n['rod']}")[2]) == pytest.approx(
-        float(analysis.motion.omega("BC")), rel=1e-5)
+        float(analysis.motion.at(0).omega("BC")), rel=1e-5)
     assert float(_row(text, f"ε{n['rod']}")[2]) == pytest.approx(
-        float(analysis.motion.epsilon("BC")), rel=1e-5)
+        float(analysis.motion.at(0).epsilon("BC")), rel=1e-5)
     # the reactions: of the frame on the crank at A, of the crank on the rod at B, of the
     # frame on the slider along its guide (the pair slider–frame)
     assert _row(text, "R" + pair(frame, crank))[1] == "A"
@@ -146,7 +146,7 @@ def test_the_compressors_rod_is_omega_2_by_default_and_omega_3_with_the_frame_1(
     analysis = analyse(exercise_from_dict(_compressor({}), file="c.toml"))
     default = text_report(analysis)
     english = text_report(analyse(exercise_from_dict(_compressor({"frame": 1}), file="c.toml")))
-    rod = float(analysis.motion.omega("BC"))          # −24.25 rad/s; the slider's ω is 0
+    rod = float(analysis.motion.at(0).omega("BC"))          # −24.25 rad/s; the slider's ω is 0
     assert float(_row(default, "ω₂")[2]) == pytest.approx(rod, rel=1e-5)
     assert float(_row(english, "ω₃")[2]) == pytest.approx(rod, rel=1e-5)
     assert float(_row(default, "ω₃")[2]) == 0.0 and float(_row(english, "ω₄")[2]) == 0.0

@@ -180,7 +180,8 @@ def test_a_point_without_acceleration_has_no_full_acceleration_mistake(monkeypat
     from types import SimpleNamespace
 
     rule = REGISTRY["full_acceleration"].value
-    assert rule("rho_D", 0.07, 0.001, SimpleNamespace(motion=None)) == []
+    motion = SimpleNamespace(at=lambda index: None)     # read at its one angle: by the above
+    assert rule("rho_D", 0.07, 0.001, SimpleNamespace(motion=motion)) == []
 
 
 def test_the_other_links_length_ratio_comes_from_the_links_themselves():

@@ -255,8 +255,9 @@ def check_row(exercise, row: Row, tolerance: float) -> RowFindings:
         motion = solve(mechanism, row.angle, stage="position")
         branch = ", ".join(f"group {index + 1}: {b.reason}"
                            for index, b in sorted(motion.branches.items())) or None
+        here = motion.at(0)
         for point, xy in row.points.items():
-            exact = motion.position(point)
+            exact = here.position(point)
             positions.append(PositionCheck(point, xy, (float(exact[0]), float(exact[1]))))
     except PlanmethodError as error:
         error_text = str(error)

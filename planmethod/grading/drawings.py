@@ -527,7 +527,7 @@ def key_at_angle(key: Mapping[str, Any], angle: float) -> Mapping[str, Any]:
     SubmissionError
         If the key keeps no exercise to pose (a key written without its tables).
     ToggleError, AssemblyError, BranchJumpError
-        As :func:`planmethod.kinematics.solve.pose` on the way to ``angle``.
+        As :func:`planmethod.kinematics.continuation.pose` on the way to ``angle``.
 
     Examples
     --------
@@ -539,7 +539,7 @@ def key_at_angle(key: Mapping[str, Any], angle: float) -> Mapping[str, Any]:
     """
     from dataclasses import replace
 
-    from ..kinematics.solve import pose
+    from ..kinematics.continuation import pose
     from ..scene import plan_scene
     from .keys import build_key, key_exercise
     from .templates import Variant

@@ -156,8 +156,9 @@ def _full_acceleration(quantity, value, tolerance, given):
     from ..report import exact_value
 
     point = quantity.partition("_")[2]
-    speed = exact_value(given.motion, f"v_{point}")
-    accel = exact_value(given.motion, f"a_{point}")
+    here = given.motion.at(0)
+    speed = exact_value(here, f"v_{point}")
+    accel = exact_value(here, f"a_{point}")
     return [(speed ** 2 / accel, tolerance)] if accel else []
 
 
@@ -243,7 +244,7 @@ def _relative(quantity, value, tolerance, given):
     if kind not in _ABSOLUTE or "@" in point:
         return []
     motion = given.motion
-    read = getattr(motion, _ABSOLUTE[kind])
+    read = getattr(motion.at(0), _ABSOLUTE[kind])
     mechanism = motion.mechanism
     out = []
     try:
@@ -533,7 +534,7 @@ def plan_context(plans, name: str, motion) -> PlanContext:
         others[label] = tuple(found)
     quantity = f"{'v' if name == 'velocity' else 'a'}_{plans.scales.scale_point}"
     try:
-        value = exact_value(motion, quantity)
+        value = exact_value(motion.at(0), quantity)
     except KeyError:
         value = None
     first = (quantity, float(value)) if value else None

@@ -814,8 +814,8 @@ def to_toml(data: Mapping[str, Any]) -> str:
 
 def variant_exercise(variant: Variant, angle: float | None = None) -> Exercise:
     """The variant's exercise, optionally posed at another crank angle on the assemblies
-    chosen at its ``drive.angle`` (:func:`planmethod.kinematics.solve.pose`)."""
-    from ..kinematics.solve import pose
+    chosen at its ``drive.angle`` (:func:`planmethod.kinematics.continuation.pose`)."""
+    from ..kinematics.continuation import pose
 
     if angle is None:
         return variant.exercise

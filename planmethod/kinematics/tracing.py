@@ -78,8 +78,8 @@ def _placeholder(slot: int) -> float:
 class Redo(Exception):  # noqa: N818 (a signal, not an error)
     """Raised by a guard's check where the straight-line evaluation does not apply to a chunk
     (a Newton step that did not converge, an assembly far from its path): the chunk is then
-    evaluated again by :attr:`Compiled.redo` (the direct evaluation, which iterates and raises
-    the errors)."""
+    evaluated again by the ``redo`` given to :meth:`Compiled.run` (the direct evaluation, which
+    iterates and raises the errors)."""
 
 
 def _key(value) -> object:
@@ -584,8 +584,6 @@ class Compiled:
         self._local = threading.local()   # a workspace per thread
         self._constants: dict[tuple[str, int], np.ndarray] = {}
         self._where: dict[str, tuple] = {}
-        #: ``redo(angles_deg, rows)`` evaluates a chunk again where a check raised :class:`Redo`
-        self.redo: Callable | None = None
         for name, where in layout.rows.items():
             self._where[name] = (1, where[0]) if isinstance(where, tuple) else (0, where)
         for name, value in layout.constants.items():
@@ -606,15 +604,20 @@ class Compiled:
             found = views[count] = [row[:count] for row in local.space]
         return found
 
-    def run(self, angles_deg: np.ndarray, rows: list[np.ndarray]) -> None:
+    def run(self, angles_deg: np.ndarray, rows: list[np.ndarray],
+            redo: Callable[[np.ndarray, list[np.ndarray]], None] | None = None) -> None:
         """Evaluate at ``angles_deg`` into ``rows`` (one array of len(angles) per output row),
-        chunk by chunk. A check that raises propagates (see :meth:`Tracer.guard`)."""
+        chunk by chunk. A check that raises propagates (see :meth:`Tracer.guard`), but
+        :class:`Redo`: ``redo(angles_deg, rows)`` then evaluates that chunk again (without a
+        ``redo``, :class:`Redo` propagates too)."""
         count = angles_deg.shape[0]
         if count <= CHUNK:
             try:
                 self.function(angles_deg, rows, self.workspace(count), self.checks, self.calls)
             except Redo:
-                self.redo(angles_deg, rows)
+                if redo is None:
+                    raise
+                redo(angles_deg, rows)
             return
         for lo in range(0, count, CHUNK):
             hi = min(lo + CHUNK, count)
@@ -623,12 +626,16 @@ class Compiled:
                 self.function(angles_deg[lo:hi], part, self.workspace(hi - lo), self.checks,
                               self.calls)
             except Redo:
-                self.redo(angles_deg[lo:hi], part)
+                if redo is None:
+                    raise
+                redo(angles_deg[lo:hi], part)
 
-    def evaluate(self, angles_deg: np.ndarray) -> np.ndarray:
-        """The result rows (K, N) at ``angles_deg`` (a new array)."""
+    def evaluate(self, angles_deg: np.ndarray,
+                 redo: Callable[[np.ndarray, list[np.ndarray]], None] | None = None
+                 ) -> np.ndarray:
+        """The result rows (K, N) at ``angles_deg`` (a new array; ``redo`` as :meth:`run`)."""
         out = np.empty((self.layout.count, angles_deg.shape[0]))
-        self.run(np.ascontiguousarray(angles_deg, dtype=float), list(out))
+        self.run(np.ascontiguousarray(angles_deg, dtype=float), list(out), redo)
         return out
 
     def read(self, rows: np.ndarray, name: str) -> np.ndarray:

@@ -37,7 +37,7 @@ Examples
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
 >>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0)
->>> motion.position("D").round(6)
+>>> motion.at(0).position("D").round(6)
 array([ 0.793156, -0.183194])
 >>> motion.branches[0].reason, motion.branches[0].count
 ('sketch', 4)
@@ -63,7 +63,7 @@ from ..algebra import Body, maximum, minimum, sqrt
 from ..constraints import ConstraintSystem
 from ..state import LinkState
 from ..tracing import Redo, Traced
-from .base import Branch, GroupInputs
+from .base import Branch, GroupInputs, KindModel, SolvedGroup
 
 __all__ = ["ITERATIONS", "KINDS", "MIN_STEP_DEG", "RESIDUAL", "STEP_DEG", "HigherBranch",
            "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate"]
@@ -412,7 +412,8 @@ def _arrays(values: Sequence, count: int) -> list[np.ndarray]:
     return [np.broadcast_to(np.asarray(value, dtype=float), (count,)) for value in values]
 
 
-def choose_with(context: GroupInputs, model, make_system) -> tuple[Branch, dict[str, Body]]:
+def choose_with(context: GroupInputs, model: KindModel,
+                make_system: Callable[[GroupInputs], System]) -> tuple[Branch, dict[str, Body]]:
     """The group's assembly at ``drive.angle`` and its links' bodies there."""
     mechanism, group = context.mechanism, context.group
     system = make_system(context)
@@ -444,7 +445,7 @@ def choose_with(context: GroupInputs, model, make_system) -> tuple[Branch, dict[
 
 
 # -- the path of a model ------------------------------------------------------------------------
-def _path(context: GroupInputs, model, branch: Branch, system: System) -> Path:
+def _path(context: GroupInputs, model: KindModel, branch: Branch, system: System) -> Path:
     """The model's path for this group and branch (made once)."""
     key = ("path", context.group.index, branch.sign)
     found = model.memo.get(key)
@@ -472,7 +473,7 @@ def _path(context: GroupInputs, model, branch: Branch, system: System) -> Path:
     return found
 
 
-def _upstream_bodies(model, group: AssurGroup, angles: np.ndarray, level: int,
+def _upstream_bodies(model: KindModel, group: AssurGroup, angles: np.ndarray, level: int,
                      unit: bool = False) -> dict[str, Body]:
     """The links the group rests on, by the direct evaluation at ``angles`` (``unit``: with
     the crank turning at 1 rad/s)."""
@@ -483,37 +484,14 @@ def _upstream_bodies(model, group: AssurGroup, angles: np.ndarray, level: int,
             mechanism.drive, omega=1.0, epsilon=0.0)))
     links = [link for link in group.attached_to if link != FRAME] or [mechanism.drive.link]
     groups = tuple(g for g in model.structure.groups_needed(links) if g.index != group.index)
-    values, _ = source.direct(level, groups, model.branches(groups), angles)
-    solved = [FRAME, mechanism.drive.link] + [link for g in groups for link in g.links]
-    return {link: _body(values, link, level) for link in solved}
-
-
-def _body(values: Mapping[str, np.ndarray], link: str, level: int) -> Body:
-    axes, origin = values[f"axes:{link}"], values[f"origin:{link}"]
-    body = Body(axes[:, 0], axes[:, 1], origin[:, 0], origin[:, 1])
-    if level >= 1:
-        velocity = values[f"velocity:{link}"]
-        body.omega, body.vx, body.vy = values[f"omega:{link}"], velocity[:, 0], velocity[:, 1]
-    if level >= 2:
-        acceleration = values[f"acceleration:{link}"]
-        body.epsilon, body.ax, body.ay = (values[f"epsilon:{link}"], acceleration[:, 0],
-                                    acceleration[:, 1])
-    return body
+    return source.bodies(level, groups, model.branches(groups), angles)
 
 
 # -- the evaluation -----------------------------------------------------------------------------
-@dataclass
-class Solved:
-    """A higher group solved: how its links' angles are read (``thetas``: recipes)."""
-
-    thetas: dict
-
-
-def higher_evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs,
-                    make_system: Callable) -> Solved:
+def higher_evaluate(context: GroupInputs, level: int, model: KindModel, branch: Branch,
+                    make_system: Callable[[GroupInputs], System]) -> SolvedGroup:
     """Solve a higher group at the context's angles and put its links' bodies into the
-    context; name each stored θ ``theta:L`` and the conditioning ``sine:i`` in ``outputs``."""
-    group = context.group
+    context."""
     system = make_system(context)
     inputs = system.inputs(context.bodies, level)
     if isinstance(context.angles, Traced) and system.traceable:
@@ -531,10 +509,7 @@ def higher_evaluate(context: GroupInputs, level: int, model, branch: Branch, out
         if level >= 2:
             body.epsilon, body.ax, body.ay = part[7:10]
         context.bodies[link] = body
-    for link, theta in stored.items():
-        outputs.scalar(f"theta:{link}", theta)
-    outputs.scalar(f"sine:{group.index}", health)
-    return Solved(system.theta_recipes())
+    return SolvedGroup(stored, system.theta_recipes(), health)
 
 
 def _direct(context, level, model, branch, system, inputs):
@@ -757,11 +732,11 @@ def _inside(joint, group: AssurGroup) -> str:
     return joint.links[0] if joint.links[0] in group.links else joint.links[1]
 
 
-def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model: KindModel, branch: Branch) -> SolvedGroup:
     """Solve a higher group of any shape (see the module docstring)."""
-    return higher_evaluate(context, level, model, branch, outputs, GeneralSystem)
+    return higher_evaluate(context, level, model, branch, GeneralSystem)
 
 
-def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model: KindModel) -> tuple[Branch, dict[str, Body]]:
     """The group's assembly at ``drive.angle`` (see the module docstring)."""
     return choose_with(context, model, GeneralSystem)
