@@ -234,7 +234,7 @@ class Route:
 def _json_body(text: str) -> dict[str, Any]:
     from ..spec import check_nesting
 
-    check_nesting(text)
+    check_nesting(text, syntax="json")
 
     def refuse(constant: str) -> None:
         raise SpecError(f"not a finite number: {constant}")
