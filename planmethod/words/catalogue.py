@@ -1,9 +1,10 @@
 """The translation catalogues' build: the templates read from the code, the catalogue files
 written from them.
 
-``python -m planmethod.words.catalogue`` reads every :func:`~planmethod.words.message.message`
-and :func:`~planmethod.words.message.plural` call of the package (with :mod:`ast`: a
-template is a literal string at its call), writes the catalogue template
+``python -m planmethod.words.catalogue`` reads every :func:`~planmethod.words.message.message`,
+:func:`~planmethod.words.message.plural` and :func:`~planmethod.words.message.template` call
+of the package (with :mod:`ast`: a template is a literal string at its call), writes the
+catalogue template
 ``planmethod/locale/planmethod.pot``, brings each language's ``.po`` up to date with it (a
 template that changed keeps its old translation marked fuzzy) and compiles every ``.po`` to
 the ``.mo`` that :mod:`gettext` reads. A template's place is written as its file without the
@@ -41,7 +42,7 @@ DOMAIN = "planmethod"
 #: the date written into the catalogues' headers: fixed, so that a build is repeatable
 _DATE = datetime.datetime(2026, 1, 1, tzinfo=datetime.UTC)
 #: the functions whose first literal arguments are templates
-_MAKERS = {"message": 1, "plural": 2}
+_MAKERS = {"message": 1, "plural": 2, "template": 1}
 
 
 @dataclass(frozen=True, slots=True)
@@ -66,11 +67,14 @@ class Template:
                 if name}
 
 
-def _maker(call: ast.Call) -> int:
+def _name(call: ast.Call) -> str | None:
     function = call.func
-    name = function.id if isinstance(function, ast.Name) else (
+    return function.id if isinstance(function, ast.Name) else (
         function.attr if isinstance(function, ast.Attribute) else None)
-    return _MAKERS.get(name, 0)
+
+
+def _maker(call: ast.Call) -> int:
+    return _MAKERS.get(_name(call), 0)
 
 
 def templates_in(source: str, file: str) -> Iterator[Template]:
@@ -88,7 +92,8 @@ def templates_in(source: str, file: str) -> Iterator[Template]:
                         if keyword.arg == "context" and isinstance(keyword.value, ast.Constant)),
                        None)
         given = [keyword.arg for keyword in node.keywords if keyword.arg != "context"]
-        fields = None if None in given else tuple(given)
+        # a template()'s fields come later (Message.replace); a **fields call's are unknown
+        fields = None if None in given or _name(node) == "template" else tuple(given)
         yield Template(forms, context, fields, file, node.lineno)
 
 
