@@ -54,13 +54,15 @@ def run(args: argparse.Namespace) -> int:
         raise SpecError(f"--port must be in 0…65535, got {args.port}")
     server = _listen(folder, args.port, initial)
     address = server.url("/", token=True)
-    print(f"planmethod studio: serving {folder} at\n    {address}\n(Ctrl-C stops it)",
-          flush=True)
     # Ctrl-C stops the studio even where it was started with SIGINT ignored (a background
-    # job of a shell); its jobs' processes, in sessions of their own, are stopped by it
+    # job of a shell); its jobs' processes, in sessions of their own, are stopped by it. The
+    # handler is in place before the address is told: a Ctrl-C the moment after still stops
+    # the server it names (its connections are served by threads of their own)
     main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.default_int_handler) if main else None
     try:
+        print(f"planmethod studio: serving {folder} at\n    {address}\n(Ctrl-C stops it)",
+              flush=True)
         if not args.no_browser:
             webbrowser.open(address)
         server.serve_forever(poll_interval=0.2)
