@@ -226,7 +226,7 @@ def test_drawing_feedback_sets_point_digits_as_subscripts():
     points["b@lever"] = (x + 7.0, y - 5.0)
     x, y = points["c"]
     points["c"] = (x + 10.0, y + 10.0)
-    result = grade_drawing(key, Drawing(points, "acceleration"))
+    result = grade_drawing(key, Drawing(points, "acceleration")).as_dict()
     feedback = {entry["point"]: entry["feedback"] for entry in result["points"]}
     assert "aᵗ_B₃O₂ ⟂ BO₂" in feedback["b@lever"] and "aʳ_B₃B" in feedback["b@lever"]
     assert "from o₂" in feedback["c"]

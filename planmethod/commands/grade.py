@@ -84,7 +84,7 @@ def _stage_class_report(outputs: OutputSet, report: str, keys: dict, results: li
     folder = Path(report)
     first = next(iter(keys.values()))
     numbers = key_numbers(first)
-    symbols = {row["question"]: symbol(row["question"], numbers) for row in rows}
+    symbols = {row.question: symbol(row.question, numbers) for row in rows}
     words = {mistake["kind"]: textwrap.shorten(mistake["feedback"], 48, placeholder="…")
              for key in keys.values() for question in key.get("questions", ())
              for mistake in question.get("mistakes", ())}
@@ -99,25 +99,26 @@ def _printed(args: argparse.Namespace, results: list, drawings: list) -> list[st
     """The lines grade prints: each student's score and, unless ``--quiet``, each question's
     feedback; each drawing's score and each point's feedback."""
     from ..grading.answers import feedback_text
+    from ..words import render
 
     lines = []
     for result in results:
-        total = result.get("max_score")
-        who = "the answers" if result["student"] == "*" else result["student"]
-        head = (f"{who}: {result['score']:g}/{total:g}" if total is not None
-                else f"{who}: {result['error']}")
+        total = result.max_score
+        who = "the answers" if result.student == "*" else result.student
+        head = (f"{who}: {result.score:g}/{total:g}" if total is not None
+                else f"{who}: {render(result.error)}")
         lines.append(head)
         if not args.quiet:
-            lines += [f"  {'ok ' if q['correct'] else 'XX '} "
-                      f"{feedback_text(q, args.feedback or 'full')}"
-                      for q in result["questions"]]
+            lines += [f"  {'ok ' if q.correct else 'XX '} "
+                      f"{render(feedback_text(q, args.feedback or 'full'))}"
+                      for q in result.questions]
     for path, drawing in zip(args.drawing, drawings, strict=True):
-        lines.append(f"{path} ({drawing['plan']} plan): {drawing['score']:g}/"
-                     f"{drawing['max_score']:g}")
+        lines.append(f"{path} ({drawing.plan} plan): {drawing.score:g}/"
+                     f"{drawing.max_score:g}")
         if not args.quiet:
-            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
-                      for p in drawing["points"]]
-            lines += [f"  !  {line}" for line in drawing["feedback"]]
+            lines += [f"  {'ok ' if p.correct else 'XX '} {render(p.feedback)}"
+                      for p in drawing.points]
+            lines += [f"  !  {render(line)}" for line in drawing.feedback]
     return lines
 
 
@@ -129,6 +130,7 @@ def run(args: argparse.Namespace) -> int:
     from ..grading.answers import grade_many, read_answers
     from ..grading.drawings import grade_drawing, key_for_drawing, read_drawing
     from ..grading.exports import gradebook_csv, gradescope_results
+    from ..grading.results import StudentGrade
     from ..io import output_set
 
     if not args.answers and not args.drawing:
@@ -161,15 +163,17 @@ def run(args: argparse.Namespace) -> int:
                         f"{len(results)}", file=args.answers)
     with output_set() as outputs:   # every output file, or none
         if args.json:
-            outputs.text(args.json, json.dumps({"answers": results, "drawings": drawings},
-                                               ensure_ascii=False, indent=1, allow_nan=False))
+            outputs.text(args.json, json.dumps(
+                {"answers": [result.as_dict() for result in results],
+                 "drawings": [drawing.as_dict() for drawing in drawings]},
+                ensure_ascii=False, indent=1, allow_nan=False))
         if args.csv:
             outputs.text(args.csv, gradebook_csv(results))
         if args.report:
             _stage_class_report(outputs, args.report, keys, results)
         if args.gradescope:
-            result = results[0] if results else {"questions": [], "score": 0.0,
-                                                 "variant": args.student}
+            result = results[0] if results else StudentGrade(args.student, args.student,
+                                                             0.0, None)
             outputs.text(args.gradescope, json.dumps(
                 gradescope_results(result, drawings, feedback=args.feedback or "hints"),
                 ensure_ascii=False, indent=1))

@@ -215,6 +215,7 @@ def variant_files(template, students: list[str], folders: list[str], *, seed: in
     from ..grading.templates import draw_variant, to_toml
     from ..io import csv_text, json_text
     from ..progress import Progress
+    from ..words import render
 
     aliases = aliases or {}
     files: dict[str, str] = {}
@@ -224,7 +225,7 @@ def variant_files(template, students: list[str], folders: list[str], *, seed: in
     with Progress(len(students), "variants", enabled=progress, on_advance=on_advance) as bar:
         for student, folder in zip(students, folders, strict=True):
             variant = draw_variant(template, seed=seed, student=student)
-            rejected += list(variant.rejected)
+            rejected += [render(reason) for reason in variant.rejected]
             key = build_key(variant)
             # who the LMS may know the student as, and whether a roster named them (an
             # autograder matches submitters to variants by these)

@@ -259,6 +259,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     from ..render.steady import steady_views
     from ..render.workbook import curve_chart, workbook_html
     from ..vocabulary import numbered, pair_number, point_name, quantity
+    from ..words import render
 
     angles = turn_angles(step, start=exercise.mechanism.drive.angle)   # opens at its own angle
     workers = worker_count(jobs, len(angles))
@@ -292,8 +293,9 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     plans = reading_plans(frames)
     quantities = [{"name": name, "symbol": quantity(name).symbol,
                    "subscript": subscript(name), "unit": unit, "plan": plans.get(name),
-                   "negative": magnitude_note(name, numbers),
-                   "senses": list(sense_words(name))}
+                   "negative": (render(note) if (note := magnitude_note(name, numbers))
+                                else None),
+                   "senses": [render(word) for word in sense_words(name)]}
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]
@@ -329,17 +331,13 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     """
     from ..grading.drawings import DRAWING_FORMAT, exercise_digest
     from ..grading.mistakes import drawn_explanation
-    from ..grading.plan_points import (
-        DRAWN_MISTAKES,
-        MISTAKE_WORDING,
-        PLAN_WORDING,
-        plan_extent,
-    )
+    from ..grading.plan_points import DRAWN_MISTAKES, page_wording, plan_extent
     from ..numbering import course_numbers
     from ..plans.construction import course_text
     from ..render.labels import label_runs
     from ..render.workbook_draw import drawing_data
     from ..vocabulary import numbered
+    from ..words import render
 
     draws = [frame.get("draw", {}) for frame in frames]
     plans = [plan for plan in ("velocity", "acceleration")
@@ -356,8 +354,8 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
         names={label: course_text(label, numbers) for label in sorted(labels)},
         runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
-        mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
-        wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT,
+        mistakes=[(mistake, render(drawn_explanation(mistake))) for mistake in DRAWN_MISTAKES],
+        wording=page_wording(), file_format=DRAWING_FORMAT,
         phi=numbered("φ", numbers[mechanism.drive.link]))
 
 

@@ -541,6 +541,7 @@ def run_variants(arguments: Mapping[str, Any],
     from ..kinematics import choose_branches
     from ..plans import draw_plans
     from ..render.workbook import inline_svg
+    from ..words import render
 
     template = parse_template(arguments["template"], file="template.toml")
     drawn = choose_branches(_exercise(arguments["text"]).mechanism)
@@ -548,7 +549,7 @@ def run_variants(arguments: Mapping[str, Any],
     out, rejected = [], []
     for student in students:
         variant = draw_variant(template, seed=arguments["seed"], student=student)
-        rejected += list(variant.rejected)
+        rejected += [render(reason) for reason in variant.rejected]
         key = build_key(variant)
         sheet = task_sheet_svg(key, draw_plans(variant.exercise, acceleration=False))
         branches = choose_branches(variant.exercise.mechanism)

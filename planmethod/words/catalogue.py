@@ -153,6 +153,9 @@ def compile_folder(folder: Path) -> list[str]:
     for po in sorted(folder.glob(f"*/LC_MESSAGES/{DOMAIN}.po")):
         with open(po, "rb") as file:
             language = pofile.read_po(file)
+        for entry in language:   # an untranslated plural: left out (Babel would write English)
+            if entry.id and entry.pluralizable and not any(entry.string):
+                entry.string = ""
         written.append(_write(po.with_suffix(".mo"), lambda file, language=language:
                               mofile.write_mo(file, language, use_fuzzy=False)))
     return written
