@@ -56,7 +56,7 @@ def _exercise_html(exercise: Any) -> str:
     script stay apart from the notebook's)."""
     import html
 
-    from .commands.workbook import build_workbook
+    from .application.workbook import build_workbook
 
     page = build_workbook(exercise, NOTEBOOK_STEP)
     return (f'<iframe srcdoc="{html.escape(page, quote=True)}" '

@@ -522,7 +522,7 @@ def test_export_writes_the_lms_packages_as_a_job(server, folder):
                                                       ("/api/export", 0, "1…1000"),
                                                       ("/api/variants", 41, "1…40")])
 def test_counts_are_limited_as_on_the_command_line(server, folder, path, count, limit):
-    from planmethod.commands.variants import MAX_VARIANTS
+    from planmethod.application.variants import MAX_VARIANTS
 
     assert f"1…{MAX_VARIANTS}" == "1…1000"   # the command line's limit, shared
     status, payload, _ = post_json(server, path, {"toml": read_text(COMPRESSOR),
