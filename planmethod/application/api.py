@@ -121,7 +121,7 @@ class Exercise:
         from .language import chosen_language, course_language
 
         return chosen_language(self.language, course_language(self.template.data),
-                               file=self.template.source)
+                               file=self.template.source, option_key="language")
 
     def _exercise(self):
         if self.model is None:

@@ -91,6 +91,7 @@ def run_language(option: str | None, file: str | Path | None = None, *,
 
 
 def chosen_language(option: str | None, course: Any, *, file: str | Path | None = None,
+                    option_key: str = OPTION,
                     environment: Mapping[str, str] = os.environ) -> str:
     """The language of a run whose file's ``[course] language`` is ``course`` (as read:
     :func:`course_language`): ``option``, else ``course``, else ``PLANMETHOD_LANG``, else
@@ -99,8 +100,8 @@ def chosen_language(option: str | None, course: Any, *, file: str | Path | None 
     Raises
     ------
     SpecError
-        If the chosen language cannot be spoken, naming where it came from: the option, the
-        file's key, the environment variable.
+        If the chosen language cannot be spoken, naming where it came from: the option
+        (``option_key``), the file's key, the environment variable.
 
     Examples
     --------
@@ -109,7 +110,7 @@ def chosen_language(option: str | None, course: Any, *, file: str | Path | None 
     """
     language = choose(option, None if option else course, environment)
     if option:
-        where = {"key": OPTION}
+        where = {"key": option_key}
     elif course is not None and course != "":
         where = {"file": None if file is None else str(file), "key": COURSE_KEY}
     else:

@@ -102,6 +102,16 @@ class VariantSet:
         """How many students' variants were drawn again after a rejected draw."""
         return sum(1 for variant in self.variants if variant.attempt)
 
+    def write(self, out: str | Path, *, force: bool = False) -> Message | str | None:
+        """Write the run into the folder ``out`` as ``planmethod variants --out`` does: whole
+        or not at all, into an empty folder, or (``force``) in place of an earlier run there
+        that its manifest lists unchanged; a note if a file of the earlier run changed
+        meanwhile and stays in a hidden folder."""
+        from ..runs import earlier_run
+
+        earlier = earlier_run(Path(out), RUN, force=force, name=f"--out {out}")
+        return write_variants(out, self, earlier)
+
 
 def read_roster(path: str) -> list[tuple[str, list[str]]]:
     """Students from a roster: a CSV with a student/id/email column, or one id per line.
