@@ -144,5 +144,5 @@ def test_variants_are_cancelled_between_two_students():
 
 def test_a_bad_language_given_to_the_api_is_refused():
     exercise = planmethod.load(COMPRESSOR, language="x y")
-    with pytest.raises(SpecError, match="^language: 'x y' is no language code"):
+    with pytest.raises(SpecError, match=r"^language: 'x y' is no language code"):
         exercise.solve()
