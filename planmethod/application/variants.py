@@ -152,6 +152,16 @@ def class_of(count: int | None = None, roster: str | None = None, *, width: int 
     """The students of a run: those of the ``roster`` file, or ``count`` of them numbered
     ``001`` … (at least ``width`` digits; default 1 student); at most :data:`MAX_VARIANTS`.
 
+    Parameters
+    ----------
+    count
+        How many students (default: the roster's, or 1); with a roster, it must be the
+        roster's size.
+    roster
+        A roster file: a CSV with a student/id/email column, or one id per line.
+    width
+        The fewest digits of a student's number.
+
     Raises
     ------
     SpecError
@@ -252,8 +262,15 @@ def _student_files(variant, key: dict, folder: str, sheets: bool) -> dict[str, s
 
 def draw_variants(request: VariantsRequest, *, watch: Watch | None = None) -> VariantSet:
     """Everything a run of variants writes, computed (nothing is written): each student's
-    files, ``keys.json`` and ``index.csv``. ``watch`` hears each variant drawn (phase
-    ``variants``) and may cancel the run."""
+    files, ``keys.json`` and ``index.csv``.
+
+    Parameters
+    ----------
+    request
+        The template, the students, the random seed, whether to draw the sheets.
+    watch
+        Hears each variant drawn (phase ``variants``) and may cancel the run.
+    """
     import json
 
     from ..grading.keys import build_key, bundle

@@ -178,11 +178,19 @@ def _solve_turn(exercise, angles: Sequence[float], workers: int, watch: Watch, v
 
 def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = None,
                    watch: Watch | None = None) -> str:
-    """The workbook page of ``exercise`` (an :class:`~planmethod.model.Exercise`) as HTML.
+    """The workbook page of ``exercise`` as HTML, in the language spoken.
 
-    The frames are solved in ``jobs`` worker processes (see
-    :func:`~planmethod.application.workers.worker_count`; 1 solves them here); ``watch``
-    hears each frame solved and may cancel the page.
+    Parameters
+    ----------
+    exercise
+        The exercise (a :class:`planmethod.model.Exercise`).
+    step
+        The crank-angle step between two frames (deg).
+    jobs
+        Worker processes to solve the frames in: 1 solves them here, None takes every CPU
+        this process may use with at least 12 frames each.
+    watch
+        Hears each frame solved (phase ``frames``) and may cancel the page.
 
     Examples
     --------
