@@ -87,9 +87,9 @@ def run(args: argparse.Namespace) -> int:
                               source=str(args.template))
     with Progress(len(students.students), render(message("variants"))) as bar:
         drawn = draw_variants(request, watch=Watch(lambda *_: bar.advance()))
-    written = write_variants(out, drawn, earlier)
-    if written:
-        note(written)
+    changed = write_variants(out, drawn, earlier)
+    if changed:   # a file of the earlier run changed meanwhile: it stays, hidden
+        note(changed)
     say(plural("Wrote {count} variant of {template} (seed {seed}) to {out}/ ({redrawn} "
                "redrawn after a rejected draw); keys in {keys}",
                "Wrote {count} variants of {template} (seed {seed}) to {out}/ ({redrawn} "
