@@ -217,7 +217,7 @@ def test_the_surfaces_call_the_application_layer_not_each_other():
     assert layer_of("planmethod.application.workbook") == 8
     assert all(layer_of(f"planmethod.{name}") > 8 for name in SURFACES)
     assert max(LAYERS[name] for name in ("report", "render", "grading")) < 8
-    users = {(found.module.split(".") + [""])[1] for module in modules
+    users = {[*found.module.split("."), ""][1] for module in modules
              for found in imports_of(module, modules)
              if found.target.startswith("planmethod.application")}
     assert {"commands", "studio", "notebook"} <= users
