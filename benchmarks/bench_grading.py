@@ -366,7 +366,7 @@ def scale_run(count: int) -> dict:
     import resource
     import subprocess
 
-    from planmethod.commands.variants import MAX_VARIANTS
+    from planmethod.application.variants import MAX_VARIANTS
 
     runs = {}
     for sheets in (True, False):

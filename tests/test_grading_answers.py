@@ -186,7 +186,7 @@ def test_a_negative_magnitude_is_told_in_the_courses_names():
     function)."""
     from test_workbook import page_data
 
-    from planmethod.commands.workbook import build_workbook
+    from planmethod.application.workbook import build_workbook
     from planmethod.grading.answers import magnitude_note
     from planmethod.numbering import course_numbers
 
