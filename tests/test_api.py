@@ -76,8 +76,8 @@ def test_grading_through_the_api_is_grade_at_the_command_line(tmp_path):
                      + "\n", encoding="utf-8")
     out = tmp_path / "graded.json"
     assert main(["grade", str(COMPRESSOR), str(table), "--json", str(out), "--quiet"]) == 0
-    assert json.loads(out.read_text(encoding="utf-8"))["answers"] == [graded]
-    verdicts = {q["id"]: q["correct"] for q in graded["questions"]}
+    assert json.loads(out.read_text(encoding="utf-8"))["answers"] == [graded.as_dict()]
+    verdicts = {q.id: q.correct for q in graded.questions}
     assert verdicts["v_C"] and not verdicts["a_C"] and verdicts["omega_BC"]
     assert exercise.key()["questions"] == graded_key_questions(COMPRESSOR)
 

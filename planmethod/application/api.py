@@ -33,10 +33,13 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, overload
+from typing import TYPE_CHECKING, Any, overload
 
 from ..errors import SpecError
 from ..words import message, speaking
+
+if TYPE_CHECKING:
+    from ..grading.results import StudentGrade
 
 __all__ = ["Exercise", "Solution", "load", "parse"]
 
@@ -179,16 +182,18 @@ class Exercise:
         with speaking(self.spoken):
             return build_key(draw_variant(self.template))
 
-    def grade(self, answers: Mapping[str, Any], *, student: str | None = None) -> dict:
+    def grade(self, answers: Mapping[str, Any], *, student: str | None = None
+              ) -> StudentGrade:
         """One student's ``answers`` (question id → what they wrote: ``{"v_C": "5.27"}``)
         graded against :meth:`key`, with feedback in the exercise's language, as ``planmethod
-        grade`` grades them.
+        grade`` grades them: a :class:`~planmethod.grading.results.StudentGrade`, whose
+        ``as_dict()`` is what ``grade --json`` writes of the student.
 
         Examples
         --------
         >>> graded = load("exercises/compressor_slider_crank.toml").grade({"v_C": "5.27"})
-        >>> graded["questions"][0]["correct"]
-        True
+        >>> graded.questions[0].correct, graded.score
+        (True, 1.0)
         """
         from ..grading.answers import grade_answers
 
