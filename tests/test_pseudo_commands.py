@@ -8,8 +8,7 @@ here, in the same language, and not counted): the structural analysis
 (``structure.describe``), the scales (``Scales.describe``), the force analysis and the note
 on an undrawn combined force (``ForceAnalysis.describe``, ``combined_omitted``), the sweep's
 extremes table (``Extremes.describe``), the study's labels, base case and conclusions
-(``forces.study``), the grader's feedback (``feedback_text``) and the reasons of rejected
-draws (``grading.templates``), the assembly's branch reasons and errors (kinematics), the
+(``forces.study``), the reasons of rejected draws counted by ``variants``, the assembly's branch reasons and errors (kinematics), the
 vocabulary's link texts (``link_text``), units and titles. When those areas speak through the
 catalogue, these exclusions only remove marked text.
 """
@@ -134,30 +133,6 @@ def _study_foreign() -> list[str]:
     return texts
 
 
-def _grade_foreign(key: Path) -> list[str]:
-    from planmethod.application.grades import GradeRequest, grade
-    from planmethod.grading.answers import feedback_text
-
-    graded = grade(GradeRequest(str(key), str(ANSWERS)))
-    texts = []
-    for result in graded.answers:
-        texts += [str(result.get("error", ""))]
-        texts += [feedback_text(question, level) for question in result["questions"]
-                  for level in ("full", "hints")]
-    return texts
-
-
-def _drawing_foreign(drawing: Path) -> list[str]:
-    from planmethod.application.grades import GradeRequest, grade
-
-    graded = grade(GradeRequest(str(COMPRESSOR), drawings=(str(drawing),)))
-    texts = []
-    for _, found in graded.drawings:
-        texts += [str(point["feedback"]) for point in found["points"]]
-        texts += [str(line) for line in found["feedback"]]
-    return texts
-
-
 def _variants_foreign(out: str) -> list[str]:
     return [line.strip() for line in out.splitlines() if "×" in line]
 
@@ -180,10 +155,9 @@ def _commands(probe: _Probe) -> None:
                            work / "course"])
     probe.cases[-1]["foreign"] = _variants_foreign(probe.cases[-1]["out"])
     keys = work / "course" / "keys.json"
-    probe.run("grade", ["grade", keys, ANSWERS], _grade_foreign(keys))
+    probe.run("grade", ["grade", keys, ANSWERS])
     drawing = _drawing(work)
-    probe.run("grade drawing", ["grade", COMPRESSOR, "--drawing", drawing],
-              _drawing_foreign(drawing))
+    probe.run("grade drawing", ["grade", COMPRESSOR, "--drawing", drawing])
     probe.run("export", ["export", keys, "--format", "moodle", "--out", work / "quiz.xml"])
     probe.run("export folder", ["export", keys, "--format", "gradescope", "--out", work / "gs"])
     probe.run("workbook", ["workbook", COMPRESSOR, "-o", work / "w.html", "--step", "120"])
