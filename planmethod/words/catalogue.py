@@ -153,9 +153,19 @@ def compile_folder(folder: Path) -> list[str]:
     for po in sorted(folder.glob(f"*/LC_MESSAGES/{DOMAIN}.po")):
         with open(po, "rb") as file:
             language = pofile.read_po(file)
+        _drop_untranslated_plurals(language)
         written.append(_write(po.with_suffix(".mo"), lambda file, language=language:
                               mofile.write_mo(file, language, use_fuzzy=False)))
     return written
+
+
+def _drop_untranslated_plurals(language) -> None:
+    """Leave out of a catalogue the plurals it does not translate: Babel would compile their
+    English forms as their translation, and :func:`~planmethod.words.language.missing` would
+    not count them (gettext falls back to English for an entry that is not there)."""
+    for entry in list(language):
+        if entry.id and entry.pluralizable and not any(entry.string):
+            language.delete(entry.id, context=entry.context)
 
 
 def build(root: Path = PACKAGE) -> list[str]:
