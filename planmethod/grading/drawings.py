@@ -45,6 +45,7 @@ from ..plans.construction import course_text
 from ..spec import MAX_ANGLE_DEG, parse_json
 from ..vectors import cross
 from ..vocabulary import numbered
+from ..words.render import render
 from .answers import refuse_twice
 from .keys import key_numbers
 from .plan_points import (
@@ -162,8 +163,9 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
     try:   # a key given twice would keep one of two points without a word
         parsed = parse_json(data, file=source, unique_keys=True)
     except SpecError as error:    # too deep, not JSON, a key twice, or a number beyond 64 bits
-        message = error.message if error.key or error.message.startswith("not valid JSON") \
-            else f"not valid JSON: {error.message}"
+        said = render(error.message)   # words: grading (compose with the error's message)
+        message = said if error.key or said.startswith("not valid JSON") \
+            else f"not valid JSON: {said}"
         raise SubmissionError(message[:200], file=source, key=error.key) from None
     if not isinstance(parsed, Mapping):
         raise SubmissionError("must be an object {\"plan\": …, \"points\": {…}}", file=source)

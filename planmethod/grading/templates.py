@@ -69,6 +69,7 @@ from ..plans.construction import course_text
 from ..spec import checked_table, leaves, parse_toml, read_text
 from ..vectors import angle_deg
 from ..vocabulary import PlanKind, point_text, symbol
+from ..words.render import render  # words: grading (compose with the errors' messages)
 from .expressions import ExpressionError, evaluate, parse, references
 
 __all__ = [
@@ -458,7 +459,7 @@ def draw_variant(template: Template, seed: int = 0, student: str = "1",
         except SpecError as error:
             if not template.is_random:
                 raise
-            reasons.append(f"not a valid exercise: {error.message} ({error.key})")
+            reasons.append(f"not a valid exercise: {render(error.message)} ({error.key})")
             continue
         if not check:
             return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
@@ -499,13 +500,13 @@ def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSetti
     try:
         plans = draw_plans(exercise, acceleration=exercise.ask.needs_acceleration)
     except AssemblyError as error:
-        return f"cannot be assembled ({error.message})"
+        return f"cannot be assembled ({render(error.message)})"
     except ToggleError as error:
-        return f"toggle position ({error.message})"
+        return f"toggle position ({render(error.message)})"
     except ConvergenceError as error:
-        return f"no converged assembly ({error.message})"
+        return f"no converged assembly ({render(error.message)})"
     except PlanmethodError as error:
-        return f"cannot draw the plans ({error.message})"
+        return f"cannot draw the plans ({render(error.message)})"
     return plan_problem(plans, settings, drawable=drawable)
 
 
