@@ -47,6 +47,7 @@ __all__ = [
     "column_text",
     "column_words",
     "coriolis_letter",
+    "group_kind_words",
     "link_numbers",
     "link_text",
     "link_words",
@@ -159,6 +160,20 @@ class GroupKind(StrEnum):
 _TYPE_NUMBERS = {GroupKind.RRR: 1, GroupKind.RRP: 2, GroupKind.RPR: 3, GroupKind.PRP: 4,
                  GroupKind.RPP: 5}
 _HIGHER_CLASSES = {GroupKind.DRIVE: 1, GroupKind.TRIAD: 3, GroupKind.TETRAD: 4}
+#: the higher groups' (and the drive link's) kinds in words; a dyad's kind is its pairs' letters
+_KIND_WORDS = {GroupKind.TRIAD: message("triad", context="group kind"),
+               GroupKind.TETRAD: message("tetrad", context="group kind"),
+               GroupKind.DRIVE: message("drive", context="group kind")}
+
+
+def group_kind_words(kind: GroupKind) -> Message | str:
+    """An Assur group's kind as a course names it: a dyad by its pairs' letters (``RRP``), a
+    higher group in words (``triad``).
+
+    >>> group_kind_words(GroupKind.RRP), render(group_kind_words(GroupKind.TRIAD))
+    ('RRP', 'triad')
+    """
+    return _KIND_WORDS.get(kind, kind.value)
 
 @dataclass(frozen=True, slots=True)
 class DrawingScale:
