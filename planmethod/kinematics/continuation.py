@@ -28,6 +28,7 @@ import numpy as np
 from ..errors import PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
 from ..spec import MAX_ANGLE_DEG
+from ..words.message import message
 from .groups import kind_module
 from .motion import Motion, solve
 from .program import Branch, Model, model
@@ -103,7 +104,7 @@ def _solvable_prefix(mechanism: Mechanism, angles: np.ndarray, links, stage: str
         solve(mechanism, angles[:good + 1], stage=stage, links=links)
     except PlanmethodError as error:
         return motion, good, error
-    raise PlanmethodError("internal error: a refused prefix solves")  # pragma: no cover
+    raise PlanmethodError(message("internal error: a refused prefix solves"))  # pragma: no cover
 
 
 def follow(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = None) -> None:
@@ -225,11 +226,12 @@ def _raise_limit(mechanism: Mechanism, found: Model, links: list[str], start: fl
         except PlanmethodError as refused:
             bad, error = middle, refused
     refused_group = next((g for g in found.structure.groups if g.name == error.link), group)
-    raise ToggleError(
-        f"the assembly chosen at drive.angle {start:g}° cannot be followed to {angle:g}°: "
-        f"turning the crank from {start:g}°, the group reaches a limit (toggle) position at "
-        f"crank angle {good:.9g}°, past which its assembly cannot be followed (just beyond: "
-        f"{error.message})", line_angle_deg=0.0, link=refused_group.name, angle=good)
+    raise ToggleError(message(
+        "the assembly chosen at drive.angle {start:g}° cannot be followed to {angle:g}°: "
+        "turning the crank from {start:g}°, the group reaches a limit (toggle) position at "
+        "crank angle {limit:.9g}°, past which its assembly cannot be followed (just beyond: "
+        "{reason})", start=start, angle=angle, limit=good, reason=error.message),
+        line_angle_deg=0.0, link=refused_group.name, angle=good)
 
 
 def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = None) -> Posed:
@@ -272,8 +274,8 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
     """
     start = float(mechanism.drive.angle)
     if not (math.isfinite(angle) and abs(angle) <= MAX_ANGLE_DEG):
-        raise SpecError(f"the crank angle must be a finite number of degrees within "
-                        f"±{MAX_ANGLE_DEG:g}°, got {angle!r}")
+        raise SpecError(message("the crank angle must be a finite number of degrees within "
+                                "±{limit:g}°, got {angle!r}", limit=MAX_ANGLE_DEG, angle=angle))
     angle = float(angle)
     found = model(mechanism)
     groups = found.groups(links)
@@ -281,8 +283,8 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
         original = found.branches(groups)
     except PlanmethodError as error:
         if angle != start and error.angle == start:   # say why that angle, not the one asked
-            error.message += (f" (at drive.angle, where the assembly followed to {angle:g}° "
-                              "is chosen)")
+            error.message = message("{reason} (at drive.angle, where the assembly followed to "
+                                    "{angle:g}° is chosen)", reason=error.message, angle=angle)
             error.args = (str(error),)
         raise
     if angle == start:
@@ -312,10 +314,10 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
         for point, xy in points.items():
             away = math.dist(check.at(0).position(point), xy) if point in solved else 0.0
             if away > 1e-9 * size:
-                raise PlanmethodError(
-                    f"the assembly followed from drive.angle {start:g}° is not among the "
-                    f"assemblies found at crank angle {angle:g}° (point {point} is "
-                    f"{away:.3g} m away)", angle=angle)
+                raise PlanmethodError(message(
+                    "the assembly followed from drive.angle {start:g}° is not among the "
+                    "assemblies found at crank angle {angle:g}° (point {point} is {away:.3g} m "
+                    "away)", start=start, angle=angle, point=point, away=away), angle=angle)
     return Posed(posed, branches, start)
 
 
