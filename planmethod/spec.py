@@ -51,6 +51,7 @@ from .model import (
     FRAME,
     FRAME_PLACES,
     Ask,
+    Course,
     Drive,
     Exercise,
     Link,
@@ -64,11 +65,12 @@ from .model import (
 )
 from .vectors import angle_deg, cross, dot, norm, unit_angle
 from .vocabulary import quantity, unit_words
+from .words.language import problem as language_problem
 from .words.message import Message, message, plural
 
-__all__ = ["DRAWN_TOLERANCE", "POINT_NAME", "checked_table", "did_you_mean", "drawing_size",
-           "exercise_from_dict", "frames_from_drawn", "is_drawn", "leaves", "load_exercise",
-           "parse_exercise", "parse_json", "parse_toml", "read_text"]
+__all__ = ["COURSE_KEYS", "DRAWN_TOLERANCE", "POINT_NAME", "checked_table", "course_from_dict",
+           "did_you_mean", "drawing_size", "exercise_from_dict", "frames_from_drawn", "is_drawn",
+           "leaves", "load_exercise", "parse_exercise", "parse_json", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -76,7 +78,10 @@ LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 TOP_LEVEL_KEYS = (
     "title", "description", "drive", "links", "slide", "sketch", "plan", "ask",
     "mass", "gravity", "load", "friction", "grading", "published", "points", "notation",
+    "course",
 )
+#: the keys of the ``[course]`` table
+COURSE_KEYS = ("language",)
 PLAN_KEYS = (
     "crank_mm", "velocity_mm", "acceleration_mm", "mu_l", "mu_v", "mu_a", "force_mm", "mu_f",
     "scale_point", "precision_mm", "min_angle_deg", "exact_mm",
@@ -479,6 +484,23 @@ def exercise_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> E
     return _Reader(file).exercise(data)
 
 
+def course_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> Course:
+    """The ``[course]`` table of an exercise's or a template's tables (a template's variants
+    carry it as it is), checked: a :class:`SpecError` naming ``course.language`` if it is no
+    language planmethod can speak.
+
+    Examples
+    --------
+    >>> course_from_dict({"course": {"language": "ru"}}), course_from_dict({})
+    (Course(language='ru'), Course(language=None))
+    >>> course_from_dict({"course": {"language": "zz"}}, file="t.toml")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: t.toml: course.language: no catalogue for the language zz ...
+    """
+    return _Reader(file).course(data)
+
+
 def _mechanism_size(links: Mapping[str, Link]) -> float:
     """The largest extent of any link (m), at least 1 mm."""
     size = 1e-3
@@ -695,7 +717,21 @@ class _Reader:
         ask = self.ask(data, mechanism)
         published, published_source = self.published(data)
         return Exercise(mechanism=mechanism, plan=plan, ask=ask, source=self.file,
-                        published=published, published_source=published_source)
+                        published=published, published_source=published_source,
+                        course=self.course(data))
+
+    def course(self, data: Mapping[str, Any]) -> Course:
+        """``[course]``: ``language = "ru"``, a language planmethod can speak (a shipped
+        catalogue or a course's own, docs/languages.md)."""
+        table = self.table(data.get("course", {}), "course")
+        self.only_keys(table, COURSE_KEYS, "course")
+        if "language" not in table:
+            return Course()
+        language = self.string(table["language"], "course.language")
+        refused = language_problem(language)
+        if refused is not None:
+            raise self.error("course.language", refused)
+        return Course(language)
 
     def published(self, data: Mapping[str, Any]) -> tuple[dict[str, float], str | None]:
         """``[published]``: the values a book prints (``v_C = 4.0``, SI units), with an
