@@ -90,6 +90,13 @@ def value_words(value: object, limit: int = VALUE_TEXT_LIMIT) -> Message | str:
 def value_text(value: object, limit: int = VALUE_TEXT_LIMIT) -> str:
     """:func:`value_words` as text in the language spoken now.
 
+    Parameters
+    ----------
+    value
+        What the file gave (as tomllib or json read it).
+    limit
+        The most characters of it written (default :data:`VALUE_TEXT_LIMIT`).
+
     Examples
     --------
     >>> import datetime
