@@ -8,9 +8,10 @@ here, in the same language, and not counted): the structural analysis
 (``structure.describe``), the scales (``Scales.describe``), the force analysis and the note
 on an undrawn combined force (``ForceAnalysis.describe``, ``combined_omitted``), the sweep's
 extremes table (``Extremes.describe``), the study's labels, base case and conclusions
-(``forces.study``), the reasons of rejected draws counted by ``variants``, the assembly's branch reasons and errors (kinematics), the
-vocabulary's link texts (``link_text``), units and titles. When those areas speak through the
-catalogue, these exclusions only remove marked text.
+(``forces.study``), the reasons of rejected draws counted by ``variants``, the assembly's
+branch reasons and errors (kinematics), the vocabulary's link texts (``link_text``), units
+and titles. When those areas speak through the catalogue, these exclusions only remove marked
+text.
 """
 
 from __future__ import annotations

@@ -108,14 +108,13 @@ def chosen_language(option: str | None, course: Any, *, file: str | Path | None 
     >>> chosen_language(None, "en", environment={"PLANMETHOD_LANG": "x y"})
     'en'
     """
-    language = choose(option, None if option else course, environment)
-    if option:
-        where = {"key": option_key}
-    elif course is not None and course != "":
-        where = {"file": None if file is None else str(file), "key": COURSE_KEY}
-    else:
-        where = {"key": ENVIRONMENT}
+    if not option and course is not None:   # checked as the exercise's reader checks it
+        from ..spec import course_from_dict
+
+        return course_from_dict({"course": {"language": course}},
+                                file=None if file is None else str(file)).language
+    language = choose(option, None, environment)
     why = problem(language)
     if why is not None:
-        raise SpecError(why, **where)
+        raise SpecError(why, key=option_key if option else ENVIRONMENT)
     return language
