@@ -37,8 +37,10 @@ def text_report(analysis) -> str:
     link and force in the course's notation (docs/notation.md: ω₂, v_B₃, R₀₁; the crank's
     φ and ω by its number), never a report name (those are the JSON report's)."""
     from ..numbering import course_numbers
+    from ..render.plan_words import scale_lines
     from ..structure import describe
     from ..vocabulary import numbered, shown_title, symbol
+    from ..words import render
 
     exercise, motion = analysis.exercise, analysis.motion
     numbers = course_numbers(exercise.mechanism)
@@ -50,7 +52,8 @@ def text_report(analysis) -> str:
         analysis.structure.groups[index]
         lines.append(f"  group {index + 1} assembly: branch {branch.sign:+d} ({branch.reason})")
     if analysis.plans:
-        lines += ["", "Scales"] + ["  " + line for line in analysis.plans.scales.describe()]
+        lines += ["", "Scales"] + ["  " + render(line)
+                                   for line in scale_lines(analysis.plans.scales)]
         precision = analysis.plans.velocity.precision_mm
         lines.append(f"  drafting precision: {precision:g} mm" if precision else
                      "  drafting precision: exact construction")

@@ -31,7 +31,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..vectors import norm
-from .canvas import Canvas, Point, page_point
+from ..words import Message, message
+from .canvas import Canvas, Point, page_point, shown_text
 from .labels import RunKind, drawn_length
 from .style import INK, READABLE_PX, TEXT_SIZE
 
@@ -303,13 +304,28 @@ def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[
         figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
                          layer="marks", css="detail frame")
         right, bottom = x + width, top + height
-        where = f" (marked in detail {region.parent})" if region.parent else ""
-        caption = figure.text((x, bottom + 18), f"{region.letter}: detail ×{zoom:g}{where}",
-                              size=TEXT_SIZE, bold=True, css="detail", area=False)
+        caption = figure.text((x, bottom + 18), _caption(region), size=TEXT_SIZE, bold=True,
+                              css="detail", area=False)
         right = max(right, x + caption)
-        lines.append(f"detail {region.letter}: the region marked in detail {region.parent}, "
-                     f"drawn {zoom:g} times larger than the figure" if region.parent else
-                     f"detail {region.letter}: the marked region drawn {zoom:g} times larger")
+        lines.append(shown_text(_said(region)))   # text: a figure's line (force_svg edits them)
         row_bottom = max(row_bottom, bottom + 18)
         x = right + 40.0
     return lines
+
+
+def _caption(region: Detail) -> Message:
+    """The caption under a detail: its numeral, its enlargement, the detail it is marked in."""
+    if region.parent:
+        return message("{letter}: detail ×{zoom:g} (marked in detail {parent})",
+                       letter=region.letter, zoom=region.zoom, parent=region.parent)
+    return message("{letter}: detail ×{zoom:g}", letter=region.letter, zoom=region.zoom)
+
+
+def _said(region: Detail) -> Message:
+    """The line under a figure that says what a detail is."""
+    if region.parent:
+        return message("detail {letter}: the region marked in detail {parent}, drawn {zoom:g} "
+                       "times larger than the figure", letter=region.letter,
+                       parent=region.parent, zoom=region.zoom)
+    return message("detail {letter}: the marked region drawn {zoom:g} times larger",
+                   letter=region.letter, zoom=region.zoom)
