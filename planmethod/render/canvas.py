@@ -91,8 +91,9 @@ MARGIN = 14.0
 #: a point on the page (px, y down): a pair of numbers, or an array (2,) for vector arithmetic
 Point = Sequence[float]
 
-#: one element a line (diff-friendly), never inside a <text>: its tspans stay together
-_ONE_PER_LINE = re.compile(r"><(/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
+#: one element a line (diff-friendly), never inside a <text>: its tspans stay together (the
+#: tag a lookahead, so that the line break is a literal replacement: no template per match)
+_ONE_PER_LINE = re.compile(r"><(?=/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
                            r"title\b|defs\b|/?svg\b|style\b)")
 
 
@@ -557,7 +558,7 @@ class Canvas:
                 for item in self.layers[name]:
                     _write(item, drawn)
                 drawn.append("</g>")
-        body = _ONE_PER_LINE.sub(r">\n<\1", shell[:-len("</svg>")] + "".join(drawn) + "</svg>")
+        body = _ONE_PER_LINE.sub(">\n<", shell[:-len("</svg>")] + "".join(drawn) + "</svg>")
         text = '<?xml version="1.0" encoding="utf-8"?>\n' + body + "\n"
         background = ("rect", {"x": num(x0), "y": num(y0), "width": num(width),
                                "height": num(height), "fill": "#ffffff",

@@ -765,7 +765,10 @@ def _extremes(points: Sequence[Point]) -> tuple[Point, Point]:
 
 def _hull(points: Sequence[Point]) -> tuple[list[Point], float]:
     """The convex hull (shapely) of distinct points, counter-clockwise from the lowest
-    (x, y), and its area; fewer than three corners where the points lie on one line."""
+    (x, y), and its area; fewer than three corners where the points lie on one line (two
+    points always do: most links, asked for no hull)."""
+    if len(points) < 3:
+        return [], 0.0
     from shapely.geometry import MultiPoint
     from shapely.geometry.polygon import orient
 
