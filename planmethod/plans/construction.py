@@ -1060,36 +1060,26 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         Crank angle (deg); default ``drive.angle``.
     settings
         Overrides the exercise's ``[plan]`` settings.
-    acceleration
-        Also draw the acceleration plan.
-    motion
-        Exact positions at that angle, if already solved (only positions are used).
+    acceleration, position
+        Also draw the acceleration plan; also make the position plan (the mechanism's
+        drawing, with the paths of the points whose ρ is read; else ``Plans.position`` is None).
+    motion, scales
+        The exact positions at that angle (only positions are used) and the drawing scales,
+        if known already (a tolerance analysis draws the same position many times).
     perturb
-        A drafting-error model ``perturb(length_mm, segment) -> drawn_length_mm`` that
-        replaces the rounding to ``precision_mm`` for every length laid off or read off
-        (``segment`` is a :class:`Segment`); the calls come in construction order. Used to
-        propagate reading errors into grading tolerances. Default: round to ``precision_mm``.
-    scales
-        The drawing scales, if already chosen for these settings (a tolerance analysis draws
-        the same position many times).
-    position
-        Also make the position plan (the mechanism's drawing, with the paths of the points
-        whose ρ is read); without it ``Plans.position`` is None.
-    turn
-        A direction model ``turn(direction, segment) -> direction`` for every construction
-        line (``segment.action`` is ``line``, ``segment.name`` its component): a construction
-        drawn with a mistake (:mod:`planmethod.grading.mistakes`). Default: as they are.
-    mirror
-        A similarity model ``mirror(segment) -> bool`` for every image placed by the
-        similarity rule off its link's line (``segment.name`` its label, ``segment.vector``
-        the link): True places it mirrored across the image of the link's line (a mistake).
-        Default: as the rule says.
+        A drafting-error model ``perturb(length_mm, segment) -> drawn_length_mm`` replacing
+        the rounding to ``precision_mm`` for every length laid off or read off (``segment`` a
+        :class:`Segment`), called in construction order: reading errors propagated into
+        grading tolerances.
+    turn, mirror
+        A construction drawn with a mistake (:mod:`planmethod.grading.mistakes`): a direction
+        model ``turn(direction, segment) -> direction`` for every construction line
+        (``segment.name`` its component), a similarity model ``mirror(segment) -> bool`` for
+        every image placed off its link's line (True: mirrored across the image of the line).
     recorder
-        How each plan keeps its construction steps: a new
-        :class:`~planmethod.plans.steps.StepRecorder` per plan (default
-        :class:`~planmethod.plans.steps.KeepSteps`; :class:`~planmethod.plans.steps.DropSteps`
-        where only the points and readings are wanted, as a tolerance analysis, whose copies
-        of a drawing make no steps).
+        Makes each plan's :class:`~planmethod.plans.steps.StepRecorder`:
+        :class:`~planmethod.plans.steps.KeepSteps`, or
+        :class:`~planmethod.plans.steps.DropSteps` where only points and readings are wanted.
 
     Raises
     ------
@@ -1097,14 +1087,22 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         If a group's two construction lines are parallel to within the drawing's precision.
     """
     settings = settings or exercise.plan
-    mechanism = exercise.mechanism
-    angle = float(mechanism.drive.angle if angle is None else angle)
+    angle = float(exercise.mechanism.drive.angle if angle is None else angle)
     if motion is None:
-        motion = solve(mechanism, angle, stage="position")
+        motion = solve(exercise.mechanism, angle, stage="position")
     scales = scales or choose_scales(exercise, settings)
     emulator = _Emulator(exercise, settings, angle, motion, scales, recorder, perturb,
                          turn=turn, mirror=mirror)
     position_plan = _position_plan(exercise, motion, scales, angle) if position else None
+    return _drawn(emulator, exercise, position_plan, acceleration)
+
+
+def _drawn(emulator: _Emulator, exercise: Exercise, position_plan: PositionPlan | None,
+           acceleration: bool) -> Plans:
+    """The plans ``emulator`` draws: the drive, every group on the velocity plan (then on
+    the acceleration plan), the points asked about read off, the radii of curvature and the
+    sliding pairs' readings."""
+    mechanism, motion, angle = exercise.mechanism, emulator.motion, emulator.angle
     emulator.drive()
     groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
     for plan in (PlanKind.VELOCITY, PlanKind.ACCELERATION) if acceleration else (
@@ -1125,8 +1123,8 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     velocity_plan = emulator.v.finish(title, angle, crank, numbers)
     acceleration_plan = emulator.a.finish(title, angle, crank, numbers) if acceleration else None
     flags = velocity_plan.flags + (acceleration_plan.flags if acceleration_plan else ())
-    return Plans(exercise, angle, scales, position_plan, velocity_plan, acceleration_plan,
-                 dict(emulator.readings), flags, motion)
+    return Plans(exercise, angle, emulator.scales, position_plan, velocity_plan,
+                 acceleration_plan, dict(emulator.readings), flags, motion)
 
 
 def _read_points(emulator: _Emulator, exercise: Exercise, motion: Motion,
