@@ -1047,8 +1047,8 @@ def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dic
 
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
                settings: PlanSettings | None = None, acceleration: bool = True,
-               motion: Motion | None = None, perturb=None, scales: Scales | None = None,
-               position: bool = True, turn=None, mirror=None,
+               position: bool = True, motion: Motion | None = None,
+               scales: Scales | None = None, perturb=None, turn=None, mirror=None,
                recorder: Callable[[], StepRecorder] = KeepSteps) -> Plans:
     """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
 
