@@ -934,16 +934,16 @@ def _curvature_readings(emulator: _Emulator, point: str,
     along_normal = outward * along_normal
     n_label = f"n_{name}"
     a.points[n_label] = _times(along_normal, normal)
-    number = a.take()
-    a.recorder.record(lambda: Project(number=number, start=a_label, end=n_label,
+    projected = a.take()
+    a.recorder.record(lambda: Project(number=projected, start=a_label, end=n_label,
                                       direction_deg=angle_deg(normal) % 180.0, point=name,
                                       speed=v_label))
     normal_mm = a.round(along_normal, Segment("acceleration", "read", f"an_{point}"))
     if np.any(normal_mm == 0):
         return
     rho = speed_mm ** 2 * scales.mu_v ** 2 / (normal_mm * scales.mu_a)
-    number = a.take()
-    a.recorder.record(lambda: ReadRadius(number=number, start=a.pole, end=n_label,
+    read = a.take()
+    a.recorder.record(lambda: ReadRadius(number=read, start=a.pole, end=n_label,
                                          length_mm=normal_mm, quantity=f"rho_{point}",
                                          value=rho, point=name, speed=v_label))
     emulator.readings[f"rho_{point}"] = rho

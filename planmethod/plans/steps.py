@@ -422,9 +422,9 @@ class PoorIntersection(NamedTuple):
 # -- recording --------------------------------------------------------------------------------
 class StepRecorder(Protocol):
     """How a plan keeps its steps: ``record`` is given each step, in order, as the function
-    that makes it (a recorder that drops the steps never makes them: a tolerance analysis,
-    whose copies of a drawing hold one length per copy, makes none); ``steps`` are those
-    kept."""
+    that makes it — a recorder that keeps it makes it then, one that drops it never does (a
+    tolerance analysis, whose copies of a drawing hold one length per copy, makes none);
+    ``steps`` are those kept."""
 
     def record(self, make: Callable[[], Step]) -> None: ...
 
