@@ -205,11 +205,9 @@ def test_a_step_holds_names_and_numbers_never_a_sentence(path):
 
 
 # -- the plans layer holds no English sentence ------------------------------------------------
-#: what the plans layer may still say in English, for now: the developer's registry check
-#: (a TypeError at load), and the old sentence fixer that the grader still calls
-#: (issue 36 §3: it goes when the grader reads typed steps)
-ALLOWED = {("planmethod/plans/groups/__init__.py", "describe"),
-           ("planmethod/plans/construction.py", "course_text")}
+#: what the plans layer may still say in English: the developer's registry check (a
+#: TypeError at load)
+ALLOWED = {("planmethod/plans/groups/__init__.py", "describe")}
 #: words in a row: what a sentence reads like (a name, a key, a unit or a formula does not)
 SENTENCE = re.compile(r"[A-Za-z]{2,}[,;:]? [a-z]{2,}[,;:]? [a-z]{2,}")
 MAKERS = {"message", "plural", "template"}

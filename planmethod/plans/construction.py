@@ -31,13 +31,10 @@ Examples
 
 from __future__ import annotations
 
-import functools
 import math
-import re
 import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
@@ -51,10 +48,7 @@ from ..structure import AssurGroup
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
 from ..vocabulary import (
     PlanKind,
-    coriolis_letter,
     shown_title,
-    subscript,
-    symbol,
 )
 from ..words import message
 from .groups import plan_face
@@ -258,94 +252,6 @@ def _sign(value):
     if np.ndim(value) == 0:
         return 1.0 if value >= 0 else -1.0
     return np.where(value >= 0, 1.0, -1.0)
-
-
-#: a quantity's report name inside a sentence (``omega_BC``, ``v_CC@frame``, ``ds_slider/frame``)
-_QUANTITY = re.compile(r"\b(?:a_rel|omega|epsilon|coriolis|dds|ds|rho|v|a|s)_[A-Za-z0-9_@/:*]+")
-#: a Coriolis point's report name (``k1_Q``, ``k2_B@yoke``): its side's index
-_CORIOLIS = re.compile(r"k([0-9])_(?=[A-Z])")
-#: the digits of a point's name (``O2``, ``o2``, ``BO2``), set as subscripts (O₂, o₂, BO₂)
-_POINT_DIGITS = re.compile(r"(?<=[A-Za-z])[0-9]+")
-
-
-class _LinkPatterns(NamedTuple):
-    """The patterns of :func:`course_text` that name a mechanism's links."""
-
-    on_link: re.Pattern
-    pair: re.Pattern
-    rate: re.Pattern
-    similarity: re.Pattern
-    #: a link's name with an underscore, and it in words
-    worded: tuple[tuple[re.Pattern, str], ...]
-
-
-@functools.lru_cache(maxsize=64)
-def _link_patterns(names: tuple[str, ...]) -> _LinkPatterns:
-    """The patterns for links ``names`` (compiled once per mechanism; longest name first)."""
-    joined = "|".join(re.escape(name) for name in sorted(names, key=len, reverse=True))
-    return _LinkPatterns(re.compile(rf"@({joined})"),
-                         re.compile(rf"(?<![\w/])({joined})/({joined})(?![\w/])"),
-                         re.compile(rf"([ωε])_({joined})\b"),
-                         re.compile(rf"similarity on ({joined})\b"),
-                         tuple((re.compile(rf"\b{re.escape(name)}\b"), name.replace("_", " "))
-                               for name in names if "_" in name))
-
-
-def course_text(text: str, numbers: Mapping[str, int]) -> str:
-    """An English sentence made earlier as a course writes it — kept only for the grader's callers,
-    which are moving to typed values (issue 36 §3); nothing in the plans or the render layer
-    calls it (the steps' sentences are written from their fields by
-    :mod:`planmethod.render.plan_words`). A construction step's old sentence: a point on a link
-    with the link's number (``c@frame`` → ``c₁``, ``v_CC@frame`` → ``v_CC₁``), a link's quantity
-    by its symbol (``omega_BC`` → ``ω₃``, ``a_rel_…`` → ``aʳ_…``), the digits of a point's name
-    as subscripts (``o2``, ``aᵗ_BO2`` → o₂, aᵗ_BO₂), a Coriolis point without its side's index
-    (``k1_Q``, ``k2_Q`` → k_Q, k′_Q: :func:`~planmethod.vocabulary.coriolis_letter`), a link's
-    name with an underscore in words.
-
-    Examples
-    --------
-    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "rocker_EF": 3}
-    >>> course_text("(c@framec) = 29 mm → v_CC@frame = 0.58; omega_BC, omega_rocker_EF",
-    ...             numbers)
-    '(c₀c) = 29 mm → v_CC₀ = 0.58; ω₂, ω₃'
-    >>> course_text("aᵏ = 2·ω_BC·v_rel; along the guide of AB/BC; d by similarity on BC",
-    ...             numbers)
-    'aᵏ = 2·ω₂·v_rel; along the guide of pair 1–2; d by similarity on link 2'
-    >>> course_text("aᵗ_B@BCO2 from o2; (q@ABk1_Q) = 12 mm; k2_Q coincides with q@frame",
-    ...             numbers)
-    'aᵗ_B₂O₂ from o₂; (q₁k_Q) = 12 mm; k′_Q coincides with q₀'
-    """
-    patterns = _link_patterns(tuple(numbers)) if numbers else None
-    if "@" in text and patterns:   # a point on a link: its name, the link's number below
-        text = patterns.on_link.sub(
-            lambda match: subscript(str(numbers[match.group(1)])), text)
-
-    def quantity(match: re.Match) -> str:
-        name = match.group(0)
-        if name.startswith("a_rel_"):
-            return "aʳ_" + name[len("a_rel_"):]
-        return symbol(name, dict(numbers))
-
-    text = _QUANTITY.sub(quantity, text)
-    if patterns:
-        # a slide by its two links' numbers (the guide of pair 2–3), a link's ω or ε by its
-        # number (2·ω₂·v_rel), the link of a similarity rule by its number
-        # (each only where its mark is in the text: most steps have none of them)
-        if "/" in text:
-            text = patterns.pair.sub(
-                lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}",
-                text)
-        if "ω_" in text or "ε_" in text:
-            text = patterns.rate.sub(
-                lambda match: match.group(1) + subscript(str(numbers[match.group(2)])), text)
-        if "similarity on " in text:
-            text = patterns.similarity.sub(
-                lambda match: f"similarity on link {numbers[match.group(1)]}", text)
-        for pattern, words in patterns.worded:
-            text = pattern.sub(words, text)
-    if "_" in text:
-        text = _CORIOLIS.sub(lambda match: coriolis_letter(match.group(1)) + "_", text)
-    return _POINT_DIGITS.sub(lambda match: subscript(match.group(0)), text)
 
 
 class _Sheet:
