@@ -29,9 +29,11 @@ from .model import FRAME, Exercise
 from .numbering import course_numbers
 from .plans import Plans, draw_plans
 from .plans.construction import PlansUnavailableError
+from .render.plan_words import flag_message, plan_dict
 from .scene import Scene, plan_scene
 from .structure import Structure
 from .vectors import norm
+from .words import render
 
 __all__ = ["FLAG_ERROR", "Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
 
@@ -82,8 +84,9 @@ class Analysis:
     def flags(self) -> tuple[str, ...]:
         """Plan flags (intersections at small angles) and groups whose exact values lose
         digits near their toggle (estimated relative error above 1e-6)."""
-        flags = list(self.plans.flags) if self.plans else []
         numbers = course_numbers(self.exercise.mechanism)
+        flags = ([render(flag_message(flag, numbers)) for flag in self.plans.flags]
+                 if self.plans else [])
         for index, solved in sorted(self.motion.groups.items()):
             for stage, values in (solved.error_estimate or {}).items():
                 estimate = float(np.max(values))
@@ -300,9 +303,9 @@ def report_dict(analysis: Analysis) -> dict:
         report["sliding"] = table
     if analysis.plans:
         plans = {"position": analysis.plans.position.as_dict(),
-                 "velocity": analysis.plans.velocity.as_dict()}
+                 "velocity": plan_dict(analysis.plans.velocity)}
         if analysis.plans.acceleration:
-            plans["acceleration"] = analysis.plans.acceleration.as_dict()
+            plans["acceleration"] = plan_dict(analysis.plans.acceleration)
         report["plans"] = plans
     report["checks"] = [check.as_dict() for check in analysis.checks]
     if analysis.exercise.published:

@@ -21,9 +21,9 @@ from planmethod.grading.drawings import Drawing, grade_drawing
 from planmethod.grading.keys import build_key
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.plans import draw_plans
-from planmethod.plans.construction import course_text
 from planmethod.render.figures import plan_files
 from planmethod.render.labels import label_runs, plain
+from planmethod.render.plan_words import label_text, step_text
 from planmethod.render.svg import vector_equations
 from planmethod.report import analyse
 from planmethod.spec import exercise_from_dict, load_exercise
@@ -161,7 +161,7 @@ def test_a_point_placed_by_similarity_names_its_link_by_number():
     for notation, number in (({}, 2), ({"frame": 1}, 3)):
         plans = draw_plans(exercise_from_dict(_compressor(notation), file="c.toml"))
         for plan in (plans.velocity, plans.acceleration):
-            said = [step.text for step in plan.steps if step.action == "similarity"]
+            said = [step_text(step, plan) for step in plan.steps if step.action == "similarity"]
             assert said == [f"d by similarity on link {number} from b"], said
 
 
@@ -194,10 +194,10 @@ def test_a_coriolis_point_is_k_without_its_side_index():
     """The slotted crank's Coriolis point (report name ``k1_Q``) is k_Q, in its label and in
     the sentences; the second side's point (``k2_Q``) is k′_Q — never k₁,Q."""
     assert plain(label_runs("k1_Q")) == "kQ" and plain(label_runs("k2_Q")) == "k′Q"
-    assert course_text("through k1_Q: aʳ; k2_Q coincides with q@frame",
-                       {"frame": 0, "crank": 1}) == "through k_Q: aʳ; k′_Q coincides with q₀"
+    assert [label_text(label, {"frame": 0}) for label in ("k1_Q", "k2_Q", "q@frame")] == [
+        "k_Q", "k′_Q", "q₀"]
     plans = draw_plans(load_exercise(ROOT / "exercises" / "slotted_crank_crosshead.toml"))
-    sentences = " ".join(step.text for step in plans.acceleration.steps)
+    sentences = " ".join(step_text(step, plans.acceleration) for step in plans.acceleration.steps)
     assert "k_Q" in sentences and "k1" not in sentences and "k₁" not in sentences
     svg = plan_files(plans)["acceleration.svg"]
     label = re.search(r'<text class="label" data-points="k1_Q"[^>]*>(.*?)</text>', svg)

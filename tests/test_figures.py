@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from planmethod.render.figures import plan_files
+from planmethod.render.plan_words import step_text
 from planmethod.report import analyse, report_dict
 from planmethod.spec import load_exercise
 from planmethod.testing.figures import figure_problems
@@ -179,10 +180,10 @@ def test_construction_sentences_use_the_course_notation(drawn):
         if plan is None:
             continue
         for step in plan.steps:
-            assert "@" not in step.text, step.text
-            assert not re.search(r"\b(?:omega|epsilon|rho|coriolis|a_rel|dds|ds)_", step.text), \
-                step.text
-            assert not any(re.search(rf"\b{name}\b", step.text) for name in links), step.text
+            text = step_text(step, plan)
+            assert "@" not in text, text
+            assert not re.search(r"\b(?:omega|epsilon|rho|coriolis|a_rel|dds|ds)_", text), text
+            assert not any(re.search(rf"\b{name}\b", text) for name in links), text
 
 
 def test_loads_are_printed_by_the_name_the_exercise_gives_them():

@@ -18,6 +18,7 @@ from planmethod.kinematics.groups import higher
 from planmethod.plans import draw_plans
 from planmethod.plans.construction import PlansUnavailableError
 from planmethod.plans.groups.triad import SPECIAL
+from planmethod.render.plan_words import step_text
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict
 from planmethod.structure import analyse_structure
@@ -220,7 +221,7 @@ def test_triad_plan_at_drafting_precision_is_close(exercise):
 
 def test_special_point_lies_on_two_side_lines(exercise):
     plans = draw_plans(exercise, 135.0)
-    text = next(s.text for s in plans.velocity.steps if s.end == SPECIAL)
+    text = next(step_text(s, plans.velocity) for s in plans.velocity.steps if s.end == SPECIAL)
     numbers = text.split("S* = (")[1].split(")")[0].split(", ")
     special = np.array([float(x) for x in numbers])
     motion = solve(exercise.mechanism, 135.0, stage="position").at(0)

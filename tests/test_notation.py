@@ -19,6 +19,7 @@ from planmethod.grading.templates import Variant, draw_variant, load_template
 from planmethod.numbering import course_numbers
 from planmethod.render.figures import plan_files
 from planmethod.render.notation import ForceNotation
+from planmethod.render.plan_words import step_text
 from planmethod.report import analyse
 from planmethod.spec import exercise_from_dict
 
@@ -56,8 +57,8 @@ def test_the_compressor_speaks_each_notation(name):
     phi = f"φ{str(crank).translate(SUB)}"
     analysis = analyse(exercise)
     # the step sentences read ω and ε of BC off the plans by BC's number
-    sentences = " ".join(step.text for plan in (analysis.plans.velocity,
-                                                analysis.plans.acceleration)
+    sentences = " ".join(step_text(step, plan) for plan in (analysis.plans.velocity,
+                                                            analysis.plans.acceleration)
                          for step in plan.steps)
     assert f"→ {omega} = " in sentences and f"→ {epsilon} = " in sentences
     # the reactions: R_ij is the force of link i on link j

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from planmethod.errors import AssemblyError, SpecError, ToggleError
 from planmethod.kinematics import solve
 from planmethod.plans import draw_plans, image_label
+from planmethod.render.plan_words import flag_message, step_text
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.testing import (
@@ -24,6 +25,7 @@ from planmethod.testing import (
     slotted_lever,
     two_guides,
 )
+from planmethod.words import render
 
 MECHANISMS = {
     "RRR four-bar": fourbar(),
@@ -248,7 +250,8 @@ def test_lines_meeting_at_a_small_angle_are_flagged_not_wrong():
     plans = draw_plans(exercise)
     flagged = [s for s in plans.velocity.steps if s.action == "intersect" and s.flagged]
     assert flagged and flagged[0].angle_deg < 1.0
-    assert any("below 1°" in flag for flag in plans.flags)
+    assert any("below 1°" in render(flag_message(flag, plans.velocity.numbers))
+               for flag in plans.flags)
     motion = solve(exercise.mechanism).at(0)
     assert plans.readings["omega_CD"] == pytest.approx(float(motion.omega("CD")), rel=1e-9)
 
@@ -384,7 +387,8 @@ def test_the_intersection_step_states_the_groups_vector_equation():
     equation, as the course writes them (b₃ of the slotted lever); the position plan draws a
     slide's guide through the guide's own point, in mm of the drawing (O₂ at 120 mm below O₁)."""
     plans = draw_plans(load_exercise("exercises/slotted_lever.toml"))
-    said = [step.text for step in plans.velocity.steps if step.action == "intersect"]
+    said = [step_text(step, plans.velocity) for step in plans.velocity.steps
+            if step.action == "intersect"]
     assert said == ["b₃: v_B₃ = v_B + v_B₃B = v_O₂ + v_B₃O₂"]
     (slide,) = plans.position.slides
     assert slide["through"] == "O2"

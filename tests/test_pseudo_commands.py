@@ -5,13 +5,13 @@ texts and argparse's own lines, and in the studio's answers.
 
 What other areas still make as plain text is left out, each by name (the texts are computed
 here, in the same language, and not counted): the structural analysis
-(``structure.describe``), the scales (``Scales.describe``), the force analysis and the note
-on an undrawn combined force (``ForceAnalysis.describe``, ``combined_omitted``), the sweep's
-extremes table (``Extremes.describe``), the study's labels, base case and conclusions
-(``forces.study``), the reasons of rejected draws counted by ``variants``, the assembly's
-branch reasons and errors (kinematics), the vocabulary's link texts (``link_text``), units
-and titles. When those areas speak through the catalogue, these exclusions only remove marked
-text.
+(``structure.describe``), the flag of a group near its toggle (``Analysis.flags``; the plans'
+own flags and scales are messages), the force analysis and the note on an undrawn combined
+force (``ForceAnalysis.describe``, ``combined_omitted``), the sweep's extremes table
+(``Extremes.describe``), the study's labels, base case and conclusions (``forces.study``),
+the reasons of rejected draws counted by ``variants``, the assembly's branch reasons and
+errors (kinematics), the vocabulary's link texts (``link_text``), units and titles. When
+those areas speak through the catalogue, these exclusions only remove marked text.
 """
 
 from __future__ import annotations
@@ -87,9 +87,8 @@ def _solve_foreign(path: Path) -> list[str]:
     texts = [*_names(exercise), exercise.published_source or ""]
     texts += describe(analysis.structure, numbers).splitlines()
     texts += [str(branch.reason) for branch in analysis.motion.branches.values()]
-    texts += analysis.plans.scales.describe() if analysis.plans else []
     texts += [render(check.unit) for check in analysis.checks if "rad" in render(check.unit)]
-    texts += [render(flag) for flag in analysis.flags]
+    texts += analysis.flags[len(analysis.plans.flags) if analysis.plans else 0:]
     if analysis.forces is not None:
         texts += analysis.forces.describe(ForceNotation(analysis.forces.solution)).splitlines()
         texts.append(combined_omitted(analysis.forces, analysis.plans) or "")

@@ -137,7 +137,7 @@ def test_output_is_byte_identical_for_the_same_input(case, plans):
 
 def _zero_coriolis(plan) -> set[str]:
     """The Coriolis points of a zero Coriolis term (a guide that does not turn)."""
-    return {step.end for step in plan.steps if step.component == "coriolis"
+    return {step.end for step in plan.steps if getattr(step, "component", None) == "coriolis"
             and np.allclose(plan.points_mm[step.end], plan.points_mm[step.start], atol=1e-9)}
 
 
@@ -195,7 +195,7 @@ def test_every_laid_off_vector_is_an_arrow(plans):
                   if "arrow" in (g.get("class") or "")}
         for step in plan.steps:
             if step.action == "lay_off" and step.length_mm > 0.05:
-                assert str(step.number) in arrows, (plan.kind, step.text)
+                assert str(step.number) in arrows, (plan.kind, step)
                 assert step.number in drawing.arrow_steps
         # every arrow has its head: a filled polygon ending at the plan point
         for group in root.iter(SVG + "g"):
@@ -260,7 +260,7 @@ def test_coriolis_and_relative_components_have_their_own_style():
 def test_flagged_intersection_is_marked():
     plans = _seed()
     plan = plans.velocity
-    steps = tuple(dataclasses.replace(step, flagged=True, angle_deg=0.7)
+    steps = tuple(step._replace(flagged=True, angle_deg=0.7)
                   if step.action == "intersect" else step for step in plan.steps)
     flagged = dataclasses.replace(plan, steps=steps,
                                   flags=("velocity plan, group BC: the lines meet at 0.7°",))

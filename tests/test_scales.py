@@ -109,11 +109,14 @@ def test_published_values_are_compared_and_checked(capsys):
 
 def test_the_force_scale_is_printed_with_the_others_when_it_is_set():
     from planmethod.plans.scales import Scales
+    from planmethod.render.plan_words import scale_lines
+    from planmethod.words import render
 
-    lines = Scales(0.002, 0.2, 20.0, 100.0, "B", mu_f=50.0).describe()
+    lines = [render(line) for line in scale_lines(Scales(0.002, 0.2, 20.0, 100.0, "B",
+                                                         mu_f=50.0))]
     assert lines[-1] == "μF = 50 N/mm" and len(lines) == 6
-    assert not any(line.startswith("μF") for line in Scales(0.002, 0.2, 20.0, 100.0,
-                                                           "B").describe())
+    assert not any(render(line).startswith("μF")
+                   for line in scale_lines(Scales(0.002, 0.2, 20.0, 100.0, "B")))
 
 
 def test_a_scale_point_where_the_pivot_is_is_refused_by_its_key():

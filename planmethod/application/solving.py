@@ -134,7 +134,10 @@ def _structure_lines(analysis, numbers: Mapping[str, int]) -> list[str]:
 
 
 def _scale_lines(plans) -> list[str]:
-    lines = [render(message("Scales"))] + ["  " + line for line in plans.scales.describe()]
+    from ..render.plan_words import scale_lines
+
+    lines = [render(message("Scales"))] + ["  " + render(line)
+                                           for line in scale_lines(plans.scales)]
     precision = plans.velocity.precision_mm
     lines.append("  " + render(message("drafting precision: {precision:g} mm",
                                        precision=precision) if precision else

@@ -97,6 +97,7 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     workbook_html`), with the plan each quantity is read off (``reads``)."""
     from ..grading.keys import build_key
     from ..grading.plan_points import drawing_frame
+    from ..render.plan_words import step_text
     from ..render.svg import vector_equations
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
@@ -106,7 +107,7 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
             if plan is not None:
-                steps[name] = [[step.number, step.text, step.action,
+                steps[name] = [[step.number, step_text(step, plan), step.action,
                                  [point for point in (step.start, step.end) if point]]
                                 for step in plan.steps]
                 equations[name] = vector_equations(plan)
@@ -292,8 +293,8 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     from ..grading.mistakes import drawn_explanation
     from ..grading.plan_points import DRAWN_MISTAKES, page_wording, plan_extent
     from ..numbering import course_numbers
-    from ..plans.construction import course_text
     from ..render.labels import label_runs
+    from ..render.plan_words import label_text
     from ..render.workbook_draw import drawing_data
     from ..vocabulary import numbered
     from ..words import render
@@ -310,7 +311,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
              for plan in plans}
     return drawing_data(
         title=mechanism.title, exercise=exercise_digest(exercise),
-        names={label: course_text(label, numbers) for label in sorted(labels)},
+        names={label: label_text(label, numbers) for label in sorted(labels)},
         runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, render(drawn_explanation(mistake))) for mistake in DRAWN_MISTAKES],

@@ -52,6 +52,7 @@ from typing import Any
 from ..errors import PlanmethodError, SpecError, value_text
 from ..io import read_text_bounded
 from ..numbering import course_numbers
+from ..render.plan_words import step_dict
 from ..spec import checked_table, parse_json
 from ..vocabulary import QUANTITY_KINDS, symbol
 from ..vocabulary import question_text as course_question
@@ -323,7 +324,7 @@ def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict,
                  "points_mm": {k: list(v) for k, v in plan.points_mm.items()},
                  "tolerance_mm": {k: max(radii.get(k, 0.0), floor_mm if k != plan.pole else 0.0)
                                   for k in plan.points_mm},
-                 "steps": [step.as_dict() for step in plan.steps],
+                 "steps": [step_dict(step, plan) for step in plan.steps],
                  "mistakes": {}}
         if name == "velocity":
             entry["mistakes"]["sense"] = {k: [-v[0], -v[1]] for k, v in plan.points_mm.items()}

@@ -45,6 +45,7 @@ import numpy as np
 
 from ..model import Exercise
 from ..plans.construction import Segment
+from ..plans.steps import DropSteps
 from ..vectors import norm, perp
 from ..vocabulary import QUANTITY_KINDS
 from ..words import Message, message
@@ -421,8 +422,8 @@ class _Mistaken:
 
 def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None, drawn=None):
     """The plans as drawn with a construction mistake of :data:`REGISTRY`: their points and
-    readings (no position plan, no steps: ``draw_plans(position=False)``). None if the
-    exercise has no step the mistake changes (or asks for no acceleration plan).
+    readings (no position plan, no steps: ``draw_plans(position=False, recorder=DropSteps)``).
+    None if the exercise has no step the mistake changes (or asks for no acceleration plan).
 
     ``drawn`` are the exact drawing's (length, :class:`~planmethod.plans.construction.
     Segment`) pairs in construction order, if known (a
@@ -450,7 +451,7 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None, drawn=None)
         plans = draw_plans(exercise, settings=settings, motion=motion, perturb=hooks.wrong,
                            turn=hooks.turn,
                            mirror=hooks.mirror if hooks.mirroring is not None else None,
-                           position=False)
+                           position=False, recorder=DropSteps)
     except ToggleError:       # the wrong lines do not meet: no answer to predict
         return None
     return plans if hooks.found else None

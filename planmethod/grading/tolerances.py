@@ -35,6 +35,7 @@ import numpy as np
 
 from ..model import Exercise
 from ..plans.construction import Segment
+from ..plans.steps import DropSteps
 from ..vectors import norm
 from ..vocabulary import QUANTITY_KINDS
 
@@ -143,7 +144,7 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
     if count:   # copy i: segment i lengthened by δ; the same position, scales kept, no mechanism
         drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
                            perturb=_Recorder(DELTA_MM * np.eye(count)), scales=base.scales,
-                           position=False)
+                           position=False, recorder=DropSteps)
         for q in quantities:
             if q in base.readings and q in drawn.readings:
                 sensitivity[q][:] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
@@ -186,7 +187,7 @@ def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, see
     errors = generator.uniform(-precision_mm / 2, precision_mm / 2, size=(count, 256))
     # every drawing at once: copy k draws with errors[k]
     drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
-                       perturb=_Recorder(errors), position=False)
+                       perturb=_Recorder(errors), position=False, recorder=DropSteps)
     out = {q: np.broadcast_to(np.asarray(drawn.readings.get(q, math.nan), dtype=float),
                               (count,)).copy() for q in quantities}
     for plan, labels in _plan_points(drawn).items():

@@ -13,6 +13,10 @@ and accelerations are never taken from the analytical solution. With ``precision
 length laid off or read off is rounded to that precision (directions are drawn exactly), so a
 student sees what a drawing's accuracy gives; at 0 the plans equal the exact vectors.
 
+Each plan keeps its construction steps as typed values (:mod:`planmethod.plans.steps`), kept or
+dropped by the recorder it is drawn with; their sentences are written in the render layer
+(:mod:`planmethod.render.plan_words`).
+
 Examples
 --------
 >>> from planmethod.spec import load_exercise
@@ -21,39 +25,65 @@ Examples
 (5.2716, -24.254)
 >>> [round(x, 3) for x in plans.velocity.points_mm["b"]]
 [-21.213, 21.213]
+>>> [step.action for step in plans.velocity.steps[:3]]
+['pole', 'coincide', 'lay_off']
 """
 
 from __future__ import annotations
 
-import functools
 import math
-import re
 import threading
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import PlanmethodError, SpecError, ToggleError
 from ..kinematics import Motion, solve
 from ..kinematics.groups.checks import TOGGLE_SINE
-from ..kinematics.groups.dyad import Construction, follow_tied
+from ..kinematics.groups.dyad import Construction, Side, follow_tied
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
+from ..structure import AssurGroup
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
 from ..vocabulary import (
     PlanKind,
-    coriolis_letter,
-    links_text,
-    numbered,
     shown_title,
-    subscript,
-    symbol,
 )
+from ..words import message
 from .groups import plan_face
 from .groups.base import PlansUnavailableError, sense
 from .scales import Scales, choose_scales
+from .steps import (
+    Across,
+    BothEquations,
+    Coincide,
+    CoriolisComponent,
+    CrankNormal,
+    CrankTangential,
+    CrankVelocity,
+    Direction,
+    FixedPivot,
+    FrameImage,
+    Guide,
+    Intersect,
+    KeepSteps,
+    Known,
+    LayOff,
+    Line,
+    NormalComponent,
+    Pole,
+    PoorIntersection,
+    Project,
+    Read,
+    ReadRadius,
+    Similarity,
+    Solves,
+    Step,
+    StepRecorder,
+    VectorName,
+    VelocityEquation,
+)
 
 __all__ = [
     "LinkImage",
@@ -62,7 +92,6 @@ __all__ = [
     "PlansUnavailableError",
     "PositionPlan",
     "Segment",
-    "Step",
     "draw_plans",
     "image_label",
 ]
@@ -106,48 +135,13 @@ class Segment:
     group: int | None = None
 
 
-@dataclass(frozen=True, slots=True)
-class Step:
-    """One construction step of a plan (docs/json-report.md, "Plan steps").
-
-    ``action`` is one of ``pole``, ``lay_off`` (a vector from ``start`` to ``end``), ``line`` (a
-    construction line through ``start`` at ``direction_deg``), ``intersect`` (``lines`` are the
-    two line steps' numbers; ``angle_deg`` the angle between them), ``similarity`` (``end``
-    placed from the images ``references`` of the same link), ``coincide`` (``end`` coincides
-    with ``start``), ``project`` (``end`` is the foot of ``start`` on a line) and ``read``
-    (a segment ``start``–``end`` read off as ``length_mm`` giving ``value`` in SI).
-    """
-
-    number: int
-    action: str
-    text: str
-    start: str | None = None
-    end: str | None = None
-    direction_deg: float | None = None
-    length_mm: float | None = None
-    component: str | None = None
-    vector: str | None = None
-    group: int | None = None
-    lines: tuple[int, int] | None = None
-    angle_deg: float | None = None
-    flagged: bool = False
-    references: tuple[str, ...] = ()
-    quantity: str | None = None
-    value: float | None = None
-
-    def as_dict(self) -> dict:
-        out = {}
-        for name in self.__slots__:
-            value = getattr(self, name)
-            if value is None or value == () or (name == "flagged" and not value):
-                continue
-            out[name] = list(value) if isinstance(value, tuple) else value
-        return out
-
-
 @dataclass(frozen=True)
 class Plan:
-    """A velocity or acceleration plan as data: pole, scale, labelled points (mm), steps."""
+    """A velocity or acceleration plan as data: pole, scale, labelled points (mm), ordered
+    typed steps (:mod:`planmethod.plans.steps`; none where drawn with :class:`~planmethod.
+    plans.steps.DropSteps`), its flags (:class:`~planmethod.plans.steps.PoorIntersection`),
+    the drafting precision, and what its title names: the mechanism's ``title`` (as figures
+    show it), the crank ``angle`` (deg) and the crank's number ``crank``."""
 
     kind: str
     pole: str
@@ -155,11 +149,13 @@ class Plan:
     unit: str
     points_mm: Mapping[str, tuple[float, float]]
     steps: tuple[Step, ...]
-    flags: tuple[str, ...] = ()
+    flags: tuple[PoorIntersection, ...] = ()
     precision_mm: float = 0.0
     title: str = ""
     #: the links' numbers in the course's notation (for printed names; not in the report)
     numbers: Mapping[str, int] = field(default_factory=dict)
+    angle: float = 0.0
+    crank: int = 1
 
     def point(self, label: str) -> np.ndarray:
         return np.asarray(self.points_mm[label], dtype=float)
@@ -167,12 +163,6 @@ class Plan:
     def vector(self, label: str) -> np.ndarray:
         """The SI vector a plan point represents (from the pole, times the scale)."""
         return self.point(label) * self.scale
-
-    def as_dict(self) -> dict:
-        return {"pole": self.pole, "scale": self.scale, "unit": self.unit,
-                "points_mm": {k: list(v) for k, v in self.points_mm.items()},
-                "steps": [step.as_dict() for step in self.steps],
-                "flags": list(self.flags)}
 
 
 @dataclass(frozen=True)
@@ -202,7 +192,7 @@ class PositionPlan:
 class Plans:
     """The position, velocity and acceleration plans of one crank angle, and what is read off
     them (``readings``: quantity → SI value, e.g. ``v_C``, ``omega_BC``, ``rho_D``).
-    ``position`` is None when drawn with ``position=False`` (readings only)."""
+    ``position`` is None when drawn with ``position=False``; ``flags`` are both plans'."""
 
     exercise: Exercise
     angle: float
@@ -211,7 +201,7 @@ class Plans:
     velocity: Plan
     acceleration: Plan | None
     readings: Mapping[str, float]
-    flags: tuple[str, ...]
+    flags: tuple[PoorIntersection, ...]
     motion: Motion
 
     def omega(self, link: str) -> float | None:
@@ -264,120 +254,30 @@ def _sign(value):
     return np.where(value >= 0, 1.0, -1.0)
 
 
-#: a quantity's report name inside a sentence (``omega_BC``, ``v_CC@frame``, ``ds_slider/frame``)
-_QUANTITY = re.compile(r"\b(?:a_rel|omega|epsilon|coriolis|dds|ds|rho|v|a|s)_[A-Za-z0-9_@/:*]+")
-#: a Coriolis point's report name (``k1_Q``, ``k2_B@yoke``): its side's index
-_CORIOLIS = re.compile(r"k([0-9])_(?=[A-Z])")
-#: the digits of a point's name (``O2``, ``o2``, ``BO2``), set as subscripts (O₂, o₂, BO₂)
-_POINT_DIGITS = re.compile(r"(?<=[A-Za-z])[0-9]+")
-
-
-class _LinkPatterns(NamedTuple):
-    """The patterns of :func:`course_text` that name a mechanism's links."""
-
-    on_link: re.Pattern
-    pair: re.Pattern
-    rate: re.Pattern
-    similarity: re.Pattern
-    #: a link's name with an underscore, and it in words
-    worded: tuple[tuple[re.Pattern, str], ...]
-
-
-@functools.lru_cache(maxsize=64)
-def _link_patterns(names: tuple[str, ...]) -> _LinkPatterns:
-    """The patterns for links ``names`` (compiled once per mechanism; longest name first)."""
-    joined = "|".join(re.escape(name) for name in sorted(names, key=len, reverse=True))
-    return _LinkPatterns(re.compile(rf"@({joined})"),
-                         re.compile(rf"(?<![\w/])({joined})/({joined})(?![\w/])"),
-                         re.compile(rf"([ωε])_({joined})\b"),
-                         re.compile(rf"similarity on ({joined})\b"),
-                         tuple((re.compile(rf"\b{re.escape(name)}\b"), name.replace("_", " "))
-                               for name in names if "_" in name))
-
-
-def course_text(text: str, numbers: Mapping[str, int]) -> str:
-    """A construction step's sentence as a course writes it: a point on a link with the
-    link's number (``c@frame`` → ``c₁``, ``v_CC@frame`` → ``v_CC₁``), a link's quantity by its
-    symbol (``omega_BC`` → ``ω₃``, ``a_rel_…`` → ``aʳ_…``), the digits of a point's name as
-    subscripts (``o2``, ``aᵗ_BO2`` → o₂, aᵗ_BO₂), a Coriolis point without its side's index
-    (``k1_Q``, ``k2_Q`` → k_Q, k′_Q: :func:`~planmethod.vocabulary.coriolis_letter`), a link's
-    name with an underscore in words.
-
-    Examples
-    --------
-    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "rocker_EF": 3}
-    >>> course_text("(c@framec) = 29 mm → v_CC@frame = 0.58; omega_BC, omega_rocker_EF",
-    ...             numbers)
-    '(c₀c) = 29 mm → v_CC₀ = 0.58; ω₂, ω₃'
-    >>> course_text("aᵏ = 2·ω_BC·v_rel; along the guide of AB/BC; d by similarity on BC",
-    ...             numbers)
-    'aᵏ = 2·ω₂·v_rel; along the guide of pair 1–2; d by similarity on link 2'
-    >>> course_text("aᵗ_B@BCO2 from o2; (q@ABk1_Q) = 12 mm; k2_Q coincides with q@frame",
-    ...             numbers)
-    'aᵗ_B₂O₂ from o₂; (q₁k_Q) = 12 mm; k′_Q coincides with q₀'
-    """
-    patterns = _link_patterns(tuple(numbers)) if numbers else None
-    if "@" in text and patterns:   # a point on a link: its name, the link's number below
-        text = patterns.on_link.sub(
-            lambda match: subscript(str(numbers[match.group(1)])), text)
-
-    def quantity(match: re.Match) -> str:
-        name = match.group(0)
-        if name.startswith("a_rel_"):
-            return "aʳ_" + name[len("a_rel_"):]
-        return symbol(name, dict(numbers))
-
-    text = _QUANTITY.sub(quantity, text)
-    if patterns:
-        # a slide by its two links' numbers (the guide of pair 2–3), a link's ω or ε by its
-        # number (2·ω₂·v_rel), the link of a similarity rule by its number
-        # (each only where its mark is in the text: most steps have none of them)
-        if "/" in text:
-            text = patterns.pair.sub(
-                lambda match: f"pair {numbers[match.group(1)]}–{numbers[match.group(2)]}",
-                text)
-        if "ω_" in text or "ε_" in text:
-            text = patterns.rate.sub(
-                lambda match: match.group(1) + subscript(str(numbers[match.group(2)])), text)
-        if "similarity on " in text:
-            text = patterns.similarity.sub(
-                lambda match: f"similarity on link {numbers[match.group(1)]}", text)
-        for pattern, words in patterns.worded:
-            text = pattern.sub(words, text)
-    if "_" in text:
-        text = _CORIOLIS.sub(lambda match: coriolis_letter(match.group(1)) + "_", text)
-    return _POINT_DIGITS.sub(lambda match: subscript(match.group(0)), text)
-
-
 class _Sheet:
-    """One plan being drawn: its points, steps and the drafting precision."""
+    """One plan being drawn: its points, its steps (kept or dropped by its ``recorder``, but
+    numbered either way: an intersection names the lines it meets), its flags and the drafting
+    precision."""
 
-    def __init__(self, kind: str, pole: str, scale: float, unit: str, precision: float,
-                 min_angle: float, perturb=None, record: bool = True,
-                 numbers: Mapping[str, int] | None = None, turn=None) -> None:
+    def __init__(self, kind: PlanKind, pole: str, scale: float, unit: str, precision: float,
+                 min_angle: float, recorder: StepRecorder, perturb=None, turn=None) -> None:
         self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
         self.precision, self.min_angle = precision, min_angle
         self.perturb = perturb
         #: a direction model ``turn(direction, segment) -> direction`` for construction lines
         #: (a construction drawn with a mistake); None draws them as they are
         self.turn = turn
-        #: keep the steps (False: only points and readings are wanted; steps are counted)
-        self.record = record
-        #: the links' numbers, for the sentences (:func:`course_text`)
-        self.numbers = numbers or {}
+        self.recorder = recorder
         self.count = 0
         self.points: dict[str, np.ndarray] = {pole: np.zeros(2)}
-        self.steps: list[Step] = []
-        self.flags: list[str] = []
+        self.flags: list[PoorIntersection] = []
         self.lines: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-        self.add(Step(0, "pole", f"pole {pole}", end=pole))
+        number = self.take()
+        self.recorder.record(lambda: Pole(number=number, end=pole))
 
-    def add(self, step: Step) -> int:
+    def take(self) -> int:
+        """The next step's number."""
         self.count += 1
-        if self.record:
-            fields = [getattr(step, n) for n in Step.__slots__[1:]]
-            fields[1] = course_text(fields[1], self.numbers)      # the sentence
-            self.steps.append(Step(self.count, *fields))
         return self.count
 
     def round(self, length: float, segment: Segment) -> float:
@@ -390,41 +290,47 @@ class _Sheet:
             return round(float(length) / self.precision) * self.precision
         return float(length)
 
-    def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, text: str,
-                component: str, vector: str, group: int | None = None) -> np.ndarray:
-        """Lay off a known vector (exact direction, rounded length) from ``start``."""
+    def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, component: str,
+                vector: VectorName, known: Known, group: int | None = None) -> np.ndarray:
+        """Lay off a known vector (exact direction, rounded length) from ``start``; a zero one
+        makes ``end`` coincide with ``start``."""
         length = norm(vector_mm)
-        drawn = self.round(length, Segment(self.kind, "lay_off", component, vector, group))
+        drawn = self.round(length, Segment(self.kind, "lay_off", component, str(vector), group))
         direction = unit_or_zero(vector_mm, length)
         self.points[end] = self.points[start] + _times(drawn, direction)
-        if not self.record:
-            self.count += 1
-        elif length > 0:
-            self.add(Step(0, "lay_off", text, start=start, end=end,
-                          direction_deg=angle_deg(direction), length_mm=drawn,
-                          component=component, vector=vector, group=group))
-        else:
-            self.add(Step(0, "coincide", text, start=start, end=end, length_mm=0.0,
-                          component=component, vector=vector, group=group))
+        number = self.take()
+        self.recorder.record(lambda: LayOff(
+            number=number, start=start, end=end, direction_deg=angle_deg(direction),
+            length_mm=drawn, component=component, vector=vector, group=group, known=known)
+            if length > 0 else Coincide(number=number, start=start, end=end,
+                                        component=component, vector=vector, group=group,
+                                        known=known))
         return self.points[end]
 
-    def line(self, through: str, direction: np.ndarray, *, text: str, component: str,
-             vector: str, group: int | None) -> int:
+    def line(self, through: str, direction: np.ndarray, *, component: str, vector: VectorName,
+             along: Direction, group: int | None) -> int:
+        """A construction line through a plan point, of the ``vector``'s ``component``, its
+        direction given by ``along``; returns its step's number."""
         if self.turn is not None:
-            direction = np.asarray(self.turn(direction, Segment(self.kind, "line", component,
-                                                                vector, group)), float)
-        if self.record:
-            number = self.add(Step(0, "line", text, start=through,
-                                   direction_deg=angle_deg(direction) % 180.0,
-                                   component=component, vector=vector, group=group))
-        else:
-            self.count += 1
-            number = self.count
+            direction = np.asarray(self.turn(direction, Segment(
+                self.kind, "line", component, str(vector), group)), float)
+        number = self.take()
+        self.recorder.record(lambda: Line(
+            number=number, start=through, direction_deg=angle_deg(direction) % 180.0,
+            component=component, vector=vector, group=group, along=along))
         self.lines[number] = (self.points[through].copy(), direction)
         return number
 
-    def intersect(self, first: int, second: int, end: str, *, text: str, group_name: str,
-                  group: int, angle: float) -> np.ndarray:
+    def intersect(self, first: int, second: int, end: str, *, solves: Solves,
+                  group: AssurGroup, angle: float) -> np.ndarray:
+        """The point ``end`` where the lines of steps ``first`` and ``second`` meet (a flag
+        where they meet at less than the least angle).
+
+        Raises
+        ------
+        ToggleError
+            If the lines are parallel to within the drawing's precision.
+        """
         (p1, e1), (p2, e2) = self.lines[first], self.lines[second]
         sine = cross(e1, e2)
         # the angle between the lines, 0…90°: atan2 keeps its digits near 90°, where asin of
@@ -432,55 +338,65 @@ class _Sheet:
         degrees = math.degrees(float(np.min(np.arctan2(np.abs(sine), np.abs(dot(e1, e2))))))
         limit = max(TOGGLE_SINE, self.precision / SHEET_MM)
         if np.min(np.abs(sine)) < limit:
-            raise ToggleError(
-                f"toggle position: on the {self.kind} plan the lines of steps {first} and "
-                f"{second} are parallel to within the drawing's precision "
-                f"({degrees:.3g}°)", line_angle_deg=degrees, link=group_name, angle=angle)
+            raise ToggleError(message(
+                "toggle position: on the velocity plan the lines of steps {first} and {second} "
+                "are parallel to within the drawing's precision ({angle:.3g}°)", first=first,
+                second=second, angle=degrees) if self.kind == PlanKind.VELOCITY else message(
+                "toggle position: on the acceleration plan the lines of steps {first} and "
+                "{second} are parallel to within the drawing's precision ({angle:.3g}°)",
+                first=first, second=second, angle=degrees),
+                line_angle_deg=degrees, link=group.name, angle=angle)
         t = cross(p2 - p1, e2) / sine
         self.points[end] = p1 + _times(t, e1)
         flagged = degrees < self.min_angle
-        if flagged:     # the group by its links' numbers, the point as the course names it
-            group_text = links_text(group_name.split("+"), self.numbers)
-            self.flags.append(f"{self.kind} plan, group of {group_text}: the lines meet at "
-                              f"{degrees:.3g}° (below {self.min_angle:g}°): point "
-                              f"{course_text(end, self.numbers)} is poorly defined")
-        self.add(Step(0, "intersect", text, end=end, lines=(first, second),
-                      angle_deg=degrees, flagged=flagged, group=group))
+        if flagged:
+            self.flags.append(PoorIntersection(self.kind, group.links, degrees, self.min_angle,
+                                               end))
+        number = self.take()
+        self.recorder.record(lambda: Intersect(
+            number=number, end=end, lines=(first, second), angle_deg=degrees, flagged=flagged,
+            group=group.index, solves=solves))
         return self.points[end]
 
     def read(self, start: str, end: str, *, quantity: str, factor: float,
-             sign: float = 1.0) -> float:
-        """Read the segment start–end (rounded) and convert it: value = ±length·factor."""
+             sign: float = 1.0, relative: VectorName | None = None) -> float:
+        """Read the segment start–end (rounded) and convert it: value = ±length·factor (a
+        relative motion read off names its vector, ``relative``)."""
         length = self.round(norm(self.points[end] - self.points[start]),
                             Segment(self.kind, "read", quantity))
         value = sign * length * factor
-        if not self.record:
-            self.count += 1
-            return value
-        self.add(Step(0, "read", f"({start}{end}) = {length:.4g} mm → {quantity} = {value:.6g}",
-                      start=start, end=end, length_mm=length, quantity=quantity, value=value))
+        number = self.take()
+        self.recorder.record(lambda: Read(
+            number=number, start=start, end=end, length_mm=length, quantity=quantity,
+            value=value, relative=relative))
         return value
 
-    def place_image(self, label: str, offset_mm: np.ndarray, image: LinkImage, link: str,
-                    text: str) -> None:
+    def coincide(self, label: str, known: Known) -> None:
+        """A point whose image is the pole (``known``: a fixed pivot, the frame)."""
+        self.points[label] = np.zeros(2)
+        number = self.take()
+        self.recorder.record(lambda: Coincide(number=number, start=self.pole, end=label,
+                                              known=known))
+
+    def place_image(self, label: str, offset_mm: np.ndarray, image: LinkImage,
+                    link: str) -> None:
         """Place a point by the similarity rule from the link's reference image."""
         length = norm(offset_mm)
         drawn = self.round(length, Segment(self.kind, "similarity", label))
         direction = unit_or_zero(offset_mm, length)
         self.points[label] = image.ref_mm + _times(drawn, direction)
-        if not self.record:
-            self.count += 1
-            return
-        self.add(Step(0, "similarity", text, start=image.ref_label, end=label,
-                      references=(image.ref_label,), length_mm=drawn,
-                      direction_deg=angle_deg(direction) if length > 0 else None,
-                      vector=link))
+        number = self.take()
+        self.recorder.record(lambda: Similarity(
+            number=number, start=image.ref_label, end=label, references=(image.ref_label,),
+            length_mm=drawn, direction_deg=angle_deg(direction) if length > 0 else None,
+            link=link))
 
-    def finish(self, title: str) -> Plan:
+    def finish(self, title: str, angle: float, crank: int,
+               numbers: Mapping[str, int]) -> Plan:
         points = {k: (v if np.ndim(v) == 2 else (float(v[0]), float(v[1])))
                   for k, v in self.points.items()}    # copies of a drawing: (N, 2) each
-        return Plan(self.kind, self.pole, self.scale, self.unit, points, tuple(self.steps),
-                    tuple(self.flags), self.precision, title, self.numbers)
+        return Plan(self.kind, self.pole, self.scale, self.unit, points, self.recorder.steps,
+                    tuple(self.flags), self.precision, title, numbers, angle, crank)
 
 
 def _velocity_offset(image: LinkImage, point: np.ndarray, mu_v: float) -> np.ndarray:
@@ -496,8 +412,8 @@ class _Emulator:
     """Draws the three plans of one crank angle."""
 
     def __init__(self, exercise: Exercise, settings: PlanSettings, angle: float,
-                 motion: Motion, scales: Scales, perturb=None, record: bool = True,
-                 turn=None, mirror=None) -> None:
+                 motion: Motion, scales: Scales, recorder: Callable[[], StepRecorder],
+                 perturb=None, turn=None, mirror=None) -> None:
         self.mechanism = exercise.mechanism
         self.settings = settings
         self.angle = angle
@@ -517,14 +433,10 @@ class _Emulator:
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
         #: what a group kind's own drawing keeps between its velocity and acceleration plans
         self.memo: dict = {}
-        numbers = course_numbers(self.mechanism)
-        #: the drive's symbols follow the crank's number (ω₁ by default)
-        self.crank_symbols = {letter: numbered(letter, numbers[self.mechanism.drive.link])
-                              for letter in ("φ", "ω", "ε")}
         self.v = _Sheet(PlanKind.VELOCITY, "p", scales.mu_v, "(m/s)/mm", precision, min_angle,
-                        perturb, record, numbers, turn)
-        self.a = _Sheet(PlanKind.ACCELERATION, "π", scales.mu_a, "(m/s²)/mm", precision, min_angle,
-                        perturb, record, numbers, turn)
+                        recorder(), perturb, turn)
+        self.a = _Sheet(PlanKind.ACCELERATION, "π", scales.mu_a, "(m/s²)/mm", precision,
+                        min_angle, recorder(), perturb, turn)
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
@@ -550,10 +462,11 @@ class _Emulator:
         drawn = self.length_mm(centre, point)
         if np.any(np.asarray(drawn) == 0):
             exact = float(norm(point - centre)) / self.scales.mu_l
-            raise SpecError(f"a precision of {self.v.precision:g} mm draws a radius of "
-                            f"{exact:.3g} mm on the position plan as 0 mm, and a reading "
-                            "divides by it: the precision must be finer than the drawing",
-                            key="plan.precision_mm", angle=self.angle)
+            raise SpecError(message(
+                "a precision of {precision:g} mm draws a radius of {radius:.3g} mm on the "
+                "position plan as 0 mm, and a reading divides by it: the precision must be "
+                "finer than the drawing", precision=self.v.precision, radius=exact),
+                key="plan.precision_mm", angle=self.angle)
         return drawn
 
     def label(self, point: str, sheet: _Sheet) -> str:
@@ -593,13 +506,10 @@ class _Emulator:
                 continue
             position = self.where(link, name)
             if link == FRAME:
-                sheet.points[label] = np.zeros(2)
-                sheet.add(Step(0, "coincide", f"{label} at the pole: {name} is fixed",
-                               start=sheet.pole, end=label, length_mm=0.0))
+                sheet.coincide(label, FixedPivot(name))
                 continue
             position = self.similar(sheet, link, image, position, label)
-            sheet.place_image(label, offset(image, position, scale), image, link,
-                              f"{label} by similarity on {link} from {image.ref_label}")
+            sheet.place_image(label, offset(image, position, scale), image, link)
 
     def image_of(self, sheet: _Sheet, link: str, position: np.ndarray, label: str) -> str:
         """The label of the image of ``link``'s material point at ``position`` on ``sheet``
@@ -619,12 +529,9 @@ class _Emulator:
         else:
             offset = _acceleration_offset(image, position, self.scales.mu_a)
         if link == FRAME:
-            sheet.points[label] = np.zeros(2)
-            sheet.add(Step(0, "coincide", f"{label} at the pole: the frame does not move",
-                           start=sheet.pole, end=label, length_mm=0.0))
+            sheet.coincide(label, FrameImage())
         else:
-            sheet.place_image(label, offset, image, link,
-                              f"{label} by similarity on {link} from {image.ref_label}")
+            sheet.place_image(label, offset, image, link)
         return label
 
     def similar(self, sheet: _Sheet, link: str, image: LinkImage, position: np.ndarray,
@@ -655,228 +562,225 @@ class _Emulator:
 
     # -- drive ---------------------------------------------------------------------------------
     def drive(self) -> None:
+        """The frame's points at both poles, the crank pin's velocity and acceleration laid
+        off, the crank's images and readings."""
         drive, scales = self.mechanism.drive, self.scales
-        crank = self.crank_symbols
         pivot = self.where(drive.link, drive.pivot)
-        point = self.where(drive.link, scales.scale_point)
-        radius = point - pivot
-        length = float(norm(radius))
-        pole_v, pole_a = self.v.pole, self.a.pole
+        radius = self.where(drive.link, scales.scale_point) - pivot
         for sheet, images in ((self.v, self.vimages), (self.a, self.aimages)):
             images[FRAME] = LinkImage(np.zeros(2), np.zeros(2), sheet.pole, 0.0, 0.0)
             self.image_points(FRAME, sheet, images[FRAME], None, None)
         a_label = self.label(drive.pivot, self.v)
-        b_v, b_a = self.label(scales.scale_point, self.v), self.label(scales.scale_point, self.a)
-        omega, epsilon = drive.omega, drive.epsilon
+        self._crank_velocity(radius)
+        self.vimages[drive.link] = LinkImage(pivot, self.v.points[a_label], a_label, drive.omega)
+        self._crank_acceleration(radius)
+        a_pivot = self.label(drive.pivot, self.a)
+        self.aimages[drive.link] = LinkImage(pivot, self.a.points[a_pivot], a_pivot, drive.omega,
+                                             drive.epsilon)
+        self.image_points(drive.link, self.v, self.vimages[drive.link], _velocity_offset,
+                          scales.mu_v)
+        self.image_points(drive.link, self.a, self.aimages[drive.link], _acceleration_offset,
+                          scales.mu_a)
+        self.readings[f"omega_{drive.link}"] = drive.omega
+        self.readings[f"epsilon_{drive.link}"] = drive.epsilon
+        self.readings[f"omega_{FRAME}"] = 0.0
+        self.readings[f"epsilon_{FRAME}"] = 0.0
+
+    def _crank_velocity(self, radius: np.ndarray) -> None:
+        """The crank pin's velocity ω·l ⟂ the crank, laid off from the pole p: as long as the
+        scale makes it — exactly the written ``velocity_mm`` where the scale is what that
+        length asks (no rounding noise), else v/μv."""
+        drive, scales = self.mechanism.drive, self.scales
+        point, omega = scales.scale_point, drive.omega
         v_b = omega * perp(radius)
-        # the reference vector is drawn as long as the scale makes it: exactly the written
-        # *_mm where the scale is what that length asks (no rounding noise), else value/μ
         pinned = _pinned_mm(self.settings.velocity_mm, self.settings.mu_v,
                             float(norm(v_b)), scales.mu_v)
         b_vector = (unit(v_b) * pinned if pinned and omega else v_b / scales.mu_v)
-        self.v.lay_off(pole_v, b_v, b_vector, component="absolute",
-                       vector=f"v_{scales.scale_point}",
-                       text=f"v_{scales.scale_point} = {crank['ω']}·l_{drive.pivot}"
-                            f"{scales.scale_point} = {abs(omega) * length:.6g} m/s, ⟂ "
-                            f"{drive.pivot}{scales.scale_point} in the sense of {crank['ω']}")
-        self.vimages[drive.link] = LinkImage(pivot, self.v.points[a_label], a_label, omega)
+        self.v.lay_off(self.v.pole, self.label(point, self.v), b_vector, component="absolute",
+                       vector=VectorName("v", point),
+                       known=CrankVelocity(drive.link, drive.pivot, point,
+                                           abs(omega) * float(norm(radius))))
+
+    def _crank_acceleration(self, radius: np.ndarray) -> None:
+        """The crank pin's acceleration laid off from the pole π: its normal component ω²·l
+        towards the pivot, then (ε ≠ 0) its tangential one ε·l ⟂ the crank (as long as the
+        written ``acceleration_mm`` where the scale is what it asks, else a/μa)."""
+        drive, scales = self.mechanism.drive, self.scales
+        point, pivot, omega, epsilon = scales.scale_point, drive.pivot, drive.omega, drive.epsilon
+        length = float(norm(radius))
         normal = -omega ** 2 * radius
         tangential = epsilon * perp(radius)
         total = normal + tangential
         fixed = _pinned_mm(self.settings.acceleration_mm, self.settings.mu_a,
                            float(norm(total)), scales.mu_a)
         factor = (fixed / norm(total)) if fixed and norm(total) else 1 / scales.mu_a
-        point_name = scales.scale_point
+        b_a = self.label(point, self.a)
+        whole = CrankNormal(drive.link, pivot, point, omega ** 2 * length, epsilon == 0)
         if epsilon == 0:
-            self.a.lay_off(pole_a, b_a, normal * factor, component="normal",
-                           vector=f"a_{point_name}",
-                           text=f"a_{point_name} = aⁿ = {crank['ω']}²·l = "
-                                f"{omega ** 2 * length:.6g} m/s², from {point_name} towards "
-                                f"{drive.pivot}")
-        else:
-            n_label = f"n_{point_name}{drive.pivot}"
-            self.a.lay_off(pole_a, n_label, normal * factor, component="normal",
-                           vector=f"aⁿ_{point_name}{drive.pivot}",
-                           text=f"aⁿ = {crank['ω']}²·l = {omega ** 2 * length:.6g} m/s², "
-                                f"from {point_name} towards {drive.pivot}")
-            self.a.lay_off(n_label, b_a, tangential * factor, component="tangential",
-                           vector=f"aᵗ_{point_name}{drive.pivot}",
-                           text=f"aᵗ = {crank['ε']}·l = {abs(epsilon) * length:.6g} m/s², ⟂ "
-                                f"{drive.pivot}{point_name} in the sense of {crank['ε']}")
-        a_pivot = self.label(drive.pivot, self.a)
-        self.aimages[drive.link] = LinkImage(pivot, self.a.points[a_pivot], a_pivot, omega,
-                                             epsilon)
-        self.image_points(drive.link, self.v, self.vimages[drive.link], _velocity_offset,
-                          scales.mu_v)
-        self.image_points(drive.link, self.a, self.aimages[drive.link], _acceleration_offset,
-                          scales.mu_a)
-        self.readings[f"omega_{drive.link}"] = omega
-        self.readings[f"epsilon_{drive.link}"] = epsilon
-        self.readings[f"omega_{FRAME}"] = 0.0
-        self.readings[f"epsilon_{FRAME}"] = 0.0
+            self.a.lay_off(self.a.pole, b_a, normal * factor, component="normal",
+                           vector=VectorName("a", point), known=whole)
+            return
+        n_label = f"n_{point}{pivot}"
+        self.a.lay_off(self.a.pole, n_label, normal * factor, component="normal",
+                       vector=VectorName("aⁿ", point, pivot), known=whole)
+        self.a.lay_off(n_label, b_a, tangential * factor, component="tangential",
+                       vector=VectorName("aᵗ", point, pivot),
+                       known=CrankTangential(drive.link, pivot, point, abs(epsilon) * length))
 
     # -- groups ----------------------------------------------------------------------------------
-    def _base_label(self, side, sheet) -> str:
-        name = side.base
-        if "@" not in name:
-            return self.label(name, sheet)
-        return self.label(name, sheet)
+    def _base_image(self, sheet: _Sheet, side: Side) -> str:
+        """The label of a side's base point's image on ``sheet`` (placed if new)."""
+        images = self.vimages if sheet is self.v else self.aimages
+        return self.image_at(sheet, images, side.base_link, side.position[0],
+                             self.label(side.base, sheet))
 
     def velocity_group(self, construction: Construction) -> None:
-        group = construction.group
-        mu_v, mu_l = self.scales.mu_v, self.scales.mu_l
-        x_label = self.label(construction.point, self.v)
-        x = construction.position[0]
-        line_numbers = []
-        sides = construction.sides
-        equation = " = ".join([f"v_{construction.point}"] + [
-            f"v_{side.base} + v_{construction.point}{side.base}" for side in sides])
-        for side in sides:
-            base = side.position[0]
-            base_label = self.image_at(self.v, self.vimages, side.base_link, base,
-                                       self._base_label(side, self.v))
-            direction = side.direction[0]
+        """A dyad on the velocity plan: a line through each side's base image (⟂ the side's
+        link, or along its guide), their intersection the image of the dyad's point X; the
+        links' ω and the relative velocities read off."""
+        group, point = construction.group, construction.point
+        x_label = self.label(point, self.v)
+        lines = [self.v.line(self._base_image(self.v, side), side.direction[0],
+                             component="relative", vector=VectorName("v", point, side.base),
+                             group=group.index,
+                             along=Across(point, side.base) if side.rotation
+                             else Guide(side.slide.link, side.slide.along))
+                 for side in construction.sides]
+        self.v.intersect(*lines, x_label, group=group, angle=self.angle,
+                         solves=VelocityEquation(point, tuple(side.base for side in
+                                                             construction.sides)))
+        omegas = {}
+        for index, side in enumerate(construction.sides):
+            omega, relative = self._read_velocity_side(construction, side, x_label)
             if side.rotation:
-                text = (f"through {base_label}: v_{construction.point}{side.base} ⟂ "
-                        f"{construction.point}{side.base}")
-                component = "relative"
-            else:
-                text = (f"through {base_label}: v_{construction.point}{side.base} along the "
-                        f"guide of {side.slide.key}")
-                component = "relative"
-            line_numbers.append(self.v.line(base_label, direction, text=text,
-                                            component=component,
-                                            vector=f"v_{construction.point}{side.base}",
-                                            group=group.index))
-        self.v.intersect(*line_numbers, x_label, text=f"{x_label}: {equation}",
-                         group_name=group.name, group=group.index, angle=self.angle)
-        # read the relative velocities and the angular velocities
-        omegas: dict[str, float] = {}
-        rel: list[float] = []
-        for _index, side in enumerate(sides):
-            base_label = self.image_at(self.v, self.vimages, side.base_link,
-                                       side.position[0], self._base_label(side, self.v))
-            segment = self.v.points[x_label] - self.v.points[base_label]
-            direction = side.direction[0]
-            sign = sense(segment, direction)
-            if side.rotation:
-                radius = x - side.position[0]
-                length_mm = self.radius_mm(side.position[0], x)
-                omega = self.v.read(
-                    base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
-                    factor=mu_v / (length_mm * mu_l))
                 omegas[side.link] = omega
-                rel.append(sign * self.v.round(norm(segment),
-                                               Segment("velocity", "read", "relative")))
-                del radius
-            else:
-                value = self.v.read(base_label, x_label,
-                                    quantity=f"v_{construction.point}{side.base}",
-                                    sign=sign, factor=mu_v)
-                rel.append(value / mu_v)
-                # the side draws X's link relative to the carrier; the pair's reading wants
-                # `link` relative to `along`, the reverse when the carrier is the pair's `link`
-                self.sliding_sides[side.slide.key] = {
-                    "v": (base_label, x_label), "reverse": side.link == side.slide.link}
-        self.rel_velocity[(group.index, 0)] = rel[0]
-        self.rel_velocity[(group.index, 1)] = rel[1]
-        follow_tied(construction.tied, omegas, lambda link: self.readings.get(f"omega_{link}"))
-        for link in group.links:
-            self.readings[f"omega_{link}"] = omegas[link]
+            self.rel_velocity[(group.index, index)] = relative
+        self._refer_links(construction, PlanKind.VELOCITY, omegas, x_label)
+
+    def _read_velocity_side(self, construction: Construction, side: Side, x_label: str
+                            ) -> tuple[float | None, float]:
+        """What one side of a dyad gives on the velocity plan: the ω of its link (a rotation
+        side) or its sliding velocity (a sliding side, kept for the pair's readings), and
+        its relative velocity, signed, in mm of the plan."""
+        mu_v, mu_l = self.scales.mu_v, self.scales.mu_l
+        point, x = construction.point, construction.position[0]
+        base_label = self._base_image(self.v, side)
+        segment = self.v.points[x_label] - self.v.points[base_label]
+        sign = sense(segment, side.direction[0])
+        if side.rotation:
+            length_mm = self.radius_mm(side.position[0], x)
+            omega = self.v.read(base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
+                                factor=mu_v / (length_mm * mu_l))
+            return omega, sign * self.v.round(norm(segment),
+                                              Segment("velocity", "read", "relative"))
+        value = self.v.read(base_label, x_label, quantity=f"v_{point}{side.base}", sign=sign,
+                            factor=mu_v, relative=VectorName("v", point, side.base))
+        # the side draws X's link relative to the carrier; the pair's reading wants `link`
+        # relative to `along`, the reverse when the carrier is the pair's `link`
+        self.sliding_sides[side.slide.key] = {"v": (base_label, x_label),
+                                              "reverse": side.link == side.slide.link}
+        return None, value / mu_v
+
+    def _refer_links(self, construction: Construction, plan: PlanKind,
+                     rates: dict[str, float], x_label: str) -> None:
+        """The group's links' ω (or ε) read off ``plan``, those tied to another's followed;
+        each link's image referred to its pin on a known link (or to X), and its other
+        points placed by similarity."""
+        velocity = plan == PlanKind.VELOCITY
+        sheet, images = (self.v, self.vimages) if velocity else (self.a, self.aimages)
+        letter = "omega" if velocity else "epsilon"
+        follow_tied(construction.tied, rates, lambda link: self.readings.get(f"{letter}_{link}"))
+        links = construction.group.links
+        for link in links:
+            self.readings[f"{letter}_{link}"] = rates[link]
             name, ref, known = construction.reference(link)
-            ref_label = (self.image_at(self.v, self.vimages, known, ref[0],
-                                       self.label(name, self.v)) if known else x_label)
-            self.vimages[link] = LinkImage(ref[0], self.v.points[ref_label], ref_label,
-                                           omegas[link])
-        for link in group.links:
-            self.image_points(link, self.v, self.vimages[link], _velocity_offset, mu_v)
+            ref_label = (self.image_at(sheet, images, known, ref[0], self.label(name, sheet))
+                         if known else x_label)
+            images[link] = (
+                LinkImage(ref[0], sheet.points[ref_label], ref_label, rates[link]) if velocity
+                else LinkImage(ref[0], sheet.points[ref_label], ref_label,
+                               self.readings[f"omega_{link}"], rates[link]))
+        offset, scale = ((_velocity_offset, self.scales.mu_v) if velocity
+                         else (_acceleration_offset, self.scales.mu_a))
+        for link in links:
+            self.image_points(link, sheet, images[link], offset, scale)
 
     def acceleration_group(self, construction: Construction) -> None:
-        group = construction.group
-        mu_v, mu_a, mu_l = self.scales.mu_v, self.scales.mu_a, self.scales.mu_l
-        x_label = self.label(construction.point, self.a)
-        x = construction.position[0]
-        point = construction.point
-        line_numbers = []
-        normals: dict[int, str] = {}
+        """A dyad on the acceleration plan: from each side's base image its known components
+        (the normal one of a rotation side, the Coriolis one of a sliding side) laid off and
+        the line of its unknown one (tangential, relative) through their end; their
+        intersection the image of X; the links' ε and the relative accelerations read off."""
+        group, point = construction.group, construction.point
+        x_label = self.label(point, self.a)
+        ends, lines = [], []
         for index, side in enumerate(construction.sides):
-            base = side.position[0]
-            base_label = self.image_at(self.a, self.aimages, side.base_link, base,
-                                       self._base_label(side, self.a))
-            direction = side.direction[0]
-            relative = self.rel_velocity[(group.index, index)]  # signed, mm on the v-plan
-            if side.rotation:
-                radius = x - base
-                length_mm = self.radius_mm(base, x)
-                magnitude = (relative ** 2) * mu_v ** 2 / (length_mm * mu_l * mu_a)
-                centre = side.base.partition("@")[0]
-                x_name = point.partition("@")[0]
-                n_label = (f"n_{point}" if "@" in point else f"n_{x_name}{centre}")
-                # the components of X (B@lever: B₃) about the centre, aⁿ_B₃O₂ and aᵗ_B₃O₂;
-                # the segment they are measured on is the position plan's BO₂
-                self.a.lay_off(
-                    base_label, n_label, _times(-magnitude, unit(radius)),
-                    component="normal", vector=f"aⁿ_{point}{centre}", group=group.index,
-                    text=f"aⁿ_{point}{centre} from {base_label}: ({base_label}{n_label}) = "
-                         f"(v-plan segment)²·μv²/(({x_name}{centre})·μl·μa), from "
-                         f"{x_name} towards {centre}")
-                normals[index] = n_label
-                line_numbers.append(self.a.line(
-                    n_label, direction, component="tangential", group=group.index,
-                    vector=f"aᵗ_{point}{centre}",
-                    text=f"through {n_label}: aᵗ_{point}{centre} ⟂ {x_name}{centre}"))
-            else:
-                carrier = side.link
-                omega_c = self.readings[f"omega_{carrier}"]
-                multi = sum(not s.rotation for s in construction.sides) > 1
-                k_label = f"k{index + 1}_{point}" if multi else f"k_{point}"
-                coriolis = _times(2 * omega_c * relative * mu_v, perp(direction)) / mu_a
-                # X relative to the side's base, as the velocity equation names it: v_B₃B
-                # there, aᵏ_B₃B and aʳ_B₃B here (each side its own relative motion)
-                relative_name = f"{point}{side.base}"
-                self.a.lay_off(
-                    base_label, k_label, coriolis, component="coriolis", group=group.index,
-                    vector=f"aᵏ_{relative_name}",
-                    text=(f"aᵏ = 2·ω_{carrier}·v_rel from {base_label}, v_rel turned 90° in the "
-                          f"sense of ω_{carrier}" if np.any(omega_c) else
-                          f"aᵏ = 0: {carrier} does not turn; {k_label} coincides with "
-                          f"{base_label}"))
-                normals[index] = k_label
-                self.sliding_sides[side.slide.key]["a"] = (base_label, k_label, x_label)
-                line_numbers.append(self.a.line(
-                    k_label, direction, component="relative", group=group.index,
-                    vector=f"aʳ_{relative_name}",
-                    text=f"through {k_label}: aʳ_{relative_name} (relative) along the guide "
-                         f"of {side.slide.key}"))
-        self.a.intersect(*line_numbers, x_label,
-                         text=f"{x_label}: a_{point} from both vector equations",
-                         group_name=group.name, group=group.index, angle=self.angle)
+            draw = self._rotation_side if side.rotation else self._sliding_side
+            end, line = draw(construction, index, side, x_label)
+            ends.append(end)
+            lines.append(line)
+        self.a.intersect(*lines, x_label, group=group, angle=self.angle,
+                         solves=BothEquations(point))
         epsilons: dict[str, float] = {}
-        for index, side in enumerate(construction.sides):
-            start = normals[index]
-            segment = self.a.points[x_label] - self.a.points[start]
-            direction = side.direction[0]
-            sign = sense(segment, direction)
+        for end, side in zip(ends, construction.sides, strict=True):
+            sign = sense(self.a.points[x_label] - self.a.points[end], side.direction[0])
             if side.rotation:
-                length_mm = self.radius_mm(side.position[0], x)
+                length_mm = self.radius_mm(side.position[0], construction.position[0])
                 epsilons[side.link] = self.a.read(
-                    start, x_label, quantity=f"epsilon_{side.link}", sign=sign,
-                    factor=mu_a / (length_mm * mu_l))
+                    end, x_label, quantity=f"epsilon_{side.link}", sign=sign,
+                    factor=self.scales.mu_a / (length_mm * self.scales.mu_l))
             else:
-                self.a.read(start, x_label, quantity=f"a_rel_{point}{side.base}", sign=sign,
-                            factor=mu_a)
-        follow_tied(construction.tied, epsilons,
-                    lambda link: self.readings.get(f"epsilon_{link}"))
-        for link in group.links:
-            self.readings[f"epsilon_{link}"] = epsilons[link]
-            omega = self.readings[f"omega_{link}"]
-            name, ref, known = construction.reference(link)
-            ref_label = (self.image_at(self.a, self.aimages, known, ref[0],
-                                       self.label(name, self.a)) if known else x_label)
-            self.aimages[link] = LinkImage(ref[0], self.a.points[ref_label], ref_label, omega,
-                                           epsilons[link])
-        for link in group.links:
-            self.image_points(link, self.a, self.aimages[link], _acceleration_offset, mu_a)
+                self.a.read(end, x_label, quantity=f"a_rel_{point}{side.base}", sign=sign,
+                            factor=self.scales.mu_a,
+                            relative=VectorName("aʳ", point, side.base))
+        self._refer_links(construction, PlanKind.ACCELERATION, epsilons, x_label)
+
+    def _rotation_side(self, construction: Construction, index: int, side: Side,
+                       x_label: str) -> tuple[str, int]:
+        """A rotation side on the acceleration plan: its normal component (v-plan
+        segment)²·μv²/((length)·μl·μa) laid off from the base image towards the centre, the
+        line of its tangential one ⟂ the link through its end. Returns (that end, the line's
+        step number)."""
+        scales, group, point = self.scales, construction.group, construction.point
+        base, x = side.position[0], construction.position[0]
+        base_label = self._base_image(self.a, side)
+        relative = self.rel_velocity[(group.index, index)]  # signed, mm on the v-plan
+        length_mm = self.radius_mm(base, x)
+        magnitude = relative ** 2 * scales.mu_v ** 2 / (length_mm * scales.mu_l * scales.mu_a)
+        centre = side.base.partition("@")[0]
+        x_name = point.partition("@")[0]
+        n_label = f"n_{point}" if "@" in point else f"n_{x_name}{centre}"
+        # the components of X (B@lever: B₃) about the centre, aⁿ_B₃O₂ and aᵗ_B₃O₂; the segment
+        # they are measured on is the position plan's BO₂
+        self.a.lay_off(base_label, n_label, _times(-magnitude, unit(x - base)),
+                       component="normal", vector=VectorName("aⁿ", point, centre),
+                       group=group.index, known=NormalComponent(x_name, centre))
+        return n_label, self.a.line(n_label, side.direction[0], component="tangential",
+                                    vector=VectorName("aᵗ", point, centre), group=group.index,
+                                    along=Across(x_name, centre))
+
+    def _sliding_side(self, construction: Construction, index: int, side: Side,
+                      x_label: str) -> tuple[str, int]:
+        """A sliding side on the acceleration plan: its Coriolis component 2ω·v_rel turned 90°
+        in the sense of the carrier's ω laid off from the base image, the line of its relative
+        one along the guide through its end (k). Returns (k, the line's step number)."""
+        scales, group, point = self.scales, construction.group, construction.point
+        base_label = self._base_image(self.a, side)
+        direction = side.direction[0]
+        relative = self.rel_velocity[(group.index, index)]  # signed, mm on the v-plan
+        omega = self.readings[f"omega_{side.link}"]
+        several = sum(not other.rotation for other in construction.sides) > 1
+        k_label = f"k{index + 1}_{point}" if several else f"k_{point}"
+        coriolis = _times(2 * omega * relative * scales.mu_v, perp(direction)) / scales.mu_a
+        # X relative to the side's base, as the velocity equation names it: v_B₃B there,
+        # aᵏ_B₃B and aʳ_B₃B here (each side its own relative motion)
+        self.a.lay_off(base_label, k_label, coriolis, component="coriolis", group=group.index,
+                       vector=VectorName("aᵏ", point, side.base),
+                       known=CoriolisComponent(side.link, bool(np.any(omega))))
+        self.sliding_sides[side.slide.key]["a"] = (base_label, k_label, x_label)
+        return k_label, self.a.line(k_label, direction, component="relative",
+                                    vector=VectorName("aʳ", point, side.base),
+                                    group=group.index,
+                                    along=Guide(side.slide.link, side.slide.along))
 
 
 def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: float
@@ -936,22 +840,18 @@ def _curvature_readings(emulator: _Emulator, point: str,
     along_normal = outward * along_normal
     n_label = f"n_{name}"
     a.points[n_label] = _times(along_normal, normal)
-    if a.record:
-        a.add(Step(0, "project", f"project π{a_label} on the normal to the path of {name} "
-                                 f"(⟂ p{v_label}): {n_label}", start=a_label, end=n_label,
-                   direction_deg=angle_deg(normal) % 180.0))
-    else:
-        a.count += 1
+    projected = a.take()
+    a.recorder.record(lambda: Project(number=projected, start=a_label, end=n_label,
+                                      direction_deg=angle_deg(normal) % 180.0, point=name,
+                                      speed=v_label))
     normal_mm = a.round(along_normal, Segment("acceleration", "read", f"an_{point}"))
     if np.any(normal_mm == 0):
         return
     rho = speed_mm ** 2 * scales.mu_v ** 2 / (normal_mm * scales.mu_a)
-    if a.record:
-        a.add(Step(0, "read", f"ρ_{name} = (p{v_label})²·μv²/((π{n_label})·μa) = {rho:.6g} m",
-                   start=a.pole, end=n_label, length_mm=normal_mm, quantity=f"rho_{point}",
-                   value=rho))
-    else:
-        a.count += 1
+    read = a.take()
+    a.recorder.record(lambda: ReadRadius(number=read, start=a.pole, end=n_label,
+                                         length_mm=normal_mm, quantity=f"rho_{point}",
+                                         value=rho, point=name, speed=v_label))
     emulator.readings[f"rho_{point}"] = rho
     if position_plan is None:            # drawn without the mechanism: nothing to mark
         return
@@ -1021,9 +921,9 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
                                      * emulator.length_mm(through, point) * emulator.scales.mu_l)
     drawn = emulator.sliding_sides.get(key)
     if drawn is None:
-        raise PlanmethodError(f"internal error: no group drew the relative motion of the "
-                              f"prismatic pair {key}, so its sliding velocity cannot be read "
-                              "off the plans", link=slide.link)
+        raise PlanmethodError(message(
+            "internal error: no group drew the relative motion of the prismatic pair {pair}, "
+            "so its sliding velocity cannot be read off the plans", pair=key), link=slide.link)
     _read_drawn_sliding(emulator, key, d, drawn, acceleration)
 
 
@@ -1053,8 +953,9 @@ def _read_drawn_sliding(emulator: _Emulator, key: str, d: np.ndarray, drawn: dic
 
 def draw_plans(exercise: Exercise, angle: float | None = None, *,
                settings: PlanSettings | None = None, acceleration: bool = True,
-               motion: Motion | None = None, perturb=None, scales: Scales | None = None,
-               position: bool = True, turn=None, mirror=None) -> Plans:
+               position: bool = True, motion: Motion | None = None,
+               scales: Scales | None = None, perturb=None, turn=None, mirror=None,
+               recorder: Callable[[], StepRecorder] = KeepSteps) -> Plans:
     """Draw the position, velocity and (optionally) acceleration plans at one crank angle.
 
     Parameters
@@ -1065,31 +966,26 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         Crank angle (deg); default ``drive.angle``.
     settings
         Overrides the exercise's ``[plan]`` settings.
-    acceleration
-        Also draw the acceleration plan.
-    motion
-        Exact positions at that angle, if already solved (only positions are used).
+    acceleration, position
+        Also draw the acceleration plan; also make the position plan (the mechanism's
+        drawing, with the paths of the points whose ρ is read; else ``Plans.position`` is None).
+    motion, scales
+        The exact positions at that angle (only positions are used) and the drawing scales,
+        if known already (a tolerance analysis draws the same position many times).
     perturb
-        A drafting-error model ``perturb(length_mm, segment) -> drawn_length_mm`` that
-        replaces the rounding to ``precision_mm`` for every length laid off or read off
-        (``segment`` is a :class:`Segment`); the calls come in construction order. Used to
-        propagate reading errors into grading tolerances. Default: round to ``precision_mm``.
-    scales
-        The drawing scales, if already chosen for these settings (a tolerance analysis draws
-        the same position many times).
-    position
-        Also make the position plan (the mechanism's drawing, with the paths of the points
-        whose ρ is read); without it ``Plans.position`` is None and only the points of the
-        velocity and acceleration plans and the readings are made (no steps).
-    turn
-        A direction model ``turn(direction, segment) -> direction`` for every construction
-        line (``segment.action`` is ``line``, ``segment.name`` its component): a construction
-        drawn with a mistake (:mod:`planmethod.grading.mistakes`). Default: as they are.
-    mirror
-        A similarity model ``mirror(segment) -> bool`` for every image placed by the
-        similarity rule off its link's line (``segment.name`` its label, ``segment.vector``
-        the link): True places it mirrored across the image of the link's line (a mistake).
-        Default: as the rule says.
+        A drafting-error model ``perturb(length_mm, segment) -> drawn_length_mm`` replacing
+        the rounding to ``precision_mm`` for every length laid off or read off (``segment`` a
+        :class:`Segment`), called in construction order: reading errors propagated into
+        grading tolerances.
+    turn, mirror
+        A construction drawn with a mistake (:mod:`planmethod.grading.mistakes`): a direction
+        model ``turn(direction, segment) -> direction`` for every construction line
+        (``segment.name`` its component), a similarity model ``mirror(segment) -> bool`` for
+        every image placed off its link's line (True: mirrored across the image of the line).
+    recorder
+        Makes each plan's :class:`~planmethod.plans.steps.StepRecorder`:
+        :class:`~planmethod.plans.steps.KeepSteps`, or
+        :class:`~planmethod.plans.steps.DropSteps` where only points and readings are wanted.
 
     Raises
     ------
@@ -1097,22 +993,51 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         If a group's two construction lines are parallel to within the drawing's precision.
     """
     settings = settings or exercise.plan
-    mechanism = exercise.mechanism
-    angle = float(mechanism.drive.angle if angle is None else angle)
+    angle = float(exercise.mechanism.drive.angle if angle is None else angle)
     if motion is None:
-        motion = solve(mechanism, angle, stage="position")
+        motion = solve(exercise.mechanism, angle, stage="position")
     scales = scales or choose_scales(exercise, settings)
-    emulator = _Emulator(exercise, settings, angle, motion, scales, perturb, record=position,
+    emulator = _Emulator(exercise, settings, angle, motion, scales, recorder, perturb,
                          turn=turn, mirror=mirror)
     position_plan = _position_plan(exercise, motion, scales, angle) if position else None
+    return _drawn(emulator, exercise, position_plan, acceleration)
+
+
+def _drawn(emulator: _Emulator, exercise: Exercise, position_plan: PositionPlan | None,
+           acceleration: bool) -> Plans:
+    """The plans ``emulator`` draws: the drive, every group on the velocity plan (then on
+    the acceleration plan), the points asked about read off, the radii of curvature and the
+    sliding pairs' readings."""
+    mechanism, motion, angle = exercise.mechanism, emulator.motion, emulator.angle
     emulator.drive()
     groups = [motion.structure.groups[index] for index in sorted(motion.groups)]
-    for group in groups:
-        _draw(emulator, motion, group, "velocity")
-    if acceleration:
+    for plan in (PlanKind.VELOCITY, PlanKind.ACCELERATION) if acceleration else (
+            PlanKind.VELOCITY,):
         for group in groups:
-            _draw(emulator, motion, group, "acceleration")
+            _draw(emulator, motion, group, plan)
+    _read_points(emulator, exercise, motion, acceleration)
     ask = exercise.ask
+    if acceleration:
+        for point in ask.curvature if not ask.everything else ():
+            _curvature_readings(emulator, point, position_plan)
+    sliding = ask.sliding if not ask.everything else tuple(
+        s.key for s in mechanism.slides if s.link in motion.links and s.along in motion.links)
+    for key in sliding:
+        _sliding_readings(emulator, key, acceleration)
+    numbers = course_numbers(mechanism)
+    title, crank = shown_title(mechanism.title), numbers[mechanism.drive.link]
+    velocity_plan = emulator.v.finish(title, angle, crank, numbers)
+    acceleration_plan = emulator.a.finish(title, angle, crank, numbers) if acceleration else None
+    flags = velocity_plan.flags + (acceleration_plan.flags if acceleration_plan else ())
+    return Plans(exercise, angle, emulator.scales, position_plan, velocity_plan,
+                 acceleration_plan, dict(emulator.readings), flags, motion)
+
+
+def _read_points(emulator: _Emulator, exercise: Exercise, motion: Motion,
+                 acceleration: bool) -> None:
+    """Place the image of every point asked about on each plan drawn, and read its velocity
+    (and acceleration) off the pole's segment to it."""
+    scales, mechanism = emulator.scales, exercise.mechanism
     # each plan drawn: its quantity's letter, its sheet, its links' images and its scale
     sheets = [("v", emulator.v, emulator.vimages, scales.mu_v)]
     if acceleration:
@@ -1121,44 +1046,27 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
         link, position = motion.locate(point)
         # a fixed pivot's image is the pole: placed (its links' images pass through it), but
         # not read when nobody asked for it by name (no segment to measure)
-        read = not ask.everything or FRAME not in mechanism.links_with_point(point)
+        read = not exercise.ask.everything or FRAME not in mechanism.links_with_point(point)
         for letter, sheet, images, factor in sheets:
             label = emulator.image_at(sheet, images, link, position[0],
                                       image_label(point, sheet.pole))
             if read:
                 emulator.readings[f"{letter}_{point}"] = sheet.read(
                     sheet.pole, label, quantity=f"{letter}_{point}", factor=factor)
-    if acceleration:
-        curvature = ask.curvature if not ask.everything else ()
-        for point in curvature:
-            _curvature_readings(emulator, point, position_plan)
-    sliding = ask.sliding if not ask.everything else tuple(
-        s.key for s in mechanism.slides if s.link in motion.links and s.along in motion.links)
-    for key in sliding:
-        _sliding_readings(emulator, key, acceleration)
-    phi = emulator.crank_symbols["φ"]
-    title = shown_title(mechanism.title)     # as the figures show it
-    velocity_plan = emulator.v.finish(f"{title} — velocity plan, {phi} = {angle:g}°")
-    acceleration_plan = (emulator.a.finish(f"{title} — acceleration plan, "
-                                           f"{phi} = {angle:g}°") if acceleration else None)
-    flags = tuple(velocity_plan.flags) + (tuple(acceleration_plan.flags)
-                                          if acceleration_plan else ())
-    return Plans(exercise, angle, scales, position_plan, velocity_plan, acceleration_plan,
-                 dict(emulator.readings), flags, motion)
 
 
-def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
+def _draw(emulator: _Emulator, motion: Motion, group, plan: PlanKind) -> None:
     """Draw one group on one plan: a dyad from its two vector equations, any other group by
     its kind's plans face (:mod:`planmethod.plans.groups`)."""
     face = plan_face(group)
     if face is None:
         construction = motion.groups[group.index].construction
-        if plan == "velocity":
+        if plan == PlanKind.VELOCITY:
             emulator.velocity_group(construction)
         else:
             emulator.acceleration_group(construction)
         return
-    face.draw(PlanKind(plan), emulator, group)
+    face.draw(plan, emulator, group)
 
 
 def _asked_points(exercise: Exercise, motion: Motion) -> tuple[str, ...]:

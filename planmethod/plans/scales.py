@@ -31,7 +31,7 @@ from dataclasses import dataclass
 from ..errors import SpecError
 from ..model import Exercise, Mechanism, PlanSettings
 from ..numbering import course_numbers
-from ..vocabulary import numbered, scale_text
+from ..words import message
 
 __all__ = ["STANDARD_MANTISSAS", "Scales", "choose_scales", "scale_point", "standard"]
 
@@ -92,21 +92,6 @@ class Scales:
             out["mu_f"] = self.mu_f
         return out
 
-    def describe(self) -> list[str]:
-        """The scales as printed on a drawing, with units; the crank's ω by its number.
-
-        >>> Scales(0.002, 0.2, 20.0, 100.0, "B", crank=2).describe()[3]
-        'μφv = μv/ω₂ = 0.002 m/mm'
-        """
-        lines = [scale_text(name, getattr(self, name)) for name in ("mu_l", "mu_v", "mu_a")]
-        if self.omega1:
-            omega = numbered("ω", self.crank)
-            lines += [f"μφv = μv/{omega} = {self.mu_phi_v:.6g} m/mm",
-                      f"μφa = μa/{omega}² = {self.mu_phi_a:.6g} m/mm"]
-        if self.mu_f is not None:
-            lines.append(scale_text("mu_f", self.mu_f))
-        return lines
-
 
 def scale_point(mechanism: Mechanism, settings: PlanSettings) -> str:
     """The drive-link point the *_mm lengths refer to (default: its first point after the
@@ -132,21 +117,27 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
     point = scale_point(mechanism, settings)
     length = mechanism.links[drive.link].length(drive.pivot, point)
     if length <= 0:
-        raise SpecError(f"the scale point {point} coincides with the pivot {drive.pivot}",
+        raise SpecError(message("the scale point {point} coincides with the pivot {pivot}",
+                                point=point, pivot=drive.pivot),
                         file=exercise.source, key="plan.scale_point")
     v_b = abs(drive.omega) * length
     a_b = length * math.hypot(drive.omega ** 2, drive.epsilon)
 
-    def pick(direct, drawn, value, key, what):
+    def pick(direct, drawn, value, key):
         if direct is not None:
             return direct
         if drawn is None:
-            raise SpecError(f"give {key} or the matching *_mm length", file=exercise.source,
-                            key=f"plan.{key}")
+            raise SpecError(message("give {key} or the matching *_mm length", key=key),
+                            file=exercise.source, key=f"plan.{key}")
         if value == 0:
-            raise SpecError(f"{what} of {point} is zero, so a drawn length cannot set the "
-                            f"scale; give plan.{key} instead", file=exercise.source,
-                            key=f"plan.{key}")
+            raise SpecError({
+                "mu_l": message("the length of {point} is zero, so a drawn length cannot set "
+                                "the scale; give plan.mu_l instead", point=point),
+                "mu_v": message("the velocity of {point} is zero, so a drawn length cannot "
+                                "set the scale; give plan.mu_v instead", point=point),
+                "mu_a": message("the acceleration of {point} is zero, so a drawn length "
+                                "cannot set the scale; give plan.mu_a instead", point=point),
+            }[key], file=exercise.source, key=f"plan.{key}")
         return value / drawn
 
     exact = settings.exact_mm
@@ -154,13 +145,12 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
     def rounded(direct, value):
         return value if direct is not None or exact else standard(value)
 
-    mu_l = rounded(settings.mu_l, pick(settings.mu_l, settings.crank_mm, length, "mu_l",
-                                       "the length"))
+    mu_l = rounded(settings.mu_l, pick(settings.mu_l, settings.crank_mm, length, "mu_l"))
     crank_scale = (not exact and settings.mu_l is None and settings.mu_v is None
                    and settings.mu_a is None and settings.crank_mm is not None
                    and settings.crank_mm == settings.velocity_mm == settings.acceleration_mm)
-    mu_v = pick(settings.mu_v, settings.velocity_mm, v_b, "mu_v", "the velocity")
-    mu_a = pick(settings.mu_a, settings.acceleration_mm, a_b, "mu_a", "the acceleration")
+    mu_v = pick(settings.mu_v, settings.velocity_mm, v_b, "mu_v")
+    mu_a = pick(settings.mu_a, settings.acceleration_mm, a_b, "mu_a")
     if crank_scale:   # (pb) = (πb) = (AB): μv and μa follow from the standard μl exactly
         mu_v = abs(drive.omega) * mu_l
         # with ε1 ≠ 0 that μa would be no value a student picks: the standard one instead

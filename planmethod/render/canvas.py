@@ -26,6 +26,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import html
 import math
 import re
@@ -37,6 +38,8 @@ import numpy as np
 
 from ..vectors import norm, perp, unit_angle, unit_or_zero
 from ..vocabulary import xml_characters
+from ..words import Message, message, render
+from ..words.language import catalogue, current
 from .labels import (
     SMALL_RUNS,
     UPRIGHT_RUNS,
@@ -76,6 +79,7 @@ __all__ = [
     "points_attribute",
     "round_scale_value",
     "scale_bar",
+    "shown_text",
 ]
 
 #: the family of monospaced text (tables on task sheets)
@@ -87,9 +91,34 @@ MARGIN = 14.0
 #: a point on the page (px, y down): a pair of numbers, or an array (2,) for vector arithmetic
 Point = Sequence[float]
 
-#: one element a line (diff-friendly), never inside a <text>: its tspans stay together
-_ONE_PER_LINE = re.compile(r"><(/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
+#: one element a line (diff-friendly), never inside a <text>: its tspans stay together (the
+#: tag a lookahead, so that the line break is a literal replacement: no template per match)
+_ONE_PER_LINE = re.compile(r"><(?=/?g\b|line\b|polygon\b|polyline\b|circle\b|text\b|rect\b|"
                            r"title\b|defs\b|/?svg\b|style\b)")
+
+
+def shown_text(text: Message | str) -> str:
+    """``text`` as a figure shows it: a message rendered in the language spoken now (the
+    same message in the same language and catalogue rendered once: a figure's legend rows,
+    headings and units recur in every figure of a turn), text as it is.
+
+    >>> shown_text(message("{value:g} {unit}", value=0.5, unit="m/s")), shown_text("p")
+    ('0.5 m/s', 'p')
+    """
+    if not isinstance(text, Message):
+        return text
+    language = current()
+    try:
+        return _rendered(text, language, catalogue(language))
+    except TypeError:           # a field that cannot be a key (a list): rendered each time
+        return render(text, language)
+
+
+@functools.lru_cache(maxsize=2048)
+def _rendered(text: Message, language: str, translations: object) -> str:
+    """A message rendered in ``language`` with its catalogue ``translations`` (a key only:
+    a catalogue read again renders again)."""
+    return render(text, language)
 
 
 @dataclass(frozen=True)
@@ -367,13 +396,14 @@ class Canvas:
         self.add("labels", "g", {"class": css, "transform": _move(offset)},
                  [("g", {"class": name}, list(elements)) for name, elements in items.items()])
 
-    def text(self, xy: Point, text: str, *, size: float = TEXT_SIZE, color: str = INK,
-             anchor: str = "start", bold: bool = False, css: str = "note",
+    def text(self, xy: Point, text: Message | str, *, size: float = TEXT_SIZE,
+             color: str = INK, anchor: str = "start", bold: bool = False, css: str = "note",
              layer: str = "text", area: bool = True, family: str = TEXT_FAMILY,
              italic: bool = False, monospace: bool = False, formula: bool = False) -> float:
-        """Fixed text (sans, or monospaced with its spaces kept); returns its width. A
-        ``formula`` sets what follows an underscore as a subscript (``a_B₃`` → a with B₃
-        below, :func:`formula_runs`)."""
+        """Fixed text (sans, or monospaced with its spaces kept); returns its width. A message
+        is rendered in the language spoken now. A ``formula`` sets what follows an underscore
+        as a subscript (``a_B₃`` → a with B₃ below, :func:`formula_runs`)."""
+        text = shown_text(text)
         font = SANS_BOLD if bold else SANS
         runs = formula_runs(text) if formula else [(text, False)]
         if monospace:
@@ -412,16 +442,17 @@ class Canvas:
                                         xy[1] + 0.25 * size))
         return width
 
-    def table(self, at: Point, rows: Sequence[Sequence[str]], *, header: Sequence[str],
-              right: Sequence[bool] = (), size: float = TEXT_SIZE, css: str = "table",
-              title: str = "") -> float:
+    def table(self, at: Point, rows: Sequence[Sequence[Message | str]], *,
+              header: Sequence[Message | str], right: Sequence[bool] = (),
+              size: float = TEXT_SIZE, css: str = "table", title: Message | str = "") -> float:
         """A table set at ``size`` (the figure's normal text), top-left at ``at``: an
         optional bold ``title``, a bold header, a rule, one row a line; the columns flagged
         in ``right`` (numbers) are aligned right. Cells are formulas (``F_b`` → F with b
-        below). Returns the y (px) under its last row."""
+        below), messages rendered. Returns the y (px) under its last row."""
         x, y = at
         columns = len(header)
-        cells = [list(header)] + [list(row) + [""] * (columns - len(row)) for row in rows]
+        cells = [[shown_text(cell) for cell in header]] + [
+            [shown_text(cell) for cell in row] + [""] * (columns - len(row)) for row in rows]
         widths = [max(sum(text_width(part, size * SUB_SCALE if small else size,
                                      SANS_BOLD if index == 0 else SANS)
                           for part, small in formula_runs(row[column]))
@@ -482,7 +513,8 @@ class Canvas:
             self.add("labels", "text", _label_attrs(label, color), _label_spans(label))
 
     # output
-    def svg(self, title: str, *, view: tuple[float, float, float, float] | None = None,
+    def svg(self, title: Message | str, *,
+            view: tuple[float, float, float, float] | None = None,
             unit: str = "", attributes: Mapping[str, str] | None = None) -> SvgFigure:
         """The SVG text of everything drawn, as an :class:`SvgFigure`.
 
@@ -506,7 +538,7 @@ class Canvas:
         drawing["viewBox"] = f"{num(x0)} {num(y0)} {num(width)} {num(height)}"
         for key, value in (attributes or {}).items():
             drawing[key] = xml_characters(value)
-        drawing.set_desc(title=xml_characters(title))
+        drawing.set_desc(title=xml_characters(shown_text(title)))
         drawing.add(drawing.rect(insert=(num(x0), num(y0)), size=(num(width), num(height)),
                                  fill="#ffffff", class_="background"))
         # the document's shell (its root, title, definitions, background) is svgwrite's;
@@ -526,7 +558,7 @@ class Canvas:
                 for item in self.layers[name]:
                     _write(item, drawn)
                 drawn.append("</g>")
-        body = _ONE_PER_LINE.sub(r">\n<\1", shell[:-len("</svg>")] + "".join(drawn) + "</svg>")
+        body = _ONE_PER_LINE.sub(">\n<", shell[:-len("</svg>")] + "".join(drawn) + "</svg>")
         text = '<?xml version="1.0" encoding="utf-8"?>\n' + body + "\n"
         background = ("rect", {"x": num(x0), "y": num(y0), "width": num(width),
                                "height": num(height), "fill": "#ffffff",
@@ -720,7 +752,8 @@ def arrowhead(figure: Canvas, tip: Point, direction: Point, size: float, color: 
 
 
 def scale_bar(figure: Canvas, at: Point, scale: float, unit: str, target_px: float) -> None:
-    """A scale bar: a nice value whose drawn length is near ``target_px``."""
+    """A scale bar: a nice value whose drawn length is near ``target_px``, labelled with its
+    ``unit``."""
     if not (scale > 0 and math.isfinite(scale)):
         return
     value = round_scale_value(target_px / figure.zoom * scale)
@@ -734,8 +767,8 @@ def scale_bar(figure: Canvas, at: Point, scale: float, unit: str, target_px: flo
         figure.line((x + t * length, y - tick), (x + t * length, y + tick), color=color,
                     width=1.0, layer="text", obstacle=False, css="scale bar")
     figure.text((x, y + 17), "0", size=SMALL_SIZE, anchor="middle", area=False, css="scale")
-    figure.text((x + length, y + 17), f"{value:g} {unit}", size=SMALL_SIZE, anchor="middle",
-                area=False, css="scale")
+    figure.text((x + length, y + 17), message("{value:g} {unit}", value=value, unit=unit),
+                size=SMALL_SIZE, anchor="middle", area=False, css="scale")
 
 
 

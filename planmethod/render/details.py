@@ -31,7 +31,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..vectors import norm
-from .canvas import Canvas, Point, page_point
+from ..words import Message, message
+from .canvas import Canvas, Point, page_point, shown_text
 from .labels import RunKind, drawn_length
 from .style import INK, READABLE_PX, TEXT_SIZE
 
@@ -261,32 +262,7 @@ def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[
     top = figure.extent[3] + 30.0
     row_bottom = top
     for region in regions:
-        (x0, y0, x1, y1), zoom = region.box, region.zoom
-        detail = Canvas(figure.zoom * zoom)
-        draw(detail)
-        for inner in regions:
-            if inner.parent == region.letter:
-                _mark(detail, inner, zoom)
-                inner_box = tuple(value * zoom for value in inner.box)
-                detail.requests = [replace(request, optional=True)
-                                   if _within(request, inner_box) else request
-                                   for request in detail.requests]
-        box = (x0 * zoom, y0 * zoom, x1 * zoom, y1 * zoom)
-        reach = 60.0               # labels are placed for the points in and near the region
-        detail.requests = [_anchored(request, box) for request in detail.requests]
-        detail.requests = [request for request in detail.requests
-                           if box[0] - reach <= request.anchor[0] <= box[2] + reach
-                           and box[1] - reach <= request.anchor[1] <= box[3] + reach]
-        detail.place(bounds=box)           # inside the frame where they can
-        inside = {" ".join(label.points) for label in detail.labels
-                  if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3]}
-        # the frame holds the labels kept whole: where one reaches past the region, the
-        # detail shows that much more of the drawing
-        view = list(box)
-        for label in detail.labels:
-            if " ".join(label.points) in inside:
-                view = [min(view[0], label.box[0] - 2.0), min(view[1], label.box[1] - 2.0),
-                        max(view[2], label.box[2] + 2.0), max(view[3], label.box[3] + 2.0)]
+        detail, view, inside = _detail(draw, regions, region, figure.zoom)
         width, height = view[2] - view[0], view[3] - view[1]
         if x > left and x + width > left + row_width:      # a new row
             x, top = left, row_bottom + 40.0
@@ -303,13 +279,64 @@ def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[
         figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
                          layer="marks", css="detail frame")
         right, bottom = x + width, top + height
-        where = f" (marked in detail {region.parent})" if region.parent else ""
-        caption = figure.text((x, bottom + 18), f"{region.letter}: detail ×{zoom:g}{where}",
-                              size=TEXT_SIZE, bold=True, css="detail", area=False)
+        caption = figure.text((x, bottom + 18), _caption(region), size=TEXT_SIZE, bold=True,
+                              css="detail", area=False)
         right = max(right, x + caption)
-        lines.append(f"detail {region.letter}: the region marked in detail {region.parent}, "
-                     f"drawn {zoom:g} times larger than the figure" if region.parent else
-                     f"detail {region.letter}: the marked region drawn {zoom:g} times larger")
+        lines.append(shown_text(_said(region)))   # text: a figure's line (force_svg edits them)
         row_bottom = max(row_bottom, bottom + 18)
         x = right + 40.0
     return lines
+
+
+def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detail,
+            zoom: float) -> tuple[Canvas, list[float], set[str]]:
+    """One detail drawn: the content at its zoom (the figure's ``zoom`` times its own), the
+    regions of the details within it marked, the labels of what it shows placed inside its
+    frame where they can. Returns the canvas, the box it shows (px of that canvas: the region,
+    widened to hold a label kept whole that reaches past it) and the labels kept (by the
+    points they name)."""
+    (x0, y0, x1, y1), scale = region.box, region.zoom
+    detail = Canvas(zoom * scale)
+    draw(detail)
+    for inner in regions:
+        if inner.parent == region.letter:
+            _mark(detail, inner, scale)
+            inner_box = tuple(value * scale for value in inner.box)
+            detail.requests = [replace(request, optional=True)
+                               if _within(request, inner_box) else request
+                               for request in detail.requests]
+    box = (x0 * scale, y0 * scale, x1 * scale, y1 * scale)
+    reach = 60.0               # labels are placed for the points in and near the region
+    detail.requests = [_anchored(request, box) for request in detail.requests]
+    detail.requests = [request for request in detail.requests
+                       if box[0] - reach <= request.anchor[0] <= box[2] + reach
+                       and box[1] - reach <= request.anchor[1] <= box[3] + reach]
+    detail.place(bounds=box)           # inside the frame where they can
+    inside = {" ".join(label.points) for label in detail.labels
+              if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3]}
+    # the frame holds the labels kept whole: where one reaches past the region, the detail
+    # shows that much more of the drawing
+    view = list(box)
+    for label in detail.labels:
+        if " ".join(label.points) in inside:
+            view = [min(view[0], label.box[0] - 2.0), min(view[1], label.box[1] - 2.0),
+                    max(view[2], label.box[2] + 2.0), max(view[3], label.box[3] + 2.0)]
+    return detail, view, inside
+
+
+def _caption(region: Detail) -> Message:
+    """The caption under a detail: its numeral, its enlargement, the detail it is marked in."""
+    if region.parent:
+        return message("{letter}: detail ×{zoom:g} (marked in detail {parent})",
+                       letter=region.letter, zoom=region.zoom, parent=region.parent)
+    return message("{letter}: detail ×{zoom:g}", letter=region.letter, zoom=region.zoom)
+
+
+def _said(region: Detail) -> Message:
+    """The line under a figure that says what a detail is."""
+    if region.parent:
+        return message("detail {letter}: the region marked in detail {parent}, drawn {zoom:g} "
+                       "times larger than the figure", letter=region.letter,
+                       parent=region.parent, zoom=region.zoom)
+    return message("detail {letter}: the marked region drawn {zoom:g} times larger",
+                   letter=region.letter, zoom=region.zoom)

@@ -54,6 +54,7 @@ from .canvas import Canvas, fit_zoom
 from .details import detail_insets, detail_regions
 from .labels import RunKind, label_runs
 from .notation import ForceNotation
+from .plan_words import flag_message
 from .steady import SteadyView
 from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, significant
 from .svg import (
@@ -307,8 +308,8 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     lines += lines_of_details
     title = (f"{shown_title(plans.exercise.mechanism.title)} — Q = G + Fᵘ on the acceleration "
              f"plan, pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
-    frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION,
-          box=view.box if view else None)
+    frame(figure, title, lines, None, [flag_message(f, plan.numbers) for f in plan.flags],
+          PlanKind.ACCELERATION, box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
                                               PlanKind.ACCELERATION) if view else None).svg
 
@@ -596,7 +597,7 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     title = (f"{shown_title(mechanism.title)} — Zhukovsky's lever with its forces, "
              f"{_phi(plans)} = {plans.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
-          plan.flags, PlanKind.VELOCITY)
+          [flag_message(f, plan.numbers) for f in plan.flags], PlanKind.VELOCITY)
     return figure.svg(title).svg
 
 

@@ -23,6 +23,9 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
+from ..vocabulary import PlanKind
+from ..words import Message, message
+
 __all__ = [
     "CLEARANCE_PX",
     "LABEL",
@@ -86,37 +89,43 @@ GROUND = "#333333"
 
 @dataclass(frozen=True, slots=True)
 class LineStyle:
-    """How one kind of vector is drawn: colour, width, dash pattern, arrowhead size, legend."""
+    """How one kind of vector is drawn: colour, width, dash pattern, arrowhead size, and what
+    its legend row says on a velocity and on an acceleration plan."""
 
     color: str
     width: float
     dash: str | None
     head: float
-    legend_velocity: str
-    legend_acceleration: str
+    legend_velocity: Message
+    legend_acceleration: Message
+
+    def legend(self, kind: str) -> Message:
+        """The legend row's text on a plan of ``kind`` (an acceleration plan's on any other
+        than a velocity plan)."""
+        return self.legend_velocity if kind == PlanKind.VELOCITY else self.legend_acceleration
 
 
 #: vector styles by a step's ``component`` (plus ``result`` for pole → image, ``construction``
 #: for construction lines, ``similarity`` and ``projection``)
 STYLES: dict[str, LineStyle] = {
-    "result": LineStyle(INK, 2.6, None, 13.0, "absolute velocity (result)",
-                        "absolute acceleration (result)"),
-    "absolute": LineStyle(INK, 2.6, None, 13.0, "absolute velocity (result)",
-                          "absolute acceleration (result)"),
-    "normal": LineStyle("#1f5fbf", 1.7, None, 10.0, "normal component",
-                        "normal component aⁿ"),
-    "tangential": LineStyle("#1b8a3a", 1.7, "8,3", 10.0, "tangential component",
-                            "tangential component aᵗ"),
-    "coriolis": LineStyle("#c0392b", 1.7, "9,3,2,3", 10.0, "Coriolis component",
-                          "Coriolis component aᵏ"),
-    "relative": LineStyle("#7b3fa0", 1.7, None, 10.0, "relative velocity",
-                          "relative (sliding) component aʳ"),
-    "construction": LineStyle("#777777", 0.8, "5,4", 0.0, "construction line",
-                              "construction line (colour of its component)"),
-    "similarity": LineStyle("#555555", 1.0, None, 0.0, "image of a link (similarity)",
-                            "image of a link (similarity)"),
-    "projection": LineStyle("#555555", 0.9, "1.5,2.5", 0.0, "projection",
-                            "projection on the normal to the path"),
+    "result": LineStyle(INK, 2.6, None, 13.0, message("absolute velocity (result)"),
+                        message("absolute acceleration (result)")),
+    "absolute": LineStyle(INK, 2.6, None, 13.0, message("absolute velocity (result)"),
+                          message("absolute acceleration (result)")),
+    "normal": LineStyle("#1f5fbf", 1.7, None, 10.0, message("normal component"),
+                        message("normal component aⁿ")),
+    "tangential": LineStyle("#1b8a3a", 1.7, "8,3", 10.0, message("tangential component"),
+                            message("tangential component aᵗ")),
+    "coriolis": LineStyle("#c0392b", 1.7, "9,3,2,3", 10.0, message("Coriolis component"),
+                          message("Coriolis component aᵏ")),
+    "relative": LineStyle("#7b3fa0", 1.7, None, 10.0, message("relative velocity"),
+                          message("relative (sliding) component aʳ")),
+    "construction": LineStyle("#777777", 0.8, "5,4", 0.0, message("construction line"),
+                              message("construction line (colour of its component)")),
+    "similarity": LineStyle("#555555", 1.0, None, 0.0, message("image of a link (similarity)"),
+                            message("image of a link (similarity)")),
+    "projection": LineStyle("#555555", 0.9, "1.5,2.5", 0.0, message("projection"),
+                            message("projection on the normal to the path")),
 }
 
 #: legend entries in this order, those used by a figure only

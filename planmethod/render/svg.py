@@ -55,6 +55,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..plans.steps import Coincide, Intersect, LayOff, Line, Similarity
 from ..vectors import dot, norm, perp, unit_or_zero
 from ..vocabulary import (
     PLAN_SCALES,
@@ -62,9 +63,11 @@ from ..vocabulary import (
     PlanKind,
     link_text,
     numbered,
+    point_name,
     point_text,
     scale_text,
 )
+from ..words import Message, message
 from .canvas import (
     MARGIN,
     Canvas,
@@ -75,9 +78,11 @@ from .canvas import (
     page_direction,
     page_point,
     scale_bar,
+    shown_text,
 )
 from .details import detail_insets, detail_regions, one_spot
 from .labels import RunKind, label_runs, merge_runs
+from .plan_words import flag_message, plan_title, scale_lines, vector_text
 from .steady import SteadyView
 from .style import (
     FAINT,
@@ -94,7 +99,6 @@ from .style import (
     STYLES,
     TEXT_SIZE,
     TITLE_SIZE,
-    significant,
     text_width,
 )
 
@@ -173,7 +177,7 @@ class _PlanPage:
         self.points_mm, self.numbers = points_mm, numbers
         #: Coriolis points of a zero Coriolis term: neither drawn nor named
         self.hidden = {step.end for step in steps
-                       if step.action in ("lay_off", "coincide") and step.component == "coriolis"
+                       if isinstance(step, LayOff | Coincide) and step.component == "coriolis"
                        and step.start in points_mm and step.end in points_mm
                        and float(norm(np.subtract(points_mm[step.end],
                                                   points_mm[step.start]))) <= SAME_POINT_MM}
@@ -250,13 +254,14 @@ class _PlanPage:
             figure, at = self.figure, self.where[step.end]
             figure.circle(at, 11.0, fill="none", stroke=FLAG, width=1.6, layer="marks",
                           area=False, css="flagged")
-            figure.request((f"flag:{step.end}",), at, ((f"{step.angle_deg:.2g}°", RunKind.SEP),),
+            angle = shown_text(message("{angle:.2g}°", angle=step.angle_deg))
+            figure.request((f"flag:{step.end}",), at, ((angle, RunKind.SEP),),
                            size=SMALL_SIZE, mark=11.0, css="flag")
             figure.used.add("flagged")
 
-    def similarity(self, step: Step) -> None:
-        if step.vector:
-            members = self.images.setdefault(step.vector, [])
+    def similarity(self, step: Similarity) -> None:
+        if step.link:
+            members = self.images.setdefault(step.link, [])
             members += [label for label in (*step.references, step.end) if label in self.where]
 
     def read(self, step: Step) -> None:
@@ -382,63 +387,72 @@ def plan_legend(figure: Canvas, at: Point, kind: str) -> float:
     for each colour of construction line drawn, a row saying whose direction it carries.
     Returns the y (px) below its last row (``at``'s y when nothing is listed)."""
     x, y = at
-    lines = sorted(key.partition(":")[2] for key in figure.used
-                   if key.startswith("construction:"))
-    order = [(key, "") for key in LEGEND_ORDER if key in figure.used and key != "construction"]
+    order = _legend_rows(figure.used)
+    if not order:
+        return y
+    figure.text((x, y), message("Legend"), size=TEXT_SIZE, bold=True, css="legend",
+                area=False)
+    y += 8
+    for key, component in order:
+        y += 20
+        figure.text((x + 44, y), _legend_row(figure, (x, y - 4), key, component, kind),
+                    size=SMALL_SIZE, css="legend", area=False)
+    return y
+
+
+def _legend_rows(used: set[str]) -> list[tuple[str, str]]:
+    """The rows of a legend, in :data:`LEGEND_ORDER`: (style, component of a construction
+    line's colour), the construction lines before the images and projections, a flagged
+    intersection last."""
+    lines = sorted(key.partition(":")[2] for key in used if key.startswith("construction:"))
+    order = [(key, "") for key in LEGEND_ORDER if key in used and key != "construction"]
     at_lines = next((index for index, (key, _) in enumerate(order)
                      if key in ("similarity", "projection")), len(order))
     order[at_lines:at_lines] = [("construction", component) for component in
                                 sorted(lines, key=lambda c: LEGEND_ORDER.index(c)
                                        if c in LEGEND_ORDER else len(LEGEND_ORDER))]
-    if "flagged" in figure.used:
+    if "flagged" in used:
         order.append(("flagged", ""))
-    if not order:
-        return y
-    figure.text((x, y), "Legend", size=TEXT_SIZE, bold=True, css="legend", area=False)
-    y += 8
-    for key, component in order:
-        y += 20
-        if key == "flagged":
-            figure.circle((x + 17, y - 4), 7.0, fill="none", stroke=FLAG, width=1.6,
-                          layer="text", area=False)
-            text = "intersection at a small angle (flagged)"
-        elif key == "construction":
-            style = STYLES[key]
-            colour = STYLES[component].color if component else style.color
-            figure.line((x, y - 4), (x + 34, y - 4), color=colour, width=0.8,
-                        dash=style.dash, layer="text", obstacle=False)
-            if component:
-                own = STYLES[component]
-                name = own.legend_velocity if kind == PlanKind.VELOCITY else own.legend_acceleration
-                text = f"construction line: direction of the {name}"
-            else:
-                text = "construction line"
-        elif key in ("similarity", "projection"):
-            style = STYLES[key]
-            figure.line((x, y - 4), (x + 34, y - 4), color=style.color,
-                        width=max(style.width, 0.9), dash=style.dash, layer="text",
-                        obstacle=False)
-            text = style.legend_velocity if kind == PlanKind.VELOCITY else style.legend_acceleration
-        else:
-            style = STYLES[key]
-            figure.arrow((x, y - 4), (x + 34, y - 4), key, layer="text", obstacle=False)
-            text = style.legend_velocity if kind == PlanKind.VELOCITY else style.legend_acceleration
-        figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
-    return y
+    return order
 
 
-def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | None,
-          flags: Sequence[str], kind: str, *, box: Sequence[float] | None = None,
-          equations: Sequence[str] = ()) -> None:
+def _legend_row(figure: Canvas, at: Point, key: str, component: str, kind: str) -> Message:
+    """A legend row's sample drawn at ``at`` (its left end, on the row's middle line), and its
+    text."""
+    (x, y), style = at, STYLES.get(key)
+    if key == "flagged":
+        figure.circle((x + 17, y), 7.0, fill="none", stroke=FLAG, width=1.6, layer="text",
+                      area=False)
+        return message("intersection at a small angle (flagged)")
+    if key == "construction":
+        colour = STYLES[component].color if component else style.color
+        figure.line((x, y), (x + 34, y), color=colour, width=0.8, dash=style.dash,
+                    layer="text", obstacle=False)
+        if not component:
+            return message("construction line")
+        return message("construction line: direction of the {component}",
+                       component=STYLES[component].legend(kind))
+    if key in ("similarity", "projection"):
+        figure.line((x, y), (x + 34, y), color=style.color, width=max(style.width, 0.9),
+                    dash=style.dash, layer="text", obstacle=False)
+    else:
+        figure.arrow((x, y), (x + 34, y), key, layer="text", obstacle=False)
+    return style.legend(kind)
+
+
+def frame(figure: Canvas, title: Message | str, scale_lines: Sequence[Message | str],
+          bar: tuple | None, flags: Sequence[Message | str], kind: str, *,
+          box: Sequence[float] | None = None, equations: Sequence[str] = ()) -> None:
     """Title above, legend and the plan's vector ``equations`` at the right, scales, scale bar
     and flags below the content — the content drawn so far, or a fixed ``box`` (x0, y0, x1,
-    y1, px) that stays the same in every frame of a turn (:mod:`planmethod.render.steady`)."""
+    y1, px) that stays the same in every frame of a turn (:mod:`planmethod.render.steady`).
+    The texts are messages (rendered as they are written) or text."""
     x0, y0, x1, y1 = box if box is not None else figure.extent
     bottom = plan_legend(figure, (x1 + 34, y0 + 4), kind)
     if equations:
         y = bottom + 34 if bottom > y0 + 4 else y0 + 4
-        figure.text((x1 + 34, y), "Vector equations", size=TEXT_SIZE, bold=True, css="legend",
-                    area=False)
+        figure.text((x1 + 34, y), message("Vector equations"), size=TEXT_SIZE, bold=True,
+                    css="legend", area=False)
         for equation in equations:
             y += 20
             figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False,
@@ -455,11 +469,12 @@ def frame(figure: Canvas, title: str, scale_lines: Sequence[str], bar: tuple | N
         scale_bar(figure, (x0 + 8, y + 2), scale, unit, target)
         y += 40
     for flag in flags:
-        figure.text((x0, y), "! " + flag, size=SMALL_SIZE, color=FLAG, css="flag", area=False)
+        figure.text((x0, y), "! " + shown_text(flag), size=SMALL_SIZE, color=FLAG, css="flag",
+                    area=False)
         y += 17
 
 
-def steady_page(view: SteadyView, title: str, lines: int, kind: str, *,
+def steady_page(view: SteadyView, title: Message | str, lines: int, kind: str, *,
                 legend: bool = True, equations: Sequence[str] = ()
                 ) -> tuple[float, float, float, float]:
     """The viewBox of a panel kept steady over a turn: its content's fixed box with room for
@@ -467,9 +482,12 @@ def steady_page(view: SteadyView, title: str, lines: int, kind: str, *,
     widest legend the kind can have and the plan's ``equations`` beside it, ``lines`` scale
     lines, the scale bar and two flags."""
     x0, y0, x1, y1 = view.box
-    widest = re.sub(r"= -?[\d.]+°", "= 888.8°", title)
+    if isinstance(title, Message) and "angle" in title.values:
+        widest = shown_text(title.replace(angle=888.8))
+    else:                                   # a title given as text: its angle found in it
+        widest = re.sub(r"= -?[\d.]+°", "= 888.8°", shown_text(title))
     column = max([_legend_width(kind) if legend else 0.0]
-                 + [text_width(text, TEXT_SIZE, SANS) for text in equations])
+                 + [text_width(shown_text(text), TEXT_SIZE, SANS) for text in equations])
     right = max(x1 + (34.0 + column if column else 0.0),
                 x0 + text_width(widest, TITLE_SIZE, SANS_BOLD))
     top = y0 - 16.0 - TITLE_SIZE
@@ -481,12 +499,12 @@ def steady_page(view: SteadyView, title: str, lines: int, kind: str, *,
 
 def _legend_width(kind: str) -> float:
     """The width (px) of the widest legend row a plan of this kind can have."""
-    texts = ["intersection at a small angle (flagged)"]
+    texts = [message("intersection at a small angle (flagged)")]
     for key in LEGEND_ORDER:
-        name = (STYLES[key].legend_velocity if kind == PlanKind.VELOCITY
-                else STYLES[key].legend_acceleration)
-        texts += [name, f"construction line: direction of the {name}"]
-    return 44.0 + max(text_width(text, SMALL_SIZE, SANS) for text in texts)
+        name = STYLES[key].legend(kind)
+        texts += [name, message("construction line: direction of the {component}",
+                                component=name)]
+    return 44.0 + max(text_width(shown_text(text), SMALL_SIZE, SANS) for text in texts)
 
 
 def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = None
@@ -504,14 +522,16 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
     figure.place(bounds=view.box if view else None)      # a steady page holds them
     details = detail_insets(figure, content, regions, f"detail-{plan.kind}")
     scale = PLAN_SCALES[plan.kind]
-    lines = [scale_text(scale, plan.scale)]
+    lines: list[Message | str] = [scale_text(scale, plan.scale)]   # words: vocabulary
     if plan.precision_mm:
-        lines.append(f"drafting precision {plan.precision_mm:g} mm")
+        lines.append(message("drafting precision {precision:g} mm",
+                             precision=plan.precision_mm))
     lines += details
-    title = plan.title or f"{plan.kind} plan"
+    title = plan_title(plan)
     equations = vector_equations(plan)
-    frame(figure, title, lines, (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE), plan.flags,
-          plan.kind, box=view.box if view else None, equations=equations)
+    frame(figure, title, lines, (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE),
+          [flag_message(flag, plan.numbers) for flag in plan.flags], plan.kind,
+          box=view.box if view else None, equations=equations)
     return figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
                                               equations=equations) if view else None)
 
@@ -537,40 +557,34 @@ def vector_equations(plan: Plan) -> list[str]:
     >>> vector_equations(plans.velocity), vector_equations(plans.acceleration)
     (['v_C = v_B + v_CB = v_C₀ + v_CC₀'], ['a_C = a_B + aⁿ_CB + aᵗ_CB = a_C₀ + aʳ_CC₀'])
     """
-    from ..plans.construction import course_text
-
     letter = "v" if plan.kind == PlanKind.VELOCITY else "a"
-    laid = {}
+    numbers = plan.numbers
+    laid: dict[str, LayOff | Coincide] = {}
     for step in plan.steps:
-        if step.action in ("lay_off", "coincide") and step.end and step.end not in laid:
+        if isinstance(step, LayOff | Coincide) and step.end and step.end not in laid:
             laid[step.end] = step
-    by_number = {step.number: step for step in plan.steps}
-
-    def named(text: str) -> str:
-        return course_text(text, plan.numbers)
+    lines = {step.number: step for step in plan.steps if isinstance(step, Line)}
 
     def image(label: str) -> str:
+        """The vector of a plan point's image: ``b@lever`` → v_B₃."""
         name, at, link = label.partition("@")
-        return named(f"{letter}_{name.rstrip('′').upper()}{at}{link}")
+        return f"{letter}_{point_name(name.rstrip('′').upper() + at + link, numbers)}"
+
+    def side(line: Line) -> str:
+        terms = [vector_text(line.vector, numbers)]
+        point = line.start
+        while point.startswith(("n_", "k")) and "_" in point and point in laid:
+            if isinstance(laid[point], LayOff):
+                terms.insert(0, vector_text(laid[point].vector, numbers))
+            point = laid[point].start or plan.pole
+        return " + ".join([image(point), *terms])
 
     out = []
     for step in plan.steps:
-        if step.action != "intersect" or not step.end or len(step.lines or ()) != 2:
-            continue
-        sides = []
-        for number in step.lines:
-            line = by_number.get(number)
-            if line is None or not line.start:
-                break
-            terms = [named(line.vector)] if line.vector else []
-            point = line.start
-            while point.startswith(("n_", "k")) and "_" in point and point in laid:
-                if laid[point].action == "lay_off" and laid[point].vector:
-                    terms.insert(0, named(laid[point].vector))
-                point = laid[point].start or plan.pole
-            sides.append(" + ".join([image(point), *terms]))
-        else:
-            out.append(f"{image(step.end)} = {sides[0]} = {sides[1]}")
+        if isinstance(step, Intersect) and step.end and all(
+                number in lines and lines[number].start for number in step.lines):
+            first, second = step.lines
+            out.append(f"{image(step.end)} = {side(lines[first])} = {side(lines[second])}")
     return out
 
 
@@ -751,7 +765,10 @@ def _extremes(points: Sequence[Point]) -> tuple[Point, Point]:
 
 def _hull(points: Sequence[Point]) -> tuple[list[Point], float]:
     """The convex hull (shapely) of distinct points, counter-clockwise from the lowest
-    (x, y), and its area; fewer than three corners where the points lie on one line."""
+    (x, y), and its area; fewer than three corners where the points lie on one line (two
+    points always do: most links, asked for no hull)."""
+    if len(points) < 3:
+        return [], 0.0
     from shapely.geometry import MultiPoint
     from shapely.geometry.polygon import orient
 
@@ -832,7 +849,7 @@ def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float)
             figure.request(("η",), end, (("η", RunKind.MAIN),), size=TEXT_SIZE, mark=0.0)
         rho_m = float(data["rho_mm"]) * position.mu_l
         text = (("ρ", RunKind.MAIN), (name, RunKind.SUB),
-                (f" = {significant(rho_m)} m", RunKind.SEP))
+                (" " + shown_text(message("= {rho:.4g} m", rho=rho_m)), RunKind.SEP))
         if on_sheet:
             centre = at + rho_px * normal
             figure.arrow(at, centre, "normal", layer="marks", color=color, css="rho")
@@ -841,8 +858,8 @@ def _curvature_content(figure: Canvas, position: PositionPlan, extent_px: float)
             figure.request((f"O_{name}",), centre, (("O", RunKind.MAIN), (name, RunKind.SUB)),
                            mark=3.0)
         else:
-            text = (*text[:-1], (f" = {significant(rho_m)} m (centre off the sheet)",
-                                 RunKind.SEP))
+            text = (*text[:-1], (" " + shown_text(message("= {rho:.4g} m (centre off the sheet)",
+                                                      rho=rho_m)), RunKind.SEP))
         figure.request((f"rho_{name}",), at + 0.5 * shown * normal, text, size=TEXT_SIZE,
                        mark=1.0)
 
@@ -854,7 +871,7 @@ def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ())
 
 
 def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
-                     notes: Sequence[str] = (), view: SteadyView | None = None,
+                     notes: Sequence[Message | str] = (), view: SteadyView | None = None,
                      details: bool = True) -> SvgFigure:
     """The mechanism at μl as an :class:`SvgFigure` (see the module docstring).
 
@@ -883,21 +900,25 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     regions = detail_regions(figure, {name: figure.px(xy) for name, xy in
                                       position.points_mm.items()}, draw=details and not view)
     figure.place(bounds=view.box if view else None)
-    lines = [scale_text("mu_l", position.mu_l)]
+    lines: list[Message | str] = [scale_text("mu_l", position.mu_l)]   # words: vocabulary
     link, _pivot, omega = position.drive
     if omega:
-        lines.append(f"{numbered('ω', crank_number(position))} = {significant(omega, 6)} rad/s, "
-                     f"{link_text(link, position.numbers, 'drive link')}")
+        lines.append(message("{omega} = {value:.6g} rad/s, {link}",
+                             omega=numbered("ω", crank_number(position)), value=omega,
+                             link=link_text(link, position.numbers, "drive link")))
     if plans is not None:
-        lines += [line for line in plans.scales.describe()[1:3]]
+        lines += scale_lines(plans.scales)[1:3]
     lines += detail_insets(figure, content, regions, "detail-position")
-    title = (f"{position.title} — position plan, {numbered('φ', crank_number(position))} = "
-             f"{position.angle:g}°").lstrip(" —")
+    phi = numbered("φ", crank_number(position))
+    title = (message("{title} — position plan, {phi} = {angle:g}°", title=position.title,
+                     phi=phi, angle=position.angle) if position.title else
+             message("position plan, {phi} = {angle:g}°", phi=phi, angle=position.angle))
     frame(figure, title, lines, (position.mu_l, SCALES["mu_l"].drawn, 0.25 * MECHANISM_SIZE),
-          plans.flags if plans is not None else (), PlanKind.POSITION,
+          [flag_message(flag, plans.velocity.numbers) for flag in plans.flags]
+          if plans is not None else (), PlanKind.POSITION,
           box=view.box if view else None)
     y = figure.extent[3] + 24
-    for line in notes:
+    for line in map(shown_text, notes):
         if line.strip():
             figure.text((figure.extent[0], y), line, size=TEXT_SIZE, css="task", area=False,
                         monospace=line.startswith("  "))
@@ -931,14 +952,17 @@ def lever_drawing(plans: Plans, *, view: SteadyView | None = None, details: bool
     regions = detail_regions(figure, {label: figure.px(xy) for label, xy in rotated.items()},
                              draw=details and not view)
     figure.place(bounds=view.box if view else None)
-    lines = [scale_text("mu_l", position.mu_l), scale_text("mu_v", plan.scale),
-             f"the velocity plan turned 90° clockwise, pole {plan.pole} at "
-             f"{point_text(position.drive[1])} (Zhukovsky's lever)",
+    lines = [scale_text("mu_l", position.mu_l), scale_text("mu_v", plan.scale),  # vocabulary
+             message("the velocity plan turned 90° clockwise, pole {pole} at {pivot} "
+                     "(Zhukovsky's lever)", pole=plan.pole, pivot=point_text(position.drive[1])),
              *detail_insets(figure, content, regions, "detail-lever")]
-    title = (f"{position.title} — rotated velocity plan, "
-             f"{numbered('φ', crank_number(position))} = {position.angle:g}°").lstrip(" —")
+    phi = numbered("φ", crank_number(position))
+    title = (message("{title} — rotated velocity plan, {phi} = {angle:g}°", title=position.title,
+                     phi=phi, angle=position.angle) if position.title else
+             message("rotated velocity plan, {phi} = {angle:g}°", phi=phi, angle=position.angle))
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.25 * MECHANISM_SIZE),
-          plan.flags, PlanKind.VELOCITY, box=view.box if view else None)
+          [flag_message(flag, plan.numbers) for flag in plan.flags], PlanKind.VELOCITY,
+          box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.VELOCITY)
                       if view else None)
 

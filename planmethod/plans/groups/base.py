@@ -26,8 +26,10 @@ import numpy as np
 
 from ...errors import PlanmethodError
 from ...kinematics import Motion
+from ...structure import AssurGroup
 from ...vectors import dot, norm
 from ..scales import Scales
+from ..steps import Direction, Known, Solves, VectorName
 
 __all__ = ["PlanDrawer", "PlanSheet", "PlansUnavailableError", "Reading", "sense"]
 
@@ -42,29 +44,32 @@ class PlansUnavailableError(PlanmethodError):
 class PlanSheet(Protocol):
     """One plan being drawn (the velocity plan ``v`` or the acceleration plan ``a``): its
     labelled ``points`` (mm from the pole; (2,), or (N, 2) for copies of a drawing) and the
-    construction steps that add to them. ``component`` names what a line or vector is
-    (``relative``, ``normal``, ``tangential``…), ``vector`` its symbol, ``group`` the group's
-    index; ``text`` is the step's sentence."""
+    construction steps that add to them, each recorded as a typed step
+    (:mod:`planmethod.plans.steps`). ``component`` names what a line or vector is
+    (``relative``, ``normal``, ``tangential``…), ``vector`` which vector it is, ``group`` the
+    group's index; ``along``, ``solves`` and ``known`` say why a line has its direction, what
+    an intersection finds and what a vector laid off is (the step's sentence is written from
+    them in the render layer)."""
 
     points: Mapping[str, np.ndarray]
 
-    def line(self, through: str, direction: np.ndarray, *, text: str, component: str,
-             vector: str, group: int | None) -> int:
+    def line(self, through: str, direction: np.ndarray, *, component: str, vector: VectorName,
+             along: Direction, group: int | None) -> int:
         """A construction line through a plan point; returns its step's number."""
         ...
 
-    def intersect(self, first: int, second: int, end: str, *, text: str, group_name: str,
-                  group: int, angle: float) -> np.ndarray:
+    def intersect(self, first: int, second: int, end: str, *, solves: Solves,
+                  group: AssurGroup, angle: float) -> np.ndarray:
         """The point ``end`` where the lines of steps ``first`` and ``second`` meet."""
         ...
 
-    def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, text: str,
-                component: str, vector: str, group: int | None = None) -> np.ndarray:
+    def lay_off(self, start: str, end: str, vector_mm: np.ndarray, *, component: str,
+                vector: VectorName, known: Known, group: int | None = None) -> np.ndarray:
         """A known vector (mm) laid off from ``start``: the point ``end``."""
         ...
 
     def read(self, start: str, end: str, *, quantity: str, factor: float,
-             sign: Reading = 1.0) -> Reading:
+             sign: Reading = 1.0, relative: VectorName | None = None) -> Reading:
         """The segment ``start``–``end`` read off as ``quantity``: ±length·``factor``."""
         ...
 

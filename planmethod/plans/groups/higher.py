@@ -18,6 +18,7 @@ reported (planmethod solve --json)
 from __future__ import annotations
 
 from ...structure import AssurGroup
+from ...words import message
 from .base import PlanDrawer, PlansUnavailableError
 
 __all__ = ["draw_acceleration", "draw_velocity"]
@@ -25,10 +26,10 @@ __all__ = ["draw_acceleration", "draw_velocity"]
 
 def draw_velocity(emulator: PlanDrawer, group: AssurGroup) -> None:
     """Refuse: the group's plans are not drawn (:class:`~.base.PlansUnavailableError`)."""
-    raise PlansUnavailableError(
-        f"plans are drawn for class III triads of revolute pairs only; this {group.kind} "
-        "has other pairs — its exact kinematics is reported (planmethod solve --json)",
-        link=group.name)
+    raise PlansUnavailableError(message(
+        "plans are drawn for class III triads of revolute pairs only; this {kind} has other "
+        "pairs — its exact kinematics is reported (planmethod solve --json)",
+        kind=str(group.kind)), link=group.name)
 
 
 def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:

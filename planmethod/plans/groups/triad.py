@@ -28,6 +28,16 @@ from ...errors import ToggleError
 from ...kinematics.groups.triad import sides
 from ...structure import AssurGroup
 from ...vectors import cross, norm, perp, unit
+from ..steps import (
+    Across,
+    BothSides,
+    NormalOfSegment,
+    SpecialAcceleration,
+    SpecialPoint,
+    SpecialSide,
+    VectorName,
+    VelocityEquation,
+)
 from .base import PlanDrawer, PlanSheet, Reading, sense
 
 __all__ = ["SPECIAL", "draw_acceleration", "draw_velocity"]
@@ -116,28 +126,23 @@ def draw_velocity(emulator: PlanDrawer, group: AssurGroup) -> None:
         base = triad.pin_label(side, v)
         direction = perp(unit(side["Q"] - side["P"]))
         lines.append(v.line(base, direction, component="relative", group=group.index,
-                            vector=f"v_S*{side['outer']}",
-                            text=f"through {base}: v_S* − v_{side['outer']} ⟂ "
-                                 f"{side['outer']}{side['inner']} (S* lies on the line "
-                                 f"{side['outer']}{side['inner']})"))
-    v.intersect(*lines, SPECIAL, group_name=group.name, group=group.index, angle=emulator.angle,
-                text=f"{SPECIAL}: Assur's special point S* = ({special[0]:.6g}, "
-                     f"{special[1]:.6g}) m of {triad.central}, where the lines of "
-                     f"{triad.sides[triad.j]['link']} and {triad.sides[triad.k]['link']} meet")
+                            vector=VectorName("v", "S*", side["outer"]),
+                            along=SpecialSide(side["outer"], side["inner"])))
+    v.intersect(*lines, SPECIAL, group=group, angle=emulator.angle,
+                solves=SpecialPoint(float(special[0]), float(special[1]), triad.central,
+                                    triad.sides[triad.j]["link"], triad.sides[triad.k]["link"]))
     third = triad.sides[triad.i]
-    q_label = emulator.label(third["inner"], v)
+    inner, outer = third["inner"], third["outer"]
+    q_label = emulator.label(inner, v)
     base = triad.pin_label(third, v)
     first = v.line(SPECIAL, perp(unit(third["Q"] - special)), component="relative",
-                   group=group.index, vector=f"v_{third['inner']}S*",
-                   text=f"through {SPECIAL}: v_{third['inner']}S* ⟂ {third['inner']}S*")
+                   group=group.index, vector=VectorName("v", inner, "S*"),
+                   along=Across(inner, "S*"))
     second = v.line(base, perp(unit(third["Q"] - third["P"])), component="relative",
-                    group=group.index, vector=f"v_{third['inner']}{third['outer']}",
-                    text=f"through {base}: v_{third['inner']}{third['outer']} ⟂ "
-                         f"{third['inner']}{third['outer']}")
-    v.intersect(first, second, q_label, group_name=group.name, group=group.index,
-                angle=emulator.angle,
-                text=f"{q_label}: v_{third['inner']} = v_S* + v_{third['inner']}S* = "
-                     f"v_{third['outer']} + v_{third['inner']}{third['outer']}")
+                    group=group.index, vector=VectorName("v", inner, outer),
+                    along=Across(inner, outer))
+    v.intersect(first, second, q_label, group=group, angle=emulator.angle,
+                solves=VelocityEquation(inner, ("S*", outer)))
     omega = _read_turn(emulator, v, SPECIAL, q_label, special, third["Q"], triad.central,
                        mu_v / mu_l, "omega")
     emulator.fix_velocity(triad.central, third["Q"], q_label, omega)
@@ -162,19 +167,16 @@ def _read_turn(emulator: PlanDrawer, sheet: PlanSheet, start: str, end: str,
 
 
 def _normal(emulator: PlanDrawer, start: str, end: str, centre: np.ndarray, point: np.ndarray,
-            v_from: str, v_to: str, group: AssurGroup, vector: str) -> None:
+            v_from: str, v_to: str, group: AssurGroup, vector: VectorName) -> None:
     """Lay off aⁿ of ``point`` about ``centre`` from ``start``: (v-plan segment)²·μv² /
     ((length)·μl·μa), from the point towards the centre."""
     scales = emulator.scales
-    a = emulator.a
     segment = emulator.drawn_length(emulator.v, v_from, v_to)
     length_mm = emulator.radius_mm(centre, point)
     magnitude = segment ** 2 * scales.mu_v ** 2 / (length_mm * scales.mu_l * scales.mu_a)
-    a.lay_off(start, end, np.asarray(magnitude)[..., None] * unit(centre - point),
-              component="normal",
-              group=group.index, vector=vector,
-              text=f"{vector} from {start}: ({v_from}{v_to})²·μv²/(length·μl·μa), towards the "
-                   "centre")
+    emulator.a.lay_off(start, end, np.asarray(magnitude)[..., None] * unit(centre - point),
+                       component="normal", group=group.index, vector=vector,
+                       known=NormalOfSegment(v_from, v_to))
 
 
 def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
@@ -185,47 +187,25 @@ def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
     triad = _triad(emulator, group)
     v, a = emulator.v, emulator.a
     mu_a, mu_l = emulator.scales.mu_a, emulator.scales.mu_l
-    special = triad.special
     lines = []
     for index in (triad.j, triad.k):
         side = triad.sides[index]
-        base = triad.pin_label(side, a)
-        p_v = triad.pin_label(side, v)
-        q_v = emulator.label(side["inner"], v)
-        first = f"n_{side['inner']}{side['outer']}"
-        _normal(emulator, base, first, side["P"], side["Q"], p_v, q_v, group,
-                f"aⁿ_{side['inner']}{side['outer']}")
-        second = f"n_S*{side['inner']}"
-        _normal(emulator, first, second, side["Q"], special, q_v, SPECIAL, group,
-                f"aⁿ_S*{side['inner']}")
+        inner, outer = side["inner"], side["outer"]
+        q_v = emulator.label(inner, v)
+        first, second = f"n_{inner}{outer}", f"n_S*{inner}"
+        _normal(emulator, triad.pin_label(side, a), first, side["P"], side["Q"],
+                triad.pin_label(side, v), q_v, group, VectorName("aⁿ", inner, outer))
+        _normal(emulator, first, second, side["Q"], triad.special, q_v, SPECIAL, group,
+                VectorName("aⁿ", "S*", inner))
         lines.append(a.line(second, perp(unit(side["Q"] - side["P"])), component="tangential",
-                            group=group.index, vector=f"aᵗ_S*{side['outer']}",
-                            text=f"through {second}: aᵗ_{side['inner']}{side['outer']} + "
-                                 f"aᵗ_S*{side['inner']} ⟂ {side['outer']}{side['inner']}"))
-    a.intersect(*lines, SPECIAL, group_name=group.name, group=group.index, angle=emulator.angle,
-                text=f"{SPECIAL}: a_S* from the two sides through the special point")
+                            group=group.index, vector=VectorName("aᵗ", "S*", outer),
+                            along=SpecialSide(outer, inner)))
+    a.intersect(*lines, SPECIAL, group=group, angle=emulator.angle,
+                solves=SpecialAcceleration())
+    q_label = _third_side_acceleration(emulator, triad, group)
     third = triad.sides[triad.i]
-    q_label = emulator.label(third["inner"], a)
-    q_v = emulator.label(third["inner"], v)
-    n_central = f"n_{third['inner']}S*"
-    _normal(emulator, SPECIAL, n_central, special, third["Q"], SPECIAL, q_v, group,
-            f"aⁿ_{third['inner']}S*")
-    first = a.line(n_central, perp(unit(third["Q"] - special)), component="tangential",
-                   group=group.index, vector=f"aᵗ_{third['inner']}S*",
-                   text=f"through {n_central}: aᵗ_{third['inner']}S* ⟂ {third['inner']}S*")
-    base = triad.pin_label(third, a)
-    p_v = triad.pin_label(third, v)
-    n_side = f"n_{third['inner']}{third['outer']}"
-    _normal(emulator, base, n_side, third["P"], third["Q"], p_v, q_v, group,
-            f"aⁿ_{third['inner']}{third['outer']}")
-    second = a.line(n_side, perp(unit(third["Q"] - third["P"])), component="tangential",
-                    group=group.index, vector=f"aᵗ_{third['inner']}{third['outer']}",
-                    text=f"through {n_side}: aᵗ_{third['inner']}{third['outer']} ⟂ "
-                         f"{third['inner']}{third['outer']}")
-    a.intersect(first, second, q_label, group_name=group.name, group=group.index,
-                angle=emulator.angle, text=f"{q_label}: a_{third['inner']} from both sides")
-    epsilon = _read_turn(emulator, a, n_central, q_label, special, third["Q"], triad.central,
-                         mu_a / mu_l, "epsilon")
+    epsilon = _read_turn(emulator, a, f"n_{third['inner']}S*", q_label, triad.special,
+                         third["Q"], triad.central, mu_a / mu_l, "epsilon")
     omega = emulator.omega(triad.central)
     emulator.fix_acceleration(triad.central, third["Q"], q_label, omega, epsilon)
     for side in triad.sides:
@@ -236,3 +216,28 @@ def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
                              mu_a / mu_l, "epsilon")
         omega = emulator.omega(side["link"])
         emulator.fix_acceleration(side["link"], side["P"], p_label, omega, epsilon)
+
+
+def _third_side_acceleration(emulator: PlanDrawer, triad: _Triad, group: AssurGroup) -> str:
+    """The third side's inner pin Q on the acceleration plan, from S* (aⁿ and the line of aᵗ of
+    Q about S*) and from its outer pin (aⁿ and the line of aᵗ of Q about it); returns its
+    label."""
+    v, a = emulator.v, emulator.a
+    third, special = triad.sides[triad.i], triad.special
+    inner, outer = third["inner"], third["outer"]
+    q_label, q_v = emulator.label(inner, a), emulator.label(inner, v)
+    n_central = f"n_{inner}S*"
+    _normal(emulator, SPECIAL, n_central, special, third["Q"], SPECIAL, q_v, group,
+            VectorName("aⁿ", inner, "S*"))
+    first = a.line(n_central, perp(unit(third["Q"] - special)), component="tangential",
+                   group=group.index, vector=VectorName("aᵗ", inner, "S*"),
+                   along=Across(inner, "S*"))
+    n_side = f"n_{inner}{outer}"
+    _normal(emulator, triad.pin_label(third, a), n_side, third["P"], third["Q"],
+            triad.pin_label(third, v), q_v, group, VectorName("aⁿ", inner, outer))
+    second = a.line(n_side, perp(unit(third["Q"] - third["P"])), component="tangential",
+                    group=group.index, vector=VectorName("aᵗ", inner, outer),
+                    along=Across(inner, outer))
+    a.intersect(first, second, q_label, group=group, angle=emulator.angle,
+                solves=BothSides(inner))
+    return q_label
