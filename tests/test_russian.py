@@ -41,6 +41,7 @@ from planmethod.words import language, message, plural, render
 ROOT = Path(__file__).resolve().parent.parent
 LOCALE = ROOT / "planmethod" / "locale"
 COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
+RUSSIAN_TEMPLATE = ROOT / "exercises" / "templates" / "ru" / "slider_crank.toml"
 #: a number written with a decimal point (0.002), as the Russian course never writes one
 POINT_NUMBER = re.compile(r"\d\.\d")
 #: a string of a report meant for programs: a name, a key, an enum value
@@ -201,3 +202,16 @@ def test_the_json_report_keeps_its_keys_and_numbers_in_russian(course_file):
         russian = json.loads(_run(*argv))
         assert _machine_parts(russian) == _machine_parts(english)
         assert not re.search(r"\d,\d", json.dumps(russian))
+
+
+def test_a_russian_templates_task_writes_its_numbers_with_a_decimal_comma():
+    """The task a template's description makes (its placeholders filled) writes the numbers
+    as the course does; the same variant in English keeps the decimal point."""
+    from planmethod.grading.templates import draw_variant, load_template
+
+    variant = draw_variant(load_template(RUSSIAN_TEMPLATE), student="001")
+    assert variant.exercise.course.language == "ru"
+    with language.speaking("ru"):
+        russian = variant.description
+    assert re.search(r"Кривошип AB = 0,0\d\d м", russian) and not POINT_NUMBER.search(russian)
+    assert re.search(r"Кривошип AB = 0\.0\d\d м", variant.description)
