@@ -1,4 +1,5 @@
-"""Every command line and Python snippet of README.md and docs/*.md runs as the text shows it.
+"""Every command line and Python snippet of README.md and docs/**/*.md (the guides in other
+languages too: docs/ru/) runs as the text shows it.
 
 The documents are read by Sybil (a library for testing documentation); the convention, written
 for authors in docs/contributing.md:
@@ -34,7 +35,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-DOCUMENTS = sorted([ROOT / "README.md", *(ROOT / "docs").glob("*.md")])
+DOCUMENTS = sorted([ROOT / "README.md", *(path for path in (ROOT / "docs").glob("**/*.md")
+                                          if "_build" not in path.parts)])
 COPY_IGNORED = shutil.ignore_patterns(".git", "_build", "__pycache__", ".hypothesis",
                                       ".pytest_cache", ".ruff_cache", "*.egg-info")
 EXIT_STATUS = re.compile(r"#\s*exit status (\d+)\s*$")
@@ -175,7 +177,8 @@ def repository_copies(tmp_path_factory):
 def test_every_document_has_examples():
     """The documents are found and each guide with commands yields examples (no silent 0)."""
     with_examples = {path.name for path, _ in EXAMPLES}
-    assert {"tutorial.md", "teaching.md", "workbook.md"} <= with_examples, with_examples
+    assert {"tutorial.md", "teaching.md", "workbook.md", "languages.md",
+            "quickstart.md"} <= with_examples, with_examples
 
 
 @pytest.mark.parametrize(("path", "example"), EXAMPLES,
