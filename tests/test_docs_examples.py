@@ -23,6 +23,7 @@ may use what an earlier one of the same document wrote), with the copy's ``planm
 
 from __future__ import annotations
 
+import contextlib
 import doctest
 import os
 import re
@@ -31,6 +32,7 @@ import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from unittest import SkipTest
 
 import pytest
 
@@ -185,7 +187,10 @@ def test_every_document_has_examples():
                          ids=[f"{path.relative_to(ROOT)}:{example.line}"
                               for path, example in EXAMPLES])
 def test_example(path, example, repository_copies, monkeypatch):
-    """Run one block of a document in the document's own copy of the repository."""
+    """Run one block of a document in the document's own copy of the repository, after the
+    document's earlier blocks that this process has not run: a block may use what an earlier
+    one wrote or defined, and a run spread over processes (``pytest -n``) may hand a process
+    a document's later block first."""
     copy = repository_copies(path)
     namespace = example.namespace
     namespace.setdefault("repository", copy)
@@ -194,7 +199,20 @@ def test_example(path, example, repository_copies, monkeypatch):
     namespace.setdefault("has_chromium", shutil.which("chromium") is not None
                          or shutil.which("chromium-browser") is not None)
     monkeypatch.chdir(copy)
+    evaluated = _EVALUATED.setdefault(path, set())
+    for earlier in PARSED[path]:
+        if earlier.start >= example.start:
+            break
+        if earlier.start not in evaluated:
+            evaluated.add(earlier.start)
+            with contextlib.suppress(SkipTest):
+                earlier.evaluate()
+    evaluated.add(example.start)
     example.evaluate()
+
+
+#: the blocks evaluated in this process, by document (their offsets in it)
+_EVALUATED: dict[Path, set[int]] = {}
 
 
 #: README is the front door: what it is, the two set-up commands, three starts; guides go to docs/
