@@ -33,7 +33,7 @@ from typing import NoReturn
 
 from .arguments import argparse_words, said
 from .errors import LIMIT_WORDS, PlanmethodError, limit_words
-from .words import Message, message, render, speaking
+from .words import Message, message, plural, render, speaking
 
 __all__ = ["COMMANDS", "main"]
 
@@ -199,7 +199,22 @@ def _run(args: argparse.Namespace) -> int:
     except PlanmethodError as error:
         return _refused(error)
     with speaking(language):
+        _note_missing(language)
         return _run_command(args)
+
+
+def _note_missing(language: str) -> None:
+    """Say on stderr, in one line, how many messages the run's language does not translate
+    (a course's catalogue not yet complete: those are shown in English)."""
+    from .words.language import missing
+
+    count = missing(language)
+    if count:
+        print(render(plural("planmethod: note: the catalogue of {language} lacks {count} "
+                            "message; it is shown in English",
+                            "planmethod: note: the catalogue of {language} lacks {count} "
+                            "messages; they are shown in English",
+                            count=count, language=language)), file=sys.stderr)
 
 
 def _run_command(args: argparse.Namespace) -> int:

@@ -1,4 +1,5 @@
-"""Every command line and Python snippet of README.md and docs/*.md runs as the text shows it.
+"""Every command line and Python snippet of README.md and docs/**/*.md (the guides in other
+languages too: docs/ru/) runs as the text shows it.
 
 The documents are read by Sybil (a library for testing documentation); the convention, written
 for authors in docs/contributing.md:
@@ -22,6 +23,7 @@ may use what an earlier one of the same document wrote), with the copy's ``planm
 
 from __future__ import annotations
 
+import contextlib
 import doctest
 import os
 import re
@@ -30,11 +32,13 @@ import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from unittest import SkipTest
 
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-DOCUMENTS = sorted([ROOT / "README.md", *(ROOT / "docs").glob("*.md")])
+DOCUMENTS = sorted([ROOT / "README.md", *(path for path in (ROOT / "docs").glob("**/*.md")
+                                          if "_build" not in path.parts)])
 COPY_IGNORED = shutil.ignore_patterns(".git", "_build", "__pycache__", ".hypothesis",
                                       ".pytest_cache", ".ruff_cache", "*.egg-info")
 EXIT_STATUS = re.compile(r"#\s*exit status (\d+)\s*$")
@@ -175,14 +179,18 @@ def repository_copies(tmp_path_factory):
 def test_every_document_has_examples():
     """The documents are found and each guide with commands yields examples (no silent 0)."""
     with_examples = {path.name for path, _ in EXAMPLES}
-    assert {"tutorial.md", "teaching.md", "workbook.md"} <= with_examples, with_examples
+    assert {"tutorial.md", "teaching.md", "workbook.md", "languages.md",
+            "quickstart.md"} <= with_examples, with_examples
 
 
 @pytest.mark.parametrize(("path", "example"), EXAMPLES,
                          ids=[f"{path.relative_to(ROOT)}:{example.line}"
                               for path, example in EXAMPLES])
 def test_example(path, example, repository_copies, monkeypatch):
-    """Run one block of a document in the document's own copy of the repository."""
+    """Run one block of a document in the document's own copy of the repository, after the
+    document's earlier blocks that this process has not run: a block may use what an earlier
+    one wrote or defined, and a run spread over processes (``pytest -n``) may hand a process
+    a document's later block first."""
     copy = repository_copies(path)
     namespace = example.namespace
     namespace.setdefault("repository", copy)
@@ -191,7 +199,20 @@ def test_example(path, example, repository_copies, monkeypatch):
     namespace.setdefault("has_chromium", shutil.which("chromium") is not None
                          or shutil.which("chromium-browser") is not None)
     monkeypatch.chdir(copy)
+    evaluated = _EVALUATED.setdefault(path, set())
+    for earlier in PARSED[path]:
+        if earlier.start >= example.start:
+            break
+        if earlier.start not in evaluated:
+            evaluated.add(earlier.start)
+            with contextlib.suppress(SkipTest):
+                earlier.evaluate()
+    evaluated.add(example.start)
     example.evaluate()
+
+
+#: the blocks evaluated in this process, by document (their offsets in it)
+_EVALUATED: dict[Path, set[int]] = {}
 
 
 #: README is the front door: what it is, the two set-up commands, three starts; guides go to docs/

@@ -123,6 +123,29 @@ def test_a_course_adds_a_language(tmp_path, monkeypatch):
         languages.catalogue.cache_clear()
 
 
+def test_a_run_in_an_incomplete_language_says_how_many_messages_are_missing(tmp_path,
+                                                                            monkeypatch,
+                                                                            capsys):
+    """The command line says, in one line on stderr, how many messages the chosen language
+    lacks (shown in English); a complete catalogue says nothing."""
+    from planmethod.cli import main
+
+    wrong = "'{language}' is no language code (such as en or ru)"
+    _course_catalogue(tmp_path, "uz", {wrong: "«{language}» til kodi emas (masalan, en yoki ru)"})
+    monkeypatch.setenv(languages.LOCALE_ENVIRONMENT, str(tmp_path))
+    languages.catalogue.cache_clear()
+    exercise = str(ROOT / "exercises" / "compressor_slider_crank.toml")
+    try:
+        lacking = languages.missing("uz")
+        assert main(["solve", exercise, "--lang", "uz"]) == 0
+        assert capsys.readouterr().err == (f"planmethod: note: the catalogue of uz lacks "
+                                           f"{lacking} messages; they are shown in English\n")
+        assert main(["solve", exercise, "--lang", "ru"]) == 0
+        assert capsys.readouterr().err == ""
+    finally:
+        languages.catalogue.cache_clear()
+
+
 def test_a_translation_that_does_not_fit_its_fields_shows_in_english(tmp_path, monkeypatch):
     wrong = "'{language}' is no language code (such as en or ru)"
     _course_catalogue(tmp_path, "kk", {wrong: "{tili} — тіл коды емес"})

@@ -68,7 +68,7 @@ from ..numbering import course_numbers, course_symbols
 from ..spec import checked_table, leaves, parse_toml, read_text
 from ..vectors import angle_deg
 from ..vocabulary import PlanKind, point_text, symbol
-from ..words import Message, message, plural, render, template
+from ..words import Message, message, number_text, plural, render, template
 from .expressions import ExpressionError, evaluate, parse, references
 from .plan_points import plan_point_name, vector_name
 
@@ -719,8 +719,9 @@ _TOO_LONG_FILLED = plural("the task's text is more than {count} character once i
 def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any],
                        drawing: Mapping[str, Any] | None = None) -> str:
     """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values, file keys and
-    the ``drawing``'s values (:func:`drawing_values`); an unknown name is left as written, and
-    so is a value inserted (a ``{name}`` in it is not filled in again).
+    the ``drawing``'s values (:func:`drawing_values`), a number written as the language spoken
+    writes it (``0,05`` in Russian); an unknown name is left as written, and so is a value
+    inserted (a ``{name}`` in it is not filled in again).
 
     Raises
     ------
@@ -735,6 +736,10 @@ def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, 
     'l = 0.0612 m, {x}'
     >>> format_description("(AB) = {drawn.crank:.3g} mm", {}, {}, {"drawn": {"crank": 27.5}})
     '(AB) = 27.5 mm'
+    >>> from planmethod.words import speaking
+    >>> with speaking("ru"):
+    ...     format_description("l = {l:.3f} м", {"l": 0.05}, {})
+    'l = 0,050 м'
     >>> format_description("{l:.100000000f}", {"l": 0.06}, {})
     Traceback (most recent call last):
     ...
@@ -760,9 +765,9 @@ precision of 100000000; at most 15
             return match.group(0)
         if isinstance(value, Mapping | list):
             return match.group(0)
-        try:
-            filled = format(value, spec) if spec else (f"{value:g}" if _number(value)
-                                                       else str(value))
+        try:   # a number as the course writes it (a decimal comma in Russian)
+            filled = (number_text(value, spec or "g") if _number(value)
+                      else format(value, spec) if spec else str(value))
         except (ValueError, TypeError):
             return match.group(0)
         written[0] += len(filled) - len(match.group(0))

@@ -62,14 +62,15 @@ def pseudo_catalogue(folder: Path) -> Path:
 
 
 def message_words() -> set[str]:
-    """The English words the templates use (three letters or more, in lower case, fields
-    left out): what must never show outside a mark."""
+    """The English words the templates use (three letters or more, Latin letters only — a
+    symbol such as μφv is no word —, in lower case, fields left out): what must never show
+    outside a mark."""
     words = set()
     for found in package_templates():
         for form in found.forms:
             literal = "".join(text for text, _, _, _ in string.Formatter().parse(form)
                               if text) if form else ""
-            words.update(word.lower() for word in _WORD.findall(literal))
+            words.update(word.lower() for word in _WORD.findall(literal) if word.isascii())
     return words
 
 
