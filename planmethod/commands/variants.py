@@ -361,6 +361,7 @@ def variant_files(template, students: list[str], folders: list[str], *, seed: in
     import json
 
     from ..grading.keys import build_key, bundle
+    from ..grading.paper import add_sheets
     from ..grading.templates import draw_variant, to_toml
     from ..io import csv_text, json_text
     from ..progress import Progress
@@ -383,7 +384,6 @@ def variant_files(template, students: list[str], folders: list[str], *, seed: in
             # the description with its placeholders filled in, as the student reads it
             files[f"{folder}/exercise.toml"] = to_toml({**variant.data,
                                                         "description": variant.description})
-            files[f"{folder}/key.json"] = json_text(key)
             if sheets:
                 from ..grading.sheets import plan_sheet_for_key, task_sheet_svg, task_text
                 from ..plans import draw_plans
@@ -397,7 +397,12 @@ def variant_files(template, students: list[str], folders: list[str], *, seed: in
             index_rows.append([student, folder, variant.attempt,
                                json.dumps(variant.values, ensure_ascii=False)])
             bar.advance()
-    files["keys.json"] = json_text(bundle(keys, template=source, seed=seed, count=len(keys)))
+    # the booklet's pages: each plan sheet's geometry (page mm) and QR code, in the keys
+    course = add_sheets(keys)
+    for key, folder in zip(keys, folders, strict=True):
+        files[f"{folder}/key.json"] = json_text(key)
+    files["keys.json"] = json_text(bundle(keys, template=source, seed=seed, count=len(keys),
+                                          course=course))
     files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *index_rows])
     return files, rejected, index_rows
 
