@@ -210,7 +210,7 @@ def _strokes(entry: Mapping[str, Any], placed: Mapping[str, tuple[float, float]]
             yield (placed[start], placed[end])
 
 
-def _crossed(point, strokes, *, angle_deg: float = 20.0) -> bool:
+def _crossed(point, strokes, *, angle_deg: float = 30.0) -> bool:
     """Whether two of ``strokes`` that reach ``point`` (end at it or pass through it) cross
     there at ``angle_deg`` or more."""
     directions = []
@@ -316,7 +316,7 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
         kind = rng.choice(["dot", "cross"] if label in drawn.marked else
                           ["dot", "cross", "none"])
         if kind == "dot":
-            radius = rng.uniform(0.35, 0.6) * px_per_mm
+            radius = rng.uniform(0.5, 0.75) * px_per_mm
             cv2.circle(cover, tuple(np.round((centre - origin) * unit).astype(int)),
                        int(round(radius * unit)), rng.uniform(0.6, 0.85), -1, cv2.LINE_AA, shift)
         elif kind == "cross":
@@ -325,9 +325,9 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
             for angle in (turn, turn + math.pi / 2):
                 offset = arm * np.array([math.cos(angle), math.sin(angle)])
                 draw(np.array([centre - offset, centre + offset]), 0.3, rng.uniform(0.6, 0.8))
-        if labels:
-            side = rng.uniform(0, 2 * math.pi)
-            at = centre + 3.5 * px_per_mm * np.array([math.cos(side), math.sin(side)])
+        if labels:               # written beside the point, where no line leaves it
+            side = _free_side(xy, drawn.strokes, rng)
+            at = centre + 3.5 * px_per_mm * np.array([math.cos(side), -math.sin(side)])
             at += np.array([-1.2, 1.4]) * px_per_mm - origin   # the letter's box round it
             text = label.split("@")[0]
             layer = np.zeros(cover.shape, np.uint8)
@@ -342,6 +342,31 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
     out = page.copy()
     out[y0:y1, x0:x1] = np.clip(paper * (1 - alpha * (1 - graphite)), 0, 255).astype(np.uint8)
     return out
+
+
+def _free_side(point, strokes, rng: np.random.Generator) -> float:
+    """The direction (radians, plan axes) of the widest gap between the strokes that leave
+    ``point``, a little off its middle: where a student writes the point's name."""
+    angles = []
+    for a, b in strokes:
+        for near, far in ((a, b), (b, a)):
+            if math.dist(near, point) < 0.5 and math.dist(far, point) > 1.0:
+                angles.append(math.atan2(far[1] - near[1], far[0] - near[0]))
+            elif math.dist(near, point) >= 0.5 and math.dist(far, point) >= 0.5:
+                # a stroke passing through the point leaves it both ways
+                direction = np.subtract(far, near)
+                offset = np.subtract(point, near)
+                if abs(direction[0] * offset[1] - direction[1] * offset[0]) <= 0.5 * np.hypot(
+                        *direction) and 0 < offset @ direction < direction @ direction:
+                    angle = math.atan2(direction[1], direction[0])
+                    angles += [angle, angle + math.pi]
+    if not angles:
+        return float(rng.uniform(0, 2 * math.pi))
+    angles = sorted(angle % (2 * math.pi) for angle in angles)
+    gaps = [(angles[(i + 1) % len(angles)] - angles[i]) % (2 * math.pi) or 2 * math.pi
+            for i in range(len(angles))]
+    widest = int(np.argmax(gaps))
+    return angles[widest] + gaps[widest] * float(rng.uniform(0.35, 0.65))
 
 
 # -- the photo -------------------------------------------------------------------------------
