@@ -9,6 +9,7 @@ from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
 from planmethod.kinematics.program import Model
 from planmethod.kinematics.solve import Motion
+from planmethod.render.pdf import pdf_pages
 from planmethod.studio.server import StudioHandler, StudioServer
 
 # argparse's parser reads this attribute: negative numbers in any float notation are values
@@ -37,3 +38,6 @@ StudioHandler.do_DELETE  # noqa: B018
 StudioHandler.do_HEAD  # noqa: B018
 StudioHandler.log_message  # noqa: B018
 StudioHandler.close_connection  # noqa: B018
+# CairoSVG's surface calls _create_surface by name to make its cairo surface: the booklet's
+# pages subclass it, inside pdf_pages, to draw page after page onto one PDF
+pdf_pages._create_surface  # noqa: B018

@@ -19,8 +19,21 @@ if TYPE_CHECKING:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("key", help="key.json, keys.json (or its folder), or an exercise file")
+    parser.add_argument("key", nargs="?",
+                        help="key.json, keys.json (or its folder), or an exercise file")
     parser.add_argument("answers", nargs="?", help="answers: CSV or JSON, one row per student")
+    parser.add_argument("--key", dest="key_file", metavar="FILE",
+                        help="the key, as KEY (then a file given after the options is ANSWERS)")
+    parser.add_argument("--photo", nargs="+", action="extend", default=[], metavar="IMAGE",
+                        help="phone photos of plan sheets printed by `planmethod booklet`: "
+                             "each is graded against its student's key (the sheet's QR code "
+                             "says whose); a photo that cannot be read is refused in one line")
+    parser.add_argument("--marked", metavar="DIR",
+                        help="write each graded photo into DIR, its points marked green or "
+                             "red, with the sentences under it (for the student)")
+    parser.add_argument("--jobs", type=int, metavar="N",
+                        help="grade the photos in N worker processes (default: by their "
+                             "number, at most the CPUs this process may use)")
     parser.add_argument("--drawing", action="append", default=[], metavar="FILE",
                         help="a drawn plan (SVG or JSON of points in mm); may be repeated; "
                              "one downloaded from the workbook page is graded at its own "
@@ -98,6 +111,7 @@ def _stage_class_report(outputs: OutputSet, report: str, keys: dict, results: li
 def run(args: argparse.Namespace) -> int:
     import json
     import sys
+    from pathlib import Path
 
     from ..errors import SpecError
     from ..grading.answers import feedback_text, grade_many, read_answers
@@ -105,9 +119,18 @@ def run(args: argparse.Namespace) -> int:
     from ..grading.exports import gradebook_csv, gradescope_results
     from ..io import output_set
 
-    if not args.answers and not args.drawing:
-        raise SpecError("give ANSWERS and/or --drawing FILE")
+    if args.key_file is not None:
+        if args.answers is not None:
+            raise SpecError("give the key once: as KEY or as --key FILE")
+        args.key, args.answers = args.key_file, args.key
+    if args.key is None:
+        raise SpecError("give the key: KEY or --key FILE")
+    if not args.answers and not args.drawing and not args.photo:
+        raise SpecError("give ANSWERS, --drawing FILE and/or --photo IMAGE")
+    if (args.marked or args.jobs is not None) and not args.photo:
+        raise SpecError(f"{'--marked' if args.marked else '--jobs'} is for --photo")
     keys = load_any_key(args.key)
+    photos = _grade_photos(keys, args) if args.photo else []
     key_of_student = None
     if args.student is not None:
         key_of_student = keys.get(args.student, keys.get("*"))
@@ -145,13 +168,29 @@ def run(args: argparse.Namespace) -> int:
             lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
                       for p in drawing["points"]]
             lines += [f"  !  {line}" for line in drawing["feedback"]]
+    graded = [(path, done) for path, done in photos if isinstance(done, dict)]
+    for _path, done in graded:
+        drawings.append(done["result"])
+        lines.append(done["header"])
+        if not args.quiet:
+            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
+                      for p in done["result"]["points"]]
+            lines += [f"  !  {line}" for line in done["result"]["feedback"]]
+    refused = [(path, done) for path, done in photos if isinstance(done, str)]
     if args.gradescope and len(results) > 1:
         raise SpecError(f"--gradescope writes one student's results; the answers hold "
                         f"{len(results)}", file=args.answers)
     with output_set() as outputs:   # every output file, or none
         if args.json:
-            outputs.text(args.json, json.dumps({"answers": results, "drawings": drawings},
-                                               ensure_ascii=False, indent=1, allow_nan=False))
+            data = {"answers": results, "drawings": drawings}
+            if args.photo:
+                data["refused"] = [{"photo": path, "error": why} for path, why in refused]
+            outputs.text(args.json, json.dumps(data, ensure_ascii=False, indent=1,
+                                               allow_nan=False))
+        if args.marked:
+            for name, (_, done) in zip(_marked_names([path for path, _ in graded]), graded,
+                                       strict=True):
+                outputs.binary(Path(args.marked) / name, done["marked"])
         if args.csv:
             outputs.text(args.csv, gradebook_csv(results))
         if args.report:
@@ -162,5 +201,98 @@ def run(args: argparse.Namespace) -> int:
             outputs.text(args.gradescope, json.dumps(
                 gradescope_results(result, drawings, feedback=args.feedback or "hints"),
                 ensure_ascii=False, indent=1))
-    sys.stdout.write("\n".join(lines) + "\n")
-    return 0
+    if lines:
+        sys.stdout.write("\n".join(lines) + "\n")
+    for _, why in refused:
+        print(f"planmethod: error: {why}", file=sys.stderr)
+    return 2 if refused else 0
+
+
+# -- photos ------------------------------------------------------------------------------------
+#: what a photo worker grades against (set once in each worker, inherited by fork)
+_WORK: dict = {}
+
+
+def _marked_names(paths: list[str]) -> list[str]:
+    """The marked photos' file names: each photo's name with ``_marked.jpg``, numbered where
+    two photos share a name.
+
+    >>> _marked_names(["a/s1.jpg", "b/s1.jpg", "s2.png"])
+    ['s1_marked.jpg', 's1_2_marked.jpg', 's2_marked.jpg']
+    """
+    from pathlib import Path
+
+    seen: dict[str, int] = {}
+    out = []
+    for path in paths:
+        stem = Path(path).stem
+        seen[stem] = seen.get(stem, 0) + 1
+        out.append(f"{stem}_marked.jpg" if seen[stem] == 1 else f"{stem}_{seen[stem]}_marked.jpg")
+    return out
+
+
+def _start_photo_worker(parent: int | None, keys: dict, key_source: str, marked: bool) -> None:
+    """A photo worker's first act: end with its parent, one thread for OpenCV (the pool is the
+    bound), and the keys to grade against."""
+    import cv2
+
+    from .workbook import end_with_parent
+
+    end_with_parent(parent)
+    cv2.setNumThreads(1)
+    _WORK.update(keys=keys, key_source=key_source, marked=marked)
+
+
+def _photo_header(result: dict) -> str:
+    from ..words import message, render
+
+    plan = (message("velocity plan") if result["plan"] == "velocity"
+            else message("acceleration plan"))
+    return render(message("{photo} (student {student}, {plan}): {score:g}/{total:g}",
+                          photo=result["photo"], student=str(result["student"]), plan=plan,
+                          score=result["score"], total=result["max_score"]))
+
+
+def _grade_one(path: str):
+    """One photo graded (with its marked image if asked), or why it was refused (text)."""
+    from ..errors import PlanmethodError
+    from ..grading.photos import photo_graded
+
+    try:
+        graded = photo_graded(_WORK["keys"], path, key_source=_WORK["key_source"])
+    except PlanmethodError as error:
+        return path, str(error)
+    done = {"result": graded.result, "header": _photo_header(graded.result)}
+    if _WORK["marked"]:
+        from ..render.marked import marked_photo
+
+        done["marked"] = marked_photo(graded.image, graded.result, [done["header"]])
+    return path, done
+
+
+def _grade_photos(keys: dict, args: argparse.Namespace) -> list:
+    """Every photo of ``--photo`` graded, in order — in a pool of ``--jobs`` worker processes
+    that ends with this one — as (path, result or the reason it was refused)."""
+    import importlib.util
+    import multiprocessing
+    import os
+    import sys
+
+    from ..errors import SpecError
+    from .workbook import worker_count
+
+    if importlib.util.find_spec("cv2") is None:
+        raise SpecError("grading photos needs OpenCV: pip install 'planmethod[paper]'")
+    workers = worker_count(args.jobs, len(args.photo)) if args.jobs is not None else \
+        worker_count(None, 6 * len(args.photo))
+    workers = min(workers, len(args.photo))
+    initial = (keys, str(args.key), bool(args.marked))
+    if workers <= 1:
+        _WORK.update(keys=keys, key_source=str(args.key), marked=bool(args.marked))
+        return [_grade_one(path) for path in args.photo]
+    method = "fork" if sys.platform.startswith("linux") else None
+    context = multiprocessing.get_context(method)
+    parent = os.getpid() if method == "fork" else None
+    with context.Pool(workers, initializer=_start_photo_worker,
+                      initargs=(parent, *initial)) as pool:   # leaving it ends the workers
+        return list(pool.imap(_grade_one, args.photo))

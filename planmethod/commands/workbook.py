@@ -190,7 +190,7 @@ def worker_count(jobs: int | None, frames: int) -> int:
     return max(1, min(jobs, frames))
 
 
-def _end_with_parent(parent: int | None) -> None:
+def end_with_parent(parent: int | None) -> None:
     """A worker's first act: end with the process that started it. SIGTERM ends it at once
     (not through the command's handler, which a pool worker would report and go on), Ctrl-C
     is left to the parent, and on Linux the kernel kills it when its parent ends, even by
@@ -231,7 +231,7 @@ def _solve_in_workers(exercise, angles: Sequence[float], workers: int,
     context = multiprocessing.get_context(method)
     parent = os.getpid() if method == "fork" else None
     frames: list[dict[str, Any]] = []
-    with context.Pool(min(workers, len(chunks)), initializer=_end_with_parent,
+    with context.Pool(min(workers, len(chunks)), initializer=end_with_parent,
                       initargs=(parent,)) as pool:   # leaving the block terminates the pool
         for done in pool.imap(_solve_chunk, chunks):
             frames += done

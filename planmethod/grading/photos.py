@@ -26,9 +26,11 @@ Needs OpenCV (``opencv-python-headless``, the ``paper`` extra).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from enum import StrEnum
 from pathlib import Path
 from typing import Any
 
@@ -53,8 +55,8 @@ from .paper import (
 )
 from .plan_points import graded_labels
 
-__all__ = ["MAX_PHOTO_BYTES", "MAX_TILT_DEG", "Correction", "PhotoReading", "Stroke",
-           "find_points", "find_strokes", "grade_photo", "read_photo"]
+__all__ = ["MAX_PHOTO_BYTES", "MAX_TILT_DEG", "Correction", "GradedPhoto", "PhotoReading",
+           "Stroke", "find_points", "find_strokes", "grade_photo", "photo_graded", "read_photo"]
 
 #: the largest photo file read (bytes) and the most pixels decoded
 MAX_PHOTO_BYTES = 40_000_000
@@ -118,7 +120,7 @@ def _decode(data: bytes, source: str):
 
         with Image.open(__import__("io").BytesIO(data)) as probe:
             width, height = probe.size
-    except Exception:  # noqa: BLE001 (any reason Pillow cannot read it: refused by name)
+    except Exception:
         width = height = None
     if width is not None and width * height > MAX_PIXELS:
         raise PhotoError(message("the photo has {pixels:.0f} megapixels, at most {limit:.0f} "
@@ -286,7 +288,7 @@ def _qr_text(image: np.ndarray, to_page: np.ndarray) -> str:
         margin = 4.0
         placed = np.array([[resolution, 0, -resolution * (left - margin)],
                            [0, resolution, -resolution * (top - margin)], [0, 0, 1]])
-        size = int(round((side + 2 * margin) * resolution))
+        size = round((side + 2 * margin) * resolution)
         crop = cv2.warpPerspective(image, placed @ to_page, (size, size),
                                    flags=cv2.INTER_LINEAR, borderValue=(255, 255, 255))
         gray = cv2.cvtColor(crop, cv2.COLOR_BGR2GRAY)
@@ -426,7 +428,7 @@ def _line_peaks(profile: np.ndarray, expected: Sequence[float], origin: float,
     reach = int(3.5 * resolution)
     for position in expected:
         index = (position - origin) * resolution - 0.5
-        low, high = int(round(index)) - reach, int(round(index)) + reach + 1
+        low, high = round(index) - reach, round(index) + reach + 1
         if low < 0 or high > len(profile):
             continue
         window = profile[low:high]
@@ -461,13 +463,13 @@ def measure_curl(rectified: np.ndarray, sheet: Sheet, resolution: float,
                                            math.floor((right - 3 - px) / 10) + 1)]
     horizontal = [py + 10 * k for k in range(math.ceil((top + 3 - py) / 10),
                                              math.floor((bottom - 3 - py) / 10) + 1)]
-    for low, high in zip(horizontal[:-1], horizontal[1:], strict=False):
+    for low, high in itertools.pairwise(horizontal):
         rows = slice(int((low + 1.5 - top) * resolution), int((high - 1.5 - top) * resolution))
         profile = np.median(signal[rows], axis=0)
         middle = (low + high) / 2
         samples_x += [(x, middle, offset) for x, offset in
                       _line_peaks(profile, vertical, left, resolution)]
-    for low, high in zip(vertical[:-1], vertical[1:], strict=False):
+    for low, high in itertools.pairwise(vertical):
         columns = slice(int((low + 1.5 - left) * resolution),
                         int((high - 1.5 - left) * resolution))
         profile = np.median(signal[:, columns], axis=1)
@@ -532,7 +534,7 @@ def _darkness(rectified: np.ndarray, resolution: float) -> np.ndarray:
 
     brightest = cv2.GaussianBlur(rectified.max(axis=2), (0, 0), 0.6)
     height, width = brightest.shape
-    factor = max(1, int(round(resolution / 2.0)))
+    factor = max(1, round(resolution / 2.0))
     small = cv2.resize(brightest, (max(1, width // factor), max(1, height // factor)),
                        interpolation=cv2.INTER_AREA)
     paper = cv2.medianBlur(small, 17)
@@ -792,6 +794,26 @@ def _span(line: Stroke, a: np.ndarray, b: np.ndarray) -> Stroke:
                   line.rms_mm)
 
 
+class MarkKind(StrEnum):
+    """How a point is marked on paper, most trusted first: a small cross or a dot the student
+    drew (marked), two lines that cross (implied), a line's free end."""
+
+    CROSS = "cross"
+    DOT = "dot"
+    CROSSING = "crossing"
+    END = "end"
+
+    @property
+    def marked(self) -> bool:
+        """Whether the student marked the point (a cross or a dot)."""
+        return self in (MarkKind.CROSS, MarkKind.DOT)
+
+    @property
+    def rank(self) -> int:
+        """Its place in the order of trust (0 first)."""
+        return list(MarkKind).index(self)
+
+
 @dataclass(frozen=True)
 class Mark:
     """A point a student marked, found in the rectified page (mm): where, and how — marked
@@ -799,7 +821,7 @@ class Mark:
     ``crossing``; a stroke's free ``end``)."""
 
     at: tuple[float, float]
-    kind: str
+    kind: MarkKind
     #: how exactly the place is known: the sine of the angle two crossing lines make (1 for
     #: a dot or an end)
     sharpness: float = 1.0
@@ -807,7 +829,7 @@ class Mark:
 
 def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarray, *,
                 resolution: float) -> list[Mark]:
-    """The marked points: where two strokes meet or cross (within a pencil's overshoot of
+    r"""The marked points: where two strokes meet or cross (within a pencil's overshoot of
     both) — a ``cross`` where more pencil is there than the long lines explain (a small cross or
     a dot drawn on it), else a ``crossing``; the ``dot``\ s that no crossing explains; and the
     free ``end``\ s of long strokes."""
@@ -821,21 +843,22 @@ def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarr
         for second in range(first + 1, len(strokes)):
             at = _meeting(strokes[first], strokes[second], 1.0)
             if at is not None:
-                kind = "cross" if _ink(at, spare, spare_weights, 1.0) >= MARK_INK_MM2 \
-                    else "crossing"
+                kind = MarkKind.CROSS if _ink(at, spare, spare_weights, 1.0) >= MARK_INK_MM2 \
+                    else MarkKind.CROSSING
                 a, b = strokes[first].direction, strokes[second].direction
                 sine = abs(a[0] * b[1] - a[1] * b[0])
                 marks.append(Mark((float(at[0]), float(at[1])), kind, sine))
     for dot in _dots(spare, spare_weights, resolution):
-        if all(math.dist(dot, mark.at) > 1.0 for mark in marks if mark.kind == "cross"):
-            marks.append(Mark(dot, "dot"))
+        if all(math.dist(dot, mark.at) > 1.0 for mark in marks
+               if mark.kind is MarkKind.CROSS):
+            marks.append(Mark(dot, MarkKind.DOT))
     for stroke in long:
         if stroke.length < 5.0:
             continue
         for along in (stroke.start, stroke.stop):
             end = stroke.at(along)
             if all(math.dist(end, mark.at) > 2.0 for mark in marks):
-                marks.append(Mark((float(end[0]), float(end[1])), "end"))
+                marks.append(Mark((float(end[0]), float(end[1])), MarkKind.END))
     return _gathered(marks)
 
 
@@ -845,19 +868,19 @@ def _gathered(marks: Sequence[Mark], radius: float = 0.3) -> list[Mark]:
     most trusted kind among its marks (what the student marked), placed where its lines cross
     — steep crossings weighing most, as their error goes with 1/sine — or, with no crossing
     in it, at its dot or end."""
-    order = sorted(range(len(marks)), key=lambda i: _KIND_ORDER[marks[i].kind])
+    order = sorted(range(len(marks)), key=lambda i: marks[i].kind.rank)
     used = [False] * len(marks)
     out = []
     for index in order:
         if used[index]:
             continue
-        reach = 2 * radius if marks[index].kind in ("dot", "end") else radius
+        reach = 2 * radius if marks[index].kind in (MarkKind.DOT, MarkKind.END) else radius
         group = [marks[other] for other in order if not used[other]
                  and math.dist(marks[other].at, marks[index].at) <= reach]
         for other in order:
             if not used[other] and math.dist(marks[other].at, marks[index].at) <= reach:
                 used[other] = True
-        crossed = [mark for mark in group if mark.kind in ("cross", "crossing")]
+        crossed = [mark for mark in group if mark.kind in (MarkKind.CROSS, MarkKind.CROSSING)]
         placing = crossed or [marks[index]]
         weights = np.array([mark.sharpness for mark in placing]) ** 4
         x, y = (np.array([mark.at for mark in placing]) * weights[:, None]).sum(axis=0) / max(
@@ -928,7 +951,7 @@ def _dots(points: np.ndarray, weights: np.ndarray, resolution: float
     mask = np.zeros((size[1], size[0]), np.uint8)
     cells = np.floor((points - low) * resolution).astype(int)
     mask[cells[:, 1], cells[:, 0]] = 255
-    bridge = int(round(0.8 * resolution)) | 1
+    bridge = round(0.8 * resolution) | 1
     joined = cv2.dilate(mask, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (bridge, bridge)))
     count, labels = cv2.connectedComponents(joined, connectivity=8)
     owner = labels[cells[:, 1], cells[:, 0]]
@@ -953,15 +976,11 @@ def _rectified(image: np.ndarray, to_page: np.ndarray, box, resolution: float) -
     left, top, right, bottom = box
     placed = np.array([[resolution, 0, -resolution * left - 0.5],
                        [0, resolution, -resolution * top - 0.5], [0, 0, 1]])
-    size = (int(round((right - left) * resolution)), int(round((bottom - top) * resolution)))
+    size = (round((right - left) * resolution), round((bottom - top) * resolution))
     return cv2.warpPerspective(image, placed @ to_page, size, flags=cv2.INTER_LINEAR,
                                borderMode=cv2.BORDER_REPLICATE)
 
 
-#: the order in which marks of one place are trusted: what the student marked first, then
-#: where lines cross, then where a line ends
-_KIND_ORDER = {"cross": 0, "dot": 1, "crossing": 2, "end": 3}
-_MARKED = ("cross", "dot")
 
 
 def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
@@ -988,7 +1007,7 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
             return []
         distance = np.hypot(*(positions - np.asarray(target, float)).T)
         return sorted((int(i) for i in np.nonzero(distance <= radius)[0]),
-                      key=lambda i: (_KIND_ORDER[kinds[i]], distance[i]))
+                      key=lambda i: (kinds[i].rank, distance[i]))
 
     found = {}
     for label in [*graded, *helpers]:
@@ -998,7 +1017,7 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         for _, x, y in wrong.get(label, ()):
             mistaken += [index for index in within((x, y), radius)
                          if index not in right and index not in mistaken]
-        mistaken.sort(key=lambda i: _KIND_ORDER[kinds[i]])
+        mistaken.sort(key=lambda i: kinds[i].rank)
         found[label] = (right, mistaken)
     chosen: dict[str, int] = {}
     claimed: set[int] = set()
@@ -1011,8 +1030,8 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         if label in chosen or not right:
             continue
         marked = [index for index in mistaken
-                  if kinds[index] in _MARKED and index not in claimed]
-        if kinds[right[0]] not in _MARKED and marked:
+                  if kinds[index].marked and index not in claimed]
+        if not kinds[right[0]].marked and marked:
             chosen[label] = marked[0]
             claimed.add(marked[0])
         else:
@@ -1053,25 +1072,41 @@ def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
     return xy if best is None else best[1]
 
 
+@dataclass(frozen=True)
+class GradedPhoto:
+    """A photo graded: the result (JSON-ready, as :func:`grade_photo` returns it) and the photo
+    itself (B G R), for marking it."""
+
+    result: dict
+    image: Any = field(repr=False)
+
+
 def grade_photo(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
                 key_source: str = "the key") -> dict:
     """Grade the plan drawn on the sheet a photo shows (see the module notes): the result of
-    :func:`~planmethod.grading.drawings.grade_drawing`, each point found with where it is in
-    the photo (``photo_px``) and on the page (``page_mm``), and the photo's ``sheet`` and
-    ``photo`` facts.
+    :func:`~planmethod.grading.drawings.grade_drawing`, each point with where it was found in
+    the photo (``photo_px``) and on the page (``page_mm``, the point as measured; a point
+    within the photo's measuring error of a named mistake's place is graded there) and where
+    it belongs in the photo (``right_photo_px``), and the photo's ``sheet`` and ``reading``.
 
     Raises
     ------
     PhotoError
         In one line, for a photo that cannot be read or a sheet the key does not have.
     """
+    return photo_graded(keys, path, key_source=key_source).result
+
+
+def photo_graded(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
+                 key_source: str = "the key") -> GradedPhoto:
+    """:func:`grade_photo`, with the photo kept (:class:`GradedPhoto`)."""
     source = str(path)
     data = read_bytes_bounded(path, MAX_PHOTO_BYTES, error=SubmissionError)
     reading = read_photo(data, source)
     key, sheet = sheet_of(reading, keys, key_source)
     to_page = reading.to_page
     if any(tuple(marker.centre) != MARKER_CENTRES[marker.number] for marker in sheet.markers):
-        import cv2       # the key's sheet puts its markers elsewhere: the homography again
+        import cv2  # the key's sheet puts its markers elsewhere: the homography again
 
         photo = np.concatenate([_apply(reading.to_photo, _marker_corners_mm(marker.number))
                                 for marker in sheet.markers])
@@ -1094,32 +1129,39 @@ def grade_photo(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
     placed = [(xy, mark) for xy, mark in placed if math.hypot(*xy) > POLE_ROOM_MM]
     entry = key["plans"][sheet.plan]
     chosen = _assign(entry, placed)
-    points = {sheet.pole: (0.0, 0.0)}
     measured = {label: (float(placed[index][0][0]), float(placed[index][0][1]))
                 for label, index in chosen.items()}
+    points = {sheet.pole: (0.0, 0.0)}
     points |= {label: _matched(entry, label, xy) for label, xy in measured.items()}
     drawing = Drawing(points, sheet.plan, (), source, title=key.get("title"),
                       angle=float(key.get("angle", 0.0)), exact_scale=True)
     result = grade_drawing(key, drawing, sheet.plan, rescale=False)
     photo_of = np.linalg.inv(to_page)
+
+    def in_photo(plan_xy) -> list[float]:
+        page = correction.seen(np.asarray([plan_to_page(sheet.pole_mm, plan_xy)]))
+        found = _apply(photo_of, page)[0]
+        return [round(float(found[0]), 1), round(float(found[1]), 1)]
+
     for point in result["points"]:
+        point["right_photo_px"] = in_photo(entry["points_mm"][point["point"]])
         if point.get("found"):
-            xy = measured.get(point["point"], points[point["point"]])
+            xy = measured[point["point"]]
             page = plan_to_page(sheet.pole_mm, xy)
-            in_photo = _apply(photo_of, correction.seen(np.asarray([page])))[0]
-            point["page_mm"] = [round(page[0], 3), round(page[1], 3)]
             mark = placed[chosen[point["point"]]][1]
-            point["mark"] = mark.kind
-            point["sharpness"] = round(mark.sharpness, 3)
-            point["photo_px"] = [round(float(in_photo[0]), 1), round(float(in_photo[1]), 1)]
+            point["page_mm"] = [round(page[0], 3), round(page[1], 3)]
+            point["photo_px"] = in_photo(xy)
+            point["mark"] = str(mark.kind)
+    result["pole_photo_px"] = in_photo((0.0, 0.0))
     result["photo"] = source
     result["sheet"] = {"student": sheet.student, "plan": sheet.plan, "page": sheet.page,
                        "code": sheet.code.text}
     result["reading"] = {"tilt_deg": round(reading.tilt_deg, 1),
                          "px_per_mm": round(reading.px_per_mm, 2),
                          "edge_mm": round(reading.edge_mm, 2),
-                         "grid_samples": correction.samples,
+                         "paper_level": round(reading.paper_level, 1),
+                         "grid_lines": correction.samples,
                          "grid_rms_mm": (round(correction.rms_mm, 3)
                                          if math.isfinite(correction.rms_mm) else None),
                          "strokes": len(strokes), "marks": len(marks)}
-    return result
+    return GradedPhoto(result, reading.image)

@@ -43,6 +43,8 @@ def pdf_pages(pages: Iterable[str], *, title: str = "") -> bytes:
     shared = cairocffi.PDFSurface(output, 1, 1)
     if title:
         shared.set_metadata(cairocffi.PDF_METADATA_TITLE, title)
+    # a fixed date: the same pages make the same bytes
+    shared.set_metadata(cairocffi.PDF_METADATA_CREATE_DATE, "2026-01-01T00:00:00Z")
 
     class _Page(PDFSurface):
         """CairoSVG's PDF surface drawing onto the next page of ``shared``."""

@@ -300,7 +300,7 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
     cover = np.zeros((y1 - y0, x1 - x0), np.float32)
 
     def draw(points: np.ndarray, thickness_mm: float, strength: float) -> None:
-        thickness = max(1, int(round(thickness_mm * px_per_mm)))
+        thickness = max(1, round(thickness_mm * px_per_mm))
         layer = np.zeros_like(cover)
         cv2.polylines(layer, [np.round((points - origin) * unit).astype(np.int32)], False, 1.0,
                       thickness, cv2.LINE_AA, shift)
@@ -313,13 +313,13 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
             draw(piece, width_mm, strength)
     for label, xy in drawn.points.items():
         centre = to_px(xy)
-        kind = rng.choice(["dot", "cross"] if label in drawn.marked else
-                          ["dot", "cross", "none"])
-        if kind == "dot":
+        shape = rng.choice(["dot", "cross"] if label in drawn.marked else
+                           ["dot", "cross", "none"])
+        if shape == "dot":
             radius = rng.uniform(0.5, 0.75) * px_per_mm
             cv2.circle(cover, tuple(np.round((centre - origin) * unit).astype(int)),
-                       int(round(radius * unit)), rng.uniform(0.6, 0.85), -1, cv2.LINE_AA, shift)
-        elif kind == "cross":
+                       round(radius * unit), rng.uniform(0.6, 0.85), -1, cv2.LINE_AA, shift)
+        elif shape == "cross":
             turn = rng.uniform(0, math.pi / 2)
             arm = rng.uniform(1.2, 1.8) * px_per_mm
             for angle in (turn, turn + math.pi / 2):

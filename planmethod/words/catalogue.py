@@ -147,6 +147,11 @@ def compile_folder(folder: Path) -> list[str]:
     for po in sorted(folder.glob(f"*/LC_MESSAGES/{DOMAIN}.po")):
         with open(po, "rb") as file:
             language = pofile.read_po(file)
+        # an untranslated plural is left out, as an untranslated singular is (Babel would
+        # write its English forms as if they were its translation)
+        for entry in list(language):
+            if entry.id and isinstance(entry.string, tuple) and not any(entry.string):
+                language.delete(entry.id, context=entry.context)
         written.append(_write(po.with_suffix(".mo"), lambda file, language=language:
                               mofile.write_mo(file, language, use_fuzzy=False)))
     return written
