@@ -290,9 +290,12 @@ def _grade_photos(keys: dict, args: argparse.Namespace) -> list:
     if workers <= 1:
         _WORK.update(keys=keys, key_source=str(args.key), marked=bool(args.marked))
         return [_grade_one(path) for path in args.photo]
-    method = "fork" if sys.platform.startswith("linux") else None
+    # fork on Linux: the workers are this process's children (the parent check holds) — unless
+    # OpenCV already runs here (a notebook, a test): its thread pool does not survive a fork
+    method = "fork" if sys.platform.startswith("linux") and "cv2" not in sys.modules else \
+        "spawn"
     context = multiprocessing.get_context(method)
-    parent = os.getpid() if method == "fork" else None
+    parent = os.getpid() if sys.platform.startswith("linux") else None
     with context.Pool(workers, initializer=_start_photo_worker,
                       initargs=(parent, *initial)) as pool:   # leaving it ends the workers
         return list(pool.imap(_grade_one, args.photo))

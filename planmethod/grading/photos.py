@@ -310,7 +310,7 @@ def read_photo(data: bytes, source: str) -> PhotoReading:
         if float(np.percentile(gray, 99)) < MIN_PAPER_LEVEL:
             raise PhotoError(message("the photo is too dark to read the sheet: photograph it "
                                      "in better light"), file=source)
-        if _sharpness_px(gray) > 0.004 * max(gray.shape):
+        if _sharpness_px(gray) > max(3.0, 0.0011 * max(gray.shape)):
             raise PhotoError(message("the photo is too blurred to read the sheet: hold the "
                                      "phone still and let it focus"), file=source)
         missing = [_corner_name(number) for number in range(len(MARKER_CENTRES))
