@@ -95,7 +95,9 @@ def marked_photo(image: np.ndarray, result: Mapping[str, Any], header: Sequence[
                 draw.ellipse([rx - ring / 2, ry - ring / 2, rx + ring / 2, ry + ring / 2],
                              outline=GREEN, width=max(1, line // 2))
             draw.ellipse([x - ring, y - ring, x + ring, y + ring], outline=colour, width=line)
-            draw.text((x + ring * 1.1, y - ring * 2.0), name, fill=colour, font=label_font)
+            # a helper point's name below, clear of the point's it usually lies beside
+            draw.text((x + ring * 1.1, y - ring * 2.0 if scored else y + ring * 0.4), name,
+                      fill=colour, font=label_font)
         elif right_place is not None:
             x, y = at(right_place)
             _dashed_ring(draw, (x, y), ring, RED, line)
