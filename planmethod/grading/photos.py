@@ -994,7 +994,8 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
     only crossing lines at its right place is taken at the mark. Points with nothing at their
     right place choose first, each mark going to one of them. A point found at neither is the
     nearest mark left within :data:`SEARCH_MM`. A helper point (n, k) is taken only at its
-    right place or a mistake's."""
+    right place or a mistake's. A mistake's place nearer the pole than :data:`POLE_ROOM_MM` and
+    2.5 mm is not looked at: the lines that leave the pole cross there whatever was drawn."""
     radii = entry["tolerance_mm"]
     wrong = entry.get("mistake_points", {})
     graded = graded_labels(entry)
@@ -1015,6 +1016,8 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         right = within(entry["points_mm"][label], radius)
         mistaken = []
         for _, x, y in wrong.get(label, ()):
+            if math.hypot(x, y) < POLE_ROOM_MM + 2.5:    # where the pole's lines crowd
+                continue
             mistaken += [index for index in within((x, y), radius)
                          if index not in right and index not in mistaken]
         mistaken.sort(key=lambda i: kinds[i].rank)

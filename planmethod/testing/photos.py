@@ -392,12 +392,14 @@ def _camera(conditions: Conditions, page_mm: Sequence[float], size: tuple[int, i
     corners = np.array([[-page_mm[0] / 2, -page_mm[1] / 2, 0.0], [page_mm[0] / 2,
                         -page_mm[1] / 2, 0.0], [page_mm[0] / 2, page_mm[1] / 2, 0.0],
                         [-page_mm[0] / 2, page_mm[1] / 2, 0.0]])
-    distance = 1000.0
-    for _ in range(3):
-        seen = _project(corners, rotation, np.array([0.0, 0.0, distance]), size)
+    translation = np.array([0.0, 0.0, 1000.0])
+    for _ in range(4):            # the outline fills ``fill`` of the picture, in its middle
+        seen = _project(corners, rotation, translation, size)
         share = max(np.ptp(seen[:, 0]) / width, np.ptp(seen[:, 1]) / height)
-        distance *= share / conditions.fill
-    return rotation, np.array([0.0, 0.0, distance])
+        middle = (seen.min(axis=0) + seen.max(axis=0)) / 2 - np.array([width, height]) / 2
+        translation[:2] -= middle * translation[2] / FOCAL_PX
+        translation *= share / conditions.fill
+    return rotation, translation
 
 
 def _project(points: np.ndarray, rotation, translation, size) -> np.ndarray:
