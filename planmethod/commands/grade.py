@@ -169,13 +169,8 @@ def run(args: argparse.Namespace) -> int:
                       for p in drawing["points"]]
             lines += [f"  !  {line}" for line in drawing["feedback"]]
     graded = [(path, done) for path, done in photos if isinstance(done, dict)]
-    for _path, done in graded:
-        drawings.append(done["result"])
-        lines.append(done["header"])
-        if not args.quiet:
-            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
-                      for p in done["result"]["points"]]
-            lines += [f"  !  {line}" for line in done["result"]["feedback"]]
+    drawings += [done["result"] for _, done in graded]
+    lines += _photo_lines([done for _, done in graded], quiet=args.quiet)
     refused = [(path, done) for path, done in photos if isinstance(done, str)]
     if args.gradescope and len(results) > 1:
         raise SpecError(f"--gradescope writes one student's results; the answers hold "
@@ -211,6 +206,19 @@ def run(args: argparse.Namespace) -> int:
 # -- photos ------------------------------------------------------------------------------------
 #: what a photo worker grades against (set once in each worker, inherited by fork)
 _WORK: dict = {}
+
+
+def _photo_lines(graded: list[dict], *, quiet: bool) -> list[str]:
+    """What the screen shows of graded photos: each photo's score, then (unless ``quiet``) its
+    points' verdicts and the plan's feedback, as for a drawing."""
+    lines = []
+    for done in graded:
+        lines.append(done["header"])
+        if not quiet:
+            lines += [f"  {'ok ' if p['correct'] else 'XX '} {p['feedback']}"
+                      for p in done["result"]["points"]]
+            lines += [f"  !  {line}" for line in done["result"]["feedback"]]
+    return lines
 
 
 def _marked_names(paths: list[str]) -> list[str]:

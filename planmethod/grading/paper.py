@@ -289,7 +289,8 @@ def _pair(value: Any, where: str, file: str | None) -> tuple[float, float]:
 
 
 def read_sheet(key: Mapping[str, Any], plan: str, *, file: str | None = None) -> Sheet:
-    """A key's sheet of ``plan``, checked (a key is a file a person may have edited).
+    """A key's sheet of ``plan``, checked (a key is a file a person may have edited) — one
+    check per field of the record, in the order variants writes them (hence its length).
 
     Raises
     ------

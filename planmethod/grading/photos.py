@@ -280,21 +280,28 @@ def _sharpness_px(gray: np.ndarray) -> float:
 
 
 def _qr_text(image: np.ndarray, to_page: np.ndarray) -> str:
+    """The QR code's text, read from its square of the page rectified at a few resolutions
+    (cut close, then given a white quiet zone: the grid above it is kept out), by OpenCV's two
+    QR readers in turn; empty if neither reads it."""
     import cv2
 
     left, top, side = QR_MM
-    detector = cv2.QRCodeDetector()
+    readers = (cv2.QRCodeDetectorAruco(), cv2.QRCodeDetector())
     for resolution in (8.0, 12.0, 5.0):
-        margin = 4.0
+        margin = 1.5
         placed = np.array([[resolution, 0, -resolution * (left - margin)],
                            [0, resolution, -resolution * (top - margin)], [0, 0, 1]])
         size = round((side + 2 * margin) * resolution)
         crop = cv2.warpPerspective(image, placed @ to_page, (size, size),
                                    flags=cv2.INTER_LINEAR, borderValue=(255, 255, 255))
         gray = cv2.cvtColor(crop, cv2.COLOR_BGR2GRAY)
-        text, _, _ = detector.detectAndDecode(gray)
-        if text:
-            return text
+        quiet = round(4 * resolution)
+        gray = cv2.copyMakeBorder(gray, quiet, quiet, quiet, quiet, cv2.BORDER_CONSTANT,
+                                  value=255)
+        for reader in readers:
+            text, _, _ = reader.detectAndDecode(gray)
+            if text:
+                return text
     return ""
 
 
@@ -1039,7 +1046,14 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
             claimed.add(marked[0])
         else:
             chosen[label] = right[0]
-    taken = claimed | set(chosen.values())
+    _nearest_left(entry, graded, positions, chosen, claimed | set(chosen.values()))
+    return chosen
+
+
+def _nearest_left(entry: Mapping[str, Any], graded: Sequence[str], positions: np.ndarray,
+                  chosen: dict[str, int], taken: set[int]) -> None:
+    """Give each plan point not found yet the nearest mark no point took, within
+    :data:`SEARCH_MM` of its right place."""
     for label in graded:
         if label in chosen or not len(positions):
             continue
@@ -1049,7 +1063,29 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         if free:
             chosen[label] = free[0]
             taken.add(free[0])
-    return chosen
+
+
+def _locate(result: dict, entry: Mapping[str, Any], sheet: Sheet,
+            marked: Mapping[str, tuple[tuple[float, float], Mark]], correction: Correction,
+            photo_of: np.ndarray) -> None:
+    """Write into a graded plan where each point was found (``page_mm`` as measured,
+    ``photo_px``, the ``mark``) and where it belongs in the photo (``right_photo_px``; the
+    pole's ``pole_photo_px``)."""
+
+    def in_photo(plan_xy) -> list[float]:
+        page = correction.seen(np.asarray([plan_to_page(sheet.pole_mm, plan_xy)]))
+        found = _apply(photo_of, page)[0]
+        return [round(float(found[0]), 1), round(float(found[1]), 1)]
+
+    for point in result["points"]:
+        point["right_photo_px"] = in_photo(entry["points_mm"][point["point"]])
+        if point.get("found"):
+            xy, mark = marked[point["point"]]
+            page = plan_to_page(sheet.pole_mm, xy)
+            point["page_mm"] = [round(page[0], 3), round(page[1], 3)]
+            point["photo_px"] = in_photo(xy)
+            point["mark"] = str(mark.kind)
+    result["pole_photo_px"] = in_photo((0.0, 0.0))
 
 
 #: how exactly a photo places a point (mm): the benchmark's error on generated photos
@@ -1139,23 +1175,8 @@ def photo_graded(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
     drawing = Drawing(points, sheet.plan, (), source, title=key.get("title"),
                       angle=float(key.get("angle", 0.0)), exact_scale=True)
     result = grade_drawing(key, drawing, sheet.plan, rescale=False)
-    photo_of = np.linalg.inv(to_page)
-
-    def in_photo(plan_xy) -> list[float]:
-        page = correction.seen(np.asarray([plan_to_page(sheet.pole_mm, plan_xy)]))
-        found = _apply(photo_of, page)[0]
-        return [round(float(found[0]), 1), round(float(found[1]), 1)]
-
-    for point in result["points"]:
-        point["right_photo_px"] = in_photo(entry["points_mm"][point["point"]])
-        if point.get("found"):
-            xy = measured[point["point"]]
-            page = plan_to_page(sheet.pole_mm, xy)
-            mark = placed[chosen[point["point"]]][1]
-            point["page_mm"] = [round(page[0], 3), round(page[1], 3)]
-            point["photo_px"] = in_photo(xy)
-            point["mark"] = str(mark.kind)
-    result["pole_photo_px"] = in_photo((0.0, 0.0))
+    marked = {label: (measured[label], placed[index][1]) for label, index in chosen.items()}
+    _locate(result, entry, sheet, marked, correction, np.linalg.inv(to_page))
     result["photo"] = source
     result["sheet"] = {"student": sheet.student, "plan": sheet.plan, "page": sheet.page,
                        "code": sheet.code.text}

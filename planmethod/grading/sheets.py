@@ -354,6 +354,27 @@ def paper_plan_sheet(key: Mapping[str, Any], sheet, pages: int) -> str:
                      stroke=GRID_MAJOR[0], width=0.3, css="drawing area")
     _markers(canvas, sheet)
     _qr(canvas, sheet)
+    _header(canvas, key, sheet, pages)
+    px, py = sheet.pole_mm
+    canvas.circle((px, py), 0.55, fill=INK, css="pole", area=False)
+    canvas.circle((px, py), 1.6, fill="none", stroke=INK, width=0.25, css="pole ring",
+                  area=False)
+    canvas.text((px - 2.2, py - 2.2), sheet.pole, size=5.0, family=LABEL_FAMILY,
+                anchor="end", italic=True, css="pole-label", area=False)
+    _scale_bar(canvas, sheet)
+    title = render(message("{title} — blank {plan} sheet of student {student}",
+                           title=str(key.get("title", "")), plan=_plan_name(sheet.plan),
+                           student=sheet.student))
+    return _page_svg(canvas, title, sheet.page_mm,
+                     {"data-planmethod-plan": sheet.plan,
+                      "data-planmethod-student": sheet.student})
+
+
+def _header(canvas: Canvas, key: Mapping[str, Any], sheet, pages: int) -> None:
+    """A plan sheet's header: the title and plan, the student, angle and page, the scale and
+    the first vector's drawn length, what to do."""
+    from ..words import message, render
+
     numbers = key_numbers(key)
     exercise_drive = ((key.get("exercise") or {}).get("drive") or {}).get("link")
     phi = numbered("φ", numbers.get(exercise_drive, 1))
@@ -379,19 +400,6 @@ def paper_plan_sheet(key: Mapping[str, Any], sheet, pages: int) -> str:
         "Draw the plan from the pole {pole} with a sharp pencil and a ruler; mark each point "
         "with a dot or a small cross and label it. Photograph the whole sheet with all four "
         "corner squares in view.", pole=sheet.pole)), 162.0, PAGE_SMALL_MM, lines=2)
-    px, py = sheet.pole_mm
-    canvas.circle((px, py), 0.55, fill=INK, css="pole", area=False)
-    canvas.circle((px, py), 1.6, fill="none", stroke=INK, width=0.25, css="pole ring",
-                  area=False)
-    canvas.text((px - 2.2, py - 2.2), sheet.pole, size=5.0, family=LABEL_FAMILY,
-                anchor="end", italic=True, css="pole-label", area=False)
-    _scale_bar(canvas, sheet)
-    title = render(message("{title} — blank {plan} sheet of student {student}",
-                           title=str(key.get("title", "")), plan=_plan_name(sheet.plan),
-                           student=sheet.student))
-    return _page_svg(canvas, title, sheet.page_mm,
-                     {"data-planmethod-plan": sheet.plan,
-                      "data-planmethod-student": sheet.student})
 
 
 def _scale_symbol(plan: str) -> str:

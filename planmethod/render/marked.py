@@ -48,7 +48,8 @@ def marked_photo(image: np.ndarray, result: Mapping[str, Any], header: Sequence[
     """The part of ``image`` (the photo, B G R) that holds the plan, enlarged, marked with
     ``result``'s points (``photo_px``: where each was found; ``right_photo_px``: where it
     belongs; ``pole_photo_px``), with the lines of ``header`` and each point's sentence under
-    it; as JPEG bytes."""
+    it; as JPEG bytes. (It is as long as the marks it draws: a ring, a name, a line to the
+    right place, or a dashed ring for a point not found.)"""
     from PIL import Image, ImageDraw
 
     millimetre = float(result.get("reading", {}).get("px_per_mm", 8.0))

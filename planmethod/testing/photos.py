@@ -276,7 +276,9 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
                 rng: np.random.Generator, *, px_per_mm: float = PAGE_PX_PER_MM,
                 labels: bool = True) -> np.ndarray:
     """``page`` with ``drawn`` pencilled on it: grey grainy strokes 0.3–0.5 mm wide, a dot or
-    a small cross at some points, and each point's label written beside it."""
+    a small cross at some points, and each point's label written beside it (one pass of the
+    pencil over the strokes, the marks and the labels in one window of the page: hence its
+    length)."""
     import cv2
 
     from ..grading.paper import plan_to_page
