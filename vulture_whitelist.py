@@ -5,12 +5,16 @@ Read by vulture, never imported (an attribute set in ``__init__`` is not on its 
 ``tests/test_dead_code.py`` runs exactly that. A name goes here only with the reason it stays.
 """
 
+from planmethod import __dir__, __getattr__
+from planmethod.application.api import Exercise
+from planmethod.application.tasks import Watch
 from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
+from planmethod.kinematics.motion import Motion
 from planmethod.kinematics.program import Model
-from planmethod.kinematics.solve import Motion
 from planmethod.render.pdf import pdf_pages
-from planmethod.studio.server import StudioHandler, StudioServer
+from planmethod.studio.server import StudioHandler, StudioServer, _DeadlineReader
+from planmethod.testing.pseudo import _PageText
 
 # argparse's parser reads this attribute: negative numbers in any float notation are values
 _Parser._negative_number_matcher  # noqa: B018
@@ -27,6 +31,8 @@ variant_exercise  # noqa: B018
 # name (socketserver, http.server): the studio's server and its request handler
 StudioServer.daemon_threads  # noqa: B018
 StudioServer.allow_reuse_address  # noqa: B018
+StudioServer.request_queue_size  # noqa: B018
+StudioServer.handle_error  # noqa: B018
 StudioHandler.server_version  # noqa: B018
 StudioHandler.sys_version  # noqa: B018
 StudioHandler.protocol_version  # noqa: B018
@@ -37,7 +43,25 @@ StudioHandler.do_PUT  # noqa: B018
 StudioHandler.do_DELETE  # noqa: B018
 StudioHandler.do_HEAD  # noqa: B018
 StudioHandler.log_message  # noqa: B018
+StudioHandler.log_error  # noqa: B018
 StudioHandler.close_connection  # noqa: B018
+# the standard library's HTML parser calls these methods by name (html.parser): the
+# pseudo-translation's reader of a page's visible text
+_PageText.handle_starttag  # noqa: B018
+_PageText.handle_endtag  # noqa: B018
+_PageText.handle_data  # noqa: B018
+# the io module's buffered reader calls a raw stream's readinto by name: the studio's reader
+# that keeps a request's deadline
+_DeadlineReader.readinto  # noqa: B018
+# Python calls a module's __getattr__ and __dir__ by name: the top level reaches the Python
+# API lazily (planmethod.load …, docs/api.md)
+__getattr__  # noqa: B018
+__dir__  # noqa: B018
+# the Python API's own methods and properties, which scripts and notebooks call
+# (docs/api.md, tests/test_api.py)
+Exercise.is_template  # noqa: B018
+Exercise.workbook  # noqa: B018
+Watch.cancelled  # noqa: B018
 # CairoSVG's surface calls _create_surface by name to make its cairo surface: the booklet's
 # pages subclass it, inside pdf_pages, to draw page after page onto one PDF
 pdf_pages._create_surface  # noqa: B018

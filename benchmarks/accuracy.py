@@ -175,7 +175,7 @@ def run(quick: bool = False, *, log=print) -> dict:
     def exact_single():
         out_v, out_a = [], []
         for angle in plan_angles:
-            motion = solve(mechanism, float(angle))
+            motion = solve(mechanism, float(angle)).at(0)
             out_v.append(motion.velocity("C"))
             out_a.append(motion.acceleration("C"))
         return np.array(out_v), np.array(out_a)

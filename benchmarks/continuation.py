@@ -4,13 +4,13 @@
 ``planmethod solve FILE --angle X`` is :func:`planmethod.report.analyse` at X. It used to pose
 the exercise at X and choose each group's assembly there again from a sketch made for
 ``drive.angle``; it now follows the assembly chosen at ``drive.angle`` to X
-(:func:`planmethod.kinematics.solve.pose`: a sweep of the way every degree with the compiled
+(:func:`planmethod.kinematics.continuation.pose`: a sweep of the way every degree with the compiled
 program, refined where a group may meet a limit position, then the exercise posed at X with the
 followed positions as its sketch). Both are timed here in one run, in turn, for every shipped
 exercise at twelve crank angles (those of ``tests/test_continuation.py``), each call at an
 angle not solved before (so each poses and compiles a new model, as one ``solve --angle``
 does): the whole analysis with its plans, the exact values only (``plans=False``), and
-:func:`~planmethod.kinematics.solve.follow` alone on a model already compiled. Times are
+:func:`~planmethod.kinematics.continuation.follow` alone on a model already compiled. Times are
 medians over the angles and rounds, in ms.
 
 Examples
@@ -30,7 +30,7 @@ from dataclasses import replace
 import numpy as np
 
 from planmethod.errors import PlanmethodError
-from planmethod.kinematics.solve import follow
+from planmethod.kinematics.continuation import follow
 from planmethod.report import analyse
 from planmethod.scene import plan_scene
 from planmethod.spec import load_exercise

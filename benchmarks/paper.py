@@ -67,14 +67,13 @@ def deserved_verdict(point: dict, verdict: str) -> bool:
 
 def course_keys(template: str, count: int, seed: int) -> list[dict]:
     """The keys of ``count`` variants of a shipped template, with their sheets."""
-    from planmethod.commands.variants import variant_files
+    from planmethod.application.variants import VariantsRequest, class_of, draw_variants
     from planmethod.grading.templates import load_template
 
-    students = [str(number).zfill(3) for number in range(1, count + 1)]
-    files, _, _ = variant_files(load_template(ROOT / "exercises" / "templates" /
-                                              f"{template}.toml"),
-                                students, students, seed=seed, sheets=False, progress=False)
-    return json.loads(files["keys.json"])["keys"]
+    template_file = load_template(ROOT / "exercises" / "templates" / f"{template}.toml")
+    drawn = draw_variants(VariantsRequest(template_file, class_of(count), seed=seed,
+                                          sheets=False))
+    return json.loads(drawn.files["keys.json"])["keys"]
 
 
 def _cases(keys: list[dict], template: str) -> list[tuple]:
@@ -120,7 +119,7 @@ def photograph_and_grade(case: tuple) -> dict:
     keys = {key["student"]: key}
     start, start_cpu = time.perf_counter(), time.process_time()
     try:
-        result = grade_photo(keys, path)
+        result = grade_photo(keys, path).as_dict()
         refused = None
     except PlanmethodError as error:
         result, refused = None, str(error)

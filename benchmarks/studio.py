@@ -17,6 +17,15 @@ SVG into the page).
 Targets of issue 22: the server ≤ 16 ms (compressor) and ≤ 40 ms (conveyor) per update, the
 round trip ≤ 50 ms and ≤ 100 ms, on the benchmark machine.
 
+*A solve during an export* (issue 35): a studio (in this process, on a free port) runs a
+200-variant export as its job (in a process of its own: :mod:`planmethod.studio.jobs`) while
+the compressor is solved over HTTP again and again (``POST /api/solve``, as a drag does) and
+the folder listed (``GET /api/files``); each request's whole time from sending to the answer
+read, against the same requests on the idle studio before it. Then the alternative the studio
+did not choose: the same export run in a thread of the studio's own process (as a job thread
+with cooperative cancellation would), with the same solves. Target: no solve waits more than
+1 s (before, one lock served every request: a solve waited for the whole export, 17.5 s).
+
 *Load*: the machine these run on is shared, and its load stretches wall times several times
 over, and CPU times too (two virtual CPUs shared by many processes). So the run also times
 a reference workload (:func:`~benchmarks.common.reference_workload`: numpy calls, formatting
@@ -204,6 +213,125 @@ def screenshot(path: Path, exercise: str = "exercises/fourbar_coupler_point.toml
     return True
 
 
+#: issue 35's target: the longest a solve waits while an export runs (ms), and its size
+EXPORT_TARGET_MS, EXPORT_COUNT = 1000.0, 200
+
+
+def _timed_request(server, method: str, path: str,
+                   body: bytes | None = None) -> tuple[float, bytes]:
+    """(the wall time in ms, the answer) of one request to ``server``, from sending to the
+    answer read."""
+    import http.client
+
+    from planmethod.studio.server import HOST
+
+    connection = http.client.HTTPConnection(HOST, server.port, timeout=600)
+    start = time.perf_counter()
+    connection.request(method, path, body=body, headers={"X-Planmethod-Token": server.token})
+    response = connection.getresponse()
+    answer = response.read()
+    elapsed = 1000 * (time.perf_counter() - start)
+    connection.close()
+    if response.status not in (200, 202):
+        raise RuntimeError(f"{method} {path}: {response.status} {answer[:200]!r}")
+    return elapsed, answer
+
+
+def _summary(times: list[float]) -> dict:
+    return {"median_ms": statistics.median(times), "p90_ms": _percentile(times, 0.9),
+            "max_ms": max(times), "count": len(times)}
+
+
+def _requests_while(server, running, text: bytes) -> tuple[list[float], list[float]]:
+    """Solve ``text`` and list the folder on ``server`` while ``running()``; their times."""
+    solves, listings = [], []
+    while running():
+        solves.append(_timed_request(server, "POST", "/api/solve", text)[0])
+        listings.append(_timed_request(server, "GET", "/api/files")[0])
+        time.sleep(0.05)   # as a drag: a new position every few frames
+    return solves, listings
+
+
+#: the ranges of the exported template: the rod's length and the crank angle
+RANGES = {"lengths": {"BC": [0.17, 0.19]}, "angle": [40, 50, 5]}
+
+
+def _export_body(text: str, folder: str, count: int) -> bytes:
+    import json
+
+    return json.dumps({"toml": text, "folder": folder, "count": count,
+                       "ranges": RANGES}).encode()
+
+
+def _preview_times(server, text: str) -> dict:
+    """What a job's own process costs: a one-variant preview as a job (its process started
+    ahead, as the page has it), from the request to its result read, against the same preview
+    computed in the studio's process (ms)."""
+    import json
+
+    body = json.dumps({"toml": text, "ranges": RANGES, "count": 1}).encode()
+    api.variants(text, RANGES, count=1)   # the imports, here
+    server.jobs.warm()   # as the page's first load does
+    jobs, inline = [], []
+    for _ in range(3):
+        time.sleep(2)   # an instructor's pace: the next job's process is ready
+        start = time.perf_counter()
+        job = json.loads(_timed_request(server, "POST", "/api/variants", body)[1])["job"]
+        while json.loads(_timed_request(server, "GET", f"/api/job?id={job['id']}")[1])[
+                "state"] == "running":
+            time.sleep(0.01)
+        jobs.append(1000 * (time.perf_counter() - start))
+        start = time.perf_counter()
+        api.variants(text, RANGES, count=1)
+        inline.append(1000 * (time.perf_counter() - start))
+    return {"job_ms": statistics.median(jobs), "inline_ms": statistics.median(inline)}
+
+
+def solve_during_export(count: int = EXPORT_COUNT) -> dict:
+    """A solve's and a listing's time (ms) on an idle studio, during a ``count``-variant export
+    job (a process), and during the same export run in a thread of the studio's process."""
+    import json
+    import threading
+
+    from planmethod.studio.server import StudioServer
+
+    folder = Path(tempfile.mkdtemp(prefix="planmethod-studio-export-"))
+    shutil.copy(ROOT / FILES["compressor"][0], folder / "compressor.toml")
+    text = read_text(ROOT / FILES["compressor"][0])
+    server = StudioServer(folder, 0)
+    server.start()
+    try:
+        for _ in range(3):   # the imports and the first compilations
+            _timed_request(server, "POST", "/api/solve", text.encode())
+        idle = [(_timed_request(server, "POST", "/api/solve", text.encode())[0],
+                 _timed_request(server, "GET", "/api/files")[0]) for _ in range(20)]
+        preview = _preview_times(server, text)
+        started = time.perf_counter()
+        answer = _timed_request(server, "POST", "/api/export",
+                                _export_body(text, "process-run", count))[1]
+        job = server.jobs.get(json.loads(answer)["job"]["id"])
+        during = _requests_while(server, lambda: job.state == "running", text.encode())
+        process_seconds = time.perf_counter() - started
+        if job.state != "done":
+            raise RuntimeError(f"the export job ended {job.state}: {job.error}")
+        thread = threading.Thread(target=api.export, args=(server.workspace, text, RANGES),
+                                  kwargs={"folder": "thread-run", "count": count})
+        started = time.perf_counter()
+        thread.start()
+        in_thread = _requests_while(server, thread.is_alive, text.encode())
+        thread_seconds = time.perf_counter() - started
+    finally:
+        server.stop()
+        shutil.rmtree(folder, ignore_errors=True)
+    return {"count": count, "preview": preview,
+            "idle": {"solve": _summary([a for a, _ in idle]),
+                     "files": _summary([b for _, b in idle])},
+            "process": {"solve": _summary(during[0]), "files": _summary(during[1]),
+                        "export_s": process_seconds},
+            "thread": {"solve": _summary(in_thread[0]), "files": _summary(in_thread[1]),
+                       "export_s": thread_seconds}}
+
+
 def _move(page, pin: str, xy: list[float]) -> None:
     solves = page.evaluate("window.studio.solves")
     page.evaluate("([name, x, y]) => window.studio.movePoint(name, x, y)", [pin, *xy])
@@ -218,6 +346,8 @@ def run(*, quick: bool = False) -> dict:
         entry = {"server": server_times(name, count), "browser": browser_times(name, count)}
         print(f"  {name}: {entry}")
         result["mechanisms"][name] = entry
+    result["export"] = solve_during_export(20 if quick else EXPORT_COUNT)
+    print(f"  export: {result['export']}")
     after = load_factor(record=not quick)
     result["load"] = run_load(before, after)
     if not quick:
@@ -246,5 +376,33 @@ def table(result: dict) -> str:
                      f"({_mark(server['cpu_median_ms'] / cpu_factor, target['server'])}) | "
                      f"{server['median_ms']:.3g} / {server['p90_ms']:.3g} | {stages} | "
                      f"{shown} |")
-    lines += ["", load_sentence(load)]
+    lines += ["", *export_table(result["export"]), "", load_sentence(load)]
     return "\n".join(lines) + "\n"
+
+
+def export_table(export: dict) -> list[str]:
+    """The lines of the table of a solve's wait during an export."""
+    idle = export["idle"]["solve"]["median_ms"]
+    lines = [f"A solve of the compressor and a listing of the folder over HTTP, on the idle "
+             f"studio and while it exports {export['count']} variants (ms; target: no solve "
+             f"over {EXPORT_TARGET_MS:g} ms):", "",
+             "| while | solve: median / p90 / max (median ÷ idle) | listing: median / max | "
+             "solves | export, s |", "|---|---|---|---|---|"]
+    for name, label in (("idle", "idle"), ("process", "the export job (its own process: "
+                                                       "the studio's way)"),
+                        ("thread", "the export in a thread of the studio (not chosen)")):
+        entry = export[name]
+        solve, files = entry["solve"], entry["files"]
+        mark = ("" if name == "idle" else
+                f" ({'≤' if solve['max_ms'] <= EXPORT_TARGET_MS else '>'} "
+                f"{EXPORT_TARGET_MS:g})")
+        lines.append(f"| {label} | {solve['median_ms']:.3g} / {solve['p90_ms']:.3g} / "
+                     f"{solve['max_ms']:.3g}{mark} ({solve['median_ms'] / idle:.2f}) | "
+                     f"{files['median_ms']:.3g} / {files['max_ms']:.3g} | {solve['count']} | "
+                     f"{format(entry['export_s'], '.3g') if 'export_s' in entry else '—'} |")
+    preview = export["preview"]
+    lines += ["", f"What a job's own process costs: a one-variant preview takes "
+                  f"{preview['job_ms']:.3g} ms as a job (in a process started ahead, its "
+                  f"answer asked for every 10 ms) against {preview['inline_ms']:.3g} ms computed "
+                  "in the studio's process (medians of 3)."]
+    return lines

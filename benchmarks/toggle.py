@@ -78,7 +78,7 @@ def approach_row(case, toggle: float, distance_rad: float) -> dict:
         if stage != "position":
             group = motion.groups[0]
             row["estimate"][stage] = float(np.max(group.error_estimate[stage]))
-            row["measured"][stage], row["measured_scale"][stage] = _errors(motion, case,
+            row["measured"][stage], row["measured_scale"][stage] = _errors(motion.at(0), case,
                                                                           exact, stage)
     return row
 

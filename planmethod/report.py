@@ -23,17 +23,20 @@ import numpy as np
 
 from . import vocabulary
 from .errors import PlanmethodError
-from .kinematics import Motion, solve
-from .kinematics.solve import FLAG_ERROR, pose
+from .kinematics import Motion, MotionAt, solve
+from .kinematics.continuation import pose
 from .model import FRAME, Exercise
 from .numbering import course_numbers
 from .plans import Plans, draw_plans
 from .plans.construction import PlansUnavailableError
 from .scene import Scene, plan_scene
-from .structure import Structure, analyse_structure
+from .structure import Structure
 from .vectors import norm
 
-__all__ = ["Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
+__all__ = ["FLAG_ERROR", "Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
+
+#: a group's exact values whose estimated relative error is above this are flagged
+FLAG_ERROR = 1e-6
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,7 +120,7 @@ def asked_quantities(exercise: Exercise, motion: Motion) -> list[str]:
     return out
 
 
-def _radius(motion: Motion, point: str) -> float | None:
+def _radius(motion: MotionAt, point: str) -> float | None:
     rho = float(motion.curvature(point).rho)
     return None if math.isnan(rho) else rho
 
@@ -136,8 +139,9 @@ EXACT_READERS = {
 }
 
 
-def exact_value(motion: Motion, quantity: str) -> float | None:
-    """The exact value of a check quantity (magnitudes for v and a; signed ω, ε, s, ds, dds).
+def exact_value(motion: MotionAt, quantity: str) -> float | None:
+    """The exact value of a check quantity (magnitudes for v and a; signed ω, ε, s, ds, dds)
+    at one crank angle.
 
     Raises
     ------
@@ -159,7 +163,7 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
     angle
         Crank angle (deg). The assemblies are those chosen at ``drive.angle`` (the sketch or
         the default branch), followed to this angle as a sweep follows them
-        (:func:`~planmethod.kinematics.solve.pose`); a group that meets a limit position on
+        (:func:`~planmethod.kinematics.continuation.pose`); a group that meets a limit position on
         the way is a ``ToggleError`` naming it and the crank angle of the limit.
     precision_mm
         Overrides ``[plan] precision_mm``.
@@ -176,9 +180,8 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
         exercise = replace(exercise, plan=replace(exercise.plan, precision_mm=precision_mm))
     mechanism = exercise.mechanism
     angle = mechanism.drive.angle
-    structure = analyse_structure(mechanism)
-    motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, structure=structure,
-                   branches=branches)
+    motion = solve(mechanism, angle, stage=scene.stage, links=scene.links, branches=branches)
+    structure = motion.structure
     drawn = None
     if plans:
         try:
@@ -187,9 +190,10 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
         except PlansUnavailableError:  # a higher group that is not drawn: exact values only
             drawn = None
     checks = []
+    here = motion.at(0)
     for quantity in asked_quantities(exercise, motion):
         plan_value = drawn.readings.get(quantity) if drawn else None
-        checks.append(Check(quantity, plan_value, exact_value(motion, quantity),
+        checks.append(Check(quantity, plan_value, exact_value(here, quantity),
                             vocabulary.quantity(quantity).unit))
     forces = None
     if scene.forces:
@@ -252,26 +256,27 @@ def report_dict(analysis: Analysis) -> dict:
         velocity_points, acceleration_points = ask.velocity, ask.acceleration
         links = list(dict.fromkeys(ask.omega + ask.epsilon))
         curvature, sliding = ask.curvature, ask.sliding
+    here = motion.at(0)
     point_table: dict[str, dict] = {}
     for point in dict.fromkeys(tuple(velocity_points) + tuple(acceleration_points)
                                + tuple(curvature)):
-        entry = {"position": _vector(motion.position(point))}
-        entry["velocity"] = _vector(motion.velocity(point))
+        entry = {"position": _vector(here.position(point))}
+        entry["velocity"] = _vector(here.velocity(point))
         if acceleration:
-            entry["acceleration"] = _vector(motion.acceleration(point))
+            entry["acceleration"] = _vector(here.acceleration(point))
         point_table[point] = entry
     report["points"] = point_table
     link_table = {}
     for link in links:
-        entry = {"omega": float(motion.omega(link)), "theta": float(motion.theta(link))}
+        entry = {"omega": float(here.omega(link)), "theta": float(here.theta(link))}
         if acceleration:
-            entry["epsilon"] = float(motion.epsilon(link))
+            entry["epsilon"] = float(here.epsilon(link))
         link_table[link] = entry
     report["links"] = link_table
     if acceleration and curvature:
         table = {}
         for point in curvature:
-            found = motion.curvature(point)
+            found = here.curvature(point)
             if found.straight:
                 table[point] = {"rho": None, "center": None, "straight": True}
             else:
@@ -286,7 +291,7 @@ def report_dict(analysis: Analysis) -> dict:
     if sliding:
         table = {}
         for key in sliding:
-            found = motion.sliding(key)
+            found = here.sliding(key)
             entry = {"s": float(found.s), "velocity": float(found.velocity)}
             if acceleration:
                 entry |= {"acceleration": float(found.acceleration),
@@ -330,7 +335,7 @@ def published_comparison(analysis: Analysis) -> list[dict]:
     rows = []
     for name, printed in analysis.exercise.published.items():
         try:
-            exact = exact_value(analysis.motion, name)
+            exact = exact_value(analysis.motion.at(0), name)
         except (KeyError, ValueError, PlanmethodError):
             exact = None
         difference = None

@@ -18,13 +18,13 @@ from collections.abc import Callable, Iterable, Iterator
 import numpy as np
 
 from .errors import SpecError
-from .kinematics import solve
-from .kinematics.solve import choose_branches
+from .kinematics import choose_branches, solve
 from .model import FRAME, Exercise
 from .progress import Progress
 from .scene import plan_scene
 from .structure import analyse_structure
 from .vectors import norm
+from .vocabulary import shown_title
 
 __all__ = ["CHUNK", "Extremes", "csv_rows", "sweep_angles", "sweep_chunks", "sweep_columns",
            "sweep_table"]
@@ -114,7 +114,7 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
     stage = "acceleration" if extra is not None else scene.stage
     links_needed = None if extra is not None else scene.links
     groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
-    branches = choose_branches(mechanism, structure, groups)
+    branches = choose_branches(mechanism, groups)
     points, links, slides, curvature, _ = sweep_columns(exercise)
     last_theta: dict[str, float] = {}
     with Progress(len(angles), "sweep", enabled=progress if len(angles) > CHUNK else False
@@ -122,7 +122,7 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
         for begin in range(0, len(angles), CHUNK):
             part = angles[begin:begin + CHUNK]
             motion = solve(mechanism, part, stage=stage, links=links_needed,
-                           structure=structure, branches=branches)
+                           branches=branches)
             columns: dict[str, np.ndarray] = {"angle": part}
             for point in points:
                 xy = motion.position(point)
@@ -272,7 +272,8 @@ class Extremes:
 
         width = max([16] + [len(shown(name)) for name in self.table])
         at = f"at {phi}"
-        lines = [f"{title} — {self.count} crank angles from {self.first:g}° to {self.last:g}°",
+        lines = [f"{shown_title(title)} — {self.count} crank angles from {self.first:g}° to "
+                 f"{self.last:g}°",
                  "", f"  {'quantity':<{width}} {'min':>10} {at:>8} {'max':>10} {at:>8}"]
         for name, found in self.table.items():
             if found is None:

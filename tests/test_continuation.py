@@ -20,7 +20,7 @@ import pytest
 from planmethod.cli import main
 from planmethod.errors import PlanmethodError, ToggleError
 from planmethod.kinematics import solve
-from planmethod.kinematics.solve import FOLLOW_STEP_DEG, follow, pose
+from planmethod.kinematics.continuation import FOLLOW_STEP_DEG, follow, pose
 from planmethod.report import analyse
 from planmethod.spec import load_exercise
 from planmethod.sweep import sweep_table
@@ -137,7 +137,8 @@ def test_solve_angle_gives_the_sweeps_assembly(path, capsys, tmp_path):
         report = json.loads(out)
         assert report["angle"] == angle, where
         assert_same_assembly(report_values(report), sweep_values(row), f"{where} (CLI)")
-        from_api = report_values({"points": {p: {"position": list(analysis.motion.position(p))}
+        here = analysis.motion.at(0)
+        from_api = report_values({"points": {p: {"position": list(here.position(p))}
                                              for p in report["points"]}, "links": {}})
         assert_same_assembly(from_api, {name: float(values[0]) for name, values in table.items()},
                              f"{where} (API)")
@@ -157,14 +158,14 @@ def test_whitworth_sketch_would_pick_the_other_assembly_at_250():
     (what ``solve --angle 250`` did) takes the lever turned half a turn."""
     mechanism = load_exercise(WHITWORTH).mechanism
     chosen_there = replace(mechanism, drive=replace(mechanism.drive, angle=250.0))
-    at_start = solve(mechanism)
+    at_start = solve(mechanism).at(0)
     assert lever_side(at_start.position("C"), at_start.position("B")) > 0
-    motion = solve(chosen_there)
+    motion = solve(chosen_there).at(0)
     assert lever_side(motion.position("C"), motion.position("B")) < 0
 
 
 def test_whitworth_every_entry_point_follows_the_sweep(capsys, tmp_path):
-    from planmethod.commands.workbook import solve_frames
+    from planmethod.application.workbook import solve_frames
 
     exercise = load_exercise(WHITWORTH)
     code, out, err = run(capsys, "solve", WHITWORTH, "--angle", "250", "--json")
@@ -178,7 +179,8 @@ def test_whitworth_every_entry_point_follows_the_sweep(capsys, tmp_path):
     for angle in (250.0, 250.0 - 360.0, 250.0 + 720.0):
         analysis = analyse(exercise, angle)
         motion = analysis.motion
-        assert lever_side(motion.position("C"), motion.position("B")) > 0, angle
+        here = motion.at(0)
+        assert lever_side(here.position("C"), here.position("B")) > 0, angle
         assert motion.branches[0].sign == 1 and motion.branches[0].reason == "sketch"
     # the workbook's frame at 250° reads the same exact values as the sweep
     frame = solve_frames(exercise, [250.0])[0]
@@ -193,7 +195,7 @@ def test_whitworth_variant_at_another_angle_keeps_the_assembly():
     from planmethod.grading.templates import draw_variant, load_template, variant_exercise
 
     exercise = variant_exercise(draw_variant(load_template(WHITWORTH)), 250.0)
-    motion = solve(exercise.mechanism)
+    motion = solve(exercise.mechanism).at(0)
     assert exercise.mechanism.drive.angle == 250.0
     assert lever_side(motion.position("C"), motion.position("B")) > 0
 

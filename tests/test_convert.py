@@ -164,7 +164,7 @@ def test_the_assembly_is_the_one_drawn():
     below = [2 * foot[0] - above[0], 2 * foot[1] - above[1]]
     tables["points"]["C"] = below
     for name, xy in (("C", below), ("B", b)):
-        position = analyse(exercise_from_dict(tables)).motion.position(name)
+        position = analyse(exercise_from_dict(tables)).motion.at(0).position(name)
         assert position == pytest.approx(xy, abs=1e-12)
     assert below[1] < 0 < above[1]
 

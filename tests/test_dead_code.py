@@ -66,5 +66,5 @@ def test_every_whitelisted_name_still_exists():
 
 def test_a_whitelisted_name_that_is_gone_is_named():
     assert _defined("planmethod.kinematics.program", "compilations")
-    assert _defined("planmethod.kinematics.solve", "velocity_of")
-    assert not _defined("planmethod.kinematics.solve", "velocity_off")
+    assert _defined("planmethod.kinematics.motion", "velocity_of")
+    assert not _defined("planmethod.kinematics.motion", "velocity_off")

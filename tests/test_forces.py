@@ -13,7 +13,7 @@ from planmethod import testing
 from planmethod.errors import ConvergenceError, ForceError, SpecError
 from planmethod.forces import solve_forces
 from planmethod.forces.applied import Wrench, applied_loads
-from planmethod.forces.groups import solve_by_groups
+from planmethod.forces.group_method import solve_by_groups
 from planmethod.forces.system import solve_whole_system
 from planmethod.kinematics import solve
 from planmethod.kinematics.state import LinkState

@@ -181,7 +181,7 @@ def _dead_centres(mechanism, link: str) -> np.ndarray:
         low, high = grid[index], grid[index + 1]
         for _ in range(40):
             middle = 0.5 * (low + high)
-            value = float(solve(mechanism, middle, stage="velocity").omega(link))
+            value = float(solve(mechanism, middle, stage="velocity").at(0).omega(link))
             if np.sign(value) == np.sign(rate[index]):
                 low = middle
             else:
@@ -262,7 +262,7 @@ def test_against_the_whole_mechanism_linear_solve(name):
         # on the assembly the solver chose at drive.angle (a link's two assemblies can put
         # its points alike and its origin apart)
         chosen = solve(mechanism, stage="position")
-        near = {point: tuple(float(v) for v in chosen.position(point))
+        near = {point: tuple(float(v) for v in chosen.at(0).position(point))
                 for link in chosen.solved if link != "frame"
                 for point in mechanism.links[link].points}
         reference = reference_motion(mechanism, angles, near=near)

@@ -13,12 +13,11 @@ import pytest
 
 from planmethod.errors import AssemblyError, BranchJumpError, ConvergenceError, ToggleError
 from planmethod.forces import solve_forces
-from planmethod.kinematics import solve
+from planmethod.kinematics import Branch, choose_branches, solve
 from planmethod.kinematics.groups import higher
-from planmethod.kinematics.groups.triad import SPECIAL
-from planmethod.kinematics.solve import Branch, choose_branches
 from planmethod.plans import draw_plans
 from planmethod.plans.construction import PlansUnavailableError
+from planmethod.plans.groups.triad import SPECIAL
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict
 from planmethod.structure import analyse_structure
@@ -54,12 +53,13 @@ def test_structure_is_a_triad(exercise):
 
 def test_positions_at_135_match_s0(exercise):
     motion = solve(exercise.mechanism, 135.0, stage="position")
+    here = motion.at(0)
     for point, expected in S0.items():
-        assert np.allclose(motion.position(point), expected, atol=1e-6), point
-    assert np.degrees(motion.theta("tray")) == pytest.approx(0.16565, abs=1e-5)
-    assert np.degrees(motion.theta("rocker_EF")) == pytest.approx(-18.29342, abs=1e-5)
+        assert np.allclose(here.position(point), expected, atol=1e-6), point
+    assert np.degrees(here.theta("tray")) == pytest.approx(0.16565, abs=1e-5)
+    assert np.degrees(here.theta("rocker_EF")) == pytest.approx(-18.29342, abs=1e-5)
     # the paper's branch: E and D below their pivots F and G
-    assert motion.position("E")[1] < -0.05 and motion.position("D")[1] < -0.05
+    assert here.position("E")[1] < -0.05 and here.position("D")[1] < -0.05
     branch = motion.branches[0]
     assert branch.reason == "sketch" and branch.count >= 2
     assert isinstance(branch, higher.HigherBranch)
@@ -104,7 +104,7 @@ def test_continuation_is_periodic_and_order_free(exercise):
         assert np.allclose(path[0], path[-1], atol=1e-12)       # back to itself after a turn
     scattered = solve(mechanism, [300.0, 10.0, 135.0, -200.0], stage="position")
     for angle, index in ((300.0, 0), (10.0, 1), (135.0, 2)):
-        single = solve(mechanism, angle, stage="position")
+        single = solve(mechanism, angle, stage="position").at(0)
         assert np.allclose(scattered.position("D")[index], single.position("D"), atol=1e-12)
     assert np.allclose(scattered.position("D")[3], turn.position("D")[160], atol=1e-12)
 
@@ -175,7 +175,7 @@ def test_an_unreachable_angle_in_a_sweep_is_a_named_error():
 @pytest.mark.parametrize("angle", [0.0, 60.0, 135.0, 225.0, 300.0])
 def test_triad_plans_equal_exact_vectors(exercise, angle):
     plans = draw_plans(exercise, angle)
-    motion = solve(exercise.mechanism, angle)
+    motion = solve(exercise.mechanism, angle).at(0)
     for point in "ABCDEO":
         assert np.allclose(plans.velocity.vector(point.lower()), motion.velocity(point),
                            atol=1e-12), point
@@ -202,7 +202,7 @@ def test_points_on_the_triads_side_links_are_placed_by_similarity_and_exact():
     exercise = exercise_from_dict(data)
     for angle in (60.0, 225.0):
         plans = draw_plans(exercise, angle)
-        motion = solve(exercise.mechanism, angle)
+        motion = solve(exercise.mechanism, angle).at(0)
         for point in "MKL":
             assert np.allclose(plans.velocity.vector(point.lower()), motion.velocity(point),
                                atol=1e-12), (angle, point)
@@ -213,7 +213,7 @@ def test_points_on_the_triads_side_links_are_placed_by_similarity_and_exact():
 def test_triad_plan_at_drafting_precision_is_close(exercise):
     plans = draw_plans(exercise, 135.0, settings=exercise.plan.__class__(
         crank_mm=6, velocity_mm=40, acceleration_mm=40, precision_mm=0.5))
-    motion = solve(exercise.mechanism, 135.0)
+    motion = solve(exercise.mechanism, 135.0).at(0)
     speed = float(np.hypot(*motion.velocity("D")))
     assert np.hypot(*(plans.velocity.vector("d") - motion.velocity("D"))) < 0.05 * speed
 
@@ -223,7 +223,7 @@ def test_special_point_lies_on_two_side_lines(exercise):
     text = next(s.text for s in plans.velocity.steps if s.end == SPECIAL)
     numbers = text.split("S* = (")[1].split(")")[0].split(", ")
     special = np.array([float(x) for x in numbers])
-    motion = solve(exercise.mechanism, 135.0, stage="position")
+    motion = solve(exercise.mechanism, 135.0, stage="position").at(0)
     on_lines = 0
     for p, q in (("A", "B"), ("F", "E"), ("G", "D")):
         a, b = motion.position(p), motion.position(q)

@@ -154,7 +154,12 @@ LOST_OR_MERGED = {
     "a column twice": ("student,v_C,v_C\ns1,1,5.27\n", "answers.csv: line 1: column 'v_C' "
                                                       "is given twice (columns 2 and 3)"),
     "a column twice in another case": ("student,v_C,V_c \ns1,1,5.27\n",
-                                       "answers.csv: line 1: column 'V_c'"),
+                                       "answers.csv: line 1: column 'v_C' and column 'V_c' "
+                                       "are one column, compared ignoring case (columns 2 "
+                                       "and 3)"),
+    "an answer twice in another case": ('{"s1": {"v_C": 1, " V_c": 2}}',
+                                        "answers.json: s1: answer 'v_C' and answer ' V_c' are "
+                                        "one answer, question ids compared ignoring case"),
     # a header and no student graded an empty class
     "a header and no student": ("student,v_C,omega_BC\n", "answers.csv: a header (line 1) and "
                                                          "no student's answers"),
@@ -400,7 +405,7 @@ def _rows(path: Path) -> list[list[str]]:
 def test_more_variants_than_a_minute_draws_are_refused_at_once(capsys, tmp_path):
     """`--count` (and a roster) stop at MAX_VARIANTS, the count benchmarked to take about a
     minute; the refusal comes before any variant is drawn."""
-    from planmethod.commands.variants import MAX_VARIANTS
+    from planmethod.application.variants import MAX_VARIANTS
 
     line = refused(capsys, ["variants", TEMPLATE, "--count", MAX_VARIANTS + 1, "--out",
                             tmp_path / "run"], tmp_path)
@@ -410,3 +415,190 @@ def test_more_variants_than_a_minute_draws_are_refused_at_once(capsys, tmp_path)
     line = refused(capsys, ["variants", TEMPLATE, "--students", roster, "--out",
                             tmp_path / "run"], tmp_path)
     assert f"roster.csv: the roster lists {MAX_VARIANTS + 1} students" in line
+
+
+# -- drawn points that were merged, and errors that named the wrong file (issue 35) ------------
+SLOTTED = ROOT / "exercises" / "slotted_crank_crosshead.toml"
+
+
+@pytest.fixture(scope="module")
+def key_points():
+    """The velocity plan's points of the compressor's key (mm), as a right drawing gives
+    them."""
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.templates import draw_variant, load_template
+
+    key = build_key(draw_variant(load_template(GOOD)))
+    return {label: list(xy) for label, xy in key["plans"]["velocity"]["points_mm"].items()}
+
+
+def _points_json(points: dict, extra: str = "") -> str:
+    """A drawing's JSON with ``extra`` members written after the points (json.dumps cannot
+    write a key twice)."""
+    members = [f"{json.dumps(label)}: {json.dumps(xy)}" for label, xy in points.items()]
+    return '{"plan": "velocity", "points": {' + ", ".join(members) + extra + "}}"
+
+
+MERGED_POINTS = {
+    # the second value of c was kept, the first lost without a word
+    "a point twice": (', "c": [1, 2]', "plan.json: c: the key is given twice in one object"),
+    "a point with a space": (', " c": [1, 2]', "plan.json: points: point 'c' and point ' c' "
+                                               "are one point, labels compared without spaces"),
+    "the pole as pi": (', "pi": [1, 2]', None),   # p and pi name two points: both graded
+    "p and p′ written p'": (', "p\'": [1, 2]', None),
+}
+
+
+@pytest.mark.parametrize("case", list(MERGED_POINTS))
+def test_every_drawn_point_is_graded_or_both_are_named(capsys, tmp_path, key_points, case):
+    """The post-condition: a drawing that is read has every one of its points graded (each
+    key point's result is the point the file gives for it); one that would lose a point is
+    refused, naming both."""
+    extra, expected = MERGED_POINTS[case]
+    path = tmp_path / "plan.json"
+    path.write_text(_points_json(key_points, extra), encoding="utf-8")
+    if expected is not None:
+        assert expected in refused(capsys, ["grade", GOOD, "--drawing", path], tmp_path)
+        return
+    graded = tmp_path / "graded.json"
+    assert main(["grade", str(GOOD), "--drawing", str(path), "--json", str(graded)]) == 0
+    capsys.readouterr()
+    (drawing,) = json.loads(graded.read_text())["drawings"]
+    assert drawing["score"] == drawing["max_score"] > 0
+    assert all(result["distance_mm"] < 1e-9 for result in drawing["points"])
+
+
+def test_pi_and_its_name_are_one_point(capsys, tmp_path):
+    path = tmp_path / "plan.json"
+    path.write_text('{"plan": "acceleration", "points": {"π": [0, 0], "pi": [3, 4]}}',
+                    encoding="utf-8")
+    line = refused(capsys, ["grade", GOOD, "--drawing", path], tmp_path)
+    assert "plan.json: points: point 'π' and point 'pi' are one point" in line
+
+
+def _svg(body: str) -> str:
+    return ('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" '
+            f'viewBox="0 0 200 200">{body}</svg>')
+
+
+def _svg_labels(points: dict, extra: str = "") -> str:
+    """The drawing of ``points`` as labelled dots (SVG's y down), pole at (100, 100)."""
+    return _svg("".join(f'<circle cx="{100 + x:.4f}" cy="{100 - y:.4f}" r="0.3"/>'
+                        f'<text x="{100 + x:.4f}" y="{100 - y:.4f}">{label}</text>'
+                        for label, (x, y) in points.items() if "@" not in label) + extra)
+
+
+@pytest.mark.parametrize(("extra", "graded"), [
+    ('<text x="150" y="150">c</text>', False),              # c marked at a second place
+    ('<text x="150" y="150"> c</text>', False),             # … written with a space
+    ('<text x="150" y="150">C</text>', True),    # the mechanism's C: c is matched exactly
+    ('<text x="10" y="10">10 mm</text><text x="10" y="20">10 mm</text>', True),   # no point
+])
+def test_a_graded_point_labelled_at_two_places_is_refused(capsys, tmp_path, key_points, extra,
+                                                          graded):
+    path = tmp_path / "plan.svg"
+    path.write_text(_svg_labels(key_points, extra), encoding="utf-8")
+    argv = ["grade", GOOD, "--drawing", path, "--plan", "velocity"]
+    if graded:
+        assert main([str(a) for a in argv]) == 0
+        assert "3/3" in capsys.readouterr().out
+        return
+    line = refused(capsys, argv, tmp_path)
+    assert "plan.svg: <text> 'c' at (" in line and "both mark the point c" in line
+    assert line.count("<text>") == 2 and "at (150.0, 150.0) mm" in line
+
+
+@pytest.mark.parametrize(("drawing", "expected"), [
+    # the point at 1e308 named the exercise (an overflow), the angle no file and no key
+    ('{"plan": "velocity", "points": {"p": [0, 0], "b": [1e308, 0]}}',
+     "plan.json: points.b: is at (1e+308, 0) mm, beyond ±1e+06 mm"),
+    ('{"format": "planmethod-drawing", "title": "TITLE", "angle": 1e6, "plan": "velocity", '
+     '"points": {"p": [0, 0]}}', "plan.json: angle: must be the crank angle in degrees, "
+                                 "within ±36000°, got 1000000.0"),
+])
+def test_a_drawing_out_of_range_names_the_drawing_and_its_key(capsys, tmp_path, drawing,
+                                                              expected):
+    from planmethod.spec import load_exercise
+
+    path = tmp_path / "plan.json"
+    title = json.dumps(load_exercise(GOOD).mechanism.title)[1:-1]
+    path.write_text(drawing.replace("TITLE", title), encoding="utf-8")
+    line = refused(capsys, ["grade", GOOD, "--drawing", path], tmp_path)
+    assert line.startswith(f"planmethod: error: {path}: {expected.removeprefix('plan.json: ')}")
+    assert str(GOOD) not in line
+
+
+def test_a_drawing_at_an_angle_of_toggle_names_the_drawing(capsys, tmp_path):
+    """The key posed at the drawing's angle stands at a toggle: the drawing's angle is what
+    is wrong, not the exercise."""
+    from planmethod.spec import load_exercise
+
+    path = tmp_path / "plan.json"
+    path.write_text(json.dumps({"format": "planmethod-drawing", "angle": 120,
+                                "title": load_exercise(SLOTTED).mechanism.title,
+                                "plan": "velocity", "points": {"p": [0, 0]}}))
+    line = refused(capsys, ["grade", SLOTTED, "--drawing", path], tmp_path)
+    assert line.startswith(f"planmethod: error: {path}: angle: link block+crosshead, crank "
+                           "angle 120°: the guides")
+
+
+def test_a_drawing_scaled_beyond_correction_is_graded_as_drawn(capsys, tmp_path, key_points):
+    """pb drawn 1e-300 mm long: the rescaling overflowed; it is graded as drawn."""
+    points = {label: [x * 1e-301, y * 1e-301] for label, (x, y) in key_points.items()}
+    path = tmp_path / "plan.json"
+    path.write_text(_points_json(points))
+    assert main(["grade", str(GOOD), "--drawing", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "0/3" in out and "more than 10000 times off; it was graded as drawn" in out
+
+
+@pytest.mark.parametrize("bundle", [False, True])
+def test_an_error_in_a_keys_exercise_names_the_key_file(capsys, tmp_path, bundle):
+    """The key keeps its exercise's tables: an error in them named the template the key was
+    built from, not the key file."""
+    run = tmp_path / "run"
+    assert main(["variants", str(TEMPLATE), "--out", str(run), "--count", "2",
+                 "--no-sheets"]) == 0
+    data = json.loads((run / "keys.json").read_text())
+    data["keys"][1]["exercise"]["drive"]["omega"] = 1e9
+    keys = tmp_path / ("keys.json" if bundle else "key.json")
+    keys.write_text(json.dumps(data if bundle else data["keys"][1]))
+    capsys.readouterr()
+    where = "keys[1].exercise" if bundle else "exercise"
+    line = refused(capsys, ["export", keys, "--format", "prairielearn", "--out",
+                            tmp_path / "pl"], tmp_path)
+    assert line.startswith(f"planmethod: error: {keys}: {where}.drive.omega: must be at most "
+                           "10000"), line
+    assert str(TEMPLATE) not in line
+
+
+CHECK_TABLE = ROOT / "exercises" / "conveyor_sixbar_table2.csv"
+
+
+@pytest.mark.parametrize(("cell", "value", "expected"), [
+    # an angle of 1e300 was a traceback (an index beyond the path's table)
+    (0, "1e300", "line 4, column angle: must be within ±36000°, got 1e300"),
+    (1, "1e308", "line 4, column x_A: must be within ±1e+06 m, got 1e308"),
+])
+def test_a_coordinates_table_out_of_range_names_its_cell(capsys, tmp_path, cell, value,
+                                                         expected):
+    lines = CHECK_TABLE.read_text(encoding="utf-8").splitlines()
+    first = next(index for index, line in enumerate(lines) if line[:1].isdigit())
+    cells = lines[first].split(",")
+    cells[cell] = value
+    lines[first] = ",".join(cells)
+    table = tmp_path / "table.csv"
+    table.write_text("\n".join(lines) + "\n")
+    line = refused(capsys, ["check", ROOT / "exercises" / "conveyor_sixbar.toml", table],
+                   tmp_path)
+    assert line == f"planmethod: error: {table}: {expected}"
+
+
+def test_a_coordinates_column_twice_is_refused(capsys, tmp_path):
+    """x_A and X_A: one of the two columns was kept without a word."""
+    table = tmp_path / "table.csv"
+    table.write_text("angle,x_A,y_A,X_A\n135,0.1,0.2,0.3\n")
+    line = refused(capsys, ["check", ROOT / "exercises" / "conveyor_sixbar.toml", table],
+                   tmp_path)
+    assert line == (f"planmethod: error: {table}: line 1: column 'x_A' and column 'X_A' are "
+                    "one column, the axis compared ignoring case (columns 2 and 4); keep one")

@@ -63,7 +63,7 @@ def test_prairielearn_slug_that_is_a_name_writes_inside(tmp_path, keys_file, cap
         for number, student in enumerate(("001", "002"), start=1)}
     assert _tree(tmp_path) == {"DIR", "DIR/fourbar-2026", "DIR/fourbar-2026/info.json",
                                "DIR/fourbar-2026/question.html", "DIR/fourbar-2026/server.py",
-                               *figures}
+                               "DIR/fourbar-2026/manifest.json", *figures}
 
 
 def test_student_ids_that_climb_stay_inside(tmp_path, capsys):

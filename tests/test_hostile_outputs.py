@@ -472,7 +472,7 @@ def test_the_run_is_never_mixed_with_files_added_during_it(tmp_path, capfd, earl
 
 
 def test_jobs_above_the_cpus_is_one_line(capfd, tmp_path):
-    from planmethod.commands.workbook import usable_cpus
+    from planmethod.application.workers import usable_cpus
 
     line = _fails(capfd, ["workbook", GOOD, "-o", tmp_path / "w.html", "--step", "90",
                           "--jobs", str(usable_cpus() + 1)])
@@ -481,7 +481,7 @@ def test_jobs_above_the_cpus_is_one_line(capfd, tmp_path):
 
 
 def test_never_more_workers_than_frames():
-    from planmethod.commands.workbook import usable_cpus, worker_count
+    from planmethod.application.workers import usable_cpus, worker_count
 
     assert worker_count(usable_cpus(), 1) == 1
     assert worker_count(None, 4) == 1
@@ -492,7 +492,7 @@ def test_never_more_workers_than_frames():
 def test_sigterm_ends_the_workbook_and_its_workers(tmp_path):
     """SIGTERM to the main process alone, mid-run with two workers: it exits (143) within
     2 s, and no process of it is left."""
-    from planmethod.commands.workbook import usable_cpus
+    from planmethod.application.workers import usable_cpus
 
     if usable_cpus() < 2:
         pytest.skip("two workers need two CPUs")
@@ -629,3 +629,182 @@ def test_the_reader_reads_no_more_than_the_limit(tmp_path):
     with pytest.raises(PlanmethodError, match="more than 10 bytes"):
         read_bytes_bounded(status, limit=10)
     assert len(read_bytes_bounded(status, limit=1_000_000)) > 10
+
+
+# ---------------------------------------------------------------------------------------------
+# a write that fails names the output it was writing, never the command's input (issue 35)
+
+#: command → (argv with OUT for the output's folder, the output the error names, relative to
+#: it); every command that writes, and each way a file is written: a text set (JSON, TOML,
+#: HTML, XML, SVG files), a CSV streamed row by row, matplotlib's savefig, Pillow's GIF, a
+#: folder staged whole (variants, export)
+WRITERS: dict[str, tuple[list[str], str]] = {
+    "sweep --csv": (["sweep", GOOD, "--step", "1", "--csv", "OUT/s.csv"], "s.csv"),
+    "sweep --plot": (["sweep", GOOD, "--step", "30", "--plot", "OUT/s.png"], "s.png"),
+    "study --plot": (["study", STUDY, "--step", "90", "--plot", "OUT/st.png"], "st.png"),
+    "grade --report": (["grade", GOOD, "ANSWERS", "--report", "OUT/report"],
+                       "report/class_report.png"),
+    "grade --json": (["grade", GOOD, "ANSWERS", "--json", "OUT/g.json"], "g.json"),
+    "solve --svg": (["solve", GOOD, "--svg", "OUT/svg"], "svg/position.svg"),
+    "convert": (["convert", GOOD, "-o", "OUT/drawn.toml"], "drawn.toml"),
+    "workbook": (["workbook", GOOD, "-o", "OUT/w.html", "--step", "90"], "w.html"),
+    "animate": (["animate", GOOD, "-o", "OUT/turn.gif", "--step", "90"], "turn.gif"),
+    "variants": (["variants", TEMPLATE, "--out", "OUT/run", "--count", "2"], "run/"),
+    "export moodle": (["export", GOOD, "--format", "moodle", "--out", "OUT/q.xml"], "q.xml"),
+    "export prairielearn": (["export", GOOD, "--format", "prairielearn", "--out", "OUT/pl"],
+                            "pl/planmethod/"),
+}
+
+
+@pytest.mark.parametrize("case", list(WRITERS))
+def test_a_write_that_fails_names_the_output(tmp_path, case):
+    """A real process whose files may not exceed 1 kB (RLIMIT_FSIZE, as a full disk): one
+    line naming the output (for a folder, a file in it) with the system's reason, exit 2,
+    never the exercise; and nothing is left of the outputs."""
+    import resource
+
+    def small_files() -> None:
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)   # a write past the limit fails (EFBIG)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (1024, 1024))
+
+    (tmp_path / "answers.csv").write_text("student,v_C,omega_BC\ns1,5,20\ns2,4,-24\n")
+    argv, named = WRITERS[case]
+    argv = [str(tmp_path / "answers.csv") if a == "ANSWERS" else a.replace("OUT", str(tmp_path))
+            for a in argv]
+    before = _tree(tmp_path)
+    done = subprocess.run([sys.executable, "-m", "planmethod", *argv], capture_output=True,
+                          text=True, cwd=ROOT, timeout=300, preexec_fn=small_files,
+                          env={**os.environ, "PYTHONDONTWRITEBYTECODE": "1"})
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == 2 and len(lines) == 1, done.stderr[-2000:]
+    assert lines[0].startswith(f"planmethod: error: {tmp_path / named}"), lines[0]
+    assert "File too large" in lines[0] and GOOD not in lines[0]
+    assert _tree(tmp_path) == before
+
+
+def test_a_full_disk_while_the_csv_streams_names_the_csv(capfd, tmp_path, monkeypatch):
+    """ENOSPC from the CSV's own file, mid-stream (a mocked full disk): the line names the
+    CSV, not the exercise; neither the CSV nor the plot of the same run is left."""
+    import errno
+    import io
+    import pathlib
+
+    real_open = pathlib.Path.open
+
+    class FullDisk(io.TextIOWrapper):
+        def write(self, text: str) -> int:
+            if self.tell() > 2000:
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+            return super().write(text)
+
+    def opening(path, mode="r", *arguments, **keywords):
+        handle = real_open(path, mode, *arguments, **keywords)
+        if "w" in mode and path.name.startswith(".s.csv."):
+            return FullDisk(handle.detach(), encoding="utf-8")
+        return handle
+
+    monkeypatch.setattr(pathlib.Path, "open", opening)
+    line = _fails(capfd, ["sweep", GOOD, "--step", "1", "--csv", tmp_path / "s.csv",
+                          "--plot", tmp_path / "s.png"])
+    assert line == (f"planmethod: error: {tmp_path / 's.csv'}: cannot write the file: "
+                    "No space left on device")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("case", ["a link that loops", "through a link that loops",
+                                  "a file as its folder", "a name too long",
+                                  "a folder name too long"])
+def test_an_odd_output_path_is_one_line(capfd, tmp_path, case):
+    (tmp_path / "loop").symlink_to("loop")
+    (tmp_path / "file").write_text("mine")
+    out = {"a link that loops": tmp_path / "loop",
+           "a file as its folder": tmp_path / "file" / "s.csv",
+           "through a link that loops": tmp_path / "loop" / "s.csv",
+           "a name too long": tmp_path / ("x" * 300 + ".csv"),
+           "a folder name too long": tmp_path / ("d" * 300) / "s.csv"}[case]
+    before = _tree(tmp_path)
+    line = _fails(capfd, ["sweep", GOOD, "--step", "90", "--csv", out])
+    assert line.startswith(f"planmethod: error: {out}: ") and GOOD not in line
+    assert _tree(tmp_path) == before
+
+
+# ---------------------------------------------------------------------------------------------
+# export folders: one run's files, as variants --force (issue 35)
+
+
+def _export(run: Path, form: str, out: Path) -> list[str]:
+    return ["export", str(run), "--format", form, "--out", str(out)]
+
+
+@pytest.fixture
+def two_runs(tmp_path, capfd) -> tuple[Path, Path]:
+    """Two variants runs of different students: three, and two others from a roster."""
+    three, two = tmp_path / "three", tmp_path / "two"
+    (tmp_path / "roster.csv").write_text("student\nann\nbob\n")
+    assert main(["variants", TEMPLATE, "--out", str(three), "--count", "3"]) == 0
+    assert main(["variants", TEMPLATE, "--out", str(two), "--students",
+                 str(tmp_path / "roster.csv")]) == 0
+    capfd.readouterr()
+    return three, two
+
+
+@pytest.mark.parametrize(("form", "folder"), [("prairielearn", "planmethod"),
+                                              ("gradescope", "")])
+def test_a_second_export_leaves_exactly_its_own_files(tmp_path, capfd, two_runs, form, folder):
+    """The folder holds afterwards exactly what the second export writes into an empty
+    folder: not a task figure of a student of the first, byte for byte the same files, the
+    autograder's scripts still executable; a question of another slug beside it stays."""
+    three, two = two_runs
+    out, fresh = tmp_path / "out", tmp_path / "fresh"
+    (out / "another-question").mkdir(parents=True)
+    (out / "another-question" / "info.json").write_text("{}")
+    if form == "gradescope":
+        out = out / "autograder"
+    assert main(_export(three, form, out)) == 0
+    first = _tree(out / folder)
+    assert main(_export(two, form, out)) == 0
+    assert main(_export(two, form, fresh)) == 0
+    capfd.readouterr()
+    assert _tree(out / folder) == _tree(fresh / folder) != first
+    assert not any("003" in name for name in _tree(out / folder))
+    assert (tmp_path / "out" / "another-question" / "info.json").read_text() == "{}"
+    if form == "gradescope":
+        assert os.access(out / "run_autograder", os.X_OK)
+    else:
+        assert sorted(os.listdir(out / folder / "clientFilesQuestion")) == [
+            "task_1_ann.svg", "task_2_bob.svg"]
+
+
+@pytest.mark.parametrize("case", ["a file it did not write", "an edited file", "no manifest",
+                                  "a variants run"])
+def test_an_export_never_empties_a_folder_of_other_files(tmp_path, capfd, two_runs, case):
+    """Decided: a folder that holds anything the earlier export did not write (or changed
+    since) is refused in one line naming it, and left exactly as it was — never wiped."""
+    three, two = two_runs
+    out = tmp_path / "autograder"
+    assert main(_export(three, "gradescope", out)) == 0
+    capfd.readouterr()
+    if case == "a file it did not write":
+        (out / "planmethod-src").mkdir()
+    elif case == "an edited file":
+        (out / "setup.sh").write_text("# mine\n")
+    elif case == "no manifest":
+        (out / "manifest.json").unlink()
+    else:
+        out = three
+    before = _tree(tmp_path)
+    line = _fails(capfd, _export(two, "gradescope", out))
+    assert {"a file it did not write": "planmethod-src", "an edited file": "setup.sh changed",
+            "no manifest": "holds no manifest.json",
+            "a variants run": "not a manifest of export"}[case] in line
+    assert _tree(tmp_path) == before
+
+
+def test_a_single_file_export_is_replaced_whole(tmp_path, capfd, two_runs):
+    """A quiz written over a longer earlier one holds nothing of it."""
+    three, two = two_runs
+    quiz, fresh = tmp_path / "quiz.xml", tmp_path / "fresh.xml"
+    assert main(_export(three, "moodle", quiz)) == 0
+    assert main(_export(two, "moodle", quiz)) == 0
+    assert main(_export(two, "moodle", fresh)) == 0
+    assert quiz.read_bytes() == fresh.read_bytes()

@@ -252,12 +252,12 @@ def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
     photo = sheet_photo(keys["002"], "acceleration", "no_normal", seed=5, conditions=STEADY)
     path = tmp_path / "002_no_normal.jpg"
     path.write_bytes(photo.jpeg)
-    result = grade_photo(keys, path)
+    graded = grade_photo(keys, path)
     moved = {label for label, verdict in photo.drawn.deserved.items() if verdict != "right"}
     assert moved
-    for point in result["points"]:
-        if point["point"] in moved:
-            assert not point["correct"] and "no_normal" in point.get("mistakes", [])
+    for point in graded.drawing.points:
+        if point.point in moved:
+            assert not point.correct and "no_normal" in point.mistakes
 
 
 def test_the_marked_photo_and_a_pool_of_workers(course, velocity_photo, tmp_path):

@@ -106,7 +106,7 @@ def test_crank_dead_centre_is_an_ordinary_position(angle):
         "ask": {"velocity": ["C", "D"], "acceleration": ["C"], "omega": ["BC"],
                 "epsilon": ["BC"], "curvature": ["D"]}})
     analysis = analyse(exercise)
-    assert float(np.hypot(*analysis.motion.velocity("C"))) == pytest.approx(0.0, abs=1e-12)
+    assert float(np.hypot(*analysis.motion.at(0).velocity("C"))) == pytest.approx(0.0, abs=1e-12)
     readings = analysis.plans.readings
     assert readings["v_C"] == pytest.approx(0.0, abs=1e-12)
     # the images of C coincides with the pole, and ω_BC = ∓ω1·l_AB/l_BC
@@ -249,7 +249,7 @@ def test_lines_meeting_at_a_small_angle_are_flagged_not_wrong():
     flagged = [s for s in plans.velocity.steps if s.action == "intersect" and s.flagged]
     assert flagged and flagged[0].angle_deg < 1.0
     assert any("below 1°" in flag for flag in plans.flags)
-    motion = solve(exercise.mechanism)
+    motion = solve(exercise.mechanism).at(0)
     assert plans.readings["omega_CD"] == pytest.approx(float(motion.omega("CD")), rel=1e-9)
 
 
@@ -373,7 +373,7 @@ def test_the_radius_of_curvature_is_read_right_with_the_crank_turning_either_way
         exercise = exercise_from_dict(data)
         plans = draw_plans(exercise,
                            settings=dataclasses.replace(exercise.plan, precision_mm=0.0))
-        motion = solve(exercise.mechanism, stage="acceleration")
+        motion = solve(exercise.mechanism, stage="acceleration").at(0)
         for point in ("E", "C"):
             assert plans.readings[f"rho_{point}"] == pytest.approx(
                 exact_value(motion, f"rho_{point}"), rel=1e-9), (angle, point)

@@ -136,7 +136,7 @@ def test_mechanisms_that_differ_in_their_numbers_share_one_compiled_code(monkeyp
     compiled = []
     for mechanism in (first, second):
         solve(mechanism, angles)
-        compiled.append(model(mechanism).whole[2][2])
+        compiled.append(model(mechanism).program(2).compiled)
     assert len(compiled_sources) == 1                    # the second found it compiled
     assert compiled[0].function.__code__.co_code == compiled[1].function.__code__.co_code
     assert compiled[0].function.__code__.co_consts != compiled[1].function.__code__.co_consts
@@ -179,8 +179,11 @@ def test_a_redo_evaluates_the_chunk_again():
     tracer.guard(c, 0.0, check, c)
     tracer.output("c", c)
     compiled = tracer.compile()
-    compiled.redo = lambda angles, rows: rows[0].__setitem__(Ellipsis, -1.0)
-    assert compiled.read(compiled.evaluate(np.array([0.0, 120.0])), "c").tolist() == [-1, -1]
+    with pytest.raises(Redo):                        # nothing to hand the chunk back to
+        compiled.evaluate(np.array([0.0, 120.0]))
+    rows = compiled.evaluate(np.array([0.0, 120.0]),
+                             redo=lambda angles, rows: rows[0].__setitem__(Ellipsis, -1.0))
+    assert compiled.read(rows, "c").tolist() == [-1, -1]
 
 
 # -- the program of a mechanism ---------------------------------------------------------------
@@ -208,7 +211,7 @@ def test_a_posed_mechanism_shares_its_dyads_program(path, shared):
     """Posed at another crank angle (drive.angle and the sketch changed), a mechanism of dyads
     runs the program compiled for it before; a class III group follows its path from
     drive.angle, so the conveyor's posed mechanism compiles its own."""
-    from planmethod.kinematics.solve import pose
+    from planmethod.kinematics.continuation import pose
 
     exercise = _fresh(path, f"posed {path}")
     solve(exercise.mechanism, stage="acceleration")
@@ -226,6 +229,46 @@ def test_a_posed_mechanism_shares_its_dyads_program(path, shared):
                                atol=1e-15)
             assert np.allclose(motion.acceleration(point), exact.acceleration(point),
                                rtol=1e-11, atol=1e-12)
+
+
+def test_a_motion_is_over_arrays_and_at_reads_one_angle():
+    """A motion's readers return arrays over its angles whether one angle or many was asked
+    (no flag changes what they return); ``at(i)`` reads the same values at angle i — a vector
+    of shape (2,), a number — bit for bit what the arrays hold there."""
+    mechanism = load_exercise("exercises/slotted_lever.toml").mechanism
+    one, default = solve(mechanism, 60.0), solve(mechanism)
+    assert one.position("B").shape == default.position("B").shape == (1, 2)
+    assert one.omega("lever").shape == (1,) and one.angles.tolist() == [60.0]
+    angles = np.array([0.0, 60.0, 200.0])
+    motion = solve(mechanism, angles)
+    slide = mechanism.slides[0].key
+    for index, angle in enumerate(angles):
+        here = motion.at(index)
+        assert here.angle == angle and here.motion is motion
+        single = solve(mechanism, angle).at(0)
+        for reader in ("position", "velocity", "acceleration"):
+            for point in ("B", "B@lever", "C"):
+                value = getattr(here, reader)(point)
+                assert value.shape == (2,)
+                assert np.array_equal(value, getattr(motion, reader)(point)[index])
+                assert np.allclose(getattr(single, reader)(point), value, rtol=1e-12, atol=0)
+        for reader in ("theta", "omega", "epsilon"):
+            value = getattr(here, reader)("lever")
+            assert np.ndim(value) == 0 and value == getattr(motion, reader)("lever")[index]
+        assert np.array_equal(here.place("lever", (0.1, 0.0)),
+                              motion.place("lever", (0.1, 0.0))[index])
+        sliding, sliding_all = here.sliding(slide), motion.sliding(slide)
+        for field in ("s", "velocity", "acceleration", "coriolis"):
+            assert np.array_equal(getattr(sliding, field), getattr(sliding_all, field)[index])
+        curvature, curvature_all = here.curvature("C"), motion.curvature("C")
+        assert curvature.straight is curvature_all.straight
+        for field in ("rho", "center", "inflection", "stationary"):
+            assert np.array_equal(getattr(curvature, field), getattr(curvature_all, field)[index],
+                                  equal_nan=field in ("rho", "center"))
+    with pytest.raises(IndexError):
+        motion.at(3)
+    position = solve(mechanism, angles, stage="position").at(1).sliding(slide)
+    assert position.velocity is None and position.coriolis is None
 
 
 def test_results_are_read_only_values():

@@ -25,7 +25,7 @@ def close(value: float, printed: float, digits_after_point: int) -> bool:
 @pytest.fixture(scope="module")
 def compressor():
     exercise = load_exercise("exercises/compressor_slider_crank.toml")
-    return exercise, solve(exercise.mechanism), draw_plans(exercise)
+    return exercise, solve(exercise.mechanism).at(0), draw_plans(exercise)
 
 
 PRINTED = [  # (quantity, exact value as printed in docs/reference-cases.md, decimals)
@@ -83,7 +83,7 @@ def test_compressor_printed_answers_are_wrong_by_12_to_30_percent(compressor):
 def test_compressor_figure_angle_fits_some_printed_answers():
     """Near φ1 ≈ 125° the paper's v_C, ω2 and ρ_D fit (3.94, 19.87, 0.062)."""
     exercise = load_exercise("exercises/compressor_slider_crank.toml")
-    motion = solve(exercise.mechanism, 125.0)
+    motion = solve(exercise.mechanism, 125.0).at(0)
     assert float(np.hypot(*motion.velocity("C"))) == pytest.approx(3.94, abs=0.005)
     assert abs(float(motion.omega("BC"))) == pytest.approx(19.87, abs=0.005)
     assert float(motion.curvature("D").rho) == pytest.approx(0.062, abs=0.0005)
@@ -140,7 +140,7 @@ def test_case_a_curvature(case_a):
 ])
 def test_case_c(angle, s, ds, omega3, dds, epsilon3, coriolis):
     exercise = exercise_from_dict(slotted_lever(angle=angle))
-    motion = solve(exercise.mechanism)
+    motion = solve(exercise.mechanism).at(0)
     sliding = motion.sliding("block/lever")
     assert close(float(sliding.s), s, 6)
     assert close(float(sliding.velocity), ds, 6)
@@ -179,7 +179,7 @@ def test_gate_fourbar_with_ab_and_dc_perpendicular_to_ad():
         "ask": {"omega": ["BC", "CD"]},
     }
     exercise = exercise_from_dict(data)
-    motion = solve(exercise.mechanism)
+    motion = solve(exercise.mechanism).at(0)
     assert abs(float(motion.omega("CD"))) == pytest.approx(25.0, rel=1e-12)
     assert float(motion.omega("BC")) == pytest.approx(0.0, abs=1e-12)
     plans = draw_plans(exercise)
@@ -194,6 +194,6 @@ def test_published_piston_velocity_within_one_percent():
     # piston to the left of the crank centre: the inner dead centre is at 180°
     data = slider_crank(crank=0.3, rod=1.5, angle=180.0 - 40.0, omega=omega)
     data["sketch"] = {"C": [-1.8, 0.0]}
-    motion = solve(exercise_from_dict(data).mechanism)
+    motion = solve(exercise_from_dict(data).mechanism).at(0)
     speed = float(np.hypot(*motion.velocity("C")))
     assert speed == pytest.approx(3.49, rel=0.01)

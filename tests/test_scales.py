@@ -84,7 +84,7 @@ def test_the_reference_vector_follows_from_a_rounded_scale(capsys):
     assert math.hypot(*b) == pytest.approx(6.0 / 0.15, rel=1e-12)      # 40 mm, not 45
     from planmethod.kinematics import solve
 
-    exact = solve(exercise.mechanism, exercise.mechanism.drive.angle)
+    exact = solve(exercise.mechanism, exercise.mechanism.drive.angle).at(0)
     assert plans.readings["v_C"] == pytest.approx(float(math.hypot(*exact.velocity("C"))),
                                                   rel=1e-12)
 

@@ -226,3 +226,58 @@ def test_a_typed_angle_is_saved_as_typed_and_the_table_speaks_the_course(studio_
     assert set(drive) == {"φ₁", "ω₁", "ε₁"}
     assert page.text_content("#editor text.omega") == "ω₁"
     assert errors == []
+
+
+def open_compressor(page, folder: Path) -> None:
+    (folder / "compressor.toml").write_bytes(COMPRESSOR.read_bytes())
+    page.evaluate("""async () => {
+        const answer = await fetch('/api/open', {method: 'POST', credentials: 'same-origin',
+            body: JSON.stringify({path: 'compressor.toml'})});
+        window.studio.load((await answer.json()).tables);
+    }""")
+    settled(page)
+
+
+def test_an_export_shows_its_progress_and_is_cancelled_from_the_page(studio_page):
+    """A 200-variant export started from its dialog shows its progress there and in the bar
+    under the header; the drawing keeps being solved meanwhile; Cancel ends it and nothing is
+    written."""
+    page, folder, errors = studio_page
+    open_compressor(page, folder)
+    page.click("#export-button")
+    page.fill("#export-folder", "class-run")
+    page.fill("#export-count", "200")
+    page.click("#export-run")
+    row = '#export-job .job[data-state="running"]'
+    page.wait_for_selector(row, timeout=60_000)
+    page.wait_for_function(f"Number(document.querySelector('{row} progress')?.value) >= 1",
+                           timeout=120_000)
+    assert "drawing variants" in page.inner_text(f"{row} .job-text")
+    assert page.locator('#jobs .job[data-state="running"]').count() == 1
+    # the server goes on solving the drawing while the export runs
+    solves = page.evaluate("window.studio.solves")
+    page.evaluate("window.studio.movePoint('C', ...window.studio.tables.points.C)")
+    page.wait_for_function(f"window.studio.solves > {solves}", timeout=60_000)
+    assert page.locator('#jobs .job[data-state="running"]').count() == 1
+    page.click(f"{row} button[data-cancel-job]")
+    page.wait_for_selector('#export-job .job[data-state="cancelled"]', timeout=60_000)
+    assert "cancelled: nothing written" in page.inner_text("#export-job .job-text")
+    assert not (folder / "class-run").exists()
+    assert not [path for path in folder.iterdir() if ".export-" in path.name]
+    page.click("#export-close")
+    page.click('#jobs button[data-dismiss-job]')
+    assert page.locator("#jobs .job").count() == 0
+    assert errors == []
+
+
+def test_a_preview_runs_as_a_job_and_shows_the_sheets(studio_page):
+    page, folder, errors = studio_page
+    open_compressor(page, folder)
+    page.click("#variants-button")
+    assert page.get_attribute("#variant-count", "max") == "40"   # the server's limit
+    page.fill("#variant-count", "2")
+    page.click("#preview-variants")
+    page.wait_for_selector('#variants-job .job[data-state="done"]', timeout=120_000)
+    assert page.inner_text("#variants-job .job-text") == "Preview: 2 variants drawn"
+    assert page.locator("#sheets figure svg").count() == 2
+    assert errors == []

@@ -28,7 +28,7 @@ import pytest
 from test_group_kinds import CASES, _grid
 
 from planmethod.kinematics.groups import kind_module
-from planmethod.kinematics.program import STAGES, model, owners
+from planmethod.kinematics.program import STAGES, Result, model, owners
 from planmethod.model import FRAME
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.testing import reference_motion
@@ -71,16 +71,13 @@ def _close(got, expected, scale: float, what: str) -> None:
     assert np.abs(got - expected).max() <= RELATIVE * max(scale, 1e-300), what
 
 
-def _straight_through(program, angles: np.ndarray) -> np.ndarray:
-    """The program's result rows, with no chunk handed back to the direct evaluation."""
+def _straight_through(program, angles: np.ndarray) -> Result:
+    """The program's outputs, with no chunk handed back to the direct evaluation."""
     handed_back = []
-    redo, program.redo = program.redo, lambda angles_deg, rows: handed_back.append(1)
-    try:
-        rows = program.evaluate(angles)
-    finally:
-        program.redo = redo
+    rows = program.compiled.evaluate(angles, redo=lambda angles_deg, rows: handed_back.append(1))
     assert not handed_back, "a chunk was handed back to the direct evaluation"
-    return rows
+    rows.flags.writeable = False
+    return Result(program.schema, rows, angles.shape[0], {})
 
 
 def _mechanisms(name: str):
@@ -99,8 +96,9 @@ def test_the_emitted_program_agrees_with_an_independent_solution(name):
         groups = found.groups()
         assert name in {kind_module(group).name for group in groups}, name
         level = STAGES.index("acceleration")
-        program, _ = found.program(level, groups, found.branches(groups))
-        rows = _straight_through(program, angles)
+        program = found.program(level, groups, found.branches(groups))
+        result = _straight_through(program, angles)
+        schema = result.schema
         expected = _expected(mechanism, angles)
         speed = max(float(np.abs(e["velocity"]).max()) for e in expected.values())
         accel = max(float(np.abs(e["acceleration"]).max()) for e in expected.values())
@@ -109,19 +107,20 @@ def test_the_emitted_program_agrees_with_an_independent_solution(name):
         size = max(float(np.abs(e["origin"]).max()) for e in expected.values())
         for link, motion in expected.items():
             axes = unit_angle(motion["theta"])
-            _close(program.read(rows, f"axes:{link}"), axes, 1.0, (name, link, "axes"))
-            _close(program.read(rows, f"omega:{link}"), motion["omega"], rate,
-                   (name, link, "omega"))
-            _close(program.read(rows, f"epsilon:{link}"), motion["epsilon"], spin,
-                   (name, link, "epsilon"))
-        for point, link in owners(mechanism, expected).items():
+            rows = schema.links[link]
+            _close(result.read(rows.axes), axes, 1.0, (name, link, "axes"))
+            _close(result.read(rows.omega), motion["omega"], rate, (name, link, "omega"))
+            _close(result.read(rows.epsilon), motion["epsilon"], spin, (name, link, "epsilon"))
+        assert dict(schema.owners) == owners(mechanism, expected)
+        for point, link in schema.owners.items():
             m = expected[link]
             place, velocity, acceleration = _rigid(
                 m["theta"], m["origin"], m["omega"], m["velocity"], m["epsilon"],
                 m["acceleration"], mechanism.local(link, point))
-            _close(program.read(rows, f"p:{point}"), place, size, (name, point, "p"))
-            _close(program.read(rows, f"v:{point}"), velocity, speed, (name, point, "v"))
-            _close(program.read(rows, f"a:{point}"), acceleration, accel, (name, point, "a"))
+            rows = schema.points[point]
+            _close(result.read(rows.position), place, size, (name, point, "p"))
+            _close(result.read(rows.velocity), velocity, speed, (name, point, "v"))
+            _close(result.read(rows.acceleration), acceleration, accel, (name, point, "a"))
 
 
 def test_the_comparison_can_fail():
@@ -148,5 +147,5 @@ def test_the_architecture_page_shows_real_programs():
     mechanism = load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml").mechanism
     found = model(mechanism)
     groups = found.groups()
-    program, _ = found.program(STAGES.index("velocity"), groups, found.branches(groups))
-    assert _block(page, "program").strip() == program.source.strip()
+    program = found.program(STAGES.index("velocity"), groups, found.branches(groups))
+    assert _block(page, "program").strip() == program.compiled.source.strip()

@@ -48,7 +48,7 @@ from .combined import (
     epsilon_senses,
 )
 from .friction import FrictionResult, friction_settings, solve_with_friction
-from .groups import GroupSolution, solve_by_groups
+from .group_method import GroupSolution, solve_by_groups
 from .system import SystemSolution, solve_whole_system
 
 __all__ = ["AGREEMENT", "ForceAnalysis", "ForceSolution", "analyse_forces", "force_columns",

@@ -76,7 +76,7 @@ class _Velocities:
 
     def omega(self, link: str) -> np.ndarray:
         if self.plans is not None:
-            value = self.plans.readings.get(f"omega_{link}")
+            value = self.plans.omega(link)
             if value is not None:
                 return np.atleast_1d(np.asarray(value, float))
         return self.states[link].omega

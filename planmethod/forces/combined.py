@@ -111,8 +111,11 @@ def _image(plans, link: str, position: np.ndarray):
 
     plan, motion = plans.acceleration, plans.motion
     mechanism = motion.mechanism
-    omega = plans.readings.get(f"omega_{link}", float(motion.links[link].omega[0]))
-    epsilon = plans.readings.get(f"epsilon_{link}", float(motion.links[link].epsilon[0]))
+    omega, epsilon = plans.omega(link), plans.epsilon(link)
+    if omega is None:
+        omega = float(motion.links[link].omega[0])
+    if epsilon is None:
+        epsilon = float(motion.links[link].epsilon[0])
     for name, local in mechanism.links[link].points.items():
         label = image_label(name, plan.pole)
         if label in plan.points_mm:
@@ -174,7 +177,9 @@ def epsilon_senses(plans) -> tuple[EpsilonSense, ...]:
         y = state.place(mechanism.local(link, second))[0]
         relative = plan.point(labels[1]) - plan.point(labels[0])
         epsilon = float(state.epsilon[0])
-        omega = plans.readings.get(f"omega_{link}", float(state.omega[0]))
+        omega = plans.omega(link)
+        if omega is None:
+            omega = float(state.omega[0])
         normal_mm = omega ** 2 * float(norm(x - y)) / plan.scale
         turn = float(cross(relative, x - y))
         resolution = max(plan.precision_mm, 1e-9 * float(norm(relative)) + 1e-300)
@@ -205,7 +210,9 @@ def combined_constants(plans, applied: AppliedLoads,
         entry = {"points": pair, "length": length, "constant": constant,
                  "exact_moment": -inertia.J * epsilon}
         if plans.acceleration is not None:
-            read = plans.readings.get(f"epsilon_{link}", epsilon)
+            read = plans.epsilon(link)
+            if read is None:
+                read = epsilon
             z_t = abs(read) * length / mu_a
             entry |= {"Z_T_mm": z_t, "from_plan": float(-np.sign(read) * z_t * constant)}
         inertia_moment[link] = entry

@@ -47,7 +47,7 @@ from ..structure import Structure
 from ..vectors import dot, norm, unit_angle
 from ..vocabulary import AppliedKind, PairKind
 from .applied import REST_SPEED, AppliedItem, AppliedLoads
-from .groups import GroupSolution, solve_by_groups
+from .group_method import GroupSolution, solve_by_groups
 
 __all__ = ["FrictionResult", "FrictionSettings", "friction_items", "friction_settings",
            "solve_with_friction"]

@@ -34,11 +34,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import SpecError
-from ..kinematics import solve
-from ..kinematics.solve import choose_branches
+from ..kinematics import choose_branches, solve
 from ..model import Exercise, Load
 from ..numbering import course_numbers
-from ..structure import analyse_structure
 from ..vocabulary import QUANTITY_KINDS, numbered
 from .analysis import solve_forces
 
@@ -216,8 +214,7 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
                             tuple(omegas), base["omega"]),
                   Parameter("moment", "resisting moment Mc", "N·m", tuple(moments),
                             base["moment"]))
-    structure = analyse_structure(mechanism)
-    branches = choose_branches(mechanism, structure)
+    branches = choose_branches(mechanism)
     angles = np.arange(0.0, 360.0, step)
     positions = None
     maxima: dict = {}
@@ -229,7 +226,7 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
         for value in parameter.values:
             settings = dict(base) | {parameter.name: value}
             variant = study_variant(exercise, rocker, index, **settings)
-            motion = solve(variant.mechanism, angles, structure=structure, branches=branches)
+            motion = solve(variant.mechanism, angles, branches=branches)
             if positions is None:
                 positions = motion
             solution = solve_forces(motion, file=exercise.source)

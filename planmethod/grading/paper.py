@@ -37,7 +37,7 @@ from typing import Any
 from urllib.parse import quote, unquote
 
 from ..errors import SpecError
-from ..words import Message, message, render
+from ..words import message
 from .drawings import SubmissionError
 
 __all__ = ["A4_MM", "DRAWING_MM", "MARKER_BITS", "MARKER_CENTRES", "MARKER_DICTIONARY",
@@ -75,24 +75,11 @@ QR_FORMAT = "PM1"
 SHEET_FORMAT = "planmethod-sheet"
 
 
-class _Worded:
-    """An error whose reason is a message, rendered in the language spoken when it is shown
-    (the command line prints it)."""
-
-    def __init__(self, words: Message, **where: Any) -> None:
-        self.words = words
-        super().__init__(render(words), **where)
-
-    def _text(self) -> str:
-        self.message = render(self.words)
-        return super()._text()
-
-
-class CourseError(_Worded, SpecError):
+class CourseError(SpecError):
     """A course folder or key that the booklet cannot print from."""
 
 
-class PhotoError(_Worded, SubmissionError):
+class PhotoError(SubmissionError):
     """A photo of a sheet that cannot be graded: one line says why."""
 
 

@@ -54,9 +54,10 @@ from .paper import (
     read_sheet_code,
 )
 from .plan_points import graded_labels
+from .results import GradedDrawing
 
 __all__ = ["MAX_PHOTO_BYTES", "MAX_TILT_DEG", "Correction", "GradedPhoto", "PhotoReading",
-           "Stroke", "find_points", "find_strokes", "grade_photo", "photo_graded", "read_photo"]
+           "PointPlace", "Stroke", "find_points", "find_strokes", "grade_photo", "read_photo"]
 
 #: the largest photo file read (bytes) and the most pixels decoded
 MAX_PHOTO_BYTES = 40_000_000
@@ -82,9 +83,6 @@ POLE_ROOM_MM = 3.5
 #: how far (mm) a point is looked for beyond its tolerance disc when neither its right place
 #: nor a mistake's holds a mark: the nearest mark within it is taken as the student's point
 SEARCH_MM = 4.0
-
-_CORNER_NAMES = ("top left", "top right", "bottom left", "bottom right")
-
 
 def _corner_name(number: int) -> Message:
     return (message("top left"), message("top right"), message("bottom left"),
@@ -378,10 +376,13 @@ def sheet_of(reading: PhotoReading, keys: Mapping[str, Mapping[str, Any]], key_s
     course = (read_sheet_code(str(recorded.get("qr", ""))) if isinstance(recorded, Mapping)
               else None)
     if course is None:
-        raise PhotoError(message("{key} records no {plan} sheet of student {student}: run "
-                                 "`planmethod variants` again and print its booklet",
-                                 key=key_source, plan=code.plan, student=code.student),
-                         file=source)
+        said = (message("{key} records no velocity plan sheet of student {student}: run "
+                        "`planmethod variants` again and print its booklet", key=key_source,
+                        student=code.student) if code.plan == "velocity" else
+                message("{key} records no acceleration plan sheet of student {student}: run "
+                        "`planmethod variants` again and print its booklet", key=key_source,
+                        student=code.student))
+        raise PhotoError(said, file=source)
     if course.course != code.course:
         raise PhotoError(message("the sheet is of another course ({sheet}; {key} is of "
                                  "{course})", sheet=code.course, key=key_source,
@@ -1065,27 +1066,49 @@ def _nearest_left(entry: Mapping[str, Any], graded: Sequence[str], positions: np
             taken.add(free[0])
 
 
-def _locate(result: dict, entry: Mapping[str, Any], sheet: Sheet,
-            marked: Mapping[str, tuple[tuple[float, float], Mark]], correction: Correction,
-            photo_of: np.ndarray) -> None:
-    """Write into a graded plan where each point was found (``page_mm`` as measured,
-    ``photo_px``, the ``mark``) and where it belongs in the photo (``right_photo_px``; the
-    pole's ``pole_photo_px``)."""
+@dataclass(frozen=True, slots=True)
+class PointPlace:
+    """Where a graded point of a photo is: where it belongs in the photo (``right_photo_px``)
+    and, if it was found, where (``photo_px``; ``page_mm``, as measured on the page) and what
+    the student drew there (``mark``: a :class:`MarkKind`)."""
 
-    def in_photo(plan_xy) -> list[float]:
+    point: str
+    right_photo_px: tuple[float, float]
+    photo_px: tuple[float, float] | None = None
+    page_mm: tuple[float, float] | None = None
+    mark: str | None = None
+
+    def as_dict(self) -> dict[str, Any]:
+        """The place as ``grade --photo --json`` writes it beside the point's verdict."""
+        out: dict[str, Any] = {"right_photo_px": list(self.right_photo_px)}
+        if self.photo_px is not None:
+            out |= {"page_mm": list(self.page_mm or ()), "photo_px": list(self.photo_px),
+                    "mark": self.mark}
+        return out
+
+
+def _places(drawing: GradedDrawing, entry: Mapping[str, Any], sheet: Sheet,
+            marked: Mapping[str, tuple[tuple[float, float], Mark]], correction: Correction,
+            photo_of: np.ndarray) -> tuple[tuple[PointPlace, ...], tuple[float, float]]:
+    """Where each graded point was found (as measured, in the photo and on the page, and the
+    mark) and where it belongs in the photo; and where the pole is in the photo."""
+
+    def in_photo(plan_xy) -> tuple[float, float]:
         page = correction.seen(np.asarray([plan_to_page(sheet.pole_mm, plan_xy)]))
         found = _apply(photo_of, page)[0]
-        return [round(float(found[0]), 1), round(float(found[1]), 1)]
+        return (round(float(found[0]), 1), round(float(found[1]), 1))
 
-    for point in result["points"]:
-        point["right_photo_px"] = in_photo(entry["points_mm"][point["point"]])
-        if point.get("found"):
-            xy, mark = marked[point["point"]]
+    places = []
+    for point in drawing.points:
+        right = in_photo(entry["points_mm"][point.point])
+        if point.found and point.point in marked:
+            xy, mark = marked[point.point]
             page = plan_to_page(sheet.pole_mm, xy)
-            point["page_mm"] = [round(page[0], 3), round(page[1], 3)]
-            point["photo_px"] = in_photo(xy)
-            point["mark"] = str(mark.kind)
-    result["pole_photo_px"] = in_photo((0.0, 0.0))
+            places.append(PointPlace(point.point, right, in_photo(xy),
+                                     (round(page[0], 3), round(page[1], 3)), str(mark.kind)))
+        else:
+            places.append(PointPlace(point.point, right))
+    return tuple(places), in_photo((0.0, 0.0))
 
 
 #: how exactly a photo places a point (mm): the benchmark's error on generated photos
@@ -1113,45 +1136,66 @@ def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
 
 @dataclass(frozen=True)
 class GradedPhoto:
-    """A photo graded: the result (JSON-ready, as :func:`grade_photo` returns it) and the photo
-    itself (B G R), for marking it."""
+    """A photo graded: the plan drawn on its sheet graded as ``grade --drawing`` grades a
+    drawn plan (``drawing``), where each of its points is in the photo (``places``, in the
+    drawing's points' order) and its pole, the sheet its QR code names, how the photo was
+    taken (``reading``, which keeps the photo itself for marking it), and what was measured
+    of the paper's curl (the grid lines it was fitted to and their spread, mm) and of the
+    pencil (strokes and marks found)."""
 
-    result: dict
-    image: Any = field(repr=False)
+    photo: str
+    drawing: GradedDrawing
+    places: tuple[PointPlace, ...]
+    pole_photo_px: tuple[float, float]
+    sheet: Sheet
+    reading: PhotoReading = field(repr=False)
+    grid_lines: int = 0
+    grid_rms_mm: float | None = None
+    strokes: int = 0
+    marks: int = 0
+
+    @property
+    def image(self) -> np.ndarray:
+        """The photo (B G R)."""
+        return self.reading.image
+
+    def as_dict(self) -> dict[str, Any]:
+        """The graded photo as ``grade --photo --json`` writes it: the drawn plan's verdicts as
+        ``grade --drawing --json`` writes them, each point with its place in the photo, then
+        the photo, its sheet and how it was read."""
+        out = self.drawing.as_dict()
+        for point, place in zip(out["points"], self.places, strict=True):
+            point |= place.as_dict()
+        reading = self.reading
+        return out | {
+            "pole_photo_px": list(self.pole_photo_px), "photo": self.photo,
+            "sheet": {"student": self.sheet.student, "plan": self.sheet.plan,
+                      "page": self.sheet.page, "code": self.sheet.code.text},
+            "reading": {"tilt_deg": round(reading.tilt_deg, 1),
+                        "px_per_mm": round(reading.px_per_mm, 2),
+                        "edge_mm": round(reading.edge_mm, 2),
+                        "paper_level": round(reading.paper_level, 1),
+                        "grid_lines": self.grid_lines, "grid_rms_mm": self.grid_rms_mm,
+                        "strokes": self.strokes, "marks": self.marks}}
 
 
 def grade_photo(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
-                key_source: str = "the key") -> dict:
-    """Grade the plan drawn on the sheet a photo shows (see the module notes): the result of
-    :func:`~planmethod.grading.drawings.grade_drawing`, each point with where it was found in
-    the photo (``photo_px``) and on the page (``page_mm``, the point as measured; a point
-    within the photo's measuring error of a named mistake's place is graded there) and where
-    it belongs in the photo (``right_photo_px``), and the photo's ``sheet`` and ``reading``.
+                key_source: str = "the key") -> GradedPhoto:
+    """Grade the plan drawn on the sheet a photo shows (see the module notes): the plan graded
+    by :func:`~planmethod.grading.drawings.grade_drawing` from the points found (a point within
+    the photo's measuring error of a named mistake's place is graded there), with where each
+    point was found and where it belongs in the photo.
 
     Raises
     ------
     PhotoError
         In one line, for a photo that cannot be read or a sheet the key does not have.
     """
-    return photo_graded(keys, path, key_source=key_source).result
-
-
-def photo_graded(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
-                 key_source: str = "the key") -> GradedPhoto:
-    """:func:`grade_photo`, with the photo kept (:class:`GradedPhoto`)."""
     source = str(path)
     data = read_bytes_bounded(path, MAX_PHOTO_BYTES, error=SubmissionError)
     reading = read_photo(data, source)
     key, sheet = sheet_of(reading, keys, key_source)
-    to_page = reading.to_page
-    if any(tuple(marker.centre) != MARKER_CENTRES[marker.number] for marker in sheet.markers):
-        import cv2  # the key's sheet puts its markers elsewhere: the homography again
-
-        photo = np.concatenate([_apply(reading.to_photo, _marker_corners_mm(marker.number))
-                                for marker in sheet.markers])
-        page = np.concatenate([np.asarray(sheet.corners(marker.number))
-                               for marker in sheet.markers])
-        to_page, _ = cv2.findHomography(photo, page, 0)
+    to_page = _to_page(reading, sheet)
     resolution = RECTIFIED_PX_PER_MM
     box = sheet.drawing_mm
     rectified = _rectified(reading.image, to_page, box, resolution)
@@ -1174,18 +1218,24 @@ def photo_graded(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
     points |= {label: _matched(entry, label, xy) for label, xy in measured.items()}
     drawing = Drawing(points, sheet.plan, (), source, title=key.get("title"),
                       angle=float(key.get("angle", 0.0)), exact_scale=True)
-    result = grade_drawing(key, drawing, sheet.plan, rescale=False)
+    graded = grade_drawing(key, drawing, sheet.plan, rescale=False)
     marked = {label: (measured[label], placed[index][1]) for label, index in chosen.items()}
-    _locate(result, entry, sheet, marked, correction, np.linalg.inv(to_page))
-    result["photo"] = source
-    result["sheet"] = {"student": sheet.student, "plan": sheet.plan, "page": sheet.page,
-                       "code": sheet.code.text}
-    result["reading"] = {"tilt_deg": round(reading.tilt_deg, 1),
-                         "px_per_mm": round(reading.px_per_mm, 2),
-                         "edge_mm": round(reading.edge_mm, 2),
-                         "paper_level": round(reading.paper_level, 1),
-                         "grid_lines": correction.samples,
-                         "grid_rms_mm": (round(correction.rms_mm, 3)
-                                         if math.isfinite(correction.rms_mm) else None),
-                         "strokes": len(strokes), "marks": len(marks)}
-    return GradedPhoto(result, reading.image)
+    places, pole = _places(graded, entry, sheet, marked, correction, np.linalg.inv(to_page))
+    return GradedPhoto(source, graded, places, pole, sheet, reading, correction.samples,
+                       round(correction.rms_mm, 3) if math.isfinite(correction.rms_mm)
+                       else None, len(strokes), len(marks))
+
+
+def _to_page(reading: PhotoReading, sheet: Sheet) -> np.ndarray:
+    """The homography from the photo to the page of ``sheet``: the reading's, unless the key's
+    sheet puts its markers elsewhere than the booklet does."""
+    if all(tuple(marker.centre) == MARKER_CENTRES[marker.number] for marker in sheet.markers):
+        return reading.to_page
+    import cv2
+
+    photo = np.concatenate([_apply(reading.to_photo, _marker_corners_mm(marker.number))
+                            for marker in sheet.markers])
+    page = np.concatenate([np.asarray(sheet.corners(marker.number))
+                           for marker in sheet.markers])
+    to_page, _ = cv2.findHomography(photo, page, 0)
+    return to_page

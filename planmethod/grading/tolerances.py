@@ -133,7 +133,8 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
                       perturb=recorder)
     if quantities is None:
         quantities = asked_quantities(exercise, motion)
-    values = {q: exact_value(motion, q) for q in quantities}
+    here = motion.at(0)
+    values = {q: exact_value(here, q) for q in quantities}
     points = _plan_points(base)
     count = len(recorder.segments)
     sensitivity = {q: np.zeros(count) for q in quantities}

@@ -1,7 +1,7 @@
 """The plan emulator: velocity and acceleration plans built the way a student draws them.
 
 For one crank angle the plans are drawn group by group in build order from the groups' vector
-equations (see :mod:`planmethod.kinematics.groups.base`): a known vector is laid off from a
+equations (see :mod:`planmethod.kinematics.groups.dyad`): a known vector is laid off from a
 known plan point; an unknown one is a line of known direction through a known plan point; two
 such lines are intersected. The acceleration plan lays off the normal components computed from
 velocity-plan segments, (bn) = (bc)²·μv²/((BC)·μl·μa), and the Coriolis components 2ω·v_rel
@@ -17,7 +17,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> plans = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
->>> round(plans.readings["v_C"], 4), round(plans.readings["omega_BC"], 3)
+>>> round(plans.readings["v_C"], 4), round(plans.omega("BC"), 3)
 (5.2716, -24.254)
 >>> [round(x, 3) for x in plans.velocity.points_mm["b"]]
 [-21.213, 21.213]
@@ -37,12 +37,22 @@ import numpy as np
 
 from ..errors import PlanmethodError, SpecError, ToggleError
 from ..kinematics import Motion, solve
-from ..kinematics.groups import kind_module
-from ..kinematics.groups.base import TOGGLE_SINE, Construction, sense
+from ..kinematics.groups.checks import TOGGLE_SINE
+from ..kinematics.groups.dyad import Construction, follow_tied
 from ..model import FRAME, Exercise, PlanSettings
 from ..numbering import course_numbers
 from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
-from ..vocabulary import PlanKind, coriolis_letter, links_text, numbered, subscript, symbol
+from ..vocabulary import (
+    PlanKind,
+    coriolis_letter,
+    links_text,
+    numbered,
+    shown_title,
+    subscript,
+    symbol,
+)
+from .groups import plan_face
+from .groups.base import PlansUnavailableError, sense
 from .scales import Scales, choose_scales
 
 __all__ = [
@@ -56,10 +66,6 @@ __all__ = [
     "draw_plans",
     "image_label",
 ]
-
-class PlansUnavailableError(PlanmethodError):
-    """The plans of a group cannot be drawn (its exact kinematics is still available)."""
-
 
 #: A drawing sheet is never larger than this (mm): lines that would meet further away than
 #: this, given the drafting precision, are parallel to within the drawing's precision.
@@ -207,6 +213,14 @@ class Plans:
     readings: Mapping[str, float]
     flags: tuple[str, ...]
     motion: Motion
+
+    def omega(self, link: str) -> float | None:
+        """ω of ``link`` as read off the velocity plan (None: not read)."""
+        return self.readings.get(f"omega_{link}")
+
+    def epsilon(self, link: str) -> float | None:
+        """ε of ``link`` as read off the acceleration plan (None: not read)."""
+        return self.readings.get(f"epsilon_{link}")
 
     def rotated_velocity_plan(self) -> dict[str, tuple[float, float]]:
         """The velocity plan turned 90° clockwise onto the position plan, pole p at the drive's
@@ -550,15 +564,22 @@ class _Emulator:
         return sheet.round(norm(sheet.points[end] - sheet.points[start]),
                            Segment(sheet.kind, "read", "relative"))
 
+    def omega(self, link: str) -> float:
+        """A link's ω as read off the velocity plan (its images fixed)."""
+        return self.vimages[link].omega
+
     def fix_velocity(self, link: str, ref: np.ndarray, label: str, omega: float) -> None:
-        """The link's velocity image is known (its point ``ref`` at ``label``, its ω): its other
-        points follow by similarity."""
+        """The link's velocity image is known (its point ``ref`` at ``label``, its ω read off):
+        the reading is kept, its other points follow by similarity."""
+        self.readings[f"omega_{link}"] = omega
         self.vimages[link] = LinkImage(ref, self.v.points[label], label, omega)
         self.image_points(link, self.v, self.vimages[link], _velocity_offset, self.scales.mu_v)
 
     def fix_acceleration(self, link: str, ref: np.ndarray, label: str, omega: float,
                          epsilon: float) -> None:
-        """The link's acceleration image is known: its other points follow by similarity."""
+        """The link's acceleration image is known (its ε read off): the reading is kept, its
+        other points follow by similarity."""
+        self.readings[f"epsilon_{link}"] = epsilon
         self.aimages[link] = LinkImage(ref, self.a.points[label], label, omega, epsilon)
         self.image_points(link, self.a, self.aimages[link], _acceleration_offset,
                           self.scales.mu_a)
@@ -579,6 +600,12 @@ class _Emulator:
             position = self.similar(sheet, link, image, position, label)
             sheet.place_image(label, offset(image, position, scale), image, link,
                               f"{label} by similarity on {link} from {image.ref_label}")
+
+    def image_of(self, sheet: _Sheet, link: str, position: np.ndarray, label: str) -> str:
+        """The label of the image of ``link``'s material point at ``position`` on ``sheet``
+        (placed if new, from the link's images on that sheet)."""
+        images = self.vimages if sheet is self.v else self.aimages
+        return self.image_at(sheet, images, link, position, label)
 
     def image_at(self, sheet: _Sheet, images: dict, link: str, position: np.ndarray,
                  label: str) -> str:
@@ -705,7 +732,7 @@ class _Emulator:
         equation = " = ".join([f"v_{construction.point}"] + [
             f"v_{side.base} + v_{construction.point}{side.base}" for side in sides])
         for side in sides:
-            base = side.base_position[0]
+            base = side.position[0]
             base_label = self.image_at(self.v, self.vimages, side.base_link, base,
                                        self._base_label(side, self.v))
             direction = side.direction[0]
@@ -728,13 +755,13 @@ class _Emulator:
         rel: list[float] = []
         for _index, side in enumerate(sides):
             base_label = self.image_at(self.v, self.vimages, side.base_link,
-                                       side.base_position[0], self._base_label(side, self.v))
+                                       side.position[0], self._base_label(side, self.v))
             segment = self.v.points[x_label] - self.v.points[base_label]
             direction = side.direction[0]
             sign = sense(segment, direction)
             if side.rotation:
-                radius = x - side.base_position[0]
-                length_mm = self.radius_mm(side.base_position[0], x)
+                radius = x - side.position[0]
+                length_mm = self.radius_mm(side.position[0], x)
                 omega = self.v.read(
                     base_label, x_label, quantity=f"omega_{side.link}", sign=sign,
                     factor=mu_v / (length_mm * mu_l))
@@ -753,7 +780,7 @@ class _Emulator:
                     "v": (base_label, x_label), "reverse": side.link == side.slide.link}
         self.rel_velocity[(group.index, 0)] = rel[0]
         self.rel_velocity[(group.index, 1)] = rel[1]
-        construction.follow_tied(omegas, lambda link: self.readings.get(f"omega_{link}"))
+        follow_tied(construction.tied, omegas, lambda link: self.readings.get(f"omega_{link}"))
         for link in group.links:
             self.readings[f"omega_{link}"] = omegas[link]
             name, ref, known = construction.reference(link)
@@ -773,7 +800,7 @@ class _Emulator:
         line_numbers = []
         normals: dict[int, str] = {}
         for index, side in enumerate(construction.sides):
-            base = side.base_position[0]
+            base = side.position[0]
             base_label = self.image_at(self.a, self.aimages, side.base_link, base,
                                        self._base_label(side, self.a))
             direction = side.direction[0]
@@ -831,14 +858,15 @@ class _Emulator:
             direction = side.direction[0]
             sign = sense(segment, direction)
             if side.rotation:
-                length_mm = self.radius_mm(side.base_position[0], x)
+                length_mm = self.radius_mm(side.position[0], x)
                 epsilons[side.link] = self.a.read(
                     start, x_label, quantity=f"epsilon_{side.link}", sign=sign,
                     factor=mu_a / (length_mm * mu_l))
             else:
                 self.a.read(start, x_label, quantity=f"a_rel_{point}{side.base}", sign=sign,
                             factor=mu_a)
-        construction.follow_tied(epsilons, lambda link: self.readings.get(f"epsilon_{link}"))
+        follow_tied(construction.tied, epsilons,
+                    lambda link: self.readings.get(f"epsilon_{link}"))
         for link in group.links:
             self.readings[f"epsilon_{link}"] = epsilons[link]
             omega = self.readings[f"omega_{link}"]
@@ -880,7 +908,8 @@ def _position_plan(exercise: Exercise, motion: Motion, scales: Scales, angle: fl
                        "direction_deg": direction})
     drive = mechanism.drive
     return PositionPlan(scales.mu_l, points, links, pivots, tuple(slides),
-                        (drive.link, drive.pivot, drive.omega), {}, angle, mechanism.title,
+                        (drive.link, drive.pivot, drive.omega), {}, angle,
+                        shown_title(mechanism.title),
                         course_numbers(mechanism))
 
 
@@ -956,7 +985,7 @@ def _path_mm(motion: Motion, point: str, mu_l: float) -> list[list[float]] | Non
     angles = np.arange(0.0, 360.0, 2.0)
     try:
         path = solve(motion.mechanism, angles, stage="position", links=list(motion.links),
-                     structure=motion.structure, branches=motion.branches).position(point)
+                     branches=motion.branches).position(point)
         found = [[float(x) / mu_l, float(y) / mu_l] for x, y in path]
     except PlanmethodError:
         found = None
@@ -1108,8 +1137,9 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
     for key in sliding:
         _sliding_readings(emulator, key, acceleration)
     phi = emulator.crank_symbols["φ"]
-    velocity_plan = emulator.v.finish(f"{mechanism.title} — velocity plan, {phi} = {angle:g}°")
-    acceleration_plan = (emulator.a.finish(f"{mechanism.title} — acceleration plan, "
+    title = shown_title(mechanism.title)     # as the figures show it
+    velocity_plan = emulator.v.finish(f"{title} — velocity plan, {phi} = {angle:g}°")
+    acceleration_plan = (emulator.a.finish(f"{title} — acceleration plan, "
                                            f"{phi} = {angle:g}°") if acceleration else None)
     flags = tuple(velocity_plan.flags) + (tuple(acceleration_plan.flags)
                                           if acceleration_plan else ())
@@ -1118,23 +1148,17 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
 
 
 def _draw(emulator: _Emulator, motion: Motion, group, plan: str) -> None:
-    """Draw one group on one plan: a dyad from its two vector equations, a higher group by its
-    kind's own construction (its module's ``draw_velocity``, ``draw_acceleration``: see
-    :class:`~planmethod.kinematics.groups.OwnPlans`)."""
-    if group.is_dyad:
+    """Draw one group on one plan: a dyad from its two vector equations, any other group by
+    its kind's plans face (:mod:`planmethod.plans.groups`)."""
+    face = plan_face(group)
+    if face is None:
         construction = motion.groups[group.index].construction
         if plan == "velocity":
             emulator.velocity_group(construction)
         else:
             emulator.acceleration_group(construction)
         return
-    drawing = kind_module(group).drawings.get(PlanKind(plan))
-    if drawing is None:
-        raise PlansUnavailableError(
-            f"plans are drawn for class III triads of revolute pairs only; this {group.kind} "
-            "has other pairs — its exact kinematics is reported (planmethod solve --json)",
-            link=group.name)
-    drawing(emulator, group)
+    face.draw(PlanKind(plan), emulator, group)
 
 
 def _asked_points(exercise: Exercise, motion: Motion) -> tuple[str, ...]:

@@ -28,6 +28,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from ..errors import PlanmethodError
 from ..vocabulary import PlanKind, numbered
 from .canvas import Canvas, SvgFigure
 from .style import num
@@ -166,4 +167,10 @@ def save_mp4(images: Sequence[Any], path: str | Path, ffmpeg: str, *,
                "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p",
                "-f", "mp4", str(path)]
     data = b"".join(image.tobytes() for image in images)
-    subprocess.run(command, input=data, check=True)
+    done = subprocess.run(command, input=data, stdout=subprocess.DEVNULL,
+                          stderr=subprocess.PIPE, check=False)
+    if done.returncode != 0:   # a full disk, a file too large: ffmpeg's last line, one line
+        said = done.stderr.decode("utf-8", "replace").strip().splitlines()
+        raise PlanmethodError(f"ffmpeg could not write the animation "
+                              f"({said[-1][:200] if said else f'exit status {done.returncode}'})",
+                              file=str(path))

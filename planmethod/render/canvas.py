@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from ..vectors import norm, perp, unit_angle, unit_or_zero
+from ..vocabulary import xml_characters
 from .labels import (
     SMALL_RUNS,
     UPRIGHT_RUNS,
@@ -542,8 +543,8 @@ class Canvas:
                                    profile="full", debug=False)
         drawing["viewBox"] = f"{num(x0)} {num(y0)} {num(width)} {num(height)}"
         for key, value in (attributes or {}).items():
-            drawing[key] = value
-        drawing.set_desc(title=title)
+            drawing[key] = xml_characters(value)
+        drawing.set_desc(title=xml_characters(title))
         drawing.add(drawing.rect(insert=(num(x0), num(y0)), size=(num(width), num(height)),
                                  fill="#ffffff", class_="background"))
         # the document's shell (its root, title, definitions, background) is svgwrite's;
@@ -626,17 +627,20 @@ _SVGWRITE_DEFAULTS = {"line": {"x1": "0", "y1": "0", "x2": "0", "y2": "0"},
                       "ellipse": {"cx": "0", "cy": "0", "rx": "1", "ry": "1"}}
 
 
-#: a character ElementTree escapes in an attribute's value (most values have none)
-_ATTRIBUTE_SPECIAL = re.compile('[&<>"\r\n\t]')
+#: a character ElementTree escapes in an attribute's value, or one XML cannot hold (most
+#: values have none)
+_ATTRIBUTE_SPECIAL = re.compile('[&<>"\r\n\t\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]')
 
 
 def _escape_text(text: str) -> str:
-    """Text as XML character data (what ElementTree escapes in it).
+    """Text as XML character data (what ElementTree escapes in it; a character XML cannot
+    hold, a control character from a file, as U+FFFD: :func:`~planmethod.vocabulary.
+    xml_characters`).
 
     >>> _escape_text("a<b & c>d")
     'a&lt;b &amp; c&gt;d'
     """
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return xml_characters(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
 def _escape_attribute(text: str) -> str:

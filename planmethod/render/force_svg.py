@@ -47,6 +47,7 @@ from ..vocabulary import (
     PlanKind,
     numbered,
     scale_text,
+    shown_title,
     subscript,
 )
 from .canvas import Canvas, fit_zoom
@@ -304,8 +305,8 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
                      f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
                      f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
     lines += lines_of_details
-    title = (f"{plans.exercise.mechanism.title} — Q = G + Fᵘ on the acceleration plan, "
-             f"pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
+    title = (f"{shown_title(plans.exercise.mechanism.title)} — Q = G + Fᵘ on the acceleration "
+             f"plan, pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
     frame(figure, title, lines, None, plan.flags, PlanKind.ACCELERATION,
           box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
@@ -592,7 +593,7 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
              f"{float(norm(balancing.force)):.5g} N × {length:.4g} m;  "
              f"M_b = {float(lever.balancing_moment[0]):.6g} N·m (Zhukovsky's lever), by the "
              f"groups {float(forces.solution.balancing_moment[0]):.6g} N·m", *details]
-    title = (f"{mechanism.title} — Zhukovsky's lever with its forces, "
+    title = (f"{shown_title(mechanism.title)} — Zhukovsky's lever with its forces, "
              f"{_phi(plans)} = {plans.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
           plan.flags, PlanKind.VELOCITY)
@@ -743,8 +744,8 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
              f"{scale_text('mu_f', page.mu_f)}",
              f"{_phi(plans)} = {plans.angle:g}°, {_phi(plans, 'ω')} = "
              f"{significant(mechanism.drive.omega, 6)} rad/s", *details]
-    title = (f"{mechanism.title} — the loaded mechanism, {_phi(plans)} = {plans.angle:g}°"
-             .lstrip(" —"))
+    title = (f"{shown_title(mechanism.title)} — the loaded mechanism, {_phi(plans)} = "
+             f"{plans.angle:g}°").lstrip(" —")
     frame(figure, title, lines, (page.position.mu_l, SCALES["mu_l"].drawn,
                                  0.25 * MECHANISM_SIZE), forces.solution.flags,
           PlanKind.POSITION)
@@ -786,7 +787,7 @@ def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True
     one force scale, zoom and page over the turn, and neither the lever with its forces nor
     the loaded mechanism is drawn (their force scales follow each angle's forces)."""
     files: dict[str, str] = {}
-    title = forces.solution.mechanism.title
+    title = shown_title(forces.solution.mechanism.title)
     notation = ForceNotation(forces.solution)
     for number, group in enumerate(forces.solution.groups.groups, start=1):
         files[_file_name(number, group)] = polygon_svg(

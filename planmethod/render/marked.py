@@ -3,30 +3,28 @@ the plan, enlarged, each point ringed where it was found — green if right, red
 thin line to where it belongs — and the grader's sentences under it.
 
 The photo is drawn with Pillow (the ``paper`` extra), its text in DejaVu Sans (matplotlib
-ships the font), so that every symbol of the sentences (ω₂, π, aᵏ, Cyrillic) shows.
+ships the font), so that every symbol of the sentences (ω₂, π, aᵏ, Cyrillic) shows. Its
+sentences are rendered here, in the language spoken.
 
 Examples
 --------
->>> import numpy as np
->>> photo = np.full((300, 200, 3), 255, np.uint8)
->>> result = {"student": "001", "plan": "velocity", "score": 1.0, "max_score": 1.0,
-...           "points": [{"point": "b", "name": "b", "found": True, "correct": True,
-...                       "photo_px": [100.0, 150.0], "right_photo_px": [100.0, 150.0],
-...                       "feedback": "b: within 0.25 mm (0.05 mm off)"}],
-...           "feedback": [], "reading": {"px_per_mm": 1.0}}
->>> jpeg = marked_photo(photo, result, ["Student 001 — velocity plan: 1/1"])
->>> jpeg[:2]
-b'\\xff\\xd8'
+>>> _shown("b ⟂ AB")
+'b ⊥ AB'
 """
 
 from __future__ import annotations
 
 import io
 import textwrap
-from collections.abc import Mapping, Sequence
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+from ..words import render
+
+if TYPE_CHECKING:
+    from ..grading.photos import GradedPhoto
 
 __all__ = ["marked_photo"]
 
@@ -43,28 +41,24 @@ def _font(size: int):
     return ImageFont.truetype(font_manager.findfont("DejaVu Sans"), size)
 
 
-def marked_photo(image: np.ndarray, result: Mapping[str, Any], header: Sequence[str],
-                 *, quality: int = 85) -> bytes:
-    """The part of ``image`` (the photo, B G R) that holds the plan, enlarged, marked with
-    ``result``'s points (``photo_px``: where each was found; ``right_photo_px``: where it
-    belongs; ``pole_photo_px``), with the lines of ``header`` and each point's sentence under
-    it; as JPEG bytes. (It is as long as the marks it draws: a ring, a name, a line to the
-    right place, or a dashed ring for a point not found.)"""
+def marked_photo(graded: GradedPhoto, header: Sequence[str], *, quality: int = 85) -> bytes:
+    """The part of the photo of ``graded`` (a :class:`~planmethod.grading.photos.GradedPhoto`)
+    that holds the plan, enlarged, each point ringed where it was found, with a line to where
+    it belongs if it is wrong, or a dashed ring where it belongs if it was not found; the
+    lines of ``header`` and each point's sentence under it; as JPEG bytes. (It is as long as
+    the marks it draws.)"""
     from PIL import Image, ImageDraw
 
-    millimetre = float(result.get("reading", {}).get("px_per_mm", 8.0))
-    places = [place for point in result.get("points", ())
-              for place in (point.get("photo_px"), point.get("right_photo_px")) if place]
-    if result.get("pole_photo_px"):
-        places.append(result["pole_photo_px"])
+    image = graded.image
+    millimetre = float(graded.reading.px_per_mm or 8.0)
+    places = [place for spot in graded.places
+              for place in (spot.photo_px, spot.right_photo_px) if place]
+    places.append(graded.pole_photo_px)
     height, width = image.shape[:2]
-    if places:
-        margin = 12.0 * millimetre
-        xs, ys = [x for x, _ in places], [y for _, y in places]
-        left, top = max(0, int(min(xs) - margin)), max(0, int(min(ys) - margin))
-        right, bottom = min(width, int(max(xs) + margin)), min(height, int(max(ys) + margin))
-    else:
-        left, top, right, bottom = 0, 0, width, height
+    margin = 12.0 * millimetre
+    xs, ys = [x for x, _ in places], [y for _, y in places]
+    left, top = max(0, int(min(xs) - margin)), max(0, int(min(ys) - margin))
+    right, bottom = min(width, int(max(xs) + margin)), min(height, int(max(ys) + margin))
     crop = np.ascontiguousarray(image[top:bottom, left:right, ::-1])
     scale = min(4.0, LONGEST_PX / max(crop.shape[:2]))
     photo = Image.fromarray(crop).convert("RGB").resize(
@@ -81,29 +75,29 @@ def marked_photo(image: np.ndarray, result: Mapping[str, Any], header: Sequence[
         return ((place[0] - left) * scale, (place[1] - top) * scale)
 
     # the helper points (n, k: not scored) first and small, the plan's points over them
-    for point in sorted(result.get("points", ()), key=lambda point: point.get("max_score", 1.0)):
-        right_place = point.get("right_photo_px")
-        colour = GREEN if point.get("correct") else RED
-        name = str(point.get("name", point.get("point", "")))
-        scored = point.get("max_score", 1.0) > 0
+    for point, spot in sorted(zip(graded.drawing.points, graded.places, strict=True),
+                              key=lambda pair: pair[0].max_score):
+        colour = GREEN if point.correct else RED
+        scored = point.max_score > 0
         ring = ring_size if scored else ring_size * 0.6
         label_font = name_font if scored else small_font
-        if point.get("found") and point.get("photo_px"):
-            x, y = at(point["photo_px"])
-            if not point.get("correct") and right_place is not None:
-                rx, ry = at(right_place)
+        if point.found and spot.photo_px is not None:
+            x, y = at(spot.photo_px)
+            if not point.correct:
+                rx, ry = at(spot.right_photo_px)
                 draw.line([(x, y), (rx, ry)], fill=RED, width=max(1, line // 2))
                 draw.ellipse([rx - ring / 2, ry - ring / 2, rx + ring / 2, ry + ring / 2],
                              outline=GREEN, width=max(1, line // 2))
             draw.ellipse([x - ring, y - ring, x + ring, y + ring], outline=colour, width=line)
             # a helper point's name below, clear of the point's it usually lies beside
-            draw.text((x + ring * 1.1, y - ring * 2.0 if scored else y + ring * 0.4), name,
-                      fill=colour, font=label_font)
-        elif right_place is not None:
-            x, y = at(right_place)
+            draw.text((x + ring * 1.1, y - ring * 2.0 if scored else y + ring * 0.4),
+                      point.name, fill=colour, font=label_font)
+        else:
+            x, y = at(spot.right_photo_px)
             _dashed_ring(draw, (x, y), ring, RED, line)
-            draw.text((x + ring * 1.1, y - ring * 2.0), name + "?", fill=RED, font=label_font)
-    return _with_text(photo, result, header, quality)
+            draw.text((x + ring * 1.1, y - ring * 2.0), point.name + "?", fill=RED,
+                      font=label_font)
+    return _with_text(photo, graded, header, quality)
 
 
 #: characters DejaVu Sans lacks, drawn as the nearest it has
@@ -121,7 +115,7 @@ def _dashed_ring(draw, centre, radius: float, colour, width: int) -> None:
                   centre[1] + radius], start, start + 18, fill=colour, width=width)
 
 
-def _with_text(photo, result: Mapping[str, Any], header: Sequence[str], quality: int) -> bytes:
+def _with_text(photo, graded: GradedPhoto, header: Sequence[str], quality: int) -> bytes:
     """The photo with the sentences set under it."""
     from PIL import Image, ImageDraw
 
@@ -129,17 +123,16 @@ def _with_text(photo, result: Mapping[str, Any], header: Sequence[str], quality:
     font, bold = _font(size), _font(round(size * 1.15))
     characters = max(30, int(photo.width / (0.55 * size)) - 4)
     rows: list[tuple[str, tuple[int, int, int], Any]] = []
-    header = [_shown(text) for text in header]
     for text in header:
-        rows.append((text, (0, 0, 0), bold))
-    for point in result.get("points", ()):
-        mark = "✓ " if point.get("correct") else "✗ "
-        colour = GREEN if point.get("correct") else RED
-        for index, piece in enumerate(textwrap.wrap(_shown(str(point.get("feedback", ""))),
+        rows.append((_shown(text), (0, 0, 0), bold))
+    for point in graded.drawing.points:
+        mark = "✓ " if point.correct else "✗ "
+        colour = GREEN if point.correct else RED
+        for index, piece in enumerate(textwrap.wrap(_shown(render(point.feedback)),
                                                     characters) or [""]):
             rows.append(((mark if index == 0 else "   ") + piece, colour, font))
-    for text in result.get("feedback", ()):
-        for index, piece in enumerate(textwrap.wrap(_shown(str(text)), characters)):
+    for text in graded.drawing.feedback:
+        for index, piece in enumerate(textwrap.wrap(_shown(render(text)), characters)):
             rows.append((("! " if index == 0 else "   ") + piece, (150, 80, 0), font))
     step = round(size * 1.45)
     panel = Image.new("RGB", (photo.width, photo.height + step * len(rows) + 2 * size),

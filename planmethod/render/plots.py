@@ -48,7 +48,7 @@ import numpy as np
 
 from ..errors import PlanmethodError
 from ..io import atomic_path
-from ..vocabulary import QUANTITY_KINDS, numbered, quantity, symbol
+from ..vocabulary import QUANTITY_KINDS, numbered, quantity, shown_title, symbol
 
 __all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_force_plot",
            "save_study_plot", "save_sweep_plot"]
@@ -105,6 +105,18 @@ def plot_format(path: str | Path) -> str:
             "a plot file needs a suffix for its format")
         raise PlanmethodError(f"{found}; use .png, .svg or .pdf", file=str(path))
     return form
+
+
+def _plain_text(text: str) -> str:
+    r"""Text from a file (a title, a question, a mistake's name) as matplotlib shows it as
+    written: each ``$`` escaped, so that no pair of them is read as mathtext (``"Mechanism
+    $^^^$"`` would stop the plot with a parse error, ``"$5 and $6"`` would be set as math).
+    A title is first cut as every figure shows it (:func:`~planmethod.vocabulary.shown_title`).
+
+    >>> _plain_text("$5 and $6"), _plain_text(r"a \$ b")
+    ('\\$5 and \\$6', 'a \\\\$ b')
+    """
+    return text.replace("$", r"\$")
 
 
 def _style_context(style: Mapping[str, Any]):
@@ -252,7 +264,8 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
             axes[-2][1].xaxis.set_tick_params(labelbottom=True)
         if angle.min() >= 0 and angle.max() <= 360 and np.ptp(angle) >= 90:
             axes[0][0].set_xticks(np.arange(0.0, 361.0, 45.0))     # shared by every panel
-        figure.suptitle(f"{title} — full turn", fontsize=11, fontweight="bold")
+        figure.suptitle(f"{_plain_text(shown_title(title))} — full turn", fontsize=11,
+                        fontweight="bold")
         _save(figure, path, form)
 
 
@@ -374,7 +387,8 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         for axis in flat[:count]:
             axis.set_xlim(angles[0], angles[-1])
             axis.xaxis.set_tick_params(labelbottom=True)
-        figure.suptitle(f"{title} — reactions and balancing moment over the turn", fontsize=11)
+        figure.suptitle(f"{_plain_text(shown_title(title))} — reactions and balancing moment "
+                        "over the turn", fontsize=11)
         _save(figure, path, form)
 
 
@@ -405,18 +419,19 @@ def save_study_plot(study: Any, path: str | Path) -> None:
             axis.set_title(f"{parameter.label}: up to {100 * change:.0f} % change", loc="left",
                            fontsize=9)
             axis.legend(fontsize=7)
-        figure.suptitle(f"{study.title}\nlargest reactions over a turn against each "
-                        f"parameter, the others at the base case: {study.base_text()}",
-                        fontsize=10)
+        figure.suptitle(f"{_plain_text(shown_title(study.title))}\nlargest reactions over a turn "
+                        "against each parameter, the others at the base case: "
+                        f"{study.base_text()}", fontsize=10)
         _save(figure, path, form)
 
 
-def save_class_report_plot(rows: list[Mapping[str, Any]], path: str | Path, *,
+def save_class_report_plot(rows: Sequence[Any], path: str | Path, *,
                            title: str, symbols: Mapping[str, str] | None = None,
                            mistakes: Mapping[str, str] | None = None) -> None:
     """The class report as a bar chart: per question, the share of the class right, each
-    named mistake and the unexplained wrong answers, stacked to 100 %. ``symbols`` prints the
-    questions as the course writes them (ω₃), ``mistakes`` names each mistake in words.
+    named mistake and the unexplained wrong answers, stacked to 100 %. ``rows`` are the
+    class report's (:func:`planmethod.grading.report.class_statistics`). ``symbols`` prints
+    the questions as the course writes them (ω₃), ``mistakes`` names each mistake in words.
 
     Raises
     ------
@@ -425,17 +440,17 @@ def save_class_report_plot(rows: list[Mapping[str, Any]], path: str | Path, *,
     """
     path = Path(path)
     form = plot_format(path)
-    questions = [row["question"] for row in rows]
-    names = sorted({name for row in rows for name in row["mistakes"]})
+    questions = [row.question for row in rows]
+    names = sorted({name for row in rows for name in row.mistakes})
     with _style_context(_STYLE):
         figure = _new_figure(figsize=(11.0, 4.8), dpi=130, layout="constrained")
         axis = figure.subplots()
         positions = np.arange(len(questions))
         bottom = np.zeros(len(questions))
-        series = [("right", [row["correct"] for row in rows], "#1b8a3a")]
-        series += [((mistakes or {}).get(name, name.replace("_", " ")),
-                    [row["mistakes"].get(name, 0.0) for row in rows], None) for name in names]
-        series.append(("wrong, no mistake named", [row["unexplained"] for row in rows],
+        series = [("right", [row.correct for row in rows], "#1b8a3a")]
+        series += [(_plain_text((mistakes or {}).get(name, name.replace("_", " "))),
+                    [row.mistakes.get(name, 0.0) for row in rows], None) for name in names]
+        series.append(("wrong, no mistake named", [row.unexplained for row in rows],
                        "#b0b0b0"))
         for label, shares, colour in series:
             values = 100.0 * np.asarray(shares, dtype=float)
@@ -445,10 +460,11 @@ def save_class_report_plot(rows: list[Mapping[str, Any]], path: str | Path, *,
                      edgecolor="white", linewidth=0.6)
             bottom += values
         axis.set_axisbelow(True)
-        axis.set_xticks(positions, [(symbols or {}).get(q, q) for q in questions])
+        axis.set_xticks(positions, [_plain_text((symbols or {}).get(q, q)) for q in questions])
         axis.set_ylabel("share of the class, %")
         axis.set_ylim(0, 100)
         axis.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
-        axis.set_title(f"{title} — answers by question: right, and which mistake",
+        axis.set_title(f"{_plain_text(shown_title(title))} — answers by question: right, and "
+                       "which mistake",
                        fontsize=10.5, loc="left")
         _save(figure, path, form)

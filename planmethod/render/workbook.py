@@ -42,6 +42,7 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from ..vocabulary import shown_title
 from .canvas import Canvas, formula_runs
 from .style import INK, SMALL_SIZE, TEXT_SIZE, num
 
@@ -299,7 +300,7 @@ def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
         abs((angle - start + 180.0) % 360.0 - 180.0), angle))
     note_html = "".join(f"<p class=\"note\">{html.escape(line)}</p>" for line in notes)
     return _PAGE.format(
-        title=html.escape(title), notes=note_html, low=num(low), high=num(high),
+        title=html.escape(shown_title(title)), notes=note_html, low=num(low), high=num(high),
         first=num(first), phi=html.escape(phi),
         step=num(step), panels=panel_html, charts=chart_html, rows=rows,
         data=_pack(data), style=_STYLE, script=_script(), drawing=draw_html,

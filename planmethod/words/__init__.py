@@ -19,7 +19,8 @@ Examples
 """
 
 from .language import current, speaking
-from .message import Message, message, plural
+from .message import Message, message, plural, template
 from .render import number_text, render
 
-__all__ = ["Message", "current", "message", "number_text", "plural", "render", "speaking"]
+__all__ = ["Message", "current", "message", "number_text", "plural", "render", "speaking",
+           "template"]

@@ -1,13 +1,15 @@
 """The translation catalogues' build: the templates read from the code, the catalogue files
 written from them.
 
-``python -m planmethod.words.catalogue`` reads every :func:`~planmethod.words.message.message`
-and :func:`~planmethod.words.message.plural` call of the package (with :mod:`ast`: a
-template is a literal string at its call), writes the catalogue template
+``python -m planmethod.words.catalogue`` reads every :func:`~planmethod.words.message.message`,
+:func:`~planmethod.words.message.plural` and :func:`~planmethod.words.message.template` call
+of the package (with :mod:`ast`: a template is a literal string at its call), writes the
+catalogue template
 ``planmethod/locale/planmethod.pot``, brings each language's ``.po`` up to date with it (a
 template that changed keeps its old translation marked fuzzy) and compiles every ``.po`` to
-the ``.mo`` that :mod:`gettext` reads. The English ``.mo`` translates each template to itself:
-it is the list of templates a language's catalogue is measured against
+the ``.mo`` that :mod:`gettext` reads. A template's place is written as its file without the
+line, so that moving code does not change the catalogues. The English ``.mo`` translates each
+template to itself: it is the list of templates a language's catalogue is measured against
 (:func:`planmethod.words.language.missing`).
 
 Reading the templates needs only the standard library; writing the files uses Babel (the
@@ -40,7 +42,7 @@ DOMAIN = "planmethod"
 #: the date written into the catalogues' headers: fixed, so that a build is repeatable
 _DATE = datetime.datetime(2026, 1, 1, tzinfo=datetime.UTC)
 #: the functions whose first literal arguments are templates
-_MAKERS = {"message": 1, "plural": 2}
+_MAKERS = {"message": 1, "plural": 2, "template": 1}
 
 
 @dataclass(frozen=True, slots=True)
@@ -65,11 +67,14 @@ class Template:
                 if name}
 
 
-def _maker(call: ast.Call) -> int:
+def _name(call: ast.Call) -> str | None:
     function = call.func
-    name = function.id if isinstance(function, ast.Name) else (
+    return function.id if isinstance(function, ast.Name) else (
         function.attr if isinstance(function, ast.Attribute) else None)
-    return _MAKERS.get(name, 0)
+
+
+def _maker(call: ast.Call) -> int:
+    return _MAKERS.get(_name(call), 0)
 
 
 def templates_in(source: str, file: str) -> Iterator[Template]:
@@ -87,7 +92,8 @@ def templates_in(source: str, file: str) -> Iterator[Template]:
                         if keyword.arg == "context" and isinstance(keyword.value, ast.Constant)),
                        None)
         given = [keyword.arg for keyword in node.keywords if keyword.arg != "context"]
-        fields = None if None in given else tuple(given)
+        # a template()'s fields come later (Message.replace); a **fields call's are unknown
+        fields = None if None in given or _name(node) == "template" else tuple(given)
         yield Template(forms, context, fields, file, node.lineno)
 
 
@@ -136,7 +142,7 @@ def new(language: str, folder: Path) -> str:
         sys.exit(f"planmethod: error: {target} exists already (compile it, or remove it to "
                  "start again)")
     return _write(target, lambda file: pofile.write_po(file, fresh, sort_output=True,
-                                                       width=100))
+                                                       width=100, include_lineno=False))
 
 
 def compile_folder(folder: Path) -> list[str]:
@@ -147,14 +153,20 @@ def compile_folder(folder: Path) -> list[str]:
     for po in sorted(folder.glob(f"*/LC_MESSAGES/{DOMAIN}.po")):
         with open(po, "rb") as file:
             language = pofile.read_po(file)
-        # an untranslated plural is left out, as an untranslated singular is (Babel would
-        # write its English forms as if they were its translation)
-        for entry in list(language):
-            if entry.id and isinstance(entry.string, tuple) and not any(entry.string):
-                language.delete(entry.id, context=entry.context)
+        _drop_untranslated_plurals(language)
         written.append(_write(po.with_suffix(".mo"), lambda file, language=language:
                               mofile.write_mo(file, language, use_fuzzy=False)))
     return written
+
+
+def _drop_untranslated_plurals(language) -> None:
+    """Leave a plural that has no translation out of a catalogue to compile: Babel would
+    write its English forms as its translation (a plural's translation is a tuple, never
+    empty), and the catalogue would count it as translated (:func:`~planmethod.words.
+    language.missing`)."""
+    for entry in list(language):
+        if entry.id and entry.pluralizable and not any(entry.string):
+            language.delete(entry.id, context=entry.context)
 
 
 def build(root: Path = PACKAGE) -> list[str]:
@@ -164,7 +176,8 @@ def build(root: Path = PACKAGE) -> list[str]:
     template = _template_catalogue(package_templates(root))
     locale = root / "locale"
     written = [_write(locale / f"{DOMAIN}.pot", lambda file: pofile.write_po(
-        file, template, omit_header=False, sort_output=True, width=100))]
+        file, template, omit_header=False, sort_output=True, width=100,
+        include_lineno=False))]
     english = catalog.Catalog(locale="en", domain=DOMAIN, charset="utf-8",
                               creation_date=_DATE, revision_date=_DATE)
     for entry in template:
@@ -177,7 +190,8 @@ def build(root: Path = PACKAGE) -> list[str]:
             language = pofile.read_po(file)
         language.update(template, update_header_comment=False)
         written.append(_write(po, lambda file, language=language: pofile.write_po(
-            file, language, sort_output=True, width=100, ignore_obsolete=True)))
+            file, language, sort_output=True, width=100, ignore_obsolete=True,
+            include_lineno=False)))
     return written + compile_folder(locale)
 
 

@@ -18,6 +18,8 @@ Examples
 ('{count} draws rejected', 4)
 >>> plural("{count} variant", "{count} variants", count=3).forms
 ('{count} variant', '{count} variants')
+>>> template("speed of {point}").replace(point="C").values
+{'point': 'C'}
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["Message", "message", "plural"]
+__all__ = ["Message", "message", "plural", "template"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -105,3 +107,16 @@ def plural(singular: str, plural_template: str, /, *, count: int, context: str |
     return Message(singular, (("count", count), *fields.items()), plural_template, "count",
                    context)
 
+
+
+def template(text: str, /, *, context: str | None = None) -> Message:
+    """A sentence whose fields are given later, with :meth:`Message.replace` (a table of
+    sentences made once, filled where each is used): ``text`` must be a literal string at
+    the call, as :func:`message`'s.
+
+    Examples
+    --------
+    >>> template("{count} files", context="disk").context
+    'disk'
+    """
+    return Message(text, context=context)

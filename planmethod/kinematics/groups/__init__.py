@@ -1,37 +1,36 @@
-"""The group kinds: one module per kind, found by its kind, checked against one interface.
+"""The group kinds: one module per kind and layer, found by its kind, checked against one
+interface per layer.
 
-Each module of this package that defines ``KIND`` (a :class:`~planmethod.vocabulary.GroupKind`)
-or ``KINDS`` (several) is a group kind, registered when the package is first asked for one —
-adding a kind means adding one module here (and its test), nothing else. What such a module
-provides is written once, here, as protocols:
+A group kind has a face in each layer that handles groups: its kinematics here, its plans in
+:mod:`planmethod.plans.groups`, its reactions in :mod:`planmethod.forces.groups` — each a module
+named as the kind's module here, each layer's protocol written in that layer (docs/
+architecture.md, "Group kinds"). Each module of this package that defines ``KIND`` (a
+:class:`~planmethod.vocabulary.GroupKind`) or ``KINDS`` (several) is a group kind, registered
+when the package is first asked for one. Its kinematic face is written once, here, as
+protocols:
 
 * :class:`ClosedFormKind` — a dyad: ``BRANCHES`` (how many assemblies it has) and
   ``place(context)``, its closed-form positions and its two vector equations (see
-  :mod:`~planmethod.kinematics.groups.base`); or
-* :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch,
-  outputs)`` and ``choose(context, model)`` (Newton continued along the crank angle, see
-  :mod:`.higher`);
+  :mod:`~planmethod.kinematics.groups.dyad`); or
+* :class:`IterativeKind` — a higher group: ``evaluate(context, level, model, branch)`` and
+  ``choose(context, model)`` (Newton continued along the crank angle, see :mod:`.higher`);
 
-with :class:`Reactions` (``reactions(solver, group)``, the textbook sequence the force analysis
-runs) — required of a dyad, optional for a higher group (without it the group's 3k equilibrium
-equations are solved at once); and, optionally, :class:`Accepts` (``accepts(group)``: which
-groups of its kind it solves; default every one) with ``PRIORITY`` (higher first) and
-:class:`OwnPlans` (``draw_velocity(emulator, group)`` and ``draw_acceleration(emulator,
-group)``, the construction the plan emulator runs for a higher group; a dyad is drawn from its
-two vector equations).
+and, optionally, :class:`Accepts` (``accepts(group)``: which groups of its kind it solves;
+default every one) with ``PRIORITY`` (higher first).
 
 When the registry loads the modules, :func:`describe` checks each one against the protocols —
 every function present, callable with the protocol's arguments — and records what it found as a
-:class:`KindModule`, which is what the solver, the plans and the force analysis call. A module
+:class:`KindModule`, which is what the solver and the later layers' registries call. A module
 that breaks the interface is a :class:`TypeError` naming the module and what is wrong, at load.
+:func:`protocol_functions` and :func:`face_modules` serve the later layers' registries alike.
 
 Examples
 --------
 >>> sorted(str(kind) for kind in registered())
 ['PRP', 'RPP', 'RPR', 'RRP', 'RRR', 'tetrad', 'triad']
 >>> rrr = registered()[GroupKind.RRR][0]
->>> rrr.name, rrr.closed_form, rrr.branches, sorted(rrr.drawings)
-('rrr', True, 2, [])
+>>> rrr.name, rrr.closed_form, rrr.branches
+('rrr', True, 2)
 """
 
 from __future__ import annotations
@@ -40,19 +39,21 @@ import importlib
 import inspect
 import pkgutil
 import threading
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass
 from types import ModuleType
-from typing import Any, Protocol
+from typing import Protocol
 
 from ...errors import StructureError
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind, PlanKind
+from ...vocabulary import GroupKind, group_kind_words
+from ...words.message import message
 from ..algebra import Body
-from .base import Branch, ForceSolver, GroupInputs, Placed, PlanDrawer
+from .base import Branch, GroupInputs, KindModel, SolvedGroup
+from .dyad import Placed
 
-__all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "OwnPlans", "Reactions",
-           "describe", "kind_module", "registered"]
+__all__ = ["Accepts", "ClosedFormKind", "IterativeKind", "KindModule", "describe",
+           "face_modules", "kind_module", "kinds_by_name", "protocol_functions", "registered"]
 
 
 # -- the interface ----------------------------------------------------------------------------
@@ -69,10 +70,10 @@ class IterativeKind(Protocol):
     """A higher group kind: its links' motion by Newton continued from ``drive.angle``
     (``evaluate``), and its assembly there (``choose``)."""
 
-    def evaluate(self, context: GroupInputs, level: int, model: Any, branch: Branch,
-                 outputs: Any) -> Any: ...
+    def evaluate(self, context: GroupInputs, level: int, model: KindModel,
+                 branch: Branch) -> SolvedGroup: ...
 
-    def choose(self, context: GroupInputs, model: Any) -> tuple[Branch, dict[str, Body]]: ...
+    def choose(self, context: GroupInputs, model: KindModel) -> tuple[Branch, dict[str, Body]]: ...
 
 
 class Accepts(Protocol):
@@ -81,28 +82,11 @@ class Accepts(Protocol):
     def accepts(self, group: AssurGroup) -> bool: ...
 
 
-class Reactions(Protocol):
-    """A kind's textbook reaction sequence, run by :mod:`planmethod.forces.groups`: required of
-    a :class:`ClosedFormKind` (every dyad has one), optional for an :class:`IterativeKind`
-    (without it, :attr:`KindModule.reactions` is None and the force analysis solves the group's
-    3k equilibrium equations at once)."""
-
-    def reactions(self, solver: ForceSolver, group: AssurGroup) -> Any: ...
-
-
-class OwnPlans(Protocol):
-    """A higher kind's own plan construction, run by :mod:`planmethod.plans.construction`."""
-
-    def draw_velocity(self, emulator: PlanDrawer, group: AssurGroup) -> None: ...
-
-    def draw_acceleration(self, emulator: PlanDrawer, group: AssurGroup) -> None: ...
-
-
 @dataclass(frozen=True, eq=False)
 class KindModule:
     """A group kind's module as the registry checked it (see the module docstring): its short
-    ``name``, the ``kinds`` it registers for, its ``priority``, and its functions — None where
-    the module does not provide that part; ``drawings`` maps a plan to its own construction."""
+    ``name`` (that of its faces in the later layers too), the ``kinds`` it registers for, its
+    ``priority``, and its functions — None where the module does not provide that part."""
 
     name: str
     kinds: tuple[GroupKind, ...]
@@ -110,12 +94,8 @@ class KindModule:
     accepts: Callable[[AssurGroup], bool] | None = None
     branches: int = 0
     place: Callable[[GroupInputs], Placed] | None = None
-    evaluate: Callable[..., Any] | None = None
-    choose: Callable[..., tuple[Branch, dict[str, Body]]] | None = None
-    #: None only for an iterative kind without one: its linear system is solved instead
-    reactions: Callable[[ForceSolver, AssurGroup], Any] | None = None
-    drawings: Mapping[PlanKind, Callable[[PlanDrawer, AssurGroup], None]] = field(
-        default_factory=dict)
+    evaluate: Callable[[GroupInputs, int, KindModel, Branch], SolvedGroup] | None = None
+    choose: Callable[[GroupInputs, KindModel], tuple[Branch, dict[str, Body]]] | None = None
 
     @property
     def closed_form(self) -> bool:
@@ -134,10 +114,11 @@ def _arguments(protocol: type) -> dict[str, int]:
             if inspect.isfunction(member) and not name.startswith("_")}
 
 
-def _part(module: ModuleType, protocol: type, problems: list[str]) -> dict[str, Callable] | None:
+def protocol_functions(module: ModuleType, protocol: type,
+                       problems: list[str]) -> dict[str, Callable] | None:
     """The module's functions of ``protocol`` (None where it has none of them); a function
-    missing beside the others, or one that cannot take the protocol's arguments, is a
-    problem."""
+    missing beside the others, or one that cannot take the protocol's arguments, is added to
+    ``problems``."""
     wanted = _arguments(protocol)
     present = {name: getattr(module, name) for name in wanted if hasattr(module, name)}
     if not present:
@@ -186,11 +167,9 @@ def describe(module: ModuleType) -> KindModule:
             problems.append(f"KIND {kind!r} is no GroupKind")
     if not declared:
         problems.append("defines neither KIND nor KINDS")
-    closed = _part(module, ClosedFormKind, problems)
-    iterative = _part(module, IterativeKind, problems)
-    accepts = _part(module, Accepts, problems)
-    reactions = _part(module, Reactions, problems)
-    drawings = _part(module, OwnPlans, problems)
+    closed = protocol_functions(module, ClosedFormKind, problems)
+    iterative = protocol_functions(module, IterativeKind, problems)
+    accepts = protocol_functions(module, Accepts, problems)
     branches = getattr(module, "BRANCHES", 0)
     if closed and iterative:
         problems.append("defines both place (ClosedFormKind) and evaluate/choose "
@@ -200,25 +179,16 @@ def describe(module: ModuleType) -> KindModule:
                         "(IterativeKind)")
     elif closed and branches not in (1, 2):
         problems.append(f"BRANCHES must be 1 or 2 for a closed-form kind, not {branches!r}")
-    if closed and reactions is None:
-        problems.append("a closed-form kind defines reactions (Reactions): a dyad's textbook "
-                        "reaction sequence")
-    if closed and drawings:
-        problems.append("a closed-form kind is drawn from its two vector equations: it "
-                        "defines no draw_velocity or draw_acceleration")
     priority = getattr(module, "PRIORITY", 0)
     if not isinstance(priority, int):
         problems.append(f"PRIORITY must be a whole number, not {priority!r}")
     if problems:
         raise TypeError(f"group kind module {module.__name__}: " + "; ".join(problems))
-    drawings = drawings or {}
     return KindModule(
         name=module.__name__.rpartition(".")[2], kinds=tuple(kinds), priority=priority,
         accepts=(accepts or {}).get("accepts"), branches=branches if closed else 0,
         place=(closed or {}).get("place"), evaluate=(iterative or {}).get("evaluate"),
-        choose=(iterative or {}).get("choose"), reactions=(reactions or {}).get("reactions"),
-        drawings={PlanKind.VELOCITY: drawings["draw_velocity"],
-                  PlanKind.ACCELERATION: drawings["draw_acceleration"]} if drawings else {})
+        choose=(iterative or {}).get("choose"))
 
 
 # -- the registry -----------------------------------------------------------------------------
@@ -263,5 +233,24 @@ def kind_module(group: AssurGroup) -> KindModule:
     for module in registered().get(group.kind, ()):
         if module.solves(group):
             return module
-    raise StructureError(f"no solver for a group of kind {group.kind!s} of this shape",
+    raise StructureError(message("no solver for a group of kind {kind} of this shape",
+                                 kind=group_kind_words(group.kind)),
                          link=group.name)
+
+
+def kinds_by_name() -> dict[str, KindModule]:
+    """Every registered kind module by its name (the name of its faces in the later layers).
+
+    >>> sorted(kinds_by_name())
+    ['higher', 'prp', 'rpp', 'rpr', 'rrp', 'rrr', 'triad']
+    """
+    return {module.name: module for modules in registered().values() for module in modules}
+
+
+def face_modules(package: ModuleType) -> dict[str, ModuleType]:
+    """The face modules of a later layer's group-kind package (``planmethod.plans.groups``,
+    ``planmethod.forces.groups``), by name: every module of it but ``base`` (what its faces
+    are given) and private ones (``_…``) — each named as the kind's module here."""
+    return {info.name: importlib.import_module(f"{package.__name__}.{info.name}")
+            for info in pkgutil.iter_modules(package.__path__)
+            if info.name != "base" and not info.name.startswith("_")}

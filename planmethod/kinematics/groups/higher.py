@@ -37,7 +37,7 @@ Examples
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
 >>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0)
->>> motion.position("D").round(6)
+>>> motion.at(0).position("D").round(6)
 array([ 0.793156, -0.183194])
 >>> motion.branches[0].reason, motion.branches[0].count
 ('sketch', 4)
@@ -59,11 +59,12 @@ from ...model import FRAME, Mechanism
 from ...structure import AssurGroup
 from ...vectors import rotate
 from ...vocabulary import GroupKind, PairKind
+from ...words.message import message, plural
 from ..algebra import Body, maximum, minimum, sqrt
 from ..constraints import ConstraintSystem
 from ..state import LinkState
 from ..tracing import Redo, Traced
-from .base import Branch, GroupInputs
+from .base import Branch, GroupInputs, KindModel, SolvedGroup
 
 __all__ = ["ITERATIONS", "KINDS", "MIN_STEP_DEG", "RESIDUAL", "STEP_DEG", "HigherBranch",
            "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate"]
@@ -291,22 +292,23 @@ class Path:
             health = float(np.ravel(system.conditioning(system.at(tuple(q.T), here)))[0])
             name = system.group.name
             if health < LIMIT:
-                raise ToggleError(
-                    f"the group reaches a limit (toggle) position near crank angle {start:.6g}°:"
-                    f" its Jacobian is nearly singular (normalised determinant {health:.2g}); "
-                    "beyond it the group cannot be assembled on this branch",
-                    line_angle_deg=0.0, link=name, angle=start)
+                raise ToggleError(message(
+                    "the group reaches a limit (toggle) position near crank angle {angle:.6g}°: "
+                    "its Jacobian is nearly singular (normalised determinant {health:.2g}); "
+                    "beyond it the group cannot be assembled on this branch", angle=start,
+                    health=health), line_angle_deg=0.0, link=name, angle=start)
             if not bool(converged[0]):
-                raise ConvergenceError(
-                    f"Newton did not converge: residual {float(residual[0]):.3g} m after "
-                    f"{ITERATIONS} iterations (group size {system.length:g} m), even with a "
-                    f"crank-angle step of {abs(stop - start):.2g}°",
+                raise ConvergenceError(message(
+                    "Newton did not converge: residual {residual:.3g} m after {iterations} "
+                    "iterations (group size {size:g} m), even with a crank-angle step of "
+                    "{step:.2g}°", residual=float(residual[0]), iterations=ITERATIONS,
+                    size=system.length, step=abs(stop - start)),
                     residual=float(residual[0]), link=name, angle=stop)
-            raise BranchJumpError(
-                f"the assembly would jump to another branch between crank angles {start:.9g}° "
-                f"and {stop:.9g}° (the solution moves {float(jump[0]):.3g} m in a step of "
-                f"{abs(stop - start):.2g}°): a toggle or branch point lies there",
-                link=name, angle=stop)
+            raise BranchJumpError(message(
+                "the assembly would jump to another branch between crank angles {start:.9g}° "
+                "and {stop:.9g}° (the solution moves {moved:.3g} m in a step of {step:.2g}°): "
+                "a toggle or branch point lies there", start=start, stop=stop,
+                moved=float(jump[0]), step=abs(stop - start)), link=name, angle=stop)
         middle = 0.5 * (start + stop)
         return self.advance(self.advance(node, start, middle), middle, stop)
 
@@ -374,9 +376,9 @@ class Path:
 
 
 def _toggle(system: System, health: float, angle: float) -> ToggleError:
-    return ToggleError(
-        f"toggle position: the group's Jacobian is singular (normalised determinant "
-        f"{health:.2g}); its motion is not determined", line_angle_deg=0.0,
+    return ToggleError(message(
+        "toggle position: the group's Jacobian is singular (normalised determinant "
+        "{health:.2g}); its motion is not determined", health=health), line_angle_deg=0.0,
         link=system.group.name, angle=angle)
 
 
@@ -412,7 +414,8 @@ def _arrays(values: Sequence, count: int) -> list[np.ndarray]:
     return [np.broadcast_to(np.asarray(value, dtype=float), (count,)) for value in values]
 
 
-def choose_with(context: GroupInputs, model, make_system) -> tuple[Branch, dict[str, Body]]:
+def choose_with(context: GroupInputs, model: KindModel,
+                make_system: Callable[[GroupInputs], System]) -> tuple[Branch, dict[str, Body]]:
     """The group's assembly at ``drive.angle`` and its links' bodies there."""
     mechanism, group = context.mechanism, context.group
     system = make_system(context)
@@ -422,8 +425,8 @@ def choose_with(context: GroupInputs, model, make_system) -> tuple[Branch, dict[
         found = sort_assemblies(system, system.assemblies(known), known)
         model.memo[("assemblies", group.index)] = found
     if not found:
-        raise AssemblyError("the group cannot be assembled at this crank angle: no assembly "
-                            "found", shortfall=None, link=group.name,
+        raise AssemblyError(message("the group cannot be assembled at this crank angle: no "
+                                    "assembly found"), shortfall=None, link=group.name,
                             angle=float(mechanism.drive.angle))
     distances = [_sketch_distance(mechanism, system,
                                   system.poses(system.at(tuple(q[None, :].T), known))[0])
@@ -444,7 +447,7 @@ def choose_with(context: GroupInputs, model, make_system) -> tuple[Branch, dict[
 
 
 # -- the path of a model ------------------------------------------------------------------------
-def _path(context: GroupInputs, model, branch: Branch, system: System) -> Path:
+def _path(context: GroupInputs, model: KindModel, branch: Branch, system: System) -> Path:
     """The model's path for this group and branch (made once)."""
     key = ("path", context.group.index, branch.sign)
     found = model.memo.get(key)
@@ -458,9 +461,11 @@ def _path(context: GroupInputs, model, branch: Branch, system: System) -> Path:
             np.array([float(mechanism.drive.angle)]), {}), model, lambda _: system)
         assemblies = model.memo[("assemblies", group.index)]
     if not 1 <= branch.sign <= len(assemblies):
-        raise StructureError(f"branch {branch.sign} asked, but the group has "
-                             f"{len(assemblies)} assemblies at crank angle "
-                             f"{mechanism.drive.angle:g}°", link=group.name)
+        raise StructureError(plural(
+            "branch {branch} asked, but the group has {count} assembly at crank angle "
+            "{angle:g}°", "branch {branch} asked, but the group has {count} assemblies at "
+            "crank angle {angle:g}°", count=len(assemblies), branch=branch.sign,
+            angle=mechanism.drive.angle), link=group.name)
 
     def upstream(angles: np.ndarray):
         """The known values at unit crank speed: derivatives by the crank angle."""
@@ -472,7 +477,7 @@ def _path(context: GroupInputs, model, branch: Branch, system: System) -> Path:
     return found
 
 
-def _upstream_bodies(model, group: AssurGroup, angles: np.ndarray, level: int,
+def _upstream_bodies(model: KindModel, group: AssurGroup, angles: np.ndarray, level: int,
                      unit: bool = False) -> dict[str, Body]:
     """The links the group rests on, by the direct evaluation at ``angles`` (``unit``: with
     the crank turning at 1 rad/s)."""
@@ -483,37 +488,14 @@ def _upstream_bodies(model, group: AssurGroup, angles: np.ndarray, level: int,
             mechanism.drive, omega=1.0, epsilon=0.0)))
     links = [link for link in group.attached_to if link != FRAME] or [mechanism.drive.link]
     groups = tuple(g for g in model.structure.groups_needed(links) if g.index != group.index)
-    values, _ = source.direct(level, groups, model.branches(groups), angles)
-    solved = [FRAME, mechanism.drive.link] + [link for g in groups for link in g.links]
-    return {link: _body(values, link, level) for link in solved}
-
-
-def _body(values: Mapping[str, np.ndarray], link: str, level: int) -> Body:
-    axes, origin = values[f"axes:{link}"], values[f"origin:{link}"]
-    body = Body(axes[:, 0], axes[:, 1], origin[:, 0], origin[:, 1])
-    if level >= 1:
-        velocity = values[f"velocity:{link}"]
-        body.omega, body.vx, body.vy = values[f"omega:{link}"], velocity[:, 0], velocity[:, 1]
-    if level >= 2:
-        acceleration = values[f"acceleration:{link}"]
-        body.epsilon, body.ax, body.ay = (values[f"epsilon:{link}"], acceleration[:, 0],
-                                    acceleration[:, 1])
-    return body
+    return source.bodies(level, groups, model.branches(groups), angles)
 
 
 # -- the evaluation -----------------------------------------------------------------------------
-@dataclass
-class Solved:
-    """A higher group solved: how its links' angles are read (``thetas``: recipes)."""
-
-    thetas: dict
-
-
-def higher_evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs,
-                    make_system: Callable) -> Solved:
+def higher_evaluate(context: GroupInputs, level: int, model: KindModel, branch: Branch,
+                    make_system: Callable[[GroupInputs], System]) -> SolvedGroup:
     """Solve a higher group at the context's angles and put its links' bodies into the
-    context; name each stored θ ``theta:L`` and the conditioning ``sine:i`` in ``outputs``."""
-    group = context.group
+    context."""
     system = make_system(context)
     inputs = system.inputs(context.bodies, level)
     if isinstance(context.angles, Traced) and system.traceable:
@@ -531,10 +513,7 @@ def higher_evaluate(context: GroupInputs, level: int, model, branch: Branch, out
         if level >= 2:
             body.epsilon, body.ax, body.ay = part[7:10]
         context.bodies[link] = body
-    for link, theta in stored.items():
-        outputs.scalar(f"theta:{link}", theta)
-    outputs.scalar(f"sine:{group.index}", health)
-    return Solved(system.theta_recipes())
+    return SolvedGroup(stored, system.theta_recipes(), health)
 
 
 def _direct(context, level, model, branch, system, inputs):
@@ -620,8 +599,9 @@ class GeneralSystem(System):
             mechanism, self.links, known=self.known_links)
         rows, cols = self.constraints.size
         if rows != cols:
-            raise StructureError(f"the group has {rows} constraint equations for {cols} "
-                                 "unknowns", link=group.name)
+            raise StructureError(message("the group has {rows} constraint equations for "
+                                         "{columns} unknowns", rows=rows, columns=cols),
+                                 link=group.name)
         sizes = [1e-9]
         for link in self.links:
             points = np.array(list(mechanism.links[link].points.values()))
@@ -757,11 +737,11 @@ def _inside(joint, group: AssurGroup) -> str:
     return joint.links[0] if joint.links[0] in group.links else joint.links[1]
 
 
-def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model: KindModel, branch: Branch) -> SolvedGroup:
     """Solve a higher group of any shape (see the module docstring)."""
-    return higher_evaluate(context, level, model, branch, outputs, GeneralSystem)
+    return higher_evaluate(context, level, model, branch, GeneralSystem)
 
 
-def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model: KindModel) -> tuple[Branch, dict[str, Body]]:
     """The group's assembly at ``drive.angle`` (see the module docstring)."""
     return choose_with(context, model, GeneralSystem)

@@ -6,33 +6,31 @@ Position: Q is where the two guide lines meet (one assembly); parallel guides ar
 Vector equations (X = Q): v_Q = v_Q@K1 + v_rel1 (along guide 1) = v_Q@K2 + v_rel2 (along
 guide 2).
 
-Reactions: N1, N2 from the group's polygon (each ⟂ its guide); the pin Q from L2; each reaction
-couple from its link's moments.
+Its reactions: the forces face, :mod:`planmethod.forces.groups.prp`.
 
 Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/slotted_crank_crosshead.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/slotted_crank_crosshead.toml").mechanism).at(0)
 >>> motion.position("Q").round(6)
 array([0.175279, 0.530906])
 """
 
 from __future__ import annotations
 
-from ... import vectors
-from ...structure import AssurGroup
-from ...vocabulary import EdgeKind, GroupKind
+from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, Vec, cross, dot
-from . import base
+from . import base, checks, dyad
 
-__all__ = ["BRANCHES", "KIND", "place", "reactions"]
+__all__ = ["BRANCHES", "KIND", "place"]
 
 KIND = GroupKind.PRP
 BRANCHES = 1
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     lines = []
@@ -46,65 +44,30 @@ def place(context: base.GroupInputs) -> base.Placed:
                       turned))
     (_, body1, n1, c1, q1, t1), (_, body2, n2, c2, q2, t2) = lines
     det = cross(n1, n2)
-    text = (f"the guides of {ext1.slide.key} and {ext2.slide.key} are parallel: "
-            f"{internal.point} has no definite position")
+    text = message("the guides of {pair1} and {pair2} are parallel: {point} has no definite "
+                   "position", pair1=ext1.slide.key, pair2=ext2.slide.key, point=internal.point)
 
     def check(angles, value) -> None:
-        base.parallel_guides(group, angles, value, text)
+        checks.parallel_guides(group, angles, value, text)
 
-    context.guard(det * det, base.TOGGLE_SINE * base.TOGGLE_SINE, check, det)
+    context.guard(det * det, checks.TOGGLE_SINE * checks.TOGGLE_SINE, check, det)
     x = Vec((c1 * n2.y - c2 * n1.y) / det, (n1.x * c2 - n2.x * c1) / det)
     for body, turned, local in ((body1, t1, q1), (body2, t2, q2)):
         origin = x if local == (0.0, 0.0) else x - turned
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     k1, k2 = ext1.other(l1), ext2.other(l2)
-    sides = tuple(base.sliding_side(context, joint.slide, known, f"{internal.point}@{known}", known,
+    sides = tuple(dyad.sliding_side(context, joint.slide, known, f"{internal.point}@{known}", known,
                                x, placed) for joint, known in ((ext1, k1), (ext2, k2)))
 
     def delta(joint, link) -> float:
         return joint.slide.direction_rad if link == joint.slide.link else (
             -joint.slide.direction_rad)
 
-    return base.Placed(
+    return dyad.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={}, tied={l1: k1, l2: k2},
         anchors={},
         thetas={l1: base.Theta(base.ThetaKind.TIED, alpha=delta(ext1, l1), link=k1),
                 l2: base.Theta(base.ThetaKind.TIED, alpha=delta(ext2, l2), link=k2)},
         ratio_bound=1.0, x_links=(l1, l2), x_local={l1: q1, l2: q2})
-
-
-
-# -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: base.ForceSolver, group: AssurGroup):
-    """The textbook reaction sequence, run by the force analysis (``solver``: see
-    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
-
-    N1, N2 from the group's polygon (each ⟂ its guide); the pin Q from L2; each reaction
-    couple from its link's moments about its slide point.
-    """
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
-    k1, k2 = ext1.other(l1), ext2.other(l2)
-    q = solver.at(l1, internal.point)
-    _, n1, ps1 = solver.guide(ext1)
-    _, n2, ps2 = solver.guide(ext2)
-    w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    big1, big2 = solver.solve2(n1, n2, -(w1.force + w2.force), group.name,
-                             f"the guides of {ext1.slide.key} and {ext2.slide.key} are "
-                             "parallel")
-    f1, f2 = big1[..., None] * n1, big2[..., None] * n2
-    r_q = -(w2.force + f2)                         # on l2 from l1
-    c1 = -(w1.moment_about(ps1) + vectors.cross(q - ps1, -r_q))
-    c2 = -(w2.moment_about(ps2) + vectors.cross(q - ps2, r_q))
-    edges = [*solver.known_edges((l1, l2)),
-             solver.edge(f"N_{ext2.slide.key}", f2, EdgeKind.COMPONENT, l2),
-             solver.edge(f"N_{ext1.slide.key}", f1, EdgeKind.COMPONENT, l1)]
-    keys = [solver.record(ext1, group.links, l1, k1, ps1, f1, c1).key,
-            solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key,
-            solver.record(internal, group.links, l2, l1, q, r_q).key]
-    steps = ("force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide",
-             f"R_{internal.point} from the equilibrium of {l2}",
-             "each reaction couple from its link's moments about its slide point")
-    return solver.result(group, steps, edges, keys)

@@ -7,15 +7,13 @@ direction, s the travel); |P2P1| fixes s, branch +1 the larger root.
 Vector equations (X = P1 taken as a point of L2, ``B@lever``): v_X = v_P1 + v_rel (along the
 guide) = v_P2 + v_XP2 (⟂ P2P1); the Coriolis term 2ω_L2 × v_rel.
 
-Reactions: R at P1 along the guide from the block's projection on the guide, across it from
-ΣM_P2 of the group; the normal force and couple of the slide from the block; R at P2 from the
-polygon of L2.
+Its reactions: the forces face, :mod:`planmethod.forces.groups.rpr`.
 
 Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism).at(0)
 >>> round(float(motion.omega("lever")), 6)
 1.923077
 """
@@ -26,19 +24,18 @@ import math
 
 import numpy as np
 
-from ... import vectors
-from ...structure import AssurGroup
-from ...vocabulary import EdgeKind, GroupKind
+from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, Vec, cross, dot, sqrt
-from . import base
+from . import base, checks, dyad
 
-__all__ = ["BRANCHES", "KIND", "place", "reactions"]
+__all__ = ["BRANCHES", "KIND", "place"]
 
 KIND = GroupKind.RPR
 BRANCHES = 2
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()   # l1 is the block (the slide's link)
     slide = internal.slide
@@ -53,23 +50,24 @@ def place(context: base.GroupInputs) -> base.Placed:
     span = p1.at - p2.at
     square = dot(span, span)
     length = sqrt(square)
-    text = (f"the guide of {l2} passes {abs(offset):g} m from its pivot {ext2.point}; it "
-            f"cannot reach {ext1.point}")
+    text = message("the guide of {link} passes {offset:g} m from its pivot {pivot}; it cannot "
+                   "reach {point}", link=l2, offset=abs(offset), pivot=ext2.point,
+                   point=ext1.point)
 
     def check(angles, distance, sx, sy) -> None:
         distance = np.atleast_1d(np.asarray(distance, dtype=float))
         close = distance <= 1e-15
         if np.any(close):
-            raise base.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
-                                 "coincide: the group has no definite position", 0.0)
+            raise checks.assembly_error(group, angles, close, checks.coinciding(ext1, ext2),
+                                        0.0)
         if offset != 0:
             size = np.maximum(np.abs(np.asarray(sx)), np.abs(np.asarray(sy)))
-            base.toggle_or_miss(group, angles, distance - abs(offset),
+            checks.toggle_or_miss(group, angles, distance - abs(offset),
                            distance + abs(offset) + size, text, abs(offset) - distance)
 
     # |P1P2| − |offset| must exceed 16ε·(|P1P2| + |offset| + |span|) ≤ 16ε·(3|P1P2| + |offset|)
     # (and 1e-15 m): a margin proportional to the length itself
-    rounding = 16.0 * base.EPS * base.MARGIN
+    rounding = 16.0 * checks.EPS * checks.MARGIN
     gap = length * (1.0 - 3.0 * rounding) - abs(offset) * (1.0 + rounding)
     context.guard(gap, 1e-15, check, length, span.x, span.y)
     projection = -dot(c0, u)
@@ -86,53 +84,13 @@ def place(context: base.GroupInputs) -> base.Placed:
         body.x, body.y = origin.x, origin.y
     placed = {l1: body1, l2: body2}
     x = p1.at
-    sides = (base.pinned_sliding_side(context, slide, l1, p1, placed),
-             base.rotation_side(l2, p2, span, length))
-    return base.Placed(
+    sides = (dyad.pinned_sliding_side(context, slide, l1, p1, placed),
+             dyad.rotation_side(l2, p2, span, length))
+    return dyad.Placed(
         bodies=placed, point=f"{ext1.point}@{l2}", x=x, sides=sides,
         rotating={l2: 1}, tied={l1: l2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: dyad.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         thetas={l2: base.Theta(base.ThetaKind.SPAN, ext1.point, ext2.point, link=l2),
                 l1: base.Theta(base.ThetaKind.TIED, alpha=angle, link=l2)},
-        ratio_bound=2.0 * base.MARGIN, x_links=(l2,))
-
-
-# -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: base.ForceSolver, group: AssurGroup):
-    """The textbook reaction sequence, run by the force analysis (``solver``: see
-    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
-
-    R at P1 along the guide from the block's projection on the guide, across it from
-    ΣM_P2 of the group; the slide's normal force and couple from the block; R at P2 from L2.
-    """
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links          # l1 is the block (the slide's link), l2 its guide
-    k1, k2 = ext1.other(l1), ext2.other(l2)
-    p1, p2 = solver.at(l1, ext1.point), solver.at(l2, ext2.point)
-    d, n, ps = solver.guide(internal)
-    w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    along = -vectors.dot(w1.force, d)
-    arm = p1 - p2
-    lever = vectors.cross(arm, n)
-    solver.singular(lever, vectors.norm(arm) + 1e-300, group.name,
-                  f"{ext1.point} lies on the normal to the guide through {ext2.point}")
-    across = -((w1 + w2).moment_about(p2) + along * vectors.cross(arm, d)) / lever
-    r_along, r_across = along[..., None] * d, across[..., None] * n
-    r1 = r_along + r_across
-    inner = -(r1 + w1.force)                       # on the block from the guide
-    couple = -(w1.moment_about(ps) + vectors.cross(p1 - ps, r1))
-    r2 = inner - w2.force
-    edges = [solver.edge(f"R∥_{ext1.point}", r_along, EdgeKind.COMPONENT, l1),
-             solver.edge(f"R⊥_{ext1.point}", r_across, EdgeKind.COMPONENT, l1),
-             *solver.known_edges((l1, l2)),
-             solver.edge(f"R_{ext2.point}", r2, EdgeKind.REACTION, l2)]
-    keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
-            solver.record(internal, group.links, l1, l2, ps, inner, couple).key,
-            solver.record(ext2, group.links, l2, k2, p2, r2).key]
-    P1, P2 = ext1.point, ext2.point
-    steps = (f"R_{P1} along the guide from the block {l1}: projection on the guide",
-             f"R_{P1} ⟂ the guide from ΣM_{P2} of the group = 0",
-             f"the normal force and couple of {internal.slide.key} from the block {l1}",
-             f"R_{P2} from the force polygon of {l2}")
-    return solver.result(group, steps, edges, keys)
+        ratio_bound=2.0 * checks.MARGIN, x_links=(l2,))

@@ -7,14 +7,13 @@ branch +1 takes the point further along the guide's direction.
 Vector equations (X = Q): v_Q = v_P1 + v_QP1 (⟂ P1Q) = v_Q@K + v_rel (along the guide), K the
 known link of the guide (Coriolis 2ω_K × v_rel where K turns).
 
-Reactions: Rᵗ at P1 from ΣM_Q(L1) = 0; the polygon Rᵗ1 + ΣF + N + Rⁿ1 = 0 with N ⟂ the guide;
-the pin Q from L1; the guide's reaction couple from ΣM(L2) = 0 about the slide point.
+Its reactions: the forces face, :mod:`planmethod.forces.groups.rrp`.
 
 Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+>>> motion = solve(load_exercise("exercises/compressor_slider_crank.toml").mechanism).at(0)
 >>> round(float(motion.velocity("C")[0]), 4)
 -5.2716
 """
@@ -23,19 +22,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...structure import AssurGroup
-from ...vectors import cross, perp
-from ...vocabulary import EdgeKind, GroupKind
+from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, dot, sqrt
-from . import base
+from . import base, checks, dyad
 
-__all__ = ["BRANCHES", "KIND", "place", "reactions"]
+__all__ = ["BRANCHES", "KIND", "place"]
 
 KIND = GroupKind.RRP
 BRANCHES = 2
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     slide = ext2.slide
@@ -49,77 +47,38 @@ def place(context: base.GroupInputs) -> base.Placed:
     offset = c + dot(n, turned)   # the line of Q: n·Q = offset
     h = dot(n, p1.at) - offset
     square = a * a - h * h
-    text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) cannot reach the line of "
-            f"{internal.point} along {slide.along}'s guide")
+    text = message("{link} ({point}{joint} = {length:g} m) cannot reach the line of {joint} "
+                   "along {along}'s guide", link=l1, point=ext1.point, joint=internal.point,
+                   length=a, along=slide.along)
 
     def check(angles, x1, y1, height, line) -> None:
         size = np.maximum(np.abs(x1), np.abs(y1))
-        base.toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
+        checks.toggle_or_miss(group, angles, a - np.abs(height), a + np.abs(line) + size, text,
                        np.abs(height) - a)
 
     # a² − h² = (a − |h|)(a + |h|): where it exceeds 2a·16ε·(scale) no angle is a toggle or a
     # miss; the scale a + |offset| + |P1| is at most 2a + 2|P1| while |h| < a (|P1| unbounded:
     # the check runs at every angle)
     far = np.inf if p1.bound is None else p1.bound
-    bound = 2.0 * a * 16.0 * base.EPS * (2.0 * a + 2.0 * far) * 1.01 * base.MARGIN
+    bound = 2.0 * a * 16.0 * checks.EPS * (2.0 * a + 2.0 * far) * 1.01 * checks.MARGIN
     context.guard(square, bound, check, p1.at.x, p1.at.y, h, offset)
     along = sqrt(square) * context.sign
     r1 = d * along - n * h
     x = p1.at + r1
-    body1 = Body(*base.axes_towards(r1, p1.local, q1, a))
-    base.place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    body1 = Body(*dyad.axes_towards(r1, p1.local, q1, a))
+    dyad.place_origin(body1, ((p1.at, p1.local), (x, q1)))
     body2 = Body(c2, s2)
     origin2 = x if q2 == (0.0, 0.0) else x - turned
     body2.x, body2.y = origin2.x, origin2.y
     placed = {l1: body1, l2: body2}
-    sides = (base.rotation_side(l1, p1, r1, a),
-             base.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
+    sides = (dyad.rotation_side(l1, p1, r1, a),
+             dyad.sliding_side(context, slide, k2, f"{internal.point}@{k2}", k2, x, placed))
     delta = slide.direction_rad if l2 == slide.link else -slide.direction_rad
-    return base.Placed(
+    return dyad.Placed(
         bodies=placed, point=internal.point, x=x, sides=sides,
         rotating={l1: 0}, tied={l2: k2},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local)},
         thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                           float(np.arctan2(q1[1] - p1.local[1], q1[0] - p1.local[0]))),
                 l2: base.Theta(base.ThetaKind.TIED, alpha=delta, link=k2)},
-        ratio_bound=2.0 * base.MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})
-
-
-# -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: base.ForceSolver, group: AssurGroup):
-    """The textbook reaction sequence, run by the force analysis (``solver``: see
-    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
-
-    Rᵗ at P1 from ΣM_Q(L1) = 0; the polygon Rᵗ1 + ΣF + N + Rⁿ1 = 0 with N ⟂ the guide;
-    the pin Q from L1; the guide's reaction couple from ΣM(L2) = 0 about the slide point.
-    """
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
-    k1, k2 = ext1.other(l1), ext2.other(l2)
-    p1, q = solver.at(l1, ext1.point), solver.at(l1, internal.point)
-    _, n, ps = solver.guide(ext2)
-    w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    e1, a = base.split(q - p1)
-    t1 = w1.moment_about(q) / a
-    rt1 = t1[..., None] * perp(e1)
-    n1, normal = solver.solve2(e1, n, -(rt1 + w1.force + w2.force), group.name,
-                             f"{l1} is perpendicular to the guide of {ext2.slide.key}")
-    rn1, big_n = n1[..., None] * e1, normal[..., None] * n
-    r1 = rn1 + rt1
-    r_q = r1 + w1.force
-    couple = -(w2.moment_about(ps) + cross(q - ps, r_q))
-    edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, EdgeKind.COMPONENT, l1),
-             *solver.known_edges((l1, l2)),
-             solver.edge(f"N_{ext2.slide.key}", big_n, EdgeKind.COMPONENT, l2),
-             solver.edge(f"Rⁿ_{ext1.point}", rn1, EdgeKind.COMPONENT, l1)]
-    keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
-            solver.record(ext2, group.links, l2, k2, ps, big_n, couple).key,
-            solver.record(internal, group.links, l2, l1, q, r_q).key]
-    P1, Q = ext1.point, internal.point
-    steps = (f"Rᵗ_{P1} ⟂ {P1}{Q} from ΣM_{Q}({l1}) = 0",
-             f"force polygon: Rᵗ_{P1} + ΣF + N + Rⁿ_{P1} = 0, N ⟂ the guide of "
-             f"{ext2.slide.key}, Rⁿ_{P1} ∥ {P1}{Q}",
-             f"R_{Q} from the equilibrium of {l1}",
-             f"the reaction couple of {ext2.slide.key} from ΣM({l2}) = 0 about "
-             f"{ext2.slide.point}")
-    return solver.result(group, steps, edges, keys)
+        ratio_bound=2.0 * checks.MARGIN, x_links=(l1, l2), x_local={l1: q1, l2: q2})

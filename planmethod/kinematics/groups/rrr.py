@@ -6,14 +6,13 @@ Heron's form, which keeps the height accurate near the toggle (a + b ≈ |P1P2| 
 
 Vector equations (X = Q): v_Q = v_P1 + v_QP1 (⟂ P1Q) = v_P2 + v_QP2 (⟂ P2Q).
 
-Reactions: Rᵗ at P1 ⟂ P1Q from ΣM_Q(L1) = 0, Rᵗ at P2 from ΣM_Q(L2) = 0; the group's force
-polygon Rᵗ1 + ΣF + Rᵗ2 + Rⁿ2 + Rⁿ1 = 0 with the Rⁿ along the links; the pin Q from L1.
+Its reactions: the forces face, :mod:`planmethod.forces.groups.rrr`.
 
 Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/fourbar_coupler_point.toml").mechanism, 60.0)
+>>> motion = solve(load_exercise("exercises/fourbar_coupler_point.toml").mechanism, 60.0).at(0)
 >>> motion.position("C").round(6)
 array([0.23641 , 0.168393])
 """
@@ -22,19 +21,18 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["BRANCHES", "KIND", "place", "reactions"]
+__all__ = ["BRANCHES", "KIND", "place"]
 
-from ...structure import AssurGroup
-from ...vectors import perp
-from ...vocabulary import EdgeKind, GroupKind
+from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, dot, sqrt
-from . import base
+from . import base, checks, dyad
 
 KIND = GroupKind.RRR
 BRANCHES = 2
 
 
-def place(context: base.GroupInputs) -> base.Placed:
+def place(context: base.GroupInputs) -> dyad.Placed:
     group = context.group
     ext1, internal, ext2, l1, l2 = context.dyad()
     p1, p2 = context.pin(ext1), context.pin(ext2)
@@ -46,25 +44,27 @@ def place(context: base.GroupInputs) -> base.Placed:
     d = sqrt(square)
     # Heron's form: the product of the four factors a ± b ± d
     product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)
-    text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) and {l2} ({internal.point}"
-            f"{ext2.point} = {b:g} m) cannot join {ext1.point} and {ext2.point}")
+    text = message("{link1} ({point1}{joint} = {length1:g} m) and {link2} ({joint}{point2} = "
+                   "{length2:g} m) cannot join {point1} and {point2}", link1=l1,
+                   point1=ext1.point, joint=internal.point, length1=a, link2=l2,
+                   point2=ext2.point, length2=b)
 
     def check(angles, x1, y1, x2, y2) -> None:
         dx, dy = np.asarray(x2) - np.asarray(x1), np.asarray(y2) - np.asarray(y1)
         distance = np.atleast_1d(np.sqrt(dx * dx + dy * dy))
         close = distance <= 1e-15 * (a + b)
         if np.any(close):
-            raise base.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
-                                 "coincide: the group has no definite position", 0.0)
+            raise checks.assembly_error(group, angles, close, checks.coinciding(ext1, ext2),
+                                        0.0)
         stretched, folded = a + b - distance, distance - abs(a - b)
         vanishing = np.where(np.abs(stretched) <= np.abs(folded), stretched, folded)
         reach = np.maximum(np.abs(dx), np.abs(dy))
-        base.toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
+        checks.toggle_or_miss(group, angles, vanishing, a + b + distance + reach, text,
                        np.maximum(distance - a - b, np.maximum(abs(a - b) - distance, 0.0)))
 
     # where the product exceeds this, no angle is a toggle, a miss or coinciding pins
     # (docs/accuracy.md: a toggle's vanishing factor within 16ε of the terms' size)
-    bound = max(192.0 * base.EPS, 1e-30) * (a + b) ** 4 * base.MARGIN
+    bound = max(192.0 * checks.EPS, 1e-30) * (a + b) ** 4 * checks.MARGIN
     context.guard(product, bound, check, p1.at.x, p1.at.y, p2.at.x, p2.at.y)
     twice = d * 2.0
     along = (a * a - b * b + square) / twice
@@ -73,63 +73,23 @@ def place(context: base.GroupInputs) -> base.Placed:
     r1 = unit * along + unit.perp() * height
     x = p1.at + r1
     r2 = x - p2.at
-    body1 = Body(*base.axes_towards(r1, p1.local, q1, a))
-    body2 = Body(*base.axes_towards(r2, p2.local, q2, b))
-    base.place_origin(body1, ((p1.at, p1.local), (x, q1)))
-    base.place_origin(body2, ((p2.at, p2.local), (x, q2)))
-    return base.Placed(
+    body1 = Body(*dyad.axes_towards(r1, p1.local, q1, a))
+    body2 = Body(*dyad.axes_towards(r2, p2.local, q2, b))
+    dyad.place_origin(body1, ((p1.at, p1.local), (x, q1)))
+    dyad.place_origin(body2, ((p2.at, p2.local), (x, q2)))
+    return dyad.Placed(
         bodies={l1: body1, l2: body2}, point=internal.point, x=x,
-        sides=(base.rotation_side(l1, p1, r1, a), base.rotation_side(l2, p2, r2, b)),
+        sides=(dyad.rotation_side(l1, p1, r1, a), dyad.rotation_side(l2, p2, r2, b)),
         rotating={l1: 0, l2: 1}, tied={},
-        anchors={l1: base.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
-                 l2: base.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
+        anchors={l1: dyad.Anchor(ext1.point, p1.at, p1.known, p1.offset, p1.local),
+                 l2: dyad.Anchor(ext2.point, p2.at, p2.known, p2.offset, p2.local)},
         thetas={l1: base.Theta(base.ThetaKind.TWO, ext1.point, internal.point,
                                _angle(p1.local, q1)),
                 l2: base.Theta(base.ThetaKind.TWO, ext2.point, internal.point,
                                _angle(p2.local, q2))},
-        ratio_bound=2.0 * (a + b) / min(a, b) * base.MARGIN, x_links=(l1, l2),
+        ratio_bound=2.0 * (a + b) / min(a, b) * checks.MARGIN, x_links=(l1, l2),
         x_local={l1: q1, l2: q2})
 
 
 def _angle(first, second) -> float:
     return float(np.arctan2(second[1] - first[1], second[0] - first[0]))
-
-
-# -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: base.ForceSolver, group: AssurGroup):
-    """The textbook reaction sequence, run by the force analysis (``solver``: see
-    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
-
-    Rᵗ at P1 ⟂ P1Q from ΣM_Q(L1) = 0, Rᵗ at P2 from ΣM_Q(L2) = 0; the group's polygon
-    Rᵗ1 + ΣF + Rᵗ2 + Rⁿ2 + Rⁿ1 = 0 with the Rⁿ along the links; the pin Q from L1.
-    """
-    ext1, internal, ext2 = group.joints
-    l1, l2 = group.links
-    k1, k2 = ext1.other(l1), ext2.other(l2)
-    p1, q, p2 = solver.at(l1, ext1.point), solver.at(l1, internal.point), solver.at(l2, ext2.point)
-    w1, w2 = solver.wrench[l1], solver.wrench[l2]
-    e1, a = base.split(q - p1)
-    e2, b = base.split(q - p2)
-    t1 = w1.moment_about(q) / a
-    t2 = w2.moment_about(q) / b
-    rt1, rt2 = t1[..., None] * perp(e1), t2[..., None] * perp(e2)
-    known = w1.force + w2.force
-    n1, n2 = solver.solve2(e1, e2, -(rt1 + rt2 + known), group.name,
-                         f"{l1} and {l2} are in line (toggle)")
-    rn1, rn2 = n1[..., None] * e1, n2[..., None] * e2
-    r1, r2 = rn1 + rt1, rn2 + rt2
-    edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, EdgeKind.COMPONENT, l1),
-             *solver.known_edges((l1, l2)),
-             solver.edge(f"Rᵗ_{ext2.point}", rt2, EdgeKind.COMPONENT, l2),
-             solver.edge(f"Rⁿ_{ext2.point}", rn2, EdgeKind.COMPONENT, l2),
-             solver.edge(f"Rⁿ_{ext1.point}", rn1, EdgeKind.COMPONENT, l1)]
-    keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
-            solver.record(ext2, group.links, l2, k2, p2, r2).key,
-            solver.record(internal, group.links, l2, l1, q, r1 + w1.force).key]
-    P1, Q, P2 = ext1.point, internal.point, ext2.point
-    steps = (f"Rᵗ_{P1} ⟂ {P1}{Q} from ΣM_{Q}({l1}) = 0: Rᵗ_{P1} = ΣM_{Q}/{P1}{Q}",
-             f"Rᵗ_{P2} ⟂ {P2}{Q} from ΣM_{Q}({l2}) = 0: Rᵗ_{P2} = ΣM_{Q}/{P2}{Q}",
-             f"force polygon of the group: Rᵗ_{P1} + ΣF + Rᵗ_{P2} + Rⁿ_{P2} + Rⁿ_{P1} = 0, "
-             f"Rⁿ_{P1} ∥ {P1}{Q}, Rⁿ_{P2} ∥ {P2}{Q}",
-             f"R_{Q} from the equilibrium of {l1}: R_{Q} = R_{P1} + ΣF({l1})")
-    return solver.result(group, steps, edges, keys)

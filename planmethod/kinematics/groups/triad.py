@@ -13,9 +13,9 @@ one point make the matrix singular: the group's toggle. The formulas are written
 arithmetic of :mod:`~planmethod.kinematics.algebra`, so that they are traced into the
 mechanism's program like a dyad's.
 
-Its plans are drawn by Assur's special point S* (:func:`draw_velocity`, :func:`draw_acceleration`),
-where the lines of two side links meet: no point of the group has two known neighbours, but S*,
-taken as a point of T, has (v_S = v_P + v_QP + v_SQ, both relative terms ⟂ that side link).
+Its plans are drawn by Assur's special point S* (the plans face,
+:mod:`planmethod.plans.groups.triad`), and so are its reactions (the forces face,
+:mod:`planmethod.forces.groups.triad`).
 
 Every assembly at ``drive.angle`` is found by sweeping θ: for each θ the pins of two side
 links fix T's origin (two circles meet), and the third side's misfit changes sign at an
@@ -25,7 +25,7 @@ Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.kinematics import solve
->>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0)
+>>> motion = solve(load_exercise("exercises/conveyor_sixbar.toml").mechanism, 135.0).at(0)
 >>> round(float(np.degrees(motion.theta("rocker_EF"))), 5)
 -18.29342
 """
@@ -33,22 +33,26 @@ Examples
 from __future__ import annotations
 
 import math
-import threading
-import weakref
 
 import numpy as np
 
-from ...errors import ToggleError
 from ...structure import AssurGroup
-from ...vectors import cross, norm, perp, turn_onto, unit, unit_angle
-from ...vocabulary import EdgeKind, GroupKind, PairKind
+from ...vectors import norm, turn_onto, unit_angle
+from ...vocabulary import GroupKind, PairKind
 from .. import algebra
 from ..algebra import Body, Vec, absolute, cos, maximum, sin, sqrt
-from .base import Branch, ForceSolver, GroupInputs, PlanDrawer, Theta, ThetaKind, sense, split
-from .higher import Solved, System, choose_with, higher_evaluate, wrap
+from .base import (
+    Branch,
+    GroupInputs,
+    KindModel,
+    SolvedGroup,
+    Theta,
+    ThetaKind,
+)
+from .higher import System, choose_with, higher_evaluate, wrap
 
-__all__ = ["KIND", "PRIORITY", "SPECIAL", "TriadSystem", "accepts", "choose",
-           "draw_acceleration", "draw_velocity", "evaluate", "reactions", "sides"]
+__all__ = ["KIND", "PRIORITY", "TriadSystem", "accepts", "choose", "evaluate",
+           "sides"]
 
 KIND = GroupKind.TRIAD
 PRIORITY = 10
@@ -319,299 +323,11 @@ def _cramer(rows, rhs) -> tuple:
     return u0, u1, u2
 
 
-def evaluate(context: GroupInputs, level: int, model, branch: Branch, outputs) -> Solved:
+def evaluate(context: GroupInputs, level: int, model: KindModel, branch: Branch) -> SolvedGroup:
     """Solve the triad at the context's angles (see the module docstring)."""
-    return higher_evaluate(context, level, model, branch, outputs, TriadSystem)
+    return higher_evaluate(context, level, model, branch, TriadSystem)
 
 
-def choose(context: GroupInputs, model) -> tuple[Branch, dict[str, Body]]:
+def choose(context: GroupInputs, model: KindModel) -> tuple[Branch, dict[str, Body]]:
     """The triad's assembly at ``drive.angle``."""
     return choose_with(context, model, TriadSystem)
-
-
-# -- the plans by Assur's special point ----------------------------------------------------------
-#: the plan label of Assur's special point
-SPECIAL = "s*"
-
-
-#: each motion's triad geometry, by group index (forgotten with the motion)
-_GEOMETRY: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-_GEOMETRY_LOCK = threading.Lock()
-
-
-class _Triad:
-    """Geometry of one triad at the plan's angle (global positions from the position plan)."""
-
-    def __init__(self, emulator, group: AssurGroup) -> None:
-        self.emulator = emulator
-        self.group = group
-        self.central = group.links[0]
-        # the geometry depends on the motion alone: drawing the same position again (the
-        # tolerance analysis draws it once per segment) finds it made
-        with _GEOMETRY_LOCK:
-            known = _GEOMETRY.get(emulator.motion, {}).get(group.index)
-        if known is not None:
-            self.sides, self.i, self.j, self.k, self.special = known
-            return
-        self._measure(emulator, group)
-        with _GEOMETRY_LOCK:
-            _GEOMETRY.setdefault(emulator.motion, {})[group.index] = (
-                self.sides, self.i, self.j, self.k, self.special)
-
-    def _measure(self, emulator, group: AssurGroup) -> None:
-        self.sides = []
-        for link, inner, outer in sides(group):
-            known = outer.other(link)
-            self.sides.append({"link": link, "inner": inner.point, "outer": outer.point,
-                               "known": known, "P": emulator.where(link, outer.point),
-                               "Q": emulator.where(link, inner.point)})
-        points = np.array([s["P"] for s in self.sides] + [s["Q"] for s in self.sides])
-        size = float(np.max(norm(points[:, None] - points[None])))
-        best = None
-        for i in range(3):
-            j, k = [m for m in range(3) if m != i]
-            pj, qj, pk, qk = (self.sides[j]["P"], self.sides[j]["Q"], self.sides[k]["P"],
-                              self.sides[k]["Q"])
-            ej, ek = unit(qj - pj), unit(qk - pk)
-            sine = abs(cross(ej, ek))
-            if sine < 1e-9:
-                continue
-            special = pj + cross(pk - pj, ek) / cross(ej, ek) * ej
-            near = float(norm(special - self.sides[i]["Q"])) / size
-            far = float(norm(special - points.mean(axis=0))) / size
-            score = sine * min(1.0, near) * min(1.0, 5.0 / max(far, 1e-12))
-            if best is None or score > best[0]:
-                best = (score, i, j, k, special)
-        if best is None or best[0] < 1e-9:
-            raise ToggleError("the lines of the triad's side links are parallel: Assur's "
-                              "special point is at infinity", line_angle_deg=0.0,
-                              link=group.name, angle=emulator.angle)
-        _, self.i, self.j, self.k, self.special = best
-
-    def pin_label(self, side, sheet, images) -> str:
-        emulator = self.emulator
-        return emulator.image_at(sheet, images, side["known"], side["P"],
-                                 emulator.label(side["outer"], sheet))
-
-
-def _triad(emulator, group: AssurGroup) -> _Triad:
-    key = ("triad", group.index)
-    if key not in emulator.memo:
-        emulator.memo[key] = _Triad(emulator, group)
-    return emulator.memo[key]
-
-
-def draw_velocity(emulator: PlanDrawer, group: AssurGroup) -> None:
-    """Draw the triad on the velocity plan by Assur's special point S*: it lies on the lines of
-    two side links, so s is where the lines ⟂ those links through their outer pins' images
-    meet; the third side is then a dyad-like step (v_Q = v_S + v_QS = v_P + v_QP)."""
-    triad = _triad(emulator, group)
-    v, mu_v, mu_l = emulator.v, emulator.scales.mu_v, emulator.scales.mu_l
-    special = triad.special
-    lines = []
-    for index in (triad.j, triad.k):
-        side = triad.sides[index]
-        base = triad.pin_label(side, v, emulator.vimages)
-        direction = perp(unit(side["Q"] - side["P"]))
-        lines.append(v.line(base, direction, component="relative", group=group.index,
-                            vector=f"v_S*{side['outer']}",
-                            text=f"through {base}: v_S* − v_{side['outer']} ⟂ "
-                                 f"{side['outer']}{side['inner']} (S* lies on the line "
-                                 f"{side['outer']}{side['inner']})"))
-    v.intersect(*lines, SPECIAL, group_name=group.name, group=group.index, angle=emulator.angle,
-                text=f"{SPECIAL}: Assur's special point S* = ({special[0]:.6g}, "
-                     f"{special[1]:.6g}) m of {triad.central}, where the lines of "
-                     f"{triad.sides[triad.j]['link']} and {triad.sides[triad.k]['link']} meet")
-    third = triad.sides[triad.i]
-    q_label = emulator.label(third["inner"], v)
-    base = triad.pin_label(third, v, emulator.vimages)
-    first = v.line(SPECIAL, perp(unit(third["Q"] - special)), component="relative",
-                   group=group.index, vector=f"v_{third['inner']}S*",
-                   text=f"through {SPECIAL}: v_{third['inner']}S* ⟂ {third['inner']}S*")
-    second = v.line(base, perp(unit(third["Q"] - third["P"])), component="relative",
-                    group=group.index, vector=f"v_{third['inner']}{third['outer']}",
-                    text=f"through {base}: v_{third['inner']}{third['outer']} ⟂ "
-                         f"{third['inner']}{third['outer']}")
-    v.intersect(first, second, q_label, group_name=group.name, group=group.index,
-                angle=emulator.angle,
-                text=f"{q_label}: v_{third['inner']} = v_S* + v_{third['inner']}S* = "
-                     f"v_{third['outer']} + v_{third['inner']}{third['outer']}")
-    omega = _read_turn(emulator, v, SPECIAL, q_label, special, third["Q"], triad.central,
-                       mu_v / mu_l, "omega")
-    emulator.readings[f"omega_{triad.central}"] = omega
-    emulator.fix_velocity(triad.central, third["Q"], q_label, omega)
-    for side in triad.sides:
-        p_label = triad.pin_label(side, v, emulator.vimages)
-        q_side = emulator.label(side["inner"], v)
-        omega = _read_turn(emulator, v, p_label, q_side, side["P"], side["Q"], side["link"],
-                           mu_v / mu_l, "omega")
-        emulator.readings[f"omega_{side['link']}"] = omega
-        emulator.fix_velocity(side["link"], side["P"], p_label, omega)
-
-
-def _read_turn(emulator: PlanDrawer, sheet, start: str, end: str, centre, point, link: str,
-               factor: float, what: str) -> float:
-    """ω (or ε) of ``link`` read off the segment start→end, ⟂ centre→point."""
-    segment = sheet.points[end] - sheet.points[start]
-    direction = perp(unit(point - centre))
-    sign = sense(segment, direction)
-    length_mm = emulator.radius_mm(centre, point)
-    return sheet.read(start, end, quantity=f"{what}_{link}", sign=sign,
-                      factor=factor / length_mm)
-
-
-def _normal(emulator: PlanDrawer, start: str, end: str, centre, point, v_from: str, v_to: str,
-            group: AssurGroup, vector: str) -> None:
-    """Lay off aⁿ of ``point`` about ``centre`` from ``start``: (v-plan segment)²·μv² /
-    ((length)·μl·μa), from the point towards the centre."""
-    scales = emulator.scales
-    a = emulator.a
-    segment = emulator.drawn_length(emulator.v, v_from, v_to)
-    length_mm = emulator.radius_mm(centre, point)
-    magnitude = segment ** 2 * scales.mu_v ** 2 / (length_mm * scales.mu_l * scales.mu_a)
-    a.lay_off(start, end, np.asarray(magnitude)[..., None] * unit(centre - point),
-              component="normal",
-              group=group.index, vector=vector,
-              text=f"{vector} from {start}: ({v_from}{v_to})²·μv²/(length·μl·μa), towards the "
-                   "centre")
-
-
-def draw_acceleration(emulator: PlanDrawer, group: AssurGroup) -> None:
-    """Draw the triad on the acceleration plan (after :func:`draw_velocity`): for each of the two
-    side links through S*, both normal components laid off from the outer pin's image and the
-    line of both tangential ones (⟂ the side link) through their end; their intersection is
-    s; then the third side's inner pin from both of its sides."""
-    triad = _triad(emulator, group)
-    v, a = emulator.v, emulator.a
-    mu_a, mu_l = emulator.scales.mu_a, emulator.scales.mu_l
-    special = triad.special
-    lines = []
-    for index in (triad.j, triad.k):
-        side = triad.sides[index]
-        base = triad.pin_label(side, a, emulator.aimages)
-        p_v = triad.pin_label(side, v, emulator.vimages)
-        q_v = emulator.label(side["inner"], v)
-        first = f"n_{side['inner']}{side['outer']}"
-        _normal(emulator, base, first, side["P"], side["Q"], p_v, q_v, group,
-                f"aⁿ_{side['inner']}{side['outer']}")
-        second = f"n_S*{side['inner']}"
-        _normal(emulator, first, second, side["Q"], special, q_v, SPECIAL, group,
-                f"aⁿ_S*{side['inner']}")
-        lines.append(a.line(second, perp(unit(side["Q"] - side["P"])), component="tangential",
-                            group=group.index, vector=f"aᵗ_S*{side['outer']}",
-                            text=f"through {second}: aᵗ_{side['inner']}{side['outer']} + "
-                                 f"aᵗ_S*{side['inner']} ⟂ {side['outer']}{side['inner']}"))
-    a.intersect(*lines, SPECIAL, group_name=group.name, group=group.index, angle=emulator.angle,
-                text=f"{SPECIAL}: a_S* from the two sides through the special point")
-    third = triad.sides[triad.i]
-    q_label = emulator.label(third["inner"], a)
-    q_v = emulator.label(third["inner"], v)
-    n_central = f"n_{third['inner']}S*"
-    _normal(emulator, SPECIAL, n_central, special, third["Q"], SPECIAL, q_v, group,
-            f"aⁿ_{third['inner']}S*")
-    first = a.line(n_central, perp(unit(third["Q"] - special)), component="tangential",
-                   group=group.index, vector=f"aᵗ_{third['inner']}S*",
-                   text=f"through {n_central}: aᵗ_{third['inner']}S* ⟂ {third['inner']}S*")
-    base = triad.pin_label(third, a, emulator.aimages)
-    p_v = triad.pin_label(third, v, emulator.vimages)
-    n_side = f"n_{third['inner']}{third['outer']}"
-    _normal(emulator, base, n_side, third["P"], third["Q"], p_v, q_v, group,
-            f"aⁿ_{third['inner']}{third['outer']}")
-    second = a.line(n_side, perp(unit(third["Q"] - third["P"])), component="tangential",
-                    group=group.index, vector=f"aᵗ_{third['inner']}{third['outer']}",
-                    text=f"through {n_side}: aᵗ_{third['inner']}{third['outer']} ⟂ "
-                         f"{third['inner']}{third['outer']}")
-    a.intersect(first, second, q_label, group_name=group.name, group=group.index,
-                angle=emulator.angle, text=f"{q_label}: a_{third['inner']} from both sides")
-    epsilon = _read_turn(emulator, a, n_central, q_label, special, third["Q"], triad.central,
-                         mu_a / mu_l, "epsilon")
-    omega = emulator.readings[f"omega_{triad.central}"]
-    emulator.readings[f"epsilon_{triad.central}"] = epsilon
-    emulator.fix_acceleration(triad.central, third["Q"], q_label, omega, epsilon)
-    for side in triad.sides:
-        p_label = triad.pin_label(side, a, emulator.aimages)
-        q_side = emulator.label(side["inner"], a)
-        start = f"n_{side['inner']}{side['outer']}"  # laid off above for every side
-        epsilon = _read_turn(emulator, a, start, q_side, side["P"], side["Q"], side["link"],
-                             mu_a / mu_l, "epsilon")
-        omega = emulator.readings[f"omega_{side['link']}"]
-        emulator.readings[f"epsilon_{side['link']}"] = epsilon
-        emulator.fix_acceleration(side["link"], side["P"], p_label, omega, epsilon)
-
-
-# -- the reactions ---------------------------------------------------------------------------
-def reactions(solver: ForceSolver, group: AssurGroup):
-    """The textbook reaction sequence, run by the force analysis (``solver``: see
-    :class:`~planmethod.kinematics.groups.base.ForceSolver`).
-
-    Rᵗ of each outer pin from the side link's moments about its inner pin; Assur's special
-    point S — where the lines of two side links meet — eliminates their Rⁿ: ΣM_S of the group
-    gives the third Rⁿ, the polygon the other two; the inner pins from the side links.
-    """
-    central = group.links[0]
-    sides = []
-    for link in group.links[1:]:
-        inner = next(j for j in group.joints if link in j.links and central in j.links)
-        outer = next(j for j in group.joints if link in j.links and j is not inner)
-        known = outer.other(link)
-        p, q = solver.at(link, outer.point), solver.at(link, inner.point)
-        e, length = split(q - p)
-        t = solver.wrench[link].moment_about(q) / length
-        sides.append((link, inner, outer, known, p, q, e, t[..., None] * perp(e)))
-    total = solver.total(group.links)
-    # Assur's special point: where the lines of sides j and k meet; choose, angle by angle,
-    # the pair whose lines meet at the largest angle
-    sines = []
-    for i in range(3):
-        j, k = [m for m in range(3) if m != i]
-        sines.append(np.abs(cross(sides[j][6], sides[k][6])))
-    choice = np.argmax(np.stack(sines), axis=0)
-    normals = [np.zeros(solver.count) for _ in range(3)]
-    special = np.zeros((solver.count, 2))
-    for i in range(3):
-        mask = choice == i
-        if not np.any(mask):
-            continue
-        j, k = [m for m in range(3) if m != i]
-        pj, ej, pk, ek = sides[j][4], sides[j][6], sides[k][4], sides[k][6]
-        det = cross(ej, ek)
-        solver.singular(np.where(mask, det, 1.0), 1.0, group.name,
-                      "the lines of the three side links are parallel")
-        s = pj + (cross(pk - pj, ek) / np.where(mask, det, 1.0))[..., None] * ej
-        moment = total.moment_about(s)
-        for side in sides:
-            moment = moment + cross(side[4] - s, side[7])
-        arm = cross(sides[i][4] - s, sides[i][6])
-        scale = norm(sides[i][4] - s) + norm(sides[i][5] - sides[i][4])
-        solver.singular(np.where(mask, arm, scale), scale, group.name,
-                      "the lines of the three side links meet in one point")
-        ni = -moment / np.where(mask, arm, 1.0)
-        rest = -(total.force + sum(side[7] for side in sides) + ni[..., None] * sides[i][6])
-        nj, nk = solver.solve2(np.where(mask[..., None], ej, np.array([1.0, 0.0])),
-                             np.where(mask[..., None], ek, np.array([0.0, 1.0])), rest, group.name,
-                             "two side links are parallel")
-        for index, value in ((i, ni), (j, nj), (k, nk)):
-            normals[index] = np.where(mask, value, normals[index])
-        special = np.where(mask[..., None], s, special)
-    edges = [solver.edge(f"Rᵗ_{side[2].point}", side[7], EdgeKind.COMPONENT, side[0])
-             for side in sides]
-    edges += solver.known_edges(group.links)
-    keys = []
-    for (link, inner, outer, known, p, q, e, rt), n_value in zip(sides, normals,
-                                                                  strict=True):
-        rn = n_value[..., None] * e
-        edges.append(solver.edge(f"Rⁿ_{outer.point}", rn, EdgeKind.COMPONENT, link))
-        r = rn + rt
-        keys.append(solver.record(outer, group.links, link, known, p, r).key)
-        keys.append(solver.record(inner, group.links, central, link, q,
-                                r + solver.wrench[link].force).key)
-    names = [side[2].point for side in sides]
-    steps = tuple(f"Rᵗ_{side[2].point} ⟂ {side[2].point}{side[1].point} from "
-                  f"ΣM_{side[1].point}({side[0]}) = 0" for side in sides)
-    steps += (
-        f"Assur's special point S where the lines of two side links (through "
-        f"{', '.join(names)}) meet: ΣM_S of the group gives the third Rⁿ",
-        "force polygon of the group: ΣRᵗ + ΣF + ΣRⁿ = 0 gives the other two Rⁿ",
-        f"the inner pins from the equilibrium of each side link ({central} is the central "
-        "link)")
-    return solver.result(group, steps, edges, keys, special)

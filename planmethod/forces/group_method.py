@@ -3,12 +3,12 @@
 This is the textbook kinetostatics (Jobborova et al.; Umbetkulov et al.): each group, loaded
 by its known forces (weights, inertia forces and moments, external loads) and by the reactions
 of the groups already solved, is statically determinate by itself. Each group kind has its own
-sequence, written in its kind module beside its kinematics (``reactions`` of
-:mod:`planmethod.kinematics.groups.rrr` …, :mod:`~planmethod.kinematics.groups.triad`: Assur's
-special point); this module is the solver those sequences run on (:class:`~planmethod.
-kinematics.groups.base.ForceSolver`). A kind without a sequence of its own is solved by its
-linear system. Last the drive link: ΣM about its pivot gives the balancing moment M_b, its
-polygon the pivot's reaction.
+sequence, its forces face (``reactions`` of :mod:`planmethod.forces.groups.rrr` …,
+:mod:`~planmethod.forces.groups.triad`: Assur's special point); this module is the solver those
+sequences run on (:class:`~planmethod.forces.groups.base.ForceSolver`). A kind without a
+textbook sequence (:mod:`~planmethod.forces.groups.higher`) is solved by its linear system.
+Last the drive link: ΣM about its pivot gives the balancing moment M_b, its polygon the
+pivot's reaction.
 
 A group whose force system is singular (its toggle, or a triad whose three side lines meet in a
 point) raises :class:`~planmethod.errors.ForceError` at the first such crank angle. Class III and
@@ -36,13 +36,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ForceError
-from ..kinematics.groups import kind_module
 from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
 from ..vectors import cross, norm, perp, unit_angle
 from ..vocabulary import EdgeKind, GroupKind, PairKind
 from .applied import AppliedLoads, Wrench
+from .groups import reactions_of
+from .groups.base import GroupForces, PolygonEdge
 from .reactions import Reaction, canonical, pair_key
 from .system import group_linear_reactions
 
@@ -50,35 +51,6 @@ __all__ = ["GroupForces", "GroupSolution", "PolygonEdge", "solve_by_groups"]
 
 #: |sin| of the angle between two lines of a force polygon below which it is singular
 SINGULAR_SINE = 1e-10
-
-
-@dataclass(frozen=True, slots=True)
-class PolygonEdge:
-    """One vector of a group's force polygon, in drawing order (head to tail).
-
-    ``kind``: an :class:`~planmethod.vocabulary.EdgeKind` — a known force (weight, inertia,
-    load, friction), a reaction transmitted from a group solved before, a component of an
-    unknown reaction (Rᵗ, Rⁿ, N…), or a whole reaction found from the polygon's closure.
-    """
-
-    label: str
-    vector: np.ndarray
-    kind: EdgeKind
-    link: str
-
-
-@dataclass(frozen=True, slots=True)
-class GroupForces:
-    """One group's solve: the steps as a course writes them, its force polygon (closing to
-    zero), the reactions it found and, for a triad, Assur's special point used (N × 2)."""
-
-    name: str
-    kind: GroupKind
-    links: tuple[str, ...]
-    steps: tuple[str, ...]
-    polygon: tuple[PolygonEdge, ...]
-    reactions: tuple[str, ...]
-    special_point: np.ndarray | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -164,15 +136,12 @@ class _Solver:
 
     # -- the groups ---------------------------------------------------------------------------
     def group(self, group: AssurGroup) -> GroupForces:
-        """The group's own textbook sequence (its kind module's ``reactions``), else its linear
-        system."""
-        sequence = kind_module(group).reactions
-        if sequence is not None:
-            return sequence(self, group)
-        return self._linear(group)
+        """The group's reactions by its kind's forces face (:mod:`planmethod.forces.groups`)."""
+        return reactions_of(group)(self, group)
 
-    def _linear(self, group: AssurGroup) -> GroupForces:
-        """A higher group of another shape: its 3k equilibrium equations solved at once."""
+    def linear(self, group: AssurGroup) -> GroupForces:
+        """A group's 3k equilibrium equations solved at once (a higher group of another
+        shape)."""
         found = group_linear_reactions(self.mechanism, group, self.states, self.wrench,
                                        self.angles)
         keys = []
