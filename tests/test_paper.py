@@ -383,3 +383,52 @@ def test_the_command_help_names_the_options():
     done = subprocess.run([sys.executable, "-m", "planmethod", "grade", "--help"],
                           capture_output=True, text=True, cwd=ROOT, check=True)
     assert "--photo IMAGE" in done.stdout and "--marked DIR" in done.stdout
+
+
+# -- words: the booklet's pages and the photo's lines speak through the catalogue ----------------
+@pytest.fixture()
+def speaking_pseudo(tmp_path_factory, monkeypatch):
+    """``qps`` spoken here and by the command line (its catalogue found through the
+    environment, read afresh)."""
+    pytest.importorskip("babel", reason="the pseudo catalogue is written with Babel")
+    from planmethod.testing.pseudo import PSEUDO, pseudo_catalogue
+    from planmethod.words import language, speaking
+
+    folder = tmp_path_factory.mktemp("pseudo")
+    pseudo_catalogue(folder)
+    monkeypatch.setenv(language.LOCALE_ENVIRONMENT, str(folder))
+    monkeypatch.setenv(language.ENVIRONMENT, PSEUDO)
+    language.catalogue.cache_clear()
+    try:
+        with speaking(PSEUDO):
+            yield
+    finally:
+        language.catalogue.cache_clear()
+
+
+def test_a_plan_sheet_of_the_booklet_is_marked(keys, speaking_pseudo):
+    """Every word on a printed plan sheet (title, header, instructions, scale note) is a
+    message: under ``qps`` none shows outside a mark."""
+    from planmethod.grading.sheets import paper_plan_sheet
+    from planmethod.testing.pseudo import message_words, texts_of_svg, unmarked_words
+
+    key = keys["001"]
+    for plan in ("velocity", "acceleration"):
+        text = " ".join(texts_of_svg(paper_plan_sheet(key, read_sheet(key, plan), 9)))
+        assert "⟦Print at 100 % (actual size)" in text and "⟦Draw the plan from the pole" in text
+        assert unmarked_words(text, message_words(), names=[key["title"]]) == [], text
+
+
+def test_a_graded_photo_is_told_in_marked_sentences(course, velocity_photo, tmp_path, capsys,
+                                                    speaking_pseudo):
+    """``grade --photo`` under ``qps``: the photo's line, each point's verdict, and a refusal."""
+    from planmethod.testing.pseudo import message_words, unmarked_words
+
+    path, _ = velocity_photo
+    status, out, _ = _grade(capsys, "--photo", str(path), "--key", str(course / "keys.json"))
+    assert status == 0 and "⟦" in out
+    assert unmarked_words(out, message_words(), names=[str(path)]) == [], out
+    blurred = _edited(path, tmp_path, lambda image: cv2.GaussianBlur(image, (0, 0), 14))
+    status, _, err = _grade(capsys, "--photo", str(blurred), "--key", str(course / "keys.json"))
+    assert status == 2 and err.count("\n") == 1
+    assert unmarked_words(err, message_words(), names=[str(blurred)]) == [], err
