@@ -102,7 +102,7 @@ def photograph_and_grade(case: tuple) -> dict:
     import os
 
     from planmethod.errors import PlanmethodError
-    from planmethod.grading.paper import read_sheet, sheet_pages
+    from planmethod.grading.paper import read_sheet
     from planmethod.grading.photos import grade_photo
     from planmethod.grading.sheets import paper_plan_sheet
     from planmethod.testing.photos import page_image, sheet_photo
@@ -111,7 +111,8 @@ def photograph_and_grade(case: tuple) -> dict:
     page = _PAGES.get((template, key["student"], plan))
     if page is None:
         _PAGES.clear()
-        page = page_image(paper_plan_sheet(key, read_sheet(key, plan), sheet_pages([key])))
+        last = max(entry["page"] for entry in key["sheets"].values())
+        page = page_image(paper_plan_sheet(key, read_sheet(key, plan), last))
         _PAGES[(template, key["student"], plan)] = page
     photo = sheet_photo(key, plan, mistake, label, seed=10_000 + number, page=page)
     path = Path(folder) / f"{number}.jpg"

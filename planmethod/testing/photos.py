@@ -537,11 +537,12 @@ def _light(conditions: Conditions, rng: np.random.Generator, height: int, width:
 
 def sheet_photo(key: Mapping[str, Any], plan: str, construction: str | None = None,
                 label: str | None = None, *, seed: int = 0,
-                conditions: Conditions | None = None, labels: bool = True, pages: int = 3,
-                page: np.ndarray | None = None) -> SheetPhoto:
+                conditions: Conditions | None = None, labels: bool = True,
+                pages: int | None = None, page: np.ndarray | None = None) -> SheetPhoto:
     """A phone photo of ``key``'s blank ``plan`` sheet with the plan drawn on it by the right
     construction (``construction`` None) or by a named mistake; ``conditions`` at random from
-    ``seed`` unless given."""
+    ``seed`` unless given. The page says it is of ``pages`` (default: the last of this
+    student's sheets)."""
     from ..grading.paper import read_sheet
     from ..grading.sheets import paper_plan_sheet
 
@@ -550,7 +551,8 @@ def sheet_photo(key: Mapping[str, Any], plan: str, construction: str | None = No
         conditions = Conditions.random(rng)
     sheet = read_sheet(key, plan)
     if page is None:
-        page = page_image(paper_plan_sheet(key, sheet, pages))
+        last = max(entry["page"] for entry in key["sheets"].values())
+        page = page_image(paper_plan_sheet(key, sheet, pages or last))
     drawn = drawn_plan(key, plan, construction, label)
     drawn_page = pencil_page(page, drawn, sheet.pole_mm, rng, labels=labels)
     jpeg, page_to_photo = photograph(drawn_page, sheet.page_mm, conditions, rng)
