@@ -12,6 +12,7 @@ from planmethod.cli import _Parser
 from planmethod.grading.templates import variant_exercise
 from planmethod.kinematics.motion import Motion
 from planmethod.kinematics.program import Model
+from planmethod.render.pdf import pdf_pages
 from planmethod.studio.server import StudioHandler, StudioServer, _DeadlineReader
 from planmethod.testing.pseudo import _PageText
 
@@ -61,3 +62,6 @@ __dir__  # noqa: B018
 Exercise.is_template  # noqa: B018
 Exercise.workbook  # noqa: B018
 Watch.cancelled  # noqa: B018
+# CairoSVG's surface calls _create_surface by name to make its cairo surface: the booklet's
+# pages subclass it, inside pdf_pages, to draw page after page onto one PDF
+pdf_pages._create_surface  # noqa: B018

@@ -46,8 +46,12 @@ COMMANDS: dict[str, tuple[str, Message]] = {
               message("the full turn: curves of positions, v, a, ω, ε")),
     "variants": ("planmethod.commands.variants",
                  message("student variants of a template, with task sheets and answer keys")),
+    "booklet": ("planmethod.commands.booklet",
+                message("the class's booklet to print: task sheets and plan sheets, one A4 "
+                        "PDF")),
     "grade": ("planmethod.commands.grade",
-              message("grade numeric answers and drawn plans against a key")),
+              message("grade numeric answers and drawn plans (files or phone photos) against "
+                      "a key")),
     "export": ("planmethod.commands.export",
                message("answer keys to Gradescope, PrairieLearn, Moodle or a CSV gradebook")),
     "check": ("planmethod.commands.check",
@@ -73,7 +77,7 @@ EXIT_BAD_INPUT = 2
 
 #: the arguments whose file a command reads first, in this order: the ``[course] language``
 #: of that file (an exercise or a template) is the run's unless ``--lang`` is given
-LANGUAGE_FILES = ("file", "template", "key")
+LANGUAGE_FILES = ("file", "template", "key_file", "key")
 
 #: a negative number as argparse should read it: a value, not an option (-1e300, -.5, -inf)
 _NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",

@@ -40,8 +40,8 @@ CONVEYOR = EXERCISES / "conveyor_sixbar.toml"
 TABLE = EXERCISES / "conveyor_sixbar_table2.csv"
 TEMPLATE = EXERCISES / "templates" / "slider_crank.toml"
 ANSWERS = EXERCISES / "templates" / "slider_crank_answers_example.csv"
-COMMANDS = ("solve", "sweep", "variants", "grade", "export", "check", "study", "workbook",
-            "animate", "convert", "studio")
+COMMANDS = ("solve", "sweep", "variants", "booklet", "grade", "export", "check", "study",
+            "workbook", "animate", "convert", "studio")
 
 
 # -- run in a fresh process that speaks the pseudo language ---------------------------------------

@@ -13,9 +13,10 @@ call them (the command line, the studio, a notebook or a script).
   bounded pool of processes: :mod:`~planmethod.application.workers`);
 * :mod:`~planmethod.application.templates` — make a template of a drawn mechanism;
 * :mod:`~planmethod.application.variants` — draw variants and the files of a course folder;
+* :mod:`~planmethod.application.booklet` — the class's booklet to print (one A4 PDF);
 * :mod:`~planmethod.application.exporting` — export a class to an LMS, or a whole teaching
   run;
-* :mod:`~planmethod.application.grading` — grade answers and drawings;
+* :mod:`~planmethod.application.grading` — grade answers, drawings and photos of plan sheets;
 * :mod:`~planmethod.application.checking` — check a table of coordinates;
 * :mod:`~planmethod.application.studying` and :mod:`~planmethod.application.animating` —
   the parameter study and the animation;

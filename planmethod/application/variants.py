@@ -239,14 +239,13 @@ RUN = RunKind("variants", "planmethod-variants-manifest", _manifest_path)
 
 
 def _student_files(variant, key: dict, folder: str, sheets: bool) -> dict[str, str]:
-    """One student's files: the variant as an exercise file, its key, and its sheets."""
+    """One student's files but the key (written once the class's booklet pages are known):
+    the variant as an exercise file, and its sheets."""
     from ..grading.templates import to_toml
-    from ..io import json_text
 
     # the description with its placeholders filled in, as the student reads it
     files = {f"{folder}/exercise.toml": to_toml({**variant.data,
-                                                 "description": variant.description}),
-             f"{folder}/key.json": json_text(key)}
+                                                 "description": variant.description})}
     if sheets:
         from ..grading.sheets import plan_sheet_for_key, task_sheet_svg, task_text
         from ..plans import draw_plans
@@ -274,6 +273,7 @@ def draw_variants(request: VariantsRequest, *, watch: Watch | None = None) -> Va
     import json
 
     from ..grading.keys import build_key, bundle
+    from ..grading.paper import add_sheets
     from ..grading.templates import draw_variant
     from ..io import csv_text, json_text
 
@@ -294,8 +294,12 @@ def draw_variants(request: VariantsRequest, *, watch: Watch | None = None) -> Va
         files |= _student_files(variant, key, folder, request.sheets)
         drawn.append(DrawnVariant(student, folder, variant.attempt, dict(variant.values)))
         watch.step("variants", len(drawn), len(group.students))
+    # the booklet's pages: each plan sheet's geometry (page mm) and QR code, in the keys
+    course = add_sheets(keys)
+    for key, folder in zip(keys, group.folders, strict=True):
+        files[f"{folder}/key.json"] = json_text(key)
     files["keys.json"] = json_text(bundle(keys, template=request.source, seed=request.seed,
-                                          count=len(keys)))
+                                          count=len(keys), course=course))
     rows = [[item.student, item.folder, item.attempt,
              json.dumps(item.values, ensure_ascii=False)] for item in drawn]
     files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *rows])

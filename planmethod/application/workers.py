@@ -80,23 +80,36 @@ def _end_with_parent(parent: int | None) -> None:
         os._exit(1)
 
 
+def _start_worker(parent: int | None, setup: Callable[..., None] | None,
+                  arguments: tuple) -> None:
+    """A worker's first acts: end with its parent, then ``setup(*arguments)`` if given."""
+    _end_with_parent(parent)
+    if setup is not None:
+        setup(*arguments)
+
+
 def in_workers(function: Callable[[Any], Any], jobs: Sequence[Any], workers: int,
-               each: Callable[[Any], None]) -> None:
+               each: Callable[[Any], None], *, setup: Callable[..., None] | None = None,
+               arguments: tuple = (), fork: bool = True) -> None:
     """``function`` of every job, computed in ``workers`` processes and handed to ``each``
     in the jobs' order. The pool is terminated whenever this ends — done, failed, cancelled
     (``each`` raising), Ctrl-C or SIGTERM (the command line turns it into an exception
-    here) — so that no worker outlives its caller. ``function`` must be a module's function
-    (the workers receive it by name)."""
+    here) — so that no worker outlives its caller. ``function`` (and ``setup``, which each
+    worker calls once with ``arguments`` before its first job: what every job shares) must
+    be a module's function (the workers receive it by name). The workers are forked on
+    Linux unless ``fork`` is false (a library whose threads do not survive a fork already
+    runs here): then they are started afresh, and still end with this process."""
     import multiprocessing
     import os
     import sys
 
+    linux = sys.platform.startswith("linux")
     # fork on Linux: the workers are this process's children (the parent check above holds)
-    method = "fork" if sys.platform.startswith("linux") else None
+    method = "fork" if linux and fork else "spawn" if linux else None
     context = multiprocessing.get_context(method)
-    parent = os.getpid() if method == "fork" else None
-    with context.Pool(min(workers, len(jobs)), initializer=_end_with_parent,
-                      initargs=(parent,)) as pool:   # leaving the block terminates the pool
+    parent = os.getpid() if linux else None
+    with context.Pool(min(workers, len(jobs)), initializer=_start_worker,
+                      initargs=(parent, setup, arguments)) as pool:   # leaving it ends them
         for done in pool.imap(function, jobs):
             each(done)
 

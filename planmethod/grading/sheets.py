@@ -37,8 +37,8 @@ from .keys import key_numbers
 from .plan_points import plan_point_name
 from .templates import drawn_lengths
 
-__all__ = ["blank_plan_sheet", "given_data", "plan_sheet_for_key", "task_figure_svg",
-           "task_sheet_svg", "task_text"]
+__all__ = ["blank_plan_sheet", "given_data", "paper_plan_sheet", "paper_task_sheet",
+           "plan_sheet_for_key", "task_figure_svg", "task_sheet_svg", "task_text"]
 
 #: the words a question's text ends with that the answer table's heading says for every row
 _SENSE_NOTE = " (counter-clockwise positive)"
@@ -186,20 +186,29 @@ def task_figure_svg(plans, notes: list[str] | None = None) -> str:
     >>> "position plan, φ₁ = 30°" in task_figure_svg(plans)
     True
     """
+    return _task_figure(plans, notes or []).svg
+
+
+def _task_figure(plans, notes: list[str]):
+    """The task's figure as an :class:`~planmethod.render.canvas.SvgFigure` (its size known)."""
     position = replace(plans.position, curvature={})
-    return position_drawing(position, notes=notes or []).svg
+    return position_drawing(position, notes=notes)
 
 
 def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
     """The task sheet: the task's figure (:func:`task_figure_svg`, no answers on it) above the
     task text."""
+    return _task_sheet_figure(key, plans).svg
+
+
+def _task_sheet_figure(key: Mapping[str, Any], plans):
     lines: list[str] = []
     for line in task_text(key).splitlines():
         if line.startswith("  "):     # a row of the answer table: kept whole
             lines.append(line)
         else:
             lines += textwrap.wrap(line, 100, drop_whitespace=False) or [""]
-    return task_figure_svg(plans, lines)
+    return _task_figure(plans, lines)
 
 
 #: a blank plan sheet's header (what it is, whose, its scale, the given segment, what to do)
@@ -251,3 +260,221 @@ def plan_sheet_for_key(key: Mapping[str, Any], plan: str) -> str:
     return blank_plan_sheet(plan, pole=entry["pole"], scale=entry["scale"], unit=entry["unit"],
                             size_mm=size, student=str(key.get("student", "")),
                             title=str(key.get("title", "")), given=given)
+
+
+# -- the booklet's pages (A4, mm; see planmethod.grading.paper) ------------------------------
+#: the light grid of a paper plan sheet: every millimetre, and darker every 10 mm — a light blue
+#: that a phone photo keeps (the grader finds the sheet's curl by it) and that a grey pencil line
+#: stands out from, in colour and printed grey alike
+GRID_MINOR = ("#d2e4f5", 0.1)
+GRID_MAJOR = ("#8cb9e6", 0.2)
+#: text sizes on the printed page (mm): the title, the lines under it, small print
+PAGE_TITLE_MM, PAGE_TEXT_MM, PAGE_SMALL_MM = 4.2, 3.2, 2.6
+
+
+def _plan_name(plan: str) -> Message:
+    return (message("velocity plan") if plan == "velocity"
+            else message("acceleration plan"))
+
+
+def _value_unit(unit: str) -> str:
+    """The unit of a plan's vectors from its scale's unit: ``(m/s)/mm`` → ``m/s``."""
+    value = unit.removesuffix("/mm")
+    return value[1:-1] if value.startswith("(") and value.endswith(")") else value
+
+
+def _page_canvas() -> Canvas:
+    return Canvas()
+
+
+def _page_svg(canvas: Canvas, title: str, size: tuple[float, float], attributes=None) -> str:
+    return canvas.svg(title, view=(0.0, 0.0, size[0], size[1]), unit="mm",
+                      attributes=attributes).svg
+
+
+def _wrapped(canvas: Canvas, at: tuple[float, float], text: str, width_mm: float,
+             size: float, *, bold: bool = False, lines: int = 3) -> float:
+    """Text wrapped to ``width_mm``; returns the y under it."""
+    from ..render.style import SANS, SANS_BOLD, text_width
+
+    x, y = at
+    words = text.split(" ")
+    row: list[str] = []
+    rows: list[str] = []
+    for word in words:
+        trial = " ".join([*row, word])
+        if row and text_width(trial, size, SANS_BOLD if bold else SANS) > width_mm:
+            rows.append(" ".join(row))
+            row = [word]
+        else:
+            row.append(word)
+    rows.append(" ".join(row))
+    for line in rows[:lines]:
+        canvas.text((x, y), line, size=size, bold=bold, area=False, css="header")
+        y += 1.35 * size
+    return y
+
+
+def _markers(canvas: Canvas, sheet) -> None:
+    from .paper import MARKER_BITS
+
+    cell = sheet.marker_mm / 6
+    for marker in sheet.markers:
+        bits = MARKER_BITS[marker.number]
+        rows = [[True] * 6] + [[True] + [bit == "0" for bit in row] + [True] for row in bits] \
+            + [[True] * 6]
+        x, y = marker.centre
+        canvas.cells((x - sheet.marker_mm / 2, y - sheet.marker_mm / 2), cell, rows,
+                     css=f"marker marker-{marker.number}")
+
+
+def _qr(canvas: Canvas, sheet) -> None:
+    import segno
+
+    code = segno.make_qr(sheet.code.text, error="m")
+    rows = [[bool(value) for value in row] for row in code.matrix]
+    left, top, side = sheet.qr_mm
+    module = side / (len(rows) + 8)           # a quiet zone of 4 modules round it
+    canvas.cells((left + 4 * module, top + 4 * module), module, rows, css="qr")
+
+
+def _grid(canvas: Canvas, sheet) -> None:
+    left, top, right, bottom = sheet.drawing_mm
+    px, py = sheet.pole_mm
+    xs = [px + k for k in range(math.ceil(left - px), math.floor(right - px) + 1)]
+    ys = [py + k for k in range(math.ceil(top - py), math.floor(bottom - py) + 1)]
+    canvas.rules((left, top, right, bottom), xs=[x for x in xs if round(x - px) % 10],
+                 ys=[y for y in ys if round(y - py) % 10], color=GRID_MINOR[0],
+                 width=GRID_MINOR[1], css="grid minor")
+    canvas.rules((left, top, right, bottom), xs=[x for x in xs if not round(x - px) % 10],
+                 ys=[y for y in ys if not round(y - py) % 10], color=GRID_MAJOR[0],
+                 width=GRID_MAJOR[1], css="grid major")
+
+
+def _scale_bar(canvas: Canvas, sheet) -> None:
+    from ..render.style import INK
+
+    (x, y), length = sheet.scale_bar_mm
+    canvas.line((x, y), (x + length, y), color=INK, width=0.4, layer="text", obstacle=False,
+                css="scale bar")
+    for tenth in range(int(length // 10) + 1):
+        tick = 2.0 if tenth in (0, int(length // 10)) else 1.2
+        canvas.line((x + 10 * tenth, y - tick), (x + 10 * tenth, y), color=INK, width=0.3,
+                    layer="text", obstacle=False, css="scale bar")
+    canvas.text((x, y + 3.6), "0", size=PAGE_SMALL_MM, anchor="middle", area=False,
+                css="scale")
+    canvas.text((x + length, y + 3.6),
+                render(message("{value:.4g} {unit}", value=length * sheet.scale,
+                               unit=_value_unit(sheet.unit))),
+                size=PAGE_SMALL_MM, anchor="middle", area=False, css="scale")
+    canvas.text((x, y + 8.0), render(message(
+        "Print at 100 % (actual size): this bar measures {length:g} mm.", length=length)),
+        size=PAGE_SMALL_MM, area=False, css="scale note")
+
+
+def paper_plan_sheet(key: Mapping[str, Any], sheet, pages: int) -> str:
+    """A blank plan sheet of the booklet (A4, mm): the header, the light millimetre grid with
+    the pole printed and named, the scale with its bar, the four corner markers and the QR
+    code, each where ``sheet`` (:class:`planmethod.grading.paper.Sheet`, read from the key)
+    puts it. The text is rendered in the language spoken.
+
+    >>> from planmethod.grading.keys import build_key
+    >>> from planmethod.grading.paper import add_sheets, read_sheet
+    >>> from planmethod.grading.templates import draw_variant, load_template
+    >>> key = build_key(draw_variant(load_template("exercises/templates/slider_crank.toml")))
+    >>> _ = add_sheets([key])
+    >>> svg = paper_plan_sheet(key, read_sheet(key, "velocity"), 3)
+    >>> 'width="210mm"' in svg and 'class="qr"' in svg
+    True
+    """
+    from ..render.style import INK
+
+    canvas = _page_canvas()
+    _grid(canvas, sheet)
+    left, top, right, _ = sheet.drawing_mm
+    canvas.rectangle((left, top), (right - left, sheet.drawing_mm[3] - top), fill="none",
+                     stroke=GRID_MAJOR[0], width=0.3, css="drawing area")
+    _markers(canvas, sheet)
+    _qr(canvas, sheet)
+    _header(canvas, key, sheet, pages)
+    px, py = sheet.pole_mm
+    canvas.circle((px, py), 0.55, fill=INK, css="pole", area=False)
+    canvas.circle((px, py), 1.6, fill="none", stroke=INK, width=0.25, css="pole ring",
+                  area=False)
+    canvas.text((px - 2.2, py - 2.2), sheet.pole, size=5.0, family=LABEL_FAMILY,
+                anchor="end", italic=True, css="pole-label", area=False)
+    _scale_bar(canvas, sheet)
+    shown = shown_title(str(key.get("title", "")))
+    title = render(message("{title} — blank velocity plan sheet of student {student}",
+                           title=shown, student=sheet.student) if sheet.plan == "velocity" else
+                   message("{title} — blank acceleration plan sheet of student {student}",
+                           title=shown, student=sheet.student))
+    return _page_svg(canvas, title, sheet.page_mm,
+                     {"data-planmethod-plan": sheet.plan,
+                      "data-planmethod-student": sheet.student})
+
+
+def _header(canvas: Canvas, key: Mapping[str, Any], sheet, pages: int) -> None:
+    """A plan sheet's header: the title and plan, the student, angle and page, the scale and
+    the first vector's drawn length, what to do."""
+
+    numbers = key_numbers(key)
+    exercise_drive = ((key.get("exercise") or {}).get("drive") or {}).get("link")
+    phi = numbered("φ", numbers.get(exercise_drive, 1))
+    x = 26.0
+    y = _wrapped(canvas, (x, 15.0), render(message(
+        "{title} — {plan}", title=shown_title(str(key.get("title", ""))),
+        plan=_plan_name(sheet.plan))),
+        162.0, PAGE_TITLE_MM, bold=True, lines=1) + 0.4
+    given = key["plans"][sheet.plan]
+    first = next((step for step in given["steps"] if step["action"] == "lay_off"), None)
+    lines = [message("Student {student} · {angle_symbol} = {angle:g}° · page {page} of {pages}",
+                     student=sheet.student, angle_symbol=phi, angle=float(key.get("angle", 0)),
+                     page=sheet.page, pages=pages),
+             message("Scale {symbol} = {scale:.6g} {unit}", symbol=_scale_symbol(sheet.plan),
+                     scale=sheet.scale, unit=sheet.unit)]
+    if first is not None:
+        lines[-1] = message("Scale {symbol} = {scale:.6g} {unit}; ({pole}{point}) = "
+                            "{length:.4g} mm", symbol=_scale_symbol(sheet.plan),
+                            scale=sheet.scale, unit=sheet.unit, pole=sheet.pole,
+                            point=plan_point_name(first["end"], numbers),
+                            length=float(first["length_mm"]))
+    for line in lines:
+        y = _wrapped(canvas, (x, y), render(line), 162.0, PAGE_TEXT_MM, lines=1)
+    _wrapped(canvas, (x, y), render(message(
+        "Draw the plan from the pole {pole} with a sharp pencil and a ruler; mark each point "
+        "with a dot or a small cross and label it. Photograph the whole sheet with all four "
+        "corner squares in view.", pole=sheet.pole)), 162.0, PAGE_SMALL_MM, lines=2)
+
+
+def _scale_symbol(plan: str) -> str:
+    from ..vocabulary import SCALES
+
+    return SCALES[PLAN_SCALES[plan]].symbol
+
+
+def paper_task_sheet(key: Mapping[str, Any], plans, page: int, pages: int) -> str:
+    """The task sheet as a page of the booklet (A4, mm): the task sheet
+    (:func:`task_sheet_svg`) at its true size — the mechanism at μl — or, if it is larger
+    than the page's printed area, scaled down to it, with a note saying so."""
+    from .paper import A4_MM
+
+    figure = _task_sheet_figure(key, plans)
+    millimetres = 25.4 / 96.0                     # the figure's user unit is a CSS px
+    width, height = figure.width * millimetres, figure.height * millimetres
+    room = (A4_MM[0] - 20.0, A4_MM[1] - 32.0)
+    shrink = min(1.0, room[0] / width, room[1] / height)
+    canvas = _page_canvas()
+    notes = [message("Student {student} · page {page} of {pages}",
+                     student=str(key.get("student")), page=page, pages=pages)]
+    if shrink < 1.0:
+        notes.append(message("The figure is printed at {percent:.0f} % of its scale "
+                             "μl: measure lengths from the data, not from it.",
+                             percent=100 * shrink))
+    for index, note in enumerate(notes):
+        canvas.text((10.0, 12.0 + 4.0 * index), render(note), size=PAGE_TEXT_MM, area=False,
+                    css="header")
+    canvas.nest([(figure, (10.0, 22.0), (width * shrink, height * shrink))], css="task")
+    return _page_svg(canvas, render(message("{title} — task of student {student}",
+                                            title=shown_title(str(key.get("title", ""))),
+                                            student=str(key.get("student")))), A4_MM)

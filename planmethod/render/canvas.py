@@ -353,6 +353,44 @@ class Canvas:
                                "stroke": color, "stroke-width": num(width)}, [])])
         return f"url(#{ident})"
 
+    def cells(self, corner: Point, cell: float, rows: Sequence[Sequence[bool]], *,
+              color: str = INK, layer: str = "marks", css: str) -> None:
+        """Square cells of side ``cell``, the top-left one at ``corner``, those true in
+        ``rows`` filled — a QR code's modules, a fiducial marker's bits — as one path, each
+        row's runs of filled cells one rectangle (no seam between neighbours)."""
+        x0, y0 = _pair(corner)
+        parts = []
+        for row, values in enumerate(rows):
+            column = 0
+            while column < len(values):
+                if not values[column]:
+                    column += 1
+                    continue
+                end = column
+                while end < len(values) and values[end]:
+                    end += 1
+                parts.append(f"M{num(x0 + column * cell)} {num(y0 + row * cell)}"
+                             f"h{num((end - column) * cell)}v{num(cell)}"
+                             f"h{num(-(end - column) * cell)}z")
+                column = end
+        if parts:
+            self.add(layer, "path", {"d": "".join(parts), "fill": color, "class": css})
+        self.grow((x0, y0), (x0 + cell * max((len(row) for row in rows), default=0),
+                             y0 + cell * len(rows)))
+
+    def rules(self, box: Sequence[float], *, xs: Sequence[float] = (),
+              ys: Sequence[float] = (), color: str, width: float, css: str,
+              layer: str = "ground") -> None:
+        """Ruled lines across ``box`` (x0, y0, x1, y1): vertical ones at ``xs``, horizontal
+        ones at ``ys`` — a sheet's grid — as one path."""
+        x0, y0, x1, y1 = (float(value) for value in box)
+        parts = [f"M{num(x)} {num(y0)}V{num(y1)}" for x in xs]
+        parts += [f"M{num(x0)} {num(y)}H{num(x1)}" for y in ys]
+        if parts:
+            self.add(layer, "path", {"d": "".join(parts), "fill": "none", "stroke": color,
+                                     "stroke-width": num(width), "class": css})
+        self.grow((x0, y0), (x1, y1))
+
     def style_sheet(self, css: str) -> None:
         """A ``<style>`` sheet of the figure (an animation's keyframes), in ``<defs>``."""
         self.definitions.append(("style", {}, [css]))

@@ -1,0 +1,434 @@
+"""The paper course: the sheets' geometry in the key, the printed booklet at its true size, and
+a drawn plan graded from a phone photo — with each refusal of a photo that cannot be read.
+
+The photos are made by :mod:`planmethod.testing.photos` (a phone's photo of a pencilled sheet:
+tilted, turned, curled, unevenly lit, blurred, noisy, JPEG at quality 70).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planmethod.cli import main
+
+cv2 = pytest.importorskip("cv2", reason="the paper course needs OpenCV (the paper extra)")
+pytest.importorskip("segno", reason="the booklet's QR codes need segno (the paper extra)")
+pytest.importorskip("cairosvg", reason="the booklet's PDF needs CairoSVG (the paper extra)")
+
+from planmethod.grading.keys import load_keys  # noqa: E402
+from planmethod.grading.paper import (  # noqa: E402
+    A4_MM,
+    MARKER_BITS,
+    MARKER_CENTRES,
+    MARKER_MM,
+    PhotoError,
+    plan_to_page,
+    read_sheet,
+    read_sheet_code,
+)
+from planmethod.testing.photos import Conditions, drawn_plan, sheet_photo  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+TEMPLATE = ROOT / "exercises" / "templates" / "slider_crank.toml"
+
+#: a photo taken carefully enough that every refusal test starts from a readable one
+STEADY = Conditions(tilt_deg=12.0, tilt_towards_deg=40.0, rotation_deg=4.0, fill=0.85,
+                    curl_mm=2.0, light=0.2, shadow=0.25, blur_px=0.8, noise=3.0)
+
+
+@pytest.fixture(scope="module")
+def course(tmp_path_factory) -> Path:
+    """A course of three students, as `planmethod variants` writes it."""
+    out = tmp_path_factory.mktemp("paper") / "course"
+    assert main(["variants", str(TEMPLATE), "--count", "3", "--seed", "2026",
+                 "--out", str(out)]) == 0
+    return out
+
+
+@pytest.fixture(scope="module")
+def keys(course) -> dict:
+    return load_keys(course / "keys.json")
+
+
+@pytest.fixture(scope="module")
+def velocity_photo(keys, tmp_path_factory) -> tuple[Path, object]:
+    """A photo of student 001's velocity sheet, drawn by the right construction."""
+    photo = sheet_photo(keys["001"], "velocity", seed=11, conditions=STEADY)
+    path = tmp_path_factory.mktemp("photos") / "001_velocity.jpg"
+    path.write_bytes(photo.jpeg)
+    return path, photo
+
+
+def _grade(capsys, *args: str) -> tuple[int, str, str]:
+    status = main(["grade", *args])
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+# -- the sheets in the key ------------------------------------------------------------------------
+def test_the_markers_are_opencvs_dictionary():
+    dictionary = cv2.aruco.getPredefinedDictionary(cv2.aruco.DICT_4X4_50)
+    for number, rows in MARKER_BITS.items():
+        image = cv2.aruco.generateImageMarker(dictionary, number, 6)
+        assert ["".join("1" if value > 127 else "0" for value in row)
+                for row in image[1:5, 1:5]] == list(rows)
+
+
+def test_variants_records_each_sheet_in_the_key(course, keys):
+    bundle = json.loads((course / "keys.json").read_text(encoding="utf-8"))
+    assert bundle["format"] == "planmethod-keys" and len(bundle["course"]) == 8
+    pages = []
+    for student in ("001", "002", "003"):
+        key = keys[student]
+        pages.append(key["task_page"])
+        assert key == json.loads((course / student / "key.json").read_text(encoding="utf-8"))
+        for plan in ("velocity", "acceleration"):
+            sheet = read_sheet(key, plan)
+            pages.append(sheet.page)
+            code = read_sheet_code(key["sheets"][plan]["qr"])
+            assert (code.course, code.student, code.plan) == (bundle["course"], student, plan)
+            assert code.angle == pytest.approx(key["angle"])
+            assert sheet.page_mm == A4_MM and sheet.scale == key["plans"][plan]["scale"]
+            assert [marker.centre for marker in sheet.markers] == list(MARKER_CENTRES)
+            left, top, right, bottom = sheet.drawing_mm
+            for xy in key["plans"][plan]["points_mm"].values():
+                x, y = plan_to_page(sheet.pole_mm, xy)
+                assert left < x < right and top < y < bottom
+    assert pages == list(range(1, 10))
+
+
+def test_a_sheet_geometry_edited_by_hand_is_refused(keys):
+    from planmethod.grading.paper import CourseError
+
+    key = json.loads(json.dumps(keys["001"]))
+    key["sheets"]["velocity"]["pole_mm"] = [float("nan"), 3]
+    with pytest.raises(CourseError, match=r"sheets.velocity.pole_mm: must be a number"):
+        read_sheet(key, "velocity")
+    del key["sheets"]
+    with pytest.raises(CourseError, match="written before booklets"):
+        read_sheet(key, "velocity")
+
+
+# -- the booklet ------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def booklet(course, tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("booklet") / "class.pdf"
+    assert main(["booklet", str(course), "-o", str(path)]) == 0
+    return path
+
+
+needs_poppler = pytest.mark.skipif(shutil.which("pdftoppm") is None or
+                                   shutil.which("pdffonts") is None,
+                                   reason="pdftoppm and pdffonts (poppler-utils) render the PDF")
+
+
+@needs_poppler
+def test_the_booklet_is_a4_with_its_fonts_embedded(booklet):
+    info = subprocess.run(["pdfinfo", str(booklet)], capture_output=True, text=True,
+                          check=True).stdout
+    assert re.search(r"^Pages: +9$", info, re.MULTILINE)
+    assert "595.276 x 841.89 pts (A4)" in info
+    fonts = subprocess.run(["pdffonts", str(booklet)], capture_output=True, text=True,
+                           check=True).stdout.splitlines()[2:]
+    assert fonts and all(line.split()[-5] == "yes" for line in fonts)   # the "emb" column
+
+
+def _page_image(booklet: Path, page: int, dpi: int, folder: Path) -> np.ndarray:
+    subprocess.run(["pdftoppm", "-r", str(dpi), "-f", str(page), "-l", str(page), "-png",
+                    str(booklet), str(folder / "page")], check=True)
+    return cv2.imread(str(next(folder.glob("page*.png"))))
+
+
+@needs_poppler
+def test_the_printed_sheet_has_its_true_sizes(booklet, keys, tmp_path):
+    """At 100 %, the scale bar measures 50 mm and the markers sit where the key says."""
+    dpi = 300
+    image = _page_image(booklet, 2, dpi, tmp_path)
+    mm = dpi / 25.4
+    assert image.shape[:2] == pytest.approx((A4_MM[1] * mm, A4_MM[0] * mm), abs=1.0)
+    sheet = read_sheet(keys["001"], "velocity")
+    gray = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)
+    corners, ids, _ = cv2.aruco.ArucoDetector(
+        cv2.aruco.getPredefinedDictionary(cv2.aruco.DICT_4X4_50)).detectMarkers(gray)
+    found = {int(number): quad.reshape(4, 2).mean(axis=0) / mm
+             for quad, number in zip(corners, ids.ravel(), strict=True)}
+    assert sorted(found) == [0, 1, 2, 3]
+    for marker in sheet.markers:
+        assert np.hypot(*(found[marker.number] - marker.centre)) < 0.15
+    sides = [np.mean(np.hypot(*np.diff(quad.reshape(4, 2), axis=0, append=quad.reshape(
+        4, 2)[:1]).T)) / mm for quad in corners]
+    assert sides == pytest.approx([MARKER_MM] * 4, abs=0.15)
+    # the scale bar: the dark run along its line
+    (x, y), length = sheet.scale_bar_mm
+    row = gray[round(y * mm) - 1: round(y * mm) + 2, :].min(axis=0)
+    dark = np.nonzero(row[: round((x + length + 10) * mm)] < 128)[0]
+    dark = dark[dark > round((x - 5) * mm)]
+    assert (dark.max() - dark.min()) / mm == pytest.approx(length, abs=0.3)
+    # the pole where the key says
+    px, py = sheet.pole_mm
+    window = gray[round((py - 0.6) * mm): round((py + 0.6) * mm),
+                  round((px - 0.6) * mm): round((px + 0.6) * mm)]
+    assert window.min() < 60
+
+
+@needs_poppler
+def test_the_pages_are_drawn_as_a_student_needs_them(booklet, keys, tmp_path):
+    """The blank sheet, rendered, reads back: its QR code names the sheet, and its grid is
+    light enough that a pencil line stands out from it."""
+    image = _page_image(booklet, 3, 200, tmp_path)
+    text, _, _ = cv2.QRCodeDetector().detectAndDecode(image)
+    assert text == keys["001"]["sheets"]["acceleration"]["qr"]
+    sheet = read_sheet(keys["001"], "acceleration")
+    mm = 200 / 25.4
+    left, top, right, bottom = sheet.drawing_mm
+    grid = image[round((top + 20) * mm): round((bottom - 20) * mm),
+                 round((left + 20) * mm): round((right - 20) * mm)].max(axis=2)
+    assert np.percentile(grid, 1) > 180          # the brightest channel of the grid: light
+
+
+def test_the_booklet_refuses_a_course_of_an_earlier_version(course, tmp_path, capsys):
+    old = tmp_path / "old"
+    shutil.copytree(course, old)
+    bundle = json.loads((old / "keys.json").read_text(encoding="utf-8"))
+    for key in bundle["keys"]:
+        del key["sheets"]
+    (old / "keys.json").write_text(json.dumps(bundle), encoding="utf-8")
+    assert main(["booklet", str(old), "-o", str(tmp_path / "b.pdf")]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "written before booklets" in error
+    assert not (tmp_path / "b.pdf").exists()
+
+
+def test_the_booklet_refuses_an_unknown_language(course, tmp_path, capsys):
+    assert main(["booklet", str(course), "-o", str(tmp_path / "b.pdf"), "--lang", "zz"]) == 2
+    assert "no catalogue for the language zz" in capsys.readouterr().err
+
+
+# -- grading a photo ----------------------------------------------------------------------------
+def test_a_photo_is_graded_as_the_same_plan_given_as_a_drawing(keys, course, velocity_photo,
+                                                              tmp_path, capsys):
+    """The plan the photo shows, graded by `grade --photo`, gets the verdicts `grade --drawing`
+    gives the very points drawn (a drawing of the sheet's exercise and angle, in mm)."""
+    path, photo = velocity_photo
+    key = keys["001"]
+    drawing = tmp_path / "drawing.json"
+    points = {"p": [0.0, 0.0], **{label: list(xy) for label, xy in photo.drawn.points.items()}}
+    drawing.write_text(json.dumps({"format": "planmethod-drawing", "plan": "velocity",
+                                   "title": key["title"], "angle": key["angle"],
+                                   "points": points}), encoding="utf-8")
+    status, _, _ = _grade(capsys, str(course / "keys.json"), "--drawing", str(drawing),
+                          "--student", "001", "--json", str(tmp_path / "drawn.json"))
+    assert status == 0
+    status, out, err = _grade(capsys, "--photo", str(path), "--key",
+                              str(course / "keys.json"), "--json", str(tmp_path / "photo.json"))
+    assert status == 0 and err == ""
+    assert f"{path} (student 001, velocity plan): 3/3" in out
+    drawn = json.loads((tmp_path / "drawn.json").read_text())["drawings"][0]
+    graded = json.loads((tmp_path / "photo.json").read_text())["drawings"][0]
+    verdicts = {(point["point"], point["correct"], tuple(point.get("mistakes", ())))
+                for point in drawn["points"]}
+    assert {(point["point"], point["correct"], tuple(point.get("mistakes", ())))
+            for point in graded["points"] if point["max_score"]} == verdicts
+    assert graded["score"] == drawn["score"] == 3
+    for point in graded["points"]:
+        if point["max_score"]:
+            assert len(point["photo_px"]) == 2 and len(point["right_photo_px"]) == 2
+    assert graded["sheet"]["student"] == "001" and graded["photo"] == str(path)
+
+
+def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
+    """The acceleration plan drawn without the normal component aⁿ: every point it moves is
+    wrong and named with that mistake."""
+    from planmethod.grading.photos import grade_photo
+
+    photo = sheet_photo(keys["002"], "acceleration", "no_normal", seed=5, conditions=STEADY)
+    path = tmp_path / "002_no_normal.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    moved = {label for label, verdict in photo.drawn.deserved.items() if verdict != "right"}
+    assert moved
+    for point in graded.drawing.points:
+        if point.point in moved:
+            assert not point.correct and "no_normal" in point.mistakes
+
+
+def test_the_marked_photo_and_a_pool_of_workers(course, velocity_photo, tmp_path):
+    """Two photos in two worker processes (the command run as a user runs it): both graded,
+    both marked, and no worker left when it ends."""
+    from planmethod.testing.processes import processes_holding
+
+    path, _ = velocity_photo
+    second = tmp_path / "again.jpg"
+    shutil.copy(path, second)
+    marked = tmp_path / "marked-8c1f"
+    done = subprocess.run([sys.executable, "-m", "planmethod", "grade", "--photo", str(path),
+                           str(second), "--key", str(course / "keys.json"), "--marked",
+                           str(marked), "--jobs", "2"], capture_output=True, text=True,
+                          cwd=ROOT, timeout=600)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.count("3/3") == 2
+    names = sorted(file.name for file in marked.iterdir())
+    assert names == ["001_velocity_marked.jpg", "again_marked.jpg"]
+    image = cv2.imread(str(marked / names[0]))
+    assert image is not None and min(image.shape[:2]) > 400
+    assert processes_holding("marked-8c1f") == []
+
+
+# -- refusals -----------------------------------------------------------------------------------
+def _edited(photo_path: Path, tmp_path: Path, edit) -> Path:
+    image = cv2.imread(str(photo_path))
+    out = tmp_path / "edited.jpg"
+    cv2.imwrite(str(out), edit(image), [cv2.IMWRITE_JPEG_QUALITY, 90])
+    return out
+
+
+def _page_box(photo, centre_mm, half_mm) -> tuple[slice, slice]:
+    corners = [(centre_mm[0] + dx, centre_mm[1] + dy) for dx in (-half_mm, half_mm)
+               for dy in (-half_mm, half_mm)]
+    seen = photo.page_to_photo(np.array(corners))
+    x0, y0 = np.floor(seen.min(axis=0)).astype(int)
+    x1, y1 = np.ceil(seen.max(axis=0)).astype(int)
+    return slice(max(y0, 0), y1), slice(max(x0, 0), x1)
+
+
+def _painted(photo, centre_mm, half_mm):
+    def edit(image):
+        rows, columns = _page_box(photo, centre_mm, half_mm)
+        image[rows, columns] = 235
+        return image
+    return edit
+
+
+REFUSALS = {
+    "a corner marker covered": (lambda photo: _painted(photo, MARKER_CENTRES[3], 8.0),
+                                "shows 3 of the sheet's 4 corner squares (not the bottom right)"),
+    "the QR code covered": (lambda photo: _painted(photo, (164.0, 274.0), 13.0),
+                            "QR code cannot be read"),
+    "too blurred": (lambda photo: lambda image: cv2.GaussianBlur(image, (0, 0), 14),
+                    "too blurred"),
+    "too dark": (lambda photo: lambda image: (image * 0.12).astype(np.uint8), "too dark"),
+    "not an image": (None, "not a photo that can be read"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(REFUSALS))
+def test_a_photo_that_cannot_be_read_is_refused_in_one_line(case, course, velocity_photo,
+                                                            tmp_path, capsys):
+    path, photo = velocity_photo
+    edit, words = REFUSALS[case]
+    if edit is None:
+        target = tmp_path / "notes.jpg"
+        target.write_text("not a photo", encoding="utf-8")
+    else:
+        target = _edited(path, tmp_path, edit(photo))
+    status, out, err = _grade(capsys, "--photo", str(target), "--key",
+                              str(course / "keys.json"), "--json", str(tmp_path / "g.json"))
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith(f"planmethod: error: {target}: ")
+    assert words in err
+    assert json.loads((tmp_path / "g.json").read_text())["refused"][0]["photo"] == str(target)
+
+
+def test_a_photo_taken_too_far_off_straight_above_is_refused(keys, course, tmp_path, capsys):
+    tilted = Conditions(tilt_deg=52.0, tilt_towards_deg=90.0, rotation_deg=2.0, fill=0.85)
+    photo = sheet_photo(keys["001"], "velocity", seed=2, conditions=tilted)
+    path = tmp_path / "tilted.jpg"
+    path.write_bytes(photo.jpeg)
+    status, _, err = _grade(capsys, "--photo", str(path), "--key", str(course / "keys.json"))
+    assert status == 2 and "° off straight above (at most 35°)" in err
+
+
+def test_a_sheet_the_key_does_not_have_is_refused(keys, course, velocity_photo, tmp_path,
+                                                   capsys):
+    path, _ = velocity_photo
+    # the key of another student only
+    status, _, err = _grade(capsys, "--photo", str(path), "--key",
+                            str(course / "002" / "key.json"))
+    assert status == 2 and "the sheet is of student 001, who is not in" in err
+    # the same student in another course (another draw of the template)
+    other = tmp_path / "other"
+    assert main(["variants", str(TEMPLATE), "--count", "3", "--seed", "7",
+                 "--out", str(other)]) == 0
+    capsys.readouterr()
+    status, _, err = _grade(capsys, "--photo", str(path), "--key", str(other / "keys.json"))
+    assert status == 2 and "the sheet is of another course" in err and err.count("\n") == 1
+
+
+def test_the_sheet_geometry_grades_the_photo_whatever_the_drawn_plan(keys):
+    """What is drawn on a sheet follows the key: the right plan's points on it."""
+    plan = drawn_plan(keys["003"], "velocity")
+    assert set(plan.points) == {"b", "c", "d"}
+    assert all(verdict == "right" for verdict in plan.deserved.values())
+
+
+def test_refusals_are_errors_of_the_family(velocity_photo):
+    from planmethod.errors import PlanmethodError
+    from planmethod.grading.photos import read_photo
+
+    with pytest.raises(PhotoError) as refused:
+        read_photo(b"\x89PNG not really", "x.png")
+    assert isinstance(refused.value, PlanmethodError)
+    assert str(refused.value).startswith("x.png: not a photo")
+
+
+def test_the_command_help_names_the_options():
+    done = subprocess.run([sys.executable, "-m", "planmethod", "grade", "--help"],
+                          capture_output=True, text=True, cwd=ROOT, check=True)
+    assert "--photo IMAGE" in done.stdout and "--marked DIR" in done.stdout
+
+
+# -- words: the booklet's pages and the photo's lines speak through the catalogue ----------------
+@pytest.fixture()
+def speaking_pseudo(tmp_path_factory, monkeypatch):
+    """``qps`` spoken here and by the command line (its catalogue found through the
+    environment, read afresh)."""
+    pytest.importorskip("babel", reason="the pseudo catalogue is written with Babel")
+    from planmethod.testing.pseudo import PSEUDO, pseudo_catalogue
+    from planmethod.words import language, speaking
+
+    folder = tmp_path_factory.mktemp("pseudo")
+    pseudo_catalogue(folder)
+    monkeypatch.setenv(language.LOCALE_ENVIRONMENT, str(folder))
+    monkeypatch.setenv(language.ENVIRONMENT, PSEUDO)
+    language.catalogue.cache_clear()
+    try:
+        with speaking(PSEUDO):
+            yield
+    finally:
+        language.catalogue.cache_clear()
+
+
+def test_a_plan_sheet_of_the_booklet_is_marked(keys, speaking_pseudo):
+    """Every word on a printed plan sheet (title, header, instructions, scale note) is a
+    message: under ``qps`` none shows outside a mark."""
+    from planmethod.grading.sheets import paper_plan_sheet
+    from planmethod.testing.pseudo import message_words, texts_of_svg, unmarked_words
+
+    key = keys["001"]
+    for plan in ("velocity", "acceleration"):
+        text = " ".join(texts_of_svg(paper_plan_sheet(key, read_sheet(key, plan), 9)))
+        assert "⟦Print at 100 % (actual size)" in text and "⟦Draw the plan from the pole" in text
+        assert unmarked_words(text, message_words(), names=[key["title"]]) == [], text
+
+
+def test_a_graded_photo_is_told_in_marked_sentences(course, velocity_photo, tmp_path, capsys,
+                                                    speaking_pseudo):
+    """``grade --photo`` under ``qps``: the photo's line, each point's verdict, and a refusal."""
+    from planmethod.testing.pseudo import message_words, unmarked_words
+
+    path, _ = velocity_photo
+    status, out, _ = _grade(capsys, "--photo", str(path), "--key", str(course / "keys.json"))
+    assert status == 0 and "⟦" in out
+    assert unmarked_words(out, message_words(), names=[str(path)]) == [], out
+    blurred = _edited(path, tmp_path, lambda image: cv2.GaussianBlur(image, (0, 0), 14))
+    status, _, err = _grade(capsys, "--photo", str(blurred), "--key", str(course / "keys.json"))
+    assert status == 2 and err.count("\n") == 1
+    assert unmarked_words(err, message_words(), names=[str(blurred)]) == [], err
