@@ -26,19 +26,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="with --svg, also write PNG renderings (needs cairosvg)")
 
 
-def _format(value: float | None, digits: int = 6) -> str:
-    if value is None:
-        return "—"
-    return f"{value:.{digits}g}"
-
-
 def text_report(analysis) -> str:
     """The report a course prints: structure, scales, check table, flags — every quantity,
     link and force in the course's notation (docs/notation.md: ω₂, v_B₃, R₀₁; the crank's
     φ and ω by its number), never a report name (those are the JSON report's)."""
     from ..numbering import course_numbers
+    from ..render.report_text import check_lines, flag_lines, force_lines, published_lines
     from ..structure import describe
-    from ..vocabulary import numbered, shown_title, symbol
+    from ..vocabulary import numbered, shown_title
 
     exercise, motion = analysis.exercise, analysis.motion
     numbers = course_numbers(exercise.mechanism)
@@ -54,35 +49,12 @@ def text_report(analysis) -> str:
         precision = analysis.plans.velocity.precision_mm
         lines.append(f"  drafting precision: {precision:g} mm" if precision else
                      "  drafting precision: exact construction")
-    shown = {check.quantity: symbol(check.quantity, numbers) for check in analysis.checks}
-    width = max([len(text) for text in shown.values()] + [8])
-    lines += ["", f"  {'quantity':<{width}} {'plan':>12}  {'exact':>12}  {'abs. error':>10}   "
-                  f"{'rel. error':>10}  unit"]
-    for check in analysis.checks:
-        rel = "—" if check.rel_error is None else f"{check.rel_error:.2e}"
-        lines.append(f"  {shown[check.quantity]:<{width}} {_format(check.plan):>12}  "
-                     f"{_format(check.analytic):>12}  {_format(check.abs_error, 3):>10}   "
-                     f"{rel:>10}  {check.unit}")
-    if exercise.published:
-        from ..report import published_comparison
-
-        source = exercise.published_source or "the book"
-        lines += ["", f"Published values ({source}) against the exact ones (magnitudes)",
-                  f"  {'quantity':<22}{'published':>12}{'exact':>14}{'difference':>12}"]
-        for row in published_comparison(analysis):
-            exact = "—" if row["exact"] is None else f"{row['exact']:.6g}"
-            off = ("—" if row["difference_percent"] is None
-                   else f"{row['difference_percent']:+.1f} %")
-            slip = "   likely a slip (> 5 %)" if row["likely_slip"] else ""
-            lines.append(f"  {symbol(row['quantity'], numbers):<22}{row['published']:>12.6g}"
-                         f"{exact:>14}"
-                         f"{off:>12}{slip}")
+    lines += check_lines(analysis)
+    lines += published_lines(analysis)
     if analysis.flags:
-        lines += ["", "Flags"] + [f"  ! {flag}" for flag in analysis.flags]
+        lines += ["", "Flags", *flag_lines(analysis.flags)]
     if analysis.forces is not None:
-        from ..render.notation import ForceNotation
-
-        lines += ["", analysis.forces.describe(ForceNotation(analysis.forces.solution))]
+        lines += ["", *force_lines(analysis.forces)]
     return "\n".join(lines)
 
 
@@ -127,8 +99,9 @@ def run(args: argparse.Namespace) -> int:
             print("\nWrote " + ", ".join(written))
         if args.svg and analysis.forces is not None:
             from ..render.force_svg import combined_omitted
+            from ..words import render
 
             why = combined_omitted(analysis.forces, analysis.plans)
             if why:
-                print(why)
+                print(render(why))
     return 0

@@ -106,13 +106,16 @@ def table_text(study, names: Mapping[str, str] | None = None,
     """The study as a course prints it: one table per parameter, then the conclusions;
     ``names`` are the pairs' reactions as the course writes them (R₀₁ for the pair A),
     ``rocker`` the rocker in words (link 3 (CD))."""
+    from ..words import render
+
     names = names or {}
+    base = ", ".join(render(value) for value in study.base_values())
     lines = [f"{shown_title(study.title)} — largest reactions over a full turn (N) and |M_b| (N·m)",
-             f"base case: {study.base_text()}; the rocker is {rocker or study.rocker}", ""]
+             f"base case: {base}; the rocker is {rocker or study.rocker}", ""]
     header = "".join(f"{names.get(pair, 'R_' + pair):>11}" for pair in study.pairs)
     header += f"{'|M_b|':>11}"
     for parameter in study.parameters:
-        lines.append(f"{parameter.label} ({parameter.unit})".ljust(28) + header)
+        lines.append(f"{render(parameter.label)} ({render(parameter.unit)})".ljust(28) + header)
         for i, value in enumerate(parameter.values):
             row = "".join(f"{study.maxima[parameter.name][pair][i]:>11.1f}"
                           for pair in study.pairs)
@@ -127,7 +130,7 @@ def table_text(study, names: Mapping[str, str] | None = None,
                                                               start=1):
         verdict = ("the data support it" if confirmed
                    else "the data do not support it")
-        lines.append(f"  {number}. \"{statement}\": {verdict} — {evidence}")
+        lines.append(f"  {number}. \"{render(statement)}\": {verdict} — {render(evidence)}")
     lines.append("  (the tables above are the figures that show it; --plot draws them)")
     return "\n".join(lines)
 
