@@ -114,12 +114,7 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
     else:  # no Python list of a million floats when an array is given
         angles = np.asarray(angles if isinstance(angles, (np.ndarray, list, tuple, range))
                             else list(angles), dtype=float).ravel()
-    structure = analyse_structure(mechanism)
-    scene = plan_scene(exercise)
-    stage = "acceleration" if extra is not None else scene.stage
-    links_needed = None if extra is not None else scene.links
-    groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
-    branches = choose_branches(mechanism, groups)
+    stage, links_needed, branches = _solving(exercise, forces=extra is not None)
     points, links, slides, curvature, _ = sweep_columns(exercise)
     last_theta: dict[str, float] = {}
     with Progress(len(angles), "sweep", enabled=progress if len(angles) > CHUNK else False
@@ -128,20 +123,40 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
             part = angles[begin:begin + CHUNK]
             motion = solve(mechanism, part, stage=stage, links=links_needed,
                            branches=branches)
-            columns: dict[str, np.ndarray] = {"angle": part}
-            acceleration = stage == "acceleration"
-            for point in points:
-                columns |= _point_columns(motion, point, acceleration)
-            for link in links:
-                columns |= _link_columns(motion, link, acceleration, last_theta)
-            for key in slides:
-                columns |= _sliding_columns(motion, key, acceleration)
-            for point in curvature:
-                columns[f"rho_{point}"] = motion.curvature(point).rho
+            columns = {"angle": part} | _chunk_columns(motion, (points, links, slides, curvature),
+                                                       stage == "acceleration", last_theta)
             if extra is not None:
                 columns |= extra(motion)
             yield {name: np.asarray(values) for name, values in columns.items()}
             bar.advance(len(part))
+
+
+def _solving(exercise: Exercise, *, forces: bool) -> tuple[str, list[str] | None, dict]:
+    """How a sweep solves: to which stage, for which links (None: all, as the forces need)
+    and on the branches chosen at ``drive.angle``."""
+    structure = analyse_structure(exercise.mechanism)
+    scene = plan_scene(exercise)
+    stage = "acceleration" if forces else scene.stage
+    links_needed = None if forces else scene.links
+    groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
+    return stage, links_needed, choose_branches(exercise.mechanism, groups)
+
+
+def _chunk_columns(motion, asked: tuple[list[str], list[str], list[str], list[str]],
+                   acceleration: bool, last_theta: dict[str, float]) -> dict[str, np.ndarray]:
+    """A chunk's columns of the points, links, prismatic pairs and curvature points
+    ``asked`` (see :func:`sweep_columns`)."""
+    points, links, slides, curvature = asked
+    columns: dict[str, np.ndarray] = {}
+    for point in points:
+        columns |= _point_columns(motion, point, acceleration)
+    for link in links:
+        columns |= _link_columns(motion, link, acceleration, last_theta)
+    for key in slides:
+        columns |= _sliding_columns(motion, key, acceleration)
+    for point in curvature:
+        columns[f"rho_{point}"] = motion.curvature(point).rho
+    return columns
 
 
 def _point_columns(motion, point: str, acceleration: bool) -> dict[str, np.ndarray]:
@@ -291,26 +306,30 @@ class Extremes:
           ω₂                       -2       0°          3      90°
         """
         shown = {name: render((names(name) if names else None) or name) for name in self.table}
-        heading = message("quantity")
-        width = max([16, len(render(heading))] + [len(text) for text in shown.values()])
+        heading = render(message("quantity"))
+        width = max([16, len(heading)] + [len(text) for text in shown.values()])
+        low_text, high_text = render(message("min")), render(message("max"))
         at = render(message("at {phi}", phi=phi))
-        # (one angle is "1 crank angles" in English, as it always was; a catalogue gives
-        # each of its language's forms)
+        # a column is widened where its heading's translation is longer than in English
+        low, high, angle = (max(10, len(low_text)), max(10, len(high_text)),
+                            max(7, len(at) - 1))
+        # (English says "1 crank angles", as it always did; a catalogue has every form)
         lines = [render(plural("{title} — {count} crank angles from {first:g}° to {last:g}°",
                                "{title} — {count} crank angles from {first:g}° to {last:g}°",
                                count=self.count, title=shown_title(title), first=self.first,
                                last=self.last)),
-                 "", f"  {render(heading):<{width}} {render(message('min')):>10} {at:>8} "
-                     f"{render(message('max')):>10} {at:>8}"]
+                 "", f"  {heading:<{width}} {low_text:>{low}} {at:>{angle + 1}} "
+                     f"{high_text:>{high}} {at:>{angle + 1}}"]
         undefined = render(message("(undefined)"))
         for name, found in self.table.items():
             if found is None:
                 lines.append(f"  {shown[name]:<{width}} {undefined}")
                 continue
-            (low, at_low), (high, at_high) = found
-            lines.append(f"  {shown[name]:<{width}} {number_text(low, '>10.5g')} "
-                         f"{number_text(at_low, '>7g')}° {number_text(high, '>10.5g')} "
-                         f"{number_text(at_high, '>7g')}°")
+            (least, at_least), (most, at_most) = found
+            lines.append(f"  {shown[name]:<{width}} {number_text(least, f'>{low}.5g')} "
+                         f"{number_text(at_least, f'>{angle}g')}° "
+                         f"{number_text(most, f'>{high}.5g')} "
+                         f"{number_text(at_most, f'>{angle}g')}°")
         return "\n".join(lines)
 
 

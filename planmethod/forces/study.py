@@ -208,6 +208,24 @@ def study_variant(exercise: Exercise, rocker: str, index: int, *, weight: float,
                                                drive=drive))
 
 
+def _parameters(mechanism, rocker: str, base: Mapping[str, float],
+                values: tuple[Sequence[float], Sequence[float], Sequence[float]]
+                ) -> tuple[Parameter, ...]:
+    """The rocker weight G, the crank speed ω and the resisting moment Mc, each with the
+    ``values`` it steps over and its ``base`` value; G and ω carry their links' numbers."""
+    numbers = course_numbers(mechanism)
+    weights, omegas, moments = values
+    return (Parameter("weight", message("rocker weight {symbol}",
+                                        symbol=numbered("G", numbers[rocker])),
+                      message("N", context="unit"), tuple(weights), base["weight"]),
+            Parameter("omega", message("crank speed {symbol}",
+                                       symbol=numbered("ω", numbers[mechanism.drive.link])),
+                      QUANTITY_KINDS["omega"].unit,     # words: vocabulary
+                      tuple(omegas), base["omega"]),
+            Parameter("moment", message("resisting moment {symbol}", symbol="Mc"),
+                      message("N·m", context="unit"), tuple(moments), base["moment"]))
+
+
 def run_study(exercise: Exercise, *, rocker: str | None = None,
               weights: Sequence[float] = WEIGHTS, omegas: Sequence[float] = OMEGAS,
               moments: Sequence[float] = MOMENTS, step: float = 2.0) -> Study:
@@ -234,17 +252,7 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
                                     "{values}", name=name, values=str(list(values))))
     base = {"weight": mechanism.masses[rocker].m * mechanism.gravity,
             "omega": mechanism.drive.omega, "moment": abs(load.moment)}
-    numbers = course_numbers(mechanism)
-    omega = numbered("ω", numbers[mechanism.drive.link])
-    parameters = (Parameter("weight", message("rocker weight {symbol}",
-                                              symbol=numbered("G", numbers[rocker])),
-                            message("N", context="unit"), tuple(weights), base["weight"]),
-                  Parameter("omega", message("crank speed {symbol}", symbol=omega),
-                            QUANTITY_KINDS["omega"].unit,     # words: vocabulary
-                            tuple(omegas), base["omega"]),
-                  Parameter("moment", message("resisting moment {symbol}", symbol="Mc"),
-                            message("N·m", context="unit"), tuple(moments),
-                            base["moment"]))
+    parameters = _parameters(mechanism, rocker, base, (weights, omegas, moments))
     branches = choose_branches(mechanism)
     angles = np.arange(0.0, 360.0, step)
     positions = None

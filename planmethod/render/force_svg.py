@@ -169,18 +169,25 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
     lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
     _, y0, x1, _ = view.box if view else figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
-    terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
-                       for edge in edges)
-    lines = [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",   # words: vocabulary
-             render(message("the polygon closes to {closure:.2g} mm", closure=closure))]
-    lines += [render(notation.sentence(step, group.links) if notation else step)
-              for step in group.steps]
-    lines += lines_of_details
-    lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
+    lines = [line.replace("⟂", "⊥")               # ⊥ is in every common font
+             for line in _polygon_notes(group, edges, mu_f, closure, notation)
+             + lines_of_details]
     frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force",
           box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines), "force")
                       if view else None).svg
+
+
+def _polygon_notes(group, edges: list, mu_f: float, closure: float,
+                   notation: ForceNotation | None) -> list[str]:
+    """The lines under a force polygon: its scale, its vector equation, how near it closes
+    and the group's steps (in the course's notation with ``notation``)."""
+    terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
+                       for edge in edges)
+    return [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",   # words: vocabulary
+            render(message("the polygon closes to {closure:.2g} mm", closure=closure)),
+            *(render(notation.sentence(step, group.links) if notation else step)
+              for step in group.steps)]
 
 
 def _laid_out(zoom: float, content, where_of, details: bool,

@@ -4,8 +4,8 @@ column heading a message (:mod:`planmethod.words`) rendered in the language spok
 number in its writing (a decimal comma where the language writes one), every quantity, link
 and force in the course's notation (docs/notation.md: ω₂, v_B₃, R₀₁), never a report name.
 
-A table is laid out here, after its words are rendered: a column is as wide as its widest
-cell, its heading's translation included.
+A table is laid out here, after its words are rendered: a column whose heading's translation
+is longer than the English heading is widened by as much, its cells with it.
 
 Examples
 --------
@@ -42,9 +42,15 @@ __all__ = ["check_lines", "flag_lines", "force_lines", "published_lines"]
 Column = tuple[Message, str, int]
 
 
-def _heading(columns: Sequence[Column], lead: str = "  ") -> str:
-    """A table's heading line: each column's heading in its width, as aligned."""
-    return lead + "".join(f"{render(text):{align}{width}}" for text, align, width in columns)
+def _heading(columns: Sequence[Column], lead: str = "  ") -> tuple[str, list[int]]:
+    """A table's heading line, each column's heading in its width as aligned; and by how
+    much each column is widened: by what its heading's translation is longer than its
+    width (none in English)."""
+    texts = [render(text) for text, _, _ in columns]
+    extra = [max(0, len(text) - width) for text, (_, _, width) in zip(texts, columns,
+                                                                       strict=True)]
+    return lead + "".join(f"{text:{align}{width + more}}" for text, (_, align, width), more
+                          in zip(texts, columns, extra, strict=True)), extra
 
 
 def _cell(value: float | None, width: int, specification: str) -> str:
@@ -60,13 +66,16 @@ def check_lines(analysis: Any) -> list[str]:
     shown = {check.quantity: symbol(check.quantity, numbers) for check in analysis.checks}
     quantity = message("quantity")
     width = max([len(text) for text in shown.values()] + [8, len(render(quantity))])
-    lines = ["", _heading(((quantity, "<", width), (message("plan"), ">", 13),
-                           (message("exact"), ">", 14), (message("abs. error"), ">", 12),
-                           (message("rel. error"), ">", 13), (message("unit"), ">", 6)))]
+    heading, extra = _heading(((quantity, "<", width), (message("plan"), ">", 13),
+                               (message("exact"), ">", 14), (message("abs. error"), ">", 12),
+                               (message("rel. error"), ">", 13), (message("unit"), ">", 6)))
+    lines = ["", heading]
     for check in analysis.checks:
-        lines.append(f"  {shown[check.quantity]:<{width}} {_cell(check.plan, 12, '.6g')}  "
-                     f"{_cell(check.analytic, 12, '.6g')}  {_cell(check.abs_error, 10, '.3g')}"
-                     f"   {_cell(check.rel_error, 10, '.2e')}  {render(check.unit)}")
+        lines.append(f"  {shown[check.quantity]:<{width}} "
+                     f"{_cell(check.plan, 12 + extra[1], '.6g')}  "
+                     f"{_cell(check.analytic, 12 + extra[2], '.6g')}  "
+                     f"{_cell(check.abs_error, 10 + extra[3], '.3g')}   "
+                     f"{_cell(check.rel_error, 10 + extra[4], '.2e')}  {render(check.unit)}")
     return lines
 
 
@@ -78,17 +87,18 @@ def published_lines(analysis: Any) -> list[str]:
         return []
     numbers = course_numbers(exercise.mechanism)
     source = exercise.published_source or message("the book")
+    heading, extra = _heading(((message("quantity"), "<", 22), (message("published"), ">", 12),
+                               (message("exact"), ">", 14), (message("difference"), ">", 12)))
     lines = ["", render(message("Published values ({source}) against the exact ones "
-                                "(magnitudes)", source=source)),
-             _heading(((message("quantity"), "<", 22), (message("published"), ">", 12),
-                       (message("exact"), ">", 14), (message("difference"), ">", 12)))]
+                                "(magnitudes)", source=source)), heading]
     for row in published_comparison(analysis):
         off = ("—" if row.difference_percent is None
                else number_text(row.difference_percent, "+.1f") + " %")
         slip = ("   " + render(message("likely a slip (> 5 %)")) if row.likely_slip else "")
         exact = "—" if row.exact is None else number_text(row.exact, ".6g")
-        lines.append(f"  {symbol(row.quantity, numbers):<22}"
-                     f"{number_text(row.published, '>12.6g')}{exact:>14}{off:>12}{slip}")
+        lines.append(f"  {symbol(row.quantity, numbers):<{22 + extra[0]}}"
+                     f"{number_text(row.published, f'>{12 + extra[1]}.6g')}"
+                     f"{exact:>{14 + extra[2]}}{off:>{12 + extra[3]}}{slip}")
     return lines
 
 
@@ -139,34 +149,38 @@ def _inertia_lines(solution: Any, notation: ForceNotation) -> list[str]:
     heading = message("link")
     width = max([len(link(name)) for name in solution.applied.inertia]
                 + [len(render(heading))])
-    lines = [_heading(((heading, "<", width), (message("m kg"), ">", 7),
-                       (message("J kg·m²"), ">", 11), (message("|a_S| m/s²"), ">", 13),
-                       (message("{symbol} = −m·a_S (N)", symbol=INERTIA_FORCE), ">", 18),
-                       (message("{symbol} = −J·ε N·m", symbol=INERTIA_MOMENT), ">", 23)))]
+    line, extra = _heading(((heading, "<", width), (message("m kg"), ">", 7),
+                            (message("J kg·m²"), ">", 11), (message("|a_S| m/s²"), ">", 13),
+                            (message("{symbol} = −m·a_S (N)", symbol=INERTIA_FORCE), ">", 18),
+                            (message("{symbol} = −J·ε N·m", symbol=INERTIA_MOMENT), ">", 23)))
+    lines = [line]
     for name, item in solution.applied.inertia.items():
         force = item.force[0]
-        lines.append(f"  {link(name):<{width}} {number_text(item.mass, '>6.4g')} "
-                     f"{number_text(item.J, '>10.4g')} "
-                     f"{number_text(float(norm(item.acceleration[0])), '>11.5g')}   "
-                     f"({number_text(force[0], '>10.5g')}, {number_text(force[1], '>10.5g')})"
-                     f"   {number_text(float(item.moment[0]), '>10.5g')}")
+        lines.append(f"  {link(name):<{width}} {number_text(item.mass, f'>{6 + extra[1]}.4g')} "
+                     f"{number_text(item.J, f'>{10 + extra[2]}.4g')} "
+                     f"{number_text(float(norm(item.acceleration[0])), f'>{11 + extra[3]}.5g')}"
+                     f"   {' ' * extra[4]}({number_text(force[0], '>10.5g')}, "
+                     f"{number_text(force[1], '>10.5g')})   "
+                     f"{number_text(float(item.moment[0]), f'>{10 + extra[5]}.5g')}")
     return lines
 
 
 def _reaction_lines(forces: Any, notation: ForceNotation) -> list[str]:
     """The reaction in each pair: its components, magnitude and (a prismatic pair's)
     couple."""
-    lines = [_heading(((message("reaction"), "<", 10), (message("pair"), "<", 4),
-                       (message("Fx N"), ">", 16), (message("Fy N"), ">", 13),
-                       (message("|R| N"), ">", 13), (message("couple N·m"), ">", 15)))]
+    line, extra = _heading(((message("reaction"), "<", 10), (message("pair"), "<", 4),
+                            (message("Fx N"), ">", 16), (message("Fy N"), ">", 13),
+                            (message("|R| N"), ">", 13), (message("couple N·m"), ">", 15)))
+    lines = [line]
     for key, reaction in forces.reactions.items():
         couple = "" if reaction.moment is None else number_text(float(reaction.moment),
-                                                                  ">12.6g")
-        lines.append(f"  {notation.plain(f'R_{key}', reaction.target):<9} "
-                     f"{notation.pair_name(key):<10} "
-                     f"{number_text(float(reaction.force[0]), '>11.6g')} "
-                     f"{number_text(float(reaction.force[1]), '>11.6g')} "
-                     f"{number_text(float(reaction.magnitude), '>11.6g')} {couple}".rstrip())
+                                                                  f">{12 + extra[5]}.6g")
+        lines.append(f"  {notation.plain(f'R_{key}', reaction.target):<{9 + extra[0]}} "
+                     f"{notation.pair_name(key):<{10 + extra[1]}} "
+                     f"{number_text(float(reaction.force[0]), f'>{11 + extra[2]}.6g')} "
+                     f"{number_text(float(reaction.force[1]), f'>{11 + extra[3]}.6g')} "
+                     f"{number_text(float(reaction.magnitude), f'>{11 + extra[4]}.6g')} "
+                     f"{couple}".rstrip())
     return lines
 
 
