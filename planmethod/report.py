@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -35,6 +35,9 @@ from .scene import Scene, plan_scene
 from .structure import Structure
 from .vectors import norm
 from .words import Message, render, template
+
+if TYPE_CHECKING:
+    from .forces import ForceAnalysis
 
 __all__ = ["FLAG_ERROR", "Analysis", "Check", "PublishedValue", "analyse", "asked_quantities",
            "published_comparison", "report_dict"]
@@ -89,7 +92,7 @@ class Analysis:
     motion: Motion
     plans: Plans | None
     checks: tuple[Check, ...]
-    forces: Any = None
+    forces: ForceAnalysis | None = None
 
     @property
     def flags(self) -> tuple[Message | str, ...]:

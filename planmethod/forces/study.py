@@ -89,9 +89,9 @@ class Study:
     rocker: str
     parameters: tuple[Parameter, ...]
     pairs: tuple[str, ...]
-    values: dict
-    maxima: dict
-    balancing: dict
+    values: Mapping[str, np.ndarray]
+    maxima: Mapping[str, Mapping[str, np.ndarray]]
+    balancing: Mapping[str, np.ndarray]
 
     def relative_change(self, name: str, pair: str | None = None) -> float:
         """(max − min)/min of the largest reaction over the parameter's range (of ``pair``, or

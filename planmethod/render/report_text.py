@@ -22,14 +22,14 @@ Kinetostatics (d'Alembert) at φ₁ = 60°
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
+from ..forces import ForceAnalysis, ForceSolution
 from ..forces.checks import VelocitySource
 from ..forces.names import BALANCING_MOMENT, INERTIA_FORCE, INERTIA_MOMENT
 from ..numbering import course_numbers
-from ..report import published_comparison
+from ..report import Analysis, published_comparison
 from ..vectors import norm
 from ..vocabulary import numbered, point_text, subscript, symbol
 from ..words import Message, message, number_text, plural, render
@@ -59,7 +59,7 @@ def _cell(value: float | None, width: int, specification: str) -> str:
     return f"{'—':>{width}}" if value is None else number_text(value, f">{width}{specification}")
 
 
-def check_lines(analysis: Any) -> list[str]:
+def check_lines(analysis: Analysis) -> list[str]:
     """The check table: each asked quantity read off the plan against the exact value, with
     the errors and the unit (its first line empty)."""
     numbers = course_numbers(analysis.exercise.mechanism)
@@ -79,7 +79,7 @@ def check_lines(analysis: Any) -> list[str]:
     return lines
 
 
-def published_lines(analysis: Any) -> list[str]:
+def published_lines(analysis: Analysis) -> list[str]:
     """The book's printed values against the exact ones, each more than 5 % off marked as
     likely a slip (its first line empty; none without ``[published]``)."""
     exercise = analysis.exercise
@@ -109,7 +109,7 @@ def flag_lines(flags: Sequence[Message | str], notation: ForceNotation | None = 
     return [f"  ! {render(notation.sentence(flag) if notation else flag)}" for flag in flags]
 
 
-def force_lines(forces: Any) -> list[str]:
+def force_lines(forces: ForceAnalysis) -> list[str]:
     """The kinetostatics at one crank angle (``planmethod solve`` with forces): the inertia
     of each link, each group's steps, the reactions, the balancing moment and its three
     checks, Aliyev's combined force and constants, the sense of ε by the plan's rule, the
@@ -138,7 +138,7 @@ _SENSES = {1: message("counter-clockwise"), -1: message("clockwise"), 0: message
            None: message("undefined")}
 
 
-def _inertia_lines(solution: Any, notation: ForceNotation) -> list[str]:
+def _inertia_lines(solution: ForceSolution, notation: ForceNotation) -> list[str]:
     """The inertia of each link with mass: m, J, |a_S|, Fᵘ = −m·a_S, Mᵘ = −J·ε."""
     if not solution.applied.inertia:
         return []
@@ -165,7 +165,7 @@ def _inertia_lines(solution: Any, notation: ForceNotation) -> list[str]:
     return lines
 
 
-def _reaction_lines(forces: Any, notation: ForceNotation) -> list[str]:
+def _reaction_lines(forces: ForceAnalysis, notation: ForceNotation) -> list[str]:
     """The reaction in each pair: its components, magnitude and (a prismatic pair's)
     couple."""
     line, extra = _heading(((message("reaction"), "<", 10), (message("pair"), "<", 4),
@@ -184,7 +184,7 @@ def _reaction_lines(forces: Any, notation: ForceNotation) -> list[str]:
     return lines
 
 
-def _moment_lines(forces: Any, omega: str) -> list[str]:
+def _moment_lines(forces: ForceAnalysis, omega: str) -> list[str]:
     """The balancing moment by the group method, and its checks: the whole-system solve,
     Zhukovsky's lever, the power balance (and the friction iteration)."""
     solution = forces.solution
@@ -212,7 +212,7 @@ _SOURCES = {VelocitySource.PLAN: message("velocity plan"),
             VelocitySource.EXACT: message("exact velocities")}
 
 
-def _lever_line(forces: Any, omega: str) -> Message:
+def _lever_line(forces: ForceAnalysis, omega: str) -> Message:
     """The balancing moment by Zhukovsky's lever, against the group method's."""
     source = _SOURCES[forces.solution.lever.source]
     lever = forces.zhukovsky_moment
@@ -225,7 +225,7 @@ def _lever_line(forces: Any, omega: str) -> Message:
                    difference=lever - forces.balancing_moment)
 
 
-def _power_line(forces: Any, omega: str) -> Message:
+def _power_line(forces: ForceAnalysis, omega: str) -> Message:
     """The power balance: the balancing moment it gives, and its residual."""
     by_power = float(forces.solution.power_moment[0])
     if not np.isfinite(by_power):
@@ -236,7 +236,7 @@ def _power_line(forces: Any, omega: str) -> Message:
                    residual=forces.power_residual)
 
 
-def _combined_lines(forces: Any, notation: ForceNotation) -> list[str]:
+def _combined_lines(forces: ForceAnalysis, notation: ForceNotation) -> list[str]:
     """Aliyev's combined force read off the plan, and his constants for all positions."""
     said: list[tuple[str, Message]] = []         # (indent, line)
     combined = forces.combined
