@@ -155,7 +155,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
             after = first + 2  # the corner after the second component (cyclically)
             start, end = where[first], where[after if after <= count else after - count]
             if figure.arrow(start, end, "result", layer="results", css="force total"):
-                used.setdefault(message("whole reaction R = Rⁿ + Rᵗ"), ("result", None))
+                used.setdefault(_WHOLE_REACTION, ("result", None))
                 figure.request((name,), start + 0.5 * (end - start),
                                notation.runs(name, on) if notation else _runs(name), mark=2.0,
                                span=(start, end))
@@ -231,6 +231,8 @@ _WEIGHT = message("weight G")
 _EXTERNAL_LOAD = message("external load")
 _TANGENTIAL = message("tangential component Rᵗ (⊥ the link)")
 _NORMAL = message("normal component Rⁿ (along the link) or N (⊥ a guide)")
+_INERTIA = message("inertia force {symbol} = −m·a_S", symbol=INERTIA_FORCE)
+_WHOLE_REACTION = message("whole reaction R = Rⁿ + Rᵗ")
 
 
 def _legend_key(edge) -> Message:
@@ -241,7 +243,7 @@ def _legend_key(edge) -> Message:
     if edge.label.startswith(("M_f", "F_f")):
         return _FRICTION_FORCE
     if edge.label[:1] == "F":
-        return message("inertia force {symbol} = −m·a_S", symbol=INERTIA_FORCE)
+        return _INERTIA
     return _WEIGHT if edge.label[:1] == "G" else _EXTERNAL_LOAD
 
 
@@ -399,6 +401,15 @@ class _LeverForce:
     point: str | None = None
 
 
+#: the legend entries of the lever's forces
+_LEVER_LEGEND = {
+    "known": message("known force at the image of its point, arm h from p"),
+    "couple": message("inertia couple {symbol} as the force pair ±{symbol}/l the sum counts",
+                      symbol=INERTIA_MOMENT),
+    "balancing": message("balancing force {symbol} (⊥ the crank) at the image of the crank "
+                         "pin", symbol=BALANCING_FORCE)}
+
+
 def _arm(image: np.ndarray, force: np.ndarray) -> tuple[float, np.ndarray]:
     """The arm h (mm) of a force at ``image`` about the pole, and the foot of the
     perpendicular from the pole to its line of action."""
@@ -462,6 +473,7 @@ class _LeverFigure:
         ends = [tuple(item.image + item.force / mu_f) for item in drawn]
         ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
         self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        self.balancing_runs = symbol_runs(BALANCING_FORCE)
         numbered = _stacked([*self.known, *self.couples, self.balancing], self.zoom)
         self.known = numbered[:len(self.known)]
         self.couples = numbered[len(self.known):-1]
@@ -477,19 +489,14 @@ class _LeverFigure:
             colour = _force_colour(item.source)
             self._draw(figure, item, self.mu_f, colour, "relative",
                        self.notation.runs(item.source, item.link))
-            self.used.setdefault(message("known force at the image of its point, arm h from p"),
-                                 ("relative", colour))
+            self.used.setdefault(_LEVER_LEGEND["known"], ("relative", colour))
         for item in self.couples:
             colour = _force_colour(item.source)
             symbol = self.notation.runs(item.source, item.link)
             self._draw(figure, item, self.mu_couple, colour, "tangential", symbol)
-            self.used.setdefault(message("inertia couple {symbol} as the force pair ±{symbol}/l "
-                                         "the sum counts", symbol=INERTIA_MOMENT),
-                                 ("tangential", colour))
-        self._draw(figure, self.balancing, self.mu_f, INK, "result",
-                   symbol_runs(BALANCING_FORCE))
-        self.used[message("balancing force {symbol} (⊥ the crank) at the image of the crank "
-                          "pin", symbol=BALANCING_FORCE)] = ("result", None)
+            self.used.setdefault(_LEVER_LEGEND["couple"], ("tangential", colour))
+        self._draw(figure, self.balancing, self.mu_f, INK, "result", self.balancing_runs)
+        self.used[_LEVER_LEGEND["balancing"]] = ("result", None)
 
     def _draw(self, figure: Canvas, item: _LeverForce, mu_f: float, colour: str, style: str,
               runs) -> None:
@@ -703,6 +710,7 @@ class _LoadedFigure:
         ends = [tuple(start + force / mu_f) for _, start, force in self.arrows]
         self.zoom = position_zoom(position, ends)
         self.balancing = float(solution.balancing_moment[0])
+        self.balancing_runs = symbol_runs(BALANCING_MOMENT)
         self.used: dict[Message, tuple[str, str | None]] = {}
 
     def where(self, figure: Canvas) -> dict[str, np.ndarray]:
@@ -731,15 +739,13 @@ class _LoadedFigure:
             turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0,
                           colour, f"moment:{item.name}:{item.link}",
                           self.notation.runs(item.name, item.link), css="moment")
-            self.used.setdefault(message("moment (curved arrow: its sense)"),
-                                 ("relative", colour))
+            self.used.setdefault(_LOADED_LEGEND["moment"], ("relative", colour))
         drive = self.solution.mechanism.drive
         if self.balancing and drive.pivot in self.position.points_mm:
             turning_arrow(figure, self.position.points_mm[drive.pivot], 40.0, -math.pi / 2,
                           1.0 if self.balancing > 0 else -1.0, INK, "moment:M_b",
-                          symbol_runs(BALANCING_MOMENT), css="balancing moment")
-            self.used[message("balancing moment {symbol} on the crank",
-                              symbol=BALANCING_MOMENT)] = ("result", None)
+                          self.balancing_runs, css="balancing moment")
+            self.used[_LOADED_LEGEND["balancing"]] = ("result", None)
 
     def _force(self, figure: Canvas, item, start: np.ndarray, force: np.ndarray) -> None:
         """A force as an arrow at its point; an inertia force with the line of its single
@@ -756,8 +762,7 @@ class _LoadedFigure:
                         figure.px(start + shift + 1.2 * force / self.mu_f), color=colour,
                         width=0.8, dash=STYLES["construction"].dash, layer="construction",
                         css="inertia line")
-            self.used.setdefault(message("line of the single equivalent inertia force (h from "
-                                         "S)"), ("construction", colour))
+            self.used.setdefault(_LOADED_LEGEND["line"], ("construction", colour))
 
     def _single_force_shift(self, item, force: np.ndarray) -> np.ndarray | None:
         """How far (mm) the single equivalent inertia force's line lies from S, or None."""
@@ -839,11 +844,19 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     return figure.svg(title).svg
 
 
+#: the legend entries of the loaded mechanism's moments and lines
+_LOADED_LEGEND = {
+    "moment": message("moment (curved arrow: its sense)"),
+    "balancing": message("balancing moment {symbol} on the crank", symbol=BALANCING_MOMENT),
+    "line": message("line of the single equivalent inertia force (h from S)"),
+    "inertia": message("inertia force {symbol} = −m·a_S at S", symbol=INERTIA_FORCE)}
+
+
 def _legend_key_of(name: str) -> Message:
     if name.startswith(("M_f", "F_f")):
         return _FRICTION_FORCE
     if name[:1] == "F":
-        return message("inertia force {symbol} = −m·a_S at S", symbol=INERTIA_FORCE)
+        return _LOADED_LEGEND["inertia"]
     return _WEIGHT if name[:1] == "G" else _EXTERNAL_LOAD
 
 

@@ -104,6 +104,8 @@ class ForceNotation:
     def __init__(self, solution: Any) -> None:
         mechanism = solution.mechanism
         self.numbers = course_numbers(mechanism)
+        #: the letters of a tradition as the language spoken writes them (once per figure)
+        self.symbols = {head: render(symbol) for head, symbol in _SYMBOLS.items()}
         self.pairs = {key: (reaction.source, reaction.target)
                       for key, reaction in solution.reactions.items()}
         self.loads: dict[str, tuple[str, str]] = {}
@@ -201,10 +203,10 @@ class ForceNotation:
             return self.loads[name]
         head, comma, rest = name.partition(",")
         if comma and head in ("F_u", "M_u") and rest in self.numbers:
-            return (render(_SYMBOLS[head]), self.number(rest))
+            return (self.symbols[head], self.number(rest))
         if comma and head in ("M_f", "F_f"):
             pair = self._pair(rest, on)
-            return (render(_SYMBOLS[head]), pair) if pair else None
+            return (self.symbols[head], pair) if pair else None
         if name.startswith("G_") and name[2:] in self.numbers:
             return ("G", self.number(name[2:]))
         match = _REACTION.match(name)
