@@ -155,12 +155,12 @@ def _inertia_lines(solution: ForceSolution, notation: ForceNotation) -> list[str
                             (message("{symbol} = −J·ε N·m", symbol=INERTIA_MOMENT), ">", 23)))
     lines = [line]
     for name, item in solution.applied.inertia.items():
-        force = item.force[0]
+        force = item.force[0]         # a vector, with the separator its language writes
+        vector = render(message("({x:>10.5g}, {y:>10.5g})", x=force[0], y=force[1]))
         lines.append(f"  {link(name):<{width}} {number_text(item.mass, f'>{6 + extra[1]}.4g')} "
                      f"{number_text(item.J, f'>{10 + extra[2]}.4g')} "
                      f"{number_text(float(norm(item.acceleration[0])), f'>{11 + extra[3]}.5g')}"
-                     f"   {' ' * extra[4]}({number_text(force[0], '>10.5g')}, "
-                     f"{number_text(force[1], '>10.5g')})   "
+                     f"   {' ' * extra[4]}{vector}   "
                      f"{number_text(float(item.moment[0]), f'>{10 + extra[5]}.5g')}")
     return lines
 
