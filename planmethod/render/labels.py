@@ -497,9 +497,12 @@ def _clear(boxes: np.ndarray, taken: np.ndarray) -> np.ndarray:
         return np.ones(len(boxes), dtype=bool)
     low = boxes[:, :2] + _GAP_LOW
     high = boxes[:, 2:] + _GAP_HIGH
-    return ~np.any((low[:, 0, None] <= taken[:, 2]) & (taken[:, 0] <= high[:, 0, None])
-                   & (low[:, 1, None] <= taken[:, 3]) & (taken[:, 1] <= high[:, 1, None]),
-                   axis=1)
+    left, top, right, bottom = taken.T
+    meet = low[:, 0, None] <= right                  # (box, label placed), in place
+    meet &= left <= high[:, 0, None]
+    meet &= low[:, 1, None] <= bottom
+    meet &= top <= high[:, 1, None]
+    return ~meet.any(axis=1)
 
 
 def _near_spots(anchors: np.ndarray, reaches: np.ndarray, halves: np.ndarray,
@@ -604,10 +607,10 @@ class _Drawing:
     """What labels are placed on: the drawn lines' pieces, the vectors' arrows, the marks
     and text as rectangles, the points' round marks and the bounds to keep within (each
     with the bounds of its items, see :func:`_bounds`); and what is placed so far — the
-    labels' boxes and the leaders."""
+    labels' boxes and the leaders, in arrays made once for at most ``capacity`` labels."""
 
     def __init__(self, lines: Sequence, areas: Sequence, vectors: Sequence, marks: Sequence,
-                 bounds: Sequence[float] | None) -> None:
+                 bounds: Sequence[float] | None, capacity: int) -> None:
         self.segments = _segments(lines)
         self.segment_bounds = _bounds(self.segments)
         self.arrows = _segments(vectors)
@@ -616,19 +619,39 @@ class _Drawing:
         self.rectangle_bounds = _bounds(self.rectangles)
         self.marks = np.asarray(marks, dtype=float).reshape(-1, 4)
         self.bounds = bounds
-        self.taken = np.empty((0, 4))           # placed boxes (x0, y0, x1, y1)
-        self.leaders = np.empty((0, 4))         # placed leaders (x0, y0, x1, y1)
-        self.leader_bounds = np.empty((0, 4))   # and their bounds
+        self._boxes = np.empty((capacity, 4))       # placed boxes (x0, y0, x1, y1)
+        self._leaders = np.empty((capacity, 4))     # placed leaders (x0, y0, x1, y1)
+        self._leader_bounds = np.empty((capacity, 4))   # and their bounds
+        self._placed = self._led = self._bounded = 0
+
+    @property
+    def taken(self) -> np.ndarray:
+        """The boxes of the labels placed."""
+        return self._boxes[:self._placed]
+
+    @property
+    def leaders(self) -> np.ndarray:
+        """The leaders drawn."""
+        return self._leaders[:self._led]
+
+    @property
+    def leader_bounds(self) -> np.ndarray:
+        """The bounds of the leaders drawn before the crowded labels' (which no later
+        label's costing reads)."""
+        return self._leader_bounds[:self._bounded]
 
     def take(self, box: np.ndarray, leader: np.ndarray | None = None,
              bounded: bool = True) -> None:
         """A label placed in ``box``, on ``leader`` (x0, y0, x1, y1) if it has one
         (``bounded``: its bounds kept for the labels placed after)."""
-        self.taken = np.vstack((self.taken, [box]))
+        self._boxes[self._placed] = box
+        self._placed += 1
         if leader is not None:
-            self.leaders = np.vstack((self.leaders, leader))
+            self._leaders[self._led] = leader[0]
+            self._led += 1
             if bounded:
-                self.leader_bounds = np.vstack((self.leader_bounds, _bounds(leader)))
+                self._leader_bounds[self._bounded] = _bounds(leader)[0]
+                self._bounded += 1
 
 
 def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence, *,
@@ -671,7 +694,7 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     >>> len(placed), placed[0].box[2] < placed[1].box[0] or placed[1].box[2] < placed[0].box[0]
     (2, True)
     """
-    drawing = _Drawing(lines, areas, vectors, marks, bounds)
+    drawing = _Drawing(lines, areas, vectors, marks, bounds, len(requests))
     extents = [runs_extent(request.runs, request.size) for request in requests]
     halves = [(width / 2 + PADDING, (ascent + descent) / 2 + PADDING)
               for width, ascent, descent in extents]
@@ -680,7 +703,7 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     crowded: list[int] = []                 # crowded labels with no clean spot: placed last
     for number, request in enumerate(requests):
         label = _place_near(request, halves[number], extents[number][1],
-                            tuple(part[number] for part in near), drawing)
+                            (near[0][number], near[1][number], near[2][number]), drawing)
         if label is not None:
             placed.append(label)
         elif request.crowded:
@@ -873,7 +896,7 @@ def _pick(table: np.ndarray, batch: tuple[int, ...], boxes: np.ndarray, clean: n
     whether it is settled: clean, so that no farther distance is tried."""
     table = table.reshape(len(batch), len(DIRECTIONS))
     picks = table.argmin(axis=1)
-    lowest = table[np.arange(len(batch)), picks].tolist()
+    lowest = np.minimum.reduce(table, axis=1).tolist()     # the values at the picks
     for row, step in enumerate(batch):   # the nearest distance with a clean spot wins
         index = row * len(DIRECTIONS) + picks[row]
         if lowest[row] < math.inf and (best is None or lowest[row] < best[0] - 1e-9):
@@ -887,10 +910,11 @@ def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool,
             ) -> PlacedLabel:
     """The label of ``request`` placed in ``box`` (x0, y0, x1, y1, padding included): its
     baseline starts inside the padding, ``ascent`` below the box's top edge."""
-    x0, y0 = float(box[0]), float(box[1])
+    corners = box.tolist()
+    x0, y0 = corners[0], corners[1]
     return PlacedLabel(request.points, request.anchor, request.runs, request.size,
                        (round(x0 + PADDING, 2), round(y0 + PADDING + ascent, 2)),
-                       tuple(round(float(v), 2) for v in box), leader, request.css, clean)
+                       tuple([round(v, 2) for v in corners]), leader, request.css, clean)
 
 
 def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np.ndarray,
