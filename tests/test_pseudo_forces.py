@@ -13,7 +13,7 @@ module it comes from:
   vocabulary`` marks the call);
 * the panel titles and units of a sweep's plot and the units of the check table
   (vocabulary.QUANTITY_KINDS);
-* the lines of ``solve``'s report before the check table (the command's own headers,
+* the lines of ``solve``'s report before the check table (the application's own headers,
   structure.describe, Scales.describe).
 """
 
@@ -40,6 +40,10 @@ EXERCISES = ("fourbar_forces", "combined_force_slider_crank")
 FOREIGN_RUNS = re.compile(r"^(detail [IVXLC]+: |link \d+ \()")
 #: the units the vocabulary gives, shown in tables and on axes (front-words converts them)
 UNITS = sorted({kind.unit for kind in QUANTITY_KINDS.values()}, key=len, reverse=True)
+#: the derivatives' symbols (ds/dt, d²s/dt²): notation, not words, though a template's words
+#: name them too (only these: a one-letter symbol taken out would cut words of the text)
+SYMBOLS = sorted({kind.symbol for kind in QUANTITY_KINDS.values() if "/" in kind.symbol},
+                 key=len, reverse=True)
 
 
 @pytest.fixture(scope="module")
@@ -111,7 +115,7 @@ def test_force_figures_are_marked(qps, name):
 @pytest.mark.parametrize("name", [*EXERCISES, "compressor_slider_crank"])
 def test_the_solve_report_is_marked(qps, name):
     """The check table, the book's values, the flags and the kinetostatics of ``solve``."""
-    from planmethod.commands.solve import text_report
+    from planmethod.application.solving import report_text
     from planmethod.render.report_text import (
         check_lines,
         flag_lines,
@@ -126,13 +130,13 @@ def test_the_solve_report_is_marked(qps, name):
     lines = [*check_lines(analysis), *published_lines(analysis), *flag_lines(analysis.flags)]
     if analysis.forces is not None:
         lines += force_lines(analysis.forces)
-    report = text_report(analysis)
+    report = report_text(analysis)
     assert "\n".join(check_lines(analysis)[1:]) in report
     if analysis.forces is not None:
         assert "\n".join(force_lines(analysis.forces)) in report
     if exercise.published:
         assert any("⟦Published values" in line for line in lines)
-    assert not _unmarked(lines, [*_names(exercise), *UNITS])
+    assert not _unmarked(lines, [*_names(exercise), *UNITS, *SYMBOLS])
 
 
 def _environment(folder: Path) -> dict[str, str]:
@@ -183,4 +187,4 @@ def test_the_sweep_plot_is_marked(qps, monkeypatch):
     assert "⟦other columns⟧" in panels
     assert any(text.startswith("⟦crank angle") for text in texts)
     foreign = {render(kind.panel) for kind in QUANTITY_KINDS.values() if kind.panel}
-    assert not _unmarked(texts, [*_names(exercise), *UNITS, "M_extra"], foreign)
+    assert not _unmarked(texts, [*_names(exercise), *UNITS, *SYMBOLS, "M_extra"], foreign)

@@ -64,11 +64,14 @@ def check_lines(analysis: Analysis) -> list[str]:
     the errors and the unit (its first line empty)."""
     numbers = course_numbers(analysis.exercise.mechanism)
     shown = {check.quantity: symbol(check.quantity, numbers) for check in analysis.checks}
-    quantity = message("quantity")
+    quantity = message("quantity", context="column")
     width = max([len(text) for text in shown.values()] + [8, len(render(quantity))])
-    heading, extra = _heading(((quantity, "<", width), (message("plan"), ">", 13),
-                               (message("exact"), ">", 14), (message("abs. error"), ">", 12),
-                               (message("rel. error"), ">", 13), (message("unit"), ">", 6)))
+    heading, extra = _heading((
+        (quantity, "<", width), (message("plan", context="column"), ">", 13),
+        (message("exact", context="column"), ">", 14),
+        (message("abs. error", context="column"), ">", 12),
+        (message("rel. error", context="column"), ">", 13),
+        (message("unit", context="column"), ">", 6)))
     lines = ["", heading]
     for check in analysis.checks:
         lines.append(f"  {shown[check.quantity]:<{width}} "
@@ -87,8 +90,11 @@ def published_lines(analysis: Analysis) -> list[str]:
         return []
     numbers = course_numbers(exercise.mechanism)
     source = exercise.published_source or message("the book")
-    heading, extra = _heading(((message("quantity"), "<", 22), (message("published"), ">", 12),
-                               (message("exact"), ">", 14), (message("difference"), ">", 12)))
+    heading, extra = _heading((
+        (message("quantity", context="column"), "<", 22),
+        (message("published", context="column"), ">", 12),
+        (message("exact", context="column"), ">", 14),
+        (message("difference", context="column"), ">", 12)))
     lines = ["", render(message("Published values ({source}) against the exact ones "
                                 "(magnitudes)", source=source)), heading]
     for row in published_comparison(analysis):

@@ -160,9 +160,10 @@ def compile_folder(folder: Path) -> list[str]:
 
 
 def _drop_untranslated_plurals(language) -> None:
-    """Leave a plural that has no translation out of the compiled catalogue: Babel would
-    write its English forms as its translation (a plural's forms are a tuple, never empty),
-    which counts it as translated (:func:`planmethod.words.language.missing`)."""
+    """Leave a plural that has no translation out of a catalogue to compile: Babel would
+    write its English forms as its translation (a plural's translation is a tuple, never
+    empty), and the catalogue would count it as translated (:func:`~planmethod.words.
+    language.missing`)."""
     for entry in list(language):
         if entry.id and entry.pluralizable and not any(entry.string):
             language.delete(entry.id, context=entry.context)
