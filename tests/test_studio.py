@@ -828,7 +828,8 @@ class Command:
             signal.signal(signal.SIGINT, signal.SIG_IGN)
 
         self.process = subprocess.Popen(
-            [sys.executable, "-m", "planmethod", "studio", "--no-browser", "--port", "0"],
+            [sys.executable, "-X", "faulthandler", "-m", "planmethod", "studio", "--no-browser",
+             "--port", "0"],
             cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
             env={**os.environ, "PYTHONPATH": str(ROOT)},
             preexec_fn=ignore_sigint if sigint_ignored else None)
@@ -845,6 +846,16 @@ class Command:
             with contextlib.suppress(OSError):
                 found += [int(pid) for pid in (task / "children").read_text().split()]
         return found
+
+    def stopped(self, seconds: float = 60) -> int:
+        """The exit status once the studio has ended; if it has not within ``seconds``, the
+        test fails with every thread's stack (faulthandler's dump on SIGABRT)."""
+        try:
+            return self.process.wait(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            self.process.send_signal(signal.SIGABRT)
+            self.process.wait()
+            pytest.fail("the studio did not stop:\n" + self.process.stderr.read()[-6000:])
 
     def stop(self) -> None:
         if self.process.poll() is None:
@@ -902,7 +913,7 @@ def test_ctrl_c_stops_the_command_and_its_jobs_even_with_sigint_ignored(command,
     jobs = studio.children()   # the job's, and one started ahead for the next job
     assert 1 <= len(jobs) <= 2
     studio.process.send_signal(signal.SIGINT)
-    assert studio.process.wait(timeout=60) == 0
+    assert studio.stopped() == 0
     assert "stopped" in studio.process.stderr.read()
     assert all(ended(pid) for pid in jobs)
     assert not (tmp_path / "big").exists() and hidden_leftovers(tmp_path) == []
@@ -937,7 +948,7 @@ def test_dropped_connections_leave_one_line_each_and_no_traceback(command):
         connection.close()
     assert request(studio, "GET", "/api/files")[0] == 200
     studio.process.send_signal(signal.SIGINT)
-    assert studio.process.wait(timeout=60) == 0
+    assert studio.stopped() == 0
     terminal = studio.process.stderr.read()
     assert "Traceback" not in terminal and "File \"" not in terminal
     lines = [line for line in terminal.splitlines() if line]

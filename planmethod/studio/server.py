@@ -53,6 +53,7 @@ import io
 import json
 import secrets
 import socket
+import socketserver
 import sys
 import threading
 import time
@@ -86,6 +87,9 @@ MAX_CONNECTIONS, BUSY_WAIT = 32, 0.5
 #: a request arrives whole within this many seconds of its first byte; a connection waits this
 #: long for its next request; an answer is sent within this long
 REQUEST_SECONDS, IDLE_SECONDS, SEND_SECONDS = 10.0, 15.0, 30.0
+#: how long a stopping studio waits for the requests in flight to end (s); a stalled client
+#: never holds the stop (their threads are daemons, and end with the process)
+CLOSE_SECONDS = 3.0
 
 
 class RefusedError(PlanmethodError, PermissionError):
@@ -219,6 +223,14 @@ class StudioServer(ThreadingHTTPServer):
         socket."""
         self.jobs.close()
         self.server_close()
+
+    def server_close(self) -> None:
+        """Close the socket, and give the requests in flight :data:`CLOSE_SECONDS` in all to
+        end (the standard server waits for every one, however long its client stalls)."""
+        socketserver.TCPServer.server_close(self)   # the socket
+        deadline = time.monotonic() + CLOSE_SECONDS
+        for thread in list(vars(self).pop("_threads", ())):
+            thread.join(max(0.0, deadline - time.monotonic()))
 
 
 def _refuse_busy(request: socket.socket, connections: int, language: str) -> None:

@@ -21,6 +21,7 @@ import shutil
 import signal
 import sys
 import threading
+import time
 import warnings
 from pathlib import Path
 from typing import IO, Any
@@ -29,14 +30,34 @@ from typing import IO, Any
 #: studio's body limit
 MAX_TASK = 8_000_000
 
+#: how long the lifeline waits for the work to stop at its next step (s) before it removes
+#: the folder itself
+ABANDON_SECONDS = 20.0
+
+#: set by the lifeline when the studio is gone: the work stops at its next step
+_STUDIO_GONE = threading.Event()
+
 
 def _lifeline(staging: str | None) -> None:
     """End the process when its standard input closes (the studio is gone), removing the
-    folder it was writing (the studio, killed, cannot)."""
+    folder it was writing (the studio, killed, cannot). The work itself stops at its next
+    step and removes the folder (:func:`_abandon_if_gone`): removed from here while the work
+    still writes into it, a file written a moment later would be left behind."""
     try:   # the descriptor itself: no lock of sys.stdin held at the process's end
         while os.read(0, 65536):
             pass
     finally:
+        _STUDIO_GONE.set()
+        time.sleep(ABANDON_SECONDS)   # the work ends the process first, unless it hangs
+        if staging is not None:
+            shutil.rmtree(staging, ignore_errors=True)
+        os._exit(1)
+
+
+def _abandon_if_gone(staging: str | None) -> None:
+    """Between two steps of the work: if the studio is gone, remove the folder being written
+    and end the process."""
+    if _STUDIO_GONE.is_set():
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
         os._exit(1)
@@ -70,6 +91,7 @@ def run(task: dict[str, Any], tell) -> dict[str, Any]:
     from . import api
 
     def progress(phase: str, done: int, total: int) -> None:
+        _abandon_if_gone(task.get("staging"))
         tell({"progress": {"phase": phase, "done": done, "total": total}})
 
     runs = {"variants": lambda arguments: api.run_variants(arguments, progress),
@@ -99,6 +121,7 @@ def main() -> int:
 
     with speaking(task.get("language")):
         _do(task, tell)
+    _abandon_if_gone(task.get("staging"))   # done, but nobody is left to take the folder
     os._exit(0)   # said and flushed: nothing is left to finish (the lifeline still reads)
 
 

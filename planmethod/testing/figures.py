@@ -52,7 +52,7 @@ from __future__ import annotations
 import itertools
 import re
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ..render.style import (
     LABEL,
@@ -260,95 +260,122 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = (), details: bool = Tr
     from defusedxml import ElementTree
 
     root = ElementTree.fromstring(svg.encode("utf-8"))
-    problems: list[str] = []
-    boxes: list[TextBox] = []
-    shapes: list[tuple[str, tuple[float, float], tuple[str, ...]]] = []
-    legend_samples: list[tuple[str, ...]] = []
-    drawn: set[tuple[str, ...]] = set()
-    marks: list[tuple[set[str], float, float, float]] = []
-    regions: list[tuple[float, float, float, float]] = []
-    strokes: list[_Stroke] = []
-    clip_shapes = {id(child) for clip in root.iter() if _local(clip.tag) == "clipPath"
-                   for child in clip}      # a clip path's own shapes are not drawn
-    parents = {id(child): parent for parent in root.iter() for child in parent}
-    defined = {id(item) for defs in root.iter() if _local(defs.tag) == "defs"
-               for item in defs.iter()}      # patterns, clip paths: not drawn themselves
-    for element, classes, offset, clip in _walk(root, clips=_clip_boxes(root)):
-        tag = _local(element.tag)
-        if tag in ("title", "desc", "clipPath") or id(element) in defined:
+    seen = _Seen(tuple(allowed))
+    seen.walk(root)
+    problems = seen.problems + _overlapping(seen.boxes) + _outside_view(root, seen)
+    readable = readable_px(seen.boxes)
+    problems += _crowding(seen.boxes, seen.marks, seen.regions, readable if details else None)
+    problems += _crossings(seen.boxes, seen.strokes, arrows=details)
+    if details:
+        problems += _spacing(seen.marks, seen.regions, readable)
+    for sample in seen.legend_samples:
+        if sample[0] == "fill" and sample[1] in ("", "none", "#ffffff", "white"):
             continue
-        if "unknown-transform" in classes:
-            if tag in ("text", "line", "polyline", "polygon", "circle", "rect"):
-                problems.append(f"a {tag} under a transform other than translate")
-            continue
-        if tag == "text":
-            box = _text_box(element, " ".join(classes))
-            box = TextBox(box.text, box.css, _moved(box.box, offset), box.points, box.size)
-            if clip is not None:          # what a clip path hides is not seen
-                visible = (max(box.box[0], clip[0]), max(box.box[1], clip[1]),
-                           min(box.box[2], clip[2]), min(box.box[3], clip[3]))
-                if visible[0] >= visible[2] or visible[1] >= visible[3]:
-                    continue
-                box = TextBox(box.text, box.css, visible, box.points, box.size)
-            boxes.append(box)
-            for word in CODE_WORD.findall(box.text):
-                if not any(f"[{name}]" in box.text and word in name for name in allowed):
-                    problems.append(f"code word {word!r} in text {box.text!r}")
-            continue
-        if tag not in ("line", "polyline", "polygon", "circle", "path", "rect"):
-            continue
-        if "background" in classes or id(element) in clip_shapes:
-            continue
+        if not any(sample[:3] == look[:3] for look in seen.drawn):     # any width
+            problems.append(f"legend item {' '.join(sample)} is not drawn in the figure")
+    return list(dict.fromkeys(problems))
+
+
+@dataclass
+class _Seen:
+    """What a walk of a figure's elements sees: texts, shapes' points, point marks, detail
+    regions, strokes, legend samples and drawn looks, and the problems found on the way."""
+
+    allowed: tuple[str, ...]
+    problems: list[str] = field(default_factory=list)
+    boxes: list[TextBox] = field(default_factory=list)
+    shapes: list[tuple[str, tuple[float, float], tuple[str, ...]]] = field(default_factory=list)
+    legend_samples: list[tuple[str, ...]] = field(default_factory=list)
+    drawn: set[tuple[str, ...]] = field(default_factory=set)
+    marks: list[tuple[set[str], float, float, float]] = field(default_factory=list)
+    regions: list[tuple[float, float, float, float]] = field(default_factory=list)
+    strokes: list[_Stroke] = field(default_factory=list)
+
+    def walk(self, root) -> None:
+        """See every drawn element of ``root`` (not definitions, clip paths' own shapes)."""
+        clip_shapes = {id(child) for clip in root.iter() if _local(clip.tag) == "clipPath"
+                       for child in clip}      # a clip path's own shapes are not drawn
+        parents = {id(child): parent for parent in root.iter() for child in parent}
+        defined = {id(item) for defs in root.iter() if _local(defs.tag) == "defs"
+                   for item in defs.iter()}      # patterns, clip paths: not drawn themselves
+        for element, classes, offset, clip in _walk(root, clips=_clip_boxes(root)):
+            tag = _local(element.tag)
+            if tag in ("title", "desc", "clipPath") or id(element) in defined:
+                continue
+            if "unknown-transform" in classes:
+                if tag in ("text", "line", "polyline", "polygon", "circle", "rect"):
+                    self.problems.append(f"a {tag} under a transform other than translate")
+            elif tag == "text":
+                self.text(element, classes, offset, clip)
+            elif tag in ("line", "polyline", "polygon", "circle", "path", "rect") and \
+                    "background" not in classes and id(element) not in clip_shapes:
+                self.shape(element, tag, classes, offset, clip, _owner(element, parents))
+
+    def text(self, element, classes, offset, clip) -> None:
+        """A text's box as seen (what a clip path hides is not), and its code words."""
+        box = _text_box(element, " ".join(classes))
+        box = TextBox(box.text, box.css, _moved(box.box, offset), box.points, box.size)
+        if clip is not None:
+            visible = (max(box.box[0], clip[0]), max(box.box[1], clip[1]),
+                       min(box.box[2], clip[2]), min(box.box[3], clip[3]))
+            if visible[0] >= visible[2] or visible[1] >= visible[3]:
+                return
+            box = TextBox(box.text, box.css, visible, box.points, box.size)
+        self.boxes.append(box)
+        for word in CODE_WORD.findall(box.text):
+            if not any(f"[{name}]" in box.text and word in name for name in self.allowed):
+                self.problems.append(f"code word {word!r} in text {box.text!r}")
+
+    def shape(self, element, tag, classes, offset, clip, owner) -> None:
+        """A shape's points, point marks, detail regions, strokes and look."""
         if tag == "circle" and element.get("data-points"):
             cx, cy = _number(element.get("cx")) + offset[0], _number(element.get("cy")) + offset[1]
             if clip is None or (clip[0] <= cx <= clip[2] and clip[1] <= cy <= clip[3]):
-                marks.append((set(element.get("data-points").split()), cx, cy,
-                              _number(element.get("r"))))
+                self.marks.append((set(element.get("data-points").split()), cx, cy,
+                                   _number(element.get("r"))))
         if tag == "rect" and "region" in classes and "detail" in classes:
             x, y = _number(element.get("x")) + offset[0], _number(element.get("y")) + offset[1]
-            regions.append((x, y, x + _number(element.get("width")),
-                            y + _number(element.get("height"))))
+            self.regions.append((x, y, x + _number(element.get("width")),
+                                 y + _number(element.get("height"))))
         for x, y in _points(element):
             x, y = x + offset[0], y + offset[1]
             if clip is not None:          # clipped: only what lies inside the clip is seen
                 x, y = min(max(x, clip[0]), clip[2]), min(max(y, clip[1]), clip[3])
-            shapes.append((tag, (x, y), classes))
+            self.shapes.append((tag, (x, y), classes))
         if "text" not in classes:      # drawn lines (not a legend's samples, a scale bar)
-            strokes += _strokes(element, _owner(element, parents), offset, clip)
-        if "text" in classes:          # the text layer: legends' samples and scale bars
-            if tag in ("line", "polyline", "circle", "rect", "polygon") and "bar" not in \
-                    classes and "scale" not in classes and "rule" not in classes:
-                legend_samples.append(_look(element))
-        else:
-            drawn.add(_look(element))
+            self.strokes += _strokes(element, owner, offset, clip)
+            self.drawn.add(_look(element))
+        elif tag in ("line", "polyline", "circle", "rect", "polygon") and not \
+                {"bar", "scale", "rule"} & set(classes):   # the text layer: legends' samples
+            self.legend_samples.append(_look(element))
+
+
+def _overlapping(boxes: list[TextBox]) -> list[str]:
+    """Every pair of texts that overlap."""
+    problems = []
     for index, first in enumerate(boxes):
         for second in boxes[index + 1:]:
             if not first.text.strip() or not second.text.strip():
                 continue
             if _overlap(first.box, second.box) > _HAIR:
                 problems.append(f"text {first.text!r} overlaps text {second.text!r}")
+    return problems
+
+
+def _outside_view(root, seen: _Seen) -> list[str]:
+    """Texts and kinds of shapes that leave the figure's viewBox."""
     view = [float(v) for v in (root.get("viewBox") or "").replace(",", " ").split()]
-    if len(view) == 4:
-        x0, y0, x1, y1 = view[0], view[1], view[0] + view[2], view[1] + view[3]
-        for box in boxes:
-            bx0, by0, bx1, by1 = box.box
-            if bx0 < x0 - _EDGE or by0 < y0 - _EDGE or bx1 > x1 + _EDGE or by1 > y1 + _EDGE:
-                problems.append(f"text {box.text!r} leaves the viewBox")
-        outside = {tag for tag, (x, y), _ in shapes
-                   if not (x0 - _EDGE <= x <= x1 + _EDGE and y0 - _EDGE <= y <= y1 + _EDGE)}
-        for tag in sorted(outside):
-            problems.append(f"a {tag} leaves the viewBox")
-    readable = readable_px(boxes)
-    problems += _crowding(boxes, marks, regions, readable if details else None)
-    problems += _crossings(boxes, strokes, arrows=details)
-    if details:
-        problems += _spacing(marks, regions, readable)
-    for sample in legend_samples:
-        if sample[0] == "fill" and sample[1] in ("", "none", "#ffffff", "white"):
-            continue
-        if not any(sample[:3] == look[:3] for look in drawn):     # any width
-            problems.append(f"legend item {' '.join(sample)} is not drawn in the figure")
-    return list(dict.fromkeys(problems))
+    if len(view) != 4:
+        return []
+    problems = []
+    x0, y0, x1, y1 = view[0], view[1], view[0] + view[2], view[1] + view[3]
+    for box in seen.boxes:
+        bx0, by0, bx1, by1 = box.box
+        if bx0 < x0 - _EDGE or by0 < y0 - _EDGE or bx1 > x1 + _EDGE or by1 > y1 + _EDGE:
+            problems.append(f"text {box.text!r} leaves the viewBox")
+    outside = {tag for tag, (x, y), _ in seen.shapes
+               if not (x0 - _EDGE <= x <= x1 + _EDGE and y0 - _EDGE <= y <= y1 + _EDGE)}
+    return problems + [f"a {tag} leaves the viewBox" for tag in sorted(outside)]
 
 
 def _inside(x: float, y: float, box) -> bool:

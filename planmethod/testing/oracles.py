@@ -159,33 +159,51 @@ def _guess(mechanism: Mechanism, unknown: Sequence[str], fixed: Mapping[str, Lin
     before it) — by two or more points, or by one point and the angle a prismatic pair gives
     it; a slide whose point and guide point are both known turns its guide along the line
     between them (the travel positive)."""
-    places: dict[str, np.ndarray] = {}
-    poses: dict[str, tuple[float, np.ndarray]] = {}
+    layout = _Layout(mechanism)
     for link, state in fixed.items():
-        poses[link] = (float(state.theta[0]), state.origin[0])
+        layout.poses[link] = (float(state.theta[0]), state.origin[0])
     for name, point in near.items():
-        places[name] = np.array(point, dtype=float)
-
-    def put(link: str, theta: float, origin: np.ndarray) -> None:
-        poses[link] = (theta, origin)
-        for name, local in mechanism.links[link].points.items():
-            places[name] = origin + rotate(local, theta)
-
+        layout.places[name] = np.array(point, dtype=float)
     for link in fixed:
-        put(link, *poses[link])
+        layout.put(link, *layout.poses[link])
+    waiting = list(unknown)
+    while waiting:
+        placed = [link for link in waiting if layout.place_one(link, loose=False)]
+        if not placed:
+            placed = [waiting[0]] if layout.place_one(waiting[0], loose=True) else []
+        waiting = [link for link in waiting if link not in placed]
+    return np.array([[*layout.poses[link][1], layout.poses[link][0]]
+                     for link in unknown]).reshape(1, -1)
 
-    def turn_of(link: str) -> float | None:
+
+class _Layout:
+    """The links laid so far for :func:`_guess`: each placed link's pose (angle, origin)
+    and the places of the points known."""
+
+    def __init__(self, mechanism: Mechanism) -> None:
+        self.mechanism = mechanism
+        self.places: dict[str, np.ndarray] = {}
+        self.poses: dict[str, tuple[float, np.ndarray]] = {}
+
+    def put(self, link: str, theta: float, origin: np.ndarray) -> None:
+        """Place ``link`` at the pose, and so its points."""
+        self.poses[link] = (theta, origin)
+        for name, local in self.mechanism.links[link].points.items():
+            self.places[name] = origin + rotate(local, theta)
+
+    def turn_of(self, link: str) -> float | None:
         """The angle a prismatic pair with a placed link gives ``link``."""
-        for slide in mechanism.slides:
-            if slide.link == link and slide.along in poses:
-                return poses[slide.along][0] + slide.direction_rad
-            if slide.along == link and slide.link in poses:
-                return poses[slide.link][0] - slide.direction_rad
+        for slide in self.mechanism.slides:
+            if slide.link == link and slide.along in self.poses:
+                return self.poses[slide.along][0] + slide.direction_rad
+            if slide.along == link and slide.link in self.poses:
+                return self.poses[slide.link][0] - slide.direction_rad
         return None
 
-    def along_line(link: str) -> float | None:
+    def along_line(self, link: str) -> float | None:
         """The angle of ``link`` from a slide whose point and guide point are both placed."""
-        for slide in mechanism.slides:
+        places, poses = self.places, self.poses
+        for slide in self.mechanism.slides:
             if link in (slide.link, slide.along) and slide.point in places and (
                     slide.through in places) and slide.link not in poses and (
                     slide.along not in poses):
@@ -195,34 +213,28 @@ def _guess(mechanism: Mechanism, unknown: Sequence[str], fixed: Mapping[str, Lin
                     return line if link == slide.link else line - slide.direction_rad
         return None
 
-    def place_one(link: str, loose: bool) -> bool:
-        points = mechanism.links[link].points
-        known = [(local, places[name]) for name, local in points.items() if name in places]
+    def place_one(self, link: str, loose: bool) -> bool:
+        """Place ``link`` if what is known allows (``loose``: by any means), and say so."""
+        points = self.mechanism.links[link].points
+        known = [(local, self.places[name]) for name, local in points.items()
+                 if name in self.places]
         if len(known) >= 2:
-            put(link, *_fit(known))
+            self.put(link, *_fit(known))
             return True
-        theta = turn_of(link)
+        theta = self.turn_of(link)
         if theta is None:
-            theta = along_line(link)
+            theta = self.along_line(link)
         if theta is None and not loose:
             return False
         theta = 0.0 if theta is None else theta
         if known:
             (x, y), world = known[0]
         elif loose:   # no point known: put the link's origin among the known places
-            (x, y), world = (0.0, 0.0), np.mean(list(places.values()), axis=0)
+            (x, y), world = (0.0, 0.0), np.mean(list(self.places.values()), axis=0)
         else:
             return False
-        put(link, theta, world - rotate((x, y), theta))
+        self.put(link, theta, world - rotate((x, y), theta))
         return True
-
-    waiting = [link for link in unknown]
-    while waiting:
-        placed = [link for link in waiting if place_one(link, loose=False)]
-        if not placed:
-            placed = [waiting[0]] if place_one(waiting[0], loose=True) else []
-        waiting = [link for link in waiting if link not in placed]
-    return np.array([[*poses[link][1], poses[link][0]] for link in unknown]).reshape(1, -1)
 
 
 def _unknown(mechanism: Mechanism) -> list[str]:
@@ -504,40 +516,48 @@ def exact_fourbar(phi_deg, *, ground=(0.30, 0.0), crank=0.08, coupler=0.22, rock
         l1, l2, l3, w, e = (mp.mpf(v) for v in (crank, coupler, rocker, omega, epsilon))
         zero = mp.mpf(0)
         b, v_b, a_b = _crank(mp, zero, zero, l1, phi_deg, w, e)
-        ux, uy = dx - b[0], dy - b[1]
-        d2 = ux * ux + uy * uy
-        if d2 == 0:
-            raise ValueError(f"B and D coincide at {phi_deg}°: no definite position")
-        d = mp.sqrt(d2)
-        reach = (l2 + l3 + d) * (l2 + l3 - d) * (l2 - l3 + d) * (l3 - l2 + d)
-        if reach < 0:
-            raise ValueError(f"the four-bar cannot be assembled at {phi_deg}°")
-        x = (l2 * l2 - l3 * l3 + d2) / (2 * d)
-        h = mp.sqrt(reach) / (2 * d)
-        sign = 1 if above else -1
-        cx = b[0] + (x * ux - sign * h * uy) / d
-        cy = b[1] + (x * uy + sign * h * ux) / d
-        # ω2·J(C − B) − ω3·J(C − D) = −v_B, i.e. with r2 = C − B, r3 = C − D:
-        r2 = (cx - b[0], cy - b[1])
+        (cx, cy), reach = _fourbar_pin(mp, b, (dx, dy), l2, l3, above, phi_deg)
+        r2 = (cx - b[0], cy - b[1])     # with r2 = C − B, r3 = C − D
         r3 = (cx - dx, cy - dy)
         det = r2[0] * r3[1] - r2[1] * r3[0]   # = cross(r2, r3)
         if det == 0:
             raise ValueError(f"the four-bar is in its toggle position at {phi_deg}°")
-        # −ω2·r2y + ω3·r3y = −vBx ;  ω2·r2x − ω3·r3x = −vBy
-        den = -r2[1] * (-r3[0]) - r3[1] * r2[0]
-        w2 = (-v_b[0] * (-r3[0]) - r3[1] * (-v_b[1])) / den
-        w3 = (-r2[1] * (-v_b[1]) - (-v_b[0]) * r2[0]) / den
+        w2, w3, e2, e3 = _fourbar_rates(r2, r3, v_b, a_b)
         v_c = (-w3 * r3[1], w3 * r3[0])
-        # ε2·J r2 − ε3·J r3 = −a_B + ω2²·r2 − ω3²·r3
-        rx = -a_b[0] + w2 ** 2 * r2[0] - w3 ** 2 * r3[0]
-        ry = -a_b[1] + w2 ** 2 * r2[1] - w3 ** 2 * r3[1]
-        e2 = (rx * (-r3[0]) - r3[1] * ry) / den
-        e3 = (-r2[1] * ry - rx * r2[0]) / den
         a_c = (-e3 * r3[1] - w3 ** 2 * r3[0], e3 * r3[0] - w3 ** 2 * r3[1])
         sine = det / (mp.sqrt(r2[0] ** 2 + r2[1] ** 2) * mp.sqrt(r3[0] ** 2 + r3[1] ** 2))
         return {"B": b, "C": (cx, cy), "v_B": v_b, "v_C": v_c, "a_B": a_b, "a_C": a_c,
                 "omega_BC": w2, "omega_CD": w3, "epsilon_BC": e2, "epsilon_CD": e3,
                 "sine": sine, "reach": reach}
+
+
+def _fourbar_pin(mp, b, d_point, l2, l3, above: bool, phi_deg):
+    """The pin C at ``l2`` from B and ``l3`` from D on the chosen side of B→D, and the
+    reach (negative when the links cannot join)."""
+    ux, uy = d_point[0] - b[0], d_point[1] - b[1]
+    d2 = ux * ux + uy * uy
+    if d2 == 0:
+        raise ValueError(f"B and D coincide at {phi_deg}°: no definite position")
+    d = mp.sqrt(d2)
+    reach = (l2 + l3 + d) * (l2 + l3 - d) * (l2 - l3 + d) * (l3 - l2 + d)
+    if reach < 0:
+        raise ValueError(f"the four-bar cannot be assembled at {phi_deg}°")
+    x = (l2 * l2 - l3 * l3 + d2) / (2 * d)
+    h = mp.sqrt(reach) / (2 * d)
+    sign = 1 if above else -1
+    return (b[0] + (x * ux - sign * h * uy) / d, b[1] + (x * uy + sign * h * ux) / d), reach
+
+
+def _fourbar_rates(r2, r3, v_b, a_b):
+    """ω2, ω3, ε2, ε3 of the coupler and rocker (r2 = C − B, r3 = C − D) by Cramer's rule."""
+    # ω2·J r2 − ω3·J r3 = −v_B:  −ω2·r2y + ω3·r3y = −vBx ;  ω2·r2x − ω3·r3x = −vBy
+    den = -r2[1] * (-r3[0]) - r3[1] * r2[0]
+    w2 = (-v_b[0] * (-r3[0]) - r3[1] * (-v_b[1])) / den
+    w3 = (-r2[1] * (-v_b[1]) - (-v_b[0]) * r2[0]) / den
+    # ε2·J r2 − ε3·J r3 = −a_B + ω2²·r2 − ω3²·r3
+    rx = -a_b[0] + w2 ** 2 * r2[0] - w3 ** 2 * r3[0]
+    ry = -a_b[1] + w2 ** 2 * r2[1] - w3 ** 2 * r3[1]
+    return w2, w3, (rx * (-r3[0]) - r3[1] * ry) / den, (-r2[1] * ry - rx * r2[0]) / den
 
 
 def exact_slider_crank(phi_deg, *, crank=0.06, rod=0.18, offset=0.0, omega=100.0, epsilon=0.0,

@@ -245,75 +245,74 @@ def check(case: Case, angles, *, mechanism=None) -> list[dict]:
     if mechanism is None:
         mechanism = exercise_of(case).mechanism
     angles = [float(a) for a in angles]
-    p = case.params
-    length = case.length
+    try:
+        solved = solve(mechanism, np.array(angles))
+    except PlanmethodError:
+        solved = None
+    return [_judge(case, mechanism, angle, solved, k) for k, angle in enumerate(angles)]
+
+
+def _judge(case: Case, mechanism, angle: float, solved, index: int) -> dict:
+    """One angle's row of :func:`check`: the motion of all angles ``solved`` at once (its
+    ``index``), or, where that failed, this angle solved alone."""
+    reference = _classify(case, angle)
+    row = {"case": case.name, "kind": case.kind, "angle": angle, "sine": reference["sine"],
+           "reach": reference["reach"], "violation": None, "ratio": 0.0}
+    try:
+        motion = solved if solved is not None else solve(mechanism, np.array([angle]))
+        index = index if solved is not None else 0
+        values = [motion.position("C")[index], motion.velocity("C")[index],
+                  motion.acceleration("C")[index]]
+        group = next(iter(motion.groups.values()))
+        line_sine = float(np.abs(group.line_sine[index]))
+    except AssemblyError as error:
+        row.update(status="assembly", message=str(error))
+        if reference["exact"] is not None and reference["reach"] > NEAR_SINGULAR:
+            row["violation"] = "AssemblyError where the reference assembles"
+        return row
+    except ToggleError as error:
+        row.update(status="toggle", message=str(error))
+        # the solver refuses where ε·R/s⁵ ≥ 1 (accelerations with no correct digit)
+        limit = max(NEAR_SINGULAR, 2.0 * (EPS * case.length / case.group_length) ** 0.2)
+        if reference["exact"] is not None and reference["sine"] > limit:
+            row["violation"] = "ToggleError away from the toggle"
+        return row
+    row.update(status="ok", line_sine=line_sine)
+    if not all(np.all(np.isfinite(v)) for v in values):
+        row["violation"] = "NaN or infinity in a result"
+    elif reference["exact"] is None:
+        row["violation"] = "a result where the links cannot be assembled"
+    else:
+        _judge_errors(case, angle, reference, values, row)
+    return row
+
+
+def _judge_errors(case: Case, angle: float, reference: dict, values: list, row: dict) -> None:
+    """Add to ``row`` the errors of C's position, velocity and acceleration, their bounds,
+    and a violation where an error is above its bound (a flipped branch, if the other
+    branch is nearer)."""
+    p, length = case.params, case.length
     speed = abs(p["omega"]) * length
     accel = (p["omega"] ** 2 + abs(p["epsilon"])) * length
-    try:
-        motion = solve(mechanism, np.array(angles))
-        solved = {k: motion for k in range(len(angles))}
-    except PlanmethodError:
-        solved = {}
-    rows = []
-    for k, angle in enumerate(angles):
-        reference = _classify(case, angle)
-        row = {"case": case.name, "kind": case.kind, "angle": angle, "sine": reference["sine"],
-               "reach": reference["reach"], "violation": None, "ratio": 0.0}
-        try:
-            motion = solved.get(k) or solve(mechanism, np.array([angle]))
-            index = k if k in solved else 0
-            values = [motion.position("C")[index], motion.velocity("C")[index],
-                      motion.acceleration("C")[index]]
-            group = next(iter(motion.groups.values()))
-            line_sine = float(np.abs(group.line_sine[index]))
-        except AssemblyError as error:
-            row["status"] = "assembly"
-            row["message"] = str(error)
-            if reference["exact"] is not None and reference["reach"] > NEAR_SINGULAR:
-                row["violation"] = "AssemblyError where the reference assembles"
-            rows.append(row)
-            continue
-        except ToggleError as error:
-            row["status"] = "toggle"
-            row["message"] = str(error)
-            # the solver refuses where ε·R/s⁵ ≥ 1 (accelerations with no correct digit)
-            limit = max(NEAR_SINGULAR, 2.0 * (EPS * length / case.group_length) ** 0.2)
-            if reference["exact"] is not None and reference["sine"] > limit:
-                row["violation"] = "ToggleError away from the toggle"
-            rows.append(row)
-            continue
-        row["status"] = "ok"
-        row["line_sine"] = line_sine
-        if not all(np.all(np.isfinite(v)) for v in values):
-            row["violation"] = "NaN or infinity in a result"
-            rows.append(row)
-            continue
-        exact = reference["exact"]
-        if exact is None:
-            row["violation"] = "a result where the links cannot be assembled"
-            rows.append(row)
-            continue
-        s = max(reference["sine"], 1e-300)
-        terms_v, terms_a = term_sizes(case, exact)
-        ratio = length / case.group_length
-        bounds = (K * EPS * length / s,
-                  K * EPS * ratio * max(speed / s ** 3, terms_v / s ** 2),
-                  K * EPS * ratio * max(accel / s ** 5, terms_a / s ** 2))
-        errors = [float(norm(value - _vector(exact[key])))
-                  for value, key in zip(values, ("C", "v_C", "a_C"), strict=True)]
-        row["errors"] = errors
-        row["bounds"] = list(bounds)
-        row["relative"] = [errors[0] / length, errors[1] / max(speed, 1e-300),
-                           errors[2] / max(accel, 1e-300)]
-        row["ratio"] = max(e / b for e, b in zip(errors, bounds, strict=True))
-        if row["ratio"] > 1.0:
-            row["violation"] = "error above the stated bound"
-            other = case.reference(angle, not case.branch) if reference["exact"] else None
-            if other is not None and float(norm(values[0] - _vector(other["C"]))) < (
-                    errors[0]):
-                row["violation"] = "flipped branch"
-        rows.append(row)
-    return rows
+    exact = reference["exact"]
+    s = max(reference["sine"], 1e-300)
+    terms_v, terms_a = term_sizes(case, exact)
+    ratio = length / case.group_length
+    bounds = (K * EPS * length / s,
+              K * EPS * ratio * max(speed / s ** 3, terms_v / s ** 2),
+              K * EPS * ratio * max(accel / s ** 5, terms_a / s ** 2))
+    errors = [float(norm(value - _vector(exact[key])))
+              for value, key in zip(values, ("C", "v_C", "a_C"), strict=True)]
+    row["errors"] = errors
+    row["bounds"] = list(bounds)
+    row["relative"] = [errors[0] / length, errors[1] / max(speed, 1e-300),
+                       errors[2] / max(accel, 1e-300)]
+    row["ratio"] = max(e / b for e, b in zip(errors, bounds, strict=True))
+    if row["ratio"] > 1.0:
+        row["violation"] = "error above the stated bound"
+        other = case.reference(angle, not case.branch)
+        if other is not None and float(norm(values[0] - _vector(other["C"]))) < errors[0]:
+            row["violation"] = "flipped branch"
 
 
 # -- scenarios -----------------------------------------------------------------------------------
