@@ -59,10 +59,11 @@ __all__ = ["FORMATS", "Panel", "panels", "plot_format", "save_class_report_plot"
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 
 #: (column prefix, panel title, y-axis label) of each kind of quantity that has a panel
-#: (:data:`planmethod.vocabulary.QUANTITY_KINDS`; words: vocabulary); a column joins the panel
-#: of its prefix
-_PANELS = tuple((f"{kind.prefix}_", kind.panel, kind.unit) for kind in QUANTITY_KINDS.values()
-                if kind.panel)
+#: (:data:`planmethod.vocabulary.QUANTITY_KINDS`: the title a message, rendered when drawn in
+#: the language spoken then; the unit: words: vocabulary); a column joins the panel of its
+#: prefix
+_PANELS = tuple((f"{kind.prefix}_", kind.plotted, kind.unit)
+                for kind in QUANTITY_KINDS.values() if kind.plotted is not None)
 #: the prefix of the radii of curvature, drawn on a log scale where they span decades
 _RADIUS = "rho_"
 _LEFT_TO_CSV = ("x_", "y_", "vx_", "vy_", "ax_", "ay_", "theta_")
