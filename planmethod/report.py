@@ -2,7 +2,9 @@
 
 :func:`analyse` runs the scene (structure → exact kinematics → plans → forces when asked) and
 returns an :class:`Analysis`; :func:`report_dict` turns it into the JSON report
-(docs/json-report.md).
+(docs/json-report.md), section by section from the typed results; its sentences (the flags,
+the steps) are rendered in the language spoken. The text ``planmethod solve`` prints is the
+render layer's (:mod:`planmethod.render.report_text`).
 
 Examples
 --------
@@ -17,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -33,12 +35,25 @@ from .render.plan_words import flag_message, plan_dict
 from .scene import Scene, plan_scene
 from .structure import Structure
 from .vectors import norm
-from .words import render
+from .words import Message, render, template
 
-__all__ = ["FLAG_ERROR", "Analysis", "Check", "analyse", "asked_quantities", "report_dict"]
+if TYPE_CHECKING:
+    from .forces import ForceAnalysis
+
+__all__ = ["FLAG_ERROR", "Analysis", "Check", "PublishedValue", "analyse", "asked_quantities",
+           "published_comparison", "report_dict"]
 
 #: a group's exact values whose estimated relative error is above this are flagged
 FLAG_ERROR = 1e-6
+
+#: the flag of a group near its toggle, by the stage whose exact values lose digits there
+_NEAR_TOGGLE = {
+    "position": template("group {number} ({links}) is near its toggle: its exact positions are "
+                         "good to about {estimate:.0e} relative"),
+    "velocity": template("group {number} ({links}) is near its toggle: its exact velocities "
+                         "are good to about {estimate:.0e} relative"),
+    "acceleration": template("group {number} ({links}) is near its toggle: its exact "
+                             "accelerations are good to about {estimate:.0e} relative")}
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,23 +93,23 @@ class Analysis:
     motion: Motion
     plans: Plans | None
     checks: tuple[Check, ...]
-    forces: Any = None
+    forces: ForceAnalysis | None = None
 
     @property
-    def flags(self) -> tuple[str, ...]:
+    def flags(self) -> tuple[Message | str, ...]:
         """Plan flags (intersections at small angles) and groups whose exact values lose
         digits near their toggle (estimated relative error above 1e-6)."""
         numbers = course_numbers(self.exercise.mechanism)
-        flags = ([render(flag_message(flag, numbers)) for flag in self.plans.flags]
-                 if self.plans else [])
+        flags: list[Message | str] = ([flag_message(flag, numbers) for flag in self.plans.flags]
+                                      if self.plans else [])
         for index, solved in sorted(self.motion.groups.items()):
             for stage, values in (solved.error_estimate or {}).items():
                 estimate = float(np.max(values))
                 if estimate > FLAG_ERROR:
-                    links = vocabulary.links_text(self.structure.groups[index].links, numbers)
-                    flags.append(f"group {index + 1} ({links}) is near its toggle: its exact "
-                                 f"{vocabulary.STAGE_PLURAL.get(stage, stage)} "
-                                 f"are good to about {estimate:.0e} relative")
+                    links = vocabulary.links_text(self.structure.groups[index].links,
+                                                  numbers)            # words: vocabulary
+                    flags.append(_NEAR_TOGGLE[stage].replace(number=index + 1, links=links,
+                                                             estimate=estimate))
         return tuple(flags)
 
 
@@ -225,114 +240,170 @@ def report_dict(analysis: Analysis) -> dict:
     analysis
         What :func:`analyse` returned.
     """
-    exercise, motion, structure = analysis.exercise, analysis.motion, analysis.structure
-    mechanism = exercise.mechanism
-    ask = exercise.ask
-    report: dict[str, Any] = {"title": mechanism.title, "angle": analysis.angle}
-    report["structure"] = {
-        "n": structure.n, "p5": structure.p5, "p4": structure.p4, "W": structure.mobility,
-        "groups": [{"type": g.kind, "links": list(g.links), "class": g.group_class,
-                    "order": g.order, "pairs": [j.label for j in g.joints],
-                    **({"type_number": g.type_number} if g.type_number else {}),
-                    **({"branch": {"sign": motion.branches[g.index].sign,
-                                   "reason": motion.branches[g.index].reason}}
-                       if g.index in motion.branches else {})}
-                   for g in structure.groups]}
-    for entry, group in zip(report["structure"]["groups"], structure.groups, strict=True):
-        solved = motion.groups.get(group.index)
-        if solved is not None and solved.line_sine is not None and group.is_dyad:
-            sine = abs(float(solved.line_sine[0]))
-            entry["line_angle_deg"] = math.degrees(math.asin(min(1.0, sine)))
-            entry["error_estimate"] = {stage: float(values[0]) for stage, values in
-                                       (solved.error_estimate or {}).items()}
+    exercise, motion = analysis.exercise, analysis.motion
+    report: dict[str, Any] = {"title": exercise.mechanism.title, "angle": analysis.angle,
+                              "structure": _structure_dict(analysis)}
     if analysis.plans:
         report["scales"] = analysis.plans.scales.as_dict()
-    acceleration = motion.stage == "acceleration"
-    if ask.everything:
-        points = list(dict.fromkeys(p for link in motion.links
-                                    for p in mechanism.links[link].points))
-        velocity_points = acceleration_points = points
-        links = [link for link in motion.links if link != FRAME]
-        curvature = [p for p in points if link_of(motion, p) != FRAME]
-        sliding = [s.key for s in mechanism.slides]
-    else:
-        velocity_points, acceleration_points = ask.velocity, ask.acceleration
-        links = list(dict.fromkeys(ask.omega + ask.epsilon))
-        curvature, sliding = ask.curvature, ask.sliding
+    asked = _Asked.of(analysis)
     here = motion.at(0)
-    point_table: dict[str, dict] = {}
-    for point in dict.fromkeys(tuple(velocity_points) + tuple(acceleration_points)
-                               + tuple(curvature)):
-        entry = {"position": _vector(here.position(point))}
-        entry["velocity"] = _vector(here.velocity(point))
-        if acceleration:
-            entry["acceleration"] = _vector(here.acceleration(point))
-        point_table[point] = entry
-    report["points"] = point_table
-    link_table = {}
-    for link in links:
-        entry = {"omega": float(here.omega(link)), "theta": float(here.theta(link))}
-        if acceleration:
-            entry["epsilon"] = float(here.epsilon(link))
-        link_table[link] = entry
-    report["links"] = link_table
-    if acceleration and curvature:
-        table = {}
-        for point in curvature:
-            found = here.curvature(point)
-            if found.straight:
-                table[point] = {"rho": None, "center": None, "straight": True}
-            else:
-                rho = _finite(found.rho)
-                entry = {"rho": rho, "center": _vector(found.center) if rho else None}
-                if bool(found.inflection):
-                    entry["inflection"] = True
-                if bool(found.stationary):
-                    entry["stationary"] = True
-                table[point] = entry
-        report["curvature"] = table
-    if sliding:
-        table = {}
-        for key in sliding:
-            found = here.sliding(key)
-            entry = {"s": float(found.s), "velocity": float(found.velocity)}
-            if acceleration:
-                entry |= {"acceleration": float(found.acceleration),
-                          "coriolis": _vector(found.coriolis)}
-            table[key] = entry
-        report["sliding"] = table
+    acceleration = motion.stage == "acceleration"
+    report["points"] = {point: _point_dict(here, point, acceleration)
+                        for point in asked.points}
+    report["links"] = {link: _link_dict(here, link, acceleration) for link in asked.links}
+    if acceleration and asked.curvature:
+        report["curvature"] = {point: _curvature_dict(here.curvature(point))
+                               for point in asked.curvature}
+    if asked.sliding:
+        report["sliding"] = {key: _sliding_dict(here.sliding(key), acceleration)
+                             for key in asked.sliding}
     if analysis.plans:
-        plans = {"position": analysis.plans.position.as_dict(),
-                 "velocity": plan_dict(analysis.plans.velocity)}
-        if analysis.plans.acceleration:
-            plans["acceleration"] = plan_dict(analysis.plans.acceleration)
-        report["plans"] = plans
+        report["plans"] = _plans_dict(analysis.plans)
     report["checks"] = [check.as_dict() for check in analysis.checks]
-    if analysis.exercise.published:
-        report["published"] = {"source": analysis.exercise.published_source,
-                               "values": published_comparison(analysis)}
-    report["flags"] = list(analysis.flags)
+    if exercise.published:
+        report["published"] = {"source": exercise.published_source,
+                               "values": [row.as_dict()
+                                          for row in published_comparison(analysis)]}
+    report["flags"] = [render(flag) for flag in analysis.flags]
     if analysis.forces is not None:
         report["forces"] = analysis.forces.as_dict()
     return report
+
+
+def _structure_dict(analysis: Analysis) -> dict:
+    """The structure: the counts, W, and each Assur group with its assembly (its branch and
+    why) and, for a dyad, how far from its toggle its lines meet."""
+    structure, motion = analysis.structure, analysis.motion
+    return {"n": structure.n, "p5": structure.p5, "p4": structure.p4, "W": structure.mobility,
+            "groups": [_group_dict(group, motion) for group in structure.groups]}
+
+
+def _group_dict(group, motion: Motion) -> dict:
+    """One Assur group of the structure (see :func:`_structure_dict`)."""
+    entry: dict[str, Any] = {"type": group.kind, "links": list(group.links),
+                             "class": group.group_class, "order": group.order,
+                             "pairs": [joint.label for joint in group.joints]}
+    if group.type_number:
+        entry["type_number"] = group.type_number
+    if group.index in motion.branches:
+        branch = motion.branches[group.index]
+        entry["branch"] = {"sign": branch.sign, "reason": branch.reason}
+    solved = motion.groups.get(group.index)
+    if solved is not None and solved.line_sine is not None and group.is_dyad:
+        sine = abs(float(solved.line_sine[0]))
+        entry["line_angle_deg"] = math.degrees(math.asin(min(1.0, sine)))
+        entry["error_estimate"] = {stage: float(values[0]) for stage, values in
+                                   (solved.error_estimate or {}).items()}
+    return entry
+
+
+@dataclass(frozen=True, slots=True)
+class _Asked:
+    """What the report tabulates: the points (velocity, acceleration, curvature, in that
+    order, each once), the links, the points whose curvature and the pairs whose sliding it
+    gives."""
+
+    points: tuple[str, ...]
+    links: tuple[str, ...]
+    curvature: tuple[str, ...]
+    sliding: tuple[str, ...]
+
+    @classmethod
+    def of(cls, analysis: Analysis) -> _Asked:
+        exercise, motion = analysis.exercise, analysis.motion
+        mechanism, ask = exercise.mechanism, exercise.ask
+        if ask.everything:
+            points = tuple(dict.fromkeys(p for link in motion.links
+                                         for p in mechanism.links[link].points))
+            return cls(points, tuple(link for link in motion.links if link != FRAME),
+                       tuple(p for p in points if link_of(motion, p) != FRAME),
+                       tuple(s.key for s in mechanism.slides))
+        points = tuple(dict.fromkeys(tuple(ask.velocity) + tuple(ask.acceleration)
+                                     + tuple(ask.curvature)))
+        return cls(points, tuple(dict.fromkeys(ask.omega + ask.epsilon)),
+                   tuple(ask.curvature), tuple(ask.sliding))
+
+
+def _point_dict(here: MotionAt, point: str, acceleration: bool) -> dict:
+    """A point's position, velocity (and acceleration)."""
+    entry = {"position": _vector(here.position(point)), "velocity": _vector(here.velocity(point))}
+    if acceleration:
+        entry["acceleration"] = _vector(here.acceleration(point))
+    return entry
+
+
+def _link_dict(here: MotionAt, link: str, acceleration: bool) -> dict:
+    """A link's ω and θ (and ε)."""
+    entry = {"omega": float(here.omega(link)), "theta": float(here.theta(link))}
+    if acceleration:
+        entry["epsilon"] = float(here.epsilon(link))
+    return entry
+
+
+def _curvature_dict(found) -> dict:
+    """A point's path curvature: ρ and the centre, or straight; an inflection, a stop."""
+    if found.straight:
+        return {"rho": None, "center": None, "straight": True}
+    rho = _finite(found.rho)
+    entry = {"rho": rho, "center": _vector(found.center) if rho else None}
+    if bool(found.inflection):
+        entry["inflection"] = True
+    if bool(found.stationary):
+        entry["stationary"] = True
+    return entry
+
+
+def _sliding_dict(found, acceleration: bool) -> dict:
+    """A prismatic pair's travel and sliding velocity (and acceleration, Coriolis)."""
+    entry = {"s": float(found.s), "velocity": float(found.velocity)}
+    if acceleration:
+        entry |= {"acceleration": float(found.acceleration),
+                  "coriolis": _vector(found.coriolis)}
+    return entry
+
+
+def _plans_dict(plans: Plans) -> dict:
+    """The plans' data (docs/json-report.md, "Plans")."""
+    out = {"position": plans.position.as_dict(), "velocity": plan_dict(plans.velocity)}
+    if plans.acceleration:
+        out["acceleration"] = plan_dict(plans.acceleration)
+    return out
 
 
 #: a published value further than this from the exact one (relative) is flagged as a slip
 SLIP_RELATIVE = 0.05
 
 
-def published_comparison(analysis: Analysis) -> list[dict]:
-    """The book's printed values against the exact ones: ``quantity``, ``published``,
-    ``exact``, ``difference_percent`` (of the magnitudes, since books print magnitudes and
-    state the sense in words) and ``likely_slip`` (more than 5 % off: beyond any drawing
-    error at a course's scales).
+@dataclass(frozen=True, slots=True)
+class PublishedValue:
+    """A book's printed value against the exact one: the quantity, the printed value, the
+    exact one (None where the quantity cannot be computed), their difference in per cent of
+    the exact magnitude and whether it is likely a slip (more than :data:`SLIP_RELATIVE`)."""
+
+    quantity: str
+    published: float
+    exact: float | None
+    difference_percent: float | None
+    likely_slip: bool
+
+    def as_dict(self) -> dict:
+        """The JSON report's ``published.values`` entry."""
+        return {"quantity": self.quantity, "published": self.published, "exact": self.exact,
+                "difference_percent": self.difference_percent,
+                "likely_slip": self.likely_slip}
+
+
+def published_comparison(analysis: Analysis) -> list[PublishedValue]:
+    """The book's printed values against the exact ones (of the magnitudes, since books print
+    magnitudes and state the sense in words), each likely a slip when more than 5 % off:
+    beyond any drawing error at a course's scales.
 
     Examples
     --------
     >>> from planmethod.spec import load_exercise
     >>> path = "exercises/compressor_slider_crank.toml"
     >>> rows = published_comparison(analyse(load_exercise(path)))
-    >>> [(r["quantity"], round(r["difference_percent"], 1), r["likely_slip"]) for r in rows][:2]
+    >>> [(r.quantity, round(r.difference_percent, 1), r.likely_slip) for r in rows][:2]
     [('v_B', 0.0, False), ('v_C', -24.1, True)]
     """
     rows = []
@@ -344,10 +415,10 @@ def published_comparison(analysis: Analysis) -> list[dict]:
         difference = None
         if exact is not None and exact != 0:
             difference = (abs(printed) - abs(exact)) / abs(exact)
-        rows.append({"quantity": name, "published": float(printed), "exact": exact,
-                     "difference_percent": None if difference is None else 100 * difference,
-                     "likely_slip": bool(difference is not None
-                                         and abs(difference) > SLIP_RELATIVE)})
+        rows.append(PublishedValue(name, float(printed), exact,
+                                   None if difference is None else 100 * difference,
+                                   bool(difference is not None
+                                        and abs(difference) > SLIP_RELATIVE)))
     return rows
 
 

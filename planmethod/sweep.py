@@ -25,6 +25,7 @@ from .scene import plan_scene
 from .structure import analyse_structure
 from .vectors import norm
 from .vocabulary import shown_title
+from .words import Message, message, number_text, plural, render
 
 __all__ = ["CHUNK", "Extremes", "csv_rows", "sweep_angles", "sweep_chunks", "sweep_columns",
            "sweep_table"]
@@ -40,16 +41,20 @@ MAX_SWEEP_DEG = 36000.0
 def sweep_angles(step: float, start: float = 0.0, stop: float = 360.0) -> np.ndarray:
     """Crank angles ``start, start + step, …`` below ``stop`` (deg)."""
     if not (np.isfinite(step) and step > 0):
-        raise SpecError(f"--step must be a positive number of degrees, got {step}")
+        raise SpecError(message("--step must be a positive number of degrees, got {step}",
+                                step=step))
     if not (np.isfinite(start) and np.isfinite(stop) and stop > start):
-        raise SpecError(f"the sweep needs finite --from < --to, got {start} and {stop}")
+        raise SpecError(message("the sweep needs finite --from < --to, got {start} and {stop}",
+                                start=start, stop=stop))
     if max(abs(start), abs(stop)) > MAX_SWEEP_DEG:
-        raise SpecError(f"--from and --to must lie within ±{MAX_SWEEP_DEG:g}°, got {start:g} "
-                        f"and {stop:g}")
+        raise SpecError(message("--from and --to must lie within ±{limit:g}°, got {start:g} and "
+                                "{stop:g}", limit=MAX_SWEEP_DEG, start=start, stop=stop))
     count = math.ceil((stop - start) / step - 1e-9)
     if count > MAX_SWEEP_ANGLES:
-        raise SpecError(f"--step {step:g} from {start:g}° to {stop:g}° gives {count:.3g} crank "
-                        f"angles; at most {MAX_SWEEP_ANGLES:,} are swept (a larger --step)")
+        raise SpecError(message("--step {step:g} from {start:g}° to {stop:g}° gives {count:.3g} "
+                                "crank angles; at most {limit:,} are swept (a larger --step)",
+                                step=step, start=start, stop=stop, count=count,
+                                limit=MAX_SWEEP_ANGLES))
     return start + step * np.arange(count, dtype=float)
 
 
@@ -109,12 +114,7 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
     else:  # no Python list of a million floats when an array is given
         angles = np.asarray(angles if isinstance(angles, (np.ndarray, list, tuple, range))
                             else list(angles), dtype=float).ravel()
-    structure = analyse_structure(mechanism)
-    scene = plan_scene(exercise)
-    stage = "acceleration" if extra is not None else scene.stage
-    links_needed = None if extra is not None else scene.links
-    groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
-    branches = choose_branches(mechanism, groups)
+    stage, links_needed, branches = _solving(exercise, forces=extra is not None)
     points, links, slides, curvature, _ = sweep_columns(exercise)
     last_theta: dict[str, float] = {}
     with Progress(len(angles), "sweep", enabled=progress if len(angles) > CHUNK else False
@@ -123,38 +123,75 @@ def sweep_chunks(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
             part = angles[begin:begin + CHUNK]
             motion = solve(mechanism, part, stage=stage, links=links_needed,
                            branches=branches)
-            columns: dict[str, np.ndarray] = {"angle": part}
-            for point in points:
-                xy = motion.position(point)
-                columns[f"x_{point}"], columns[f"y_{point}"] = xy[:, 0], xy[:, 1]
-                v = motion.velocity(point)
-                columns[f"vx_{point}"], columns[f"vy_{point}"] = v[:, 0], v[:, 1]
-                columns[f"v_{point}"] = norm(v)
-                if stage == "acceleration":
-                    a = motion.acceleration(point)
-                    columns[f"ax_{point}"], columns[f"ay_{point}"] = a[:, 0], a[:, 1]
-                    columns[f"a_{point}"] = norm(a)
-            for link in links:
-                theta = np.degrees(np.unwrap(motion.theta(link)))
-                if link in last_theta:  # continue the previous chunk's unwrapping
-                    theta += 360.0 * np.round((last_theta[link] - theta[0]) / 360.0)
-                last_theta[link] = float(theta[-1])
-                columns[f"theta_{link}"] = theta
-                columns[f"omega_{link}"] = motion.omega(link)
-                if stage == "acceleration":
-                    columns[f"epsilon_{link}"] = motion.epsilon(link)
-            for key in slides:
-                sliding = motion.sliding(key)
-                columns[f"s_{key}"] = sliding.s
-                columns[f"ds_{key}"] = sliding.velocity
-                if stage == "acceleration":
-                    columns[f"dds_{key}"] = sliding.acceleration
-            for point in curvature:
-                columns[f"rho_{point}"] = motion.curvature(point).rho
+            columns = {"angle": part} | _chunk_columns(motion, (points, links, slides, curvature),
+                                                       stage == "acceleration", last_theta)
             if extra is not None:
                 columns |= extra(motion)
             yield {name: np.asarray(values) for name, values in columns.items()}
             bar.advance(len(part))
+
+
+def _solving(exercise: Exercise, *, forces: bool) -> tuple[str, list[str] | None, dict]:
+    """How a sweep solves: to which stage, for which links (None: all, as the forces need)
+    and on the branches chosen at ``drive.angle``."""
+    structure = analyse_structure(exercise.mechanism)
+    scene = plan_scene(exercise)
+    stage = "acceleration" if forces else scene.stage
+    links_needed = None if forces else scene.links
+    groups = structure.groups if links_needed is None else structure.groups_needed(links_needed)
+    return stage, links_needed, choose_branches(exercise.mechanism, groups)
+
+
+def _chunk_columns(motion, asked: tuple[list[str], list[str], list[str], list[str]],
+                   acceleration: bool, last_theta: dict[str, float]) -> dict[str, np.ndarray]:
+    """A chunk's columns of the points, links, prismatic pairs and curvature points
+    ``asked`` (see :func:`sweep_columns`)."""
+    points, links, slides, curvature = asked
+    columns: dict[str, np.ndarray] = {}
+    for point in points:
+        columns |= _point_columns(motion, point, acceleration)
+    for link in links:
+        columns |= _link_columns(motion, link, acceleration, last_theta)
+    for key in slides:
+        columns |= _sliding_columns(motion, key, acceleration)
+    for point in curvature:
+        columns[f"rho_{point}"] = motion.curvature(point).rho
+    return columns
+
+
+def _point_columns(motion, point: str, acceleration: bool) -> dict[str, np.ndarray]:
+    """A point's columns: ``x_P y_P vx_P vy_P v_P`` (and ``ax_P ay_P a_P``)."""
+    xy = motion.position(point)
+    v = motion.velocity(point)
+    columns = {f"x_{point}": xy[:, 0], f"y_{point}": xy[:, 1],
+               f"vx_{point}": v[:, 0], f"vy_{point}": v[:, 1], f"v_{point}": norm(v)}
+    if acceleration:
+        a = motion.acceleration(point)
+        columns |= {f"ax_{point}": a[:, 0], f"ay_{point}": a[:, 1], f"a_{point}": norm(a)}
+    return columns
+
+
+def _link_columns(motion, link: str, acceleration: bool, last_theta: dict[str, float]
+                  ) -> dict[str, np.ndarray]:
+    """A link's columns: ``theta_L`` (degrees, unwrapped continuously from the previous
+    chunk's, whose last angle ``last_theta`` keeps), ``omega_L`` (and ``epsilon_L``)."""
+    theta = np.degrees(np.unwrap(motion.theta(link)))
+    if link in last_theta:  # continue the previous chunk's unwrapping
+        theta += 360.0 * np.round((last_theta[link] - theta[0]) / 360.0)
+    last_theta[link] = float(theta[-1])
+    columns = {f"theta_{link}": theta, f"omega_{link}": motion.omega(link)}
+    if acceleration:
+        columns[f"epsilon_{link}"] = motion.epsilon(link)
+    return columns
+
+
+def _sliding_columns(motion, key: str, acceleration: bool) -> dict[str, np.ndarray]:
+    """A prismatic pair's columns: ``s_K ds_K`` (and ``dds_K``)."""
+    sliding = motion.sliding(key)
+    columns = {f"s_{key}": sliding.s, f"ds_{key}": sliding.velocity}
+    if acceleration:
+        columns[f"dds_{key}"] = sliding.acceleration
+    return columns
 
 
 def sweep_table(exercise: Exercise, step: float = 1.0, *, start: float = 0.0,
@@ -243,9 +280,9 @@ class Extremes:
                 high = max(known[1], high, key=lambda pair: pair[0])
             self.table[name] = (low, high)
 
-    def describe(self, title: str, names: Callable[[str], str] | None = None,
+    def describe(self, title: str, names: Callable[[str], Message | str] | None = None,
                  phi: str = "φ") -> str:
-        """The extremes as a printed table.
+        """The extremes as a printed table, in the language spoken.
 
         Parameters
         ----------
@@ -253,7 +290,8 @@ class Extremes:
             The exercise's title.
         names
             Each column's name as the table prints it (the course's symbol: ω₂ for
-            ``omega_BC``); the column's own name without it.
+            ``omega_BC``; words for a column that is no quantity); the column's own name
+            without it.
         phi
             The crank angle's symbol (φ₁: it carries the crank's number).
 
@@ -267,21 +305,31 @@ class Extremes:
           quantity                min    at φ₁        max    at φ₁
           ω₂                       -2       0°          3      90°
         """
-        def shown(name: str) -> str:
-            return (names(name) if names else None) or name
-
-        width = max([16] + [len(shown(name)) for name in self.table])
-        at = f"at {phi}"
-        lines = [f"{shown_title(title)} — {self.count} crank angles from {self.first:g}° to "
-                 f"{self.last:g}°",
-                 "", f"  {'quantity':<{width}} {'min':>10} {at:>8} {'max':>10} {at:>8}"]
+        shown = {name: render((names(name) if names else None) or name) for name in self.table}
+        heading = render(message("quantity"))
+        width = max([16, len(heading)] + [len(text) for text in shown.values()])
+        low_text, high_text = render(message("min")), render(message("max"))
+        at = render(message("at {phi}", phi=phi))
+        # a column is widened where its heading's translation is longer than in English
+        low, high, angle = (max(10, len(low_text)), max(10, len(high_text)),
+                            max(7, len(at) - 1))
+        # (English says "1 crank angles", as it always did; a catalogue has every form)
+        lines = [render(plural("{title} — {count} crank angles from {first:g}° to {last:g}°",
+                               "{title} — {count} crank angles from {first:g}° to {last:g}°",
+                               count=self.count, title=shown_title(title), first=self.first,
+                               last=self.last)),
+                 "", f"  {heading:<{width}} {low_text:>{low}} {at:>{angle + 1}} "
+                     f"{high_text:>{high}} {at:>{angle + 1}}"]
+        undefined = render(message("(undefined)"))
         for name, found in self.table.items():
             if found is None:
-                lines.append(f"  {shown(name):<{width}} (undefined)")
+                lines.append(f"  {shown[name]:<{width}} {undefined}")
                 continue
-            (low, at_low), (high, at_high) = found
-            lines.append(f"  {shown(name):<{width}} {low:>10.5g} {at_low:>7g}° {high:>10.5g} "
-                         f"{at_high:>7g}°")
+            (least, at_least), (most, at_most) = found
+            lines.append(f"  {shown[name]:<{width}} {number_text(least, f'>{low}.5g')} "
+                         f"{number_text(at_least, f'>{angle}g')}° "
+                         f"{number_text(most, f'>{high}.5g')} "
+                         f"{number_text(at_most, f'>{angle}g')}°")
         return "\n".join(lines)
 
 

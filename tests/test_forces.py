@@ -21,6 +21,7 @@ from planmethod.model import Load
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.vectors import cross, perp
+from planmethod.words import render
 
 CASE_A = "exercises/fourbar_forces.toml"
 BALANCING_A = {0.0: -0.910965, 60.0: 0.642055, 150.0: -0.577299}
@@ -263,7 +264,7 @@ def test_oppose_velocity_load_and_rest_flag():
     velocity = motion.velocity("C")
     assert np.allclose(force[1:], -300.0 * velocity[1:] / np.hypot(*velocity[1:].T)[:, None])
     assert np.allclose(force[0], [300.0, 0.0])   # at rest (dead centre): as given, flagged
-    assert applied.flags and "0°" in applied.flags[0]
+    assert applied.flags and "0°" in render(applied.flags[0])
 
 
 def test_a_moment_can_oppose_the_angular_velocity():

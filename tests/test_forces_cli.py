@@ -14,6 +14,7 @@ from planmethod.cli import main
 from planmethod.forces.study import NOT_SIGNIFICANT, Parameter, Study
 from planmethod.kinematics import solve
 from planmethod.spec import load_exercise
+from planmethod.words import message
 
 CONVEYOR = "exercises/conveyor_sixbar.toml"
 TABLE2 = "exercises/conveyor_sixbar_table2.csv"
@@ -127,9 +128,12 @@ def test_study_numbers_are_consistent_with_a_single_solve(capsys):
 
 
 def synthetic_study(weight_change: float, moment_change: float) -> Study:
-    parameters = (Parameter("weight", "rocker weight G4", "N", (20.0, 100.0), 60.0),
-                  Parameter("omega", "crank speed ω1", "rad/s", (10.0, 50.0), 30.0),
-                  Parameter("moment", "resisting moment Mc", "N·m", (80.0, 160.0), 120.0))
+    parameters = (Parameter("weight", message("rocker weight {symbol}", symbol="G4"), "N",
+                            (20.0, 100.0), 60.0),
+                  Parameter("omega", message("crank speed {symbol}", symbol="ω1"), "rad/s",
+                            (10.0, 50.0), 30.0),
+                  Parameter("moment", message("resisting moment {symbol}", symbol="Mc"), "N·m",
+                            (80.0, 160.0), 120.0))
     maxima = {"weight": {"B": np.array([100.0, 100.0 * (1 + weight_change)])},
               "omega": {"B": np.array([100.0, 110.0])},
               "moment": {"B": np.array([100.0, 100.0 * (1 + moment_change)])}}

@@ -94,8 +94,8 @@ def test_aliyev_constants():
     assert ratio == pytest.approx(1.8 / 1.2)
     # eq. 3: the inertia moment read off the plan equals −J·ε
     entry = constants.inertia_moment["BC"]
-    assert entry["from_plan"] == pytest.approx(entry["exact_moment"], rel=1e-9)
-    assert entry["constant"] == pytest.approx(6e-3 * scales.mu_a / 0.18)
+    assert entry.from_plan == pytest.approx(entry.exact_moment, rel=1e-9)
+    assert entry.constant == pytest.approx(6e-3 * scales.mu_a / 0.18)
 
 
 def test_combined_construction_needs_an_acceleration_plan():

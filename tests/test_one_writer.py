@@ -118,10 +118,11 @@ def test_scale_headers_and_panels_come_from_the_vocabulary():
 
     from planmethod.render.plots import panels
     from planmethod.vocabulary import QUANTITY_KINDS
+    from planmethod.words import render
 
     table = {"angle": [0.0], **{f"{prefix}_X": [1.0] for prefix in QUANTITY_KINDS}}
-    titles = {title for title, _, _ in panels(table)}
-    assert titles == {kind.panel for kind in QUANTITY_KINDS.values() if kind.panel} | {
+    titles = {render(title) for title, _, _ in panels(table)}
+    assert titles == {render(kind.panel) for kind in QUANTITY_KINDS.values() if kind.panel} | {
         "other columns"}
 
 

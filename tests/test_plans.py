@@ -288,7 +288,7 @@ def test_near_a_toggle_the_error_estimate_is_reported_and_digitless_stages_refus
         solve(near.mechanism)
     assert "accelerations would have no correct digit" in str(caught.value)
     flagged = analyse(exercise_from_dict(_near_toggle_fourbar(0.001)))
-    assert any("near its toggle" in flag for flag in flagged.flags)
+    assert any("near its toggle" in render(flag) for flag in flagged.flags)
     report_groups = report_dict(flagged)["structure"]["groups"]
     assert 1e-6 < report_groups[0]["error_estimate"]["acceleration"] < 1
     assert report_groups[0]["line_angle_deg"] < 1

@@ -6,12 +6,12 @@ texts and argparse's own lines, and in the studio's answers.
 What other areas still make as plain text is left out, each by name (the texts are computed
 here, in the same language, and not counted): the structural analysis
 (``structure.describe``), the flag of a group near its toggle (``Analysis.flags``; the plans'
-own flags and scales are messages), the force analysis and the note on an undrawn combined
-force (``ForceAnalysis.describe``, ``combined_omitted``), the sweep's extremes table
-(``Extremes.describe``), the study's labels, base case and conclusions (``forces.study``),
-the reasons of rejected draws counted by ``variants``, the assembly's branch reasons and
-errors (kinematics), the vocabulary's link texts (``link_text``), units and titles. When
-those areas speak through the catalogue, these exclusions only remove marked text.
+own flags and scales are messages), the reasons of rejected draws counted by ``variants``, the
+assembly's branch reasons and errors (kinematics), the vocabulary's link texts
+(``link_text``), units and titles. When those areas speak through the catalogue, these
+exclusions only remove marked text. The kinetostatics, the note on an undrawn combined force,
+the sweep's extremes table and the study's tables speak through the catalogue: only their
+names and symbols are left out.
 """
 
 from __future__ import annotations
@@ -74,8 +74,6 @@ def _names(exercise) -> list[str]:
 
 def _solve_foreign(path: Path) -> list[str]:
     from planmethod.numbering import course_numbers
-    from planmethod.render.force_svg import combined_omitted
-    from planmethod.render.notation import ForceNotation
     from planmethod.report import analyse
     from planmethod.spec import load_exercise
     from planmethod.structure import describe
@@ -88,18 +86,23 @@ def _solve_foreign(path: Path) -> list[str]:
     texts += describe(analysis.structure, numbers).splitlines()
     texts += [str(branch.reason) for branch in analysis.motion.branches.values()]
     texts += [render(check.unit) for check in analysis.checks if "rad" in render(check.unit)]
-    texts += analysis.flags[len(analysis.plans.flags) if analysis.plans else 0:]
-    if analysis.forces is not None:
-        texts += analysis.forces.describe(ForceNotation(analysis.forces.solution)).splitlines()
-        texts.append(combined_omitted(analysis.forces, analysis.plans) or "")
+    texts += [flag for flag in analysis.flags if isinstance(flag, str)]   # a group's toggle
     return texts
 
 
 def _sweep_foreign(path: Path, step: float, forces: bool) -> list[str]:
-    from planmethod.application.sweeping import SweepRequest, sweep
+    """The exercise's names and the table's column names that are plain text (the
+    vocabulary's ``column_text``; a column of the forces in words is a message)."""
+    from planmethod.application.sweeping import _printed_names
+    from planmethod.forces import force_columns
     from planmethod.spec import load_exercise
+    from planmethod.sweep import sweep_table
 
-    return sweep(load_exercise(path), SweepRequest(step=step, forces=forces)).summary.splitlines()
+    exercise = load_exercise(path)
+    table = sweep_table(exercise, step, extra=force_columns(exercise) if forces else None)
+    names = _printed_names(exercise, forces)["names"]
+    return [*_names(exercise), *(text for column in table
+                                 if isinstance(text := names(column), str))]
 
 
 def _check_foreign() -> list[str]:
@@ -126,11 +129,9 @@ def _study_foreign() -> list[str]:
     study = run_study(exercise, weights=(20.0, 40.0), omegas=(10.0, 20.0),
                       moments=(80.0, 100.0), step=30.0)
     names, rocker = _printed_names(exercise, study)
-    texts = [*_names(exercise), study.base_text(), rocker, *names.values()]
-    texts += [f"{p.label} ({p.unit})" for p in study.parameters]
-    for statement, _, evidence in study.conclusions(names):
-        texts += [statement, evidence]
-    return texts
+    # the rocker in words (``link_text``) and a unit the vocabulary gives as plain text
+    return [*_names(exercise), rocker, *names.values(),
+            *(p.unit for p in study.parameters if isinstance(p.unit, str))]
 
 
 def _variants_foreign(out: str) -> list[str]:

@@ -371,10 +371,11 @@ def test_sweep_plot_is_written_and_reproducible(tmp_path, suffix):
 
 def test_sweep_plot_panels():
     from planmethod.render.plots import panels
+    from planmethod.words import render
 
-    titles = [title for title, _, _ in panels(_table())]
+    titles = [render(title) for title, _, _ in panels(_table())]
     assert titles[0].startswith("speed") and titles[-1] == "other columns"
-    grouped = {title: columns for title, _, columns in panels(_table())}
+    grouped = {render(title): columns for title, _, columns in panels(_table())}
     assert grouped["sliding acceleration d²s/dt²"] == ["dds_slider/frame"]
     assert grouped["other columns"] == ["M_balancing"]
     assert all("x_C" not in columns for columns in grouped.values())

@@ -18,7 +18,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ..errors import PlanmethodError, SpecError
-from ..words import Message, message, number_text, render
+from ..words import Message, message, render
 
 __all__ = ["check_choices", "figures", "pngs", "report_text", "solve_at", "unwritten"]
 
@@ -86,16 +86,13 @@ def unwritten(analysis) -> Message | str | None:
     return combined_omitted(analysis.forces, analysis.plans) or None
 
 
-def _number(value: float | None, digits: int = 6) -> str:
-    return "—" if value is None else number_text(value, f".{digits}g")
-
-
 def report_text(analysis) -> str:
     """The report a course prints: structure, scales, check table, flags — every quantity,
     link and force in the course's notation (docs/notation.md: ω₂, v_B₃, R₀₁; the crank's
     φ and ω by its number), never a report name (those are the JSON report's); in the
     language spoken."""
     from ..numbering import course_numbers
+    from ..render.report_text import check_lines, flag_lines, force_lines, published_lines
     from ..vocabulary import numbered, shown_title
 
     exercise = analysis.exercise
@@ -107,16 +104,12 @@ def report_text(analysis) -> str:
     lines += ["", *_structure_lines(analysis, numbers)]
     if analysis.plans:
         lines += ["", *_scale_lines(analysis.plans)]
-    lines += ["", *_check_lines(analysis.checks, numbers)]
-    if exercise.published:
-        lines += ["", *_published_lines(analysis, numbers)]
+    lines += check_lines(analysis)        # each begins with an empty line
+    lines += published_lines(analysis)
     if analysis.flags:
-        lines += ["", render(message("Flags"))] + [f"  ! {render(flag)}"
-                                                   for flag in analysis.flags]
+        lines += ["", render(message("Flags")), *flag_lines(analysis.flags)]
     if analysis.forces is not None:
-        from ..render.notation import ForceNotation
-
-        lines += ["", analysis.forces.describe(ForceNotation(analysis.forces.solution))]
+        lines += ["", *force_lines(analysis.forces)]
     return "\n".join(lines)
 
 
@@ -142,48 +135,4 @@ def _scale_lines(plans) -> list[str]:
     lines.append("  " + render(message("drafting precision: {precision:g} mm",
                                        precision=precision) if precision else
                                message("drafting precision: exact construction")))
-    return lines
-
-
-def _check_lines(checks, numbers: Mapping[str, int]) -> list[str]:
-    """The check table: each quantity read off the plan against its exact value."""
-    from ..vocabulary import symbol
-
-    head = [render(word) for word in (
-        message("quantity", context="column"), message("plan", context="column"),
-        message("exact", context="column"), message("abs. error", context="column"),
-        message("rel. error", context="column"), message("unit", context="column"))]
-    shown = {check.quantity: symbol(check.quantity, numbers) for check in checks}
-    width = max([len(text) for text in shown.values()] + [len(head[0])])
-    lines = [f"  {head[0]:<{width}} {head[1]:>12}  {head[2]:>12}  {head[3]:>10}   "
-             f"{head[4]:>10}  {head[5]}"]
-    for check in checks:
-        relative = "—" if check.rel_error is None else number_text(check.rel_error, ".2e")
-        lines.append(f"  {shown[check.quantity]:<{width}} {_number(check.plan):>12}  "
-                     f"{_number(check.analytic):>12}  {_number(check.abs_error, 3):>10}   "
-                     f"{relative:>10}  {render(check.unit)}")   # words: vocabulary (units)
-    return lines
-
-
-def _published_lines(analysis, numbers: Mapping[str, int]) -> list[str]:
-    """The values a book prints against the exact ones."""
-    from ..report import published_comparison
-    from ..vocabulary import symbol
-
-    exercise = analysis.exercise
-    source = exercise.published_source or message("the book")
-    head = [render(word) for word in (
-        message("quantity", context="column"), message("published", context="column"),
-        message("exact", context="column"), message("difference", context="column"))]
-    lines = [render(message("Published values ({source}) against the exact ones "
-                            "(magnitudes)", source=source)),
-             f"  {head[0]:<22}{head[1]:>12}{head[2]:>14}{head[3]:>12}"]
-    slip = render(message("likely a slip (> 5 %)"))
-    for row in published_comparison(analysis):
-        exact = "—" if row["exact"] is None else number_text(row["exact"], ".6g")
-        off = ("—" if row["difference_percent"] is None
-               else number_text(row["difference_percent"], "+.1f") + " %")
-        lines.append(f"  {symbol(row['quantity'], numbers):<22}"
-                     f"{number_text(row['published'], '>12.6g')}{exact:>14}{off:>12}"
-                     + (f"   {slip}" if row["likely_slip"] else ""))
     return lines

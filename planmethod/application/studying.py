@@ -70,11 +70,11 @@ def table_text(study, names: Mapping[str, str] | None = None,
     lines = [render(message("{title} — largest reactions over a full turn (N) and |M_b| "
                             "(N·m)", title=shown_title(study.title))),
              render(message("base case: {base}; the rocker is {rocker}",
-                            base=study.base_text(), rocker=rocker or study.rocker)), ""]
+                            base=study.base_values(), rocker=rocker or study.rocker)), ""]
     header = "".join(f"{names.get(pair, 'R_' + pair):>11}" for pair in study.pairs)
     header += f"{'|M_b|':>11}"
     for parameter in study.parameters:
-        lines.append(f"{parameter.label} ({parameter.unit})".ljust(28) + header)
+        lines.append(f"{render(parameter.label)} ({render(parameter.unit)})".ljust(28) + header)
         for i, value in enumerate(parameter.values):
             row = "".join(number_text(study.maxima[parameter.name][pair][i], ">11.1f")
                           for pair in study.pairs)

@@ -6,7 +6,8 @@ has friction), the independent whole-system solve, Zhukovsky's lever and the pow
 :func:`analyse_forces` adds, at one crank angle with plans, the combined-force construction of
 I. H. Aliyev ("Studies of the possibility of determining amplifications in kinematic pairs"),
 its constants and its rule for the sense of ε, and returns the ``forces`` block of the JSON
-report (``as_dict``) and the text for ``planmethod solve`` (``describe``).
+report (``as_dict``); the text for ``planmethod solve`` is the render layer's
+(:func:`planmethod.render.report_text.force_lines`).
 
 Examples
 --------
@@ -36,7 +37,8 @@ from ..model import Exercise, Mechanism
 from ..numbering import course_numbers
 from ..plans.scales import standard
 from ..vectors import norm
-from ..vocabulary import AppliedKind, numbered, point_text, subscript
+from ..vocabulary import AppliedKind, numbered
+from ..words import Message, message, render
 from .applied import AppliedLoads, applied_loads
 from .checks import ZhukovskyLever, power_moment, power_residual, zhukovsky_lever
 from .combined import (
@@ -74,7 +76,7 @@ class ForceSolution:
     power_moment: np.ndarray
     agreement: np.ndarray
     friction: FrictionResult | None
-    flags: tuple[str, ...]
+    flags: tuple[Message, ...]
 
     @property
     def reactions(self):
@@ -145,14 +147,15 @@ def solve_forces(motion: Motion, *, plans=None, file: str | None = None) -> Forc
     agreement = _relative_difference(groups, system, length)
     if np.any(agreement > AGREEMENT):
         index = int(np.argmax(agreement))
-        flags.append(f"the group method and the whole-system solve differ by "
-                     f"{float(agreement[index]):.3g} (relative) at crank angle "
-                     f"{float(angles[index]):g}°: an ill-conditioned position")
+        flags.append(message("the group method and the whole-system solve differ by "
+                             "{difference:.3g} (relative) at crank angle {angle:g}°: an "
+                             "ill-conditioned position", difference=float(agreement[index]),
+                             angle=float(angles[index])))
     lever = zhukovsky_lever(mechanism, states, applied, plans=plans)
     if not np.all(np.isfinite(lever.balancing_moment)):
         omega = numbered("ω", course_numbers(mechanism)[mechanism.drive.link])
-        flags.append(f"Zhukovsky's lever is undefined where the crank does not move "
-                     f"({omega} = 0): every image lies at the pole")
+        flags.append(message("Zhukovsky's lever is undefined where the crank does not move "
+                             "({omega} = 0): every image lies at the pole", omega=omega))
     power = power_residual(mechanism, states, applied, groups.balancing_moment)
     by_power = power_moment(mechanism, states, applied)
     return ForceSolution(mechanism, angles, applied, groups, system, lever, power, by_power,
@@ -199,42 +202,29 @@ class ForceAnalysis:
         return {key: reaction.take(0) for key, reaction in self.solution.reactions.items()}
 
     @property
-    def flags(self) -> tuple[str, ...]:
+    def flags(self) -> tuple[Message, ...]:
         return self.solution.flags
 
     # -- the report ------------------------------------------------------------------------
     def as_dict(self) -> dict:
         """The ``forces`` block of the JSON report (docs/kinetostatics.md), and what else was
-        computed."""
+        computed; its sentences (a group's steps, the flags) rendered in the language spoken,
+        with the forces by their report names."""
         solution = self.solution
-        out: dict = {"reactions": {}}
-        for key, reaction in self.reactions.items():
-            entry = {"from": reaction.source, "on": reaction.target,
-                     "force": _pair(reaction.force), "magnitude": float(reaction.magnitude),
-                     "point": _pair(reaction.point)}
-            if reaction.moment is not None:
-                entry["moment"] = float(reaction.moment)
-            out["reactions"][key] = entry
-        out["balancing_moment"] = self.balancing_moment
-        out["zhukovsky_moment"] = self.zhukovsky_moment
-        out["power_residual"] = self.power_residual
-        out["power_balance_moment"] = _number(solution.power_moment[0])
-        out["zhukovsky"] = self._zhukovsky_dict()
-        out["whole_system"] = _whole_system_dict(solution)
-        out["inertia"] = {link: _inertia_dict(item)
-                          for link, item in solution.applied.inertia.items()}
-        out["loads"] = [
-            {"name": item.name, "link": item.link, "kind": item.kind,
-             **({"point": _pair(item.point[0]), "force": _pair(item.force[0])}
-                if item.force is not None else {"moment": float(item.moment[0])})}
-            for item in solution.applied.items
-            if item.kind in (AppliedKind.LOAD, AppliedKind.FRICTION)]
-        out["groups"] = [{"name": g.name, "kind": g.kind, "links": list(g.links),
-                          "steps": list(g.steps), "reactions": list(g.reactions),
-                          **({"special_point": _pair(g.special_point[0])}
-                             if g.special_point is not None else {})}
-                         for g in solution.groups.groups]
-        out["scales"] = {"mu_f": self.mu_f}
+        out: dict = {"reactions": {key: _reaction_dict(reaction)
+                                   for key, reaction in self.reactions.items()},
+                     "balancing_moment": self.balancing_moment,
+                     "zhukovsky_moment": self.zhukovsky_moment,
+                     "power_residual": self.power_residual,
+                     "power_balance_moment": _number(solution.power_moment[0]),
+                     "zhukovsky": self._zhukovsky_dict(),
+                     "whole_system": _whole_system_dict(solution),
+                     "inertia": {link: _inertia_dict(item)
+                                 for link, item in solution.applied.inertia.items()},
+                     "loads": [_load_dict(item) for item in solution.applied.items
+                               if item.kind in (AppliedKind.LOAD, AppliedKind.FRICTION)],
+                     "groups": [_group_dict(group) for group in solution.groups.groups],
+                     "scales": {"mu_f": self.mu_f}}
         if self.combined is not None:
             out["combined_force"] = _combined_dict(self.combined)
         if self.constants is not None:
@@ -249,7 +239,7 @@ class ForceAnalysis:
                 "iterations": int(friction.iterations[0]),
                 "history": list(friction.history),
                 "losses_W": {key: float(value[0]) for key, value in friction.losses.items()}}
-        out["flags"] = list(self.flags)
+        out["flags"] = [render(flag) for flag in self.flags]
         return out
 
     def _zhukovsky_dict(self) -> dict:
@@ -266,91 +256,33 @@ class ForceAnalysis:
                            for f in lever.forces]}
 
 
-    def describe(self, notation) -> str:
-        """The force analysis as text (``planmethod solve``), in the course's notation.
+def _reaction_dict(reaction) -> dict:
+    """A pair's reaction at the angle: from, on, force, magnitude, point (and couple)."""
+    entry = {"from": reaction.source, "on": reaction.target,
+             "force": _pair(reaction.force), "magnitude": float(reaction.magnitude),
+             "point": _pair(reaction.point)}
+    if reaction.moment is not None:
+        entry["moment"] = float(reaction.moment)
+    return entry
 
-        Parameters
-        ----------
-        notation
-            Names this solution's forces and links as the course writes them (R₀₁, Fᵘ₂, link
-            2 (BC)): a :class:`planmethod.render.notation.ForceNotation` of ``self.solution``.
-        """
-        solution = self.solution
-        numbers = notation.numbers
-        crank = numbers.get(solution.mechanism.drive.link, 1)
-        omega = numbered("ω", crank)
 
-        def link(name: str) -> str:      # "2 (BC)" in a column headed "link"
-            return f"{notation.number(name)} ({name.replace('_', ' ')})"
+def _load_dict(item) -> dict:
+    """A given load or a friction force or moment at the first angle."""
+    if item.force is not None:
+        given = {"point": _pair(item.point[0]), "force": _pair(item.force[0])}
+    else:
+        given = {"moment": float(item.moment[0])}
+    return {"name": item.name, "link": item.link, "kind": item.kind, **given}
 
-        def sub(name: str) -> str:       # the link's number as a subscript (G₂, m₂, s₂)
-            return subscript(notation.number(name))
 
-        lines = [f"Kinetostatics (d'Alembert) at {numbered('φ', crank)} = {self.angle:g}°"]
-        if solution.applied.inertia:
-            width = max(len(link(name)) for name in solution.applied.inertia)
-            lines += [f"  {'link':<{width}}   m kg    J kg·m²   |a_S| m/s²   Fᵘ = −m·a_S (N)"
-                      "          Mᵘ = −J·ε N·m"]
-            for name, item in solution.applied.inertia.items():
-                a = float(norm(item.acceleration[0]))
-                f = item.force[0]
-                lines.append(f"  {link(name):<{width}} {item.mass:>6.4g} {item.J:>10.4g} "
-                             f"{a:>11.5g}   ({f[0]:>10.5g}, {f[1]:>10.5g})   "
-                             f"{float(item.moment[0]):>10.5g}")
-        for group in solution.groups.groups:
-            lines.append(f"  {notation.group_name(group)}:")
-            lines += [f"    {notation.line(step, group.links)}" for step in group.steps]
-        lines.append("  reaction  pair            Fx N         Fy N        |R| N     couple N·m")
-        for key, r in self.reactions.items():
-            couple = "" if r.moment is None else f"{float(r.moment):>12.6g}"
-            lines.append(f"  {notation.plain(f'R_{key}', r.target):<9} "
-                         f"{notation.pair_name(key):<10} "
-                         f"{float(r.force[0]):>11.6g} {float(r.force[1]):>11.6g} "
-                         f"{float(r.magnitude):>11.6g} {couple}".rstrip())
-        lines.append(f"  balancing moment M_b = {self.balancing_moment:.6g} N·m (group method)")
-        system = solution.system
-        lines.append(f"  whole-system solve ({system.equations} equations): M_b = "
-                     f"{float(system.balancing_moment[0]):.6g} N·m; largest difference "
-                     f"{float(solution.agreement[0]):.2g} (relative)")
-        z = self.zhukovsky_moment
-        lines.append("  Zhukovsky's lever (" + solution.lever.source + "): " + (
-            f"undefined ({omega} = 0)" if z is None else
-            f"M_b = {z:.6g} N·m, {z - self.balancing_moment:+.3g} from the group method"))
-        by_power = _number(solution.power_moment[0])
-        lines.append("  power balance: " + ("" if by_power is None else
-                                            f"M_b = −ΣP/{omega} = {by_power:.6g} N·m, ")
-                     + f"|ΣP|/Σ|P| = {self.power_residual:.2g}")
-        if solution.friction is not None:
-            lines.append(f"  friction: converged after {int(solution.friction.iterations[0])} "
-                         "iteration(s)")
-        if self.combined is not None:
-            c = self.combined
-            lines.append(f"  combined force Q = m·(g − a_S) (Aliyev): pole π moved down by "
-                         f"Z_g = g/μa = {c.gravity_image_mm:.4g} mm to π′")
-            for f in c.forces:
-                length = float(norm(np.asarray(f.segment_mm)))
-                lines.append(f"    {notation.link_name(f.link)}: (s{sub(f.link)}π′) = "
-                             f"{length:.4g} mm → |Q{sub(f.link)}| = "
-                             f"{float(norm(np.asarray(f.from_plan))):.6g} N")
-        if self.constants is not None and self.constants.force_moment is not None:
-            k = self.constants
-            lines.append(f"  constants for all positions (Aliyev): μF·μl = "
-                         f"{k.force_moment:.6g} N·m/mm²; "
-                         + ", ".join(f"m{sub(name)}·μa·μl = {value:.6g}"
-                                     for name, value in k.combined_moment.items())
-                         + " N·m/mm²")
-            if k.inertia_moment:
-                lines.append("    " + ", ".join(
-                    f"J{sub(name)}·μa/l_{''.join(map(point_text, entry['points']))} = "
-                    f"{entry['constant']:.6g}"
-                    for name, entry in k.inertia_moment.items()) + " N·m/mm")
-        for sense in self.epsilon:
-            word = {1: "counter-clockwise", -1: "clockwise", 0: "zero", None: "undefined"}
-            lines.append(f"  {numbered('ε', notation.number(sense.link))} by the plan's rule: "
-                         f"{word[sense.rule]} (exact: {word[sense.exact]})")
-        if self.flags:
-            lines += [f"  ! {notation.line(flag)}" for flag in self.flags]
-        return "\n".join(lines)
+def _group_dict(group) -> dict:
+    """A group's solve: its kind, links, steps (rendered), reactions and special point."""
+    out = {"name": group.name, "kind": group.kind, "links": list(group.links),
+           "steps": [render(step) for step in group.steps],
+           "reactions": list(group.reactions)}
+    if group.special_point is not None:
+        out["special_point"] = _pair(group.special_point[0])
+    return out
 
 
 def _whole_system_dict(solution) -> dict:
@@ -395,8 +327,7 @@ def _constants_dict(constants) -> dict:
     return {"mu_f_mu_l": constants.force_moment, "mu_f": constants.mu_f,
             "mu_l": constants.mu_l, "mu_a": constants.mu_a,
             "m_mu_a_mu_l": dict(constants.combined_moment),
-            "J_mu_a_over_l": {link: {name: (list(value) if isinstance(value, tuple) else value)
-                                     for name, value in entry.items()}
+            "J_mu_a_over_l": {link: entry.as_dict()
                               for link, entry in constants.inertia_moment.items()}}
 
 
@@ -454,8 +385,9 @@ def force_columns(exercise: Exercise) -> Callable[[Motion], Mapping[str, np.ndar
     """
     mechanism = exercise.mechanism
     if not mechanism.masses and not mechanism.loads:
-        raise SpecError("defines no forces (no [mass.…] and no [[load]] tables): there is "
-                        "nothing to sweep with --forces", file=exercise.source)
+        raise SpecError(message("defines no forces (no [mass.…] and no [[load]] tables): "
+                                "there is nothing to sweep with --forces"),
+                        file=exercise.source)
 
     def columns(motion: Motion) -> dict[str, np.ndarray]:
         solution = solve_forces(motion, file=exercise.source)

@@ -43,6 +43,8 @@ from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
 from ..vectors import cross, dot, norm
 from ..vocabulary import AppliedKind
+from ..words import Message, message
+from .names import ForceName, crank_angles
 
 __all__ = [
     "AppliedItem",
@@ -154,7 +156,7 @@ class AppliedLoads:
 
     items: tuple[AppliedItem, ...]
     inertia: Mapping[str, Inertia]
-    flags: tuple[str, ...]
+    flags: tuple[Message, ...]
     count: int
 
     def wrenches(self, links) -> dict[str, Wrench]:
@@ -195,15 +197,13 @@ def _speed_scale(mechanism: Mechanism, states: Mapping[str, LinkState]) -> float
     return max(abs(drive.omega) * radius, 1e-300)
 
 
-def _at_rest(angles: np.ndarray | None, resting: np.ndarray) -> str:
-    """The first crank angles where something is at rest, as a message quotes them."""
-    if angles is None:
-        return ""
-    return ", ".join(f"{a:g}°" for a in np.asarray(angles)[resting][:5])
+def _at_rest(angles: np.ndarray, resting: np.ndarray) -> list[Message]:
+    """The first crank angles where something is at rest, as a flag quotes them."""
+    return crank_angles(np.asarray(angles)[resting][:5])
 
 
 def _given_moment(mechanism: Mechanism, load, state: LinkState, count: int,
-                 angles: np.ndarray | None, flags: list[str]) -> AppliedItem:
+                 angles: np.ndarray | None, flags: list[Message]) -> AppliedItem:
     """A given moment on a link; with ``oppose_velocity`` its magnitude against the link's ω
     (as given, and flagged, where the link is at rest)."""
     name = f"load[{load.index}]"
@@ -212,15 +212,18 @@ def _given_moment(mechanism: Mechanism, load, state: LinkState, count: int,
         omega = np.broadcast_to(np.asarray(state.omega, float), (count,))
         turning = np.abs(omega) > REST_SPEED * max(abs(mechanism.drive.omega), 1e-300)
         moment = np.where(turning, -abs(float(load.moment)) * np.sign(omega), moment)
-        if not np.all(turning):
-            at = _at_rest(angles, ~turning)
-            flags.append(f"{name} on {load.link}: the link is at rest"
-                         f"{f' (crank angle {at})' if at else ''}, the moment acts as given")
+        if not np.all(turning) and angles is None:
+            flags.append(message("{load} on {link}: the link is at rest, the moment acts as "
+                                 "given", load=ForceName(name), link=load.link))
+        elif not np.all(turning):
+            flags.append(message("{load} on {link}: the link is at rest (crank angle "
+                                 "{angles}), the moment acts as given", load=ForceName(name),
+                                 link=load.link, angles=_at_rest(angles, ~turning)))
     return AppliedItem(load.link, name, AppliedKind.LOAD, moment=moment)
 
 
 def _given_force(mechanism: Mechanism, load, state: LinkState, count: int, rest: float,
-                angles: np.ndarray | None, flags: list[str]) -> AppliedItem:
+                angles: np.ndarray | None, flags: list[Message]) -> AppliedItem:
     """A given force at a point of a link; with ``oppose_velocity`` its magnitude against the
     point's velocity (as given, and flagged, where the point is at rest: speed ≤ ``rest``)."""
     name = f"load[{load.index}]"
@@ -235,11 +238,15 @@ def _given_force(mechanism: Mechanism, load, state: LinkState, count: int, rest:
         with np.errstate(divide="ignore", invalid="ignore"):
             against = -magnitude * velocity / np.where(moving, speed, 1.0)[..., None]
         force = np.where(moving[..., None], against, force)
-        if not np.all(moving):
-            at = _at_rest(angles, ~moving)
-            flags.append(f"{name} on {load.link} at {load.point}: the point is at rest"
-                         f"{f' (crank angle {at})' if angles is not None else ''}, the force "
-                         "acts as given")
+        if not np.all(moving) and angles is None:
+            flags.append(message("{load} on {link} at {point}: the point is at rest, the "
+                                 "force acts as given", load=ForceName(name), link=load.link,
+                                 point=load.point))
+        elif not np.all(moving):
+            flags.append(message("{load} on {link} at {point}: the point is at rest (crank "
+                                 "angle {angles}), the force acts as given",
+                                 load=ForceName(name), link=load.link, point=load.point,
+                                 angles=_at_rest(angles, ~moving)))
     return AppliedItem(load.link, name, AppliedKind.LOAD, point, force, local=local,
                        label=load.point)
 
@@ -267,7 +274,7 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
     gravity = mechanism.gravity or 0.0
     items: list[AppliedItem] = []
     inertia: dict[str, Inertia] = {}
-    flags: list[str] = []
+    flags: list[Message] = []
     for link, props in mechanism.masses.items():
         if link not in states:
             continue
@@ -289,7 +296,8 @@ def applied_loads(mechanism: Mechanism, states: Mapping[str, LinkState], *,
             items.append(_given_moment(mechanism, load, states[load.link], count, angles, flags))
             continue
         if load.point not in mechanism.links[load.link].points:
-            raise SpecError(f"'{load.point}' is not a point of '{load.link}'", file=file,
+            raise SpecError(message("'{point}' is not a point of '{link}'", point=load.point,
+                                    link=load.link), file=file,
                             key=f"load[{load.index}].point")
         items.append(_given_force(mechanism, load, states[load.link], count, rest, angles,
                                  flags))

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from enum import StrEnum
 
 import numpy as np
 
@@ -38,26 +39,43 @@ from ..model import FRAME, Mechanism
 from ..vectors import cross, dot, perp
 from .applied import AppliedItem, AppliedLoads
 
-__all__ = ["LeverForce", "ZhukovskyLever", "power_moment", "power_residual", "zhukovsky_lever"]
+__all__ = ["LeverForce", "VelocitySource", "ZhukovskyLever", "power_moment", "power_residual",
+           "zhukovsky_lever"]
+
+
+class VelocitySource(StrEnum):
+    """Whose velocities the lever was built from (the JSON report's ``zhukovsky.source``)."""
+
+    PLAN = "velocity plan"
+    EXACT = "exact velocities"
 
 
 @dataclass(frozen=True, slots=True)
 class LeverForce:
-    """One force on the lever: its name, the image of its point on the turned velocity plan
-    (mm, pole at 0, 0), the force (N) and its moment about the pole (N·mm)."""
+    """One force on the lever: the known force or couple it carries (``source``: its report
+    name), the image of its point on the turned velocity plan (mm, pole at 0, 0), the force
+    (N) and its moment about the pole (N·mm). A couple is carried as a pair of forces, each
+    at a ``point`` of its link (None for any other force)."""
 
-    name: str
+    source: str
     link: str
     image_mm: np.ndarray
     force: np.ndarray
     moment: np.ndarray
+    point: str | None = None
+
+    @property
+    def name(self) -> str:
+        """Its name in the JSON report: the source's, with the point of a couple's force
+        (``M_u,BC at C``)."""
+        return self.source if self.point is None else f"{self.source} at {self.point}"
 
 
 @dataclass(frozen=True, slots=True)
 class ZhukovskyLever:
     """The lever's forces, the balancing force F_b at the drive's scale point (⟂ the crank),
-    and the balancing moment M_b = F_b·l it gives. ``source`` says whose velocities were used:
-    ``velocity plan`` or ``exact velocities``."""
+    and the balancing moment M_b = F_b·l it gives. ``source`` says whose velocities were used
+    (:class:`VelocitySource`)."""
 
     forces: tuple[LeverForce, ...]
     balancing_force: np.ndarray
@@ -65,7 +83,7 @@ class ZhukovskyLever:
     balancing_image_mm: np.ndarray
     balancing_moment: np.ndarray
     mu_v: float
-    source: str
+    source: VelocitySource
 
 
 class _Velocities:
@@ -118,15 +136,16 @@ def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
             mu_v = abs(drive.omega) * link.length(drive.pivot, scale_point) / 40.0 or 1.0
     forces: list[LeverForce] = []
 
-    def carry(item: AppliedItem, name: str, point: np.ndarray, force: np.ndarray) -> None:
+    def carry(item: AppliedItem, point: np.ndarray, force: np.ndarray,
+              at: str | None = None) -> None:
         image = _turned(velocities.at(item.link, point), mu_v)
-        forces.append(LeverForce(name, item.link, image, force, cross(image, force)))
+        forces.append(LeverForce(item.name, item.link, image, force, cross(image, force), at))
 
     for item in applied.items:
         if item.link == FRAME:
             continue
         if item.force is not None:
-            carry(item, item.name, item.point, item.force)
+            carry(item, item.point, item.force)
             continue
         points = list(mechanism.links[item.link].points)
         state = states[item.link]
@@ -134,8 +153,8 @@ def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
             first, second = (state.place(mechanism.local(item.link, p)) for p in points[:2])
             arm = second - first
             pair = (item.moment / dot(arm, arm))[..., None] * perp(arm)
-            carry(item, f"{item.name} at {points[1]}", second, pair)
-            carry(item, f"{item.name} at {points[0]}", first, -pair)
+            carry(item, second, pair, points[1])
+            carry(item, first, -pair, points[0])
         else:  # a one-point link: the couple's lever moment is M·ω/μv
             moment = item.moment * velocities.omega(item.link) / mu_v
             forces.append(LeverForce(item.name, item.link, np.zeros_like(state.origin),
@@ -154,7 +173,7 @@ def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
                              np.nan)
     return ZhukovskyLever(tuple(forces), balancing[..., None] * direction, scale_point, image,
                           balancing, float(mu_v),
-                          "velocity plan" if plans is not None else "exact velocities")
+                          VelocitySource.PLAN if plans is not None else VelocitySource.EXACT)
 
 
 def power_residual(mechanism: Mechanism, states: Mapping[str, LinkState],

@@ -38,7 +38,8 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -47,7 +48,7 @@ from ..vectors import cross, norm, perp
 from .applied import AppliedLoads
 
 __all__ = ["CombinedConstants", "CombinedConstruction", "CombinedForce", "EpsilonSense",
-           "combined_constants", "combined_construction", "epsilon_senses"]
+           "InertiaConstant", "combined_constants", "combined_construction", "epsilon_senses"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -90,6 +91,28 @@ class EpsilonSense:
 
 
 @dataclass(frozen=True, slots=True)
+class InertiaConstant:
+    """A link's constant J·μa/l of Aliyev's eq. 3: the two points whose distance is l, l
+    (m), the constant (N·m/mm), the exact inertia moment −J·ε (N·m) and, with an
+    acceleration plan, Z_T (mm) and the inertia moment read off the plan with it (N·m)."""
+
+    points: tuple[str, str]
+    length: float
+    constant: float
+    exact_moment: float
+    z_t_mm: float | None = None
+    from_plan: float | None = None
+
+    def as_dict(self) -> dict:
+        """The JSON report's ``constants.J_mu_a_over_l`` entry of the link."""
+        out = {"points": list(self.points), "length": self.length, "constant": self.constant,
+               "exact_moment": self.exact_moment}
+        if self.z_t_mm is not None:
+            out |= {"Z_T_mm": self.z_t_mm, "from_plan": self.from_plan}
+        return out
+
+
+@dataclass(frozen=True, slots=True)
 class CombinedConstants:
     """Aliyev's constants: μF·μl for every force, and per link m·μa·μl and J·μa/l (with the
     two points whose distance is l), and the inertia moment read off the plan by eq. 3 with
@@ -99,8 +122,8 @@ class CombinedConstants:
     mu_l: float
     mu_a: float
     force_moment: float | None
-    combined_moment: dict
-    inertia_moment: dict
+    combined_moment: Mapping[str, float]
+    inertia_moment: Mapping[str, InertiaConstant]
 
 
 def _image(plans, link: str, position: np.ndarray):
@@ -207,14 +230,14 @@ def combined_constants(plans, applied: AppliedLoads,
         length = mechanism.links[link].length(*pair)
         constant = inertia.J * mu_a / length
         epsilon = float(inertia.epsilon[0])
-        entry = {"points": pair, "length": length, "constant": constant,
-                 "exact_moment": -inertia.J * epsilon}
+        entry = InertiaConstant(pair, length, constant, -inertia.J * epsilon)
         if plans.acceleration is not None:
             read = plans.epsilon(link)
             if read is None:
                 read = epsilon
             z_t = abs(read) * length / mu_a
-            entry |= {"Z_T_mm": z_t, "from_plan": float(-np.sign(read) * z_t * constant)}
+            entry = replace(entry, z_t_mm=z_t,
+                            from_plan=float(-np.sign(read) * z_t * constant))
         inertia_moment[link] = entry
     return CombinedConstants(mu_f, mu_l, mu_a, None if mu_f is None else mu_f * mu_l, combined,
                              inertia_moment)

@@ -46,8 +46,10 @@ from ..model import Mechanism
 from ..structure import Structure
 from ..vectors import dot, norm, unit_angle
 from ..vocabulary import AppliedKind, PairKind
+from ..words import Message, message
 from .applied import REST_SPEED, AppliedItem, AppliedLoads
 from .group_method import GroupSolution, solve_by_groups
+from .names import crank_angles
 
 __all__ = ["FrictionResult", "FrictionSettings", "friction_items", "friction_settings",
            "solve_with_friction"]
@@ -93,7 +95,7 @@ class FrictionResult:
     items: tuple[AppliedItem, ...]
     iterations: np.ndarray
     history: tuple[float, ...]
-    flags: tuple[str, ...]
+    flags: tuple[Message, ...]
     losses: Mapping[str, np.ndarray]
     #: per pair with friction, the sense of the relative motion (+1, −1, 0 at rest): the
     #: friction load, and the reactions with it, jump where it changes
@@ -104,16 +106,19 @@ def _sense(relative: np.ndarray, rest: float) -> np.ndarray:
     return np.where(np.abs(relative) > rest, np.sign(relative), 0.0)
 
 
-def _where(mask: np.ndarray, angles) -> str:
+def _where(mask: np.ndarray, angles) -> Message:
+    """Where a pair is at rest, as its flag says it: its first four crank angles."""
     if angles is None:
-        return "at some angles"
-    shown = ", ".join(f"{a:g}°" for a in np.asarray(angles)[mask][:4])
-    return f"at crank angle {shown}{'…' if int(mask.sum()) > 4 else ''}"
+        return message("at some angles")
+    shown = crank_angles(np.asarray(angles)[mask][:4])
+    if int(mask.sum()) > 4:
+        return message("at crank angle {angles}…", angles=shown)
+    return message("at crank angle {angles}", angles=shown)
 
 
 def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], solution: GroupSolution,
                    settings: FrictionSettings, angles=None
-                   ) -> tuple[list[AppliedItem], dict, list[str], dict]:
+                   ) -> tuple[list[AppliedItem], dict, list[Message], dict]:
     """Friction moments and forces from the reactions of ``solution``: (items, power lost per
     pair, flags, sense of the relative motion per pair)."""
     drive = mechanism.drive
@@ -124,7 +129,7 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
     items: list[AppliedItem] = []
     losses: dict[str, np.ndarray] = {}
     senses: dict[str, np.ndarray] = {}
-    flags: list[str] = []
+    flags: list[Message] = []
     for key, reaction in solution.reactions.items():
         on, source = states[reaction.target], states[reaction.source]
         if reaction.kind is PairKind.REVOLUTE:
@@ -141,8 +146,9 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
             losses[key] = moment * relative
             senses[key] = sense
             if np.any(sense == 0):
-                flags.append(f"pair {key}: no relative rotation {_where(sense == 0, angles)}"
-                             ", friction taken as zero there")
+                flags.append(message("pair {pair}: no relative rotation {where}, friction "
+                                     "taken as zero there", pair=key,
+                                     where=_where(sense == 0, angles)))
             continue
         slide = reaction.slide
         f, _ = settings.lookup(key, slide.point)
@@ -162,8 +168,8 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
         losses[key] = dot(force, d) * v_rel
         senses[key] = sense
         if np.any(sense == 0):
-            flags.append(f"pair {key}: no relative sliding {_where(sense == 0, angles)}, "
-                         "friction taken as zero there")
+            flags.append(message("pair {pair}: no relative sliding {where}, friction taken "
+                                 "as zero there", pair=key, where=_where(sense == 0, angles)))
     return items, losses, flags, senses
 
 
@@ -189,7 +195,7 @@ def solve_with_friction(mechanism: Mechanism, structure: Structure,
     items: list[AppliedItem] = []
     losses: dict = {}
     senses: dict = {}
-    flags: list[str] = []
+    flags: list[Message] = []
     for iteration in range(1, settings.max_iterations + 1):
         items, losses, flags, senses = friction_items(mechanism, states, solution, settings,
                                                angles)
@@ -220,7 +226,8 @@ def solve_with_friction(mechanism: Mechanism, structure: Structure,
     index = int(np.flatnonzero(~done)[0])
     angle = None if angles is None else float(np.asarray(angles)[index])
     raise ConvergenceError(
-        f"the friction iteration did not converge in {settings.max_iterations} iterations: "
-        f"the reactions still change by {history[-1]:.3g} of the largest (tolerance "
-        f"{settings.tolerance:g})", residual=history[-1], angle=angle,
-        link=", ".join(mechanism.moving_links))
+        message("the friction iteration did not converge in {count} iterations: the "
+                "reactions still change by {change:.3g} of the largest (tolerance "
+                "{tolerance:g})", count=settings.max_iterations, change=history[-1],
+                tolerance=settings.tolerance),
+        residual=history[-1], angle=angle, link=", ".join(mechanism.moving_links))

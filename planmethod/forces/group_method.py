@@ -41,9 +41,11 @@ from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
 from ..vectors import cross, norm, perp, unit_angle
 from ..vocabulary import EdgeKind, GroupKind, PairKind
+from ..words import Message, message
 from .applied import AppliedLoads, Wrench
 from .groups import reactions_of
 from .groups.base import GroupForces, PolygonEdge
+from .names import BALANCING_MOMENT, ForceName, LinkNumber
 from .reactions import Reaction, canonical, pair_key
 from .system import group_linear_reactions
 
@@ -89,14 +91,15 @@ class _Solver:
         d = unit_angle(self.states[slide.along].theta + slide.direction_rad)
         return d, perp(d), self.at(slide.link, slide.point)
 
-    def singular(self, value: np.ndarray, scale, group: str, what: str) -> None:
+    def singular(self, value: np.ndarray, scale, group: str, what: Message) -> None:
         bad = ~(np.abs(value) > SINGULAR_SINE * scale)
         if np.any(bad):
             index = int(np.flatnonzero(bad)[0])
             angle = None if self.angles is None else float(self.angles[index])
-            raise ForceError(f"the force system is singular: {what}", link=group, angle=angle)
+            raise ForceError(message("the force system is singular: {why}", why=what),
+                             link=group, angle=angle)
 
-    def solve2(self, e1, e2, w, group: str, what: str):
+    def solve2(self, e1, e2, w, group: str, what: Message):
         """u1·e1 + u2·e2 = w (Cramer)."""
         det = cross(e1, e2)
         self.singular(det, norm(e1) * norm(e2), group, what)
@@ -157,8 +160,9 @@ class _Solver:
                 edges.append(PolygonEdge(f"R_{key}", vector, EdgeKind.REACTION,
                                          reaction.target if reaction.target in group.links
                                          else reaction.source))
-        steps = (f"{group.kind} of links {', '.join(group.links)}: its 3·{len(group.links)} "
-                 "equilibrium equations solved at once (the group's linear system)",)
+        steps = (message("{kind} of links {links}: its 3·{count} equilibrium equations solved "
+                         "at once (the group's linear system)", kind=str(group.kind),
+                         links=list(group.links), count=len(group.links)),)
         return GroupForces(group.name, group.kind, group.links, steps, tuple(edges),
                            tuple(keys))
 
@@ -173,8 +177,10 @@ class _Solver:
         edges = [*self.known_edges((link,)),
                  PolygonEdge(f"R_{drive.pivot}", reaction, EdgeKind.REACTION, link)]
         key = self.record(joint, (link,), link, FRAME, pivot, reaction).key
-        steps = (f"M_b from ΣM_{drive.pivot}({link}) = 0",
-                 f"R_{drive.pivot} from the force polygon of {link}")
+        steps = (message("{moment} from ΣM_{pivot}({link}) = 0", moment=BALANCING_MOMENT,
+                         pivot=drive.pivot, link=LinkNumber(link)),
+                 message("{reaction} from the force polygon of {link}",
+                         reaction=ForceName(f"R_{drive.pivot}"), link=link))
         return balancing, GroupForces(link, GroupKind.DRIVE, (link,), steps, tuple(edges), (key,))
 
 

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -38,9 +39,11 @@ from ..kinematics import choose_branches, solve
 from ..model import Exercise, Load
 from ..numbering import course_numbers
 from ..vocabulary import QUANTITY_KINDS, numbered
+from ..words import Message, message
 from .analysis import solve_forces
 
-__all__ = ["NOT_SIGNIFICANT", "Parameter", "Study", "moment_load", "run_study", "study_variant"]
+__all__ = ["NOT_SIGNIFICANT", "Conclusion", "Parameter", "Study", "moment_load", "run_study",
+           "study_variant"]
 
 #: a relative change of the largest reactions below this counts as "not significant"
 NOT_SIGNIFICANT = 0.05
@@ -52,20 +55,29 @@ MOMENTS = (80.0, 100.0, 120.0, 140.0, 160.0)
 
 @dataclass(frozen=True, slots=True)
 class Parameter:
-    """A parameter the study steps: its name, its label in words with its symbol (``rocker
-    weight G₃``: the symbol carries the link's number in the course's notation), unit, the
-    values and the base case's value."""
+    """A parameter the study steps: its name, its label in words with its symbol as the
+    field ``symbol`` (``rocker weight G₃``: the symbol carries the link's number in the
+    course's notation), unit, the values and the base case's value."""
 
     name: str
-    label: str
-    unit: str
+    label: Message
+    unit: Message | str
     values: tuple[float, ...]
     base: float
 
     @property
     def symbol(self) -> str:
-        """The symbol the label ends with (G₃, ω₁, Mc)."""
-        return self.label.rpartition(" ")[2]
+        """The symbol its label names (G₃, ω₁, Mc)."""
+        return self.label.field("symbol")
+
+
+class Conclusion(NamedTuple):
+    """One of the paper's conclusions put to the numbers: the paper's statement, whether the
+    numbers support it, and the numbers that say so."""
+
+    statement: Message
+    confirmed: bool
+    evidence: Message
 
 
 @dataclass(frozen=True)
@@ -77,9 +89,9 @@ class Study:
     rocker: str
     parameters: tuple[Parameter, ...]
     pairs: tuple[str, ...]
-    values: dict
-    maxima: dict
-    balancing: dict
+    values: Mapping[str, np.ndarray]
+    maxima: Mapping[str, Mapping[str, np.ndarray]]
+    balancing: Mapping[str, np.ndarray]
 
     def relative_change(self, name: str, pair: str | None = None) -> float:
         """(max − min)/min of the largest reaction over the parameter's range (of ``pair``, or
@@ -91,44 +103,56 @@ class Study:
             changes.append(float((values.max() - values.min()) / values.min()))
         return max(changes)
 
-    def base_text(self) -> str:
-        return ", ".join(f"{p.label} = {p.base:g} {p.unit}" for p in self.parameters)
+    def base_values(self) -> list[Message]:
+        """The base case, parameter by parameter (``rocker weight G₃ = 60 N``)."""
+        return [message("{label} = {value:g} {unit}", label=p.label, value=p.base, unit=p.unit)
+                for p in self.parameters]
 
-    def conclusions(self, names: Mapping[str, str] | None = None
-                    ) -> list[tuple[str, bool, str]]:
-        """The paper's two conclusions: (statement, confirmed?, the numbers); ``names`` are
-        the pairs' reactions as the course writes them (R₀₁ for the pair A)."""
-        names = names or {}
+    def conclusions(self, names: Mapping[str, str] | None = None) -> list[Conclusion]:
+        """The paper's two conclusions against the numbers; ``names`` are the pairs'
+        reactions as the course writes them (R₀₁ for the pair A)."""
+        return [self._weight_conclusion(), self._moment_conclusion(names or {})]
+
+    def _weight_conclusion(self) -> Conclusion:
+        """"The weight of the rocker does not significantly affect the reactions"."""
         weight = self.relative_change("weight")
+        parameter = self._parameter("weight")
+        return Conclusion(
+            message("The weight of the rocker does not significantly affect the reactions"),
+            weight <= NOT_SIGNIFICANT,
+            message("over {symbol} = {first:g}…{last:g} {unit} the largest reactions change by "
+                    "up to {change:.1f} % (threshold {threshold:g} %; {symbol} also sets the "
+                    "rocker's mass, so its inertia grows with it)", symbol=parameter.symbol,
+                    first=parameter.values[0], last=parameter.values[-1],
+                    unit=parameter.unit, change=100 * weight,
+                    threshold=100 * NOT_SIGNIFICANT))
+
+    def _moment_conclusion(self, names: Mapping[str, str]) -> Conclusion:
+        """"The resisting moment Mc has the greatest influence on the reactions"."""
         changes = {p.name: self.relative_change(p.name) for p in self.parameters}
         labels = {p.name: p.label for p in self.parameters}
-        symbols = {p.name: p.symbol for p in self.parameters}
-        first = ("The weight of the rocker does not significantly affect the reactions",
-                 weight <= NOT_SIGNIFICANT,
-                 f"over {symbols['weight']} = {_span(self, 'weight')} the largest reactions "
-                 f"change by up to {100 * weight:.1f} % (threshold "
-                 f"{100 * NOT_SIGNIFICANT:g} %; {symbols['weight']} also sets the rocker's "
-                 "mass, so its inertia grows with it)")
-        strongest = max(changes, key=changes.get)
-        ranking = ", ".join(f"{labels[name]} {100 * value:.0f} %"
-                            for name, value in sorted(changes.items(), key=lambda kv: -kv[1]))
-        per_pair = ", ".join(
-            f"{names.get(pair, pair)}: "
-            f"{labels[max(changes, key=lambda n, p=pair: self.relative_change(n, p))]}"
-            for pair in self.pairs)
-        second = ("The resisting moment Mc has the greatest influence on the reactions",
-                  strongest == "moment",
-                  f"largest change of the maximum reactions over each range: {ranking} "
-                  f"(most influential per pair — {per_pair}); against {symbols['weight']} "
-                  "alone Mc "
-                  f"{'changes them more' if changes['moment'] > changes['weight'] else 'does not'}"
-                  )
-        return [first, second]
+        ranking = [message("{label} {change:.0f} %", label=labels[name], change=100 * value)
+                   for name, value in sorted(changes.items(), key=lambda kv: -kv[1])]
+        per_pair = [message("{reaction}: {label}", reaction=names.get(pair, pair), label=labels[
+            max(changes, key=lambda n, p=pair: self.relative_change(n, p))])
+            for pair in self.pairs]
+        symbol = self._parameter("weight").symbol
+        if changes["moment"] > changes["weight"]:
+            evidence = message("largest change of the maximum reactions over each range: "
+                               "{ranking} (most influential per pair — {per_pair}); against "
+                               "{symbol} alone Mc changes them more", ranking=ranking,
+                               per_pair=per_pair, symbol=symbol)
+        else:
+            evidence = message("largest change of the maximum reactions over each range: "
+                               "{ranking} (most influential per pair — {per_pair}); against "
+                               "{symbol} alone Mc does not", ranking=ranking,
+                               per_pair=per_pair, symbol=symbol)
+        return Conclusion(
+            message("The resisting moment Mc has the greatest influence on the reactions"),
+            max(changes, key=changes.get) == "moment", evidence)
 
-
-def _span(study: Study, name: str) -> str:
-    parameter = next(p for p in study.parameters if p.name == name)
-    return f"{parameter.values[0]:g}…{parameter.values[-1]:g} {parameter.unit}"
+    def _parameter(self, name: str) -> Parameter:
+        return next(p for p in self.parameters if p.name == name)
 
 
 def moment_load(exercise: Exercise, rocker: str | None) -> tuple[int, Load]:
@@ -151,8 +175,11 @@ def moment_load(exercise: Exercise, rocker: str | None) -> tuple[int, Load]:
     for index, load in enumerate(loads):
         if load.moment is not None and (rocker is None or load.link == rocker):
             return index, load
-    raise SpecError("the study needs a resisting moment on the rocker: a [[load]] with "
-                    f"`moment` on {rocker or 'a link'}", file=exercise.source, key="load")
+    if rocker is None:
+        raise SpecError(message("the study needs a resisting moment on the rocker: a [[load]] "
+                                "with `moment` on a link"), file=exercise.source, key="load")
+    raise SpecError(message("the study needs a resisting moment on the rocker: a [[load]] with "
+                            "`moment` on {link}", link=rocker), file=exercise.source, key="load")
 
 
 def study_variant(exercise: Exercise, rocker: str, index: int, *, weight: float, omega: float,
@@ -181,6 +208,24 @@ def study_variant(exercise: Exercise, rocker: str, index: int, *, weight: float,
                                                drive=drive))
 
 
+def _parameters(mechanism, rocker: str, base: Mapping[str, float],
+                values: tuple[Sequence[float], Sequence[float], Sequence[float]]
+                ) -> tuple[Parameter, ...]:
+    """The rocker weight G, the crank speed ω and the resisting moment Mc, each with the
+    ``values`` it steps over and its ``base`` value; G and ω carry their links' numbers."""
+    numbers = course_numbers(mechanism)
+    weights, omegas, moments = values
+    return (Parameter("weight", message("rocker weight {symbol}",
+                                        symbol=numbered("G", numbers[rocker])),
+                      message("N", context="unit"), tuple(weights), base["weight"]),
+            Parameter("omega", message("crank speed {symbol}",
+                                       symbol=numbered("ω", numbers[mechanism.drive.link])),
+                      QUANTITY_KINDS["omega"].unit,     # words: vocabulary
+                      tuple(omegas), base["omega"]),
+            Parameter("moment", message("resisting moment {symbol}", symbol="Mc"),
+                      message("N·m", context="unit"), tuple(moments), base["moment"]))
+
+
 def run_study(exercise: Exercise, *, rocker: str | None = None,
               weights: Sequence[float] = WEIGHTS, omegas: Sequence[float] = OMEGAS,
               moments: Sequence[float] = MOMENTS, step: float = 2.0) -> Study:
@@ -196,24 +241,18 @@ def run_study(exercise: Exercise, *, rocker: str | None = None,
     index, load = moment_load(exercise, rocker)
     rocker = load.link
     if not mechanism.gravity:
-        raise SpecError("the study varies the rocker's weight: give [gravity]",
+        raise SpecError(message("the study varies the rocker's weight: give [gravity]"),
                         file=exercise.source, key="gravity")
     if rocker not in mechanism.masses:
-        raise SpecError(f"the rocker {rocker} needs a mass ([mass.{rocker}])",
+        raise SpecError(message("the rocker {link} needs a mass ([mass.{link}])", link=rocker),
                         file=exercise.source, key=f"mass.{rocker}")
     for name, values in (("weights", weights), ("omegas", omegas), ("moments", moments)):
         if not values or any(not (np.isfinite(v) and v > 0) for v in values):
-            raise SpecError(f"the study's {name} must be positive numbers, got {list(values)}")
+            raise SpecError(message("the study's {name} must be positive numbers, got "
+                                    "{values}", name=name, values=str(list(values))))
     base = {"weight": mechanism.masses[rocker].m * mechanism.gravity,
             "omega": mechanism.drive.omega, "moment": abs(load.moment)}
-    numbers = course_numbers(mechanism)
-    parameters = (Parameter("weight", f"rocker weight {numbered('G', numbers[rocker])}", "N",
-                            tuple(weights), base["weight"]),
-                  Parameter("omega", f"crank speed {numbered('ω', numbers[mechanism.drive.link])}",
-                            QUANTITY_KINDS["omega"].unit,
-                            tuple(omegas), base["omega"]),
-                  Parameter("moment", "resisting moment Mc", "N·m", tuple(moments),
-                            base["moment"]))
+    parameters = _parameters(mechanism, rocker, base, (weights, omegas, moments))
     branches = choose_branches(mechanism)
     angles = np.arange(0.0, 360.0, step)
     positions = None

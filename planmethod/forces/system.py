@@ -41,6 +41,7 @@ from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
 from ..vectors import cross
 from ..vocabulary import PairKind
+from ..words import Message, message
 from .applied import AppliedLoads, Wrench
 from .reactions import Reaction, canonical, pair_key
 
@@ -76,7 +77,7 @@ def _generalized(wrench: Wrench, state: LinkState) -> np.ndarray:
 
 def _solve(mechanism: Mechanism, joints: Sequence[Joint], unknown: Sequence[str],
            states: Mapping[str, LinkState], wrenches: Mapping[str, Wrench],
-           angles, where: str, drive: bool):
+           angles, where: Message | str, link: str, drive: bool):
     system = ConstraintSystem(mechanism, tuple(_constraint(j) for j in joints), tuple(unknown))
     matrix, _ = system.jacobian(states)
     count = matrix.shape[0]
@@ -86,8 +87,9 @@ def _solve(mechanism: Mechanism, joints: Sequence[Joint], unknown: Sequence[str]
         matrix = np.concatenate((matrix, row), axis=1)
     rows, cols = matrix.shape[1:]
     if rows != cols:
-        raise ForceError(f"the force system of {where} has {rows} equations for {cols} "
-                         "unknowns", link=where)
+        raise ForceError(message("the force system of {system} has {rows} equations for "
+                                 "{columns} unknowns", system=where, rows=rows, columns=cols),
+                         link=link)
     load = np.concatenate([_generalized(wrenches[link], states[link]) for link in unknown],
                           axis=-1)
     transposed = np.swapaxes(matrix, 1, 2)
@@ -97,9 +99,10 @@ def _solve(mechanism: Mechanism, joints: Sequence[Joint], unknown: Sequence[str]
     if np.any(bad):
         index = int(np.flatnonzero(bad)[0])
         angle = None if angles is None else float(np.asarray(angles)[index])
-        raise ForceError(f"the force system of {where} is singular (reciprocal condition "
-                         f"number {float(rcond[index]):.3g}): the mechanism is in a toggle "
-                         "position", link=where, angle=angle)
+        raise ForceError(message("the force system of {system} is singular (reciprocal "
+                                 "condition number {rcond:.3g}): the mechanism is in a toggle "
+                                 "position", system=where, rcond=float(rcond[index])),
+                         link=link, angle=angle)
     multipliers = np.linalg.solve(transposed, load[..., None])[..., 0]
     return system, matrix, multipliers, rcond
 
@@ -157,7 +160,8 @@ def solve_whole_system(mechanism: Mechanism, structure: Structure,
     pairs = _pairs(mechanism, structure)
     joints = [joint for joint, _ in pairs]
     system, matrix, multipliers, rcond = _solve(mechanism, joints, unknown, states, wrenches,
-                                                angles, "the whole mechanism", drive=True)
+                                                angles, message("the whole mechanism"),
+                                                ", ".join(unknown), drive=True)
     reactions = {}
     for index, (joint, (source, target)) in enumerate(pairs):
         key = pair_key(mechanism, joint.kind, joint.point, source, target, joint.slide)
@@ -173,7 +177,8 @@ def group_linear_reactions(mechanism: Mechanism, group: AssurGroup,
     """Reactions of one group from its own 3k equations: ``[(joint, (target, source, point,
     force, moment))]`` with each force on the group's link (or the pair's second link)."""
     system, matrix, multipliers, _ = _solve(mechanism, group.joints, group.links, states,
-                                            wrenches, angles, group.name, drive=False)
+                                            wrenches, angles, group.name, group.name,
+                                            drive=False)
     out = []
     for index, joint in enumerate(group.joints):
         source, target = canonical(joint, group.links)

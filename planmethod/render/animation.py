@@ -30,6 +30,7 @@ from typing import Any
 
 from ..errors import PlanmethodError
 from ..vocabulary import PlanKind, numbered
+from ..words import message, render
 from .canvas import Canvas, SvgFigure
 from .style import num
 
@@ -37,6 +38,9 @@ __all__ = ["animated_svg", "raster_frames", "save_gif", "save_mp4"]
 
 #: the size (px) of one drawing in an animated SVG
 CELL_WIDTH, CELL_HEIGHT = 520.0, 480.0
+#: the title of each plan's panel in a raster frame
+_PLAN_TITLES = {PlanKind.VELOCITY: message("velocity plan"),
+                PlanKind.ACCELERATION: message("acceleration plan")}
 
 
 def animated_svg(frames: Sequence[Sequence[SvgFigure]], *, seconds: float = 6.0,
@@ -104,11 +108,11 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
             if kind == PlanKind.POSITION:
                 _draw_mechanism(ax, plans.position)
                 crank = plans.position.numbers.get(plans.position.drive[0], 1)
-                ax.set_title(f"{numbered('φ', crank)} = {plans.position.angle:g}°",
-                             fontsize=10)
+                ax.set_title(render(message("{phi} = {angle:g}°", phi=numbered("φ", crank),
+                                            angle=plans.position.angle)), fontsize=10)
             else:
                 _draw_plan(ax, getattr(plans, kind))
-                ax.set_title(f"{kind} plan", fontsize=10)
+                ax.set_title(render(_PLAN_TITLES[kind]), fontsize=10)
         canvas.draw()
         images.append(Image.frombuffer("RGBA", canvas.get_width_height(),
                                        canvas.buffer_rgba(), "raw", "RGBA", 0, 1)
@@ -171,6 +175,8 @@ def save_mp4(images: Sequence[Any], path: str | Path, ffmpeg: str, *,
                           stderr=subprocess.PIPE, check=False)
     if done.returncode != 0:   # a full disk, a file too large: ffmpeg's last line, one line
         said = done.stderr.decode("utf-8", "replace").strip().splitlines()
-        raise PlanmethodError(f"ffmpeg could not write the animation "
-                              f"({said[-1][:200] if said else f'exit status {done.returncode}'})",
-                              file=str(path))
+        if said:
+            raise PlanmethodError(message("ffmpeg could not write the animation ({said})",
+                                          said=said[-1][:200]), file=str(path))
+        raise PlanmethodError(message("ffmpeg could not write the animation (exit status "
+                                      "{status})", status=done.returncode), file=str(path))

@@ -38,6 +38,8 @@ from typing import Any
 
 import numpy as np
 
+from ..forces.checks import VelocitySource
+from ..forces.names import BALANCING_MOMENT, INERTIA_FORCE, INERTIA_MOMENT
 from ..plans.scales import standard
 from ..vectors import cross, dot, norm, perp, unit
 from ..vocabulary import (
@@ -50,13 +52,14 @@ from ..vocabulary import (
     shown_title,
     subscript,
 )
+from ..words import Message, message, number_text, render
 from .canvas import Canvas, fit_zoom
 from .details import detail_insets, detail_regions
 from .labels import RunKind, label_runs
-from .notation import ForceNotation
+from .notation import BALANCING_FORCE, ForceNotation, symbol_runs
 from .plan_words import flag_message
 from .steady import SteadyView
-from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE, significant
+from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE
 from .svg import (
     MECHANISM_SIZE,
     PLAN_SIZE,
@@ -88,8 +91,9 @@ def _runs(name: str):
 
 #: how an edge of each kind but a known force is drawn: (style key, colour override, legend)
 _EDGE_LOOKS = {
-    EdgeKind.REACTION: ("result", None, "reaction found by closing the polygon"),
-    EdgeKind.TRANSMITTED: ("relative", KNOWN_COLOURS["R"], "reaction from a group solved before"),
+    EdgeKind.REACTION: ("result", None, message("reaction found by closing the polygon")),
+    EdgeKind.TRANSMITTED: ("relative", KNOWN_COLOURS["R"],
+                           message("reaction from a group solved before")),
 }
 
 
@@ -133,7 +137,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
     corners = [np.zeros(2)]
     for vector in vectors:
         corners.append(corners[-1] + vector)
-    used: dict[str, tuple[str, str | None]] = {}
+    used: dict[Message, tuple[str, str | None]] = {}
     count = len(edges)
 
     def content(figure: Canvas) -> None:
@@ -152,7 +156,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
             after = first + 2  # the corner after the second component (cyclically)
             start, end = where[first], where[after if after <= count else after - count]
             if figure.arrow(start, end, "result", layer="results", css="force total"):
-                used.setdefault("whole reaction R = Rⁿ + Rᵗ", ("result", None))
+                used.setdefault(_WHOLE_REACTION, ("result", None))
                 figure.request((name,), start + 0.5 * (end - start),
                                notation.runs(name, on) if notation else _runs(name), mark=2.0,
                                span=(start, end))
@@ -166,17 +170,25 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
     lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
     _, y0, x1, _ = view.box if view else figure.extent
     _force_legend(figure, (x1 + 34, y0 + 4), used)
-    terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
-                       for edge in edges)
-    lines = [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",
-             f"the polygon closes to {closure:.2g} mm"]
-    lines += [notation.line(step, group.links) if notation else step for step in group.steps]
-    lines += lines_of_details
-    lines = [line.replace("⟂", "⊥") for line in lines]   # ⊥ is in every common font
+    lines = [line.replace("⟂", "⊥")               # ⊥ is in every common font
+             for line in _polygon_notes(group, edges, mu_f, closure, notation)
+             + lines_of_details]
     frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force",
           box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines), "force")
                       if view else None).svg
+
+
+def _polygon_notes(group, edges: list, mu_f: float, closure: float,
+                   notation: ForceNotation | None) -> list[str]:
+    """The lines under a force polygon: its scale, its vector equation, how near it closes
+    and the group's steps (in the course's notation with ``notation``)."""
+    terms = " + ".join(notation.plain(edge.label, edge.link) if notation else edge.label
+                       for edge in edges)
+    return [scale_text("mu_f", mu_f), f"ΣF = 0: {terms} = 0",   # words: vocabulary
+            render(message("the polygon closes to {closure:.2g} mm", closure=closure)),
+            *(render(notation.sentence(step, group.links) if notation else step)
+              for step in group.steps)]
 
 
 def _laid_out(zoom: float, content, where_of, details: bool,
@@ -214,30 +226,43 @@ def _crowded(figure: Canvas, where: dict) -> dict:
                     and not label.points[0].startswith("detail:")}
 
 
-def _legend_key(edge) -> str:
+#: a polygon's legend entries of its known forces and its components
+_FRICTION_FORCE = message("friction force")
+_WEIGHT = message("weight G")
+_EXTERNAL_LOAD = message("external load")
+_TANGENTIAL = message("tangential component Rᵗ (⊥ the link)")
+_NORMAL = message("normal component Rⁿ (along the link) or N (⊥ a guide)")
+_INERTIA = message("inertia force {symbol} = −m·a_S", symbol=INERTIA_FORCE)
+_WHOLE_REACTION = message("whole reaction R = Rⁿ + Rᵗ")
+
+
+def _legend_key(edge) -> Message:
     if edge.kind == EdgeKind.COMPONENT:
-        return ("tangential component Rᵗ (⊥ the link)" if edge.label.startswith("Rᵗ")
-                else "normal component Rⁿ (along the link) or N (⊥ a guide)")
+        return _TANGENTIAL if edge.label.startswith("Rᵗ") else _NORMAL
     if edge.kind in _EDGE_LOOKS:
         return _EDGE_LOOKS[edge.kind][2]
     if edge.label.startswith(("M_f", "F_f")):
-        return "friction force"
-    return {"G": "weight G", "F": "inertia force Fᵘ = −m·a_S"}.get(edge.label[:1],
-                                                                  "external load")
+        return _FRICTION_FORCE
+    if edge.label[:1] == "F":
+        return _INERTIA
+    return _WEIGHT if edge.label[:1] == "G" else _EXTERNAL_LOAD
 
 
-def _force_legend(figure: Canvas, at, used: dict, heading: str = "Legend") -> float:
-    """The legend of the forces drawn, top-left at ``at``; returns the y under it."""
+def _force_legend(figure: Canvas, at, used: dict[Message, tuple[str, str | None]],
+                  heading: Message | None = None) -> float:
+    """The legend of the forces drawn (by their entries' messages), top-left at ``at``;
+    returns the y under it."""
     x, y = at
     if not used:
         return y
-    figure.text((x, y), heading, size=TEXT_SIZE, bold=True, css="legend", area=False)
+    figure.text((x, y), render(heading or message("Legend")), size=TEXT_SIZE, bold=True,
+                css="legend", area=False)
     y += 8
     for text, (style, colour) in used.items():
         y += 20
         figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour,
                      obstacle=False)
-        figure.text((x + 44, y), text, size=SMALL_SIZE, css="legend", area=False)
+        figure.text((x + 44, y), render(text), size=SMALL_SIZE, css="legend", area=False)
     return y
 
 
@@ -249,42 +274,23 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     every frame of a turn; with ``details`` (and no ``view``) an enlarged detail where
     points crowd."""
     combined = forces.combined
-    if combined is None or plans is None or plans.acceleration is None:
-        return None
-    if not combined.g:
+    if combined is None or plans is None or plans.acceleration is None or not combined.g:
         return None
     plan = plans.acceleration
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
-    extra = [new_pole] + [f.image_mm for f in combined.forces]
     notation = ForceNotation(forces.solution)
 
     def content(canvas: Canvas) -> None:
         plan_content(canvas, points, plan.steps, plan.pole, numbers=plan.numbers)
-        pole_px, new_px = canvas.px((0.0, 0.0)), canvas.px(new_pole)
-        if combined.gravity_image_mm > 0:
-            canvas.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
-                         css="gravity image")
-            canvas.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"),
-                           mark=2.0, span=(pole_px, new_px))
-        canvas.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole", points=("π′",))
-        canvas.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
-        for force in combined.forces:
-            s = canvas.px(force.image_mm)
-            canvas.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image",
-                          points=(f"s_{force.link}",))
-            canvas.request((f"s_{force.link}",), s, (("s", RunKind.MAIN),
-                                                     (notation.number(force.link),
-                                                      RunKind.SUB)), mark=2.6)
-            if float(norm(np.asarray(force.segment_mm))) * canvas.zoom >= 1.0:
-                canvas.arrow(s, new_px, "tangential", layer="results",
-                             color=KNOWN_COLOURS["F"], css=f"combined {force.link}")
+        _combined_content(canvas, combined, notation)
 
     def where(canvas: Canvas) -> dict:
         return ({label: canvas.px(xy) for label, xy in points.items()}
                 | {"π′": canvas.px(new_pole)}
                 | {f"s_{force.link}": canvas.px(force.image_mm) for force in combined.forces})
 
+    extra = [new_pole] + [f.image_mm for f in combined.forces]
     figure, regions = _laid_out(view.zoom if view else fit_zoom(
         list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
         view.box if view else None)
@@ -292,36 +298,71 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     _, y0, x1, _ = view.box if view else figure.extent
     bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
     _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
-        "image of g: π → π′, Z_g = g/μa": ("normal", KNOWN_COLOURS["G"]),
-        "s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)": ("tangential", KNOWN_COLOURS["F"])},
-        heading="Combined force (Aliyev)")
+        message("image of g: π → π′, Z_g = g/μa"): ("normal", KNOWN_COLOURS["G"]),
+        message("s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)"): ("tangential", KNOWN_COLOURS["F"])},
+        heading=message("Combined force (Aliyev)"))
     figure.used.clear()
-    lines = [f"{scale_text('mu_a', combined.mu_a)}; g = {combined.g:g} m/s², "
-             f"Z_g = g/μa = {combined.gravity_image_mm:.4g} mm"]
-    for force in combined.forces:
-        length = float(norm(np.asarray(force.segment_mm)))
-        q = float(norm(np.asarray(force.from_plan)))
-        sub = subscript(notation.number(force.link))
-        lines.append(f"{notation.link_name(force.link)}: (s{sub}π′) = {length:.4g} mm → "
-                     f"Q{sub} = m{sub}·μa·(s{sub}π′) = {force.mass:g}·"
-                     f"{significant(combined.mu_a, 4)}·{length:.4g} = {q:.5g} N")
-    lines += lines_of_details
-    title = (f"{shown_title(plans.exercise.mechanism.title)} — Q = G + Fᵘ on the acceleration "
-             f"plan, pole moved to π′, {_phi(plans)} = {plans.angle:g}°")
+    lines = _combined_notes(combined, notation) + lines_of_details
+    title = render(message("{title} — Q = G + {symbol} on the acceleration plan, pole moved to "
+                           "π′, {phi} = {angle:g}°", symbol=INERTIA_FORCE,
+                           title=shown_title(plans.exercise.mechanism.title), phi=_phi(plans),
+                           angle=plans.angle))
     frame(figure, title, lines, None, [flag_message(f, plan.numbers) for f in plan.flags],
-          PlanKind.ACCELERATION, box=view.box if view else None)
+          PlanKind.ACCELERATION,
+          box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
                                               PlanKind.ACCELERATION) if view else None).svg
 
 
-def combined_omitted(forces, plans) -> str | None:
+def _combined_content(canvas: Canvas, combined, notation: ForceNotation) -> None:
+    """Over the acceleration plan: the image of g from π to π′, each centre of mass's image
+    s and the segment s→π′ of its combined force."""
+    pole_px, new_px = canvas.px((0.0, 0.0)), canvas.px(combined.new_pole_mm)
+    if combined.gravity_image_mm > 0:
+        canvas.arrow(pole_px, new_px, "normal", layer="results", color=KNOWN_COLOURS["G"],
+                     css="gravity image")
+        canvas.request(("Z_g",), pole_px + 0.5 * (new_px - pole_px), _runs("Z_g"),
+                       mark=2.0, span=(pole_px, new_px))
+    canvas.circle(new_px, 3.4, fill=KNOWN_COLOURS["F"], css="new pole", points=("π′",))
+    canvas.request(("π′",), new_px, (("π′", RunKind.MAIN),), mark=3.4)
+    for force in combined.forces:
+        s = canvas.px(force.image_mm)
+        canvas.circle(s, 2.6, fill=KNOWN_COLOURS["F"], css="centre of mass image",
+                      points=(f"s_{force.link}",))
+        canvas.request((f"s_{force.link}",), s, (("s", RunKind.MAIN),
+                                                 (notation.number(force.link),
+                                                  RunKind.SUB)), mark=2.6)
+        if float(norm(np.asarray(force.segment_mm))) * canvas.zoom >= 1.0:
+            canvas.arrow(s, new_px, "tangential", layer="results",
+                         color=KNOWN_COLOURS["F"], css=f"combined {force.link}")
+
+
+def _combined_notes(combined, notation: ForceNotation) -> list[str]:
+    """The lines under the combined-force figure: the scale and Z_g, and each link's Q read
+    off the plan."""
+    lines = [render(message("{scale}; g = {g:g} m/s², Z_g = g/μa = {length:.4g} mm",
+                            scale=scale_text("mu_a", combined.mu_a),    # words: vocabulary
+                            g=combined.g, length=combined.gravity_image_mm))]
+    for force in combined.forces:
+        length = float(norm(np.asarray(force.segment_mm)))
+        sub = subscript(notation.number(force.link))
+        lines.append(render(message(
+            "{link}: (s{sub}π′) = {length:.4g} mm → Q{sub} = m{sub}·μa·(s{sub}π′) = "
+            "{mass:g}·{scale:.4g}·{length:.4g} = {force:.5g} N",
+            link=notation.link_name(force.link), sub=sub, length=length, mass=force.mass,
+            scale=combined.mu_a, force=float(norm(np.asarray(force.from_plan))))))
+    return lines
+
+
+def combined_omitted(forces, plans) -> Message | None:
     """Why the combined-force figure is not drawn, in one line (None when it is, or when the
     analysis has no combined-force construction at all)."""
     combined = getattr(forces, "combined", None)
     if combined is None or plans is None or plans.acceleration is None or combined.g:
         return None
-    return ("combined_force.svg is not drawn: no gravity acts (g = 0), so the moved pole π′ "
-            "is π and Q = G + Fᵘ is the inertia force alone")
+    return message("{file} is not drawn: no gravity acts (g = 0), so the moved pole π′ is π "
+                   "and Q = G + {symbol} is the inertia force alone", file="combined_force.svg",
+                   symbol=INERTIA_FORCE)
 
 
 def _phi(plans, letter: str = "φ") -> str:
@@ -357,6 +398,18 @@ class _LeverForce:
     #: drawn as stacked dimension lines
     row: int = 0
     side: float = 1.0
+    #: the report name of the force (or couple) it carries, and a couple's force's point
+    source: str = ""
+    point: str | None = None
+
+
+#: the legend entries of the lever's forces
+_LEVER_LEGEND = {
+    "known": message("known force at the image of its point, arm h from p"),
+    "couple": message("inertia couple {symbol} as the force pair ±{symbol}/l the sum counts",
+                      symbol=INERTIA_MOMENT),
+    "balancing": message("balancing force {symbol} (⊥ the crank) at the image of the crank "
+                         "pin", symbol=BALANCING_FORCE)}
 
 
 def _arm(image: np.ndarray, force: np.ndarray) -> tuple[float, np.ndarray]:
@@ -387,7 +440,7 @@ class _LeverFigure:
             vector = np.asarray(force.force[0], float)
             if float(norm(vector)) == 0:
                 continue
-            base, _, at = force.name.partition(" at ")
+            base, at = force.source, force.point
             image = np.asarray(force.image_mm[0], float)
             moment = float(force.moment[0])
             if at and base.startswith("M_f"):     # friction couples: in the sum, not drawn
@@ -395,13 +448,14 @@ class _LeverFigure:
                 continue
             arm, foot = _arm(image, vector)
             record = _LeverForce(force.name, force.link, image, vector, moment, arm, foot,
-                                 notation.plain(base, force.link) if at else "")
+                                 notation.plain(base, force.link) if at else "",
+                                 source=base, point=at)
             (self.couples if at else self.known).append(record)
         balancing = np.asarray(lever.balancing_force[0], float)
         pin = np.asarray(lever.balancing_image_mm[0], float)
         arm, foot = _arm(pin, balancing)
         balancing_force = _LeverForce("F_b", None, pin, balancing,
-                                      float(cross(pin, balancing)), arm, foot)
+                                      float(cross(pin, balancing)), arm, foot, source="F_b")
         # the arms numbered h₁, h₂ … as the table lists them: known forces, couples, F_b
         numbered = [replace(item, number=number) for number, item in
                     enumerate([*self.known, *self.couples, balancing_force], start=1)]
@@ -421,11 +475,12 @@ class _LeverFigure:
         ends = [tuple(item.image + item.force / mu_f) for item in drawn]
         ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
         self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        self.balancing_runs = symbol_runs(BALANCING_FORCE)
         numbered = _stacked([*self.known, *self.couples, self.balancing], self.zoom)
         self.known = numbered[:len(self.known)]
         self.couples = numbered[len(self.known):-1]
         self.balancing = numbered[-1]
-        self.used: dict[str, tuple[str, str | None]] = {}
+        self.used: dict[Message, tuple[str, str | None]] = {}
 
     def content(self, figure: Canvas) -> None:
         """The turned plan and every force with its arm, on ``figure`` at its zoom."""
@@ -433,22 +488,17 @@ class _LeverFigure:
         plan_content(figure, self.turned, plan.steps, plan.pole, rotate_deg=-90.0,
                      numbers=plan.numbers)
         for item in self.known:
-            base = item.name.partition(" at ")[0]
-            colour = _force_colour(base)
+            colour = _force_colour(item.source)
             self._draw(figure, item, self.mu_f, colour, "relative",
-                       self.notation.runs(base, item.link))
-            self.used.setdefault("known force at the image of its point, arm h from p",
-                                 ("relative", colour))
+                       self.notation.runs(item.source, item.link))
+            self.used.setdefault(_LEVER_LEGEND["known"], ("relative", colour))
         for item in self.couples:
-            colour = _force_colour(item.name)
-            symbol = self.notation.runs(item.name.partition(" at ")[0], item.link)
+            colour = _force_colour(item.source)
+            symbol = self.notation.runs(item.source, item.link)
             self._draw(figure, item, self.mu_couple, colour, "tangential", symbol)
-            self.used.setdefault("inertia couple Mᵘ as the force pair ±Mᵘ/l the sum counts",
-                                 ("tangential", colour))
-        self._draw(figure, self.balancing, self.mu_f, INK, "result",
-                   (("F", RunKind.MAIN), ("b", RunKind.SUB)))
-        self.used["balancing force F_b (⊥ the crank) at the image of the crank pin"] = (
-            "result", None)
+            self.used.setdefault(_LEVER_LEGEND["couple"], ("tangential", colour))
+        self._draw(figure, self.balancing, self.mu_f, INK, "result", self.balancing_runs)
+        self.used[_LEVER_LEGEND["balancing"]] = ("result", None)
 
     def _draw(self, figure: Canvas, item: _LeverForce, mu_f: float, colour: str, style: str,
               runs) -> None:
@@ -481,17 +531,19 @@ class _LeverFigure:
         rows = []
         total = magnitude = 0.0
         for item in [*self.known, *self.couples]:
-            base = item.name.partition(" at ")[0]
-            shown = self.notation.plain(base, item.link)
-            where = f" (pair, {item.name.partition(' at ')[2]})" if item.couple else ""
-            rows.append([shown + where, f"{float(norm(item.force)):.4g}",
-                         f"h_{item.number}", f"{item.arm:.4g}",
-                         f"{(item.moment if item.arm else 0.0) + 0.0:+.5g}"])
+            shown = self.notation.plain(item.source, item.link)
+            if item.couple:
+                shown = render(message("{force} (pair, {point})", force=shown,
+                                       point=item.point))
+            rows.append([shown, number_text(float(norm(item.force)), ".4g"),
+                         f"h_{item.number}", number_text(item.arm, ".4g"),
+                         number_text((item.moment if item.arm else 0.0) + 0.0, "+.5g")])
             total += item.moment
             magnitude += abs(item.moment)
         for name, moment in self.friction.items():
-            rows.append([self.notation.plain(name) + " (couple, not drawn)", "", "",
-                         "", f"{moment + 0.0:+.5g}"])
+            rows.append([render(message("{force} (couple, not drawn)",
+                                        force=self.notation.plain(name))), "", "",
+                         "", number_text(moment + 0.0, "+.5g")])
             total += moment
             magnitude += abs(moment)
         return rows, total, magnitude
@@ -556,7 +608,7 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     crank pin, and beside the drawing the table of the moment sum ΣM_p = 0 that gives M_b;
     where points crowd, an enlarged detail (None without a lever from the drawn plan)."""
     lever = forces.solution.lever
-    if plans is None or lever.source != "velocity plan" or not np.isfinite(
+    if plans is None or lever.source != VelocitySource.PLAN or not np.isfinite(
             lever.balancing_moment[0]):
         return None
     page = _LeverFigure(forces, plans)
@@ -564,41 +616,66 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     figure, regions = _laid_out(page.zoom, page.content, lambda canvas: {
         label: canvas.px(xy) for label, xy in page.turned.items()}, details)
     details = detail_insets(figure, page.content, regions, "detail-lever")
+    _, y0, x1, _ = figure.extent
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)   # the plan's styles
+    bottom = _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4),
+                           page.used, heading=message("Forces on the lever"))
+    _lever_table(figure, (x1 + 34, bottom + 40), page)
+    figure.used.clear()
+    lines = [*_lever_notes(forces, page), *details]
+    title = render(message("{title} — Zhukovsky's lever with its forces, {phi} = {angle:g}°",
+                           title=shown_title(forces.solution.mechanism.title),
+                           phi=_phi(plans), angle=plans.angle)).lstrip(" —")
+    frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
+          plan.flags, PlanKind.VELOCITY)
+    return figure.svg(title).svg
+
+
+def _lever_table(figure: Canvas, at, page: _LeverFigure) -> None:
+    """The table of the moment sum ΣM_p = 0 about the pole, term by term, the balancing
+    force's last and the remainder under it."""
     rows, total, magnitude = page.rows()
     balancing = page.balancing
     remainder = total + balancing.moment
     if abs(remainder) <= 1e-9 * (magnitude + abs(balancing.moment)):
         remainder = 0.0                               # zero to the rounding of the terms
-    rows.append(["F_b", f"{float(norm(balancing.force)):.4g}", f"h_{balancing.number}",
-                 f"{balancing.arm:.4g}", f"{balancing.moment + 0.0:+.5g}"])
-    rows.append(["ΣM_p", "", "", "", f"{remainder + 0.0:+.2g}"])
-    mechanism = forces.solution.mechanism
-    drive = mechanism.drive
-    length = mechanism.links[drive.link].length(drive.pivot, lever.balancing_point)
-    _, y0, x1, _ = figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)   # the plan's styles
-    bottom = _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4),
-                           page.used, heading="Forces on the lever")
-    figure.table((x1 + 34, bottom + 40), rows, header=["force", "F, N", "arm", "h, mm",
-                                                       "±F·h, N·mm"],
+    rows.append([render(BALANCING_FORCE), number_text(float(norm(balancing.force)), ".4g"),
+                 f"h_{balancing.number}", number_text(balancing.arm, ".4g"),
+                 number_text(balancing.moment + 0.0, "+.5g")])
+    rows.append(["ΣM_p", "", "", "", number_text(remainder + 0.0, "+.2g")])
+    header = [message("force"), message("F, N"), message("arm"), message("h, mm"),
+              message("±F·h, N·mm")]
+    figure.table(at, rows, header=[render(cell) for cell in header],
                  right=[False, True, False, True, True],
-                 title="ΣM_p = Σ ± F·h = 0 (counter-clockwise +)")
-    figure.used.clear()
-    couples = (f"; couples' force pairs at {scale_text('mu_f', page.mu_couple)}"
-               if page.couples and page.mu_couple != page.mu_f else "")
-    lines = [f"{scale_text('mu_v', plan.scale)}; forces on the lever at "
-             f"{scale_text('mu_f', page.mu_f)}{couples}",
-             "each force at the image of its point, turned with the plan (size and direction "
-             "kept); arm h from the pole p",
-             f"|M_b| = F_b·l_{drive.pivot}{lever.balancing_point} = "
-             f"{float(norm(balancing.force)):.5g} N × {length:.4g} m;  "
-             f"M_b = {float(lever.balancing_moment[0]):.6g} N·m (Zhukovsky's lever), by the "
-             f"groups {float(forces.solution.balancing_moment[0]):.6g} N·m", *details]
-    title = (f"{shown_title(mechanism.title)} — Zhukovsky's lever with its forces, "
-             f"{_phi(plans)} = {plans.angle:g}°").lstrip(" —")
-    frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
-          [flag_message(f, plan.numbers) for f in plan.flags], PlanKind.VELOCITY)
-    return figure.svg(title).svg
+                 title=render(message("ΣM_p = Σ ± F·h = 0 (counter-clockwise +)")))
+
+
+def _lever_notes(forces: Any, page: _LeverFigure) -> list[str]:
+    """The lines under the lever: its scales, how the forces are carried, and M_b by the
+    lever against the groups'."""
+    lever = forces.solution.lever
+    drive = forces.solution.mechanism.drive
+    length = forces.solution.mechanism.links[drive.link].length(drive.pivot,
+                                                                lever.balancing_point)
+    velocity, force = scale_text("mu_v", page.plan.scale), scale_text("mu_f", page.mu_f)
+    if page.couples and page.mu_couple != page.mu_f:      # words: vocabulary (scale_text)
+        scales = message("{velocity}; forces on the lever at {force}; couples' force pairs at "
+                         "{couple}", velocity=velocity, force=force,
+                         couple=scale_text("mu_f", page.mu_couple))
+    else:
+        scales = message("{velocity}; forces on the lever at {force}", velocity=velocity,
+                         force=force)
+    return [render(scales),
+            render(message("each force at the image of its point, turned with the plan (size "
+                           "and direction kept); arm h from the pole p")),
+            render(message("|{moment}| = {force}·l_{pivot}{point} = {size:.5g} N × "
+                           "{length:.4g} m;  {moment} = {lever:.6g} N·m (Zhukovsky's lever), "
+                           "by the groups {groups:.6g} N·m", moment=BALANCING_MOMENT,
+                           force=BALANCING_FORCE, pivot=drive.pivot,
+                           point=lever.balancing_point,
+                           size=float(norm(page.balancing.force)), length=length,
+                           lever=float(lever.balancing_moment[0]),
+                           groups=float(forces.solution.balancing_moment[0])))]
 
 
 class _LoadedFigure:
@@ -635,7 +712,8 @@ class _LoadedFigure:
         ends = [tuple(start + force / mu_f) for _, start, force in self.arrows]
         self.zoom = position_zoom(position, ends)
         self.balancing = float(solution.balancing_moment[0])
-        self.used: dict[str, tuple[str, str | None]] = {}
+        self.balancing_runs = symbol_runs(BALANCING_MOMENT)
+        self.used: dict[Message, tuple[str, str | None]] = {}
 
     def where(self, figure: Canvas) -> dict[str, np.ndarray]:
         """The points a detail watches: the mechanism's points and the centres of mass."""
@@ -663,13 +741,13 @@ class _LoadedFigure:
             turning_arrow(figure, centre, 26.0, math.pi / 2, 1.0 if moment > 0 else -1.0,
                           colour, f"moment:{item.name}:{item.link}",
                           self.notation.runs(item.name, item.link), css="moment")
-            self.used.setdefault("moment (curved arrow: its sense)", ("relative", colour))
+            self.used.setdefault(_LOADED_LEGEND["moment"], ("relative", colour))
         drive = self.solution.mechanism.drive
         if self.balancing and drive.pivot in self.position.points_mm:
             turning_arrow(figure, self.position.points_mm[drive.pivot], 40.0, -math.pi / 2,
                           1.0 if self.balancing > 0 else -1.0, INK, "moment:M_b",
-                          (("M", RunKind.MAIN), ("b", RunKind.SUB)), css="balancing moment")
-            self.used["balancing moment M_b on the crank"] = ("result", None)
+                          self.balancing_runs, css="balancing moment")
+            self.used[_LOADED_LEGEND["balancing"]] = ("result", None)
 
     def _force(self, figure: Canvas, item, start: np.ndarray, force: np.ndarray) -> None:
         """A force as an arrow at its point; an inertia force with the line of its single
@@ -686,8 +764,7 @@ class _LoadedFigure:
                         figure.px(start + shift + 1.2 * force / self.mu_f), color=colour,
                         width=0.8, dash=STYLES["construction"].dash, layer="construction",
                         css="inertia line")
-            self.used.setdefault("line of the single equivalent inertia force (h from S)",
-                                 ("construction", colour))
+            self.used.setdefault(_LOADED_LEGEND["line"], ("construction", colour))
 
     def _single_force_shift(self, item, force: np.ndarray) -> np.ndarray | None:
         """How far (mm) the single equivalent inertia force's line lies from S, or None."""
@@ -703,25 +780,34 @@ class _LoadedFigure:
         rows = []
         for item, _, force in self.arrows:
             shift = self._single_force_shift(item, force)
-            note = ("with Mᵘ: one force on a line "
-                    f"h = {abs(float(self.solution.applied.inertia[item.link].offset[0])):.4g} m"
-                    " from S" if shift is not None else "")
-            rows.append([notation.plain(item.name, item.link), f"{float(norm(force)):.4g} N",
+            offset = abs(float(self.solution.applied.inertia[item.link].offset[0])
+                         ) if shift is not None else 0.0
+            note = (render(message("with {symbol}: one force on a line h = {offset:.4g} m from "
+                                   "S", symbol=INERTIA_MOMENT, offset=offset))
+                    if shift is not None else "")
+            rows.append([notation.plain(item.name, item.link),
+                         render(message("{size:.4g} N", size=float(norm(force)))),
                          notation.link_name(item.link), note])
         for item, moment in self.couples:
-            rows.append([notation.plain(item.name, item.link), f"{abs(moment):.4g} N·m",
-                         notation.link_name(item.link),
-                         "counter-clockwise" if moment > 0 else "clockwise"])
+            rows.append([notation.plain(item.name, item.link),
+                         render(message("{size:.4g} N·m", size=abs(moment))),
+                         notation.link_name(item.link), render(_SENSE[moment > 0])])
         for item in self.friction:
-            unit_ = "N" if item.force is not None else "N·m"
-            rows.append([notation.plain(item.name, item.link), f"{_size(item):.4g} {unit_}",
-                         notation.link_name(item.link), "friction (not drawn)"])
+            size = (message("{size:.4g} N", size=_size(item)) if item.force is not None
+                    else message("{size:.4g} N·m", size=_size(item)))
+            rows.append([notation.plain(item.name, item.link), render(size),
+                         notation.link_name(item.link), render(message("friction (not drawn)"))])
         if self.balancing:
-            rows.append(["M_b", f"{abs(self.balancing):.6g} N·m",
+            rows.append([render(BALANCING_MOMENT),
+                         render(message("{size:.6g} N·m", size=abs(self.balancing))),
                          notation.link_name(self.solution.mechanism.drive.link),
-                         f"{'counter-clockwise' if self.balancing > 0 else 'clockwise'}, "
-                         "applied by the motor"])
+                         render(message("{sense}, applied by the motor",
+                                        sense=_SENSE[self.balancing > 0]))])
         return rows
+
+
+#: the sense of a moment: counter-clockwise (positive) or clockwise
+_SENSE = {True: message("counter-clockwise"), False: message("clockwise")}
 
 
 def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
@@ -738,26 +824,42 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     figure, regions = _laid_out(page.zoom, page.content, page.where, details)
     details = detail_insets(figure, page.content, regions, "detail-loaded")
     _, y0, x1, _ = figure.extent
-    bottom = _force_legend(figure, (x1 + 34, y0 + 4), page.used, heading="Forces and moments")
-    figure.table((x1 + 34, bottom + 40), page.rows(), header=["force", "size", "on", ""],
-                 right=[False, True, False, False], title="Forces and moments on the links")
-    lines = [f"{scale_text('mu_l', page.position.mu_l)}; forces at "
-             f"{scale_text('mu_f', page.mu_f)}",
-             f"{_phi(plans)} = {plans.angle:g}°, {_phi(plans, 'ω')} = "
-             f"{significant(mechanism.drive.omega, 6)} rad/s", *details]
-    title = (f"{shown_title(mechanism.title)} — the loaded mechanism, {_phi(plans)} = "
-             f"{plans.angle:g}°").lstrip(" —")
+    bottom = _force_legend(figure, (x1 + 34, y0 + 4), page.used,
+                           heading=message("Forces and moments"))
+    header = [message("force"), message("size"), message("on")]
+    figure.table((x1 + 34, bottom + 40), page.rows(),
+                 header=[*(render(cell) for cell in header), ""],
+                 right=[False, True, False, False],
+                 title=render(message("Forces and moments on the links")))
+    lines = [render(message("{length}; forces at {force}",          # words: vocabulary
+                            length=scale_text("mu_l", page.position.mu_l),
+                            force=scale_text("mu_f", page.mu_f))),
+             render(message("{phi} = {angle:g}°, {omega} = {speed:.6g} rad/s", phi=_phi(plans),
+                            angle=plans.angle, omega=_phi(plans, "ω"),
+                            speed=mechanism.drive.omega)), *details]
+    title = render(message("{title} — the loaded mechanism, {phi} = {angle:g}°",
+                           title=shown_title(mechanism.title), phi=_phi(plans),
+                           angle=plans.angle)).lstrip(" —")
     frame(figure, title, lines, (page.position.mu_l, SCALES["mu_l"].drawn,
-                                 0.25 * MECHANISM_SIZE), forces.solution.flags,
-          PlanKind.POSITION)
+                                 0.25 * MECHANISM_SIZE),
+          [render(flag) for flag in forces.solution.flags], PlanKind.POSITION)
     return figure.svg(title).svg
 
 
-def _legend_key_of(name: str) -> str:
+#: the legend entries of the loaded mechanism's moments and lines
+_LOADED_LEGEND = {
+    "moment": message("moment (curved arrow: its sense)"),
+    "balancing": message("balancing moment {symbol} on the crank", symbol=BALANCING_MOMENT),
+    "line": message("line of the single equivalent inertia force (h from S)"),
+    "inertia": message("inertia force {symbol} = −m·a_S at S", symbol=INERTIA_FORCE)}
+
+
+def _legend_key_of(name: str) -> Message:
     if name.startswith(("M_f", "F_f")):
-        return "friction force"
-    return {"G": "weight G", "F": "inertia force Fᵘ = −m·a_S at S"}.get(name[:1],
-                                                                      "external load")
+        return _FRICTION_FORCE
+    if name[:1] == "F":
+        return _LOADED_LEGEND["inertia"]
+    return _WEIGHT if name[:1] == "G" else _EXTERNAL_LOAD
 
 
 def _size(item) -> float:
@@ -794,9 +896,11 @@ def force_files(forces: Any, plans, *, loaded: bool = True, details: bool = True
         files[_file_name(number, group)] = polygon_svg(
             group, forces.mu_f, angle=forces.angle, notation=notation, details=details,
             view=(views or {}).get(f"forces_{number}"),
-            title=f"{title} — force polygon {number}: {notation.group_name(group)}, "
-                  f"{numbered('φ', notation.numbers[forces.solution.mechanism.drive.link])} = "
-                  f"{forces.angle:g}°")
+            title=render(message(
+                "{title} — force polygon {number}: {group}, {phi} = {angle:g}°", title=title,
+                number=number, group=notation.group_name(group),
+                phi=numbered("φ", notation.numbers[forces.solution.mechanism.drive.link]),
+                angle=forces.angle)))
     combined = combined_svg(forces, plans, view=(views or {}).get("combined_force"),
                             details=details)
     if combined is not None:

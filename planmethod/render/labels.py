@@ -497,9 +497,12 @@ def _clear(boxes: np.ndarray, taken: np.ndarray) -> np.ndarray:
         return np.ones(len(boxes), dtype=bool)
     low = boxes[:, :2] + _GAP_LOW
     high = boxes[:, 2:] + _GAP_HIGH
-    return ~np.any((low[:, 0, None] <= taken[:, 2]) & (taken[:, 0] <= high[:, 0, None])
-                   & (low[:, 1, None] <= taken[:, 3]) & (taken[:, 1] <= high[:, 1, None]),
-                   axis=1)
+    left, top, right, bottom = taken.T
+    meet = low[:, 0, None] <= right                  # (box, label placed), in place
+    meet &= left <= high[:, 0, None]
+    meet &= low[:, 1, None] <= bottom
+    meet &= top <= high[:, 1, None]
+    return ~meet.any(axis=1)
 
 
 def _near_spots(anchors: np.ndarray, reaches: np.ndarray, halves: np.ndarray,
@@ -540,46 +543,115 @@ def _near_spots(anchors: np.ndarray, reaches: np.ndarray, halves: np.ndarray,
     cy = anchors[:, 1, None] + uy * reach + sy * half_h
     # each edge of every box as one contiguous (label, spot) block
     corners = np.array((cx - half_w, cy - half_h, cx + half_w, cy + half_h))
-    left, top, right, bottom = corners
-    flat = corners.reshape(4, -1).T
     clean = np.broadcast_to(base + CLEAN_SLACK, (count, per_label))
     leaning = ~np.isnan(leans[:, 0])
     if leaning.any():                   # the preferred side first, among equals
         clean = np.where(leaning[:, None], clean + LEAN_COST * (
             1.0 - ux * leans[:, 0, None] - uy * leans[:, 1, None]), clean)
     cost = clean - CLEAN_SLACK
-    if len(segments):  # the lines under each spot: the pieces near a label, then per spot
-        label, piece = np.nonzero((segment_bounds[:, 0] <= right.max(axis=1)[:, None])
-                                  & (segment_bounds[:, 2] >= left.min(axis=1)[:, None])
-                                  & (segment_bounds[:, 1] <= bottom.max(axis=1)[:, None])
-                                  & (segment_bounds[:, 3] >= top.min(axis=1)[:, None]))
-        # pairs by label, piece, then spot: each spot's pieces in their order
-        near = np.take(np.ascontiguousarray(segment_bounds.T), piece, axis=1)[:, :, None]
-        meet = near[0] <= np.take(right, label, axis=0)
-        meet &= near[2] >= np.take(left, label, axis=0)
-        meet &= near[1] <= np.take(bottom, label, axis=0)
-        meet &= near[3] >= np.take(top, label, axis=0)
-        rows, spots = np.nonzero(meet)
-        piece, which = piece[rows], label[rows] * per_label + spots
-        lengths = np.zeros(len(flat))
-        if len(piece):
-            inside = _shares(segments, flat, piece, which) * _lengths(segments)[piece]
-            lengths = np.bincount(which, weights=inside, minlength=len(flat))
-        cost = cost + LINE_COST * lengths.reshape(count, per_label)
+    if len(segments):  # the lines under each spot
+        cost = cost + LINE_COST * _near_line_lengths(corners, segments, segment_bounds)
     if len(rectangles):
-        own = (reaches + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
-        own_low = anchors - own[:, None]
-        own_high = anchors + own[:, None]
-        width = (np.minimum(own_high[:, 0, None], right)
-                 - np.maximum(own_low[:, 0, None], left))
-        height = (np.minimum(own_high[:, 1, None], bottom)
-                  - np.maximum(own_low[:, 1, None], top))
-        mine = np.maximum(width, 0.0) * np.maximum(height, 0.0)
-        cost = cost + AREA_COST * np.maximum(
-            _overlap_areas(rectangles, flat).reshape(count, per_label) - mine, 0.0)
+        cost = cost + AREA_COST * _near_areas(corners, anchors, reaches, rectangles)
     if bounds is not None:
-        cost = cost + OUTSIDE_COST * _leaving(left, top, right, bottom, bounds)
+        cost = cost + OUTSIDE_COST * _leaving(*corners, bounds)
     return np.moveaxis(corners, 0, -1), clean, cost
+
+
+def _near_line_lengths(corners: np.ndarray, segments: np.ndarray, segment_bounds: np.ndarray
+                       ) -> np.ndarray:
+    """The length of the drawn lines under each spot of the first batch (label, spot), the
+    spots given by their edges ``corners`` (left, top, right, bottom: each label × spot): the
+    pieces near a label found first, then per spot."""
+    left, top, right, bottom = corners
+    count, per_label = left.shape
+    flat = corners.reshape(4, -1).T
+    label, piece = np.nonzero((segment_bounds[:, 0] <= right.max(axis=1)[:, None])
+                              & (segment_bounds[:, 2] >= left.min(axis=1)[:, None])
+                              & (segment_bounds[:, 1] <= bottom.max(axis=1)[:, None])
+                              & (segment_bounds[:, 3] >= top.min(axis=1)[:, None]))
+    # pairs by label, piece, then spot: each spot's pieces in their order
+    near = np.take(np.ascontiguousarray(segment_bounds.T), piece, axis=1)[:, :, None]
+    meet = near[0] <= np.take(right, label, axis=0)
+    meet &= near[2] >= np.take(left, label, axis=0)
+    meet &= near[1] <= np.take(bottom, label, axis=0)
+    meet &= near[3] >= np.take(top, label, axis=0)
+    rows, spots = np.nonzero(meet)
+    piece, which = piece[rows], label[rows] * per_label + spots
+    lengths = np.zeros(len(flat))
+    if len(piece):
+        inside = _shares(segments, flat, piece, which) * _lengths(segments)[piece]
+        lengths = np.bincount(which, weights=inside, minlength=len(flat))
+    return lengths.reshape(count, per_label)
+
+
+def _near_areas(corners: np.ndarray, anchors: np.ndarray, reaches: np.ndarray,
+                rectangles: np.ndarray) -> np.ndarray:
+    """The area of the marks and text under each spot of the first batch (label, spot), but
+    the label's own round mark (with the room kept round it), which it may touch."""
+    left, top, right, bottom = corners
+    count, per_label = left.shape
+    own = (reaches + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
+    own_low = anchors - own[:, None]
+    own_high = anchors + own[:, None]
+    width = (np.minimum(own_high[:, 0, None], right)
+             - np.maximum(own_low[:, 0, None], left))
+    height = (np.minimum(own_high[:, 1, None], bottom)
+              - np.maximum(own_low[:, 1, None], top))
+    mine = np.maximum(width, 0.0) * np.maximum(height, 0.0)
+    under = _overlap_areas(rectangles, corners.reshape(4, -1).T).reshape(count, per_label)
+    return np.maximum(under - mine, 0.0)
+
+
+class _Drawing:
+    """What labels are placed on: the drawn lines' pieces, the vectors' arrows, the marks
+    and text as rectangles, the points' round marks and the bounds to keep within (each
+    with the bounds of its items, see :func:`_bounds`); and what is placed so far — the
+    labels' boxes and the leaders, in arrays made once for at most ``capacity`` labels."""
+
+    def __init__(self, lines: Sequence, areas: Sequence, vectors: Sequence, marks: Sequence,
+                 bounds: Sequence[float] | None, capacity: int) -> None:
+        self.segments = _segments(lines)
+        self.segment_bounds = _bounds(self.segments)
+        self.arrows = _segments(vectors)
+        self.arrow_bounds = _bounds(self.arrows)
+        self.rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
+        self.rectangle_bounds = _bounds(self.rectangles)
+        self.marks = np.asarray(marks, dtype=float).reshape(-1, 4)
+        self.bounds = bounds
+        self._boxes = np.empty((capacity, 4))       # placed boxes (x0, y0, x1, y1)
+        self._leaders = np.empty((capacity, 4))     # placed leaders (x0, y0, x1, y1)
+        self._leader_bounds = np.empty((capacity, 4))   # and their bounds
+        self._placed = self._led = self._bounded = 0
+
+    @property
+    def taken(self) -> np.ndarray:
+        """The boxes of the labels placed."""
+        return self._boxes[:self._placed]
+
+    @property
+    def leaders(self) -> np.ndarray:
+        """The leaders drawn."""
+        return self._leaders[:self._led]
+
+    @property
+    def leader_bounds(self) -> np.ndarray:
+        """The bounds of the leaders drawn before the crowded labels' (which no later
+        label's costing reads)."""
+        return self._leader_bounds[:self._bounded]
+
+    def take(self, box: np.ndarray, leader: np.ndarray | None = None,
+             bounded: bool = True) -> None:
+        """A label placed in ``box``, on ``leader`` (x0, y0, x1, y1) if it has one
+        (``bounded``: its bounds kept for the labels placed after)."""
+        self._boxes[self._placed] = box
+        self._placed += 1
+        if leader is not None:
+            self._leaders[self._led] = leader[0]
+            self._led += 1
+            if bounded:
+                self._leader_bounds[self._bounded] = _bounds(leader)[0]
+                self._bounded += 1
 
 
 def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence, *,
@@ -622,165 +694,227 @@ def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Seque
     >>> len(placed), placed[0].box[2] < placed[1].box[0] or placed[1].box[2] < placed[0].box[0]
     (2, True)
     """
-    segments = _segments(lines)
-    segment_bounds = _bounds(segments)
-    arrows = _segments(vectors)
-    arrow_bounds = _bounds(arrows)
-    rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
-    rectangle_bounds = _bounds(rectangles)
-    marks = np.asarray(marks, dtype=float).reshape(-1, 4)
-    placed: list[PlacedLabel] = []
-    crowded: list[int] = []                 # crowded labels with no clean spot: placed last
-    taken = np.empty((0, 4))                # placed boxes (x0, y0, x1, y1), their own bounds
-    drawn_leaders = np.empty((0, 4))        # placed leaders (x0, y0, x1, y1)
-    leader_bounds = np.empty((0, 4))        # and their bounds
+    drawing = _Drawing(lines, areas, vectors, marks, bounds, len(requests))
     extents = [runs_extent(request.runs, request.size) for request in requests]
     halves = [(width / 2 + PADDING, (ascent + descent) / 2 + PADDING)
               for width, ascent, descent in extents]
-    # the first distances need no leader, so what their spots cost before the labels placed
-    # come in is costed for every label at once
-    near_boxes, near_clean, near_cost = _near_spots(
+    near = _near_of(requests, halves, drawing)
+    placed: list[PlacedLabel] = []
+    crowded: list[int] = []                 # crowded labels with no clean spot: placed last
+    for number, request in enumerate(requests):
+        label = _place_near(request, halves[number], extents[number][1],
+                            (near[0][number], near[1][number], near[2][number]), drawing)
+        if label is not None:
+            placed.append(label)
+        elif request.crowded:
+            crowded.append(number)
+    for number in crowded:                  # on a leader, after every other label
+        label = _place_crowded(requests[number], halves[number], extents[number][1], drawing)
+        if label is not None:               # (else nowhere free: left out)
+            placed.append(label)
+    return tuple(placed)
+
+
+def _place_crowded(request: LabelRequest, half: tuple[float, float], ascent: float,
+                   drawing: _Drawing) -> PlacedLabel | None:
+    """A crowded label that found no clean spot, on a leader (:func:`_crowded_spot`), or
+    None where nothing is free."""
+    found = _crowded_spot(request, half, drawing.segments, drawing.segment_bounds,
+                          drawing.arrows, drawing.rectangles, drawing.marks, drawing.taken,
+                          drawing.leaders, drawing.bounds)
+    if found is None:
+        return None
+    drawing.take(found, _leaders(request.anchor, found[None, :]), bounded=False)
+    return _placed(request, found, ascent, True, False)
+
+
+def _near_of(requests: Sequence[LabelRequest], halves: list[tuple[float, float]],
+             drawing: _Drawing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The first distances need no leader, so what their spots cost before the labels placed
+    come in is costed for every label at once (:func:`_near_spots`)."""
+    return _near_spots(
         np.array([request.anchor for request in requests], dtype=float).reshape(-1, 2),
         np.array([request.mark_radius for request in requests], dtype=float),
         np.array(halves, dtype=float).reshape(-1, 2),
         np.array([request.lean if request.lean is not None else (np.nan, np.nan)
                   for request in requests], dtype=float).reshape(-1, 2),
-        segments, segment_bounds, rectangles, bounds)
-    for number, request in enumerate(requests):
-        ascent = extents[number][1]
-        ax, ay = request.anchor
-        half_w, half_h = halves[number]
+        drawing.segments, drawing.segment_bounds, drawing.rectangles, drawing.bounds)
+
+
+def _place_near(request: LabelRequest, half: tuple[float, float], ascent: float,
+                near: tuple[np.ndarray, np.ndarray, np.ndarray], drawing: _Drawing
+                ) -> PlacedLabel | None:
+    """A label placed at its cheapest spot (on a leader where far), or below everything where
+    every spot is taken; None for an optional label with no clean spot (shown in a
+    detail)."""
+    best = _cheapest(request, half, near, drawing)
+    tidy = best is not None and best[0] <= best[3]
+    if request.optional and not tidy:
+        return None
+    ax, ay = request.anchor
+    if best is None:                    # every spot overlaps: put it below everything
+        bottom = float(drawing.taken[:, 3].max()) if len(drawing.taken) else ay
+        best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, *half)[0], math.inf, 0.0)
+    far = best[2] > LEADER_DISTANCE
+    drawing.take(best[1], _leaders((ax, ay), best[1][None, :]) if far else None)
+    return _placed(request, best[1], ascent, far, tidy)
+
+
+#: the cheapest spot found for a label: (its cost, its box, its distance, what a clean spot
+#: there costs)
+_Best = tuple[float, np.ndarray, float, float]
+
+
+def _cheapest(request: LabelRequest, half: tuple[float, float],
+              near: tuple[np.ndarray, np.ndarray, np.ndarray], drawing: _Drawing
+              ) -> _Best | None:
+    """The cheapest spot for a label among the candidates of :data:`_CANDIDATES`, batch by
+    batch: the nearest distance with a clean spot wins; ``near`` are its spots of the first
+    batch and what they cost before the labels placed come in (:func:`_near_spots`). None
+    where every spot is taken."""
+    best: _Best | None = None
+    for batch, distance, directions, base in _CANDIDATES:
+        if batch is _BATCHES[0]:
+            boxes, clean, table = _near_costs(near, drawing)
+        else:
+            boxes, clean, table = _far_costs(request, half, (distance, directions, base),
+                                             best, drawing)
+        best, settled = _pick(table, batch, boxes, clean, best)
+        if settled:
+            break
+    return best
+
+
+def _near_costs(near: tuple[np.ndarray, np.ndarray, np.ndarray], drawing: _Drawing
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A label's spots of the first batch, what a clean one costs and what each costs: as
+    costed up front, only the labels and leaders placed since come in (no label on a
+    leader)."""
+    boxes, clean, cost = near
+    contending = _clear(boxes, drawing.taken)
+    if len(drawing.leaders):
+        low = boxes[:, :2].min(axis=0)
+        high = boxes[:, 2:].max(axis=0)
+        meeting = _meeting(drawing.leader_bounds, (low[0], low[1], high[0], high[1]))
+        if meeting.any():
+            contending &= _clipped_lengths(drawing.leaders[meeting], boxes,
+                                           bounds=drawing.leader_bounds[meeting]) <= 0.0
+    return boxes, clean, np.where(contending, cost, np.inf)
+
+
+def _far_costs(request: LabelRequest, half: tuple[float, float], candidates: tuple,
+               best: _Best | None, drawing: _Drawing
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A label's spots at the distances of a later batch (``candidates``: their distances,
+    directions and cost before obstacles, see :data:`_CANDIDATES`), what a clean one costs
+    and what each costs (inf where it cannot be taken). Only the spots that can win are
+    costed: those clear of the labels placed and, once a spot is found (``best``), cheaper
+    than it before any obstacle's cost is added."""
+    distance, directions, base = candidates
+    boxes = _boxes(request.anchor, directions, request.mark_radius + distance, *half)
+    # what a clean spot costs: its distance and its side; anything in the way makes a spot
+    # not clean (a leader may cross thin lines: construction lines, links)
+    clean = base + CLEAN_SLACK
+    if request.lean is not None:      # the preferred side first, among equals
+        ux, uy = directions[0], directions[1]
+        clean = clean + LEAN_COST * (1.0 - ux * request.lean[0] - uy * request.lean[1])
+    cost = clean - CLEAN_SLACK
+    contending = _clear(boxes, drawing.taken)
+    if best is not None:
+        contending &= cost < best[0]
+    chosen = np.flatnonzero(contending)
+    table = np.full(len(boxes), np.inf)
+    if len(chosen):
+        table[chosen] = _spot_costs(request, boxes[chosen], cost[chosen],
+                                    distance[chosen] > LEADER_DISTANCE, best, drawing)
+    return boxes, clean, table
+
+
+def _spot_costs(request: LabelRequest, spots: np.ndarray, cost: np.ndarray,
+                leading: np.ndarray, best: _Best | None, drawing: _Drawing) -> np.ndarray:
+    """What each of a label's spots costs (inf where a leader drawn before runs through it):
+    the drawn lines and the areas under it, leaving the bounds, and for a spot far enough to
+    need a leader (``leading``) the leader's crossings of leaders drawn before, of arrows and
+    of labels placed."""
+    ax, ay = request.anchor
+    free = np.ones(len(spots), dtype=bool)
+    # the region of the spots costed and of the leaders they would need
+    low = spots[:, :2].min(axis=0)
+    high = spots[:, 2:].max(axis=0)
+    region = (min(low[0], ax), min(low[1], ay), max(high[0], ax), max(high[1], ay))
+    meeting = _meeting(drawing.leader_bounds, region)
+    before, before_bounds = drawing.leaders[meeting], drawing.leader_bounds[meeting]
+    meeting = _meeting(drawing.segment_bounds, region)
+    near = drawing.segments[meeting]
+    if len(near) or len(before):  # the lines under each spot; no label on a leader
+        lengths = _clipped_lengths(np.concatenate((near, before)), spots, len(near),
+                                   np.concatenate((drawing.segment_bounds[meeting],
+                                                   before_bounds)))
+        cost = cost + LINE_COST * lengths[0]
+        free &= lengths[1] <= 0.0
+    under = drawing.rectangles[_meeting(drawing.rectangle_bounds, region)]
+    if len(under):
         # the label's own round mark, which it may touch: as the square of its area
         own = (request.mark_radius + 1.0) * math.sqrt(math.pi) / 2 + OWN_ROOM
         own_mark = np.array([[ax - own, ay - own, ax + own, ay + own]])
-        best = None                         # (cost, box, distance, what a clean spot costs)
-        for batch, distance, directions, base in _CANDIDATES:
-            first = batch is _BATCHES[0]
-            if first:   # costed up front: only the labels and leaders placed since come in
-                boxes, clean = near_boxes[number], near_clean[number]
-                contending = _clear(boxes, taken)
-                if len(drawn_leaders):      # no label on a leader
-                    low = boxes[:, :2].min(axis=0)
-                    high = boxes[:, 2:].max(axis=0)
-                    meeting = _meeting(leader_bounds, (low[0], low[1], high[0], high[1]))
-                    if meeting.any():
-                        contending &= _clipped_lengths(drawn_leaders[meeting], boxes,
-                                                       bounds=leader_bounds[meeting]) <= 0.0
-                table = np.where(contending, near_cost[number], np.inf)
-            else:
-                boxes = _boxes((ax, ay), directions, request.mark_radius + distance, half_w,
-                               half_h)
-                # what a clean spot costs: its distance and its side; anything in the way
-                # makes a spot not clean (a leader may cross thin lines: construction lines,
-                # links)
-                clean = base + CLEAN_SLACK
-                if request.lean is not None:      # the preferred side first, among equals
-                    ux, uy = directions[0], directions[1]
-                    clean = clean + LEAN_COST * (1.0 - ux * request.lean[0]
-                                                 - uy * request.lean[1])
-                cost = clean - CLEAN_SLACK
-                # only the spots that can win are costed: those clear of the labels placed
-                # and, once a spot is found, cheaper than it before any obstacle's cost is
-                # added
-                contending = _clear(boxes, taken)
-                if best is not None:
-                    contending &= cost < best[0]
-                chosen = np.flatnonzero(contending)
-                table = np.full(len(boxes), np.inf)
-            if not first and len(chosen):
-                spots = boxes[chosen]
-                cost = cost[chosen]
-                free = np.ones(len(chosen), dtype=bool)
-                # the region of the spots costed and of the leaders they would need
-                low = spots[:, :2].min(axis=0)
-                high = spots[:, 2:].max(axis=0)
-                region = (min(low[0], ax), min(low[1], ay), max(high[0], ax), max(high[1], ay))
-                meeting = _meeting(leader_bounds, region)
-                before, before_bounds = drawn_leaders[meeting], leader_bounds[meeting]
-                meeting = _meeting(segment_bounds, region)
-                near = segments[meeting]
-                if len(near) or len(before):  # the lines under each spot; no label on a leader
-                    lengths = _clipped_lengths(np.concatenate((near, before)), spots, len(near),
-                                               np.concatenate((segment_bounds[meeting],
-                                                               before_bounds)))
-                    cost = cost + LINE_COST * lengths[0]
-                    free &= lengths[1] <= 0.0
-                under = rectangles[_meeting(rectangle_bounds, region)]
-                if len(under):
-                    cost = cost + AREA_COST * np.maximum(
-                        _overlap_areas(under, spots) - _overlap_areas(own_mark, spots), 0.0)
-                if bounds is not None:
-                    cost = cost + OUTSIDE_COST * _leaving(*spots.T, bounds)
-                # the leaders the spots that could still win would need
-                far = (distance[chosen] > LEADER_DISTANCE) & free
-                if best is not None:
-                    far &= cost < best[0]
-                if far.any():
-                    leaders = _leaders((ax, ay), spots[far])
-                    extra = np.zeros(len(spots))
-                    # leaders drawn before and arrows crossed, at once
-                    meeting = _meeting(arrow_bounds, region)
-                    close = arrows[meeting]
-                    weights = np.concatenate((np.full(len(before), CLASH_COST),
-                                              np.full(len(close), VECTOR_CROSSING_COST)))
-                    extra[far] = _crossing(leaders, np.concatenate((before, close)),
-                                           np.concatenate((before_bounds,
-                                                           arrow_bounds[meeting]))) @ weights
-                    others = taken[_meeting(taken, region)]
-                    if len(others):          # through another label: only where nothing else
-                        extra[far] += CLASH_COST * _through(leaders, others)
-                    cost = cost + extra
-                table[chosen] = np.where(free, cost, np.inf)
-            # per distance of the batch, its cheapest free candidate (the first of equals)
-            table = table.reshape(len(batch), len(DIRECTIONS))
-            picks = table.argmin(axis=1)
-            lowest = table[np.arange(len(batch)), picks].tolist()
-            settled = False
-            for row, step in enumerate(batch):   # the nearest distance with a clean spot wins
-                index = row * len(DIRECTIONS) + picks[row]
-                if lowest[row] < math.inf and (best is None or lowest[row] < best[0] - 1e-9):
-                    best = (lowest[row], boxes[index], DISTANCES[step], float(clean[index]))
-                if best is not None and best[0] <= best[3]:
-                    settled = True
-                    break
-            if settled:
-                break
-        tidy = best is not None and best[0] <= best[3]
-        if request.optional and not tidy:
-            if request.crowded:
-                crowded.append(number)
-            continue                        # no clean spot: the detail shows it
-        if best is None:                    # every spot overlaps: put it below everything
-            bottom = float(taken[:, 3].max()) if len(taken) else ay
-            best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, half_w, half_h)[0],
-                    math.inf, 0.0)
-        far = best[2] > LEADER_DISTANCE
-        placed.append(_placed(request, best[1], ascent, far, tidy))
-        taken = np.vstack((taken, [best[1]]))
-        if far:
-            leader = _leaders((ax, ay), best[1][None, :])
-            drawn_leaders = np.vstack((drawn_leaders, leader))
-            leader_bounds = np.vstack((leader_bounds, _bounds(leader)))
-    for number in crowded:                  # on a leader, after every other label
-        request = requests[number]
-        found = _crowded_spot(request, halves[number], segments, segment_bounds, arrows,
-                              rectangles, marks, taken, drawn_leaders, bounds)
-        if found is None:
-            continue                        # nowhere free: left out, as before
-        placed.append(_placed(request, found, extents[number][1], True, False))
-        taken = np.vstack((taken, [found]))
-        drawn_leaders = np.vstack((drawn_leaders, _leaders(request.anchor, found[None, :])))
-    return tuple(placed)
+        cost = cost + AREA_COST * np.maximum(
+            _overlap_areas(under, spots) - _overlap_areas(own_mark, spots), 0.0)
+    if drawing.bounds is not None:
+        cost = cost + OUTSIDE_COST * _leaving(*spots.T, drawing.bounds)
+    far = leading & free     # the leaders the spots that could still win would need
+    if best is not None:
+        far &= cost < best[0]
+    if far.any():
+        cost = cost + _leader_costs(request.anchor, spots, far, region, before,
+                                    before_bounds, drawing)
+    return np.where(free, cost, np.inf)
+
+
+def _leader_costs(anchor, spots: np.ndarray, far: np.ndarray, region, before: np.ndarray,
+                  before_bounds: np.ndarray, drawing: _Drawing) -> np.ndarray:
+    """What the leaders to the ``far`` spots cost: the leaders drawn before (``before``, in
+    the region) and the arrows they cross, and the labels they run through."""
+    leaders = _leaders(anchor, spots[far])
+    extra = np.zeros(len(spots))
+    meeting = _meeting(drawing.arrow_bounds, region)
+    close = drawing.arrows[meeting]
+    weights = np.concatenate((np.full(len(before), CLASH_COST),
+                              np.full(len(close), VECTOR_CROSSING_COST)))
+    extra[far] = _crossing(leaders, np.concatenate((before, close)),
+                           np.concatenate((before_bounds,
+                                           drawing.arrow_bounds[meeting]))) @ weights
+    others = drawing.taken[_meeting(drawing.taken, region)]
+    if len(others):          # through another label: only where nothing else
+        extra[far] += CLASH_COST * _through(leaders, others)
+    return extra
+
+
+def _pick(table: np.ndarray, batch: tuple[int, ...], boxes: np.ndarray, clean: np.ndarray,
+          best: _Best | None) -> tuple[_Best | None, bool]:
+    """The cheapest spot so far after a batch (per distance of the batch its cheapest free
+    candidate, the first of equals; a nearer one kept unless a farther is cheaper), and
+    whether it is settled: clean, so that no farther distance is tried."""
+    table = table.reshape(len(batch), len(DIRECTIONS))
+    picks = table.argmin(axis=1)
+    lowest = np.minimum.reduce(table, axis=1).tolist()     # the values at the picks
+    for row, step in enumerate(batch):   # the nearest distance with a clean spot wins
+        index = row * len(DIRECTIONS) + picks[row]
+        if lowest[row] < math.inf and (best is None or lowest[row] < best[0] - 1e-9):
+            best = (lowest[row], boxes[index], DISTANCES[step], float(clean[index]))
+        if best is not None and best[0] <= best[3]:
+            return best, True
+    return best, False
 
 
 def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool, clean: bool
             ) -> PlacedLabel:
     """The label of ``request`` placed in ``box`` (x0, y0, x1, y1, padding included): its
     baseline starts inside the padding, ``ascent`` below the box's top edge."""
-    x0, y0 = float(box[0]), float(box[1])
+    corners = box.tolist()
+    x0, y0 = corners[0], corners[1]
     return PlacedLabel(request.points, request.anchor, request.runs, request.size,
                        (round(x0 + PADDING, 2), round(y0 + PADDING + ascent, 2)),
-                       tuple(round(float(v), 2) for v in box), leader, request.css, clean)
+                       tuple([round(v, 2) for v in corners]), leader, request.css, clean)
 
 
 def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np.ndarray,
@@ -806,29 +940,15 @@ def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np
     >>> box.round(1).tolist()            # up and to the right, clear of both lines
     [14.1, -32.1, 26.1, -14.1]
     """
-    far = [distance for distance in DISTANCES if distance > LEADER_DISTANCE]
-    distance = np.repeat(np.asarray(far), len(CROWDED_DIRECTIONS))
-    order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(far))
-    boxes = _boxes(request.anchor, _directions(CROWDED_DIRECTIONS[order]),
-                   request.mark_radius + distance, half[0], half[1])
-    free = _clear(boxes, taken)
-    if bounds is not None:
-        free &= ~_leaving(*boxes.T, bounds)
-    lines = np.concatenate((segments, drawn_leaders))
-    if len(lines):
-        free &= _clipped_lengths(lines, boxes, bounds=np.concatenate(
-            (segment_bounds, _bounds(drawn_leaders)))) <= 0.0
     # the marks as their bounding squares, and the areas that are not a mark's room
     radius = marks[:, 2:3]
     squares = np.column_stack((marks[:, :2] - radius, marks[:, :2] + radius))
     areas = np.delete(rectangles, marks[:, 3].astype(int), axis=0)
-    obstacles = np.concatenate((squares, areas))
-    if len(obstacles):
-        grown = boxes + np.array([-CROWDED_ROOM, -CROWDED_ROOM, CROWDED_ROOM, CROWDED_ROOM])
-        free &= _overlap_areas(obstacles, grown) <= 0.0
-    if not free.any():
+    boxes, cost = _crowded_boxes(request, half, np.concatenate((segments, drawn_leaders)),
+                                 np.concatenate((segment_bounds, _bounds(drawn_leaders))),
+                                 np.concatenate((squares, areas)), taken, bounds)
+    if not len(boxes):
         return None
-    boxes, cost = boxes[free], (distance + 0.05 * order)[free]
     leaders = _leaders(request.anchor, boxes)
     free = np.ones(len(boxes), dtype=bool)
     if len(drawn_leaders):      # (a crowded point's neighbour may start its leader a px off)
@@ -846,6 +966,29 @@ def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np
     if not free.any():
         return None
     return boxes[int(np.argmin(np.where(free, cost, np.inf)))]
+
+
+def _crowded_boxes(request: LabelRequest, half: tuple[float, float], lines: np.ndarray,
+                   line_bounds: np.ndarray, obstacles: np.ndarray, taken: np.ndarray,
+                   bounds: Sequence[float] | None) -> tuple[np.ndarray, np.ndarray]:
+    """A crowded label's spots on a leader whose box is free — of the labels placed, of the
+    drawn ``lines`` and leaders, of the ``obstacles`` (marks and areas) by
+    :data:`CROWDED_ROOM`, within ``bounds`` — and what each costs (its distance and
+    direction)."""
+    far = [distance for distance in DISTANCES if distance > LEADER_DISTANCE]
+    distance = np.repeat(np.asarray(far), len(CROWDED_DIRECTIONS))
+    order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(far))
+    boxes = _boxes(request.anchor, _directions(CROWDED_DIRECTIONS[order]),
+                   request.mark_radius + distance, half[0], half[1])
+    free = _clear(boxes, taken)
+    if bounds is not None:
+        free &= ~_leaving(*boxes.T, bounds)
+    if len(lines):
+        free &= _clipped_lengths(lines, boxes, bounds=line_bounds) <= 0.0
+    if len(obstacles):
+        grown = boxes + np.array([-CROWDED_ROOM, -CROWDED_ROOM, CROWDED_ROOM, CROWDED_ROOM])
+        free &= _overlap_areas(obstacles, grown) <= 0.0
+    return boxes[free], (distance + 0.05 * order)[free]
 
 
 def _through(leaders: np.ndarray, boxes: np.ndarray) -> np.ndarray:

@@ -18,16 +18,27 @@ Links are numbered as the exercise's course numbers them
 (:func:`planmethod.numbering.course_numbers`): by default the frame 0, the crank 1, the others
 as their Assur groups attach.
 
+The letters of the inertia force Fᵘ, the inertia moment Mᵘ, the balancing moment M_b and force
+F_b and the friction's Fᶠ, Mᶠ are a tradition's: they are messages (``context="symbol"``) that
+a course's catalogue writes its own way (a Russian course: Fи, Mи, Mур, Fур, Fтр, Mтр;
+:mod:`planmethod.forces.names`). A sentence of the force
+analysis (a group's step, a flag) names its forces and links by typed fields
+(:mod:`planmethod.forces.names`): :meth:`ForceNotation.sentence` prints them in the notation.
+
 Examples
 --------
 >>> from planmethod.spec import load_exercise
 >>> from planmethod.report import analyse
+>>> from planmethod.words import render
 >>> analysis = analyse(load_exercise("exercises/fourbar_forces.toml"))
 >>> notation = ForceNotation(analysis.forces.solution)
 >>> notation.plain("F_u,BC"), notation.plain("R_B", "BC"), notation.plain("R_B", "AB")
 ('Fᵘ₂', 'R₁₂', 'R₂₁')
->>> notation.line("Rᵗ_C ⟂ CD from ΣM_D(CD) = 0", ("BC", "CD"))
-'Rᵗ₂₃ ⟂ CD from ΣM_D(3) = 0'
+>>> step = analysis.forces.solution.groups.groups[0].steps[1]
+>>> render(step)
+'Rᵗ_D ⟂ DC from ΣM_C(CD) = 0: Rᵗ_D = ΣM_C/DC'
+>>> render(notation.sentence(step, ("BC", "CD")))
+'Rᵗ₀₃ ⟂ DC from ΣM_C(3) = 0: Rᵗ₀₃ = ΣM_C/DC'
 """
 
 from __future__ import annotations
@@ -36,6 +47,16 @@ import re
 from collections.abc import Iterable
 from typing import Any
 
+from ..forces.names import (
+    BALANCING_FORCE,
+    BALANCING_MOMENT,
+    FRICTION_FORCE,
+    FRICTION_MOMENT,
+    INERTIA_FORCE,
+    INERTIA_MOMENT,
+    ForceName,
+    LinkNumber,
+)
 from ..numbering import course_numbers
 from ..vocabulary import (
     GroupKind,
@@ -46,14 +67,29 @@ from ..vocabulary import (
     point_text,
     subscript,
 )
+from ..words import Message, message, render
 from .labels import Run, RunKind, label_runs
 
-__all__ = ["ForceNotation"]
+__all__ = ["BALANCING_FORCE", "BALANCING_MOMENT", "FRICTION_FORCE", "FRICTION_MOMENT",
+           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceNotation", "symbol_runs"]
 
 #: a reaction or one of its components, by the pair's key
 _REACTION = re.compile(r"^(Rᵗ|Rⁿ|R∥|R⊥|R|N)_(.+)$")
-#: a force's report name inside a sentence
-_TOKEN = re.compile(r"load\[\d+\]|(?:F_u|M_u|M_f|F_f),[\w/:]+|(?:Rᵗ|Rⁿ|R∥|R⊥|R|N|G)_[\w/:]+")
+
+#: the symbol of each kind of known force's report name (``F_u,BC``: the inertia force)
+_SYMBOLS = {"F_u": INERTIA_FORCE, "M_u": INERTIA_MOMENT, "F_f": FRICTION_FORCE,
+            "M_f": FRICTION_MOMENT}
+
+
+def symbol_runs(symbol: Message | str) -> tuple[Run, ...]:
+    """A symbol's label runs: what follows an underscore set as a subscript (M_b: M with
+    subscript b, as the course's catalogue writes it).
+
+    >>> symbol_runs(BALANCING_MOMENT)
+    (('M', <RunKind.MAIN: 'main'>), ('b', <RunKind.SUB: 'sub'>))
+    """
+    head, _, sub = render(symbol).partition("_")
+    return ((head, RunKind.MAIN), (sub, RunKind.SUB)) if sub else ((head, RunKind.MAIN),)
 
 
 def symbol_text(parts: tuple[str, str]) -> str:
@@ -68,6 +104,8 @@ class ForceNotation:
     def __init__(self, solution: Any) -> None:
         mechanism = solution.mechanism
         self.numbers = course_numbers(mechanism)
+        #: the letters of a tradition as the language spoken writes them (once per figure)
+        self.symbols = {head: render(symbol) for head, symbol in _SYMBOLS.items()}
         self.pairs = {key: (reaction.source, reaction.target)
                       for key, reaction in solution.reactions.items()}
         self.loads: dict[str, tuple[str, str]] = {}
@@ -85,11 +123,11 @@ class ForceNotation:
 
     def link_name(self, link: str) -> str:
         """``link 3 (rocker EF)``: the number, with the exercise's name in words."""
-        return link_text(link, self.numbers)
+        return link_text(link, self.numbers)        # words: vocabulary
 
     def links(self, links: Iterable[str]) -> str:
         """``links 3, 4 (BC, CD)``."""
-        return links_text(links, self.numbers)
+        return links_text(links, self.numbers)      # words: vocabulary
 
     def pair_name(self, key: str) -> str:
         """A pair by its report key as a course names it: a revolute pair by its point (O₂),
@@ -102,23 +140,29 @@ class ForceNotation:
             return key
         return point_text(point)
 
-    def column(self, name: str) -> str:
+    def column(self, name: str) -> Message | str:
         """A sweep column as a table prints it: a pair's reaction by its printed name (``Rx_B``
-        → R₁₂ (x), ``R_B`` → |R₁₂|, a prismatic pair's couple ``M_K`` → M₀₃), any other
-        column as :func:`planmethod.vocabulary.column_text` prints it.
+        → R₁₂ (x), ``R_B`` → |R₁₂|, a prismatic pair's couple ``M_K`` → M₀₃), the balancing
+        moment's and the friction's columns in words, any other column as
+        :func:`planmethod.vocabulary.column_text` prints it.
 
         >>> from planmethod.spec import load_exercise
         >>> from planmethod.report import analyse
+        >>> from planmethod.words import render
         >>> solved = analyse(load_exercise("exercises/fourbar_forces.toml")).forces
         >>> notation = ForceNotation(solved.solution)
-        >>> [notation.column(name) for name in ("Rx_B", "R_B", "omega_BC", "M_b_system")]
+        >>> [render(notation.column(name))
+        ...  for name in ("Rx_B", "R_B", "omega_BC", "M_b_system")]
         ['R₁₂ (x)', '|R₁₂|', 'ω₂', 'M_b (whole system)']
         """
         head, _, key = name.partition("_")
         if name.startswith("friction_sense_"):
             key = name[len("friction_sense_"):]
             reaction = self.parts(f"R_{key}")
-            return f"friction sense, {symbol_text(reaction)}" if reaction else name
+            return (message("friction sense, {reaction}", reaction=symbol_text(reaction))
+                    if reaction else name)
+        if name in _MOMENT_COLUMNS:
+            return _MOMENT_COLUMNS[name]
         reaction = self.parts(f"R_{key}") if head in ("Rx", "Ry", "R", "M") else None
         if reaction is None:
             return column_text(name, self.numbers)
@@ -127,12 +171,12 @@ class ForceNotation:
             return "M" + subscript(reaction[1])
         return {"Rx": f"{printed} (x)", "Ry": f"{printed} (y)"}.get(head, f"|{printed}|")
 
-    def group_name(self, group: Any) -> str:
+    def group_name(self, group: Any) -> Message | str:
         """A group of the force analysis as a course names it: ``drive link 1 (AB)`` (the
         drive with the frame, solved last), ``RRR of links 2, 3 (BC, CD)``."""
         if group.kind == GroupKind.DRIVE:
-            return link_text(group.links[0], self.numbers, "drive link")
-        return f"{group.kind} of {self.links(group.links)}"
+            return link_text(group.links[0], self.numbers, "drive link")  # words: vocabulary
+        return message("{kind} of {links}", kind=str(group.kind), links=self.links(group.links))
 
     def _pair(self, key: str, on: str | None) -> str | None:
         """The subscript ``ij`` of the pair ``key``: force of link i on link j, j = ``on``."""
@@ -159,10 +203,10 @@ class ForceNotation:
             return self.loads[name]
         head, comma, rest = name.partition(",")
         if comma and head in ("F_u", "M_u") and rest in self.numbers:
-            return ("Fᵘ" if head == "F_u" else "Mᵘ", self.number(rest))
+            return (self.symbols[head], self.number(rest))
         if comma and head in ("M_f", "F_f"):
             pair = self._pair(rest, on)
-            return ("Mᶠ" if head == "M_f" else "Fᶠ", pair) if pair else None
+            return (self.symbols[head], pair) if pair else None
         if name.startswith("G_") and name[2:] in self.numbers:
             return ("G", self.number(name[2:]))
         match = _REACTION.match(name)
@@ -186,28 +230,52 @@ class ForceNotation:
         found = self.parts(name, on)
         return name if found is None else symbol_text(found)
 
-    def line(self, text: str, links: Iterable[str] = ()) -> str:
-        """A sentence of the solver (a group's step) in the course's notation: each force's
-        report name printed, a link named in parentheses by its number (ΣM_D(4)), any other
-        link name with an underscore in words."""
-        links = tuple(links)
+    def sentence(self, text: Message, links: Iterable[str] = ()) -> Message:
+        """A sentence of the force analysis (a group's step, a flag) in the course's
+        notation: each force field (:class:`~planmethod.forces.names.ForceName`) printed by
+        its symbol — a reaction acting on the one link of ``links`` (the group's) at its pair —
+        a :class:`~planmethod.forces.names.LinkNumber` by the link's number, and any link
+        name with an underscore in the other fields in words."""
+        return self._resolved(text, tuple(links))
 
-        def force(match: re.Match) -> str:
-            name = match.group(0)
-            key = _REACTION.match(name)
-            on = None
-            if key:     # a reaction in a group's sentence acts on the group's link at the pair
-                for pair_key, pair in self.pairs.items():
-                    if key.group(2) in (pair_key, pair_key.partition(":")[0]):
-                        inside = [link for link in pair if link in links]
-                        on = inside[0] if len(inside) == 1 else None
-                        break
-            return self.plain(name, on)
+    def _resolved(self, value: Any, links: tuple[str, ...]) -> Any:
+        if isinstance(value, Message):
+            return value.replace(**{name: self._resolved(field, links)
+                                    for name, field in value.fields})
+        if isinstance(value, list | tuple):
+            return [self._resolved(item, links) for item in value]
+        if isinstance(value, ForceName):
+            return self._force(value.name, links)
+        if isinstance(value, LinkNumber):
+            return self.number(value.link)
+        if isinstance(value, str):
+            return self._words(value)
+        return value
 
-        text = _TOKEN.sub(force, text)
+    def _force(self, name: str, links: tuple[str, ...]) -> str:
+        """A force of a sentence printed: a reaction acts on the group's link at its pair."""
+        key = _REACTION.match(name)
+        on = None
+        if key:
+            for pair_key, pair in self.pairs.items():
+                if key.group(2) in (pair_key, pair_key.partition(":")[0]):
+                    inside = [link for link in pair if link in links]
+                    on = inside[0] if len(inside) == 1 else None
+                    break
+        return self.plain(name, on)
+
+    def _words(self, text: str) -> str:
+        """Each link name with an underscore in ``text`` in words (``rocker_EF``: rocker
+        EF)."""
         for link in sorted(self.numbers, key=len, reverse=True):
-            text = text.replace(f"({link})", f"({self.numbers[link]})")
             if "_" in link:
                 text = re.sub(rf"\b{re.escape(link)}\b", link.replace("_", " "), text)
         return text
 
+
+#: the balancing moment's and the friction's sweep columns, as a table prints them
+_MOMENT_COLUMNS: dict[str, Message] = {
+    "M_b": BALANCING_MOMENT,
+    "M_b_system": message("{symbol} (whole system)", symbol=BALANCING_MOMENT),
+    "M_b_no_friction": message("{symbol} (no friction)", symbol=BALANCING_MOMENT),
+    "friction_iterations": message("friction iterations")}

@@ -42,24 +42,30 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..errors import PlanmethodError
+from ..forces.names import BALANCING_MOMENT
 from ..io import atomic_path
 from ..vocabulary import QUANTITY_KINDS, numbered, quantity, shown_title, symbol
+from ..words import Message, message, render
 
-__all__ = ["FORMATS", "panels", "plot_format", "save_class_report_plot", "save_force_plot",
-           "save_study_plot", "save_sweep_plot"]
+__all__ = ["FORMATS", "Panel", "panels", "plot_format", "save_class_report_plot",
+           "save_force_plot", "save_study_plot", "save_sweep_plot"]
 
 #: file formats by suffix
 FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 
 #: (column prefix, panel title, y-axis label) of each kind of quantity that has a panel
-#: (:data:`planmethod.vocabulary.QUANTITY_KINDS`); a column joins the panel of its prefix
-_PANELS = tuple((f"{kind.prefix}_", kind.panel, kind.unit) for kind in QUANTITY_KINDS.values()
-                if kind.panel)
+#: (:data:`planmethod.vocabulary.QUANTITY_KINDS`: the title a message, rendered when drawn in
+#: the language spoken then; the unit: words: vocabulary); a column joins the panel of its
+#: prefix
+_PANELS = tuple((f"{kind.prefix}_", kind.plotted, kind.unit)
+                for kind in QUANTITY_KINDS.values() if kind.plotted is not None)
+#: the prefix of the radii of curvature, drawn on a log scale where they span decades
+_RADIUS = "rho_"
 _LEFT_TO_CSV = ("x_", "y_", "vx_", "vy_", "ax_", "ay_", "theta_")
 
 _STYLE = {
@@ -100,11 +106,19 @@ def plot_format(path: str | Path) -> str:
     """
     path = Path(path)
     form = FORMATS.get(path.suffix.lower())
+    if form is None and path.suffix:
+        raise PlanmethodError(message("plot format '{suffix}' not supported; use {formats}",
+                                      suffix=path.suffix, formats=_FORMATS_TEXT),
+                              file=str(path))
     if form is None:
-        found = f"plot format '{path.suffix}' not supported" if path.suffix else (
-            "a plot file needs a suffix for its format")
-        raise PlanmethodError(f"{found}; use .png, .svg or .pdf", file=str(path))
+        raise PlanmethodError(message("a plot file needs a suffix for its format; use "
+                                      "{formats}", formats=_FORMATS_TEXT), file=str(path))
     return form
+
+
+#: the plot formats an error offers
+_FORMATS_TEXT = message("{first}, {second} or {third}", first=".png", second=".svg",
+                        third=".pdf")
 
 
 def _plain_text(text: str) -> str:
@@ -145,12 +159,21 @@ def _save(figure, path: Path, form: str) -> None:
         figure.savefig(temporary, format=form, metadata=_METADATA[form])
 
 
-def panels(table: Mapping[str, np.ndarray]) -> list[tuple[str, str, list[str]]]:
-    """The panels a table is drawn in: ``(title, unit, columns)``, empty panels left out.
+class Panel(NamedTuple):
+    """A panel of a sweep's plot: its title, the unit of its y axis and its columns."""
+
+    title: Message | str
+    unit: Message | str
+    columns: list[str]
+
+
+def panels(table: Mapping[str, np.ndarray]) -> list[Panel]:
+    """The panels a table is drawn in, empty panels left out.
 
     Examples
     --------
-    >>> panels({"angle": [0, 1], "v_C": [1, 2], "a_C": [0, 0], "x_C": [0, 0], "Mb": [1, 1]})
+    >>> [(render(title), render(unit), columns) for title, unit, columns in panels(
+    ...     {"angle": [0, 1], "v_C": [1, 2], "a_C": [0, 0], "x_C": [0, 0], "Mb": [1, 1]})]
     [('speed of points |v|', 'm/s', ['v_C']), ('acceleration of points |a|', 'm/s²', \
 ['a_C']), ('other columns', 'SI units', ['Mb'])]
     """
@@ -166,14 +189,14 @@ def panels(table: Mapping[str, np.ndarray]) -> list[tuple[str, str, list[str]]]:
         # longest matching prefix wins: dds_ before ds_ before s_
         prefix = max((p for p, _, _ in _PANELS if name.startswith(p)), key=len, default=None)
         (grouped[prefix] if prefix else other).append(name)
-    out = [(title, unit, grouped[prefix]) for prefix, title, unit in _PANELS
+    out = [Panel(title, unit, grouped[prefix]) for prefix, title, unit in _PANELS
            if grouped[prefix]]
     if other:
-        out.append(("other columns", "SI units", other))
+        out.append(Panel(message("other columns"), message("SI units"), other))
     return out
 
 
-def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> str:
+def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> Message | str:
     """A column's name in a plot's legend, in a course's notation: a link's quantity by the
     link's number with its name (ω₃ (rod)), a point's with the point as a subscript; a column
     that is no quantity keeps its name.
@@ -181,8 +204,8 @@ def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> str:
     Examples
     --------
     >>> numbers = {"frame": 0, "crank": 1, "rod": 2}
-    >>> curve_label("omega_rod", numbers), curve_label("v_C"), curve_label("a_B@rod", numbers)
-    ('ω₂ (rod)', 'v$_{\\\\mathregular{C}}$', 'a$_{\\\\mathregular{B}_{2}}$ (on rod)')
+    >>> [render(curve_label(name, numbers)) for name in ("omega_rod", "v_C", "a_B@rod")]
+    ['ω₂ (rod)', 'v$_{\\\\mathregular{C}}$', 'a$_{\\\\mathregular{B}_{2}}$ (on rod)']
     """
     try:
         found = quantity(name)
@@ -195,8 +218,8 @@ def curve_label(name: str, numbers: Mapping[str, int] | None = None) -> str:
         if point.isalnum() and not link:
             return f"{found.symbol}$_{{\\mathregular{{{point}}}}}$"
         if point.isalnum() and numbers and link in numbers:
-            return (f"{found.symbol}$_{{\\mathregular{{{point}}}_{{{numbers[link]}}}}}$"
-                    f" (on {link})")
+            return message("{symbol} (on {link})", link=link, symbol=(
+                f"{found.symbol}$_{{\\mathregular{{{point}}}_{{{numbers[link]}}}}}$"))
     return symbol(name)
 
 
@@ -216,18 +239,7 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
     """
     path = Path(path)
     form = plot_format(path)
-    if "angle" not in table:
-        raise PlanmethodError("the sweep table has no 'angle' column", file=str(path))
-    angle = np.asarray(table["angle"], dtype=float)
-    groups = panels(table)
-    if angle.size == 0 or not groups:
-        raise PlanmethodError("the sweep table has nothing to plot", file=str(path))
-    for _, _, columns in groups:
-        for name in columns:
-            if np.shape(table[name]) != angle.shape:
-                raise PlanmethodError(f"column {name!r} has {np.size(table[name])} values for "
-                                      f"{angle.size} angles", file=str(path))
-
+    angle, groups = _sweep_panels(table, path)
     count = len(groups)
     columns_of_panels = 1 if count == 1 else 2
     rows = -(-count // columns_of_panels)
@@ -235,38 +247,67 @@ def save_sweep_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         figure = _new_figure(figsize=(6.0 * columns_of_panels, 2.6 * rows + 0.6), dpi=120,
                              layout="constrained")
         axes = figure.subplots(rows, columns_of_panels, squeeze=False, sharex=True)
-        for index, (panel, unit, columns) in enumerate(groups):
-            ax = axes[index // columns_of_panels][index % columns_of_panels]
-            for name in columns:
-                values = np.asarray(table[name], dtype=float)
-                if panel.startswith("radius"):
-                    values = np.where(np.isfinite(values) & (np.abs(values) > 0),
-                                      np.abs(values), np.nan)
-                if not np.isfinite(values).any():
-                    continue                      # nothing drawn: not in the legend
-                ax.plot(angle, values, label=curve_label(name, numbers))
-            if panel.startswith("radius"):
-                radii = np.abs(np.asarray([table[c] for c in columns], dtype=float))
-                radii = radii[np.isfinite(radii) & (radii > 0)]
-                if radii.size and radii.max() > 30 * radii.min():   # spans decades
-                    ax.set_yscale("log")
-            ax.set_title(panel, fontsize=9.5)
-            ax.set_ylabel(unit if not panel.startswith("radius") else "|ρ|, m")
-            ax.legend(fontsize=7.5, loc="best", ncols=min(3, len(columns)), frameon=False)
-            ax.set_xlim(float(angle.min()), float(angle.max()) if angle.size > 1
-                        else float(angle.min()) + 1.0)
+        for index, panel in enumerate(groups):
+            _draw_panel(axes[index // columns_of_panels][index % columns_of_panels], table,
+                        angle, panel, numbers)
         for index in range(count, rows * columns_of_panels):
             axes[index // columns_of_panels][index % columns_of_panels].set_visible(False)
+        crank_axis = render(message("crank angle {phi}, °", phi=numbered("φ", crank)))
         for ax in axes[-1]:
-            ax.set_xlabel(f"crank angle {numbered('φ', crank)}, °")
+            ax.set_xlabel(crank_axis)
         if count > 1 and count % 2 == 1:
-            axes[-2][1].set_xlabel(f"crank angle {numbered('φ', crank)}, °")
+            axes[-2][1].set_xlabel(crank_axis)
             axes[-2][1].xaxis.set_tick_params(labelbottom=True)
         if angle.min() >= 0 and angle.max() <= 360 and np.ptp(angle) >= 90:
             axes[0][0].set_xticks(np.arange(0.0, 361.0, 45.0))     # shared by every panel
-        figure.suptitle(f"{_plain_text(shown_title(title))} — full turn", fontsize=11,
-                        fontweight="bold")
+        figure.suptitle(render(message("{title} — full turn",
+                                       title=_plain_text(shown_title(title)))),
+                        fontsize=11, fontweight="bold")
         _save(figure, path, form)
+
+
+def _sweep_panels(table: Mapping[str, np.ndarray], path: Path
+                  ) -> tuple[np.ndarray, list[Panel]]:
+    """The crank angles of a sweep table and the panels its columns are drawn in; a
+    :class:`PlanmethodError` naming ``path`` for a table without angles, with nothing to
+    draw, or with a column of another length."""
+    if "angle" not in table:
+        raise PlanmethodError(message("the sweep table has no 'angle' column"), file=str(path))
+    angle = np.asarray(table["angle"], dtype=float)
+    groups = panels(table)
+    if angle.size == 0 or not groups:
+        raise PlanmethodError(message("the sweep table has nothing to plot"), file=str(path))
+    for name in (name for panel in groups for name in panel.columns):
+        if np.shape(table[name]) != angle.shape:
+            raise PlanmethodError(message("column {name!r} has {count} values for {angles} "
+                                          "angles", name=name, count=int(np.size(table[name])),
+                                          angles=angle.size), file=str(path))
+    return angle, groups
+
+
+def _draw_panel(ax, table: Mapping[str, np.ndarray], angle: np.ndarray, panel: Panel,
+                numbers: Mapping[str, int] | None) -> None:
+    """One panel of a sweep's plot: its curves (radii of curvature by magnitude, on a log
+    scale where they span decades), title, axis label and legend."""
+    radius = all(name.startswith(_RADIUS) for name in panel.columns)
+    for name in panel.columns:
+        values = np.asarray(table[name], dtype=float)
+        if radius:
+            values = np.where(np.isfinite(values) & (np.abs(values) > 0), np.abs(values),
+                              np.nan)
+        if not np.isfinite(values).any():
+            continue                      # nothing drawn: not in the legend
+        ax.plot(angle, values, label=render(curve_label(name, numbers)))
+    if radius:
+        radii = np.abs(np.asarray([table[c] for c in panel.columns], dtype=float))
+        radii = radii[np.isfinite(radii) & (radii > 0)]
+        if radii.size and radii.max() > 30 * radii.min():   # spans decades
+            ax.set_yscale("log")
+    ax.set_title(render(panel.title), fontsize=9.5)
+    ax.set_ylabel(render(message("|ρ|, m")) if radius else render(panel.unit))
+    ax.legend(fontsize=7.5, loc="best", ncols=min(3, len(panel.columns)), frameon=False)
+    ax.set_xlim(float(angle.min()), float(angle.max()) if angle.size > 1
+                else float(angle.min()) + 1.0)
 
 
 #: colours of the force curves
@@ -325,6 +366,7 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
     count = len(pairs) + 1
     columns = 2
     rows = math.ceil(count / columns)
+    phi = numbered("φ", crank)
     with _style_context(_FORCE_STYLE):
         # landscape, page-width: at most A4 landscape (11.7 × 8.3 in), however many pairs
         figure = _new_figure(figsize=(11.7, min(8.3, 2.2 * rows + 0.8)), dpi=130,
@@ -332,64 +374,83 @@ def save_force_plot(table: Mapping[str, np.ndarray], path: str | Path, *, title:
         axes = figure.subplots(rows, columns, sharex=True, squeeze=False)
         flat = axes.ravel()
         for axis, key in zip(flat, pairs, strict=False):
-            axis.plot(angles, table[f"Rx_{key}"], color=_FORCE_COLOURS["x"], lw=1.2, label="Rx")
-            axis.plot(angles, table[f"Ry_{key}"], color=_FORCE_COLOURS["y"], lw=1.2, label="Ry")
-            axis.plot(angles, table[f"R_{key}"], color=_FORCE_COLOURS["magnitude"], lw=1.6,
-                      label="|R|")
-            shown = (names or {}).get(key)
-            axis.set_title(f"{shown} (pair {key})" if shown else f"pair {key}", loc="left")
-            axis.set_ylabel("N")
-            if f"M_{key}" in table:
-                twin = axis.twinx()
-                twin.plot(angles, table[f"M_{key}"], color=_FORCE_COLOURS["moment"], lw=1.0,
-                          ls="--", label="couple")
-                twin.set_ylabel("couple, N·m", color=_FORCE_COLOURS["moment"])
-                twin.grid(False)
-            for number, angle in enumerate(changes.get(key, ())):
-                axis.axvline(angle, color=_SENSE_COLOUR, lw=0.8, ls=":",
-                             label="friction changes sense" if number == 0 else None)
-            axis.legend(loc="best", fontsize=7, ncol=2 if key in changes else 3)
-        axis = flat[len(pairs)]
-        axis.plot(angles, table["M_b"], color="#9467bd", lw=1.8, label="M_b (groups)")
-        # the balancing moment jumps where any pair's friction changes sense: each is marked
-        # and named by its pair at the top of the axis
-        named: dict[float, list[str]] = {}
-        for key, found in changes.items():
-            for angle in found:
-                named.setdefault(angle, []).append(key)
-        for number, angle in enumerate(sorted(named)):
-            axis.axvline(angle, color=_SENSE_COLOUR, lw=0.8, ls=":",
-                         label="friction changes sense" if number == 0 else None)
-            late = angle > angles[0] + 0.85 * (angles[-1] - angles[0])   # name to the left
-            axis.annotate(", ".join(named[angle]), (angle, 1.0),
-                          xycoords=("data", "axes fraction"), xytext=(-2 if late else 2, -9),
-                          textcoords="offset points", fontsize=7, color=_SENSE_COLOUR,
-                          ha="right" if late else "left")
-        if "M_b_system" in table:
-            axis.plot(angles, table["M_b_system"], color="#ff7f0e", lw=0.9, ls=":",
-                      label="M_b (whole system)")
-        if "M_b_no_friction" in table:
-            plain = np.asarray(table["M_b_no_friction"], float)
-            axis.plot(angles, plain, color="#8c564b", lw=1.2, ls="--",
-                      label="M_b without friction")
-        for angle, value in marks:
-            axis.plot([angle], [value], "o", color="#9467bd", ms=5)
-            axis.annotate(f"{numbered('φ', crank)} = {angle:g}°: M_b = {value:.4g} N·m",
-                          (angle, value),
-                          textcoords="offset points", xytext=(6, 6), fontsize=7)
-        axis.set_title("balancing moment on the crank", loc="left")
-        axis.set_ylabel("N·m")
-        axis.legend(loc="best", fontsize=7)
+            _draw_pair(axis, table, angles, key, (names or {}).get(key), changes.get(key, ()))
+        _draw_balancing(flat[len(pairs)], table, angles, changes, marks, phi)
         for extra in flat[count:]:
             extra.set_visible(False)
         for axis in axes[-1]:
-            axis.set_xlabel(f"crank angle {numbered('φ', crank)}, °")
+            axis.set_xlabel(render(message("crank angle {phi}, °", phi=phi)))
         for axis in flat[:count]:
             axis.set_xlim(angles[0], angles[-1])
             axis.xaxis.set_tick_params(labelbottom=True)
-        figure.suptitle(f"{_plain_text(shown_title(title))} — reactions and balancing moment "
-                        "over the turn", fontsize=11)
+        figure.suptitle(render(message("{title} — reactions and balancing moment over the turn",
+                                       title=_plain_text(shown_title(title)))), fontsize=11)
         _save(figure, path, form)
+
+
+#: the legend entry of the lines where a pair's friction changes sense
+_SENSE_CHANGE = message("friction changes sense")
+
+
+def _draw_pair(axis, table: Mapping[str, np.ndarray], angles: np.ndarray, key: str,
+               shown: str | None, changes: Sequence[float]) -> None:
+    """A pair's panel: its reaction's components and magnitude (and its couple, on an axis
+    of its own), each sense change of its friction marked."""
+    axis.plot(angles, table[f"Rx_{key}"], color=_FORCE_COLOURS["x"], lw=1.2, label="Rx")
+    axis.plot(angles, table[f"Ry_{key}"], color=_FORCE_COLOURS["y"], lw=1.2, label="Ry")
+    axis.plot(angles, table[f"R_{key}"], color=_FORCE_COLOURS["magnitude"], lw=1.6,
+              label="|R|")
+    axis.set_title(render(message("{reaction} (pair {pair})", reaction=shown, pair=key)
+                          if shown else message("pair {pair}", pair=key)), loc="left")
+    axis.set_ylabel(render(message("N", context="unit")))
+    if f"M_{key}" in table:
+        twin = axis.twinx()
+        twin.plot(angles, table[f"M_{key}"], color=_FORCE_COLOURS["moment"], lw=1.0,
+                  ls="--", label=render(message("couple")))
+        twin.set_ylabel(render(message("couple, N·m")), color=_FORCE_COLOURS["moment"])
+        twin.grid(False)
+    for number, angle in enumerate(changes):
+        axis.axvline(angle, color=_SENSE_COLOUR, lw=0.8, ls=":",
+                     label=render(_SENSE_CHANGE) if number == 0 else None)
+    axis.legend(loc="best", fontsize=7, ncol=2 if changes else 3)
+
+
+def _draw_balancing(axis, table: Mapping[str, np.ndarray], angles: np.ndarray,
+                    changes: Mapping[str, list[float]], marks: Sequence[tuple[float, float]],
+                    phi: str) -> None:
+    """The balancing moment's panel: M_b by the groups (by the whole system, without
+    friction), the solved positions marked with their values, and each sense change of any
+    pair's friction marked and named by its pair at the top of the axis (M_b jumps there)."""
+    moment = render(BALANCING_MOMENT)
+    axis.plot(angles, table["M_b"], color="#9467bd", lw=1.8,
+              label=render(message("{symbol} (groups)", symbol=moment)))
+    named: dict[float, list[str]] = {}
+    for key, found in changes.items():
+        for angle in found:
+            named.setdefault(angle, []).append(key)
+    for number, angle in enumerate(sorted(named)):
+        axis.axvline(angle, color=_SENSE_COLOUR, lw=0.8, ls=":",
+                     label=render(_SENSE_CHANGE) if number == 0 else None)
+        late = angle > angles[0] + 0.85 * (angles[-1] - angles[0])   # name to the left
+        axis.annotate(", ".join(named[angle]), (angle, 1.0),
+                      xycoords=("data", "axes fraction"), xytext=(-2 if late else 2, -9),
+                      textcoords="offset points", fontsize=7, color=_SENSE_COLOUR,
+                      ha="right" if late else "left")
+    if "M_b_system" in table:
+        axis.plot(angles, table["M_b_system"], color="#ff7f0e", lw=0.9, ls=":",
+                  label=render(message("{symbol} (whole system)", symbol=moment)))
+    if "M_b_no_friction" in table:
+        axis.plot(angles, np.asarray(table["M_b_no_friction"], float), color="#8c564b",
+                  lw=1.2, ls="--", label=render(message("{symbol} without friction",
+                                                        symbol=moment)))
+    for angle, value in marks:
+        axis.plot([angle], [value], "o", color="#9467bd", ms=5)
+        axis.annotate(render(message("{phi} = {angle:g}°: {symbol} = {moment:.4g} N·m",
+                                     phi=phi, angle=angle, symbol=moment, moment=value)),
+                      (angle, value), textcoords="offset points", xytext=(6, 6), fontsize=7)
+    axis.set_title(render(message("balancing moment on the crank")), loc="left")
+    axis.set_ylabel(render(message("N·m", context="unit")))
+    axis.legend(loc="best", fontsize=7)
 
 
 def save_study_plot(study: Any, path: str | Path) -> None:
@@ -412,16 +473,20 @@ def save_study_plot(study: Any, path: str | Path) -> None:
             values = study.values[parameter.name]
             for index, pair in enumerate(study.pairs):
                 axis.plot(values, study.maxima[parameter.name][pair],
-                          marker=markers[index % 8], lw=1.4, label=f"R_{pair} max")
-            axis.set_xlabel(f"{parameter.label}, {parameter.unit}")
-            axis.set_ylabel("largest reaction over the turn, N")
+                          marker=markers[index % 8], lw=1.4,
+                          label=render(message("R_{pair} max", pair=pair)))
+            axis.set_xlabel(render(message("{parameter}, {unit}", parameter=parameter.label,
+                                           unit=parameter.unit)))
+            axis.set_ylabel(render(message("largest reaction over the turn, N")))
             change = study.relative_change(parameter.name)
-            axis.set_title(f"{parameter.label}: up to {100 * change:.0f} % change", loc="left",
-                           fontsize=9)
+            axis.set_title(render(message("{parameter}: up to {change:.0f} % change",
+                                          parameter=parameter.label, change=100 * change)),
+                           loc="left", fontsize=9)
             axis.legend(fontsize=7)
-        figure.suptitle(f"{_plain_text(shown_title(study.title))}\nlargest reactions over a turn "
-                        "against each parameter, the others at the base case: "
-                        f"{study.base_text()}", fontsize=10)
+        figure.suptitle(render(message("{title}\nlargest reactions over a turn against each "
+                                       "parameter, the others at the base case: {base}",
+                                       title=_plain_text(shown_title(study.title)),
+                                       base=study.base_values())), fontsize=10)
         _save(figure, path, form)
 
 
@@ -447,11 +512,11 @@ def save_class_report_plot(rows: Sequence[Any], path: str | Path, *,
         axis = figure.subplots()
         positions = np.arange(len(questions))
         bottom = np.zeros(len(questions))
-        series = [("right", [row.correct for row in rows], "#1b8a3a")]
-        series += [(_plain_text((mistakes or {}).get(name, name.replace("_", " "))),
+        series = [(render(message("right")), [row.correct for row in rows], "#1b8a3a")]
+        series += [(_plain_text(render((mistakes or {}).get(name, name.replace("_", " ")))),
                     [row.mistakes.get(name, 0.0) for row in rows], None) for name in names]
-        series.append(("wrong, no mistake named", [row.unexplained for row in rows],
-                       "#b0b0b0"))
+        series.append((render(message("wrong, no mistake named")),
+                       [row.unexplained for row in rows], "#b0b0b0"))
         for label, shares, colour in series:
             values = 100.0 * np.asarray(shares, dtype=float)
             if not values.any():
@@ -461,10 +526,10 @@ def save_class_report_plot(rows: Sequence[Any], path: str | Path, *,
             bottom += values
         axis.set_axisbelow(True)
         axis.set_xticks(positions, [_plain_text((symbols or {}).get(q, q)) for q in questions])
-        axis.set_ylabel("share of the class, %")
+        axis.set_ylabel(render(message("share of the class, %")))
         axis.set_ylim(0, 100)
         axis.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
-        axis.set_title(f"{_plain_text(shown_title(title))} — answers by question: right, and "
-                       "which mistake",
+        axis.set_title(render(message("{title} — answers by question: right, and which "
+                                      "mistake", title=_plain_text(shown_title(title)))),
                        fontsize=10.5, loc="left")
         _save(figure, path, form)

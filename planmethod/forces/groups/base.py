@@ -26,6 +26,7 @@ import numpy as np
 from ...structure import AssurGroup, Joint
 from ...vectors import norm
 from ...vocabulary import EdgeKind, GroupKind
+from ...words import Message
 from ..applied import Wrench
 from ..reactions import Reaction
 
@@ -49,13 +50,14 @@ class PolygonEdge:
 
 @dataclass(frozen=True, slots=True)
 class GroupForces:
-    """One group's solve: the steps as a course writes them, its force polygon (closing to
-    zero), the reactions it found and, for a triad, Assur's special point used (N × 2)."""
+    """One group's solve: the steps as a course writes them (sentences whose forces and links
+    are :mod:`~planmethod.forces.names` fields), its force polygon (closing to zero), the
+    reactions it found and, for a triad, Assur's special point used (N × 2)."""
 
     name: str
     kind: GroupKind
     links: tuple[str, ...]
-    steps: tuple[str, ...]
+    steps: tuple[Message, ...]
     polygon: tuple[PolygonEdge, ...]
     reactions: tuple[str, ...]
     special_point: np.ndarray | None = None
@@ -81,12 +83,12 @@ class ForceSolver(Protocol):
         ...
 
     def solve2(self, e1: np.ndarray, e2: np.ndarray, w: np.ndarray, group: str,
-               what: str) -> tuple[np.ndarray, np.ndarray]:
+               what: Message) -> tuple[np.ndarray, np.ndarray]:
         """u1, u2 of u1·e1 + u2·e2 = w (``what`` says why it may be singular)."""
         ...
 
     def singular(self, value: np.ndarray, scale: np.ndarray | float, group: str,
-                 what: str) -> None:
+                 what: Message) -> None:
         """Refuse where ``value`` vanishes against ``scale`` (a singular force system)."""
         ...
 
@@ -107,7 +109,7 @@ class ForceSolver(Protocol):
         """The sum of the links' known wrenches."""
         ...
 
-    def result(self, group: AssurGroup, steps: Sequence[str], edges: Sequence[PolygonEdge],
+    def result(self, group: AssurGroup, steps: Sequence[Message], edges: Sequence[PolygonEdge],
                keys: Sequence[str], special: np.ndarray | None = None) -> GroupForces:
         """The group's solve, as the face ends it."""
         ...

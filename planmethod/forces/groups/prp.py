@@ -9,8 +9,9 @@ Examples
 >>> from planmethod.forces import solve_forces
 >>> from planmethod.kinematics import solve
 >>> from planmethod.spec import load_exercise
+>>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/slotted_crank_crosshead.toml").mechanism)
->>> solve_forces(motion).groups.groups[0].steps[0]
+>>> render(solve_forces(motion).groups.groups[0].steps[0])
 'force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide'
 """
 
@@ -19,6 +20,8 @@ from __future__ import annotations
 from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
+from ...words import message
+from ..names import ForceName
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -39,8 +42,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     _, n2, ps2 = solver.guide(ext2)
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
     big1, big2 = solver.solve2(n1, n2, -(w1.force + w2.force), group.name,
-                             f"the guides of {ext1.slide.key} and {ext2.slide.key} are "
-                             "parallel")
+                               message("the guides of {first} and {second} are parallel",
+                                       first=ext1.slide.key, second=ext2.slide.key))
     f1, f2 = big1[..., None] * n1, big2[..., None] * n2
     r_q = -(w2.force + f2)                         # on l2 from l1
     c1 = -(w1.moment_about(ps1) + vectors.cross(q - ps1, -r_q))
@@ -51,7 +54,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     keys = [solver.record(ext1, group.links, l1, k1, ps1, f1, c1).key,
             solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key,
             solver.record(internal, group.links, l2, l1, q, r_q).key]
-    steps = ("force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide",
-             f"R_{internal.point} from the equilibrium of {l2}",
-             "each reaction couple from its link's moments about its slide point")
+    steps = (message("force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide"),
+             message("{pin} from the equilibrium of {link}",
+                     pin=ForceName(f"R_{internal.point}"), link=l2),
+             message("each reaction couple from its link's moments about its slide point"))
     return solver.result(group, steps, edges, keys)

@@ -9,8 +9,9 @@ Examples
 >>> from planmethod.forces import solve_forces
 >>> from planmethod.kinematics import solve
 >>> from planmethod.spec import load_exercise
+>>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/scotch_yoke.toml").mechanism)
->>> solve_forces(motion).groups.groups[0].steps[0]
+>>> render(solve_forces(motion).groups.groups[0].steps[0])
 "N of yoke/frame from yoke's projection on the guide of block/yoke"
 """
 
@@ -19,6 +20,8 @@ from __future__ import annotations
 from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
+from ...words import message
+from ..names import ForceName, LinkNumber
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -40,7 +43,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
     across = vectors.dot(n2, di)
     solver.singular(across, 1.0, group.name,
-                  f"the guides of {internal.slide.key} and {ext2.slide.key} are parallel")
+                    message("the guides of {first} and {second} are parallel",
+                            first=internal.slide.key, second=ext2.slide.key))
     big2 = -vectors.dot(w2.force, di) / across
     f2 = big2[..., None] * n2
     r1 = -(w1.force + w2.force + f2)
@@ -53,9 +57,12 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(internal, group.links, l1, l2, psi, inner, c_inner).key,
             solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key]
-    steps = (f"N of {ext2.slide.key} from {l2}'s projection on the guide of "
-             f"{internal.slide.key}",
-             f"R_{ext1.point} from the force polygon of the group",
-             f"the normal force and couple of {internal.slide.key} from {l1}",
-             f"the couple of {ext2.slide.key} from ΣM({l2}) = 0")
+    steps = (message("N of {pair} from {link}'s projection on the guide of {inner}",
+                     pair=ext2.slide.key, link=l2, inner=internal.slide.key),
+             message("{reaction} from the force polygon of the group",
+                     reaction=ForceName(f"R_{ext1.point}")),
+             message("the normal force and couple of {pair} from {link}",
+                     pair=internal.slide.key, link=l1),
+             message("the couple of {pair} from ΣM({link}) = 0", pair=ext2.slide.key,
+                     link=LinkNumber(l2)))
     return solver.result(group, steps, edges, keys)

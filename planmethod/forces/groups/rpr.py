@@ -10,8 +10,9 @@ Examples
 >>> from planmethod.forces import solve_forces
 >>> from planmethod.kinematics import solve
 >>> from planmethod.spec import load_exercise
+>>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism)
->>> solve_forces(motion).groups.groups[0].steps[0]
+>>> render(solve_forces(motion).groups.groups[0].steps[0])
 'R_B along the guide from the block block: projection on the guide'
 """
 
@@ -20,6 +21,8 @@ from __future__ import annotations
 from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
+from ...words import message
+from ..names import ForceName
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -42,7 +45,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     arm = p1 - p2
     lever = vectors.cross(arm, n)
     solver.singular(lever, vectors.norm(arm) + 1e-300, group.name,
-                  f"{ext1.point} lies on the normal to the guide through {ext2.point}")
+                    message("{point} lies on the normal to the guide through {other}",
+                            point=ext1.point, other=ext2.point))
     across = -((w1 + w2).moment_about(p2) + along * vectors.cross(arm, d)) / lever
     r_along, r_across = along[..., None] * d, across[..., None] * n
     r1 = r_along + r_across
@@ -56,9 +60,13 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(internal, group.links, l1, l2, ps, inner, couple).key,
             solver.record(ext2, group.links, l2, k2, p2, r2).key]
-    P1, P2 = ext1.point, ext2.point
-    steps = (f"R_{P1} along the guide from the block {l1}: projection on the guide",
-             f"R_{P1} ⟂ the guide from ΣM_{P2} of the group = 0",
-             f"the normal force and couple of {internal.slide.key} from the block {l1}",
-             f"R_{P2} from the force polygon of {l2}")
+    first = ForceName(f"R_{ext1.point}")
+    steps = (message("{reaction} along the guide from the block {link}: projection on the "
+                     "guide", reaction=first, link=l1),
+             message("{reaction} ⟂ the guide from ΣM_{point} of the group = 0",
+                     reaction=first, point=ext2.point),
+             message("the normal force and couple of {pair} from the block {link}",
+                     pair=internal.slide.key, link=l1),
+             message("{reaction} from the force polygon of {link}",
+                     reaction=ForceName(f"R_{ext2.point}"), link=l2))
     return solver.result(group, steps, edges, keys)

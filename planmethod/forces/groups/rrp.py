@@ -9,8 +9,9 @@ Examples
 >>> from planmethod.forces import solve_forces
 >>> from planmethod.kinematics import solve
 >>> from planmethod.spec import load_exercise
+>>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/combined_force_slider_crank.toml").mechanism)
->>> solve_forces(motion).groups.groups[0].steps[0]
+>>> render(solve_forces(motion).groups.groups[0].steps[0])
 'Rᵗ_B ⟂ BC from ΣM_C(BC) = 0'
 """
 
@@ -19,6 +20,8 @@ from __future__ import annotations
 from ...structure import AssurGroup
 from ...vectors import cross, perp
 from ...vocabulary import EdgeKind
+from ...words import message
+from ..names import ForceName, LinkNumber
 from .base import ForceSolver, GroupForces, split
 
 __all__ = ["reactions"]
@@ -41,7 +44,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     t1 = w1.moment_about(q) / a
     rt1 = t1[..., None] * perp(e1)
     n1, normal = solver.solve2(e1, n, -(rt1 + w1.force + w2.force), group.name,
-                             f"{l1} is perpendicular to the guide of {ext2.slide.key}")
+                               message("{link} is perpendicular to the guide of {pair}",
+                                       link=l1, pair=ext2.slide.key))
     rn1, big_n = n1[..., None] * e1, normal[..., None] * n
     r1 = rn1 + rt1
     r_q = r1 + w1.force
@@ -53,11 +57,15 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(ext2, group.links, l2, k2, ps, big_n, couple).key,
             solver.record(internal, group.links, l2, l1, q, r_q).key]
-    P1, Q = ext1.point, internal.point
-    steps = (f"Rᵗ_{P1} ⟂ {P1}{Q} from ΣM_{Q}({l1}) = 0",
-             f"force polygon: Rᵗ_{P1} + ΣF + N + Rⁿ_{P1} = 0, N ⟂ the guide of "
-             f"{ext2.slide.key}, Rⁿ_{P1} ∥ {P1}{Q}",
-             f"R_{Q} from the equilibrium of {l1}",
-             f"the reaction couple of {ext2.slide.key} from ΣM({l2}) = 0 about "
-             f"{ext2.slide.point}")
+    p1, pin, guide = ext1.point, internal.point, ext2.slide
+    tangential, normal_part = ForceName(f"Rᵗ_{p1}"), ForceName(f"Rⁿ_{p1}")
+    steps = (message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0", force=tangential,
+                     segment=p1 + pin, pin=pin, link=LinkNumber(l1)),
+             message("force polygon: {tangential} + ΣF + N + {normal} = 0, N ⟂ the guide of "
+                     "{pair}, {normal} ∥ {segment}", tangential=tangential,
+                     normal=normal_part, pair=guide.key, segment=p1 + pin),
+             message("{pin} from the equilibrium of {link}", pin=ForceName(f"R_{pin}"),
+                     link=l1),
+             message("the reaction couple of {pair} from ΣM({link}) = 0 about {point}",
+                     pair=guide.key, link=LinkNumber(l2), point=guide.point))
     return solver.result(group, steps, edges, keys)

@@ -9,8 +9,9 @@ Examples
 >>> from planmethod.forces import solve_forces
 >>> from planmethod.kinematics import solve
 >>> from planmethod.spec import load_exercise
+>>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/fourbar_forces.toml").mechanism)
->>> solve_forces(motion).groups.groups[0].steps[0]
+>>> render(solve_forces(motion).groups.groups[0].steps[0])
 'Rᵗ_B ⟂ BC from ΣM_C(BC) = 0: Rᵗ_B = ΣM_C/BC'
 """
 
@@ -19,6 +20,8 @@ from __future__ import annotations
 from ...structure import AssurGroup
 from ...vectors import perp
 from ...vocabulary import EdgeKind
+from ...words import message
+from ..names import ForceName, LinkNumber
 from .base import ForceSolver, GroupForces, split
 
 __all__ = ["reactions"]
@@ -43,7 +46,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     rt1, rt2 = t1[..., None] * perp(e1), t2[..., None] * perp(e2)
     known = w1.force + w2.force
     n1, n2 = solver.solve2(e1, e2, -(rt1 + rt2 + known), group.name,
-                         f"{l1} and {l2} are in line (toggle)")
+                           message("{first} and {second} are in line (toggle)", first=l1,
+                                   second=l2))
     rn1, rn2 = n1[..., None] * e1, n2[..., None] * e2
     r1, r2 = rn1 + rt1, rn2 + rt2
     edges = [solver.edge(f"Rᵗ_{ext1.point}", rt1, EdgeKind.COMPONENT, l1),
@@ -54,10 +58,22 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(ext2, group.links, l2, k2, p2, r2).key,
             solver.record(internal, group.links, l2, l1, q, r1 + w1.force).key]
-    P1, Q, P2 = ext1.point, internal.point, ext2.point
-    steps = (f"Rᵗ_{P1} ⟂ {P1}{Q} from ΣM_{Q}({l1}) = 0: Rᵗ_{P1} = ΣM_{Q}/{P1}{Q}",
-             f"Rᵗ_{P2} ⟂ {P2}{Q} from ΣM_{Q}({l2}) = 0: Rᵗ_{P2} = ΣM_{Q}/{P2}{Q}",
-             f"force polygon of the group: Rᵗ_{P1} + ΣF + Rᵗ_{P2} + Rⁿ_{P2} + Rⁿ_{P1} = 0, "
-             f"Rⁿ_{P1} ∥ {P1}{Q}, Rⁿ_{P2} ∥ {P2}{Q}",
-             f"R_{Q} from the equilibrium of {l1}: R_{Q} = R_{P1} + ΣF({l1})")
-    return solver.result(group, steps, edges, keys)
+    return solver.result(group, _steps(ext1.point, internal.point, ext2.point, l1, l2), edges,
+                         keys)
+
+
+def _steps(p1: str, q: str, p2: str, l1: str, l2: str) -> tuple:
+    """The sequence's sentences: the outer pins P1, P2 of the links L1, L2, the inner pin Q."""
+    first, second = ForceName(f"Rᵗ_{p1}"), ForceName(f"Rᵗ_{p2}")
+    return (message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0: {force} = ΣM_{pin}/"
+                    "{segment}", force=first, segment=p1 + q, pin=q, link=LinkNumber(l1)),
+            message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0: {force} = ΣM_{pin}/"
+                    "{segment}", force=second, segment=p2 + q, pin=q, link=LinkNumber(l2)),
+            message("force polygon of the group: {first} + ΣF + {second} + {second_normal} + "
+                    "{first_normal} = 0, {first_normal} ∥ {first_segment}, {second_normal} ∥ "
+                    "{second_segment}", first=first, second=second,
+                    first_normal=ForceName(f"Rⁿ_{p1}"), second_normal=ForceName(f"Rⁿ_{p2}"),
+                    first_segment=p1 + q, second_segment=p2 + q),
+            message("{pin} from the equilibrium of {link}: {pin} = {outer} + ΣF({number})",
+                    pin=ForceName(f"R_{q}"), link=l1, outer=ForceName(f"R_{p1}"),
+                    number=LinkNumber(l1)))
