@@ -21,7 +21,13 @@ allows (the sign of a jump to another assembly), is halved, down to :data:`MIN_S
 it is an error — :class:`~planmethod.errors.ConvergenceError` (how far from a solution, where)
 or :class:`~planmethod.errors.BranchJumpError` — never a silent flip; where the group's
 Jacobian is nearly singular there, it has reached its limit (toggle) position: a
-:class:`~planmethod.errors.ToggleError`.
+:class:`~planmethod.errors.ToggleError`. A system written in the arithmetic of
+:mod:`planmethod.kinematics.algebra` (the plain triad) makes each node on plain floats
+(:meth:`Path.quick`: the same prediction, Newton steps, checks and rates in the same
+arithmetic — the same numbers where numpy's cosine and sine round as the C library's — without
+the cost of numpy arrays of one angle: a full turn of nodes in tens of milliseconds rather than
+half a second); a node where Newton does not settle, a check fails or a number is not finite is
+made again on arrays, which halve the step or raise the error.
 
 **Any crank angles at once.** Each angle is predicted from its nearest node by the node's
 second-order Taylor expansion and corrected by Newton's method on all angles together
@@ -67,7 +73,8 @@ from ..tracing import Redo, Traced
 from .base import Branch, GroupInputs, KindModel, SolvedGroup
 
 __all__ = ["ITERATIONS", "KINDS", "MIN_STEP_DEG", "RESIDUAL", "STEP_DEG", "HigherBranch",
-           "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate"]
+           "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate",
+           "newton_floats"]
 
 KINDS = (GroupKind.TRIAD, GroupKind.TETRAD)
 PRIORITY = 0
@@ -209,6 +216,60 @@ class System:
         return np.sqrt(np.sum((dq * self.weights) ** 2, axis=-1))
 
 
+def newton_floats(system: System, q: list[float], known) -> tuple[list[float], Any] | None:
+    """:meth:`System.newton` at one angle on plain floats, for a system written in the
+    arithmetic of :mod:`~planmethod.kinematics.algebra` (the same steps, the same numbers):
+    (the solution, its pose) once converged, else None — a residual or step not finite, one
+    of a million sizes or more, or no convergence in :data:`ITERATIONS` steps: cases that
+    :meth:`System.newton` on arrays decides.
+
+    >>> class Line(System):          # x = 2, as one equation
+    ...     length, size = 1.0, 1
+    ...     def at(self, q, known): return q
+    ...     def residual(self, pose): return abs(pose[0] - 2.0)
+    ...     def step(self, pose): return (2.0 - pose[0],)
+    >>> newton_floats(Line(), [0.5], None)
+    ([2.0], (2.0,))
+    """
+    tolerance = RESIDUAL * system.length
+    polished = False
+    pose = system.at(tuple(q), known)
+    residual = system.residual(pose)
+    for _ in range(ITERATIONS):
+        if not residual < 1e6 * system.length:    # not finite, or diverged
+            return None
+        done = residual <= tolerance
+        polished = polished or residual <= POLISHED * tolerance
+        if done and polished:
+            return q, pose
+        polished = polished or done   # one more step for a converged one: full precision
+        step = system.step(pose)
+        if not all(math.isfinite(value) for value in step):
+            return None
+        q = [a + b for a, b in zip(q, step, strict=True)]
+        pose = system.at(tuple(q), known)
+        residual = system.residual(pose)
+    return (q, pose) if residual <= tolerance else None
+
+
+def _listed(known):
+    """The known values (arrays in lists and tuples) with each array as a list of floats."""
+    if isinstance(known, (list, tuple)):
+        return type(known)(_listed(value) for value in known)
+    return _Floats(np.asarray(known, dtype=float).tolist())
+
+
+class _Floats(list):
+    """One known value's floats, an item per angle (apart from the lists that hold them)."""
+
+
+def _picked(listed, index: int):
+    """The known values (as :func:`_listed` gives them) at the angle ``index``, as floats."""
+    if isinstance(listed, _Floats):
+        return listed[index]
+    return type(listed)(_picked(value, index) for value in listed)
+
+
 def stack(values: Sequence) -> np.ndarray:
     """Coordinates (arrays or numbers) as an (N, k) array."""
     return np.stack(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)),
@@ -259,18 +320,61 @@ class Path:
         with self.lock:
             nodes = self.nodes[direction]
             if len(nodes) <= count:
-                angles = self.start + direction * STEP_DEG * np.arange(len(nodes), count + 1)
-                ahead = self.upstream(angles)
-                for index, angle in enumerate(angles):
-                    before = float(self.start + direction * STEP_DEG * (len(nodes) - 1))
-                    nodes.append(self.advance(nodes[-1], before, float(angle),
-                                              _take(ahead, np.array([index]))))
+                self._march(direction, count)
             stacked = self.stacked.get(direction)
             if stacked is None or stacked[0] != len(nodes):  # joined once per growth
                 stacked = (len(nodes), tuple(np.concatenate(parts)
                                              for parts in zip(*nodes, strict=True)))
                 self.stacked[direction] = stacked
         return tuple(part[:count + 1] for part in stacked[1])
+
+    def _march(self, direction: int, count: int) -> None:
+        """Make the nodes of one side up to number ``count``, each from the one before: by
+        :meth:`quick` where the system computes on plain floats, else — or where it declines
+        — by :meth:`advance` (which halves the step or raises the error). The known links are
+        evaluated at all the new nodes at once."""
+        nodes = self.nodes[direction]
+        angles = self.start + direction * STEP_DEG * np.arange(len(nodes), count + 1)
+        ahead = self.upstream(angles)
+        values = _listed(ahead) if self.system.traceable else None
+        for index, angle in enumerate(angles):
+            before = float(self.start + direction * STEP_DEG * (len(nodes) - 1))
+            node = None
+            if values is not None:
+                node = self.quick(nodes[-1], before, float(angle), _picked(values, index))
+            if node is None:
+                node = self.advance(nodes[-1], before, float(angle),
+                                    _take(ahead, np.array([index])))
+            nodes.append(node)
+
+    def quick(self, node, start: float, stop: float, known):
+        """:meth:`advance`'s step from ``node`` at ``start`` to ``stop`` (deg) when it goes
+        well, on plain floats (``known`` at ``stop`` as floats): the same prediction, Newton
+        (:func:`newton_floats`), jump and toggle checks and rates, by the same arithmetic,
+        without the cost of arrays of one angle. None where :meth:`advance` must decide: Newton
+        not settled, a jump, a pose near its toggle, a number not finite."""
+        system = self.system
+        q, first, second = (part[0].tolist() for part in node)
+        step = math.radians(stop - start)
+        prediction = [a + b * step + 0.5 * c * step * step
+                      for a, b, c in zip(q, first, second, strict=True)]
+        try:
+            solved = newton_floats(system, prediction, known)
+            if solved is None:
+                return None
+            found, pose = solved
+            weights = system.weights.tolist()
+            jump = math.sqrt(sum(((a - b) * w) * ((a - b) * w)
+                                 for a, b, w in zip(found, prediction, weights, strict=True)))
+            expected = math.sqrt(sum((b * step * w) * (b * step * w)
+                                     for b, w in zip(first, weights, strict=True)))
+            if not (jump <= allowed(system.length, expected)
+                    and system.conditioning(pose) > SINGULAR):
+                return None
+            rates = system.rates(pose, 2)
+        except (ArithmeticError, ValueError):   # a float division by zero, a math domain
+            return None
+        return np.array([found]), np.array([rates[0]]), np.array([rates[1]])
 
     def advance(self, node, start: float, stop: float, known=None):
         """From ``node`` at ``start`` to ``stop`` (deg), halving on trouble."""
