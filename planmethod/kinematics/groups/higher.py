@@ -252,24 +252,6 @@ def newton_floats(system: System, q: list[float], known) -> tuple[list[float], A
     return (q, pose) if residual <= tolerance else None
 
 
-def _listed(known):
-    """The known values (arrays in lists and tuples) with each array as a list of floats."""
-    if isinstance(known, (list, tuple)):
-        return type(known)(_listed(value) for value in known)
-    return _Floats(np.asarray(known, dtype=float).tolist())
-
-
-class _Floats(list):
-    """One known value's floats, an item per angle (apart from the lists that hold them)."""
-
-
-def _picked(listed, index: int):
-    """The known values (as :func:`_listed` gives them) at the angle ``index``, as floats."""
-    if isinstance(listed, _Floats):
-        return listed[index]
-    return type(listed)(_picked(value, index) for value in listed)
-
-
 def stack(values: Sequence) -> np.ndarray:
     """Coordinates (arrays or numbers) as an (N, k) array."""
     return np.stack(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)),
@@ -304,13 +286,19 @@ class Path:
     each direction, each with q, dq/dφ and d²q/dφ² (per rad)."""
 
     def __init__(self, system: System, start: float, q0: np.ndarray, upstream) -> None:
+        #: ``upstream(angles)``: the known values the system reads (:meth:`System.inputs`) at
+        #: ``angles`` with the crank at unit speed, as arrays
         self.system, self.start, self.upstream = system, start, upstream
         self.lock = threading.Lock()
-        first, second = self._derivatives(q0[None, :], upstream(np.array([start])))
+        first, second = self._derivatives(q0[None, :], self.known(np.array([start])))
         node = (q0[None, :], first, second)
         self.nodes = {1: [node], -1: [node]}
         #: the nodes of each side joined into arrays (q, q', q''), with the count they hold
         self.stacked: dict[int, tuple[int, tuple[np.ndarray, ...]]] = {}
+
+    def known(self, angles: np.ndarray):
+        """The system's known values at ``angles`` (deg), at unit crank speed."""
+        return self.system.known(self.upstream(angles), 2)
 
     def _derivatives(self, q: np.ndarray, known):
         first, second = self.system.rates(self.system.at(tuple(q.T), known), 2)
@@ -333,15 +321,19 @@ class Path:
         :meth:`quick` where the system computes on plain floats, else — or where it declines
         — by :meth:`advance` (which halves the step or raises the error). The known links are
         evaluated at all the new nodes at once."""
-        nodes = self.nodes[direction]
+        system, nodes = self.system, self.nodes[direction]
         angles = self.start + direction * STEP_DEG * np.arange(len(nodes), count + 1)
-        ahead = self.upstream(angles)
-        values = _listed(ahead) if self.system.traceable else None
+        values = self.upstream(angles)
+        ahead = system.known(values, 2)
+        # the inputs node by node as floats, for a system that computes on them
+        floats = list(zip(*(np.asarray(value).tolist() for value in values), strict=True)
+                      ) if system.traceable else None
         for index, angle in enumerate(angles):
             before = float(self.start + direction * STEP_DEG * (len(nodes) - 1))
             node = None
-            if values is not None:
-                node = self.quick(nodes[-1], before, float(angle), _picked(values, index))
+            if floats is not None:
+                node = self.quick(nodes[-1], before, float(angle),
+                                  system.known(floats[index], 2))
             if node is None:
                 node = self.advance(nodes[-1], before, float(angle),
                                     _take(ahead, np.array([index])))
@@ -380,7 +372,7 @@ class Path:
         """From ``node`` at ``start`` to ``stop`` (deg), halving on trouble."""
         system = self.system
         q, first, second = node
-        known = self.upstream(np.array([stop])) if known is None else known
+        known = self.known(np.array([stop])) if known is None else known
         step = math.radians(stop - start)
         prediction = q + first * step + 0.5 * second * step * step
         found, converged, residual, pose = system.newton(prediction, known)
@@ -392,7 +384,7 @@ class Path:
                 raise _toggle(system, health, stop)
             return (found, *self._derivatives(found, known))
         if abs(stop - start) < MIN_STEP_DEG:
-            here = self.upstream(np.array([start]))
+            here = self.known(np.array([start]))
             health = float(np.ravel(system.conditioning(system.at(tuple(q.T), here)))[0])
             name = system.group.name
             if health < LIMIT:
@@ -571,10 +563,10 @@ def _path(context: GroupInputs, model: KindModel, branch: Branch, system: System
             "crank angle {angle:g}°", count=len(assemblies), branch=branch.sign,
             angle=mechanism.drive.angle), link=group.name)
 
-    def upstream(angles: np.ndarray):
-        """The known values at unit crank speed: derivatives by the crank angle."""
+    def upstream(angles: np.ndarray) -> list[np.ndarray]:
+        """The inputs at unit crank speed: derivatives by the crank angle."""
         bodies = _upstream_bodies(model, group, np.asarray(angles, dtype=float), 2, unit=True)
-        return system.known(_arrays(system.inputs(bodies, 2), len(angles)), 2)
+        return _arrays(system.inputs(bodies, 2), len(angles))
 
     found = Path(system, float(mechanism.drive.angle), assemblies[branch.sign - 1], upstream)
     model.memo[key] = found
