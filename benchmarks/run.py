@@ -23,7 +23,9 @@ Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workboo
 * ``toggle`` — how close to a four-bar's toggle each stage still solves, and the error estimate
   against the measured error → ``results/toggle.{json,md}``;
 * ``studio`` — the studio's time per update while a point is dragged, on the server and in
-  headless Chromium → ``results/studio.{json,md}``.
+  headless Chromium → ``results/studio.{json,md}``;
+* ``triad`` — a class III mechanism's first answer (one angle, a full turn) against a
+  four-bar's, in fresh processes and for a new mechanism → ``results/triad.{json,md}``.
 
 A full run writes into ``benchmarks/results`` and ``figures``; ``--quick`` (smaller N, fewer
 repeats, about a minute) writes into ``--out`` (default: a temporary folder), so that quick
@@ -32,7 +34,8 @@ numbers never replace the committed ones.
 Examples
 --------
 >>> sorted(SECTIONS)
-['accuracy', 'continuation', 'memory', 'scene', 'speed', 'stress', 'studio', 'toggle', 'workbook']
+['accuracy', 'continuation', 'memory', 'scene', 'speed', 'stress', 'studio', 'toggle', 'triad',
+ 'workbook']
 """
 
 from __future__ import annotations
@@ -44,7 +47,18 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import accuracy, continuation, memory, scene, speed, stress, studio, toggle, workbook
+from . import (
+    accuracy,
+    continuation,
+    memory,
+    scene,
+    speed,
+    stress,
+    studio,
+    toggle,
+    triad,
+    workbook,
+)
 from .common import FIGURES, RESULTS, machine, written_by
 
 SECTIONS = {
@@ -57,6 +71,7 @@ SECTIONS = {
     "continuation": (continuation, None),
     "toggle": (toggle, None),
     "studio": (studio, None),
+    "triad": (triad, None),
 }
 
 

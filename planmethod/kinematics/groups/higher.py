@@ -21,7 +21,13 @@ allows (the sign of a jump to another assembly), is halved, down to :data:`MIN_S
 it is an error — :class:`~planmethod.errors.ConvergenceError` (how far from a solution, where)
 or :class:`~planmethod.errors.BranchJumpError` — never a silent flip; where the group's
 Jacobian is nearly singular there, it has reached its limit (toggle) position: a
-:class:`~planmethod.errors.ToggleError`.
+:class:`~planmethod.errors.ToggleError`. A system written in the arithmetic of
+:mod:`planmethod.kinematics.algebra` (the plain triad) makes each node on plain floats
+(:meth:`Path.quick`: the same prediction, Newton steps, checks and rates in the same
+arithmetic — the same numbers where numpy's cosine and sine round as the C library's — without
+the cost of numpy arrays of one angle: a full turn of nodes in tens of milliseconds rather than
+half a second); a node where Newton does not settle, a check fails or a number is not finite is
+made again on arrays, which halve the step or raise the error.
 
 **Any crank angles at once.** Each angle is predicted from its nearest node by the node's
 second-order Taylor expansion and corrected by Newton's method on all angles together
@@ -67,7 +73,8 @@ from ..tracing import Redo, Traced
 from .base import Branch, GroupInputs, KindModel, SolvedGroup
 
 __all__ = ["ITERATIONS", "KINDS", "MIN_STEP_DEG", "RESIDUAL", "STEP_DEG", "HigherBranch",
-           "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate"]
+           "System", "accept", "choose", "choose_with", "evaluate", "higher_evaluate",
+           "newton_floats"]
 
 KINDS = (GroupKind.TRIAD, GroupKind.TETRAD)
 PRIORITY = 0
@@ -209,6 +216,42 @@ class System:
         return np.sqrt(np.sum((dq * self.weights) ** 2, axis=-1))
 
 
+def newton_floats(system: System, q: list[float], known) -> tuple[list[float], Any] | None:
+    """:meth:`System.newton` at one angle on plain floats, for a system written in the
+    arithmetic of :mod:`~planmethod.kinematics.algebra` (the same steps, the same numbers):
+    (the solution, its pose) once converged, else None — a residual or step not finite, one
+    of a million sizes or more, or no convergence in :data:`ITERATIONS` steps: cases that
+    :meth:`System.newton` on arrays decides.
+
+    >>> class Line(System):          # x = 2, as one equation
+    ...     length, size = 1.0, 1
+    ...     def at(self, q, known): return q
+    ...     def residual(self, pose): return abs(pose[0] - 2.0)
+    ...     def step(self, pose): return (2.0 - pose[0],)
+    >>> newton_floats(Line(), [0.5], None)
+    ([2.0], (2.0,))
+    """
+    tolerance = RESIDUAL * system.length
+    polished = False
+    pose = system.at(tuple(q), known)
+    residual = system.residual(pose)
+    for _ in range(ITERATIONS):
+        if not residual < 1e6 * system.length:    # not finite, or diverged
+            return None
+        done = residual <= tolerance
+        polished = polished or residual <= POLISHED * tolerance
+        if done and polished:
+            return q, pose
+        polished = polished or done   # one more step for a converged one: full precision
+        step = system.step(pose)
+        if not all(math.isfinite(value) for value in step):
+            return None
+        q = [a + b for a, b in zip(q, step, strict=True)]
+        pose = system.at(tuple(q), known)
+        residual = system.residual(pose)
+    return (q, pose) if residual <= tolerance else None
+
+
 def stack(values: Sequence) -> np.ndarray:
     """Coordinates (arrays or numbers) as an (N, k) array."""
     return np.stack(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)),
@@ -243,13 +286,19 @@ class Path:
     each direction, each with q, dq/dφ and d²q/dφ² (per rad)."""
 
     def __init__(self, system: System, start: float, q0: np.ndarray, upstream) -> None:
+        #: ``upstream(angles)``: the known values the system reads (:meth:`System.inputs`) at
+        #: ``angles`` with the crank at unit speed, as arrays
         self.system, self.start, self.upstream = system, start, upstream
         self.lock = threading.Lock()
-        first, second = self._derivatives(q0[None, :], upstream(np.array([start])))
+        first, second = self._derivatives(q0[None, :], self.known(np.array([start])))
         node = (q0[None, :], first, second)
         self.nodes = {1: [node], -1: [node]}
         #: the nodes of each side joined into arrays (q, q', q''), with the count they hold
         self.stacked: dict[int, tuple[int, tuple[np.ndarray, ...]]] = {}
+
+    def known(self, angles: np.ndarray):
+        """The system's known values at ``angles`` (deg), at unit crank speed."""
+        return self.system.known(self.upstream(angles), 2)
 
     def _derivatives(self, q: np.ndarray, known):
         first, second = self.system.rates(self.system.at(tuple(q.T), known), 2)
@@ -259,12 +308,7 @@ class Path:
         with self.lock:
             nodes = self.nodes[direction]
             if len(nodes) <= count:
-                angles = self.start + direction * STEP_DEG * np.arange(len(nodes), count + 1)
-                ahead = self.upstream(angles)
-                for index, angle in enumerate(angles):
-                    before = float(self.start + direction * STEP_DEG * (len(nodes) - 1))
-                    nodes.append(self.advance(nodes[-1], before, float(angle),
-                                              _take(ahead, np.array([index]))))
+                self._march(direction, count)
             stacked = self.stacked.get(direction)
             if stacked is None or stacked[0] != len(nodes):  # joined once per growth
                 stacked = (len(nodes), tuple(np.concatenate(parts)
@@ -272,11 +316,63 @@ class Path:
                 self.stacked[direction] = stacked
         return tuple(part[:count + 1] for part in stacked[1])
 
+    def _march(self, direction: int, count: int) -> None:
+        """Make the nodes of one side up to number ``count``, each from the one before: by
+        :meth:`quick` where the system computes on plain floats, else — or where it declines
+        — by :meth:`advance` (which halves the step or raises the error). The known links are
+        evaluated at all the new nodes at once."""
+        system, nodes = self.system, self.nodes[direction]
+        angles = self.start + direction * STEP_DEG * np.arange(len(nodes), count + 1)
+        values = self.upstream(angles)
+        ahead = system.known(values, 2)
+        # the inputs node by node as floats, for a system that computes on them
+        floats = list(zip(*(np.asarray(value).tolist() for value in values), strict=True)
+                      ) if system.traceable else None
+        for index, angle in enumerate(angles):
+            before = float(self.start + direction * STEP_DEG * (len(nodes) - 1))
+            node = None
+            if floats is not None:
+                node = self.quick(nodes[-1], before, float(angle),
+                                  system.known(floats[index], 2))
+            if node is None:
+                node = self.advance(nodes[-1], before, float(angle),
+                                    _take(ahead, np.array([index])))
+            nodes.append(node)
+
+    def quick(self, node, start: float, stop: float, known):
+        """:meth:`advance`'s step from ``node`` at ``start`` to ``stop`` (deg) when it goes
+        well, on plain floats (``known`` at ``stop`` as floats): the same prediction, Newton
+        (:func:`newton_floats`), jump and toggle checks and rates, by the same arithmetic,
+        without the cost of arrays of one angle. None where :meth:`advance` must decide: Newton
+        not settled, a jump, a pose near its toggle, a number not finite."""
+        system = self.system
+        q, first, second = (part[0].tolist() for part in node)
+        step = math.radians(stop - start)
+        prediction = [a + b * step + 0.5 * c * step * step
+                      for a, b, c in zip(q, first, second, strict=True)]
+        try:
+            solved = newton_floats(system, prediction, known)
+            if solved is None:
+                return None
+            found, pose = solved
+            weights = system.weights.tolist()
+            jump = math.sqrt(sum(((a - b) * w) * ((a - b) * w)
+                                 for a, b, w in zip(found, prediction, weights, strict=True)))
+            expected = math.sqrt(sum((b * step * w) * (b * step * w)
+                                     for b, w in zip(first, weights, strict=True)))
+            if not (jump <= allowed(system.length, expected)
+                    and system.conditioning(pose) > SINGULAR):
+                return None
+            rates = system.rates(pose, 2)
+        except (ArithmeticError, ValueError):   # a float division by zero, a math domain
+            return None
+        return np.array([found]), np.array([rates[0]]), np.array([rates[1]])
+
     def advance(self, node, start: float, stop: float, known=None):
         """From ``node`` at ``start`` to ``stop`` (deg), halving on trouble."""
         system = self.system
         q, first, second = node
-        known = self.upstream(np.array([stop])) if known is None else known
+        known = self.known(np.array([stop])) if known is None else known
         step = math.radians(stop - start)
         prediction = q + first * step + 0.5 * second * step * step
         found, converged, residual, pose = system.newton(prediction, known)
@@ -288,7 +384,7 @@ class Path:
                 raise _toggle(system, health, stop)
             return (found, *self._derivatives(found, known))
         if abs(stop - start) < MIN_STEP_DEG:
-            here = self.upstream(np.array([start]))
+            here = self.known(np.array([start]))
             health = float(np.ravel(system.conditioning(system.at(tuple(q.T), here)))[0])
             name = system.group.name
             if health < LIMIT:
@@ -467,10 +563,10 @@ def _path(context: GroupInputs, model: KindModel, branch: Branch, system: System
             "crank angle {angle:g}°", count=len(assemblies), branch=branch.sign,
             angle=mechanism.drive.angle), link=group.name)
 
-    def upstream(angles: np.ndarray):
-        """The known values at unit crank speed: derivatives by the crank angle."""
+    def upstream(angles: np.ndarray) -> list[np.ndarray]:
+        """The inputs at unit crank speed: derivatives by the crank angle."""
         bodies = _upstream_bodies(model, group, np.asarray(angles, dtype=float), 2, unit=True)
-        return system.known(_arrays(system.inputs(bodies, 2), len(angles)), 2)
+        return _arrays(system.inputs(bodies, 2), len(angles))
 
     found = Path(system, float(mechanism.drive.angle), assemblies[branch.sign - 1], upstream)
     model.memo[key] = found
