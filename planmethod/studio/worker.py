@@ -105,16 +105,22 @@ def main() -> int:
     message)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     channel = _channel()
+    task: dict[str, Any] = {}
 
     def tell(message: dict[str, Any]) -> None:
-        channel.write(json.dumps(message, ensure_ascii=False, allow_nan=False).encode() + b"\n")
-        channel.flush()
+        try:
+            channel.write(json.dumps(message, ensure_ascii=False, allow_nan=False).encode()
+                          + b"\n")
+            channel.flush()
+        except OSError:   # the studio's end of the pipe closed: it is gone (killed)
+            _STUDIO_GONE.set()
+            _abandon_if_gone(task.get("staging"))
 
     _prepare()
     line = sys.stdin.buffer.readline(MAX_TASK)
     if not line:   # the studio ended before it had a task for this process
         return 0
-    task = json.loads(line)
+    task.update(json.loads(line))
     threading.Thread(target=_lifeline, args=(task.get("staging"),), daemon=True,
                      name="planmethod-lifeline").start()
     from ..words import speaking
