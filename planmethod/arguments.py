@@ -43,7 +43,7 @@ def said(text: Message) -> str:
 
 
 #: argparse's own sentences (the English it looks up) → (ours, each field's placeholder)
-_SENTENCES: dict[str, tuple[Message, dict[str, str]]] = {
+_SENTENCES: dict[str, tuple[Message, dict[str, str]]] = {  # words: argparse's keys
     "usage: ": (message("usage: "), {}),
     "positional arguments": (message("positional arguments"), {}),
     "options": (message("options"), {}),

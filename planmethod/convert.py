@@ -410,14 +410,10 @@ def convert_text(text: str, *, to: str | None = None, file: str | None = None) -
     return _header(text) + to_toml(convert_tables(data, to=to, file=file))
 
 
-def refuse_template(data: Mapping[str, Any], what: Message | str, *,
+def refuse_template(data: Mapping[str, Any], said: Message, *,
                     file: str | None = None) -> None:
-    """A :class:`SpecError` if the tables are a template (``[vars]`` or ``[template]``),
-    saying ``what``: the whole sentence, as a message (or, where its caller still gives
-    words, what is done to a template instead: ``"is converted variant by variant"``)."""
+    """A :class:`SpecError` saying ``said`` (the whole sentence) if the tables are a template
+    (``[vars]`` or ``[template]``)."""
     for name in ("vars", "template"):
         if name in data:
-            said = what if isinstance(what, Message) else message(
-                "a template (it has ranges, choices or expressions) {what}: draw one with "
-                "`planmethod variants`", what=what)
             raise SpecError(said, file=file, key=name)

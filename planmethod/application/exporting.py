@@ -58,6 +58,7 @@ def _gradescope_file(name: str) -> bool:
 
 #: the run folders export writes, by format (their manifests' tags, the files they may
 #: list): a PrairieLearn question ``OUT/SLUG/``, a Gradescope autograder ``OUT/``
+# words: the commands that write the runs, named as typed, and the manifests' tags
 RUNS = {"prairielearn": RunKind("export --format prairielearn",
                                 "planmethod-prairielearn-manifest", _prairielearn_file,
                                 force=None),

@@ -42,7 +42,9 @@ def as_drawn(text: str, file: str | None = None) -> dict[str, Any]:
     from ..spec import is_drawn, parse_toml
 
     data = parse_toml(text, file=file)
-    refuse_template(data, "is not edited in the studio, one exercise is", file=file)
+    refuse_template(data, message("a template (it has ranges, choices or expressions) is not "
+                                  "edited in the studio, one exercise is: draw one with "
+                                  "`planmethod variants`"), file=file)
     if is_drawn(data):
         exercise_of(text, file)    # it must be a whole exercise
         return data

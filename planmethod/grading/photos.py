@@ -1179,8 +1179,12 @@ class GradedPhoto:
                         "strokes": self.strokes, "marks": self.marks}}
 
 
+#: how a key given as data (no file) is named in what a photo's grading says
+_THE_KEY = message("the key")
+
+
 def grade_photo(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
-                key_source: str = "the key") -> GradedPhoto:
+                key_source: Message | str = _THE_KEY) -> GradedPhoto:
     """Grade the plan drawn on the sheet a photo shows (see the module notes): the plan graded
     by :func:`~planmethod.grading.drawings.grade_drawing` from the points found (a point within
     the photo's measuring error of a named mistake's place is graded there), with where each

@@ -41,7 +41,7 @@ __all__ = ["blank_plan_sheet", "given_data", "paper_plan_sheet", "paper_task_she
            "plan_sheet_for_key", "task_figure_svg", "task_sheet_svg", "task_text"]
 
 #: the words a question's text ends with that the answer table's heading says for every row
-_SENSE_NOTE = " (counter-clockwise positive)"
+_SENSE_NOTE = " (counter-clockwise positive)"  # words: as a key's English text ends
 
 
 def _lines(key: Mapping[str, Any]) -> list[Message | str]:

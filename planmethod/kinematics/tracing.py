@@ -439,9 +439,10 @@ class _SourceWriter:
         if isinstance(op.args[0], float):  # a constant that fails its bound
             return call
         if magnitude:
+            # words: code (a check's line of the compiled program)
             return (f"if not ({value}.min() > {self.constant(bound)} if {value}[0] > 0.0 "
                     f"else {value}.max() < {self.constant(-bound)}): {call}")
-        return f"if not ({value}.min() > {self.constant(bound)}): {call}"
+        return f"if not ({value}.min() > {self.constant(bound)}): {call}"  # words: code
 
     def call(self, op: _Op) -> str:
         for out in op.out:

@@ -119,7 +119,7 @@ def _template_catalogue(found: list[Template]):
     catalog, _, _ = _babel()
     template = catalog.Catalog(project="planmethod", domain=DOMAIN, fuzzy=False,
                                charset="utf-8", creation_date=_DATE, revision_date=_DATE,
-                               copyright_holder="the planmethod contributors")
+                               copyright_holder="the planmethod contributors")  # words: a header
     for item in found:
         key = item.forms if len(item.forms) > 1 else item.template
         template.add(key, locations=[(item.file, item.line)], context=item.context,
@@ -134,7 +134,7 @@ def new(language: str, folder: Path) -> str:
     with open(LOCALE / f"{DOMAIN}.pot", "rb") as file:
         template = pofile.read_po(file)
     fresh = catalog.Catalog(locale=language, domain=DOMAIN, charset="utf-8", project="planmethod",
-                            copyright_holder="the planmethod contributors",
+                            copyright_holder="the planmethod contributors",  # words: a header
                             creation_date=_DATE, revision_date=_DATE, fuzzy=False)
     fresh.update(template, update_header_comment=False)
     target = folder / language / "LC_MESSAGES" / f"{DOMAIN}.po"
@@ -209,8 +209,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m planmethod.words.catalogue",
                                      description=__doc__.split("\n\n")[0])
     steps = parser.add_subparsers(dest="step")
+    # words: the catalogue tool speaks English: it makes the catalogues (docs/languages.md)
     steps.add_parser("build", help="the package's template and catalogues, from the code")
-    start = steps.add_parser("new", help="start a course's catalogue for a language")
+    start = steps.add_parser("new", help="start a course's catalogue for a language")  # words: ↑
     start.add_argument("language")
     start.add_argument("folder", type=Path)
     steps.add_parser("compile", help="compile a course's catalogues").add_argument(

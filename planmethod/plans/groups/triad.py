@@ -28,6 +28,7 @@ from ...errors import ToggleError
 from ...kinematics.groups.triad import sides
 from ...structure import AssurGroup
 from ...vectors import cross, norm, perp, unit
+from ...words import message
 from ..steps import (
     Across,
     BothSides,
@@ -95,8 +96,8 @@ class _Triad:
             if best is None or score > best[0]:
                 best = (score, i, j, k, special)
         if best is None or best[0] < 1e-9:
-            raise ToggleError("the lines of the triad's side links are parallel: Assur's "
-                              "special point is at infinity", line_angle_deg=0.0,
+            raise ToggleError(message("the lines of the triad's side links are parallel: "
+                                      "Assur's special point is at infinity"), line_angle_deg=0.0,
                               link=group.name, angle=emulator.angle)
         _, self.i, self.j, self.k, self.special = best
 
