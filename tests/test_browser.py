@@ -706,3 +706,51 @@ def test_panel_text_is_readable_in_a_1400_px_window(browser, request, which):
         assert shown == pytest.approx(drawn, rel=0.02), panel
     assert errors == []
     page.close()
+
+
+# -- one rulebook: the page and planmethod grade ------------------------------------------------
+def test_the_page_grades_the_golden_file_as_python_does(browser, compressor_page,
+                                                        tmp_path_factory):
+    """The workbook page's own scripts and rules (the data embedded in a page the command
+    wrote) give every case of the golden file Python's verdict: each typed answer
+    ``grade``'s feedback and hint, each drawn point and plan summary Python's sentence, each
+    number Python's writing (tests/page_golden.py; the same file runs under Node in
+    tests/test_page_rules.py)."""
+    import page_golden
+
+    golden = json.loads(page_golden.golden_file(tmp_path_factory).read_text(encoding="utf-8"))
+    page, errors = open_page(browser, compressor_page)
+    assert page.evaluate("workbook.data.rules") == golden["rules"]
+    wrong = page.evaluate("""golden => {
+        const rules = workbook.rules, out = [];
+        const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+        golden.answers.forEach(item => {
+            const {question, quantity} = golden.questions[item.question];
+            const mine = rules.answerVerdict(question, item.raw, quantity);
+            const got = {correct: mine.correct, mistake: mine.mistake, feedback: mine.feedback,
+                         hint: mine.hint, answer: mine.answer};
+            const expected = item.expected;
+            if (!same(got, {correct: expected.correct, mistake: expected.mistake,
+                            feedback: expected.feedback, hint: expected.hint,
+                            answer: expected.answer})) out.push([item.raw, got, expected]);
+        });
+        golden.points.forEach(item => {
+            const mine = rules.pointVerdict(item.name, item.entry, item.drawn === null ?
+                undefined : item.drawn, item.required, item.candidates, golden.texts);
+            if (!same({ok: mine.ok, mistakes: mine.mistakes, sentence: mine.sentence},
+                      item.expected)) out.push([item, mine]);
+        });
+        golden.summaries.forEach(item => {
+            const got = rules.planSummary(item.plan, item.right, item.total, item.common,
+                                          golden.texts);
+            if (got !== item.expected) out.push([item, got]);
+        });
+        golden.numbers.forEach(([value, specification, expected]) => {
+            const got = planmethodWords.formatNumber(value, specification);
+            if (got !== expected) out.push([value, specification, expected, got]);
+        });
+        return {wrong: out.slice(0, 5), count: out.length, answers: golden.answers.length};
+    }""", golden)
+    assert wrong == {"wrong": [], "count": 0, "answers": len(golden["answers"])}
+    assert errors == []
+    page.close()

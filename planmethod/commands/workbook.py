@@ -257,7 +257,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     from ..grading.answers import magnitude_note, sense_words
     from ..numbering import course_numbers
     from ..render.steady import steady_views
-    from ..render.workbook import curve_chart, workbook_html
+    from ..render.workbook import PageQuantity, WorkbookPage, curve_chart, workbook_html
     from ..vocabulary import numbered, pair_number, point_name, quantity
 
     angles = turn_angles(step, start=exercise.mechanism.drive.angle)   # opens at its own angle
@@ -290,10 +290,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
         return found.subject.replace("_", " ")
 
     plans = reading_plans(frames)
-    quantities = [{"name": name, "symbol": quantity(name).symbol,
-                   "subscript": subscript(name), "unit": unit, "plan": plans.get(name),
-                   "negative": magnitude_note(name, numbers),
-                   "senses": list(sense_words(name))}
+    quantities = [PageQuantity(name, quantity(name).symbol, subscript(name), unit,
+                               plans.get(name), magnitude_note(name, numbers), sense_words(name))
                   for name, unit in first["quantities"]]
     panels = [name for name in PANELS if name in first["drawings"]]
     panels += [name for name in first["drawings"] if name not in panels]
@@ -305,15 +303,14 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
              f"practice mode grades as `planmethod grade` does: tolerances from a drafting "
              f"precision of {first['tolerance_source']:g} mm (each tolerance is shown)"]
     charts = turn_charts(frames, numbers)
-    return workbook_html(exercise.mechanism.title, angles, panels, frames, quantities,
-                         charts=[curve_chart(angles, curves, title=title, unit=unit)
-                                 for title, unit, curves, _ in charts],
-                         chart_plans=[sorted({plans[name] for name in names
-                                              if plans.get(name)}) for *_, names in charts],
-                         notes=notes, start=mechanism.drive.angle,
-                         phi=numbered("φ", numbers[mechanism.drive.link]),
-                         drawing=drawing_meta(exercise, frames),
-                         sense=-1 if mechanism.drive.omega < 0 else 1)
+    return workbook_html(WorkbookPage(
+        exercise.mechanism.title, angles, panels, frames, quantities,
+        charts=[curve_chart(angles, curves, title=title, unit=unit,
+                            plans=sorted({plans[name] for name in names if plans.get(name)}))
+                for title, unit, curves, names in charts],
+        notes=notes, start=mechanism.drive.angle,
+        phi=numbered("φ", numbers[mechanism.drive.link]),
+        drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1))
 
 
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
@@ -329,12 +326,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     """
     from ..grading.drawings import DRAWING_FORMAT, exercise_digest
     from ..grading.mistakes import drawn_explanation
-    from ..grading.plan_points import (
-        DRAWN_MISTAKES,
-        MISTAKE_WORDING,
-        PLAN_WORDING,
-        plan_extent,
-    )
+    from ..grading.plan_points import DRAWN_MISTAKES, plan_extent
     from ..numbering import course_numbers
     from ..plans.construction import course_text
     from ..render.labels import label_runs
@@ -357,7 +349,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
         runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES],
-        wording=(*MISTAKE_WORDING, PLAN_WORDING), file_format=DRAWING_FORMAT,
+        file_format=DRAWING_FORMAT,
         phi=numbered("φ", numbers[mechanism.drive.link]))
 
 
