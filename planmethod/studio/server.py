@@ -67,7 +67,7 @@ from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
 from ..errors import PlanmethodError, SpecError
-from . import api, schema
+from . import api, exercise_data, schema
 from .jobs import BusyError, Jobs, NoSuchJobError
 
 __all__ = ["HOST", "StudioServer"]
@@ -504,10 +504,12 @@ class StudioHandler(BaseHTTPRequestHandler):
             fields |= schema.read_fields(given, route.query)
         if method == "POST":
             text = self._body()
-            if route.toml:
+            if route.toml and not self.headers.get("Content-Type", "").startswith(
+                    "application/json"):
                 fields["toml"] = text
-            elif route.body is not None:
-                fields |= schema.read_fields(_json_body(text), route.body)
+            elif route.body is not None or route.toml:   # the page's exercise: Python's TOML
+                data = exercise_data.with_toml(_json_body(text))
+                fields |= schema.read_fields(data, route.body or schema.SOLVE)
         return fields
 
     # -- answering --------------------------------------------------------------------------
