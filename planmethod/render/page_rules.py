@@ -187,19 +187,46 @@ class _Kept:
         return "{" + self.name + (":" + specification if specification else "") + "}"
 
 
-def template_text(text: Message, language: str | None = None) -> str:
+class _KeptCount(int):
+    """The count of a plural sentence: chooses the form as its value, formats as itself."""
+
+    def __format__(self, specification: str) -> str:
+        return "{count" + (":" + specification if specification else "") + "}"
+
+
+#: the counts whose forms a page receives (a larger count takes the form of 100 + its last
+#: two digits: page_words.js)
+PLURAL_COUNTS = 200
+
+
+def template_text(text: Message, language: str | None = None) -> str | dict[str, Any]:
     """A message's template as ``language``'s catalogue translates it, its fields left to
     fill (``{value:.6g}``): what a page fills in. A translation that does not fit the fields
-    gives the English template, as :func:`~planmethod.words.render` does.
+    gives the English template, as :func:`~planmethod.words.render` does. A plural sentence
+    gives its forms and which form each count takes (``forms``, ``plural``, ``count``).
 
     >>> template_text(template("{count} draws rejected at {angle:g}°"))
     '{count} draws rejected at {angle:g}°'
+    >>> from planmethod.words import plural
+    >>> shown = template_text(plural("{count} variant", "{count} variants", count=0))
+    >>> shown["forms"], shown["plural"][:3]
+    (['{count} variants', '{count} variant'], [0, 1, 0])
     """
-    if "{{" in text.template or "}}" in text.template:
+    if any(brace in form for form in text.forms for brace in ("{{", "}}")):
         raise ValueError(f"a page's template has no literal braces: {text.template!r}")
-    names = {name.split(".")[0].split("[")[0]
-             for _, name, _, _ in string.Formatter().parse(text.template) if name}
-    return render(text.replace(**{name: _Kept(name) for name in names}), language)
+    names = {name.split(".")[0].split("[")[0] for form in text.forms
+             for _, name, _, _ in string.Formatter().parse(form) if name}
+    kept = text.replace(**{name: _Kept(name) for name in names if name != text.count})
+    if text.count is None:
+        return render(kept, language)
+    forms: list[str] = []
+    plural = []
+    for count in range(PLURAL_COUNTS):
+        form = render(kept.replace(**{text.count: _KeptCount(count)}), language)
+        if form not in forms:
+            forms.append(form)
+        plural.append(forms.index(form))
+    return {"forms": forms, "plural": plural, "count": text.count}
 
 
 @functools.cache
@@ -260,7 +287,7 @@ class PageRules:
     number: NumberGrammar
     unprintable: tuple[int, ...]
     answers: tuple[AnswerClass, ...]
-    templates: Mapping[str, str]
+    templates: Mapping[str, str | dict[str, Any]]
     senses: tuple[str, str]
 
     def as_dict(self) -> dict[str, Any]:

@@ -144,13 +144,22 @@
   const ESCAPES = {"&": "&amp;", "<": "&lt;", ">": "&gt;", "\"": "&quot;", "'": "&#39;"};
   const escapeHtml = text => String(text).replace(/[&<>"']/g, c => ESCAPES[c]);
 
+  // the template of a message: a text, or a sentence whose words follow a number: its forms
+  // in the language, which form each count 0…199 takes, and the field that counts (above 199
+  // a count takes the form of 100 + its last two digits, as every language's rule does)
+  function chosen(template, fields) {
+    if (typeof template === "string") return template;
+    const count = Math.abs(Math.trunc(fields[template.count]));
+    return template.forms[template.plural[count < 200 ? count : 100 + count % 100]];
+  }
   // the words of one page: {templates: {id: template}, decimal: the decimal sign}
   function make(table) {
     const templates = table.templates, decimal = table.decimal || ".";
     function render(message) {
       const template = templates[message.id];
       if (template === undefined) throw new Error("no template " + message.id);
-      return fill(template, message.fields || {}, render, decimal);
+      const fields = message.fields || {};
+      return fill(chosen(template, fields), fields, render, decimal);
     }
     return {
       // a message: the template `id` with its fields (nested in another's fields, or rendered)

@@ -384,15 +384,15 @@ def _figures_html(page: WorkbookPage) -> tuple[str, str]:
     return panels, charts
 
 
-def marked_html(text: Message, **markup: str) -> str:
-    """A message as HTML: its text escaped, the fields named in ``markup`` set as that
-    markup (a control inside a label's sentence).
+def marked_html(text: Message, markup: Mapping[str, str], language: str | None = None) -> str:
+    """A message as HTML in ``language``: its text escaped, the fields named in ``markup``
+    set as that markup (a control inside a label's sentence).
 
-    >>> marked_html(message("press {button} & go"), button="<b>here</b>")
+    >>> marked_html(message("press {button} & go"), {"button": "<b>here</b>"})
     'press <b>here</b> &amp; go'
     """
     marks = {name: f"\x00{number}\x00" for number, name in enumerate(markup)}
-    shown = html.escape(render(text.replace(**marks)), quote=False)
+    shown = html.escape(render(text.replace(**marks), language), quote=False)
     for name, mark in marks.items():
         shown = shown.replace(mark, markup[name])
     return shown
@@ -402,18 +402,23 @@ def _words(page: WorkbookPage, rules: PageRules) -> dict[str, str]:
     """The page's own words in its language, as HTML."""
     from .workbook_draw import PLAN_TITLES
 
-    said = {name: html.escape(render(text), quote=False) for name, text in _CHROME.items()}
-    options = "\n".join(f'<option value="{plan}">{html.escape(render(title))}</option>'
+    language = rules.language
+
+    def said(text: Message) -> str:
+        return html.escape(render(text, language), quote=False)
+
+    words = {name: said(text) for name, text in _CHROME.items()}
+    options = "\n".join(f'<option value="{plan}">{said(title)}</option>'
                         for plan, (title, _) in PLAN_TITLES.items())
-    said["construction"] = marked_html(
-        _CONSTRUCTION, plan=f'<select id="step-plan">{options}</select>')
-    said["switch"] = marked_html(_SWITCH, time='<output id="switch-time">—</output>')
-    said["failed"] = html.escape(rules.templates["needs_decompression"])
-    said["play"] = html.escape(rules.templates["play"], quote=False)
-    said["crank"] = html.escape(render(message("crank angle {phi}", phi=page.phi)), quote=False)
-    said["heading"] = html.escape(render(message("{title} — workbook",
-                                                 title=shown_title(page.title))), quote=False)
-    return said
+    words["construction"] = marked_html(
+        _CONSTRUCTION, {"plan": f'<select id="step-plan">{options}</select>'}, language)
+    words["switch"] = marked_html(_SWITCH, {"time": '<output id="switch-time">—</output>'},
+                                  language)
+    words["failed"] = html.escape(rules.templates["needs_decompression"])
+    words["play"] = html.escape(rules.templates["play"], quote=False)
+    words["crank"] = said(message("crank angle {phi}", phi=page.phi))
+    words["heading"] = said(message("{title} — workbook", title=shown_title(page.title)))
+    return words
 
 
 def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:

@@ -61,7 +61,6 @@ from dataclasses import dataclass
 from http import HTTPStatus
 from http.cookies import CookieError, SimpleCookie
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from importlib import resources
 from pathlib import Path
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
@@ -69,6 +68,7 @@ from urllib.parse import parse_qs, urlsplit
 from ..errors import PlanmethodError, SpecError
 from . import api, exercise_data, schema
 from .jobs import BusyError, Jobs, NoSuchJobError
+from .page import page_file, studio_page
 
 __all__ = ["HOST", "StudioServer"]
 
@@ -96,7 +96,7 @@ class RefusedError(PlanmethodError, PermissionError):
 
 
 def _page() -> bytes:
-    return resources.files("planmethod.studio").joinpath("studio.html").read_bytes()
+    return studio_page()
 
 
 def _note(message: str) -> None:
@@ -526,6 +526,10 @@ class StudioHandler(BaseHTTPRequestHandler):
                            page=True, head=method == "HEAD")
                 self.server.jobs.warm()   # a job's process, ready for the page's first job
                 return
+            found = page_file(split.path) if method in ("GET", "HEAD") else None
+            if found is not None:   # a script of the page
+                self._send(200, found.content, found.content_type, head=method == "HEAD")
+                return
             route = ROUTES.get((method, split.path))
             if route is None:
                 known = any(path == split.path for _, path in ROUTES)
@@ -566,7 +570,7 @@ class StudioHandler(BaseHTTPRequestHandler):
         self.send_header("X-Frame-Options", "DENY")
         if page:
             self.send_header("Content-Security-Policy",
-                             "default-src 'none'; script-src 'unsafe-inline'; style-src "
+                             "default-src 'none'; script-src 'self'; style-src "
                              "'unsafe-inline'; img-src data:; connect-src 'self'; "
                              "frame-ancestors 'none'; base-uri 'none'; form-action 'none'")
         if cookie:

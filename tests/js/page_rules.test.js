@@ -91,3 +91,12 @@ test("a template is filled with its named fields, braces kept", () => {
   assert.throws(() => words.formatNumber(1.5, ">10"), /not supported/);
   assert.equal(page.html("b", {z: "<i>"}, {}), "[&lt;i&gt;]");
 });
+
+test("a sentence whose words follow a number takes its count's form", () => {
+  const plural = {forms: ["{count} files", "{count} file"], count: "count",
+                  plural: Array.from({length: 200}, (_, n) => n === 1 ? 1 : 0)};
+  const page = words.make({templates: {files: plural}, decimal: "."});
+  assert.equal(page.say("files", {count: 1}), "1 file");
+  assert.equal(page.say("files", {count: 3}), "3 files");
+  assert.equal(page.say("files", {count: 301}), "301 files");   // as 101: 100 + its last two digits
+});
