@@ -110,7 +110,7 @@ def test_any_json_exercise_is_written_as_toml_that_reads_back_equal_or_refused(v
 def test_a_request_gives_its_exercise_once():
     assert with_toml({"angle": 3}) == {"angle": 3}
     assert with_toml({"exercise": {"title": ""}})["toml"] == 'title = "Mechanism"\n'
-    with pytest.raises(SpecError, match=r"as data \(exercise\) or as TOML"):
+    with pytest.raises(SpecError, match=r"as data \(exercise\) or as text \(toml\)"):
         with_toml({"exercise": {}, "toml": "x"})
     with pytest.raises(SpecError, match=r"^exercise: must be a table"):
         exercise_toml([1, 2])

@@ -156,8 +156,7 @@ PAGE_TEMPLATES: dict[str, Message] = {
     "tolerance_shown": template("± {tolerance:.3g} {unit}"),
     "tolerance_shown_unitless": template("± {tolerance:.3g}"),
     "not_graded": template("not graded at this angle"),
-    "needs_decompression": template("this page needs a browser with DecompressionStream: "
-                                    "{error}"),
+    "needs_decompression": template("this page needs a browser with {feature}: {error}"),
     "kept_unreadable": template("a drawing kept in this browser could not be read and is "
                                 "ignored ({error})"),
     "kept_by_another": template("a drawing kept in this browser for “{title}” at {phi} = "

@@ -414,7 +414,8 @@ def _words(page: WorkbookPage, rules: PageRules) -> dict[str, str]:
         _CONSTRUCTION, {"plan": f'<select id="step-plan">{options}</select>'}, language)
     words["switch"] = marked_html(_SWITCH, {"time": '<output id="switch-time">—</output>'},
                                   language)
-    words["failed"] = html.escape(rules.templates["needs_decompression"])
+    words["failed"] = html.escape(rules.templates["needs_decompression"].replace(
+        "{feature}", "DecompressionStream"))
     words["play"] = html.escape(rules.templates["play"], quote=False)
     words["crank"] = said(message("crank angle {phi}", phi=page.phi))
     words["heading"] = said(message("{title} — workbook", title=shown_title(page.title)))

@@ -104,8 +104,8 @@ def with_toml(fields: Mapping[str, Any]) -> dict[str, Any]:
     if "exercise" not in fields:
         return dict(fields)
     if "toml" in fields:
-        raise SpecError(message("give the exercise once: as data (exercise) or as TOML (toml)"),
-                        key="exercise")
+        raise SpecError(message("give the exercise once: as data ({data}) or as text ({text})",
+                                data="exercise", text="toml"), key="exercise")
     out = {name: value for name, value in fields.items() if name != "exercise"}
     out["toml"] = exercise_toml(fields["exercise"])
     return out

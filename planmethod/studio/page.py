@@ -97,7 +97,7 @@ SCRIPT_WORDS: dict[str, Message] = {
     "ask_point": template("point"),
     "ask_link": template("link"),
     "ask_sliding": template("sliding"),
-    "no_files": template("no .toml files in this folder"),
+    "no_files": template("no {suffix} files in this folder"),
     "file_converted": template("{path} (in link frames: shown as drawn)"),
     "replace": template("{path} exists. Replace it?"),
     "saved": template("saved {path}"),
@@ -110,7 +110,7 @@ SCRIPT_WORDS: dict[str, Message] = {
     "preview_count": template("{count} variants."),
     "preview_rejected": template("{count} variants. Rejected draws: {rejected}"),
     "student": template("student {student}"),
-    "template_saved": template("saved {path} (planmethod variants {path} --out DIR)"),
+    "template_saved": template("saved {path} ({command})"),
     "job_export": template("Export to {folder}/"),
     "job_preview": template("Preview of variants"),
     "job_exported": template("Export: wrote {count} files in {folder}/ ({variants} variants)"),
@@ -138,7 +138,7 @@ _EPSILON = _SYMBOL.format("epsilon", "ε₁")
 #: the words of the markup, by the place ``⟪name⟫`` they fill: a message, and the markup set
 #: in its fields (a symbol, a control)
 MARKUP: dict[str, tuple[Message, dict[str, str]]] = {
-    "page": (template("planmethod studio"), {}),
+    "page": (template("{product} studio"), {"product": "planmethod"}),
     "title_label": (template("title", context="of an exercise"), {}),
     "untitled": (SCRIPT_WORDS["untitled"], {}),
     "not_saved": (template("not saved"), {}),
@@ -201,14 +201,15 @@ MARKUP: dict[str, tuple[Message, dict[str, str]]] = {
     "close": (template("Close"), {}),
     "export_title": (template("Export: variants, answer keys and LMS packages"), {}),
     "export_note": (template(
-        "Uses the ranges of the Variants dialog. Writes template.toml, the variants (as "
+        "Uses the ranges of the Variants dialog. Writes {template}, the variants (as "
         "{command} does) and each package into a new folder, whole when the export ends: "
         "cancelled, it writes nothing. It runs on the server while you go on drawing; its "
-        "progress stays at the top of the page."), {"command": "<code>planmethod variants</code>"}),
+        "progress stays at the top of the page."),
+        {"template": "template.toml", "command": "<code>planmethod variants</code>"}),
     "folder": (template("folder"), {}),
-    "moodle": (template("Moodle quiz"), {}),
-    "prairielearn": (template("PrairieLearn question"), {}),
-    "gradescope": (template("Gradescope autograder"), {}),
+    "moodle": (template("{system} quiz"), {"system": "Moodle"}),
+    "prairielearn": (template("{system} question"), {"system": "PrairieLearn"}),
+    "gradescope": (template("{system} autograder"), {"system": "Gradescope"}),
     "students": (template("students"), {}),
     "export_run": (template("Export", context="a button"), {}),
 }

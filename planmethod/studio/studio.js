@@ -703,7 +703,7 @@ $("open-button").addEventListener("click", async () => {
     item.addEventListener("click", () => { $("open-dialog").close(); openFile(path); });
     list.appendChild(item);
   }
-  if (!list.children.length) list.innerHTML = `<li class="muted">${escapeHtml(say("no_files"))}</li>`;
+  if (!list.children.length) list.innerHTML = `<li class="muted">${escapeHtml(say("no_files", {suffix: ".toml"}))}</li>`;
   $("open-dialog").showModal();
 });
 $("open-cancel").addEventListener("click", () => $("open-dialog").close());

@@ -88,7 +88,8 @@ $("save-template").addEventListener("click", async () => {
   const body = {template: true, path: $("template-path").value.trim(), exercise: exercise(), ranges: ranges()};
   let answer = await call("/api/save", body);
   if (answer.status === 409 && window.confirm(say("replace", {path: body.path}))) answer = await call("/api/save", {...body, overwrite: true});
-  $("variants-message").textContent = answer.ok ? say("template_saved", {path: answer.data.saved}) : answer.data.error;
+  $("variants-message").textContent = answer.ok ? say("template_saved", {path: answer.data.saved,
+    command: ["planmethod", "variants", answer.data.saved, "--out", "DIR"].join(" ")}) : answer.data.error;
 });
 
 $("export-button").addEventListener("click", () => { if (!$("ranges-table").children.length) fillRanges(); $("export-message").textContent = ""; $("export-dialog").showModal(); });
