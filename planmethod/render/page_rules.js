@@ -158,6 +158,7 @@
       const result = {id: question.id, correct: false, mistake: null,
                       answer: typeof given.answer === "number" ? given.answer : null};
       for (const verdict of rules.answers) {
+        if (!(verdict.name in CLASSES)) throw new Error("unknown verdict class " + verdict.name);
         const fields = CLASSES[verdict.name](given);
         if (fields === null) continue;
         const all = Object.assign({name: name, right: right, answer: given.answer}, fields);
