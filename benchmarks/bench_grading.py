@@ -133,12 +133,12 @@ def answers_of_mistakes(question: dict, scales, wrong_readings: dict, motion,
     return out
 
 
-def _outcome(result: dict, expected: str | None) -> str:
-    if result["correct"]:
+def _outcome(result, expected: str | None) -> str:
+    if result.correct:
         return "accepted"
-    if result["mistake"] is None:
+    if result.mistake is None:
         return "unnamed"
-    named = [result["mistake"], *result.get("also", ())]   # mistakes giving one answer
+    named = [result.mistake, *result.also]   # mistakes giving one answer
     return "named_right" if expected in named else "named_other"
 
 
@@ -185,25 +185,25 @@ def _tally(keys, results, truth) -> tuple[dict, dict]:
     noise: dict[float, Counter] = {size: Counter() for size in NOISE}
     named_noise: dict[float, Counter] = {size: Counter() for size in NOISE}
     for result, what in zip(results, truth, strict=True):
-        key = by_student[result["student"].partition("~")[0]]
+        key = by_student[result.student.partition("~")[0]]
         listed = {q["id"]: {m["kind"] for m in q["mistakes"]} for q in key["questions"]}
-        for graded in result["questions"]:
-            if graded["id"] not in what:
+        for graded in result.questions:
+            if graded.id not in what:
                 continue
-            label = what[graded["id"]]
+            label = what[graded.id]
             if label[0] == "noise":
                 outcome = _outcome(graded, None)
                 noise[label[1]][outcome] += 1
-                if graded["mistake"]:
-                    named_noise[label[1]][graded["mistake"]] += 1
+                if graded.mistake:
+                    named_noise[label[1]][graded.mistake] += 1
                 continue
             _, mistake, how = label
             counts = mistakes.setdefault(how, {}).setdefault(mistake, Counter())
             counts["answers"] += 1
-            counts["listed"] += mistake in listed[graded["id"]]
+            counts["listed"] += mistake in listed[graded.id]
             counts[_outcome(graded, mistake)] += 1
-            if mistake in listed[graded["id"]]:
-                counts["listed_named_right"] += graded["mistake"] == mistake
+            if mistake in listed[graded.id]:
+                counts["listed_named_right"] += graded.mistake == mistake
     mistake_table = {how: {kind: dict(counts) for kind, counts in sorted(mistakes[how].items())}
                      for how in ("exact", "drawn") if how in mistakes}
     noise_table = {str(size): {**dict(noise[size]), "answers": sum(noise[size].values()),
@@ -366,7 +366,7 @@ def scale_run(count: int) -> dict:
     import resource
     import subprocess
 
-    from planmethod.commands.variants import MAX_VARIANTS
+    from planmethod.application.variants import MAX_VARIANTS
 
     runs = {}
     for sheets in (True, False):

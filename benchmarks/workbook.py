@@ -36,7 +36,7 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
-from planmethod.commands.workbook import build_workbook, exercise_variant
+from planmethod.application.workbook import build_workbook, exercise_variant
 from planmethod.grading.keys import build_key
 from planmethod.render.figures import plan_files
 from planmethod.report import analyse
@@ -171,7 +171,7 @@ def terminated_mid_run(folder: Path) -> dict | None:
     import subprocess
     import sys
 
-    from planmethod.commands.workbook import usable_cpus
+    from planmethod.application.workers import usable_cpus
     from planmethod.testing.processes import processes_holding
 
     if not Path("/proc/self/cmdline").exists() or usable_cpus() < 2:

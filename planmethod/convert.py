@@ -59,6 +59,7 @@ from .errors import SpecError
 from .model import FRAME, Mechanism
 from .spec import drawing_size, exercise_from_dict, frames_from_drawn, is_drawn, parse_toml
 from .vectors import angle_deg, norm
+from .words.message import Message, message
 
 __all__ = [
     "DIGITS",
@@ -173,7 +174,7 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
     from .kinematics import solve
 
     if is_drawn(data):
-        raise SpecError("the file is already written as drawn ([points])", file=file)
+        raise SpecError(message("the file is already written as drawn ([points])"), file=file)
     exercise = exercise_from_dict(data, file=file)
     mechanism = exercise.mechanism
     if angle is None:
@@ -182,6 +183,34 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
         motion = solve(mechanism, float(angle), stage="position").at(0)
         mechanism = replace(mechanism, drive=replace(mechanism.drive, angle=float(angle)))
     orders = {link: list(mechanism.links[link].points) for link in mechanism.links}
+    points, size = _drawn_points(mechanism, orders, motion)
+    positions = {name: np.array(xy) for name, xy in points.items()}
+    angles = _orientations(mechanism, orders, positions, motion)
+    out: dict[str, Any] = {}
+    for key, value in data.items():
+        if key == "links":
+            out["points"] = points
+            out["links"] = orders
+        elif key == "sketch":
+            continue
+        elif key == "drive" and angle is not None:
+            out["drive"] = dict(value, angle=mechanism.drive.angle)
+        elif key == "slide":
+            out["slide"] = [dict(table, direction=angles[pair.along] + pair.direction + 0.0)
+                            for table, pair in zip(_tables(value), mechanism.slides,
+                                                   strict=True)]
+        elif key == "mass":
+            out["mass"] = _drawn_masses(mechanism, value, motion, _decimals(size, MASS_DIGITS))
+        else:
+            out[key] = value
+    return out
+
+
+def _drawn_points(mechanism: Mechanism, orders: Mapping[str, list[str]],
+                  motion) -> tuple[dict[str, list[float]], float]:
+    """Every point where it stands (the frame's as written, a point within :data:`SNAP` of
+    its sketched place there, any other rounded to :data:`DIGITS` of the drawing's size),
+    and the drawing's size."""
     names = list(dict.fromkeys(p for order in orders.values() for p in order))
     solved = {p: np.asarray(motion.position(p), dtype=float) for p in names}
     size = drawing_size(solved.values())
@@ -197,31 +226,15 @@ def drawn_tables(data: Mapping[str, Any], *, file: str | None = None,
             points[name] = [float(value) for value in sketched]
         else:
             points[name] = _rounded(solved[name], places)
-    positions = {name: np.array(xy) for name, xy in points.items()}
-    angles = _orientations(mechanism, orders, positions, motion)
-    mass_places = _decimals(size, MASS_DIGITS)
-    out: dict[str, Any] = {}
-    for key, value in data.items():
-        if key == "links":
-            out["points"] = points
-            out["links"] = orders
-        elif key == "sketch":
-            continue
-        elif key == "drive" and angle is not None:
-            out["drive"] = dict(value, angle=mechanism.drive.angle)
-        elif key == "slide":
-            out["slide"] = [dict(table, direction=angles[pair.along] + pair.direction + 0.0)
-                            for table, pair in zip(_tables(value), mechanism.slides,
-                                                   strict=True)]
-        elif key == "mass":
-            out["mass"] = {
-                link: (dict(table, S=_rounded(motion.place(link, mechanism.masses[link].S),
-                                              mass_places))
-                       if isinstance(table, Mapping) and "S" in table else table)
-                for link, table in value.items()}
-        else:
-            out[key] = value
-    return out
+    return points, size
+
+
+def _drawn_masses(mechanism: Mechanism, tables: Mapping[str, Any], motion,
+                  places: int) -> dict[str, Any]:
+    """The ``[mass]`` tables with each centre of mass ``S`` where it stands, to ``places``."""
+    return {link: (dict(table, S=_rounded(motion.place(link, mechanism.masses[link].S), places))
+                   if isinstance(table, Mapping) and "S" in table else table)
+            for link, table in tables.items()}
 
 
 def _tables(value: Any) -> list:
@@ -249,7 +262,8 @@ def frame_tables(data: Mapping[str, Any], *, file: str | None = None) -> dict[st
     ({'A': [0.0, 0.0], 'B': [0.05, 0.0]}, {'B': [0.0, 0.05], 'C': [0.2, 0.0]})
     """
     if not is_drawn(data):
-        raise SpecError("the file is already in the link-frame form (no [points])", file=file)
+        raise SpecError(message("the file is already in the link-frame form (no [points])"),
+                        file=file)
     frames = frames_from_drawn(data, file=file)
     exercise_from_dict(frames, file=file)   # the whole exercise is valid
     angles = _drawn_angles(data, frames)
@@ -339,7 +353,8 @@ def convert_tables(data: Mapping[str, Any], *, to: str | None = None,
     [0.0424264068711929, 0.0424264068711928]
     """
     if to is not None and to not in FORMS:
-        raise SpecError(f"unknown form {to!r}; expected one of {', '.join(FORMS)}", key="--to")
+        raise SpecError(message("unknown form {form!r}; expected one of {forms}", form=to,
+                                forms=list(FORMS)), key="--to")
     drawn = is_drawn(data)
     target = to or ("frames" if drawn else "drawn")
     if target == "drawn":
@@ -389,14 +404,20 @@ def convert_text(text: str, *, to: str | None = None, file: str | None = None) -
     from .grading.templates import to_toml
 
     data = parse_toml(text, file=file)
-    refuse_template(data, "is converted variant by variant", file=file)
+    refuse_template(data, message("a template (it has ranges, choices or expressions) is "
+                                  "converted variant by variant: draw one with `planmethod "
+                                  "variants`"), file=file)
     return _header(text) + to_toml(convert_tables(data, to=to, file=file))
 
 
-def refuse_template(data: Mapping[str, Any], what: str, *, file: str | None = None) -> None:
-    """A :class:`SpecError` if the tables are a template (``[vars]`` or ``[template]``): it
-    ``what`` (``"is converted variant by variant"``)."""
+def refuse_template(data: Mapping[str, Any], what: Message | str, *,
+                    file: str | None = None) -> None:
+    """A :class:`SpecError` if the tables are a template (``[vars]`` or ``[template]``),
+    saying ``what``: the whole sentence, as a message (or, where its caller still gives
+    words, what is done to a template instead: ``"is converted variant by variant"``)."""
     for name in ("vars", "template"):
         if name in data:
-            raise SpecError(f"a template (it has ranges, choices or expressions) {what}: draw "
-                            "one with `planmethod variants`", file=file, key=name)
+            said = what if isinstance(what, Message) else message(
+                "a template (it has ranges, choices or expressions) {what}: draw one with "
+                "`planmethod variants`", what=what)
+            raise SpecError(said, file=file, key=name)

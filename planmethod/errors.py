@@ -22,7 +22,7 @@ import datetime
 import math
 from collections.abc import Iterator, Mapping
 
-from .words.message import Message, message
+from .words.message import Message, message, plural, template
 from .words.render import render
 
 __all__ = [
@@ -36,27 +36,59 @@ __all__ = [
     "StructureError",
     "ToggleError",
     "about",
+    "limit_message",
     "limit_words",
     "value_text",
+    "value_words",
 ]
 
 #: what a computation that met one of Python's own limits says, in one line (no traceback)
-LIMIT_WORDS: dict[type[BaseException], str] = {
-    OverflowError: "a number is too large to compute with",
-    RecursionError: "the input is nested too deeply",
-    MemoryError: "the input asks for more memory than there is",
+LIMIT_WORDS: dict[type[BaseException], Message] = {
+    OverflowError: message("a number is too large to compute with"),
+    RecursionError: message("the input is nested too deeply"),
+    MemoryError: message("the input asks for more memory than there is"),
 }
 
 #: the longest description of a value an error gives (characters; a longer one is cut with …)
 VALUE_TEXT_LIMIT = 60
 
 
-def value_text(value: object, limit: int = VALUE_TEXT_LIMIT) -> str:
+def value_words(value: object, limit: int = VALUE_TEXT_LIMIT) -> Message | str:
     """A value read from a file, as an error's "got …" says it, in the file's words: text in
     quotes (its control characters escaped), a number, ``true`` or ``false``, ``null``, a
     date or time with its kind (``a date-time 1979-05-27T07:32:00``), a list or a table
     written inline — cut at about ``limit`` characters with an ellipsis, so that a value of a
-    megabyte gives a line of an error.
+    megabyte gives a line of an error. The file's own words are text; what is said of the
+    value (its kind, a whole number too long to write) is a message.
+
+    Parameters
+    ----------
+    value
+        What the file gave (as tomllib or json read it).
+    limit
+        The most characters of it written (default :data:`VALUE_TEXT_LIMIT`).
+
+    Examples
+    --------
+    >>> value_words("fast"), render(value_words(10 ** 100 ** 2))
+    ("'fast'", 'a whole number of 10001 digits')
+    """
+    kinds = ((datetime.datetime, template("a date-time {value}")),
+             (datetime.date, template("a date {value}")),
+             (datetime.time, template("a time {value}")))
+    kind = next((words for kind, words in kinds if isinstance(value, kind)), None)
+    if isinstance(value, str) and len(value) > limit:
+        return repr(value[:limit]) + "…"
+    said = _said(value)
+    if said is not None:
+        return said
+    written = _written(value, limit + 1)
+    text = written if len(written) <= limit else written[:limit] + "…"
+    return kind.replace(value=text) if kind is not None else text
+
+
+def value_text(value: object, limit: int = VALUE_TEXT_LIMIT) -> str:
+    """:func:`value_words` as text in the language spoken now.
 
     Parameters
     ----------
@@ -75,46 +107,52 @@ def value_text(value: object, limit: int = VALUE_TEXT_LIMIT) -> str:
     >>> value_text("x" * 1000, limit=10), value_text(list(range(1000)), limit=10)
     ("'xxxxxxxxxx'…", '[0, 1, 2, …')
     """
-    kinds = ((datetime.datetime, "a date-time"), (datetime.date, "a date"),
-             (datetime.time, "a time"))
-    kind = next((words for kind, words in kinds if isinstance(value, kind)), None)
-    if isinstance(value, str) and len(value) > limit:
-        return repr(value[:limit]) + "…"
-    written = _written(value, limit + 1)
-    text = written if len(written) <= limit else written[:limit] + "…"
-    return f"{kind} {text}" if kind else text
+    return render(value_words(value, limit))
+
+
+def _said(value: object) -> Message | None:
+    """What is said of a value that is not written as it is: a whole number too long to
+    write, a value of no kind a file holds."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 200:
+        # Python refuses to write more than 4,300 digits
+        digits = math.ceil(value.bit_length() * math.log10(2))
+        return plural("a whole number of {count} digit", "a whole number of {count} digits",
+                      count=digits)
+    if isinstance(value, bool | int | float | str | list | tuple | Mapping | datetime.date
+                  | datetime.time) or value is None:
+        return None
+    return message("a {kind}", kind=type(value).__name__)
 
 
 def _written(value: object, budget: int) -> str:
-    """``value`` written inline, stopping once more than ``budget`` characters are written."""
+    """``value`` written inline, stopping once more than ``budget`` characters are written
+    (what is said of an item rather than written, :func:`_said`, in the language spoken
+    now: the cut counts its characters)."""
+    said = _said(value)
+    if said is not None:
+        return render(said)
     if isinstance(value, bool):
         return "true" if value else "false"
     if value is None:
         return "null"
-    if isinstance(value, int):
-        if value.bit_length() > 200:   # Python refuses to write more than 4,300 digits
-            return f"a whole number of {math.ceil(value.bit_length() * math.log10(2))} digits"
-        return str(value)
-    if isinstance(value, float):
+    if isinstance(value, int | float):
         return repr(value)
     if isinstance(value, str):
         return repr(value[:budget])
     if isinstance(value, datetime.date | datetime.time):
         return value.isoformat()
-    if isinstance(value, list | tuple | Mapping):
-        items = value.items() if isinstance(value, Mapping) else value
-        parts: list[str] = []
-        used = 2
-        for item in items:
-            if used > budget:
-                break
-            part = (f"{_key_written(str(item[0]), budget)} = {_written(item[1], budget)}"
-                    if isinstance(value, Mapping) else _written(item, budget))
-            parts.append(part)
-            used += len(part) + 2
-        opening, closing = "{}" if isinstance(value, Mapping) else "[]"
-        return opening + ", ".join(parts) + closing
-    return f"a {type(value).__name__}"
+    items = value.items() if isinstance(value, Mapping) else value
+    parts: list[str] = []
+    used = 2
+    for item in items:
+        if used > budget:
+            break
+        part = (f"{_key_written(str(item[0]), budget)} = {_written(item[1], budget)}"
+                if isinstance(value, Mapping) else _written(item, budget))
+        parts.append(part)
+        used += len(part) + 2
+    opening, closing = "{}" if isinstance(value, Mapping) else "[]"
+    return opening + ", ".join(parts) + closing
 
 
 def _key_written(key: str, budget: int) -> str:
@@ -123,8 +161,24 @@ def _key_written(key: str, budget: int) -> str:
     return key[:budget] if bare else repr(key[:budget])
 
 
+def limit_message(error: BaseException) -> Message:
+    """The message of :data:`LIMIT_WORDS` for ``error`` (of one of its kinds, or a subclass).
+
+    Parameters
+    ----------
+    error
+        An ``OverflowError``, ``RecursionError`` or ``MemoryError``.
+
+    Examples
+    --------
+    >>> render(limit_message(RecursionError()))
+    'the input is nested too deeply'
+    """
+    return next(words for kind, words in LIMIT_WORDS.items() if isinstance(error, kind))
+
+
 def limit_words(error: BaseException) -> str:
-    """The line of :data:`LIMIT_WORDS` for ``error`` (of one of its kinds, or a subclass).
+    """:func:`limit_message` as text in the language spoken now.
 
     Parameters
     ----------
@@ -136,7 +190,7 @@ def limit_words(error: BaseException) -> str:
     >>> limit_words(OverflowError(34, "Numerical result out of range"))
     'a number is too large to compute with'
     """
-    return next(words for kind, words in LIMIT_WORDS.items() if isinstance(error, kind))
+    return render(limit_message(error))
 
 
 def _context(link: str | None, angle: float | None) -> list[Message]:
@@ -162,7 +216,8 @@ class PlanmethodError(Exception):
     file
         The exercise file, when the error comes from one.
     key
-        The dotted key in that file (``drive.angle``, ``slide[2].along``).
+        The dotted key in that file (``drive.angle``, ``slide[2].along``), or where else in
+        it (a message: ``line 3``).
     link
         The link (or group of links) involved.
     angle
@@ -174,7 +229,7 @@ class PlanmethodError(Exception):
         message: Message | str,
         *,
         file: str | None = None,
-        key: str | None = None,
+        key: str | Message | None = None,
         link: str | None = None,
         angle: float | None = None,
     ) -> None:
@@ -188,7 +243,7 @@ class PlanmethodError(Exception):
     def _text(self) -> str:
         """The one line: file and key, then link and crank angle, then what is wrong — in
         the language spoken now."""
-        where = [part for part in (self.file, self.key) if part]
+        where = [render(part) for part in (self.file, self.key) if part]
         context = [render(part) for part in _context(self.link, self.angle)]
         text = render(self.message)
         if context:
@@ -216,7 +271,7 @@ class PlanmethodError(Exception):
         >>> str(SpecError("too large", file="key.json", key="drive.omega").under("exercise"))
         'key.json: exercise.drive.omega: too large'
         """
-        self.key = f"{prefix}.{self.key}" if self.key else prefix
+        self.key = f"{prefix}.{render(self.key)}" if self.key else prefix
         self.args = (self._text(),)
         return self
 
@@ -309,4 +364,4 @@ def about(file: str | None, key: str | None = None) -> Iterator[None]:
             raise
         raise error.located(file=file, key=key) from None
     except tuple(LIMIT_WORDS) as error:
-        raise SpecError(limit_words(error), file=file, key=key) from None
+        raise SpecError(limit_message(error), file=file, key=key) from None

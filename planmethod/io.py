@@ -62,6 +62,7 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
 from .errors import PlanmethodError, SpecError
+from .words.message import Message, message, plural
 
 __all__ = [
     "NAME_MAX",
@@ -89,7 +90,7 @@ NAME_MAX = 255
 _SEPARATORS = ("/", "\\", "\0")
 
 
-def path_component(name: str, what: str) -> str:
+def path_component(name: str, what: str | Message) -> str:
     """``name`` if it is one path component, else a :class:`SpecError` naming ``what`` (the
     option or key it came from): not empty, no ``/``, ``\\`` or NUL, not ``.`` or ``..``, at
     most :data:`NAME_MAX` bytes.
@@ -105,12 +106,15 @@ def path_component(name: str, what: str) -> str:
     """
     if (not isinstance(name, str) or not name.strip() or name in (".", "..")
             or any(separator in name for separator in _SEPARATORS)):
-        raise SpecError(f"{name!r} is not a single folder or file name (it must not be empty, "
-                        "contain '/' or '\\', or be '.' or '..')", key=what)
+        raise SpecError(message("{name!r} is not a single folder or file name (it must not be "
+                                "empty, contain '/' or '\\', or be '.' or '..')", name=name),
+                        key=what)
     length = len(os.fsencode(name))
     if length > NAME_MAX:
-        raise SpecError(f"{name[:24]!r}… is {length} bytes long; a file or folder name has at "
-                        f"most {NAME_MAX}", key=what)
+        raise SpecError(plural("{name!r}… is {count} byte long; a file or folder name has at "
+                               "most {limit}", "{name!r}… is {count} bytes long; a file or "
+                               "folder name has at most {limit}", count=length, name=name[:24],
+                               limit=NAME_MAX), key=what)
     return name
 
 
@@ -124,16 +128,17 @@ def student_folder(student: str) -> str:
     ('Ann.Lee@uni.edu', '_x', 'student')
     """
     name = re.sub(r"[^A-Za-z0-9_.@-]", "_", str(student)).strip(".")[:80].strip(".")
-    return path_component(name or "student", "student id")
+    return path_component(name or "student", message("student id"))
 
 
 def _inside(folder: Path, relative: str) -> Path:
     """``folder / relative`` where every part of ``relative`` is one path component."""
     parts = PurePosixPath(relative).parts
     if not parts or PurePosixPath(relative).is_absolute():
-        raise SpecError(f"{relative!r} is not a path inside the output folder", file=str(folder))
+        raise SpecError(message("{path!r} is not a path inside the output folder",
+                                path=relative), file=str(folder))
     for part in parts:
-        path_component(part, f"output file {relative!r}")
+        path_component(part, message("output file {path!r}", path=relative))
     return folder.joinpath(*parts)
 
 
@@ -178,20 +183,29 @@ class WriteMode(enum.Enum):
 
 
 #: what a file that is neither a regular file nor a folder is, by its ``stat`` test
-_SPECIAL_KINDS = ((stat.S_ISCHR, "a character device"), (stat.S_ISFIFO, "a FIFO"),
-                  (stat.S_ISBLK, "a block device (a disk)"), (stat.S_ISSOCK, "a socket"))
+_SPECIAL_KINDS = ((stat.S_ISCHR, message("a character device")),
+                  (stat.S_ISFIFO, message("a FIFO")),
+                  (stat.S_ISBLK, message("a block device (a disk)")),
+                  (stat.S_ISSOCK, message("a socket")))
+#: what any other file that is not a regular file is
+_NOT_REGULAR = message("not a regular file")
+#: what a folder given as a file is
+_A_FOLDER = message("is a folder, not a file")
+#: what a file given as a folder is
+_A_FILE = message("is a file, not a folder")
 
 #: the chunk in which staged content is copied into a device or a FIFO, and files are read
 _CHUNK = 1 << 20
 
 
-def _special_kind(mode: int) -> str:
+def _special_kind(mode: int) -> Message:
     """The words for a file that is not a regular file ("a FIFO", "a character device"…)."""
-    return next((words for test, words in _SPECIAL_KINDS if test(mode)), "not a regular file")
+    return next((words for test, words in _SPECIAL_KINDS if test(mode)), _NOT_REGULAR)
 
 
 def _cannot_write(error: OSError, target: str | Path) -> PlanmethodError:
-    return PlanmethodError(f"cannot write the file: {error.strerror or error}", file=str(target))
+    return PlanmethodError(message("cannot write the file: {reason}",
+                                   reason=error.strerror or str(error)), file=str(target))
 
 
 def _standard_stream(status: os.stat_result) -> int | None:
@@ -233,19 +247,21 @@ def _existing_folders(folder: Path, target: Path) -> tuple[Path, list[Path]]:
             status = os.stat(current)
         except (FileNotFoundError, NotADirectoryError):
             if current.parent == current:
-                raise PlanmethodError(f"the folder {current} does not exist",
-                                      file=str(target)) from None
+                raise PlanmethodError(message("the folder {folder} does not exist",
+                                              folder=str(current)), file=str(target)) from None
             missing.append(current)
             current = current.parent
             continue
         except OSError as error:
             raise _cannot_write(error, target) from None
         if not stat.S_ISDIR(status.st_mode):
-            raise PlanmethodError(f"{current} is a file, not a folder", file=str(target))
+            raise PlanmethodError(message("{folder} is a file, not a folder",
+                                          folder=str(current)), file=str(target))
         for name in [path.name for path in missing]:
             if len(os.fsencode(name)) > NAME_MAX:
-                raise PlanmethodError(f"the folder name {name[:24]!r}… is longer than "
-                                      f"{NAME_MAX} bytes", file=str(target))
+                raise PlanmethodError(message("the folder name {name!r}… is longer than "
+                                              "{limit} bytes", name=name[:24], limit=NAME_MAX),
+                                      file=str(target))
         return current, missing[::-1]
 
 
@@ -334,8 +350,8 @@ class OutputSet:
 
     def _once(self, key: object, target: Path) -> None:
         if key in self._seen:
-            raise PlanmethodError(f"is given twice as an output (also as {self._seen[key]})",
-                                  file=str(target))
+            raise PlanmethodError(message("is given twice as an output (also as {other})",
+                                          other=str(self._seen[key])), file=str(target))
         self._seen[key] = target
 
     def _stage(self, target: str | Path, suffix: str | None = None, *,
@@ -348,19 +364,20 @@ class OutputSet:
         suffix = (target.suffix if suffix is None else suffix)[:16]
         status = _status(target, target)
         if status is not None and stat.S_ISDIR(status.st_mode):
-            raise PlanmethodError("is a folder, not a file", file=str(target))
+            raise PlanmethodError(_A_FOLDER, file=str(target))
         if status is not None and not devices and not stat.S_ISREG(status.st_mode):
-            raise PlanmethodError(f"is {_special_kind(status.st_mode)}, not a regular file: "
-                                  "it is never replaced, and only a regular file is written "
-                                  "here", file=str(target))
+            raise PlanmethodError(message("is {kind}, not a regular file: it is never replaced, "
+                                          "and only a regular file is written here",
+                                          kind=_special_kind(status.st_mode)), file=str(target))
         descriptor = None if status is None or not devices else _standard_stream(status)
         if status is not None and (descriptor is not None
                                    or not stat.S_ISREG(status.st_mode)):
             how = WriteMode.STREAM if descriptor is not None else WriteMode.IN_PLACE
             if how is WriteMode.IN_PLACE and not (stat.S_ISCHR(status.st_mode)
                                                   or stat.S_ISFIFO(status.st_mode)):
-                raise PlanmethodError(f"is {_special_kind(status.st_mode)}: planmethod writes "
-                                      "only files, character devices and FIFOs",
+                raise PlanmethodError(message("is {kind}: planmethod writes only files, "
+                                              "character devices and FIFOs",
+                                              kind=_special_kind(status.st_mode)),
                                       file=str(target))
             self._once((status.st_dev, status.st_ino), target)
             try:
@@ -373,15 +390,16 @@ class OutputSet:
             return Path(name)
         final = Path(os.path.realpath(target)) if os.path.islink(target) else target
         if len(os.fsencode(final.name)) > NAME_MAX:
-            raise PlanmethodError(f"the file name is longer than {NAME_MAX} bytes",
-                                  file=str(target))
+            raise PlanmethodError(message("the file name is longer than {limit} bytes",
+                                          limit=NAME_MAX), file=str(target))
         self._once(os.path.abspath(final), target)
         folder, missing = _existing_folders(final.parent, target)
         try:
             handle, name = tempfile.mkstemp(prefix=f".{final.name[:40]}.", suffix=suffix,
                                             dir=folder)
         except OSError as error:
-            raise PlanmethodError(f"cannot create a file in {folder}: {error.strerror}",
+            raise PlanmethodError(message("cannot create a file in {folder}: {reason}",
+                                          folder=str(folder), reason=error.strerror),
                                   file=str(target)) from None
         temporary = Path(name)
         self._files.append(_Staged(target, final, temporary, WriteMode.RENAME, tuple(missing)))
@@ -449,8 +467,8 @@ class OutputSet:
         base = os.path.realpath(folder)
         for name, target in targets.items():
             if os.path.commonpath([base, os.path.realpath(target)]) != base:
-                raise SpecError(f"{name!r} leads out of the output folder (through a symbolic "
-                                "link)", file=str(folder))
+                raise SpecError(message("{name!r} leads out of the output folder (through a "
+                                        "symbolic link)", name=name), file=str(folder))
         for name, data in files.items():
             content = data if isinstance(data, bytes) else data.encode("utf-8")
             self.binary(targets[name], content, mode=(modes or {}).get(name))
@@ -470,24 +488,26 @@ class OutputSet:
             _inside(final, name)
         status = _status(final, target)
         if status is not None and not stat.S_ISDIR(status.st_mode):
-            raise PlanmethodError("is a file, not a folder", file=str(target))
+            raise PlanmethodError(_A_FILE, file=str(target))
         if status is None:
             parent, missing = _existing_folders(final.parent, target)
             if len(os.fsencode(final.name)) > NAME_MAX:
-                raise PlanmethodError(f"the folder name is longer than {NAME_MAX} bytes",
-                                      file=str(target))
+                raise PlanmethodError(message("the folder name is longer than {limit} bytes",
+                                              limit=NAME_MAX), file=str(target))
         else:
             parent, missing = final, []
             kept = {entry.name for entry in os.scandir(final)} - set(replaces)
             clash = sorted({PurePosixPath(name).parts[0] for name in files} & kept)
             if clash:
-                raise PlanmethodError(f"holds {', '.join(clash[:3])}, which this run would "
-                                      "replace and did not write", file=str(target))
+                raise PlanmethodError(message("holds {names}, which this run would replace and "
+                                              "did not write", names=clash[:3]),
+                                      file=str(target))
         self._once(os.path.abspath(final), target)
         try:
             staged = Path(tempfile.mkdtemp(prefix=f".{final.name[:40]}.new-", dir=parent))
         except OSError as error:
-            raise PlanmethodError(f"cannot create a folder in {parent}: {error.strerror}",
+            raise PlanmethodError(message("cannot create a folder in {folder}: {reason}",
+                                          folder=str(parent), reason=error.strerror),
                                   file=str(target)) from None
         self._folders.append(_StagedFolder(target, final, staged, tuple(replaces),
                                            status is not None, tuple(missing)))
@@ -594,9 +614,9 @@ class OutputSet:
                 descriptor = os.open(item.final, flags | (os.O_NONBLOCK if fifo else 0))
             except OSError as error:
                 if fifo and error.errno == errno.ENXIO:
-                    raise PlanmethodError("is a FIFO that nothing reads: start its reader "
-                                          "first (planmethod does not wait for one)",
-                                          file=str(item.target)) from None
+                    raise PlanmethodError(message("is a FIFO that nothing reads: start its "
+                                                  "reader first (planmethod does not wait "
+                                                  "for one)"), file=str(item.target)) from None
                 raise _cannot_write(error, item.target) from None
             if fifo:
                 os.set_blocking(descriptor, True)
@@ -696,26 +716,28 @@ def read_bytes_bounded(path: str | Path, limit: int, *,
     try:
         status = os.stat(path)
     except (FileNotFoundError, NotADirectoryError):
-        raise error("no such file", file=name) from None
+        raise error(message("no such file"), file=name) from None
     except OSError as failure:
-        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+        raise error(_cannot_read(failure), file=name) from None
     if stat.S_ISDIR(status.st_mode):
-        raise error("is a folder, not a file", file=name)
+        raise error(_A_FOLDER, file=name)
     if not stat.S_ISREG(status.st_mode):
-        raise error(f"is {_special_kind(status.st_mode)}, not a regular file", file=name)
+        raise error(message("is {kind}, not a regular file",
+                            kind=_special_kind(status.st_mode)), file=name)
     if status.st_size > limit:
-        raise error(f"the file is {status.st_size} bytes; at most {limit} are accepted",
-                    file=name)
+        raise error(plural("the file is {count} byte; at most {limit} are accepted",
+                           "the file is {count} bytes; at most {limit} are accepted",
+                           count=status.st_size, limit=limit), file=name)
     flags = (os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
              | getattr(os, "O_CLOEXEC", 0))
     try:
         descriptor = os.open(path, flags)
     except OSError as failure:
-        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+        raise error(_cannot_read(failure), file=name) from None
     chunks, total = [], 0
     try:
         if not stat.S_ISREG(os.fstat(descriptor).st_mode):   # replaced since the stat
-            raise error("is not a regular file", file=name)
+            raise error(message("is not a regular file"), file=name)
         while total <= limit:
             chunk = os.read(descriptor, min(_CHUNK, limit + 1 - total))
             if not chunk:
@@ -723,12 +745,12 @@ def read_bytes_bounded(path: str | Path, limit: int, *,
             chunks.append(chunk)
             total += len(chunk)
     except OSError as failure:
-        raise error(f"cannot read the file ({failure.strerror})", file=name) from None
+        raise error(_cannot_read(failure), file=name) from None
     finally:
         os.close(descriptor)
     if total > limit:
-        raise error(f"the file is more than {limit} bytes; at most {limit} are accepted",
-                    file=name)
+        raise error(message("the file is more than {limit} bytes; at most {limit} are "
+                            "accepted", limit=limit), file=name)
     return b"".join(chunks)
 
 
@@ -750,7 +772,12 @@ def read_text_bounded(path: str | Path, limit: int, *, encoding: str = "utf-8-si
     try:
         return data.decode(encoding)
     except UnicodeDecodeError as failure:
-        raise error(f"cannot read the file as UTF-8 text ({failure})", file=str(path)) from None
+        raise error(message("cannot read the file as UTF-8 text ({reason})",
+                            reason=str(failure)), file=str(path)) from None
+
+
+def _cannot_read(failure: OSError) -> Message:
+    return message("cannot read the file ({reason})", reason=failure.strerror)
 
 
 def sha256_of_file(path: str | Path) -> str | None:

@@ -32,6 +32,7 @@ Vector = tuple[float, float]
 __all__ = [
     "FRAME",
     "Ask",
+    "Course",
     "Drive",
     "Exercise",
     "FrozenMap",
@@ -350,6 +351,20 @@ class Mechanism:
 
 
 @dataclass(frozen=True, slots=True)
+class Course:
+    """The course an exercise is set in (the ``[course]`` table): the language its text is
+    shown in (``"ru"``; None: the run's choice, ``--lang`` or ``PLANMETHOD_LANG``, else
+    English). It belongs to the exercise, not to the mechanism: an exercise set in two
+    languages is one mechanism, solved once.
+
+    >>> Course(), Course("ru").language
+    (Course(language=None), 'ru')
+    """
+
+    language: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class Exercise:
     """An exercise: the mechanism, the drawing choices and what is asked, and where it came from."""
 
@@ -360,6 +375,8 @@ class Exercise:
     #: values a book or paper prints for this exercise (quantity → value, SI), and where
     published: Mapping[str, float] = field(default_factory=dict)
     published_source: str | None = None
+    #: the course it is set in (its language)
+    course: Course = field(default_factory=Course)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "published", _frozen_mapping(self.published))

@@ -20,12 +20,16 @@ import sys
 import time
 from collections.abc import Callable
 
+from .words.message import Message, message
+from .words.render import render
+
 
 class Progress:
     """``with Progress(total, label) as bar: bar.advance(n)``; ``on_advance(done, total)`` is
-    called at every step, whether the bar is drawn or not."""
+    called at every step, whether the bar is drawn or not. ``label`` says what runs (a
+    command's name, or a message)."""
 
-    def __init__(self, total: int, label: str, *, enabled: bool | None = None,
+    def __init__(self, total: int, label: str | Message, *, enabled: bool | None = None,
                  stream=None, on_advance: Callable[[int, int], None] | None = None) -> None:
         self.total = max(int(total), 1)
         self.label = label
@@ -58,8 +62,10 @@ class Progress:
         elapsed = now - self.started
         rate = self.done / elapsed if elapsed > 0 else 0.0
         eta = (self.total - self.done) / rate if rate > 0 else 0.0
-        self.stream.write(f"\r{self.label} [{'#' * filled}{'.' * (width - filled)}] "
-                          f"{self.done}/{self.total}  {elapsed:5.1f}s  eta {eta:5.1f}s")
+        line = message("{label} [{bar}] {done}/{total}  {elapsed:5.1f}s  eta {eta:5.1f}s",
+                       label=self.label, bar="#" * filled + "." * (width - filled),
+                       done=self.done, total=self.total, elapsed=elapsed, eta=eta)
+        self.stream.write("\r" + render(line))
         self.stream.flush()
 
     def __exit__(self, *_exc) -> None:

@@ -43,6 +43,8 @@ from pathlib import Path
 
 from .errors import SpecError
 from .io import json_text, output_set, read_text_bounded, sha256_of_file
+from .words.message import Message, message, plural
+from .words.render import render
 
 __all__ = ["MANIFEST", "EarlierRun", "RunKind", "earlier_run", "manifest_text",
            "remove_retired", "write_run"]
@@ -66,8 +68,10 @@ class RunKind:
     force: str | None = "--force"
 
     @property
-    def replaces(self) -> str:
-        return f"{self.force or self.command} replaces"
+    def replacer(self) -> str:
+        """What replaces an earlier run, as the sentences name it: the option (``--force``),
+        or the command for a kind that always replaces its own run."""
+        return self.force or self.command
 
 
 @dataclass(frozen=True)
@@ -92,10 +96,13 @@ def manifest_text(kind: RunKind, files: Mapping[str, bytes]) -> str:
      ]
     }
     """
-    who = f"`{kind.command} {kind.force}`" if kind.force else f"a later `{kind.command}`"
-    return json_text({"format": kind.format,
-                      "note": f"written by planmethod {kind.command}: the files {who} may "
-                              "remove, each only while its size and SHA-256 are these",
+    note = (message("written by planmethod {command}: the files `{command} {option}` may "
+                    "remove, each only while its size and SHA-256 are these",
+                    command=kind.command, option=kind.force) if kind.force else
+            message("written by planmethod {command}: the files a later `{command}` may "
+                    "remove, each only while its size and SHA-256 are these",
+                    command=kind.command))
+    return json_text({"format": kind.format, "note": render(note),
                       "files": [[name, len(data), hashlib.sha256(data).hexdigest()]
                                 for name, data in sorted(files.items())]})
 
@@ -104,18 +111,23 @@ def _read_manifest(folder: Path, kind: RunKind, name: str) -> dict[str, tuple[in
     """The files the manifest in ``folder`` lists, or a :class:`SpecError`."""
     path = folder / MANIFEST
     if not os.path.lexists(path):
-        raise SpecError(f"{name} holds no {MANIFEST}, so no {kind.command} run of this version "
-                        f"wrote it: {kind.replaces} only such a run; choose another folder")
+        raise SpecError(message("{folder} holds no {manifest}, so no {command} run of this "
+                                "version wrote it: {replacer} replaces only such a run; choose "
+                                "another folder", folder=name, manifest=MANIFEST,
+                                command=kind.command, replacer=kind.replacer))
     if os.path.islink(path):
-        raise SpecError(f"is a symbolic link, which {kind.command} never writes: "
-                        f"{kind.replaces} only an earlier run", file=str(path))
+        raise SpecError(message("is a symbolic link, which {command} never writes: {replacer} "
+                                "replaces only an earlier run", command=kind.command,
+                                replacer=kind.replacer), file=str(path))
     try:
         data = json.loads(read_text_bounded(path, MAX_MANIFEST_BYTES))
     except json.JSONDecodeError as error:
-        raise SpecError(f"not valid JSON ({error})", file=str(path)) from None
+        raise SpecError(message("not valid JSON ({reason})", reason=str(error)),
+                        file=str(path)) from None
     if not isinstance(data, dict) or data.get("format") != kind.format:
-        raise SpecError(f"not a manifest of {kind.command} (format {kind.format!r}): "
-                        f"{kind.replaces} only its own earlier run", file=str(path))
+        raise SpecError(message("not a manifest of {command} (format {format!r}): {replacer} "
+                                "replaces only its own earlier run", command=kind.command,
+                                format=kind.format, replacer=kind.replacer), file=str(path))
     files: dict[str, tuple[int, str]] = {}
     rows = data.get("files")
     for index, row in enumerate(rows if isinstance(rows, list) else [None]):
@@ -123,8 +135,9 @@ def _read_manifest(folder: Path, kind: RunKind, name: str) -> dict[str, tuple[in
                 and row[0] != MANIFEST and kind.writes(row[0])
                 and type(row[1]) is int and isinstance(row[2], str)
                 and re.fullmatch(r"[0-9a-f]{64}", row[2])):
-            raise SpecError(f"lists {str(row)[:60]!r}, not a file {kind.command} writes with "
-                            "its size and SHA-256", file=str(path), key=f"files[{index}]")
+            raise SpecError(message("lists {row!r}, not a file {command} writes with its size "
+                                    "and SHA-256", row=str(row)[:60], command=kind.command),
+                            file=str(path), key=f"files[{index}]")
         files[row[0]] = (row[1], row[2])
     return files
 
@@ -170,8 +183,9 @@ def _survey(folder: Path, files: Mapping[str, tuple[int, str]]
     return foreign, linked, changed
 
 
-def _listed(names: list[str]) -> str:
-    return f"{', '.join(names[:3])}{', …' if len(names) > 3 else ''}"
+def _listed(names: list[str]) -> list[str]:
+    """At most three names, and an ellipsis for the rest (a list field, joined with commas)."""
+    return [*names[:3], "…"] if len(names) > 3 else names
 
 
 def earlier_run(folder: str | Path, kind: RunKind, *, force: bool = False,
@@ -188,33 +202,52 @@ def earlier_run(folder: str | Path, kind: RunKind, *, force: bool = False,
         if not os.path.lexists(folder):
             return None
         if not folder.is_dir():
-            raise SpecError(f"{name} is a file, not a folder")
+            raise SpecError(message("{folder} is a file, not a folder", folder=name))
         entries = sorted(os.listdir(folder))
         if not entries:
             return None
         if kind.force and not force:
-            raise SpecError(f"{name} is not empty ({len(entries)} entries): choose an empty "
-                            f"folder, or give {kind.force} to replace an earlier {kind.command} "
-                            "run there")
+            raise SpecError(plural(
+                "{folder} is not empty ({count} entry): choose an empty folder, or give "
+                "{option} to replace an earlier {command} run there",
+                "{folder} is not empty ({count} entries): choose an empty folder, or give "
+                "{option} to replace an earlier {command} run there", count=len(entries),
+                folder=name, option=kind.force, command=kind.command))
         files = _read_manifest(folder, kind, name)
         foreign, linked, changed = _survey(folder, files)
     except OSError as error:
-        raise SpecError(f"cannot read the folder: {error.strerror or error}",
-                        file=str(folder)) from None
-    if foreign:
-        raise SpecError(f"{name} holds files no {kind.command} run wrote ({_listed(foreign)}): "
-                        f"{kind.replaces} only an earlier run; move them away or choose "
-                        "another folder")
-    if linked:
-        raise SpecError(f"{name} holds symbolic links ({_listed(linked)}), which "
-                        f"{kind.command} never writes: {kind.replaces} only an earlier run; "
-                        "choose another folder")
-    if changed:
-        them = "them" if len(changed) > 1 else "it"
-        raise SpecError(f"{name}: {_listed(changed)} changed since {kind.command} wrote {them} "
-                        f"(size or SHA-256 differs from {MANIFEST}): {kind.replaces} only what "
-                        f"{kind.command} wrote; move {them} away or choose another folder")
+        raise SpecError(message("cannot read the folder: {reason}",
+                                reason=error.strerror or str(error)), file=str(folder)) from None
+    if foreign or linked or changed:
+        raise SpecError(_not_a_run(name, kind, foreign, linked, changed))
     return EarlierRun(tuple(entries), files)
+
+
+def _not_a_run(name: str, kind: RunKind, foreign: list[str], linked: list[str],
+               changed: list[str]) -> Message:
+    """Why a folder holds more than an earlier run: files it did not write, symbolic links,
+    or its files changed since."""
+    if foreign:
+        return message("{folder} holds files no {command} run wrote ({names}): {replacer} "
+                       "replaces only an earlier run; move them away or choose another folder",
+                       folder=name, command=kind.command, names=_listed(foreign),
+                       replacer=kind.replacer)
+    if linked:
+        return message("{folder} holds symbolic links ({names}), which {command} never "
+                       "writes: {replacer} replaces only an earlier run; choose another folder",
+                       folder=name, names=_listed(linked), command=kind.command,
+                       replacer=kind.replacer)
+    if len(changed) == 1:
+        return message("{folder}: {names} changed since {command} wrote it (size or SHA-256 "
+                       "differs from {manifest}): {replacer} replaces only what {command} "
+                       "wrote; move it away or choose another folder", folder=name,
+                       names=changed, command=kind.command, manifest=MANIFEST,
+                       replacer=kind.replacer)
+    return message("{folder}: {names} changed since {command} wrote them (size or SHA-256 "
+                   "differs from {manifest}): {replacer} replaces only what {command} wrote; "
+                   "move them away or choose another folder", folder=name,
+                   names=_listed(changed), command=kind.command, manifest=MANIFEST,
+                   replacer=kind.replacer)
 
 
 def remove_retired(retired: Path, earlier: EarlierRun | None) -> list[str]:
@@ -246,8 +279,8 @@ def write_run(folder: str | Path, kind: RunKind, files: Mapping[str, bytes],
     """Write ``files`` (relative path → bytes; ``modes``: some files' permission bits) and
     their manifest as the run in ``folder``, whole or not at all, in place of ``earlier``
     (found by :func:`earlier_run` before the run's work); then remove the earlier run's
-    files. Returns a note when something of the earlier run changed meanwhile and was kept
-    (where it is), else None."""
+    files. Returns a note (text in the language spoken now, for the command to print) when
+    something of the earlier run changed meanwhile and was kept (where it is), else None."""
     folder = Path(folder)
     data = {**files, MANIFEST: manifest_text(kind, files).encode("utf-8")}
     with output_set() as outputs:   # the whole run, beside the earlier one, then swapped in
@@ -256,5 +289,5 @@ def write_run(folder: str | Path, kind: RunKind, files: Mapping[str, bytes],
     left = remove_retired(retired, earlier) if retired is not None else []
     if not left:
         return None
-    return (f"{retired} keeps what changed in the earlier run during this one "
-            f"({_listed(left)})")
+    return render(message("{folder} keeps what changed in the earlier run during this one "
+                          "({names})", folder=str(retired), names=_listed(left)))

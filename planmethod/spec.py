@@ -33,6 +33,7 @@ planmethod.errors.SpecError: x.toml: drive.omega: must be a finite number, got n
 
 from __future__ import annotations
 
+import decimal
 import difflib
 import json
 import math
@@ -44,12 +45,13 @@ from typing import Any
 
 import numpy as np
 
-from .errors import SpecError, value_text
+from .errors import SpecError, value_words
 from .io import read_text_bounded
 from .model import (
     FRAME,
     FRAME_PLACES,
     Ask,
+    Course,
     Drive,
     Exercise,
     Link,
@@ -62,11 +64,13 @@ from .model import (
     Slide,
 )
 from .vectors import angle_deg, cross, dot, norm, unit_angle
-from .vocabulary import quantity
+from .vocabulary import quantity, unit_words
+from .words.language import problem as language_problem
+from .words.message import Message, message, plural
 
-__all__ = ["DRAWN_TOLERANCE", "POINT_NAME", "checked_table", "did_you_mean", "drawing_size",
-           "exercise_from_dict", "frames_from_drawn", "is_drawn", "leaves", "load_exercise",
-           "parse_exercise", "parse_json", "parse_toml", "read_text"]
+__all__ = ["COURSE_KEYS", "DRAWN_TOLERANCE", "POINT_NAME", "checked_table", "course_from_dict",
+           "did_you_mean", "drawing_size", "exercise_from_dict", "frames_from_drawn", "is_drawn",
+           "leaves", "load_exercise", "parse_exercise", "parse_json", "parse_toml", "read_text"]
 
 POINT_NAME = re.compile(r"^[A-Z][0-9]*$")
 LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -74,7 +78,10 @@ LINK_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 TOP_LEVEL_KEYS = (
     "title", "description", "drive", "links", "slide", "sketch", "plan", "ask",
     "mass", "gravity", "load", "friction", "grading", "published", "points", "notation",
+    "course",
 )
+#: the keys of the ``[course]`` table
+COURSE_KEYS = ("language",)
 PLAN_KEYS = (
     "crank_mm", "velocity_mm", "acceleration_mm", "mu_l", "mu_v", "mu_a", "force_mm", "mu_f",
     "scale_point", "precision_mm", "min_angle_deg", "exact_mm",
@@ -263,8 +270,8 @@ def check_nesting(text: str, *, file: str | None = None, syntax: str = "toml") -
     :func:`nesting_depth`)."""
     depth = nesting_depth(text, syntax)
     if depth > MAX_NESTING:
-        raise SpecError(f"tables or arrays nested {depth} deep; at most {MAX_NESTING} are "
-                        "read", file=file)
+        raise SpecError(message("tables or arrays nested {depth} deep; at most {limit} are "
+                                "read", depth=depth, limit=MAX_NESTING), file=file)
 
 
 def checked_table(value: Any, key: str, allowed: Sequence[str], *, file: str | None = None
@@ -287,11 +294,11 @@ def checked_table(value: Any, key: str, allowed: Sequence[str], *, file: str | N
 precision_mm
     """
     if not isinstance(value, Mapping):
-        raise SpecError("must be a table", file=file, key=key)
+        raise SpecError(message("must be a table"), file=file, key=key)
     for name in value:
         if name not in allowed:
-            raise SpecError(f"unknown key; expected one of {', '.join(allowed)}", file=file,
-                            key=f"{key}.{name}")
+            raise SpecError(message("unknown key; expected one of {keys}", keys=list(allowed)),
+                            file=file, key=f"{key}.{name}")
     return value
 
 
@@ -309,20 +316,52 @@ def parse_toml(text: str, *, file: str | None = None) -> dict[str, Any]:
     surrogate = _SURROGATE.search(text)
     if surrogate is not None:   # text that came through JSON ("\\ud800"), never from a file
         line = text.count("\n", 0, surrogate.start()) + 1
-        raise SpecError(f"not valid TOML: U+{ord(surrogate.group()):04X} is half of a UTF-16 "
-                        f"pair, not a character (line {line})", file=file)
+        raise SpecError(message("not valid TOML: U+{code:04X} is half of a UTF-16 pair, not a "
+                                "character (line {line})", code=ord(surrogate.group()),
+                                line=line), file=file)
     check_nesting(text, file=file)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
-        message = str(error).replace("Cannot overwrite a value", "a key is given twice")
-        raise SpecError(f"not valid TOML: {message}", file=file) from None
+        raise SpecError(message("not valid TOML: {reason}", reason=_toml_reason(error)),
+                        file=file) from None
     except ValueError:  # a digit string beyond Python's integer-string conversion limit
         raise _long_digits_error(text, file) from None
     for key, value in leaves(data):
         if isinstance(value, int) and not isinstance(value, bool) and abs(value) > MAX_INTEGER:
             raise SpecError(_too_long(_digit_count(value)), file=file, key=key)
     return data
+
+
+#: where tomllib says it stopped, at the end of its message
+_TOML_WHERE = re.compile(r"(.*) \((?:at line (\d+), column (\d+)|(at end of document))\)",
+                         re.DOTALL)
+
+
+def _toml_reason(error: tomllib.TOMLDecodeError) -> Message | str:
+    r"""What tomllib says is wrong: its own words (English: the library's), but a key given
+    twice in ours, and where it stopped (a line and column, or the end) in a message.
+
+    >>> from planmethod.words import render
+    >>> for text in ("a = 1\na = 2\nb = 3", "a = 1\na = 2"):
+    ...     try:
+    ...         tomllib.loads(text)
+    ...     except tomllib.TOMLDecodeError as error:
+    ...         print(render(_toml_reason(error)))
+    a key is given twice (at line 2, column 6)
+    a key is given twice (at end of document)
+    """
+    text = str(error)
+    where = _TOML_WHERE.fullmatch(text)
+    what = where.group(1) if where else text
+    said: Message | str = (message("a key is given twice")
+                           if what == "Cannot overwrite a value" else what)
+    if where is None:
+        return said
+    if where.group(4):
+        return message("{what} (at end of document)", what=said)
+    return message("{what} (at line {line}, column {column})", what=said,
+                   line=int(where.group(2)), column=int(where.group(3)))
 
 
 def _long_digits_error(text: str, file: str | None) -> SpecError:
@@ -332,12 +371,13 @@ def _long_digits_error(text: str, file: str | None) -> SpecError:
         for run in re.findall(r"\d[\d_]*", line):
             best = max(best, (len(run.replace("_", "")), -number))
     digits, line = best[0], -best[1]
-    return SpecError(_too_long(digits), file=file, key=f"line {line}")
+    return SpecError(_too_long(digits), file=file, key=message("line {line}", line=line))
 
 
-def _too_long(digits: int) -> str:
-    return (f"a whole number of {digits} digits, beyond the 64-bit range (at most "
-            f"{MAX_INTEGER} in magnitude)")
+def _too_long(digits: int) -> Message:
+    return plural("a whole number of {count} digit, beyond the 64-bit range (at most {limit} "
+                  "in magnitude)", "a whole number of {count} digits, beyond the 64-bit range "
+                  "(at most {limit} in magnitude)", count=digits, limit=MAX_INTEGER)
 
 
 def _digit_count(value: int) -> int:
@@ -427,9 +467,10 @@ def parse_json(text: str, *, file: str | None = None, unique_keys: bool = False)
         data = json.loads(text, parse_int=integer,
                           object_pairs_hook=_unique_object if unique_keys else None)
     except json.JSONDecodeError as error:
-        raise SpecError(f"not valid JSON: {error}", file=file) from None
+        raise SpecError(message("not valid JSON: {reason}", reason=str(error)),
+                        file=file) from None
     except _RepeatedKeyError as error:
-        raise SpecError("the key is given twice in one object", file=file,
+        raise SpecError(message("the key is given twice in one object"), file=file,
                         key=str(error.args[0])) from None
     if long_integers:
         for key, value in leaves(data):
@@ -441,6 +482,23 @@ def parse_json(text: str, *, file: str | None = None, unique_keys: bool = False)
 def exercise_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> Exercise:
     """Build an :class:`~planmethod.model.Exercise` from the parsed TOML tables."""
     return _Reader(file).exercise(data)
+
+
+def course_from_dict(data: Mapping[str, Any], *, file: str | None = None) -> Course:
+    """The ``[course]`` table of an exercise's or a template's tables (a template's variants
+    carry it as it is), checked: a :class:`SpecError` naming ``course.language`` if it is no
+    language planmethod can speak.
+
+    Examples
+    --------
+    >>> course_from_dict({"course": {"language": "ru"}}), course_from_dict({})
+    (Course(language='ru'), Course(language=None))
+    >>> course_from_dict({"course": {"language": "zz"}}, file="t.toml")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: t.toml: course.language: no catalogue for the language zz ...
+    """
+    return _Reader(file).course(data)
 
 
 def _mechanism_size(links: Mapping[str, Link]) -> float:
@@ -458,14 +516,74 @@ def _distance_to_points(point, points) -> float:
     return min(math.hypot(point[0] - x, point[1] - y) for x, y in points)
 
 
-def did_you_mean(word: str, choices) -> str:
-    """The closest of ``choices`` to a misspelt ``word``, as a message's tail, or "".
+def did_you_mean(word: str, choices) -> Message | str:
+    """The closest of ``choices`` to a misspelt ``word``, as a message's tail (its ``hint``
+    field), or "".
 
-    >>> did_you_mean("crnak", ["crank", "rod"]), did_you_mean("xyz", ["crank"])
+    >>> from planmethod.words import render
+    >>> render(did_you_mean("crnak", ["crank", "rod"])), did_you_mean("xyz", ["crank"])
     (" (did you mean 'crank'?)", '')
     """
     close = difflib.get_close_matches(word, list(choices), n=1)
-    return f" (did you mean '{close[0]}'?)" if close else ""
+    return message(" (did you mean '{name}'?)", name=close[0]) if close else ""
+
+
+def _decimals_apart(first: float, second: float) -> tuple[decimal.Decimal, decimal.Decimal]:
+    """Two numbers written with as few decimals as tell them apart (at most 9), as decimals
+    a message writes with its ``f`` format (and the course's decimal sign).
+
+    >>> [format(number, "f") for number in _decimals_apart(44.99996, 45.0)]
+    ['44.99996', '45']
+    >>> [format(number, "f") for number in _decimals_apart(30.0, 30.0)]
+    ['30', '30']
+    """
+    for decimals in range(10):
+        texts = (f"{first:.{decimals}f}", f"{second:.{decimals}f}")
+        if texts[0] != texts[1]:
+            break
+    return tuple(decimal.Decimal(text.rstrip("0").rstrip(".") if "." in text else text)
+                 for text in texts)
+
+
+def _not_a_point(point: str, link: str, points) -> Message:
+    """``'{point}' is not a point of '{link}'`` with the closest of ``points``."""
+    return message("'{point}' is not a point of '{link}'{hint}", point=point, link=link,
+                   hint=did_you_mean(point, points))
+
+
+def _unknown_link(name: str, links) -> Message:
+    return message("unknown link '{link}'{hint}", link=name, hint=did_you_mean(name, links))
+
+
+def _unknown_point(name: str, points) -> Message:
+    return message("unknown point '{point}'{hint}", point=name, hint=did_you_mean(name, points))
+
+
+#: what a point's name is, as an error says it
+_POINT_NAME_WORDS = message("a point name is a capital letter, optionally followed by digits "
+                            "(A, O2, C4)")
+#: the note on a limit that is the range the stress suite covers, by unit
+_TESTED_RANGE = {unit: message("{unit}; the range planmethod is tested on",
+                               unit=unit_words(unit)) for unit in ("m", "rad/s", "rad/s²")}
+
+
+#: what a key the file must give and does not is
+_MISSING = message("missing")
+#: the unit of an angle's limit
+_DEGREES = message("degrees")
+
+
+def _too_large(limit: float, what: Message | None, value: float | None = None) -> Message:
+    """``must be at most {limit} in magnitude`` (with what the limit is, and the value)."""
+    if value is None:
+        return (message("must be at most {limit:g} in magnitude ({what})", limit=limit,
+                        what=what) if what is not None
+                else message("must be at most {limit:g} in magnitude", limit=limit))
+    if what is None:
+        return message("must be at most {limit:g} in magnitude, got {value:g}", limit=limit,
+                       value=value)
+    return message("must be at most {limit:g} in magnitude ({what}), got {value:g}",
+                   limit=limit, what=what, value=value)
 
 
 class _Reader:
@@ -474,58 +592,75 @@ class _Reader:
     def __init__(self, file: str | None) -> None:
         self.file = file
 
-    def error(self, key: str, message: str) -> SpecError:
-        return SpecError(message, file=self.file, key=key)
+    def error(self, key: str, words: Message | str) -> SpecError:
+        return SpecError(words, file=self.file, key=key)
 
     # -- scalar readers ---------------------------------------------------------------------
     def number(self, value: Any, key: str, *, positive: bool = False,
                non_negative: bool = False, limit: float = MAX_MAGNITUDE,
-               what: str = "") -> float:
-        """A finite number of magnitude at most ``limit`` (``what`` names the limit)."""
+               what: Message | None = None) -> float:
+        """A finite number of magnitude at most ``limit`` (``what`` names the limit: its
+        unit, or the range it is)."""
         if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.error(key, f"must be a finite number, got {value_text(value)}")
+            raise self.error(key, message("must be a finite number, got {given}",
+                                          given=value_words(value)))
         try:
             value = float(value)
         except OverflowError:   # an integer too large for a float
-            raise self.error(key, f"must be at most {limit:g} in magnitude{what}") from None
+            raise self.error(key, _too_large(limit, what)) from None
         if not math.isfinite(value):
-            raise self.error(key, f"must be a finite number, got {value}")
+            raise self.error(key, message("must be a finite number, got {given}", given=value))
         if abs(value) > limit:
-            raise self.error(key, f"must be at most {limit:g} in magnitude{what}, got "
-                                  f"{value:g}")
+            raise self.error(key, _too_large(limit, what, value))
         if positive and value <= 0:
-            raise self.error(key, f"must be positive, got {value:g}")
+            raise self.error(key, message("must be positive, got {value:g}", value=value))
         if non_negative and value < 0:
-            raise self.error(key, f"must not be negative, got {value:g}")
+            raise self.error(key, message("must not be negative, got {value:g}", value=value))
         return value
 
     def vector(self, value: Any, key: str, *, limit: float = MAX_MAGNITUDE,
-               what: str = "") -> tuple[float, float]:
+               what: Message | None = None) -> tuple[float, float]:
         if not isinstance(value, list | tuple) or len(value) != 2:
-            raise self.error(key, f"must be a pair of numbers [x, y], got {value_text(value)}")
+            raise self.error(key, message("must be a pair of numbers [x, y], got {given}",
+                                          given=value_words(value)))
         return (self.number(value[0], f"{key}[0]", limit=limit, what=what),
                 self.number(value[1], f"{key}[1]", limit=limit, what=what))
 
     def coordinates(self, value: Any, key: str) -> tuple[float, float]:
         """A point's coordinates (m), within the range the stress suite covers."""
-        return self.vector(value, key, limit=MAX_COORDINATE_M,
-                           what=" (m; the range planmethod is tested on)")
+        return self.vector(value, key, limit=MAX_COORDINATE_M, what=_TESTED_RANGE["m"])
 
-    def not_tiny(self, length: float, key: str, what: str = "") -> None:
-        """A :class:`SpecError` if ``length`` (m) is not 0 but below :data:`MIN_LENGTH_M`."""
-        if length != 0 and abs(length) < MIN_LENGTH_M:
-            raise self.error(key, f"{what}must be 0 or at least {MIN_LENGTH_M:g} m in "
-                                  f"magnitude, got {length:g} (m; the range planmethod is "
-                                  "tested on)")
+    def not_tiny(self, length: float, key: str, apart_from: str | None = None) -> None:
+        """A :class:`SpecError` if ``length`` (m) is not 0 but below :data:`MIN_LENGTH_M`
+        (``apart_from``: the point it is a distance from)."""
+        if length == 0 or abs(length) >= MIN_LENGTH_M:
+            return
+        if apart_from is None:
+            raise self.error(key, message(
+                "must be 0 or at least {minimum:g} m in magnitude, got {length:g} (m; the "
+                "range planmethod is tested on)", minimum=MIN_LENGTH_M, length=length))
+        raise self.error(key, message(
+            "its distance from {point} must be 0 or at least {minimum:g} m in magnitude, got "
+            "{length:g} (m; the range planmethod is tested on)", point=apart_from,
+            minimum=MIN_LENGTH_M, length=length))
 
     def string(self, value: Any, key: str) -> str:
         if not isinstance(value, str) or not value:
-            raise self.error(key, f"must be a non-empty string, got {value_text(value)}")
+            raise self.error(key, message("must be a non-empty string, got {given}",
+                                          given=value_words(value)))
         return value
 
     def table(self, value: Any, key: str) -> Mapping[str, Any]:
         if not isinstance(value, Mapping):
-            raise self.error(key, f"must be a table, got {value_text(value)}")
+            raise self.error(key, message("must be a table, got {given}",
+                                          given=value_words(value)))
+        return value
+
+    def flag(self, value: Any, key: str) -> bool:
+        """``true`` or ``false``."""
+        if not isinstance(value, bool):
+            raise self.error(key, message("must be true or false, got {given}",
+                                          given=value_words(value)))
         return value
 
     def tables(self, data: Mapping[str, Any], name: str
@@ -536,31 +671,33 @@ class _Reader:
         if isinstance(raw, Mapping):
             raw = [raw]
         if not isinstance(raw, list):
-            raise self.error(name, f"must be an array of tables ([[{name}]])")
+            raise self.error(name, message("must be an array of tables ([[{name}]])",
+                                           name=name))
         for number, table in enumerate(raw, start=1):
             yield number, f"{name}[{number}]", self.table(table, f"{name}[{number}]")
 
     def only_keys(self, table: Mapping[str, Any], allowed, key: str) -> None:
         for name in table:
             if name not in allowed:
-                raise self.error(f"{key}.{name}" if key else name,
-                                 f"unknown key{did_you_mean(name, allowed)}; expected one of "
-                                 f"{', '.join(allowed)}")
+                raise self.error(f"{key}.{name}" if key else name, message(
+                    "unknown key{hint}; expected one of {keys}",
+                    hint=did_you_mean(name, allowed), keys=list(allowed)))
 
     # -- the exercise -----------------------------------------------------------------------
     def exercise(self, data: Mapping[str, Any]) -> Exercise:
         for name in ("vars", "template"):
             if name in data:
-                raise self.error(name, "this is an exercise template (it has ranges, choices "
-                                       "or expressions): draw exercises from it with "
-                                       "`planmethod variants`")
+                raise self.error(name, message(
+                    "this is an exercise template (it has ranges, choices or expressions): "
+                    "draw exercises from it with `planmethod variants`"))
         self.only_keys(data, TOP_LEVEL_KEYS, "")
         data = frames_from_drawn(data, file=self.file)
         title = data.get("title", Path(self.file).stem if self.file else "mechanism")
         title = self.string(title, "title")
         if not isinstance(data.get("description", ""), str):
-            raise self.error("description", "must be a string (the task in words), got "
-                                            f"{value_text(data['description'])}")
+            raise self.error("description", message(
+                "must be a string (the task in words), got {given}",
+                given=value_words(data["description"])))
         links = self.links(data)
         revolutes = self.revolutes(links)
         slides = self.slides(data, links)
@@ -580,7 +717,21 @@ class _Reader:
         ask = self.ask(data, mechanism)
         published, published_source = self.published(data)
         return Exercise(mechanism=mechanism, plan=plan, ask=ask, source=self.file,
-                        published=published, published_source=published_source)
+                        published=published, published_source=published_source,
+                        course=self.course(data))
+
+    def course(self, data: Mapping[str, Any]) -> Course:
+        """``[course]``: ``language = "ru"``, a language planmethod can speak (a shipped
+        catalogue or a course's own, docs/languages.md)."""
+        table = self.table(data.get("course", {}), "course")
+        self.only_keys(table, COURSE_KEYS, "course")
+        if "language" not in table:
+            return Course()
+        language = self.string(table["language"], "course.language")
+        refused = language_problem(language)
+        if refused is not None:
+            raise self.error("course.language", refused)
+        return Course(language)
 
     def published(self, data: Mapping[str, Any]) -> tuple[dict[str, float], str | None]:
         """``[published]``: the values a book prints (``v_C = 4.0``, SI units), with an
@@ -595,39 +746,41 @@ class _Reader:
             try:
                 quantity(name)
             except KeyError:
-                raise self.error(f"published.{name}", "is not a quantity (v_C, a_C, omega_BC, "
-                                                      "epsilon_BC, rho_D, …)") from None
+                raise self.error(f"published.{name}", message(
+                    "is not a quantity (v_C, a_C, omega_BC, epsilon_BC, rho_D, …)")) from None
             values[name] = self.number(value, f"published.{name}")
         return values, source
 
     def links(self, data: Mapping[str, Any]) -> dict[str, Link]:
         if "links" not in data:
-            raise self.error("links", "missing the [links] table")
+            raise self.error("links", message("missing the [links] table"))
         table = self.table(data["links"], "links")
         if FRAME not in table:
-            raise self.error("links", f"missing the fixed link '{FRAME}'"
-                                      f"{did_you_mean(FRAME, table)}")
+            raise self.error("links", message("missing the fixed link '{link}'{hint}",
+                                              link=FRAME, hint=did_you_mean(FRAME, table)))
         links: dict[str, Link] = {}
         seen_lower: dict[str, str] = {}
         for name, points in table.items():
             key = f"links.{name}"
             if not LINK_NAME.match(name):
-                raise self.error(key, "a link name must be an identifier (letters, digits, _)")
+                raise self.error(key, message("a link name must be an identifier (letters, "
+                                              "digits, _)"))
             if name.lower() in seen_lower:
-                raise self.error(key, f"duplicate link name (also '{seen_lower[name.lower()]}')")
+                raise self.error(key, message("duplicate link name (also '{other}')",
+                                              other=seen_lower[name.lower()]))
             seen_lower[name.lower()] = name
             points = self.table(points, key)
             if not points and name != FRAME:
-                raise self.error(key, "a link needs at least one point")
+                raise self.error(key, message("a link needs at least one point"))
             parsed = {}
             for point, xy in points.items():
                 if not POINT_NAME.match(point):
-                    raise self.error(f"{key}.{point}", "a point name is a capital letter, "
-                                     "optionally followed by digits (A, O2, C4)")
+                    raise self.error(f"{key}.{point}", _POINT_NAME_WORDS)
                 parsed[point] = self.coordinates(xy, f"{key}.{point}")
             links[name] = Link(name, parsed)
         if len(links) < 2:
-            raise self.error("links", "a mechanism needs the frame and at least one moving link")
+            raise self.error("links", message("a mechanism needs the frame and at least one "
+                                              "moving link"))
         owners: dict[str, int] = {}
         for link in links.values():
             for point in link.points:
@@ -646,8 +799,7 @@ class _Reader:
         for index, first in enumerate(names):
             for second in names[index + 1:]:
                 (x1, y1), (x2, y2) = points[first], points[second]
-                self.not_tiny(math.hypot(x2 - x1, y2 - y1), f"{key}.{second}",
-                              f"its distance from {first} ")
+                self.not_tiny(math.hypot(x2 - x1, y2 - y1), f"{key}.{second}", first)
 
     def revolutes(self, links: Mapping[str, Link]) -> tuple[Revolute, ...]:
         owners: dict[str, list[str]] = {}
@@ -663,68 +815,74 @@ class _Reader:
             self.only_keys(table, ("link", "along", "through", "direction", "point"), key)
             for needed in ("link", "along", "through"):
                 if needed not in table:
-                    raise self.error(f"{key}.{needed}", "missing")
+                    raise self.error(f"{key}.{needed}", _MISSING)
             link = self.link_name(table["link"], f"{key}.link", links)
             along = self.link_name(table["along"], f"{key}.along", links)
             if link == along:
-                raise self.error(f"{key}.along", f"a link cannot slide along itself ('{link}')")
+                raise self.error(f"{key}.along", message(
+                    "a link cannot slide along itself ('{link}')", link=link))
             through = self.string(table["through"], f"{key}.through")
             if through not in links[along].points:
-                raise self.error(f"{key}.through", f"'{through}' is not a point of '{along}'"
-                                 f"{did_you_mean(through, links[along].points)}")
+                raise self.error(f"{key}.through",
+                                 _not_a_point(through, along, links[along].points))
             direction = self.number(table.get("direction", 0.0), f"{key}.direction")
             if "point" in table:
                 point = self.string(table["point"], f"{key}.point")
                 if point not in links[link].points:
-                    raise self.error(f"{key}.point", f"'{point}' is not a point of '{link}'"
-                                     f"{did_you_mean(point, links[link].points)}")
+                    raise self.error(f"{key}.point",
+                                     _not_a_point(point, link, links[link].points))
             elif len(links[link].points) == 1:
                 point = next(iter(links[link].points))
             else:
-                raise self.error(f"{key}.point", f"'{link}' has several points "
-                                 f"({', '.join(links[link].points)}): name the one on the guide")
+                raise self.error(f"{key}.point", message(
+                    "'{link}' has several points ({points}): name the one on the guide",
+                    link=link, points=list(links[link].points)))
             pair = Slide(link, along, through, direction, point, number)
             if any(s.key == pair.key or s.key == f"{along}/{link}" for s in slides):
-                raise self.error(key, f"duplicate prismatic pair between '{link}' and '{along}'")
+                raise self.error(key, message(
+                    "duplicate prismatic pair between '{link}' and '{along}'", link=link,
+                    along=along))
             slides.append(pair)
         return tuple(slides)
 
     def link_name(self, value: Any, key: str, links: Mapping[str, Link]) -> str:
         name = self.string(value, key)
         if name not in links:
-            raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
+            raise self.error(key, _unknown_link(name, links))
         return name
 
     def drive(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> Drive:
         if "drive" not in data:
             unknown = [k for k in data if k not in TOP_LEVEL_KEYS]
-            raise self.error("drive", "missing the [drive] table (link, pivot, angle, omega)"
-                             f"{did_you_mean('drive', unknown)}")
+            raise self.error("drive", message(
+                "missing the [drive] table (link, pivot, angle, omega){hint}",
+                hint=did_you_mean("drive", unknown)))
         table = self.table(data["drive"], "drive")
         self.only_keys(table, ("link", "pivot", "angle", "omega", "epsilon"), "drive")
         for needed in ("link", "pivot", "angle", "omega"):
             if needed not in table:
-                raise self.error(f"drive.{needed}", "missing")
+                raise self.error(f"drive.{needed}", _MISSING)
         link = self.link_name(table["link"], "drive.link", links)
         if link == FRAME:
-            raise self.error("drive.link", "the frame cannot be the drive link")
+            raise self.error("drive.link", message("the frame cannot be the drive link"))
         pivot = self.string(table["pivot"], "drive.pivot")
         if pivot not in links[link].points:
-            raise self.error("drive.pivot", f"'{pivot}' is not a point of '{link}'"
-                             f"{did_you_mean(pivot, links[link].points)}")
+            raise self.error("drive.pivot", _not_a_point(pivot, link, links[link].points))
         if pivot not in links[FRAME].points:
-            raise self.error("drive.pivot", f"'{pivot}' must also be a point of '{FRAME}' "
-                             "(the drive turns about a fixed pivot)")
+            raise self.error("drive.pivot", message(
+                "'{point}' must also be a point of '{frame}' (the drive turns about a fixed "
+                "pivot)", point=pivot, frame=FRAME))
         if len(links[link].points) < 2:
-            raise self.error(f"links.{link}", "the drive link needs a point besides its pivot")
+            raise self.error(f"links.{link}", message("the drive link needs a point besides "
+                                                      "its pivot"))
         return Drive(
             link=link, pivot=pivot,
             angle=self.number(table["angle"], "drive.angle", limit=MAX_ANGLE_DEG,
-                              what=" (degrees)"),
+                              what=_DEGREES),
             omega=self.number(table["omega"], "drive.omega", limit=MAX_OMEGA,
-                              what=" (rad/s; the range planmethod is tested on)"),
+                              what=_TESTED_RANGE["rad/s"]),
             epsilon=self.number(table.get("epsilon", 0.0), "drive.epsilon", limit=MAX_EPSILON,
-                                what=" (rad/s²; the range planmethod is tested on)"),
+                                what=_TESTED_RANGE["rad/s²"]),
         )
 
     def notation(self, data: Mapping[str, Any], links: Mapping[str, Link]) -> Notation:
@@ -735,24 +893,26 @@ class _Reader:
         self.only_keys(table, ("frame", "numbers"), "notation")
         place = table.get("frame", 0)
         if isinstance(place, bool) or place not in FRAME_PLACES:
-            raise self.error("notation.frame", f'must be 0, 1 or "last", got {value_text(place)}')
+            raise self.error("notation.frame", message('must be 0, 1 or "last", got {given}',
+                                                       given=value_words(place)))
         numbers: dict[str, int] = {}
         owner: dict[int, str] = {}
         for name, value in self.table(table.get("numbers", {}), "notation.numbers").items():
             key = f"notation.numbers.{name}"
             if name not in links:
-                raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
+                raise self.error(key, _unknown_link(name, links))
             if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
-                raise self.error(key, "must be a whole number from 0 to 99, got "
-                                      f"{value_text(value)}")
+                raise self.error(key, message("must be a whole number from 0 to 99, got {given}",
+                                              given=value_words(value)))
             if value in owner:
-                raise self.error(key, f"{value} is already the number of '{owner[value]}'")
+                raise self.error(key, message("{number} is already the number of '{link}'",
+                                              number=value, link=owner[value]))
             if name == FRAME and "frame" in table:
-                raise self.error(key, "the frame's number is given twice: keep notation.frame "
-                                      "or notation.numbers.frame")
+                raise self.error(key, message("the frame's number is given twice: keep "
+                                              "notation.frame or notation.numbers.frame"))
             if name != FRAME and FRAME not in table.get("numbers", {}) and place == value:
-                raise self.error(key, f"{value} is the frame's number (notation.frame = "
-                                      f"{place})")
+                raise self.error(key, message("{number} is the frame's number (notation.frame "
+                                              "= {place})", number=value, place=place))
             numbers[name] = value
             owner[value] = name
         return Notation(place, numbers)
@@ -763,8 +923,7 @@ class _Reader:
         sketch = {}
         for point, xy in table.items():
             if point not in known:
-                raise self.error(f"sketch.{point}", f"unknown point '{point}'"
-                                 f"{did_you_mean(point, known)}")
+                raise self.error(f"sketch.{point}", _unknown_point(point, known))
             sketch[point] = self.coordinates(xy, f"sketch.{point}")
         return sketch
 
@@ -774,13 +933,13 @@ class _Reader:
         for name, props in table.items():
             key = f"mass.{name}"
             if name not in links:
-                raise self.error(key, f"unknown link '{name}'{did_you_mean(name, links)}")
+                raise self.error(key, _unknown_link(name, links))
             if name == FRAME:
-                raise self.error(key, "the frame does not move: it needs no mass")
+                raise self.error(key, message("the frame does not move: it needs no mass"))
             props = self.table(props, key)
             self.only_keys(props, ("m", "J", "S"), key)
             if "m" not in props:
-                raise self.error(f"{key}.m", "missing")
+                raise self.error(f"{key}.m", _MISSING)
             m = self.number(props["m"], f"{key}.m", positive=True)
             J = self.number(props.get("J", 0.0), f"{key}.J", non_negative=True)
             points = links[name].points
@@ -790,9 +949,10 @@ class _Reader:
                 S = (sum(p[0] for p in points.values()) / len(points),
                      sum(p[1] for p in points.values()) / len(points))
             if _distance_to_points(S, points.values()) > 10 * _mechanism_size(links):
-                raise self.error(f"{key}.S", f"centre of mass {S} lies more than 10 times the "
-                                 f"mechanism's size ({_mechanism_size(links):g} m) from the "
-                                 "link's points")
+                raise self.error(f"{key}.S", message(
+                    "centre of mass ({x}, {y}) lies more than 10 times the mechanism's size "
+                    "({size:g} m) from the link's points", x=S[0], y=S[1],
+                    size=_mechanism_size(links)))
             masses[name] = MassProperties(name, m, J, S)
         return masses
 
@@ -809,31 +969,31 @@ class _Reader:
             self.only_keys(table, ("link", "point", "force", "moment", "oppose_velocity", "name"),
                            key)
             if "link" not in table:
-                raise self.error(f"{key}.link", "missing")
+                raise self.error(f"{key}.link", _MISSING)
             link = self.link_name(table["link"], f"{key}.link", links)
             if link == FRAME:
-                raise self.error(f"{key}.link", "a load on the frame does nothing")
+                raise self.error(f"{key}.link", message("a load on the frame does nothing"))
             has_force, has_moment = "force" in table, "moment" in table
             if has_force == has_moment:
-                raise self.error(key, "give exactly one of `force = [fx, fy]` or `moment = m`")
+                raise self.error(key, message("give exactly one of `force = [fx, fy]` or "
+                                              "`moment = m`"))
             point = None
             if has_force:
                 if "point" not in table:
-                    raise self.error(f"{key}.point", "a force needs the point it acts on")
+                    raise self.error(f"{key}.point", message("a force needs the point it "
+                                                             "acts on"))
                 point = self.string(table["point"], f"{key}.point")
                 if point not in links[link].points:
-                    raise self.error(f"{key}.point", f"'{point}' is not a point of '{link}'"
-                                     f"{did_you_mean(point, links[link].points)}")
-            oppose = table.get("oppose_velocity", False)
-            if not isinstance(oppose, bool):
-                raise self.error(f"{key}.oppose_velocity",
-                                 f"must be true or false, got {value_text(oppose)}")
+                    raise self.error(f"{key}.point",
+                                     _not_a_point(point, link, links[link].points))
+            oppose = self.flag(table.get("oppose_velocity", False), f"{key}.oppose_velocity")
             name = None
             if "name" in table:
                 name = self.string(table["name"], f"{key}.name")
                 if not re.fullmatch(r"[^\W\d][\w,′']{0,15}", name):
-                    raise self.error(f"{key}.name", f"{value_text(name)} is not a symbol: a "
-                                     "letter, then up to 15 letters, digits or _ (P, P_c, F_res)")
+                    raise self.error(f"{key}.name", message(
+                        "{given} is not a symbol: a letter, then up to 15 letters, digits or _ "
+                        "(P, P_c, F_res)", given=value_words(name)))
             loads.append(Load(
                 link=link, point=point,
                 force=self.vector(table["force"], f"{key}.force") if has_force else None,
@@ -853,8 +1013,9 @@ class _Reader:
         self.only_keys(table, ("f", "pin_radius", "pairs", "tolerance", "max_iterations"),
                        "friction")
         result: dict[str, Any] = {}
-        limits = {"f": (MAX_FRICTION_COEFFICIENT, " (a friction coefficient)"),
-                  "pin_radius": (MAX_COORDINATE_M, " (m)"), "tolerance": (MAX_MAGNITUDE, "")}
+        limits = {"f": (MAX_FRICTION_COEFFICIENT, message("a friction coefficient")),
+                  "pin_radius": (MAX_COORDINATE_M, unit_words("m")),
+                  "tolerance": (MAX_MAGNITUDE, None)}
         for name in ("f", "pin_radius", "tolerance"):
             if name in table:
                 limit, what = limits[name]
@@ -866,8 +1027,9 @@ class _Reader:
             value = table["max_iterations"]
             if (isinstance(value, bool) or not isinstance(value, int)
                     or not 1 <= value <= MAX_FRICTION_ITERATIONS):
-                raise self.error("friction.max_iterations", f"must be an integer from 1 to "
-                                 f"{MAX_FRICTION_ITERATIONS}, got {value_text(value)}")
+                raise self.error("friction.max_iterations", message(
+                    "must be an integer from 1 to {limit}, got {given}",
+                    limit=MAX_FRICTION_ITERATIONS, given=value_words(value)))
             result["max_iterations"] = value
         pair_keys = {pair.point for pair in revolutes} | {pair.key for pair in revolutes}
         pair_keys |= {pair.key for pair in slides}
@@ -875,7 +1037,8 @@ class _Reader:
         for name, props in self.table(table.get("pairs", {}), "friction.pairs").items():
             key = f"friction.pairs.{name}"
             if name not in pair_keys:
-                raise self.error(key, f"unknown pair '{name}'{did_you_mean(name, pair_keys)}")
+                raise self.error(key, message("unknown pair '{pair}'{hint}", pair=name,
+                                              hint=did_you_mean(name, pair_keys)))
             props = self.table(props, key)
             self.only_keys(props, ("f", "pin_radius"), key)
             pairs[name] = {k: self.number(v, f"{key}.{k}", non_negative=True,
@@ -893,7 +1056,8 @@ class _Reader:
         for drawn, direct in (("crank_mm", "mu_l"), ("velocity_mm", "mu_v"),
                               ("acceleration_mm", "mu_a"), ("force_mm", "mu_f")):
             if drawn in table and direct in table:
-                raise self.error(f"plan.{direct}", f"give either {drawn} or {direct}, not both")
+                raise self.error(f"plan.{direct}", message(
+                    "give either {drawn} or {direct}, not both", drawn=drawn, direct=direct))
             if direct in table:
                 values[direct] = self.number(table[direct], f"plan.{direct}", positive=True)
                 values[drawn] = None
@@ -903,8 +1067,9 @@ class _Reader:
             point = self.string(table["scale_point"], "plan.scale_point")
             drive_points = mechanism.links[mechanism.drive.link].points
             if point not in drive_points or point == mechanism.drive.pivot:
-                raise self.error("plan.scale_point", f"'{point}' must be a point of the drive "
-                                 f"link '{mechanism.drive.link}' other than its pivot")
+                raise self.error("plan.scale_point", message(
+                    "'{point}' must be a point of the drive link '{link}' other than its pivot",
+                    point=point, link=mechanism.drive.link))
             values["scale_point"] = point
         if "precision_mm" in table:
             values["precision_mm"] = self.number(table["precision_mm"], "plan.precision_mm",
@@ -913,10 +1078,7 @@ class _Reader:
             values["min_angle_deg"] = self.number(table["min_angle_deg"], "plan.min_angle_deg",
                                                   non_negative=True)
         if "exact_mm" in table:
-            if not isinstance(table["exact_mm"], bool):
-                raise self.error("plan.exact_mm", f"must be true or false, got "
-                                                  f"{value_text(table['exact_mm'])}")
-            values["exact_mm"] = table["exact_mm"]
+            values["exact_mm"] = self.flag(table["exact_mm"], "plan.exact_mm")
         return PlanSettings(**values)
 
     def ask(self, data: Mapping[str, Any], mechanism: Mechanism) -> Ask:
@@ -933,20 +1095,19 @@ class _Reader:
             items = self.names(table, name)
             for i, item in enumerate(items):
                 if item not in mechanism.links:
-                    raise self.error(f"ask.{name}[{i}]", f"unknown link '{item}'"
-                                     f"{did_you_mean(item, mechanism.links)}")
+                    raise self.error(f"ask.{name}[{i}]", _unknown_link(item, mechanism.links))
             values[name] = tuple(items)
         keys = [pair.key for pair in mechanism.slides]
         items = self.names(table, "sliding")
         for i, item in enumerate(items):
             if item not in keys:
-                raise self.error(f"ask.sliding[{i}]", f"no prismatic pair '{item}'"
-                                 f"{did_you_mean(item, keys)}; the pairs are {keys or 'none'}")
+                raise self.error(f"ask.sliding[{i}]", message(
+                    "no prismatic pair '{pair}'{hint}; the pairs are {pairs}", pair=item,
+                    hint=did_you_mean(item, keys), pairs=str(keys)) if keys else message(
+                    "no prismatic pair '{pair}'{hint}; the pairs are none", pair=item,
+                    hint=did_you_mean(item, keys)))
         values["sliding"] = tuple(items)
-        forces = table.get("forces", False)
-        if not isinstance(forces, bool):
-            raise self.error("ask.forces", f"must be true or false, got {value_text(forces)}")
-        values["forces"] = forces
+        values["forces"] = self.flag(table.get("forces", False), "ask.forces")
         return Ask(**values)
 
     def names(self, table: Mapping[str, Any], name: str) -> list[str]:
@@ -954,7 +1115,8 @@ class _Reader:
         if isinstance(items, str):
             items = [items]
         if not isinstance(items, list):
-            raise self.error(f"ask.{name}", f"must be a list of names, got {value_text(items)}")
+            raise self.error(f"ask.{name}", message("must be a list of names, got {given}",
+                                                    given=value_words(items)))
         for i, item in enumerate(items):
             self.string(item, f"ask.{name}[{i}]")
         return items
@@ -963,9 +1125,9 @@ class _Reader:
         """A point name, or ``X@link`` for the point of ``link`` coincident with X."""
         name, _, link = item.partition("@")
         if name not in points:
-            raise self.error(key, f"unknown point '{name}'{did_you_mean(name, points)}")
+            raise self.error(key, _unknown_point(name, points))
         if link and link not in mechanism.links:
-            raise self.error(key, f"unknown link '{link}'{did_you_mean(link, mechanism.links)}")
+            raise self.error(key, _unknown_link(link, mechanism.links))
         return item
 
 
@@ -1036,8 +1198,9 @@ def frames_from_drawn(data: Mapping[str, Any], *, file: str | None = None) -> di
         links = data.get("links")
         for name, value in (links.items() if isinstance(links, Mapping) else ()):
             if isinstance(value, list):
-                raise SpecError("a list of point names needs the [points] table (their "
-                                "positions as drawn)", file=file, key=f"links.{name}")
+                raise SpecError(message("a list of point names needs the [points] table "
+                                        "(their positions as drawn)"), file=file,
+                                key=f"links.{name}")
         return dict(data)
     return _Drawing(_Reader(file), data).tables()
 
@@ -1055,19 +1218,6 @@ def drawing_size(points) -> float:
     return max(1e-3, float(np.max(np.ptp(coordinates, axis=0))))
 
 
-def _distinct(first: float, second: float) -> tuple[str, str]:
-    """Two numbers written with as few decimals as tell them apart (at most 9).
-
-    >>> _distinct(44.99996, 45.0), _distinct(30.0, 30.0)
-    (('44.99996', '45'), ('30', '30'))
-    """
-    for decimals in range(10):
-        texts = (f"{first:.{decimals}f}", f"{second:.{decimals}f}")
-        if texts[0] != texts[1]:
-            break
-    return tuple(text.rstrip("0").rstrip(".") if "." in text else text for text in texts)
-
-
 class _Drawing:
     """Reads the as-drawn tables (see :func:`frames_from_drawn`) with a reader's checks."""
 
@@ -1083,38 +1233,41 @@ class _Drawing:
         points = {}
         for name, xy in table.items():
             if not POINT_NAME.match(name):
-                raise self.reader.error(f"points.{name}", "a point name is a capital letter, "
-                                        "optionally followed by digits (A, O2, C4)")
+                raise self.reader.error(f"points.{name}", _POINT_NAME_WORDS)
             points[name] = np.array(self.reader.coordinates(xy, f"points.{name}"))
         return points
 
     def read_links(self) -> dict[str, list[str]]:
         if "links" not in self.data:
-            raise self.reader.error("links", "missing the [links] table (each link as the "
-                                    "list of its points)")
+            raise self.reader.error("links", message("missing the [links] table (each link as "
+                                                     "the list of its points)"))
         table = self.reader.table(self.data["links"], "links")
         lists: dict[str, list[str]] = {}
         for name, names in table.items():
             key = f"links.{name}"
             if isinstance(names, Mapping):
-                raise self.reader.error(key, "with [points] (the exercise written as drawn) a "
-                                        f"link is the list of its points, e.g. {name} = "
-                                        f"{list(names)!r}".replace("'", '"'))
+                raise self.reader.error(key, message(
+                    "with [points] (the exercise written as drawn) a link is the list of its "
+                    "points, e.g. {example}",
+                    example=f"{name} = {list(names)!r}".replace("'", '"')))
             if not isinstance(names, list):
-                raise self.reader.error(key, "must be a list of point names, got "
-                                        f"{value_text(names)}")
+                raise self.reader.error(key, message("must be a list of point names, got "
+                                                     "{given}", given=value_words(names)))
             for index, point in enumerate(names):
                 point = self.reader.string(point, f"{key}[{index}]")
                 if point not in self.points:
-                    raise self.reader.error(f"{key}[{index}]", f"'{point}' is not drawn in "
-                                            f"[points]{did_you_mean(point, self.points)}")
+                    raise self.reader.error(f"{key}[{index}]", message(
+                        "'{point}' is not drawn in [points]{hint}", point=point,
+                        hint=did_you_mean(point, self.points)))
                 if point in names[:index]:
-                    raise self.reader.error(f"{key}[{index}]", f"'{point}' is listed twice")
+                    raise self.reader.error(f"{key}[{index}]", message(
+                        "'{point}' is listed twice", point=point))
             lists[name] = list(names)
         used = {point for names in lists.values() for point in names}
         for point in self.points:
             if point not in used:
-                raise self.reader.error(f"points.{point}", "is not a point of any link")
+                raise self.reader.error(f"points.{point}",
+                                        message("is not a point of any link"))
         return lists
 
     def drawing_size(self) -> float:
@@ -1131,7 +1284,7 @@ class _Drawing:
                 and isinstance(pivot, str) and pivot in self.lists[link]):
             return None
         angle = self.reader.number(table["angle"], "drive.angle", limit=MAX_ANGLE_DEG,
-                                   what=" (degrees)")
+                                   what=_DEGREES)
         return link, pivot, angle
 
     def slides(self) -> list[tuple[int, Mapping[str, Any], str, str, float]]:
@@ -1192,26 +1345,28 @@ class _Drawing:
             return
         arm = self.points[pin] - self.points[pivot]
         if float(norm(arm)) == 0:
-            raise self.reader.error(f"points.{pin}", f"the crank pin {pin} is drawn on the "
-                                    f"pivot {pivot}")
+            raise self.reader.error(f"points.{pin}", message(
+                "the crank pin {pin} is drawn on the pivot {pivot}", pin=pin, pivot=pivot))
         axis = unit_angle(math.radians(angle))
         if (float(dot(axis, arm)) <= 0
                 or abs(float(cross(axis, arm))) > DRAWN_TOLERANCE * self.size):
             drawn = angle_deg(arm)
             drawn += 360.0 * round((angle - drawn) / 360.0)
-            drawn_text, angle_text = _distinct(drawn, angle)
-            raise self.reader.error("drive.angle", f"the crank {pivot}{pin} is drawn at "
-                                    f"{drawn_text}°, but drive.angle is {angle_text}°")
+            drawn, angle = _decimals_apart(drawn, angle)
+            raise self.reader.error("drive.angle", message(
+                "the crank {pivot}{pin} is drawn at {drawn:f}°, but drive.angle is {angle:f}°",
+                pivot=pivot, pin=pin, drawn=drawn, angle=angle))
 
     def check_turn(self, number: int, link: str, direction: float, angle: float) -> None:
         """A link already turned (the frame, the crank, or sliding on an earlier guide) must
         have its +x axis along this slide too (the contract: a sliding link's +x axis stays
         along its guide)."""
         if abs((direction - angle + 180.0) % 360.0 - 180.0) > 1e-9:
-            direction_text, angle_text = _distinct(direction, angle)
-            raise self.reader.error(f"slide[{number}].direction", f"'{link}' would slide at "
-                                    f"{direction_text}°, but its +x axis is at {angle_text}° "
-                                    "(a sliding link's +x axis stays along its guide)")
+            direction, angle = _decimals_apart(direction, angle)
+            raise self.reader.error(f"slide[{number}].direction", message(
+                "'{link}' would slide at {direction:f}°, but its +x axis is at {angle:f}° (a "
+                "sliding link's +x axis stays along its guide)", link=link,
+                direction=direction, angle=angle))
 
     def check_guides(self) -> None:
         """Each slide's point lies on its guide: the line through ``through`` at
@@ -1226,16 +1381,16 @@ class _Drawing:
                                      self.points[point] - self.points[through])))
             allowed = DRAWN_TOLERANCE * self.size
             if offset > allowed:
-                raise self.reader.error(f"slide[{number}].point", f"{point} is drawn "
-                                        f"{offset:.3g} m off its guide, the line through "
-                                        f"{through} at {direction:g}° (at most {allowed:.1g} m "
-                                        "is allowed)")
+                raise self.reader.error(f"slide[{number}].point", message(
+                    "{point} is drawn {offset:.3g} m off its guide, the line through {through} "
+                    "at {direction:g}° (at most {allowed:.1g} m is allowed)", point=point,
+                    offset=offset, through=through, direction=direction, allowed=allowed))
 
     # -- the link-frame tables --------------------------------------------------------------
     def tables(self) -> dict[str, Any]:
         if "sketch" in self.data:
-            raise self.reader.error("sketch", "an exercise written as drawn is assembled as "
-                                    "drawn: it takes no [sketch]")
+            raise self.reader.error("sketch", message("an exercise written as drawn is "
+                                                      "assembled as drawn: it takes no [sketch]"))
         frames = self.frames()
         self.check_guides()
 

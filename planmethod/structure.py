@@ -30,9 +30,12 @@ from itertools import combinations
 
 from .errors import StructureError
 from .model import FRAME, Mechanism, Slide
-from .vocabulary import GroupKind, PairKind, link_text, links_text, point_text
+from .vocabulary import GroupKind, PairKind, group_kind_words, point_text
+from .words.message import Message, message
+from .words.render import render
 
-__all__ = ["AssurGroup", "Joint", "Structure", "analyse_structure", "describe"]
+__all__ = ["AssurGroup", "Joint", "Structure", "analyse_structure", "describe",
+           "structure_words"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -174,7 +177,7 @@ def _dyad(index: int, links: tuple[str, str], internal, external) -> AssurGroup 
     pattern = "".join(j.kind for j in joints)
     if pattern == "PPP":
         raise StructureError(
-            "a dyad of three prismatic pairs (PPP) has no definite position",
+            message("a dyad of three prismatic pairs (PPP) has no definite position"),
             link=f"{first}, {second}")
     kind = GroupKind.of_dyad(pattern)
     if kind is None:  # read the other way round (PPR is an RPP, PRR an RRP)
@@ -229,51 +232,117 @@ def analyse_structure(mechanism: Mechanism) -> Structure:
     p4 = 0   # the model has no higher pairs (see the module docstring)
     mobility = 3 * n - 2 * p5 - p4
     if mobility != 1:
-        hint = ("it has too many freedoms: some link is not held" if mobility > 1 else
-                "it is locked (a structure, not a mechanism)")
-        loose = [link for link in moving
-                 if sum(link in pair.links for pair in mechanism.revolutes)
-                 + sum(link in (s.link, s.along) for s in mechanism.slides) < 2]
-        lonely = [f"{point} ({link})" for link in loose
-                  for point in mechanism.links[link].points
-                  if len(mechanism.links_with_point(point)) == 1]
-        raise StructureError(
-            f"W = 3n − 2p5 − p4 = 3·{n} − 2·{p5} − {p4} = {mobility}, expected 1: {hint}"
-            + (f" (links with fewer than two pairs: {', '.join(loose)})" if loose else "")
-            + (f"; points named in one link only: {', '.join(lonely)} — a revolute pair needs "
-               "its point named in both links" if lonely else ""),
-            link=", ".join(moving))
+        raise _mobility_error(mechanism, n, p5, p4, mobility)
     driver = mechanism.drive.link
     known = {FRAME, driver}
     remaining = [link for link in moving if link != driver]
     groups: list[AssurGroup] = []
     while remaining:
-        found = None
-        for size in (2, 4):
-            for subset in combinations(remaining, size):
-                internal, external = _group_pairs(mechanism, subset, known)
-                if 3 * size != 2 * (len(internal) + len(external)):
-                    continue
-                if not _connected(subset, internal):
-                    continue
-                build = _dyad if size == 2 else _larger
-                found = build(len(groups), subset, internal, external)
-                if found:
-                    break
-            if found:
-                break
+        found = _next_group(mechanism, remaining, known, len(groups))
         if found is None:
             raise StructureError(
-                "these links do not form supported Assur groups (dyads or class III triads) "
-                "attached to the frame and the drive link", link=", ".join(remaining))
+                message("these links do not form supported Assur groups (dyads or class III "
+                        "triads) attached to the frame and the drive link"),
+                link=", ".join(remaining))
         groups.append(found)
         known |= set(found.links)
         remaining = [link for link in remaining if link not in found.links]
     return Structure(n, p5, mobility, driver, tuple(groups))
 
 
+def _next_group(mechanism: Mechanism, remaining: list[str], known: set[str],
+                index: int) -> AssurGroup | None:
+    """The smallest set of the ``remaining`` links attached to ``known`` links only with
+    3k = 2p (a dyad, else a class III or IV group), in build order; None if there is none."""
+    for size in (2, 4):
+        for subset in combinations(remaining, size):
+            internal, external = _group_pairs(mechanism, subset, known)
+            if 3 * size != 2 * (len(internal) + len(external)):
+                continue
+            if not _connected(subset, internal):
+                continue
+            found = (_dyad if size == 2 else _larger)(index, subset, internal, external)
+            if found:
+                return found
+    return None
+
+
+def _mobility_error(mechanism: Mechanism, n: int, p5: int, p4: int,
+                    mobility: int) -> StructureError:
+    """W ≠ 1, with the counts, what it means, and the links and points that look loose."""
+    moving = mechanism.moving_links
+    hint = (message("it has too many freedoms: some link is not held") if mobility > 1 else
+            message("it is locked (a structure, not a mechanism)"))
+    loose = [link for link in moving
+             if sum(link in pair.links for pair in mechanism.revolutes)
+             + sum(link in (s.link, s.along) for s in mechanism.slides) < 2]
+    lonely = [f"{point} ({link})" for link in loose
+              for point in mechanism.links[link].points
+              if len(mechanism.links_with_point(point)) == 1]
+    return StructureError(message(
+        "W = 3n − 2p5 − p4 = 3·{n} − 2·{p5} − {p4} = {mobility}, expected 1: {hint}{loose}"
+        "{lonely}", n=n, p5=p5, p4=p4, mobility=mobility, hint=hint,
+        loose=message(" (links with fewer than two pairs: {links})", links=loose) if loose
+        else "",
+        lonely=message("; points named in one link only: {points} — a revolute pair needs "
+                       "its point named in both links", points=lonely) if lonely else ""),
+        link=", ".join(moving))
+
+
+def structure_words(structure: Structure, numbers: Mapping[str, int] | None = None
+                    ) -> tuple[Message, ...]:
+    """The structural analysis as a course prints it, line by line (see :func:`describe`).
+
+    Examples
+    --------
+    >>> [render(line) for line in structure_words(Structure(3, 4, 1, "AB", ()))][1]
+    'drive link AB with the frame: class I mechanism'
+    """
+    numbered = bool(numbers) and all(link in numbers for link in (FRAME, structure.driver))
+    lines = [message("n = {n}, p5 = {p5}, p4 = {p4}, W = 3n − 2p5 − p4 = 3·{n} − 2·{p5} − "
+                     "{p4} = {mobility}", n=structure.n, p5=structure.p5, p4=structure.p4,
+                     mobility=structure.mobility),
+             message("drive link {number} ({name}) with the frame {frame}: class I mechanism",
+                     number=numbers[structure.driver], name=structure.driver.replace("_", " "),
+                     frame=numbers[FRAME]) if numbered else
+             message("drive link {link} with the frame: class I mechanism",
+                     link=structure.driver)]
+    lines += [_group_words(group, numbers if numbered else None) for group in structure.groups]
+    if structure.groups:
+        lines.append(message("the mechanism is of class {number}", number=max(
+            [group.group_class for group in structure.groups] + [1])))
+    return tuple(lines)
+
+
+def _group_words(group: AssurGroup, numbers: Mapping[str, int] | None) -> Message:
+    """One Assur group's line: its links, kind, class and order, pairs, and what it is
+    attached to (the links by their numbers where ``numbers`` has every one)."""
+    kind = (message("{kind} (type {number})", kind=group.kind.value, number=group.type_number)
+            if group.is_dyad else group_kind_words(group.kind))
+    if not (numbers and all(link in numbers for link in group.links + group.attached_to)):
+        return message("group {index}: links {links} — {kind}, class {group_class}, order "
+                       "{order}; pairs {pairs}; attached to {attached}", index=group.index + 1,
+                       links=list(group.links), kind=kind, group_class=group.group_class,
+                       order=group.order, pairs=[joint.label for joint in group.joints],
+                       attached=list(group.attached_to))
+    pairs = [point_text(joint.point) if joint.slide is None else
+             f"{numbers[joint.slide.link]}–{numbers[joint.slide.along]}"
+             for joint in group.joints]
+    links = sorted(group.links, key=numbers.__getitem__)
+    fields = dict(index=group.index + 1, numbers=[numbers[link] for link in links],
+                  names=[link.replace("_", " ") for link in links], kind=kind,
+                  group_class=group.group_class, order=group.order, pairs=pairs,
+                  attached=[numbers[link] for link in group.attached_to])
+    if len(group.attached_to) == 1:
+        return message("group {index}: links {numbers} ({names}) — {kind}, class {group_class}, "
+                       "order {order}; pairs {pairs}; attached to link {attached}", **fields)
+    return message("group {index}: links {numbers} ({names}) — {kind}, class {group_class}, "
+                   "order {order}; pairs {pairs}; attached to links {attached}", **fields)
+
+
 def describe(structure: Structure, numbers: Mapping[str, int] | None = None) -> str:
-    """The structural analysis as a course prints it.
+    """The structural analysis as a course prints it (:func:`structure_words`, as text in
+    the language spoken now).
 
     Parameters
     ----------
@@ -292,35 +361,4 @@ def describe(structure: Structure, numbers: Mapping[str, int] | None = None) -> 
     >>> print(describe(Structure(3, 4, 1, "AB", ()), {"frame": 0, "AB": 1}).splitlines()[1])
     drive link 1 (AB) with the frame 0: class I mechanism
     """
-    numbered = bool(numbers) and all(link in numbers for link in (FRAME, structure.driver))
-    if numbered:
-        drive = (f"{link_text(structure.driver, numbers, 'drive link')} with the frame "
-                 f"{numbers[FRAME]}")
-    else:
-        drive = f"drive link {structure.driver} with the frame"
-    lines = [f"n = {structure.n}, p5 = {structure.p5}, p4 = {structure.p4}, "
-             f"W = 3n − 2p5 − p4 = 3·{structure.n} − 2·{structure.p5} − {structure.p4} = "
-             f"{structure.mobility}",
-             f"{drive}: class I mechanism"]
-    for group in structure.groups:
-        kind = (f"{group.kind} (type {group.type_number})" if group.is_dyad else group.kind)
-        known = numbered and all(link in numbers for link in group.links + group.attached_to)
-        if known:
-            pairs = ", ".join(
-                point_text(joint.point) if joint.slide is None else
-                f"{numbers[joint.slide.link]}–{numbers[joint.slide.along]}"
-                for joint in group.joints)
-            links = links_text(group.links, numbers)
-            attached = ("links " if len(group.attached_to) > 1 else "link ") + ", ".join(
-                str(numbers[link]) for link in group.attached_to)
-        else:
-            pairs = ", ".join(joint.label for joint in group.joints)
-            links = f"links {', '.join(group.links)}"
-            attached = ", ".join(group.attached_to)
-        lines.append(f"group {group.index + 1}: {links} — {kind}, "
-                     f"class {group.group_class}, order {group.order}; pairs {pairs}; "
-                     f"attached to {attached}")
-    mechanism_class = max([g.group_class for g in structure.groups] + [1])
-    if structure.groups:
-        lines.append(f"the mechanism is of class {mechanism_class}")
-    return "\n".join(lines)
+    return "\n".join(render(line) for line in structure_words(structure, numbers))

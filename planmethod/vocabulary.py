@@ -25,13 +25,17 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
+from .words.message import Message, message, template
+from .words.render import render
+
 __all__ = [
-    "COLUMN_TEXTS",
+    "COLUMN_WORDS",
     "PLAN_SCALES",
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
     "TITLE_SHOWN_CHARACTERS",
+    "UNIT_WORDS",
     "AppliedKind",
     "DrawingScale",
     "EdgeKind",
@@ -41,20 +45,30 @@ __all__ = [
     "Quantity",
     "QuantityKind",
     "column_text",
+    "column_words",
     "coriolis_letter",
+    "group_kind_words",
     "link_numbers",
     "link_text",
+    "link_words",
     "links_text",
+    "links_words",
     "numbered",
     "pair_number",
     "point_name",
     "point_text",
     "quantity",
     "question_text",
+    "question_words",
     "scale_text",
+    "scale_words",
     "shown_title",
+    "sign_words",
+    "stage_words",
     "subscript",
     "symbol",
+    "turn_words",
+    "unit_words",
     "xml_characters",
 ]
 
@@ -146,6 +160,20 @@ class GroupKind(StrEnum):
 _TYPE_NUMBERS = {GroupKind.RRR: 1, GroupKind.RRP: 2, GroupKind.RPR: 3, GroupKind.PRP: 4,
                  GroupKind.RPP: 5}
 _HIGHER_CLASSES = {GroupKind.DRIVE: 1, GroupKind.TRIAD: 3, GroupKind.TETRAD: 4}
+#: the higher groups' (and the drive link's) kinds in words; a dyad's kind is its pairs' letters
+_KIND_WORDS = {GroupKind.TRIAD: message("triad", context="group kind"),
+               GroupKind.TETRAD: message("tetrad", context="group kind"),
+               GroupKind.DRIVE: message("drive", context="group kind")}
+
+
+def group_kind_words(kind: GroupKind) -> Message | str:
+    """An Assur group's kind as a course names it: a dyad by its pairs' letters (``RRP``), a
+    higher group in words (``triad``).
+
+    >>> group_kind_words(GroupKind.RRP), render(group_kind_words(GroupKind.TRIAD))
+    ('RRP', 'triad')
+    """
+    return _KIND_WORDS.get(kind, kind.value)
 
 @dataclass(frozen=True, slots=True)
 class DrawingScale:
@@ -168,14 +196,56 @@ PLAN_SCALES = {PlanKind.POSITION: "mu_l", PlanKind.VELOCITY: "mu_v",
                PlanKind.ACCELERATION: "mu_a"}
 
 
-def scale_text(name: str, value: float, digits: int = 6) -> str:
-    """A scale as a drawing's header prints it, with its unit.
+#: every unit a person reads, as its own short message (``context="unit"``: a catalogue writes
+#: м/с for m/s), by the unit as the code and the JSON reports name it
+UNIT_WORDS: dict[str, Message] = {
+    "m": message("m", context="unit"),
+    "mm": message("mm", context="unit"),
+    "m/s": message("m/s", context="unit"),
+    "m/s²": message("m/s²", context="unit"),
+    "rad": message("rad", context="unit"),
+    "rad/s": message("rad/s", context="unit"),
+    "rad/s²": message("rad/s²", context="unit"),
+    "N": message("N", context="unit"),
+    "N·m": message("N·m", context="unit"),
+    "W": message("W", context="unit"),
+    "kg": message("kg", context="unit"),
+    "kg·m²": message("kg·m²", context="unit"),
+    "m/mm": message("m/mm", context="unit"),
+    "(m/s)/mm": message("(m/s)/mm", context="unit"),
+    "(m/s²)/mm": message("(m/s²)/mm", context="unit"),
+    "N/mm": message("N/mm", context="unit"),
+}
+
+
+def unit_words(unit: str) -> Message | str:
+    """A unit as a person reads it, in the course's language (:data:`UNIT_WORDS`); a unit
+    not in the table is shown as it is.
+
+    >>> render(unit_words("m/s")), unit_words("furlong")
+    ('m/s', 'furlong')
+    """
+    return UNIT_WORDS.get(unit, unit)
+
+
+def scale_words(name: str, value: float) -> Message:
+    """A scale as a drawing's header prints it, with its unit (``μv = 0.2 (m/s)/mm``).
+
+    >>> render(scale_words("mu_v", 0.2))
+    'μv = 0.2 (m/s)/mm'
+    """
+    scale = SCALES[name]
+    return message("{symbol} = {value:.6g} {unit}", symbol=scale.symbol, value=value,
+                   unit=unit_words(scale.unit))
+
+
+def scale_text(name: str, value: float) -> str:
+    """:func:`scale_words` as text in the language spoken now.
 
     >>> scale_text("mu_v", 0.2), scale_text("mu_f", 12.5)
     ('μv = 0.2 (m/s)/mm', 'μF = 12.5 N/mm')
     """
-    scale = SCALES[name]
-    return f"{scale.symbol} = {value:.{digits}g} {scale.unit}"
+    return render(scale_words(name, value))
 
 
 @dataclass(frozen=True, slots=True)
@@ -184,48 +254,84 @@ class QuantityKind:
     printed, unit, what it describes, the drawing scale it is read at (None for a quantity not
     read off a plan at a scale), whether it is signed (counter-clockwise or along the guide
     positive) or a magnitude, and its subject (a ``point``, a ``link`` or a ``pair``).
-    ``question`` is what a task asks, in words: ``{subject}`` is replaced by the quantity's
-    subject, ``{point}`` by the subject read aloud (``B@lever``: "B of link lever").
-    ``panel`` titles the panel of a full-turn plot that draws this kind's curves (empty: the
-    kind has no panel of its own)."""
+
+    ``asked`` is what a task asks, a :func:`~planmethod.words.template` whose fields
+    :func:`question_words` fills: ``{point}`` (the point read aloud: ``B@lever`` is "B of
+    link lever") and ``{subject}`` (its name in the symbol) for a point's quantity;
+    ``{symbol}`` and ``{link}`` for a link's; ``{symbol}`` and ``{pair}`` for a pair's.
+    ``asked_numbered`` is the same question with the links named by their numbers in the
+    course's notation (``{number}`` and ``{name}``, and for a pair ``{along_number}`` and
+    ``{along_name}``); None for a point's quantity, whose question has no link in it.
+    ``plotted`` titles the panel of a full-turn plot that draws this kind's curves (None:
+    the kind has no panel of its own); ``what`` says what it is.
+    """
 
     prefix: str
     symbol: str
     unit: str
-    description: str
+    what: Message
     scale: str | None
     signed: bool
     subject: str
-    question: str = ""
-    panel: str = ""
+    asked: Message
+    asked_numbered: Message | None = None
+    plotted: Message | None = None
+
+    @property
+    def description(self) -> str:
+        """:attr:`what` as text in the language spoken now."""
+        return render(self.what)
+
+    @property
+    def panel(self) -> str:
+        """:attr:`plotted` as text in the language spoken now ("" for no panel)."""
+        return render(self.plotted) if self.plotted is not None else ""
 
 
 #: every quantity a check table, a key or a sweep names, by prefix
 QUANTITY_KINDS: dict[str, QuantityKind] = {kind.prefix: kind for kind in (
-    QuantityKind("v", "v", "m/s", "speed of a point", "mu_v", False, "point",
-                 "speed of {point}, |v_{subject}|", "speed of points |v|"),
-    QuantityKind("a", "a", "m/s²", "acceleration of a point", "mu_a", False, "point",
-                 "magnitude of the acceleration of {point}, |a_{subject}|",
-                 "acceleration of points |a|"),
-    QuantityKind("omega", "ω", "rad/s", "angular velocity of a link", "mu_v", True, "link",
-                 "angular velocity ω of {subject} (counter-clockwise positive)",
-                 "angular velocity ω of links"),
-    QuantityKind("epsilon", "ε", "rad/s²", "angular acceleration of a link", "mu_a", True,
-                 "link", "angular acceleration ε of {subject} (counter-clockwise positive)",
-                 "angular acceleration ε of links"),
-    QuantityKind("s", "s", "m", "travel of a prismatic pair", "mu_l", True, "pair",
-                 "travel s of the slide {subject}", "travel s of prismatic pairs"),
-    QuantityKind("ds", "ds/dt", "m/s", "sliding velocity of a prismatic pair", "mu_v", True,
-                 "pair", "sliding velocity of {subject} (along the guide)",
-                 "sliding velocity ds/dt"),
-    QuantityKind("dds", "d²s/dt²", "m/s²", "sliding acceleration of a prismatic pair", "mu_a",
-                 True, "pair", "sliding (relative) acceleration of {subject} (along the guide)",
-                 "sliding acceleration d²s/dt²"),
-    QuantityKind("rho", "ρ", "m", "radius of curvature of a point's path", "mu_l", False,
-                 "point", "radius of curvature ρ of the path of {point}",
-                 "radius of curvature ρ"),
-    QuantityKind("coriolis", "aᵏ", "m/s²", "Coriolis acceleration of a prismatic pair",
-                 "mu_a", False, "pair", "magnitude of the Coriolis acceleration of {subject}"),
+    QuantityKind("v", "v", "m/s", message("speed of a point"), "mu_v", False, "point",
+                 template("speed of {point}, |v_{subject}|"),
+                 plotted=message("speed of points |v|")),
+    QuantityKind("a", "a", "m/s²", message("acceleration of a point"), "mu_a", False, "point",
+                 template("magnitude of the acceleration of {point}, |a_{subject}|"),
+                 plotted=message("acceleration of points |a|")),
+    QuantityKind("omega", "ω", "rad/s", message("angular velocity of a link"), "mu_v", True,
+                 "link", template("angular velocity {symbol} of {link} (counter-clockwise "
+                                  "positive)"),
+                 template("angular velocity {symbol} of link {number} ({name}) "
+                          "(counter-clockwise positive)"),
+                 message("angular velocity ω of links")),
+    QuantityKind("epsilon", "ε", "rad/s²", message("angular acceleration of a link"), "mu_a",
+                 True, "link", template("angular acceleration {symbol} of {link} "
+                                        "(counter-clockwise positive)"),
+                 template("angular acceleration {symbol} of link {number} ({name}) "
+                          "(counter-clockwise positive)"),
+                 message("angular acceleration ε of links")),
+    QuantityKind("s", "s", "m", message("travel of a prismatic pair"), "mu_l", True, "pair",
+                 template("travel {symbol} of the slide {pair}"),
+                 template("travel {symbol} of link {number} ({name}) along link "
+                          "{along_number} ({along_name})"),
+                 message("travel s of prismatic pairs")),
+    QuantityKind("ds", "ds/dt", "m/s", message("sliding velocity of a prismatic pair"), "mu_v",
+                 True, "pair", template("sliding velocity of {pair} (along the guide)"),
+                 template("sliding velocity {symbol} of link {number} ({name}) along link "
+                          "{along_number} ({along_name}) (along the guide)"),
+                 message("sliding velocity ds/dt")),
+    QuantityKind("dds", "d²s/dt²", "m/s²", message("sliding acceleration of a prismatic pair"),
+                 "mu_a", True, "pair",
+                 template("sliding (relative) acceleration of {pair} (along the guide)"),
+                 template("sliding (relative) acceleration {symbol} of link {number} ({name}) "
+                          "along link {along_number} ({along_name}) (along the guide)"),
+                 message("sliding acceleration d²s/dt²")),
+    QuantityKind("rho", "ρ", "m", message("radius of curvature of a point's path"), "mu_l",
+                 False, "point", template("radius of curvature ρ of the path of {point}"),
+                 plotted=message("radius of curvature ρ")),
+    QuantityKind("coriolis", "aᵏ", "m/s²", message("Coriolis acceleration of a prismatic pair"),
+                 "mu_a", False, "pair",
+                 template("magnitude of the Coriolis acceleration of {pair}"),
+                 template("magnitude of the Coriolis acceleration {symbol} of link {number} "
+                          "({name}) along link {along_number} ({along_name})")),
 )}
 
 
@@ -265,9 +371,8 @@ class Quantity:
     @property
     def question(self) -> str:
         """What a task asks for this quantity, in words (``speed of B of link lever,
-        |v_B@lever|``)."""
-        return self.kind.question.format(subject=self.subject,
-                                         point=self.subject.replace("@", " of link "))
+        |v_B@lever|``): :func:`question_words` without the course's numbers, as text."""
+        return render(question_words(self.name))
 
 
 def quantity(name: str) -> Quantity:
@@ -283,9 +388,59 @@ def quantity(name: str) -> Quantity:
         raise KeyError(name)
     return Quantity(name, QUANTITY_KINDS[prefix], subject)
 
-#: a kinematic stage's quantities as a sentence names them ("its velocities would …")
+#: a kinematic stage's quantities as a sentence names them ("its velocities would …"): the
+#: English words, for callers not yet speaking through :func:`stage_words`
 STAGE_PLURAL: dict[str, str] = {"position": "positions", "velocity": "velocities",
                                 "acceleration": "accelerations"}
+_STAGE_WORDS = {"position": message("positions"), "velocity": message("velocities"),
+                "acceleration": message("accelerations")}
+
+
+def stage_words(stage: str) -> Message | str:
+    """A kinematic stage's quantities as a sentence names them (``velocities``); a name that
+    is no stage is shown as it is.
+
+    >>> render(stage_words("velocity")), stage_words("jerk")
+    ('velocities', 'jerk')
+    """
+    return _STAGE_WORDS.get(stage, stage)
+
+
+_TURNS = {1: message("counter-clockwise", context="sense"),
+          -1: message("clockwise", context="sense"),
+          0: message("zero", context="sense"), None: message("undefined", context="sense")}
+#: what a positive and a negative value mean, by the kind's subject: a link turns
+#: counter-clockwise or clockwise; a slide's travel, sliding velocity and acceleration are
+#: along or against its guide's direction
+_SIGNS = {"link": (_TURNS[1], _TURNS[-1]),
+          "pair": (message("positive, along the guide"),
+                   message("negative, against the guide"))}
+_PLAIN_SIGNS = (message("positive"), message("negative"))
+
+
+def turn_words(sense: int | None) -> Message:
+    """The sense of a turn in words: +1 counter-clockwise, −1 clockwise, 0 zero, None
+    undefined.
+
+    >>> render(turn_words(-1)), render(turn_words(None))
+    ('clockwise', 'undefined')
+    """
+    return _TURNS[sense]
+
+
+def sign_words(name: str) -> tuple[Message, Message]:
+    """What a positive and a negative value of the quantity ``name`` mean, in words: a
+    link's turn, a pair's travel along its guide, else plain positive and negative.
+
+    >>> [render(words) for words in sign_words("ds_slider/frame")]
+    ['positive, along the guide', 'negative, against the guide']
+    """
+    try:
+        subject = quantity(name).kind.subject
+    except KeyError:
+        return _PLAIN_SIGNS
+    return _SIGNS.get(subject, _PLAIN_SIGNS)
+
 
 
 #: the longest title a figure, a sheet, a page or a line of a report shows (characters): a
@@ -456,60 +611,109 @@ def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
     return f"{kind.symbol}_{point_name(subject, numbers)}"
 
 
+#: the balancing moment's symbol, which a course's tradition writes in its own letters (Мур)
+_BALANCING = message("M_b", context="symbol")
 #: columns of a sweep that are no quantity of a point, link or pair, as a table prints them
-COLUMN_TEXTS: dict[str, str] = {
-    "M_b": "M_b", "M_b_system": "M_b (whole system)", "M_b_no_friction": "M_b (no friction)",
-    "power_residual": "|ΣP|/Σ|P|", "friction_iterations": "friction iterations"}
+COLUMN_WORDS: dict[str, Message | str] = {
+    "M_b": _BALANCING,
+    "M_b_system": message("{moment} (whole system)", moment=_BALANCING),
+    "M_b_no_friction": message("{moment} (no friction)", moment=_BALANCING),
+    "power_residual": "|ΣP|/Σ|P|",
+    "friction_iterations": message("friction iterations")}
 
 
-def column_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
+def column_words(name: str, numbers: Mapping[str, int] | None = None) -> Message | str:
     """A sweep column as a table a person reads prints it: a quantity by its :func:`symbol`,
     a link's angle ``theta_L`` as θ with the link's number, the balancing moment's columns in
-    words (:data:`COLUMN_TEXTS`); any other column keeps its name (the CSV header always
+    words (:data:`COLUMN_WORDS`); any other column keeps its name (the CSV header always
     does).
 
     >>> numbers = {"frame": 0, "AB": 1, "BC": 2}
-    >>> column_text("theta_BC", numbers), column_text("omega_BC", numbers)
+    >>> column_words("theta_BC", numbers), column_words("omega_BC", numbers)
     ('θ₂', 'ω₂')
-    >>> column_text("M_b_system"), column_text("x_C")
+    >>> render(column_words("M_b_system")), column_words("x_C")
     ('M_b (whole system)', 'x_C')
     """
-    if name in COLUMN_TEXTS:
-        return COLUMN_TEXTS[name]
+    if name in COLUMN_WORDS:
+        return COLUMN_WORDS[name]
     head, _, link = name.partition("_")
     if head == "theta" and numbers and link in numbers:
         return numbered("θ", numbers[link])
     return symbol(name, numbers)
 
 
-def link_text(link: str, numbers: Mapping[str, int] | None = None, word: str = "link") -> str:
+def column_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """:func:`column_words` as text in the language spoken now.
+
+    >>> column_text("M_b_system"), column_text("theta_BC", {"frame": 0, "AB": 1, "BC": 2})
+    ('M_b (whole system)', 'θ₂')
+    """
+    return render(column_words(name, numbers))
+
+
+def _name_words(link: str) -> str:
+    """A link's name as words read it: an underscore a space (``rocker_EF``: rocker EF)."""
+    return link.replace("_", " ")
+
+
+def link_words(link: str, numbers: Mapping[str, int] | None = None, *,
+               drive: bool = False) -> Message | str:
     """A link named in words: ``link 2 (BC)`` by its number, its name in words (an
-    underscore a space); just the name without ``numbers``. ``word`` says what the link is
-    (``drive link 1 (AB)``, never ``link 1 (AB)`` inside another bracket).
+    underscore a space); just the name without ``numbers``. ``drive`` says it is the drive
+    link (``drive link 1 (AB)``, never ``link 1 (AB)`` inside another bracket).
+
+    >>> render(link_words("rocker_EF", {"rocker_EF": 4})), link_words("BC")
+    ('link 4 (rocker EF)', 'BC')
+    >>> render(link_words("AB", {"AB": 1}, drive=True))
+    'drive link 1 (AB)'
+    """
+    if not numbers or link not in numbers:
+        return _name_words(link)
+    if drive:
+        return message("drive link {number} ({name})", number=numbers[link],
+                       name=_name_words(link))
+    return message("link {number} ({name})", number=numbers[link], name=_name_words(link))
+
+
+def link_text(link: str, numbers: Mapping[str, int] | None = None, word: str = "link") -> str:
+    """:func:`link_words` as text in the language spoken now; ``word`` is ``"link"`` or
+    ``"drive link"``.
 
     >>> link_text("rocker_EF", {"rocker_EF": 4}), link_text("BC")
     ('link 4 (rocker EF)', 'BC')
     >>> link_text("AB", {"AB": 1}, "drive link")
     'drive link 1 (AB)'
     """
-    words = link.replace("_", " ")
-    return f"{word} {numbers[link]} ({words})" if numbers and link in numbers else words
+    return render(link_words(link, numbers, drive=word == "drive link"))
+
+
+def links_words(links: Iterable[str], numbers: Mapping[str, int] | None = None
+                ) -> Message | str:
+    """Links named in words: ``links 2, 3 (BC, rocker EF)`` by their numbers (in the order
+    of the numbers), their names in words; just the names without ``numbers``.
+
+    >>> render(links_words(["rocker_EF", "BC"], {"BC": 2, "rocker_EF": 3}))
+    'links 2, 3 (BC, rocker EF)'
+    >>> links_words(["AB"])
+    'AB'
+    """
+    links = list(links)
+    if not numbers or any(link not in numbers for link in links):
+        return ", ".join(_name_words(link) for link in links)
+    if len(links) == 1:
+        return link_words(links[0], numbers)
+    links.sort(key=numbers.__getitem__)       # in the order of their numbers
+    return message("links {numbers} ({names})", numbers=[numbers[link] for link in links],
+                   names=[_name_words(link) for link in links])
 
 
 def links_text(links: Iterable[str], numbers: Mapping[str, int] | None = None) -> str:
-    """Links named in words: ``links 2, 3 (BC, rocker EF)`` by their numbers (in the order
-    of the numbers), their names in words; just the names without ``numbers``.
+    """:func:`links_words` as text in the language spoken now.
 
     >>> links_text(["rocker_EF", "BC"], {"BC": 2, "rocker_EF": 3}), links_text(["AB"])
     ('links 2, 3 (BC, rocker EF)', 'AB')
     """
-    links = list(links)
-    if not numbers or any(link not in numbers for link in links):
-        return ", ".join(link.replace("_", " ") for link in links)
-    links.sort(key=numbers.__getitem__)       # in the order of their numbers
-    names = ", ".join(link.replace("_", " ") for link in links)
-    listed = ", ".join(str(numbers[link]) for link in links)
-    return f"link{'s' if len(links) > 1 else ''} {listed} ({names})"
+    return render(links_words(links, numbers))
 
 
 def coriolis_letter(index: int | str = 1) -> str:
@@ -523,8 +727,49 @@ def coriolis_letter(index: int | str = 1) -> str:
     return "k" + "′" * (int(index or 1) - 1)
 
 
+def _point_words(point: str) -> Message | str:
+    """A point read aloud without the course's numbers: ``B@lever`` is "B of link lever"."""
+    name, _, link = point.partition("@")
+    return message("{point} of link {link}", point=name, link=link) if link else point
+
+
+def question_words(name: str, numbers: Mapping[str, int] | None = None) -> Message:
+    """What a task asks for a quantity, in words and in a course's symbols: the kind's
+    question (:attr:`QuantityKind.asked`) filled, its links named by their numbers where
+    ``numbers`` has them.
+
+    Examples
+    --------
+    >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "slider": 3}
+    >>> render(question_words("omega_BC", numbers))
+    'angular velocity ω₂ of link 2 (BC) (counter-clockwise positive)'
+    >>> render(question_words("v_B@BC"))
+    'speed of B of link BC, |v_B@BC|'
+    """
+    found = quantity(name)
+    kind, subject = found.kind, found.subject
+    if kind.subject == "point":
+        if not numbers:
+            return kind.asked.replace(point=_point_words(subject), subject=subject)
+        point = point_name(subject, numbers)
+        return kind.asked.replace(point=point, subject=point)
+    shown = symbol(name, numbers) if numbers else kind.symbol
+    if kind.subject == "link":
+        if numbers and subject in numbers:
+            return kind.asked_numbered.replace(symbol=shown, number=numbers[subject],
+                                               name=_name_words(subject))
+        return kind.asked.replace(symbol=shown,
+                                  link=_name_words(subject) if numbers else subject)
+    link, _, along = subject.partition("/")
+    if numbers and link in numbers and along in numbers:
+        return kind.asked_numbered.replace(
+            symbol=shown, number=numbers[link], name=_name_words(link),
+            along_number=numbers[along], along_name=_name_words(along))
+    return kind.asked.replace(symbol=shown, pair=subject)
+
+
 def question_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
-    """What a task asks for a quantity, in words and in a course's symbols.
+    """:func:`question_words` as text in the language spoken now.
 
     Examples
     --------
@@ -540,22 +785,4 @@ def question_text(name: str, numbers: Mapping[str, int] | None = None) -> str:
     >>> question_text("omega_BC")
     'angular velocity ω of BC (counter-clockwise positive)'
     """
-    found = quantity(name)
-    kind, subject = found.kind, found.subject
-    if not numbers:
-        return found.question
-    if kind.subject == "link":
-        return kind.question.replace("{subject}", link_text(subject, numbers)).replace(
-            f"{kind.symbol} of", f"{symbol(name, numbers)} of")
-    if kind.subject == "pair":
-        link, _, along = subject.partition("/")
-        text = kind.question.replace("the slide {subject}", "{subject}")
-        shown = symbol(name, numbers)
-        if f" {kind.symbol} of " in text:
-            text = text.replace(f" {kind.symbol} of ", f" {shown} of ", 1)
-        else:
-            text = text.replace(" of {subject}", f" {shown} of {{subject}}")
-        return text.replace("{subject}", f"{link_text(link, numbers)} along "
-                                         f"{link_text(along, numbers)}")
-    point = point_name(subject, numbers)
-    return kind.question.format(subject=point, point=point)
+    return render(question_words(name, numbers))

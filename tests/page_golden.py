@@ -52,7 +52,7 @@ from planmethod.render.page_rules import (  # noqa: E402
 )
 from planmethod.words import render  # noqa: E402
 
-#: what a question of the key keeps in the page (planmethod.commands.workbook.QUESTION_FIELDS)
+#: what a question of the key keeps in the page (planmethod.application.workbook.QUESTION_FIELDS)
 QUESTION_FIELDS = ("id", "symbol", "value", "tolerance", "unit", "signed", "mistakes")
 #: the exercises whose keys give the questions and the drawn plans
 EXERCISES = ("compressor_slider_crank", "slotted_lever", "conveyor_sixbar")
@@ -77,7 +77,7 @@ def _keys() -> list[tuple[dict, dict[str, int]]]:
     """(key, the links' numbers) of each exercise at its own angle and 60° on."""
     from dataclasses import replace
 
-    from planmethod.commands.workbook import exercise_variant
+    from planmethod.application.workbook import exercise_variant
     from planmethod.grading.keys import build_key, key_numbers
     from planmethod.report import analyse
     from planmethod.spec import load_exercise
@@ -108,6 +108,10 @@ MADE_UP = [
 ]
 
 
+def _senses(name: str) -> list[str]:
+    return [render(sense) for sense in sense_words(name)]
+
+
 def _questions() -> list[tuple[dict, dict[str, Any]]]:
     """(page question, its quantity's page data) of every key's questions and the made-up
     ones."""
@@ -115,10 +119,11 @@ def _questions() -> list[tuple[dict, dict[str, Any]]]:
     for key, numbers in _keys():
         for question in key["questions"]:
             page = {field: question[field] for field in QUESTION_FIELDS}
-            out.append((page, {"negative": magnitude_note(question["id"], numbers),
-                               "senses": list(sense_words(question["id"])), "numbers": numbers}))
+            note = magnitude_note(question["id"], numbers)
+            out.append((page, {"negative": None if note is None else render(note),
+                               "senses": _senses(question["id"]), "numbers": numbers}))
     for question in MADE_UP:
-        out.append((question, {"negative": None, "senses": list(sense_words(question["id"])),
+        out.append((question, {"negative": None, "senses": _senses(question["id"]),
                                "numbers": {}}))
     return out
 
@@ -187,7 +192,7 @@ def answer_cases(count: int = 3000) -> tuple[list[dict], list[dict]]:
     cases = []
     for number, raw in examples(_answer_cases(questions), count):
         question, quantity = questions[number]
-        graded = grade_question(question, raw, quantity["numbers"])
+        graded = grade_question(question, raw, quantity["numbers"]).as_dict()
         cases.append({"question": number, "raw": raw,
                       "expected": {key: graded[key] for key in ("correct", "mistake",
                                                                 "feedback", "hint", "answer")}})
@@ -202,7 +207,7 @@ def _plans() -> list[dict[str, Any]]:
     from planmethod.grading.mistakes import drawn_explanation
     from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
 
-    texts = {mistake: drawn_explanation(mistake) for mistake in DRAWN_MISTAKES}
+    texts = {mistake: render(drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES}
     out = []
     for key, _ in _keys():
         for plan, entry in drawing_frame(key).items():
@@ -302,7 +307,7 @@ def golden() -> dict[str, Any]:
     points, summaries = point_cases()
     return {"rules": page_rules("en").as_dict(), "questions": questions, "answers": answers,
             "points": points, "summaries": summaries,
-            "texts": {mistake: drawn_explanation(mistake) for mistake in DRAWN_MISTAKES},
+            "texts": {mistake: render(drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES},
             "numbers": number_cases(), "readings": reading_cases(), "quoting": quoting_cases()}
 
 

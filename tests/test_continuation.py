@@ -165,7 +165,7 @@ def test_whitworth_sketch_would_pick_the_other_assembly_at_250():
 
 
 def test_whitworth_every_entry_point_follows_the_sweep(capsys, tmp_path):
-    from planmethod.commands.workbook import solve_frames
+    from planmethod.application.workbook import solve_frames
 
     exercise = load_exercise(WHITWORTH)
     code, out, err = run(capsys, "solve", WHITWORTH, "--angle", "250", "--json")

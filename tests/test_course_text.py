@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 from test_notation import CONVENTIONS, SUB, _compressor
 
+from planmethod.application.solving import report_text
 from planmethod.cli import main
-from planmethod.commands.solve import text_report
 from planmethod.grading.drawings import Drawing, grade_drawing
 from planmethod.grading.keys import build_key
 from planmethod.grading.templates import draw_variant, load_template
@@ -115,7 +115,7 @@ def test_the_solve_report_speaks_each_notation(name):
     notation, (frame, crank, rod, slider) = CONVENTIONS[name]
     exercise = exercise_from_dict(_compressor(notation), file="compressor.toml")
     analysis = analyse(exercise)
-    text = text_report(analysis)
+    text = report_text(analysis)
     n = {link: str(number).translate(SUB) for link, number in
          (("frame", frame), ("crank", crank), ("rod", rod), ("slider", slider))}
 
@@ -144,8 +144,8 @@ def test_the_solve_report_speaks_each_notation(name):
 def test_the_compressors_rod_is_omega_2_by_default_and_omega_3_with_the_frame_1():
     """The case of issue 20: the papers' ω₂ for BC by default, ω₃ where the frame is 1."""
     analysis = analyse(exercise_from_dict(_compressor({}), file="c.toml"))
-    default = text_report(analysis)
-    english = text_report(analyse(exercise_from_dict(_compressor({"frame": 1}), file="c.toml")))
+    default = report_text(analysis)
+    english = report_text(analyse(exercise_from_dict(_compressor({"frame": 1}), file="c.toml")))
     rod = float(analysis.motion.at(0).omega("BC"))          # −24.25 rad/s; the slider's ω is 0
     assert float(_row(default, "ω₂")[2]) == pytest.approx(rod, rel=1e-5)
     assert float(_row(english, "ω₃")[2]) == pytest.approx(rod, rel=1e-5)
@@ -226,7 +226,7 @@ def test_drawing_feedback_sets_point_digits_as_subscripts():
     points["b@lever"] = (x + 7.0, y - 5.0)
     x, y = points["c"]
     points["c"] = (x + 10.0, y + 10.0)
-    result = grade_drawing(key, Drawing(points, "acceleration"))
+    result = grade_drawing(key, Drawing(points, "acceleration")).as_dict()
     feedback = {entry["point"]: entry["feedback"] for entry in result["points"]}
     assert "aᵗ_B₃O₂ ⟂ BO₂" in feedback["b@lever"] and "aʳ_B₃B" in feedback["b@lever"]
     assert "from o₂" in feedback["c"]

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import warnings
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -22,6 +23,7 @@ from planmethod.grading.drawings import (
 )
 from planmethod.grading.keys import build_key
 from planmethod.grading.templates import draw_variant, load_template
+from planmethod.words import render
 
 
 @pytest.fixture(scope="module")
@@ -213,7 +215,7 @@ def test_a_drawing_of_the_same_angle_a_turn_later_is_of_the_same_exercise(key):
     title, angle = key["title"], key["angle"]
     for turned in (angle + 360.0, angle - 720.0, angle + 1e-9):
         drawing = Drawing(points, "velocity", title=title, angle=turned, exact_scale=True)
-        assert grade_drawing(key, drawing)["score"] == 3
+        assert grade_drawing(key, drawing).as_dict()["score"] == 3
     for other, says in ((Drawing(points, "velocity", source="d.json", title=title,
                                  angle=angle + 0.5, exact_scale=True),
                          f"d.json: the drawing is of {title!r} at φ₁ = {angle + 0.5:g}°, the "
@@ -250,13 +252,13 @@ def test_the_plan_and_the_pole_are_required_in_one_exact_line(key):
 def test_an_acceleration_plan_with_its_pole_labelled_p_or_its_points_in_capitals(key):
     shifted = {("p" if label == "π" else label.upper()): (x + 5.0, y - 7.0)
                for label, (x, y) in _points(key, "acceleration").items()}
-    result = grade_drawing(key, Drawing(shifted, "acceleration"))
+    result = grade_drawing(key, Drawing(shifted, "acceleration")).as_dict()
     assert result["score"] == result["max_score"] == 3
 
 
 def test_the_result_of_a_drawing_field_by_field(key):
     points = {label: xy for label, xy in _points(key).items() if label != "d"}
-    result = grade_drawing(key, Drawing(points, "velocity"))
+    result = grade_drawing(key, Drawing(points, "velocity")).as_dict()
     radius = key["plans"]["velocity"]["tolerance_mm"]
     assert result == {
         "plan": "velocity", "student": key["student"], "score": 2.0, "max_score": 3.0,
@@ -273,19 +275,19 @@ def test_a_helper_point_is_checked_when_drawn_and_never_scored(key):
     points = _points(key, "acceleration")
     x, y = points["n_CB"]
     points["n_CB"] = (x + 5.0, y)
-    checked = {p["point"]: p for p in grade_drawing(key, Drawing(points, "acceleration"))[
+    checked = {p["point"]: p for p in grade_drawing(key, Drawing(points, "acceleration")).as_dict()[
         "points"]}["n_CB"]
     assert not checked["correct"] and checked["score"] == checked["max_score"] == 0.0
     del points["n_CB"]
     assert "n_CB" not in {p["point"] for p in grade_drawing(
-        key, Drawing(points, "acceleration"))["points"]}
+        key, Drawing(points, "acceleration")).as_dict()["points"]}
 
 
 # -- what a misplaced point is told --------------------------------------------------------------
 def _told(key, label, move, plan="velocity", **options) -> str:
     points = _points(key, plan)
     points[label] = tuple(np.asarray(points[label]) + np.asarray(move))
-    result = grade_drawing(key, Drawing(points, plan), **options)
+    result = grade_drawing(key, Drawing(points, plan), **options).as_dict()
     return next(p["feedback"] for p in result["points"] if p["point"] == label)
 
 
@@ -318,7 +320,7 @@ def test_an_intersection_is_measured_from_the_lines_through_the_students_own_poi
     points = _points(key)
     for label in ("b", "c"):
         points[label] = tuple(np.asarray(points[label]) + np.array([0.0, 2.0]))
-    result = grade_drawing(key, Drawing(points, "velocity"), rescale=False)
+    result = grade_drawing(key, Drawing(points, "velocity"), rescale=False).as_dict()
     told = next(p["feedback"] for p in result["points"] if p["point"] == "c")
     assert told.startswith("c is 2.0 mm off: it lies on the line v_CB ⟂ CB through b but "), told
 
@@ -341,7 +343,7 @@ def test_a_drawing_is_rescaled_only_beyond_two_percent_of_its_first_vector(key):
     2.1 % it is an editor's change of units: the drawing is scaled back, and told so."""
     for factor, rescaled in ((1.019, False), (1.021, True), (0.979, True), (0.981, False)):
         drawn = {label: (x * factor, y * factor) for label, (x, y) in _points(key).items()}
-        result = grade_drawing(key, Drawing(drawn, "velocity"))
+        result = grade_drawing(key, Drawing(drawn, "velocity")).as_dict()
         assert (result["scale_factor"] != 1.0) is rescaled, factor
         if rescaled:
             assert result["scale_factor"] == pytest.approx(1 / factor)
@@ -412,7 +414,7 @@ def test_what_marks_a_point_and_what_is_passed_over():
         + "".join(f'<{tag}><circle cx="0" cy="30"/><text x="5" y="5">q</text></{tag}>'
                   for tag in ("metadata", "title", "desc", "clipPath", "mask", "marker",
                               "pattern", "symbol"))), source="plan.svg")
-    assert drawing == Drawing(
+    assert replace(drawing, notes=tuple(render(note) for note in drawing.notes)) == Drawing(
         {"p": (0.0, 0.0), "b": (40.0, -5.0), "c": (60.0, -10.0), "d": (10.0, -60.0),
          "e": (80.0, -80.0), "f": (25.0, -95.0), "g": (0.0, -30.0), "h": (12.0, -30.0),
          "k": (1.0, -21.0)}, "velocity",

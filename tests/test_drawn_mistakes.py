@@ -24,6 +24,7 @@ from planmethod.grading.plan_points import (
 )
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.kinematics import solve
+from planmethod.words import render
 
 ROOT = Path(__file__).resolve().parent.parent
 SLOTTED = "exercises/slotted_lever.toml"
@@ -109,11 +110,11 @@ def test_grade_drawing_names_the_mistake_a_misplaced_point_lies_at(slotted):
     key, _ = slotted
     points = _points(key, "acceleration")
     points["b@lever"] = _candidates(key, "acceleration", "b@lever", "no_coriolis")[0]
-    result = grade_drawing(key, Drawing(points, "acceleration"))
+    result = grade_drawing(key, Drawing(points, "acceleration")).as_dict()
     verdicts = {p["point"]: p for p in result["points"]}
     assert not verdicts["b@lever"]["correct"]
     assert verdicts["b@lever"]["mistakes"] == ["no_coriolis"]
-    assert MISTAKES["no_coriolis"] in verdicts["b@lever"]["feedback"]
+    assert render(MISTAKES["no_coriolis"]) in verdicts["b@lever"]["feedback"]
     assert "Coriolis" in verdicts["b@lever"]["feedback"]
     assert verdicts["c"]["correct"] and "mistakes" not in verdicts["c"]
 
@@ -123,7 +124,7 @@ def test_a_velocity_plan_turned_180_degrees_names_the_reversed_sense_on_every_po
     right = _points(key, "velocity")
     pole = key["plans"]["velocity"]["pole"]
     turned = {label: (-x, -y) for label, (x, y) in right.items()}
-    result = grade_drawing(key, Drawing(turned, "velocity"))
+    result = grade_drawing(key, Drawing(turned, "velocity")).as_dict()
     wrong = [p for p in result["points"] if p["point"] != pole and not p["correct"]]
     assert wrong and all(p["mistakes"] == ["sense"] for p in wrong), wrong
     assert all("turned 180°" in p["feedback"] for p in wrong)
@@ -165,7 +166,7 @@ def test_a_page_drawing_is_graded_at_its_own_scale(compressor):
              if label in drawn_labels(key["plans"]["velocity"])}
     drawing = parse_drawing_json(json.dumps(_page_drawing(key, "velocity", small)))
     assert drawing.title == key["title"] and drawing.angle == key["angle"]
-    result = grade_drawing(key, drawing)
+    result = grade_drawing(key, drawing).as_dict()
     assert result["scale_factor"] == 1.0 and result["score"] == 0
     for point in result["points"]:
         assert point["mistakes"] == ["scale_ten"], point
@@ -173,7 +174,7 @@ def test_a_page_drawing_is_graded_at_its_own_scale(compressor):
     # the same points without the page's format: an editor's unit slip, scaled back
     plain = parse_drawing_json(json.dumps({"plan": "velocity",
                                            "points": {"p": [0, 0], **small}}))
-    assert grade_drawing(key, plain)["score"] == grade_drawing(key, plain)["max_score"]
+    assert grade_drawing(key, plain).score == grade_drawing(key, plain).max_score
 
 
 @pytest.mark.parametrize(("changes", "words"), [
@@ -215,9 +216,9 @@ def test_every_drawn_mistake_has_what_the_student_is_told():
     from planmethod.grading.mistakes import drawn_explanation
 
     for mistake in DRAWN_MISTAKES:
-        assert drawn_explanation(mistake)
-    assert "turned 180°" in drawn_explanation("sense")
-    assert "wrong scale" in drawn_explanation("scale_none")
+        assert render(drawn_explanation(mistake))
+    assert "turned 180°" in render(drawn_explanation("sense"))
+    assert "wrong scale" in render(drawn_explanation("scale_none"))
 
 
 @pytest.mark.parametrize(("path", "offered", "not_offered"), [
@@ -246,17 +247,17 @@ def test_one_misplaced_point_is_no_whole_plan_mistake(slotted):
     points = _points(key, "acceleration")
     x, y = points["c"]
     points["c"] = (x + 3 * math.cos(math.pi / 4), y + 3 * math.sin(math.pi / 4))
-    result = grade_drawing(key, Drawing(points, "acceleration", exact_scale=True))
+    result = grade_drawing(key, Drawing(points, "acceleration", exact_scale=True)).as_dict()
     assert [p["point"] for p in result["points"] if not p["correct"]] == ["c"]
     assert result["feedback"] == [] and result["plan_mistakes"] == []
     entry = key["plans"]["acceleration"]
     wrong = {label: tuple(xy) for label, xy in entry["mistakes"]["no_coriolis"].items()
              if label in drawn_labels(entry) or label == entry["pole"]}
-    result = grade_drawing(key, Drawing(wrong, "acceleration", exact_scale=True))
+    result = grade_drawing(key, Drawing(wrong, "acceleration", exact_scale=True)).as_dict()
     named = [p["mistakes"] for p in result["points"] if not p["correct"]]
     assert len(named) >= 2 and common_mistakes(named) == ["no_coriolis"]
     assert result["plan_mistakes"] == ["no_coriolis"]
-    assert result["feedback"] == [plan_sentence(["no_coriolis"])]
+    assert result["feedback"] == [render(plan_sentence(["no_coriolis"]))]
 
 
 def test_a_page_drawing_at_another_angle_is_graded_at_that_angle(tmp_path, capsys, slotted):

@@ -133,12 +133,10 @@ def test_task_and_plan_sheets_pass_the_figure_check(path):
     writes them: each passes the figure check."""
     import json
 
-    from planmethod.commands.variants import variant_files
+    from planmethod.application.variants import VariantsRequest, class_of, draw_variants
     from planmethod.grading.templates import load_template
 
-    students = [f"{number:03d}" for number in range(1, 6)]
-    files, _, _ = variant_files(load_template(path), students, students, seed=0,
-                                progress=False)
+    files = draw_variants(VariantsRequest(load_template(path), class_of(5), seed=0)).files
     found = []
     for name, text in files.items():
         if not name.endswith(".svg"):
@@ -342,7 +340,7 @@ def test_every_frame_of_a_workbook_names_every_point():
     """The conveyor's workbook frames (its panels kept steady over the turn, no details),
     every 30°: every point with a mark is named and no frame has a figure problem — before
     the crowded labels went on leaders, 162 marks of 1,080 such figures had no name."""
-    from planmethod.commands.workbook import turn_angles
+    from planmethod.application.workbook import turn_angles
     from planmethod.render.steady import steady_views
 
     exercise = load_exercise(ROOT / "exercises" / "conveyor_sixbar.toml")

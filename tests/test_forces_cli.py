@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from planmethod.application.checking import Row, check_row
 from planmethod.cli import main
-from planmethod.commands.check import Row, check_row
 from planmethod.forces.study import NOT_SIGNIFICANT, Parameter, Study
 from planmethod.kinematics import solve
 from planmethod.spec import load_exercise

@@ -14,6 +14,7 @@ from planmethod.errors import SpecError
 from planmethod.grading import answers as answers_module
 from planmethod.grading.answers import grade_answers, grade_many, grade_question, read_answers
 from planmethod.grading.keys import key_exercise
+from planmethod.words import render
 
 
 def _refusal(path) -> str:
@@ -59,7 +60,7 @@ def test_a_file_of_exactly_the_row_limit_is_read_and_one_more_is_refused(tmp_pat
 ])
 def test_which_way_a_wrong_answer_is_off_around_0_and_1(right, answer, signed, hint, off):
     graded = grade_question({"id": "x", "unit": "m", "value": right, "tolerance": 0.01,
-                             "signed": signed}, answer)
+                             "signed": signed}, answer).as_dict()
     assert graded["hint"] == f"x = {answer:g} m: wrong ({hint})"
     if off is not None:
         assert graded["feedback"].startswith(f"x = {answer:g} m: wrong — {off} (off by ")
@@ -71,20 +72,20 @@ def _key() -> dict:
 
 
 def test_an_exact_question_id_wins_over_one_of_another_case():
-    graded = grade_answers(_key(), {"v_c": 1.0, "v_C": 5.0})
+    graded = grade_answers(_key(), {"v_c": 1.0, "v_C": 5.0}).as_dict()
     assert graded["score"] == 1 and graded["ignored"] == ["v_c"]
-    graded = grade_answers(_key(), {"V_C": 5.0})
+    graded = grade_answers(_key(), {"V_C": 5.0}).as_dict()
     assert graded["score"] == 1 and graded["ignored"] == []
 
 
 def test_a_result_names_the_keys_student_unless_told_another():
-    assert grade_answers(_key(), {})["student"] == "s07"
-    assert grade_answers(_key(), {}, student="s08")["student"] == "s08"
+    assert grade_answers(_key(), {}).as_dict()["student"] == "s07"
+    assert grade_answers(_key(), {}, student="s08").as_dict()["student"] == "s08"
 
 
 def test_every_student_without_a_key_gets_an_entry_saying_so():
     rows = [("s1", {"v_C": 1}), ("s2", {}), ("s07", {"v_C": 5.0})]
-    graded = grade_many({"s07": _key()}, rows)
+    graded = [r.as_dict() for r in grade_many({"s07": _key()}, rows)]
     assert graded[:2] == [
         {"student": student, "score": 0.0, "max_score": None, "questions": [],
          "error": f"no key for student {student!r}"} for student in ("s1", "s2")]
@@ -101,7 +102,7 @@ def test_a_keys_broken_exercise_is_told_with_the_keys_source():
 def test_a_points_mistake_is_told_in_one_sentence():
     from planmethod.grading.plan_points import mistake_sentence
 
-    assert mistake_sentence(["sense"]) == (
+    assert render(mistake_sentence(["sense"])) == (
         "it lies where the construction puts it when the crank's sense of rotation was "
         "reversed (the plan is turned 180°)")
 
@@ -122,21 +123,24 @@ def test_a_frame_of_an_acceleration_plan_alone_with_no_radii_or_mistakes_given()
 def test_a_reversed_sense_of_the_right_magnitude_says_the_magnitude_is_right():
     """Not 'the magnitude 2 is 0.0 % low' (found by a mutant of the high/low boundary)."""
     graded = grade_question({"id": "x", "unit": "m", "value": -2.0, "tolerance": 0.01,
-                             "signed": True}, 2.005)
+                             "signed": True}, 2.005).as_dict()
     assert graded["feedback"] == ("x = 2.005 m: wrong — the sense is reversed (the right answer "
                                   "is negative, -2 m ± 0.01) and the magnitude 2.005 is right")
     graded = grade_question({"id": "x", "unit": "m", "value": -2.0, "tolerance": 0.01,
-                             "signed": True}, 2.02)
+                             "signed": True}, 2.02).as_dict()
     assert graded["feedback"].endswith("and the magnitude 2.02 is 1.0 % high")
 
 
 def test_a_quantity_without_sense_words_is_positive_or_negative():
     from planmethod.grading.answers import sense_words
 
-    assert sense_words("not_a_quantity") == ("positive", "negative")
-    assert sense_words("x") == ("positive", "negative")
+    def words(name):
+        return tuple(render(word) for word in sense_words(name))
+
+    assert words("not_a_quantity") == ("positive", "negative")
+    assert words("x") == ("positive", "negative")
     # a quantity of a point (no sense of its own) has the plain words too
-    assert sense_words("v_B") == ("positive", "negative")
+    assert words("v_B") == ("positive", "negative")
 
 
 @pytest.mark.parametrize("text", ["v_C,student\n5.2\n", "student,v_C\n,5.2\n"])
@@ -172,19 +176,19 @@ _SIGNED = {"id": "x", "unit": "m", "value": 2.0, "tolerance": 0.5, "signed": Tru
 def test_a_signed_answer_is_reversed_only_when_its_sign_is_the_other(answer, told):
     """0 and a value between 0 and 1 of the right sign are not a reversed sense; a reversed
     answer whose magnitude is off by exactly the tolerance has the right magnitude."""
-    graded = grade_question(_SIGNED, answer)
+    graded = grade_question(_SIGNED, answer).as_dict()
     assert graded["feedback"] == told
 
 
 def test_a_reversed_answer_of_1_for_a_negative_value_is_a_reversed_sense():
-    graded = grade_question({**_SIGNED, "value": -2.0}, 1)
+    graded = grade_question({**_SIGNED, "value": -2.0}, 1).as_dict()
     assert graded["hint"] == "x = 1 m: wrong (the sense is reversed)"
     assert "the sense is reversed (the right answer is negative" in graded["feedback"]
 
 
 def test_an_answer_that_overflows_is_quoted_to_40_characters():
     text = "1" + "0" * 400          # a number beyond a float's range: not a number
-    graded = grade_question({"id": "v_C", "value": 2.0, "tolerance": 0.1}, text)
+    graded = grade_question({"id": "v_C", "value": 2.0, "tolerance": 0.1}, text).as_dict()
     assert graded["hint"] == f"v_C: {text[:40]!r} is not a number"
 
 

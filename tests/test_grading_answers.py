@@ -14,6 +14,7 @@ from planmethod.grading.keys import build_key, bundle, load_keys
 from planmethod.grading.templates import draw_variant, load_template, parse_template
 from planmethod.grading.tolerances import emulate_drawings, propagate
 from planmethod.spec import load_exercise
+from planmethod.words import message, render
 
 DATA = Path(__file__).parent / "data" / "grading"
 SEED = "exercises/compressor_slider_crank.toml"
@@ -120,7 +121,7 @@ def test_bad_grading_tables_name_the_key(table, key):
 
 def test_seed_001_printed_answers_are_marked_wrong_and_by_how_much(seed_key):
     rows = read_answers(DATA / "compressor_paper_answers.csv")
-    (result,) = grade_many({"*": seed_key}, rows)
+    (result,) = [r.as_dict() for r in grade_many({"*": seed_key}, rows)]
     questions = by_id(result)
     assert result["score"] == 0
     for name in ("v_C", "omega_BC", "a_C", "epsilon_BC", "rho_D"):
@@ -147,8 +148,8 @@ EXPECTED_MISTAKES = {
 
 
 def test_common_mistakes_get_the_right_feedback(seed_key):
-    results = {r["student"]: r for r in grade_many({"*": seed_key},
-                                                   read_answers(DATA / "compressor_mistakes.csv"))}
+    results = {r["student"]: r for r in [r.as_dict() for r in grade_many({"*": seed_key},
+                                                   read_answers(DATA / "compressor_mistakes.csv"))]}
     assert results["exact"]["score"] == results["exact"]["max_score"] == 7
     assert results["careful"]["score"] == 7        # a careful drawing passes everywhere
     for student, expected in EXPECTED_MISTAKES.items():
@@ -169,7 +170,7 @@ def test_a_negative_magnitude_is_told_it_is_a_magnitude(seed_key):
     a magnitude; a signed quantity with the wrong sign still says the sense is reversed."""
     values = {q["id"]: q["value"] for q in seed_key["questions"]}
     result = by_id(grade_answers(seed_key, {"v_C": -values["v_C"],
-                                            "omega_BC": -values["omega_BC"]}))
+                                            "omega_BC": -values["omega_BC"]}).as_dict())
     speed = result["v_C"]
     assert not speed["correct"] and "%" not in speed["feedback"]
     assert "v_C is the speed of C, |v_C|: a magnitude, never negative" in speed["feedback"]
@@ -185,7 +186,7 @@ def test_a_negative_magnitude_is_told_in_the_courses_names():
     function)."""
     from test_workbook import page_data
 
-    from planmethod.commands.workbook import build_workbook
+    from planmethod.application.workbook import build_workbook
     from planmethod.grading.answers import magnitude_note
     from planmethod.numbering import course_numbers
 
@@ -193,7 +194,7 @@ def test_a_negative_magnitude_is_told_in_the_courses_names():
     key = build_key(draw_variant(load_template(path)))
     values = {q["id"]: q["value"] for q in key["questions"]}
     result = by_id(grade_answers(key, {"coriolis_block/lever": -values["coriolis_block/lever"],
-                                       "v_B@lever": -values["v_B@lever"]}))
+                                       "v_B@lever": -values["v_B@lever"]}).as_dict())
     coriolis, speed = result["coriolis_block/lever"], result["v_B@lever"]
     assert "%" not in coriolis["feedback"] and coriolis["feedback"].startswith(
         "aᵏ₂₃ = -2.77145 m/s²: wrong — aᵏ₂₃ is the magnitude of the Coriolis acceleration "
@@ -203,7 +204,7 @@ def test_a_negative_magnitude_is_told_in_the_courses_names():
     notes = {q["name"]: q["negative"] for q in page_data(build_workbook(exercise, 120))
              ["quantities"]}
     numbers = course_numbers(exercise.mechanism)
-    assert notes["v_B@lever"] == magnitude_note("v_B@lever", numbers) and \
+    assert notes["v_B@lever"] == render(magnitude_note("v_B@lever", numbers)) and \
         notes["v_B@lever"] in speed["feedback"]
     assert notes["coriolis_block/lever"] in coriolis["feedback"]
     assert not any("@" in note or "/" in note for note in notes.values() if note)
@@ -219,7 +220,7 @@ def test_a_reversed_sign_is_told_in_the_quantitys_own_sense():
     result = by_id(grade_answers(key, {
         "s_block/lever": -0.8 * values["s_block/lever"],
         "dds_block/lever": -0.5 * values["dds_block/lever"],
-        "omega_lever": -0.5 * values["omega_lever"]}))
+        "omega_lever": -0.5 * values["omega_lever"]}).as_dict())
     travel = result["s_block/lever"]["feedback"]
     assert "the sense is reversed (the right answer is positive, along the guide, 0.360555 m" \
         in travel and "clockwise" not in travel
@@ -230,8 +231,8 @@ def test_a_reversed_sign_is_told_in_the_quantitys_own_sense():
 
 
 def test_junk_answers_are_reported_not_crashed(seed_key):
-    (result,) = grade_many({"*": seed_key}, [r for r in read_answers(
-        DATA / "compressor_mistakes.csv") if r[0] == "junk"])
+    (result,) = [r.as_dict() for r in grade_many({"*": seed_key}, [r for r in read_answers(
+        DATA / "compressor_mistakes.csv") if r[0] == "junk"])]
     questions = by_id(result)
     assert "'abc' is not a number" in questions["v_C"]["feedback"]
     assert "no answer" in questions["v_D"]["feedback"]
@@ -266,17 +267,17 @@ def test_json_answers_and_per_student_keys(tmp_path):
     answers = {k["student"]: {q["id"]: q["value"] for q in k["questions"]} for k in keys}
     (tmp_path / "answers.json").write_text(json.dumps(answers))
     # each student is graded against their own variant: full marks
-    results = grade_many(loaded, read_answers(tmp_path / "answers.json"))
+    results = [r.as_dict() for r in grade_many(loaded, read_answers(tmp_path / "answers.json"))]
     assert [r["score"] == r["max_score"] for r in results] == [True, True]
     # swapped answers (ann hands in bob's) are wrong somewhere
-    swapped = grade_many(loaded, [("ann", answers["bob"])])
+    swapped = [r.as_dict() for r in grade_many(loaded, [("ann", answers["bob"])])]
     assert swapped[0]["score"] < swapped[0]["max_score"]
-    unknown = grade_many(loaded, [("eve", answers["bob"])])
+    unknown = [r.as_dict() for r in grade_many(loaded, [("eve", answers["bob"])])]
     assert "no key for student 'eve'" in unknown[0]["error"]
 
 
 def test_grade_answers_matches_ids_ignoring_case(seed_key):
-    result = grade_answers(seed_key, {"V_c": 5.27, "colour": "blue"})
+    result = grade_answers(seed_key, {"V_c": 5.27, "colour": "blue"}).as_dict()
     assert by_id(result)["v_C"]["correct"] and result["ignored"] == ["colour"]
 
 
@@ -292,7 +293,7 @@ def test_a_csv_without_a_student_column_is_one_students_answers(tmp_path, capsys
     ((student, answers),) = read_answers(path)
     assert student == "*"
     assert len(answers) == len(questions)
-    result = grade_answers(seed_key, answers)
+    result = grade_answers(seed_key, answers).as_dict()
     assert result["score"] == result["max_score"] and not result["ignored"]
     assert main(["grade", SEED, str(path), "--json", str(tmp_path / "out.json")]) == 0
     assert capsys.readouterr().out.startswith(f"the answers: {len(questions)}/{len(questions)}")
@@ -402,10 +403,10 @@ def test_a_reversed_sense_names_the_right_sense_in_words():
 
     question = {"id": "omega_BC", "symbol": "ω₂", "unit": "rad/s", "value": -24.25,
                 "tolerance": 0.5, "signed": True, "mistakes": []}
-    assert grade_question(question, 30.0)["feedback"] == (
+    assert grade_question(question, 30.0).as_dict()["feedback"] == (
         "ω₂ = 30 rad/s: wrong — the sense is reversed (the right answer is clockwise, "
         "-24.25 rad/s ± 0.5) and the magnitude 30 is 23.7 % high")
-    assert grade_question(dict(question, value=24.25), -30.0)["feedback"] == (
+    assert grade_question(dict(question, value=24.25), -30.0).as_dict()["feedback"] == (
         "ω₂ = -30 rad/s: wrong — the sense is reversed (the right answer is counter-clockwise, "
         "24.25 rad/s ± 0.5) and the magnitude 30 is 23.7 % high")
 
@@ -413,7 +414,10 @@ def test_a_reversed_sense_names_the_right_sense_in_words():
 def test_feedback_levels_show_the_values_the_hint_or_nothing():
     from planmethod.grading.answers import feedback_text, grade_question
 
-    graded = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
+    typed = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
+    assert render(feedback_text(typed, "hints")) == "v_C = 6: wrong (too high)"
+    assert feedback_text(typed) == typed.feedback and feedback_text(typed, "score") == ""
+    graded = typed.as_dict()        # as grade --json writes it
     assert feedback_text(graded) == graded["feedback"] == feedback_text(graded, "full")
     assert feedback_text(graded, "hints") == "v_C = 6: wrong (too high)"
     assert feedback_text(graded, "score") == ""
@@ -428,27 +432,33 @@ def test_the_class_report_of_five_results_whole():
     the points (a question worth nothing counts 0), the share right, each named mistake's
     share sorted by name, the share wrong and unexplained; the most common mistake in the
     CSV; a result without questions (no key) counts nowhere."""
+    from dataclasses import asdict, replace
+
     from planmethod.grading.report import class_statistics, mistakes_csv, questions_csv
+    from planmethod.grading.results import GradedQuestion, StudentGrade
+    from planmethod.grading.verdicts import AnswerVerdict, Verdict
 
     def graded(question, score, points, correct, answer, mistake):
-        return {"id": question, "score": score, "max_score": points, "correct": correct,
-                "answer": answer, "mistake": mistake}
+        return GradedQuestion(question, answer, 1.0, 0.1, "", points, score, correct, mistake,
+                              Verdict(AnswerVerdict.WRONG))
+
+    def student(*questions):
+        return StudentGrade("s", "s", 0.0, 1.0, questions)
 
     results = [
-        {"questions": [graded("v_C", 2.0, 2.0, True, 5.2, None),
-                       graded("w", 0.0, 0.0, False, None, None)]},
-        {"questions": [graded("v_C", 0.0, 2.0, False, 2.6, "sense"),
-                       graded("w", 0.0, 0.0, False, 3.0, "sense")]},
-        {"questions": [graded("v_C", 1.0, 2.0, False, -1.0, "scale_twice")]},
-        {"questions": [graded("v_C", 0.0, 2.0, False, 9.9, "sense")]},
-        {"error": "no key"}]
+        student(graded("v_C", 2.0, 2.0, True, 5.2, None), graded("w", 0.0, 0.0, False, None, None)),
+        student(graded("v_C", 0.0, 2.0, False, 2.6, "sense"),
+                graded("w", 0.0, 0.0, False, 3.0, "sense")),
+        student(graded("v_C", 1.0, 2.0, False, -1.0, "scale_twice")),
+        student(graded("v_C", 0.0, 2.0, False, 9.9, "sense")),
+        StudentGrade("s", None, 0.0, None, error=message("no key"))]
     rows = class_statistics(results)
-    assert rows == [
+    assert [asdict(row) for row in rows] == [
         {"question": "v_C", "students": 4, "answered": 4, "mean_score": 0.375, "correct": 0.25,
          "mistakes": {"scale_twice": 0.25, "sense": 0.5}, "unexplained": 0.0},
         {"question": "w", "students": 2, "answered": 1, "mean_score": 0.0, "correct": 0.0,
          "mistakes": {"sense": 0.5}, "unexplained": 0.5}]
-    assert list(rows[0]["mistakes"]) == ["scale_twice", "sense"]
+    assert list(rows[0].mistakes) == ["scale_twice", "sense"]
     assert questions_csv(rows) == (
         "question,students,answered,mean_score,correct,unexplained,top_mistake,"
         "top_mistake_share\n"
@@ -456,7 +466,7 @@ def test_the_class_report_of_five_results_whole():
         "w,2,1,0.0000,0.0000,0.5000,sense,0.5000\n")
     assert mistakes_csv(rows) == ("question,mistake,share\nv_C,scale_twice,0.2500\n"
                                   "v_C,sense,0.5000\nw,sense,0.5000\n")
-    no_mistakes = [dict(rows[0], mistakes={})]
+    no_mistakes = [replace(rows[0], mistakes={})]
     assert questions_csv(no_mistakes).splitlines()[1] == "v_C,4,4,0.3750,0.2500,0.0000,,0.0000"
 
 
@@ -486,7 +496,7 @@ def test_how_far_off_an_answer_is_told(right, answer, signed, feedback, hint):
     from planmethod.grading.answers import grade_question
 
     graded = grade_question({"id": "x", "unit": "m", "value": right, "tolerance": 0.001,
-                             "signed": signed}, answer)
+                             "signed": signed}, answer).as_dict()
     assert graded["feedback"] == f"x = {answer:g} m: wrong — {feedback}"
     assert graded["hint"] == f"x = {answer:g} m: wrong ({hint})"
 
@@ -546,7 +556,7 @@ def test_a_graded_answer_field_by_field(answer, fields, feedback, hint):
     right value."""
     from planmethod.grading.answers import grade_question
 
-    graded = grade_question(_OMEGA, answer)
+    graded = grade_question(_OMEGA, answer).as_dict()
     given = fields.get("answer")
     expected = {"id": "omega_BC", "answer": None, "value": -2.0, "tolerance": 0.5,
                 "unit": "rad/s", "max_score": 2.0, "score": 0.0, "correct": False,
@@ -560,16 +570,16 @@ def test_a_graded_answer_field_by_field(answer, fields, feedback, hint):
 def test_a_question_without_unit_symbol_or_points_and_a_right_value_of_zero():
     from planmethod.grading.answers import grade_question
 
-    assert grade_question({"id": "v_C", "value": 0.0, "tolerance": 0.1}, 0.3) == {
+    assert grade_question({"id": "v_C", "value": 0.0, "tolerance": 0.1}, 0.3).as_dict() == {
         "id": "v_C", "answer": 0.3, "value": 0.0, "tolerance": 0.1, "unit": "",
         "max_score": 1.0, "score": 0.0, "correct": False, "mistake": None,
         "error_abs": 0.3, "error_rel": None,
         "feedback": "v_C = 0.3: wrong — 0.3 off (off by 0.3; right: 0 ± 0.1)",
         "hint": "v_C = 0.3: wrong (too high)"}
-    assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, -5.0)["feedback"] == (
+    assert render(grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, -5.0).feedback) == (
         "v_C = -5: wrong — v_C is the speed of C, |v_C|: a magnitude, never negative "
         "(right: 5 ± 0.1)")
-    assert grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, 0.0)["feedback"] == (
+    assert render(grade_question({"id": "v_C", "value": 5.0, "tolerance": 0.1}, 0.0).feedback) == (
         "v_C = 0: wrong — 100.0 % low (off by 5; right: 5 ± 0.1 = ± 2 %)")
 
 

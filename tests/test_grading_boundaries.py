@@ -28,6 +28,7 @@ from planmethod.grading.exports import prairielearn_questions
 from planmethod.grading.keys import GradingSettings, build_key, bundle
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.grading.tolerances import kind_of
+from planmethod.words import render
 
 #: shipped exercises whose keys ask every kind of quantity between them
 EXERCISES = ("exercises/compressor_slider_crank.toml", "exercises/slotted_lever.toml",
@@ -62,8 +63,8 @@ def test_an_answer_within_its_tolerance_is_right_and_one_just_outside_is_wrong(k
         value, tolerance = question["value"], question["tolerance"]
         assert tolerance > 0
         for side in (1.0, -1.0):
-            inside = grade_question(question, value + side * INSIDE * tolerance)
-            outside = grade_question(question, value + side * OUTSIDE * tolerance)
+            inside = grade_question(question, value + side * INSIDE * tolerance).as_dict()
+            outside = grade_question(question, value + side * OUTSIDE * tolerance).as_dict()
             assert inside["correct"] and inside["score"] == question["points"], \
                 (question["id"], side)
             assert not outside["correct"] and outside["score"] == 0.0, (question["id"], side)
@@ -77,7 +78,7 @@ def test_a_signed_answer_of_the_other_sense_is_wrong_at_any_distance(keys):
         value, tolerance = question["value"], question["tolerance"]
         if abs(value) <= 2 * tolerance:
             continue
-        flipped = grade_question(question, -value)
+        flipped = grade_question(question, -value).as_dict()
         assert not flipped["correct"], question["id"]
         if question["signed"]:
             assert flipped["mistake"] == "sense", question["id"]
@@ -123,7 +124,8 @@ def test_an_answer_within_a_mistakes_tolerance_names_it_and_one_just_outside_doe
             for side in (1.0, -1.0):
                 near = mistake["value"] + side * INSIDE * mistake["tolerance"]
                 far = mistake["value"] + side * OUTSIDE * mistake["tolerance"]
-                named, other = grade_question(question, near), grade_question(question, far)
+                named = grade_question(question, near).as_dict()
+                other = grade_question(question, far).as_dict()
                 assert named["mistake"] == mistake["kind"], (question["id"], mistake["kind"])
                 assert not named["correct"] and named["score"] == 0.0
                 assert other["mistake"] != mistake["kind"], (question["id"], mistake["kind"])
@@ -144,7 +146,7 @@ def test_a_signed_answer_of_a_mistake_with_the_sense_reversed_too_is_named_both(
                 continue
             for factor, named in ((INSIDE, True), (OUTSIDE, False)):
                 answer = -(mistake["value"] + factor * mistake["tolerance"])
-                result = grade_question(question, answer)
+                result = grade_question(question, answer).as_dict()
                 assert (result["mistake"] == f"{mistake['kind']}+sense") is named, \
                     (question["id"], mistake["kind"], factor)
             tried += 1
@@ -182,7 +184,7 @@ def _plan_points(key: dict, plan: str) -> dict[str, tuple[float, float]]:
 
 
 def _graded(key: dict, plan: str, points: dict) -> dict[str, dict]:
-    result = grade_drawing(key, Drawing(points, plan), rescale=False)
+    result = grade_drawing(key, Drawing(points, plan), rescale=False).as_dict()
     return {point["point"]: point for point in result["points"]}
 
 
@@ -200,8 +202,8 @@ def test_a_drawn_point_within_its_disc_is_right_and_one_just_outside_is_wrong(ke
     for key in keys.values():
         entry = key["plans"][plan]
         right = _plan_points(key, plan)
-        for label in {p["point"] for p in grade_drawing(key, Drawing(right, plan))["points"]
-                      if p["max_score"]}:
+        for label in {p.point for p in grade_drawing(key, Drawing(right, plan)).points
+                      if p.max_score}:
             radius = entry["tolerance_mm"][label]
             for direction in (_across(right[label]), np.array([0.6, -0.8])):
                 for factor, inside in ((INSIDE, True), (OUTSIDE, False)):
@@ -272,13 +274,13 @@ def test_a_whole_plan_is_named_when_each_wrong_point_lies_within_its_radius_of_t
         points = {label: tuple(np.asarray(xy) + factor * entry["tolerance_mm"][label]
                                * _across(xy)) if label != entry["pole"] else xy
                   for label, xy in turned.items()}
-        result = grade_drawing(key, Drawing(points, "velocity"), rescale=False)
+        result = grade_drawing(key, Drawing(points, "velocity"), rescale=False).as_dict()
         assert result["score"] == 0.0
         wrong = [point for point in result["points"] if not point["correct"]]
         assert len(wrong) >= 2
         assert all(("sense" in point.get("mistakes", [])) is named for point in wrong), factor
         assert result["plan_mistakes"] == (["sense"] if named else []), factor
-        assert (plan_sentence(["sense"]) in result["feedback"]) is named, factor
+        assert (render(plan_sentence(["sense"])) in result["feedback"]) is named, factor
 
 
 # -- PrairieLearn's grade() ----------------------------------------------------------------------

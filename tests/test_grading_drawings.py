@@ -23,6 +23,7 @@ from planmethod.grading.drawings import (
 from planmethod.grading.keys import build_key
 from planmethod.grading.sheets import plan_sheet_for_key
 from planmethod.grading.templates import draw_variant, load_template
+from planmethod.words import render
 
 DATA = Path(__file__).parent / "data" / "grading"
 
@@ -42,11 +43,11 @@ def by_point(result):
 
 def test_exact_points_score_full_marks(key):
     for plan in ("velocity", "acceleration"):
-        result = grade_drawing(key, Drawing(key_points(key, plan), plan))
+        result = grade_drawing(key, Drawing(key_points(key, plan), plan)).as_dict()
         assert result["score"] == result["max_score"] > 0
     # shifted as a whole: aligned at the pole, still right
     shifted = {k: (x + 37.0, y - 12.0) for k, (x, y) in key_points(key).items()}
-    assert grade_drawing(key, Drawing(shifted, "velocity"))["score"] == 3
+    assert grade_drawing(key, Drawing(shifted, "velocity")).as_dict()["score"] == 3
 
 
 def test_a_point_off_along_its_construction_line_is_explained(key):
@@ -59,7 +60,7 @@ def test_a_point_off_along_its_construction_line_is_explained(key):
     sign = 1.0 if float((c - b) @ direction) > 0 else -1.0
     moved = c + sign * 4.0 * direction        # 4 mm further from b along the line ⟂ BC
     points["c"] = tuple(moved)
-    result = grade_drawing(key, Drawing(points, "velocity"))
+    result = grade_drawing(key, Drawing(points, "velocity")).as_dict()
     c_result = by_point(result)["c"]
     assert not c_result["correct"] and c_result["distance_mm"] == pytest.approx(4.0)
     feedback = c_result["feedback"]
@@ -76,31 +77,31 @@ def test_a_point_within_its_disc_passes(key):
     radius = key["plans"]["velocity"]["tolerance_mm"]["d"]
     x, y = points["d"]
     points["d"] = (x + 0.9 * radius, y)
-    assert by_point(grade_drawing(key, Drawing(points, "velocity")))["d"]["correct"]
+    assert by_point(grade_drawing(key, Drawing(points, "velocity")).as_dict())["d"]["correct"]
     points["d"] = (x + 1.2 * radius, y)
-    assert not by_point(grade_drawing(key, Drawing(points, "velocity")))["d"]["correct"]
+    assert not by_point(grade_drawing(key, Drawing(points, "velocity")).as_dict())["d"]["correct"]
 
 
 def test_reversed_sense_and_left_out_normal_are_recognised(key):
     turned = {k: (-x, -y) for k, (x, y) in key_points(key).items()}
-    result = grade_drawing(key, Drawing(turned, "velocity"))
+    result = grade_drawing(key, Drawing(turned, "velocity")).as_dict()
     assert result["score"] < result["max_score"]
     assert any("turned 180°" in line for line in result["feedback"])
     wrong = key["plans"]["acceleration"]["mistakes"]["no_normal"]
     result = grade_drawing(key, Drawing({k: tuple(v) for k, v in wrong.items()},
-                                        "acceleration"))
+                                        "acceleration")).as_dict()
     assert any("normal component aⁿ was left out" in line for line in result["feedback"])
 
 
 def test_missing_points_and_wrong_scale(key):
     points = {k: v for k, v in key_points(key).items() if k != "d"}
-    result = grade_drawing(key, Drawing(points, "velocity"))
+    result = grade_drawing(key, Drawing(points, "velocity")).as_dict()
     assert by_point(result)["d"]["feedback"] == "d: not found on the drawing"
     doubled = {k: (2 * x, 2 * y) for k, (x, y) in key_points(key).items()}
-    result = grade_drawing(key, Drawing(doubled, "velocity"))
+    result = grade_drawing(key, Drawing(doubled, "velocity")).as_dict()
     assert result["score"] == result["max_score"] and result["scale_factor"] == 0.5
     assert any("scale is off" in line for line in result["feedback"])
-    assert grade_drawing(key, Drawing(doubled, "velocity"), rescale=False)["score"] < 3
+    assert grade_drawing(key, Drawing(doubled, "velocity"), rescale=False).as_dict()["score"] < 3
 
 
 def test_a_drawing_is_rescaled_only_beyond_its_first_vectors_own_tolerance(key):
@@ -115,7 +116,7 @@ def test_a_drawing_is_rescaled_only_beyond_its_first_vectors_own_tolerance(key):
     wide["plans"]["velocity"]["tolerance_mm"]["b"] = 0.06 * right
     for stretch, rescaled in ((1.04, False), (1.08, True)):
         points = {k: (stretch * x, stretch * y) for k, (x, y) in key_points(wide).items()}
-        result = grade_drawing(wide, Drawing(points, "velocity"))
+        result = grade_drawing(wide, Drawing(points, "velocity")).as_dict()
         assert any("scale is off" in line for line in result["feedback"]) is rescaled, stretch
         assert (result["scale_factor"] == pytest.approx(1 / stretch)) is rescaled
 
@@ -123,7 +124,7 @@ def test_a_drawing_is_rescaled_only_beyond_its_first_vectors_own_tolerance(key):
 def test_an_editor_svg_with_px_units_groups_and_transforms(key):
     drawing = read_drawing(DATA / "compressor_velocity_inkscape.svg")
     assert drawing.plan == "velocity"
-    result = grade_drawing(key, drawing)
+    result = grade_drawing(key, drawing).as_dict()
     assert result["score"] == result["max_score"] == 3, result
 
 
@@ -141,7 +142,7 @@ def test_the_blank_sheet_filled_in_is_read_back(key):
     filled = sheet.replace("</svg>", "".join(marks) + "</svg>")
     drawing = parse_drawing_svg(filled)
     assert drawing.plan == "acceleration"
-    result = grade_drawing(key, drawing)
+    result = grade_drawing(key, drawing).as_dict()
     assert result["score"] == result["max_score"] > 0
     assert all(p["distance_mm"] < 1e-3 for p in result["points"])   # written to 0.001 mm
 
@@ -149,7 +150,7 @@ def test_the_blank_sheet_filled_in_is_read_back(key):
 def test_json_drawings(tmp_path, key):
     path = tmp_path / "plan.json"
     path.write_text(json.dumps({"plan": "velocity", "points": key_points(key)}))
-    assert grade_drawing(key, read_drawing(path))["score"] == 3
+    assert grade_drawing(key, read_drawing(path)).as_dict()["score"] == 3
 
 
 @pytest.mark.parametrize(("name", "fragment"), [
@@ -167,11 +168,12 @@ def test_junk_svgs_are_rejected_with_one_clear_line(name, fragment):
 
 def test_scripts_and_foreign_content_are_ignored(key):
     drawing = read_drawing(DATA / "junk_script_with_labels.svg")
-    assert "<script> ignored" in drawing.notes and "<foreignObject> ignored" in drawing.notes
+    notes = [render(note) for note in drawing.notes]
+    assert "<script> ignored" in notes and "<foreignObject> ignored" in notes
     pole = np.array(drawing.points["p"])   # y up: SVG's y is turned
     assert tuple(np.array(drawing.points["b"]) - pole) == pytest.approx(
         (28.787 - 50, 50 - 28.787))       # from the line's end, not the foreign text
-    result = grade_drawing(key, drawing)
+    result = grade_drawing(key, drawing).as_dict()
     assert by_point(result)["b"]["correct"]
 
 
@@ -246,7 +248,7 @@ def test_drawing_feedback_names_points_and_quantities_as_the_course_does():
     points = {label: tuple(xy) for label, xy in plan["points_mm"].items()}
     x, y = points["b@lever"]
     points["b@lever"] = (x + 10.0, y)
-    result = grade_drawing(key, Drawing(points, "acceleration"))
+    result = grade_drawing(key, Drawing(points, "acceleration")).as_dict()
     wrong = by_point(result)["b@lever"]
     assert not wrong["correct"] and wrong["name"] == "b₃"
     assert wrong["feedback"].startswith("b₃ is 10.0 mm off") and "ε₃ read" in wrong["feedback"]

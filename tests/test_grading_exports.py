@@ -25,6 +25,7 @@ from planmethod.grading.exports import (
 )
 from planmethod.grading.keys import build_key, bundle
 from planmethod.grading.plan_points import graded_labels
+from planmethod.grading.results import GradedQuestion, StudentGrade
 from planmethod.grading.templates import draw_variant, load_template
 
 TEMPLATE = "exercises/templates/four_bar.toml"
@@ -123,19 +124,20 @@ def test_gradescope_results_list_each_question_then_each_drawn_plan(keys):
     moved = dict(right, c=(right["c"][0] + 5.0, right["c"][1]))
     drawings = [grade_drawing(key, Drawing(right, "velocity")),
                 grade_drawing(key, Drawing(moved, "velocity"))]
+    graded, drawn = result.as_dict(), [drawing.as_dict() for drawing in drawings]
     for level in ("full", "hints", "score"):
         results = gradescope_results(result, drawings, feedback=level)
         questions = [{"name": q["id"], "number": str(number), "score": q["score"],
                       "max_score": q["max_score"],
                       "status": "passed" if q["correct"] else "failed",
                       "output": feedback_text(q, level), "visibility": "visible"}
-                     for number, q in enumerate(result["questions"], start=1)]
+                     for number, q in enumerate(graded["questions"], start=1)]
         plans = [{"name": "velocity plan", "score": d["score"], "max_score": d["max_score"],
                   "status": status,
                   "output": "\n".join([p["feedback"] for p in d["points"]] + d["feedback"])
                   if level == "full" else "", "visibility": "visible"}
-                 for d, status in zip(drawings, ("passed", "failed"), strict=True)]
-        total = result["score"] + drawings[0]["score"] + drawings[1]["score"]
+                 for d, status in zip(drawn, ("passed", "failed"), strict=True)]
+        total = graded["score"] + drawn[0]["score"] + drawn[1]["score"]
         assert results == {"score": total, "output": f"Variant {key['student']}: {total:g} points.",
                            "visibility": "visible", "stdout_visibility": "hidden",
                            "tests": questions + plans}
@@ -147,9 +149,9 @@ def test_gradescope_results_list_each_question_then_each_drawn_plan(keys):
     assert gradescope_results(lost) == {"score": 0.0, "output": "no key for student 'zed'",
                                         "visibility": "visible", "stdout_visibility": "hidden",
                                         "tests": []}
-    assert gradescope_results({}) == {"score": 0.0, "output": "Variant None: 0 points.",
-                                      "visibility": "visible", "stdout_visibility": "hidden",
-                                      "tests": []}
+    assert gradescope_results(StudentGrade(None, None, 0.0, None)) == {
+        "score": 0.0, "output": "Variant None: 0 points.",
+        "visibility": "visible", "stdout_visibility": "hidden", "tests": []}
 
 
 def test_gradescope_autograder_folder(keys):
@@ -726,14 +728,18 @@ def test_gradebook_csv_whole():
     """One row a student: each question's score in the first-seen order of the questions
     (empty where a student has none), the total, the maximum (empty when unknown) and the
     note (an error)."""
+    from planmethod.grading.verdicts import AnswerVerdict, Verdict
+    from planmethod.words import message
+
+    def scored(question, score):
+        return GradedQuestion(question, None, 1.0, 0.1, "", 1.0, score, False, None,
+                              Verdict(AnswerVerdict.NO_ANSWER))
+
     assert gradebook_csv([
-        {"student": "s01", "variant": "v1", "score": 1.5, "max_score": 2.0,
-         "questions": [{"id": "a", "score": 1.0}, {"id": "b", "score": 0.5}]},
-        {"student": "s02", "score": 0.0, "max_score": None, "questions": [],
-         "error": "no key for student 's02'"},
-        {"student": "s03", "variant": "v3", "score": 1.0, "max_score": 3.0,
-         "questions": [{"id": "c", "score": 1.0}, {"id": "a", "score": 0.0}]},
-        {"student": "s04"}]) == ("student,variant,a,b,c,total,max,note\n"
+        StudentGrade("s01", "v1", 1.5, 2.0, (scored("a", 1.0), scored("b", 0.5))),
+        StudentGrade("s02", None, 0.0, None, error=message("no key for student 's02'")),
+        StudentGrade("s03", "v3", 1.0, 3.0, (scored("c", 1.0), scored("a", 0.0))),
+        StudentGrade("s04", None, 0, None)]) == ("student,variant,a,b,c,total,max,note\n"
                                  "s01,v1,1,0.5,,1.5,2,\n"
                                  "s02,,,,,0,,no key for student 's02'\n"
                                  "s03,v3,0,,1,1,3,\n"

@@ -405,7 +405,7 @@ def _rows(path: Path) -> list[list[str]]:
 def test_more_variants_than_a_minute_draws_are_refused_at_once(capsys, tmp_path):
     """`--count` (and a roster) stop at MAX_VARIANTS, the count benchmarked to take about a
     minute; the refusal comes before any variant is drawn."""
-    from planmethod.commands.variants import MAX_VARIANTS
+    from planmethod.application.variants import MAX_VARIANTS
 
     line = refused(capsys, ["variants", TEMPLATE, "--count", MAX_VARIANTS + 1, "--out",
                             tmp_path / "run"], tmp_path)

@@ -472,7 +472,7 @@ def test_the_run_is_never_mixed_with_files_added_during_it(tmp_path, capfd, earl
 
 
 def test_jobs_above_the_cpus_is_one_line(capfd, tmp_path):
-    from planmethod.commands.workbook import usable_cpus
+    from planmethod.application.workers import usable_cpus
 
     line = _fails(capfd, ["workbook", GOOD, "-o", tmp_path / "w.html", "--step", "90",
                           "--jobs", str(usable_cpus() + 1)])
@@ -481,7 +481,7 @@ def test_jobs_above_the_cpus_is_one_line(capfd, tmp_path):
 
 
 def test_never_more_workers_than_frames():
-    from planmethod.commands.workbook import usable_cpus, worker_count
+    from planmethod.application.workers import usable_cpus, worker_count
 
     assert worker_count(usable_cpus(), 1) == 1
     assert worker_count(None, 4) == 1
@@ -492,7 +492,7 @@ def test_never_more_workers_than_frames():
 def test_sigterm_ends_the_workbook_and_its_workers(tmp_path):
     """SIGTERM to the main process alone, mid-run with two workers: it exits (143) within
     2 s, and no process of it is left."""
-    from planmethod.commands.workbook import usable_cpus
+    from planmethod.application.workers import usable_cpus
 
     if usable_cpus() < 2:
         pytest.skip("two workers need two CPUs")

@@ -125,8 +125,8 @@ def test_every_reader_drops_a_byte_order_mark(tmp_path, capsys):
     """The exercise, the template, the answers (CSV and JSON), the roster, the keys, the
     coordinate table and a drawing, each written with a byte-order mark first, read as
     without it."""
-    from planmethod.commands.check import read_coordinates
-    from planmethod.commands.variants import read_roster
+    from planmethod.application.checking import read_coordinates
+    from planmethod.application.variants import read_roster
     from planmethod.grading.answers import read_answers
     from planmethod.grading.drawings import read_drawing
     from planmethod.grading.keys import load_keys

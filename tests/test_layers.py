@@ -43,10 +43,14 @@ LAYERS: dict[str, int] = {
     "forces": 6,
     # 7: what is made of the results: reports, sweeps, drawings, grading
     "report": 7, "sweep": 7, "render": 7, "grading": 7, "convert": 7,
-    # 8: helpers for tests and benchmarks
-    "testing": 8,
-    # 9: the command line and the package root
-    "commands": 9, "cli": 9, "__main__": 9, "notebook": 9, "studio": 9, "": 9,
+    # 8: the application layer: use cases with typed requests and results (the Python API)
+    "application": 8,
+    # 9: helpers for tests and benchmarks
+    "testing": 9,
+    # 10: the surfaces — the command line, the studio, the notebook — and the package root;
+    # they call the application layer, never each other (a test below)
+    "commands": 10, "cli": 10, "arguments": 10, "__main__": 10, "notebook": 10, "studio": 10,
+    "": 10,
 }
 
 
@@ -182,6 +186,50 @@ def problems(modules: Mapping[str, Source]) -> list[str]:
 def test_the_package_imports_downward_only_and_without_cycles():
     found = problems(package_sources())
     assert not found, "\n" + "\n".join(found)
+
+
+#: the surfaces that call the application layer and never each other: the command line's
+#: commands, the studio, the notebook
+SURFACES = ("commands", "studio", "notebook")
+
+
+def surface_crossings(modules: Mapping[str, Source]) -> list[str]:
+    """Every import of one surface by another (the commands of the studio, the studio of a
+    command…): each calls the application layer instead. One line each."""
+    def surface(module: str) -> str | None:
+        parts = module.split(".")
+        return parts[1] if len(parts) > 1 and parts[1] in SURFACES else None
+
+    out = []
+    for module in sorted(modules):
+        for found in imports_of(module, modules):
+            here, there = surface(module), surface(found.target)
+            if here and there and here != there:
+                out.append(f"{found.path}:{found.line}: {module} imports {found.target}: "
+                           "surfaces call the application layer, never each other")
+    return out
+
+
+def test_the_surfaces_call_the_application_layer_not_each_other():
+    modules = package_sources()
+    assert surface_crossings(modules) == []
+    # the application layer is in place, below every surface and above what it uses
+    assert layer_of("planmethod.application.workbook") == 8
+    assert all(layer_of(f"planmethod.{name}") > 8 for name in SURFACES)
+    assert max(LAYERS[name] for name in ("report", "render", "grading")) < 8
+    users = {[*found.module.split("."), ""][1] for module in modules
+             for found in imports_of(module, modules)
+             if found.target.startswith("planmethod.application")}
+    assert {"commands", "studio", "notebook"} <= users
+
+
+def test_a_surface_importing_another_is_named():
+    modules = _package({"commands__init": "", "commands__solve": "",
+                        "studio__init": "", "studio__api": "from ..commands import solve\n"},
+                       **CLEAN)
+    assert surface_crossings(modules) == [
+        "planmethod/studio/api.py:1: planmethod.studio.api imports "
+        "planmethod.commands.solve: surfaces call the application layer, never each other"]
 
 
 def test_every_module_of_the_package_is_read():

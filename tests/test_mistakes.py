@@ -16,6 +16,7 @@ from planmethod.grading.templates import draw_variant, load_template
 from planmethod.kinematics import solve
 from planmethod.plans import draw_plans
 from planmethod.spec import exercise_from_dict, load_exercise
+from planmethod.words import render
 
 #: exercises where each construction mistake can be made (Coriolis: a slide on a turning link)
 WHERE = {"no_normal": "exercises/compressor_slider_crank.toml",
@@ -32,7 +33,7 @@ def _key_and_variant(path: str):
 
 
 def _graded(key: dict, answers: dict) -> dict[str, dict]:
-    result = grade_answers(key, answers)
+    result = grade_answers(key, answers).as_dict()
     return {question["id"]: question for question in result["questions"]}
 
 
@@ -76,7 +77,7 @@ def test_a_scale_misread_by_ten_is_named_on_every_quantity_read_at_a_scale(mista
     for name, question in graded.items():
         named = [question["mistake"], *question.get("also", ())]
         assert mistake in named, (name, question["feedback"])     # alone, or with one that
-        assert MISTAKES[mistake] in question["feedback"]          # gives the same answer
+        assert render(MISTAKES[mistake]) in question["feedback"]  # gives the same answer
 
 
 @pytest.mark.parametrize("path", ["exercises/compressor_slider_crank.toml",

@@ -89,12 +89,12 @@ def test_a_drawn_points_mistakes_are_told_in_grades_words():
     from planmethod.grading.mistakes import drawn_explanation
     from planmethod.grading.plan_points import DRAWN_MISTAKES, mistake_sentence, plan_sentence
 
-    texts = {mistake: drawn_explanation(mistake) for mistake in DRAWN_MISTAKES}
+    texts = {mistake: render(drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES}
     for count in (1, 2, 3):
         for named in list(permutations(DRAWN_MISTAKES, count))[:40]:
-            assert render(mistakes_message(named, texts)) == mistake_sentence(named)
+            assert render(mistakes_message(named, texts)) == render(mistake_sentence(named))
             assert render(mistakes_message(named, texts, "plan_mistakes")) == \
-                plan_sentence(named)
+                render(plan_sentence(named))
 
 
 def test_every_page_template_is_one_the_pages_formatter_writes():

@@ -53,8 +53,7 @@ def templates_marked(templates: dict) -> list[str]:
 
 def test_the_workbook_says_every_word_from_the_catalogue(pseudo_environment, tmp_path):
     """A workbook built while ``qps`` is spoken: its markup's words and every template its
-    scripts fill are marked. Left out, with their owners: the notes under the title (written
-    by the command layer's build_workbook, planmethod/commands/workbook.py) and the
+    scripts fill are marked, the notes under the title too. Left out, with their owners: the
     drawings (the plans' figures, filled in by the script from the frames)."""
     page = tmp_path / "page.html"
     subprocess.run([sys.executable, "-m", "planmethod", "workbook", str(COMPRESSOR), "-o",
@@ -66,9 +65,14 @@ def test_the_workbook_says_every_word_from_the_catalogue(pseudo_environment, tmp
     rules = data["rules"]
     assert rules["language"] == PSEUDO and '<html lang="qps">' in text
     assert templates_marked(rules["templates"]) == []
+    quantities = data["quantities"]
+    assert all(marked(sense) for quantity in quantities for sense in quantity["senses"])
+    assert all(marked(quantity["negative"]) for quantity in quantities if quantity["negative"])
+    assert any(quantity["negative"] for quantity in quantities)
     notes = re.findall(r'<p class="note">([^<]*)</p>', text)
+    assert len(notes) == 2 and all(marked(note) for note in notes)
     names = [data["draw"]["title"], *data["draw"]["names"].values(), "φ₁", "μv", "μa"]
-    shown = [run for run in texts_of_html(text) if run not in notes]
+    shown = texts_of_html(text)
     assert len(shown) > 40
     # one text: a mark opens before a control inside its sentence and closes after it
     assert unmarked_words(" ".join(shown), message_words(), names) == []

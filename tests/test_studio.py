@@ -522,7 +522,7 @@ def test_export_writes_the_lms_packages_as_a_job(server, folder):
                                                       ("/api/export", 0, "1…1000"),
                                                       ("/api/variants", 41, "1…40")])
 def test_counts_are_limited_as_on_the_command_line(server, folder, path, count, limit):
-    from planmethod.commands.variants import MAX_VARIANTS
+    from planmethod.application.variants import MAX_VARIANTS
 
     assert f"1…{MAX_VARIANTS}" == "1…1000"   # the command line's limit, shared
     status, payload, _ = post_json(server, path, {"toml": read_text(COMPRESSOR),
@@ -974,3 +974,51 @@ def test_a_busy_port_given_is_one_line(tmp_path):
                               timeout=60)
     assert done.returncode == 2 and time.perf_counter() - start < 60
     assert done.stderr.startswith("planmethod: error: --port: cannot listen on")
+
+
+# -- the language of the answers ------------------------------------------------------------------
+@pytest.fixture
+def pseudo(tmp_path, monkeypatch):
+    """The pseudo language ``qps`` (every message marked ⟦…⟧) available in this process."""
+    pytest.importorskip("babel", reason="the pseudo catalogue is written with Babel")
+    from planmethod.testing.pseudo import PSEUDO, pseudo_catalogue
+    from planmethod.words import language
+
+    pseudo_catalogue(tmp_path / "pseudo")
+    monkeypatch.setenv(language.LOCALE_ENVIRONMENT, str(tmp_path / "pseudo"))
+    monkeypatch.delenv(language.ENVIRONMENT, raising=False)
+    language.catalogue.cache_clear()
+    yield PSEUDO
+    language.catalogue.cache_clear()
+
+
+def test_answers_speak_the_exercises_language_or_the_studios(folder, pseudo):
+    """Without --lang, an answer about an exercise speaks its [course] language; with --lang,
+    every answer speaks that; a language that cannot be spoken is refused in one line."""
+    course = read_text(COMPRESSOR) + f'\n[course]\nlanguage = "{pseudo}"\n'
+    studio = StudioServer(folder, 0)
+    studio.start()
+    try:
+        status, payload, _ = post_json(studio, "/api/turn", {"toml": course, "angle": 1e9})
+        assert status == 400 and one_line(payload).startswith("angle: ⟦must be at most")
+        status, payload, _ = post_json(studio, "/api/turn", {"toml": read_text(COMPRESSOR),
+                                                             "angle": 1e9})
+        assert status == 400 and "⟦" not in one_line(payload)
+        assert request(studio, "GET", "/api/state")[1]["language"] == "en"
+        status, payload, _ = post_json(studio, "/api/turn", {
+            "toml": course.replace(f'"{pseudo}"', '"xx"'), "angle": 10})
+        assert status == 400 and one_line(payload).startswith(
+            "course.language: no catalogue for the language xx")
+    finally:
+        studio.stop()
+    studio = StudioServer(folder, 0, language=pseudo)
+    studio.start()
+    try:
+        status, payload, _ = request(studio, "GET", "/api/files", token=False)
+        assert status == 403 and one_line(payload).startswith("⟦refused: no valid token")
+        status, payload, _ = post_json(studio, "/api/turn", {
+            "toml": course.replace(f'"{pseudo}"', '"en"'), "angle": 1e9})
+        assert status == 400 and "⟦must be at most" in one_line(payload)
+        assert request(studio, "GET", "/api/state")[1]["language"] == pseudo
+    finally:
+        studio.stop()

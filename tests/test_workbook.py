@@ -213,7 +213,7 @@ def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
     against them without computing mechanics."""
     from dataclasses import replace
 
-    from planmethod.commands.workbook import exercise_variant
+    from planmethod.application.workbook import exercise_variant
     from planmethod.grading.keys import build_key
     from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
 
@@ -268,7 +268,7 @@ def test_a_page_draws_its_exercises_variant_once(monkeypatch, jobs):
     """The variant a frame keys at its own angle is the exercise file's, the same for every
     frame: a page draws it once (in one process it was drawn again for each of 360 frames,
     about a fifth of the page's time), and hands it to its workers."""
-    from planmethod.commands import workbook
+    from planmethod.application import workbook
 
     calls = []
     drawn = workbook.exercise_variant

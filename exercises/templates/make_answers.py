@@ -85,7 +85,7 @@ def grade(keys: dict[str, dict], answers: dict[str, dict[str, float]]) -> list[d
     """Grade the answers as ``planmethod grade`` does; check each planted mistake is named."""
     from planmethod.grading.answers import grade_many
 
-    results = grade_many(keys, list(answers.items()))
+    results = [result.as_dict() for result in grade_many(keys, list(answers.items()))]
     planted = {(student, question): kind for student, question, kind in PLANTED}
     for result in results:
         for graded in result["questions"]:
@@ -115,8 +115,9 @@ def answers_csv(keys: dict[str, dict], answers: dict[str, dict[str, float]]) -> 
 def summary(results: list[dict]) -> str:
     """What grading the file gives, as docs/teaching.md states it."""
     from planmethod.grading.mistakes import REGISTRY
+    from planmethod.words import render
 
-    told = {key: mistake.explanation for key, mistake in REGISTRY.items()}
+    told = {key: render(mistake.explanation) for key, mistake in REGISTRY.items()}
     answered = sum(len(result["questions"]) for result in results)
     right = sum(graded["correct"] for result in results for graded in result["questions"])
     lines = [

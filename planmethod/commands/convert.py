@@ -32,19 +32,25 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..arguments import said
+from ..words import message, render
+
 #: the forms ``--to`` names (:data:`planmethod.convert.FORMS`; not imported here, which would
 #: load numpy for ``--help``)
 FORMS = ("drawn", "frames")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("file", help="exercise file (TOML), as drawn or in link frames")
-    parser.add_argument("-o", "--output", metavar="OUT",
-                        help="write the converted file here (default: the standard output)")
+    parser.add_argument("file", metavar=render(message("file", context="metavar")),
+                        help=said(message("exercise file ({format}), as drawn or in link "
+                                          "frames", format="TOML")))
+    parser.add_argument("-o", "--output", metavar=render(message("OUT", context="metavar")),
+                        help=said(message("write the converted file here (default: the "
+                                          "standard output)")))
     parser.add_argument("--to", choices=FORMS,
-                        help="the form to write: drawn ([points], global positions at "
-                             "drive.angle) or frames (each link's points in its own frame); "
-                             "default: the other form")
+                        help=said(message("the form to write: drawn ([points], global "
+                                          "positions at drive.angle) or frames (each link's "
+                                          "points in its own frame); default: the other form")))
 
 
 def run(args: argparse.Namespace) -> int:

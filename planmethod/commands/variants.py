@@ -1,10 +1,5 @@
-"""``planmethod variants TEMPLATE``: one variant per student, with task sheets and answer keys.
-
-Writes into ``--out``: ``keys.json`` (the bundle of every key), ``index.csv`` (student, attempt,
-drawn values), ``manifest.json`` (every file of the run with its size and SHA-256: what a later
-``--force`` may remove) and, per student, a folder with ``exercise.toml`` (the variant as a
-plain exercise file), ``key.json``, ``task.svg`` and ``task.txt`` (the task sheet), and blank
-``velocity_sheet.svg`` / ``acceleration_sheet.svg`` to draw the plans on.
+"""``planmethod variants TEMPLATE``: one variant per student, with task sheets and answer keys
+(:mod:`planmethod.application.variants` says what a run writes).
 
 Everything is computed before anything is written, and the run is written whole or not at all:
 into a private folder inside ``--out``, whose entries are moved into place only when every file
@@ -16,46 +11,39 @@ again against the manifest.
 from __future__ import annotations
 
 import argparse
-import re
-from collections.abc import Callable, Mapping
-from pathlib import Path
 
-from ..runs import MANIFEST, RunKind, earlier_run, write_run
-
-#: the files of a run beside its student folders
-RUN_FILES = ("keys.json", "index.csv")
-
-#: the files variants writes into a student's folder
-STUDENT_FILES = ("exercise.toml", "key.json", "task.svg", "task.txt", "velocity_sheet.svg",
-                 "acceleration_sheet.svg")
-
-#: the largest roster (as the answers files: 200,000 students) read, bytes
-MAX_ROSTER_BYTES = 20_000_000
-
-#: the most variants one run draws: about a minute of CPU time, with sheets, on the 2-CPU
-#: machine of ``python -m benchmarks.bench_grading --scale`` even when it is shared (48 ms a
-#: variant at a load of 8, benchmarks/results/grading_scale.md; 19 ms idle, grading.md)
-MAX_VARIANTS = 1_000
+from ..application.variants import MAX_VARIANTS
+from ..arguments import said
+from ..words import message, plural, render
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("template", help="exercise template (TOML with ranges, choices, "
-                                         "expressions) or a plain exercise file")
-    parser.add_argument("--count", type=int, metavar="N",
-                        help=f"number of variants (students 001…N, at most {MAX_VARIANTS}); "
-                             "default: the roster's size, or 1")
+    parser.add_argument("template", metavar=render(message("template", context="metavar")),
+                        help=said(message("exercise template ({format} with ranges, choices, "
+                                          "expressions) or a plain exercise file",
+                                          format="TOML")))
+    parser.add_argument("--count", type=int, metavar=render(message("N", context="metavar")),
+                        help=said(message("number of variants (students 001…N, at most "
+                                          "{limit}); default: the roster's size, or 1",
+                                          limit=MAX_VARIANTS)))
     parser.add_argument("--seed", type=_whole_number, default=0,
-                        help="random seed of the draw (default 0): the same seed, template "
-                             "and student always give the same variant")
-    parser.add_argument("--students", metavar="ROSTER",
-                        help="roster CSV (a student/id/email column, or one id per line)")
-    parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
+                        metavar=render(message("SEED", context="metavar")),
+                        help=said(message("random seed of the draw (default 0): the same "
+                                          "seed, template and student always give the same "
+                                          "variant")))
+    parser.add_argument("--students", metavar=render(message("ROSTER", context="metavar")),
+                        help=said(message("roster CSV (a student/id/email column, or one id "
+                                          "per line)")))
+    parser.add_argument("--out", required=True,
+                        metavar=render(message("DIR", context="metavar")),
+                        help=said(message("output folder")))
     parser.add_argument("--no-sheets", action="store_true",
-                        help="write keys only (no SVG task and plan sheets)")
+                        help=said(message("write keys only (no SVG task and plan sheets)")))
     parser.add_argument("--force", action="store_true",
-                        help="replace an earlier variants run in --out: only when everything "
-                             "there is what that run's manifest.json lists, unchanged; its "
-                             "files are removed once the new run is written")
+                        help=said(message("replace an earlier variants run in --out: only "
+                                          "when everything there is what that run's "
+                                          "manifest.json lists, unchanged; its files are "
+                                          "removed once the new run is written")))
 
 
 def _whole_number(text: str) -> int:
@@ -67,219 +55,49 @@ def _whole_number(text: str) -> int:
     except ValueError:
         value = None
     if value is None or abs(value) > MAX_INTEGER:
-        raise argparse.ArgumentTypeError(f"expected a whole number within ±{MAX_INTEGER}, got "
-                                         f"{text[:30]!r}")
+        raise argparse.ArgumentTypeError(render(message(
+            "expected a whole number within ±{limit}, got {text!r}", limit=MAX_INTEGER,
+            text=text[:30])))
     return value
 
 
-def read_roster(path: str) -> list[tuple[str, list[str]]]:
-    """Students from a roster: a CSV with a student/id/email column, or one id per line.
-
-    Each student comes with every other id the roster gives them (e-mail, SID, name), which an
-    LMS may know them by: ``[(student, [aliases…]), …]``.
-    """
-    from ..errors import SpecError
-    from ..grading.answers import STUDENT_COLUMNS, answers_from_csv
-    from ..io import read_text_bounded
-
-    text = read_text_bounded(path, MAX_ROSTER_BYTES, encoding="utf-8-sig")
-    lines = [line.strip() for line in text.splitlines() if line.strip()]
-    if not lines:
-        raise SpecError("the roster is empty", file=path)
-    header = [cell.strip().lower() for cell in re.split(r"[,;\t]", lines[0])]
-    if len(header) > 1 and any(c in header for c in STUDENT_COLUMNS):
-        students = []
-        for student, cells in answers_from_csv(text, path):
-            aliases = [str(value).strip() for name, value in cells.items()
-                       if name.strip().lower() in STUDENT_COLUMNS and str(value).strip()]
-            students.append((student, aliases))
-    else:
-        names = [re.split(r"[,;\t]", line)[0].strip() for line in lines]
-        if names and names[0].lower() in STUDENT_COLUMNS:
-            names = names[1:]
-        students = [(name, []) for name in names]
-    ids = [student for student, _ in students]
-    duplicates = sorted({s for s in ids if ids.count(s) > 1})
-    if duplicates:
-        raise SpecError(f"duplicate student ids: {', '.join(duplicates[:5])}", file=path)
-    if not students:
-        raise SpecError("the roster lists no students", file=path)
-    return students
-
-
-def manifest_text(files: Mapping[str, bytes]) -> str:
-    """The manifest of a run (:func:`planmethod.runs.manifest_text`): each file's relative
-    path, size in bytes and SHA-256.
-
-    >>> print(manifest_text({"001/key.json": b"{}"}))  # doctest: +ELLIPSIS
-    {
-     "format": "planmethod-variants-manifest",
-     "note": "written by planmethod variants: ...",
-     "files": [
-      ["001/key.json", 2, "44136fa355b3678a1146ad16f7e8649e94fb4fc21fe77e8310c060f61caaff8a"]
-     ]
-    }
-    """
-    from ..runs import manifest_text as run_manifest
-
-    return run_manifest(RUN, files)
-
-
-def _manifest_path(name: str) -> bool:
-    """Whether ``name`` is a path variants writes: a run file, or a student file in a
-    student folder."""
-    from ..errors import SpecError
-    from ..io import path_component
-
-    parts = name.split("/")
-    if len(parts) == 1:
-        return name in RUN_FILES
-    try:
-        path_component(parts[0], "folder")
-    except SpecError:
-        return False
-    return (len(parts) == 2 and parts[1] in STUDENT_FILES
-            and parts[0] not in (*RUN_FILES, MANIFEST))
-
-
-#: what a run of variants is (its manifest's tag, the files it may list), for planmethod.runs
-RUN = RunKind("variants", "planmethod-variants-manifest", _manifest_path)
-
-
 def run(args: argparse.Namespace) -> int:
-    import sys
+    from pathlib import Path
 
-    from ..errors import SpecError
+    from ..application.tasks import Watch
+    from ..application.variants import (
+        RUN,
+        VariantsRequest,
+        class_of,
+        draw_variants,
+        rejection_summary,
+        write_variants,
+    )
     from ..grading.templates import load_template
-    from ..io import student_folder
+    from ..progress import Progress
+    from ..runs import earlier_run
+    from .output import note, say
 
     out = Path(args.out)
     # before any work: refuse, or find the earlier run to replace
     earlier = earlier_run(out, RUN, force=args.force, name=f"--out {out}")
     template = load_template(args.template)
-    aliases: dict[str, list[str]] = {}
-    if args.students:
-        roster = read_roster(args.students)
-        students = [student for student, _ in roster]
-        if len(students) > MAX_VARIANTS:
-            raise SpecError(f"the roster lists {len(students)} students; at most {MAX_VARIANTS} "
-                            "a run (a run of that many takes about a minute): split it",
-                            file=args.students)
-        aliases = dict(roster)
-        if args.count is not None and args.count != len(students):
-            raise SpecError(f"--count {args.count} does not match the roster's "
-                            f"{len(students)} students", file=args.students)
-    else:
-        count = 1 if args.count is None else args.count
-        if not 1 <= count <= MAX_VARIANTS:
-            raise SpecError(f"--count must be in 1…{MAX_VARIANTS}, got {count} (a run of "
-                            f"{MAX_VARIANTS} takes about a minute)")
-        width = max(3, len(str(count)))
-        students = [str(i).zfill(width) for i in range(1, count + 1)]
-    folders = [student_folder(s) for s in students]
-    if len(set(folders)) != len(folders):
-        raise SpecError("two student ids map to the same folder name", file=args.students)
-    taken = sorted(set(folders) & {*RUN_FILES, MANIFEST})
-    if taken:
-        raise SpecError(f"a student id maps to the folder name {taken[0]}, which the run's own "
-                        "file has", file=args.students)
-    files, rejected, index_rows = variant_files(
-        template, students, folders, seed=args.seed, aliases=aliases,
-        roster=bool(args.students), sheets=not args.no_sheets, source=str(args.template))
-    note = write_run(out, RUN, {name: text.encode("utf-8") for name, text in files.items()},
-                     earlier)
-    if note:
-        print(f"planmethod: note: {note}", file=sys.stderr)
-    redrawn = sum(1 for row in index_rows if row[2])
-    print(f"Wrote {len(index_rows)} variants of {template.source} (seed {args.seed}) to {out}/ "
-          f"({redrawn} redrawn after a rejected draw); keys in {out / 'keys.json'}")
-    if rejected:
-        print(f"{len(rejected)} draws rejected:")
-        for line in rejection_summary(rejected):
-            print(f"  {line}")
+    students = class_of(args.count, args.students)
+    request = VariantsRequest(template, students, seed=args.seed, sheets=not args.no_sheets,
+                              source=str(args.template))
+    with Progress(len(students.students), render(message("variants"))) as bar:
+        drawn = draw_variants(request, watch=Watch(lambda *_: bar.advance()))
+    changed = write_variants(out, drawn, earlier)
+    if changed:   # a file of the earlier run changed meanwhile: it stays, hidden
+        note(changed)
+    say(plural("Wrote {count} variant of {template} (seed {seed}) to {out}/ ({redrawn} "
+               "redrawn after a rejected draw); keys in {keys}",
+               "Wrote {count} variants of {template} (seed {seed}) to {out}/ ({redrawn} "
+               "redrawn after a rejected draw); keys in {keys}",
+               count=len(drawn.variants), template=template.source, seed=args.seed,
+               out=str(out), redrawn=drawn.redrawn, keys=str(out / "keys.json")))
+    if drawn.rejected:
+        say(plural("{count} draw rejected:", "{count} draws rejected:",
+                   count=len(drawn.rejected)),
+            *(f"  {line}" for line in rejection_summary(list(drawn.rejected))))
     return 0
-
-
-def variant_files(template, students: list[str], folders: list[str], *, seed: int,
-                  aliases: dict[str, list[str]] | None = None, roster: bool = False,
-                  sheets: bool = True, source: str = "",
-                  progress: bool | None = None,
-                  on_advance: Callable[[int, int], None] | None = None,
-                  ) -> tuple[dict[str, str], list[str], list[list]]:
-    """Everything a ``variants`` run writes, computed: (files by relative path, the reasons of
-    rejected draws, the rows of index.csv). ``folders`` are the students' folder names;
-    ``on_advance(done, total)`` is told each variant drawn (the studio's jobs show it)."""
-    import json
-
-    from ..grading.keys import build_key, bundle
-    from ..grading.templates import draw_variant, to_toml
-    from ..io import csv_text, json_text
-    from ..progress import Progress
-
-    aliases = aliases or {}
-    files: dict[str, str] = {}
-    rejected: list[str] = []
-    keys = []
-    index_rows = []
-    with Progress(len(students), "variants", enabled=progress, on_advance=on_advance) as bar:
-        for student, folder in zip(students, folders, strict=True):
-            variant = draw_variant(template, seed=seed, student=student)
-            rejected += list(variant.rejected)
-            key = build_key(variant)
-            # who the LMS may know the student as, and whether a roster named them (an
-            # autograder matches submitters to variants by these)
-            key["identities"] = aliases.get(student, [])
-            key["roster"] = roster
-            keys.append(key)
-            # the description with its placeholders filled in, as the student reads it
-            files[f"{folder}/exercise.toml"] = to_toml({**variant.data,
-                                                        "description": variant.description})
-            files[f"{folder}/key.json"] = json_text(key)
-            if sheets:
-                from ..grading.sheets import plan_sheet_for_key, task_sheet_svg, task_text
-                from ..plans import draw_plans
-
-                plans = draw_plans(variant.exercise, acceleration=False)
-                files[f"{folder}/task.svg"] = task_sheet_svg(key, plans)
-                files[f"{folder}/task.txt"] = task_text(key)
-                for plan in ("velocity", "acceleration"):
-                    if plan in key["plans"]:
-                        files[f"{folder}/{plan}_sheet.svg"] = plan_sheet_for_key(key, plan)
-            index_rows.append([student, folder, variant.attempt,
-                               json.dumps(variant.values, ensure_ascii=False)])
-            bar.advance()
-    files["keys.json"] = json_text(bundle(keys, template=source, seed=seed, count=len(keys)))
-    files["index.csv"] = csv_text([["student", "folder", "attempt", "values"], *index_rows])
-    return files, rejected, index_rows
-
-
-#: a number in a reason (not a digit of a name such as O2)
-_NUMBER = re.compile(r"(?<![A-Za-z_])-?\d+(?:\.\d+)?")
-
-
-def rejection_summary(reasons: list[str]) -> list[str]:
-    """The reasons of rejected draws, alike ones counted together, most frequent first, each
-    number shown as the range it took.
-
-    Examples
-    --------
-    >>> for line in rejection_summary(["segment of ω₃ is 4.2 mm (below 10 mm)",
-    ...                                "the crank is 3.1° from a dead centre (below 5°)",
-    ...                                "segment of ω₃ is 9.5 mm (below 10 mm)"]):
-    ...     print(line)
-    2× segment of ω₃ is 4.2–9.5 mm (below 10 mm)
-    1× the crank is 3.1° from a dead centre (below 5°)
-    """
-    groups: dict[str, list[list[str]]] = {}
-    for reason in reasons:
-        groups.setdefault(_NUMBER.sub("#", reason), []).append(_NUMBER.findall(reason))
-    lines = []
-    for pattern, rows in sorted(groups.items(), key=lambda item: (-len(item[1]), item[0])):
-        parts = pattern.split("#")
-        text = parts[0]
-        for column, rest in zip(zip(*rows, strict=True), parts[1:], strict=True):
-            low, high = min(column, key=float), max(column, key=float)
-            text += low if float(low) == float(high) else f"{low}–{high}"
-            text += rest
-        lines.append(f"{len(rows)}× {text}")
-    return lines

@@ -10,17 +10,20 @@ An answer within the question's tolerance scores the question's points. Otherwis
 feedback says by how much it is off, and names the mistake when the answer matches one
 (see :data:`planmethod.grading.mistakes.REGISTRY`): a reversed sense, a normal or Coriolis
 component left out or reversed, a scale applied twice or not at all, degrees for radians,
-millimetres for metres.
+millimetres for metres. An answer is classified first (:func:`classify`: a
+:class:`~planmethod.grading.verdicts.Verdict` with its fields), and its sentences are its
+verdict's templates (:mod:`planmethod.grading.verdicts`) filled with them.
 
 Examples
 --------
 >>> from planmethod.grading.templates import load_template, draw_variant
 >>> from planmethod.grading.keys import build_key
+>>> from planmethod.words import render
 >>> key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
 >>> result = grade_answers(key, {"v_C": 5.27, "omega_BC": 24.25})
->>> [q["correct"] for q in result["questions"][:1]], result["score"]
+>>> [q.correct for q in result.questions[:1]], result.score
 ([True], 1.0)
->>> print(next(q for q in result["questions"] if q["id"] == "omega_BC")["feedback"])
+>>> print(render(next(q for q in result.questions if q.id == "omega_BC").feedback))
 ... # doctest: +NORMALIZE_WHITESPACE
 ω₂ = 24.25 rad/s: wrong — it looks as if the sense (sign) is reversed
 (that gives 24.2536; right: -24.2536 rad/s ± 0.547)
@@ -38,19 +41,33 @@ from ..errors import SpecError
 from ..io import read_text_bounded
 from ..spec import parse_json
 from ..vocabulary import quantity, question_text, symbol
+from ..words import Message, message, plural, render, template
 from .reading import read_number
+from .results import GradedQuestion, KeyMistake, KeyQuestion, StudentGrade
+from .verdicts import (
+    AMOUNT,
+    AMOUNT_BARE,
+    GIVEN,
+    MAGNITUDE,
+    OFF,
+    RIGHT,
+    SENSES,
+    WAYS,
+    AnswerVerdict,
+    Off,
+    Verdict,
+    Way,
+)
 
-__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "SENSE_WORDS", "STUDENT_COLUMNS",
-           "answers_from_csv", "feedback_text", "grade_answers", "grade_many",
+__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS", "answers_from_csv",
+           "classify", "feedback_text", "grade_answers", "grade_many", "grade_question",
            "magnitude_note", "read_answers", "refuse_twice", "sense_words"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
 STUDENT_COLUMNS = ("student", "student_id", "id", "sid", "email", "name")
-
-
-def _number_text(value: float) -> str:
-    return f"{value:.6g}"
+#: the mistake of a reversed sense (named without how far off the answer is)
+SENSE = "sense"
 
 
 def _parse_number(raw: Any) -> float | str | None:
@@ -91,17 +108,26 @@ def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
 
 #: what grade's ``--json`` results hold (keys of the file, of one graded student)
 _RESULTS_KEYS = ({"answers", "drawings"}, {"score", "max_score", "questions"})
-_NOT_ANSWERS = ("this is planmethod grade's --json output (graded results), not an answers "
-                "file")
+_NOT_ANSWERS = message("this is planmethod grade's --json output (graded results), not an "
+                       "answers file")
+#: what a JSON value is, in words (``a list``, ``a number``…)
+_KINDS = {"object": message("an object"), "list": message("a list"),
+          "boolean": message("true/false"), "null": message("null"),
+          "number": message("a number"), "text": message("a text")}
 
 
-def _kind(value: Any) -> str:
+def _line(line: int) -> str:
+    """A line of a file, as an error's key names it."""
+    return render(message("line {line}", line=line))
+
+
+def _kind(value: Any) -> Message:
     """What a JSON value is, in words: ``a list``, ``a number``…"""
     if isinstance(value, Mapping | list):
-        return "an object" if isinstance(value, Mapping) else "a list"
+        return _KINDS["object" if isinstance(value, Mapping) else "list"]
     if isinstance(value, bool) or value is None:
-        return "true/false" if value is not None else "null"
-    return "a number" if isinstance(value, int | float) else "a text"
+        return _KINDS["boolean" if value is not None else "null"]
+    return _KINDS["number" if isinstance(value, int | float) else "text"]
 
 
 def _one_answer_each(answers: Mapping[str, Any], where: str, prefix: str) -> dict[str, Any]:
@@ -111,61 +137,88 @@ def _one_answer_each(answers: Mapping[str, Any], where: str, prefix: str) -> dic
         raise SpecError(_NOT_ANSWERS, file=where, key=prefix or None)
     for name, value in answers.items():
         if isinstance(value, Mapping | list):
-            raise SpecError(f"is {_kind(value)}, not an answer (a number): give "
-                            "{\"question id\": answer, …} for each student", file=where,
-                            key=f"{prefix}.{name}" if prefix else str(name))
+            raise SpecError(message("is {kind}, not an answer (a number): give "
+                                    "{{\"question id\": answer, …}} for each student",
+                                    kind=_kind(value)),
+                            file=where, key=f"{prefix}.{name}" if prefix else str(name))
     # graded by id compared as grade_answers compares them: one of two would be lost
     refuse_twice([str(name) for name in answers], _folded, "answer", file=where,
-                 key=prefix or None, compared="question ids compared ignoring case")
+                 key=prefix or None, compared=message("question ids compared ignoring case"))
     return dict(answers)
+
+
+def _stray(data: Mapping[str, Any], students: list, where: str) -> SpecError:
+    """The error of a JSON object of students with a stray value, or of one student's
+    answers with an object among them (whichever most entries are)."""
+    by_student = 2 * len(students) >= len(data)   # most entries are students' objects
+    odd = next(name for name, value in data.items()
+               if isinstance(value, Mapping) != by_student)
+    others = len(students) if by_student else len(data) - len(students)
+    like = message("an object of one student's answers") if by_student else message("an answer")
+    return SpecError(plural("is {kind}, not {like} like the {count} other: the file is either "
+                            "{{\"student\": {{\"question id\": answer, …}}, …}} or one "
+                            "student's {{\"question id\": answer, …}}",
+                            "is {kind}, not {like} like the {count} others: the file is either "
+                            "{{\"student\": {{\"question id\": answer, …}}, …}} or one "
+                            "student's {{\"question id\": answer, …}}",
+                            count=others, kind=_kind(data[odd]), like=like),
+                     file=where, key=str(odd))
+
+
+def _answers_of_object(data: Mapping[str, Any], where: str) -> list[tuple[str, dict[str, Any]]]:
+    """The rows of a JSON object: of students' objects, or one student's answers."""
+    if not data:
+        raise SpecError(message("no student's answers (the object is empty)"), file=where)
+    if any(keys <= set(data) for keys in _RESULTS_KEYS):
+        raise SpecError(_NOT_ANSWERS, file=where)
+    students = [name for name, value in data.items() if isinstance(value, Mapping)]
+    if len(students) == len(data):       # {"s01": {"v_C": 5.2, …}, …}
+        return [(str(name), _one_answer_each(value, where, str(name)))
+                for name, value in data.items()]
+    if not students:                     # one student's answers
+        return [("*", _one_answer_each(data, where, ""))]
+    raise _stray(data, students, where)
+
+
+def _answers_of_list(data: list, where: str) -> list[tuple[str, dict[str, Any]]]:
+    """The rows of a JSON list of students' entries."""
+    if not data:
+        raise SpecError(message("no student's answers (the list is empty)"), file=where)
+    rows = []
+    for index, item in enumerate(data):
+        if not isinstance(item, Mapping):
+            raise SpecError(message("each entry must be an object"), file=where,
+                            key=f"[{index}]")
+        column = next((c for c in STUDENT_COLUMNS if c in item), None)
+        student = item[column] if column is not None else None
+        if isinstance(student, Mapping | list) or student is None or not str(student).strip():
+            raise SpecError(message("no student id (give 'student')"), file=where,
+                            key=f"[{index}]" + (f".{column}" if column else ""))
+        answers = item.get("answers", {k: v for k, v in item.items()
+                                       if k not in STUDENT_COLUMNS})
+        if not isinstance(answers, Mapping):
+            raise SpecError(message("must be an object of answers"), file=where,
+                            key=f"[{index}].answers")
+        rows.append((str(student), _one_answer_each(
+            answers, where, f"[{index}].answers" if "answers" in item else f"[{index}]")))
+    return rows
+
+
+def _too_many_students(where: str) -> SpecError:
+    return SpecError(plural("more than {count} student", "more than {count} students",
+                            count=MAX_ROWS), file=where)
 
 
 def _answers_from_json(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
     data = parse_json(text, file=where, unique_keys=True)
-    rows: list[tuple[str, dict[str, Any]]] = []
     if isinstance(data, Mapping):
-        if not data:
-            raise SpecError("no student's answers (the object is empty)", file=where)
-        if any(keys <= set(data) for keys in _RESULTS_KEYS):
-            raise SpecError(_NOT_ANSWERS, file=where)
-        students = [name for name, value in data.items() if isinstance(value, Mapping)]
-        if len(students) == len(data):       # {"s01": {"v_C": 5.2, …}, …}
-            rows = [(str(name), _one_answer_each(value, where, str(name)))
-                    for name, value in data.items()]
-        elif not students:                   # one student's answers
-            rows = [("*", _one_answer_each(data, where, ""))]
-        else:   # a class with a stray value, or one student with an object among the answers
-            by_student = 2 * len(students) >= len(data)   # most entries are students' objects
-            odd = next(name for name, value in data.items()
-                       if isinstance(value, Mapping) != by_student)
-            others = len(students) if by_student else len(data) - len(students)
-            like = ("an object of one student's answers" if by_student else "an answer")
-            raise SpecError(f"is {_kind(data[odd])}, not {like} like the {others} "
-                            f"other{'s' if others > 1 else ''}: the file "
-                            "is either {\"student\": {\"question id\": answer, …}, …} or one "
-                            "student's {\"question id\": answer, …}", file=where, key=str(odd))
+        rows = _answers_of_object(data, where)
     elif isinstance(data, list):
-        if not data:
-            raise SpecError("no student's answers (the list is empty)", file=where)
-        for index, item in enumerate(data):
-            if not isinstance(item, Mapping):
-                raise SpecError("each entry must be an object", file=where, key=f"[{index}]")
-            column = next((c for c in STUDENT_COLUMNS if c in item), None)
-            student = item[column] if column is not None else None
-            if isinstance(student, Mapping | list) or student is None or not str(student).strip():
-                raise SpecError("no student id (give 'student')", file=where,
-                                key=f"[{index}]" + (f".{column}" if column else ""))
-            answers = item.get("answers", {k: v for k, v in item.items()
-                                           if k not in STUDENT_COLUMNS})
-            if not isinstance(answers, Mapping):
-                raise SpecError("must be an object of answers", file=where,
-                                key=f"[{index}].answers")
-            rows.append((str(student), _one_answer_each(
-                answers, where, f"[{index}].answers" if "answers" in item else f"[{index}]")))
+        rows = _answers_of_list(data, where)
     else:
-        raise SpecError("must be an object or a list of objects", file=where)
+        raise SpecError(message("must be an object or a list of objects"), file=where)
     if len(rows) > MAX_ROWS:
-        raise SpecError(f"more than {MAX_ROWS} students", file=where)
+        raise _too_many_students(where)
     return rows
 
 
@@ -192,13 +245,13 @@ class _Records:
             except StopIteration:
                 return
             except csv.Error as error:
-                raise SpecError(f"not valid CSV: {error} (is a quote (\") left open or a "
-                                "cell quoted twice?)", file=self.where,
-                                key=f"line {line}") from None
+                raise SpecError(message("not valid CSV: {problem} (is a quote (\") left open "
+                                        "or a cell quoted twice?)", problem=str(error)),
+                                file=self.where, key=_line(line)) from None
             if any("\n" in cell or "\r" in cell for cell in row):
-                raise SpecError(f"a quoted cell runs on to line {self.reader.line_num}: is a "
-                                "closing quote (\") missing?", file=self.where,
-                                key=f"line {line}")
+                raise SpecError(message("a quoted cell runs on to line {line}: is a closing "
+                                        "quote (\") missing?", line=self.reader.line_num),
+                                file=self.where, key=_line(line))
             yield line, row
 
 
@@ -207,11 +260,17 @@ def _header(records, where: str) -> tuple[int, list[str]]:
     try:
         line, header = next(iter(records))
     except StopIteration:
-        raise SpecError("the file is empty", file=where) from None
+        raise SpecError(message("the file is empty"), file=where) from None
     header = [h.strip() for h in header]
-    refuse_twice(header, str.lower, "column", file=where, key=f"line {line}",
-                 places="columns", advice=": which one holds the answers?")
+    refuse_twice(header, str.lower, "column", file=where, key=_line(line),
+                 places="columns", advice="which")
     return line, header
+
+
+def _too_long_row(row: list[str], header: list[str], line: int, where: str) -> SpecError:
+    return SpecError(plural("has {count} cell, the header {header}",
+                            "has {count} cells, the header {header}",
+                            count=len(row), header=len(header)), file=where, key=_line(line))
 
 
 def answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
@@ -229,25 +288,24 @@ def answers_from_csv(text: str, where: str) -> list[tuple[str, dict[str, Any]]]:
     if column is None:
         return _one_student_csv(records, header, where)
     if len(header) < 2:
-        raise SpecError("needs a header row with a student column and question columns "
-                        "(e.g. student,v_C,omega_BC)", file=where)
+        raise SpecError(message("needs a header row with a student column and question "
+                                "columns (e.g. student,v_C,omega_BC)"), file=where)
     rows = []
     for line, row in records:
         if not any(cell.strip() for cell in row):
             continue
         if len(rows) >= MAX_ROWS:
-            raise SpecError(f"more than {MAX_ROWS} students", file=where)
+            raise _too_many_students(where)
         if len(row) > len(header):
-            raise SpecError(f"has {len(row)} cells, the header {len(header)}", file=where,
-                            key=f"line {line}")
+            raise _too_long_row(row, header, line, where)
         student = row[column].strip() if column < len(row) else ""
         if not student:
-            raise SpecError(f"no student id (column '{header[column]}')", file=where,
-                            key=f"line {line}")
+            raise SpecError(message("no student id (column '{column}')", column=header[column]),
+                            file=where, key=_line(line))
         rows.append((student, {header[i]: row[i] for i in range(len(row)) if i != column}))
     if not rows:
-        raise SpecError(f"a header (line {header_line}) and no student's answers under it",
-                        file=where)
+        raise SpecError(message("a header (line {line}) and no student's answers under it",
+                                line=header_line), file=where)
     return rows
 
 
@@ -256,21 +314,23 @@ def _one_student_csv(records, header: list[str], where: str) -> list[tuple[str, 
     header (the student is ``*``, the one the command is grading). Nothing is dropped."""
     rows = [(line, row) for line, row in records if any(cell.strip() for cell in row)]
     if len(rows) != 1:
-        names = ", ".join(STUDENT_COLUMNS[:3])
-        raise SpecError(f"has no student column ({names}, …) but {len(rows)} rows of answers: "
-                        "without one, the file holds one student's answers in one row",
+        raise SpecError(plural("has no student column ({columns}, …) but {count} row of "
+                               "answers: without one, the file holds one student's answers in "
+                               "one row",
+                               "has no student column ({columns}, …) but {count} rows of "
+                               "answers: without one, the file holds one student's answers in "
+                               "one row", count=len(rows), columns=list(STUDENT_COLUMNS[:3])),
                         file=where)
     line, row = rows[0]
     if len(row) > len(header):
-        raise SpecError(f"has {len(row)} cells, the header {len(header)}", file=where,
-                        key=f"line {line}")
+        raise _too_long_row(row, header, line, where)
     return [("*", {header[i]: row[i] for i in range(len(row))})]
 
 
 def _no_student_twice(rows: list[tuple[str, dict[str, Any]]], where: str) -> None:
     """Refuse a file that answers for the same student twice (it would be graded twice)."""
     refuse_twice([student for student, _ in rows], _folded, "student", file=where,
-                 verb="answers", places="entries")
+                 places="entries")
 
 
 def _folded(name: str) -> str:
@@ -278,16 +338,39 @@ def _folded(name: str) -> str:
     return name.strip().lower()
 
 
+#: what is given twice, by what it is (a name given twice, two spellings of one name)
+_TWICE = {"column": template("column {name!r} is given twice"),
+          "answer": template("answer {name!r} is given twice"),
+          "student": template("student {name!r} answers twice"),
+          "point": template("point {name!r} is given twice")}
+_ONE = {"column": template("column {first!r} and column {name!r} are one column, {compared}"),
+        "answer": template("answer {first!r} and answer {name!r} are one answer, {compared}"),
+        "student": template("student {first!r} and student {name!r} are one student, "
+                            "{compared}"),
+        "point": template("point {first!r} and point {name!r} are one point, {compared}")}
+#: where the two are, by what the places count
+_PLACES = {"columns": template("{sentence} (columns {first} and {second})"),
+           "entries": template("{sentence} (entries {first} and {second})")}
+#: how names are compared, unless said otherwise
+_IGNORING_CASE = message("compared ignoring case")
+#: what to do about it
+_ADVICE = {"keep": template("{sentence}; keep one"),
+           "which": template("{sentence}: which one holds the answers?")}
+
+
 def refuse_twice(names: Sequence[str], normal: Callable[[str], str], what: str, *,
-                 file: str | None, key: str | None = None, verb: str = "is given",
-                 compared: str = "compared ignoring case", places: str | None = None,
-                 advice: str = "; keep one", error: type[SpecError] = SpecError) -> None:
+                 file: str | None, key: str | None = None,
+                 compared: Message | str = _IGNORING_CASE,
+                 places: str | None = None, advice: str = "keep",
+                 error: type[SpecError] = SpecError) -> None:
     """Refuse two of ``names`` that are one after ``normal`` (how they are compared): one
     value would be kept and the other lost without a word. The :class:`SpecError` names
     both as written, and their places (``places``: what the 1-based positions count,
-    ``columns``; None for names whose order says nothing, the keys of a JSON object).
-    Empty names are not compared. Answers files, drawn plans and ``check``'s coordinate
-    tables are read through it; ``error`` is the kind of error raised (a drawing's
+    ``columns`` or ``entries``; None for names whose order says nothing, the keys of a JSON
+    object). ``what`` the names are: a ``column``, ``answer``, ``student`` or ``point``;
+    ``advice``: ``keep`` (one) or ``which`` (one holds the answers?). Empty names are not
+    compared. Answers files, drawn plans and ``check``'s coordinate tables are read through
+    it; ``error`` is the kind of error raised (a drawing's
     :class:`~planmethod.grading.drawings.SubmissionError`).
 
     Examples
@@ -298,8 +381,7 @@ def refuse_twice(names: Sequence[str], normal: Callable[[str], str], what: str, 
     ...
     planmethod.errors.SpecError: a.csv: column 'v_C' and column 'V_c' are one column, \
 compared ignoring case (columns 2 and 3); keep one
-    >>> refuse_twice(["s1", "s1"], str.lower, "student", file="a.csv", verb="answers",
-    ...              places="entries")
+    >>> refuse_twice(["s1", "s1"], str.lower, "student", file="a.csv", places="entries")
     Traceback (most recent call last):
     ...
     planmethod.errors.SpecError: a.csv: student 's1' answers twice (entries 1 and 2); keep one
@@ -309,142 +391,177 @@ compared ignoring case (columns 2 and 3); keep one
         form = normal(name) if name else ""
         if form in seen:
             first = names[seen[form] - 1]
-            where = f" ({places} {seen[form]} and {number})" if places else ""
-            if first == name:
-                text = f"{what} {name!r} {verb} twice{where}"
-            else:
-                text = (f"{what} {first!r} and {what} {name!r} are one {what}, {compared}"
-                        f"{where}")
-            raise error(text + advice, file=file, key=key)
+            sentence = (_TWICE[what].replace(name=name) if first == name else
+                        _ONE[what].replace(first=first, name=name, compared=compared))
+            if places:
+                sentence = _PLACES[places].replace(sentence=sentence, first=seen[form],
+                                                   second=number)
+            raise error(_ADVICE[advice].replace(sentence=sentence), file=file, key=key)
         if form:
             seen[form] = number
 
 
-#: how the sign of a signed quantity is told, by what the quantity is of (its kind's
-#: ``subject``): a link turns counter-clockwise or clockwise; a slide's travel, sliding
-#: velocity and acceleration are along or against its guide's direction
-SENSE_WORDS: dict[str, tuple[str, str]] = {
-    "link": ("counter-clockwise", "clockwise"),
-    "pair": ("positive, along the guide", "negative, against the guide"),
-}
-
-
-def sense_words(name: str) -> tuple[str, str]:
+def sense_words(name: str) -> tuple[Message, Message]:
     """What a positive and a negative value of the quantity ``name`` (an id: ``omega_BC``,
-    ``ds_slider/frame``) mean, in words (:data:`SENSE_WORDS`); ``grade`` and the workbook
-    page both tell a reversed sign with them.
+    ``ds_slider/frame``) mean, in words (:data:`~planmethod.grading.verdicts.SENSES`);
+    ``grade`` and the workbook page both tell a reversed sign with them.
 
-    >>> sense_words("omega_BC")
-    ('counter-clockwise', 'clockwise')
-    >>> sense_words("s_slider/frame")
-    ('positive, along the guide', 'negative, against the guide')
+    >>> [render(word) for word in sense_words("omega_BC")]
+    ['counter-clockwise', 'clockwise']
+    >>> [render(word) for word in sense_words("s_slider/frame")]
+    ['positive, along the guide', 'negative, against the guide']
     """
     try:
         subject = quantity(name).kind.subject
     except KeyError:
-        return ("positive", "negative")
-    return SENSE_WORDS.get(subject, ("positive", "negative"))
+        return SENSES[""]
+    return SENSES.get(subject, SENSES[""])
 
 
-def _direction(name: str, value: float) -> str:
-    positive, negative = sense_words(name)
-    return positive if value > 0 else negative
+def _amount(number: float, unit: str) -> Message:
+    """A number with its unit (the unit left out where there is none)."""
+    return AMOUNT.replace(number=number, unit=unit) if unit else AMOUNT_BARE.replace(
+        number=number)
 
 
-def _off(answer: float, right: float) -> str:
+def _off(answer: float, right: float) -> Message:
     """How far off an answer is: ``24.1 % low``, ``1000 times the right value``."""
     if right == 0:
-        return f"{abs(answer - right):.3g} off"
+        return OFF[Off.BY].replace(amount=abs(answer - right))
     ratio = answer / right
     if ratio >= 10 or 0 < ratio <= 0.1:
-        return f"{ratio:.4g} times the right value"
+        return OFF[Off.TIMES].replace(ratio=ratio)
     relative = ratio - 1.0
-    magnitude = " in magnitude" if right < 0 and ratio >= 0 else ""
-    return f"{abs(relative) * 100:.1f} % {'high' if relative > 0 else 'low'}{magnitude}"
-
-
-def grade_question(question: Mapping[str, Any], raw: Any,
-                   numbers: Mapping[str, int] | None = None) -> dict:
-    """Grade one answer; returns the question's result with its feedback (which names the
-    quantity as the course writes it, the key's ``symbol``, where the key has one; the
-    links' ``numbers`` name it in what a negative magnitude is told)."""
-    name, unit = question.get("symbol") or question["id"], question.get("unit", "")
-    value, tolerance = float(question["value"]), float(question["tolerance"])
-    points = float(question.get("points", 1.0))
-    right = f"{_number_text(value)} {unit} ± {tolerance:.3g}".replace("  ", " ")
-    result = {"id": question["id"], "answer": None, "value": value, "tolerance": tolerance,
-              "unit": unit, "max_score": points, "score": 0.0, "correct": False,
-              "mistake": None}
-    answer = _parse_number(raw)
-    if answer is None:
-        result["feedback"] = f"{name}: no answer (right: {right})"
-        result["hint"] = f"{name}: no answer"
-        return result
-    if isinstance(answer, str):
-        result["feedback"] = f"{name}: {answer!r} is not a number (right: {right})"
-        result["hint"] = f"{name}: {answer!r} is not a number"
-        return result
-    result["answer"] = answer
-    result["error_abs"] = abs(answer - value)
-    result["error_rel"] = abs(answer - value) / abs(value) if value else None
-    shown = f"{name} = {_number_text(answer)} {unit}".rstrip()
-    if abs(answer - value) <= tolerance:
-        result.update(score=points, correct=True,
-                      feedback=f"{shown}: correct (exact {_number_text(value)}, "
-                               f"tolerance ± {tolerance:.3g})", hint=f"{shown}: correct")
-        return result
-    for mistake in question.get("mistakes", ()):
-        if abs(answer - mistake["value"]) <= mistake["tolerance"]:
-            result["mistake"] = mistake["kind"]
-            if mistake.get("also"):   # other mistakes that give the same answer
-                result["also"] = list(mistake["also"])
-            how = "" if mistake["kind"] == "sense" else f", {_off(answer, value)}"
-            result["feedback"] = (f"{shown}: wrong{how} — it looks as if "
-                                  f"{mistake['feedback']} (that gives "
-                                  f"{_number_text(mistake['value'])}; right: {right})")
-            result["hint"] = (f"{shown}: wrong ({_way(answer, value, signed=False)}) — it "
-                              f"looks as if {mistake['feedback']}")
-            return result
-    signed = bool(question.get("signed"))
-    if signed:
-        for mistake in question.get("mistakes", ()):
-            if mistake["kind"] != "sense" and abs(-answer - mistake["value"]) <= \
-                    mistake["tolerance"]:
-                result["mistake"] = mistake["kind"] + "+sense"
-                result["feedback"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
-                                      f"and the sense is reversed (right: {right})")
-                result["hint"] = (f"{shown}: wrong — it looks as if {mistake['feedback']}, "
-                                  "and the sense is reversed")
-                return result
-    note = None if signed or answer >= 0 else magnitude_note(question["id"], numbers)
-    if note is not None:
-        result["feedback"] = f"{shown}: wrong — {note} (right: {right})"
-        result["hint"] = f"{shown}: wrong — {note}"
-        return result
-    if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
-        size = ("right" if abs(abs(answer) - abs(value)) <= tolerance
-                else _off(abs(answer), abs(value)))
-        text = (f"{shown}: wrong — the sense is reversed (the right answer is "
-                f"{_direction(question['id'], value)}, {right}) and the magnitude "
-                f"{_number_text(abs(answer))} is {size}")
+    if right < 0 and ratio >= 0:
+        way = Off.HIGH_IN_MAGNITUDE if relative > 0 else Off.LOW_IN_MAGNITUDE
     else:
-        tolerance_text = (f" = ± {tolerance / abs(value) * 100:.2g} %" if value else "")
-        off_by = f"{_number_text(abs(answer - value))} {unit}".rstrip()
-        text = (f"{shown}: wrong — {_off(answer, value)} (off by {off_by}; right: {right}"
-                f"{tolerance_text})")
-    result["feedback"] = text
-    result["hint"] = f"{shown}: wrong ({_way(answer, value, signed)})"
-    return result
+        way = Off.HIGH if relative > 0 else Off.LOW
+    return OFF[way].replace(percent=abs(relative) * 100)
 
 
-def magnitude_note(name: str, numbers: Mapping[str, int] | None = None) -> str | None:
+def _way(answer: float, right: float, signed: bool) -> Message:
+    """Which way an answer is off, without the right value: ``too high``, ``too small in
+    magnitude``, ``the sense is reversed``."""
+    if signed and right != 0 and answer != 0 and (answer > 0) != (right > 0):
+        return WAYS[Way.SENSE]
+    if right < 0 and answer <= 0:
+        return WAYS[Way.LARGER] if answer < right else WAYS[Way.SMALLER]
+    return WAYS[Way.HIGH] if answer > right else WAYS[Way.LOW]
+
+
+def _verdict(kind: AnswerVerdict, **fields: Any) -> Verdict:
+    return Verdict(kind, tuple(fields.items()))
+
+
+def _typed(question: KeyQuestion | Mapping[str, Any]) -> KeyQuestion:
+    return question if isinstance(question, KeyQuestion) else KeyQuestion.read(question)
+
+
+def _named_mistake(question: KeyQuestion, answer: float, given: Message, right: Message
+                   ) -> tuple[Verdict, KeyMistake, str] | None:
+    """The verdict of an answer that a known mistake gives (with the sense reversed too,
+    for a signed quantity), with the mistake and the name it is graded by."""
+    value = question.value
+    for mistake in question.mistakes:
+        if abs(answer - mistake.value) <= mistake.tolerance:
+            kind = AnswerVerdict.SENSE_MISTAKE if mistake.kind == SENSE else \
+                AnswerVerdict.MISTAKE
+            return _verdict(kind, answer=given, off=_off(answer, value),
+                            mistake=mistake.explanation, gives=mistake.value, right=right,
+                            way=_way(answer, value, signed=False)), mistake, mistake.kind
+    if not question.signed:
+        return None
+    for mistake in question.mistakes:
+        if mistake.kind != SENSE and abs(-answer - mistake.value) <= mistake.tolerance:
+            return (_verdict(AnswerVerdict.MISTAKE_AND_SENSE, answer=given,
+                             mistake=mistake.explanation, right=right), mistake,
+                    mistake.kind + "+sense")
+    return None
+
+
+def _wrong(question: KeyQuestion, answer: float, given: Message, right: Message) -> Verdict:
+    """The verdict of a wrong answer that no known mistake gives."""
+    value, tolerance, signed = question.value, question.tolerance, question.signed
+    way = _way(answer, value, signed)
+    if signed and value != 0 and answer != 0 and (answer > 0) != (value > 0):
+        sense = sense_words(question.id)[0 if value > 0 else 1]
+        if abs(abs(answer) - abs(value)) <= tolerance:
+            return _verdict(AnswerVerdict.SENSE_REVERSED, answer=given, sense=sense,
+                            right=right, magnitude=abs(answer), way=way)
+        return _verdict(AnswerVerdict.SENSE_AND_SIZE, answer=given, sense=sense, right=right,
+                        magnitude=abs(answer), off=_off(abs(answer), abs(value)), way=way)
+    fields = {"answer": given, "off": _off(answer, value), "right": right, "way": way,
+              "off_by": _amount(abs(answer - value), question.unit)}
+    if not value:
+        return _verdict(AnswerVerdict.WRONG_OF_ZERO, **fields)
+    return _verdict(AnswerVerdict.WRONG, share=tolerance / abs(value) * 100, **fields)
+
+
+def classify(question: KeyQuestion, answer: float, numbers: Mapping[str, int] | None = None
+             ) -> tuple[Verdict, KeyMistake | None, str | None]:
+    """The verdict on a number given for ``question``: right (within the tolerance), the
+    answer of a known mistake (the mistake, and the name it is graded by: its kind, with
+    ``+sense`` when the sense is reversed too), a negative number for a magnitude (told in
+    the course's symbols under the links' ``numbers``), or wrong (how far off, and which way).
+
+    >>> question = KeyQuestion.read({"id": "v_C", "value": 5.27, "tolerance": 0.1})
+    >>> verdict, mistake, name = classify(question, 6.0)
+    >>> verdict.kind, round(dict(verdict.fields)["share"], 2), mistake, name
+    (<AnswerVerdict.WRONG: 'wrong'>, 1.9, None, None)
+    >>> render(verdict.feedback())
+    'v_C = 6: wrong — 13.9 % high (off by 0.73; right: 5.27 ± 0.1 = ± 1.9 %)'
+    """
+    value, tolerance = question.value, question.tolerance
+    given = GIVEN.replace(symbol=question.symbol, amount=_amount(answer, question.unit))
+    right = RIGHT.replace(amount=_amount(value, question.unit), tolerance=tolerance)
+    if abs(answer - value) <= tolerance:
+        return (_verdict(AnswerVerdict.CORRECT, answer=given, value=value, tolerance=tolerance),
+                None, None)
+    named = _named_mistake(question, answer, given, right)
+    if named is not None:
+        return named
+    note = None if question.signed or answer >= 0 else magnitude_note(question.id, numbers)
+    if note is not None:
+        return _verdict(AnswerVerdict.NEGATIVE_MAGNITUDE, answer=given, note=note,
+                        right=right), None, None
+    return _wrong(question, answer, given, right), None, None
+
+
+def grade_question(question: KeyQuestion | Mapping[str, Any], raw: Any,
+                   numbers: Mapping[str, int] | None = None) -> GradedQuestion:
+    """Grade one answer (``raw``, as given) to one question of a key (typed, or its table
+    in the key); the result's feedback names the quantity as the course writes it (the
+    key's ``symbol``, where the key has one; the links' ``numbers`` name it in what a
+    negative magnitude is told)."""
+    question = _typed(question)
+    answer = _parse_number(raw)
+    graded = {"id": question.id, "value": question.value, "tolerance": question.tolerance,
+              "unit": question.unit, "max_score": question.points}
+    if answer is None or isinstance(answer, str):
+        right = RIGHT.replace(amount=_amount(question.value, question.unit),
+                              tolerance=question.tolerance)
+        verdict = (_verdict(AnswerVerdict.NO_ANSWER, symbol=question.symbol, right=right)
+                   if answer is None else _verdict(AnswerVerdict.NOT_A_NUMBER,
+                                                   symbol=question.symbol, given=answer,
+                                                   right=right))
+        return GradedQuestion(answer=None, score=0.0, correct=False, mistake=None,
+                              verdict=verdict, **graded)
+    verdict, mistake, name = classify(question, answer, numbers)
+    correct = verdict.kind is AnswerVerdict.CORRECT
+    alone = mistake is not None and not name.endswith("+sense")
+    return GradedQuestion(answer=answer, score=question.points if correct else 0.0,
+                          correct=correct, mistake=name, verdict=verdict,
+                          also=(mistake.also or ()) if alone else (), **graded)
+
+
+def magnitude_note(name: str, numbers: Mapping[str, int] | None = None) -> Message | None:
     """What a negative answer for the magnitude ``name`` (a quantity id: ``v_B@lever``) is
     told, in the course's symbols under the links' ``numbers`` (None for a signed quantity
     or an unknown name). ``grade`` and the workbook page both say it from here.
 
-    >>> magnitude_note("v_C")
+    >>> render(magnitude_note("v_C"))
     'v_C is the speed of C, |v_C|: a magnitude, never negative'
-    >>> magnitude_note("v_B@lever", {"frame": 0, "crank": 1, "block": 2, "lever": 3})
+    >>> render(magnitude_note("v_B@lever", {"frame": 0, "crank": 1, "block": 2, "lever": 3}))
     'v_B₃ is the speed of B₃, |v_B₃|: a magnitude, never negative'
     >>> magnitude_note("omega_BC") is None
     True
@@ -455,46 +572,42 @@ def magnitude_note(name: str, numbers: Mapping[str, int] | None = None) -> str |
         return None
     if found.signed:
         return None
-    return (f"{symbol(name, numbers)} is the {question_text(name, numbers)}: a magnitude, "
-            "never negative")
-
-
-def _way(answer: float, right: float, signed: bool) -> str:
-    """Which way an answer is off, without the right value: ``too high``, ``too low in
-    magnitude``, ``the sense is reversed``."""
-    if signed and right != 0 and answer != 0 and (answer > 0) != (right > 0):
-        return "the sense is reversed"
-    if right < 0 and answer <= 0:
-        return "too large in magnitude" if answer < right else "too small in magnitude"
-    return "too high" if answer > right else "too low"
+    # words: vocabulary (question_text is English text until it returns a message)
+    return MAGNITUDE.replace(symbol=symbol(name, numbers),
+                             question=question_text(name, numbers))
 
 
 #: what a student is shown of each graded question, by feedback level
 FEEDBACK_LEVELS = ("full", "hints", "score")
 
 
-def feedback_text(question: Mapping[str, Any], level: str = "full") -> str:
-    """The feedback on one graded question at a level: ``full`` (the values: the right answer
-    and its tolerance), ``hints`` (the mistake named and which way the answer is off, never
-    the right value) or ``score`` (nothing but the points).
+def feedback_text(question: GradedQuestion | Mapping[str, Any], level: str = "full"
+                  ) -> Message | str:
+    """The feedback on one graded question (typed, or as ``grade --json`` writes it) at a
+    level: ``full`` (the values: the right answer and its tolerance), ``hints`` (the
+    mistake named and which way the answer is off, never the right value) or ``score``
+    (nothing but the points).
 
     Examples
     --------
     >>> graded = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
-    >>> feedback_text(graded, "hints")
+    >>> render(feedback_text(graded, "hints"))
     'v_C = 6: wrong (too high)'
-    >>> "5.27" in feedback_text(graded, "full"), feedback_text(graded, "score")
+    >>> "5.27" in render(feedback_text(graded, "full")), feedback_text(graded, "score")
     (True, '')
     """
     if level not in FEEDBACK_LEVELS:
-        raise ValueError(f"feedback level {level!r} is not one of {', '.join(FEEDBACK_LEVELS)}")
+        raise ValueError(render(message("feedback level {level!r} is not one of {levels}",
+                                        level=level, levels=list(FEEDBACK_LEVELS))))
     if level == "score":
         return ""
+    if isinstance(question, GradedQuestion):
+        return question.feedback if level == "full" else question.hint
     return question["feedback"] if level == "full" else question.get("hint", "")
 
 
 def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
-                  student: str | None = None) -> dict:
+                  student: str | None = None) -> StudentGrade:
     """Grade one student's answers ({question id: raw answer}) against a key.
 
     Answers keyed by an unknown id are reported in ``ignored``; a question id is matched
@@ -512,30 +625,28 @@ def grade_answers(key: Mapping[str, Any], answers: Mapping[str, Any],
     by_lower = {}
     for name in answers:
         by_lower.setdefault(_folded(str(name)), name)
-    from .keys import key_numbers
+    from .keys import key_numbers, key_questions
 
     numbers = key_numbers(key)
     results, used = [], set()
-    for question in key["questions"]:
-        name = question["id"]
+    for question in key_questions(key):
+        name = question.id
         found = name if name in answers else by_lower.get(name.lower())
         if found is not None:
             used.add(found)
         results.append(grade_question(question, answers.get(found) if found is not None
                                       else None, numbers))
     ignored = sorted(str(n) for n in answers if n not in used)
-    score = sum(r["score"] for r in results)
-    total = sum(r["max_score"] for r in results)
-    return {"student": student if student is not None else key.get("student"),
-            "variant": key.get("student"), "score": score, "max_score": total,
-            "questions": results, "ignored": ignored}
+    return StudentGrade(student if student is not None else key.get("student"),
+                        key.get("student"), sum(r.score for r in results),
+                        sum(r.max_score for r in results), tuple(results), tuple(ignored))
 
 
 def grade_many(keys: Mapping[str, Mapping[str, Any]],
-               rows: list[tuple[str, Mapping[str, Any]]]) -> list[dict]:
+               rows: list[tuple[str, Mapping[str, Any]]]) -> list[StudentGrade]:
     """Grade many students: each against the key of their own variant (or the key ``*``).
 
-    A student with no key of their own and no common key gets a result with ``error``.
+    A student with no key of their own and no common key gets a grade with an ``error``.
 
     Parameters
     ----------
@@ -548,8 +659,9 @@ def grade_many(keys: Mapping[str, Mapping[str, Any]],
     for student, answers in rows:
         key = keys.get(student, keys.get("*"))
         if key is None:
-            out.append({"student": student, "score": 0.0, "max_score": None, "questions": [],
-                        "error": f"no key for student {student!r}"})
+            out.append(StudentGrade(student, None, 0.0, None,
+                                    error=message("no key for student {student!r}",
+                                                  student=student)))
             continue
         out.append(grade_answers(key, answers, student=student))
     return out

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -41,19 +41,24 @@ import numpy as np
 
 from ..errors import SpecError, about, value_text
 from ..io import read_bytes_bounded
-from ..plans.construction import course_text
 from ..spec import MAX_ANGLE_DEG, parse_json
 from ..vectors import cross
-from ..vocabulary import numbered
+from ..vocabulary import numbered, symbol
+from ..words import Message, message, plural
 from .answers import refuse_twice
 from .keys import key_numbers
 from .plan_points import (
+    ConstructionLine,
     common_mistakes,
     graded_labels,
     mistake_sentence,
     named_mistakes,
+    plan_point_name,
     plan_sentence,
+    point_lines,
 )
+from .results import GradedDrawing, GradedPoint
+from .verdicts import POINT_PARTS, POINTS, PointPart, PointVerdict
 
 __all__ = [
     "Drawing",
@@ -78,7 +83,7 @@ MAX_COORDINATE_MM = 1e6
 #: as drawn, not rescaled (a slip of the scale is 10 times, or 1000 for mm as m)
 MAX_RESCALE = 1e4
 #: how labels that name one point are compared: without spaces, ``pi`` for π, ``p'`` for p′
-LABELS_COMPARED = "labels compared without spaces, pi for π"
+LABELS_COMPARED = message("labels compared without spaces, pi for π")
 #: the ``format`` of a drawing downloaded from the workbook page
 DRAWING_FORMAT = "planmethod-drawing"
 PX_MM = 25.4 / 96.0
@@ -98,7 +103,7 @@ class Drawing:
 
     points: Mapping[str, tuple[float, float]]
     plan: str | None = None
-    notes: tuple[str, ...] = ()
+    notes: tuple[Message, ...] = ()
     source: str | None = None
     lines: tuple = field(default=())
     #: the exercise's title and the crank angle (deg) the drawing says it is of (a drawing
@@ -134,8 +139,8 @@ def _finite_pair(value: Any, where: str, source: str | None) -> tuple[float, flo
     if (not isinstance(value, list | tuple) or len(value) != 2
             or not all(isinstance(v, int | float) and not isinstance(v, bool)
                        and math.isfinite(v) for v in value)):
-        raise SubmissionError("must be [x, y] in mm with finite numbers, got "
-                              f"{value_text(value)}", file=source, key=where)
+        raise SubmissionError(message("must be [x, y] in mm with finite numbers, got {given}",
+                                      given=value_text(value)), file=source, key=where)
     return _on_a_sheet((float(value[0]), float(value[1])), where, source)
 
 
@@ -144,61 +149,91 @@ def _on_a_sheet(xy: tuple[float, float], where: str, source: str | None
     """``xy`` (mm), or a :class:`SubmissionError` naming ``where`` if it lies beyond
     :data:`MAX_COORDINATE_MM` of the origin: on no sheet, and too large to grade with."""
     if max(abs(xy[0]), abs(xy[1])) > MAX_COORDINATE_MM:
-        raise SubmissionError(f"is at ({xy[0]:.6g}, {xy[1]:.6g}) mm, beyond ±"
-                              f"{MAX_COORDINATE_MM:g} mm of the origin: a drawn plan fits on a "
-                              "sheet", file=source, key=where)
+        raise SubmissionError(message("is at ({x:.6g}, {y:.6g}) mm, beyond ±{limit:g} mm of "
+                                      "the origin: a drawn plan fits on a sheet", x=xy[0],
+                                      y=xy[1], limit=MAX_COORDINATE_MM),
+                              file=source, key=where)
     return xy
+
+
+def _too_large(source: str | None) -> SubmissionError:
+    return SubmissionError(plural("larger than {count} byte", "larger than {count} bytes",
+                                  count=MAX_BYTES), file=source)
+
+
+def _json_problem(error: SpecError) -> Message | str:
+    """What is wrong with a drawing's JSON, as :func:`~planmethod.spec.parse_json` said it: a
+    key's problem as it is, anything else said to be invalid JSON."""
+    said = error.message
+    opening = said.template if isinstance(said, Message) else str(said)
+    if error.key or opening.startswith("not valid JSON"):
+        return said
+    return message("not valid JSON: {problem}", problem=said)
+
+
+def _json_points(parsed: Mapping[str, Any], plan: Any, source: str | None
+                 ) -> dict[str, tuple[float, float]]:
+    """The labelled points of a drawing's JSON (mm), each label once."""
+    points = parsed.get("points", parsed if plan is None else None)
+    if not isinstance(points, Mapping) or not points:
+        raise SubmissionError(message("no labelled points (give \"points\": {{\"p\": [0, 0], "
+                                      "…}})"), file=source, key="points")
+    if len(points) > 1000:
+        raise SubmissionError(plural("more than {count} point", "more than {count} points",
+                                     count=1000), file=source, key="points")
+    names = [str(label) for label in points if label != "plan"]
+    refuse_twice(names, _normal_label, "point", file=source, key="points",
+                 compared=LABELS_COMPARED, error=SubmissionError)
+    return {_normal_label(label): _finite_pair(points[label], f"points.{label}", source)
+            for label in names}
+
+
+def _page_drawing(parsed: Mapping[str, Any], points, plan, source: str | None) -> Drawing:
+    """A drawing downloaded from the workbook page: its points, and the exercise's title,
+    digest and crank angle it names."""
+    title, angle = parsed.get("title"), parsed.get("angle")
+    digest = parsed.get("exercise")
+    if not isinstance(title, str):
+        raise SubmissionError(message("must be the exercise's title, got {given}",
+                                      given=value_text(title)), file=source, key="title")
+    if digest is not None and (not isinstance(digest, str)
+                               or not re.fullmatch(r"[0-9a-f]{16}", digest)):
+        raise SubmissionError(message("must be the exercise's digest (16 hexadecimal digits), "
+                                      "got {given}", given=value_text(digest)),
+                              file=source, key="exercise")
+    if (isinstance(angle, bool) or not isinstance(angle, int | float)
+            or not math.isfinite(angle) or abs(angle) > MAX_ANGLE_DEG):
+        raise SubmissionError(message("must be the crank angle in degrees, within ±{limit:g}°, "
+                                      "got {given}", limit=MAX_ANGLE_DEG,
+                                      given=value_text(angle)), file=source, key="angle")
+    return Drawing(points, plan, (), source, title=title, angle=float(angle), exact_scale=True,
+                   exercise=digest)
 
 
 def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawing:
     """A drawing from JSON point coordinates (mm, y up)."""
     if isinstance(data, bytes):
         if len(data) > MAX_BYTES:
-            raise SubmissionError(f"larger than {MAX_BYTES} bytes", file=source)
+            raise _too_large(source)
         try:
             data = data.decode("utf-8-sig")
         except UnicodeDecodeError:
-            raise SubmissionError("not UTF-8 text", file=source) from None
+            raise SubmissionError(message("not UTF-8 text"), file=source) from None
     try:   # a key given twice would keep one of two points without a word
         parsed = parse_json(data, file=source, unique_keys=True)
     except SpecError as error:    # too deep, not JSON, a key twice, or a number beyond 64 bits
-        message = error.message if error.key or error.message.startswith("not valid JSON") \
-            else f"not valid JSON: {error.message}"
-        raise SubmissionError(message[:200], file=source, key=error.key) from None
+        raise SubmissionError(_json_problem(error), file=source, key=error.key) from None
     if not isinstance(parsed, Mapping):
-        raise SubmissionError("must be an object {\"plan\": …, \"points\": {…}}", file=source)
+        raise SubmissionError(message("must be an object {{\"plan\": …, \"points\": {{…}}}}"),
+                              file=source)
     plan = parsed.get("plan")
     if plan is not None and plan not in ("velocity", "acceleration"):
-        raise SubmissionError("plan must be 'velocity' or 'acceleration', got "
-                              f"{value_text(plan)}", file=source, key="plan")
-    points = parsed.get("points", parsed if plan is None else None)
-    if not isinstance(points, Mapping) or not points:
-        raise SubmissionError("no labelled points (give \"points\": {\"p\": [0, 0], …})",
-                              file=source, key="points")
-    if len(points) > 1000:
-        raise SubmissionError("more than 1000 points", file=source, key="points")
-    names = [str(label) for label in points if label != "plan"]
-    refuse_twice(names, _normal_label, "point", file=source, key="points",
-                 compared=LABELS_COMPARED, error=SubmissionError)
-    out = {_normal_label(label): _finite_pair(points[label], f"points.{label}", source)
-           for label in names}
+        raise SubmissionError(message("plan must be 'velocity' or 'acceleration', got {given}",
+                                      given=value_text(plan)), file=source, key="plan")
+    points = _json_points(parsed, plan, source)
     if parsed.get("format") != DRAWING_FORMAT:
-        return Drawing(out, plan, (), source)
-    title, angle = parsed.get("title"), parsed.get("angle")
-    digest = parsed.get("exercise")
-    if not isinstance(title, str):
-        raise SubmissionError(f"must be the exercise's title, got {value_text(title)}"[:120],
-                              file=source, key="title")
-    if digest is not None and (not isinstance(digest, str)
-                               or not re.fullmatch(r"[0-9a-f]{16}", digest)):
-        raise SubmissionError(f"must be the exercise's digest (16 hexadecimal digits), got "
-                              f"{digest!r}"[:120], file=source, key="exercise")
-    if (isinstance(angle, bool) or not isinstance(angle, int | float)
-            or not math.isfinite(angle) or abs(angle) > MAX_ANGLE_DEG):
-        raise SubmissionError(f"must be the crank angle in degrees, within ±{MAX_ANGLE_DEG:g}°, "
-                              f"got {value_text(angle)}"[:120], file=source, key="angle")
-    return Drawing(out, plan, (), source, title=title, angle=float(angle), exact_scale=True,
-                   exercise=digest)
+        return Drawing(points, plan, (), source)
+    return _page_drawing(parsed, points, plan, source)
 
 
 # -- SVG -------------------------------------------------------------------------------------
@@ -208,12 +243,21 @@ _LENGTH = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(mm|cm|
                      r"\s*$")
 
 
+def _too_many_numbers() -> SubmissionError:
+    return SubmissionError(plural("more than {count} coordinate", "more than {count} coordinates",
+                                  count=MAX_NUMBERS))
+
+
 def _numbers(text: str, budget: list[int]) -> list[float]:
     values = [float(v) for v in _NUMBER.findall(text or "")]
     budget[0] -= len(values)
     if budget[0] < 0:
-        raise SubmissionError(f"more than {MAX_NUMBERS} coordinates")
+        raise _too_many_numbers()
     return values
+
+
+def _unreadable(text: str) -> SubmissionError:
+    return SubmissionError(message("unreadable transform {transform!r}", transform=text[:60]))
 
 
 def _transform(text: str | None, budget) -> np.ndarray:
@@ -223,7 +267,7 @@ def _transform(text: str | None, budget) -> np.ndarray:
     position = 0
     for match in _TRANSFORM.finditer(text):
         if match.start() != position:
-            raise SubmissionError(f"unreadable transform {text[:60]!r}")
+            raise _unreadable(text)
         position = match.end()
         name, args = match.group(1), _numbers(match.group(2), budget)
         step = np.eye(3)
@@ -248,22 +292,23 @@ def _transform(text: str | None, budget) -> np.ndarray:
                 step[0 if name == "skewX" else 1, 1 if name == "skewX" else 0] = math.tan(
                     math.radians(args[0]))
             else:
-                raise SubmissionError(f"unreadable transform {text[:60]!r}")
+                raise _unreadable(text)
         except (OverflowError, ValueError) as error:
-            raise SubmissionError(f"unreadable transform {text[:60]!r}") from error
+            raise _unreadable(text) from error
         # in Python floats: an overflow is inf, never a numpy warning
         determinant = (float(step[0, 0]) * float(step[1, 1])
                        - float(step[0, 1]) * float(step[1, 0]))
         if not math.isfinite(determinant):
-            raise SubmissionError(f"the transform {text[:60]!r} scales the drawing beyond any "
-                                  "finite size")
+            raise SubmissionError(message("the transform {transform!r} scales the drawing "
+                                          "beyond any finite size", transform=text[:60]))
         if abs(determinant) <= 1e-12:
-            raise SubmissionError(f"the transform {text[:60]!r} is singular (it flattens the "
-                                  "drawing onto a line or a point)")
+            raise SubmissionError(message("the transform {transform!r} is singular (it "
+                                          "flattens the drawing onto a line or a point)",
+                                          transform=text[:60]))
         with np.errstate(over="ignore", invalid="ignore"):     # a coordinate then says so
             matrix = matrix @ step
     if text[position:].strip():
-        raise SubmissionError(f"unreadable transform {text[:60]!r}")
+        raise _unreadable(text)
     return matrix
 
 
@@ -273,7 +318,7 @@ def _path_vertices(d: str, budget) -> list[tuple[float, float]]:
                         d or "")
     budget[0] -= len(tokens)
     if budget[0] < 0:
-        raise SubmissionError(f"more than {MAX_NUMBERS} coordinates")
+        raise _too_many_numbers()
     sizes = {"m": 2, "l": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "t": 2, "a": 7, "z": 0}
     out: list[tuple[float, float]] = []
     x = y = start_x = start_y = 0.0
@@ -287,13 +332,13 @@ def _path_vertices(d: str, budget) -> list[tuple[float, float]]:
                 x, y = start_x, start_y
                 continue
         if command is None:
-            raise SubmissionError("a path's data does not start with a command")
+            raise SubmissionError(message("a path's data does not start with a command"))
         size = sizes[command.lower()]
         if size == 0:
-            raise SubmissionError("a path has numbers after Z")
+            raise SubmissionError(message("a path has numbers after Z"))
         args = tokens[index:index + size]
         if len(args) < size or any(a.isalpha() for a in args):
-            raise SubmissionError("a path's data is incomplete")
+            raise SubmissionError(message("a path's data is incomplete"))
         values = [float(a) for a in args]
         index += size
         relative = command.islower()
@@ -325,14 +370,16 @@ def _user_unit_mm(root) -> tuple[float, float]:
     width, height = _length_mm(root.get("width")), _length_mm(root.get("height"))
     for name, size in (("width", width), ("height", height)):
         if size is not None and not (math.isfinite(size[0]) and size[0] > 0):
-            raise SubmissionError(f"the drawing's {name} is {root.get(name)!r}: a drawing has "
-                                  "a positive size")
+            raise SubmissionError(message("the drawing's {attribute} is {given!r}: a drawing "
+                                          "has a positive size", attribute=name,
+                                          given=root.get(name)))
     view = root.get("viewBox")
     if view:
         numbers = [float(v) for v in _NUMBER.findall(view)]
         if len(numbers) == 4 and not (numbers[2] > 0 and numbers[3] > 0
                                       and all(math.isfinite(n) for n in numbers)):
-            raise SubmissionError(f"the viewBox {view[:60]!r} has no positive, finite size")
+            raise SubmissionError(message("the viewBox {view!r} has no positive, finite size",
+                                          view=view[:60]))
         if len(numbers) == 4 and numbers[2] > 0 and numbers[3] > 0:
             sx = (width[0] * UNITS_MM[width[1]] / numbers[2]) if width else PX_MM
             sy = (height[0] * UNITS_MM[height[1]] / numbers[3]) if height else sx
@@ -353,28 +400,29 @@ def parse_drawing_svg(data: bytes | str, *, source: str | None = None) -> Drawin
     if isinstance(data, str):
         data = data.encode("utf-8")
     if len(data) > MAX_BYTES:
-        raise SubmissionError(f"larger than {MAX_BYTES} bytes", file=source)
+        raise _too_large(source)
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
-        raise SubmissionError("not UTF-8 text (an SVG drawing is expected)", file=source) \
-            from None
+        raise SubmissionError(message("not UTF-8 text (an SVG drawing is expected)"),
+                              file=source) from None
     lowered = text.lower()
     if "<!doctype" in lowered or "<!entity" in lowered:
-        raise SubmissionError("refused: the file declares a DOCTYPE or ENTITY (not accepted "
-                              "in submissions)", file=source)
+        raise SubmissionError(message("refused: the file declares a DOCTYPE or ENTITY (not "
+                                      "accepted in submissions)"), file=source)
     if "<svg" not in lowered:
-        raise SubmissionError("not an SVG drawing (no <svg> element)", file=source)
+        raise SubmissionError(message("not an SVG drawing (no <svg> element)"), file=source)
     try:
         parser = ElementTree.XMLParser()
         parser.feed(text)
         root = parser.close()
     except ElementTree.ParseError as error:
         line, column = error.position
-        raise SubmissionError(f"malformed XML at line {line}, column {column + 1}",
-                              file=source) from None
+        raise SubmissionError(message("malformed XML at line {line}, column {column}",
+                                      line=line, column=column + 1), file=source) from None
     if root.tag not in ("svg", f"{SVG_NAMESPACE}svg"):
-        raise SubmissionError(f"the root element is <{root.tag}>, not <svg>", file=source)
+        raise SubmissionError(message("the root element is <{tag}>, not <svg>", tag=root.tag),
+                              file=source)
     try:
         return _read_svg(root, source)
     except SubmissionError as error:
@@ -399,7 +447,8 @@ def _coordinate(element, name: str, budget: list[int]) -> float:
     values = _numbers(text, budget)
     first = _NUMBER.match(text.strip())
     if first is None or not values or not math.isfinite(values[0]):
-        raise SubmissionError(f"{name}={text[:40]!r} is not a finite number",
+        raise SubmissionError(message("{attribute}={given!r} is not a finite number",
+                                      attribute=name, given=text[:40]),
                               key=_element_name(element))
     return values[0]
 
@@ -410,74 +459,98 @@ def _local(tag: Any) -> str:
     return tag.rpartition("}")[2]
 
 
-def _read_svg(root, source: str | None) -> Drawing:
-    sx, sy = _user_unit_mm(root)
-    budget = [MAX_NUMBERS]
-    to_mm = np.diag([sx, -sy, 1.0])  # y up
-    points: list[tuple[float, float]] = []
-    labels: list[tuple[str, tuple[float, float]]] = []   # (text as written, its anchor)
-    notes: set[str] = set()
-    plan = root.get("data-planmethod-plan")
-    count = 0
-    stack = [(root, to_mm, 0)]
-    while stack:
-        element, matrix, depth = stack.pop()
-        count += 1
-        if count > MAX_ELEMENTS:
-            raise SubmissionError(f"more than {MAX_ELEMENTS} elements")
-        if depth > MAX_DEPTH:
-            raise SubmissionError(f"elements nested deeper than {MAX_DEPTH}")
-        tag = _local(element.tag)
-        if tag in ("script", "foreignObject", "image", "use", "style", "a", "iframe"):
-            notes.add(f"<{tag}> ignored")
-            continue
-        if tag in ("defs", "metadata", "title", "desc", "clipPath", "mask", "marker",
-                   "pattern", "symbol"):
-            continue
-        step = _transform(element.get("transform"), budget)   # its own errstate inside
-        with np.errstate(over="ignore", invalid="ignore"):     # a coordinate then says so
-            matrix = matrix @ step
+#: elements whose content is never read (a note says so)
+_IGNORED = ("script", "foreignObject", "image", "use", "style", "a", "iframe")
+#: elements that draw nothing a point is read from
+_UNDRAWN = ("defs", "metadata", "title", "desc", "clipPath", "mask", "marker", "pattern",
+            "symbol")
 
-        def place(x: float, y: float, m=matrix, e=element) -> tuple[float, float]:
-            with np.errstate(invalid="ignore", over="ignore"):
-                u = m @ np.array([x, y, 1.0])
-            if not (math.isfinite(u[0]) and math.isfinite(u[1])):
-                raise SubmissionError("a coordinate is not a finite number",
-                                      key=_element_name(e))
-            return (float(u[0]), float(u[1]))
 
-        def attr(name: str, e=element) -> float:
-            return _coordinate(e, name, budget)
+class _SvgReader:
+    """Walks an SVG's elements (bounded in count and depth) and collects the drawn points
+    (line and path ends, vertices, circles' centres) and the labels (short texts, each with
+    its anchor) in mm, y up, and the elements it ignored."""
+
+    def __init__(self, root) -> None:
+        sx, sy = _user_unit_mm(root)
+        self.root, self.to_mm = root, np.diag([sx, -sy, 1.0])  # y up
+        self.budget = [MAX_NUMBERS]
+        self.points: list[tuple[float, float]] = []
+        self.labels: list[tuple[str, tuple[float, float]]] = []   # (text as written, anchor)
+        self.ignored: set[str] = set()
+
+    def walk(self) -> None:
+        count = 0
+        stack = [(self.root, self.to_mm, 0)]
+        while stack:
+            element, matrix, depth = stack.pop()
+            count += 1
+            if count > MAX_ELEMENTS:
+                raise SubmissionError(plural("more than {count} element",
+                                             "more than {count} elements", count=MAX_ELEMENTS))
+            if depth > MAX_DEPTH:
+                raise SubmissionError(message("elements nested deeper than {depth}",
+                                              depth=MAX_DEPTH))
+            tag = _local(element.tag)
+            if tag in _IGNORED:
+                self.ignored.add(tag)
+                continue
+            if tag in _UNDRAWN:
+                continue
+            step = _transform(element.get("transform"), self.budget)  # its own errstate inside
+            with np.errstate(over="ignore", invalid="ignore"):     # a coordinate then says so
+                matrix = matrix @ step
+            if self.read(element, tag, matrix):
+                for child in reversed(list(element)):
+                    stack.append((child, matrix, depth + 1))
+
+    def place(self, x: float, y: float, matrix, element) -> tuple[float, float]:
+        with np.errstate(invalid="ignore", over="ignore"):
+            u = matrix @ np.array([x, y, 1.0])
+        if not (math.isfinite(u[0]) and math.isfinite(u[1])):
+            raise SubmissionError(message("a coordinate is not a finite number"),
+                                  key=_element_name(element))
+        return (float(u[0]), float(u[1]))
+
+    def read(self, element, tag: str, matrix) -> bool:
+        """Read one element's points or label; whether its children are read too."""
+        def at(x_name: str, y_name: str) -> tuple[float, float]:
+            return self.place(_coordinate(element, x_name, self.budget),
+                              _coordinate(element, y_name, self.budget), matrix, element)
 
         if tag in ("circle", "ellipse"):
-            points.append(place(attr("cx"), attr("cy")))
+            self.points.append(at("cx", "cy"))
         elif tag == "line":
-            points += [place(attr("x1"), attr("y1")), place(attr("x2"), attr("y2"))]
+            self.points += [at("x1", "y1"), at("x2", "y2")]
         elif tag in ("polyline", "polygon"):
-            values = _numbers(element.get("points", ""), budget)
-            if _NUMBER.sub("", element.get("points", "")).strip(" ,\t\n\r"):
-                raise SubmissionError(f"points={element.get('points', '')[:40]!r} holds "
-                                      "something that is not a finite number",
+            listed = element.get("points", "")
+            values = _numbers(listed, self.budget)
+            if _NUMBER.sub("", listed).strip(" ,\t\n\r"):
+                raise SubmissionError(message("points={given!r} holds something that is not a "
+                                              "finite number", given=listed[:40]),
                                       key=_element_name(element))
-            points += [place(values[i], values[i + 1]) for i in range(0, len(values) - 1, 2)]
+            self.points += [self.place(values[i], values[i + 1], matrix, element)
+                            for i in range(0, len(values) - 1, 2)]
         elif tag == "path":
-            points += [place(x, y) for x, y in _path_vertices(element.get("d", ""), budget)]
+            self.points += [self.place(x, y, matrix, element)
+                            for x, y in _path_vertices(element.get("d", ""), self.budget)]
         elif tag == "text":
             content = "".join(element.itertext()).strip()
             if content and len(content) <= 12:
-                x, y = attr("x"), attr("y")
+                x, y = (_coordinate(element, name, self.budget) for name in ("x", "y"))
                 span = next((c for c in element if _local(c.tag) == "tspan" and c.get("x")),
                             None)
                 if span is not None and not element.get("x"):
-                    x, y = attr("x", span), attr("y", span)
-                labels.append((content, _on_a_sheet(place(x, y), _element_name(element),
-                                                    None)))
-            continue
-        for child in reversed(list(element)):
-            stack.append((child, matrix, depth + 1))
-    if not labels:
-        raise SubmissionError("no labelled points: label the plan's points with text "
-                              "(p or π for the pole, b, c, …) next to them")
+                    x, y = (_coordinate(span, name, self.budget) for name in ("x", "y"))
+                self.labels.append((content, _on_a_sheet(self.place(x, y, matrix, element),
+                                                         _element_name(element), None)))
+            return False
+        return True
+
+
+def _marked(labels, points) -> tuple[dict[str, tuple[float, float]], list]:
+    """Each label's point: the nearest drawn point within :data:`LABEL_REACH_MM` of its
+    anchor, or the anchor; (the first place of each point, every label with its place)."""
     drawn = np.asarray(points, dtype=float).reshape(-1, 2)
     out: dict[str, tuple[float, float]] = {}
     marked: list[tuple[str, str, tuple[float, float]]] = []
@@ -492,12 +565,24 @@ def _read_svg(root, source: str | None) -> Drawing:
         label = _normal_label(written)
         marked.append((written, label, (float(xy[0]), float(xy[1]))))
         out.setdefault(label, marked[-1][2])
+    return out, marked
+
+
+def _read_svg(root, source: str | None) -> Drawing:
+    reader = _SvgReader(root)
+    reader.walk()
+    if not reader.labels:
+        raise SubmissionError(message("no labelled points: label the plan's points with text "
+                                      "(p or π for the pole, b, c, …) next to them"))
+    out, marked = _marked(reader.labels, reader.points)
+    plan = root.get("data-planmethod-plan")
     if plan is None:
         if "π" in out and "p" not in out:
             plan = "acceleration"
         elif "p" in out and "π" not in out:
             plan = "velocity"
-    return Drawing(out, plan, tuple(sorted(notes)), source, (), labels=tuple(marked))
+    notes = tuple(POINT_PARTS[PointPart.IGNORED].replace(tag=tag) for tag in sorted(reader.ignored))
+    return Drawing(out, plan, notes, source, (), labels=tuple(marked))
 
 
 # -- grading ---------------------------------------------------------------------------------
@@ -548,9 +633,10 @@ def key_at_angle(key: Mapping[str, Any], angle: float) -> Mapping[str, Any]:
         return key
     exercise = key_exercise(key)
     if exercise is None:
-        raise SubmissionError(f"the key of {key.get('title')!r} keeps no exercise tables: "
-                              f"it cannot be built at {_crank_angle_symbol(key)} = "
-                              f"{float(angle):g}°")
+        raise SubmissionError(message("the key of {title!r} keeps no exercise tables: it "
+                                      "cannot be built at {phi} = {angle:g}°",
+                                      title=key.get("title"), phi=_crank_angle_symbol(key),
+                                      angle=float(angle)))
     posed = pose(exercise.mechanism, float(angle), links=plan_scene(exercise).links)
     variant = Variant(str(key.get("student")), int(key.get("seed", 0)),
                       int(key.get("attempt", 0)), key["exercise"], dict(key.get("given", {})),
@@ -573,19 +659,20 @@ def key_for_drawing(key: Mapping[str, Any], drawing: Drawing) -> Mapping[str, An
 
     title = key.get("title")
     if drawing.title is not None and title is not None and drawing.title != title:
-        raise SubmissionError(f"the drawing is of {drawing.title!r}, the key of {title!r}: "
-                              "grade it against the key of its own exercise",
-                              file=drawing.source)
+        raise SubmissionError(message("the drawing is of {drawn!r}, the key of {title!r}: "
+                                      "grade it against the key of its own exercise",
+                                      drawn=drawing.title, title=title), file=drawing.source)
     if drawing.exercise is None and drawing.angle is None:
         return key
     exercise = key_exercise(key)
     if drawing.exercise is not None and exercise is not None:
         digest = exercise_digest(exercise)
         if digest != drawing.exercise:
-            raise SubmissionError(
-                f"the drawing was made on the page of another version of {title!r} (exercise "
-                f"digest {drawing.exercise}, the key's exercise {digest}): grade it against "
-                "the exercise its page was made from", file=drawing.source)
+            raise SubmissionError(message(
+                "the drawing was made on the page of another version of {title!r} (exercise "
+                "digest {drawn}, the key's exercise {digest}): grade it against the exercise "
+                "its page was made from", title=title, drawn=drawing.exercise, digest=digest),
+                file=drawing.source)
     if drawing.angle is None or exercise is None:
         return key
     with about(drawing.source, key="angle"):   # e.g. cannot be assembled at that angle
@@ -605,10 +692,11 @@ def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
     other_angle = (drawing.angle is not None and isinstance(angle, int | float)
                    and abs((drawing.angle - angle + 180.0) % 360.0 - 180.0) > 1e-6)
     if other_title or other_angle:
-        phi = _crank_angle_symbol(key)
-        raise SubmissionError(f"the drawing is of {drawing.title!r} at {phi} = "
-                              f"{drawing.angle:g}°, the key of {title!r} at {phi} = {angle:g}°: "
-                              "grade it against the key of its own exercise and angle",
+        raise SubmissionError(message("the drawing is of {drawn!r} at {phi} = {drawn_angle:g}°, "
+                                      "the key of {title!r} at {phi} = {angle:g}°: grade it "
+                                      "against the key of its own exercise and angle",
+                                      drawn=drawing.title, phi=_crank_angle_symbol(key),
+                                      drawn_angle=drawing.angle, title=title, angle=angle),
                               file=drawing.source)
 
 
@@ -638,26 +726,143 @@ def _one_place_each(drawing: Drawing, labels) -> None:
         places = {(round(x, 3), round(y, 3)): mark for mark in marks for x, y in [mark[2]]}
         if len(places) > 1:
             (first, _, one), (second, _, other) = list(places.values())[:2]
-            raise SubmissionError(   # where the SVG puts them, in mm: its y points down
-                f"<text> {first!r} at ({one[0]:.1f}, {-one[1]:.1f}) mm and <text> {second!r} "
-                f"at ({other[0]:.1f}, {-other[1]:.1f}) mm both mark the point {label} "
-                f"({LABELS_COMPARED}): keep one", file=drawing.source)
+            raise SubmissionError(message(   # where the SVG puts them, in mm: y points down
+                "<text> {first!r} at ({x:.1f}, {y:.1f}) mm and <text> {second!r} at "
+                "({other_x:.1f}, {other_y:.1f}) mm both mark the point {label} ({compared}): "
+                "keep one", first=first, x=one[0], y=-one[1], second=second, other_x=other[0],
+                other_y=-other[1], label=label, compared=LABELS_COMPARED), file=drawing.source)
 
 
-def _line_name(step: Mapping[str, Any]) -> str:
-    """``through b: v_CB ⟂ CB`` → ``the line v_CB ⟂ CB through b``."""
-    text = step["text"].partition(": ")[2]
-    return f"the line {text} through {step.get('start')}".replace("  ", " ")
+@dataclass(frozen=True)
+class _Sheet:
+    """What a drawn point is graded against: the student's points (aligned at the pole,
+    scaled), the right points and their discs, the step that places each point, the lines
+    each intersection lies on, the read steps of the quantities asked, and the links'
+    numbers its name is written with."""
+
+    student: Mapping[str, np.ndarray]
+    points: Mapping[str, np.ndarray]
+    radii: Mapping[str, float]
+    by_end: Mapping[str, Mapping[str, Any]]
+    lines: Mapping[str, tuple[ConstructionLine, ...]]
+    reads: tuple[Mapping[str, Any], ...]
+    numbers: Mapping[str, int]
+
+    def name(self, label: str) -> str:
+        """A label as the course writes it (b₃)."""
+        return plan_point_name(label, self.numbers)
+
+    def drawn(self, label: str) -> np.ndarray:
+        """Where the student drew a point, or its right place if it is not drawn."""
+        found = _match(self.student, label)
+        return found if found is not None else self.points[label]
+
+
+def _plan_entry(key: Mapping[str, Any], plan: str | None, drawing: Drawing) -> Mapping:
+    """The key's table of the plan a drawing is graded as."""
+    if plan not in ("velocity", "acceleration"):
+        raise SubmissionError(message("cannot tell which plan this is: label the pole p "
+                                      "(velocity) or π (acceleration), or say which"),
+                              file=drawing.source)
+    entry = key["plans"].get(plan)
+    if entry is None:
+        raise SubmissionError(_NO_PLAN[plan], file=drawing.source)
+    return entry
+
+
+#: a key without the plan a drawing is graded as
+_NO_PLAN = {"velocity": message("the key has no velocity plan"),
+            "acceleration": message("the key has no acceleration plan")}
+
+
+def _aligned(drawing: Drawing, pole: str) -> dict[str, np.ndarray]:
+    """The drawing's points moved so that its pole is at the origin."""
+    origin = _match(drawing.points, pole)
+    if origin is None and pole == "π":
+        origin = _match(drawing.points, "p")  # a pole labelled p on an acceleration sheet
+    if origin is None:
+        raise SubmissionError(message("no pole labelled {pole}: cannot align the plan",
+                                      pole=pole), file=drawing.source)
+    return {label: np.asarray(xy, dtype=float) - np.asarray(origin)
+            for label, xy in drawing.points.items()}
+
+
+def _rescaled(student: dict[str, np.ndarray], entry: Mapping[str, Any],
+              numbers: Mapping[str, int]) -> tuple[dict[str, np.ndarray], float, Message | None]:
+    """(the points, the factor they were scaled by, the note that says so): a drawing whose
+    first vector laid off (pb or πb, given data) has the wrong length is scaled to it (an
+    editor's unit mix-up); one more than :data:`MAX_RESCALE` times off is graded as drawn."""
+    first = next((s for s in entry["steps"] if s["action"] == "lay_off"), None)
+    if first is None:
+        return student, 1.0, None
+    end = first["end"]
+    found = _match(student, end)
+    right = np.asarray(entry["points_mm"][end])
+    if found is None or not np.hypot(*found) > 0:
+        return student, 1.0, None
+    drawn, length = float(np.hypot(*found)), float(np.hypot(*right))
+    ratio = drawn / length
+    tolerance = entry["tolerance_mm"].get(end, 0.5) / length
+    segment = {"pole": entry["pole"], "end": plan_point_name(end, numbers), "drawn": drawn,
+               "right": length}
+    if not 1 / MAX_RESCALE <= ratio <= MAX_RESCALE:
+        return student, 1.0, POINT_PARTS[PointPart.SCALE_FAR].replace(limit=MAX_RESCALE,
+                                                                      **segment)
+    if abs(ratio - 1) <= max(tolerance, 0.02):
+        return student, 1.0, None
+    factor = 1.0 / ratio
+    return ({label: xy * factor for label, xy in student.items()}, factor,
+            POINT_PARTS[PointPart.SCALE_FIXED].replace(factor=factor, **segment))
+
+
+def _sheet(key: Mapping[str, Any], entry: Mapping[str, Any], student, numbers) -> _Sheet:
+    steps = entry["steps"]
+    asked = {question["id"] for question in key.get("questions", ())}
+    return _Sheet(student, {k: np.asarray(v, dtype=float) for k, v in entry["points_mm"].items()},
+                  entry["tolerance_mm"], _steps_by_end(steps), point_lines(entry),
+                  tuple(s for s in steps if s["action"] == "read" and s.get("quantity") in asked),
+                  numbers)
+
+
+def _grade_point(label: str, required: bool, sheet: _Sheet,
+                 candidates: Sequence) -> GradedPoint | None:
+    """One point's grade (None for a helper point not drawn): within its disc, or where it
+    is off and why, named with the known mistakes that put a point there (``candidates``:
+    the key's ``mistake_points`` of it)."""
+    name = sheet.name(label)
+    found = _match(sheet.student, label)
+    if found is None:
+        return GradedPoint(label, name, False, False, 0.0, 1.0,
+                           POINTS[PointVerdict.MISSING].replace(point=name)) if required else None
+    right = sheet.points[label]
+    radius = float(sheet.radii.get(label, 0.5))
+    distance = float(np.hypot(*(found - right)))
+    inside = distance <= radius       # the disc itself, as the workbook page compares
+    graded = {"point": label, "name": name, "found": True, "correct": bool(inside),
+              "score": (1.0 if inside else 0.0) if required else 0.0,
+              "max_score": 1.0 if required else 0.0, "distance_mm": distance,
+              "tolerance_mm": radius}
+    if inside:
+        return GradedPoint(feedback=POINTS[PointVerdict.WITHIN].replace(
+            point=name, radius=radius, distance=distance), **graded)
+    feedback = _explain(label, found, right, distance, radius, sheet)
+    named = named_mistakes(candidates, float(found[0]), float(found[1]), radius)
+    if named:
+        feedback = POINT_PARTS[PointPart.MISTAKES].replace(sentence=feedback,
+                                                           lies=mistake_sentence(named))
+    return GradedPoint(feedback=feedback, mistakes=tuple(named), **graded)
 
 
 def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = None, *,
-                  rescale: bool = True) -> dict:
+                  rescale: bool = True) -> GradedDrawing:
     """Grade a drawn plan against a key.
 
     The drawing is moved so that its pole is at the key's pole; with ``rescale`` a drawing
     whose laid-off first vector (pb or πb, given data) has the wrong length is scaled to it
     first (an editor's unit mix-up), and the feedback says so. Each graded point scores if it
-    lies in its tolerance disc: no further from its right place than the disc's radius.
+    lies in its tolerance disc: no further from its right place than the disc's radius. What
+    a student reads names points and quantities as the course does (b₃, ω₃), never as the
+    key's ids (b@lever, omega_lever); a point's ``point`` keeps the id a program matches.
 
     Raises
     ------
@@ -666,144 +871,96 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     """
     plan = plan or drawing.plan
     _check_exercise(key, drawing)
-    if plan not in ("velocity", "acceleration"):
-        raise SubmissionError("cannot tell which plan this is: label the pole p (velocity) or "
-                              "π (acceleration), or say which", file=drawing.source)
-    entry = key["plans"].get(plan)
-    if entry is None:
-        raise SubmissionError(f"the key has no {plan} plan", file=drawing.source)
+    entry = _plan_entry(key, plan, drawing)
     pole = entry["pole"]
     _one_place_each(drawing, [pole, *(["p"] if pole == "π" else []), *entry["points_mm"]])
-    origin = _match(drawing.points, pole)
-    if origin is None and pole == "π":
-        origin = _match(drawing.points, "p")  # a pole labelled p on an acceleration sheet
-    if origin is None:
-        raise SubmissionError(f"no pole labelled {pole}: cannot align the plan",
-                              file=drawing.source)
-    student = {label: np.asarray(xy, dtype=float) - np.asarray(origin)
-               for label, xy in drawing.points.items()}
-    feedback: list[str] = list(drawing.notes)
-    steps = entry["steps"]
-    first = next((s for s in steps if s["action"] == "lay_off"), None)
+    student = _aligned(drawing, pole)
+    numbers = key_numbers(key)
+    notes: list[Message] = list(drawing.notes)
     factor = 1.0
-    if rescale and not drawing.exact_scale and first is not None:
-        end = first["end"]
-        found = _match(student, end)
-        right = np.asarray(entry["points_mm"][end])
-        if found is not None and np.hypot(*found) > 0:
-            ratio = float(np.hypot(*found) / np.hypot(*right))
-            tolerance = entry["tolerance_mm"].get(end, 0.5) / float(np.hypot(*right))
-            if not 1 / MAX_RESCALE <= ratio <= MAX_RESCALE:
-                feedback.append(f"the drawing's scale is off: ({pole}{end}) measures "
-                                f"{np.hypot(*found):.4g} mm instead of {np.hypot(*right):.1f} "
-                                f"mm, more than {MAX_RESCALE:g} times off; it was graded as "
-                                "drawn")
-            elif abs(ratio - 1) > max(tolerance, 0.02):
-                factor = 1.0 / ratio
-                feedback.append(f"the drawing's scale is off: ({pole}{end}) measures "
-                                f"{np.hypot(*found):.1f} mm instead of {np.hypot(*right):.1f} mm"
-                                f"; it was graded after scaling by {factor:.4g}")
-                student = {label: xy * factor for label, xy in student.items()}
-    points = {k: np.asarray(v, dtype=float) for k, v in entry["points_mm"].items()}
-    radii = entry["tolerance_mm"]
-    by_end = _steps_by_end(steps)
-    asked = {q["id"] for q in key.get("questions", ())}
-    reads = [s for s in steps if s["action"] == "read" and s.get("quantity") in asked]
-    lines = {s["number"]: s for s in steps if s["action"] == "line"}
-    results = []
+    if rescale and not drawing.exact_scale:
+        student, factor, note = _rescaled(student, entry, numbers)
+        notes += [note] if note is not None else []
+    sheet = _sheet(key, entry, student, numbers)
     graded = graded_labels(entry)
-    for label in list(graded) + [k for k in points if k not in graded and "_" in k]:
-        required = label in graded
-        found = _match(student, label)
-        if found is None:
-            if required:
-                results.append({"point": label, "found": False, "correct": False,
-                                "score": 0.0, "max_score": 1.0,
-                                "feedback": f"{label}: not found on the drawing"})
-            continue
-        right = points[label]
-        radius = float(radii.get(label, 0.5))
-        distance = float(np.hypot(*(found - right)))
-        inside = distance <= radius       # the disc itself, as the workbook page compares
-        result = {"point": label, "found": True, "correct": bool(inside),
-                  "distance_mm": distance, "tolerance_mm": radius,
-                  "score": (1.0 if inside else 0.0) if required else 0.0,
-                  "max_score": 1.0 if required else 0.0}
-        if inside:
-            result["feedback"] = f"{label}: within {radius:.2g} mm ({distance:.2g} mm off)"
-        else:
-            result["feedback"] = _explain(label, found, right, distance, radius, student,
-                                          points, by_end.get(label), lines, reads)
-            named = named_mistakes(entry.get("mistake_points", {}).get(label, ()),
-                                   float(found[0]), float(found[1]), radius)
-            if named:
-                result["mistakes"] = named
-                result["feedback"] += f"; {mistake_sentence(named)}"
-        results.append(result)
+    wrong = entry.get("mistake_points", {})
+    results = [result for label in [*graded, *(k for k in sheet.points
+                                               if k not in graded and "_" in k)]
+               if (result := _grade_point(label, label in graded, sheet,
+                                          wrong.get(label, ()))) is not None]
     # a whole-plan mistake only where every wrong point is named with it, by the one rule
     # the workbook page applies to the same data (plan_points.common_mistakes)
-    common = common_mistakes([r.get("mistakes", []) for r in results
-                              if r["found"] and not r["correct"]])
+    common = common_mistakes([list(r.mistakes) for r in results if r.found and not r.correct])
     if common:
-        feedback.append(plan_sentence(common))
-    score = sum(r["score"] for r in results)
-    total = sum(r["max_score"] for r in results)
-    # what a student reads names points and quantities as the course does (b₃, ω₃), never
-    # as the key's ids (b@lever, omega_lever); "point" keeps the id a program matches
-    numbers = key_numbers(key)
-    for result in results:
-        result["name"] = course_text(result["point"], numbers)
-        result["feedback"] = course_text(result["feedback"], numbers)
-    feedback = [course_text(text, numbers) for text in feedback]
-    return {"plan": plan, "student": key.get("student"), "score": score, "max_score": total,
-            "scale_factor": factor, "points": results, "plan_mistakes": common,
-            "feedback": feedback}
+        notes.append(plan_sentence(common))
+    return GradedDrawing(plan, key.get("student"), sum(r.score for r in results),
+                         sum(r.max_score for r in results), factor, tuple(results),
+                         tuple(common), tuple(notes))
 
 
-def _explain(label, found, right, distance, radius, student, points, step, lines,
-             reads) -> str:
-    text = f"{label} is {distance:.1f} mm off (tolerance {radius:.2g} mm)"
-    if step is not None and step["action"] == "intersect":
-        parts = []
-        for number in step.get("lines", ()):
-            line = lines.get(number)
-            if line is None:
-                continue
-            start = _match(student, line["start"])
-            base = start if start is not None else points[line["start"]]
-            angle = math.radians(line["direction_deg"])
-            direction = np.array([math.cos(angle), math.sin(angle)])
-            off_line = abs(float(cross(found - base, direction)))   # from the whole line
-            along = float((found - right) @ direction)
-            if off_line <= radius and abs(along) > radius:
-                parts.append(f"it lies on {_line_name(line)} but {abs(along):.1f} mm off "
-                             f"along it")
-            elif off_line > radius:
-                parts.append(f"it is {off_line:.1f} mm off {_line_name(line)}")
-        if parts:
-            text = f"{label} is {distance:.1f} mm off: " + "; ".join(parts)
-    elif step is not None and step["action"] == "lay_off":
-        drawn = float(np.hypot(*(found - (_match(student, step["start"])
-                                          if _match(student, step["start"]) is not None
-                                          else points[step["start"]]))))
-        text += (f": ({step['start']}{label}) should be {step['length_mm']:.1f} mm at "
-                 f"{step['direction_deg']:.0f}°, it is {drawn:.1f} mm")
-    elif step is not None and step["action"] == "similarity":
-        text += f" (placed by the similarity rule from {', '.join(step.get('references', []))})"
+def _line_part(line: ConstructionLine, found: np.ndarray, right: np.ndarray, radius: float,
+               sheet: _Sheet) -> Message | None:
+    """How a point is off one line it is the intersection of: off the line, or on it and off
+    along it (None where it is on the line and near its right place)."""
+    base = sheet.drawn(line.through)
+    angle = math.radians(line.direction_deg)
+    direction = np.array([math.cos(angle), math.sin(angle)])
+    off_line = abs(float(cross(found - base, direction)))   # from the whole line
+    along = float((found - right) @ direction)
+    fields = {"line": line.name, "through": sheet.name(line.through)}
+    if off_line <= radius and abs(along) > radius:
+        return POINT_PARTS[PointPart.ON_THE_LINE].replace(along=abs(along), **fields)
+    if off_line > radius:
+        return POINT_PARTS[PointPart.OFF_THE_LINE].replace(off=off_line, **fields)
+    return None
+
+
+def _readings(label: str, sheet: _Sheet) -> list[Message]:
+    """The quantities read off a point that it makes wrong by half a percent or more."""
     meanings = []
-    for read in reads:
+    for read in sheet.reads:
         if label not in (read["start"], read["end"]):
             continue
-        start, end = _match(student, read["start"]), _match(student, read["end"])
+        start, end = _match(sheet.student, read["start"]), _match(sheet.student, read["end"])
         if read["start"] in ("p", "π") and start is None:
             start = np.zeros(2)
         if start is None or end is None or not read.get("length_mm"):
             continue
-        length = float(np.hypot(*(end - start)))
-        change = length / read["length_mm"] - 1.0
+        change = float(np.hypot(*(end - start))) / read["length_mm"] - 1.0
         if abs(change) >= 0.005:
-            meanings.append(f"{read['quantity']} read {abs(change) * 100:.0f} % "
-                            f"{'high' if change > 0 else 'low'}")
-    if meanings:
-        text += ": " + ", ".join(dict.fromkeys(meanings))
-    return text
+            part = PointPart.READ_HIGH if change > 0 else PointPart.READ_LOW
+            meanings.append(POINT_PARTS[part].replace(
+                quantity=symbol(read["quantity"], sheet.numbers), percent=abs(change) * 100))
+    return list(dict.fromkeys(meanings))
+
+
+def _explain(label: str, found: np.ndarray, right: np.ndarray, distance: float,
+             radius: float, sheet: _Sheet) -> Message:
+    """Where a misplaced point is off: the lines of an intersection it is off (or on and off
+    along), the length and direction of a vector laid off, the similarity rule that places
+    an image; and the readings it makes wrong."""
+    name, step = sheet.name(label), sheet.by_end.get(label)
+    sentence = POINTS[PointVerdict.OFF].replace(point=name, distance=distance, radius=radius)
+    action = step["action"] if step is not None else None
+    if action == "intersect":
+        parts = [part for line in sheet.lines.get(label, ())
+                 if (part := _line_part(line, found, right, radius, sheet)) is not None]
+        if len(parts) == 1:
+            sentence = POINTS[PointVerdict.OFF_LINE].replace(point=name, distance=distance,
+                                                             line=parts[0])
+        elif parts:
+            sentence = POINTS[PointVerdict.OFF_LINES].replace(point=name, distance=distance,
+                                                              line=parts[0], other=parts[1])
+    elif action == "lay_off":
+        drawn = float(np.hypot(*(found - sheet.drawn(step["start"]))))
+        sentence = POINTS[PointVerdict.LAID_OFF].replace(
+            point=name, distance=distance, radius=radius, start=sheet.name(step["start"]),
+            length=step["length_mm"], direction=step["direction_deg"], drawn=drawn)
+    elif action == "similarity":
+        sentence = POINTS[PointVerdict.SIMILARITY].replace(
+            point=name, distance=distance, radius=radius,
+            references=[sheet.name(reference) for reference in step.get("references", [])])
+    readings = _readings(label, sheet)
+    if readings:
+        sentence = POINT_PARTS[PointPart.READINGS].replace(sentence=sentence, readings=readings)
+    return sentence

@@ -45,7 +45,10 @@ from xml.sax.saxutils import escape
 
 from ..io import csv_text, json_text
 from ..vocabulary import shown_title, xml_characters
+from ..words import Message, message, render, template
+from ..words.language import catalogue, current
 from .answers import FEEDBACK_LEVELS, feedback_text
+from .results import GradedDrawing, KeyQuestion, StudentGrade
 
 __all__ = [
     "cloze_field",
@@ -79,8 +82,25 @@ def _format(value: float) -> str:
     return f"{value:.6g}"
 
 
+def _spoken(sentence: Message) -> str:
+    """A template in the language spoken, its fields left in it for code that fills them
+    itself (an exported script, which cannot import planmethod)."""
+    return catalogue(current()).gettext(sentence.template)
+
+
+def _level(feedback: str) -> None:
+    if feedback not in FEEDBACK_LEVELS:
+        raise ValueError(render(message("feedback level {level!r} is not one of {levels}",
+                                        level=feedback, levels=list(FEEDBACK_LEVELS))))
+
+
+#: a drawn plan by its name (a Gradescope test's name)
+PLAN_NAMES = {"velocity": message("velocity plan"),
+              "acceleration": message("acceleration plan")}
+
+
 # -- Gradescope ------------------------------------------------------------------------------
-def gradescope_results(result: Mapping[str, Any], drawings: Iterable[Mapping[str, Any]] = (),
+def gradescope_results(result: StudentGrade, drawings: Iterable[GradedDrawing] = (),
                        *, feedback: str = "hints") -> dict:
     """Gradescope's ``results.json`` for one graded submission (numeric answers and,
     optionally, drawn plans graded by :func:`~planmethod.grading.drawings.grade_drawing`).
@@ -91,22 +111,25 @@ def gradescope_results(result: Mapping[str, Any], drawings: Iterable[Mapping[str
     ``score`` only the points. A drawn plan's point-by-point feedback is shown at ``full``.
     """
     tests = []
-    for number, question in enumerate(result.get("questions", ()), start=1):
-        tests.append({"name": question["id"], "number": str(number),
-                      "score": question["score"], "max_score": question["max_score"],
-                      "status": "passed" if question["correct"] else "failed",
-                      "output": feedback_text(question, feedback), "visibility": "visible"})
-    score = float(result.get("score", 0.0))
+    for number, question in enumerate(result.questions, start=1):
+        tests.append({"name": question.id, "number": str(number),
+                      "score": question.score, "max_score": question.max_score,
+                      "status": "passed" if question.correct else "failed",
+                      "output": render(feedback_text(question, feedback)),
+                      "visibility": "visible"})
+    score = float(result.score)
     for drawing in drawings:
-        lines = ([p["feedback"] for p in drawing["points"]] + list(drawing.get("feedback", ()))
+        lines = ([point.feedback for point in drawing.points] + list(drawing.feedback)
                  if feedback == "full" else [])
-        tests.append({"name": f"{drawing['plan']} plan", "score": drawing["score"],
-                      "max_score": drawing["max_score"],
-                      "status": "passed" if drawing["score"] == drawing["max_score"]
-                      else "failed", "output": "\n".join(lines), "visibility": "visible"})
-        score += float(drawing["score"])
-    output = result.get("error") or (f"Variant {result.get('variant')}: "
-                                     f"{_format(score)} points.")
+        tests.append({"name": render(PLAN_NAMES[drawing.plan]), "score": drawing.score,
+                      "max_score": drawing.max_score,
+                      "status": "passed" if drawing.score == drawing.max_score
+                      else "failed", "output": "\n".join(render(line) for line in lines),
+                      "visibility": "visible"})
+        score += float(drawing.score)
+    output = render(result.error if result.error is not None else
+                    message("Variant {variant}: {score:.6g} points.", variant=result.variant,
+                            score=score))
     return {"score": score, "output": output, "visibility": "visible",
             "stdout_visibility": "hidden", "tests": tests}
 
@@ -130,6 +153,12 @@ ROOT = Path(os.environ.get("AUTOGRADER_ROOT", "/autograder"))
 SOURCE = Path(__file__).resolve().parent
 RESULTS = ROOT / "results" / "results.json"
 FEEDBACK = "@FEEDBACK@"
+
+
+ROSTER = @ROSTER@
+SUBMIT = @SUBMIT@
+UNREADABLE = @UNREADABLE@
+UNKNOWN = @UNKNOWN@
 
 
 def finish(output):
@@ -174,18 +203,18 @@ def main():
     who = identities()
     key = variant(bundle, who)
     if key is None:
-        finish("Your e-mail or SID is not on this assignment's roster: ask your instructor.")
+        finish(ROSTER)
     submitted = [ROOT / "submission" / name for name in ("answers.json", "answers.csv")]
     answers = next((path for path in submitted if path.is_file()), None)
     if answers is None:
-        finish("Submit answers.json or answers.csv with your answers.")
+        finish(SUBMIT)
     done = subprocess.run([sys.executable, "-m", "planmethod", "grade", str(SOURCE / "keys.json"),
                            str(answers), "--student", str(key["student"]), "--feedback",
                            FEEDBACK, "--gradescope", str(RESULTS), "--quiet"],
                           capture_output=True, text=True)
     if done.returncode != 0:
-        finish("Your answers could not be read: " + (done.stderr.strip().splitlines() or
-                                                     ["unknown error"])[-1])
+        finish(UNREADABLE.format(problem=(done.stderr.strip().splitlines() or
+                                          [UNKNOWN])[-1]))
 
 
 main()
@@ -247,21 +276,30 @@ def gradescope_autograder(bundle: Mapping[str, Any], *, feedback: str = "hints"
     feedback
         The feedback level students see.
     """
-    if feedback not in FEEDBACK_LEVELS:
-        raise ValueError(f"feedback level {feedback!r} is not one of "
-                         f"{', '.join(FEEDBACK_LEVELS)}")
+    _level(feedback)
     version = tuple(int(part) for part in AUTOGRADER_PYTHON.split("."))
     setup = (_SETUP.replace("@PYTHON_TUPLE@", ", ".join(map(str, version)))
              .replace("@PYTHON@", AUTOGRADER_PYTHON))
-    readme = ("Gradescope autograder for planmethod variants.\n"
-              "1. Copy planmethod's source folder here as planmethod-src/ (or a wheel).\n"
-              "2. Zip the contents of this folder (setup.sh and run_autograder at the root).\n"
-              f"3. setup.sh installs Python {AUTOGRADER_PYTHON} if the image's is older.\n"
-              "4. Students submit answers.json or answers.csv with the question ids:\n   "
-              + ", ".join(q["id"] for q in bundle["keys"][0]["questions"]) + "\n")
-    return dict(zip(GRADESCOPE_FILES, (setup, _RUN_AUTOGRADER,
-                                       _GRADE_SUBMISSION.replace("@FEEDBACK@", feedback),
-                                       readme, json_text(bundle)), strict=True))
+    readme = render(message("Gradescope autograder for planmethod variants.\n"
+                            "1. Copy planmethod's source folder here as planmethod-src/ (or a "
+                            "wheel).\n"
+                            "2. Zip the contents of this folder (setup.sh and run_autograder at "
+                            "the root).\n"
+                            "3. setup.sh installs Python {python} if the image's is older.\n"
+                            "4. Students submit answers.json or answers.csv with the question "
+                            "ids:\n   {ids}\n", python=AUTOGRADER_PYTHON,
+                            ids=[question["id"] for question in bundle["keys"][0]["questions"]]))
+    texts = {"@ROSTER@": render(message("Your e-mail or SID is not on this assignment's "
+                                        "roster: ask your instructor.")),
+             "@SUBMIT@": render(message("Submit answers.json or answers.csv with your "
+                                        "answers.")),
+             "@UNREADABLE@": _spoken(template("Your answers could not be read: {problem}")),
+             "@UNKNOWN@": render(message("unknown error"))}
+    script = _GRADE_SUBMISSION.replace("@FEEDBACK@", feedback)
+    for mark, text in texts.items():
+        script = script.replace(mark, json.dumps(text, ensure_ascii=False))
+    return dict(zip(GRADESCOPE_FILES, (setup, _RUN_AUTOGRADER, script, readme,
+                                       json_text(bundle)), strict=True))
 
 
 # -- PrairieLearn ----------------------------------------------------------------------------
@@ -291,14 +329,14 @@ def _canvas_mistakes(entry: Mapping[str, Any], size_px: float, labels: list[str]
 def _course_names(key: Mapping[str, Any]):
     """A plan label as the course writes it (``b@lever`` → b₃), from the key's exercise."""
     from ..model import FRAME
-    from ..plans.construction import course_text
     from ..vocabulary import link_numbers
+    from .plan_points import plan_point_name
 
     exercise = key.get("exercise") or {}
     links = list((exercise.get("links") or {}).keys())
     drive = str((exercise.get("drive") or {}).get("link", ""))
     numbers = link_numbers(links, drive, FRAME) if links and drive else {}
-    return lambda label: course_text(label, numbers)
+    return lambda label: plan_point_name(label, numbers)
 
 
 def _task_figure(key: Mapping[str, Any]) -> str | None:
@@ -334,6 +372,8 @@ VARIANTS = @VARIANTS@
 #: mistake registry), and how those are worded
 MISTAKE_TEXTS = @MISTAKE_TEXTS@
 MISTAKE_WORDING = @MISTAKE_WORDING@
+#: what a student is told (planmethod's sentences, their fields filled in here)
+TEXTS = @TEXTS@
 
 
 @NAMED_MISTAKES@
@@ -379,24 +419,22 @@ def _grade_plan(points, radii, labels, submitted, mistakes=None):
                 used.add(k)
                 explained += 1
                 away = math.hypot(x - points[ident]["x"], y - points[ident]["y"]) / 4
-                notes.append(f"{labels[ident]} is not where the construction puts it: a "
-                             f"point placed {away:.1f} mm from it lies "
-                             + word_mistakes(named, MISTAKE_TEXTS, MISTAKE_WORDING))
+                notes.append(TEXTS["mistaken"].format(
+                    point=labels[ident], away=away,
+                    where=word_mistakes(named, MISTAKE_TEXTS, MISTAKE_WORDING)))
                 break
         if named:
             continue
         near = min((math.hypot(x - points[ident]["x"], y - points[ident]["y"])
                     for k, (x, y) in enumerate(placed) if k not in used), default=None)
-        where = ("" if near is None else
-                 f" (the nearest free point is {near / 4:.1f} mm away; tolerance "
-                 f"{radii[ident] / 4:.1f} mm)")
-        notes.append(f"{labels[ident]} is not where the construction puts it{where}")
+        notes.append(TEXTS["missing"].format(point=labels[ident]) if near is None else
+                     TEXTS["missing_near"].format(point=labels[ident], near=near / 4,
+                                                  tolerance=radii[ident] / 4))
     extra = len(placed) - len(found) - explained
     if extra > 0:
-        notes.append(f"{extra} point(s) more than the plan has")
+        notes.append(TEXTS["extra"].format(count=extra))
     score = len(found) / max(len(points), len(placed), 1)
-    feedback = (f"{len(found)} of {len(points)} plan points within the drawing's tolerance"
-                + ("; " + "; ".join(notes) if notes else ""))
+    feedback = "; ".join([TEXTS["found"].format(found=len(found), total=len(points)), *notes])
     return score, feedback
 
 
@@ -419,14 +457,14 @@ def grade(data):
         except (TypeError, ValueError):
             answer = None
         if answer is None:
-            score, feedback = 0.0, "no number given"
+            score, feedback = 0.0, TEXTS["no_number"]
         elif abs(answer - right) <= tolerance[name]:
-            score, feedback = 1.0, "correct within the drawing's tolerance"
+            score, feedback = 1.0, TEXTS["correct"]
         elif right != 0 and answer != 0 and (answer > 0) != (right > 0):
-            score, feedback = 0.0, "wrong: the sense (sign) is reversed"
+            score, feedback = 0.0, TEXTS["sense"]
         else:
             score = 0.0
-            feedback = "wrong: too " + ("high" if answer > right else "low")
+            feedback = TEXTS["high" if answer > right else "low"]
         data["partial_scores"][name] = {"score": score, "weight": 1, "feedback": feedback}
         scores.append(score)
     others = [part["score"] for name, part in data["partial_scores"].items()
@@ -436,90 +474,154 @@ def grade(data):
 '''
 
 
-def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod",
-                           topic: str = "Kinematics of mechanisms") -> dict[str, str]:
-    """A PrairieLearn question folder ``<slug>/`` for a bundle of keys: one question whose
-    ``server.py`` draws one of the bundle's variants, with each variant's task figure in
-    ``clientFilesQuestion/``.
+#: what the exported grader tells a student (its fields filled in by the grader)
+_SERVER_TEXTS = {
+    "no_number": template("no number given"),
+    "correct": template("correct within the drawing's tolerance"),
+    "sense": template("wrong: the sense (sign) is reversed"),
+    "high": template("wrong: too high"),
+    "low": template("wrong: too low"),
+    "mistaken": template("{point} is not where the construction puts it: a point placed "
+                         "{away:.1f} mm from it lies {where}"),
+    "missing": template("{point} is not where the construction puts it"),
+    "missing_near": template("{point} is not where the construction puts it (the nearest free "
+                             "point is {near:.1f} mm away; tolerance {tolerance:.1f} mm)"),
+    "extra": template("{count} point(s) more than the plan has"),
+    "found": template("{found} of {total} plan points within the drawing's tolerance"),
+}
 
-    Parameters
-    ----------
-    bundle
-        The bundle of keys (``keys.json``).
-    slug
-        The question folder's name.
-    topic
-        The question's topic.
-    """
-    import inspect
+#: what a student is asked to draw in a question, by plan
+_DRAW = {"velocity": template("Draw the velocity plan at the given scale (one grid square is "
+                              "10 mm of the drawing; the pole {pole} is marked): place the "
+                              "points {points}."),
+         "acceleration": template("Draw the acceleration plan at the given scale (one grid "
+                                  "square is 10 mm of the drawing; the pole {pole} is marked): "
+                                  "place the points {points}.")}
 
-    from .mistakes import REGISTRY, drawn_explanation
-    from .plan_points import MISTAKE_WORDING, graded_labels, named_mistakes, word_mistakes
 
-    keys = bundle["keys"]
-    first = keys[0]
-    question_ids = [q["id"] for q in first["questions"]]
-    plans = [name for name in ("velocity", "acceleration") if name in first["plans"]]
-    labels = {name: graded_labels(first["plans"][name]) for name in plans}
+def _canvas_size(keys: list[Mapping[str, Any]], plans: list[str],
+                 labels: Mapping[str, list[str]]) -> int:
+    """The canvas (px, square) that holds every variant's plans with a margin."""
     extent = max([30.0] + [math.hypot(*key["plans"][name]["points_mm"][label])
                            for key in keys for name in plans for label in labels[name]
                            if label in key["plans"][name]["points_mm"]])
-    size_px = 40 * math.ceil((2 * extent * PX_PER_MM + 80) / 40)
-    variants = []
-    figures: dict[str, str] = {}
-    for number, key in enumerate(keys, start=1):
-        questions = {q["id"]: q for q in key["questions"]}
-        params: dict[str, Any] = {
-            "student": key.get("student"), "title": shown_title(str(key.get("title", ""))),
-            "task_html": "<p>" + escape(key.get("task", "")).replace("\n\n", "</p><p>")
-            + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}, "radius_px": {},
-            "plan_labels": {}, "mistakes_px": {}}
-        figure = _task_figure(key)
-        if figure is not None:
-            # numbered: two students whose ids differ only in punctuation get two files
-            params["task_figure"] = f"task_{number}_{_identifier(str(key.get('student')))}.svg"
-            figures[f"{slug}/{PRAIRIELEARN_FIGURES}/{params['task_figure']}"] = figure
-        name_of = _course_names(key)
-        correct: dict[str, Any] = {}
-        for name in question_ids:
-            question = questions[name]
-            value, tolerance = float(question["value"]), float(question["tolerance"])
-            ident = _identifier(name)
-            # relabs accepts |x − v| ≤ atol + rtol·|v|: put the whole tolerance in rtol
-            # (atol a hair above zero for a zero answer)
-            if value:
-                params["rtol"][ident] = tolerance / abs(value)
-                params["atol"][ident] = 1e-12
-            else:
-                params["rtol"][ident] = 0.0
-                params["atol"][ident] = tolerance
-            correct[ident] = value
-            params.setdefault("tolerance", {})[ident] = tolerance
-        for name in plans:
-            entry = key["plans"][name]
-            params["plans"][name] = _canvas(entry, size_px, [
-                label for label in labels[name] if label in entry["points_mm"]])
-            drawn = [label for label in labels[name] if label in entry["points_mm"]]
-            # each point's own disc (px), at least half a millimetre of the drawing
-            params["radius_px"][name] = {
-                _identifier(label): round(max(0.5, entry["tolerance_mm"].get(label, 0.5))
-                                          * PX_PER_MM, 2) for label in drawn}
-            params["plan_labels"][name] = {_identifier(label): name_of(label)
-                                           for label in drawn}
-            params["mistakes_px"][name] = _canvas_mistakes(entry, size_px, drawn)
-            params["tol_px"][name] = max(params["radius_px"][name].values(),
-                                         default=round(0.5 * PX_PER_MM, 2))
-        variants.append({"params": params, "correct_answers": correct})
-    texts = {mistake: drawn_explanation(mistake) for mistake in REGISTRY}
-    server = (_PRAIRIELEARN_SERVER
-              .replace("@MISTAKE_TEXTS@", json.dumps(texts, ensure_ascii=False, indent=1))
-              .replace("@MISTAKE_WORDING@", repr(MISTAKE_WORDING))
-              .replace("@NAMED_MISTAKES@", inspect.getsource(named_mistakes).strip())
-              .replace("@WORD_MISTAKES@", inspect.getsource(word_mistakes).strip())
-              .replace("@VARIANTS@", json.dumps(variants, ensure_ascii=False, indent=1)))
+    return 40 * math.ceil((2 * extent * PX_PER_MM + 80) / 40)
+
+
+def _answer_params(params: dict[str, Any], key: Mapping[str, Any], question_ids: list[str]
+                   ) -> dict[str, float]:
+    """Each question's tolerance as PrairieLearn's relabs compares (into ``params``); the
+    right answers."""
+    questions = {question.id: question for question in _questions(key)}
+    correct: dict[str, Any] = {}
+    for name in question_ids:
+        value, tolerance = questions[name].value, questions[name].tolerance
+        ident = _identifier(name)
+        # relabs accepts |x − v| ≤ atol + rtol·|v|: put the whole tolerance in rtol
+        # (atol a hair above zero for a zero answer)
+        params["rtol"][ident] = tolerance / abs(value) if value else 0.0
+        params["atol"][ident] = 1e-12 if value else tolerance
+        correct[ident] = value
+        params.setdefault("tolerance", {})[ident] = tolerance
+    return correct
+
+
+def _plan_params(params: dict[str, Any], key: Mapping[str, Any], plans: list[str],
+                 labels: Mapping[str, list[str]], size_px: int) -> None:
+    """Each plan's points, discs, names and mistakes on the canvas (into ``params``)."""
+    name_of = _course_names(key)
+    for name in plans:
+        entry = key["plans"][name]
+        drawn = [label for label in labels[name] if label in entry["points_mm"]]
+        params["plans"][name] = _canvas(entry, size_px, drawn)
+        # each point's own disc (px), at least half a millimetre of the drawing
+        params["radius_px"][name] = {
+            _identifier(label): round(max(0.5, entry["tolerance_mm"].get(label, 0.5))
+                                      * PX_PER_MM, 2) for label in drawn}
+        params["plan_labels"][name] = {_identifier(label): name_of(label) for label in drawn}
+        params["mistakes_px"][name] = _canvas_mistakes(entry, size_px, drawn)
+        params["tol_px"][name] = max(params["radius_px"][name].values(),
+                                     default=round(0.5 * PX_PER_MM, 2))
+
+
+def _variant(key: Mapping[str, Any], number: int, slug: str, question_ids: list[str],
+             plans: list[str], labels: Mapping[str, list[str]], size_px: int,
+             figures: dict[str, str]) -> dict[str, Any]:
+    """One variant of the question: its parameters and right answers (its task figure into
+    ``figures``)."""
+    params: dict[str, Any] = {
+        "student": key.get("student"), "title": shown_title(str(key.get("title", ""))),
+        "task_html": "<p>" + escape(key.get("task", "")).replace("\n\n", "</p><p>")
+        + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}, "radius_px": {},
+        "plan_labels": {}, "mistakes_px": {}}
+    figure = _task_figure(key)
+    if figure is not None:
+        # numbered: two students whose ids differ only in punctuation get two files
+        params["task_figure"] = f"task_{number}_{_identifier(str(key.get('student')))}.svg"
+        figures[f"{slug}/{PRAIRIELEARN_FIGURES}/{params['task_figure']}"] = figure
+    correct = _answer_params(params, key, question_ids)
+    _plan_params(params, key, plans, labels, size_px)
+    return {"params": params, "correct_answers": correct}
+
+
+def _server(variants: list[dict[str, Any]]) -> str:
+    """The question's ``server.py``: the variants, the mistakes' texts and the sentences, and
+    the very source of the point rule it shares with planmethod."""
+    import inspect
+
+    from .mistakes import REGISTRY, drawn_explanation
+    from .plan_points import named_mistakes, page_wording, word_mistakes
+
+    texts = {mistake: render(drawn_explanation(mistake)) for mistake in REGISTRY}
+    sentences = {name: _spoken(sentence) for name, sentence in _SERVER_TEXTS.items()}
+    return (_PRAIRIELEARN_SERVER
+            .replace("@MISTAKE_TEXTS@", json.dumps(texts, ensure_ascii=False, indent=1))
+            .replace("@MISTAKE_WORDING@", repr(page_wording()[:2]))
+            .replace("@TEXTS@", json.dumps(sentences, ensure_ascii=False, indent=1))
+            .replace("@NAMED_MISTAKES@", inspect.getsource(named_mistakes).strip())
+            .replace("@WORD_MISTAKES@", inspect.getsource(word_mistakes).strip())
+            .replace("@VARIANTS@", json.dumps(variants, ensure_ascii=False, indent=1)))
+
+
+def _drawing_html(first: Mapping[str, Any], name: str, labels: list[str],
+                  size_px: int) -> list[str]:
+    """The lines of one plan's drawing: what to draw, the canvas with the pole given, the
+    points to place and the controls."""
+    pole = first["plans"][name]["pole"]
+    centre = size_px / 2
+    first_names = _course_names(first)
+    asked = render(_DRAW[name].replace(pole=pole,
+                                       points=[first_names(label) for label in labels]))
+    html = ["", f"<p>{escape(asked)}</p>",
+            f'<pl-drawing answers-name="{name}_plan" gradable="true" width="{size_px}" '
+            f'height="{size_px}" grid-size="{int(10 * PX_PER_MM)}" '
+            f'tol="{{{{params.tol_px.{name}}}}}" show-tolerance-hint="true">',
+            "  <pl-drawing-initial>",
+            f'    <pl-point x1="{centre:g}" y1="{centre:g}" label="{pole}"></pl-point>',
+            "  </pl-drawing-initial>", '  <pl-drawing-answer draw-error-box="true">']
+    for label in labels:
+        ident = _identifier(label)
+        html.append(f'    <pl-point x1="{{{{params.plans.{name}.{ident}.x}}}}" '
+                    f'y1="{{{{params.plans.{name}.{ident}.y}}}}" '
+                    f'label="{escape(first_names(label))}"></pl-point>')
+    points, delete = (escape(render(text), _QUOTE) for text in (message("Plan points:"),
+                                                                  message("Delete:")))
+    return [*html, "  </pl-drawing-answer>", "  <pl-controls>",
+                   f'    <pl-controls-group label="{points}">',
+                   '      <pl-drawing-button type="pl-point"></pl-drawing-button>',
+                   "    </pl-controls-group>",
+                   f'    <pl-controls-group label="{delete}">',
+                   '      <pl-drawing-button type="delete"></pl-drawing-button>',
+                   "    </pl-controls-group>", "  </pl-controls>", "</pl-drawing>"]
+
+
+def _question_html(first: Mapping[str, Any], plans: list[str],
+                   labels: Mapping[str, list[str]], size_px: int, figured: bool) -> str:
+    """The question's ``question.html``: the task panel (with the variant's figure when every
+    variant has one), a number input a question, a drawing a plan."""
     html = ["<pl-question-panel>", "  <p><b>{{params.title}}</b></p>",
             "  {{{params.task_html}}}"]
-    if len(figures) == len(keys):       # every variant's mechanism, above the drawing
+    if figured:       # every variant's mechanism, above the drawing
         html.append('  <pl-figure file-name="{{params.task_figure}}" '
                     'directory="clientFilesQuestion"></pl-figure>')
     html += ["</pl-question-panel>", ""]
@@ -532,40 +634,53 @@ def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod
             f'suffix="{escape(question["unit"], _QUOTE)}">'
             "</pl-number-input>")
     for name in plans:
-        pole = first["plans"][name]["pole"]
-        centre = size_px / 2
-        first_names = _course_names(first)
-        html += ["", f"<p>Draw the {name} plan at the given scale (one grid square is "
-                     f"10 mm of the drawing; the pole {pole} is marked): place the points "
-                     f"{', '.join(first_names(label) for label in labels[name])}.</p>",
-                 f'<pl-drawing answers-name="{name}_plan" gradable="true" width="{size_px}" '
-                 f'height="{size_px}" grid-size="{int(10 * PX_PER_MM)}" '
-                 f'tol="{{{{params.tol_px.{name}}}}}" show-tolerance-hint="true">',
-                 "  <pl-drawing-initial>",
-                 f'    <pl-point x1="{centre:g}" y1="{centre:g}" label="{pole}"></pl-point>',
-                 "  </pl-drawing-initial>",
-                 '  <pl-drawing-answer draw-error-box="true">']
-        for label in labels[name]:
-            ident = _identifier(label)
-            html.append(f'    <pl-point x1="{{{{params.plans.{name}.{ident}.x}}}}" '
-                        f'y1="{{{{params.plans.{name}.{ident}.y}}}}" '
-                        f'label="{escape(first_names(label))}"></pl-point>')
-        html += ["  </pl-drawing-answer>", "  <pl-controls>",
-                 '    <pl-controls-group label="Plan points:">',
-                 '      <pl-drawing-button type="pl-point"></pl-drawing-button>',
-                 "    </pl-controls-group>",
-                 '    <pl-controls-group label="Delete:">',
-                 '      <pl-drawing-button type="delete"></pl-drawing-button>',
-                 "    </pl-controls-group>", "  </pl-controls>", "</pl-drawing>"]
+        html += _drawing_html(first, name, labels[name], size_px)
+    return "\n".join(html) + "\n"
+
+
+def prairielearn_questions(bundle: Mapping[str, Any], *, slug: str = "planmethod",
+                           topic: str | None = None) -> dict[str, str]:
+    """A PrairieLearn question folder ``<slug>/`` for a bundle of keys: one question whose
+    ``server.py`` draws one of the bundle's variants, with each variant's task figure in
+    ``clientFilesQuestion/``.
+
+    Parameters
+    ----------
+    bundle
+        The bundle of keys (``keys.json``).
+    slug
+        The question folder's name.
+    topic
+        The question's topic (default: kinematics of mechanisms, in the language spoken).
+    """
+    from .plan_points import graded_labels
+
+    keys = bundle["keys"]
+    first = keys[0]
+    question_ids = [q["id"] for q in first["questions"]]
+    plans = [name for name in ("velocity", "acceleration") if name in first["plans"]]
+    labels = {name: graded_labels(first["plans"][name]) for name in plans}
+    size_px = _canvas_size(keys, plans, labels)
+    figures: dict[str, str] = {}
+    variants = [_variant(key, number, slug, question_ids, plans, labels, size_px, figures)
+                for number, key in enumerate(keys, start=1)]
     seed = f"planmethod:{slug}:{first.get('title')}:{bundle.get('seed')}:{len(keys)}"
     info = {"uuid": str(uuid.uuid5(uuid.NAMESPACE_URL, seed)),
-            "title": shown_title(str(first.get("title"))), "topic": topic,
+            "title": shown_title(str(first.get("title"))),
+            "topic": topic if topic is not None else render(message("Kinematics of mechanisms")),
             "tags": ["planmethod", "graphical-method"], "type": "v3",
             "gradingMethod": "Internal"}
-    texts = (json.dumps(info, indent=2, ensure_ascii=False) + "\n", "\n".join(html) + "\n",
-             server)
+    texts = (json.dumps(info, indent=2, ensure_ascii=False) + "\n",
+             _question_html(first, plans, labels, size_px, len(figures) == len(keys)),
+             _server(variants))
     return {**{f"{slug}/{name}": text
                for name, text in zip(PRAIRIELEARN_FILES, texts, strict=True)}, **figures}
+
+
+def _questions(key: Mapping[str, Any]) -> tuple[KeyQuestion, ...]:
+    from .keys import key_questions
+
+    return key_questions(key)
 
 
 # -- Moodle ----------------------------------------------------------------------------------
@@ -606,10 +721,11 @@ def _cloze_number(value: float) -> str:
     return repr(float(value))
 
 
-def cloze_field(question: Mapping[str, Any]) -> str:
-    """One asked value as a Cloze NUMERICAL field: the right value with its tolerance (from the
-    drawing scale), each recognised mistake as a 0 % answer with its feedback, and the feedback
-    of a right answer. The question's points are the field's weight.
+def cloze_field(question: KeyQuestion | Mapping[str, Any]) -> str:
+    """One asked value (a key's question, typed or its table) as a Cloze NUMERICAL field: the
+    right value with its tolerance (from the drawing scale), each recognised mistake as a 0 %
+    answer with its feedback, and the feedback of a right answer. The question's points are
+    the field's weight.
 
     Examples
     --------
@@ -617,16 +733,21 @@ def cloze_field(question: Mapping[str, Any]) -> str:
     ...                    "points": 2, "mistakes": []}))
     {2:NUMERICAL:=0.27:0.009#Right: within the drawing's tolerance ± 0.009 m.}
     """
-    points = max(1, round(float(question.get("points", 1))))
-    unit = question.get("unit", "")
-    tolerance = float(question["tolerance"])
-    right = _cloze_escape(f"Right: within the drawing's tolerance ± {tolerance:.3g} {unit}."
-                          .replace(" .", "."))
-    parts = [f"={_cloze_number(question['value'])}:{_cloze_number(tolerance)}#{right}"]
-    for mistake in question.get("mistakes", ()):
-        feedback = _cloze_escape(f"It looks as if {mistake['feedback']}.")
-        parts.append(f"%0%{_cloze_number(mistake['value'])}:"
-                     f"{_cloze_number(mistake['tolerance'])}#{feedback}")
+    if not isinstance(question, KeyQuestion):
+        question = KeyQuestion.read(question)
+    points = max(1, round(question.points))
+    tolerance = question.tolerance
+    right = _cloze_escape(render(
+        message("Right: within the drawing's tolerance ± {tolerance:.3g} {unit}.",
+                tolerance=tolerance, unit=question.unit) if question.unit else
+        message("Right: within the drawing's tolerance ± {tolerance:.3g}.",
+                tolerance=tolerance)))
+    parts = [f"={_cloze_number(question.value)}:{_cloze_number(tolerance)}#{right}"]
+    for mistake in question.mistakes:
+        feedback = _cloze_escape(render(message("It looks as if {mistake}.",
+                                                mistake=mistake.explanation)))
+        parts.append(f"%0%{_cloze_number(mistake.value)}:"
+                     f"{_cloze_number(mistake.tolerance)}#{feedback}")
     return "{" + f"{points}:NUMERICAL:" + "~".join(parts) + "}"
 
 
@@ -646,8 +767,6 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
     sheets
         Student → task sheet SVG text, to embed (optional).
     """
-    import base64
-
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>"]
     title = shown_title(str(keys[0].get("title", "planmethod")) if keys else "planmethod")
     out += ['  <question type="category">',
@@ -656,21 +775,7 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
             "</category>", "  </question>"]
     for key in keys:
         student = str(key.get("student"))
-        task = _cloze_text(key.get("task", "")).replace("\n\n", "</p><p>")
-        image, files = "", ""
-        if sheets and student in sheets:
-            name = f"sheet_{_identifier(student)}.svg"
-            data = base64.b64encode(sheets[student].encode("utf-8")).decode("ascii")
-            image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="the mechanism, task sheet" /></p>'
-            files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
-        rows = "".join(
-            f"<tr><td>{_cloze_text(question['text'])}</td><td>{cloze_field(question)}</td>"
-            f"<td>{_cloze_text(question.get('unit', ''))}</td></tr>"
-            for question in key["questions"])
-        text = (f"<p><b>{_cloze_text(title)}</b> — variant {_cloze_text(student)}</p>"
-                f"<p>{task}</p>"
-                f"{image}<p>Give in SI units (counter-clockwise positive):</p>"
-                f"<table>{rows}</table>")
+        text, files = _cloze_question(key, title, student, sheets)
         out += ['  <question type="cloze">',
                 f"    <name><text>{escape(title)} — {escape(student)}</text></name>",
                 f'    <questiontext format="html"><text>{_cdata(text)}</text>{files}'
@@ -682,8 +787,32 @@ def moodle_xml(keys: list[Mapping[str, Any]], *, category: str = "planmethod",
     return xml_characters("\n".join(out) + "\n")     # no control character of a file
 
 
+def _cloze_question(key: Mapping[str, Any], title: str, student: str,
+                    sheets: Mapping[str, str] | None) -> tuple[str, str]:
+    """(the question's text, its embedded files) of one variant's Cloze question."""
+    import base64
+
+    task = _cloze_text(key.get("task", "")).replace("\n\n", "</p><p>")
+    image, files = "", ""
+    if sheets and student in sheets:
+        name = f"sheet_{_identifier(student)}.svg"
+        data = base64.b64encode(sheets[student].encode("utf-8")).decode("ascii")
+        alt = escape(render(message("the mechanism, task sheet")), _QUOTE)
+        image = f'<p><img src="@@PLUGINFILE@@/{name}" alt="{alt}" /></p>'
+        files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
+    # words: vocabulary (a question's text and a unit alone: its text until it is a message)
+    rows = "".join(
+        f"<tr><td>{_cloze_text(question['text'])}</td><td>{cloze_field(question)}</td>"
+        f"<td>{_cloze_text(question.get('unit', ''))}</td></tr>"
+        for question in key["questions"])
+    variant = _cloze_text(render(message("— variant {student}", student=student)))
+    give = _cloze_text(render(message("Give in SI units (counter-clockwise positive):")))
+    return (f"<p><b>{_cloze_text(title)}</b> {variant}</p><p>{task}</p>"
+            f"{image}<p>{give}</p><table>{rows}</table>"), files
+
+
 # -- CSV gradebook ---------------------------------------------------------------------------
-def gradebook_csv(results: list[Mapping[str, Any]]) -> str:
+def gradebook_csv(results: list[StudentGrade]) -> str:
     """One row per student: variant, score per question, total and maximum (text cells made
     safe to open in a spreadsheet: :func:`~planmethod.io.csv_text`).
 
@@ -694,15 +823,15 @@ def gradebook_csv(results: list[Mapping[str, Any]]) -> str:
     """
     ids: list[str] = []
     for result in results:
-        for question in result.get("questions", ()):
-            if question["id"] not in ids:
-                ids.append(question["id"])
+        for question in result.questions:
+            if question.id not in ids:
+                ids.append(question.id)
     rows: list[list[Any]] = [["student", "variant", *ids, "total", "max", "note"]]
     for result in results:
-        scores = {q["id"]: q["score"] for q in result.get("questions", ())}
-        rows.append([result.get("student"), result.get("variant", ""),
+        scores = {question.id: question.score for question in result.questions}
+        rows.append([result.student, result.variant if result.variant is not None else "",
                      *[_format(scores[i]) if i in scores else "" for i in ids],
-                     _format(float(result.get("score", 0.0))),
-                     "" if result.get("max_score") is None
-                     else _format(float(result["max_score"])), result.get("error", "")])
+                     _format(float(result.score)),
+                     "" if result.max_score is None else _format(float(result.max_score)),
+                     render(result.error) if result.error is not None else ""])
     return csv_text(rows)

@@ -46,6 +46,7 @@ from enum import StrEnum
 from functools import partial
 
 from ..errors import value_text
+from ..words import Message, message, plural, render
 
 __all__ = ["FUNCTIONS", "ExpressionError", "evaluate", "parse", "references"]
 
@@ -55,7 +56,15 @@ MAX_DEPTH = 40
 
 
 class ExpressionError(ValueError):
-    """A template expression is malformed or cannot be evaluated."""
+    """A template expression is malformed or cannot be evaluated: ``message`` says why (and
+    where in the text), in the language spoken when it is shown."""
+
+    def __init__(self, message: Message) -> None:
+        self.message = message
+        super().__init__(message)
+
+    def __str__(self) -> str:
+        return render(self.message)
 
 
 class Token(StrEnum):
@@ -79,13 +88,14 @@ class Node(StrEnum):
 
 def _divide(left: float, right: float) -> float:
     if right == 0:
-        raise ExpressionError("division by zero")
+        raise ExpressionError(message("division by zero"))
     return left / right
 
 
 def _power(left: float, right: float) -> float:
     if abs(right) > 64:
-        raise ExpressionError(f"exponent {right:g} is out of range (|x| ≤ 64)")
+        raise ExpressionError(message("exponent {exponent:g} is out of range (|x| ≤ 64)",
+                                      exponent=right))
     return left ** right
 
 
@@ -103,8 +113,8 @@ def _degrees(function: Callable[[float], float], x: float) -> float:
 
 def _round(x: float, digits: float = 0) -> float:
     if digits != int(digits) or not -12 <= digits <= 12:
-        raise ExpressionError(f"round(x, digits) needs a whole number of digits in -12…12, "
-                              f"got {digits:g}")
+        raise ExpressionError(message("round(x, digits) needs a whole number of digits in "
+                                      "-12…12, got {digits:g}", digits=digits))
     return float(round(x, int(digits)))
 
 
@@ -113,7 +123,7 @@ def _checked(name: str, function: Callable[[float], float], low: float | None,
     """``function(x)``, or an :class:`ExpressionError` naming ``name`` where ``x`` lies outside
     [``low``, ``high``] (None: no bound)."""
     if (low is not None and x < low) or (high is not None and x > high):
-        raise ExpressionError(f"{name}({x:g}) is undefined")
+        raise ExpressionError(message("{function}({x:g}) is undefined", function=name, x=x))
     return function(x)
 
 
@@ -144,13 +154,14 @@ _TOKEN = re.compile(r"""
 
 def _tokens(text: str) -> list[tuple[str, str, int]]:
     if len(text) > MAX_LENGTH:
-        raise ExpressionError(f"longer than {MAX_LENGTH} characters")
+        raise ExpressionError(plural("longer than {count} character",
+                                     "longer than {count} characters", count=MAX_LENGTH))
     out, position = [], 0
     while position < len(text):
         match = _TOKEN.match(text, position)
         if not match:
-            raise ExpressionError(f"at character {position + 1}: unexpected "
-                                  f"{text[position]!r}")
+            raise ExpressionError(message("at character {position}: unexpected {given!r}",
+                                          position=position + 1, given=text[position]))
         if match.lastgroup != "space":
             out.append((Token(match.lastgroup), match.group(), position))
         position = match.end()
@@ -175,14 +186,17 @@ class _Parser:
     def expect(self, value: str) -> None:
         kind, text, position = self.take()
         if text != value or kind is not Token.OP:
-            shown = repr(text) if text else "the end"
-            raise ExpressionError(f"at character {position + 1}: expected {value!r}, "
-                                  f"got {shown}")
+            raise ExpressionError(
+                message("at character {position}: expected {expected!r}, got {given!r}",
+                        position=position + 1, expected=value, given=text) if text else
+                message("at character {position}: expected {expected!r}, got the end",
+                        position=position + 1, expected=value))
 
     def deeper(self) -> None:
         self.depth += 1
         if self.depth > MAX_DEPTH:
-            raise ExpressionError(f"nested deeper than {MAX_DEPTH} levels")
+            raise ExpressionError(plural("nested deeper than {count} level",
+                                         "nested deeper than {count} levels", count=MAX_DEPTH))
 
     def expression(self):
         self.deeper()
@@ -225,8 +239,10 @@ class _Parser:
         if kind is Token.NAME:
             if self.peek()[1] == "(" and self.peek()[0] is Token.OP:
                 if text not in FUNCTIONS:
-                    raise ExpressionError(f"at character {position + 1}: unknown function "
-                                          f"{text!r}; known: {', '.join(FUNCTIONS)}")
+                    raise ExpressionError(message("at character {position}: unknown "
+                                                  "function {name!r}; known: {known}",
+                                                  position=position + 1, name=text,
+                                                  known=list(FUNCTIONS)))
                 self.take()
                 arguments = []
                 if self.peek()[1] != ")":
@@ -238,8 +254,10 @@ class _Parser:
                 _, least, most = FUNCTIONS[text]
                 if not least <= len(arguments) <= most:
                     wanted = str(least) if least == most else f"{least}…{most}"
-                    raise ExpressionError(f"at character {position + 1}: {text}() takes "
-                                          f"{wanted} argument(s), got {len(arguments)}")
+                    raise ExpressionError(message("at character {position}: {function}() "
+                                                  "takes {wanted} argument(s), got {count}",
+                                                  position=position + 1, function=text,
+                                                  wanted=wanted, count=len(arguments)))
                 return (Node.CALL, text, tuple(arguments))
             if text in CONSTANTS:
                 return (Node.NUM, CONSTANTS[text])
@@ -248,9 +266,11 @@ class _Parser:
             node = self.expression()
             self.expect(")")
             return node
-        shown = repr(text) if text else "the end"
-        raise ExpressionError(f"at character {position + 1}: expected a number, a name or "
-                              f"'(', got {shown}")
+        raise ExpressionError(
+            message("at character {position}: expected a number, a name or '(', got {given!r}",
+                    position=position + 1, given=text) if text else
+            message("at character {position}: expected a number, a name or '(', got the end",
+                    position=position + 1))
 
 
 def parse(text: str):
@@ -263,11 +283,12 @@ def parse(text: str):
     """
     parser = _Parser(text)
     if parser.peek()[0] is Token.END:
-        raise ExpressionError("empty expression")
+        raise ExpressionError(message("empty expression"))
     node = parser.expression()
     kind, token, position = parser.peek()
     if kind is not Token.END:
-        raise ExpressionError(f"at character {position + 1}: unexpected {token!r}")
+        raise ExpressionError(message("at character {position}: unexpected {given!r}",
+                                      position=position + 1, given=token))
     return node
 
 
@@ -297,7 +318,8 @@ def evaluate(node, resolve: Callable[[str], float]) -> float:
     if kind is Node.REF:
         value = resolve(node[1])
         if isinstance(value, bool) or not isinstance(value, int | float):
-            raise ExpressionError(f"{node[1]} is not a number ({value_text(value)})")
+            raise ExpressionError(message("{name} is not a number ({given})", name=node[1],
+                                          given=value_text(value)))
         return float(value)
     if kind is Node.NEG:
         return -evaluate(node[1], resolve)
@@ -309,11 +331,13 @@ def evaluate(node, resolve: Callable[[str], float]) -> float:
             except ValueError as error:
                 if isinstance(error, ExpressionError):
                     raise
-                raise ExpressionError(f"{node[1]}() failed: {error}") from None
+                raise ExpressionError(message("{function}() failed: {problem}",
+                                              function=node[1], problem=str(error))) from None
         else:
             result = _BINARY[kind](evaluate(node[1], resolve), evaluate(node[2], resolve))
     except OverflowError:
-        raise ExpressionError("the result overflows") from None
+        raise ExpressionError(message("the result overflows")) from None
     if isinstance(result, complex) or not math.isfinite(result):
-        raise ExpressionError(f"the result is not a finite number ({result})")
+        raise ExpressionError(message("the result is not a finite number ({result})",
+                                      result=str(result)))
     return float(result)

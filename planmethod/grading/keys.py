@@ -37,8 +37,8 @@ Examples
 --------
 >>> from planmethod.grading.templates import load_template, draw_variant
 >>> key = build_key(draw_variant(load_template("exercises/compressor_slider_crank.toml")))
->>> question = next(q for q in key["questions"] if q["id"] == "omega_BC")
->>> round(question["value"], 3), question["signed"], question["tolerance_from"]
+>>> question = next(q for q in key_questions(key) if q.id == "omega_BC")
+>>> round(question.value, 3), question.signed, question.tolerance_from
 (-24.254, True, 'drawing')
 """
 
@@ -55,6 +55,7 @@ from ..numbering import course_numbers
 from ..spec import checked_table, parse_json
 from ..vocabulary import QUANTITY_KINDS, symbol
 from ..vocabulary import question_text as course_question
+from ..words import Message, message, template
 from .mistakes import (
     CONSTRUCTION_MISTAKES,
     MISTAKES,
@@ -65,6 +66,7 @@ from .mistakes import (
     value_answers,
 )
 from .plan_points import drawn_labels
+from .results import KeyMistake, KeyQuestion
 from .tolerances import kind_of, propagate
 
 __all__ = [
@@ -76,6 +78,7 @@ __all__ = [
     "bundle",
     "grading_settings",
     "key_numbers",
+    "key_questions",
     "load_keys",
     "question_text",
 ]
@@ -124,9 +127,16 @@ class GradingSettings:
 def _positive(value: Any, key: str, file: str | None, *, zero: bool = False) -> float:
     if (isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value)
             or value < 0 or (value == 0 and not zero)):
-        raise SpecError(f"must be a {'non-negative' if zero else 'positive'} number, "
-                        f"got {value_text(value)}", file=file, key=key)
+        raise SpecError(message("must be a non-negative number, got {given}",
+                                given=value_text(value)) if zero else
+                        message("must be a positive number, got {given}",
+                                given=value_text(value)), file=file, key=key)
     return float(value)
+
+
+def _not_asked(name: str, quantities, file: str | None, key: str) -> SpecError:
+    return SpecError(message("'{name}' is not asked; asked: {asked}", name=name,
+                             asked=list(quantities)), file=file, key=key)
 
 
 def grading_settings(data: Mapping[str, Any], file: str | None = None,
@@ -142,29 +152,27 @@ def grading_settings(data: Mapping[str, Any], file: str | None = None,
     if isinstance(points_table, Mapping):
         for name, value in points_table.items():
             if quantities and name not in quantities:
-                raise SpecError(f"'{name}' is not asked; asked: {', '.join(quantities)}",
-                                file=file, key=f"grading.points.{name}")
+                raise _not_asked(name, quantities, file, f"grading.points.{name}")
             points[name] = _positive(value, f"grading.points.{name}", file, zero=True)
     else:
         default_points = _positive(points_table, "grading.points", file, zero=True)
     overrides: dict[str, tuple[str, float]] = {}
     tolerance = table.get("tolerance", {})
     if not isinstance(tolerance, Mapping):
-        raise SpecError("must be a table of quantity = { rel = … } or { abs = … }", file=file,
-                        key="grading.tolerance")
+        raise SpecError(message("must be a table of quantity = {{ rel = … }} or {{ abs = … }}"),
+                        file=file, key="grading.tolerance")
     for name, value in tolerance.items():
         key = f"grading.tolerance.{name}"
         if quantities and name not in quantities:
-            raise SpecError(f"'{name}' is not asked; asked: {', '.join(quantities)}",
-                            file=file, key=key)
+            raise _not_asked(name, quantities, file, key)
         if isinstance(value, Mapping) and len(value) == 1 and next(iter(value)) in ("rel", "abs"):
             which = next(iter(value))
             overrides[name] = (which, _positive(value[which], f"{key}.{which}", file))
         elif isinstance(value, int | float) and not isinstance(value, bool):
             overrides[name] = ("abs", _positive(value, key, file))
         else:
-            raise SpecError(f"must be {{ rel = r }} or {{ abs = a }}, got {value_text(value)}",
-                            file=file, key=key)
+            raise SpecError(message("must be {{ rel = r }} or {{ abs = a }}, got {given}",
+                                    given=value_text(value)), file=file, key=key)
     return GradingSettings(precision, rel_floor, points, default_points, overrides)
 
 
@@ -178,10 +186,20 @@ def question_text(quantity: str, numbers: Mapping[str, int] | None = None) -> st
     ('angular velocity ω of BC (counter-clockwise positive)', \
 'angular velocity ω₂ of link 2 (BC) (counter-clockwise positive)')
     """
-    try:
+    try:   # words: vocabulary (English text until it returns a message)
         return course_question(quantity, numbers)
     except KeyError:
         return quantity
+
+
+def key_questions(key: Mapping[str, Any]) -> tuple[KeyQuestion, ...]:
+    """A key's questions, typed (a key file's are checked when it is read:
+    :func:`load_keys`).
+
+    >>> key_questions({"questions": [{"id": "v_C", "value": 5.27, "tolerance": 0.1}]})[0].unit
+    ''
+    """
+    return tuple(KeyQuestion.read(question) for question in key.get("questions", ()))
 
 
 def key_numbers(key: Mapping[str, Any]) -> dict[str, int]:
@@ -213,40 +231,63 @@ def _drive_reference(exercise, kind: str) -> float:
     }.get(kind, 0.0)
 
 
-def _mistakes(quantity: str, value: float, tolerance: float, scales, alternatives,
-              motion) -> list[dict]:
-    """The answers the mistakes of :data:`~planmethod.grading.mistakes.REGISTRY` give for one
-    quantity, in registry order (only those told apart from the right answer by more than
-    twice the tolerance): a construction mistake's reading off its re-drawn plans
-    (``alternatives``), a value mistake's answer from the right value."""
-    values = {}
+#: two mistakes that give the same answer: one explanation or the other
+_OR = template("{first}, or {second}")
+
+
+def _mistake_answers(quantity: str, value: float, tolerance: float, scales, alternatives,
+                     motion) -> list[tuple[str, float, float]]:
+    """(mistake, wrong answer, its tolerance) of every mistake of
+    :data:`~planmethod.grading.mistakes.REGISTRY` for one quantity, in registry order: a
+    construction mistake's reading off its re-drawn plans (``alternatives``), a value
+    mistake's answer from the right value."""
+    values: dict[str, list[tuple[float, float]]] = {}
     for mistake, wrong, wrong_tolerance in value_answers(quantity, value, tolerance,
                                                           scales=scales, motion=motion):
         values.setdefault(mistake, []).append((wrong, wrong_tolerance))
     found: list[tuple[str, float, float]] = []
     for key, mistake in REGISTRY.items():
         if mistake.redraws:
-            readings = alternatives.get(key) or {}
-            wrong = readings.get(quantity)
+            wrong = (alternatives.get(key) or {}).get(quantity)
             if wrong is not None and math.isfinite(float(wrong)):
                 found.append((key, float(wrong), tolerance))
         else:
             found += [(key, wrong, wrong_tolerance)
                       for wrong, wrong_tolerance in values.get(key, ())]
-    out: list[dict] = []
-    for mistake, wrong, wrong_tolerance in found:
+    return found
+
+
+def _mistakes(quantity: str, value: float, tolerance: float, scales, alternatives,
+              motion) -> tuple[KeyMistake, ...]:
+    """The answers the mistakes give for one quantity, in registry order (only those told
+    apart from the right answer by more than twice the tolerance; two that give the same
+    answer are one, named with both)."""
+    out: list[list] = []    # [kind, answer, tolerance, the others: None until one is met]
+    for mistake, wrong, wrong_tolerance in _mistake_answers(quantity, value, tolerance,
+                                                             scales, alternatives, motion):
         if abs(wrong - value) <= 2 * tolerance:
             continue
         same = next((other for other in out
-                     if abs(wrong - other["value"]) <= 1e-12 * max(1.0, abs(wrong))), None)
-        if same is not None:      # two mistakes give the same answer: the feedback names both
-            if mistake not in same.setdefault("also", []) and mistake != same["kind"]:
-                same["also"].append(mistake)
-                same["feedback"] += f", or {MISTAKES[mistake]}"
+                     if abs(wrong - other[1]) <= 1e-12 * max(1.0, abs(wrong))), None)
+        if same is None:
+            out.append([mistake, wrong, abs(wrong_tolerance), None])
             continue
-        out.append({"kind": mistake, "value": wrong, "tolerance": abs(wrong_tolerance),
-                    "feedback": MISTAKES[mistake]})
-    return out
+        # the same answer again (of another mistake, or of this one another way): a key
+        # lists the others, and the feedback names them all
+        same[3] = same[3] if same[3] is not None else []
+        if mistake not in same[3] and mistake != same[0]:
+            same[3].append(mistake)
+    return tuple(KeyMistake(kind, wrong, wrong_tolerance, _explained(kind, also or ()),
+                            tuple(also) if also is not None else None)
+                 for kind, wrong, wrong_tolerance, also in out)
+
+
+def _explained(kind: str, also) -> Message:
+    """What a student is told whose answer ``kind`` and the mistakes ``also`` give."""
+    explanation = MISTAKES[kind]
+    for other in also:
+        explanation = _OR.replace(first=explanation, second=MISTAKES[other])
+    return explanation
 
 
 def _tolerance(quantity: str, value: float, drawing: float, exercise,
@@ -298,6 +339,50 @@ def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict,
     return table
 
 
+def _propagation(variant, exercise, settings: GradingSettings, quantities, motion):
+    """The drawing tolerances of the variant's quantities: those found while its draw was
+    checked, when they are of that very exercise at these settings, else found now."""
+    found = getattr(variant, "propagation", None)
+    if (found is None or found.plans.exercise is not exercise   # that very exercise only
+            or found.precision_mm != settings.precision_mm
+            or set(found.values) != set(quantities)):
+        found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
+    return found
+
+
+def _wrong_plans(exercise, found, motion) -> dict:
+    """The plans re-drawn with each construction mistake that changes them."""
+    wrong_plans = {}
+    drawn = tuple(zip(found.lengths, found.segments, strict=True)) if found.lengths else None
+    for mistake in CONSTRUCTION_MISTAKES:
+        plans = mistaken_plans(exercise, mistake, motion=motion, drawn=drawn)
+        if plans is not None:
+            wrong_plans[mistake] = plans
+    return wrong_plans
+
+
+def _questions(exercise, quantities, found, settings: GradingSettings, scales,
+               wrong_plans: dict, motion) -> list[KeyQuestion]:
+    """The key's questions: each asked quantity with a finite value, its tolerance and the
+    answers the mistakes give."""
+    alternatives = {mistake: plans.readings for mistake, plans in wrong_plans.items()}
+    numbers = course_numbers(exercise.mechanism)
+    questions = []
+    for quantity in quantities:
+        value = found.values[quantity]
+        if value is None:  # a straight path has no finite ρ: nothing to ask
+            continue
+        tolerance, source = _tolerance(quantity, value, found.tolerances[quantity], exercise,
+                                       settings)
+        kind = QUANTITY_KINDS[kind_of(quantity)]
+        questions.append(KeyQuestion(
+            quantity, value, tolerance, symbol(quantity, numbers), kind.unit,
+            question_text(quantity, numbers), kind.signed, source,
+            settings.points.get(quantity, settings.points["*"]),
+            _mistakes(quantity, value, tolerance, scales, alternatives, motion)))
+    return questions
+
+
 def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     """The answer key of a variant (:class:`~planmethod.grading.templates.Variant`).
 
@@ -325,47 +410,20 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     quantities = asked_quantities(exercise, motion)
     if settings is None:
         settings = grading_settings(variant.data, exercise.source, quantities)
-    found = getattr(variant, "propagation", None)    # found while the draw was checked
-    if (found is None or found.plans.exercise is not exercise   # that very exercise only
-            or found.precision_mm != settings.precision_mm
-            or set(found.values) != set(quantities)):
-        found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
+    found = _propagation(variant, exercise, settings, quantities, motion)
     scales = choose_scales(exercise)
-    wrong_plans = {}
-    drawn = tuple(zip(found.lengths, found.segments, strict=True)) if found.lengths else None
-    for mistake in CONSTRUCTION_MISTAKES:
-        plans = mistaken_plans(exercise, mistake, motion=motion, drawn=drawn)
-        if plans is not None:
-            wrong_plans[mistake] = plans
-    alternatives = {mistake: plans.readings for mistake, plans in wrong_plans.items()}
-    numbers = course_numbers(mechanism)
-    questions = []
-    for quantity in quantities:
-        value = found.values[quantity]
-        if value is None:  # a straight path has no finite ρ: nothing to ask
-            continue
-        tolerance, source = _tolerance(quantity, value, found.tolerances[quantity], exercise,
-                                       settings)
-        kind = QUANTITY_KINDS[kind_of(quantity)]
-        questions.append({
-            "id": quantity, "text": question_text(quantity, numbers),
-            "symbol": symbol(quantity, numbers),
-            "unit": kind.unit, "value": value,
-            "signed": kind.signed, "tolerance": tolerance,
-            "tolerance_from": source,
-            "points": settings.points.get(quantity, settings.points["*"]),
-            "mistakes": _mistakes(quantity, value, tolerance, scales, alternatives, motion),
-        })
-    plan_table = _plan_table(found, scales, settings, wrong_plans, motion)
+    wrong_plans = _wrong_plans(exercise, found, motion)
+    questions = _questions(exercise, quantities, found, settings, scales, wrong_plans, motion)
     return {
         "format": KEY_FORMAT, "version": VERSION, "title": mechanism.title,
         "student": variant.student, "seed": variant.seed, "attempt": variant.attempt,
         "source": exercise.source, "task": variant.description.strip(),
         "given": dict(variant.values), "angle": mechanism.drive.angle,
-        "exercise": variant.data, "numbers": numbers,
+        "exercise": variant.data, "numbers": course_numbers(mechanism),
         "scales": scales.as_dict(), "precision_mm": settings.precision_mm,
         "rel_floor": settings.rel_floor,
-        "questions": questions, "plans": plan_table,
+        "questions": [question.as_dict() for question in questions],
+        "plans": _plan_table(found, scales, settings, wrong_plans, motion),
     }
 
 
@@ -395,25 +453,60 @@ def bundle(keys: list[dict], **about: Any) -> dict:
     return {"format": KEYS_FORMAT, "version": VERSION, **about, "keys": keys}
 
 
+def _finite(value: Any) -> bool:
+    return (not isinstance(value, bool) and isinstance(value, int | float)
+            and math.isfinite(value))
+
+
+def _not_finite(value: Any, where: str, key: str) -> SpecError:
+    return SpecError(message("must be a finite number, got {given}", given=value_text(value)),
+                     file=where, key=key)
+
+
+def _check_mistakes(mistakes: Any, where: str, place: str) -> None:
+    """A question's known mistakes in a key file: a list of tables, each with a ``kind``
+    and a finite ``value`` and ``tolerance``."""
+    if not isinstance(mistakes, list):
+        raise SpecError(message("must be a list of tables"), file=where, key=place)
+    for index, mistake in enumerate(mistakes):
+        if not isinstance(mistake, Mapping):
+            raise SpecError(message("must be a table"), file=where, key=f"{place}[{index}]")
+        for name in ("kind", "value", "tolerance"):
+            if name not in mistake:
+                raise SpecError(message("missing"), file=where, key=f"{place}[{index}].{name}")
+        for name in ("value", "tolerance"):
+            if not _finite(mistake[name]):
+                raise _not_finite(mistake[name], where, f"{place}[{index}].{name}")
+        if mistake.get("also") is not None and not isinstance(mistake["also"], list):
+            raise SpecError(message("must be a list of mistakes"), file=where,
+                            key=f"{place}[{index}].also")
+
+
+def _check_question(question: Any, where: str, place: str) -> None:
+    """One question of a key file: a table with an ``id``, a finite ``value`` and
+    ``tolerance``, finite ``points`` (if given) and its known mistakes."""
+    if not isinstance(question, Mapping):
+        raise SpecError(message("must be a table"), file=where, key=place)
+    for name in ("id", "value", "tolerance"):
+        if name not in question:
+            raise SpecError(message("missing"), file=where, key=f"{place}.{name}")
+    for name in ("value", "tolerance", "points"):
+        if name in question and not _finite(question[name]):
+            raise _not_finite(question[name], where, f"{place}.{name}")
+    if question.get("mistakes") is not None:
+        _check_mistakes(question["mistakes"], where, f"{place}.mistakes")
+
+
 def _check_key(key: Any, where: str) -> dict:
     if not isinstance(key, Mapping) or key.get("format") != KEY_FORMAT:
-        raise SpecError("not a planmethod answer key (format must be 'planmethod-key')",
-                        file=where)
+        raise SpecError(message("not a planmethod answer key (format must be "
+                                "'planmethod-key')"), file=where)
     questions = key.get("questions")
     if not isinstance(questions, list):
-        raise SpecError("the key has no list of questions", file=where, key="questions")
+        raise SpecError(message("the key has no list of questions"), file=where,
+                        key="questions")
     for index, question in enumerate(questions):
-        if not isinstance(question, Mapping):
-            raise SpecError("must be a table", file=where, key=f"questions[{index}]")
-        for name in ("id", "value", "tolerance"):
-            if name not in question:
-                raise SpecError("missing", file=where, key=f"questions[{index}].{name}")
-        for name in ("value", "tolerance"):
-            value = question[name]
-            if (isinstance(value, bool) or not isinstance(value, int | float)
-                    or not math.isfinite(value)):
-                raise SpecError(f"must be a finite number, got {value_text(value)}", file=where,
-                                key=f"questions[{index}].{name}")
+        _check_question(question, where, f"questions[{index}]")
     return dict(key)
 
 
@@ -439,7 +532,8 @@ def load_keys(path: str | Path) -> dict[str, dict]:
     if isinstance(data, Mapping) and data.get("format") == KEYS_FORMAT:
         keys = data.get("keys")
         if not isinstance(keys, list):
-            raise SpecError("the bundle has no list of keys", file=str(path), key="keys")
+            raise SpecError(message("the bundle has no list of keys"), file=str(path),
+                            key="keys")
         out = {}
         for index, key in enumerate(keys):
             key = ReadKey(_check_key(key, f"{path}: keys[{index}]"), str(path), f"keys[{index}]")

@@ -28,7 +28,8 @@ Examples
 --------
 >>> CONSTRUCTION_MISTAKES
 ('no_normal', 'no_coriolis', 'coriolis_reversed', 'tangential_along', 'mirrored_similarity')
->>> MISTAKES["scale_ten"]
+>>> from planmethod.words import render
+>>> render(MISTAKES["scale_ten"])
 "the plan's scale was misread ten times too large"
 """
 
@@ -46,6 +47,7 @@ from ..model import Exercise
 from ..plans.construction import Segment
 from ..vectors import norm, perp
 from ..vocabulary import QUANTITY_KINDS
+from ..words import Message, message
 from .tolerances import kind_of, scale_factor
 
 __all__ = ["CONSTRUCTION_MISTAKES", "MISTAKES", "REGISTRY", "Mistake", "PlanContext",
@@ -94,7 +96,7 @@ class Mistake:
     its answer is made — a ``construction`` rule or a ``value`` rule."""
 
     key: str
-    explanation: str
+    explanation: Message
     construction: Rule | None = None
     value: Answers | None = None
     #: a construction line drawn in the wrong direction: (direction, segment) → the direction
@@ -107,7 +109,7 @@ class Mistake:
     placed: Placed | None = None
     #: what a student is told whose drawn point lies where the mistake puts it (default: the
     #: explanation)
-    drawing: str | None = None
+    drawing: Message | None = None
 
     @property
     def redraws(self) -> bool:
@@ -315,58 +317,106 @@ _TEN_TIMES, _TENTH = partial(_scaled_by, 10.0), partial(_scaled_by, -10.0)
 #: every known mistake, in the order a key lists them (the first of two that give the same
 #: answer is named first)
 REGISTRY: dict[str, Mistake] = {mistake.key: mistake for mistake in (
-    Mistake("sense", "the sense (sign) is reversed", value=_sense,
-            drawing="the crank's sense of rotation was reversed (the plan is turned 180°)"),
-    Mistake("no_normal", "the normal component aⁿ was left out",
+    Mistake("sense", message("the sense (sign) is reversed"), value=_sense,
+            drawing=message("the crank's sense of rotation was reversed (the plan is turned "
+                            "180°)")),
+    Mistake("no_normal", message("the normal component aⁿ was left out"),
             construction=partial(_left_out, "normal")),
-    Mistake("no_coriolis", "the Coriolis component aᵏ was left out",
+    Mistake("no_coriolis", message("the Coriolis component aᵏ was left out"),
             construction=partial(_left_out, "coriolis")),
-    Mistake("coriolis_reversed", "the Coriolis component aᵏ was laid off the wrong way",
+    Mistake("coriolis_reversed", message("the Coriolis component aᵏ was laid off the wrong way"),
             construction=partial(_reversed, "coriolis")),
-    Mistake("tangential_along", "the tangential component aᵗ was drawn along the link "
-            "instead of across it", direction=partial(_along, "tangential")),
-    Mistake("mirrored_similarity", "the image of a point was placed by the similarity rule "
-            "with its triangle turned over (mirrored across the image of the link's line)",
+    Mistake("tangential_along", message("the tangential component aᵗ was drawn along the link "
+                                        "instead of across it"),
+            direction=partial(_along, "tangential")),
+    Mistake("mirrored_similarity", message("the image of a point was placed by the similarity "
+                                           "rule with its triangle turned over (mirrored "
+                                           "across the image of the link's line)"),
             mirror=_mirrored),
     Mistake("full_acceleration",
-            "the full acceleration was used instead of its normal component",
+            message("the full acceleration was used instead of its normal component"),
             value=_full_acceleration),
-    Mistake("relative_for_absolute", "a relative velocity or acceleration (from the image of "
-            "another point of the link) was read instead of the absolute one (from the pole)",
+    Mistake("relative_for_absolute",
+            message("a relative velocity or acceleration (from the image of another point of "
+                    "the link) was read instead of the absolute one (from the pole)"),
             value=_relative, placed=_relative_placed,
-            drawing="a relative velocity or acceleration was laid off from the pole instead "
-                    "of from the image of the link's other point (relative for absolute)"),
-    Mistake("wrong_length", "the angular velocity or acceleration was read off with the "
-            "length of the group's other link", value=_wrong_length),
-    Mistake("scale_none", "the plan's scale was not applied (the answer is a drawn length)",
+            drawing=message("a relative velocity or acceleration was laid off from the pole "
+                            "instead of from the image of the link's other point (relative for "
+                            "absolute)")),
+    Mistake("wrong_length", message("the angular velocity or acceleration was read off with "
+                                    "the length of the group's other link"),
+            value=_wrong_length),
+    Mistake("scale_none", message("the plan's scale was not applied (the answer is a drawn "
+                                  "length)"),
             value=_scale_none, placed=partial(_at_scale, _scale_none),
-            drawing="the plan was drawn at a wrong scale: the drive's vector laid off as its "
-                    "value in mm, without the scale"),
-    Mistake("scale_twice", "the plan's scale was applied twice", value=_scale_twice,
+            drawing=message("the plan was drawn at a wrong scale: the drive's vector laid off "
+                            "as its value in mm, without the scale")),
+    Mistake("scale_twice", message("the plan's scale was applied twice"), value=_scale_twice,
             placed=partial(_at_scale, _scale_twice),
-            drawing="the plan was drawn at a wrong scale: the drive's vector divided by the "
-                    "scale twice"),
-    Mistake("scale_inverted", "the drawn length was divided by the plan's scale instead of "
-            "multiplied", value=_scale_inverted, placed=partial(_at_scale, _scale_inverted),
-            drawing="the plan was drawn at a wrong scale: the drive's vector multiplied by "
-                    "the scale instead of divided"),
-    Mistake("scale_ten", "the plan's scale was misread ten times too large",
+            drawing=message("the plan was drawn at a wrong scale: the drive's vector divided by "
+                            "the scale twice")),
+    Mistake("scale_inverted", message("the drawn length was divided by the plan's scale "
+                                      "instead of multiplied"),
+            value=_scale_inverted, placed=partial(_at_scale, _scale_inverted),
+            drawing=message("the plan was drawn at a wrong scale: the drive's vector multiplied "
+                            "by the scale instead of divided")),
+    Mistake("scale_ten", message("the plan's scale was misread ten times too large"),
             value=_TEN_TIMES, placed=partial(_at_scale, _TEN_TIMES),
-            drawing="the plan was drawn at a wrong scale, misread ten times too large "
-                    "(every length ten times too short)"),
-    Mistake("scale_tenth", "the plan's scale was misread ten times too small",
+            drawing=message("the plan was drawn at a wrong scale, misread ten times too large "
+                            "(every length ten times too short)")),
+    Mistake("scale_tenth", message("the plan's scale was misread ten times too small"),
             value=_TENTH, placed=partial(_at_scale, _TENTH),
-            drawing="the plan was drawn at a wrong scale, misread ten times too small "
-                    "(every length ten times too long)"),
-    Mistake("degrees", "degrees were given for radians", value=_degrees),
-    Mistake("length_mm", "the length was taken in mm instead of m", value=_length_mm),
-    Mistake("millimetres", "millimetres were given for metres", value=_millimetres),
+            drawing=message("the plan was drawn at a wrong scale, misread ten times too small "
+                            "(every length ten times too long)")),
+    Mistake("degrees", message("degrees were given for radians"), value=_degrees),
+    Mistake("length_mm", message("the length was taken in mm instead of m"), value=_length_mm),
+    Mistake("millimetres", message("millimetres were given for metres"), value=_millimetres),
 )}
 
 #: key → what the student is told
-MISTAKES: dict[str, str] = {key: mistake.explanation for key, mistake in REGISTRY.items()}
+MISTAKES: dict[str, Message] = {key: mistake.explanation for key, mistake in REGISTRY.items()}
 #: the mistakes made in the construction itself (the plans are drawn again with them)
 CONSTRUCTION_MISTAKES = tuple(key for key, mistake in REGISTRY.items() if mistake.redraws)
+
+
+class _Mistaken:
+    """The plan emulator's hooks that draw a construction mistake (``perturb``, ``turn``,
+    ``mirror``), noting every segment the mistake changed (``found``)."""
+
+    def __init__(self, mistake: Mistake) -> None:
+        self.rule, self.turning, self.mirroring = (mistake.construction, mistake.direction,
+                                                   mistake.mirror)
+        self.found: list[Segment] = []
+
+    def wrong(self, length: float, segment: Segment) -> float:
+        if (self.rule is not None and segment.plan == "acceleration"
+                and segment.action == "lay_off"):
+            drawn = self.rule(length, segment)
+            if drawn is not None:
+                self.found.append(segment)
+                return drawn
+        return length
+
+    def turn(self, direction, segment: Segment):
+        if self.turning is not None and segment.plan == "acceleration":
+            drawn = self.turning(direction, segment)
+            if drawn is not None:
+                self.found.append(segment)
+                return drawn
+        return direction
+
+    def mirror(self, segment: Segment) -> bool:
+        if self.mirroring is not None and self.mirroring(segment):
+            self.found.append(segment)
+            return True
+        return False
+
+    def changes_none(self, drawn) -> bool:
+        """Whether a mistake made only in the lengths laid off changes none of ``drawn``
+        ((length, segment) pairs of the exact drawing)."""
+        return (self.rule is not None and self.turning is None and self.mirroring is None
+                and not any(self.rule(length, segment) is not None for length, segment in drawn
+                            if segment.plan == "acceleration" and segment.action == "lay_off"))
 
 
 def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None, drawn=None):
@@ -387,49 +437,23 @@ def mistaken_plans(exercise: Exercise, mistake: str, *, motion=None, drawn=None)
     """
     if not REGISTRY[mistake].redraws:
         raise KeyError(mistake)
-    rule, turning = REGISTRY[mistake].construction, REGISTRY[mistake].direction
-    mirroring = REGISTRY[mistake].mirror
     from ..errors import ToggleError
     from ..plans import draw_plans
 
-    found = []
-
-    def wrong(length: float, segment: Segment) -> float:
-        if rule is not None and segment.plan == "acceleration" and segment.action == "lay_off":
-            drawn = rule(length, segment)
-            if drawn is not None:
-                found.append(segment)
-                return drawn
-        return length
-
-    def turn(direction, segment: Segment):
-        if turning is not None and segment.plan == "acceleration":
-            drawn = turning(direction, segment)
-            if drawn is not None:
-                found.append(segment)
-                return drawn
-        return direction
-
-    def mirror(segment: Segment) -> bool:
-        if mirroring is not None and mirroring(segment):
-            found.append(segment)
-            return True
-        return False
-
+    hooks = _Mistaken(REGISTRY[mistake])
     if not exercise.ask.needs_acceleration:
         return None
-    if (drawn is not None and rule is not None and turning is None and mirroring is None
-            and not any(rule(length, segment) is not None for length, segment in drawn
-                        if segment.plan == "acceleration" and segment.action == "lay_off")):
+    if drawn is not None and hooks.changes_none(drawn):
         return None
     settings = replace(exercise.plan, precision_mm=0.0)
     try:
-        plans = draw_plans(exercise, settings=settings, motion=motion, perturb=wrong,
-                           turn=turn, mirror=mirror if mirroring is not None else None,
+        plans = draw_plans(exercise, settings=settings, motion=motion, perturb=hooks.wrong,
+                           turn=hooks.turn,
+                           mirror=hooks.mirror if hooks.mirroring is not None else None,
                            position=False)
     except ToggleError:       # the wrong lines do not meet: no answer to predict
         return None
-    return plans if found else None
+    return plans if hooks.found else None
 
 
 def value_answers(quantity: str, value: float, tolerance: float, *, scales,
@@ -442,13 +466,14 @@ def value_answers(quantity: str, value: float, tolerance: float, *, scales,
             for wrong, wrong_tolerance in mistake.value(quantity, value, tolerance, given)]
 
 
-def drawn_explanation(mistake: str) -> str:
+def drawn_explanation(mistake: str) -> Message:
     """What a student who drew a plan point where ``mistake`` puts it is told: the registry's
     explanation, and for a reversed sense the plan turned 180°.
 
-    >>> drawn_explanation("sense")
+    >>> from planmethod.words import render
+    >>> render(drawn_explanation("sense"))
     "the crank's sense of rotation was reversed (the plan is turned 180°)"
-    >>> drawn_explanation("no_coriolis")
+    >>> render(drawn_explanation("no_coriolis"))
     'the Coriolis component aᵏ was left out'
     """
     return REGISTRY[mistake].drawing or REGISTRY[mistake].explanation

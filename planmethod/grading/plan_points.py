@@ -5,11 +5,14 @@ Three graders read these from the key (``plans.<plan>`` of :func:`~planmethod.gr
 build_key`): the workbook page's drawing mode (:func:`drawing_frame` packs them per crank
 angle; the page compares, it never computes mechanics), the PrairieLearn question's
 ``grade()`` and ``planmethod grade --drawing``. A misplaced point is named with every mistake
-whose position of it lies within the point's own tolerance radius (:func:`named_mistakes`,
-worded by :func:`word_mistakes`). Those two are plain Python without imports: an exported
-PrairieLearn ``server.py`` carries their very source, and the page's script
+whose position of it lies within the point's own tolerance radius (:func:`named_mistakes`),
+in the sentence of :data:`~planmethod.grading.verdicts.POINT_PARTS` (:func:`mistake_sentence`).
+:func:`named_mistakes` and :func:`word_mistakes` are plain Python without imports: an
+exported PrairieLearn ``server.py`` carries their very source, and the page's script
 (``render/workbook_draw.js``) repeats their one comparison and one sentence, with the
-wording and the mistakes' texts given to it as data.
+wording (:func:`page_wording`: the same templates, rendered) and the mistakes' texts given
+to it as data. The construction lines a point is the intersection of, with the name the
+sentences give each (:func:`point_lines`), are data of the same rulebook.
 
 Examples
 --------
@@ -19,32 +22,34 @@ Examples
 ['b']
 >>> named_mistakes([["sense", 0.0, -30.0], ["scale_ten", 0.0, 3.0]], 0.1, -29.8, 0.5)
 ['sense']
->>> mistake_sentence(["sense"])  # doctest: +ELLIPSIS
+>>> from planmethod.words import render
+>>> render(mistake_sentence(["sense"]))  # doctest: +ELLIPSIS
 "it lies where the construction puts it when the crank's sense of rotation was reversed (..."
+>>> plan_point_name("k_B@lever", {"lever": 3}), plan_point_name("k2_Q"), plan_point_name("o2")
+('k_B₃', 'k′_Q', 'o₂')
 """
 
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
+from ..vocabulary import coriolis_letter, point_text, subscript, symbol
+from ..words import Message, render
 from .mistakes import REGISTRY, drawn_explanation
+from .verdicts import POINT_PARTS, PointPart
 
-__all__ = ["DRAWN_MISTAKES", "MISTAKE_WORDING", "PLAN_WORDING", "common_mistakes",
-           "drawing_frame", "drawn_labels", "graded_labels", "mistake_sentence",
-           "named_mistakes", "plan_extent", "plan_sentence", "word_mistakes"]
+__all__ = ["DRAWN_MISTAKES", "ConstructionLine", "common_mistakes", "drawing_frame",
+           "drawn_labels", "graded_labels", "mistake_sentence", "named_mistakes",
+           "page_wording", "plan_extent", "plan_point_name", "plan_sentence", "point_lines",
+           "vector_name", "where_mistakes", "word_mistakes"]
 
 #: the mistakes a drawn point can be named with, in the registry's order (the page refers to
 #: them by their index here)
 DRAWN_MISTAKES: tuple[str, ...] = tuple(REGISTRY)
-
-#: how named mistakes are worded: where the point lies, and the joint between two mistakes
-MISTAKE_WORDING = ("where the construction puts it when {}", ", or when ")
-
-#: how the mistakes named on every wrong point of a plan are worded (joined as
-#: :data:`MISTAKE_WORDING` joins them)
-PLAN_WORDING = "the wrong points all lie where the construction puts them when {}"
 
 #: decimals of a millimetre kept of the right points and radii in the page
 RIGHT_DECIMALS = 3
@@ -126,9 +131,11 @@ def common_mistakes(named):
 
 def word_mistakes(mistakes, texts, wording):
     """Where a point lies that ``mistakes`` put there, in words: ``texts`` maps a mistake to
-    what the student is told, ``wording`` is :data:`MISTAKE_WORDING`.
+    what the student is told, ``wording`` is where it lies (``{}``: the mistakes) and the
+    joint between two (planmethod's ``page_wording()[:2]``).
 
-    >>> word_mistakes(["a", "b"], {"a": "A was done", "b": "B was not"}, MISTAKE_WORDING)
+    >>> word_mistakes(["a", "b"], {"a": "A was done", "b": "B was not"},
+    ...               ("where the construction puts it when {}", ", or when "))
     'where the construction puts it when A was done, or when B was not'
     """
     sentence, joint = wording
@@ -136,22 +143,148 @@ def word_mistakes(mistakes, texts, wording):
 # pragma: no mutate end
 
 
-def mistake_sentence(mistakes: Sequence[str]) -> str:
+def _or_when(mistakes: Sequence[str]) -> Message:
+    """The mistakes' explanations of a drawn point, one or the other."""
+    sentence = drawn_explanation(mistakes[0])
+    for mistake in mistakes[1:]:
+        sentence = POINT_PARTS[PointPart.OR_WHEN].replace(first=sentence,
+                                                          second=drawn_explanation(mistake))
+    return sentence
+
+
+def where_mistakes(mistakes: Sequence[str]) -> Message:
+    """Where a point lies that ``mistakes`` put there (``where the construction puts it when
+    …``)."""
+    return POINT_PARTS[PointPart.WHERE].replace(mistakes=_or_when(mistakes))
+
+
+def mistake_sentence(mistakes: Sequence[str]) -> Message:
     """What a student is told of a point that lies where ``mistakes`` put it."""
-    texts = {mistake: drawn_explanation(mistake) for mistake in mistakes}
-    return "it lies " + word_mistakes(mistakes, texts, MISTAKE_WORDING)
+    return POINT_PARTS[PointPart.LIES].replace(where=where_mistakes(mistakes))
 
 
-def plan_sentence(mistakes: Sequence[str]) -> str:
+def plan_sentence(mistakes: Sequence[str]) -> Message:
     """What a student is told of a plan whose wrong points all lie where ``mistakes`` put
     them (:func:`common_mistakes`).
 
-    >>> plan_sentence(["no_coriolis"]).endswith("puts them when the Coriolis component aᵏ "
-    ...                                        "was left out")
+    >>> render(plan_sentence(["no_coriolis"])).endswith("puts them when the Coriolis "
+    ...                                                 "component aᵏ was left out")
     True
     """
-    return PLAN_WORDING.format(MISTAKE_WORDING[1].join(drawn_explanation(mistake)
-                                                       for mistake in mistakes))
+    return POINT_PARTS[PointPart.PLAN].replace(mistakes=_or_when(mistakes))
+
+
+def page_wording() -> tuple[str, str, str]:
+    """The sentences that name a drawn point's mistakes, in the language spoken, for a page
+    (and a PrairieLearn question) that words them itself: where a point lies (``{}``: the
+    mistakes), the joint between two mistakes, and the plan's sentence when every wrong point
+    is named with them (``{}``: the mistakes) — :data:`~planmethod.grading.verdicts.
+    POINT_PARTS`' ``where``, ``or_when`` and ``plan``, rendered.
+
+    >>> page_wording()[1]
+    ', or when '
+    """
+    parts = POINT_PARTS
+    return (render(parts[PointPart.WHERE].replace(mistakes="{}")),
+            render(parts[PointPart.OR_WHEN].replace(first="", second="")),
+            render(parts[PointPart.PLAN].replace(mistakes="{}")))
+
+
+#: the digits of a point's name in a label (``o2``, ``n_BO2``), set as subscripts
+_DIGITS = re.compile(r"(?<=[A-Za-z])[0-9]+")
+
+
+def plan_point_name(label: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A plan point's label as the course writes it: a point taken as a point of a link
+    with the link's number (``b@lever`` → b₃, ``c@frame`` → c₀, ``k_B@lever`` → k_B₃), the
+    digits of a point's name as subscripts (``o2`` → o₂, ``n_BO2`` → n_BO₂), a Coriolis
+    point by its letter (``k1_Q`` → k_Q, ``k2_Q`` → k′_Q). A link the ``numbers`` do not
+    number keeps its name (``b@lever``).
+
+    >>> plan_point_name("b@lever", {"frame": 0, "lever": 3}), plan_point_name("n_CB")
+    ('b₃', 'n_CB')
+    """
+    name, at, link = label.partition("@")
+    main, underscore, rest = name.partition("_")
+    head = main.rstrip("0123456789")
+    # a Coriolis point's side index is its letter: k1_Q is k_Q, k2_Q is k′_Q
+    main = (coriolis_letter(main[1:]) if head == "k" and main != head and rest
+            else point_text(main))
+    rest = _DIGITS.sub(lambda match: subscript(match.group(0)), rest)
+    shown = main + underscore + rest
+    if not at:
+        return shown
+    if numbers and link in numbers:
+        return shown + subscript(str(numbers[link]))
+    return f"{shown}@{link}"
+
+
+def vector_name(name: str, numbers: Mapping[str, int] | None = None) -> str:
+    """A quantity or a vector a plan reads, as the course writes it: a quantity by its symbol
+    (``omega_lever`` → ω₃, :func:`~planmethod.vocabulary.symbol`), a point taken as a point of
+    a link with the link's number (``v_B@yokeB`` → v_B₃B), a relative acceleration by aʳ
+    (``a_rel_CC@frame`` → aʳ_CC₀).
+
+    >>> numbers = {"frame": 0, "crank": 1, "block": 2, "yoke": 3}
+    >>> vector_name("a_rel_B@yokeB@frame", numbers), vector_name("omega_yoke", numbers)
+    ('aʳ_B₃B₀', 'ω₃')
+    """
+    if numbers and "@" in name:
+        for link in sorted(numbers, key=len, reverse=True):   # the longest name first
+            name = name.replace(f"@{link}", subscript(str(numbers[link])))
+    head, relative, rest = name.partition("a_rel_")
+    if relative and not head:
+        return "aʳ_" + _DIGITS.sub(lambda match: subscript(match.group(0)), rest)
+    return symbol(name, numbers)
+
+
+@dataclass(frozen=True, slots=True)
+class ConstructionLine:
+    """A construction line a plan point is an intersection of: its step's ``number``, the
+    point it is drawn through (``through``, a label), its direction (degrees) and the words
+    its step names it with (``name``: ``v_CB ⟂ CB``)."""
+
+    number: int
+    through: str
+    direction_deg: float
+    name: str
+
+
+def line_name(step: Mapping[str, Any]) -> str:
+    """The words a line step's sentence names its line with (``through b: v_CB ⟂ CB`` →
+    ``v_CB ⟂ CB``): a key keeps a step's sentence, in which the line's name follows the
+    point it is drawn through.
+
+    >>> line_name({"text": "through b: v_CB ⟂ CB", "start": "b"})
+    'v_CB ⟂ CB'
+    """
+    # words: plans (the line's name is a part of the step's sentence until a step keeps it
+    # apart)
+    return str(step.get("text", "")).partition(": ")[2]
+
+
+def point_lines(entry: Mapping[str, Any]) -> dict[str, tuple[ConstructionLine, ...]]:
+    """The construction lines each intersection point of a key's plan (``key["plans"][plan]``)
+    lies on, in the order of its step: what a point's sentence measures it from (off the
+    line, or on it and off along it: a point of the wrong link — b₃ placed at b — lies on the
+    line v_B₃B along the guide).
+
+    >>> entry = {"steps": [{"number": 1, "action": "line", "start": "b", "direction_deg": 90.0,
+    ...                     "text": "through b: v_CB ⟂ CB"},
+    ...                    {"number": 2, "action": "intersect", "end": "c", "lines": [1, 5]}]}
+    >>> point_lines(entry)["c"][0].name
+    'v_CB ⟂ CB'
+    """
+    lines = {step["number"]: step for step in entry["steps"] if step.get("action") == "line"}
+    out: dict[str, tuple[ConstructionLine, ...]] = {}
+    for step in entry["steps"]:
+        if step.get("action") != "intersect" or not step.get("end") or step["end"] in out:
+            continue
+        out[step["end"]] = tuple(
+            ConstructionLine(number, lines[number]["start"],
+                             float(lines[number]["direction_deg"]), line_name(lines[number]))
+            for number in step.get("lines", ()) if number in lines)
+    return out
 
 
 def _rounded(values: Sequence[float], decimals: int = RIGHT_DECIMALS) -> list[float]:

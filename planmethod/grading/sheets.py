@@ -32,11 +32,56 @@ from ..render.canvas import Canvas
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
 from ..vocabulary import PLAN_SCALES, numbered, point_text, scale_text, shown_title, symbol
+from ..words import Message, message, render, template
 from .keys import key_numbers
+from .plan_points import plan_point_name
 from .templates import drawn_lengths
 
-__all__ = ["blank_plan_sheet", "plan_sheet_for_key", "task_figure_svg", "task_sheet_svg",
-           "task_text"]
+__all__ = ["blank_plan_sheet", "given_data", "plan_sheet_for_key", "task_figure_svg",
+           "task_sheet_svg", "task_text"]
+
+#: the words a question's text ends with that the answer table's heading says for every row
+_SENSE_NOTE = " (counter-clockwise positive)"
+
+
+def _lines(key: Mapping[str, Any]) -> list[Message | str]:
+    """The task's lines above its answer table."""
+    scales = key.get("scales", {})
+    numbers = key_numbers(key)
+    exercise = _exercise(key)
+    crank = numbers.get(exercise.mechanism.drive.link, 1) if exercise is not None else 1
+    lines: list[Message | str] = [
+        message("{title} — variant for {student}",
+                title=shown_title(key["title"]) if "title" in key else message("Exercise"),
+                student=key.get("student")), "", key.get("task", "").strip(), ""]
+    if exercise is not None:
+        lines.append(message("Given: {data}.", data=given_data(exercise, numbers)))
+    # words: vocabulary (a scale's text is English until it is a message)
+    scale_texts = [scale_text(name, scales.get(name, 0)) for name in ("mu_l", "mu_v", "mu_a")]
+    lines.append(message("Crank angle {phi} = {angle:g}°; scales {scales}.",
+                         phi=numbered("φ", crank), angle=key.get("angle", 0),
+                         scales=scale_texts))
+    if exercise is not None and scales:
+        lines.append(message("At these scales: {lengths}.", lengths=[
+            message("{segment} = {length:.3g} mm", segment=segment, length=length)
+            for segment, length in drawn_lengths(exercise, scales).items()]))
+    if numbers:
+        lines.append(message("Links: {links}.", links=[
+            message("{number} {name}", number=number, name=_words(name))
+            for name, number in numbers.items()]))
+    return lines
+
+
+def _row(question: Mapping[str, Any], numbers: Mapping[str, int]) -> Message:
+    """A question's row of the answer table: its symbol and unit, its words, its column."""
+    unit = question.get("unit", "")
+    shown = question.get("symbol") or symbol(question["id"], numbers)
+    # the heading says counter-clockwise is positive: the row need not say it again
+    # words: vocabulary (the question's text is English until the key keeps its fields)
+    text = question["text"].replace(_SENSE_NOTE, "")
+    return message("  {symbol:<16} {question}   [{column}]",
+                   symbol=message("{symbol}, {unit}", symbol=shown, unit=unit) if unit
+                   else shown, question=text, column=question["id"])
 
 
 def task_text(key: Mapping[str, Any]) -> str:
@@ -51,34 +96,11 @@ def task_text(key: Mapping[str, Any]) -> str:
     >>> print(task_text(key).splitlines()[0])
     T — variant for s1
     """
-    scales = key.get("scales", {})
     numbers = key_numbers(key)
-    exercise = _exercise(key)
-    crank = numbers.get(exercise.mechanism.drive.link, 1) if exercise is not None else 1
-    lines = [f"{shown_title(key.get('title', 'Exercise'))} — variant for {key.get('student')}", "",
-             key.get("task", "").strip(), ""]
-    if exercise is not None:
-        lines.append("Given: " + ", ".join(given_data(exercise, numbers)) + ".")
-    scale_texts = (scale_text(name, scales.get(name, 0)) for name in ("mu_l", "mu_v", "mu_a"))
-    lines.append(f"Crank angle {numbered('φ', crank)} = {key.get('angle', 0):g}°; scales "
-                 f"{', '.join(scale_texts)}.")
-    if exercise is not None and scales:
-        lines.append("At these scales: " + ", ".join(
-            f"{segment} = {length:.3g} mm" for segment, length in
-            drawn_lengths(exercise, scales).items()) + ".")
-    if numbers:
-        lines.append("Links: " + ", ".join(f"{number} {_words(name)}"
-                                           for name, number in numbers.items()) + ".")
-    lines += ["", "Answer (SI units, counter-clockwise positive; in an answers file, the column "
-              "named in brackets):"]
-    for question in key.get("questions", ()):
-        unit = question.get("unit", "")
-        shown = question.get("symbol") or symbol(question["id"], numbers)
-        # the heading says counter-clockwise is positive: the row need not say it again
-        text = question["text"].replace(" (counter-clockwise positive)", "")
-        lines.append(f"  {shown + (', ' + unit if unit else ''):<16} {text}"
-                     f"   [{question['id']}]")
-    return "\n".join(lines).rstrip() + "\n"
+    lines = [*_lines(key), "", message("Answer (SI units, counter-clockwise positive; in an "
+                                       "answers file, the column named in brackets):")]
+    lines += [_row(question, numbers) for question in key.get("questions", ())]
+    return "\n".join(render(line) for line in lines).rstrip() + "\n"
 
 
 def _exercise(key: Mapping[str, Any]):
@@ -94,11 +116,11 @@ def _exercise(key: Mapping[str, Any]):
         return None
 
 
-def _length(value: float) -> str:
-    return f"{value:.4g} m"
+def _length(symbol_text: str, value: float) -> Message:
+    return message("{symbol} = {length:.4g} m", symbol=symbol_text, length=value)
 
 
-def given_data(exercise, numbers: Mapping[str, int]) -> list[str]:
+def given_data(exercise, numbers: Mapping[str, int]) -> list[Message]:
     """What a task gives, in the course's symbols with units: the links' lengths (l_AB, from
     each link's first point to its others), the fixed points and guides seen from the crank's
     pivot, and the crank's φ, ω (and ε).
@@ -107,7 +129,8 @@ def given_data(exercise, numbers: Mapping[str, int]) -> list[str]:
     --------
     >>> from planmethod.spec import load_exercise
     >>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
-    >>> given_data(exercise, {"frame": 0, "AB": 1, "BC": 2, "slider": 3})
+    >>> [render(item) for item in given_data(exercise, {"frame": 0, "AB": 1, "BC": 2,
+    ...                                                 "slider": 3})]
     ['l_AB = 0.06 m', 'l_BC = 0.18 m', 'l_BD = 0.09 m', 'φ₁ = 45°', 'ω₁ = 100 rad/s']
     """
     mechanism = exercise.mechanism
@@ -118,25 +141,29 @@ def given_data(exercise, numbers: Mapping[str, int]) -> list[str]:
     for name in order:
         points = list(mechanism.links[name].points)
         for other in points[1:]:
-            given.append(f"l_{point_text(points[0])}{point_text(other)} = "
-                         f"{_length(mechanism.links[name].length(points[0], other))}")
+            given.append(_length(f"l_{point_text(points[0])}{point_text(other)}",
+                                 mechanism.links[name].length(points[0], other)))
     pivot = mechanism.local(FRAME, drive.pivot)
     for point, (x, y) in mechanism.links[FRAME].points.items():
         if point == drive.pivot:
             continue
         dx, dy = x - pivot[0], y - pivot[1]
         where = f"{point_text(drive.pivot)}{point_text(point)}"
-        given.append(f"l_{where} = {_length(dx)}" if dy == 0 and dx > 0 else
-                     f"x_{where} = {_length(dx)}, y_{where} = {_length(dy)}")
+        given.append(_length(f"l_{where}", dx) if dy == 0 and dx > 0 else
+                     message("{x} = {dx:.4g} m, {y} = {dy:.4g} m", x=f"x_{where}", dx=dx,
+                             y=f"y_{where}", dy=dy))
     for slide in mechanism.slides:
         if slide.along == FRAME and (slide.through != drive.pivot or slide.direction):
-            given.append(f"the guide of {point_text(slide.point)} through "
-                         f"{point_text(slide.through)} at {slide.direction:g}°")
+            given.append(message("the guide of {point} through {through} at {angle:g}°",
+                                 point=point_text(slide.point),
+                                 through=point_text(slide.through), angle=slide.direction))
     crank = numbers.get(drive.link, 1)
-    given += [f"{numbered('φ', crank)} = {drive.angle:g}°",
-              f"{numbered('ω', crank)} = {drive.omega:g} rad/s"]
+    given += [message("{symbol} = {angle:g}°", symbol=numbered("φ", crank), angle=drive.angle),
+              message("{symbol} = {omega:g} rad/s", symbol=numbered("ω", crank),
+                      omega=drive.omega)]
     if drive.epsilon:
-        given.append(f"{numbered('ε', crank)} = {drive.epsilon:g} rad/s²")
+        given.append(message("{symbol} = {epsilon:g} rad/s²", symbol=numbered("ε", crank),
+                             epsilon=drive.epsilon))
     return given
 
 
@@ -175,26 +202,39 @@ def task_sheet_svg(key: Mapping[str, Any], plans) -> str:
     return task_figure_svg(plans, lines)
 
 
+#: a blank plan sheet's header (what it is, whose, its scale, the given segment, what to do)
+#: and its title, by plan
+_HEADERS = {"velocity": template("{title} — velocity plan — {student} — {scale}. {given} Draw "
+                                 "the plan from the pole {pole}; label every point (b, c, …) "
+                                 "next to it. (grid: 10 mm)"),
+            "acceleration": template("{title} — acceleration plan — {student} — {scale}. "
+                                     "{given} Draw the plan from the pole {pole}; label every "
+                                     "point (b, c, …) next to it. (grid: 10 mm)")}
+_TITLES = {"velocity": template("{title} — blank velocity plan sheet"),
+           "acceleration": template("{title} — blank acceleration plan sheet")}
+
+
 def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: float,
-                     student: str = "", title: str = "", given: str = "") -> str:
-    """A square blank sheet (mm) with the pole at its centre and a 10 mm grid pattern."""
+                     student: str = "", title: str = "", given: Message | str = "") -> str:
+    """A square blank sheet (mm) of the ``velocity`` or ``acceleration`` plan with the pole at
+    its centre and a 10 mm grid pattern."""
     size = float(size_mm)
     centre = size / 2
     title = shown_title(title)
-    header = (f"{title} — {plan} plan — {student} — {scale_text(PLAN_SCALES[plan], scale)}. "
-              f"{given} Draw the plan from the pole {pole}; label every point (b, c, …) next "
-              "to it.")
+    # words: vocabulary (a scale's text is English until it is a message)
+    header = render(_HEADERS[plan].replace(title=title, student=student, given=given, pole=pole,
+                                           scale=scale_text(PLAN_SCALES[plan], scale)))
     canvas = Canvas()
     grid = canvas.grid_pattern("grid", 10.0, color="#c9cede", width=0.2)
     canvas.rectangle((0.0, 12.0), (size, size), fill=grid, stroke="#99a", width=0.3,
                      css="grid")
-    for index, line in enumerate(textwrap.wrap(header + " (grid: 10 mm)",
-                                               int(size / 1.45))[:3]):
+    for index, line in enumerate(textwrap.wrap(header, int(size / 1.45))[:3]):
         canvas.text((3.0, 4.0 + 3.2 * index), line, size=2.6, css="header", area=False)
     canvas.circle((centre, centre + 12), 0.8, fill="#000000", css="pole", area=False)
     canvas.text((centre + 1.5, centre + 12 - 1.5), pole, size=5.0, family=LABEL_FAMILY,
                 css="pole-label", area=False)
-    return canvas.svg(f"{title} — blank {plan} plan sheet", view=(0.0, 0.0, size, size + 12),
+    return canvas.svg(render(_TITLES[plan].replace(title=title)),
+                      view=(0.0, 0.0, size, size + 12),
                       unit="mm", attributes={"data-planmethod-plan": plan,
                                              "data-planmethod-student": student}).svg
 
@@ -205,8 +245,9 @@ def plan_sheet_for_key(key: Mapping[str, Any], plan: str) -> str:
     extent = max((math.hypot(*xy) for xy in entry["points_mm"].values()), default=30.0)
     size = max(120.0, 20.0 * math.ceil((2 * extent + 40.0) / 20.0))
     first = next((s for s in entry["steps"] if s["action"] == "lay_off"), None)
-    given = (f"({entry['pole']}{first['end']}) = {first['length_mm']:.4g} mm."
-             if first else "")
+    given = (message("({pole}{end}) = {length:.4g} mm.", pole=entry["pole"],
+                     end=plan_point_name(first["end"], key_numbers(key)),
+                     length=first["length_mm"]) if first else "")
     return blank_plan_sheet(plan, pole=entry["pole"], scale=entry["scale"], unit=entry["unit"],
                             size_mm=size, student=str(key.get("student", "")),
                             title=str(key.get("title", "")), given=given)

@@ -65,11 +65,12 @@ from ..errors import (
 )
 from ..model import Exercise
 from ..numbering import course_numbers, course_symbols
-from ..plans.construction import course_text
 from ..spec import checked_table, leaves, parse_toml, read_text
 from ..vectors import angle_deg
 from ..vocabulary import PlanKind, point_text, symbol
+from ..words import Message, message, plural, render, template
 from .expressions import ExpressionError, evaluate, parse, references
+from .plan_points import plan_point_name, vector_name
 
 __all__ = [
     "Template",
@@ -142,7 +143,8 @@ class Variant:
     data: Mapping[str, Any]
     values: Mapping[str, Any]
     exercise: Exercise
-    rejected: tuple[str, ...] = ()
+    #: why the attempts before it were rejected
+    rejected: tuple[Message, ...] = ()
     #: the drawing tolerances found while checking the draw (reused by its answer key)
     propagation: Any = field(default=None, compare=False, repr=False)
 
@@ -188,43 +190,57 @@ def parse_template(text: str, *, file: str | None = None) -> Template:
     if "ask" not in data and any(_is_random(value) for _, value in _walk(data)):
         # without [ask] everything is asked, fixed pivots' zero speeds and zero Coriolis terms
         # included: no drawn variant could pass the rules a random draw is held to
-        raise SpecError("a template with random values must say what its students are asked: "
-                        "add an [ask] table (velocity = [...], omega = [...] …)", file=file,
-                        key="ask")
+        raise SpecError(message("a template with random values must say what its students "
+                                "are asked: add an [ask] table (velocity = [...], omega = [...] "
+                                "…)"), file=file, key="ask")
     if not isinstance(data.get("description", ""), str):
-        raise SpecError("must be a string (the task in words, with {name} placeholders), got "
-                        f"{value_text(data['description'])}", file=file, key="description")
+        raise SpecError(message("must be a string (the task in words, with {{name}} "
+                                "placeholders), got {given}",
+                                given=value_text(data["description"])),
+                        file=file, key="description")
     description = data.get("description", "")
     if len(description) > MAX_TASK_CHARACTERS:
-        raise SpecError(f"the task's text is {len(description)} characters; at most "
-                        f"{MAX_TASK_CHARACTERS}", file=file, key="description")
+        raise SpecError(_too_long_task(len(description)), file=file, key="description")
     for placeholder in _PLACEHOLDER.finditer(description):
         problem = _format_problem(placeholder)
         if problem:
             raise SpecError(problem, file=file, key="description")
     if "vars" in data and not isinstance(data["vars"], Mapping):
-        raise SpecError("must be a table of named values", file=file, key="vars")
+        raise SpecError(message("must be a table of named values"), file=file, key="vars")
     for name in data.get("vars", {}):
         if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
-            raise SpecError("a variable name must be an identifier", file=file,
+            raise SpecError(message("a variable name must be an identifier"), file=file,
                             key=f"vars.{name}")
     # check every random spec and expression now, so that a bad template fails at once
     for key, value in _walk(data):
         if _is_random(value):
             _check_random(value, key, file)
         elif isinstance(value, str) and _is_expression(value):
-            try:
-                tree = parse(value[1:])
-            except ExpressionError as error:
-                raise SpecError(f"bad expression {value_text(value)}: {error}", file=file,
-                                key=key) from None
-            for name in references(tree):
-                if not _exists(data, name):
-                    raise SpecError(f"expression {value_text(value)} refers to '{name}', which is "
-                                    "neither in [vars] nor a key of the file", file=file,
-                                    key=key)
+            _check_expression(data, value, key, file)
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
     return Template(data, settings, digest, file)
+
+
+def _too_long_task(characters: int) -> Message:
+    return plural("the task's text is {count} character; at most {limit}",
+                  "the task's text is {count} characters; at most {limit}",
+                  count=characters, limit=MAX_TASK_CHARACTERS)
+
+
+def _check_expression(data: Mapping[str, Any], value: str, key: str, file: str | None) -> None:
+    """Refuse an expression that does not parse or refers to a name the file lacks."""
+    try:
+        tree = parse(value[1:])
+    except ExpressionError as error:
+        raise SpecError(message("bad expression {expression}: {problem}",
+                                expression=value_text(value), problem=error.message),
+                        file=file, key=key) from None
+    for name in references(tree):
+        if not _exists(data, name):
+            raise SpecError(message("expression {expression} refers to '{name}', which is "
+                                    "neither in [vars] nor a key of the file",
+                                    expression=value_text(value), name=name),
+                            file=file, key=key)
 
 
 def _settings(table: Any, file: str | None) -> TemplateSettings:
@@ -235,32 +251,38 @@ def _settings(table: Any, file: str | None) -> TemplateSettings:
             value = table[name]
             if (isinstance(value, bool) or not isinstance(value, int | float)
                     or not 0 <= value < 90):
-                raise SpecError(f"must be an angle in [0, 90) degrees, got {value_text(value)}",
+                raise SpecError(message("must be an angle in [0, 90) degrees, got {given}",
+                                        given=value_text(value)),
                                 file=file, key=f"template.{name}")
             values[name] = float(value)
     if "max_attempts" in table:
         value = table["max_attempts"]
         if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 10000:
-            raise SpecError(f"must be a whole number in 1…10000, got {value_text(value)}",
+            raise SpecError(message("must be a whole number in 1…10000, got {given}",
+                                    given=value_text(value)),
                             file=file, key="template.max_attempts")
         values["max_attempts"] = value
     if "min_segment_mm" in table:
         value = table["min_segment_mm"]
         if isinstance(value, bool) or not isinstance(value, int | float) or not 0 <= value <= 200:
-            raise SpecError(f"must be a length in [0, 200] mm, got {value_text(value)}", file=file,
-                            key="template.min_segment_mm")
+            raise SpecError(message("must be a length in [0, 200] mm, got {given}",
+                                    given=value_text(value)),
+                            file=file, key="template.min_segment_mm")
         values["min_segment_mm"] = float(value)
     if "max_tolerance" in table:
         value = table["max_tolerance"]
         if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value <= 1:
-            raise SpecError(f"must be a share in (0, 1] (0.1 = 10 %), got {value_text(value)}",
+            raise SpecError(message("must be a share in (0, 1] (0.1 = 10 %), got {given}",
+                                    given=value_text(value)),
                             file=file, key="template.max_tolerance")
         values["max_tolerance"] = float(value)
     if "require" in table:
         value = table["require"]
         if not isinstance(value, list) or any(item not in COMPONENTS for item in value):
-            raise SpecError(f"must be a list of components from {', '.join(COMPONENTS)}, got "
-                            f"{value_text(value)}", file=file, key="template.require")
+            raise SpecError(message("must be a list of components from {components}, got "
+                                    "{given}", components=list(COMPONENTS),
+                                    given=value_text(value)),
+                            file=file, key="template.require")
         values["require"] = tuple(value)
     return TemplateSettings(**values)
 
@@ -288,28 +310,29 @@ def _check_random(spec: Mapping[str, Any], key: str, file: str | None) -> None:
     if "choice" in spec:
         options = spec["choice"]
         if not isinstance(options, list) or not options:
-            raise SpecError("choice must be a non-empty list", file=file, key=f"{key}.choice")
+            raise SpecError(message("choice must be a non-empty list"), file=file,
+                            key=f"{key}.choice")
         if not all(_number(o) or isinstance(o, str) for o in options):
-            raise SpecError(f"choice holds numbers or strings, got {value_text(options)}",
-                            file=file, key=f"{key}.choice")
+            raise SpecError(message("choice holds numbers or strings, got {given}",
+                                    given=value_text(options)), file=file, key=f"{key}.choice")
         return
     bounds = spec["range"]
     if (not isinstance(bounds, list) or len(bounds) != 2
             or not all(_number(b) for b in bounds)):
-        raise SpecError(f"range must be [low, high] with finite numbers, got {value_text(bounds)}",
-                        file=file, key=f"{key}.range")
+        raise SpecError(message("range must be [low, high] with finite numbers, got {given}",
+                                given=value_text(bounds)), file=file, key=f"{key}.range")
     low, high = bounds
     if low > high:
-        raise SpecError(f"range [{low:g}, {high:g}] has low above high", file=file,
-                        key=f"{key}.range")
+        raise SpecError(message("range [{low:g}, {high:g}] has low above high", low=low,
+                                high=high), file=file, key=f"{key}.range")
     if "step" in spec:
         step = spec["step"]
         if not _number(step) or step <= 0:
-            raise SpecError(f"step must be a positive number, got {value_text(step)}", file=file,
-                            key=f"{key}.step")
+            raise SpecError(message("step must be a positive number, got {given}",
+                                    given=value_text(step)), file=file, key=f"{key}.step")
         if (high - low) / step > 1e7:
-            raise SpecError(f"range/step gives more than 10 million values ({step:g})",
-                            file=file, key=f"{key}.step")
+            raise SpecError(message("range/step gives more than 10 million values ({step:g})",
+                                    step=step), file=file, key=f"{key}.step")
 
 
 def _path(name: str) -> list[str | int]:
@@ -380,8 +403,8 @@ class _Resolver:
             return self.memo[key]
         if key in self.active:
             cycle = " → ".join([*self.active[self.active.index(key):], key])
-            raise SpecError(f"the expressions refer to each other in a cycle: {cycle}",
-                            file=self.template.source, key=key)
+            raise SpecError(message("the expressions refer to each other in a cycle: {cycle}",
+                                    cycle=cycle), file=self.template.source, key=key)
         self.active.append(key)
         try:
             if _is_random(raw):
@@ -390,8 +413,9 @@ class _Resolver:
                 try:
                     result = evaluate(parse(raw[1:]), self.reference)
                 except ExpressionError as error:
-                    raise SpecError(f"{value_text(raw)}: {error}", file=self.template.source,
-                                    key=key) from None
+                    raise SpecError(message("{expression}: {problem}",
+                                            expression=value_text(raw), problem=error.message),
+                                    file=self.template.source, key=key) from None
             elif isinstance(raw, str) and raw.startswith("=="):
                 result = raw[1:]
             elif isinstance(raw, Mapping):
@@ -445,47 +469,67 @@ def draw_variant(template: Template, seed: int = 0, student: str = "1",
         If the template is malformed, or no attempt within ``max_attempts`` passes (the message
         counts the reasons of the rejections).
     """
-    reasons: list[str] = []
+    reasons: list[Message] = []
     for attempt in range(template.settings.max_attempts):
-        resolver = _Resolver(template, seed, student, attempt)
-        data = resolver.resolve_all()
-        values = data.pop("vars", {})
-        data.pop("template", None)
-        try:
-            from ..spec import exercise_from_dict
+        variant = _attempt(template, seed, student, attempt, reasons, check)
+        if variant is not None:
+            return variant
+    raise SpecError(plural("no acceptable variant in {count} attempt for student {student!r} "
+                           "(seed {seed}): {summary}",
+                           "no acceptable variant in {count} attempts for student {student!r} "
+                           "(seed {seed}): {summary}", count=template.settings.max_attempts,
+                           student=student, seed=seed, summary=_summary(reasons)),
+                    file=template.source)
 
-            exercise = exercise_from_dict(data, file=template.source)
-        except SpecError as error:
-            if not template.is_random:
-                raise
-            reasons.append(f"not a valid exercise: {error.message} ({error.key})")
-            continue
-        if not check:
-            return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
-        problem = check_variant(exercise, template.settings, drawable=template.is_random)
-        propagation = None
-        if problem is None and template.is_random:
-            problem, propagation = tolerance_problem(exercise, data, template.settings,
-                                                     file=template.source)
-        if problem is None:
-            return Variant(student, seed, attempt, data, values, exercise, tuple(reasons),
-                           propagation)
+
+def _attempt(template: Template, seed: int, student: str, attempt: int,
+             reasons: list[Message], check: bool) -> Variant | None:
+    """The variant of one attempt, or None (the reason added to ``reasons``) if it is
+    rejected."""
+    resolver = _Resolver(template, seed, student, attempt)
+    data = resolver.resolve_all()
+    values = data.pop("vars", {})
+    data.pop("template", None)
+    try:
+        from ..spec import exercise_from_dict
+
+        exercise = exercise_from_dict(data, file=template.source)
+    except SpecError as error:
         if not template.is_random:
-            raise SpecError(f"the exercise itself is unsuitable for grading: {problem}",
-                            file=template.source)
-        reasons.append(problem)
+            raise
+        reasons.append(message("not a valid exercise: {problem} ({key})", problem=error.message,
+                               key=error.key))
+        return None
+    if not check:
+        return Variant(student, seed, attempt, data, values, exercise, tuple(reasons))
+    problem = check_variant(exercise, template.settings, drawable=template.is_random)
+    propagation = None
+    if problem is None and template.is_random:
+        problem, propagation = tolerance_problem(exercise, data, template.settings,
+                                                 file=template.source)
+    if problem is None:
+        return Variant(student, seed, attempt, data, values, exercise, tuple(reasons),
+                       propagation)
+    if not template.is_random:
+        raise SpecError(message("the exercise itself is unsuitable for grading: {problem}",
+                                problem=problem), file=template.source)
+    reasons.append(problem)
+    return None
+
+
+def _summary(reasons: list[Message]) -> str:
+    """The three most frequent kinds of rejection, each counted (``12× the crank is #° from a
+    dead centre (below #°)``: its numbers left out)."""
     counts: dict[str, int] = {}
     for reason in reasons:
-        short = re.sub(r"[-\d.]+", "#", reason)
+        short = re.sub(r"[-\d.]+", "#", render(reason))
         counts[short] = counts.get(short, 0) + 1
-    summary = "; ".join(f"{n}× {text}" for text, n in sorted(counts.items(),
-                                                            key=lambda item: -item[1])[:3])
-    raise SpecError(f"no acceptable variant in {template.settings.max_attempts} attempts for "
-                    f"student {student!r} (seed {seed}): {summary}", file=template.source)
+    return "; ".join(f"{n}× {text}" for text, n in sorted(counts.items(),
+                                                          key=lambda item: -item[1])[:3])
 
 
 def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSettings(), *,
-                  drawable: bool = True) -> str | None:
+                  drawable: bool = True) -> Message | None:
     """Why a drawn exercise is unfit to be set (None if it is fit).
 
     Unfit: it cannot be assembled, a group is at a toggle, two construction lines of a plan
@@ -499,61 +543,90 @@ def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSetti
     try:
         plans = draw_plans(exercise, acceleration=exercise.ask.needs_acceleration)
     except AssemblyError as error:
-        return f"cannot be assembled ({error.message})"
+        return message("cannot be assembled ({problem})", problem=error.message)
     except ToggleError as error:
-        return f"toggle position ({error.message})"
+        return message("toggle position ({problem})", problem=error.message)
     except ConvergenceError as error:
-        return f"no converged assembly ({error.message})"
+        return message("no converged assembly ({problem})", problem=error.message)
     except PlanmethodError as error:
-        return f"cannot draw the plans ({error.message})"
+        return message("cannot draw the plans ({problem})", problem=error.message)
     return plan_problem(plans, settings, drawable=drawable)
 
 
-def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True) -> str | None:
+#: a plan's construction lines meet at too small an angle, by plan
+_SHARP = {PlanKind.VELOCITY: template("on the velocity plan the lines meet at {angle:.1f}° "
+                                      "(below {limit:g}°) for {point}"),
+          PlanKind.ACCELERATION: template("on the acceleration plan the lines meet at "
+                                          "{angle:.1f}° (below {limit:g}°) for {point}")}
+#: a segment read off a plan is too short to measure, by plan
+_SHORT = {PlanKind.VELOCITY: template("on the velocity plan the segment read for {quantity} is "
+                                      "{length:.1f} mm (below {limit:g} mm)"),
+          PlanKind.ACCELERATION: template("on the acceleration plan the segment read for "
+                                          "{quantity} is {length:.1f} mm (below {limit:g} mm)")}
+#: a component a template requires is too short or not drawn, by plan
+_UNDRAWN = {PlanKind.VELOCITY: template("{component} required on the velocity plan is "
+                                        "{length:.1f} mm (below {limit:g} mm, or not drawn)"),
+            PlanKind.ACCELERATION: template("{component} required on the acceleration plan is "
+                                            "{length:.1f} mm (below {limit:g} mm, or not "
+                                            "drawn)")}
+#: the components a template may require, named
+_COMPONENTS = {"normal": message("the normal component"),
+               "tangential": message("the tangential component"),
+               "coriolis": message("the coriolis component"),
+               "relative": message("the relative component")}
+
+
+def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True
+                 ) -> Message | None:
     """The reason a variant's plans are unfit (see :func:`check_variant`), or None.
     ``drawable`` adds the rules a random draw must also pass (segments a student measures at
     least ``min_segment_mm``, required components drawn); an exercise set as written is not
     held to them. Quantities are named as the course writes them (ω₂, aʳ_CC₀)."""
-    mechanism = plans.exercise.mechanism
-    numbers = course_numbers(mechanism)
-    problem = _plan_problem(plans, settings, drawable)
-    return None if problem is None else course_text(problem, numbers)
-
-
-def _plan_problem(plans, settings: TemplateSettings, drawable: bool) -> str | None:
+    numbers = course_numbers(plans.exercise.mechanism)
     for plan in (plans.velocity, plans.acceleration):
         if plan is None:
             continue
         for step in plan.steps:
             if step.action == "intersect" and step.angle_deg < settings.min_line_angle_deg:
-                return (f"on the {plan.kind} plan the lines meet at {step.angle_deg:.1f}° "
-                        f"(below {settings.min_line_angle_deg:g}°) for {step.end}")
+                return _SHARP[plan.kind].replace(angle=step.angle_deg,
+                                                 limit=settings.min_line_angle_deg,
+                                                 point=plan_point_name(step.end, numbers))
     angle = dead_centre_angle(plans)
     if angle is not None and angle < settings.dead_centre_deg:
-        return (f"the crank is {angle:.1f}° from a dead centre (below "
-                f"{settings.dead_centre_deg:g}°)")
+        return message("the crank is {angle:.1f}° from a dead centre (below {limit:g}°)",
+                       angle=angle, limit=settings.dead_centre_deg)
     for plan in (plans.velocity, plans.acceleration):
-        if plan is None or not drawable:
-            continue
-        for step in plan.steps:   # what the student reads off must be long enough to measure
-            if (step.action == "read" and step.length_mm is not None
-                    and abs(step.length_mm) < settings.min_segment_mm):
-                return (f"on the {plan.kind} plan the segment read for "
-                        f"{step.quantity or step.end} is {abs(step.length_mm):.1f} mm (below "
-                        f"{settings.min_segment_mm:g} mm)")
-        for component in settings.require:
-            drawn = [abs(step.length_mm or 0.0) for step in plan.steps
-                     if step.action == "lay_off" and step.component == component]
-            needed = plan.kind == PlanKind.ACCELERATION or component == "relative"
-            if needed and (not drawn or max(drawn) < settings.min_segment_mm):
-                return (f"the {component} component required on the {plan.kind} plan is "
-                        f"{max(drawn, default=0.0):.1f} mm (below {settings.min_segment_mm:g} "
-                        "mm, or not drawn)")
+        if plan is not None and drawable:
+            problem = _unmeasurable(plan, settings, numbers)
+            if problem is not None:
+                return problem
+    return None
+
+
+def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
+                  ) -> Message | None:
+    """Why a random draw's plan cannot be measured: a segment the student reads off shorter
+    than ``min_segment_mm``, or a required component not drawn that long; else None."""
+    for step in plan.steps:   # what the student reads off must be long enough to measure
+        if (step.action == "read" and step.length_mm is not None
+                and abs(step.length_mm) < settings.min_segment_mm):
+            read = (vector_name(step.quantity, numbers) if step.quantity
+                    else plan_point_name(step.end, numbers))
+            return _SHORT[plan.kind].replace(quantity=read, length=abs(step.length_mm),
+                                             limit=settings.min_segment_mm)
+    for component in settings.require:
+        drawn = [abs(step.length_mm or 0.0) for step in plan.steps
+                 if step.action == "lay_off" and step.component == component]
+        needed = plan.kind == PlanKind.ACCELERATION or component == "relative"
+        if needed and (not drawn or max(drawn) < settings.min_segment_mm):
+            return _UNDRAWN[plan.kind].replace(component=_COMPONENTS[component],
+                                               length=max(drawn, default=0.0),
+                                               limit=settings.min_segment_mm)
     return None
 
 
 def tolerance_problem(exercise: Exercise, data: Mapping[str, Any], settings: TemplateSettings,
-                      *, file: str | None = None) -> tuple[str | None, Any]:
+                      *, file: str | None = None) -> tuple[Message | None, Any]:
     """(why the draw is unfit, the drawing tolerances found): unfit where the tolerance a
     drawing at the ``[grading]`` precision allows (:func:`~planmethod.grading.tolerances.
     propagate`) is more than ``max_tolerance`` of a quantity asked — the student could not tell
@@ -570,9 +643,10 @@ def tolerance_problem(exercise: Exercise, data: Mapping[str, Any], settings: Tem
         if value is None or tolerance is None or not value:
             continue
         if tolerance > settings.max_tolerance * abs(value):
-            return (f"the drafting tolerance of {symbol(quantity, numbers)} is "
-                    f"{100 * tolerance / abs(value):.0f} % of its value (above "
-                    f"{100 * settings.max_tolerance:g} %)"), found
+            return message("the drafting tolerance of {symbol} is {percent:.0f} % of its value "
+                           "(above {limit:g} %)", symbol=symbol(quantity, numbers),
+                           percent=100 * tolerance / abs(value),
+                           limit=100 * settings.max_tolerance), found
     return None, found
 
 
@@ -635,6 +709,13 @@ def drawing_values(exercise: Exercise) -> dict[str, dict[str, float]]:
             "drawn": dict(zip(("crank", "velocity", "acceleration"), lengths, strict=False))}
 
 
+#: a task's text longer than :data:`MAX_TASK_CHARACTERS` once its placeholders are filled
+_TOO_LONG_FILLED = plural("the task's text is more than {count} character once its "
+                          "placeholders are filled in",
+                          "the task's text is more than {count} characters once its "
+                          "placeholders are filled in", count=MAX_TASK_CHARACTERS)
+
+
 def format_description(text: Any, values: Mapping[str, Any], data: Mapping[str, Any],
                        drawing: Mapping[str, Any] | None = None) -> str:
     """Fill ``{name}`` and ``{name:.3g}`` placeholders from ``[vars]`` values, file keys and
@@ -686,32 +767,37 @@ precision of 100000000; at most 15
             return match.group(0)
         written[0] += len(filled) - len(match.group(0))
         if len(text) + written[0] > MAX_TASK_CHARACTERS:
-            raise SpecError(f"the task's text is more than {MAX_TASK_CHARACTERS} characters "
-                            "once its placeholders are filled in", key="description")
+            raise SpecError(_TOO_LONG_FILLED, key="description")
         return filled
 
     if len(text) > MAX_TASK_CHARACTERS:
-        raise SpecError(f"the task's text is {len(text)} characters; at most "
-                        f"{MAX_TASK_CHARACTERS}", key="description")
+        raise SpecError(_too_long_task(len(text)), key="description")
     return _PLACEHOLDER.sub(fill, text)
 
 
-def _format_problem(placeholder: re.Match) -> str | None:
+#: a placeholder's format asks for too much: its width, its precision
+_TOO_MUCH = (template("the placeholder {placeholder} has a width of {amount}; at most {limit}"),
+             template("the placeholder {placeholder} has a precision of {amount}; at most "
+                      "{limit}"))
+
+
+def _format_problem(placeholder: re.Match) -> Message | None:
     """Why a placeholder's format asks for too much (its width or precision above the
     bounds), or None.
 
-    >>> _format_problem(_PLACEHOLDER.search("{l_AB:1000.3f}"))
+    >>> render(_format_problem(_PLACEHOLDER.search("{l_AB:1000.3f}")))
     "the placeholder '{l_AB:1000.3f}' has a width of 1000; at most 40"
     """
     found = re.fullmatch(r"[-+ #0]?(\d*)(?:\.(\d+))?[efgd%]?", placeholder.group(2) or "")
     if found is None:
         return None
-    for digits, what, limit in ((found.group(1), "width", MAX_FORMAT_WIDTH),
-                                (found.group(2), "precision", MAX_FORMAT_PRECISION)):
+    for digits, sentence, limit in ((found.group(1), _TOO_MUCH[0], MAX_FORMAT_WIDTH),
+                                    (found.group(2), _TOO_MUCH[1], MAX_FORMAT_PRECISION)):
         if digits and (len(digits) > 6 or int(digits) > limit):
-            amount = digits if len(digits) <= 12 else f"{len(digits)} digits"
-            return (f"the placeholder {value_text(placeholder.group(0))} has a {what} of "
-                    f"{amount}; at most {limit}")
+            amount = digits if len(digits) <= 12 else plural("{count} digit", "{count} digits",
+                                                             count=len(digits))
+            return sentence.replace(placeholder=value_text(placeholder.group(0)), amount=amount,
+                                    limit=limit)
     return None
 
 
@@ -734,7 +820,8 @@ def _toml_string(text: str) -> str:
     "say \"hi\" \\ \u007f\n"
     """
     if _SURROGATE.search(text):
-        raise ValueError("cannot write a lone surrogate (not a character) to TOML")
+        raise ValueError(render(message("cannot write a lone surrogate (not a character) to "
+                                        "{format}", format="TOML")))
     return '"' + text.translate(_BASIC_ESCAPES) + '"'
 
 
@@ -743,11 +830,13 @@ def _toml_value(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, int):
         if abs(value) > 2**63 - 1:
-            raise ValueError("cannot write a whole number beyond 64 bits to TOML")
+            raise ValueError(render(message("cannot write a whole number beyond 64 bits to "
+                                            "{format}", format="TOML")))
         return str(value)
     if isinstance(value, float):
         if not math.isfinite(value):
-            raise ValueError(f"cannot write {value} to TOML")
+            raise ValueError(render(message("cannot write {value} to {format}",
+                                            value=str(value), format="TOML")))
         text = repr(value)
         return text if ("." in text or "e" in text or "inf" in text) else text + ".0"
     if isinstance(value, str):
@@ -762,7 +851,8 @@ def _toml_value(value: Any) -> str:
     if isinstance(value, Mapping):
         return "{ " + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
                                 for k, v in value.items()) + " }"
-    raise TypeError(f"cannot write {type(value).__name__} to TOML")
+    raise TypeError(render(message("cannot write {kind} to {format}",
+                                   kind=type(value).__name__, format="TOML")))
 
 
 def _literal_block(text: str) -> bool:

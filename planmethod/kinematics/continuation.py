@@ -20,7 +20,7 @@ from __future__ import annotations
 import dataclasses
 import heapq
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,6 +28,7 @@ import numpy as np
 from ..errors import PlanmethodError, SpecError, ToggleError
 from ..model import FRAME, Mechanism
 from ..spec import MAX_ANGLE_DEG
+from ..words.message import message
 from .groups import kind_module
 from .motion import Motion, solve
 from .program import Branch, Model, model
@@ -103,7 +104,7 @@ def _solvable_prefix(mechanism: Mechanism, angles: np.ndarray, links, stage: str
         solve(mechanism, angles[:good + 1], stage=stage, links=links)
     except PlanmethodError as error:
         return motion, good, error
-    raise PlanmethodError("internal error: a refused prefix solves")  # pragma: no cover
+    raise PlanmethodError(message("internal error: a refused prefix solves"))  # pragma: no cover
 
 
 def follow(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = None) -> None:
@@ -113,11 +114,8 @@ def follow(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = 
 
     A dyad's assembly is its branch sign, the same at every angle: what is checked is that no
     group whose assembly was chosen among several (nor a group it rests on) meets a limit
-    (toggle) position on the way. The way is swept every
-    :data:`FOLLOW_STEP_DEG` (one turn at most: a dyad's positions repeat every turn) with the
-    compiled program, to the velocity stage (each dyad's sine s of the angle between its
-    construction lines), and refined only where a dyad's s may reach zero between two samples
-    (:func:`_doubtful`). A class III group follows its own continuation path.
+    (toggle) position on the way (swept as :func:`_first_refusal` says); a class III group
+    follows its own continuation path.
 
     Parameters
     ----------
@@ -156,23 +154,45 @@ a limit (toggle) position at crank angle 104.477512°, past which its assembly c
 followed (just beyond: ... short by ... m)
     """
     start, angle = float(mechanism.drive.angle), float(angle)
-    span = angle - start
-    if span == 0.0:
+    if angle == start:
         return
+    found = model(mechanism)
+    chosen = _chosen_among_several(found, links)
+    if not chosen:
+        return
+    dyads = [group.index for group in found.groups(chosen) if group.is_dyad]
+    failure = _first_refusal(mechanism, _way(start, angle), chosen, dyads)
+    if failure is not None:
+        _raise_limit(mechanism, found, chosen, start, angle, *failure)
+
+
+def _chosen_among_several(found: Model, links: Iterable[str] | None) -> list[str]:
+    """The links of the groups (on the way to ``links``) whose assembly was chosen among
+    several: a dyad with one assembly has nothing to follow."""
+    return [link for group in found.groups(links)
+            if not group.is_dyad or kind_module(group).branches > 1 for link in group.links]
+
+
+def _way(start: float, angle: float) -> np.ndarray:
+    """The crank angles from ``start`` to ``angle``, every :data:`FOLLOW_STEP_DEG` (one turn
+    at most: a dyad's positions repeat every turn), ``angle`` last if it is within a turn."""
+    span = angle - start
     width = min(abs(span), 360.0)
     count = max(2, math.ceil(width / FOLLOW_STEP_DEG - 1e-9) + 1)
     grid = start + math.copysign(1.0, span) * np.linspace(0.0, width, count)
     if abs(span) <= 360.0:
         grid[-1] = angle
-    found = model(mechanism)
-    # the groups whose assembly was chosen among several (with what they rest on): a dyad with
-    # one assembly has nothing to follow
-    chosen = [link for group in found.groups(links)
-              if not group.is_dyad or kind_module(group).branches > 1 for link in group.links]
-    if not chosen:
-        return
-    links = chosen
-    dyads = [group.index for group in found.groups(links) if group.is_dyad]
+    return grid
+
+
+def _first_refusal(mechanism: Mechanism, grid: np.ndarray, links: list[str],
+                   dyads: list[int]) -> tuple[float, float, PlanmethodError] | None:
+    """(the last angle solved, the first refused, its error) along the way ``grid`` from
+    ``drive.angle``, or None if every angle solves. The way is solved with the compiled
+    program, to the velocity stage (each dyad's sine s of the angle between its construction
+    lines), and refined only where a dyad's s may reach zero between two samples
+    (:func:`_doubtful`), nearest stretch first."""
+    start = float(mechanism.drive.angle)
     failure: tuple[float, float, PlanmethodError] | None = None   # (last good, bad, error)
     stretches = [(0.0, 0, grid)]   # (distance along the way, tie-break, angles), nearest first
     refinements = 0
@@ -191,17 +211,22 @@ followed (just beyond: ... short by ... m)
             angles = angles[:good]
         if motion is None or angles.shape[0] < 2:
             continue
-        for index in dyads:
-            sine = np.atleast_1d(motion.groups[index].line_sine)[:angles.shape[0]]
-            for k in _doubtful(sine):
-                low, high = float(angles[k]), float(angles[k + 1])
-                if abs(high - low) <= FOLLOW_FLOOR_DEG or refinements >= FOLLOW_REFINEMENTS:
-                    continue
-                refinements += 1
-                heapq.heappush(stretches, (abs(low - start), refinements,
-                                           np.linspace(low, high, FOLLOW_POINTS + 1)))
-    if failure is not None:
-        _raise_limit(mechanism, found, links, start, angle, *failure)
+        for low, high in _doubtful_stretches(motion, dyads, angles):
+            if abs(high - low) <= FOLLOW_FLOOR_DEG or refinements >= FOLLOW_REFINEMENTS:
+                continue
+            refinements += 1
+            heapq.heappush(stretches, (abs(low - start), refinements,
+                                       np.linspace(low, high, FOLLOW_POINTS + 1)))
+    return failure
+
+
+def _doubtful_stretches(motion: Motion, dyads: list[int], angles: np.ndarray
+                        ) -> Iterator[tuple[float, float]]:
+    """The stretches of ``angles`` where one of the ``dyads`` may meet its limit position."""
+    for index in dyads:
+        sine = np.atleast_1d(motion.groups[index].line_sine)[:angles.shape[0]]
+        for k in _doubtful(sine):
+            yield float(angles[k]), float(angles[k + 1])
 
 
 def _raise_limit(mechanism: Mechanism, found: Model, links: list[str], start: float,
@@ -225,11 +250,12 @@ def _raise_limit(mechanism: Mechanism, found: Model, links: list[str], start: fl
         except PlanmethodError as refused:
             bad, error = middle, refused
     refused_group = next((g for g in found.structure.groups if g.name == error.link), group)
-    raise ToggleError(
-        f"the assembly chosen at drive.angle {start:g}° cannot be followed to {angle:g}°: "
-        f"turning the crank from {start:g}°, the group reaches a limit (toggle) position at "
-        f"crank angle {good:.9g}°, past which its assembly cannot be followed (just beyond: "
-        f"{error.message})", line_angle_deg=0.0, link=refused_group.name, angle=good)
+    raise ToggleError(message(
+        "the assembly chosen at drive.angle {start:g}° cannot be followed to {angle:g}°: "
+        "turning the crank from {start:g}°, the group reaches a limit (toggle) position at "
+        "crank angle {limit:.9g}°, past which its assembly cannot be followed (just beyond: "
+        "{reason})", start=start, angle=angle, limit=good, reason=error.message),
+        line_angle_deg=0.0, link=refused_group.name, angle=good)
 
 
 def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = None) -> Posed:
@@ -252,7 +278,7 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
     SpecError
         If ``angle`` is not a finite number within ±36,000°.
     ToggleError, AssemblyError, ConvergenceError, BranchJumpError
-        As :func:`follow`.
+        As :func:`follow` (an error at ``drive.angle`` says it is where the assembly is chosen).
 
     Examples
     --------
@@ -272,50 +298,68 @@ def pose(mechanism: Mechanism, angle: float, *, links: Iterable[str] | None = No
     """
     start = float(mechanism.drive.angle)
     if not (math.isfinite(angle) and abs(angle) <= MAX_ANGLE_DEG):
-        raise SpecError(f"the crank angle must be a finite number of degrees within "
-                        f"±{MAX_ANGLE_DEG:g}°, got {angle!r}")
+        raise SpecError(message("the crank angle must be a finite number of degrees within "
+                                "±{limit:g}°, got {angle!r}", limit=MAX_ANGLE_DEG, angle=angle))
     angle = float(angle)
     found = model(mechanism)
     groups = found.groups(links)
-    try:
-        original = found.branches(groups)
-    except PlanmethodError as error:
-        if angle != start and error.angle == start:   # say why that angle, not the one asked
-            error.message += (f" (at drive.angle, where the assembly followed to {angle:g}° "
-                              "is chosen)")
-            error.args = (str(error),)
-        raise
+    original = _chosen_at_start(found, groups, angle)
     if angle == start:
         return Posed(mechanism, original, start)
     follow(mechanism, angle, links=links)
-    try:   # every group's points, where the whole mechanism assembles at the angle
+    points = _followed_points(mechanism, angle, links)
+    posed = dataclasses.replace(mechanism, drive=dataclasses.replace(mechanism.drive,
+                                                                     angle=angle),
+                                sketch={**mechanism.sketch, **points})
+    branches = {index: dataclasses.replace(branch, reason=original[index].reason)
+                for index, branch in model(posed).branches(groups).items()}
+    if not all(group.is_dyad for group in groups):   # a class III group's search: check it
+        _check_followed(posed, links, branches, points, start)
+    return Posed(posed, branches, start)
+
+
+def _chosen_at_start(found: Model, groups, angle: float) -> Mapping[int, Branch]:
+    """The groups' branches chosen at ``drive.angle``; an error there says that it is where
+    the assembly followed to ``angle`` is chosen."""
+    start = float(found.mechanism.drive.angle)
+    try:
+        return found.branches(groups)
+    except PlanmethodError as error:
+        if angle != start and error.angle == start:   # say why that angle, not the one asked
+            error.message = message("{reason} (at drive.angle, where the assembly followed to "
+                                    "{angle:g}° is chosen)", reason=error.message, angle=angle)
+            error.args = (str(error),)
+        raise
+
+
+def _followed_points(mechanism: Mechanism, angle: float, links) -> dict[str, tuple[float, ...]]:
+    """Every point of the groups solved at ``angle`` on the assemblies followed there (of the
+    whole mechanism where it assembles, else of the groups on the way to ``links``)."""
+    try:
         here = solve(mechanism, angle, stage="position")
     except PlanmethodError:
         here = solve(mechanism, angle, stage="position", links=links)
     fixed = (FRAME, mechanism.drive.link)
-    points = {point: tuple(float(v) for v in here.at(0).position(point))
-              for link in here.solved if link not in fixed
-              for point in mechanism.links[link].points}
-    posed = dataclasses.replace(mechanism, drive=dataclasses.replace(mechanism.drive,
-                                                                     angle=angle),
-                                sketch={**mechanism.sketch, **points})
-    chosen = model(posed).branches(groups)
-    branches = {index: dataclasses.replace(branch, reason=original[index].reason)
-                for index, branch in chosen.items()}
-    if not all(group.is_dyad for group in groups):
-        # a dyad's assembly nearest its exact positions is that one; a class III group's is
-        # the nearest its search found at the angle: make sure it found the followed one
-        check = solve(posed, angle, stage="position", links=links, branches=branches,
-                      reference=True)
-        solved = {point for link in check.solved for point in posed.links[link].points}
-        size = max(math.hypot(*xy) for xy in points.values())
-        for point, xy in points.items():
-            away = math.dist(check.at(0).position(point), xy) if point in solved else 0.0
-            if away > 1e-9 * size:
-                raise PlanmethodError(
-                    f"the assembly followed from drive.angle {start:g}° is not among the "
-                    f"assemblies found at crank angle {angle:g}° (point {point} is "
-                    f"{away:.3g} m away)", angle=angle)
-    return Posed(posed, branches, start)
+    return {point: tuple(float(v) for v in here.at(0).position(point))
+            for link in here.solved if link not in fixed
+            for point in mechanism.links[link].points}
 
 
+def _check_followed(posed: Mechanism, links, branches: Mapping[int, Branch],
+                    points: Mapping[str, tuple[float, ...]], start: float) -> None:
+    """A :class:`PlanmethodError` unless the assemblies found at the posed mechanism's
+    ``drive.angle`` with ``branches`` put every point where it was followed to (a dyad's
+    assembly nearest its exact positions is that one; a class III group's is the nearest its
+    search found at the angle: this makes sure it found the followed one)."""
+    angle = float(posed.drive.angle)
+    check = solve(posed, angle, stage="position", links=links, branches=branches,
+                  reference=True)
+    solved = {point for link in check.solved for point in posed.links[link].points}
+    size = max(math.hypot(*xy) for xy in points.values())
+    for point, xy in points.items():
+        away = math.dist(check.at(0).position(point), xy) if point in solved else 0.0
+        if away > 1e-9 * size:
+            raise PlanmethodError(message(
+                "the assembly followed from drive.angle {start:g}° is not among the "
+                "assemblies found at crank angle {angle:g}° (point {point} is {away:.3g} m "
+                "away)", start=start, angle=angle, point=point, away=away), angle=angle)

@@ -36,6 +36,8 @@ from ..errors import PlanmethodError, SpecError
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Structure
 from ..vectors import cross, norm, perp
+from ..words.message import message, template
+from ..words.render import render
 from .algebra import Body
 from .groups import kind_module
 from .groups.base import GroupInputs, Theta, ThetaKind
@@ -49,6 +51,13 @@ __all__ = ["STAGES", "Branch", "Curvature", "GroupMotion", "Motion", "MotionAt",
            "choose_branches", "solve"]
 
 _LEVELS = {stage: level for level, stage in enumerate(STAGES)}
+#: what a reading needs a stage for, by the reading (its ``{subject}``: a point or a link)
+_NEEDS = {"velocity": template("the velocity of {subject}"),
+          "acceleration": template("the acceleration of {subject}"),
+          "velocity_of": template("a velocity on {subject}"),
+          "acceleration_of": template("an acceleration on {subject}"),
+          "omega": template("ω of {subject}"), "epsilon": template("ε of {subject}"),
+          "curvature": template("the curvature of {subject}'s path")}
 
 
 @dataclass(frozen=True, slots=True)
@@ -196,16 +205,20 @@ class Motion:
 
     # -- reading -----------------------------------------------------------------------------
 
-    def _need(self, stage: str, what: str) -> None:
+    def _need(self, stage: str, reading: str, subject: str) -> None:
+        """Refuse ``reading`` (a key of :data:`_NEEDS`) of ``subject`` unless ``stage`` was
+        solved."""
         if _LEVELS[self.stage] < _LEVELS[stage]:
-            raise PlanmethodError(f"{what} needs the {stage} stage, but only the {self.stage} "
-                                  "stage was solved")
+            raise PlanmethodError(message(
+                "{what} needs the {stage} stage, but only the {solved} stage was solved",
+                what=_NEEDS[reading].replace(subject=subject), stage=stage, solved=self.stage))
 
     def _check_link(self, link: str) -> None:
         if link not in self.mechanism.links:
-            raise SpecError(f"unknown link '{link}'")
+            raise SpecError(message("unknown link '{link}'", link=link))
         if link not in self.solved:
-            raise PlanmethodError(f"link {link} was not solved in this scene")
+            raise PlanmethodError(message("link {link} was not solved in this scene",
+                                          link=link))
 
     def _state(self, link: str) -> LinkState:
         """The link's :class:`LinkState`, made once (its arrays read-only: it is shared)."""
@@ -239,13 +252,14 @@ class Motion:
         name, _, on = ref.partition("@")
         carriers = self._carriers.get(name)
         if not carriers:
-            raise SpecError(f"unknown point '{name}'")
+            raise SpecError(message("unknown point '{point}'", point=name))
         solved = self.solved
         for owner in carriers:
             if owner in solved:
                 break
         else:
-            raise PlanmethodError(f"point {name} was not solved in this scene")
+            raise PlanmethodError(message("point {point} was not solved in this scene",
+                                          point=name))
         position = self._result.read(self._result.schema.points[name].position)
         if on:
             self._check_link(on)
@@ -272,7 +286,7 @@ class Motion:
         """A named point's velocity or acceleration (``stage``) as solved, or a link's point
         under another (``"B@lever"``) by the link's rigid motion (``rigid``)."""
         if _LEVELS[self.stage] < _LEVELS[stage]:
-            self._need(stage, f"the {stage} of {ref}")
+            self._need(stage, stage, ref)
         rows = self._result.schema.points.get(ref)
         if rows is not None:
             return self._result.read(getattr(rows, stage))
@@ -284,12 +298,12 @@ class Motion:
         return self.link_state(link).place(local)
 
     def velocity_of(self, link: str, local) -> np.ndarray:
-        self._need("velocity", f"a velocity on {link}")
+        self._need("velocity", "velocity_of", link)
         state = self.link_state(link)
         return state.velocity_at(state.place(local))
 
     def acceleration_of(self, link: str, local) -> np.ndarray:
-        self._need("acceleration", f"an acceleration on {link}")
+        self._need("acceleration", "acceleration_of", link)
         state = self.link_state(link)
         return state.acceleration_at(state.place(local))
 
@@ -329,13 +343,13 @@ class Motion:
 
     def omega(self, link: str) -> np.ndarray:
         """Angular velocity (rad/s, counter-clockwise positive)."""
-        self._need("velocity", f"ω of {link}")
+        self._need("velocity", "omega", link)
         self._check_link(link)
         return self._result.read(self._result.schema.links[link].omega)
 
     def epsilon(self, link: str) -> np.ndarray:
         """Angular acceleration (rad/s², counter-clockwise positive)."""
-        self._need("acceleration", f"ε of {link}")
+        self._need("acceleration", "epsilon", link)
         self._check_link(link)
         return self._result.read(self._result.schema.links[link].epsilon)
 
@@ -345,7 +359,7 @@ class Motion:
         (``"link/along"``)."""
         slide = self.mechanism.slide(key)
         if slide is None:
-            raise SpecError(f"no prismatic pair '{key}'")
+            raise SpecError(message("no prismatic pair '{pair}'", pair=key))
         mover, guide = self.link_state(slide.link), self.link_state(slide.along)
         point = mover.place(self.mechanism.local(slide.link, slide.point))
         through = guide.place(self.mechanism.local(slide.along, slide.through))
@@ -376,7 +390,7 @@ class Motion:
 
     def curvature(self, ref: str) -> Curvature:
         """Radius ρ = v³/|v × a| and centre of curvature of the point's path."""
-        self._need("acceleration", f"the curvature of {ref}'s path")
+        self._need("acceleration", "curvature", ref)
         name, _, on = ref.partition("@")
         link, position = self.locate(ref)
         if on:
@@ -500,11 +514,12 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
         or (class III) does not converge or would jump to another branch.
     """
     if stage not in _LEVELS:
-        raise ValueError(f"stage must be one of {STAGES}, got {stage!r}")
+        raise ValueError(render(message("stage must be one of {stages}, got {stage!r}",
+                                        stages=str(STAGES), stage=stage)))
     found = model(mechanism)
     angles_deg = _angles(mechanism, angles)
     if not np.isfinite(angles_deg).all():
-        raise SpecError("crank angles must be finite numbers")
+        raise SpecError(message("crank angles must be finite numbers"))
     level = _LEVELS[stage]
     if links is None and branches is None:
         program = found.program(level)

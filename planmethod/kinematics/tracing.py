@@ -516,55 +516,68 @@ def _share_negated_products(ops: list[_Op], pinned: set[int]) -> list[_Op]:
     >>> [(op.name, op.out, op.args) for op in _share_negated_products(ops, {4, 5})]
     [('mul', (3,), (1, -3.0)), ('sub', (4,), (0, 3)), ('sub', (5,), (0, 3))]
     """
-    work: list[_Op | None] = list(ops)
-    products: dict[tuple[int, float], int] = {}   # (x, c) → where x·c is (the last recorded)
-    uses: dict[int, set[tuple[int, int]]] = {}    # a value → where it is read (op, argument)
-
-    def unread(position: int, op: _Op) -> None:
-        for place, arg in enumerate(op.args):
-            if isinstance(arg, int):
-                uses[arg].discard((position, place))
-
-    def read(position: int, op: _Op) -> None:
-        for place, arg in enumerate(op.args):
-            if isinstance(arg, int):
-                uses.setdefault(arg, set()).add((position, place))
-
-    for position, op in enumerate(work):
-        if op.name == "mul" and isinstance(op.args[0], int) and isinstance(op.args[1], float):
-            products[(op.args[0], op.args[1])] = position
-        read(position, op)
+    sharing = _Sharing(ops, pinned)
     shared = True
     while shared:
         shared = False
-        for key in list(products):
-            gone = products.get(key)
-            kept = products.get((key[0], -key[1]))
-            if gone is None or kept is None or kept == gone:
-                continue
-            dropped = work[gone].out[0]
-            readers = sorted(uses.get(dropped, ()))
-            if dropped in pinned or not all(_takes_negation(work[position], place)
-                                            for position, place in readers):
-                continue
-            other = work[kept].out[0]
-            for position, place in readers:
-                op = work[position]
-                turned = _Op("sub" if op.name == "add" else "add", op.out,
-                             (op.args[1 - place], other), op.extra)
-                unread(position, op)
-                read(position, turned)
-                work[position] = turned
-            first, last = min(gone, kept), max(gone, kept)
-            unread(gone, work[gone])
-            unread(kept, work[kept])
-            work[first], work[last] = work[kept], None
-            read(first, work[first])
-            del products[key]
-            products[(key[0], -key[1])] = first
-            uses.pop(dropped, None)
-            shared = True
-    return [op for op in work if op is not None]
+        for key in list(sharing.products):
+            shared |= sharing.share(key)
+    return [op for op in sharing.work if op is not None]
+
+
+class _Sharing:
+    """The operations being rewritten by :func:`_share_negated_products`: where each product
+    x·c is recorded, and where each value is read."""
+
+    def __init__(self, ops: list[_Op], pinned: set[int]) -> None:
+        self.work: list[_Op | None] = list(ops)
+        self.pinned = pinned
+        self.products: dict[tuple[int, float], int] = {}   # (x, c) → where x·c is (the last)
+        self.uses: dict[int, set[tuple[int, int]]] = {}    # a value → (op, argument) reading it
+        for position, op in enumerate(self.work):
+            if op.name == "mul" and isinstance(op.args[0], int) and isinstance(op.args[1], float):
+                self.products[(op.args[0], op.args[1])] = position
+            self.read(position, op)
+
+    def unread(self, position: int, op: _Op) -> None:
+        for place, arg in enumerate(op.args):
+            if isinstance(arg, int):
+                self.uses[arg].discard((position, place))
+
+    def read(self, position: int, op: _Op) -> None:
+        for place, arg in enumerate(op.args):
+            if isinstance(arg, int):
+                self.uses.setdefault(arg, set()).add((position, place))
+
+    def share(self, key: tuple[int, float]) -> bool:
+        """Leave out x·c (``key``) where x·(−c) serves every reader of it; whether it did."""
+        work, products = self.work, self.products
+        gone = products.get(key)
+        kept = products.get((key[0], -key[1]))
+        if gone is None or kept is None or kept == gone:
+            return False
+        dropped = work[gone].out[0]
+        readers = sorted(self.uses.get(dropped, ()))
+        if dropped in self.pinned or not all(_takes_negation(work[position], place)
+                                             for position, place in readers):
+            return False
+        other = work[kept].out[0]
+        for position, place in readers:
+            op = work[position]
+            turned = _Op("sub" if op.name == "add" else "add", op.out,
+                         (op.args[1 - place], other), op.extra)
+            self.unread(position, op)
+            self.read(position, turned)
+            work[position] = turned
+        first, last = min(gone, kept), max(gone, kept)
+        self.unread(gone, work[gone])
+        self.unread(kept, work[kept])
+        work[first], work[last] = work[kept], None
+        self.read(first, work[first])
+        del products[key]
+        products[(key[0], -key[1])] = first
+        self.uses.pop(dropped, None)
+        return True
 
 
 def _takes_negation(op: _Op, place: int) -> bool:

@@ -308,7 +308,7 @@ def page_rules(language: str | None = None) -> PageRules:
         language=language, decimal=render(DECIMAL_SIGN, language), number=number_grammar(),
         unprintable=unprintable_points(), answers=ANSWER_CLASSES,
         templates={name: template_text(text, language) for name, text in PAGE_TEMPLATES.items()},
-        senses=sense_words(""))
+        senses=tuple(render(word, language) for word in sense_words("")))
 
 
 @dataclass(frozen=True)

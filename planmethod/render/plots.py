@@ -425,12 +425,13 @@ def save_study_plot(study: Any, path: str | Path) -> None:
         _save(figure, path, form)
 
 
-def save_class_report_plot(rows: list[Mapping[str, Any]], path: str | Path, *,
+def save_class_report_plot(rows: Sequence[Any], path: str | Path, *,
                            title: str, symbols: Mapping[str, str] | None = None,
                            mistakes: Mapping[str, str] | None = None) -> None:
     """The class report as a bar chart: per question, the share of the class right, each
-    named mistake and the unexplained wrong answers, stacked to 100 %. ``symbols`` prints the
-    questions as the course writes them (ω₃), ``mistakes`` names each mistake in words.
+    named mistake and the unexplained wrong answers, stacked to 100 %. ``rows`` are the
+    class report's (:func:`planmethod.grading.report.class_statistics`). ``symbols`` prints
+    the questions as the course writes them (ω₃), ``mistakes`` names each mistake in words.
 
     Raises
     ------
@@ -439,17 +440,17 @@ def save_class_report_plot(rows: list[Mapping[str, Any]], path: str | Path, *,
     """
     path = Path(path)
     form = plot_format(path)
-    questions = [row["question"] for row in rows]
-    names = sorted({name for row in rows for name in row["mistakes"]})
+    questions = [row.question for row in rows]
+    names = sorted({name for row in rows for name in row.mistakes})
     with _style_context(_STYLE):
         figure = _new_figure(figsize=(11.0, 4.8), dpi=130, layout="constrained")
         axis = figure.subplots()
         positions = np.arange(len(questions))
         bottom = np.zeros(len(questions))
-        series = [("right", [row["correct"] for row in rows], "#1b8a3a")]
+        series = [("right", [row.correct for row in rows], "#1b8a3a")]
         series += [(_plain_text((mistakes or {}).get(name, name.replace("_", " "))),
-                    [row["mistakes"].get(name, 0.0) for row in rows], None) for name in names]
-        series.append(("wrong, no mistake named", [row["unexplained"] for row in rows],
+                    [row.mistakes.get(name, 0.0) for row in rows], None) for name in names]
+        series.append(("wrong, no mistake named", [row.unexplained for row in rows],
                        "#b0b0b0"))
         for label, shares, colour in series:
             values = 100.0 * np.asarray(shares, dtype=float)

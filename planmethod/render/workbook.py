@@ -222,14 +222,15 @@ class PageQuantity:
     subscript: str
     unit: str
     plan: str | None = None
-    negative: str | None = None
-    senses: tuple[str, str] = ("positive", "negative")
+    negative: Message | str | None = None
+    senses: tuple[Message | str, Message | str] = ("positive", "negative")
 
-    def as_dict(self) -> dict[str, Any]:
-        """The quantity as the page's data."""
+    def as_dict(self, language: str | None = None) -> dict[str, Any]:
+        """The quantity as the page's data, its words in ``language``."""
         return {"name": self.name, "symbol": self.symbol, "subscript": self.subscript,
-                "unit": self.unit, "plan": self.plan, "negative": self.negative,
-                "senses": list(self.senses)}
+                "unit": self.unit, "plan": self.plan,
+                "negative": None if self.negative is None else render(self.negative, language),
+                "senses": [render(sense, language) for sense in self.senses]}
 
 
 @dataclass(frozen=True)
@@ -350,7 +351,7 @@ def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
     frames = _packed_frames(page, table)
     data = {"angles": [float(a) for a in page.angles], "panels": list(page.panels),
             "strings": table.strings, "frames": frames,
-            "quantities": [quantity.as_dict() for quantity in page.quantities],
+            "quantities": [quantity.as_dict(rules.language) for quantity in page.quantities],
             "charts": [list(chart.span) for chart in page.charts],
             "sense": -1 if page.sense < 0 else 1, "rules": rules.as_dict()}
     if page.drawing is not None:
@@ -362,14 +363,15 @@ def _rows_html(quantities: Sequence[PageQuantity]) -> str:
     """The readings table's rows: the exact value, the plan's, the unit, the answer typed,
     its tolerance and its verdict."""
     return "\n".join(
-        f'<tr{_plan_attribute(q.plan)}><th scope="row">{_quantity_label(q)}</th>'
+        f'<tr{_plan_attribute(q.plan)}><th scope="row" id="quantity-{number}">'
+        f'{_quantity_label(q)}</th>'
         f'<td class="reading" data-quantity="{html.escape(q.name)}" data-value=""></td>'
         f'<td class="plan-reading"></td><td class="unit">{html.escape(q.unit)}</td>'
         f'<td class="practice"><input class="answer" data-answer="{html.escape(q.name)}"'
-        f' size="10" aria-label="{html.escape(q.name)}"></td>'
+        f' size="10" aria-labelledby="quantity-{number}"></td>'   # its symbol, never its id
         f'<td class="tolerance" data-tolerance-for="{html.escape(q.name)}"></td>'
         f'<td class="verdict" data-verdict-for="{html.escape(q.name)}"></td></tr>'
-        for q in quantities)
+        for number, q in enumerate(quantities))
 
 
 def _figures_html(page: WorkbookPage) -> tuple[str, str]:
@@ -450,7 +452,8 @@ def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
     angles = page.angles
     step = (angles[1] - angles[0]) if len(angles) > 1 else 1.0
     panels, charts = _figures_html(page)
-    notes = "".join(f"<p class=\"note\">{html.escape(render(line))}</p>" for line in page.notes)
+    notes = "".join(f"<p class=\"note\">{html.escape(render(line, rules.language))}</p>"
+                    for line in page.notes)
     return _PAGE.format(
         language=html.escape(rules.language), title=html.escape(shown_title(page.title)),
         notes=notes, low=num(angles[0]), high=num(angles[-1]), first=num(page.opening()),

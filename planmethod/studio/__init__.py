@@ -1,6 +1,6 @@
 """The instructor's studio: a local web app to draw a mechanism and see its plans live.
 
-``planmethod studio`` (:mod:`planmethod.commands.studio`) serves one page and a JSON API on
+``planmethod studio`` (:mod:`planmethod.studio.command`) serves one page and a JSON API on
 127.0.0.1 only:
 
 * :mod:`planmethod.studio.api` — what the page asks for, as functions of plain data: solve an

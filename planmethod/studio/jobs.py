@@ -49,6 +49,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from ..errors import PlanmethodError
+from ..words import Message, message, render, speaking
 from . import api
 
 __all__ = ["MAX_KEPT", "MAX_RUNNING", "BusyError", "Job", "Jobs", "NoSuchJobError"]
@@ -88,6 +89,8 @@ class Job:
     done: int = 0
     result: dict[str, Any] | None = None
     error: dict[str, str] | None = None
+    #: the language of its words (its errors, its result's notes)
+    language: str | None = None
     started: float = field(default_factory=time.monotonic)
     ended: float | None = None
     process: subprocess.Popen | None = field(default=None, repr=False)
@@ -161,35 +164,40 @@ class Jobs:
         with self._lock:
             job = self._jobs.get(job_id)
         if job is None:
-            raise NoSuchJobError(f"no job {job_id[:40]!r} (a job is kept while the studio runs, "
-                            f"until {MAX_KEPT} later ones end)")
+            raise NoSuchJobError(message("no job {job!r} (a job is kept while the studio runs, "
+                                         "until {kept} later ones end)", job=job_id[:40],
+                                         kept=MAX_KEPT))
         return job
 
-    def start(self, kind: str, arguments: dict[str, Any], *, total: int) -> Job:
+    def start(self, kind: str, arguments: dict[str, Any], *, total: int,
+              language: str | None = None) -> Job:
         """Start a job of ``kind`` (``variants``: :func:`~planmethod.studio.api.run_variants`;
         ``export``: :func:`~planmethod.studio.api.run_export`) on ``arguments`` as the
-        request's ``prepare_*`` checked them; :class:`BusyError` if :attr:`running` jobs run, a
+        request's ``prepare_*`` checked them, its words in ``language`` (default: the
+        environment's); :class:`BusyError` if :attr:`running` jobs run, a
         :class:`FileExistsError` if a running export writes the same folder."""
         target = Path(arguments["target"]) if "target" in arguments else None
         with self._lock:
             active = [job for job in self._jobs.values() if job.state == "running"]
             if self._closed:
-                raise BusyError("the studio is stopping")
+                raise BusyError(message("the studio is stopping"))
             if len(active) >= self.running:
-                raise BusyError(f"{len(active)} jobs are running ("
-                           f"{', '.join(job.kind for job in active)}), at most {self.running} "
-                           "at once: wait for one to end, or cancel it")
+                raise BusyError(message("{count} jobs are running ({kinds}), at most {limit} at "
+                                        "once: wait for one to end, or cancel it",
+                                        count=len(active), kinds=[job.kind for job in active],
+                                        limit=self.running))
             if target is not None and any(job.target == target for job in active):
-                raise FileExistsError(f"{arguments['folder']} (an export into it is running)")
+                raise FileExistsError(render(message("{folder} (an export into it is running)",
+                                                     folder=arguments["folder"])))
             job = Job(secrets.token_hex(6), kind, total, folder=arguments.get("folder"),
-                      target=target)
+                      target=target, language=language)
             if target is not None:
                 job.staging = api.stage_folder(target)
             self._jobs[job.id] = job
             self._forget_ended()
             standby = self._take_standby()
         with job.lock:
-            self._spawn(job, {"kind": kind, "arguments": arguments,
+            self._spawn(job, {"kind": kind, "arguments": arguments, "language": language,
                               "staging": str(job.staging) if job.staging else None}, standby)
         self.warm()
         return job
@@ -200,8 +208,9 @@ class Jobs:
         try:
             job.process, errors = standby if standby is not None else _start_process()
         except OSError as error:
-            self._end(job, "failed", error={"error": "cannot start the job's process "
-                                                     f"({error.strerror})", "kind": "internal"})
+            with speaking(job.language):
+                self._end(job, "failed", error=_said(message(
+                    "cannot start the job's process ({why})", why=error.strerror), "internal"))
             return
         with contextlib.suppress(OSError):   # a process that died at once: _follow says so
             job.process.stdin.write(json.dumps(task).encode("utf-8") + b"\n")
@@ -210,25 +219,31 @@ class Jobs:
                          name=f"planmethod-job-{job.id}").start()
 
     def _follow(self, job: Job, process: subprocess.Popen, errors: IO[bytes]) -> None:
-        """Read the job's messages until its process ends, then end the job."""
+        """Read the job's messages until its process ends, then end the job (its words in
+        the job's language)."""
+        with speaking(job.language):
+            self._read_job(job, process, errors)
+
+    def _read_job(self, job: Job, process: subprocess.Popen, errors: IO[bytes]) -> None:
         result = error = None
         try:
             while line := process.stdout.readline(MAX_LINE):
                 try:
-                    message = json.loads(line)
+                    told = json.loads(line)
                 except ValueError:
                     continue
-                if "progress" in message:
+                if "progress" in told:
                     with job.lock:
-                        job.phase = message["progress"]["phase"]
-                        job.done = message["progress"]["done"]
-                        job.total = message["progress"]["total"]
-                result = message.get("result", result)
-                error = message.get("error", error)
+                        job.phase = told["progress"]["phase"]
+                        job.done = told["progress"]["done"]
+                        job.total = told["progress"]["total"]
+                result = told.get("result", result)
+                error = told.get("error", error)
             status = process.wait()
             if result is None and error is None:
-                error = {"error": f"the job's process ended unexpectedly (exit status {status})"
-                                  f"{_last_line(errors)}", "kind": "internal"}
+                error = _said(message("the job's process ended unexpectedly (exit status "
+                                      "{status}){last}", status=status, last=_last_line(errors)),
+                              "internal")
         finally:
             errors.close()
             process.stdout.close()
@@ -241,8 +256,8 @@ class Jobs:
                 error = self._commit(job)
                 result = {"folder": job.folder, **result} if error is None else None
             if error is not None and error.get("kind") == "internal":
-                print(f"planmethod studio: {job.kind} job failed: {error['error']}",
-                      file=sys.stderr)
+                print(render(message("planmethod studio: {kind} job failed: {error}",
+                                     kind=job.kind, error=error["error"])), file=sys.stderr)
             self._end(job, "failed" if error is not None else "done", result=result,
                       error=error)
 
@@ -252,11 +267,11 @@ class Jobs:
         try:
             api.commit_folder(job.staging, job.target, job.folder)
         except FileExistsError:
-            return {"error": f"{job.folder} exists already (made while the job ran): nothing "
-                             "was written there", "kind": "exists"}
+            return _said(message("{folder} exists already (made while the job ran): nothing "
+                                 "was written there", folder=job.folder), "exists")
         except OSError as failure:
-            return {"error": f"cannot write {job.folder} ({failure.strerror})",
-                    "kind": "input"}
+            return _said(message("cannot write {folder} ({why})", folder=job.folder,
+                                 why=failure.strerror), "input")
         return None
 
     def _end(self, job: Job, state: str, *, result: dict[str, Any] | None = None,
@@ -295,6 +310,11 @@ class Jobs:
         ended = [job_id for job_id, job in self._jobs.items() if job.state != "running"]
         for job_id in ended[:max(0, len(ended) - MAX_KEPT)]:
             del self._jobs[job_id]
+
+
+def _said(text: Message, kind: str) -> dict[str, str]:
+    """A job's error as a refused request's: its one line and its kind."""
+    return {"error": render(text), "kind": kind}
 
 
 def _stop(process: subprocess.Popen) -> None:

@@ -31,20 +31,21 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import SpecError
+from ..words import Message, message
 
 __all__ = ["CANCEL", "EXPORT", "JOB", "OPEN", "SAVE", "SOLVE", "TURN", "VARIANTS", "Field",
            "read_fields"]
 
 #: what each type of field must be, in the page's words (JSON's), and the test of a value
 TYPES = {
-    "text": ("text", lambda value: isinstance(value, str)),
-    "flag": ("true or false", lambda value: isinstance(value, bool)),
-    "whole": ("a whole number",
+    "text": (message("text"), lambda value: isinstance(value, str)),
+    "flag": (message("true or false"), lambda value: isinstance(value, bool)),
+    "whole": (message("a whole number"),
               lambda value: isinstance(value, int) and not isinstance(value, bool)),
-    "number": ("a finite number", lambda value: isinstance(value, int | float)
+    "number": (message("a finite number"), lambda value: isinstance(value, int | float)
                and not isinstance(value, bool) and math.isfinite(value)),
-    "list": ("a list", lambda value: isinstance(value, list)),
-    "table": ("a table (a JSON object)", lambda value: isinstance(value, dict)),
+    "list": (message("a list"), lambda value: isinstance(value, list)),
+    "table": (message("a table (a JSON object)"), lambda value: isinstance(value, dict)),
 }
 
 
@@ -62,24 +63,26 @@ class Field:
     values: Field | None = None
 
 
-def _shown(value: Any) -> str:
+def _shown(value: Any) -> Message | str:
     """A value as the message shows it, in JSON's words."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if value is None:
         return "null"
     if isinstance(value, str):
-        return f"the text {value[:40]!r}" + ("…" if len(value) > 40 else "")
+        return message("the text {text!r}{more}", text=value[:40],
+                       more="…" if len(value) > 40 else "")
     if isinstance(value, int | float):
-        return f"the number {value!r}"[:60]
-    return "a list" if isinstance(value, list) else "a table"
+        return message("the number {number}", number=repr(value)[:49])
+    return message("a list") if isinstance(value, list) else message("a table")
 
 
 def _value(value: Any, field: Field, key: str) -> Any:
     """``value`` checked against ``field`` (items and tables within it too)."""
     what, test = TYPES[field.type]
     if not test(value):
-        raise SpecError(f"must be {what}, got {_shown(value)}", key=key)
+        raise SpecError(message("must be {what}, got {value}", what=what, value=_shown(value)),
+                        key=key)
     if field.items is not None:
         return [_value(item, field.items, f"{key}[{index}]") for index, item in enumerate(value)]
     if field.fields is not None:
@@ -96,14 +99,14 @@ def read_fields(data: Mapping[str, Any], schema: Mapping[str, Field], *,
     field or a missing needed one."""
     unknown = [name for name in data if name not in schema]
     if unknown:
-        raise SpecError(f"unknown field (the fields here are {', '.join(schema)})",
-                        key=f"{where}{unknown[0]}")
+        raise SpecError(message("unknown field (the fields here are {fields})",
+                                fields=list(schema)), key=f"{where}{unknown[0]}")
     out: dict[str, Any] = {}
     for name, field in schema.items():
         value = data.get(name)
         if value is None:
             if field.required:
-                raise SpecError("is missing", key=f"{where}{name}")
+                raise SpecError(message("is missing"), key=f"{where}{name}")
             if field.type == "flag":
                 out[name] = False
             continue

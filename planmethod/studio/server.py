@@ -66,6 +66,7 @@ from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
 from ..errors import PlanmethodError, SpecError
+from ..words import Message, current, message, render, speaking
 from . import api, exercise_data, schema
 from .jobs import BusyError, Jobs, NoSuchJobError
 from .page import page_file, studio_page
@@ -90,19 +91,20 @@ REQUEST_SECONDS, IDLE_SECONDS, SEND_SECONDS = 10.0, 15.0, 30.0
 class RefusedError(PlanmethodError, PermissionError):
     """A request the studio will not serve: its HTTP status and one line."""
 
-    def __init__(self, status: int, message: str, kind: str = "refused") -> None:
-        super().__init__(message)
+    def __init__(self, status: int, text: Message | str, kind: str = "refused") -> None:
+        super().__init__(text)
         self.status, self.kind = status, kind
 
 
-def _page() -> bytes:
-    return studio_page()
+def _page(language: str) -> bytes:
+    return studio_page(language)
 
 
-def _note(message: str) -> None:
+def _note(text: Message | str) -> None:
     """One line in the studio's terminal."""
     with contextlib.suppress(OSError, ValueError):
-        print(f"planmethod studio: {message}", file=sys.stderr, flush=True)
+        print(render(message("planmethod studio: {note}", note=text)).replace("\n", " "),
+              file=sys.stderr, flush=True)
 
 
 class StudioServer(ThreadingHTTPServer):
@@ -120,11 +122,17 @@ class StudioServer(ThreadingHTTPServer):
     def __init__(self, folder: str | Path, port: int = 0, *, initial: str | None = None,
                  token: str | None = None, connections: int = MAX_CONNECTIONS,
                  request_seconds: float = REQUEST_SECONDS,
-                 idle_seconds: float = IDLE_SECONDS) -> None:
+                 idle_seconds: float = IDLE_SECONDS, language: str | None = None) -> None:
+        from ..application.language import run_language
+
+        #: the language chosen at start (``--lang``), else None: each exercise's own
+        self.language = language
+        #: what the studio speaks where no exercise says otherwise (checked at start)
+        self.base_language = run_language(language)
         self.workspace = api.Workspace(folder)
         self.token = token or secrets.token_urlsafe(32)
         self.initial = initial
-        self.page = _page()
+        self.page = _page(self.base_language)   # in the language it speaks
         #: one computation at a time (solve, turn, open, save, a job's checks)
         self.lock = threading.Lock()
         self.jobs = Jobs()
@@ -133,6 +141,15 @@ class StudioServer(ThreadingHTTPServer):
         self.connections = connections
         self._thread: threading.Thread | None = None
         super().__init__((HOST, port), StudioHandler)
+
+    def spoken(self, text: str | None) -> str:
+        """The language of an answer about the exercise ``text`` (its ``[course]
+        language``, unless the studio was started with ``--lang``)."""
+        from ..application.language import run_language
+
+        if text is None or self.language is not None:
+            return self.base_language
+        return run_language(None, text=text)
 
     @property
     def port(self) -> int:
@@ -160,7 +177,7 @@ class StudioServer(ThreadingHTTPServer):
         """Serve a connection in a thread of its own if one of :attr:`connections` places is
         free within :data:`BUSY_WAIT` seconds; otherwise answer 503 and close it."""
         if not self._places.acquire(timeout=BUSY_WAIT):
-            _refuse_busy(request, self.connections)
+            _refuse_busy(request, self.connections, self.base_language)
             self.shutdown_request(request)
             return
         try:
@@ -179,9 +196,9 @@ class StudioServer(ThreadingHTTPServer):
         """What escaped a connection's handler: one line, never a traceback."""
         error = sys.exc_info()[1]
         if isinstance(error, ConnectionError | TimeoutError):
-            _note(f"a client hung up ({type(error).__name__})")
+            _note(message("a client hung up ({kind})", kind=type(error).__name__))
         else:
-            _note(f"internal error ({type(error).__name__}): {error}".replace("\n", " "))
+            _note(_internal(error))
 
     def start(self) -> threading.Thread:
         """Serve in a background thread (for tests and benchmarks); :meth:`stop` ends it."""
@@ -204,10 +221,11 @@ class StudioServer(ThreadingHTTPServer):
         self.server_close()
 
 
-def _refuse_busy(request: socket.socket, connections: int) -> None:
+def _refuse_busy(request: socket.socket, connections: int, language: str) -> None:
     """Answer 503 on a connection the studio has no place for (best effort: never waits)."""
-    body = json.dumps({"error": f"the studio is busy: {connections} connections are open, at "
-                                "most that many at once; try again", "kind": "busy"}).encode()
+    busy = message("the studio is busy: {connections} connections are open, at most that many "
+                   "at once; try again", connections=connections)
+    body = json.dumps({"error": render(busy, language), "kind": "busy"}).encode()
     head = (f"HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json; "
             f"charset=utf-8\r\nContent-Length: {len(body)}\r\nRetry-After: 1\r\n"
             "Connection: close\r\n\r\n").encode()
@@ -237,14 +255,14 @@ def _json_body(text: str) -> dict[str, Any]:
     check_nesting(text, syntax="json")
 
     def refuse(constant: str) -> None:
-        raise SpecError(f"not a finite number: {constant}")
+        raise SpecError(message("not a finite number: {constant}", constant=constant))
 
     try:
         data = json.loads(text, parse_constant=refuse)
     except ValueError as error:   # not JSON, or an integer of more digits than Python reads
-        raise SpecError(f"not valid JSON: {error}") from None
+        raise SpecError(message("not valid JSON: {error}", error=str(error))) from None
     if not isinstance(data, dict):
-        raise SpecError("the request must be a JSON object")
+        raise SpecError(message("the request must be a JSON object"))
     return data
 
 
@@ -254,11 +272,12 @@ def _given(fields: dict[str, Any], *names: str) -> dict[str, Any]:
 
 
 def _state(server: StudioServer, fields: dict) -> dict:
-    from ..commands.variants import MAX_VARIANTS
+    from ..application.variants import MAX_VARIANTS
 
     return {"folder": server.workspace.root.name, "initial": server.initial,
             **server.workspace.listing(), "jobs": server.jobs.listing(),
-            "limits": {"variants": api.MAX_PREVIEW, "export": MAX_VARIANTS}}
+            "limits": {"variants": api.MAX_PREVIEW, "export": MAX_VARIANTS},
+            "language": current()}
 
 
 def _files(server: StudioServer, fields: dict) -> dict:
@@ -278,7 +297,7 @@ def _save(server: StudioServer, fields: dict) -> dict:
         return api.save_template(server.workspace, fields["path"], fields["toml"],
                                  fields.get("ranges"), overwrite=fields["overwrite"])
     if "ranges" in fields:
-        raise SpecError("ranges are saved with a template only (\"template\": true)",
+        raise SpecError(message("ranges are saved with a template only (\"template\": true)"),
                         key="ranges")
     return api.save_exercise(server.workspace, fields["path"], fields["toml"],
                              overwrite=fields["overwrite"])
@@ -291,14 +310,16 @@ def _turn(server: StudioServer, fields: dict) -> dict:
 def _variants(server: StudioServer, fields: dict) -> dict:
     arguments = api.prepare_variants(fields["toml"], fields.get("ranges") or {},
                                      **_given(fields, "count", "seed"))
-    return {"job": server.jobs.start("variants", arguments, total=arguments["count"]).view()}
+    return {"job": server.jobs.start("variants", arguments, total=arguments["count"],
+                                     language=current()).view()}
 
 
 def _export(server: StudioServer, fields: dict) -> dict:
     arguments = api.prepare_export(server.workspace, fields["toml"], fields.get("ranges") or {},
                                    folder=fields["folder"],
                                    **_given(fields, "formats", "count", "seed"))
-    return {"job": server.jobs.start("export", arguments, total=arguments["count"]).view()}
+    return {"job": server.jobs.start("export", arguments, total=arguments["count"],
+                                     language=current()).view()}
 
 
 def _jobs(server: StudioServer, fields: dict) -> dict:
@@ -390,7 +411,8 @@ class StudioHandler(BaseHTTPRequestHandler):
             super().handle()
         except (ConnectionError, TimeoutError) as error:
             if self._deadline is not None:
-                _note(f"a client hung up mid-request ({type(error).__name__})")
+                _note(message("a client hung up mid-request ({kind})",
+                              kind=type(error).__name__))
             self.close_connection = True
 
     def do_GET(self) -> None:
@@ -414,8 +436,7 @@ class StudioHandler(BaseHTTPRequestHandler):
     def log_error(self, format: str, *args: Any) -> None:
         """A request cut off at its deadline is one line; other refusals, none."""
         if format.startswith("Request timed out") and self._deadline is not None:
-            _note(f"a request took longer than {self.server.request_seconds:g} s to arrive: "
-                  "cut off")
+            _note(_cut_off(self.server.request_seconds))
 
     # -- the checks -------------------------------------------------------------------------
     def _guard(self, query: dict[str, list[str]]) -> bool:
@@ -423,13 +444,15 @@ class StudioHandler(BaseHTTPRequestHandler):
         came in the query (the page's first load: set the cookie)."""
         server = self.server
         if self.headers.get("Host", "") not in server.hosts:
-            raise RefusedError(403, f"refused: the studio answers only to {server.hosts[0]} (Host "
-                               f"{self.headers.get('Host', 'missing')!r})")
+            raise RefusedError(403, message("refused: the studio answers only to {host} (Host "
+                                            "{given})", host=server.hosts[0],
+                                            given=_given_host(self.headers.get("Host"))))
         origin = self.headers.get("Origin")
         if origin is not None and origin not in server.origins:
-            raise RefusedError(403, f"refused: a request from another site ({origin!r})")
+            raise RefusedError(403, message("refused: a request from another site ({origin!r})",
+                                            origin=origin))
         if self.headers.get("Sec-Fetch-Site", "same-origin") not in ("same-origin", "none"):
-            raise RefusedError(403, "refused: a request from another site")
+            raise RefusedError(403, message("refused: a request from another site"))
         given = query.get("token", [None])[0]
         if given is not None and hmac.compare_digest(given.encode(), server.token.encode()):
             return True
@@ -437,7 +460,8 @@ class StudioHandler(BaseHTTPRequestHandler):
             if candidate is not None and hmac.compare_digest(candidate.encode(),
                                                              server.token.encode()):
                 return False
-        raise RefusedError(403, "refused: no valid token (open the address the studio printed)")
+        raise RefusedError(403, message("refused: no valid token (open the address the studio "
+                                        "printed)"))
 
     def _cookie(self) -> str | None:
         try:
@@ -453,48 +477,52 @@ class StudioHandler(BaseHTTPRequestHandler):
         lengths = self.headers.get_all("Content-Length") or []
         if len(lengths) > 1:
             self.close_connection = True
-            raise RefusedError(400, f"{len(lengths)} Content-Length headers: a request has one")
+            raise RefusedError(400, message("{count} Content-Length headers: a request has one",
+                                            count=len(lengths)))
         if method == "POST":
             return
         if self.headers.get("Transfer-Encoding") or (lengths and lengths[0].strip() != "0"):
             self.close_connection = True
-            raise RefusedError(400, f"a {method} request has no body")
+            raise RefusedError(400, message("a {method} request has no body", method=method))
 
     def _body(self) -> str:
         if self.headers.get("Transfer-Encoding"):
             self._drain = True
-            raise RefusedError(411, "a body must come with its length (no chunked encoding)")
+            raise RefusedError(411, message("a body must come with its length (no chunked "
+                                            "encoding)"))
         length = self.headers.get("Content-Length")
         if length is None:
             self._drain = True
-            raise RefusedError(411, "a body must come with its length (Content-Length)")
+            raise RefusedError(411, message("a body must come with its length "
+                                            "(Content-Length)"))
         try:
             size = int(length)
         except ValueError:
             self.close_connection = True
-            raise RefusedError(400, f"Content-Length {length[:40]!r} is not a number") from None
+            raise RefusedError(400, message("Content-Length {length!r} is not a number",
+                                            length=length[:40])) from None
         if size < 0:
             self.close_connection = True
-            raise RefusedError(400, "Content-Length is negative")
+            raise RefusedError(400, message("Content-Length is negative"))
         if size > api.MAX_BODY:
             self._drain = True
-            raise RefusedError(413, f"the body is {size} bytes; at most {api.MAX_BODY} are read")
+            raise RefusedError(413, message("the body is {size} bytes; at most {limit} are read",
+                                            size=size, limit=api.MAX_BODY))
         try:
             data = self.rfile.read(size)
         except TimeoutError:
             self.close_connection = True
-            _note(f"a request took longer than {self.server.request_seconds:g} s to arrive: "
-                  "cut off")
-            raise RefusedError(408, "the request did not arrive within "
-                               f"{self.server.request_seconds:g} s") from None
+            _note(_cut_off(self.server.request_seconds))
+            raise RefusedError(408, message("the request did not arrive within {seconds:g} s",
+                                            seconds=self.server.request_seconds)) from None
         self._read = True
         if len(data) != size:
             self.close_connection = True
-            raise RefusedError(400, "the body ended before its length")
+            raise RefusedError(400, message("the body ended before its length"))
         try:
             return data.decode("utf-8")
         except UnicodeDecodeError:
-            raise RefusedError(400, "the body is not UTF-8 text") from None
+            raise RefusedError(400, message("the body is not UTF-8 text")) from None
 
     def _fields(self, route: Route, method: str, query: dict[str, list[str]]) -> dict[str, Any]:
         """What the request gives, typed by its route's schema."""
@@ -514,6 +542,12 @@ class StudioHandler(BaseHTTPRequestHandler):
 
     # -- answering --------------------------------------------------------------------------
     def _respond(self, method: str) -> None:
+        """Answer one request, in the studio's language, or its exercise's."""
+        self._language = self.server.base_language
+        with speaking(self._language):
+            self._answer(method)
+
+    def _answer(self, method: str) -> None:
         self._drain = self._read = False
         split = urlsplit(self.path)
         query = parse_qs(split.query)
@@ -533,26 +567,33 @@ class StudioHandler(BaseHTTPRequestHandler):
             route = ROUTES.get((method, split.path))
             if route is None:
                 known = any(path == split.path for _, path in ROUTES)
-                raise RefusedError(405 if known else 404,
-                                   f"{method} {split.path}: " + ("not allowed" if known else
-                                                                 "no such address"))
+                raise RefusedError(405 if known else 404, message(
+                    "{method} {path}: not allowed", method=method, path=split.path) if known
+                    else message("{method} {path}: no such address", method=method,
+                                 path=split.path))
             fields = self._fields(route, method, query)
-            if route.computes:
-                with self.server.lock:
-                    payload = route.answer(self.server, fields)
-            else:
-                payload = route.answer(self.server, fields)
+            self._language = self.server.spoken(fields.get("toml"))
+            with speaking(self._language):
+                payload = self._computed(route, fields)
             self._json(route.status, payload, cookie=cookie)
         except (ConnectionError, TimeoutError):
             raise
         except Exception as error:   # every failure: one line (_failure)
-            status, payload = _failure(error)
+            with speaking(self._language):
+                status, payload = _failure(error)
             if method == "POST" and not self._read and status != 408:
                 self._drain = True   # a body left unread: read it away, then close
             self._json(status, payload)
         finally:
             if self._drain:
                 self._drain_body()
+
+    def _computed(self, route: Route, fields: dict[str, Any]) -> Any:
+        """The route's answer (under the server's lock if it computes)."""
+        if route.computes:
+            with self.server.lock:
+                return route.answer(self.server, fields)
+        return route.answer(self.server, fields)
 
     def _json(self, status: int, payload: Any, *, cookie: bool = False) -> None:
         data = json.dumps(payload, ensure_ascii=False, allow_nan=False).encode("utf-8")
@@ -611,9 +652,26 @@ def _failure(error: Exception) -> tuple[int, dict[str, str]]:
     if isinstance(error, NoSuchJobError):
         return 404, {"error": str(error), "kind": "refused"}
     if isinstance(error, FileExistsError):
-        return 409, {"error": f"{error.args[0]} exists already", "kind": "exists"}
+        return 409, {"error": render(message("{path} exists already", path=error.args[0])),
+                     "kind": "exists"}
     if isinstance(error, PlanmethodError | OverflowError | RecursionError | MemoryError):
         return 400, api.error_payload(error)
-    message = f"internal error ({type(error).__name__}): {error}".replace("\n", " ")
-    _note(message)
-    return 500, {"error": message, "kind": "internal"}
+    line = render(_internal(error)).replace("\n", " ")
+    _note(line)
+    return 500, {"error": line, "kind": "internal"}
+
+
+def _internal(error: BaseException) -> Message:
+    """A bug, in one line: its kind and what it says."""
+    return message("internal error ({kind}): {error}", kind=type(error).__name__,
+                   error=str(error))
+
+
+def _cut_off(seconds: float) -> Message:
+    return message("a request took longer than {seconds:g} s to arrive: cut off",
+                   seconds=seconds)
+
+
+def _given_host(host: str | None) -> str:
+    """The ``Host`` a refused request gave, as the line shows it."""
+    return repr(host) if host is not None else repr(render(message("missing")))

@@ -1,7 +1,7 @@
 """A job's process (:mod:`planmethod.studio.jobs`): ``python -P -m planmethod.studio.worker``.
 
-It reads its task, one JSON line ``{"kind": "variants" | "export", "arguments": …, "staging":
-…}``, from its standard input, does it with :mod:`planmethod.studio.api`
+It reads its task, one JSON line ``{"kind": "variants" | "export", "arguments": …,
+"language": …, "staging": …}``, from its standard input, does it with :mod:`planmethod.studio.api`
 (:func:`~planmethod.studio.api.run_variants`, :func:`~planmethod.studio.api.run_export`) and
 writes JSON lines to its standard output: ``{"progress": {"phase", "done", "total"}}`` as it
 goes, then ``{"result": …}`` or ``{"error": {"error", "kind"}}`` (one line, as a refused
@@ -57,8 +57,8 @@ def _prepare() -> None:
     job: :meth:`planmethod.studio.jobs.Jobs.warm`)."""
     import importlib
 
-    for module in ("planmethod.studio.api", "planmethod.commands.variants",
-                   "planmethod.commands.export", "planmethod.grading.exports",
+    for module in ("planmethod.studio.api", "planmethod.application.variants",
+                   "planmethod.application.exporting", "planmethod.grading.exports",
                    "planmethod.grading.keys", "planmethod.grading.sheets",
                    "planmethod.grading.templates", "planmethod.kinematics", "planmethod.plans",
                    "planmethod.render.workbook", "planmethod.spec", "svgwrite"):
@@ -95,7 +95,17 @@ def main() -> int:
     task = json.loads(line)
     threading.Thread(target=_lifeline, args=(task.get("staging"),), daemon=True,
                      name="planmethod-lifeline").start()
+    from ..words import speaking
+
+    with speaking(task.get("language")):
+        _do(task, tell)
+    os._exit(0)   # said and flushed: nothing is left to finish (the lifeline still reads)
+
+
+def _do(task: dict[str, Any], tell) -> None:
+    """Do ``task`` and tell how it ended: its result, or its error in one line."""
     from ..errors import PlanmethodError
+    from ..words import message, render
     from . import api
 
     try:
@@ -105,9 +115,9 @@ def main() -> int:
     except (PlanmethodError, OverflowError, RecursionError, MemoryError) as error:
         tell({"error": api.error_payload(error)})
     except Exception as error:   # a bug: its one line, for the page and the terminal
-        message = f"internal error ({type(error).__name__}): {error}".replace("\n", " ")
-        tell({"error": {"error": message, "kind": "internal"}})
-    os._exit(0)   # said and flushed: nothing is left to finish (the lifeline still reads)
+        line = render(message("internal error ({kind}): {error}", kind=type(error).__name__,
+                              error=str(error))).replace("\n", " ")
+        tell({"error": {"error": line, "kind": "internal"}})
 
 
 if __name__ == "__main__":

@@ -153,9 +153,20 @@ def compile_folder(folder: Path) -> list[str]:
     for po in sorted(folder.glob(f"*/LC_MESSAGES/{DOMAIN}.po")):
         with open(po, "rb") as file:
             language = pofile.read_po(file)
+        _drop_untranslated_plurals(language)
         written.append(_write(po.with_suffix(".mo"), lambda file, language=language:
                               mofile.write_mo(file, language, use_fuzzy=False)))
     return written
+
+
+def _drop_untranslated_plurals(language) -> None:
+    """Leave a plural that has no translation out of a catalogue to compile: Babel would
+    write its English forms as its translation (a plural's translation is a tuple, never
+    empty), and the catalogue would count it as translated (:func:`~planmethod.words.
+    language.missing`)."""
+    for entry in list(language):
+        if entry.id and entry.pluralizable and not any(entry.string):
+            language.delete(entry.id, context=entry.context)
 
 
 def build(root: Path = PACKAGE) -> list[str]:

@@ -46,7 +46,8 @@ from typing import Protocol
 
 from ...errors import StructureError
 from ...structure import AssurGroup
-from ...vocabulary import GroupKind
+from ...vocabulary import GroupKind, group_kind_words
+from ...words.message import message
 from ..algebra import Body
 from .base import Branch, GroupInputs, KindModel, SolvedGroup
 from .dyad import Placed
@@ -232,7 +233,8 @@ def kind_module(group: AssurGroup) -> KindModule:
     for module in registered().get(group.kind, ()):
         if module.solves(group):
             return module
-    raise StructureError(f"no solver for a group of kind {group.kind!s} of this shape",
+    raise StructureError(message("no solver for a group of kind {kind} of this shape",
+                                 kind=group_kind_words(group.kind)),
                          link=group.name)
 
 

@@ -27,6 +27,7 @@ import numpy as np
 from ...errors import StructureError
 from ...model import Mechanism, Slide
 from ...structure import AssurGroup, Joint, Structure
+from ...words.message import message
 from ..algebra import Body, Number, Vec, dot
 from ..tracing import Traced
 
@@ -129,8 +130,9 @@ class GroupInputs:
         """Distance between two points of a link; a zero length is a :class:`StructureError`."""
         length = self.mechanism.links[link].length(first, second)
         if not length > 1e-12:
-            raise StructureError(f"{link} ({first}{second}) has zero length: the group has no "
-                                 "definite position", link=self.group.name)
+            raise StructureError(message("{link} ({first}{second}) has zero length: the group "
+                                         "has no definite position", link=link, first=first,
+                                         second=second), link=self.group.name)
         return length
 
     def guard(self, value, bound: float, check: Callable, *args,

@@ -23,11 +23,12 @@ from collections.abc import Callable
 import numpy as np
 
 from ...errors import AssemblyError, ToggleError
-from ...structure import AssurGroup
-from ...vocabulary import STAGE_PLURAL
+from ...structure import AssurGroup, Joint
+from ...words.message import Message, message, template
 
-__all__ = ["EPS", "MARGIN", "ROUNDING_UNITS", "TOGGLE_SINE", "assembly_error", "error_estimate",
-           "first", "parallel_guides", "size_ratio", "stage_check", "toggle_or_miss"]
+__all__ = ["EPS", "MARGIN", "ROUNDING_UNITS", "TOGGLE_SINE", "assembly_error", "coinciding",
+           "error_estimate", "first", "parallel_guides", "size_ratio", "stage_check",
+           "toggle_or_miss"]
 
 #: the arithmetic's resolution (unit roundoff)
 EPS = float(np.finfo(float).eps)
@@ -46,17 +47,36 @@ def first(mask) -> int:
     return int(np.flatnonzero(np.atleast_1d(mask))[0])
 
 
-def assembly_error(group: AssurGroup, angles, bad, text: str, shortfall) -> AssemblyError:
+#: a stage's check that finds the group's lines so close to parallel that the stage would keep
+#: no correct digit, by stage (the velocities and the accelerations are checked)
+_NO_DIGIT = {
+    "velocity": template("toggle position: the group's two construction lines meet at "
+                         "{angle:.3g}°, so close to parallel that its velocities would have no "
+                         "correct digit"),
+    "acceleration": template("toggle position: the group's two construction lines meet at "
+                             "{angle:.3g}°, so close to parallel that its accelerations would "
+                             "have no correct digit")}
+
+
+def coinciding(first: Joint, second: Joint) -> Message:
+    """Two external pins of a dyad that coincide: the group has no definite position."""
+    return message("{point1} and {point2} coincide: the group has no definite position",
+                   point1=first.point, point2=second.point)
+
+
+def assembly_error(group: AssurGroup, angles, bad, text: Message, shortfall) -> AssemblyError:
     index = first(bad)
     amount = float(np.broadcast_to(np.asarray(shortfall, dtype=float),
                                    np.shape(np.atleast_1d(bad)))[index])
     # two points that coincide are no shortfall: the text says what is wrong
-    told = f"{text}: short by {amount:.6g} m" if amount else text
+    told = message("{reason}: short by {amount:.6g} m", reason=text,
+                   amount=amount) if amount else text
     return AssemblyError(told, shortfall=amount, link=group.name,
                          angle=float(np.atleast_1d(angles)[index]))
 
 
-def toggle_or_miss(group: AssurGroup, angles, vanishing, scale, text: str, shortfall) -> None:
+def toggle_or_miss(group: AssurGroup, angles, vanishing, scale, text: Message,
+                   shortfall) -> None:
     """Raise at the first angle where a group cannot be assembled or is in its toggle position.
 
     ``vanishing`` is the factor of the discriminant that goes to zero at the toggle (a + b −
@@ -72,13 +92,14 @@ def toggle_or_miss(group: AssurGroup, angles, vanishing, scale, text: str, short
         raise assembly_error(group, angles, miss, text, shortfall)
     if toggles.size:
         raise ToggleError(
-            "toggle position: the group's links are stretched out or folded in line, its two "
-            "construction lines are parallel and its motion is not determined",
+            message("toggle position: the group's links are stretched out or folded in line, "
+                    "its two construction lines are parallel and its motion is not "
+                    "determined"),
             line_angle_deg=0.0, link=group.name,
             angle=float(np.atleast_1d(angles)[int(toggles[0])]))
 
 
-def parallel_guides(group: AssurGroup, angles, det, text: str) -> None:
+def parallel_guides(group: AssurGroup, angles, det, text: Message) -> None:
     bad = ~(np.abs(np.atleast_1d(det)) >= TOGGLE_SINE)
     if np.any(bad):
         raise ToggleError(text, line_angle_deg=0.0, link=group.name,
@@ -98,10 +119,7 @@ def stage_check(group: AssurGroup, stage: str) -> Callable:
             value = float(np.broadcast_to(np.asarray(sine), bad.shape)[index])
             angle = math.degrees(math.asin(min(1.0, abs(value))))
             raise ToggleError(
-                f"toggle position: the group's two construction lines meet at {angle:.3g}°, "
-                f"so close to parallel that its {STAGE_PLURAL.get(stage, stage)} would have no "
-                "correct digit",
-                line_angle_deg=angle, link=group.name,
+                _NO_DIGIT[stage].replace(angle=angle), line_angle_deg=angle, link=group.name,
                 angle=float(np.atleast_1d(angles)[index]))
 
     return check

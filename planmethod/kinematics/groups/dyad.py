@@ -164,8 +164,7 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int,
     if level < 1:
         return DyadRates()
     s1, s2 = placed.sides
-    e1, e2 = s1.direction, s2.direction
-    det = cross(e1, e2)
+    det = cross(s1.direction, s2.direction)
     sine = det / (s1.length * s2.length)
     # the digits left near the toggle: ε·R/s³ (velocities), ε·R/s⁵ (accelerations) below 1
     power = 3.0 if level == 1 else 5.0
@@ -173,6 +172,28 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int,
     context.guard(sine, bound, check_stage, sine, s1.position.x, s1.position.y,
                   s2.position.x, s2.position.y,
                   *(side.length if side.rotation else -1.0 for side in (s1, s2)), magnitude=True)
+    rates = _velocities(context, placed, det)
+    if level < 2:
+        return DyadRates(sine, rates.v_x)
+    return DyadRates(sine, rates.v_x, _accelerations(context, placed, det, rates))
+
+
+class _Rates(NamedTuple):
+    """A dyad's sliding rates along its two sides (u1, u2), X's velocity, and whether X's
+    motion is taken from the second side."""
+
+    u1: Number
+    u2: Number
+    v_x: Vec
+    second: bool
+
+
+def _velocities(context: GroupInputs, placed: Placed, det) -> _Rates:
+    """The dyad's velocities: the rates along its sides from its bases' velocities, X's
+    velocity, each group link's ω and its origin's velocity (filled in its body)."""
+    bodies = context.bodies
+    s1, s2 = placed.sides
+    e1, e2 = s1.direction, s2.direction
     vb1 = bodies[s1.base_link].velocity(s1.offset)
     vb2 = bodies[s2.base_link].velocity(s2.offset)
     w = vb2 - vb1
@@ -194,12 +215,20 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int,
         else:
             moved = velocity + r.perp() * body.omega
             body.vx, body.vy = moved.x, moved.y
-    if level < 2:
-        return DyadRates(sine, v_x)
+    return _Rates(u1, u2, v_x, second)
+
+
+def _accelerations(context: GroupInputs, placed: Placed, det, rates: _Rates) -> Vec:
+    """The dyad's accelerations: the sides' relative accelerations from their bases' (with
+    the normal and Coriolis terms), each group link's ε and its origin's acceleration (filled
+    in its body); returns X's acceleration."""
+    bodies = context.bodies
+    s1, s2 = placed.sides
+    e1, e2 = s1.direction, s2.direction
     ab1 = bodies[s1.base_link].acceleration(s1.offset)
     ab2 = bodies[s2.base_link].acceleration(s2.offset)
     known = []
-    for side, u in ((s1, u1), (s2, u2)):
+    for side, u in ((s1, rates.u1), (s2, rates.u2)):
         if side.rotation:
             known.append(side.radius * -(u * u))
         else:  # the Coriolis term 2ω_carrier·J·v_rel
@@ -207,12 +236,12 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int,
     rhs = (ab2 + known[1]) - (ab1 + known[0])
     du1 = cross(rhs, e2) / det
     du2 = cross(rhs, e1) / det
-    a_x = ab2 + known[1] + e2 * du2 if second else ab1 + known[0] + e1 * du1
+    a_x = ab2 + known[1] + e2 * du2 if rates.second else ab1 + known[0] + e1 * du1
     epsilons = follow_tied(placed.tied, {link: (du1, du2)[index]
                                          for link, index in placed.rotating.items()},
                            lambda link: None if link in placed.bodies else bodies[link].epsilon)
     for link, body in placed.bodies.items():
-        reference, _, acceleration = _reference(context, placed, link, v_x, a_x)
+        reference, _, acceleration = _reference(context, placed, link, rates.v_x, a_x)
         body.epsilon = epsilons[link]
         if reference is None:
             body.ax, body.ay = acceleration.x, acceleration.y
@@ -221,7 +250,7 @@ def evaluate_dyad(context: GroupInputs, placed: Placed, level: int,
             square = body.omega * body.omega
             moved = acceleration + r.perp() * body.epsilon - r * square
             body.ax, body.ay = moved.x, moved.y
-    return DyadRates(sine, v_x, a_x)
+    return a_x
 
 
 def _constants(*vectors: Vec) -> int:

@@ -59,6 +59,7 @@ from ...model import FRAME, Mechanism
 from ...structure import AssurGroup
 from ...vectors import rotate
 from ...vocabulary import GroupKind, PairKind
+from ...words.message import message, plural
 from ..algebra import Body, maximum, minimum, sqrt
 from ..constraints import ConstraintSystem
 from ..state import LinkState
@@ -291,22 +292,23 @@ class Path:
             health = float(np.ravel(system.conditioning(system.at(tuple(q.T), here)))[0])
             name = system.group.name
             if health < LIMIT:
-                raise ToggleError(
-                    f"the group reaches a limit (toggle) position near crank angle {start:.6g}°:"
-                    f" its Jacobian is nearly singular (normalised determinant {health:.2g}); "
-                    "beyond it the group cannot be assembled on this branch",
-                    line_angle_deg=0.0, link=name, angle=start)
+                raise ToggleError(message(
+                    "the group reaches a limit (toggle) position near crank angle {angle:.6g}°: "
+                    "its Jacobian is nearly singular (normalised determinant {health:.2g}); "
+                    "beyond it the group cannot be assembled on this branch", angle=start,
+                    health=health), line_angle_deg=0.0, link=name, angle=start)
             if not bool(converged[0]):
-                raise ConvergenceError(
-                    f"Newton did not converge: residual {float(residual[0]):.3g} m after "
-                    f"{ITERATIONS} iterations (group size {system.length:g} m), even with a "
-                    f"crank-angle step of {abs(stop - start):.2g}°",
+                raise ConvergenceError(message(
+                    "Newton did not converge: residual {residual:.3g} m after {iterations} "
+                    "iterations (group size {size:g} m), even with a crank-angle step of "
+                    "{step:.2g}°", residual=float(residual[0]), iterations=ITERATIONS,
+                    size=system.length, step=abs(stop - start)),
                     residual=float(residual[0]), link=name, angle=stop)
-            raise BranchJumpError(
-                f"the assembly would jump to another branch between crank angles {start:.9g}° "
-                f"and {stop:.9g}° (the solution moves {float(jump[0]):.3g} m in a step of "
-                f"{abs(stop - start):.2g}°): a toggle or branch point lies there",
-                link=name, angle=stop)
+            raise BranchJumpError(message(
+                "the assembly would jump to another branch between crank angles {start:.9g}° "
+                "and {stop:.9g}° (the solution moves {moved:.3g} m in a step of {step:.2g}°): "
+                "a toggle or branch point lies there", start=start, stop=stop,
+                moved=float(jump[0]), step=abs(stop - start)), link=name, angle=stop)
         middle = 0.5 * (start + stop)
         return self.advance(self.advance(node, start, middle), middle, stop)
 
@@ -374,9 +376,9 @@ class Path:
 
 
 def _toggle(system: System, health: float, angle: float) -> ToggleError:
-    return ToggleError(
-        f"toggle position: the group's Jacobian is singular (normalised determinant "
-        f"{health:.2g}); its motion is not determined", line_angle_deg=0.0,
+    return ToggleError(message(
+        "toggle position: the group's Jacobian is singular (normalised determinant "
+        "{health:.2g}); its motion is not determined", health=health), line_angle_deg=0.0,
         link=system.group.name, angle=angle)
 
 
@@ -423,8 +425,8 @@ def choose_with(context: GroupInputs, model: KindModel,
         found = sort_assemblies(system, system.assemblies(known), known)
         model.memo[("assemblies", group.index)] = found
     if not found:
-        raise AssemblyError("the group cannot be assembled at this crank angle: no assembly "
-                            "found", shortfall=None, link=group.name,
+        raise AssemblyError(message("the group cannot be assembled at this crank angle: no "
+                                    "assembly found"), shortfall=None, link=group.name,
                             angle=float(mechanism.drive.angle))
     distances = [_sketch_distance(mechanism, system,
                                   system.poses(system.at(tuple(q[None, :].T), known))[0])
@@ -459,9 +461,11 @@ def _path(context: GroupInputs, model: KindModel, branch: Branch, system: System
             np.array([float(mechanism.drive.angle)]), {}), model, lambda _: system)
         assemblies = model.memo[("assemblies", group.index)]
     if not 1 <= branch.sign <= len(assemblies):
-        raise StructureError(f"branch {branch.sign} asked, but the group has "
-                             f"{len(assemblies)} assemblies at crank angle "
-                             f"{mechanism.drive.angle:g}°", link=group.name)
+        raise StructureError(plural(
+            "branch {branch} asked, but the group has {count} assembly at crank angle "
+            "{angle:g}°", "branch {branch} asked, but the group has {count} assemblies at "
+            "crank angle {angle:g}°", count=len(assemblies), branch=branch.sign,
+            angle=mechanism.drive.angle), link=group.name)
 
     def upstream(angles: np.ndarray):
         """The known values at unit crank speed: derivatives by the crank angle."""
@@ -595,8 +599,9 @@ class GeneralSystem(System):
             mechanism, self.links, known=self.known_links)
         rows, cols = self.constraints.size
         if rows != cols:
-            raise StructureError(f"the group has {rows} constraint equations for {cols} "
-                                 "unknowns", link=group.name)
+            raise StructureError(message("the group has {rows} constraint equations for "
+                                         "{columns} unknowns", rows=rows, columns=cols),
+                                 link=group.name)
         sizes = [1e-9]
         for link in self.links:
             points = np.array(list(mechanism.links[link].points.values()))

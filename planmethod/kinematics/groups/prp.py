@@ -20,6 +20,7 @@ array([0.175279, 0.530906])
 from __future__ import annotations
 
 from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, Vec, cross, dot
 from . import base, checks, dyad
 
@@ -43,8 +44,8 @@ def place(context: base.GroupInputs) -> dyad.Placed:
                       turned))
     (_, body1, n1, c1, q1, t1), (_, body2, n2, c2, q2, t2) = lines
     det = cross(n1, n2)
-    text = (f"the guides of {ext1.slide.key} and {ext2.slide.key} are parallel: "
-            f"{internal.point} has no definite position")
+    text = message("the guides of {pair1} and {pair2} are parallel: {point} has no definite "
+                   "position", pair1=ext1.slide.key, pair2=ext2.slide.key, point=internal.point)
 
     def check(angles, value) -> None:
         checks.parallel_guides(group, angles, value, text)

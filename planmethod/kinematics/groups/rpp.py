@@ -22,6 +22,7 @@ Examples
 from __future__ import annotations
 
 from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, cross
 from . import base, checks, dyad
 
@@ -46,8 +47,8 @@ def place(context: base.GroupInputs) -> dyad.Placed:
     _, n2, line2 = context.guide(ext2.slide, l2)
     _, n1, line1 = context.guide(inner, l2, body1)
     det = cross(n1, n2)
-    text = (f"the guides of {inner.key} and {ext2.slide.key} are parallel: {l2} has no "
-            "definite position")
+    text = message("the guides of {pair1} and {pair2} are parallel: {link} has no definite "
+                   "position", pair1=inner.key, pair2=ext2.slide.key, link=l2)
 
     def check(angles, value) -> None:
         checks.parallel_guides(group, angles, value, text)

@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, Vec, cross, dot, sqrt
 from . import base, checks, dyad
 
@@ -49,15 +50,16 @@ def place(context: base.GroupInputs) -> dyad.Placed:
     span = p1.at - p2.at
     square = dot(span, span)
     length = sqrt(square)
-    text = (f"the guide of {l2} passes {abs(offset):g} m from its pivot {ext2.point}; it "
-            f"cannot reach {ext1.point}")
+    text = message("the guide of {link} passes {offset:g} m from its pivot {pivot}; it cannot "
+                   "reach {point}", link=l2, offset=abs(offset), pivot=ext2.point,
+                   point=ext1.point)
 
     def check(angles, distance, sx, sy) -> None:
         distance = np.atleast_1d(np.asarray(distance, dtype=float))
         close = distance <= 1e-15
         if np.any(close):
-            raise checks.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
-                                 "coincide: the group has no definite position", 0.0)
+            raise checks.assembly_error(group, angles, close, checks.coinciding(ext1, ext2),
+                                        0.0)
         if offset != 0:
             size = np.maximum(np.abs(np.asarray(sx)), np.abs(np.asarray(sy)))
             checks.toggle_or_miss(group, angles, distance - abs(offset),

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, dot, sqrt
 from . import base, checks, dyad
 
@@ -46,8 +47,9 @@ def place(context: base.GroupInputs) -> dyad.Placed:
     offset = c + dot(n, turned)   # the line of Q: n·Q = offset
     h = dot(n, p1.at) - offset
     square = a * a - h * h
-    text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) cannot reach the line of "
-            f"{internal.point} along {slide.along}'s guide")
+    text = message("{link} ({point}{joint} = {length:g} m) cannot reach the line of {joint} "
+                   "along {along}'s guide", link=l1, point=ext1.point, joint=internal.point,
+                   length=a, along=slide.along)
 
     def check(angles, x1, y1, height, line) -> None:
         size = np.maximum(np.abs(x1), np.abs(y1))

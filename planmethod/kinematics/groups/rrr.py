@@ -24,6 +24,7 @@ import numpy as np
 __all__ = ["BRANCHES", "KIND", "place"]
 
 from ...vocabulary import GroupKind
+from ...words.message import message
 from ..algebra import Body, dot, sqrt
 from . import base, checks, dyad
 
@@ -43,16 +44,18 @@ def place(context: base.GroupInputs) -> dyad.Placed:
     d = sqrt(square)
     # Heron's form: the product of the four factors a ± b ± d
     product = (a + b + d) * (a + b - d) * (a - b + d) * (b - a + d)
-    text = (f"{l1} ({ext1.point}{internal.point} = {a:g} m) and {l2} ({internal.point}"
-            f"{ext2.point} = {b:g} m) cannot join {ext1.point} and {ext2.point}")
+    text = message("{link1} ({point1}{joint} = {length1:g} m) and {link2} ({joint}{point2} = "
+                   "{length2:g} m) cannot join {point1} and {point2}", link1=l1,
+                   point1=ext1.point, joint=internal.point, length1=a, link2=l2,
+                   point2=ext2.point, length2=b)
 
     def check(angles, x1, y1, x2, y2) -> None:
         dx, dy = np.asarray(x2) - np.asarray(x1), np.asarray(y2) - np.asarray(y1)
         distance = np.atleast_1d(np.sqrt(dx * dx + dy * dy))
         close = distance <= 1e-15 * (a + b)
         if np.any(close):
-            raise checks.assembly_error(group, angles, close, f"{ext1.point} and {ext2.point} "
-                                 "coincide: the group has no definite position", 0.0)
+            raise checks.assembly_error(group, angles, close, checks.coinciding(ext1, ext2),
+                                        0.0)
         stretched, folded = a + b - distance, distance - abs(a - b)
         vanishing = np.where(np.abs(stretched) <= np.abs(folded), stretched, folded)
         reach = np.maximum(np.abs(dx), np.abs(dy))

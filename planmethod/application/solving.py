@@ -1,0 +1,186 @@
+"""Solve an exercise at a crank angle: the analysis, its figures and its report as a course
+prints it.
+
+Examples
+--------
+>>> from planmethod.spec import load_exercise
+>>> analysis = solve_at(load_exercise("exercises/compressor_slider_crank.toml"), 45.0)
+>>> sorted(figures(analysis))
+['acceleration.svg', 'lever.svg', 'position.svg', 'velocity.svg']
+>>> report_text(analysis).splitlines()[0]
+'Compressor slider-crank (Abduvaliev & Abduxoshimov) — crank angle φ₁ = 45°'
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+
+from ..errors import PlanmethodError, SpecError
+from ..words import Message, message, number_text, render
+
+__all__ = ["check_choices", "figures", "pngs", "report_text", "solve_at", "unwritten"]
+
+
+def check_choices(angle: float | None = None, precision_mm: float | None = None) -> None:
+    """Refuse a precision that is no non-negative number of mm, or an angle that is not
+    finite or beyond the exercise file's limit (a :class:`SpecError` naming the option that
+    gave it), before any work."""
+    from ..spec import MAX_ANGLE_DEG
+
+    if precision_mm is not None and not precision_mm >= 0:
+        raise SpecError(message("--precision must be a non-negative number of mm, got "
+                                "{precision}", precision=precision_mm))
+    if angle is not None and not (math.isfinite(angle) and abs(angle) <= MAX_ANGLE_DEG):
+        raise SpecError(message("must be a finite number of degrees within ±{limit:g}°, got "
+                                "{angle:g}", limit=MAX_ANGLE_DEG, angle=angle),
+                        key="option --angle")
+
+
+def solve_at(exercise, angle: float | None = None, *, precision_mm: float | None = None):
+    """The :class:`~planmethod.report.Analysis` of ``exercise`` at crank angle ``angle``
+    (deg; default its ``drive.angle``: the assembly chosen there is followed to ``angle``),
+    drawn at ``precision_mm`` (default the file's ``[plan] precision_mm``); both checked by
+    :func:`check_choices`."""
+    from ..report import analyse
+
+    check_choices(angle, precision_mm)
+    return analyse(exercise, angle, precision_mm=precision_mm)
+
+
+def figures(analysis) -> dict[str, str]:
+    """Every drawing of the analysis, as ``planmethod solve --svg`` writes it: file name →
+    SVG text (none where the plans are not drawn)."""
+    from ..render.figures import plan_files
+
+    if analysis.plans is None:
+        return {}
+    return plan_files(analysis.plans, forces=analysis.forces)
+
+
+def pngs(drawings: Mapping[str, str]) -> dict[str, bytes]:
+    """The drawings as PNG images 1200 pixels wide, by file name (``velocity.png``).
+
+    Raises
+    ------
+    PlanmethodError
+        If cairosvg, which draws them, is not installed.
+    """
+    try:
+        import cairosvg
+    except ImportError:
+        raise PlanmethodError(message("--png needs cairosvg: pip install "
+                                      "'planmethod[png]'")) from None
+    return {Path(name).with_suffix(".png").name: cairosvg.svg2png(
+        bytestring=text.encode("utf-8"), output_width=1200) for name, text in drawings.items()}
+
+
+def unwritten(analysis) -> Message | str | None:
+    """Why a drawing of the forces was left out (the combined force of a link whose plan is
+    not drawn), or None."""
+    if analysis.forces is None:
+        return None
+    from ..render.force_svg import combined_omitted
+
+    return combined_omitted(analysis.forces, analysis.plans) or None
+
+
+def _number(value: float | None, digits: int = 6) -> str:
+    return "—" if value is None else number_text(value, f".{digits}g")
+
+
+def report_text(analysis) -> str:
+    """The report a course prints: structure, scales, check table, flags — every quantity,
+    link and force in the course's notation (docs/notation.md: ω₂, v_B₃, R₀₁; the crank's
+    φ and ω by its number), never a report name (those are the JSON report's); in the
+    language spoken."""
+    from ..numbering import course_numbers
+    from ..vocabulary import numbered, shown_title
+
+    exercise = analysis.exercise
+    numbers = course_numbers(exercise.mechanism)
+    crank = numbers[exercise.mechanism.drive.link]
+    lines = [render(message("{title} — crank angle {phi} = {angle:g}°",
+                            title=shown_title(exercise.mechanism.title),
+                            phi=numbered("φ", crank), angle=analysis.angle))]
+    lines += ["", *_structure_lines(analysis, numbers)]
+    if analysis.plans:
+        lines += ["", *_scale_lines(analysis.plans)]
+    lines += ["", *_check_lines(analysis.checks, numbers)]
+    if exercise.published:
+        lines += ["", *_published_lines(analysis, numbers)]
+    if analysis.flags:
+        lines += ["", render(message("Flags"))] + [f"  ! {render(flag)}"
+                                                   for flag in analysis.flags]
+    if analysis.forces is not None:
+        from ..render.notation import ForceNotation
+
+        lines += ["", analysis.forces.describe(ForceNotation(analysis.forces.solution))]
+    return "\n".join(lines)
+
+
+def _structure_lines(analysis, numbers: Mapping[str, int]) -> list[str]:
+    from ..structure import describe
+
+    lines = [render(message("Structural analysis"))]
+    lines += ["  " + line for line in describe(analysis.structure, numbers).splitlines()]
+    for index, branch in sorted(analysis.motion.branches.items()):
+        analysis.structure.groups[index]
+        lines.append("  " + render(message("group {number} assembly: branch {sign:+d} "
+                                           "({reason})", number=index + 1, sign=branch.sign,
+                                           reason=branch.reason)))
+    return lines
+
+
+def _scale_lines(plans) -> list[str]:
+    lines = [render(message("Scales"))] + ["  " + line for line in plans.scales.describe()]
+    precision = plans.velocity.precision_mm
+    lines.append("  " + render(message("drafting precision: {precision:g} mm",
+                                       precision=precision) if precision else
+                               message("drafting precision: exact construction")))
+    return lines
+
+
+def _check_lines(checks, numbers: Mapping[str, int]) -> list[str]:
+    """The check table: each quantity read off the plan against its exact value."""
+    from ..vocabulary import symbol
+
+    head = [render(word) for word in (
+        message("quantity", context="column"), message("plan", context="column"),
+        message("exact", context="column"), message("abs. error", context="column"),
+        message("rel. error", context="column"), message("unit", context="column"))]
+    shown = {check.quantity: symbol(check.quantity, numbers) for check in checks}
+    width = max([len(text) for text in shown.values()] + [len(head[0])])
+    lines = [f"  {head[0]:<{width}} {head[1]:>12}  {head[2]:>12}  {head[3]:>10}   "
+             f"{head[4]:>10}  {head[5]}"]
+    for check in checks:
+        relative = "—" if check.rel_error is None else number_text(check.rel_error, ".2e")
+        lines.append(f"  {shown[check.quantity]:<{width}} {_number(check.plan):>12}  "
+                     f"{_number(check.analytic):>12}  {_number(check.abs_error, 3):>10}   "
+                     f"{relative:>10}  {render(check.unit)}")   # words: vocabulary (units)
+    return lines
+
+
+def _published_lines(analysis, numbers: Mapping[str, int]) -> list[str]:
+    """The values a book prints against the exact ones."""
+    from ..report import published_comparison
+    from ..vocabulary import symbol
+
+    exercise = analysis.exercise
+    source = exercise.published_source or message("the book")
+    head = [render(word) for word in (
+        message("quantity", context="column"), message("published", context="column"),
+        message("exact", context="column"), message("difference", context="column"))]
+    lines = [render(message("Published values ({source}) against the exact ones "
+                            "(magnitudes)", source=source)),
+             f"  {head[0]:<22}{head[1]:>12}{head[2]:>14}{head[3]:>12}"]
+    slip = render(message("likely a slip (> 5 %)"))
+    for row in published_comparison(analysis):
+        exact = "—" if row["exact"] is None else number_text(row["exact"], ".6g")
+        off = ("—" if row["difference_percent"] is None
+               else number_text(row["difference_percent"], "+.1f") + " %")
+        lines.append(f"  {symbol(row['quantity'], numbers):<22}"
+                     f"{number_text(row['published'], '>12.6g')}{exact:>14}{off:>12}"
+                     + (f"   {slip}" if row["likely_slip"] else ""))
+    return lines

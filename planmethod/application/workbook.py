@@ -1,0 +1,372 @@
+"""Build a workbook: one offline HTML page for a full turn of the crank.
+
+Every frame (one crank angle every ``step`` degrees) is solved as ``planmethod solve --angle
+A`` solves it: its drawings are the ones ``solve --svg`` writes, its readings are the
+report's ``checks``, and its grading questions are those of the answer key ``planmethod
+grade`` builds at that angle. The page (:mod:`planmethod.render.workbook`) only shows them.
+The frames are solved here or in a bounded pool of worker processes
+(:mod:`planmethod.application.workers`); the page is made in the language spoken
+(:func:`planmethod.words.speaking`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+from ..errors import SpecError
+from ..words import Message, current, message, render, speaking
+from .tasks import Watch
+from .workers import chunked, in_workers, worker_count
+
+if TYPE_CHECKING:
+    from ..render.workbook import PageQuantity
+
+__all__ = ["DEFAULT_STEP", "MIN_STEP_DEG", "build_workbook", "drawing_meta",
+           "exercise_variant", "frame_data", "reading_plans", "solve_frames", "turn_angles",
+           "turn_charts", "turn_order"]
+
+#: the finest crank-angle step of a workbook or an animation (deg): 3,600 frames
+MIN_STEP_DEG = 0.1
+
+#: default crank-angle step of a workbook (deg)
+DEFAULT_STEP = 5.0
+
+#: the drawings a frame shows, in this order, by file name of ``plan_files``
+PANELS = ("position", "velocity", "acceleration", "lever")
+
+#: what a question of the key keeps in the page (its ``text`` is not shown)
+QUESTION_FIELDS = ("id", "symbol", "value", "tolerance", "unit", "signed", "mistakes")
+
+
+def turn_angles(step: float, option: str = "--step", start: float = 0.0) -> list[float]:
+    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart, one of them
+    ``start`` (the exercise's own ``drive.angle``: a page opens there).
+
+    >>> turn_angles(90)
+    [0.0, 90.0, 180.0, 270.0]
+    >>> turn_angles(10, start=45)[:3], 45.0 in turn_angles(10, start=45)
+    ([5.0, 15.0, 25.0], True)
+    >>> turn_angles(0)
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.SpecError: option --step: must be a number of degrees in [0.1, 180] ...
+    """
+    if not (isinstance(step, int | float) and math.isfinite(step)
+            and MIN_STEP_DEG <= step <= 180):
+        raise SpecError(message("must be a number of degrees in [{finest:g}, 180] (at most "
+                                "{frames} frames), got {step:g}", finest=MIN_STEP_DEG,
+                                frames=round(360 / MIN_STEP_DEG), step=step),
+                        key=f"option {option}")
+    offset = float(start) % step
+    if step - offset < 1e-9:          # start a whole number of steps from 0, but for rounding
+        offset = 0.0
+    count = math.ceil((360.0 - offset) / step - 1e-9)
+    return [round(offset + number * step, 9) + 0.0 for number in range(count)]
+
+
+def turn_order(angles: Sequence[float], start: float, omega: float) -> list[float]:
+    """The frames of a turn in the order the crank passes them: from ``start`` (the
+    exercise's own angle), φ growing if ω ≥ 0 (counter-clockwise), else falling.
+
+    >>> turn_order([0.0, 90.0, 180.0, 270.0], 90, 10)
+    [90.0, 180.0, 270.0, 0.0]
+    >>> turn_order([0.0, 90.0, 180.0, 270.0], 90, -10)
+    [90.0, 0.0, 270.0, 180.0]
+    """
+    ordered = sorted(angles)
+    first = min(range(len(ordered)), key=lambda index: (
+        abs((ordered[index] - start + 180.0) % 360.0 - 180.0), index))
+    turned = ordered[first:] + ordered[:first]
+    return turned if omega >= 0 else turned[:1] + turned[1:][::-1]
+
+
+def exercise_variant(exercise):
+    """The variant whose key ``planmethod grade`` builds for this exercise file (the file's
+    own ``[grading]`` table), or a variant with default grading settings for an exercise
+    that has no file."""
+    from ..grading.templates import Variant, draw_variant, load_template
+
+    if exercise.source:
+        variant = draw_variant(load_template(exercise.source))
+        return replace(variant, exercise=exercise)
+    return Variant("1", 0, 0, {}, {}, exercise)
+
+
+def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
+    """One frame of the page as plain data (see :func:`planmethod.render.workbook.
+    workbook_html`), with the plan each quantity is read off (``reads``)."""
+    from ..grading.keys import build_key
+    from ..grading.plan_points import drawing_frame
+    from ..render.svg import vector_equations
+
+    drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
+    readings = [[check.analytic, check.plan] for check in analysis.checks]
+    steps, equations, reads = {}, {}, {}
+    if analysis.plans is not None:
+        for name in ("velocity", "acceleration"):
+            plan = getattr(analysis.plans, name)
+            if plan is not None:
+                steps[name] = [[step.number, step.text, step.action,
+                                 [point for point in (step.start, step.end) if point]]
+                                for step in plan.steps]
+                equations[name] = vector_equations(plan)
+                reads |= {step.quantity: name for step in plan.steps
+                          if step.action == "read" and step.quantity}
+    key = build_key(replace(variant, exercise=analysis.exercise))
+    questions = [{field: question[field] for field in QUESTION_FIELDS}
+                 for question in key["questions"]]
+    return {"drawings": drawings, "readings": readings, "steps": steps,
+            "equations": equations, "reads": reads, "questions": questions,
+            "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
+
+
+def solve_frames(exercise, angles: Sequence[float], views=None, variant=None
+                 ) -> list[dict[str, Any]]:
+    """The frames of the given angles as plain data (:func:`frame_data`), each with its
+    check quantities (``quantities``) and balancing moment (``moment``, None without
+    forces) for the full-turn curves; ``views`` keep each panel steady over the turn
+    (:func:`planmethod.render.steady.steady_views`); ``variant`` is the exercise's
+    (:func:`exercise_variant`, drawn here if not given: a page draws it once)."""
+    import numpy as np
+
+    from ..render.figures import plan_files
+    from ..report import analyse
+
+    if variant is None:
+        variant = exercise_variant(exercise)
+    out = []
+    for angle in angles:
+        analysis = analyse(exercise, angle)
+        # many frames: no enlarged details and no loaded mechanism (solve --svg draws them)
+        files = (plan_files(analysis.plans, forces=analysis.forces, details=False,
+                            loaded=False, views=views) if analysis.plans else {})
+        frame = frame_data(analysis, variant, files)
+        frame["quantities"] = [(check.quantity, check.unit) for check in analysis.checks]
+        frame["moment"] = (None if analysis.forces is None else
+                           float(np.ravel(analysis.forces.balancing_moment)[0]))
+        frame["precision_mm"] = analysis.exercise.plan.precision_mm
+        out.append(frame)
+    return out
+
+
+def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
+    """A worker's chunk of frames, made in the language of the page."""
+    exercise, angles, views, variant, language = job
+    with speaking(language):
+        return solve_frames(exercise, angles, views, variant)
+
+
+def _solve_turn(exercise, angles: Sequence[float], workers: int, watch: Watch, views,
+                variant) -> list[dict[str, Any]]:
+    """The frames of ``angles``, here (one worker) or in ``workers`` processes, in order;
+    ``watch`` hears each (phase ``frames``) and may cancel the page between two."""
+    frames: list[dict[str, Any]] = []
+
+    def done(solved: list[dict[str, Any]]) -> None:
+        frames.extend(solved)
+        watch.step("frames", len(frames), len(angles))
+
+    if workers == 1:
+        for angle in angles:
+            done(solve_frames(exercise, [angle], views, variant))
+    else:
+        language = current()
+        in_workers(_solve_chunk, [(exercise, chunk, views, variant, language)
+                                  for chunk in chunked(angles, workers)], workers, done)
+    return frames
+
+
+def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = None,
+                   watch: Watch | None = None) -> str:
+    """The workbook page of ``exercise`` as HTML, in the language spoken.
+
+    Parameters
+    ----------
+    exercise
+        The exercise (a :class:`planmethod.model.Exercise`).
+    step
+        The crank-angle step between two frames (deg).
+    jobs
+        Worker processes to solve the frames in: 1 solves them here, None takes every CPU
+        this process may use with at least 12 frames each.
+    watch
+        Hears each frame solved (phase ``frames``) and may cancel the page.
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> page = build_workbook(load_exercise("exercises/compressor_slider_crank.toml"), 120)
+    >>> page.count('data-quantity="'), 'id="angle"' in page
+    (7, True)
+    """
+    from ..numbering import course_numbers
+    from ..render.steady import steady_views
+    from ..render.workbook import WorkbookPage, curve_chart, workbook_html
+    from ..vocabulary import numbered
+
+    mechanism = exercise.mechanism
+    angles = turn_angles(step, start=mechanism.drive.angle)   # opens at its own angle
+    workers = worker_count(jobs, len(angles))
+    views = steady_views(exercise, angles)      # one zoom and one page per panel
+    variant = exercise_variant(exercise)        # once: a frame keys it at its own angle
+    frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant)
+    numbers = course_numbers(mechanism)
+    plans = reading_plans(frames)
+    return workbook_html(WorkbookPage(
+        mechanism.title, angles, _panels(frames[0]), frames,
+        _page_quantities(frames[0], numbers, plans),
+        charts=[curve_chart(angles, curves, title=title, unit=unit,
+                            plans=sorted({plans[name] for name in names if plans.get(name)}))
+                for title, unit, curves, names in turn_charts(frames, numbers)],
+        notes=_notes(len(angles), step, frames[0]), start=mechanism.drive.angle,
+        phi=numbered("φ", numbers[mechanism.drive.link]),
+        drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1))
+
+
+def _panels(first: dict[str, Any]) -> list[str]:
+    """The drawings a frame shows: :data:`PANELS` first, in their order, then the others."""
+    panels = [name for name in PANELS if name in first["drawings"]]
+    return panels + [name for name in first["drawings"] if name not in panels]
+
+
+def _subscript(name: str, numbers: dict[str, int]) -> str:
+    """A quantity's subscript as the course writes it: a link's by the link's number (ω₂), a
+    point's by its name (v_B₃), a slide's by the numbers of its two links (s₂₃)."""
+    from ..vocabulary import pair_number, point_name, quantity
+
+    found = quantity(name)
+    if found.kind.subject == "link" and found.subject in numbers:
+        return str(numbers[found.subject])
+    if found.kind.subject == "point":
+        return point_name(found.subject, numbers)
+    link, _, along = found.subject.partition("/")
+    if found.kind.subject == "pair" and link in numbers and along in numbers:
+        return pair_number(numbers[link], numbers[along])
+    return found.subject.replace("_", " ")
+
+
+def _page_quantities(first: dict[str, Any], numbers: dict[str, int],
+                     plans: dict[str, str]) -> list[PageQuantity]:
+    """The readings table's quantities: symbol, subscript, unit, the plan each is read off,
+    what a negative value means and the words of its two senses."""
+    from ..grading.answers import magnitude_note, sense_words
+    from ..render.workbook import PageQuantity
+    from ..vocabulary import quantity
+
+    return [PageQuantity(name, quantity(name).symbol, _subscript(name, numbers), unit,
+                         plans.get(name), magnitude_note(name, numbers), sense_words(name))
+            for name, unit in first["quantities"]]
+
+
+def _notes(positions: int, step: float, first: dict[str, Any]) -> list[Message]:
+    """The page's notes: how many positions, how they are drawn, how practice grades."""
+    precision = first["precision_mm"]
+    drawn = (message("{positions} positions, every {step:g}°; drawings by planmethod, "
+                     "drafting precision {precision:g} mm", positions=positions, step=step,
+                     precision=precision) if precision else
+             message("{positions} positions, every {step:g}°; drawings by planmethod, exact "
+                     "construction", positions=positions, step=step))
+    graded = message("practice mode grades as `planmethod grade` does: tolerances from a "
+                     "drafting precision of {precision:g} mm (each tolerance is shown)",
+                     precision=first["tolerance_source"])
+    return [drawn, graded]
+
+
+def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
+    """The drawing mode's data for the whole page (:func:`planmethod.render.workbook_draw.
+    drawing_data`): one sheet per plan for the turn, each point's course name (b₃), the
+    mistakes with what the student is told. None when no frame has a plan to draw.
+
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/slotted_lever.toml")
+    >>> meta = drawing_meta(exercise, solve_frames(exercise, [30.0]))
+    >>> meta["names"]["b@lever"], meta["poles"]
+    ('b₃', {'velocity': 'p', 'acceleration': 'π'})
+    """
+    from ..grading.drawings import DRAWING_FORMAT, exercise_digest
+    from ..grading.mistakes import drawn_explanation
+    from ..grading.plan_points import DRAWN_MISTAKES, plan_extent
+    from ..numbering import course_numbers
+    from ..plans.construction import course_text
+    from ..render.labels import label_runs
+    from ..render.workbook_draw import drawing_data
+    from ..vocabulary import numbered
+    from ..words import render
+
+    draws = [frame.get("draw", {}) for frame in frames]
+    plans = [plan for plan in ("velocity", "acceleration")
+             if any(plan in draw for draw in draws)]
+    if not plans:
+        return None
+    mechanism = exercise.mechanism
+    numbers = course_numbers(mechanism)
+    labels = {label for draw in draws for entry in draw.values() for label in entry["points"]}
+    poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
+             for plan in plans}
+    return drawing_data(
+        title=mechanism.title, exercise=exercise_digest(exercise),
+        names={label: course_text(label, numbers) for label in sorted(labels)},
+        runs={label: label_runs(label, numbers) for label in sorted(labels)},
+        poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
+        mistakes=[(mistake, render(drawn_explanation(mistake))) for mistake in DRAWN_MISTAKES],
+        file_format=DRAWING_FORMAT,
+        phi=numbered("φ", numbers[mechanism.drive.link]))
+
+
+def reading_plans(frames: Sequence[dict[str, Any]]) -> dict[str, str]:
+    """The plan each check quantity of the ``frames`` is read off (``velocity`` or
+    ``acceleration``): where a frame's construction reads it (ρ off the acceleration plan),
+    else the plan drawn at the quantity's scale (μv, μa); a quantity of neither (the travel
+    s, at μl) is in none. The drawing mode hides their values until that plan is shown.
+
+    >>> reading_plans([{"quantities": [("v_C", "m/s"), ("rho_D", "m"), ("s_C/frame", "m")],
+    ...                 "reads": {"rho_D": "acceleration"}}])
+    {'v_C': 'velocity', 'rho_D': 'acceleration'}
+    """
+    from ..vocabulary import PLAN_SCALES, PlanKind, quantity
+
+    by_scale = {scale: kind.value for kind, scale in PLAN_SCALES.items()
+                if kind != PlanKind.POSITION}
+    reads: dict[str, str] = {}
+    for frame in frames:
+        reads |= frame.get("reads", {})
+    out = {}
+    for name, _ in frames[0]["quantities"]:
+        plan = reads.get(name) or by_scale.get(quantity(name).scale)
+        if plan is not None:
+            out[name] = plan
+    return out
+
+
+#: the full-turn charts, by the kind of quantity they draw: their titles
+_CHART_TITLES = {"v": message("velocities"), "a": message("accelerations"),
+                 "omega": message("angular velocities"),
+                 "epsilon": message("angular accelerations")}
+
+
+def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None = None
+                ) -> list[tuple[str, str, dict, list[str]]]:
+    """The full-turn curves: speeds, accelerations, angular velocities and accelerations of
+    the checks, and the balancing moment when forces are computed; each curve named as a
+    course writes it (ω₃ with the links' ``numbers``, v_C). Each chart is (title, unit,
+    {curve: values}, the check quantities it draws), its title in the language spoken."""
+    from ..vocabulary import symbol
+
+    charts: dict[str, tuple[str, str, dict, list[str]]] = {}
+    for index, (name, unit) in enumerate(frames[0]["quantities"]):
+        kind = name.partition("_")[0]
+        if kind not in _CHART_TITLES:
+            continue
+        _, _, curves, names = charts.setdefault(kind, (render(_CHART_TITLES[kind]), unit,
+                                                       {}, []))
+        curves[symbol(name, numbers)] = [frame["readings"][index][0] for frame in frames]
+        names.append(name)
+    out = list(charts.values())
+    if frames[0]["moment"] is not None:
+        out.append((render(message("balancing moment")),
+                    render(message("N·m", context="unit")),
+                    {"M_b": [frame["moment"] for frame in frames]}, []))
+    return out
