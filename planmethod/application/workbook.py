@@ -98,7 +98,7 @@ def exercise_variant(exercise):
 def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     """One frame of the page as plain data (see :func:`planmethod.render.workbook.
     workbook_html`), with the plan each quantity is read off (``reads``)."""
-    from ..grading.keys import build_key
+    from ..grading.keys import build_key, key_numbers
     from ..grading.plan_points import drawing_frame
     from ..render.svg import vector_equations
 
@@ -120,7 +120,8 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
             "equations": equations, "reads": reads, "questions": questions,
-            "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
+            "tolerance_source": key["precision_mm"],
+            "draw": drawing_frame(key, key_numbers(key))}
 
 
 def solve_frames(exercise, angles: Sequence[float], views=None, variant=None
@@ -288,9 +289,8 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     """
     from ..grading.drawings import DRAWING_FORMAT, exercise_digest
     from ..grading.mistakes import drawn_explanation
-    from ..grading.plan_points import DRAWN_MISTAKES, plan_extent
+    from ..grading.plan_points import DRAWN_MISTAKES, plan_extent, plan_point_name
     from ..numbering import course_numbers
-    from ..plans.construction import course_text
     from ..render.labels import label_runs
     from ..render.workbook_draw import drawing_data
     from ..vocabulary import numbered
@@ -303,12 +303,13 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
         return None
     mechanism = exercise.mechanism
     numbers = course_numbers(mechanism)
-    labels = {label for draw in draws for entry in draw.values() for label in entry["points"]}
+    labels = {label for draw in draws for entry in draw.values()
+              for label in (*entry["points"], *entry["others"])}
     poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
              for plan in plans}
     return drawing_data(
         title=mechanism.title, exercise=exercise_digest(exercise),
-        names={label: course_text(label, numbers) for label in sorted(labels)},
+        names={label: plan_point_name(label, numbers) for label in sorted(labels)},
         runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, render(drawn_explanation(mistake))) for mistake in DRAWN_MISTAKES],

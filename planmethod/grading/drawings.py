@@ -51,11 +51,14 @@ from .plan_points import (
     ConstructionLine,
     common_mistakes,
     graded_labels,
+    helper_labels,
     mistake_sentence,
     named_mistakes,
+    placing_steps,
     plan_point_name,
     plan_sentence,
     point_lines,
+    read_steps,
 )
 from .results import GradedDrawing, GradedPoint
 from .verdicts import POINT_PARTS, POINTS, PointPart, PointVerdict
@@ -700,14 +703,6 @@ def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
                               file=drawing.source)
 
 
-def _steps_by_end(steps) -> dict[str, dict]:
-    out = {}
-    for step in steps:
-        if step.get("end") and step["action"] in ("lay_off", "intersect", "similarity"):
-            out.setdefault(step["end"], step)
-    return out
-
-
 def _match(points: Mapping[str, tuple[float, float]], label: str):
     if label in points:
         return points[label]
@@ -819,9 +814,8 @@ def _sheet(key: Mapping[str, Any], entry: Mapping[str, Any], student, numbers) -
     steps = entry["steps"]
     asked = {question["id"] for question in key.get("questions", ())}
     return _Sheet(student, {k: np.asarray(v, dtype=float) for k, v in entry["points_mm"].items()},
-                  entry["tolerance_mm"], _steps_by_end(steps), point_lines(entry),
-                  tuple(s for s in steps if s["action"] == "read" and s.get("quantity") in asked),
-                  numbers)
+                  entry["tolerance_mm"], placing_steps(steps), point_lines(entry),
+                  tuple(read_steps(entry, asked)), numbers)
 
 
 def _grade_point(label: str, required: bool, sheet: _Sheet,
@@ -884,8 +878,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     sheet = _sheet(key, entry, student, numbers)
     graded = graded_labels(entry)
     wrong = entry.get("mistake_points", {})
-    results = [result for label in [*graded, *(k for k in sheet.points
-                                               if k not in graded and "_" in k)]
+    results = [result for label in [*graded, *helper_labels(entry)]
                if (result := _grade_point(label, label in graded, sheet,
                                           wrong.get(label, ()))) is not None]
     # a whole-plan mistake only where every wrong point is named with it, by the one rule
