@@ -12,10 +12,11 @@ real workbook page (tests/test_browser.py):
   value, their negatives, written with digits of other scripts, decimal commas, spaces and
   underscores between digit groups, signs (U+2212), exponents, units after the number, spaces
   of every kind around it, empty; any text at all — with ``grade_question``'s verdict;
-* ``points``: a drawn plan point of the slotted lever's and the conveyor's plans, where it
-  belongs, near each known mistake's position of it, a little inside and outside its
-  tolerance disc, or not placed — with the page's verdict as Python words it, and the plans'
-  summaries;
+* ``plans``, ``drawings``: the plans of the shipped exercises' keys as the page has them,
+  drawn — each point where it belongs, near each known mistake's position of it, slid along
+  a construction line it lies on, a little inside and outside its tolerance disc, or not
+  placed — with what ``grade --drawing`` says of each point (the page's sentence for a
+  helper point not placed), and the plans' summaries;
 * ``numbers``, ``readings``, ``quoting``: the formatter against ``format()``, the reader
   against ``read_number``, the quoting against ``repr()``.
 
@@ -45,11 +46,7 @@ if str(ROOT) not in sys.path:   # run as a script from anywhere
 
 from planmethod.grading.answers import grade_question, magnitude_note, sense_words  # noqa: E402
 from planmethod.grading.reading import number_grammar, read_number  # noqa: E402
-from planmethod.render.page_rules import (  # noqa: E402
-    page_rules,
-    plan_summary,
-    point_verdict,
-)
+from planmethod.render.page_rules import page_rules, plan_summary  # noqa: E402
 from planmethod.words import render  # noqa: E402
 
 #: what a question of the key keeps in the page (planmethod.application.workbook.QUESTION_FIELDS)
@@ -203,27 +200,31 @@ def answer_cases(count: int = 3000) -> tuple[list[dict], list[dict]]:
 
 # -- drawn points -----------------------------------------------------------------------------
 def _plans() -> list[dict[str, Any]]:
-    """Each plan of each key: the page's drawing data of it and its mistakes' texts."""
-    from planmethod.grading.mistakes import drawn_explanation
-    from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
+    """Each plan of each key: the page's drawing data of it (its mistakes by name), the
+    points' course names, and the key ``grade --drawing`` grades it against."""
+    from planmethod.grading.keys import key_numbers
+    from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame, plan_point_name
 
-    texts = {mistake: render(drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES}
     out = []
-    for key, _ in _keys():
-        for plan, entry in drawing_frame(key).items():
+    for key, numbers in _keys():
+        for plan, entry in drawing_frame(key, key_numbers(key)).items():
             mistakes = {label: [[DRAWN_MISTAKES[index], x, y] for index, x, y in candidates]
                         for label, candidates in entry["mistakes"].items()}
-            out.append({"plan": plan, "points": entry["points"], "required": entry["required"],
-                        "mistakes": mistakes, "texts": texts})
+            names = {label: plan_point_name(label, numbers)
+                     for label in (*entry["points"], *entry["others"])}
+            out.append({"plan": plan, "data": {**entry, "mistakes": mistakes},
+                        "names": names, "key": key})
     return out
 
 
 @st.composite
 def _drawings(draw, plans) -> tuple[int, dict[str, list[float] | None]]:
-    """A plan drawn: each point near where it belongs or where a mistake puts it (one mistake
-    for the whole plan, now and then), a little inside or outside its disc, or not placed."""
+    """A plan drawn: each point near where it belongs, where a mistake puts it, or slid
+    along a construction line it lies on (a point of the wrong link: b₃ placed at b) — one
+    mistake for the whole plan, now and then —, a little inside or outside its disc, or not
+    placed."""
     number = draw(st.integers(0, len(plans) - 1))
-    plan = plans[number]
+    plan = plans[number]["data"]
     known = sorted({mistake for candidates in plan["mistakes"].values()
                     for mistake, _, _ in candidates})
     whole = draw(st.sampled_from(known)) if known and draw(st.booleans()) else None
@@ -233,6 +234,10 @@ def _drawings(draw, plans) -> tuple[int, dict[str, list[float] | None]]:
         places = [(mx, my) for mistake, mx, my in candidates if mistake == whole]
         if not places:
             places = [(x, y)] + [(mx, my) for _, mx, my in candidates]
+            for _, degrees, _ in plan["lines"].get(label, []):   # slid along its lines
+                along = draw(st.sampled_from([2.0, 5.0, 14.0, -3.0])) * radius
+                places.append((x + along * math.cos(math.radians(degrees)),
+                               y + along * math.sin(math.radians(degrees))))
         base = draw(st.sampled_from(places))
         distance = draw(st.sampled_from([0.0, 0.5, 0.9, 1.0, 1.1, 2.0, 30.0] if whole is None
                                         else [0.0, 0.3]))
@@ -243,34 +248,46 @@ def _drawings(draw, plans) -> tuple[int, dict[str, list[float] | None]]:
     return number, drawn
 
 
+def _graded(plan: dict[str, Any], drawn: dict[str, list[float] | None]):
+    """What ``grade --drawing`` says of the drawing, as a drawing downloaded from the page."""
+    from planmethod.grading.drawings import Drawing, grade_drawing
+
+    data = plan["data"]
+    points = {data["pole"]: (0.0, 0.0)} | {label: tuple(xy) for label, xy in drawn.items()
+                                            if xy is not None}
+    return grade_drawing(plan["key"], Drawing(points, plan["plan"], exact_scale=True))
+
+
 def point_cases(count: int = 150) -> tuple[list[dict], list[dict]]:
-    """Drawn points with their verdicts, and each drawing's summary."""
-    from planmethod.grading.plan_points import common_mistakes
+    """Each plan's page data, and drawn plans with ``grade --drawing``'s verdict on each
+    point, its score and plan mistakes, and the page's summary of the plan."""
+    from planmethod.render.page_rules import PAGE_WORDS
 
     plans = _plans()
-    points, summaries = [], []
+    drawings = []
     for number, drawn in examples(_drawings(plans), count, each=5):
         plan = plans[number]
-        verdicts = []
-        for label, entry in plan["points"].items():
-            required = label in plan["required"]
-            candidates = plan["mistakes"].get(label, [])
-            verdict = point_verdict(label, entry, drawn[label], required, candidates,
-                                    plan["texts"])
-            verdicts.append(verdict)
-            points.append({"name": label, "entry": entry, "drawn": drawn[label],
-                           "required": required, "candidates": candidates,
-                           "expected": {"ok": verdict.ok, "mistakes": list(verdict.mistakes),
-                                        "sentence": render(verdict.message)}})
-        common = common_mistakes([list(v.mistakes) for v in verdicts
-                                  if v.placed and v.ok is False])
-        right = sum(1 for v, label in zip(verdicts, plan["points"], strict=True)
-                    if v.ok and label in plan["required"])
-        total = len(plan["required"])
-        summary = plan_summary(plan["plan"], right, total, common, plan["texts"])
-        summaries.append({"plan": plan["plan"], "right": right, "total": total,
-                          "common": common, "expected": render(summary)})
-    return points, summaries
+        data = plan["data"]
+        graded = _graded(plan, drawn)
+        by_label = {point.point: point for point in graded.points}
+        expected = {}
+        for label in data["points"]:
+            if label in by_label:
+                point = by_label[label]
+                expected[label] = {"ok": point.correct, "mistakes": list(point.mistakes),
+                                   "sentence": render(point.feedback)}
+            elif drawn[label] is None and label in data["helpers"]:
+                expected[label] = {"ok": None, "mistakes": [], "sentence": render(
+                    PAGE_WORDS["point_missing_helper"].replace(point=plan["names"][label]))}
+        right = sum(1 for point in graded.points if point.correct and point.max_score)
+        common = list(graded.plan_mistakes)
+        summary = plan_summary(plan["plan"], right, len(data["required"]), common)
+        drawings.append({"plan": number, "drawn": {k: v for k, v in drawn.items() if v is not None},
+                         "expected": expected, "right": right, "common": common,
+                         "summary": render(summary)})
+    pages = [{"plan": plan["plan"], "data": plan["data"], "names": plan["names"]}
+             for plan in plans]
+    return pages, drawings
 
 
 # -- numbers, readings, quoting ---------------------------------------------------------------
@@ -304,9 +321,9 @@ def golden() -> dict[str, Any]:
     from planmethod.grading.plan_points import DRAWN_MISTAKES
 
     questions, answers = answer_cases()
-    points, summaries = point_cases()
+    plans, drawings = point_cases()
     return {"rules": page_rules("en").as_dict(), "questions": questions, "answers": answers,
-            "points": points, "summaries": summaries,
+            "plans": plans, "drawings": drawings,
             "texts": {mistake: render(drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES},
             "numbers": number_cases(), "readings": reading_cases(), "quoting": quoting_cases()}
 

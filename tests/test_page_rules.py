@@ -20,14 +20,14 @@ from hypothesis import strategies as st
 
 from planmethod.grading.reading import number_grammar, read_number
 from planmethod.render.page_rules import (
-    PAGE_TEMPLATES,
-    mistakes_message,
+    PAGE_WORDS,
     page_rules,
     quoted,
+    rule_templates,
     template_text,
     unprintable_points,
 )
-from planmethod.words import render, template
+from planmethod.words import template
 
 ROOT = Path(__file__).resolve().parent.parent
 #: the pages' scripts: no sentence is written in them
@@ -81,30 +81,33 @@ def test_the_quoting_is_reprs(text):
     assert quoted(text, unprintable_points()) == repr(text)
 
 
-def test_a_drawn_points_mistakes_are_told_in_grades_words():
-    """The page's sentences of a point where mistakes put it, and of a plan whose wrong points
-    all lie where they put them, say what ``grade --drawing`` says."""
-    from itertools import permutations
+def test_the_page_is_sent_grades_one_table():
+    """The page grades by grading's verdict table itself (planmethod.grading.verdicts): every
+    class of every table, by ``<table>.<class>``, in the page's language; the page's own
+    words are none of grade's sentences."""
+    from planmethod.grading.verdicts import rulebook
 
-    from planmethod.grading.mistakes import drawn_explanation
-    from planmethod.grading.plan_points import DRAWN_MISTAKES, mistake_sentence, plan_sentence
-
-    texts = {mistake: render(drawn_explanation(mistake)) for mistake in DRAWN_MISTAKES}
-    for count in (1, 2, 3):
-        for named in list(permutations(DRAWN_MISTAKES, count))[:40]:
-            assert render(mistakes_message(named, texts)) == render(mistake_sentence(named))
-            assert render(mistakes_message(named, texts, "plan_mistakes")) == \
-                render(plan_sentence(named))
+    table = rulebook()
+    templates = page_rules("en").templates
+    expected = {f"{name}.{kind}": entry["template"] for name, entries in table.items()
+                for kind, entry in entries.items()}
+    assert {name: templates[name] for name in expected} == expected
+    assert templates["parts.on_the_line"] == ("it lies on the line {line} through {through} "
+                                              "but {along:.1f} mm off along it")
+    assert set(templates) == set(expected) | set(PAGE_WORDS)
+    assert not {text.template for text in PAGE_WORDS.values()} & set(expected.values())
 
 
 def test_every_page_template_is_one_the_pages_formatter_writes():
     """The page's formatter writes the specifications Python's ``format`` knows that the
-    templates use: a precision and e, f, g or d, or nothing."""
-    for name, text in PAGE_TEMPLATES.items():
+    templates use: a precision and e, f, g or d, or nothing; a text quoted (``!r``) has
+    none."""
+    for name, text in {**PAGE_WORDS, **rule_templates()}.items():
         for _, field, specification, conversion in string.Formatter().parse(text.template):
             if field is None:
                 continue
-            assert conversion is None, name
+            assert conversion in (None, "r"), name
+            assert not (conversion and specification), name
             assert re.fullmatch(r"(\.[0-9]+)?[defg]|", specification), (name, specification)
             assert not re.fullmatch(r"\.[0-9]+", specification), (name, specification)
 
@@ -121,7 +124,9 @@ def test_a_template_keeps_its_fields_in_the_pages_language(tmp_path, monkeypatch
     language.catalogue.cache_clear()
     try:
         rules = page_rules(PSEUDO)
-        assert rules.templates["right"] == "⟦{value:.6g} {unit} ± {tolerance:.3g}⟧"
+        assert rules.templates["amounts.right"] == "⟦{amount} ± {tolerance:.3g}⟧"
+        assert rules.templates["answers.not_a_number"] == ("⟦{symbol}: {given!r} is not a "
+                                                           "number (right: {right})⟧")
         assert rules.language == PSEUDO
         assert template_text(template("no {such} template"), PSEUDO) == "no {such} template"
     finally:
@@ -176,7 +181,8 @@ def test_no_script_of_a_page_writes_a_sentence():
 
 def test_the_scripts_agree_with_python_under_node(tmp_path_factory):
     """The page's own scripts, run by Node's test runner on the golden file: every typed answer
-    gets ``grade``'s verdict, every drawn point Python's, every number Python's writing."""
+    gets ``grade``'s verdict, every drawn point ``grade --drawing``'s sentence (a point of the
+    wrong link: on the line, off along it), every number Python's writing."""
     node = shutil.which("node")
     if node is None:
         pytest.skip("no Node.js on the PATH (apt-get install nodejs): the pages' scripts are "
@@ -185,7 +191,8 @@ def test_the_scripts_agree_with_python_under_node(tmp_path_factory):
 
     golden = page_golden.golden_file(tmp_path_factory)
     data = json.loads(golden.read_text(encoding="utf-8"))
-    assert len(data["answers"]) >= 2000 and len(data["points"]) >= 500
+    assert len(data["answers"]) >= 2000
+    assert sum(len(drawing["expected"]) for drawing in data["drawings"]) >= 500
     done = subprocess.run([node, "--test", str(ROOT / "tests" / "js")], cwd=ROOT,
                           env={"PATH": "/usr/bin:/bin", "PLANMETHOD_GOLDEN": str(golden)},
                           capture_output=True, text=True, timeout=600)

@@ -118,14 +118,20 @@
   }
 
   // -- templates ------------------------------------------------------------------------------
-  const FIELD = /\{\{|\}\}|\{([A-Za-z_][A-Za-z0-9_]*)(?::([^{}]*))?\}/g;
+  const FIELD = /\{\{|\}\}|\{([A-Za-z_][A-Za-z0-9_]*)(?:!(r))?(?::([^{}]*))?\}/g;
   // a template's named fields filled; a value is text, a number, a message {id, fields} or a
-  // list of those (joined with commas), as planmethod.words.render fills them
-  function fill(template, fields, renderMessage, decimal) {
-    return template.replace(FIELD, (whole, name, specification) => {
+  // list of those (joined with commas), as planmethod.words.render fills them; a text field
+  // marked !r is quoted as Python's repr() quotes it (`quote`: page_rules.js)
+  function fill(template, fields, renderMessage, decimal, quote) {
+    return template.replace(FIELD, (whole, name, conversion, specification) => {
       if (whole === "{{") return "{";
       if (whole === "}}") return "}";
       if (!(name in fields)) throw new Error("no field " + name + " for " + template);
+      if (conversion) {
+        if (typeof fields[name] !== "string" || !quote || specification)
+          throw new Error("cannot quote field " + name + " of " + template);
+        return quote(fields[name]);
+      }
       return value(fields[name], specification || "", renderMessage, decimal);
     });
   }
@@ -152,28 +158,34 @@
     const count = Math.abs(Math.trunc(fields[template.count]));
     return template.forms[template.plural[count < 200 ? count : 100 + count % 100]];
   }
-  // the words of one page: {templates: {id: template}, decimal: the decimal sign}
+  // the words of one page: {templates: {id: template}, decimal: the decimal sign, quote:
+  // how a field marked !r is quoted (optional)}
   function make(table) {
     const templates = table.templates, decimal = table.decimal || ".";
-    function render(message) {
+    // a message's text; a field named in `marks`, at any depth, is written as its mark
+    function rendered(message, marks) {
       const template = templates[message.id];
       if (template === undefined) throw new Error("no template " + message.id);
       const fields = message.fields || {};
-      return fill(chosen(template, fields), fields, render, decimal);
+      const all = Object.assign({}, fields);
+      Object.keys(marks).forEach(name => { if (name in all) all[name] = marks[name]; });
+      return fill(chosen(template, fields), all, inner => rendered(inner, marks), decimal,
+                  table.quote);
     }
+    const render = message => rendered(message, {});
     return {
       // a message: the template `id` with its fields (nested in another's fields, or rendered)
       message: (id, fields) => ({id: id, fields: fields || {}}),
       render: render,
       say: (id, fields) => render({id: id, fields: fields || {}}),
-      // the message as HTML: its text escaped, the fields named in `markup` set as given
+      // the message as HTML: its text escaped, the fields named in `markup` set as given (in
+      // the messages nested in it too)
       html: (id, fields, markup) => {
-        const marks = {}, all = Object.assign({}, fields);
+        const marks = {};
         Object.keys(markup || {}).forEach((name, index) => {
           marks[name] = "\u0000" + index + "\u0000";
-          all[name] = marks[name];
         });
-        let text = escapeHtml(render({id: id, fields: all}));
+        let text = escapeHtml(rendered({id: id, fields: fields || {}}, marks));
         Object.keys(marks).forEach(name => { text = text.split(marks[name]).join(markup[name]); });
         return text;
       },

@@ -394,20 +394,21 @@
   }
 
   // -- checking -------------------------------------------------------------------------------
-  // each point by the rules of planmethod.grading.plan_points (named_mistakes,
-  // common_mistakes), in the words render/page_rules.py sends: page_rules.js pointVerdict
+  // each point as grade --drawing grades it (planmethod.grading.drawings, plan_points), in the
+  // words of grading's rulebook render/page_rules.py sends: page_rules.js sheet
   function check(plan) {
     const t0 = performance.now();
     const frame = frameData(plan);
     const results = {};
     if (!frame) return results;
     const drawn = store.plans[plan].points, texts = Object.fromEntries(meta.mistakes);
-    Object.entries(frame.points).forEach(([label, entry]) => {
-      const candidates = (frame.mistakes[label] || []).map(
-        ([index, x, y]) => [meta.mistakes[index][0], x, y]);
-      const result = wb.rules.pointVerdict(nameOf(label), entry, drawn[label],
-                                           frame.required.includes(label), candidates, texts);
-      results[label] = Object.assign({label: label}, result);
+    const mistakes = Object.fromEntries(Object.entries(frame.mistakes).map(
+      ([label, candidates]) => [label, candidates.map(
+        ([index, x, y]) => [meta.mistakes[index][0], x, y])]));
+    const verdict = wb.rules.sheet(Object.assign({}, frame, {mistakes: mistakes}), drawn,
+                                   meta.names, texts);
+    Object.keys(frame.points).forEach(label => {
+      results[label] = Object.assign({label: label}, verdict(label));
     });
     draw.results[plan] = results;
     Object.values(results).forEach(result => {
@@ -415,12 +416,13 @@
       if (!cell) return;
       // the sentence with the point's name typeset in it (b₃, k with B₃ below)
       cell.innerHTML = wb.rules.words.html(result.message.id, result.message.fields,
-                                           {name: typesetHtml(result.label).outerHTML});
+                                           {point: typesetHtml(result.label).outerHTML});
       if (result.ok === null) delete cell.dataset.ok; else cell.dataset.ok = String(result.ok);
     });
     const required = Object.values(results).filter(result => result.required);
     const common = wb.rules.commonMistakes(Object.values(results).filter(
-      result => result.placed && result.ok === false).map(result => result.mistakes));
+      result => result.graded && result.placed && result.ok === false)
+      .map(result => result.mistakes));
     draw.planMistakes[plan] = common;
     planBox(plan).querySelector(".draw-summary").textContent = wb.rules.planSummary(
       plan, required.filter(result => result.ok).length, required.length, common, texts);
