@@ -360,7 +360,7 @@ def test_the_right_plans_placed_by_clicks_are_right_point_by_point(drawing, slot
             assert ok == "true", (label, sentence)
             # the verdict opens with the point's name as its button sets it (b₃, k with B₃)
             assert sentence.startswith(page.text_content(f'[data-place="{plan}:{label}"]') +
-                                       ": right")
+                                       ": within ")   # grade --drawing's sentence
     # each check is timed by the page for the benchmark (benchmarks/workbook.py): one time a
     # check, no target here (speed lives in the benchmark)
     times = page.evaluate("workbook.draw.checkTimes")
@@ -399,6 +399,32 @@ def test_a_point_where_the_coriolis_term_is_left_out_is_named(drawing, slotted_r
     graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
     point = next(p for p in graded["points"] if p["point"] == "b@lever")
     assert not point["correct"] and point["mistakes"] == ["no_coriolis"]
+    assert errors == []
+
+
+def test_a_point_of_the_wrong_link_is_told_as_grade_tells_it(drawing, slotted_report,
+                                                            tmp_path):
+    """b₃ placed at b (a point of the wrong link) lies on the line v_B₃B along the guide: the
+    page says so, in the very sentence ``grade --drawing`` gives the downloaded drawing."""
+    page, errors = drawing
+    points = dict(slotted_report["plans"]["velocity"]["points_mm"])
+    place_by_clicks(page, "velocity", points)
+    page.click('[data-place="velocity:b@lever"]')
+    click_plan_point(page, "velocity", *points["b"])
+    page.click('[data-check="velocity"]')
+    ok, sentence = verdicts(page, "velocity")["b@lever"]
+    assert ok == "false"
+    assert sentence.startswith("b₃ is ") and " lies on the line " in sentence
+    assert " through b but " in sentence and " mm off along it" in sentence
+    with page.expect_download() as download:
+        page.click('[data-download="velocity"]')
+    path = tmp_path / "velocity.json"
+    download.value.save_as(path)
+    cli("grade", SLOTTED, "--drawing", path, "--json", tmp_path / "graded.json")
+    graded = json.loads((tmp_path / "graded.json").read_text())["drawings"][0]
+    told = {point["point"]: point["feedback"] for point in graded["points"]}
+    shown = verdicts(page, "velocity")
+    assert {label: shown[label][1] for label in told} == told
     assert errors == []
 
 
@@ -704,5 +730,54 @@ def test_panel_text_is_readable_in_a_1400_px_window(browser, request, which):
         return [panel.id, box.height / box.width, panel.clientHeight / panel.clientWidth];
     })"""):
         assert shown == pytest.approx(drawn, rel=0.02), panel
+    assert errors == []
+    page.close()
+
+
+# -- one rulebook: the page and planmethod grade ------------------------------------------------
+def test_the_page_grades_the_golden_file_as_python_does(browser, compressor_page,
+                                                        tmp_path_factory):
+    """The workbook page's own scripts and rules (the data embedded in a page the command
+    wrote) give every case of the golden file Python's verdict: each typed answer
+    ``grade``'s feedback and hint, each drawn point ``grade --drawing``'s sentence, each plan
+    summary Python's, each number Python's writing (tests/page_golden.py; the same file runs
+    under Node in tests/test_page_rules.py)."""
+    import page_golden
+
+    golden = json.loads(page_golden.golden_file(tmp_path_factory).read_text(encoding="utf-8"))
+    page, errors = open_page(browser, compressor_page)
+    assert page.evaluate("workbook.data.rules") == golden["rules"]
+    wrong = page.evaluate("""golden => {
+        const rules = workbook.rules, out = [];
+        const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+        golden.answers.forEach(item => {
+            const {question, quantity} = golden.questions[item.question];
+            const mine = rules.answerVerdict(question, item.raw, quantity);
+            const got = {correct: mine.correct, mistake: mine.mistake, feedback: mine.feedback,
+                         hint: mine.hint, answer: mine.answer};
+            const expected = item.expected;
+            if (!same(got, {correct: expected.correct, mistake: expected.mistake,
+                            feedback: expected.feedback, hint: expected.hint,
+                            answer: expected.answer})) out.push([item.raw, got, expected]);
+        });
+        golden.drawings.forEach(item => {
+            const plan = golden.plans[item.plan];
+            const verdict = rules.sheet(plan.data, item.drawn, plan.names, golden.texts);
+            Object.entries(item.expected).forEach(([label, expected]) => {
+                const mine = verdict(label);
+                if (!same({ok: mine.ok, mistakes: mine.mistakes, sentence: mine.sentence},
+                          expected)) out.push([item, label, mine]);
+            });
+            const got = rules.planSummary(plan.plan, item.right, plan.data.required.length,
+                                          item.common, golden.texts);
+            if (got !== item.summary) out.push([item, got]);
+        });
+        golden.numbers.forEach(([value, specification, expected]) => {
+            const got = planmethodWords.formatNumber(value, specification);
+            if (got !== expected) out.push([value, specification, expected, got]);
+        });
+        return {wrong: out.slice(0, 5), count: out.length, answers: golden.answers.length};
+    }""", golden)
+    assert wrong == {"wrong": [], "count": 0, "answers": len(golden["answers"])}
     assert errors == []
     page.close()

@@ -290,9 +290,12 @@ def test_a_page_drawing_at_another_angle_is_graded_at_that_angle(tmp_path, capsy
 
 def test_the_page_frame_of_a_small_plan_whole():
     """A plan's frame for the workbook page: its pole, scale (6 digits) and unit; every point a
-    student places (not the pole, not a fixed point at it) to 0.001 mm with its disc, never
-    −0.0; those scored; the mistakes' positions by registry index; no acceleration plan, no
-    entry."""
+    student places (not the pole, not a fixed point at it) with its disc, as the key has them
+    (grade --drawing compares the same numbers), never −0.0; those scored, and the helpers
+    checked when placed; the mistakes' positions by registry index; what grade --drawing's
+    sentences tell of a point (the lines of an intersection, the step that places each point,
+    the readings off a length that is not zero, the other points these name); no acceleration
+    plan, no entry."""
     from math import copysign
 
     from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
@@ -302,16 +305,32 @@ def test_the_page_frame_of_a_small_plan_whole():
         "points_mm": {"p": [0, 0], "a": [0, 0], "b": [10.00049, -0.0], "c": [-0.0001, -20.0],
                       "n_CB": [1.0, 1.0]},
         "tolerance_mm": {"p": 0.0, "a": 0.25, "b": 0.25, "c": 0.7549, "n_CB": 0.3},
-        "steps": [{"action": "coincide", "start": "p", "end": "a"}],
-        "mistake_points": {"c": [["sense", 0.0, 20.0], ["scale_ten", 0.0, -2.0]], "b": []}}}}
+        "steps": [{"action": "coincide", "start": "p", "end": "a"},
+                  {"number": 1, "action": "lay_off", "start": "p", "end": "b",
+                   "length_mm": 10.0, "direction_deg": 0.0},
+                  {"number": 2, "action": "line", "start": "b", "direction_deg": 90.0,
+                   "text": "through b: v_CB ⟂ CB"},
+                  {"number": 3, "action": "line", "start": "a", "direction_deg": 0.0,
+                   "text": "through a: v_C ∥ guide"},
+                  {"number": 4, "action": "intersect", "end": "c", "lines": [2, 3]},
+                  {"number": 5, "action": "read", "quantity": "v_C", "start": "p", "end": "c",
+                   "length_mm": 20.0},
+                  {"number": 6, "action": "read", "quantity": "v_B", "start": "p", "end": "b",
+                   "length_mm": 1e-15}],
+        "mistake_points": {"c": [["sense", 0.0, 20.0], ["scale_ten", 0.0, -2.0]], "b": []}}},
+        "questions": [{"id": "v_C"}, {"id": "v_B"}]}
     frame = drawing_frame(key)
     sense, ten = DRAWN_MISTAKES.index("sense"), DRAWN_MISTAKES.index("scale_ten")
     assert frame == {"velocity": {
         "pole": "p", "scale": "0.123457", "unit": "(m/s)/mm",
-        "points": {"b": [10.0, 0.0, 0.25], "c": [0.0, -20.0, 0.755], "n_CB": [1.0, 1.0, 0.3]},
-        "required": ["b", "c"], "mistakes": {"c": [[sense, 0.0, 20.0], [ten, 0.0, -2.0]]}}}
-    b_y, c_x = frame["velocity"]["points"]["b"][1], frame["velocity"]["points"]["c"][0]
-    assert copysign(1.0, b_y) == copysign(1.0, c_x) == 1.0
+        "points": {"b": [10.00049, 0.0, 0.25], "c": [-0.0001, -20.0, 0.7549],
+                   "n_CB": [1.0, 1.0, 0.3]},
+        "required": ["b", "c"], "helpers": ["n_CB"],
+        "mistakes": {"c": [[sense, 0.0, 20.0], [ten, 0.0, -2.0]]},
+        "lines": {"c": [["b", 90.0, "v_CB ⟂ CB"], ["a", 0.0, "v_C ∥ guide"]]},
+        "placed": {"b": ["lay_off", "p", 10.0, 0.0], "c": ["intersect"]},
+        "reads": [["v_C", "p", "c", 20.0]], "others": {"a": [0.0, 0.0], "p": [0.0, 0.0]}}}
+    assert copysign(1.0, frame["velocity"]["points"]["b"][1]) == 1.0
 
 
 def test_the_sheet_of_a_turn_holds_every_frames_plan_and_the_pole():

@@ -117,7 +117,8 @@ def test_a_frame_of_an_acceleration_plan_alone_with_no_radii_or_mistakes_given()
         "points_mm": {"π": [0, 0], "b": [3.0, 4.0]}, "steps": []}}}
     assert drawing_frame(key) == {"acceleration": {
         "pole": "π", "scale": "2", "unit": "(m/s²)/mm", "points": {"b": [3.0, 4.0, 0.5]},
-        "required": ["b"], "mistakes": {}}}
+        "required": ["b"], "helpers": [], "mistakes": {}, "lines": {}, "placed": {},
+        "reads": [], "others": {}}}
 
 
 def test_a_reversed_sense_of_the_right_magnitude_says_the_magnitude_is_right():

@@ -15,7 +15,7 @@ import pytest
 from planmethod.grading.answers import classify, grade_many, grade_question, read_answers
 from planmethod.grading.drawings import Drawing, grade_drawing
 from planmethod.grading.keys import build_key, key_questions, load_keys
-from planmethod.grading.plan_points import plan_point_name, point_lines
+from planmethod.grading.plan_points import point_lines
 from planmethod.grading.results import KeyQuestion
 from planmethod.grading.templates import draw_variant, load_template
 from planmethod.grading.verdicts import (
@@ -28,6 +28,7 @@ from planmethod.grading.verdicts import (
     PointVerdict,
     rulebook,
 )
+from planmethod.render.plan_words import label_text
 from planmethod.words import render
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -123,7 +124,7 @@ def test_the_wrong_links_sentence_is_made_of_the_lines_fields(lever):
     along = float(np.hypot(*(np.asarray(entry["points_mm"]["b"])
                              - np.asarray(entry["points_mm"]["b@lever"]))))
     sentence = render(POINT_PARTS[PointPart.ON_THE_LINE].replace(
-        line=line.name, through=plan_point_name(line.through, lever["numbers"]), along=along))
+        line=line.name, through=label_text(line.through, lever["numbers"]), along=along))
     assert sentence == ("it lies on the line v_B₃B along the guide of pair 2–3 through b but "
                         "28.8 mm off along it")
     assert told.startswith(f"b₃ is 28.8 mm off: {sentence}; it is ")

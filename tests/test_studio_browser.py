@@ -281,3 +281,54 @@ def test_a_preview_runs_as_a_job_and_shows_the_sheets(studio_page):
     assert page.inner_text("#variants-job .job-text") == "Preview: 2 variants drawn"
     assert page.locator("#sheets figure svg").count() == 2
     assert errors == []
+
+
+def test_the_studio_works_under_its_own_policy(tmp_path):
+    """Without Playwright's bypass: the page's policy allows scripts from the studio only (no
+    inline script) and the page loads them, becomes ready and solves what it opens, with no
+    policy violation; its words are the server's (no script writes one)."""
+    (tmp_path / "compressor.toml").write_bytes(COMPRESSOR.read_bytes())
+    server = StudioServer(tmp_path, 0, initial="compressor.toml")
+    server.start()
+    try:
+        with sync_api.sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+            page = browser.new_page(viewport={"width": 1500, "height": 1100})
+            messages: list[str] = []
+            page.on("console", lambda message: messages.append(message.text))
+            page.on("pageerror", lambda error: messages.append(str(error)))
+            page.goto(server.url("/", token=True))
+            for _ in range(600):     # evaluate, not wait_for_function: the policy forbids eval
+                if page.evaluate("Boolean(window.studio && window.studio.ready && "
+                                 "window.studio.report)"):
+                    break
+                time.sleep(0.1)
+            assert page.evaluate("window.studio.report.title") == solve_json(COMPRESSOR)["title"]
+            assert page.locator("#checks tr[data-quantity]").count() == 7
+            assert page.inner_text("#hint").startswith("Drag a point: the plans redraw.")
+            assert page.inner_text("#status").startswith("solved in ")
+            assert not [m for m in messages if "Content Security Policy" in m], messages
+            assert [m for m in messages if "status of 4" not in m] == []
+            browser.close()
+    finally:
+        server.stop()
+
+
+def test_a_hostile_title_is_saved_as_typed(studio_page):
+    """The page sends the exercise as data and Python writes the TOML: a title with quotes, a
+    backslash, DEL and a line separator reads back as typed (the page wrote DEL bare)."""
+    import tomllib
+
+    page, folder, errors = studio_page
+    open_compressor(page, folder)
+    title = 'say "hi" \\ \x7f — \u2028 end'
+    page.evaluate("title => { const box = document.querySelector('#title'); box.value = title;"
+                  " box.dispatchEvent(new Event('change')); }", title)
+    settled(page)
+    page.fill("#save-path", "hostile.toml")
+    page.click("#save-button")
+    page.wait_for_function("document.querySelector('#file').textContent === 'hostile.toml'",
+                           timeout=30_000)
+    text = (folder / "hostile.toml").read_text(encoding="utf-8")
+    assert tomllib.loads(text)["title"] == title and "\x7f" not in text
+    assert errors == []

@@ -214,7 +214,7 @@ def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
     from dataclasses import replace
 
     from planmethod.application.workbook import exercise_variant
-    from planmethod.grading.keys import build_key
+    from planmethod.grading.keys import build_key, key_numbers
     from planmethod.grading.plan_points import DRAWN_MISTAKES, drawing_frame
 
     slotted = ROOT / "exercises" / "slotted_lever.toml"
@@ -234,12 +234,16 @@ def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
     for number in (0, 3):
         angle = data["angles"][number]
         key = build_key(replace(variant, exercise=analyse(exercise, angle).exercise))
-        expected = drawing_frame(key)
+        expected = drawing_frame(key, key_numbers(key))
         frame = data["frames"][number]["draw"]
         for plan, entry in expected.items():
             left, bottom, right, top = draw["extents"][plan]
-            assert frame[plan]["points"] == entry["points"]
-            assert frame[plan]["required"] == entry["required"]
+            # and what grade --drawing's sentences tell of a point: its lines, its step, the
+            # readings off it, the other points they name (by their course names)
+            for field in ("points", "required", "helpers", "lines", "placed", "reads",
+                          "others"):
+                assert frame[plan][field] == entry[field], field
+            assert set(entry["others"]) <= set(draw["names"])
             for x, y, _ in entry["points"].values():     # one sheet holds every angle's plan
                 assert left < x < right and bottom < y < top
             for label, candidates in entry["mistakes"].items():
@@ -247,6 +251,8 @@ def test_the_drawing_mode_holds_each_angles_key_points_and_mistakes(tmp_path):
                             if left <= c[1] <= right and bottom <= c[2] <= top]
                 assert frame[plan]["mistakes"].get(label, []) == on_sheet
     assert data["frames"][1]["draw"]["acceleration"]["mistakes"]["b@lever"]
+    assert [line[0] for line in data["frames"][1]["draw"]["acceleration"]["lines"]["b@lever"]
+            ] == ["k_B@lever", "n_B@lever"]
 
 
 def test_readings_name_every_quantity_in_the_course_notation(tmp_path):

@@ -123,14 +123,14 @@ def _check_fits(key: Mapping[str, Any], sheet, source: str) -> None:
     """Refuse a plan whose right points fall off the sheet's drawing area."""
     from ..grading.keys import key_numbers
     from ..grading.paper import CourseError, plan_to_page
-    from ..grading.plan_points import plan_point_name
+    from ..render.plan_words import label_text
 
     left, top, right, bottom = sheet.drawing_mm
     for label, xy in key["plans"][sheet.plan]["points_mm"].items():
         x, y = plan_to_page(sheet.pole_mm, xy)
         if left <= x <= right and top <= y <= bottom:
             continue
-        point = plan_point_name(label, key_numbers(key))
+        point = label_text(label, key_numbers(key))
         raise CourseError(
             message("the velocity plan of student {student} does not fit on an A4 sheet (its "
                     "point {point} falls off the drawing area): draw it at a smaller scale",

@@ -14,12 +14,15 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecError
-from ..words import current, message, render, speaking
+from ..words import Message, current, message, render, speaking
 from .tasks import Watch
 from .workers import chunked, in_workers, worker_count
+
+if TYPE_CHECKING:
+    from ..render.workbook import PageQuantity
 
 __all__ = ["DEFAULT_STEP", "MIN_STEP_DEG", "build_workbook", "drawing_meta",
            "exercise_variant", "frame_data", "reading_plans", "solve_frames", "turn_angles",
@@ -95,7 +98,7 @@ def exercise_variant(exercise):
 def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     """One frame of the page as plain data (see :func:`planmethod.render.workbook.
     workbook_html`), with the plan each quantity is read off (``reads``)."""
-    from ..grading.keys import build_key
+    from ..grading.keys import build_key, key_numbers
     from ..grading.plan_points import drawing_frame
     from ..render.plan_words import step_text
     from ..render.svg import vector_equations
@@ -118,7 +121,8 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,
             "equations": equations, "reads": reads, "questions": questions,
-            "tolerance_source": key["precision_mm"], "draw": drawing_frame(key)}
+            "tolerance_source": key["precision_mm"],
+            "draw": drawing_frame(key, key_numbers(key))}
 
 
 def solve_frames(exercise, angles: Sequence[float], views=None, variant=None
@@ -202,7 +206,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     """
     from ..numbering import course_numbers
     from ..render.steady import steady_views
-    from ..render.workbook import curve_chart, workbook_html
+    from ..render.workbook import WorkbookPage, curve_chart, workbook_html
     from ..vocabulary import numbered
 
     mechanism = exercise.mechanism
@@ -213,18 +217,15 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant)
     numbers = course_numbers(mechanism)
     plans = reading_plans(frames)
-    charts = turn_charts(frames, numbers)
-    return workbook_html(mechanism.title, angles, _panels(frames[0]), frames,
-                         _page_quantities(frames[0], numbers, plans),
-                         charts=[curve_chart(angles, curves, title=title, unit=unit)
-                                 for title, unit, curves, _ in charts],
-                         chart_plans=[sorted({plans[name] for name in names
-                                              if plans.get(name)}) for *_, names in charts],
-                         notes=_notes(len(angles), step, frames[0]),
-                         start=mechanism.drive.angle,
-                         phi=numbered("φ", numbers[mechanism.drive.link]),
-                         drawing=drawing_meta(exercise, frames),
-                         sense=-1 if mechanism.drive.omega < 0 else 1)
+    return workbook_html(WorkbookPage(
+        mechanism.title, angles, _panels(frames[0]), frames,
+        _page_quantities(frames[0], numbers, plans),
+        charts=[curve_chart(angles, curves, title=title, unit=unit,
+                            plans=sorted({plans[name] for name in names if plans.get(name)}))
+                for title, unit, curves, names in turn_charts(frames, numbers)],
+        notes=_notes(len(angles), step, frames[0]), start=mechanism.drive.angle,
+        phi=numbered("φ", numbers[mechanism.drive.link]),
+        drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1))
 
 
 def _panels(first: dict[str, Any]) -> list[str]:
@@ -250,21 +251,19 @@ def _subscript(name: str, numbers: dict[str, int]) -> str:
 
 
 def _page_quantities(first: dict[str, Any], numbers: dict[str, int],
-                     plans: dict[str, str]) -> list[dict[str, Any]]:
+                     plans: dict[str, str]) -> list[PageQuantity]:
     """The readings table's quantities: symbol, subscript, unit, the plan each is read off,
     what a negative value means and the words of its two senses."""
     from ..grading.answers import magnitude_note, sense_words
+    from ..render.workbook import PageQuantity
     from ..vocabulary import quantity
-    from ..words import render
 
-    return [{"name": name, "symbol": quantity(name).symbol,
-             "subscript": _subscript(name, numbers), "unit": unit, "plan": plans.get(name),
-             "negative": (render(note) if (note := magnitude_note(name, numbers)) else None),
-             "senses": [render(word) for word in sense_words(name)]}
+    return [PageQuantity(name, quantity(name).symbol, _subscript(name, numbers), unit,
+                         plans.get(name), magnitude_note(name, numbers), sense_words(name))
             for name, unit in first["quantities"]]
 
 
-def _notes(positions: int, step: float, first: dict[str, Any]) -> list[str]:
+def _notes(positions: int, step: float, first: dict[str, Any]) -> list[Message]:
     """The page's notes: how many positions, how they are drawn, how practice grades."""
     precision = first["precision_mm"]
     drawn = (message("{positions} positions, every {step:g}°; drawings by planmethod, "
@@ -275,7 +274,7 @@ def _notes(positions: int, step: float, first: dict[str, Any]) -> list[str]:
     graded = message("practice mode grades as `planmethod grade` does: tolerances from a "
                      "drafting precision of {precision:g} mm (each tolerance is shown)",
                      precision=first["tolerance_source"])
-    return [render(drawn), render(graded)]
+    return [drawn, graded]
 
 
 def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
@@ -291,7 +290,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
     """
     from ..grading.drawings import DRAWING_FORMAT, exercise_digest
     from ..grading.mistakes import drawn_explanation
-    from ..grading.plan_points import DRAWN_MISTAKES, page_wording, plan_extent
+    from ..grading.plan_points import DRAWN_MISTAKES, plan_extent
     from ..numbering import course_numbers
     from ..render.labels import label_runs
     from ..render.plan_words import label_text
@@ -306,7 +305,8 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
         return None
     mechanism = exercise.mechanism
     numbers = course_numbers(mechanism)
-    labels = {label for draw in draws for entry in draw.values() for label in entry["points"]}
+    labels = {label for draw in draws for entry in draw.values()
+              for label in (*entry["points"], *entry["others"])}
     poles = {plan: next(draw[plan]["pole"] for draw in draws if plan in draw)
              for plan in plans}
     return drawing_data(
@@ -315,7 +315,7 @@ def drawing_meta(exercise, frames: Sequence[dict[str, Any]]) -> dict[str, Any] |
         runs={label: label_runs(label, numbers) for label in sorted(labels)},
         poles=poles, extents={plan: plan_extent(draws, plan) for plan in plans},
         mistakes=[(mistake, render(drawn_explanation(mistake))) for mistake in DRAWN_MISTAKES],
-        wording=page_wording(), file_format=DRAWING_FORMAT,
+        file_format=DRAWING_FORMAT,
         phi=numbered("φ", numbers[mechanism.drive.link]))
 
 

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import csv
 import io
-import math
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -43,6 +42,7 @@ from ..io import read_text_bounded
 from ..spec import parse_json
 from ..vocabulary import quantity, question_text, symbol
 from ..words import Message, message, plural, render, template
+from .reading import read_number
 from .results import GradedQuestion, KeyMistake, KeyQuestion, StudentGrade
 from .verdicts import (
     AMOUNT,
@@ -71,24 +71,9 @@ SENSE = "sense"
 
 
 def _parse_number(raw: Any) -> float | str | None:
-    """A number, None for no answer, or the text of what was given instead."""
-    if raw is None:
-        return None
-    if isinstance(raw, bool):
-        return repr(raw)
-    if isinstance(raw, int | float):
-        return float(raw) if math.isfinite(raw) else str(raw)
-    text = str(raw).strip()
-    if not text:
-        return None
-    cleaned = text.replace("\u2212", "-").replace(" ", "")
-    if cleaned.count(",") == 1 and "." not in cleaned:
-        cleaned = cleaned.replace(",", ".")  # a decimal comma
-    try:
-        value = float(cleaned)
-    except ValueError:
-        return text[:40]
-    return value if math.isfinite(value) else text[:40]
+    """A number, None for no answer, or the text of what was given instead: the one grammar
+    of :mod:`planmethod.grading.reading`, which the workbook page applies too."""
+    return read_number(raw)
 
 
 def read_answers(path: str | Path) -> list[tuple[str, dict[str, Any]]]:

@@ -41,6 +41,7 @@ import numpy as np
 
 from ..errors import SpecError, about, value_text
 from ..io import read_bytes_bounded
+from ..render.plan_words import label_text
 from ..spec import MAX_ANGLE_DEG, parse_json
 from ..vectors import cross
 from ..vocabulary import numbered, symbol
@@ -51,11 +52,13 @@ from .plan_points import (
     ConstructionLine,
     common_mistakes,
     graded_labels,
+    helper_labels,
     mistake_sentence,
     named_mistakes,
-    plan_point_name,
+    placing_steps,
     plan_sentence,
     point_lines,
+    read_steps,
 )
 from .results import GradedDrawing, GradedPoint
 from .verdicts import POINT_PARTS, POINTS, PointPart, PointVerdict
@@ -700,14 +703,6 @@ def _check_exercise(key: Mapping[str, Any], drawing: Drawing) -> None:
                               file=drawing.source)
 
 
-def _steps_by_end(steps) -> dict[str, dict]:
-    out = {}
-    for step in steps:
-        if step.get("end") and step["action"] in ("lay_off", "intersect", "similarity"):
-            out.setdefault(step["end"], step)
-    return out
-
-
 def _match(points: Mapping[str, tuple[float, float]], label: str):
     if label in points:
         return points[label]
@@ -750,7 +745,7 @@ class _Sheet:
 
     def name(self, label: str) -> str:
         """A label as the course writes it (b₃)."""
-        return plan_point_name(label, self.numbers)
+        return label_text(label, self.numbers)
 
     def drawn(self, label: str) -> np.ndarray:
         """Where the student drew a point, or its right place if it is not drawn."""
@@ -803,7 +798,7 @@ def _rescaled(student: dict[str, np.ndarray], entry: Mapping[str, Any],
     drawn, length = float(np.hypot(*found)), float(np.hypot(*right))
     ratio = drawn / length
     tolerance = entry["tolerance_mm"].get(end, 0.5) / length
-    segment = {"pole": entry["pole"], "end": plan_point_name(end, numbers), "drawn": drawn,
+    segment = {"pole": entry["pole"], "end": label_text(end, numbers), "drawn": drawn,
                "right": length}
     if not 1 / MAX_RESCALE <= ratio <= MAX_RESCALE:
         return student, 1.0, POINT_PARTS[PointPart.SCALE_FAR].replace(limit=MAX_RESCALE,
@@ -819,9 +814,8 @@ def _sheet(key: Mapping[str, Any], entry: Mapping[str, Any], student, numbers) -
     steps = entry["steps"]
     asked = {question["id"] for question in key.get("questions", ())}
     return _Sheet(student, {k: np.asarray(v, dtype=float) for k, v in entry["points_mm"].items()},
-                  entry["tolerance_mm"], _steps_by_end(steps), point_lines(entry),
-                  tuple(s for s in steps if s["action"] == "read" and s.get("quantity") in asked),
-                  numbers)
+                  entry["tolerance_mm"], placing_steps(steps), point_lines(entry),
+                  tuple(read_steps(entry, asked)), numbers)
 
 
 def _grade_point(label: str, required: bool, sheet: _Sheet,
@@ -884,8 +878,7 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     sheet = _sheet(key, entry, student, numbers)
     graded = graded_labels(entry)
     wrong = entry.get("mistake_points", {})
-    results = [result for label in [*graded, *(k for k in sheet.points
-                                               if k not in graded and "_" in k)]
+    results = [result for label in [*graded, *helper_labels(entry)]
                if (result := _grade_point(label, label in graded, sheet,
                                           wrong.get(label, ()))) is not None]
     # a whole-plan mistake only where every wrong point is named with it, by the one rule

@@ -329,14 +329,14 @@ def _canvas_mistakes(entry: Mapping[str, Any], size_px: float, labels: list[str]
 def _course_names(key: Mapping[str, Any]):
     """A plan label as the course writes it (``b@lever`` → b₃), from the key's exercise."""
     from ..model import FRAME
+    from ..render.plan_words import label_text
     from ..vocabulary import link_numbers
-    from .plan_points import plan_point_name
 
     exercise = key.get("exercise") or {}
     links = list((exercise.get("links") or {}).keys())
     drive = str((exercise.get("drive") or {}).get("link", ""))
     numbers = link_numbers(links, drive, FRAME) if links and drive else {}
-    return lambda label: plan_point_name(label, numbers)
+    return lambda label: label_text(label, numbers)
 
 
 def _task_figure(key: Mapping[str, Any]) -> str | None:

@@ -25,7 +25,7 @@ Examples
 >>> from planmethod.words import render
 >>> render(mistake_sentence(["sense"]))  # doctest: +ELLIPSIS
 "it lies where the construction puts it when the crank's sense of rotation was reversed (..."
->>> plan_point_name("k_B@lever", {"lever": 3}), plan_point_name("k2_Q"), plan_point_name("o2")
+>>> label_text("k_B@lever", {"lever": 3}), label_text("k2_Q"), label_text("o2")
 ('k_B₃', 'k′_Q', 'o₂')
 """
 
@@ -37,22 +37,23 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ..vocabulary import coriolis_letter, point_text, subscript, symbol
+from ..vocabulary import subscript, symbol
 from ..words import Message, render
 from .mistakes import REGISTRY, drawn_explanation
 from .verdicts import POINT_PARTS, PointPart
 
 __all__ = ["DRAWN_MISTAKES", "ConstructionLine", "common_mistakes", "drawing_frame",
-           "drawn_labels", "graded_labels", "mistake_sentence", "named_mistakes",
-           "page_wording", "plan_extent", "plan_point_name", "plan_sentence", "point_lines",
-           "vector_name", "where_mistakes", "word_mistakes"]
+           "drawn_labels", "graded_labels", "helper_labels", "mistake_sentence", "named_mistakes",
+           "page_wording", "placing_steps", "plan_extent", "plan_sentence",
+           "point_lines", "read_steps", "vector_name", "where_mistakes", "word_mistakes"]
 
 #: the mistakes a drawn point can be named with, in the registry's order (the page refers to
 #: them by their index here)
 DRAWN_MISTAKES: tuple[str, ...] = tuple(REGISTRY)
 
-#: decimals of a millimetre kept of the right points and radii in the page
-RIGHT_DECIMALS = 3
+#: a length of a plan shorter than this (mm) is none: a vector of zero laid off is not drawn,
+#: a quantity read off it is zero (no share of it to tell)
+ZERO_MM = 1e-9
 
 
 def drawn_labels(entry: Mapping[str, Any]) -> list[str]:
@@ -74,7 +75,7 @@ def drawn_labels(entry: Mapping[str, Any]) -> list[str]:
     undrawn = {step.get("end") for step in entry["steps"]
                if step.get("action") == "coincide"
                or (step.get("action") == "lay_off" and step.get("length_mm") is not None
-                   and abs(step["length_mm"]) < 1e-9)}
+                   and abs(step["length_mm"]) < ZERO_MM)}
     return [label for label in entry["points_mm"] if label != pole and label not in undrawn]
 
 
@@ -96,6 +97,18 @@ def graded_labels(plan: Mapping[str, Any]) -> list[str]:
             continue
         out.append(label)
     return out
+
+
+def helper_labels(plan: Mapping[str, Any]) -> list[str]:
+    """The helper points of a drawn plan (``plan`` = ``key["plans"][name]``) that are checked
+    when drawn but never scored: the points of the construction named with an underscore
+    (n_CB, k_C) that are not among :func:`graded_labels`.
+
+    >>> helper_labels({"pole": "p", "points_mm": {"p": [0, 0], "b": [0, 30], "n_CB": [1, 2]}})
+    ['n_CB']
+    """
+    graded = set(graded_labels(plan))
+    return [label for label in plan["points_mm"] if label not in graded and "_" in label]
 
 
 # the next two functions go into PrairieLearn's server.py as their source text, which a
@@ -194,31 +207,6 @@ def page_wording() -> tuple[str, str, str]:
 _DIGITS = re.compile(r"(?<=[A-Za-z])[0-9]+")
 
 
-def plan_point_name(label: str, numbers: Mapping[str, int] | None = None) -> str:
-    """A plan point's label as the course writes it: a point taken as a point of a link
-    with the link's number (``b@lever`` → b₃, ``c@frame`` → c₀, ``k_B@lever`` → k_B₃), the
-    digits of a point's name as subscripts (``o2`` → o₂, ``n_BO2`` → n_BO₂), a Coriolis
-    point by its letter (``k1_Q`` → k_Q, ``k2_Q`` → k′_Q). A link the ``numbers`` do not
-    number keeps its name (``b@lever``).
-
-    >>> plan_point_name("b@lever", {"frame": 0, "lever": 3}), plan_point_name("n_CB")
-    ('b₃', 'n_CB')
-    """
-    name, at, link = label.partition("@")
-    main, underscore, rest = name.partition("_")
-    head = main.rstrip("0123456789")
-    # a Coriolis point's side index is its letter: k1_Q is k_Q, k2_Q is k′_Q
-    main = (coriolis_letter(main[1:]) if head == "k" and main != head and rest
-            else point_text(main))
-    rest = _DIGITS.sub(lambda match: subscript(match.group(0)), rest)
-    shown = main + underscore + rest
-    if not at:
-        return shown
-    if numbers and link in numbers:
-        return shown + subscript(str(numbers[link]))
-    return f"{shown}@{link}"
-
-
 def vector_name(name: str, numbers: Mapping[str, int] | None = None) -> str:
     """A quantity or a vector a plan reads, as the course writes it: a quantity by its symbol
     (``omega_lever`` → ω₃, :func:`~planmethod.vocabulary.symbol`), a point taken as a point of
@@ -287,17 +275,85 @@ def point_lines(entry: Mapping[str, Any]) -> dict[str, tuple[ConstructionLine, .
     return out
 
 
-def _rounded(values: Sequence[float], decimals: int = RIGHT_DECIMALS) -> list[float]:
-    return [round(float(value), decimals) + 0.0 for value in values]   # no −0.0
+def _exact(values: Sequence[float]) -> list[float]:
+    """Numbers of a key as the page compares them: the key's own, to the last bit (the page's
+    sentences are ``grade --drawing``'s, whose distances are told to two digits however
+    small), never −0.0."""
+    return [float(value) + 0.0 for value in values]
 
 
-def drawing_frame(key: Mapping[str, Any]) -> dict[str, Any]:
+def placing_steps(steps: Sequence[Mapping[str, Any]]) -> dict[str, Mapping[str, Any]]:
+    """The step that places each point of a key's plan (its first ``lay_off``, ``intersect``
+    or ``similarity`` step that ends there): what a misplaced point's sentence tells of it.
+
+    >>> placing_steps([{"action": "lay_off", "start": "p", "end": "b"},
+    ...                {"action": "read", "start": "p", "end": "b"}])["b"]["action"]
+    'lay_off'
+    """
+    out: dict[str, Mapping[str, Any]] = {}
+    for step in steps:
+        if step.get("end") and step["action"] in ("lay_off", "intersect", "similarity"):
+            out.setdefault(step["end"], step)
+    return out
+
+
+def read_steps(entry: Mapping[str, Any], asked: set[str]) -> list[Mapping[str, Any]]:
+    """The steps of a key's plan that read a quantity ``asked`` off a length that is not zero
+    (:data:`ZERO_MM`): what a misplaced point that is one of their ends makes wrong.
+
+    >>> [step["quantity"] for step in read_steps({"steps": [
+    ...     {"action": "read", "quantity": "v_C", "length_mm": 30.0},
+    ...     {"action": "read", "quantity": "omega_BC", "length_mm": 3e-15}]},
+    ...     {"v_C", "omega_BC"})]
+    ['v_C']
+    """
+    return [step for step in entry["steps"]
+            if step["action"] == "read" and step.get("quantity") in asked
+            and abs(step.get("length_mm") or 0.0) >= ZERO_MM]
+
+
+def _sentence_data(entry: Mapping[str, Any], labels: Sequence[str], asked: set[str],
+                   numbers: Mapping[str, int] | None) -> dict[str, Any]:
+    """What the page needs to say of a misplaced point what ``grade --drawing`` says: the
+    lines each intersection lies on (:func:`point_lines`: [through, direction, name]), the
+    step that places each point ([``lay_off``, start, length, direction], [``similarity``,
+    references] or [``intersect``]), the readings of the quantities asked ([symbol, start,
+    end, length]) and where the other points these name belong (``others``: the pole, a
+    point the construction puts on another)."""
+    lines = point_lines(entry)
+    placing = placing_steps(entry["steps"])
+    placed: dict[str, list[Any]] = {}
+    for label in labels:
+        step = placing.get(label)
+        if step is None:
+            continue
+        placed[label] = ([step["action"], step["start"], float(step["length_mm"]),
+                          float(step["direction_deg"])] if step["action"] == "lay_off" else
+                         ["similarity", list(step.get("references", []))]
+                         if step["action"] == "similarity" else ["intersect"])
+    reads = [[symbol(step["quantity"], numbers), step["start"], step["end"],
+              float(step["length_mm"])] for step in read_steps(entry, asked)]
+    named = {line.through for label in labels for line in lines.get(label, ())}
+    named |= {one[1] for one in placed.values() if one[0] == "lay_off"}
+    named |= {reference for one in placed.values() if one[0] == "similarity"
+              for reference in one[1]}
+    return {"lines": {label: [[line.through, line.direction_deg, line.name]
+                              for line in lines[label]] for label in labels if lines.get(label)},
+            "placed": placed, "reads": reads,
+            "others": {label: _exact(entry["points_mm"][label])
+                       for label in sorted(named - set(labels)) if label in entry["points_mm"]}}
+
+
+def drawing_frame(key: Mapping[str, Any], numbers: Mapping[str, int] | None = None
+                  ) -> dict[str, Any]:
     """One crank angle's drawing data for the workbook page, from its answer key: per plan,
     ``points`` {label: [x, y, tolerance radius]} (mm, y up, the pole at the origin) of the
     points a student places (:func:`drawn_labels`), ``required`` (those ``grade --drawing``
-    scores; the others — n, k … — are checked when placed), ``mistakes`` {label:
-    [[index in :data:`DRAWN_MISTAKES`, x, y], …]}, and the plan's ``scale`` (as text) and
-    ``unit``.
+    scores), ``helpers`` (those it checks when placed: n, k …; any other — a point at the pole
+    — it leaves out), ``mistakes`` {label:
+    [[index in :data:`DRAWN_MISTAKES`, x, y], …]}, the plan's ``scale`` (as text) and
+    ``unit``, and what a misplaced point's sentence tells of it (``lines``, ``placed``,
+    ``reads``, ``others``: the quantities read named as the links' ``numbers`` name them).
 
     Examples
     --------
@@ -309,24 +365,29 @@ def drawing_frame(key: Mapping[str, Any]) -> dict[str, Any]:
     ['b', 'b@lever', 'c']
     >>> [DRAWN_MISTAKES[index] for index, *_ in frame["mistakes"]["b@lever"]][:3]
     ['no_normal', 'no_coriolis', 'coriolis_reversed']
+    >>> [through for through, *_ in frame["lines"]["b@lever"]], frame["placed"]["c"]
+    (['k_B@lever', 'n_B@lever'], ['similarity', ['o2']])
     """
     out: dict[str, Any] = {}
     index = {mistake: number for number, mistake in enumerate(DRAWN_MISTAKES)}
+    asked = {question["id"] for question in key.get("questions", ())}
     for plan in ("velocity", "acceleration"):
         entry = key["plans"].get(plan)
         if entry is None:
             continue
         labels = drawn_labels(entry)
-        required = set(graded_labels(entry))
+        required, helpers = set(graded_labels(entry)), set(helper_labels(entry))
         radii = entry["tolerance_mm"]
         wrong = entry.get("mistake_points", {})
         out[plan] = {
             "pole": entry["pole"], "scale": f"{entry['scale']:.6g}", "unit": entry["unit"],
-            "points": {label: _rounded([*entry["points_mm"][label], radii.get(label, 0.5)])
+            "points": {label: _exact([*entry["points_mm"][label], radii.get(label, 0.5)])
                        for label in labels},
             "required": [label for label in labels if label in required],
+            "helpers": [label for label in labels if label in helpers],
             "mistakes": {label: [[index[mistake], x, y] for mistake, x, y in wrong[label]]
                          for label in labels if wrong.get(label)},
+            **_sentence_data(entry, labels, asked, numbers),
         }
     return out
 

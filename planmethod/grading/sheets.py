@@ -29,12 +29,12 @@ from typing import Any
 
 from ..model import FRAME
 from ..render.canvas import Canvas
+from ..render.plan_words import label_text
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
 from ..vocabulary import PLAN_SCALES, numbered, point_text, scale_text, shown_title, symbol
 from ..words import Message, message, render, template
 from .keys import key_numbers
-from .plan_points import plan_point_name
 from .templates import drawn_lengths
 
 __all__ = ["blank_plan_sheet", "given_data", "paper_plan_sheet", "paper_task_sheet",
@@ -255,7 +255,7 @@ def plan_sheet_for_key(key: Mapping[str, Any], plan: str) -> str:
     size = max(120.0, 20.0 * math.ceil((2 * extent + 40.0) / 20.0))
     first = next((s for s in entry["steps"] if s["action"] == "lay_off"), None)
     given = (message("({pole}{end}) = {length:.4g} mm.", pole=entry["pole"],
-                     end=plan_point_name(first["end"], key_numbers(key)),
+                     end=label_text(first["end"], key_numbers(key)),
                      length=first["length_mm"]) if first else "")
     return blank_plan_sheet(plan, pole=entry["pole"], scale=entry["scale"], unit=entry["unit"],
                             size_mm=size, student=str(key.get("student", "")),
@@ -437,7 +437,7 @@ def _header(canvas: Canvas, key: Mapping[str, Any], sheet, pages: int) -> None:
         lines[-1] = message("Scale {symbol} = {scale:.6g} {unit}; ({pole}{point}) = "
                             "{length:.4g} mm", symbol=_scale_symbol(sheet.plan),
                             scale=sheet.scale, unit=sheet.unit, pole=sheet.pole,
-                            point=plan_point_name(first["end"], numbers),
+                            point=label_text(first["end"], numbers),
                             length=float(first["length_mm"]))
     for line in lines:
         y = _wrapped(canvas, (x, y), render(line), 162.0, PAGE_TEXT_MM, lines=1)

@@ -65,12 +65,13 @@ from ..errors import (
 )
 from ..model import Exercise
 from ..numbering import course_numbers, course_symbols
+from ..render.plan_words import label_text
 from ..spec import checked_table, leaves, parse_toml, read_text
 from ..vectors import angle_deg
 from ..vocabulary import PlanKind, point_text, symbol
 from ..words import Message, message, number_text, plural, render, template
 from .expressions import ExpressionError, evaluate, parse, references
-from .plan_points import plan_point_name, vector_name
+from .plan_points import vector_name
 
 __all__ = [
     "Template",
@@ -590,7 +591,7 @@ def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True
             if step.action == "intersect" and step.angle_deg < settings.min_line_angle_deg:
                 return _SHARP[plan.kind].replace(angle=step.angle_deg,
                                                  limit=settings.min_line_angle_deg,
-                                                 point=plan_point_name(step.end, numbers))
+                                                 point=label_text(step.end, numbers))
     angle = dead_centre_angle(plans)
     if angle is not None and angle < settings.dead_centre_deg:
         return message("the crank is {angle:.1f}° from a dead centre (below {limit:g}°)",
@@ -611,7 +612,7 @@ def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
         if (step.action == "read" and step.length_mm is not None
                 and abs(step.length_mm) < settings.min_segment_mm):
             read = (vector_name(step.quantity, numbers) if step.quantity
-                    else plan_point_name(step.end, numbers))
+                    else label_text(step.end, numbers))
             return _SHORT[plan.kind].replace(quantity=read, length=abs(step.length_mm),
                                              limit=settings.min_segment_mm)
     for component in settings.require:

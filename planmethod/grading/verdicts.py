@@ -45,7 +45,7 @@ from ..words import Message, template
 
 __all__ = ["AMOUNT", "AMOUNT_BARE", "FEEDBACK", "GIVEN", "HINTS", "MAGNITUDE", "OFF",
            "POINTS", "POINT_PARTS", "RIGHT", "SENSES", "WAYS", "AnswerVerdict", "Off",
-           "PointPart", "PointVerdict", "Verdict", "Way", "rulebook"]
+           "PointPart", "PointVerdict", "Verdict", "Way", "rulebook", "rulebook_tables"]
 
 
 class AnswerVerdict(StrEnum):
@@ -291,6 +291,26 @@ def _fields(sentence: Message) -> list[str]:
                    for _, name, _, _ in string.Formatter().parse(form) if name})
 
 
+def rulebook_tables() -> dict[str, dict[str, Message]]:
+    """The tables by name, each class's sentence a message (:func:`rulebook` describes them):
+    what a page is sent, translated into its language.
+
+    >>> from planmethod.words import render
+    >>> render(rulebook_tables()["senses"]["link_negative"])
+    'clockwise'
+    """
+    senses = {f"{subject or 'other'}_{sign}": sentence
+              for subject, pair in SENSES.items()
+              for sign, sentence in zip(("positive", "negative"), pair, strict=True)}
+    tables: dict[str, dict[Any, Message]] = {
+        "answers": FEEDBACK, "hints": HINTS, "off": OFF, "ways": WAYS, "senses": senses,
+        "points": POINTS, "parts": POINT_PARTS,
+        "amounts": {"amount": AMOUNT, "bare": AMOUNT_BARE, "given": GIVEN, "right": RIGHT,
+                    "magnitude": MAGNITUDE}}
+    return {table: {str(name): sentence for name, sentence in sentences.items()}
+            for table, sentences in tables.items()}
+
+
 def rulebook() -> dict[str, dict[str, dict[str, Any]]]:
     """The tables as data for a page that grades as ``planmethod grade`` does: by table
     (``answers``, ``hints``, ``off``, ``ways``, ``senses``, ``points``, ``parts``, and the
@@ -300,15 +320,6 @@ def rulebook() -> dict[str, dict[str, dict[str, Any]]]:
     >>> rulebook()["parts"]["on_the_line"]["fields"]
     ['along', 'line', 'through']
     """
-    def table(sentences) -> dict[str, dict[str, Any]]:
-        return {str(name): {"template": sentence.template, "fields": _fields(sentence)}
-                for name, sentence in sentences.items()}
-
-    senses = {f"{subject or 'other'}_{sign}": sentence
-              for subject, pair in SENSES.items()
-              for sign, sentence in zip(("positive", "negative"), pair, strict=True)}
-    return {"answers": table(FEEDBACK), "hints": table(HINTS), "off": table(OFF),
-            "ways": table(WAYS), "senses": table(senses), "points": table(POINTS),
-            "parts": table(POINT_PARTS),
-            "amounts": table({"amount": AMOUNT, "bare": AMOUNT_BARE, "given": GIVEN,
-                              "right": RIGHT, "magnitude": MAGNITUDE})}
+    return {table: {name: {"template": sentence.template, "fields": _fields(sentence)}
+                    for name, sentence in sentences.items()}
+            for table, sentences in rulebook_tables().items()}

@@ -3,119 +3,18 @@
   const wb = window.workbook = {ready: false, frame: -1, switchTimes: [], step: null};
   const status = document.getElementById("status");
   const slider = document.getElementById("angle");
-  // Python's format(value, ".{digits}g"), so that the page's feedback reads as the grader's
-  function fmt(value, digits) {
-    if (value === null || value === undefined) return "—";
-    if (value === 0) return "0";
-    if (!isFinite(value)) return String(value);
-    const [mantissa, power] = Number(value).toExponential(digits - 1).split("e");
-    const exponent = Number(power);
-    const trim = text => text.indexOf(".") < 0 ? text : text.replace(/\.?0+$/, "");
-    if (exponent < -4 || exponent >= digits) {
-      const sign = exponent < 0 ? "-" : "+";
-      const size = String(Math.abs(exponent)).padStart(2, "0");
-      return trim(mantissa) + "e" + sign + size;
-    }
-    return trim(Number(value).toFixed(Math.max(0, digits - 1 - exponent)));
-  }
-  function numberText(value) { return fmt(value, 6); }
-  function parseAnswer(raw) {
-    const text = String(raw).trim();
-    if (!text) return null;
-    let cleaned = text.replace(/\u2212/g, "-").replace(/ /g, "");
-    if ((cleaned.match(/,/g) || []).length === 1 && cleaned.indexOf(".") < 0)
-      cleaned = cleaned.replace(",", ".");
-    if (!/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(cleaned)) return text.slice(0, 40);
-    const value = Number(cleaned);
-    return isFinite(value) ? value : text.slice(0, 40);
-  }
-  function off(answer, right) {
-    if (right === 0) return fmt(Math.abs(answer - right), 3) + " off";
-    const ratio = answer / right;
-    if (ratio >= 10 || (ratio > 0 && ratio <= 0.1)) return fmt(ratio, 4) + " times the right value";
-    const relative = ratio - 1;
-    const magnitude = right < 0 && ratio >= 0 ? " in magnitude" : "";
-    return (Math.abs(relative) * 100).toFixed(1) + " % " + (relative > 0 ? "high" : "low") + magnitude;
-  }
-  // what a negative answer for a magnitude is told, and what a positive and a negative value
-  // mean (counter-clockwise, along the guide), by quantity (filled from the page's data:
-  // planmethod.grading.answers.magnitude_note and sense_words)
-  const negativeNotes = {}, senseWords = {};
-  // which way an answer is off, without the right value (planmethod.grading.answers._way)
-  function way(answer, right, signed) {
-    if (signed && right !== 0 && answer !== 0 && (answer > 0) !== (right > 0))
-      return "the sense is reversed";
-    if (right < 0 && answer <= 0)
-      return answer < right ? "too large in magnitude" : "too small in magnitude";
-    return answer > right ? "too high" : "too low";
-  }
-  // the rules of planmethod.grading.answers.grade_question, on the precomputed key: the
-  // feedback with the right value, and the hint without it
-  function grade(q, raw) {
-    const unit = q.unit || "";
-    const right = (numberText(q.value) + " " + unit + " ± " + fmt(q.tolerance, 3)).replace("  ", " ");
-    const answer = parseAnswer(raw);
-    const name = q.symbol || q.id;  // as the course writes it (ω₂), as grade_question does
-    const result = {id: q.id, correct: false, mistake: null, answer: null};
-    if (answer === null) {
-      result.feedback = name + ": no answer (right: " + right + ")";
-      result.hint = name + ": no answer";
-      return result;
-    }
-    if (typeof answer === "string") {
-      result.feedback = name + ": '" + answer + "' is not a number (right: " + right + ")";
-      result.hint = name + ": '" + answer + "' is not a number";
-      return result;
-    }
-    result.answer = answer;
-    const shown = (name + " = " + numberText(answer) + " " + unit).trimEnd();
-    if (Math.abs(answer - q.value) <= q.tolerance) {
-      result.correct = true;
-      result.feedback = shown + ": correct (exact " + numberText(q.value) + ", tolerance ± " + fmt(q.tolerance, 3) + ")";
-      result.hint = shown + ": correct";
-      return result;
-    }
-    for (const m of q.mistakes || []) {
-      if (Math.abs(answer - m.value) <= m.tolerance) {
-        result.mistake = m.kind;
-        const how = m.kind === "sense" ? "" : ", " + off(answer, q.value);
-        result.feedback = shown + ": wrong" + how + " — it looks as if " + m.feedback +
-          " (that gives " + numberText(m.value) + "; right: " + right + ")";
-        result.hint = shown + ": wrong (" + way(answer, q.value, false) + ") — it looks as if " +
-          m.feedback;
-        return result;
-      }
-    }
-    if (q.signed) {
-      for (const m of q.mistakes || []) {
-        if (m.kind !== "sense" && Math.abs(-answer - m.value) <= m.tolerance) {
-          result.mistake = m.kind + "+sense";
-          result.feedback = shown + ": wrong — it looks as if " + m.feedback + ", and the sense is reversed (right: " + right + ")";
-          result.hint = shown + ": wrong — it looks as if " + m.feedback + ", and the sense is reversed";
-          return result;
-        }
-      }
-    }
-    const note = !q.signed && answer < 0 ? negativeNotes[q.id] : undefined;
-    if (note) {   // a magnitude given with a sign (planmethod.grading.answers.magnitude_note)
-      result.feedback = shown + ": wrong — " + note + " (right: " + right + ")";
-      result.hint = shown + ": wrong — " + note;
-      return result;
-    }
-    if (q.signed && q.value !== 0 && answer !== 0 && (answer > 0) !== (q.value > 0)) {
-      result.feedback = shown + ": wrong — the sense is reversed (the right answer is " +
-        (senseWords[q.id] || ["positive", "negative"])[q.value > 0 ? 0 : 1] + ", " + right +
-        ") and the magnitude " +
-        numberText(Math.abs(answer)) + " is " +
-        (Math.abs(Math.abs(answer) - Math.abs(q.value)) <= q.tolerance ? "right"
-          : off(Math.abs(answer), Math.abs(q.value)));
-    } else {
-      const tol = q.value ? " = ± " + fmt(q.tolerance / Math.abs(q.value) * 100, 2) + " %" : "";
-      result.feedback = shown + ": wrong — " + off(answer, q.value) + " (off by " +
-        (numberText(Math.abs(answer - q.value)) + " " + unit).trimEnd() + "; right: " + right + tol + ")";
-    }
-    result.hint = shown + ": wrong (" + way(answer, q.value, q.signed) + ")";
-    return result;
+  // the page's words and planmethod grade's rules, from the page's data (render/page_rules.py:
+  // page_rules); the page classifies with them, it writes no sentence of its own
+  let say = null, numberText = null;
+  const fmt = (value, specification) =>
+    value === null || value === undefined ? "—" : numberText(value, specification);
+  // a quantity's page data by its question id: what a negative magnitude is told and what
+  // the signs mean (planmethod.grading.answers.magnitude_note and sense_words)
+  const quantityOf = {};
+  // a typed answer's verdict, as planmethod grade gives it: the feedback with the right
+  // value, and the hint without it
+  function grade(question, raw) {
+    return wb.rules.answerVerdict(question, raw, quantityOf[question.id]);
   }
   wb.grade = grade;
   // whether a quantity's value is concealed now (the drawing mode sets this: a value is
@@ -132,10 +31,10 @@
 
   load().then(data => {
     wb.data = data;
-    data.quantities.forEach(q => {
-      if (q.negative) negativeNotes[q.name] = q.negative;
-      if (q.senses) senseWords[q.name] = q.senses;
-    });
+    wb.rules = window.planmethodRules.make(data.rules);
+    say = wb.rules.words.say;
+    numberText = wb.rules.words.number;
+    data.quantities.forEach(q => { quantityOf[q.name] = q; });
     const panels = data.panels.map(name => document.getElementById("panel-" + name));
     const cells = Array.from(document.querySelectorAll("#readings tbody td.reading"));
     const planCells = Array.from(document.querySelectorAll("#readings tbody td.plan-reading"));
@@ -202,10 +101,12 @@
       data.quantities.forEach((q, i) => {
         const [exact, plan] = f.readings[i];
         cells[i].dataset.value = exact === null ? "" : String(exact);
-        cells[i].textContent = fmt(exact, 4);
-        planCells[i].textContent = fmt(plan, 4);
+        cells[i].textContent = fmt(exact, ".4g");
+        planCells[i].textContent = fmt(plan, ".4g");
         const question = questionOf(frame, q.name);
-        tolerances[i].textContent = question ? "± " + fmt(question.tolerance, 3) + " " + question.unit : "—";
+        tolerances[i].textContent = !question ? "—" : question.unit ?
+          say("tolerance_shown", {tolerance: question.tolerance, unit: question.unit}) :
+          say("tolerance_shown_unitless", {tolerance: question.tolerance});
         verdicts[i].textContent = "";
         verdicts[i].className = "verdict";
       });
@@ -216,7 +117,7 @@
         const x = a1 === a0 ? x0 : x0 + (angle - a0) / (a1 - a0) * (x1 - x0);
         cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
       });
-      document.getElementById("angle-value").textContent = angle + "°";
+      document.getElementById("angle-value").textContent = say("angle_shown", {angle: angle});
       wb.frame = frame;
       wb.step = null;
       document.getElementById("step-text").textContent = "";
@@ -227,7 +128,7 @@
       void document.body.offsetHeight;  // lay the page out: part of the switch
       const spent = performance.now() - t0;
       wb.switchTimes.push(spent);
-      document.getElementById("switch-time").textContent = spent.toFixed(1) + " ms";
+      document.getElementById("switch-time").textContent = say("switch_time", {time: spent});
       prepareNeighbours(frame);
     }
     wb.show = show;
@@ -237,8 +138,8 @@
     let timer = null;
     const play = document.getElementById("play");
     play.addEventListener("click", () => {
-      if (timer) { clearInterval(timer); timer = null; play.textContent = "play"; return; }
-      play.textContent = "pause";
+      if (timer) { clearInterval(timer); timer = null; play.textContent = say("play"); return; }
+      play.textContent = say("pause");
       timer = setInterval(() => {
         // the crank turns as ω₁ says: φ grows when it turns counter-clockwise
         const count = data.frames.length;
@@ -254,7 +155,7 @@
       const steps = data.frames[wb.frame].steps[plan] || [];
       const element = panels[data.panels.indexOf(plan)];
       if (!element || !steps.length) {
-        document.getElementById("step-text").textContent = "no " + plan + " plan at this angle";
+        document.getElementById("step-text").textContent = say("no_plan_" + plan);
         return;
       }
       number = Math.max(0, Math.min(steps.length - 1, number));
@@ -275,7 +176,7 @@
         label.classList.toggle("step-hidden", !points.some(p => named.has(p)));
       });
       document.getElementById("step-number").textContent =
-        "step " + (number + 1) + " of " + steps.length;
+        say("step_of", {number: number + 1, count: steps.length});
       // the step's sentence, typeset in Python (render/workbook.py formula_html)
       document.getElementById("step-text").innerHTML = data.strings[steps[number][1]];
       // the plan's vector equations, typeset in Python (render/workbook.py formula_html)
@@ -306,7 +207,7 @@
       answers.forEach((input, i) => {
         const name = input.dataset.answer;
         const question = questionOf(wb.frame, name);
-        if (!question) { verdicts[i].textContent = "not graded at this angle"; return; }
+        if (!question) { verdicts[i].textContent = say("not_graded"); return; }
         const result = grade(question, input.value);
         results[name] = result;
         verdicts[i].textContent = wb.concealed(name) ? result.hint : result.feedback;
@@ -325,7 +226,9 @@
     status.textContent = "";
     wb.ready = true;
   }).catch(error => {
-    status.textContent = "this page needs a browser with DecompressionStream: " + error;
+    // the page's data did not load: the one sentence said without it is in the markup
+    status.textContent = window.planmethodWords.fill(status.dataset.failed, {error: String(error)},
+                                                     null, ".");
     console.error(error);
   });
 })();

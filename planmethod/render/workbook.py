@@ -1,14 +1,17 @@
 """The interactive workbook: one self-contained HTML page for a whole turn of the crank.
 
-The page is built from plain data that the command layer computed (see
-:func:`workbook_html`): for every frame (crank angle) the drawings as SVG text, drawn by the
-project's own renderer, the readings of the report's ``checks``, the construction steps of
+The page is built from plain data that the command layer computed (a :class:`WorkbookPage`,
+see :func:`workbook_html`): for every frame (crank angle) the drawings as SVG text, drawn by
+the project's own renderer, the readings of the report's ``checks``, the construction steps of
 the velocity and acceleration plans, and the grading questions (value, tolerance, mistakes)
 of the answer key at that angle. The page's script only shows the frame asked for; it never
-computes mechanics. Grading in practice mode repeats ``grade_question``'s rules
-(:mod:`planmethod.grading.answers`) on the precomputed questions.
+computes mechanics. Practice and drawing modes grade by ``planmethod grade``'s rules, which
+the page receives as data with every template it fills, in the page's language
+(:mod:`planmethod.render.page_rules`): the scripts classify, they write no sentence.
 
-The script is ``workbook.js`` beside this module.
+The scripts are beside this module: ``page_words.js`` (templates and numbers),
+``page_rules.js`` (the rulebook), ``workbook.js`` (the page) and ``workbook_draw.js`` (the
+drawing mode: :mod:`planmethod.render.workbook_draw`).
 
 Size: every distinct line of SVG (one element a line) is stored once in a string table and
 the frames list the lines they are made of; the table is then compressed (gzip, base64) and
@@ -17,17 +20,9 @@ font or image comes from any address, and the page works from ``file://``.
 
 Examples
 --------
->>> table = StringTable()
->>> table.lines("<svg>\\n<line />\\n</svg>"), table.lines("<svg>\\n<circle />\\n</svg>")
-([0, 1, 2], [0, 3, 2])
->>> page = workbook_html("Demo", [0.0, 90.0], ["position"], [
-...     {"drawings": {"position": "<svg><title>0</title></svg>"}, "readings": [[1.0, None]],
-...      "steps": {}, "questions": []},
-...     {"drawings": {"position": "<svg><title>90</title></svg>"}, "readings": [[2.0, 2.1]],
-...      "steps": {}, "questions": []}],
-...     [{"name": "v_C", "symbol": "v", "subscript": "C", "unit": "m/s"}])
->>> 'id="angle"' in page and "http" not in page
-True
+>>> chart = curve_chart([0.0, 90.0], {"v_C": [1.0, 2.0]}, title="velocities", unit="m/s")
+>>> chart.span
+(0.0, 420.0)
 """
 
 from __future__ import annotations
@@ -40,13 +35,17 @@ import json
 import math
 import re
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from ..vocabulary import shown_title
+from ..words import Message, message, number_text, render, template
 from .canvas import Canvas, formula_runs
+from .page_rules import PageRules, page_rules
 from .style import INK, SMALL_SIZE, TEXT_SIZE, num
 
-__all__ = ["StringTable", "curve_chart", "formula_html", "inline_svg", "workbook_html"]
+__all__ = ["Chart", "PageQuantity", "StringTable", "WorkbookPage", "curve_chart",
+           "formula_html", "inline_svg", "marked_html", "page_script", "workbook_html"]
 
 #: a drawing's viewBox (its four numbers)
 _VIEW_BOX = re.compile(r'viewBox="([^"]+)"')
@@ -94,70 +93,107 @@ def inline_svg(svg: str) -> str:
                         _XML_HEAD.sub("", svg, count=1)).strip()
 
 
-def curve_chart(angles: Sequence[float], curves: Mapping[str, Sequence[float | None]], *,
-                title: str, unit: str) -> tuple[str, tuple[float, float]]:
-    """A full-turn chart: one polyline per curve against the crank angle, with a cursor line
-    (``class="cursor"``) that the page moves to the current angle.
+@dataclass(frozen=True)
+class Chart:
+    """A full-turn chart of the page (:func:`curve_chart`): its SVG, the page x (px) of the
+    first and the last angle (the cursor moves between them), and the plans its curves are
+    read off (the drawing mode hides it until they are shown)."""
 
-    Returns the SVG text and the page x (px) of the first and the last angle.
+    svg: str
+    span: tuple[float, float]
+    plans: tuple[str, ...] = ()
 
-    >>> svg, (x0, x1) = curve_chart([0, 180, 360], {"v_C": [0, 1, 0]}, title="v", unit="m/s")
-    >>> 'class="cursor"' in svg, x0 < x1
-    (True, True)
-    """
-    figure = Canvas()
+
+@dataclass(frozen=True)
+class _ChartArea:
+    """Where a chart draws: its angles' and values' ranges on the page."""
+
+    first: float
+    last: float
+    low: float
+    high: float
+
+    def page(self, angle: float, value: float) -> tuple[float, float]:
+        """The page point (px) of a value at an angle: the chart's left at 0, its top at 0."""
+        span = (self.last - self.first) or 1.0
+        return (0.0 + (angle - self.first) / span * (CHART_WIDTH - 0.0),
+                CHART_HEIGHT - (value - self.low) / (self.high - self.low) * (CHART_HEIGHT - 0.0))
+
+
+def _chart_area(angles: Sequence[float], curves: Mapping[str, Sequence[float | None]]
+                ) -> _ChartArea:
     finite = [float(v) for values in curves.values() for v in values
               if v is not None and math.isfinite(v)]
     low, high = (min(finite), max(finite)) if finite else (0.0, 1.0)
     if high - low < 1e-12 * max(1.0, abs(high)):
         low, high = low - 1.0, high + 1.0
-    a0, a1 = float(angles[0]), float(angles[-1])
-    span = (a1 - a0) or 1.0
-    left, right, top, bottom = 0.0, CHART_WIDTH, 0.0, CHART_HEIGHT
+    return _ChartArea(float(angles[0]), float(angles[-1]), low, high)
 
-    def page(angle: float, value: float) -> tuple[float, float]:
-        return (left + (angle - a0) / span * (right - left),
-                bottom - (value - low) / (high - low) * (bottom - top))
 
-    figure.line((left, bottom), (right, bottom), color=INK, width=0.8, layer="marks",
+def _chart_axes(figure: Canvas, area: _ChartArea, title: str, unit: str) -> None:
+    """The axes, the zero line, the end angles, the values' range and the title."""
+    bottom = CHART_HEIGHT
+    figure.line((0.0, bottom), (CHART_WIDTH, bottom), color=INK, width=0.8, layer="marks",
                 obstacle=False)
-    figure.line((left, top), (left, bottom), color=INK, width=0.8, layer="marks",
+    figure.line((0.0, 0.0), (0.0, bottom), color=INK, width=0.8, layer="marks",
                 obstacle=False)
-    if low < 0 < high:
-        figure.line(page(a0, 0.0), page(a1, 0.0), color="#999999", width=0.6,
-                    dash="3,3", layer="marks", obstacle=False)
-    for angle in (a0, a1):
-        figure.text((page(angle, low)[0], bottom + 14), f"{angle:g}°", size=SMALL_SIZE,
+    if area.low < 0 < area.high:
+        figure.line(area.page(area.first, 0.0), area.page(area.last, 0.0), color="#999999",
+                    width=0.6, dash="3,3", layer="marks", obstacle=False)
+    for angle in (area.first, area.last):
+        figure.text((area.page(angle, area.low)[0], bottom + 14),
+                    render(message("{angle:g}°", angle=angle)), size=SMALL_SIZE,
                     anchor="middle", css="axis", area=False)
-    figure.text((left - 4, top + 4), f"{high:.4g}", size=SMALL_SIZE, anchor="end",
+    figure.text((-4, 4), number_text(area.high, ".4g"), size=SMALL_SIZE, anchor="end",
                 css="axis", area=False)
-    figure.text((left - 4, bottom), f"{low:.4g}", size=SMALL_SIZE, anchor="end",
+    figure.text((-4, bottom), number_text(area.low, ".4g"), size=SMALL_SIZE, anchor="end",
                 css="axis", area=False)
-    figure.text((left, top - 10), f"{title}, {unit}", size=TEXT_SIZE, bold=True, css="title",
-                area=False)
-    legend_x = right + 12
+    figure.text((0.0, -10), render(message("{title}, {unit}", title=title, unit=unit)),
+                size=TEXT_SIZE, bold=True, css="title", area=False)
+
+
+def _chart_curve(figure: Canvas, area: _ChartArea, angles: Sequence[float],
+                 values: Sequence[float | None], color: str) -> None:
+    """One curve: a polyline for each run of finite values."""
+    run: list[tuple[float, float]] = []
+    runs = [run]
+    for angle, value in zip(angles, values, strict=True):
+        if value is None or not math.isfinite(value):
+            run = []
+            runs.append(run)
+            continue
+        run.append(area.page(float(angle), float(value)))
+    for points in runs:
+        if len(points) >= 2:
+            figure.polyline(points, color=color, width=1.4, obstacle=False, css="curve")
+
+
+def curve_chart(angles: Sequence[float], curves: Mapping[str, Sequence[float | None]], *,
+                title: str, unit: str, plans: Sequence[str] = ()) -> Chart:
+    """A full-turn chart: one polyline per curve against the crank angle, with a cursor line
+    (``class="cursor"``) that the page moves to the current angle; ``plans``: the plans its
+    curves are read off.
+
+    >>> chart = curve_chart([0, 180, 360], {"v_C": [0, 1, 0]}, title="v", unit="m/s")
+    >>> 'class="cursor"' in chart.svg, chart.span[0] < chart.span[1]
+    (True, True)
+    """
+    figure = Canvas()
+    area = _chart_area(angles, curves)
+    _chart_axes(figure, area, title, unit)
+    legend_x = CHART_WIDTH + 12
     for number, (name, values) in enumerate(curves.items()):
         color = CURVE_COLORS[number % len(CURVE_COLORS)]
-        run: list[tuple[float, float]] = []
-        runs = [run]
-        for angle, value in zip(angles, values, strict=True):
-            if value is None or not math.isfinite(value):
-                run = []
-                runs.append(run)
-                continue
-            run.append(page(float(angle), float(value)))
-        for points in runs:
-            if len(points) >= 2:
-                figure.polyline(points, color=color, width=1.4, obstacle=False,
-                                css="curve")
-        y = top + 4 + 16 * number
+        _chart_curve(figure, area, angles, values, color)
+        y = 4 + 16 * number
         figure.line((legend_x, y - 4), (legend_x + 18, y - 4), color=color, width=2.0,
                     layer="marks", obstacle=False)
         figure.text((legend_x + 24, y), name, size=SMALL_SIZE, css="legend", area=False,
                     formula=True)
-    figure.line((left, top), (left, bottom), color="#d00000", width=1.2, layer="marks",
+    figure.line((0.0, 0.0), (0.0, CHART_HEIGHT), color="#d00000", width=1.2, layer="marks",
                 obstacle=False, css="cursor")
-    return figure.svg(f"{title} over a full turn").svg, (left, right)
+    drawn = figure.svg(render(message("{title} over a full turn", title=title))).svg
+    return Chart(drawn, (0.0, CHART_WIDTH), tuple(plans))
 
 
 @functools.lru_cache(maxsize=4096)
@@ -172,8 +208,92 @@ def formula_html(text: str) -> str:
                    for part, small in formula_runs(text))
 
 
-def _quantity_label(entry: Mapping[str, str]) -> str:
-    return (f"{html.escape(entry['symbol'])}<sub>{html.escape(entry['subscript'])}</sub>")
+@dataclass(frozen=True)
+class PageQuantity:
+    """A check quantity of the page: its id (``name``), course ``symbol`` and ``subscript``
+    (ω and 2), ``unit``, the ``plan`` it is read off (the drawing mode hides its value until
+    the student asks to see that plan; None: never hidden), what a negative answer for it is
+    told when it is a magnitude (``negative``:
+    :func:`~planmethod.grading.answers.magnitude_note`) and what its signs mean (``senses``:
+    :func:`~planmethod.grading.answers.sense_words`)."""
+
+    name: str
+    symbol: str
+    subscript: str
+    unit: str
+    plan: str | None = None
+    negative: Message | str | None = None
+    senses: tuple[Message | str, Message | str] = ("positive", "negative")
+
+    def as_dict(self, language: str | None = None) -> dict[str, Any]:
+        """The quantity as the page's data, its words in ``language``."""
+        return {"name": self.name, "symbol": self.symbol, "subscript": self.subscript,
+                "unit": self.unit, "plan": self.plan,
+                "negative": None if self.negative is None else render(self.negative, language),
+                "senses": [render(sense, language) for sense in self.senses]}
+
+
+@dataclass(frozen=True)
+class WorkbookPage:
+    """What a workbook page shows (:func:`workbook_html`).
+
+    Parameters
+    ----------
+    title
+        The exercise's title.
+    angles
+        The crank angle of every frame (deg), evenly spaced.
+    panels
+        The drawings shown side by side, by name (``position``, ``velocity`` …).
+    frames
+        One mapping per angle, the page's data of it: ``drawings`` {panel: SVG text},
+        ``readings`` [[exact, plan or None], …] in the order of ``quantities``, ``steps``
+        {plan: [[number, sentence, action, [the plan points it names]], …]}, ``equations``
+        {plan: [vector equation, …]} (sentences and equations in plain text; the page sets
+        their subscripts), ``questions`` (the answer key's questions at that angle: ``id``,
+        ``symbol``, ``value``, ``tolerance``, ``unit``, ``signed``, ``mistakes``) and, with a
+        drawing mode, ``draw`` (:func:`planmethod.grading.plan_points.drawing_frame`).
+    quantities
+        The report's check quantities, in the order of the readings.
+    charts
+        Full-turn charts (:func:`curve_chart`).
+    notes
+        Lines shown under the title (drafting precision, where the tolerances come from).
+    start
+        The crank angle the page opens at (the exercise's own; the frame nearest it), else
+        the first.
+    phi
+        The crank angle's symbol as the course writes it (φ₁).
+    drawing
+        The drawing mode's data (:func:`planmethod.render.workbook_draw.drawing_data`); None:
+        no drawing mode.
+    sense
+        +1 if the crank turns counter-clockwise (ω₁ ≥ 0), −1 if clockwise: *play* turns it
+        that way.
+    """
+
+    title: str
+    angles: Sequence[float]
+    panels: Sequence[str]
+    frames: Sequence[Mapping[str, Any]]
+    quantities: Sequence[PageQuantity]
+    charts: Sequence[Chart] = ()
+    notes: Sequence[Message | str] = ()
+    start: float | None = None
+    phi: str = "φ₁"
+    drawing: Mapping[str, Any] | None = None
+    sense: int = 1
+
+    def opening(self) -> float:
+        """The angle the page opens at: the frame nearest :attr:`start`, else the first."""
+        if self.start is None:
+            return self.angles[0]
+        return min(self.angles, key=lambda angle: (
+            abs((angle - self.start + 180.0) % 360.0 - 180.0), angle))
+
+
+def _quantity_label(quantity: PageQuantity) -> str:
+    return f"{html.escape(quantity.symbol)}<sub>{html.escape(quantity.subscript)}</sub>"
 
 
 def _panel_size(name: str, frames: Sequence[Mapping[str, Any]]) -> str:
@@ -203,108 +323,163 @@ def _pack(data: Any) -> str:
                                           mtime=0)).decode("ascii")
 
 
-def workbook_html(title: str, angles: Sequence[float], panels: Sequence[str],
-                  frames: Sequence[Mapping[str, Any]], quantities: Sequence[Mapping[str, str]],
-                  *, charts: Sequence[tuple[str, tuple[float, float]]] = (),
-                  chart_plans: Sequence[Sequence[str]] = (), notes: Sequence[str] = (),
-                  start: float | None = None, phi: str = "φ₁",
-                  drawing: Mapping[str, Any] | None = None, sense: int = 1) -> str:
-    """The workbook page as HTML text.
-
-    Parameters
-    ----------
-    title
-        The exercise's title.
-    angles
-        The crank angle of every frame (deg), evenly spaced.
-    panels
-        The drawings shown side by side, by name (``position``, ``velocity`` …).
-    frames
-        One mapping per angle: ``drawings`` {panel: SVG text}, ``readings`` [[exact, plan
-        or None], …] in the order of ``quantities``, ``steps`` {plan: [[number, sentence,
-        action, [the plan points it names]], …]}, ``equations`` {plan: [vector equation, …]}
-        (sentences and equations in plain text; the page sets their subscripts) and
-        ``questions`` (the answer key's questions at that angle: ``id``, ``value``,
-        ``tolerance``, ``unit``, ``signed``, ``mistakes``).
-    quantities
-        The report's check quantities: ``name``, ``symbol``, ``subscript``, ``unit``, and
-        the ``plan`` it is read off (the drawing mode hides the value until the student
-        asks to see that plan; None: never hidden).
-    charts
-        Full-turn charts from :func:`curve_chart`.
-    chart_plans
-        For each chart, the plans its curves are read off (hidden alike).
-    notes
-        Lines shown under the title (drafting precision, where the tolerances come from).
-    start
-        The crank angle the page opens at (the exercise's own; the frame nearest it), else
-        the first.
-    phi
-        The crank angle's symbol as the course writes it (φ₁).
-    drawing
-        The drawing mode's data (:func:`planmethod.render.workbook_draw.drawing_data`); each
-        frame then holds its ``draw`` data too. None: no drawing mode.
-    sense
-        +1 if the crank turns counter-clockwise (ω₁ ≥ 0), −1 if clockwise: *play* turns it
-        that way.
-    """
-    table = StringTable()
-    packed_frames = []
-    for frame in frames:
+def _packed_frames(page: WorkbookPage, table: StringTable) -> list[dict[str, Any]]:
+    """Each frame as the page's data: its drawings' lines and its sentences by their numbers
+    in ``table``, typeset (:func:`formula_html`)."""
+    packed = []
+    for frame in page.frames:
         drawings = [table.lines(inline_svg(frame["drawings"][name])) if name in
-                    frame["drawings"] else [] for name in panels]
+                    frame["drawings"] else [] for name in page.panels]
         steps = {plan: [[number, table.add(formula_html(text)), action, *rest]
                         for number, text, action, *rest in listed]
                  for plan, listed in frame.get("steps", {}).items()}
         equations = {plan: [table.add(formula_html(text)) for text in listed]
                      for plan, listed in frame.get("equations", {}).items()}
-        packed_frames.append({"drawings": drawings, "readings": frame["readings"],
-                              "steps": steps, "equations": equations,
-                              "questions": frame.get("questions", [])})
-    draw_html, draw_extra = "", ""
-    if drawing is not None:
-        from .workbook_draw import DRAW_STYLE, draw_script, drawing_section, pack_frame
+        packed.append({"drawings": drawings, "readings": frame["readings"], "steps": steps,
+                       "equations": equations, "questions": frame.get("questions", [])})
+    if page.drawing is not None:
+        from .workbook_draw import pack_frame
 
-        for packed, frame in zip(packed_frames, frames, strict=True):
-            packed["draw"] = pack_frame(frame.get("draw", {}), drawing["extents"])
-        draw_html = drawing_section(list(drawing["extents"]))
-        draw_extra = f"<script>{draw_script()}</script>\n<style>{DRAW_STYLE}</style>"
-    data = {"angles": [float(a) for a in angles], "panels": list(panels),
-            "strings": table.strings, "frames": packed_frames,
-            "quantities": [dict(q) for q in quantities],
-            "charts": [list(span) for _, span in charts], "sense": -1 if sense < 0 else 1}
-    if drawing is not None:
-        data["draw"] = dict(drawing)
-    rows = "\n".join(
-        f'<tr{_plan_attribute(q.get("plan"))}><th scope="row">{_quantity_label(q)}</th>'
-        f'<td class="reading" data-quantity="{html.escape(q["name"])}" data-value=""></td>'
-        f'<td class="plan-reading"></td><td class="unit">{html.escape(q["unit"])}</td>'
-        f'<td class="practice"><input class="answer" data-answer="{html.escape(q["name"])}"'
-        f' size="10" aria-label="{html.escape(q["name"])}"></td>'
-        f'<td class="tolerance" data-tolerance-for="{html.escape(q["name"])}"></td>'
-        f'<td class="verdict" data-verdict-for="{html.escape(q["name"])}"></td></tr>'
-        for q in quantities)
-    panel_html = "\n".join(f'<figure class="panel" id="panel-{html.escape(name)}" '
-                           f'data-panel="{html.escape(name)}"{_panel_size(name, frames)}>'
-                           '</figure>' for name in panels)
-    chart_html = "\n".join(
+        for one, frame in zip(packed, page.frames, strict=True):
+            one["draw"] = pack_frame(frame.get("draw", {}), page.drawing["extents"])
+    return packed
+
+
+def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
+    """Everything the page's script reads, as JSON data."""
+    table = StringTable()
+    frames = _packed_frames(page, table)
+    data = {"angles": [float(a) for a in page.angles], "panels": list(page.panels),
+            "strings": table.strings, "frames": frames,
+            "quantities": [quantity.as_dict(rules.language) for quantity in page.quantities],
+            "charts": [list(chart.span) for chart in page.charts],
+            "sense": -1 if page.sense < 0 else 1, "rules": rules.as_dict()}
+    if page.drawing is not None:
+        data["draw"] = dict(page.drawing)
+    return data
+
+
+def _rows_html(quantities: Sequence[PageQuantity]) -> str:
+    """The readings table's rows: the exact value, the plan's, the unit, the answer typed,
+    its tolerance and its verdict."""
+    return "\n".join(
+        f'<tr{_plan_attribute(q.plan)}><th scope="row" id="quantity-{number}">'
+        f'{_quantity_label(q)}</th>'
+        f'<td class="reading" data-quantity="{html.escape(q.name)}" data-value=""></td>'
+        f'<td class="plan-reading"></td><td class="unit">{html.escape(q.unit)}</td>'
+        f'<td class="practice"><input class="answer" data-answer="{html.escape(q.name)}"'
+        f' size="10" aria-labelledby="quantity-{number}"></td>'   # its symbol, never its id
+        f'<td class="tolerance" data-tolerance-for="{html.escape(q.name)}"></td>'
+        f'<td class="verdict" data-verdict-for="{html.escape(q.name)}"></td></tr>'
+        for number, q in enumerate(quantities))
+
+
+def _figures_html(page: WorkbookPage) -> tuple[str, str]:
+    """The panels (empty: the script fills them) and the charts."""
+    panels = "\n".join(f'<figure class="panel" id="panel-{html.escape(name)}" '
+                       f'data-panel="{html.escape(name)}"{_panel_size(name, page.frames)}>'
+                       '</figure>' for name in page.panels)
+    charts = "\n".join(
         f'<div class="chart" data-chart="{number}"'
-        f'{_plan_attribute(" ".join(plans), "data-plans") if plans else ""}>'
-        f'{inline_svg(svg)}</div>'
-        for number, ((svg, _), plans) in enumerate(
-            zip(charts, list(chart_plans) or [()] * len(charts), strict=True)))
-    step_count = len(angles)
-    low, high = angles[0], angles[-1]
-    step = (angles[1] - angles[0]) if step_count > 1 else 1.0
-    first = low if start is None else min(angles, key=lambda angle: (
-        abs((angle - start + 180.0) % 360.0 - 180.0), angle))
-    note_html = "".join(f"<p class=\"note\">{html.escape(line)}</p>" for line in notes)
+        f'{_plan_attribute(" ".join(chart.plans), "data-plans") if chart.plans else ""}>'
+        f'{inline_svg(chart.svg)}</div>' for number, chart in enumerate(page.charts))
+    return panels, charts
+
+
+def marked_html(text: Message, markup: Mapping[str, str], language: str | None = None) -> str:
+    """A message as HTML in ``language``: its text escaped, the fields named in ``markup``
+    set as that markup (a control inside a label's sentence).
+
+    >>> marked_html(message("press {button} & go"), {"button": "<b>here</b>"})
+    'press <b>here</b> &amp; go'
+    """
+    marks = {name: f"\x00{number}\x00" for number, name in enumerate(markup)}
+    shown = html.escape(render(text.replace(**marks), language), quote=False)
+    for name, mark in marks.items():
+        shown = shown.replace(mark, markup[name])
+    return shown
+
+
+def _words(page: WorkbookPage, rules: PageRules) -> dict[str, str]:
+    """The page's own words in its language, as HTML."""
+    from .workbook_draw import PLAN_TITLES
+
+    language = rules.language
+
+    def said(text: Message) -> str:
+        return html.escape(render(text, language), quote=False)
+
+    words = {name: said(text) for name, text in _CHROME.items()}
+    options = "\n".join(f'<option value="{plan}">{said(title)}</option>'
+                        for plan, (title, _) in PLAN_TITLES.items())
+    words["construction"] = marked_html(
+        _CONSTRUCTION, {"plan": f'<select id="step-plan">{options}</select>'}, language)
+    words["switch"] = marked_html(_SWITCH, {"time": '<output id="switch-time">—</output>'},
+                                  language)
+    words["failed"] = html.escape(rules.templates["needs_decompression"].replace(
+        "{feature}", "DecompressionStream"))
+    words["play"] = html.escape(rules.templates["play"], quote=False)
+    words["crank"] = said(message("crank angle {phi}", phi=page.phi))
+    words["heading"] = said(message("{title} — workbook", title=shown_title(page.title)))
+    return words
+
+
+def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
+    """The workbook page of ``page`` as HTML text, with the rules it grades by (default:
+    :func:`~planmethod.render.page_rules.page_rules` in the language spoken now).
+
+    Examples
+    --------
+    >>> table = StringTable()
+    >>> table.lines("<svg>\\n<line />\\n</svg>"), table.lines("<svg>\\n<circle />\\n</svg>")
+    ([0, 1, 2], [0, 3, 2])
+    >>> text = workbook_html(WorkbookPage("Demo", [0.0, 90.0], ["position"], [
+    ...     {"drawings": {"position": "<svg><title>0</title></svg>"}, "readings": [[1.0, None]],
+    ...      "steps": {}, "questions": []},
+    ...     {"drawings": {"position": "<svg><title>90</title></svg>"},
+    ...      "readings": [[2.0, 2.1]], "steps": {}, "questions": []}],
+    ...     [PageQuantity("v_C", "v", "C", "m/s")]))
+    >>> 'id="angle"' in text and "http" not in text
+    True
+    """
+    rules = rules or page_rules()
+    draw_html, draw_extra = "", ""
+    if page.drawing is not None:
+        from .workbook_draw import DRAW_STYLE, draw_script, drawing_section
+
+        draw_html = drawing_section(list(page.drawing["extents"]))
+        draw_extra = f"<script>{draw_script()}</script>\n<style>{DRAW_STYLE}</style>"
+    angles = page.angles
+    step = (angles[1] - angles[0]) if len(angles) > 1 else 1.0
+    panels, charts = _figures_html(page)
+    notes = "".join(f"<p class=\"note\">{html.escape(render(line, rules.language))}</p>"
+                    for line in page.notes)
     return _PAGE.format(
-        title=html.escape(shown_title(title)), notes=note_html, low=num(low), high=num(high),
-        first=num(first), phi=html.escape(phi),
-        step=num(step), panels=panel_html, charts=chart_html, rows=rows,
-        data=_pack(data), style=_STYLE, script=_script(), drawing=draw_html,
-        drawing_script=draw_extra)
+        language=html.escape(rules.language), title=html.escape(shown_title(page.title)),
+        notes=notes, low=num(angles[0]), high=num(angles[-1]), first=num(page.opening()),
+        step=num(step), panels=panels, charts=charts, rows=_rows_html(page.quantities),
+        data=_pack(_page_data(page, rules)), style=_STYLE, script=_script(),
+        drawing=draw_html, drawing_script=draw_extra, **_words(page, rules))
+
+
+#: the page's own words (its controls, the table's heads)
+_CHROME = {
+    "practice": template("practice"),
+    "compact": template("two drawings to a row"),
+    "loading": template("loading…"),
+    "first_step": template("first", context="the first step"),
+    "previous": template("◀ step"),
+    "next": template("step ▶"),
+    "all": template("all", context="every step"),
+    "exact": template("exact", context="a value"),
+    "read": template("read off the plan"),
+    "unit": template("unit"),
+    "answer": template("your answer"),
+    "tolerance": template("tolerance"),
+    "check": template("check", context="a button"),
+}
+_CONSTRUCTION = template("construction of the\n{plan}")
+_SWITCH = template("frame switch: {time}")
 
 
 _STYLE = """
@@ -339,46 +514,44 @@ body.practising .reading,body.practising .plan-reading{visibility:hidden}
 """
 
 _PAGE = """<!DOCTYPE html>
-<html lang="en">
+<html lang="{language}">
 <head>
 <meta charset="utf-8">
-<title>{title} — workbook</title>
+<title>{heading}</title>
 <style>{style}</style>
 </head>
 <body>
 <h1>{title}</h1>
 {notes}
 <div id="controls">
-<label for="angle">crank angle {phi}</label>
+<label for="angle">{crank}</label>
 <input type="range" id="angle" min="{low}" max="{high}" step="{step}" value="{first}">
 <output id="angle-value">{first}°</output>
-<button type="button" id="play">play</button>
-<label><input type="checkbox" id="practice"> practice</label>
-<label><input type="checkbox" id="compact"> two drawings to a row</label>
-<span>frame switch: <output id="switch-time">—</output></span>
-<span id="status">loading…</span>
+<button type="button" id="play">{play}</button>
+<label><input type="checkbox" id="practice"> {practice}</label>
+<label><input type="checkbox" id="compact"> {compact}</label>
+<span>{switch}</span>
+<span id="status" data-failed="{failed}">{loading}</span>
 </div>
 <div id="panels">
 {panels}
 </div>
 {drawing}
 <section id="playback">
-<label>construction of the
-<select id="step-plan"><option value="velocity">velocity plan</option>
-<option value="acceleration">acceleration plan</option></select></label>
-<button type="button" id="step-first">first</button>
-<button type="button" id="step-prev">◀ step</button>
-<button type="button" id="step-next">step ▶</button>
-<button type="button" id="step-all">all</button>
+<label>{construction}</label>
+<button type="button" id="step-first">{first_step}</button>
+<button type="button" id="step-prev">{previous}</button>
+<button type="button" id="step-next">{next}</button>
+<button type="button" id="step-all">{all}</button>
 <output id="step-number"></output>
 <p id="step-text"></p>
 <p id="equations"></p>
 </section>
 <section>
 <table id="readings">
-<thead><tr><th></th><td>exact</td><td>read off the plan</td><td>unit</td>
-<td class="practice">your answer</td><td class="tolerance">tolerance</td>
-<td class="verdict"><button type="button" id="check">check</button></td></tr></thead>
+<thead><tr><th></th><td>{exact}</td><td>{read}</td><td>{unit}</td>
+<td class="practice">{answer}</td><td class="tolerance">{tolerance}</td>
+<td class="verdict"><button type="button" id="check">{check}</button></td></tr></thead>
 <tbody>
 {rows}
 </tbody>
@@ -394,8 +567,15 @@ _PAGE = """<!DOCTYPE html>
 </html>
 """
 
-def _script() -> str:
-    """The page's script (``workbook.js`` beside this module)."""
+def page_script(name: str) -> str:
+    """A page's script file beside this module (``workbook.js``, ``page_words.js`` …)."""
     from importlib.resources import files
 
-    return files(__package__).joinpath("workbook.js").read_text(encoding="utf-8")
+    return files(__package__).joinpath(name).read_text(encoding="utf-8")
+
+
+def _script() -> str:
+    """The page's script: the words' filler and the rulebook (``page_words.js``,
+    ``page_rules.js``), then the page's own (``workbook.js``)."""
+    return "\n".join(page_script(name) for name in ("page_words.js", "page_rules.js",
+                                                    "workbook.js"))

@@ -13,10 +13,11 @@
   const draw = {results: {}, planMistakes: {}, checkTimes: [], tool: {}, selected: {}, armed: {},
                 revealed: {}, shownPlan: {}, frame: -1, zoom: 6};
   let wb = null, meta = null, store = null, drag = null;
+  // the page's words (render/page_rules.py): every sentence here is a template filled
+  const say = (id, fields) => wb.rules.words.say(id, fields);
 
   const element = id => document.getElementById(id);
   const round2 = value => Math.round(value * 100) / 100;
-  const fixed = (value, digits) => Number(value).toFixed(digits);
   const nameOf = label => (meta.names[label] || label);
   // a point's name typeset as the course writes it (meta.runs: planmethod.render.labels.
   // label_runs): its main letter, then its subscripts — digits right after it as subscript
@@ -101,22 +102,19 @@
       const text = window.localStorage.getItem(storageKey());
       if (text !== null) record = JSON.parse(text);
     } catch (error) {
-      notice("a drawing kept in this browser could not be read and is ignored (" + error + ")");
+      notice(say("kept_unreadable", {error: String(error)}));
       return emptyRecord();
     }
     if (record === null) {
       if (keptByAnother())
-        notice("a drawing kept in this browser for “" + meta.title + "” at " + meta.phi + " = " +
-               wb.data.angles[draw.frame] + "° was made on the page of another exercise with " +
-               "this title (another variant, or another version of it) and is not shown here; " +
-               "it stays kept for that page");
+        notice(say("kept_by_another", {title: meta.title, phi: meta.phi,
+                                       angle: wb.data.angles[draw.frame]}));
       return emptyRecord();
     }
     if (!record || record.format !== meta.format || record.exercise !== meta.exercise ||
         record.title !== meta.title || !record.plans) {
-      notice("a drawing kept in this browser for “" + meta.title + "” at " + meta.phi + " = " +
-             wb.data.angles[draw.frame] + "° belongs to another exercise (or another " +
-             "version of it) and is ignored; drawing here replaces it");
+      notice(say("kept_for_another", {title: meta.title, phi: meta.phi,
+                                      angle: wb.data.angles[draw.frame]}));
       return emptyRecord();
     }
     const fresh = emptyRecord();
@@ -135,7 +133,7 @@
     try {
       window.localStorage.setItem(storageKey(), JSON.stringify(store));
     } catch (error) {
-      notice("this browser does not keep the drawing (" + error + "); download it instead");
+      notice(say("not_kept", {error: String(error)}));
     }
   }
 
@@ -230,16 +228,15 @@
     box.classList.toggle("absent", !frame);
     if (!frame) return;
     const scale = box.querySelector(".draw-scale");
-    scale.textContent = "pole " + meta.poles[plan] + ", " + meta.scales[plan] + " = " +
-      frame.scale + " " + frame.unit + "; one small square is 1 mm";
+    scale.textContent = say("sheet_scale", {pole: meta.poles[plan], symbol: meta.scales[plan],
+                                            scale: frame.scale, unit: frame.unit});
     Object.keys(frame.points).forEach(label => {
       const item = document.createElement("li");
       const button = document.createElement("button");
       button.type = "button";
       button.dataset.place = plan + ":" + label;
       button.append(typesetHtml(label));
-      button.title = frame.required.includes(label) ? "a point of the plan" :
-        "a construction point (checked when placed)";
+      button.title = say(frame.required.includes(label) ? "plan_point" : "construction_point");
       button.addEventListener("click", () => select(plan, label));
       const verdict = document.createElement("span");
       verdict.className = "draw-verdict";
@@ -274,7 +271,7 @@
     if (draw.results[plan]) delete draw.results[plan][label];
     draw.planMistakes[plan] = [];
     const summary = planBox(plan).querySelector(".draw-summary");
-    if (summary.textContent) summary.textContent = "moved since the last check: check again";
+    if (summary.textContent) summary.textContent = say("moved");
   }
   function setTool(plan, tool) {
     draw.tool[plan] = tool;
@@ -346,9 +343,12 @@
       drag.line.direction_deg = Math.round(
         Math.atan2(xy[1] - at[1], xy[0] - at[0]) * 1800 / Math.PI) / 10;
       drag.length = Math.hypot(xy[0] - at[0], xy[1] - at[1]) * draw.zoom;
-      const preview = svgOf(plan).querySelector("line.preview") ||
-        make("line", {"class": "construction preview", "vector-effect": "non-scaling-stroke"},
-             svgOf(plan).querySelector("g.lines"));
+      let preview = svgOf(plan).querySelector("line.preview");
+      if (!preview) {
+        preview = make("line", {"class": "construction", "vector-effect": "non-scaling-stroke"},
+                       svgOf(plan).querySelector("g.lines"));
+        preview.classList.add("preview");
+      }
       preview.setAttribute("x1", at[0]); preview.setAttribute("y1", -at[1]);
       preview.setAttribute("x2", xy[0]); preview.setAttribute("y2", -xy[1]);
     } else {
@@ -394,78 +394,38 @@
   }
 
   // -- checking -------------------------------------------------------------------------------
-  // the one comparison of planmethod.grading.plan_points.named_mistakes
-  function namedMistakes(candidates, x, y, radius) {
-    const out = [];
-    (candidates || []).forEach(([index, mx, my]) => {
-      const mistake = meta.mistakes[index][0];
-      if (Math.hypot(x - mx, y - my) <= radius && !out.includes(mistake)) out.push(mistake);
-    });
-    return out;
-  }
-  function mistakeSentence(mistakes) {
-    const texts = Object.fromEntries(meta.mistakes);
-    const [sentence, joint] = meta.wording;
-    return "it lies " + sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
-  }
-  // the one rule of planmethod.grading.plan_points.common_mistakes: a whole-plan mistake is
-  // one named on every wrong point, two or more of them
-  function commonMistakes(named) {
-    if (named.length < 2) return [];
-    return named[0].filter(mistake => named.slice(1).every(other => other.includes(mistake)));
-  }
-  function planSentence(mistakes) {
-    const texts = Object.fromEntries(meta.mistakes);
-    const [, joint, sentence] = meta.wording;
-    return sentence.replace("{}", mistakes.map(mistake => texts[mistake]).join(joint));
-  }
+  // each point as grade --drawing grades it (planmethod.grading.drawings, plan_points), in the
+  // words of grading's rulebook render/page_rules.py sends: page_rules.js sheet
   function check(plan) {
     const t0 = performance.now();
     const frame = frameData(plan);
     const results = {};
     if (!frame) return results;
-    const drawn = store.plans[plan].points;
-    Object.entries(frame.points).forEach(([label, [x, y, radius]]) => {
-      const name = nameOf(label);
-      const required = frame.required.includes(label);
-      const result = {label: label, placed: label in drawn, required: required, ok: false,
-                      mistakes: []};
-      if (!(label in drawn)) {
-        result.ok = required ? false : null;
-        result.sentence = name + ": not placed" + (required ? "" : " (a construction point: " +
-          "checked when placed)");
-      } else {
-        const [u, v] = drawn[label];
-        const distance = Math.hypot(u - x, v - y);
-        result.distance = distance;
-        result.ok = distance <= radius;
-        if (result.ok) {
-          result.sentence = name + ": right — " + fixed(distance, 2) + " mm from where the " +
-            "construction puts it, within its tolerance of " + fixed(radius, 2) + " mm";
-        } else {
-          result.mistakes = namedMistakes(frame.mistakes[label], u, v, radius);
-          result.sentence = name + " is " + fixed(distance, 1) + " mm off (tolerance " +
-            fixed(radius, 2) + " mm)" +
-            (result.mistakes.length ? "; " + mistakeSentence(result.mistakes) : "");
-        }
-      }
-      results[label] = result;
+    const drawn = store.plans[plan].points, texts = Object.fromEntries(meta.mistakes);
+    const mistakes = Object.fromEntries(Object.entries(frame.mistakes).map(
+      ([label, candidates]) => [label, candidates.map(
+        ([index, x, y]) => [meta.mistakes[index][0], x, y])]));
+    const verdict = wb.rules.sheet(Object.assign({}, frame, {mistakes: mistakes}), drawn,
+                                   meta.names, texts);
+    Object.keys(frame.points).forEach(label => {
+      results[label] = Object.assign({label: label}, verdict(label));
     });
     draw.results[plan] = results;
     Object.values(results).forEach(result => {
       const cell = document.querySelector('[data-verdict-for="' + plan + ":" + result.label + '"]');
       if (!cell) return;
-      const name = nameOf(result.label);   // the sentence opens with it: typeset there
-      cell.replaceChildren(typesetHtml(result.label), result.sentence.slice(name.length));
+      // the sentence with the point's name typeset in it (b₃, k with B₃ below)
+      cell.innerHTML = wb.rules.words.html(result.message.id, result.message.fields,
+                                           {point: typesetHtml(result.label).outerHTML});
       if (result.ok === null) delete cell.dataset.ok; else cell.dataset.ok = String(result.ok);
     });
     const required = Object.values(results).filter(result => result.required);
-    const common = commonMistakes(Object.values(results).filter(
-      result => result.placed && result.ok === false).map(result => result.mistakes));
+    const common = wb.rules.commonMistakes(Object.values(results).filter(
+      result => result.graded && result.placed && result.ok === false)
+      .map(result => result.mistakes));
     draw.planMistakes[plan] = common;
-    planBox(plan).querySelector(".draw-summary").textContent =
-      required.filter(result => result.ok).length + " of " + required.length +
-      " points of the " + plan + " plan right" + (common.length ? "; " + planSentence(common) : "");
+    planBox(plan).querySelector(".draw-summary").textContent = wb.rules.planSummary(
+      plan, required.filter(result => result.ok).length, required.length, common, texts);
     render(plan);
     void document.body.offsetHeight;   // the verdicts laid out: part of the check
     draw.checkTimes.push(performance.now() - t0);
@@ -497,8 +457,9 @@
     element("step-plan").value = plan;
     wb.playStep(next);
     // the step's sentence is typeset HTML (render/workbook.py formula_html)
-    planBox(plan).querySelector(".draw-step").innerHTML =
-      "step " + (next + 1) + " of " + steps.length + ": " + wb.data.strings[steps[next][1]];
+    planBox(plan).querySelector(".draw-step").innerHTML = wb.rules.words.html(
+      "step_sentence", {number: next + 1, count: steps.length, sentence: ""},
+      {sentence: wb.data.strings[steps[next][1]]});
   }
   function showPlan(plan) {
     draw.shownPlan[plan] = true;
@@ -554,7 +515,7 @@
   }
   function setZoom(zoom) {
     draw.zoom = zoom;
-    element("draw-zoom").textContent = zoom + " px/mm";
+    element("draw-zoom").textContent = say("zoom", {zoom: zoom});
     PLANS.forEach(plan => { if (planBox(plan)) sheet(plan); });
   }
   function start(workbook) {

@@ -32,54 +32,83 @@ import html
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from ..words import Message, message, render, template
 from .canvas import empty_svg
 
 __all__ = ["DRAW_STYLE", "draw_script", "drawing_data", "drawing_section", "pack_frame"]
 
 #: what each plan is called on the page, and its scale's symbol
-PLAN_TITLES = {"velocity": ("velocity plan", "μv"), "acceleration": ("acceleration plan", "μa")}
+PLAN_TITLES = {"velocity": (template("velocity plan"), "μv"),
+               "acceleration": (template("acceleration plan"), "μa")}
+
+#: the words of a plan's sheet and tools (as HTML)
+_TOOLS = {
+    "place": template("place points"),
+    "line": template("draw a construction line"),
+    "unline": template("remove the last line"),
+    "clear": template("clear", context="a drawing"),
+    "check": template("check", context="a button"),
+    "step": template("show the construction (next step)"),
+    "right": template("show the right plan"),
+    "download": template("download the drawing"),
+}
+
+
+def _said(text: Message) -> str:
+    return html.escape(render(text), quote=False)
+
+
+def _plan_block(plan: str) -> str:
+    """One plan's sheet, its tools and its verdicts' places."""
+    name = html.escape(plan)
+    title = PLAN_TITLES[plan][0]
+    words = {key: _said(text) for key, text in _TOOLS.items()}
+    sheet = empty_svg({"data-draw": plan, "tabindex": "0", "role": "img",
+                       "aria-label": render(message(
+                           "your {plan}: millimetre grid, the pole at the origin",
+                           plan=title))})
+    return f"""<div class="draw-plan" data-plan="{name}">
+<h3>{_said(title)} <span class="draw-scale"></span></h3>
+<div class="draw-tools">
+<button type="button" data-tool="point" aria-pressed="true">{words["place"]}</button>
+<button type="button" data-tool="line" aria-pressed="false">{words["line"]}</button>
+<button type="button" data-unline="{name}">{words["unline"]}</button>
+<button type="button" data-clear="{name}">{words["clear"]}</button>
+</div>
+<div class="draw-sheet">{sheet}</div>
+<ol class="draw-points"></ol>
+<div class="draw-actions">
+<button type="button" data-check="{name}">{words["check"]}</button>
+<button type="button" data-show-step="{name}">{words["step"]}</button>
+<button type="button" data-show-plan="{name}">{words["right"]}</button>
+<button type="button" data-download="{name}">{words["download"]}</button>
+</div>
+<p class="draw-summary"></p>
+<p class="draw-step"></p>
+</div>"""
 
 
 def drawing_section(plans: Sequence[str]) -> str:
     """The drawing mode's markup: a switch, the zoom, and per plan a sheet with its tools."""
-    blocks = []
-    for plan in plans:
-        name = html.escape(plan)
-        title = PLAN_TITLES[plan][0]
-        blocks.append(f"""<div class="draw-plan" data-plan="{name}">
-<h3>{title} <span class="draw-scale"></span></h3>
-<div class="draw-tools">
-<button type="button" data-tool="point" aria-pressed="true">place points</button>
-<button type="button" data-tool="line" aria-pressed="false">draw a construction line</button>
-<button type="button" data-unline="{name}">remove the last line</button>
-<button type="button" data-clear="{name}">clear</button>
-</div>
-<div class="draw-sheet">{empty_svg({
-    "data-draw": plan, "tabindex": "0", "role": "img",
-    "aria-label": f"your {title}: millimetre grid, the pole at the origin"})}</div>
-<ol class="draw-points"></ol>
-<div class="draw-actions">
-<button type="button" data-check="{name}">check</button>
-<button type="button" data-show-step="{name}">show the construction (next step)</button>
-<button type="button" data-show-plan="{name}">show the right plan</button>
-<button type="button" data-download="{name}">download the drawing</button>
-</div>
-<p class="draw-summary"></p>
-<p class="draw-step"></p>
-</div>""")
+    switch = _said(template("draw the plans of this angle yourself"))
+    how = _said(template("(the plans' drawings and the values read off them are hidden; a "
+                         "click places the chosen\npoint, however near another; a press on a "
+                         "placed point's mark, or Alt + a press near it,\ndrags it; the arrow "
+                         "keys move the chosen point 0.5 mm, Shift + an arrow key 0.1 mm; "
+                         "Delete\nremoves it)"))
+    zoom_out = html.escape(render(template("zoom out")))
+    zoom_in = html.escape(render(template("zoom in")))
     return f"""<section id="drawing">
-<h2>Draw the plans</h2>
-<p><label><input type="checkbox" id="draw-mode"> draw the plans of this angle yourself</label>
-(the plans' drawings and the values read off them are hidden; a click places the chosen
-point, however near another; a press on a placed point's mark, or Alt + a press near it,
-drags it; the arrow keys move the chosen point 0.5 mm, Shift + an arrow key 0.1 mm; Delete
-removes it)
-<span class="draw-zoom">zoom <button type="button" data-zoom="-1" aria-label="zoom out">−</button>
+<h2>{_said(template("Draw the plans"))}</h2>
+<p><label><input type="checkbox" id="draw-mode"> {switch}</label>
+{how}
+<span class="draw-zoom">{_said(template("zoom"))} <button type="button" data-zoom="-1" \
+aria-label="{zoom_out}">−</button>
 <output id="draw-zoom"></output>
-<button type="button" data-zoom="1" aria-label="zoom in">+</button></span></p>
+<button type="button" data-zoom="1" aria-label="{zoom_in}">+</button></span></p>
 <p id="draw-notice" role="status"></p>
 <div class="draw-plans">
-{chr(10).join(blocks)}
+{chr(10).join(_plan_block(plan) for plan in plans)}
 </div>
 </section>"""
 
@@ -87,24 +116,21 @@ removes it)
 def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
                  runs: Mapping[str, Sequence[tuple[str, str]]] | None = None,
                  poles: Mapping[str, str], extents: Mapping[str, Sequence[float]],
-                 mistakes: Sequence[tuple[str, str]], wording: Sequence[str],
-                 file_format: str, phi: str = "φ₁") -> dict[str, Any]:
+                 mistakes: Sequence[tuple[str, str]], file_format: str,
+                 phi: str = "φ₁") -> dict[str, Any]:
     """What the drawing mode needs besides each frame's points: the exercise's ``title`` and
     digest (``exercise``: a kept drawing of another exercise is ignored), each point's
     course name in its sentences (``names``: b₃, n_CB) and typeset on its button and its
     mark (``runs``: [text, kind] as :func:`planmethod.render.labels.label_runs` sets it —
     ``main``, a ``sub`` subscript, an ``upright`` subscript), the poles, one sheet per plan
     for the whole turn (``extents``: left, bottom, right, top in mm, y up), the mistakes
-    by index with what the student is told, the ``wording`` that names them (a point's
-    sentence, the joint between two mistakes, and the plan's sentence when every wrong
-    point is named with them: :data:`planmethod.grading.plan_points.MISTAKE_WORDING`,
-    ``PLAN_WORDING``), the ``format`` of a downloaded drawing, and the crank angle's
-    symbol (``phi``: φ₁).
+    by index with what the student is told, the ``format`` of a downloaded drawing, and the
+    crank angle's symbol (``phi``: φ₁). The sentences the page says of a point are the
+    rulebook's (:mod:`planmethod.render.page_rules`).
 
     >>> data = drawing_data(title="T", exercise="0f", names={"b@lever": "b₃"},
     ...                     poles={"velocity": "p"}, extents={"velocity": (-20, -20, 20, 20)},
     ...                     mistakes=[("sense", "ω1 reversed")],
-    ...                     wording=("when {}", ", or ", "all when {}"),
     ...                     file_format="planmethod-drawing")
     >>> data["scales"], data["extents"]["velocity"]
     ({'velocity': 'μv'}, [-20.0, -20.0, 20.0, 20.0])
@@ -114,8 +140,7 @@ def drawing_data(*, title: str, exercise: str, names: Mapping[str, str],
                      for label, parts in (runs or {}).items()}, "poles": dict(poles),
             "scales": {plan: PLAN_TITLES[plan][1] for plan in poles},
             "extents": {plan: [float(v) for v in extent] for plan, extent in extents.items()},
-            "mistakes": [list(pair) for pair in mistakes], "wording": list(wording),
-            "format": file_format, "phi": phi}
+            "mistakes": [list(pair) for pair in mistakes], "format": file_format, "phi": phi}
 
 
 def pack_frame(draw: Mapping[str, Any], extents: Mapping[str, Sequence[float]]

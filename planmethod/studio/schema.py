@@ -33,7 +33,7 @@ from typing import Any
 from ..errors import SpecError
 from ..words import Message, message
 
-__all__ = ["CANCEL", "EXPORT", "JOB", "OPEN", "SAVE", "TURN", "VARIANTS", "Field",
+__all__ = ["CANCEL", "EXPORT", "JOB", "OPEN", "SAVE", "SOLVE", "TURN", "VARIANTS", "Field",
            "read_fields"]
 
 #: what each type of field must be, in the page's words (JSON's), and the test of a value
@@ -122,6 +122,9 @@ NUMBERS = Field("list", items=Field("number"))
 RANGES = Field("table", fields={"lengths": Field("table", values=NUMBERS), "angle": NUMBERS,
                                 "omega": NUMBERS, "step": Field("number")})
 
+#: ``POST /api/solve`` as JSON: the exercise (the page sends its tables as ``exercise``,
+#: which the server writes as this TOML: :mod:`~planmethod.studio.exercise_data`)
+SOLVE = {"toml": NEEDED_TEXT}
 #: ``POST /api/open``: a file of the folder
 OPEN = {"path": NEEDED_TEXT}
 #: ``POST /api/save``: the exercise, or with ``template`` the template made of it

@@ -62,15 +62,15 @@ from dataclasses import dataclass
 from http import HTTPStatus
 from http.cookies import CookieError, SimpleCookie
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from importlib import resources
 from pathlib import Path
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
 from ..errors import PlanmethodError, SpecError
 from ..words import Message, current, message, render, speaking
-from . import api, schema
+from . import api, exercise_data, schema
 from .jobs import BusyError, Jobs, NoSuchJobError
+from .page import page_file, studio_page
 
 __all__ = ["HOST", "StudioServer"]
 
@@ -100,8 +100,8 @@ class RefusedError(PlanmethodError, PermissionError):
         self.status, self.kind = status, kind
 
 
-def _page() -> bytes:
-    return resources.files("planmethod.studio").joinpath("studio.html").read_bytes()
+def _page(language: str) -> bytes:
+    return studio_page(language)
 
 
 def _note(text: Message | str) -> None:
@@ -136,7 +136,7 @@ class StudioServer(ThreadingHTTPServer):
         self.workspace = api.Workspace(folder)
         self.token = token or secrets.token_urlsafe(32)
         self.initial = initial
-        self.page = _page()
+        self.page = _page(self.base_language)   # in the language it speaks
         #: one computation at a time (solve, turn, open, save, a job's checks)
         self.lock = threading.Lock()
         self.jobs = Jobs()
@@ -544,10 +544,12 @@ class StudioHandler(BaseHTTPRequestHandler):
             fields |= schema.read_fields(given, route.query)
         if method == "POST":
             text = self._body()
-            if route.toml:
+            if route.toml and not self.headers.get("Content-Type", "").startswith(
+                    "application/json"):
                 fields["toml"] = text
-            elif route.body is not None:
-                fields |= schema.read_fields(_json_body(text), route.body)
+            elif route.body is not None or route.toml:   # the page's exercise: Python's TOML
+                data = exercise_data.with_toml(_json_body(text))
+                fields |= schema.read_fields(data, route.body or schema.SOLVE)
         return fields
 
     # -- answering --------------------------------------------------------------------------
@@ -569,6 +571,10 @@ class StudioHandler(BaseHTTPRequestHandler):
                 self._send(200, self.server.page, "text/html; charset=utf-8", cookie=cookie,
                            page=True, head=method == "HEAD")
                 self.server.jobs.warm()   # a job's process, ready for the page's first job
+                return
+            found = page_file(split.path) if method in ("GET", "HEAD") else None
+            if found is not None:   # a script of the page
+                self._send(200, found.content, found.content_type, head=method == "HEAD")
                 return
             route = ROUTES.get((method, split.path))
             if route is None:
@@ -617,7 +623,7 @@ class StudioHandler(BaseHTTPRequestHandler):
         self.send_header("X-Frame-Options", "DENY")
         if page:
             self.send_header("Content-Security-Policy",
-                             "default-src 'none'; script-src 'unsafe-inline'; style-src "
+                             "default-src 'none'; script-src 'self'; style-src "
                              "'unsafe-inline'; img-src data:; connect-src 'self'; "
                              "frame-ancestors 'none'; base-uri 'none'; form-action 'none'")
         if cookie:
