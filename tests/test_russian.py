@@ -7,14 +7,16 @@ template (names, format specifications and conversions), every plural with Russi
 forms. A run of ``planmethod solve`` in Russian — chosen with ``--lang ru`` or with
 ``[course] language = "ru"`` in the exercise — prints no English word the messages use
 (:func:`planmethod.testing.pseudo.unmarked_words`) and writes its numbers with a decimal
-comma, while its ``--json`` report keeps its keys, names and numbers.
+comma, while its ``--json`` report keeps its keys, names and numbers. So does a Russian run
+of the force analysis (``exercises/fourbar_forces.toml``: kinetostatics, reactions, the
+balancing moment and its checks, Aliyev's constants), its text and its figures.
 
-What other areas still print as plain English (not yet messages) is left out of the run's
-text, each by name (computed here, in Russian, and removed before the words are counted):
-the exercise's names (title, links, points, the published source), the assembly's branch
-reasons (``motion.branches[…].reason``, kinematics), the check table's units
-(``check.unit``, vocabulary). When those areas speak through the catalogue, these
-exclusions only remove Russian text.
+What is not a word of the messages is left out of the run's text, each by name (computed
+here, in Russian, and removed before the words are counted): the exercise's names (title,
+links, points, the published source), the assembly's branch reasons
+(``motion.branches[…].reason``: a machine name, ``sketch``), the names of the files a run
+writes, and the check table's units (``check.unit``, still English: vocabulary). When the
+units speak through the catalogue, that exclusion only removes Russian text.
 """
 
 from __future__ import annotations
@@ -40,11 +42,14 @@ from planmethod.words import language, message, plural, render
 ROOT = Path(__file__).resolve().parent.parent
 LOCALE = ROOT / "planmethod" / "locale"
 COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
+FORCES = ROOT / "exercises" / "fourbar_forces.toml"
 RUSSIAN_TEMPLATE = ROOT / "exercises" / "templates" / "ru" / "slider_crank.toml"
 #: a number written with a decimal point (0.002), as the Russian course never writes one
 POINT_NUMBER = re.compile(r"\d\.\d")
 #: a string of a report meant for programs: a name, a key, an enum value
 MACHINE_WORD = re.compile(r"[A-Za-z_][\w@/*.+-]*")
+#: the name of a figure's file (with its folder), as a run's lines name it
+SVG_FILE = re.compile(r"\S+\.svg\b")
 
 
 def _read(path: Path):
@@ -177,6 +182,43 @@ def test_the_english_run_is_still_english():
     assert {"structural", "analysis", "scales", "drive", "link"} <= {
         word.lower() for word in words}
     assert "μl = 0.002 m/mm" in shown and points
+
+
+def _force_run(folder: Path, *argv) -> tuple[str, list[str]]:
+    """A solve of the four-bar's force analysis with its figures written into ``folder``:
+    its text (the names of the figures' files left out: ``lever.svg``, and
+    ``combined_force.svg`` that it says it does not draw) and its figures' visible texts."""
+    from planmethod.testing.pseudo import texts_of_svg
+
+    shown = SVG_FILE.sub(" ", _run("solve", FORCES, "--svg", folder, *argv))
+    written = sorted(folder.glob("*.svg"))
+    assert {"loaded.svg", "lever.svg"} <= {path.name for path in written}
+    return shown, [text for path in written
+                   for text in texts_of_svg(path.read_text(encoding="utf-8"))]
+
+
+def test_a_russian_force_analysis_shows_no_english_word(tmp_path):
+    shown, figures = _force_run(tmp_path, "--lang", "ru")
+    assert "Кинетостатический расчёт (принцип Даламбера) при φ₁ = 60°" in shown
+    assert "уравновешивающий момент Mур = 0,642055 Н·м (по группам Ассура)" in shown
+    assert "рычаг Жуковского (план скоростей): Mур = 0,642055 Н·м" in shown
+    assert "Fи = −m·a_S (Н)" in shown and "R₀₁       A" in shown
+    assert any(text.startswith("уравновешивающая сила Fур") for text in figures)
+    foreign = _foreign(FORCES)
+    assert _russian_words_only(shown, foreign) == ([], [])
+    assert _russian_words_only("\n".join(figures), foreign) == ([], [])
+
+
+def test_the_english_force_analysis_is_still_english(tmp_path):
+    """The force run without a language shows the words the Russian one must not."""
+    shown, figures = _force_run(tmp_path)
+    foreign = _foreign(FORCES, "en")
+    words = {word.lower() for word in _russian_words_only(shown, foreign)[0]}
+    assert {"balancing", "moment", "group", "method", "lever", "reaction", "force",
+            "polygon", "combined", "constants"} <= words
+    drawn = {word.lower() for word in _russian_words_only("\n".join(figures), foreign)[0]}
+    assert {"inertia", "force", "balancing", "lever", "arm"} <= drawn
+    assert "balancing moment M_b = 0.642055 N·m (group method)" in shown
 
 
 def _machine_parts(report, path: str = "") -> list:
