@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from ..vectors import norm, perp, unit_angle, unit_or_zero
-from ..vocabulary import xml_characters
+from ..vocabulary import unit_words, xml_characters
 from ..words import Message, message, render
 from ..words.language import catalogue, current
 from .labels import (
@@ -805,7 +805,8 @@ def scale_bar(figure: Canvas, at: Point, scale: float, unit: str, target_px: flo
         figure.line((x + t * length, y - tick), (x + t * length, y + tick), color=color,
                     width=1.0, layer="text", obstacle=False, css="scale bar")
     figure.text((x, y + 17), "0", size=SMALL_SIZE, anchor="middle", area=False, css="scale")
-    figure.text((x + length, y + 17), message("{value:g} {unit}", value=value, unit=unit),
+    figure.text((x + length, y + 17), message("{value:g} {unit}", value=value,
+                                              unit=unit_words(unit)),
                 size=SMALL_SIZE, anchor="middle", area=False, css="scale")
 
 
