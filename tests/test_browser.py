@@ -239,6 +239,68 @@ def test_practice_mode_grades_as_the_cli(browser, compressor_page, tmp_path):
     page.close()
 
 
+def test_practice_gives_no_answer_away_until_asked(browser, compressor_page):
+    """Practising with nothing typed, *check* names every answer missing and shows no right
+    value anywhere in the page's visible text — not in the verdicts, the readings, the curves,
+    the construction's sentences nor the radius of curvature on the mechanism; *show the
+    answer* shows one quantity's right value (its verdict and readings), only that one, and the
+    page remembers it at that angle."""
+    report = json.loads(cli("solve", COMPRESSOR, "--angle", 45, "--json").stdout)
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    page, errors = open_page(browser, compressor_page)
+    move_slider(page, 45)
+    rho = '#panel-position [data-points="rho_D"]'
+    assert page.is_visible(rho)
+
+    def given_away() -> dict[str, list[str]]:
+        text = page.evaluate("document.body.innerText")
+        return {name: [shown for shown in (f"{value:.4g}", f"{value:.6g}") if shown in text]
+                for name, value in exact.items() if abs(value) > 1e-9}
+
+    page.check("#practice")
+    page.click("#check")
+    results = page.evaluate("workbook.results")
+    assert set(results) == set(exact) and not any(r["correct"] for r in results.values())
+    for name in exact:
+        verdict = page.text_content(f'td.verdict[data-verdict-for="{name}"]')
+        assert verdict == results[name]["hint"] and verdict.endswith("no answer")
+    assert not any(given_away().values()), given_away()
+    assert not page.is_visible(rho)
+    page.fill('input[data-answer="a_C"]', repr(1.3 * exact["a_C"]))
+    page.click("#check")
+    told = page.evaluate("workbook.results.a_C")
+    assert page.text_content('td.verdict[data-verdict-for="a_C"]') == told["hint"]
+    assert "wrong (" in told["hint"] and f"{exact['a_C']:.6g}" in told["feedback"]
+    assert not any(given_away().values()), given_away()
+
+    page.click('button[data-reveal="v_C"]')
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]') == results["v_C"]["feedback"]
+    assert f"{exact['v_C']:.6g}" in results["v_C"]["feedback"]
+    shown = {name: found for name, found in given_away().items() if found}
+    assert list(shown) == ["v_C"]
+    assert page.is_visible('td.reading[data-quantity="v_C"]')
+    assert not page.is_visible(rho)
+    assert page.evaluate("workbook.revealed") == {"45": ["v_C"]}
+    page.click("#check")   # checked again, the answer shown stays shown, the others hidden
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]') == results["v_C"]["feedback"]
+    assert list({name for name, found in given_away().items() if found}) == ["v_C"]
+    # the radius of curvature on the mechanism shows once its answer is asked for
+    page.click('button[data-reveal="rho_D"]')
+    assert page.is_visible(rho)
+    # another angle: nothing shown there; back at 45°, v_C is remembered
+    move_slider(page, 90)
+    page.click("#check")
+    assert not page.is_visible(rho)
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]').endswith("no answer")
+    move_slider(page, 45)
+    page.click("#check")
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]') == results["v_C"]["feedback"]
+    page.uncheck("#practice")
+    assert page.is_visible(rho) and page.is_visible("#charts")
+    assert errors == []
+    page.close()
+
+
 # -- drawing mode -------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def slotted_page(tmp_path_factory):

@@ -21,6 +21,19 @@
   // concealed until the student asks to see the plan it is read off); its verdict is then
   // the hint, never the right value
   wb.concealed = () => false;
+  // whether the plan a quantity is read off has been shown in the drawing mode (its values
+  // are then the student's to see: workbook_draw.js sets this)
+  wb.planShown = () => false;
+  // the answers the student asked to see in practice, by the angle they were asked at
+  // {angle: [question id, …]}: the page remembers them, the downloaded drawing says so
+  wb.revealed = {};
+  const practising = () => document.body.classList.contains("practising");
+  wb.revealedAt = angle => (wb.revealed[String(angle)] || []).slice();
+  const revealedHere = name => wb.revealedAt(wb.data.angles[wb.frame]).includes(name);
+  // whether an answer's right value is kept from the student now: while practising, until
+  // they ask to see it (or the plan it is read off); while drawing, until that plan is shown
+  wb.hidden = name => practising() ? !(revealedHere(name) || wb.planShown(name)) :
+    wb.concealed(name);
 
   async function load() {
     const raw = document.getElementById("workbook-data").textContent.trim();
@@ -41,6 +54,7 @@
     const tolerances = Array.from(document.querySelectorAll("#readings tbody td.tolerance"));
     const verdicts = Array.from(document.querySelectorAll("#readings tbody td.verdict"));
     const answers = Array.from(document.querySelectorAll("#readings tbody input.answer"));
+    const rows = cells.map(cell => cell.closest("tr"));
     const cursors = Array.from(document.querySelectorAll("#charts .chart")).map(
       chart => chart.querySelector("line.cursor"));
     const cache = new Map();
@@ -85,6 +99,7 @@
     function show(frame) {
       const t0 = performance.now();
       frame = Math.max(0, Math.min(data.frames.length - 1, frame));
+      wb.frame = frame;
       const f = data.frames[frame];
       const nodes = nodesOf(frame);
       panels.forEach((element, p) => {
@@ -109,7 +124,9 @@
           say("tolerance_shown_unitless", {tolerance: question.tolerance});
         verdicts[i].textContent = "";
         verdicts[i].className = "verdict";
+        rows[i].classList.toggle("revealed", revealedHere(q.name));
       });
+      hideAsked();
       const angle = data.angles[frame];
       cursors.forEach((cursor, c) => {
         if (!cursor) return;
@@ -118,7 +135,6 @@
         cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
       });
       document.getElementById("angle-value").textContent = say("angle_shown", {angle: angle});
-      wb.frame = frame;
       wb.step = null;
       document.getElementById("step-text").textContent = "";
       document.getElementById("step-number").textContent = "";
@@ -201,7 +217,41 @@
     // practice mode: readings hidden, answers graded against the key of this angle
     document.getElementById("practice").addEventListener("change", event => {
       document.body.classList.toggle("practising", event.target.checked);
+      hideAsked();
     });
+    // what the figures show of an asked value while practising: a radius of curvature on the
+    // mechanism (its label gives the value, its centre the length) stays hidden until the
+    // student asks to see that answer
+    function hideAsked() {
+      const asked = (data.frames[wb.frame].questions || []).map(q => q.id);
+      const kept = asked.filter(name => practising() && !revealedHere(name));
+      const keptOf = name => kept.includes(name);
+      panels.forEach(element => element.querySelectorAll(
+          ".rho, .centre, [data-points^='rho_'], [data-points^='O_']").forEach(node => {
+        const points = (node.dataset.points || "").split(" ").filter(p => p);
+        const names = points.map(p => "rho_" + p.replace(/^(rho|O)_/, ""));
+        node.classList.toggle("asked-hidden", names.length ? names.some(keptOf) :
+          kept.some(name => name.startsWith("rho_")));
+      }));
+    }
+    // "show the answer": one quantity's right value at this angle, remembered
+    function reveal(name) {
+      const key = String(data.angles[wb.frame]);
+      const listed = wb.revealed[key] = wb.revealed[key] || [];
+      if (!listed.includes(name)) listed.push(name);
+      const i = data.quantities.findIndex(q => q.name === name);
+      rows[i].classList.add("revealed");
+      const question = questionOf(wb.frame, name);
+      if (question) {
+        const result = grade(question, answers[i].value);
+        verdicts[i].textContent = result.feedback;
+        verdicts[i].className = "verdict " + (result.correct ? "correct" : "wrong");
+      }
+      hideAsked();
+    }
+    wb.reveal = reveal;
+    document.querySelectorAll("#readings button.reveal").forEach(button =>
+      button.addEventListener("click", () => reveal(button.dataset.reveal)));
     function check() {
       const results = {};
       answers.forEach((input, i) => {
@@ -210,7 +260,7 @@
         if (!question) { verdicts[i].textContent = say("not_graded"); return; }
         const result = grade(question, input.value);
         results[name] = result;
-        verdicts[i].textContent = wb.concealed(name) ? result.hint : result.feedback;
+        verdicts[i].textContent = wb.hidden(name) ? result.hint : result.feedback;
         verdicts[i].className = "verdict " + (result.correct ? "correct" : "wrong");
         verdicts[i].dataset.correct = String(result.correct);
       });

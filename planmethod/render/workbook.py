@@ -359,16 +359,19 @@ def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
     return data
 
 
-def _rows_html(quantities: Sequence[PageQuantity]) -> str:
-    """The readings table's rows: the exact value, the plan's, the unit, the answer typed,
-    its tolerance and its verdict."""
+def _rows_html(quantities: Sequence[PageQuantity], reveal: str) -> str:
+    """The readings table's rows: the exact value, the plan's, the unit, the answer typed
+    with its *show the answer* button (``reveal``: the button's words, HTML), its tolerance
+    and its verdict."""
     return "\n".join(
         f'<tr{_plan_attribute(q.plan)}><th scope="row" id="quantity-{number}">'
         f'{_quantity_label(q)}</th>'
         f'<td class="reading" data-quantity="{html.escape(q.name)}" data-value=""></td>'
         f'<td class="plan-reading"></td><td class="unit">{html.escape(q.unit)}</td>'
         f'<td class="practice"><input class="answer" data-answer="{html.escape(q.name)}"'
-        f' size="10" aria-labelledby="quantity-{number}"></td>'   # its symbol, never its id
+        f' size="10" aria-labelledby="quantity-{number}">'   # its symbol, never its id
+        f' <button type="button" class="reveal" data-reveal="{html.escape(q.name)}"'
+        f' aria-describedby="quantity-{number}">{reveal}</button></td>'
         f'<td class="tolerance" data-tolerance-for="{html.escape(q.name)}"></td>'
         f'<td class="verdict" data-verdict-for="{html.escape(q.name)}"></td></tr>'
         for number, q in enumerate(quantities))
@@ -449,6 +452,7 @@ def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
 
         draw_html = drawing_section(list(page.drawing["extents"]))
         draw_extra = f"<script>{draw_script()}</script>\n<style>{DRAW_STYLE}</style>"
+    words = _words(page, rules)
     angles = page.angles
     step = (angles[1] - angles[0]) if len(angles) > 1 else 1.0
     panels, charts = _figures_html(page)
@@ -457,9 +461,10 @@ def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
     return _PAGE.format(
         language=html.escape(rules.language), title=html.escape(shown_title(page.title)),
         notes=notes, low=num(angles[0]), high=num(angles[-1]), first=num(page.opening()),
-        step=num(step), panels=panels, charts=charts, rows=_rows_html(page.quantities),
+        step=num(step), panels=panels, charts=charts,
+        rows=_rows_html(page.quantities, words["show_answer"]),
         data=_pack(_page_data(page, rules)), style=_STYLE, script=_script(),
-        drawing=draw_html, drawing_script=draw_extra, **_words(page, rules))
+        drawing=draw_html, drawing_script=draw_extra, **words)
 
 
 #: the page's own words (its controls, the table's heads)
@@ -477,6 +482,7 @@ _CHROME = {
     "answer": template("your answer"),
     "tolerance": template("tolerance"),
     "check": template("check", context="a button"),
+    "show_answer": template("show the answer", context="a button"),
 }
 _CONSTRUCTION = template("construction of the\n{plan}")
 _SWITCH = template("frame switch: {time}")
@@ -503,6 +509,11 @@ th{font-weight:normal;font-style:italic;font-family:"DejaVu Serif",Georgia,serif
 .practice,.tolerance,.verdict{display:none}
 body.practising .practice,body.practising .tolerance,body.practising .verdict{display:table-cell}
 body.practising .reading,body.practising .plan-reading{visibility:hidden}
+body.practising #readings tr.revealed td.reading,
+body.practising #readings tr.revealed td.plan-reading{visibility:visible}
+body.practising #charts,body.practising #playback{display:none}
+#readings tr.revealed button.reveal{visibility:hidden}
+.panel .asked-hidden{visibility:hidden}
 .verdict{text-align:left;max-width:40em}
 .verdict.correct{color:#1a7f37}.verdict.wrong{color:#c0392b}
 #playback{margin-top:8px}

@@ -481,7 +481,15 @@
     Object.assign(points, store.plans[plan].points);
     return {format: meta.format, version: 1, title: meta.title, exercise: meta.exercise,
             angle: wb.data.angles[draw.frame], plan: plan, points: points,
-            lines: store.plans[plan].lines};
+            lines: store.plans[plan].lines, revealed: revealed(plan)};
+  }
+  // what the student asked to see at the drawing's angle: the answers shown (their question
+  // ids), and of this plan its construction (steps shown) and the plan itself
+  function revealed(plan) {
+    const out = wb.revealedAt(wb.data.angles[draw.frame]);
+    if (draw.revealed[plan] !== undefined) out.push("construction:" + plan);
+    if (draw.shownPlan[plan]) out.push("plan:" + plan);
+    return out;
   }
   function download(plan) {
     const text = JSON.stringify(exported(plan), null, 1) + "\n";
@@ -560,6 +568,7 @@
     });
     const planOf = Object.fromEntries(wb.data.quantities.map(q => [q.name, q.plan]));
     wb.concealed = name => concealed(planOf[name]);
+    wb.planShown = name => drawingOn() && !!planOf[name] && !!draw.shownPlan[planOf[name]];
     document.querySelectorAll("[data-zoom]").forEach(button => button.addEventListener(
       "click", () => {
         const at = ZOOMS.indexOf(draw.zoom) + Number(button.dataset.zoom);
