@@ -28,6 +28,7 @@ from planmethod.render.svg import vector_equations
 from planmethod.report import analyse
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.testing.figures import CODE_WORD
+from planmethod.words import render
 
 ROOT = Path(__file__).resolve().parent.parent
 EXERCISES = sorted((ROOT / "exercises").glob("*.toml"))
@@ -264,7 +265,7 @@ def test_flags_name_groups_and_points_as_the_course_does():
     data = tomllib.loads((ROOT / "exercises" / "scotch_yoke.toml").read_text(encoding="utf-8"))
     data.setdefault("plan", {})["min_angle_deg"] = 89.9
     analysis = analyse(exercise_from_dict(data, file="scotch_yoke.toml"))
-    flags = " ".join(analysis.flags)
+    flags = " ".join(render(flag) for flag in analysis.flags)
     assert "plan, group of links 2, 3 (block, yoke): the lines meet at 80°" in flags
     assert "point b₃ is poorly defined" in flags
     assert code_names(flags) == [] and "+" not in flags
