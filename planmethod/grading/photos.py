@@ -804,12 +804,15 @@ def _span(line: Stroke, a: np.ndarray, b: np.ndarray) -> Stroke:
 
 class MarkKind(StrEnum):
     """How a point is marked on paper, most trusted first: a small cross or a dot the student
-    drew (marked), two lines that cross (implied), a line's free end."""
+    drew at the end or crossing of the construction's lines (marked), two lines that cross
+    (implied), a line's free end; last a ``loose`` mark, a spot or small cross that no line of
+    the construction ends at or crosses at (most likely a piece of a handwritten label)."""
 
     CROSS = "cross"
     DOT = "dot"
     CROSSING = "crossing"
     END = "end"
+    LOOSE = "loose"
 
     @property
     def marked(self) -> bool:
@@ -820,6 +823,12 @@ class MarkKind(StrEnum):
     def rank(self) -> int:
         """Its place in the order of trust (0 first)."""
         return list(MarkKind).index(self)
+
+    @property
+    def evidence(self) -> int:
+        """How strongly it says a point is there: 2 marked where lines end or cross, 1 lines
+        that end or cross, 0 a loose mark."""
+        return 2 if self.marked else 0 if self is MarkKind.LOOSE else 1
 
 
 @dataclass(frozen=True)
@@ -867,7 +876,28 @@ def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarr
             end = stroke.at(along)
             if all(math.dist(end, mark.at) > 2.0 for mark in marks):
                 marks.append(Mark((float(end[0]), float(end[1])), MarkKind.END))
-    return _gathered(marks)
+    return [mark if mark.kind is MarkKind.END or _reached(mark.at, long)
+            else Mark(mark.at, MarkKind.LOOSE, mark.sharpness) for mark in _gathered(marks)]
+
+
+def _reached(at, long: Sequence[Stroke], *, band_mm: float = 0.5, end_mm: float = 1.5
+             ) -> bool:
+    """Whether the construction's lines (``long``) reach ``at``: one ends there (within
+    ``band_mm`` across it and ``end_mm`` along it of an end: a pencil's overshoot or early
+    stop), or two pass through it (within ``band_mm``)."""
+    through = 0
+    for stroke in long:
+        direction = np.asarray(stroke.direction)
+        offset = np.asarray(at) - np.asarray(stroke.point)
+        if abs(float(offset @ np.array([-direction[1], direction[0]]))) > band_mm:
+            continue
+        along = float(offset @ direction)
+        if not stroke.start - end_mm <= along <= stroke.stop + end_mm:
+            continue
+        if min(abs(along - stroke.start), abs(along - stroke.stop)) <= end_mm:
+            return True
+        through += 1
+    return through >= 2
 
 
 def _gathered(marks: Sequence[Mark], radius: float = 0.3) -> list[Mark]:
@@ -997,11 +1027,13 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
     mark's position in plan mm).
 
     A point is where the student put it: at its right place (within its tolerance radius) or
-    at a place a named mistake puts it. A point the student marked (a dot, a small cross) is
-    trusted over one where lines merely cross: a point with a mark at a mistake's place and
-    only crossing lines at its right place is taken at the mark. Points with nothing at their
-    right place choose first, each mark going to one of them. A point found at neither is the
-    nearest mark left within :data:`SEARCH_MM`. A helper point (n, k) is taken only at its
+    at a place a named mistake puts it. The stronger evidence wins (:attr:`MarkKind.evidence`):
+    a point the student marked where lines end or cross is trusted over one where lines merely
+    end or cross, and that over a loose mark (a piece of a label): a point with stronger
+    evidence at a mistake's place than at its right place is taken at the mistake's. Points
+    with nothing but loose marks at their right place choose first, each mark going to one of
+    them. A point found at neither is the nearest mark left within :data:`SEARCH_MM`, a loose
+    one only if no other is there. A helper point (n, k) is taken only at its
     right place or a mistake's. A mistake's place nearer the pole than :data:`POLE_ROOM_MM` and
     2.5 mm is not looked at: the lines that leave the pole cross there whatever was drawn."""
     radii = entry["tolerance_mm"]
@@ -1033,34 +1065,33 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
     chosen: dict[str, int] = {}
     claimed: set[int] = set()
     for label, (right, mistaken) in found.items():       # nothing at the right place
-        free = [index for index in mistaken if index not in claimed]
-        if not right and free:
+        free = [index for index in mistaken if index not in claimed
+                and kinds[index].evidence > (kinds[right[0]].evidence if right else -1)]
+        if (not right or not kinds[right[0]].evidence) and free:
             chosen[label] = free[0]
             claimed.add(free[0])
     for label, (right, mistaken) in found.items():
         if label in chosen or not right:
             continue
-        marked = [index for index in mistaken
-                  if kinds[index].marked and index not in claimed]
-        if not kinds[right[0]].marked and marked:
-            chosen[label] = marked[0]
-            claimed.add(marked[0])
-        else:
-            chosen[label] = right[0]
-    _nearest_left(entry, graded, positions, chosen, claimed | set(chosen.values()))
+        stronger = [index for index in mistaken if index not in claimed
+                    and kinds[index].evidence > kinds[right[0]].evidence]
+        chosen[label] = stronger[0] if stronger else right[0]
+        claimed.add(chosen[label])
+    _nearest_left(entry, graded, positions, kinds, chosen, claimed | set(chosen.values()))
     return chosen
 
 
 def _nearest_left(entry: Mapping[str, Any], graded: Sequence[str], positions: np.ndarray,
-                  chosen: dict[str, int], taken: set[int]) -> None:
+                  kinds: Sequence[MarkKind], chosen: dict[str, int], taken: set[int]) -> None:
     """Give each plan point not found yet the nearest mark no point took, within
-    :data:`SEARCH_MM` of its right place."""
+    :data:`SEARCH_MM` of its right place; a loose mark only where no other is."""
     for label in graded:
         if label in chosen or not len(positions):
             continue
         distance = np.hypot(*(positions - np.asarray(entry["points_mm"][label], float)).T)
-        free = [int(i) for i in np.argsort(distance)
-                if distance[i] <= SEARCH_MM and int(i) not in taken]
+        free = sorted((int(i) for i in np.nonzero(distance <= SEARCH_MM)[0]
+                       if int(i) not in taken),
+                      key=lambda i: (kinds[i] is MarkKind.LOOSE, distance[i]))
         if free:
             chosen[label] = free[0]
             taken.add(free[0])
