@@ -17,9 +17,10 @@ A photo is read in steps, each of which may refuse it in one line (:class:`Photo
    strokes are found and fitted (:func:`find_strokes`), and the points a student marks are
    where two strokes meet or cross, a dot, or a small cross (:func:`find_points`);
 5. **the grade** — each point of the key's plan is looked for at its right place, then at each
-   place a named mistake puts it (within the point's own tolerance radius), and the points so
-   found are graded by :func:`~planmethod.grading.drawings.grade_drawing`, exactly as a drawn
-   plan given to ``grade --drawing``: the same verdicts, the same sentences.
+   place a named mistake puts it (within the point's own tolerance radius, or a mistake's
+   place within the photo's measuring error where that is wider), and the points so found are
+   graded by :func:`~planmethod.grading.drawings.grade_drawing`, exactly as a drawn plan given
+   to ``grade --drawing``: the same verdicts, the same sentences.
 
 Needs OpenCV (``opencv-python-headless``, the ``paper`` extra).
 """
@@ -80,6 +81,10 @@ PENCIL_DARKNESS = 0.2
 RECTIFIED_PX_PER_MM = 10.0
 #: nothing is read this near the pole (mm): its printed ring, and the lines that leave it
 POLE_ROOM_MM = 3.5
+#: how far a photo may misplace a point (mm): the error of the benchmark's harder photos
+#: (tilted, blurred), within which a mistake's place is looked for and named where the
+#: point's tolerance is tighter; never a tolerance of the right place
+MEASURING_MM = 0.3
 #: how far (mm) a point is looked for beyond its tolerance disc when neither its right place
 #: nor a mistake's holds a mark: the nearest mark within it is taken as the student's point
 SEARCH_MM = 4.0
@@ -1027,7 +1032,8 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
     mark's position in plan mm).
 
     A point is where the student put it: at its right place (within its tolerance radius) or
-    at a place a named mistake puts it. The stronger evidence wins (:attr:`MarkKind.evidence`):
+    at a place a named mistake puts it (within that radius or :data:`MEASURING_MM`). The
+    stronger evidence wins (:attr:`MarkKind.evidence`):
     a point the student marked where lines end or cross is trusted over one where lines merely
     end or cross, and that over a loose mark (a piece of a label): a point with stronger
     evidence at a mistake's place than at its right place is taken at the mistake's. Points
@@ -1058,7 +1064,7 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         for _, x, y in wrong.get(label, ()):
             if math.hypot(x, y) < POLE_ROOM_MM + 2.5:    # where the pole's lines crowd
                 continue
-            mistaken += [index for index in within((x, y), radius)
+            mistaken += [index for index in within((x, y), max(radius, MEASURING_MM))
                          if index not in right and index not in mistaken]
         mistaken.sort(key=lambda i: kinds[i].rank)
         found[label] = (right, mistaken)
@@ -1142,8 +1148,6 @@ def _places(drawing: GradedDrawing, entry: Mapping[str, Any], sheet: Sheet,
     return tuple(places), in_photo((0.0, 0.0))
 
 
-#: how exactly a photo places a point (mm): the benchmark's error on generated photos
-MEASURING_MM = 0.12
 
 
 def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
@@ -1151,7 +1155,9 @@ def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
     """A point found in a photo, as graded: at the place a named mistake puts it, if it lies
     within the photo's measuring error (:data:`MEASURING_MM`) of that place and nearer to it
     than to the right one (a point a mistake moves just beyond the tolerance is never called
-    right for the photo's error); else where it was found."""
+    right for the photo's error), that place lying beyond the right one's tolerance and the
+    measuring error (a point found within the tolerance is never called wrong for it); else
+    where it was found."""
     right = entry["points_mm"].get(label)
     radius = float(entry["tolerance_mm"].get(label, 0.5))
     if right is None:
@@ -1160,7 +1166,8 @@ def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
     for _, x, y in entry.get("mistake_points", {}).get(label, ()):
         off = math.dist(xy, (x, y))
         if (off <= MEASURING_MM and off < math.dist(xy, right)
-                and math.dist((x, y), right) > radius and (best is None or off < best[0])):
+                and math.dist((x, y), right) > radius + MEASURING_MM
+                and (best is None or off < best[0])):
             best = (off, (float(x), float(y)))
     return xy if best is None else best[1]
 
