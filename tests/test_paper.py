@@ -260,6 +260,48 @@ def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
             assert not point.correct and "no_normal" in point.mistakes
 
 
+def test_a_piece_of_a_label_does_not_win_over_the_lines_end(tmp_path):
+    """Four-bar student 002's acceleration plan drawn without aⁿ, photographed as the benchmark
+    photographs it (seed 10043): a blob of a handwritten label lies within e's tolerance of its
+    right place, e itself 3.8 mm away where its lines end, under a cross. The blob is a loose
+    mark (no line ends or crosses there) and e is graded where it was drawn: wrong, named."""
+    from planmethod.grading.photos import grade_photo
+
+    four_bar = ROOT / "exercises" / "templates" / "four_bar.toml"
+    assert main(["variants", str(four_bar), "--count", "2", "--seed", "2026", "--out",
+                 str(tmp_path / "course")]) == 0
+    keys = load_keys(tmp_path / "course" / "keys.json")
+    photo = sheet_photo(keys["002"], "acceleration", "no_normal", seed=10043)
+    path = tmp_path / "002_no_normal.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    entry = keys["002"]["plans"]["acceleration"]
+    assert photo.drawn.deserved["e"] == "no_normal"
+    place = {place.point: place for place in graded.places}["e"]
+    point = {point.point: point for point in graded.drawing.points}["e"]
+    assert not point.correct and "no_normal" in point.mistakes
+    drawn = plan_to_page(read_sheet(keys["002"], "acceleration").pole_mm, photo.drawn.points["e"])
+    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.5 and place.mark != "loose"
+    # the trap is still there: a loose mark within e's tolerance of its right place
+    from planmethod.grading import photos
+
+    sheet = graded.sheet
+    to_page = photos._to_page(graded.reading, sheet)
+    box, resolution = sheet.drawing_mm, photos.RECTIFIED_PX_PER_MM
+    darkness = photos._darkness(photos._rectified(graded.image, to_page, box, resolution),
+                                resolution)
+    pixels, weights = photos._pencil_pixels(darkness, sheet, box, resolution,
+                                            photos.PENCIL_DARKNESS)
+    strokes = photos.find_strokes(pixels, weights, resolution, box[:2], darkness.shape,
+                                  darkness)
+    right = plan_to_page(sheet.pole_mm, entry["points_mm"]["e"])
+    loose = [mark for mark in photos.find_points(strokes, pixels, weights,
+                                                 resolution=resolution)
+             if mark.kind == "loose" and np.hypot(*np.subtract(mark.at, right))
+             <= entry["tolerance_mm"]["e"]]
+    assert loose
+
+
 def test_the_marked_photo_and_a_pool_of_workers(course, velocity_photo, tmp_path):
     """Two photos in two worker processes (the command run as a user runs it): both graded,
     both marked, and no worker left when it ends."""

@@ -17,9 +17,10 @@ A photo is read in steps, each of which may refuse it in one line (:class:`Photo
    strokes are found and fitted (:func:`find_strokes`), and the points a student marks are
    where two strokes meet or cross, a dot, or a small cross (:func:`find_points`);
 5. **the grade** — each point of the key's plan is looked for at its right place, then at each
-   place a named mistake puts it (within the point's own tolerance radius), and the points so
-   found are graded by :func:`~planmethod.grading.drawings.grade_drawing`, exactly as a drawn
-   plan given to ``grade --drawing``: the same verdicts, the same sentences.
+   place a named mistake puts it (within the point's own tolerance radius, or a mistake's
+   place within the photo's measuring error where that is wider), and the points so found are
+   graded by :func:`~planmethod.grading.drawings.grade_drawing`, exactly as a drawn plan given
+   to ``grade --drawing``: the same verdicts, the same sentences.
 
 Needs OpenCV (``opencv-python-headless``, the ``paper`` extra).
 """
@@ -80,6 +81,10 @@ PENCIL_DARKNESS = 0.2
 RECTIFIED_PX_PER_MM = 10.0
 #: nothing is read this near the pole (mm): its printed ring, and the lines that leave it
 POLE_ROOM_MM = 3.5
+#: how far a photo may misplace a point (mm): the error of the benchmark's harder photos
+#: (tilted, blurred), within which a mistake's place is looked for and named where the
+#: point's tolerance is tighter; never a tolerance of the right place
+MEASURING_MM = 0.3
 #: how far (mm) a point is looked for beyond its tolerance disc when neither its right place
 #: nor a mistake's holds a mark: the nearest mark within it is taken as the student's point
 SEARCH_MM = 4.0
@@ -574,9 +579,11 @@ def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
     pixels along it (weighted by their darkness, far ones weighed down) and its pixels are
     taken away, until no segment of 2 mm is left; then pieces of one line are joined, each
     stroke is grown over the pixels on its course, and moved onto the middle of its pencil
-    line (:func:`_polished`)."""
+    line (:func:`_polished`). The transform draws at random: its generator is seeded first,
+    so that a photo is graded the same whatever was graded before it in the process."""
     import cv2
 
+    cv2.setRNGSeed(20261129)
     left = np.ones(len(points), bool)
     lines: list[Stroke] = []
     cells = np.column_stack([((points[:, 0] - origin[0]) * resolution - 0.5).round(),
@@ -804,12 +811,15 @@ def _span(line: Stroke, a: np.ndarray, b: np.ndarray) -> Stroke:
 
 class MarkKind(StrEnum):
     """How a point is marked on paper, most trusted first: a small cross or a dot the student
-    drew (marked), two lines that cross (implied), a line's free end."""
+    drew at the end or crossing of the construction's lines (marked), two lines that cross
+    (implied), a line's free end; last a ``loose`` mark, a spot or small cross that no line of
+    the construction ends at or crosses at (most likely a piece of a handwritten label)."""
 
     CROSS = "cross"
     DOT = "dot"
     CROSSING = "crossing"
     END = "end"
+    LOOSE = "loose"
 
     @property
     def marked(self) -> bool:
@@ -820,6 +830,12 @@ class MarkKind(StrEnum):
     def rank(self) -> int:
         """Its place in the order of trust (0 first)."""
         return list(MarkKind).index(self)
+
+    @property
+    def evidence(self) -> int:
+        """How strongly it says a point is there: 2 marked where lines end or cross, 1 lines
+        that end or cross, 0 a loose mark."""
+        return 2 if self.marked else 0 if self is MarkKind.LOOSE else 1
 
 
 @dataclass(frozen=True)
@@ -863,11 +879,59 @@ def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarr
     for stroke in long:
         if stroke.length < 5.0:
             continue
-        for along in (stroke.start, stroke.stop):
+        for along, inward in ((stroke.start, 1.0), (stroke.stop, -1.0)):
             end = stroke.at(along)
             if all(math.dist(end, mark.at) > 2.0 for mark in marks):
-                marks.append(Mark((float(end[0]), float(end[1])), MarkKind.END))
-    return _gathered(marks)
+                dot = _dot_at_end(stroke, along, inward, points, weights)
+                marks.append(Mark((float(end[0]), float(end[1])), MarkKind.END) if dot is None
+                             else Mark((float(dot[0]), float(dot[1])), MarkKind.DOT))
+    return [mark if mark.kind is MarkKind.END or _reached(mark.at, long)
+            else Mark(mark.at, MarkKind.LOOSE, mark.sharpness) for mark in _gathered(marks)]
+
+
+def _dot_at_end(stroke: Stroke, along: float, inward: float, points: np.ndarray,
+                weights: np.ndarray, *, reach_mm: float = 2.2, across_mm: float = 0.9
+                ) -> np.ndarray | None:
+    """The dot drawn where a stroke ends, if one is: the pencil (``points``) within
+    ``across_mm`` of the stroke, every 0.25 mm over its last ``reach_mm`` (and a little beyond
+    its end), beyond what the stroke holds farther in (the line itself, one drawn along it) —
+    a dot on a line's end widens it there — with a dot's ink (:data:`DOT_INK_MM2`); placed on
+    the stroke at the centre of that excess along it (the line tells where across it more
+    exactly than the dot)."""
+    if not len(points) or stroke.length < reach_mm + 2.5:
+        return None
+    direction = np.asarray(stroke.direction)
+    offsets = points - np.asarray(stroke.point)
+    inside = (offsets @ direction - along) * inward
+    beside = np.abs(offsets @ np.array([-direction[1], direction[0]])) <= across_mm
+    edges = np.arange(-0.5, reach_mm + 2.5 + 1e-9, 0.25)
+    ink, _ = np.histogram(inside[beside], edges, weights=weights[beside])
+    middles = (edges[:-1] + edges[1:]) / 2
+    near = middles <= reach_mm
+    excess = np.clip(ink[near] - float(np.median(ink[~near])), 0.0, None)
+    if float(excess.sum()) / RECTIFIED_PX_PER_MM ** 2 < DOT_INK_MM2:
+        return None
+    return stroke.at(along + inward * float((middles[near] * excess).sum() / excess.sum()))
+
+
+def _reached(at, long: Sequence[Stroke], *, band_mm: float = 0.5, end_mm: float = 1.5
+             ) -> bool:
+    """Whether the construction's lines (``long``) reach ``at``: one ends there (within
+    ``band_mm`` across it and ``end_mm`` along it of an end: a pencil's overshoot or early
+    stop), or two pass through it (within ``band_mm``)."""
+    through = 0
+    for stroke in long:
+        direction = np.asarray(stroke.direction)
+        offset = np.asarray(at) - np.asarray(stroke.point)
+        if abs(float(offset @ np.array([-direction[1], direction[0]]))) > band_mm:
+            continue
+        along = float(offset @ direction)
+        if not stroke.start - end_mm <= along <= stroke.stop + end_mm:
+            continue
+        if min(abs(along - stroke.start), abs(along - stroke.stop)) <= end_mm:
+            return True
+        through += 1
+    return through >= 2
 
 
 def _gathered(marks: Sequence[Mark], radius: float = 0.3) -> list[Mark]:
@@ -903,6 +967,9 @@ LONG_STROKE_MM = 4.0
 #: a point is marked (a dot, a small cross) where at least this much pencil (mm² of full
 #: darkness) lies within 1 mm of it beyond the construction's lines
 MARK_INK_MM2 = 0.04
+#: a dot on a line's end widens it by at least this much pencil (mm² of full darkness): a
+#: dot 1 mm across, half of it beyond the line, half dark
+DOT_INK_MM2 = 0.12
 
 
 def _on(stroke: Stroke, points: np.ndarray, band_mm: float) -> np.ndarray:
@@ -997,11 +1064,14 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
     mark's position in plan mm).
 
     A point is where the student put it: at its right place (within its tolerance radius) or
-    at a place a named mistake puts it. A point the student marked (a dot, a small cross) is
-    trusted over one where lines merely cross: a point with a mark at a mistake's place and
-    only crossing lines at its right place is taken at the mark. Points with nothing at their
-    right place choose first, each mark going to one of them. A point found at neither is the
-    nearest mark left within :data:`SEARCH_MM`. A helper point (n, k) is taken only at its
+    at a place a named mistake puts it (within that radius or :data:`MEASURING_MM`). The
+    stronger evidence wins (:attr:`MarkKind.evidence`):
+    a point the student marked where lines end or cross is trusted over one where lines merely
+    end or cross, and that over a loose mark (a piece of a label): a point with stronger
+    evidence at a mistake's place than at its right place is taken at the mistake's. Points
+    with nothing but loose marks at their right place choose first, each mark going to one of
+    them. A point found at neither is the nearest mark left within :data:`SEARCH_MM`, a loose
+    one only if no other is there. A helper point (n, k) is taken only at its
     right place or a mistake's. A mistake's place nearer the pole than :data:`POLE_ROOM_MM` and
     2.5 mm is not looked at: the lines that leave the pole cross there whatever was drawn."""
     radii = entry["tolerance_mm"]
@@ -1026,41 +1096,40 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         for _, x, y in wrong.get(label, ()):
             if math.hypot(x, y) < POLE_ROOM_MM + 2.5:    # where the pole's lines crowd
                 continue
-            mistaken += [index for index in within((x, y), radius)
+            mistaken += [index for index in within((x, y), max(radius, MEASURING_MM))
                          if index not in right and index not in mistaken]
         mistaken.sort(key=lambda i: kinds[i].rank)
         found[label] = (right, mistaken)
     chosen: dict[str, int] = {}
     claimed: set[int] = set()
     for label, (right, mistaken) in found.items():       # nothing at the right place
-        free = [index for index in mistaken if index not in claimed]
-        if not right and free:
+        free = [index for index in mistaken if index not in claimed
+                and kinds[index].evidence > (kinds[right[0]].evidence if right else -1)]
+        if (not right or not kinds[right[0]].evidence) and free:
             chosen[label] = free[0]
             claimed.add(free[0])
     for label, (right, mistaken) in found.items():
         if label in chosen or not right:
             continue
-        marked = [index for index in mistaken
-                  if kinds[index].marked and index not in claimed]
-        if not kinds[right[0]].marked and marked:
-            chosen[label] = marked[0]
-            claimed.add(marked[0])
-        else:
-            chosen[label] = right[0]
-    _nearest_left(entry, graded, positions, chosen, claimed | set(chosen.values()))
+        stronger = [index for index in mistaken if index not in claimed
+                    and kinds[index].evidence > kinds[right[0]].evidence]
+        chosen[label] = stronger[0] if stronger else right[0]
+        claimed.add(chosen[label])
+    _nearest_left(entry, graded, positions, kinds, chosen, claimed | set(chosen.values()))
     return chosen
 
 
 def _nearest_left(entry: Mapping[str, Any], graded: Sequence[str], positions: np.ndarray,
-                  chosen: dict[str, int], taken: set[int]) -> None:
+                  kinds: Sequence[MarkKind], chosen: dict[str, int], taken: set[int]) -> None:
     """Give each plan point not found yet the nearest mark no point took, within
-    :data:`SEARCH_MM` of its right place."""
+    :data:`SEARCH_MM` of its right place; a loose mark only where no other is."""
     for label in graded:
         if label in chosen or not len(positions):
             continue
         distance = np.hypot(*(positions - np.asarray(entry["points_mm"][label], float)).T)
-        free = [int(i) for i in np.argsort(distance)
-                if distance[i] <= SEARCH_MM and int(i) not in taken]
+        free = sorted((int(i) for i in np.nonzero(distance <= SEARCH_MM)[0]
+                       if int(i) not in taken),
+                      key=lambda i: (kinds[i] is MarkKind.LOOSE, distance[i]))
         if free:
             chosen[label] = free[0]
             taken.add(free[0])
@@ -1111,8 +1180,6 @@ def _places(drawing: GradedDrawing, entry: Mapping[str, Any], sheet: Sheet,
     return tuple(places), in_photo((0.0, 0.0))
 
 
-#: how exactly a photo places a point (mm): the benchmark's error on generated photos
-MEASURING_MM = 0.12
 
 
 def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
@@ -1120,7 +1187,9 @@ def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
     """A point found in a photo, as graded: at the place a named mistake puts it, if it lies
     within the photo's measuring error (:data:`MEASURING_MM`) of that place and nearer to it
     than to the right one (a point a mistake moves just beyond the tolerance is never called
-    right for the photo's error); else where it was found."""
+    right for the photo's error), that place lying beyond the right one's tolerance and the
+    measuring error (a point found within the tolerance is never called wrong for it); else
+    where it was found."""
     right = entry["points_mm"].get(label)
     radius = float(entry["tolerance_mm"].get(label, 0.5))
     if right is None:
@@ -1129,7 +1198,8 @@ def _matched(entry: Mapping[str, Any], label: str, xy: tuple[float, float]
     for _, x, y in entry.get("mistake_points", {}).get(label, ()):
         off = math.dist(xy, (x, y))
         if (off <= MEASURING_MM and off < math.dist(xy, right)
-                and math.dist((x, y), right) > radius and (best is None or off < best[0])):
+                and math.dist((x, y), right) > radius + MEASURING_MM
+                and (best is None or off < best[0])):
             best = (off, (float(x), float(y)))
     return xy if best is None else best[1]
 
