@@ -872,11 +872,13 @@ def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ())
 
 def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
                      notes: Sequence[Message | str] = (), view: SteadyView | None = None,
-                     details: bool = True) -> SvgFigure:
+                     details: bool = True, formulas: bool = False) -> SvgFigure:
     """The mechanism at μl as an :class:`SvgFigure` (see the module docstring).
 
     ``notes`` are lines of text printed under the figure (a task sheet's text); a line that
-    starts with two spaces is a table row and is set in a monospaced font. ``view`` keeps the
+    starts with two spaces is a table row and is set in a monospaced font. With ``formulas``
+    the symbols in them are set as a course writes them (``l_AB`` → l with AB below, a name in
+    square brackets kept as it is). ``view`` keeps the
     zoom and the page of every frame of a turn (the fixed pivots stay where they are). With
     ``details`` (and no ``view``), points nearer each other than the readable distance are
     drawn again, enlarged, below the mechanism.
@@ -921,7 +923,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     for line in map(shown_text, notes):
         if line.strip():
             figure.text((figure.extent[0], y), line, size=TEXT_SIZE, css="task", area=False,
-                        monospace=line.startswith("  "))
+                        monospace=line.startswith("  "), formula=formulas)
         y += 17
     return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.POSITION,
                                               legend=False) if view else None)
