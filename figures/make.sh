@@ -5,7 +5,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 run() { python -m planmethod "$@"; }
-for name in fourbar_coupler_point offset_slider_crank scotch_yoke shaper_sixbar \
+for name in fourbar_coupler_point offset_slider_crank scotch_yoke screen_sixbar shaper_sixbar \
             slotted_crank_crosshead slotted_lever; do
     run solve "exercises/$name.toml" --svg "figures/$name" --png > /dev/null
 done

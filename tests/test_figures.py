@@ -419,3 +419,33 @@ def test_every_workbook_frame_passes_and_each_panel_keeps_one_page(path):
     for file, frames in panels.items():                      # every panel of the page
         found += steady_problems(frames, file)
     assert not found, "\n".join(found[:20])
+
+
+@pytest.mark.parametrize("angle", [135.0, 200.0, 250.0])
+def test_details_go_two_levels_deep_and_a_cluster_still_crowded_is_a_table(angle):
+    """The conveyor's acceleration plan at 250° nested details three deep (×294): now a
+    detail is marked on the figure or in one of its details, never deeper, and the points a
+    detail of a detail still cannot set apart are listed beside the plan with their place
+    (mm from the pole, as laid off); a tall plan has its details beside it."""
+    from planmethod.plans import draw_plans
+    from planmethod.render.canvas import Canvas, fit_zoom
+    from planmethod.render.details import DEPTH, crowded_points, detail_regions
+    from planmethod.render.style import PLAN_SIZE
+    from planmethod.render.svg import plan_svg
+
+    assert DEPTH == 2
+    plans = draw_plans(load_exercise(ROOT / "exercises" / "conveyor_sixbar.toml"), angle)
+    for plan in (plans.velocity, plans.acceleration):
+        svg = plan_svg(plan)
+        parents = dict(re.findall(r"([IVX]+): detail ×[\d.]+ \(marked in detail ([IVX]+)\)",
+                                  svg))
+        assert not set(parents.values()) & set(parents), parents      # no third level
+        figure = Canvas(fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
+        where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
+        crowded = crowded_points(detail_regions(figure, where, depth=DEPTH))
+        rows = re.findall(r'<text class="table crowded"[^>]*>([^<]*)</text>', svg)
+        for name in crowded:
+            x, y = plan.points_mm[name]
+            assert f"{x:.2f}" in rows and f"{y:.2f}" in rows, name
+        if angle == 250.0 and plan is plans.acceleration:
+            assert crowded and "points too close to read (from the pole π)" in svg

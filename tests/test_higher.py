@@ -17,7 +17,6 @@ from planmethod.kinematics import Branch, choose_branches, solve
 from planmethod.kinematics.groups import higher
 from planmethod.kinematics.program import model
 from planmethod.plans import draw_plans
-from planmethod.plans.construction import PlansUnavailableError
 from planmethod.plans.groups.triad import SPECIAL
 from planmethod.render.plan_words import step_text
 from planmethod.report import analyse, report_dict
@@ -266,7 +265,7 @@ def test_conveyor_report_from_the_cli_path():
 
 def slider_triad() -> dict:
     """The conveyor with the rocker DG replaced by a block sliding on a fixed guide: a triad
-    with a prismatic pair (solved by the group's linear system; no plans)."""
+    with a prismatic pair (solved by the group's linear system; drawn by the special point)."""
     data = conveyor()
     del data["links"]["rocker_DG"]
     del data["mass"]["rocker_DG"]
@@ -297,14 +296,15 @@ def test_triad_with_a_prismatic_pair():
     assert "linear system" in render(solution.groups.groups[0].steps[0])
     assert "block/frame" in solution.reactions
     analysis = analyse(exercise)
-    assert analysis.plans is None and analysis.forces is not None
-    assert analysis.checks and all(c.plan is None for c in analysis.checks)
-    with pytest.raises(PlansUnavailableError) as caught:   # and why, when plans are asked
-        draw_plans(exercise)
-    assert str(caught.value) == (
-        "link tray+rod+rocker_EF+block: plans are drawn for class III triads of revolute "
-        "pairs only; this triad has other pairs — its exact kinematics is reported "
-        "(planmethod solve --json)")
+    assert analysis.plans is not None and analysis.forces is not None
+    # its plans are drawn by the special point (tests/test_triad_slider.py): exact here too
+    here = motion.at(1)
+    plans = draw_plans(exercise, 135.0)
+    for point in "ABCDE":
+        assert np.allclose(plans.velocity.vector(point.lower()), here.velocity(point),
+                           atol=1e-12), point
+        assert np.allclose(plans.acceleration.vector(point.lower()), here.acceleration(point),
+                           atol=1e-11), point
 
 
 def test_a_chunk_the_straight_line_cannot_polish_is_redone_the_same(exercise, monkeypatch):

@@ -36,7 +36,8 @@ def test_standard_is_the_nearest_value_of_the_series():
 @pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.stem)
 def test_every_freely_chosen_scale_is_standard(path, capsys):
     """Without mu_* and exact_mm, every scale the report lists that was chosen from a drawn
-    length is a standard value; at the crank scale μl is, and μv = ω1·μl exactly."""
+    length is a standard value; at the crank scale μl is, and μv = ω1·μl where that is
+    round (the shipped exercises are written so)."""
     table = tomllib.loads(path.read_text(encoding="utf-8")).get("plan", {})
     assert not any(key.startswith("mu_") for key in table) and not table.get("exact_mm")
     assert main(["solve", str(path), "--json"]) == 0
@@ -47,8 +48,7 @@ def test_every_freely_chosen_scale_is_standard(path, capsys):
     omega = tomllib.loads(path.read_text(encoding="utf-8"))["drive"]["omega"]
     if crank:
         assert scales["mu_v"] == pytest.approx(abs(omega) * scales["mu_l"], rel=1e-15)
-    else:
-        assert is_standard(scales["mu_v"]) and is_standard(scales["mu_a"])
+    assert is_standard(scales["mu_v"]) and is_standard(scales["mu_a"])
     mu_f = (report.get("forces") or {}).get("scales", {}).get("mu_f")
     if mu_f is not None:
         assert is_standard(mu_f)
@@ -130,3 +130,48 @@ def test_a_scale_point_where_the_pivot_is_is_refused_by_its_key():
         choose_scales(exercise)
     assert str(caught.value) == ("slider.toml: plan.scale_point: the scale point P coincides "
                                  "with the pivot A")
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("omega", [None, 9.0, 12.0, 7.3])
+def test_every_default_scale_is_round(path, omega):
+    """Without a [plan] table (30 mm for the crank, its velocity and its acceleration) every
+    scale is round — 1, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5 or 8 × 10ᵏ — whatever ω1 is (ω1·μl of
+    the crank scale was printed as μv = 0.0135, 0.024, 0.0375)."""
+    from planmethod.plans.scales import is_round
+
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("plan", None)
+    if omega is not None:
+        data["drive"]["omega"] = omega
+    scales = choose_scales(exercise_from_dict(data))
+    for name in ("mu_l", "mu_v", "mu_a"):
+        assert is_round(getattr(scales, name)), (name, getattr(scales, name))
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "exercises" / "templates").glob("*.toml")),
+                         ids=lambda p: p.stem)
+def test_every_variants_scales_are_round(path):
+    """The scales a variant's task sheet prints (and its workbook frames draw at)."""
+    from planmethod.grading.templates import draw_variant, load_template
+    from planmethod.plans.scales import is_round
+
+    for seed in range(5):
+        exercise = draw_variant(load_template(str(path)), seed=seed).exercise
+        scales = choose_scales(exercise)
+        for name in ("mu_l", "mu_v", "mu_a"):
+            assert is_round(getattr(scales, name)), (path.stem, seed, name)
+
+
+def test_the_crank_scale_rounds_what_omega_gives():
+    """μl = 0.0015 and ω1 = 9 rad/s gave μv = 0.0135 (m/s)/mm: now the round 0.015 nearest
+    to it, μa the round value nearest ω1²·μl = 0.1215 (0.1); a round product stays."""
+    data = tomllib.loads((ROOT / "exercises" / "compressor_slider_crank.toml").read_text())
+    data.pop("plan")
+    data["links"]["AB"]["B"] = [0.045, 0]
+    data["drive"]["omega"] = 9.0
+    scales = choose_scales(exercise_from_dict(data))
+    assert (scales.mu_l, scales.mu_v, scales.mu_a) == (0.0015, 0.015, 0.1)
+    data["drive"]["omega"] = 100.0
+    scales = choose_scales(exercise_from_dict(data))
+    assert (scales.mu_l, scales.mu_v, scales.mu_a) == (0.0015, 0.15, 15.0)

@@ -468,13 +468,18 @@ def test_a_task_text_of_a_key_without_its_exercise():
 def test_the_task_sheet_shows_the_figure_without_rho_and_the_text_wrapped_but_its_rows():
     """The task figure is the position plan without its curvature construction (it would
     give ρ away); the task text under it is wrapped at 100 characters, its answer rows kept
-    whole however long."""
+    whole however long; its symbols are set with real subscripts (l_AB: l with AB below, a
+    smaller tspan), the answer columns' names in brackets as they are."""
     import xml.etree.ElementTree as ElementTree
 
     from planmethod.grading.keys import build_key
     from planmethod.grading.sheets import task_figure_svg, task_sheet_svg, task_text
     from planmethod.plans import draw_plans
+    from planmethod.render.canvas import formula_runs
     from planmethod.render.svg import position_drawing
+
+    def as_shown(line: str) -> str:     # a formula's runs, its underscores gone
+        return "".join(part for part, _ in formula_runs(line))
 
     variant = draw_variant(load_template("exercises/offset_slider_crank.toml"))
     plans = draw_plans(variant.exercise)
@@ -486,14 +491,21 @@ def test_the_task_sheet_shows_the_figure_without_rho_and_the_text_wrapped_but_it
     lines = task_text(key).splitlines()
     given = next(line for line in lines if line.startswith("Given: "))
     row = next(line for line in lines if "[dds_slider/frame]" in line)
-    assert len(given) > 100 and len(row) > 100
-    assert row in shown and given not in shown
+    assert len(given) > 100 and len(row) > 100 and "l_AB" in given
+    given, row = as_shown(given), as_shown(row)
+    assert row in shown and given not in shown and "[dds_slider/frame]" in row
     start = next(index for index, text in enumerate(shown) if text.startswith("Given: "))
     parts = []
     while len("".join(parts)) < len(given):
         parts.append(shown[start + len(parts)])
     assert "".join(parts) == given and all(len(part) <= 100 for part in parts)
     assert len(parts) == 2
+
+
+    svg = task_sheet_svg(key, plans)
+    assert "l<tspan" in svg and ">AB</tspan>" in svg and "[a_C]" in svg
+    outside = [text for text in shown if "_" in text.split("[")[0]]
+    assert outside == []
 
 
 def test_resolved_tables_written_as_toml_whole():

@@ -38,8 +38,8 @@ RANDOM_NUMBER = 2026
 PLANTED = (
     ("001", "omega_BC", "sense"),
     ("002", "v_C", "scale_none"),
-    ("003", "rho_D", "full_acceleration"),
-    ("004", "a_C", "scale_tenth"),
+    ("003", "a_C", "scale_tenth"),
+    ("004", "rho_D", "full_acceleration"),
     ("005", "v_D", "millimetres"),
     ("006", "epsilon_BC", "scale_inverted"),
 )

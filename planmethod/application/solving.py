@@ -51,12 +51,34 @@ def solve_at(exercise, angle: float | None = None, *, precision_mm: float | None
 
 def figures(analysis) -> dict[str, str]:
     """Every drawing of the analysis, as ``planmethod solve --svg`` writes it: file name →
-    SVG text (none where the plans are not drawn)."""
+    SVG text. Where the plans are not drawn (a group no construction is written for), the
+    position plan and the force polygons that need no plan (:func:`unwritten` says why the
+    others are missing)."""
     from ..render.figures import plan_files
 
-    if analysis.plans is None:
-        return {}
-    return plan_files(analysis.plans, forces=analysis.forces)
+    if analysis.plans is not None:
+        return plan_files(analysis.plans, forces=analysis.forces)
+    from ..plans import position_plan
+    from ..render.svg import position_svg
+
+    files = {"position.svg": position_svg(position_plan(analysis.exercise, analysis.angle,
+                                                        motion=analysis.motion))}
+    drawn, _ = _force_figures(analysis)
+    return {**files, **drawn}
+
+
+def _force_figures(analysis) -> tuple[dict[str, str], Message | None]:
+    """The force drawings of an analysis whose plans are not drawn, and why none are where
+    they cannot be drawn without the plans (None: drawn, or no forces asked)."""
+    if analysis.forces is None:
+        return {}, None
+    from ..render.force_svg import force_files
+
+    try:
+        return force_files(analysis.forces, None), None
+    except (PlanmethodError, AttributeError, TypeError):  # a drawing that needs the plans
+        return {}, message("the force drawings are not written: they are drawn on the "
+                           "velocity and acceleration plans, which are not drawn")
 
 
 def pngs(drawings: Mapping[str, str]) -> dict[str, bytes]:
@@ -76,14 +98,32 @@ def pngs(drawings: Mapping[str, str]) -> dict[str, bytes]:
         bytestring=text.encode("utf-8"), output_width=1200) for name, text in drawings.items()}
 
 
-def unwritten(analysis) -> Message | str | None:
-    """Why a drawing of the forces was left out (the combined force of a link whose plan is
-    not drawn), or None."""
-    if analysis.forces is None:
-        return None
-    from ..render.force_svg import combined_omitted
+def unwritten(analysis) -> list[Message | str]:
+    """Why drawings of ``planmethod solve --svg`` are left out, one line each: the plans of a
+    group no construction is written for (with the reason), the force drawings that need
+    them, the combined force where no gravity acts."""
+    notes: list[Message | str] = []
+    if analysis.plans is None:
+        from ..plans import draw_plans
+        from ..plans.groups.base import PlansUnavailableError
 
-    return combined_omitted(analysis.forces, analysis.plans) or None
+        try:
+            draw_plans(analysis.exercise, analysis.angle, motion=analysis.motion,
+                       position=False)
+        except PlansUnavailableError as error:
+            notes.append(message("only the position plan is drawn: the velocity, acceleration "
+                                 "and lever plans of link {link} are not — {reason}",
+                                 link=error.link, reason=error.message))
+        _, why = _force_figures(analysis)
+        if why is not None:
+            notes.append(why)
+    if analysis.forces is not None:
+        from ..render.force_svg import combined_omitted
+
+        omitted = combined_omitted(analysis.forces, analysis.plans)
+        if omitted:
+            notes.append(omitted)
+    return notes
 
 
 def report_text(analysis) -> str:

@@ -65,7 +65,6 @@ def run(args: argparse.Namespace) -> int:
         return 0
     say(report_text(analysis))
     wrote(written)
-    why = unwritten(analysis) if args.svg else None
-    if why:
+    for why in unwritten(analysis) if args.svg else ():
         say(why)
     return 0

@@ -175,7 +175,8 @@ def _words(name: str) -> str:
 def task_figure_svg(plans, notes: list[str] | None = None) -> str:
     """The task's figure: the mechanism at its position as the task sheet draws it (the
     position plan without its curvature construction, which would show ρ), with ``notes``
-    under it.
+    under it, their symbols subscripted as a course prints them (l_AB with AB below; the
+    answer columns' names in brackets as they are).
 
     ``plans`` are the variant's :class:`~planmethod.plans.Plans` (only the position plan is
     drawn).
@@ -192,7 +193,7 @@ def task_figure_svg(plans, notes: list[str] | None = None) -> str:
 def _task_figure(plans, notes: list[str]):
     """The task's figure as an :class:`~planmethod.render.canvas.SvgFigure` (its size known)."""
     position = replace(plans.position, curvature={})
-    return position_drawing(position, notes=notes)
+    return position_drawing(position, notes=notes, formulas=True)
 
 
 def task_sheet_svg(key: Mapping[str, Any], plans) -> str:

@@ -94,6 +94,7 @@ __all__ = [
     "Segment",
     "draw_plans",
     "image_label",
+    "position_plan",
 ]
 
 #: A drawing sheet is never larger than this (mm): lines that would meet further away than
@@ -480,6 +481,15 @@ class _Emulator:
     def omega(self, link: str) -> float:
         """A link's ω as read off the velocity plan (its images fixed)."""
         return self.vimages[link].omega
+
+    def epsilon(self, link: str) -> float:
+        """A link's ε as read off the acceleration plan (its images fixed)."""
+        return self.aimages[link].epsilon
+
+    def slid(self, key: str, segments: dict[str, object]) -> None:
+        """The plan labels of the segments a group drew for the prismatic pair ``key``'s
+        relative motion (``v``: base, moving; ``a``: base, k, moving; ``reverse``)."""
+        self.sliding_sides.setdefault(key, {}).update(segments)
 
     def fix_velocity(self, link: str, ref: np.ndarray, label: str, omega: float) -> None:
         """The link's velocity image is known (its point ``ref`` at ``label``, its ω read off):
@@ -905,9 +915,9 @@ def _sliding_readings(emulator: _Emulator, key: str, acceleration: bool) -> None
     """Read a prismatic pair's travel s off the position plan, and its sliding velocity,
     Coriolis and relative acceleration off the segments its group drew.
 
-    Every prismatic pair a plan is drawn for is a side of a dyad (a higher group with one is
-    not drawn: :class:`PlansUnavailableError`), so its group has drawn its relative motion; a
-    pair no group drew is an internal error, never a reading made up here.
+    Every prismatic pair a plan is drawn for is a side of a dyad or of a triad (a higher group
+    of another shape is not drawn: :class:`PlansUnavailableError`), so its group has drawn its
+    relative motion; a pair no group drew is an internal error, never a reading made up here.
     """
     mechanism = emulator.mechanism
     slide = mechanism.slide(key)
@@ -1001,6 +1011,23 @@ def draw_plans(exercise: Exercise, angle: float | None = None, *,
                          turn=turn, mirror=mirror)
     position_plan = _position_plan(exercise, motion, scales, angle) if position else None
     return _drawn(emulator, exercise, position_plan, acceleration)
+
+
+def position_plan(exercise: Exercise, angle: float | None = None, *,
+                  motion: Motion | None = None) -> PositionPlan:
+    """The position plan alone — the mechanism at μl — where the velocity and acceleration
+    plans are not drawn (:class:`PlansUnavailableError`): its points, links and guides, at
+    the scale :func:`draw_plans` would take.
+
+    >>> from planmethod.spec import load_exercise
+    >>> plan = position_plan(load_exercise("exercises/compressor_slider_crank.toml"))
+    >>> plan.mu_l, [round(x, 3) for x in plan.points_mm["B"]]
+    (0.002, [21.213, 21.213])
+    """
+    angle = float(exercise.mechanism.drive.angle if angle is None else angle)
+    if motion is None:
+        motion = solve(exercise.mechanism, angle, stage="position")
+    return _position_plan(exercise, motion, choose_scales(exercise, exercise.plan), angle)
 
 
 def _drawn(emulator: _Emulator, exercise: Exercise, position_plan: PositionPlan | None,

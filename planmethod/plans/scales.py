@@ -2,12 +2,15 @@
 
 Each scale is set by the drawn length of the drive link's scale point B, or given directly. A
 scale set by a length is the value of the standard series (mantissa 1, 1.5, 2, 2.5, 4, 5,
-7.5 × 10ᵏ, :func:`standard`) nearest to what the length asks — μl ≈ l_AB/(AB), μv ≈ v_B/(pb),
-μa ≈ a_B/(πb) — and the drawn length then follows from the scale, as course guides ask. At the
-crank scale (all three lengths equal: the textbook's (pb) = (πb) = (AB)) μl is standard and
-μv = ω1·μl, μa = ω1²·μl follow from it exactly; with ε1 ≠ 0 the crank pin's acceleration is
-longer than ω1²·l_AB, and μa is the standard value nearest a_B/(πb) (the crank's acceleration
-then drawn at its true length at that scale). ``exact_mm = true`` in ``[plan]`` keeps
+7.5 × 10ᵏ, :func:`standard`: the round scales the shipped exercises and course guides use, of
+the round series 1, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5, 8 × 10ᵏ) nearest to what the length asks —
+μl ≈ l_AB/(AB), μv ≈ v_B/(pb), μa ≈ a_B/(πb) — and the drawn length then follows from the
+scale, as course guides ask. At the crank scale (all three lengths equal: the textbook's
+(pb) = (πb) = (AB), and the default without a ``[plan]`` table) μl is standard and μv, μa are
+the standard values nearest ω1·μl and ω1²·μl (exactly those where they are round already);
+with ε1 ≠ 0 the crank pin's acceleration is longer than ω1²·l_AB, and μa is the standard value
+nearest a_B/(πb) (the crank's acceleration then drawn at its true length at that scale). A
+scale a student reads off a sheet is never 0.0135 (m/s)/mm. ``exact_mm = true`` in ``[plan]`` keeps
 the lengths exactly as written (the scales then follow from them unrounded); a ``mu_*`` given is
 used as it is. The analogue scales are μφv = μv/ω1 and μφa = μa/ω1², as in
 U. A. Abduvaliev and J. U. Abduxoshimov, "Kinematic study of a four-link mechanism for the
@@ -33,10 +36,14 @@ from ..model import Exercise, Mechanism, PlanSettings
 from ..numbering import course_numbers
 from ..words import message
 
-__all__ = ["STANDARD_MANTISSAS", "Scales", "choose_scales", "scale_point", "standard"]
+__all__ = ["ROUND_MANTISSAS", "STANDARD_MANTISSAS", "Scales", "choose_scales", "is_round",
+           "scale_point", "standard"]
 
-#: the mantissas of the standard series of drawing scales (× 10ᵏ)
+#: the mantissas of the standard series of drawing scales (× 10ᵏ): the round values the
+#: shipped exercises and the course guides use
 STANDARD_MANTISSAS = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0, 7.5)
+#: the mantissas of every round scale (× 10ᵏ): a scale given directly may be any of them
+ROUND_MANTISSAS = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 7.5, 8.0)
 
 
 def standard(value: float) -> float:
@@ -47,6 +54,8 @@ def standard(value: float) -> float:
     --------
     >>> standard(0.00942478), standard(0.0592176), standard(0.00333333), standard(0.002)
     (0.01, 0.05, 0.004, 0.002)
+    >>> standard(0.0135), standard(0.024), standard(0.0375)
+    (0.015, 0.025, 0.04)
     """
     if not (math.isfinite(value) and value > 0):
         return value
@@ -59,6 +68,20 @@ def standard(value: float) -> float:
             if gap < distance - 1e-12:
                 best, distance = candidate, gap
     return best
+
+
+def is_round(value: float) -> bool:
+    """Whether ``value`` is a round scale: 1, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5 or 8 × 10ᵏ.
+
+    >>> is_round(0.015), is_round(0.0135), is_round(6e-5), is_round(0.0)
+    (True, False, True, False)
+    """
+    if not (math.isfinite(value) and value > 0):
+        return False
+    exponent = math.floor(math.log10(value))
+    return any(abs(value - float(f"{mantissa}e{power}")) <= 1e-12 * value
+               for power in (exponent - 1, exponent, exponent + 1)
+               for mantissa in ROUND_MANTISSAS)
 
 
 @dataclass(frozen=True, slots=True)
@@ -151,10 +174,11 @@ def choose_scales(exercise: Exercise, settings: PlanSettings | None = None) -> S
                    and settings.crank_mm == settings.velocity_mm == settings.acceleration_mm)
     mu_v = pick(settings.mu_v, settings.velocity_mm, v_b, "mu_v")
     mu_a = pick(settings.mu_a, settings.acceleration_mm, a_b, "mu_a")
-    if crank_scale:   # (pb) = (πb) = (AB): μv and μa follow from the standard μl exactly
-        mu_v = abs(drive.omega) * mu_l
-        # with ε1 ≠ 0 that μa would be no value a student picks: the standard one instead
-        mu_a = drive.omega ** 2 * mu_l if drive.epsilon == 0 else standard(mu_a)
+    if crank_scale:   # (pb) = (πb) = (AB): μv and μa follow from the standard μl, rounded
+        mu_v = standard(abs(drive.omega) * mu_l)
+        # with ε1 ≠ 0 the crank pin's acceleration is longer than ω1²·l: the standard value
+        # nearest a_B/(πb) instead
+        mu_a = standard(drive.omega ** 2 * mu_l if drive.epsilon == 0 else mu_a)
     else:
         mu_v, mu_a = rounded(settings.mu_v, mu_v), rounded(settings.mu_a, mu_a)
     crank = course_numbers(mechanism)[drive.link]

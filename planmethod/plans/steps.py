@@ -10,10 +10,11 @@ plan labels (``b``, ``b@lever``, ``n_CB``), link names, the vector drawn (:class
 lengths in mm and values in SI. A step that lays off a vector, draws a line or finds a point
 also says why, as a value: what the known vector is (:class:`CrankVelocity`,
 :class:`NormalComponent`, :class:`CoriolisComponent`, …), what gives the line its direction
-(:class:`Across`, :class:`Guide`, :class:`SpecialSide`), which equation the point found solves
-(:class:`VelocityEquation`, :class:`BothEquations`, …). A step holds no sentence: the render
-layer writes each from its message template (:mod:`planmethod.render.plan_words`), and a step's
-JSON (:meth:`Step.as_dict`, without its sentence) keeps the report's names.
+(:class:`Across`, :class:`Guide`, :class:`SpecialSide`, :class:`SpecialGuide`), which equation
+the point found solves (:class:`VelocityEquation`, :class:`BothEquations`, …). A step holds no
+sentence: the render layer writes each from its message template
+(:mod:`planmethod.render.plan_words`), and a step's JSON (:meth:`Step.as_dict`, without its
+sentence) keeps the report's names.
 
 How the emulator keeps what it draws is a strategy it is given: :class:`KeepSteps` keeps every
 step, :class:`DropSteps` keeps none (a tolerance analysis wants only the points and readings);
@@ -65,6 +66,7 @@ __all__ = [
     "ReadRadius",
     "Similarity",
     "SpecialAcceleration",
+    "SpecialGuide",
     "SpecialPoint",
     "SpecialSide",
     "Step",
@@ -186,6 +188,16 @@ class SpecialSide(NamedTuple):
     inner: str
 
 
+class SpecialGuide(NamedTuple):
+    """A line through Assur's special point's side along the guide of the prismatic pair of
+    ``link`` on ``along`` (S* lies on the normal to the guide through the pin ``pin``; on the
+    acceleration plan the relative and the tangential components, both along the guide)."""
+
+    link: str
+    along: str
+    pin: str
+
+
 class VelocityEquation(NamedTuple):
     """The point ``point`` found from v_X = v_base + v_X,base for each of ``bases``."""
 
@@ -224,7 +236,7 @@ class BothSides(NamedTuple):
 Known = (CrankVelocity | CrankNormal | CrankTangential | NormalComponent | NormalOfSegment
          | CoriolisComponent | FixedPivot | FrameImage)
 #: what gives a construction line its direction
-Direction = Across | Guide | SpecialSide
+Direction = Across | Guide | SpecialSide | SpecialGuide
 #: what an intersection solves
 Solves = VelocityEquation | BothEquations | SpecialPoint | SpecialAcceleration | BothSides
 

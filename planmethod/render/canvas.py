@@ -461,16 +461,7 @@ class Canvas:
         if monospace:
             attrs["xml:space"] = "preserve"
         if len(runs) > 1:
-            children: list = [runs[0][0]] if not runs[0][1] else []
-            shift = 0.0
-            for part, small in runs[1 if children else 0:]:
-                target = SUB_SHIFT * size if small else 0.0
-                span: dict[str, str] = {"dy": num(target - shift)} if target != shift else {}
-                if small:
-                    span["font-size"] = num(size * SUB_SCALE)
-                shift = target
-                children.append(("tspan", span, [part]))
-            self.add(layer, "text", attrs, children)
+            self.add(layer, "text", attrs, _formula_spans(runs, size, monospace))
         else:
             self.add(layer, "text", attrs, [text])
         left = xy[0] - (width if anchor == "end" else width / 2 if anchor == "middle" else 0)
@@ -725,8 +716,9 @@ def _write(item, out: list[str]) -> None:
 
 #: subscript digits inside a subscript are set as plain digits (the run is set small)
 _PLAIN_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
-#: a subscript in a formula: what follows an underscore up to a space, a sign or a bracket
-_SUBSCRIPT_RUN = re.compile(r"_([^\s=+−·×,;:()/]+)")
+#: a subscript in a formula: what follows an underscore up to a space, a sign or a bracket; a
+#: name in square brackets (an answer column, ``[v_C]``) is kept as it is
+_SUBSCRIPT_RUN = re.compile(r"\[[^\]]*\]|_([^\s=+−·×,;:()/|\[\]]+)")
 
 
 def formula_runs(text: str) -> list[tuple[str, bool]]:
@@ -734,10 +726,14 @@ def formula_runs(text: str) -> list[tuple[str, bool]]:
 
     >>> formula_runs("a_B₃ = a_B + aᵏ_B₃")
     [('a', False), ('B3', True), (' = a', False), ('B', True), (' + aᵏ', False), ('B3', True)]
+    >>> formula_runs("|v_C|   [v_C]")
+    [('|v', False), ('C', True), ('|   [v_C]', False)]
     """
     runs: list[tuple[str, bool]] = []
     at = 0
     for match in _SUBSCRIPT_RUN.finditer(text):
+        if match.group(1) is None:       # a bracketed name: part of the plain run
+            continue
         if match.start() > at:
             runs.append((text[at:match.start()], False))
         runs.append((match.group(1).translate(_PLAIN_DIGITS), True))   # already set small
@@ -745,6 +741,33 @@ def formula_runs(text: str) -> list[tuple[str, bool]]:
     if at < len(text):
         runs.append((text[at:], False))
     return runs
+
+
+def _formula_spans(runs: Sequence[tuple[str, bool]], size: float, monospace: bool) -> list:
+    """The children of a formula's ``<text>``: its first plain run, then a ``<tspan>`` a run,
+    a subscript lowered and set small. In a monospaced line (a table row aligned by its
+    spaces) what a subscript's smaller letters and its underscore leave of their characters'
+    cells is made up where the line next has a gap of spaces, so that its columns stay
+    aligned and the symbol stays whole (v_C, m/s)."""
+    children: list = [runs[0][0]] if not runs[0][1] else []
+    shift = owed = 0.0
+    for part, small in runs[1 if children else 0:]:
+        target = SUB_SHIFT * size if small else 0.0
+        span: dict[str, str] = {"dy": num(target - shift)} if target != shift else {}
+        shift = target
+        if small:
+            span["font-size"] = num(size * SUB_SCALE)
+            owed += 0.6 * size * ((1.0 - SUB_SCALE) * len(part) + 1) if monospace else 0.0
+        gap = part.find("  ") if owed and not small else -1
+        if gap < 0:
+            children.append(("tspan", span, [part]))
+            continue
+        if gap:
+            children.append(("tspan", span, [part[:gap]]))
+            span = {}
+        children.append(("tspan", {**span, "dx": num(owed)}, [part[gap:]]))
+        owed = 0.0
+    return children
 
 
 def _label_attrs(label: PlacedLabel, color: str) -> dict[str, str]:

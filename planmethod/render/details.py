@@ -6,13 +6,15 @@ round them is framed and numbered on the figure (I, II, …) and drawn again bel
 by a whole factor, clipped to the region, with the labels of the points inside it kept whole.
 The enlargement is the largest that keeps the detail within :data:`DETAIL_SIZE`; where the
 closest pair of the region is still nearer than the readable distance at it, the region round
-them is marked inside the detail and drawn again, larger still (a detail of a detail), down to
-:data:`RESOLUTION` of the figure: points nearer than that are one spot of the drawing (their
-labels are joined by ≈). Any figure can have details: it hands over the points to watch and a
-function that draws its content on a canvas of any zoom (a plan, the lever with its forces,
-the loaded mechanism, a force polygon), and the detail is that same drawing at a larger zoom —
-never a picture of a picture. A label that names a vector (a force) is anchored, in a detail,
-on the part of the vector the detail shows.
+them is marked inside the detail and drawn again, larger still (a detail of a detail: two
+levels at most, :data:`DEPTH`), down to :data:`RESOLUTION` of the figure: points nearer than
+that are one spot of the drawing (their labels are joined by ≈). Where a detail of a detail
+still crowds points, they are its ``crowded`` points: the figure lists them in a table of their
+coordinates (:func:`crowded_points`) rather than nesting a third detail. Any figure can have
+details: it hands over the points to watch and a function that draws its content on a canvas of
+any zoom (a plan, the lever with its forces, the loaded mechanism, a force polygon), and the
+detail is that same drawing at a larger zoom — never a picture of a picture. A label that names
+a vector (a force) is anchored, in a detail, on the part of the vector the detail shows.
 
 Examples
 --------
@@ -36,8 +38,8 @@ from .canvas import Canvas, Point, page_point, shown_text
 from .labels import RunKind, drawn_length
 from .style import INK, READABLE_PX, TEXT_SIZE
 
-__all__ = ["DENSE_PX", "DETAIL_SIZE", "DETAIL_ZOOM", "RESOLUTION", "Detail", "dense_regions",
-           "detail_insets", "detail_regions", "one_spot"]
+__all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "NESTED", "RESOLUTION", "Detail",
+           "crowded_points", "dense_regions", "detail_insets", "detail_regions", "one_spot"]
 
 #: distinct points nearer than this (px) to a neighbour crowd each other: two or more such make
 #: a region that gets an enlarged detail (the readable distance)
@@ -45,8 +47,12 @@ DENSE_PX = READABLE_PX
 #: the longest side of a detail inset (px), and the least and most enlargement of one step
 DETAIL_SIZE = 300.0
 DETAIL_ZOOM = (2.5, 12.0)
-#: details of details go this deep at most
-DEPTH = 3
+#: details of details go this deep at most in a plan (a figure, its detail, a detail of that;
+#: the plan lists the points still crowded): :func:`detail_regions`'s ``depth``
+DEPTH = 2
+#: how deep a figure that lists no crowded points nests its details (the force figures, the
+#: lever and the position plan, for now)
+NESTED = 3
 #: points of a figure nearer each other than this fraction of its extent are one spot of the
 #: drawing: no detail two steps deep (×144) would set them the readable distance apart
 RESOLUTION = 1.0 / 2000.0
@@ -60,12 +66,25 @@ MOST = len(ROMAN)
 @dataclass(frozen=True)
 class Detail:
     """An enlarged detail: its numeral, its region (x0, y0, x1, y1) in the figure's px, its
-    enlargement of the figure, and the detail it is marked in (None: the figure)."""
+    enlargement of the figure, the detail it is marked in (None: the figure), and the points
+    still too close to read in it where no deeper detail is drawn (``crowded``)."""
 
     letter: str
     box: tuple[float, float, float, float]
     zoom: float
     parent: str | None = None
+    crowded: tuple[str, ...] = ()
+
+
+def crowded_points(regions: list[Detail]) -> list[str]:
+    """The points no detail sets apart (each once, in the details' order): a figure lists
+    them with their coordinates.
+
+    >>> crowded_points([Detail("I", (0, 0, 9, 9), 4.0), Detail("II", (1, 1, 2, 2), 40.0,
+    ...                 "I", ("b", "c"))])
+    ['b', 'c']
+    """
+    return list(dict.fromkeys(name for region in regions for name in region.crowded))
 
 
 def one_spot(where: Mapping[str, Point]) -> float:
@@ -112,8 +131,8 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: i
              max(p[0] for p in points), max(p[1] for p in points)) for points in found]
 
 
-def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = True
-                   ) -> list[Detail]:
+def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = True,
+                   depth: int = NESTED) -> list[Detail]:
     """The figure's dense regions worth an enlarged detail, and the regions of those details
     still too dense at their enlargement (details of details), in the order they are drawn;
     each region of the figure is marked on it with a frame and its numeral (placed with the
@@ -122,7 +141,8 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
     where they find a clean spot. A figure drawn without details (not ``draw``: a frame of a
     workbook page, the studio) gets no region; the labels of its crowded points that find no
     clean spot go on leaders, after the others (``crowded``, see
-    :func:`planmethod.render.labels.place_labels`)."""
+    :func:`planmethod.render.labels.place_labels`). Details nest ``depth`` levels at most; the
+    points the deepest still crowds are its ``crowded`` ones (:func:`crowded_points`)."""
     same = one_spot(where)
     if not draw:
         for box in _regions(where, 1.0, same):
@@ -134,12 +154,19 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
     queue: list[tuple[tuple[float, float, float, float], float, str | None, int]] = [
         (box, 1.0, None, 1) for box in _regions(where, 1.0, same)]
     while queue and len(out) < MOST:
-        box, base, parent, depth = queue.pop(0)
+        box, base, parent, level = queue.pop(0)
         step = math.floor(min(DETAIL_SIZE / (max(box[2] - box[0], box[3] - box[1]) * base),
                               DETAIL_ZOOM[1]))
         if step < DETAIL_ZOOM[0]:
             continue
+        inside = {name: xy for name, xy in where.items()
+                  if box[0] <= xy[0] <= box[2] and box[1] <= xy[1] <= box[3]}
         detail = Detail(ROMAN[len(out)], box, base * step, parent)
+        inner = _regions(inside, detail.zoom, same)
+        if level >= depth and inner:     # no deeper level: its crowded points are listed
+            detail = replace(detail, crowded=tuple(
+                name for name, xy in inside.items()
+                if any(x0 <= xy[0] <= x1 and y0 <= xy[1] <= y1 for x0, y0, x1, y1 in inner)))
         out.append(detail)
         if parent is None:
             _mark(figure, detail, 1.0)
@@ -147,11 +174,8 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
             # clean spot (the detail names it anyway)
             figure.requests = [replace(request, optional=True) if _within(request, box)
                                else request for request in figure.requests]
-        if depth < DEPTH:
-            inside = {name: xy for name, xy in where.items()
-                      if box[0] <= xy[0] <= box[2] and box[1] <= xy[1] <= box[3]}
-            queue += [(inner, detail.zoom, detail.letter, depth + 1)
-                      for inner in _regions(inside, detail.zoom, same)]
+        if level < depth:
+            queue += [(region, detail.zoom, detail.letter, level + 1) for region in inner]
     return out
 
 
@@ -249,17 +273,23 @@ def _anchored(request, box):
 
 
 def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[Detail],
-                  ident: str) -> list[str]:
+                  ident: str, *, beside: bool = False) -> list[str]:
     """Each marked region drawn again, enlarged, below the figure (in rows as wide as the
-    figure): ``draw`` draws the figure's content on a canvas of the detail's zoom, clipped to
-    the region, the regions of the details within it marked, the labels of the points inside
-    it placed inside it where they can and kept whole (a force's label on the part of its
-    arrow the detail shows; the frame widened to hold a label that reaches past the region).
+    figure) — or, ``beside`` it where it is taller than wide, in rows two details wide (the
+    page's room beside a tall plan): ``draw`` draws the figure's content on a canvas of the
+    detail's zoom, clipped to the region, the regions of the details within it marked, the
+    labels of the points inside it placed inside it where they can and kept whole (a
+    force's label on the part of its arrow the detail shows; the frame widened to hold a
+    label that reaches past the region).
     Returns the lines that say so."""
     lines = []
-    left = x = figure.extent[0]
-    row_width = max(figure.extent[2] - figure.extent[0], 2 * DETAIL_SIZE + 40.0)
-    top = figure.extent[3] + 30.0
+    x0, y0, x1, y1 = figure.extent
+    if beside and y1 - y0 > x1 - x0:      # a tall figure: its details beside it
+        left = x = x1 + 40.0
+        row_width, top = 2 * DETAIL_SIZE + 40.0, y0
+    else:                      # a wide one: in rows below it, as wide as it
+        left = x = x0
+        row_width, top = max(x1 - x0, 2 * DETAIL_SIZE + 40.0), y1 + 30.0
     row_bottom = top
     for region in regions:
         detail, view, inside = _detail(draw, regions, region, figure.zoom)

@@ -52,6 +52,7 @@ from ..plans.steps import (
     ReadRadius,
     Similarity,
     SpecialAcceleration,
+    SpecialGuide,
     SpecialPoint,
     SpecialSide,
     Step,
@@ -235,6 +236,17 @@ def _special_side(along: SpecialSide, at: _Fields) -> Message:
                    start=at.start, outer=outer, inner=inner)
 
 
+def _special_guide(along: SpecialGuide, at: _Fields) -> Message:
+    first, second = _number(along.link, at.numbers), _number(along.along, at.numbers)
+    if at.kind == PlanKind.VELOCITY:
+        return message("through {start}: {vector} along the guide of pair {first}–{second} "
+                       "(S* lies on the normal to the guide through {pin})", start=at.start,
+                       vector=at.vector, first=first, second=second, pin=at.point(along.pin))
+    return message("through {start}: aʳ + aᵗ_S*{pin} along the guide of pair "
+                   "{first}–{second}", start=at.start, pin=at.point(along.pin), first=first,
+                   second=second)
+
+
 def _velocity_equation(solves: VelocityEquation, at: _Fields) -> Message:
     point, numbers = solves.point, at.numbers
     sides = [f"v_{_point(base, numbers)} + {vector_text(VectorName('v', point, base), numbers)}"
@@ -271,7 +283,7 @@ REASON_MESSAGES: dict[type, Callable[[Any, _Fields], Message]] = {
     CrankTangential: _crank_tangential, NormalComponent: _normal_component,
     NormalOfSegment: _normal_of_segment, CoriolisComponent: _coriolis,
     FixedPivot: _fixed_pivot, FrameImage: _frame_image,
-    Across: _across, Guide: _guide, SpecialSide: _special_side,
+    Across: _across, Guide: _guide, SpecialSide: _special_side, SpecialGuide: _special_guide,
     VelocityEquation: _velocity_equation, BothEquations: _both_equations,
     SpecialPoint: _special_point, SpecialAcceleration: _special_acceleration,
     BothSides: _both_sides,

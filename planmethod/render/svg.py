@@ -67,7 +67,7 @@ from ..vocabulary import (
     point_text,
     scale_text,
 )
-from ..words import Message, message
+from ..words import Message, message, number_text
 from .canvas import (
     MARGIN,
     Canvas,
@@ -80,9 +80,9 @@ from .canvas import (
     scale_bar,
     shown_text,
 )
-from .details import detail_insets, detail_regions, one_spot
+from .details import DEPTH, crowded_points, detail_insets, detail_regions, one_spot
 from .labels import RunKind, label_runs, merge_runs
-from .plan_words import flag_message, plan_title, scale_lines, vector_text
+from .plan_words import flag_message, label_text, plan_title, scale_lines, vector_text
 from .steady import SteadyView
 from .style import (
     FAINT,
@@ -518,9 +518,11 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
 
     content(figure)
     where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    regions = detail_regions(figure, where, draw=details and not view)
+    regions = detail_regions(figure, where, draw=details and not view, depth=DEPTH)
     figure.place(bounds=view.box if view else None)      # a steady page holds them
-    details = detail_insets(figure, content, regions, f"detail-{plan.kind}")
+    drawn = tuple(figure.extent)                         # the plan, before its details
+    details = detail_insets(figure, content, regions, f"detail-{plan.kind}", beside=True)
+    _crowded_table(figure, plan, crowded_points(regions), drawn)
     scale = PLAN_SCALES[plan.kind]
     lines: list[Message | str] = [scale_text(scale, plan.scale)]   # words: vocabulary
     if plan.precision_mm:
@@ -534,6 +536,27 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
           box=view.box if view else None, equations=equations)
     return figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
                                               equations=equations) if view else None)
+
+
+def _crowded_table(figure: Canvas, plan: Plan, names: Sequence[str],
+                   drawn: tuple[float, float, float, float]) -> None:
+    """A table of the points the plan's details cannot set apart (name, x and y in mm from
+    the pole, as a student lays them off), rather than a third level of detail: under a tall
+    plan (its details are beside it), beside a wide one (its details are under it);
+    ``drawn`` is the plan's extent without its details."""
+    if not names:
+        return
+    x0, y0, x1, y1 = drawn
+    at = (x0, y1 + 40.0) if y1 - y0 > x1 - x0 else (x1 + 34, y0 + 4)
+    rows = [[label_text(name, plan.numbers),
+             number_text(plan.points_mm[name][0], ".2f"),
+             number_text(plan.points_mm[name][1], ".2f")] for name in names]
+    figure.table(at, rows,
+                 header=[message("point", context="column"), message("x, mm", context="column"),
+                         message("y, mm", context="column")], right=[False, True, True],
+                 css="table crowded",
+                 title=message("points too close to read (from the pole {pole})",
+                               pole=plan.pole))
 
 
 def plan_svg(plan: Plan, *, details: bool = True, view: SteadyView | None = None) -> str:
@@ -872,11 +895,13 @@ def position_zoom(position: PositionPlan, extra: Sequence[Sequence[float]] = ())
 
 def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
                      notes: Sequence[Message | str] = (), view: SteadyView | None = None,
-                     details: bool = True) -> SvgFigure:
+                     details: bool = True, formulas: bool = False) -> SvgFigure:
     """The mechanism at μl as an :class:`SvgFigure` (see the module docstring).
 
     ``notes`` are lines of text printed under the figure (a task sheet's text); a line that
-    starts with two spaces is a table row and is set in a monospaced font. ``view`` keeps the
+    starts with two spaces is a table row and is set in a monospaced font. With ``formulas``
+    the symbols in them are set as a course writes them (``l_AB`` → l with AB below, a name in
+    square brackets kept as it is). ``view`` keeps the
     zoom and the page of every frame of a turn (the fixed pivots stay where they are). With
     ``details`` (and no ``view``), points nearer each other than the readable distance are
     drawn again, enlarged, below the mechanism.
@@ -921,7 +946,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     for line in map(shown_text, notes):
         if line.strip():
             figure.text((figure.extent[0], y), line, size=TEXT_SIZE, css="task", area=False,
-                        monospace=line.startswith("  "))
+                        monospace=line.startswith("  "), formula=formulas)
         y += 17
     return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.POSITION,
                                               legend=False) if view else None)

@@ -105,6 +105,16 @@ class PlanDrawer(Protocol):
         """A link's ω as read off the velocity plan (its images fixed)."""
         ...
 
+    def epsilon(self, link: str) -> float:
+        """A link's ε as read off the acceleration plan (its images fixed)."""
+        ...
+
+    def slid(self, key: str, segments: dict[str, object]) -> None:
+        """The plan labels of the segments drawn for the prismatic pair ``key``'s relative
+        motion: ``v`` (base, moving), ``a`` (base, k, moving) and ``reverse`` (the carrier is
+        the pair's ``link``), for the pair's readings."""
+        ...
+
     def radius_mm(self, centre: np.ndarray, point: np.ndarray) -> Reading:
         """A radius read off the position plan (mm) to divide a reading by."""
         ...
