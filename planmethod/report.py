@@ -58,12 +58,15 @@ _NEAR_TOGGLE = {
 
 @dataclass(frozen=True, slots=True)
 class Check:
-    """One asked quantity: the value read off the plan against the exact value."""
+    """One asked quantity: the value read off the plan against the exact value; ``noise`` is
+    the exact value's own error bound (round-off, and near a toggle the group's estimate): an
+    exact value within it is zero, and has no relative error (a speed at a dead centre)."""
 
     quantity: str
     plan: float | None
     analytic: float | None
     unit: str
+    noise: float = 0.0
 
     @property
     def abs_error(self) -> float | None:
@@ -73,7 +76,7 @@ class Check:
 
     @property
     def rel_error(self) -> float | None:
-        if self.abs_error is None or self.analytic == 0:
+        if self.abs_error is None or abs(self.analytic) <= self.noise:
             return None
         return self.abs_error / abs(self.analytic)
 
@@ -170,6 +173,32 @@ def exact_value(motion: MotionAt, quantity: str) -> float | None:
     return EXACT_READERS[kind](motion, name)
 
 
+#: the relative round-off of an exact value: a value below this times its kind's typical size
+#: (the mechanism's size L, ω1·L, (ω1² + |ε1|)·L; per L for a link's ω, ε) is zero
+ROUND_OFF = 64 * float(np.finfo(float).eps)
+#: the stage whose exact values a scale's quantities are
+_STAGE_OF_SCALE = {"mu_l": "position", "mu_v": "velocity", "mu_a": "acceleration"}
+
+
+def _noise(motion: Motion, quantity: str) -> float:
+    """The error bound of a quantity's exact value at the motion's first angle: its kind's
+    typical size times the round-off, or the groups' estimate near a toggle where larger."""
+    mechanism = motion.mechanism
+    kind = vocabulary.quantity(quantity).kind
+    if kind.scale not in _STAGE_OF_SCALE:
+        return 0.0
+    size = max((link.length(first, second) for link in mechanism.links.values()
+                for first in link.points for second in link.points), default=0.0) or 1.0
+    omega, epsilon = abs(mechanism.drive.omega), abs(mechanism.drive.epsilon)
+    typical = {"mu_l": size, "mu_v": omega * size, "mu_a": (omega ** 2 + epsilon) * size}
+    scale = typical[kind.scale] / (size if kind.subject == "link" else 1.0)
+    stage = _STAGE_OF_SCALE[kind.scale]
+    estimates = [float(np.max(solved.error_estimate[stage]))
+                 for solved in motion.groups.values()
+                 if solved.error_estimate and stage in solved.error_estimate]
+    return scale * max([ROUND_OFF, *estimates])
+
+
 def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: float | None = None,
             plans: bool = True) -> Analysis:
     """Solve the exercise's scene at one crank angle (default ``drive.angle``).
@@ -212,7 +241,7 @@ def analyse(exercise: Exercise, angle: float | None = None, *, precision_mm: flo
     for quantity in asked_quantities(exercise, motion):
         plan_value = drawn.readings.get(quantity) if drawn else None
         checks.append(Check(quantity, plan_value, exact_value(here, quantity),
-                            vocabulary.quantity(quantity).unit))
+                            vocabulary.quantity(quantity).unit, _noise(motion, quantity)))
     forces = None
     if scene.forces:
         from .forces import analyse_forces
@@ -412,13 +441,15 @@ def published_comparison(analysis: Analysis) -> list[PublishedValue]:
             exact = exact_value(analysis.motion.at(0), name)
         except (KeyError, ValueError, PlanmethodError):
             exact = None
-        difference = None
-        if exact is not None and exact != 0:
+        difference, slip = None, False
+        noise = _noise(analysis.motion, name) if exact is not None else 0.0
+        if exact is not None and abs(exact) > noise:
             difference = (abs(printed) - abs(exact)) / abs(exact)
+            slip = abs(difference) > SLIP_RELATIVE
+        elif exact is not None:            # zero to within its round-off: no relative error
+            slip = abs(printed) > noise
         rows.append(PublishedValue(name, float(printed), exact,
-                                   None if difference is None else 100 * difference,
-                                   bool(difference is not None
-                                        and abs(difference) > SLIP_RELATIVE)))
+                                   None if difference is None else 100 * difference, slip))
     return rows
 
 

@@ -57,7 +57,7 @@ def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
     arms = set(re.findall(r'data-points="arm:([^"]+)"', lever))
     assert arms and arms <= labelled                            # h₁, h₂ … on the arms
     rows = re.findall(r'<text class="table"[^>]*>([^<]*)', lever)
-    assert "ΣM" in rows and "+0" in rows and "force" in rows    # the sum, term by term
+    assert "ΣM" in rows and "0" in rows and "force" in rows     # the sum, term by term
 
 
 def test_every_exercise_with_forces_has_its_loaded_mechanism(drawn):

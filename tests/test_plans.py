@@ -15,6 +15,7 @@ from planmethod.errors import AssemblyError, SpecError, ToggleError
 from planmethod.kinematics import solve
 from planmethod.plans import draw_plans, image_label
 from planmethod.render.plan_words import flag_message, step_text
+from planmethod.render.report_text import check_lines
 from planmethod.report import analyse, report_dict
 from planmethod.spec import exercise_from_dict, load_exercise
 from planmethod.testing import (
@@ -96,7 +97,7 @@ def test_shipped_exercises_plan_equals_exact(name):
     _check_plan_points(analysis.plans, analysis.motion)
     assert analysis.checks
     for check in analysis.checks:
-        if check.analytic:
+        if check.rel_error is not None:
             assert check.rel_error <= 1e-9, check.quantity
         elif check.analytic is not None:
             assert check.abs_error <= 1e-12, check.quantity
@@ -116,6 +117,13 @@ def test_crank_dead_centre_is_an_ordinary_position(angle):
     assert readings["omega_BC"] == pytest.approx(-100 * 0.06 / 0.18 * math.cos(
         math.radians(angle)), rel=1e-9)
     assert not analysis.plans.flags
+    # v_C and ε_BC are zero to within their round-off: no relative error, printed "—"
+    checks = {check.quantity: check for check in analysis.checks}
+    assert checks["v_C"].rel_error is None and checks["epsilon_BC"].rel_error is None
+    assert checks["v_D"].rel_error is not None and checks["v_D"].rel_error <= 1e-9
+    assert abs(checks["v_C"].analytic) <= checks["v_C"].noise <= 1e-12
+    lines = [line.split() for line in check_lines(analysis)[2:]]
+    assert {line[0]: line[-2] for line in lines}["v_C"] == "—"
 
 
 def test_every_intersection_lies_on_both_lines():

@@ -366,9 +366,9 @@ def test_rpp_reactions_with_the_block_off_its_pin(inner, outer):
 # -- the steps the report lists -----------------------------------------------------------------
 @pytest.mark.parametrize("data, kind, steps", [
     pytest.param(_lever_offsets(), "RPR", [
-        "R_B along the guide from the block block: projection on the guide",
+        "R_B along the guide from block's projection on the guide",
         "R_B ⟂ the guide from ΣM_O2 of the group = 0",
-        "the normal force and couple of block/lever from the block block",
+        "the normal force and couple of block/lever from block",
         "R_O2 from the force polygon of lever"], id="RPR"),
     pytest.param(_guides(), "PRP", [
         "force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide",

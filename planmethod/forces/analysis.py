@@ -251,9 +251,17 @@ class ForceAnalysis:
                 "at": lever.balancing_point,
                 "difference": (None if self.zhukovsky_moment is None else
                                self.zhukovsky_moment - self.balancing_moment),
-                "forces": [{"name": f.name, "link": f.link, "image_mm": _pair(f.image_mm[0]),
-                            "force": _pair(f.force[0]), "moment_N_mm": float(f.moment[0])}
-                           for f in lever.forces]}
+                "forces": [_lever_force_dict(force) for force in lever.forces]}
+
+
+def _lever_force_dict(force) -> dict:
+    """A force on the lever; a couple's moment term M·ω/μv (a link with one point) with the
+    ``omega`` (rad/s) its moment was multiplied by."""
+    entry = {"name": force.name, "link": force.link, "image_mm": _pair(force.image_mm[0]),
+             "force": _pair(force.force[0]), "moment_N_mm": float(force.moment[0])}
+    if force.term:
+        entry["omega"] = float(force.omega[0])
+    return entry
 
 
 def _reaction_dict(reaction) -> dict:

@@ -5,9 +5,11 @@ pivoted at the pole; every force carried to the image of its point (forces uncha
 and direction) and the balancing force at the crank pin hold it in equilibrium. The moment of F
 about the pole on the turned plan is cross(r, F) with r the turned image, equal to F·v/μv, so
 the lever is the power balance drawn. A couple M on a link is carried as a pair of forces
-±M/|PQ| ⟂ PQ at two points of the link. With plans, the images are those of the *drawn*
-velocity plan (read to its drafting precision), so the lever shows how far a graphical answer
-is; without plans the exact velocities are used.
+±M/|PQ| ⟂ PQ at two points of the link; on a link with one point (a sliding block, a slider)
+it is a moment term of its own, M·ω/μv (its power over μv, as the power balance gives it),
+set at the image of that point (``omega``: the ω it was multiplied by). With plans, the
+images are those of the *drawn* velocity plan (read to its drafting precision), so the lever
+shows how far a graphical answer is; without plans the exact velocities are used.
 
 **Power balance.** ΣF·v + ΣM·ω + M_b·ω1 = 0 over all known forces and moments (weights,
 inertia, loads, friction): it gives M_b = −ΣP/ω1 by itself, and with the group method's M_b the
@@ -63,6 +65,12 @@ class LeverForce:
     force: np.ndarray
     moment: np.ndarray
     point: str | None = None
+    omega: np.ndarray | None = None
+
+    @property
+    def term(self) -> bool:
+        """Whether it is a couple's moment term M·ω/μv (a link with one point), no force."""
+        return self.omega is not None
 
     @property
     def name(self) -> str:
@@ -156,9 +164,12 @@ def zhukovsky_lever(mechanism: Mechanism, states: Mapping[str, LinkState],
             carry(item, second, pair, points[1])
             carry(item, first, -pair, points[0])
         else:  # a one-point link: the couple's lever moment is M·ω/μv
-            moment = item.moment * velocities.omega(item.link) / mu_v
-            forces.append(LeverForce(item.name, item.link, np.zeros_like(state.origin),
-                                     np.zeros_like(state.origin), moment))
+            omega = velocities.omega(item.link)
+            where = (state.place(mechanism.local(item.link, points[0])) if points
+                     else state.origin)
+            image = _turned(velocities.at(item.link, where), mu_v)
+            forces.append(LeverForce(item.name, item.link, image, np.zeros_like(state.origin),
+                                     item.moment * omega / mu_v, omega=omega))
     state = states[drive.link]
     pivot = state.place(mechanism.local(drive.link, drive.pivot))
     pin = state.place(mechanism.local(drive.link, scale_point))

@@ -48,6 +48,7 @@ from ..vocabulary import (
     EdgeKind,
     PlanKind,
     numbered,
+    point_text,
     scale_text,
     shown_title,
     subscript,
@@ -409,7 +410,34 @@ _LEVER_LEGEND = {
     "couple": message("inertia couple {symbol} as the force pair ±{symbol}/l the sum counts",
                       symbol=INERTIA_MOMENT),
     "balancing": message("balancing force {symbol} (⊥ the crank) at the image of the crank "
-                         "pin", symbol=BALANCING_FORCE)}
+                         "pin", symbol=BALANCING_FORCE),
+    "term": message("couple on a link with one point: the term {symbol}·ω/μv (its sense on "
+                    "the lever)", symbol=INERTIA_MOMENT)}
+
+
+@dataclass(frozen=True)
+class _MomentTerm:
+    """A couple on a link with one point on the plan, on the lever as its moment term
+    M·ω/μv (N·mm) at the image of that point (mm of the turned plan)."""
+
+    source: str
+    link: str
+    image: np.ndarray
+    moment: float
+
+
+def _moment_terms(solution: Any, lever: Any) -> list[_MomentTerm]:
+    """The lever's moment terms whose couple is not zero (a zero ω still gives its row)."""
+    given = {(item.name, item.link): item for item in solution.applied.items
+             if item.moment is not None}
+    terms = []
+    for force in lever.forces:
+        item = given.get((force.source, force.link))
+        if not force.term or item is None or float(item.moment[0]) == 0.0:
+            continue
+        terms.append(_MomentTerm(force.source, force.link,
+                                 np.asarray(force.image_mm[0], float), float(force.moment[0])))
+    return terms
 
 
 def _arm(image: np.ndarray, force: np.ndarray) -> tuple[float, np.ndarray]:
@@ -436,9 +464,11 @@ class _LeverFigure:
         self.known: list[_LeverForce] = []
         self.couples: list[_LeverForce] = []
         self.friction: dict[str, float] = {}
+        #: the couples on links with one point: their moment terms M·ω/μv
+        self.terms = _moment_terms(forces.solution, lever)
         for force in lever.forces:
             vector = np.asarray(force.force[0], float)
-            if float(norm(vector)) == 0:
+            if force.term or float(norm(vector)) == 0:
                 continue
             base, at = force.source, force.point
             image = np.asarray(force.image_mm[0], float)
@@ -497,6 +527,14 @@ class _LeverFigure:
             symbol = self.notation.runs(item.source, item.link)
             self._draw(figure, item, self.mu_couple, colour, "tangential", symbol)
             self.used.setdefault(_LEVER_LEGEND["couple"], ("tangential", colour))
+        for term in self.terms:
+            if term.source.startswith("M_f"):       # friction: in the sum, not drawn
+                continue
+            colour = _force_colour(term.source)
+            turning_arrow(figure, term.image, 22.0, math.pi / 4, 1.0 if term.moment >= 0
+                          else -1.0, colour, f"term:{term.source}:{term.link}",
+                          self.notation.runs(term.source, term.link), css="lever term")
+            self.used.setdefault(_LEVER_LEGEND["term"], ("relative", colour))
         self._draw(figure, self.balancing, self.mu_f, INK, "result", self.balancing_runs)
         self.used[_LEVER_LEGEND["balancing"]] = ("result", None)
 
@@ -534,16 +572,23 @@ class _LeverFigure:
             shown = self.notation.plain(item.source, item.link)
             if item.couple:
                 shown = render(message("{force} (pair, {point})", force=shown,
-                                       point=item.point))
+                                       point=point_text(item.point)))
             rows.append([shown, number_text(float(norm(item.force)), ".4g"),
                          f"h_{item.number}", number_text(item.arm, ".4g"),
-                         number_text((item.moment if item.arm else 0.0) + 0.0, "+.5g")])
+                         _signed(item.moment if item.arm else 0.0)])
             total += item.moment
             magnitude += abs(item.moment)
+        for term in self.terms:
+            rows.append([render(message("{moment}·{omega}/μv (couple)",
+                                        moment=self.notation.plain(term.source, term.link),
+                                        omega=numbered("ω", self.notation.number(term.link)))),
+                         "", "", "", _signed(term.moment)])
+            total += term.moment
+            magnitude += abs(term.moment)
         for name, moment in self.friction.items():
             rows.append([render(message("{force} (couple, not drawn)",
                                         force=self.notation.plain(name))), "", "",
-                         "", number_text(moment + 0.0, "+.5g")])
+                         "", _signed(moment)])
             total += moment
             magnitude += abs(moment)
         return rows, total, magnitude
@@ -641,13 +686,22 @@ def _lever_table(figure: Canvas, at, page: _LeverFigure) -> None:
         remainder = 0.0                               # zero to the rounding of the terms
     rows.append([render(BALANCING_FORCE), number_text(float(norm(balancing.force)), ".4g"),
                  f"h_{balancing.number}", number_text(balancing.arm, ".4g"),
-                 number_text(balancing.moment + 0.0, "+.5g")])
-    rows.append(["ΣM_p", "", "", "", number_text(remainder + 0.0, "+.2g")])
+                 _signed(balancing.moment)])
+    rows.append(["ΣM_p", "", "", "", _signed(remainder, "+.2g")])
     header = [message("force"), message("F, N"), message("arm"), message("h, mm"),
               message("±F·h, N·mm")]
     figure.table(at, rows, header=[render(cell) for cell in header],
                  right=[False, True, False, True, True],
                  title=render(message("ΣM_p = Σ ± F·h = 0 (counter-clockwise +)")))
+
+
+def _signed(value: float, specification: str = "+.5g") -> str:
+    """A term of the moment sum with its sign; a zero is 0, never +0 or −0.
+
+    >>> _signed(-75.6691), _signed(0.0), _signed(-0.0, "+.2g")
+    ('-75.669', '0', '0')
+    """
+    return number_text(value, specification) if value != 0 else number_text(0.0, "g")
 
 
 def _lever_notes(forces: Any, page: _LeverFigure) -> list[str]:
@@ -665,9 +719,11 @@ def _lever_notes(forces: Any, page: _LeverFigure) -> list[str]:
     else:
         scales = message("{velocity}; forces on the lever at {force}", velocity=velocity,
                          force=force)
+    terms = ([render(message("a couple on a link with one point on the plan enters the sum as "
+                             "its power over μv, M·ω/μv (no arm)"))] if page.terms else [])
     return [render(scales),
             render(message("each force at the image of its point, turned with the plan (size "
-                           "and direction kept); arm h from the pole p")),
+                           "and direction kept); arm h from the pole p")), *terms,
             render(message("|{moment}| = {force}·l_{pivot}{point} = {size:.5g} N × "
                            "{length:.4g} m;  {moment} = {lever:.6g} N·m (Zhukovsky's lever), "
                            "by the groups {groups:.6g} N·m", moment=BALANCING_MOMENT,

@@ -30,7 +30,7 @@ from typing import Any
 from .language import ENGLISH, catalogue, current
 from .message import Message, message
 
-__all__ = ["DECIMAL_SIGN", "decimal_number", "number_text", "render"]
+__all__ = ["DECIMAL_SIGN", "decimal_number", "formatted_number", "number_text", "render"]
 
 #: the decimal sign, as a catalogue translates it ("," in Russian)
 DECIMAL_SIGN = message(".", context="decimal sign")
@@ -85,10 +85,28 @@ def decimal_number(text: str, sign: str) -> str:
     return text if sign == "." else text.replace(".", sign)
 
 
+def formatted_number(value: Any, specification: str) -> str:
+    """``format(value, specification)``, a zero never written with a minus sign: a −0.0 (or a
+    −0.0004 at two decimals) prints as 0, as a reader writes it.
+
+    >>> formatted_number(-0.0, ">6.5g"), formatted_number(-0.0004, ".2f")
+    ('     0', '0.00')
+    >>> formatted_number(-1e-20, ".3g"), formatted_number(float("-inf"), "g")
+    ('-1e-20', '-inf')
+    """
+    text = format(value, specification)
+    body = text.lstrip()
+    if body.startswith("-"):
+        mantissa = body[1:].partition("e")[0].partition("E")[0].rstrip(" %")
+        if "0" in mantissa and set(mantissa) <= set("0.,_"):
+            return format(-value, specification)
+    return text
+
+
 def number_text(value: float, specification: str = "g", language: str | None = None) -> str:
     """A number as the language writes it (``number_text(0.25, "g", "ru")`` → ``'0,25'``)."""
     language = language or current()
-    return decimal_number(format(value, specification), _decimal_sign(language))
+    return decimal_number(formatted_number(value, specification), _decimal_sign(language))
 
 
 class _Formatter(string.Formatter):
@@ -110,5 +128,5 @@ class _Formatter(string.Formatter):
         if isinstance(value, (list, tuple)):
             return ", ".join(self.format_field(item, format_spec) for item in value)
         if isinstance(value, numbers.Number) and not isinstance(value, bool):
-            return decimal_number(format(value, format_spec), self.sign)
+            return decimal_number(formatted_number(value, format_spec), self.sign)
         return format(value, format_spec)
