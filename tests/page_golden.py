@@ -17,7 +17,8 @@ real workbook page (tests/test_browser.py):
   a construction line it lies on, a little inside and outside its tolerance disc, or not
   placed — with what ``grade --drawing`` says of each point (the page's sentence for a
   helper point not placed), and the plans' summaries;
-* ``numbers``, ``readings``, ``quoting``: the formatter against ``format()``, the reader
+* ``numbers``, ``readings``, ``quoting``: the formatter against ``formatted_number`` (Python's
+  ``format()``, a zero never with a minus sign), the reader
   against ``read_number``, the quoting against ``repr()``.
 
 The file is generated, not committed: the tests write it into their temporary folder each run
@@ -48,6 +49,7 @@ from planmethod.grading.answers import grade_question, magnitude_note, sense_wor
 from planmethod.grading.reading import number_grammar, read_number  # noqa: E402
 from planmethod.render.page_rules import page_rules, plan_summary  # noqa: E402
 from planmethod.words import render  # noqa: E402
+from planmethod.words.render import formatted_number  # noqa: E402
 
 #: what a question of the key keeps in the page (planmethod.application.workbook.QUESTION_FIELDS)
 QUESTION_FIELDS = ("id", "symbol", "value", "tolerance", "unit", "signed", "mistakes")
@@ -300,7 +302,8 @@ def number_cases(count: int = 600) -> list[list]:
                                 st.floats(-1e3, 1e3), st.integers(-10**6, 10**6).map(
                                     lambda n: n / 8)), count)
     values += [0.125, 0.375, 2.5, -0.0, 0.005, 9.9995, 99.95, 1e16, 1e-5, 5e-324]
-    return [[value, spec, format(value, spec)] for value in values for spec in SPECIFICATIONS]
+    return [[value, spec, formatted_number(value, spec)] for value in values
+            for spec in SPECIFICATIONS]
 
 
 def reading_cases(count: int = 800) -> list[list]:

@@ -109,12 +109,15 @@
     const negative = value < 0 || Object.is(value, -0);
     const size = Math.abs(value);
     if (!Number.isFinite(size)) return (negative ? "-" : "") + "inf";
-    if (type === "d" || (type === "" && precision === null && Number.isInteger(value) &&
-                         !Object.is(value, -0) && Math.abs(value) <= Number.MAX_SAFE_INTEGER)) {
-      return (negative ? "-" : "") + size.toFixed(0);   // an integer field (a count)
-    }
-    return (negative ? "-" : "") + unsigned(size, type, type === "f" || type === "e" ?
-      (precision === null ? 6 : precision) : precision);
+    const text = (type === "d" || (type === "" && precision === null &&
+                                   Number.isInteger(value) && !Object.is(value, -0) &&
+                                   Math.abs(value) <= Number.MAX_SAFE_INTEGER))
+      ? size.toFixed(0)   // an integer field (a count)
+      : unsigned(size, type, type === "f" || type === "e" ?
+        (precision === null ? 6 : precision) : precision);
+    // a zero is never written with a minus sign (-0.0, or -0.0004 at two decimals), as
+    // planmethod.words.render.formatted_number writes it
+    return (negative && !/^[0.]+$/.test(text.split(/[eE]/)[0]) ? "-" : "") + text;
   }
 
   // -- templates ------------------------------------------------------------------------------
