@@ -25,8 +25,6 @@ Examples
 >>> from planmethod.words import render
 >>> render(mistake_sentence(["sense"]))  # doctest: +ELLIPSIS
 "it lies where the construction puts it when the crank's sense of rotation was reversed (..."
->>> label_text("k_B@lever", {"lever": 3}), label_text("k2_Q"), label_text("o2")
-('k_B₃', 'k′_Q', 'o₂')
 """
 
 from __future__ import annotations
