@@ -449,3 +449,120 @@ def test_details_go_two_levels_deep_and_a_cluster_still_crowded_is_a_table(angle
             assert f"{x:.2f}" in rows and f"{y:.2f}" in rows, name
         if angle == 250.0 and plan is plans.acceleration:
             assert crowded and "points too close to read (from the pole π)" in svg
+
+
+# -- pages framed on what they draw, details two deep (issue 37) -------------------------------
+#: a 0.1 m four-bar whose heavy rocker turns about a centre of mass next to its pivot: the
+#: single equivalent inertia force's line lies h ≈ 2.5 m from S (25 times the mechanism)
+FAR_LINE = """
+title = "Small four-bar with a heavy rocker"
+[drive]
+link = "crank"
+pivot = "A"
+angle = 40
+omega = 20
+epsilon = 0
+[links]
+frame = { A = [0, 0], D = [0.08, 0] }
+crank = { A = [0, 0], B = [0.02, 0] }
+coupler = { B = [0, 0], C = [0.08, 0] }
+rocker = { D = [0, 0], C = [0.05, 0] }
+[mass.crank]
+m = 0.2
+J = 1e-5
+S = [0.01, 0]
+[mass.coupler]
+m = 0.5
+J = 3e-4
+S = [0.04, 0]
+[mass.rocker]
+m = 0.4
+J = 0.004
+S = [0.004, 0]
+[gravity]
+g = 9.81
+[plan]
+crank_mm = 40
+velocity_mm = 40
+acceleration_mm = 40
+precision_mm = 0
+"""
+
+
+def _unseen():
+    """The unseen-style mechanisms the tests use: the rocking block, the slotted lever and
+    the loaded six-bar of the lever's terms, the screen on a pinned block, the far line."""
+    import tomllib
+
+    from test_lever_terms import ROCKING, SIXBAR, SLOTTED
+    from test_triad_slider import slot
+
+    return {"rocking block": tomllib.loads(ROCKING), "slotted lever": tomllib.loads(SLOTTED),
+            "loaded six-bar": tomllib.loads(SIXBAR), "screen on a block": slot(),
+            "far line": tomllib.loads(FAR_LINE)}
+
+
+@pytest.fixture(scope="module", params=["rocking block", "slotted lever", "loaded six-bar",
+                                        "screen on a block", "far line"])
+def unseen(request):
+    from planmethod.spec import exercise_from_dict
+
+    analysis = analyse(exercise_from_dict(_unseen()[request.param]))
+    return analysis, plan_files(analysis.plans, analysis.forces)
+
+
+def _framing_problems(files: dict[str, str]) -> list[str]:
+    from planmethod.testing.figures import detail_depth, page_ratio
+
+    found = []
+    for name, svg in files.items():
+        if page_ratio(svg) > 3.0:
+            found.append(f"{name}: the page is {page_ratio(svg):.2f}× what it draws")
+        if detail_depth(svg) > 2:
+            found.append(f"{name}: details {detail_depth(svg)} levels deep")
+    return found
+
+
+def test_every_figure_is_framed_on_what_it_draws_with_details_two_deep(drawn):
+    """No shipped exercise's figure has a viewBox more than 3× the extent of what it draws
+    (its mechanism, its plan, its polygon) — the legend's column and the details sit beside
+    the drawing within that page — and no figure nests details deeper than two."""
+    _, _, files = drawn
+    assert not _framing_problems(files), "\n".join(_framing_problems(files))
+
+
+def test_unseen_mechanisms_figures_are_framed_and_two_deep(unseen):
+    """The same on mechanisms no shipped exercise covers."""
+    _, files = unseen
+    assert not _framing_problems(files), "\n".join(_framing_problems(files))
+
+
+def test_a_far_line_of_action_is_clipped_to_the_mechanisms_frame():
+    """h ≈ 2.5 m from S on a 0.1 m four-bar: the loaded mechanism is framed on the
+    mechanism (the page was 30× it), the line's h is in the table, and a dashed pointer
+    from S₃ shows the side the line lies on."""
+    import tomllib
+
+    from planmethod.spec import exercise_from_dict
+    from planmethod.testing.figures import drawn_extent, page_ratio
+
+    analysis = analyse(exercise_from_dict(tomllib.loads(FAR_LINE)))
+    offset = float(analysis.forces.solution.applied.inertia["rocker"].offset[0])
+    assert abs(offset) > 2.0                                      # 25× the mechanism
+    loaded = plan_files(analysis.plans, analysis.forces)["loaded.svg"]
+    assert page_ratio(loaded) < 3.0
+    assert f"one force on a line h = {abs(offset):.4g} m from S" in loaded
+    assert 'class="inertia line off"' in loaded
+    x0, y0, x1, y1 = drawn_extent(loaded)
+    margin = 0.2 * max(x1 - x0, y1 - y0)
+    from defusedxml import ElementTree
+
+    root = ElementTree.fromstring(loaded.encode("utf-8"))        # the figure's, not a detail's
+    construction = next(group for group in root if group.get("class") == "construction")
+    lines = [line for line in construction if line.tag.endswith("}line")
+             and (line.get("class") or "").startswith("inertia line")]
+    assert len(lines) == 2                    # the coupler's line, the rocker's pointer
+    for line in lines:
+        for axis, low, high in (("x", x0, x1), ("y", y0, y1)):
+            for end in ("1", "2"):
+                assert low - margin <= float(line.get(axis + end)) <= high + margin

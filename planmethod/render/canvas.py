@@ -177,6 +177,22 @@ _ROUND_MARK = math.sqrt(8.0 * math.sin(math.pi / 8.0))
 
 _LAYERS = ("ground", "construction", "similarity", "links", "components", "results",
            "marks", "points", "leaders", "labels", "text")
+#: the layers of what a figure draws (its mechanism's links and pairs, its plan's vectors and
+#: points), not of its construction lines, marks, labels or notes: :attr:`Canvas.drawn`
+DRAWN_LAYERS = frozenset(("links", "components", "results", "points"))
+
+
+def _widen(extent: list[float], points) -> None:
+    """Widen a box [x0, y0, x1, y1] to hold ``points``."""
+    for x, y in points:
+        if x < extent[0]:
+            extent[0] = x
+        if x > extent[2]:
+            extent[2] = x
+        if y < extent[1]:
+            extent[1] = y
+        if y > extent[3]:
+            extent[3] = y
 
 
 class Canvas:
@@ -198,6 +214,8 @@ class Canvas:
         self.used: set[str] = set()
         self.arrow_steps: list[int] = []
         self.extent = [math.inf, math.inf, -math.inf, -math.inf]
+        #: the extent of what the figure draws (:data:`DRAWN_LAYERS`): its page is framed on it
+        self.drawn = [math.inf, math.inf, -math.inf, -math.inf]
         self.labels: tuple[PlacedLabel, ...] = ()
 
     # coordinates
@@ -205,17 +223,12 @@ class Canvas:
         """A drawing's point (mm, y up) on the page (px, y down)."""
         return np.array((float(xy[0]) * self.zoom, -float(xy[1]) * self.zoom))
 
-    def grow(self, *points: Point) -> None:
-        extent = self.extent
-        for x, y in points:
-            if x < extent[0]:
-                extent[0] = x
-            if x > extent[2]:
-                extent[2] = x
-            if y < extent[1]:
-                extent[1] = y
-            if y > extent[3]:
-                extent[3] = y
+    def grow(self, *points: Point, layer: str = "") -> None:
+        """Widen the extent to hold ``points`` (and the drawn extent, for an element of one of
+        :data:`DRAWN_LAYERS`)."""
+        if layer in DRAWN_LAYERS:
+            _widen(self.drawn, points)
+        _widen(self.extent, points)
 
     # primitives
     def add(self, layer: str, tag: str, attrs: dict[str, Any], children: list | None = None
@@ -236,7 +249,7 @@ class Canvas:
             attrs["class"] = css
         attrs.update(data or {})
         self.add(layer, "line", attrs)
-        self.grow(p, q)
+        self.grow(p, q, layer=layer)
         if obstacle and (p[0] != q[0] or p[1] != q[1]):
             self.obstacle_lines.append((p, q))
 
@@ -255,7 +268,7 @@ class Canvas:
             attrs["class"] = css
         attrs.update(data or {})
         self.add(layer, "polygon" if closed else "polyline", attrs)
-        self.grow(*points)
+        self.grow(*points, layer=layer)
         if obstacle:
             self.obstacle_lines.append(tuple(points) + ((points[0],) if closed else ()))
         if vector:
@@ -277,6 +290,8 @@ class Canvas:
         self.add(layer, "circle", attrs)
         self.grow((centre[0] - radius, centre[1] - radius),
                   (centre[0] + radius, centre[1] + radius))
+        if layer in DRAWN_LAYERS:
+            _widen(self.drawn, (centre,))
         if area:
             # a round mark as the square of the area of its 16-gon (a point's, with room)
             half = _ROUND_MARK * radius / 2 + (KEEP_CLEAR if points else 0.0)
@@ -316,7 +331,7 @@ class Canvas:
             group["data-step"] = str(step)
             self.arrow_steps.append(step)
         self.add(layer, "g", group, [("line", line, []), ("polygon", tip, [])])
-        self.grow(p, q)
+        self.grow(p, q, layer=layer)
         if obstacle:                   # the shaft, and the head's outline
             self.obstacle_lines += [(p, q), (q, wings[0], wings[1], q)]
             self.vector_lines += [(p, q), (q, wings[0], wings[1], q)]
@@ -437,10 +452,12 @@ class Canvas:
     def text(self, xy: Point, text: Message | str, *, size: float = TEXT_SIZE,
              color: str = INK, anchor: str = "start", bold: bool = False, css: str = "note",
              layer: str = "text", area: bool = True, family: str = TEXT_FAMILY,
-             italic: bool = False, monospace: bool = False, formula: bool = False) -> float:
+             italic: bool = False, monospace: bool = False, formula: bool = False,
+             points: Sequence[str] = ()) -> float:
         """Fixed text (sans, or monospaced with its spaces kept); returns its width. A message
         is rendered in the language spoken now. A ``formula`` sets what follows an underscore
-        as a subscript (``a_B₃`` → a with B₃ below, :func:`formula_runs`)."""
+        as a subscript (``a_B₃`` → a with B₃ below, :func:`formula_runs`); ``points`` are the
+        points it names (``data-points``: a table's row of a point)."""
         text = shown_text(text)
         font = SANS_BOLD if bold else SANS
         runs = formula_runs(text) if formula else [(text, False)]
@@ -460,6 +477,8 @@ class Canvas:
             attrs["text-anchor"] = anchor
         if monospace:
             attrs["xml:space"] = "preserve"
+        if points:
+            attrs["data-points"] = " ".join(points)
         if len(runs) > 1:
             self.add(layer, "text", attrs, _formula_spans(runs, size, monospace))
         else:
@@ -473,11 +492,13 @@ class Canvas:
 
     def table(self, at: Point, rows: Sequence[Sequence[Message | str]], *,
               header: Sequence[Message | str], right: Sequence[bool] = (),
-              size: float = TEXT_SIZE, css: str = "table", title: Message | str = "") -> float:
+              size: float = TEXT_SIZE, css: str = "table", title: Message | str = "",
+              points: Sequence[Sequence[str]] = ()) -> float:
         """A table set at ``size`` (the figure's normal text), top-left at ``at``: an
         optional bold ``title``, a bold header, a rule, one row a line; the columns flagged
         in ``right`` (numbers) are aligned right. Cells are formulas (``F_b`` → F with b
-        below), messages rendered. Returns the y (px) under its last row."""
+        below), messages rendered; a row's first cell names the ``points`` given for it, if
+        any. Returns the y (px) under its last row."""
         x, y = at
         columns = len(header)
         cells = [[shown_text(cell) for cell in header]] + [
@@ -494,9 +515,10 @@ class Canvas:
             left = x
             for column, cell in enumerate(row):
                 aligned = column < len(right) and right[column]
+                named = points[index - 1] if 0 < index <= len(points) and not column else ()
                 self.text((left + widths[column] if aligned else left, y), cell, size=size,
                           bold=index == 0, css=css, anchor="end" if aligned else "start",
-                          area=False, formula=True)
+                          area=False, formula=True, points=named)
                 left += widths[column] + gap
             if index == 0:
                 self.line((x, y + 0.45 * size), (left - gap, y + 0.45 * size), color=INK,

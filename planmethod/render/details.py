@@ -2,7 +2,7 @@
 
 Where two or more distinct points of a figure lie nearer each other than the readable distance
 (:data:`DENSE_PX`, :data:`planmethod.render.style.READABLE_PX`: 2 em of the labels), the region
-round them is framed and numbered on the figure (I, II, …) and drawn again below it, enlarged
+round them is framed and numbered on the figure (I, II, …) and drawn again beside it, enlarged
 by a whole factor, clipped to the region, with the labels of the points inside it kept whole.
 The enlargement is the largest that keeps the detail within :data:`DETAIL_SIZE`; where the
 closest pair of the region is still nearer than the readable distance at it, the region round
@@ -10,7 +10,11 @@ them is marked inside the detail and drawn again, larger still (a detail of a de
 levels at most, :data:`DEPTH`), down to :data:`RESOLUTION` of the figure: points nearer than
 that are one spot of the drawing (their labels are joined by ≈). Where a detail of a detail
 still crowds points, they are its ``crowded`` points: the figure lists them in a table of their
-coordinates (:func:`crowded_points`) rather than nesting a third detail. Any figure can have
+coordinates (:func:`crowded_points`, :func:`crowded_table`) rather than nesting a third detail.
+The page is framed on what the figure draws: its legend's column at the right of the drawing,
+the table under it, the details packed beside them (:func:`column_and_details`) on a page at
+most :data:`PAGE` times as wide as the drawing — where a detail would make the page longer, at
+a smaller whole enlargement that still shows its points apart, if one fits. Any figure can have
 details: it hands over the points to watch and a function that draws its content on a canvas of
 any zoom (a plan, the lever with its forces, the loaded mechanism, a force polygon), and the
 detail is that same drawing at a larger zoom — never a picture of a picture. A label that names
@@ -27,19 +31,21 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..vectors import norm
-from ..words import Message, message
-from .canvas import Canvas, Point, page_point, shown_text
+from ..words import Message, message, number_text, template
+from .canvas import MARGIN, Canvas, Point, page_point, shown_text
 from .labels import RunKind, drawn_length
-from .style import INK, READABLE_PX, TEXT_SIZE
+from .style import INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
 
-__all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "NESTED", "RESOLUTION", "Detail",
-           "crowded_points", "dense_regions", "detail_insets", "detail_regions", "one_spot"]
+__all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
+           "PAGE", "RESOLUTION", "Detail",
+           "Room", "column_and_details", "crowded_points", "crowded_table", "dense_regions",
+           "detail_insets", "detail_regions", "one_spot", "room_beside"]
 
 #: distinct points nearer than this (px) to a neighbour crowd each other: two or more such make
 #: a region that gets an enlarged detail (the readable distance)
@@ -47,17 +53,22 @@ DENSE_PX = READABLE_PX
 #: the longest side of a detail inset (px), and the least and most enlargement of one step
 DETAIL_SIZE = 300.0
 DETAIL_ZOOM = (2.5, 12.0)
-#: details of details go this deep at most in a plan (a figure, its detail, a detail of that;
-#: the plan lists the points still crowded): :func:`detail_regions`'s ``depth``
+#: details of details go this deep at most in any figure (a figure, its detail, a detail of
+#: that; the figure lists the points still crowded): :func:`detail_regions`'s ``depth``
 DEPTH = 2
-#: how deep a figure that lists no crowded points nests its details (the force figures, the
-#: lever and the position plan, for now)
-NESTED = 3
+#: a figure's page is at most this many times as wide as what it draws (its mechanism, its
+#: plan, its polygon: :attr:`Canvas.drawn`) — the details beside it wrap into rows within it
+#: (the figure check allows 3, with room for the margins and labels round the drawing)
+PAGE = 2.9
 #: points of a figure nearer each other than this fraction of its extent are one spot of the
 #: drawing: no detail two steps deep (×144) would set them the readable distance apart
 RESOLUTION = 1.0 / 2000.0
 #: how far (px) round a region's corner its numeral looks for room
 NUMERAL_ROOM = 30.0
+#: the title of the table of the points a plan's details cannot set apart (x, y from its pole)
+FROM_POLE = template("points too close to read (from the pole {pole})")
+#: the title of that table on a drawing of the mechanism (x, y of the drawing)
+ON_THE_DRAWING = message("points too close to read (mm on the drawing)")
 #: at most this many details a figure, named by Roman numerals (no point is named so)
 ROMAN = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
 MOST = len(ROMAN)
@@ -85,6 +96,29 @@ def crowded_points(regions: list[Detail]) -> list[str]:
     ['b', 'c']
     """
     return list(dict.fromkeys(name for region in regions for name in region.crowded))
+
+
+def crowded_table(figure: Canvas, at: Point,
+                  rows: Sequence[tuple[str, float, float, tuple[str, ...]]],
+                  title: Message) -> float:
+    """The table of the points a figure's details cannot set apart, top-left at ``at``: each
+    row a point's name as the figure prints it, its x and y (mm, as a student lays them off)
+    and the points it names (the figure's marks it lists); returns the y under it (``at``'s
+    without rows).
+
+    >>> figure = Canvas()
+    >>> crowded_table(figure, (0, 0), [("b₃", 1.0, 2.5, ("b@lever",))],
+    ...               message("points too close to read")) > 40
+    True
+    """
+    if not rows:
+        return float(at[1])
+    return figure.table(at, [[name, number_text(x, ".2f"), number_text(y, ".2f")]
+                             for name, x, y, _ in rows],
+                        header=[message("point", context="column"),
+                                message("x, mm", context="column"),
+                                message("y, mm", context="column")], right=[False, True, True],
+                        css="table crowded", title=title, points=[row[3] for row in rows])
 
 
 def one_spot(where: Mapping[str, Point]) -> float:
@@ -132,7 +166,7 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: i
 
 
 def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = True,
-                   depth: int = NESTED) -> list[Detail]:
+                   depth: int = DEPTH) -> list[Detail]:
     """The figure's dense regions worth an enlarged detail, and the regions of those details
     still too dense at their enlargement (details of details), in the order they are drawn;
     each region of the figure is marked on it with a frame and its numeral (placed with the
@@ -272,30 +306,101 @@ def _anchored(request, box):
     return replace(request, anchor=(sx + middle * dx, sy + middle * dy))
 
 
+@dataclass(frozen=True)
+class Room:
+    """Where a figure's details go: on its page beside what is ``taken`` (boxes x0, y0, x1,
+    y1 px: its drawing with its labels, the column of its legend), from ``left`` and ``top``,
+    no detail reaching past ``right`` (unless one alone is wider than the page)."""
+
+    taken: tuple[tuple[float, float, float, float], ...]
+    left: float
+    top: float
+    right: float
+
+
+#: the room (px) between two details, or a detail and what it stands beside
+GAP = 40.0
+
+
+def room_beside(figure: Canvas, drawn: Sequence[float],
+                taken: Sequence[Sequence[float]]) -> Room:
+    """The room for a figure's details beside what is ``taken`` on a page at most
+    :data:`PAGE` times as wide as ``drawn`` (x0, y0, x1, y1 px: what the figure draws,
+    :attr:`Canvas.drawn`), less its margins.
+
+    >>> figure = Canvas()
+    >>> figure.grow((0, 0), (100, 80))
+    >>> room_beside(figure, (0, 0, 100, 80), [(0, 0, 100, 80)])
+    Room(taken=((0.0, 0.0, 100.0, 80.0),), left=0.0, top=0.0, right=262.0)
+    """
+    x0, y0, _, _ = figure.extent
+    side = max(drawn[2] - drawn[0], drawn[3] - drawn[1])
+    return Room(tuple(tuple(float(v) for v in box) for box in taken), float(x0), float(y0),
+                x0 + PAGE * side - 2 * MARGIN)
+
+
+def _spot(room: Room, taken: list, width: float, height: float) -> tuple[float, float]:
+    """Where a detail of ``width`` × ``height`` goes: clear of everything ``taken`` (by
+    :data:`GAP`), within the page's width where it can, at the place that keeps the page
+    shortest (then the highest, then the leftmost) — beside the drawing's column, under the
+    drawing beside a tall column, or under everything."""
+    xs = sorted({room.left} | {box[2] + GAP for box in taken})
+    ys = sorted({room.top} | {box[3] + GAP for box in taken})
+    floor = max(box[3] for box in taken)
+    best: tuple | None = None
+    for y in ys:
+        for x in xs:
+            if x > room.left and x + width > room.right:
+                continue
+            if any(x < box[2] + GAP - 1e-6 and box[0] < x + width + GAP - 1e-6
+                   and y < box[3] + GAP - 1e-6 and box[1] < y + height + GAP - 1e-6
+                   for box in taken):
+                continue
+            key = (max(floor, y + height), y, x)
+            if best is None or key < best:
+                best = key
+    return (best[2], best[1]) if best else (room.left, floor + GAP)
+
+
+def column_and_details(figure: Canvas, draw: Callable[[Canvas], None], regions: list[Detail],
+                       ident: str, column: Callable[[Point], float], *,
+                       crowded: Sequence[tuple[str, float, float, tuple[str, ...]]] = (),
+                       title: Message | None = None) -> list[str]:
+    """What goes beside a figure's drawing (its content drawn, its labels placed): the
+    ``column`` at its right (``column(top_left)`` draws the legend and tables there and
+    returns the y under them), under it the table of the ``crowded`` points its details
+    cannot set apart (:func:`crowded_table`, with its ``title``), and its details beside
+    them on a page framed on the drawing (:func:`room_beside`). Returns the details'
+    lines."""
+    drawn, drawing = tuple(figure.drawn), tuple(figure.extent)
+    at = (drawing[2] + 34, drawing[1] + 4)
+    bottom = column(at)
+    if crowded and title is not None:
+        bottom = crowded_table(figure, (at[0], bottom + 34 if bottom > at[1] else at[1]),
+                               crowded, title)
+    taken = [drawing]
+    if figure.extent[2] > drawing[2]:          # the column drawn
+        taken.append((at[0], drawing[1], figure.extent[2], max(bottom, at[1])))
+    return detail_insets(figure, draw, regions, ident,
+                         room=room_beside(figure, drawn, taken))
+
+
 def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[Detail],
-                  ident: str, *, beside: bool = False) -> list[str]:
-    """Each marked region drawn again, enlarged, below the figure (in rows as wide as the
-    figure) — or, ``beside`` it where it is taller than wide, in rows two details wide (the
-    page's room beside a tall plan): ``draw`` draws the figure's content on a canvas of the
+                  ident: str, *, room: Room) -> list[str]:
+    """Each marked region drawn again, enlarged, in the ``room`` the figure leaves
+    (:func:`room_beside`): ``draw`` draws the figure's content on a canvas of the
     detail's zoom, clipped to the region, the regions of the details within it marked, the
     labels of the points inside it placed inside it where they can and kept whole (a
     force's label on the part of its arrow the detail shows; the frame widened to hold a
-    label that reaches past the region).
+    label that reaches past the region), its caption under it.
     Returns the lines that say so."""
     lines = []
-    x0, y0, x1, y1 = figure.extent
-    if beside and y1 - y0 > x1 - x0:      # a tall figure: its details beside it
-        left = x = x1 + 40.0
-        row_width, top = 2 * DETAIL_SIZE + 40.0, y0
-    else:                      # a wide one: in rows below it, as wide as it
-        left = x = x0
-        row_width, top = max(x1 - x0, 2 * DETAIL_SIZE + 40.0), y1 + 30.0
-    row_bottom = top
+    taken = list(room.taken)
     for region in regions:
-        detail, view, inside = _detail(draw, regions, region, figure.zoom)
+        region, (detail, view, inside), (x, top) = _fitted(draw, regions, region, figure.zoom,
+                                                           room, taken)
         width, height = view[2] - view[0], view[3] - view[1]
-        if x > left and x + width > left + row_width:      # a new row
-            x, top = left, row_bottom + 40.0
+        caption = _caption(region, width)
         texts = [item for item in detail.layers["labels"]
                  if item[1].get("data-points") in inside]
         leaders = [item for item in detail.layers["leaders"]
@@ -308,14 +413,58 @@ def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[
         figure.moved({"leaders": leaders, "labels": texts}, move, css="detail labels")
         figure.rectangle((x, top), (width, height), fill="none", stroke=INK, width=0.8,
                          layer="marks", css="detail frame")
-        right, bottom = x + width, top + height
-        caption = figure.text((x, bottom + 18), _caption(region), size=TEXT_SIZE, bold=True,
-                              css="detail", area=False)
-        right = max(right, x + caption)
+        right = x + max(width, figure.text((x, top + height + 18), caption, size=TEXT_SIZE,
+                                           bold=True, css="detail", area=False))
+        taken.append((x, top, right, top + height + 22.0))
         lines.append(shown_text(_said(region)))   # text: a figure's line (force_svg edits them)
-        row_bottom = max(row_bottom, bottom + 18)
-        x = right + 40.0
     return lines
+
+
+def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detail,
+            zoom: float, room: Room, taken: list) -> tuple[Detail, tuple, tuple[float, float]]:
+    """A detail drawn (:func:`_detail`) and its spot in the room (:func:`_spot`): where it
+    would make the page longer and no detail is marked in it, it is drawn at the largest
+    smaller whole enlargement (of the figure or the detail it is marked in, down to half its
+    own and :data:`DETAIL_ZOOM`'s least) that fits beside what is drawn and still shows its
+    points apart. Returns the region (its
+    enlargement as drawn), the drawn detail and its spot."""
+    floor = max(box[3] for box in taken)
+
+    def tried(candidate: Detail):
+        drawn = _detail(draw, regions, candidate, zoom)
+        view = drawn[1]
+        width = max(view[2] - view[0], text_width(shown_text(_caption(
+            candidate, view[2] - view[0])), TEXT_SIZE, SANS_BOLD))
+        return drawn, _spot(room, taken, width, view[3] - view[1] + 22.0), view[3] - view[1]
+
+    drawn, spot, height = tried(region)
+    if spot[1] + height + 22.0 <= floor or any(inner.parent == region.letter
+                                                for inner in regions):
+        return region, drawn, spot
+    base = next((other.zoom for other in regions if other.letter == region.parent), 1.0)
+    step = round(region.zoom / base)
+    least = max(DETAIL_ZOOM[0], step / 2)      # at least half its own: a detail, not a dot
+    while step - 1 >= least:
+        step -= 1
+        candidate = replace(region, zoom=base * step)
+        smaller, place, tall = tried(candidate)
+        if not _readable(*smaller):
+            break                         # smaller still would crowd what it shows
+        if place[1] + tall + 22.0 <= floor:
+            return candidate, smaller, place
+    return region, drawn, spot
+
+
+def _readable(detail: Canvas, view, inside: set[str]) -> bool:
+    """Whether a detail shows its points the readable distance apart (or at one place) and
+    every label of what it shows on a clean spot."""
+    marks = [(x, y) for x, y, _, _ in detail.point_marks
+             if view[0] <= x <= view[2] and view[1] <= y <= view[3]]
+    for index, (x0, y0) in enumerate(marks):
+        for x1, y1 in marks[index + 1:]:
+            if 0.5 < math.hypot(x1 - x0, y1 - y0) < DENSE_PX:
+                return False
+    return all(label.clean for label in detail.labels if " ".join(label.points) in inside)
 
 
 def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detail,
@@ -335,6 +484,10 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
             detail.requests = [replace(request, optional=True)
                                if _within(request, inner_box) else request
                                for request in detail.requests]
+    if region.crowded:         # listed in the figure's table: named here where clean
+        detail.requests = [replace(request, optional=True)
+                           if set(request.points) & set(region.crowded) else request
+                           for request in detail.requests]
     box = (x0 * scale, y0 * scale, x1 * scale, y1 * scale)
     reach = 60.0               # labels are placed for the points in and near the region
     detail.requests = [_anchored(request, box) for request in detail.requests]
@@ -354,12 +507,17 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
     return detail, view, inside
 
 
-def _caption(region: Detail) -> Message:
-    """The caption under a detail: its numeral, its enlargement, the detail it is marked in."""
-    if region.parent:
-        return message("{letter}: detail ×{zoom:g} (marked in detail {parent})",
-                       letter=region.letter, zoom=region.zoom, parent=region.parent)
-    return message("{letter}: detail ×{zoom:g}", letter=region.letter, zoom=region.zoom)
+def _caption(region: Detail, width: float | None = None) -> Message:
+    """The caption under a detail: its numeral, its enlargement, the detail it is marked in
+    (where that fits the detail's ``width``: the line under the figure says it anyway)."""
+    short = message("{letter}: detail ×{zoom:g}", letter=region.letter, zoom=region.zoom)
+    if not region.parent:
+        return short
+    long = message("{letter}: detail ×{zoom:g} (marked in detail {parent})",
+                   letter=region.letter, zoom=region.zoom, parent=region.parent)
+    if width is not None and text_width(shown_text(long), TEXT_SIZE, SANS_BOLD) > width:
+        return short
+    return long
 
 
 def _said(region: Detail) -> Message:

@@ -54,11 +54,17 @@ from ..vocabulary import (
     subscript,
 )
 from ..words import Message, message, number_text, render
-from .canvas import Canvas, fit_zoom
-from .details import detail_insets, detail_regions
+from .canvas import Canvas, arrowhead, fit_zoom
+from .details import (
+    FROM_POLE,
+    ON_THE_DRAWING,
+    column_and_details,
+    crowded_points,
+    detail_regions,
+)
 from .labels import RunKind, label_runs
 from .notation import BALANCING_FORCE, ForceNotation, symbol_runs
-from .plan_words import flag_message
+from .plan_words import flag_message, label_text
 from .steady import SteadyView
 from .style import INK, SMALL_SIZE, STYLES, TEXT_SIZE
 from .svg import (
@@ -168,9 +174,12 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
         lambda canvas: {f"corner {k}": canvas.px(c) for k, c in enumerate(corners[:-1])},
         details and not view, view.box if view else None)
     closure = float(norm(corners[-1] - corners[0]))
-    lines_of_details = detail_insets(figure, content, regions, "detail-polygon")
-    _, y0, x1, _ = view.box if view else figure.extent
-    _force_legend(figure, (x1 + 34, y0 + 4), used)
+    if view:
+        lines_of_details = []
+        _force_legend(figure, (view.box[2] + 34, view.box[1] + 4), used)
+    else:                  # the legend beside the polygon, its details beside them
+        lines_of_details = column_and_details(figure, content, regions, "detail-polygon",
+                                              lambda at: _force_legend(figure, at, used))
     lines = [line.replace("⟂", "⊥")               # ⊥ is in every common font
              for line in _polygon_notes(group, edges, mu_f, closure, notation)
              + lines_of_details]
@@ -295,13 +304,18 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     figure, regions = _laid_out(view.zoom if view else fit_zoom(
         list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
         view.box if view else None)
-    lines_of_details = detail_insets(figure, content, regions, "detail-combined")
-    _, y0, x1, _ = view.box if view else figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.ACCELERATION)  # the plan's styles
-    _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4), {
-        message("image of g: π → π′, Z_g = g/μa"): ("normal", KNOWN_COLOURS["G"]),
-        message("s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)"): ("tangential", KNOWN_COLOURS["F"])},
-        heading=message("Combined force (Aliyev)"))
+    if view:
+        lines_of_details = []
+        _combined_column(figure, (view.box[2] + 34, view.box[1] + 4))
+    else:
+        named = {f"s_{force.link}": (numbered("s", notation.number(force.link)),
+                                     force.image_mm) for force in combined.forces}
+        named |= {"π′": ("π′", new_pole)} | {
+            label: (label_text(label, plan.numbers), xy) for label, xy in points.items()}
+        lines_of_details = column_and_details(
+            figure, content, regions, "detail-combined",
+            lambda at: _combined_column(figure, at), crowded=_crowded_rows(named, regions),
+            title=FROM_POLE.replace(pole=plan.pole))
     figure.used.clear()
     lines = _combined_notes(combined, notation) + lines_of_details
     title = render(message("{title} — Q = G + {symbol} on the acceleration plan, pole moved to "
@@ -313,6 +327,25 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
           box=view.box if view else None)
     return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
                                               PlanKind.ACCELERATION) if view else None).svg
+
+
+def _combined_column(figure: Canvas, at) -> float:
+    """The combined-force figure's column, top-left at ``at``: the plan's styles and the
+    construction's; returns the y under it."""
+    bottom = plan_legend(figure, at, PlanKind.ACCELERATION)
+    return _force_legend(figure, (at[0], bottom + 34 if bottom > at[1] else at[1]), {
+        message("image of g: π → π′, Z_g = g/μa"): ("normal", KNOWN_COLOURS["G"]),
+        message("s → π′ = (g − a_S)/μa: Q = m·μa·(s π′)"): ("tangential", KNOWN_COLOURS["F"])},
+        heading=message("Combined force (Aliyev)"))
+
+
+def _crowded_rows(named: Mapping[str, tuple[str, Any]], regions: list
+                  ) -> list[tuple[str, float, float, tuple[str, ...]]]:
+    """The rows of the table of the points a figure's details cannot set apart, from the
+    points' printed names and places (mm) by the names the details watch (a force's label
+    among them is not a point: not listed)."""
+    return [(named[name][0], float(named[name][1][0]), float(named[name][1][1]), (name,))
+            for name in crowded_points(regions) if name in named]
 
 
 def _combined_content(canvas: Canvas, combined, notation: ForceNotation) -> None:
@@ -660,12 +693,19 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     plan = page.plan
     figure, regions = _laid_out(page.zoom, page.content, lambda canvas: {
         label: canvas.px(xy) for label, xy in page.turned.items()}, details)
-    details = detail_insets(figure, page.content, regions, "detail-lever")
-    _, y0, x1, _ = figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), PlanKind.VELOCITY)   # the plan's styles
-    bottom = _force_legend(figure, (x1 + 34, bottom + 34 if bottom > y0 + 4 else y0 + 4),
-                           page.used, heading=message("Forces on the lever"))
-    _lever_table(figure, (x1 + 34, bottom + 40), page)
+
+    def column(at) -> float:
+        """The plan's styles, the forces' and the table of the sum, top-left at ``at``."""
+        bottom = plan_legend(figure, at, PlanKind.VELOCITY)
+        bottom = _force_legend(figure, (at[0], bottom + 34 if bottom > at[1] else at[1]),
+                               page.used, heading=message("Forces on the lever"))
+        return _lever_table(figure, (at[0], bottom + 40), page)
+
+    details = column_and_details(
+        figure, page.content, regions, "detail-lever", column,
+        crowded=_crowded_rows({label: (label_text(label, plan.numbers), xy)
+                               for label, xy in page.turned.items()}, regions),
+        title=FROM_POLE.replace(pole=plan.pole))
     figure.used.clear()
     lines = [*_lever_notes(forces, page), *details]
     title = render(message("{title} — Zhukovsky's lever with its forces, {phi} = {angle:g}°",
@@ -676,9 +716,9 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     return figure.svg(title).svg
 
 
-def _lever_table(figure: Canvas, at, page: _LeverFigure) -> None:
+def _lever_table(figure: Canvas, at, page: _LeverFigure) -> float:
     """The table of the moment sum ΣM_p = 0 about the pole, term by term, the balancing
-    force's last and the remainder under it."""
+    force's last and the remainder under it; returns the y under it."""
     rows, total, magnitude = page.rows()
     balancing = page.balancing
     remainder = total + balancing.moment
@@ -690,8 +730,8 @@ def _lever_table(figure: Canvas, at, page: _LeverFigure) -> None:
     rows.append(["ΣM_p", "", "", "", _signed(remainder, "+.2g")])
     header = [message("force"), message("F, N"), message("arm"), message("h, mm"),
               message("±F·h, N·mm")]
-    figure.table(at, rows, header=[render(cell) for cell in header],
-                 right=[False, True, False, True, True],
+    return figure.table(at, rows, header=[render(cell) for cell in header],
+                        right=[False, True, False, True, True],
                  title=render(message("ΣM_p = Σ ± F·h = 0 (counter-clockwise +)")))
 
 
@@ -767,6 +807,13 @@ class _LoadedFigure:
         self.mu_f = mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
         ends = [tuple(start + force / mu_f) for _, start, force in self.arrows]
         self.zoom = position_zoom(position, ends)
+        #: the frame (mm) the lines of action are clipped to: the mechanism, its slides'
+        #: guides, its centres of mass and its forces' arrows, with a margin round them
+        framed = np.asarray(points + [tuple(s["through_mm"]) for s in position.slides]
+                            + [tuple(c) for c in self.centres.values()] + ends, float)
+        low, high = framed.min(axis=0), framed.max(axis=0)
+        margin = FRAME_MARGIN * max(float(np.max(high - low)), 1.0)
+        self.frame_mm = (*(low - margin), *(high + margin))
         self.balancing = float(solution.balancing_moment[0])
         self.balancing_runs = symbol_runs(BALANCING_MOMENT)
         self.used: dict[Message, tuple[str, str | None]] = {}
@@ -816,11 +863,37 @@ class _LoadedFigure:
         self.used.setdefault(_legend_key_of(item.name), ("relative", colour))
         shift = self._single_force_shift(item, force)
         if shift is not None and float(norm(shift)) * figure.zoom >= 1.5:
-            figure.line(figure.px(start + shift - 0.6 * force / self.mu_f),
-                        figure.px(start + shift + 1.2 * force / self.mu_f), color=colour,
-                        width=0.8, dash=STYLES["construction"].dash, layer="construction",
-                        css="inertia line")
+            self._line_of_action(figure, start, shift, force, colour)
+
+    def _line_of_action(self, figure: Canvas, start: np.ndarray, shift: np.ndarray,
+                        force: np.ndarray, colour: str) -> None:
+        """The line of an inertia force's single equivalent force, ``shift`` (mm) from its
+        point ``start``, within the mechanism's frame (:attr:`frame_mm`): a piece of it
+        round the foot of the perpendicular from S, else its chord of the frame; where it
+        misses the frame, a dashed pointer from S to the frame's edge towards it (its h is
+        in the table)."""
+        foot, along = start + shift, force / self.mu_f
+        piece = _clipped(foot - 0.6 * along, foot + 1.2 * along, self.frame_mm)
+        if piece is None:
+            reach = float(norm(shift)) + float(np.hypot(self.frame_mm[2] - self.frame_mm[0],
+                                                        self.frame_mm[3] - self.frame_mm[1]))
+            piece = _clipped(foot - reach * unit(force), foot + reach * unit(force),
+                             self.frame_mm)
+        dash = STYLES["construction"].dash
+        if piece is not None:
+            figure.line(figure.px(piece[0]), figure.px(piece[1]), color=colour, width=0.8,
+                        dash=dash, layer="construction", css="inertia line")
             self.used.setdefault(_LOADED_LEGEND["line"], ("construction", colour))
+            return
+        edge = _clipped(start, foot, self.frame_mm)
+        if edge is None or float(norm(edge[1] - edge[0])) * figure.zoom < 12.0:
+            return
+        tip = figure.px(edge[1])
+        figure.line(figure.px(edge[0]), tip, color=colour, width=0.8, dash=dash,
+                    layer="construction", css="inertia line off")
+        arrowhead(figure, tip, unit(figure.px(foot) - figure.px(start)), 8.0, colour,
+                  "construction", css="inertia line off")
+        self.used.setdefault(_OFF_THE_FIGURE, ("construction", colour))
 
     def _single_force_shift(self, item, force: np.ndarray) -> np.ndarray | None:
         """How far (mm) the single equivalent inertia force's line lies from S, or None."""
@@ -878,15 +951,21 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     page = _LoadedFigure(forces, plans)
     mechanism = forces.solution.mechanism
     figure, regions = _laid_out(page.zoom, page.content, page.where, details)
-    details = detail_insets(figure, page.content, regions, "detail-loaded")
-    _, y0, x1, _ = figure.extent
-    bottom = _force_legend(figure, (x1 + 34, y0 + 4), page.used,
-                           heading=message("Forces and moments"))
-    header = [message("force"), message("size"), message("on")]
-    figure.table((x1 + 34, bottom + 40), page.rows(),
-                 header=[*(render(cell) for cell in header), ""],
-                 right=[False, True, False, False],
-                 title=render(message("Forces and moments on the links")))
+
+    def column(at) -> float:
+        """The forces' legend and their table, top-left at ``at``."""
+        bottom = _force_legend(figure, at, page.used, heading=message("Forces and moments"))
+        header = [message("force"), message("size"), message("on")]
+        return figure.table((at[0], bottom + 40), page.rows(),
+                            header=[*(render(cell) for cell in header), ""],
+                            right=[False, True, False, False],
+                            title=render(message("Forces and moments on the links")))
+
+    named = {name: (label_text(name), xy) for name, xy in page.position.points_mm.items()}
+    named |= {f"S:{link}": (numbered("S", page.notation.number(link)), xy)
+              for link, xy in page.centres.items()}
+    details = column_and_details(figure, page.content, regions, "detail-loaded", column,
+                                 crowded=_crowded_rows(named, regions), title=ON_THE_DRAWING)
     lines = [render(message("{length}; forces at {force}",          # words: vocabulary
                             length=scale_text("mu_l", page.position.mu_l),
                             force=scale_text("mu_f", page.mu_f))),
@@ -908,6 +987,39 @@ _LOADED_LEGEND = {
     "balancing": message("balancing moment {symbol} on the crank", symbol=BALANCING_MOMENT),
     "line": message("line of the single equivalent inertia force (h from S)"),
     "inertia": message("inertia force {symbol} = −m·a_S at S", symbol=INERTIA_FORCE)}
+
+
+#: the legend entry of a pointer towards a line of action that misses the figure
+_OFF_THE_FIGURE = message("towards the line of the single equivalent inertia force, off the "
+                          "figure (h in the table)")
+#: the margin round the mechanism (a fraction of its extent) that lines of action are
+#: clipped to, so that a long h never stretches the figure
+FRAME_MARGIN = 0.15
+
+
+def _clipped(start: np.ndarray, end: np.ndarray, box) -> tuple[np.ndarray, np.ndarray] | None:
+    """The part of the segment from ``start`` to ``end`` inside ``box`` (x0, y0, x1, y1), or
+    None (Liang–Barsky).
+
+    >>> [p.tolist() for p in _clipped(np.array([-5.0, 0.0]), np.array([5.0, 0.0]),
+    ...                               (0.0, -1.0, 2.0, 1.0))]
+    [[0.0, 0.0], [2.0, 0.0]]
+    """
+    delta = end - start
+    low, high = 0.0, 1.0
+    for p, q in ((-delta[0], start[0] - box[0]), (delta[0], box[2] - start[0]),
+                 (-delta[1], start[1] - box[1]), (delta[1], box[3] - start[1])):
+        if p == 0:
+            if q < 0:
+                return None
+            continue
+        if p < 0:
+            low = max(low, q / p)
+        else:
+            high = min(high, q / p)
+    if high <= low:
+        return None
+    return start + low * delta, start + high * delta
 
 
 def _legend_key_of(name: str) -> Message:

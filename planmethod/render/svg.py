@@ -67,7 +67,7 @@ from ..vocabulary import (
     point_text,
     scale_text,
 )
-from ..words import Message, message, number_text
+from ..words import Message, message
 from .canvas import (
     MARGIN,
     Canvas,
@@ -80,7 +80,14 @@ from .canvas import (
     scale_bar,
     shown_text,
 )
-from .details import DEPTH, crowded_points, detail_insets, detail_regions, one_spot
+from .details import (
+    FROM_POLE,
+    ON_THE_DRAWING,
+    column_and_details,
+    crowded_points,
+    detail_regions,
+    one_spot,
+)
 from .labels import RunKind, label_runs, merge_runs
 from .plan_words import flag_message, label_text, plan_title, scale_lines, vector_text
 from .steady import SteadyView
@@ -109,6 +116,7 @@ __all__ = [
     "SvgFigure",
     "crank_number",
     "frame",
+    "legend_column",
     "lever_drawing",
     "lever_svg",
     "mechanism_content",
@@ -440,25 +448,37 @@ def _legend_row(figure: Canvas, at: Point, key: str, component: str, kind: str) 
     return style.legend(kind)
 
 
+def legend_column(figure: Canvas, kind: str, *, box: Sequence[float] | None = None,
+                  equations: Sequence[str] = ()) -> float:
+    """The column at the right of the content drawn so far (or of a fixed ``box``): the
+    legend of the styles the figure used and the plan's vector ``equations``. Returns the y
+    (px) under it (its top's when it is empty)."""
+    _, y0, x1, _ = box if box is not None else figure.extent
+    bottom = plan_legend(figure, (x1 + 34, y0 + 4), kind)
+    if not equations:
+        return bottom
+    y = bottom + 34 if bottom > y0 + 4 else y0 + 4
+    figure.text((x1 + 34, y), message("Vector equations"), size=TEXT_SIZE, bold=True,
+                css="legend", area=False)
+    for equation in equations:
+        y += 20
+        figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False,
+                    formula=True)
+    return y
+
+
 def frame(figure: Canvas, title: Message | str, scale_lines: Sequence[Message | str],
           bar: tuple | None, flags: Sequence[Message | str], kind: str, *,
-          box: Sequence[float] | None = None, equations: Sequence[str] = ()) -> None:
-    """Title above, legend and the plan's vector ``equations`` at the right, scales, scale bar
-    and flags below the content — the content drawn so far, or a fixed ``box`` (x0, y0, x1,
-    y1, px) that stays the same in every frame of a turn (:mod:`planmethod.render.steady`).
-    The texts are messages (rendered as they are written) or text."""
-    x0, y0, x1, y1 = box if box is not None else figure.extent
-    bottom = plan_legend(figure, (x1 + 34, y0 + 4), kind)
-    if equations:
-        y = bottom + 34 if bottom > y0 + 4 else y0 + 4
-        figure.text((x1 + 34, y), message("Vector equations"), size=TEXT_SIZE, bold=True,
-                    css="legend", area=False)
-        for equation in equations:
-            y += 20
-            figure.text((x1 + 34, y), equation, size=TEXT_SIZE, css="equation", area=False,
-                        formula=True)
-    if box is None:
-        x0, y0, x1, y1 = figure.extent
+          box: Sequence[float] | None = None, equations: Sequence[str] = (),
+          column: bool = True) -> None:
+    """Title above, legend and the plan's vector ``equations`` at the right (unless drawn
+    already: not ``column``, :func:`legend_column`), scales, scale bar and flags below the
+    content — the content drawn so far, or a fixed ``box`` (x0, y0, x1, y1, px) that stays
+    the same in every frame of a turn (:mod:`planmethod.render.steady`). The texts are
+    messages (rendered as they are written) or text."""
+    if column:
+        legend_column(figure, kind, box=box, equations=equations)
+    x0, y0, _, y1 = box if box is not None else figure.extent
     figure.text((x0, y0 - 16), title, size=TITLE_SIZE, bold=True, css="title", area=False)
     y = y1 + 26
     for line in scale_lines:
@@ -518,11 +538,15 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
 
     content(figure)
     where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    regions = detail_regions(figure, where, draw=details and not view, depth=DEPTH)
+    regions = detail_regions(figure, where, draw=details and not view)
     figure.place(bounds=view.box if view else None)      # a steady page holds them
-    drawn = tuple(figure.extent)                         # the plan, before its details
-    details = detail_insets(figure, content, regions, f"detail-{plan.kind}", beside=True)
-    _crowded_table(figure, plan, crowded_points(regions), drawn)
+    equations = vector_equations(plan)
+    details = [] if view else column_and_details(   # the legend's column, the details
+        figure, content, regions, f"detail-{plan.kind}",
+        lambda _: legend_column(figure, plan.kind, equations=equations),
+        crowded=[(label_text(name, plan.numbers), *plan.points_mm[name], (name,))
+                 for name in crowded_points(regions)],
+        title=FROM_POLE.replace(pole=plan.pole))
     scale = PLAN_SCALES[plan.kind]
     lines: list[Message | str] = [scale_text(scale, plan.scale)]   # words: vocabulary
     if plan.precision_mm:
@@ -530,33 +554,11 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
                              precision=plan.precision_mm))
     lines += details
     title = plan_title(plan)
-    equations = vector_equations(plan)
     frame(figure, title, lines, (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE),
           [flag_message(flag, plan.numbers) for flag in plan.flags], plan.kind,
-          box=view.box if view else None, equations=equations)
+          box=view.box if view else None, equations=equations, column=view is not None)
     return figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
                                               equations=equations) if view else None)
-
-
-def _crowded_table(figure: Canvas, plan: Plan, names: Sequence[str],
-                   drawn: tuple[float, float, float, float]) -> None:
-    """A table of the points the plan's details cannot set apart (name, x and y in mm from
-    the pole, as a student lays them off), rather than a third level of detail: under a tall
-    plan (its details are beside it), beside a wide one (its details are under it);
-    ``drawn`` is the plan's extent without its details."""
-    if not names:
-        return
-    x0, y0, x1, y1 = drawn
-    at = (x0, y1 + 40.0) if y1 - y0 > x1 - x0 else (x1 + 34, y0 + 4)
-    rows = [[label_text(name, plan.numbers),
-             number_text(plan.points_mm[name][0], ".2f"),
-             number_text(plan.points_mm[name][1], ".2f")] for name in names]
-    figure.table(at, rows,
-                 header=[message("point", context="column"), message("x, mm", context="column"),
-                         message("y, mm", context="column")], right=[False, True, True],
-                 css="table crowded",
-                 title=message("points too close to read (from the pole {pole})",
-                               pole=plan.pole))
 
 
 def plan_svg(plan: Plan, *, details: bool = True, view: SteadyView | None = None) -> str:
@@ -925,15 +927,12 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     regions = detail_regions(figure, {name: figure.px(xy) for name, xy in
                                       position.points_mm.items()}, draw=details and not view)
     figure.place(bounds=view.box if view else None)
-    lines: list[Message | str] = [scale_text("mu_l", position.mu_l)]   # words: vocabulary
-    link, _pivot, omega = position.drive
-    if omega:
-        lines.append(message("{omega} = {value:.6g} rad/s, {link}",
-                             omega=numbered("ω", crank_number(position)), value=omega,
-                             link=link_text(link, position.numbers, "drive link")))
-    if plans is not None:
-        lines += scale_lines(plans.scales)[1:3]
-    lines += detail_insets(figure, content, regions, "detail-position")
+    inserted = [] if view else column_and_details(
+        figure, content, regions, "detail-position",
+        lambda _: legend_column(figure, PlanKind.POSITION),
+        crowded=[(label_text(name), *position.points_mm[name], (name,))
+                 for name in crowded_points(regions)], title=ON_THE_DRAWING)
+    lines = [*_position_lines(position, plans), *inserted]
     phi = numbered("φ", crank_number(position))
     title = (message("{title} — position plan, {phi} = {angle:g}°", title=position.title,
                      phi=phi, angle=position.angle) if position.title else
@@ -941,7 +940,7 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
     frame(figure, title, lines, (position.mu_l, SCALES["mu_l"].drawn, 0.25 * MECHANISM_SIZE),
           [flag_message(flag, plans.velocity.numbers) for flag in plans.flags]
           if plans is not None else (), PlanKind.POSITION,
-          box=view.box if view else None)
+          box=view.box if view else None, column=view is not None)
     y = figure.extent[3] + 24
     for line in map(shown_text, notes):
         if line.strip():
@@ -950,6 +949,19 @@ def position_drawing(position_plan: PositionPlan, *, plans: Plans | None = None,
         y += 17
     return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.POSITION,
                                               legend=False) if view else None)
+
+
+def _position_lines(position: PositionPlan, plans: Plans | None) -> list[Message | str]:
+    """The lines under the mechanism: μl, the crank's ω, the plans' scales."""
+    lines: list[Message | str] = [scale_text("mu_l", position.mu_l)]   # words: vocabulary
+    link, _pivot, omega = position.drive
+    if omega:
+        lines.append(message("{omega} = {value:.6g} rad/s, {link}",
+                             omega=numbered("ω", crank_number(position)), value=omega,
+                             link=link_text(link, position.numbers, "drive link")))
+    if plans is not None:
+        lines += scale_lines(plans.scales)[1:3]
+    return lines
 
 
 def position_svg(position_plan: PositionPlan, *, plans: Plans | None = None,
@@ -977,17 +989,24 @@ def lever_drawing(plans: Plans, *, view: SteadyView | None = None, details: bool
     regions = detail_regions(figure, {label: figure.px(xy) for label, xy in rotated.items()},
                              draw=details and not view)
     figure.place(bounds=view.box if view else None)
+    pole = np.asarray(rotated[plan.pole], float)
+    inserted = [] if view else column_and_details(
+        figure, content, regions, "detail-lever",
+        lambda _: legend_column(figure, PlanKind.VELOCITY),
+        crowded=[(label_text(name, plan.numbers), *(np.asarray(rotated[name], float) - pole),
+                  (name,)) for name in crowded_points(regions)],
+        title=FROM_POLE.replace(pole=plan.pole))
     lines = [scale_text("mu_l", position.mu_l), scale_text("mu_v", plan.scale),  # vocabulary
              message("the velocity plan turned 90° clockwise, pole {pole} at {pivot} "
                      "(Zhukovsky's lever)", pole=plan.pole, pivot=point_text(position.drive[1])),
-             *detail_insets(figure, content, regions, "detail-lever")]
+             *inserted]
     phi = numbered("φ", crank_number(position))
     title = (message("{title} — rotated velocity plan, {phi} = {angle:g}°", title=position.title,
                      phi=phi, angle=position.angle) if position.title else
              message("rotated velocity plan, {phi} = {angle:g}°", phi=phi, angle=position.angle))
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.25 * MECHANISM_SIZE),
           [flag_message(flag, plan.numbers) for flag in plan.flags], PlanKind.VELOCITY,
-          box=view.box if view else None)
+          box=view.box if view else None, column=view is not None)
     return figure.svg(title, view=steady_page(view, title, len(lines), PlanKind.VELOCITY)
                       if view else None)
 

@@ -34,6 +34,8 @@ held to the readable distance, the clearance or leaders clear of arrows, but its
 keep :data:`TOUCH_PX` from other points' marks.
 
 :func:`steady_problems` checks the frames of a turn: one viewBox per panel.
+:func:`page_ratio` measures how much larger a figure's page is than what it draws, and
+:func:`detail_depth` how deep its enlarged details nest.
 :func:`numbering_problems` checks that a figure names links as a course's numbering does.
 
 Examples
@@ -66,8 +68,8 @@ from ..render.style import (
 )
 
 __all__ = ["CLEARANCE_EM", "CODE_WORD", "READABLE_EM", "READABLE_PX", "TOUCH_PX", "TextBox",
-           "figure_problems", "numbering_problems", "readable_px", "steady_problems",
-           "text_boxes"]
+           "detail_depth", "drawn_extent", "figure_problems", "numbering_problems",
+           "page_ratio", "readable_px", "steady_problems", "text_boxes"]
 
 #: a point's label keeps this fraction of the readable distance (0.5 em) from another
 #: point's mark, so that it reads as its own point's
@@ -266,7 +268,8 @@ def figure_problems(svg: str, *, allowed: Iterable[str] = (), details: bool = Tr
     readable = readable_px(seen.boxes)
     # points the figure lists in a table of the points too close to read (no third level of
     # detail) are readable there: their marks are held to no distance
-    listed = {box.text for box in seen.boxes if "crowded" in box.css.split()}
+    listed = {name for box in seen.boxes if "crowded" in box.css.split()
+              for name in (box.text, *box.points)}
     marks = [mark for mark in seen.marks
              if not any(_listed(point, listed) for point in mark[0])]
     problems += _crowding(seen.boxes, marks, seen.regions, readable if details else None)
@@ -663,3 +666,77 @@ def _pair_of(text: str, valid: set[str]) -> bool:
         first, _, second = text.partition(",")
         return first in valid and second in valid
     return any(text[:cut] in valid and text[cut:] in valid for cut in range(1, len(text)))
+
+
+#: the layers of what a figure draws (its mechanism, its plan, its polygon), not its
+#: construction lines, labels, legends or notes (as :data:`planmethod.render.canvas.DRAWN_LAYERS`)
+_DRAWN = frozenset(("links", "components", "results", "points"))
+
+
+def drawn_extent(svg: str) -> tuple[float, float, float, float] | None:
+    """The box (x0, y0, x1, y1) of what a figure draws — the corners of its links, its pairs'
+    and points' centres, its vectors' ends (the layers links, points, components, results),
+    not in an enlarged detail — or None if it draws none of these.
+
+    >>> drawn_extent('<svg xmlns="http://www.w3.org/2000/svg"><g class="points">'
+    ...              '<circle cx="10" cy="5" r="3"/><circle cx="40" cy="25" r="3"/></g></svg>')
+    (10.0, 5.0, 40.0, 25.0)
+    """
+    from defusedxml import ElementTree
+
+    root = ElementTree.fromstring(svg.encode("utf-8"))
+    xs: list[float] = []
+    ys: list[float] = []
+    for element, classes, offset, _ in _walk(root):
+        if "detail" in classes or not _DRAWN & set(classes) or "text" in classes:
+            continue
+        tag = _local(element.tag)
+        corners = ([(_number(element.get("cx")), _number(element.get("cy")))]
+                   if tag == "circle" else _points(element))
+        xs += [x + offset[0] for x, _ in corners]
+        ys += [y + offset[1] for _, y in corners]
+    return (min(xs), min(ys), max(xs), max(ys)) if xs else None
+
+
+def page_ratio(svg: str) -> float:
+    """How many times the longer side of a figure's viewBox is the longer side of what it
+    draws (:func:`drawn_extent`): a page framed on its mechanism or plan stays near 2–3.
+
+    >>> page_ratio('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 90 40">'
+    ...            '<g class="points"><circle cx="10" cy="5" r="3"/>'
+    ...            '<circle cx="40" cy="25" r="3"/></g></svg>')
+    3.0
+    """
+    from defusedxml import ElementTree
+
+    view = [float(v) for v in (ElementTree.fromstring(svg.encode("utf-8")).get("viewBox")
+                               or "").replace(",", " ").split()]
+    box = drawn_extent(svg)
+    if len(view) != 4 or box is None:
+        return 0.0
+    return max(view[2], view[3]) / max(box[2] - box[0], box[3] - box[1], 1e-9)
+
+
+#: the line under a figure that says a detail is drawn from a region marked in another
+_MARKED_IN = re.compile(r"detail ([IVX]+): the region marked in detail ([IVX]+)")
+_DETAIL = re.compile(r"detail ([IVX]+): the (?:marked )?region")
+
+
+def detail_depth(svg: str) -> int:
+    """How deep a figure's enlarged details nest, read from the lines under it: 0 without
+    details, 1 for details of the figure, 2 where one is marked in another, and so on.
+
+    >>> detail_depth('<text>detail I: the marked region drawn 4 times larger</text>'
+    ...              '<text>detail II: the region marked in detail I, drawn 40 times</text>')
+    2
+    """
+    parents = dict(_MARKED_IN.findall(svg))
+    depths = []
+    for letter in _DETAIL.findall(svg):
+        depth, seen = 1, {letter}
+        while letter in parents and parents[letter] not in seen:
+            letter = parents[letter]
+            seen.add(letter)
+            depth += 1
+        depths.append(depth)
+    return max(depths, default=0)
