@@ -195,7 +195,7 @@ def test_loads_are_printed_by_the_name_the_exercise_gives_them():
     data = tomllib.loads((ROOT / "exercises/combined_force_slider_crank.toml")
                          .read_text(encoding="utf-8"))
     solution = analyse(exercise_from_dict(data)).forces.solution
-    assert ForceNotation(solution).plain("load[1]") == "P₁"          # the default name
+    assert ForceNotation(solution).plain("load[1]") == "P₃"     # the default: its link, 3
     data["load"][0]["name"] = "P_c"
     named = analyse(exercise_from_dict(data))
     assert ForceNotation(named.forces.solution).plain("load[1]") == "P_c"
