@@ -213,6 +213,7 @@ class ForceAnalysis:
         with the forces by their report names."""
         solution = self.solution
         symbols = load_symbols(solution.mechanism)
+        numbers = course_numbers(solution.mechanism)
         out: dict = {"reactions": {key: _reaction_dict(reaction)
                                    for key, reaction in self.reactions.items()},
                      "balancing_moment": self.balancing_moment,
@@ -225,7 +226,8 @@ class ForceAnalysis:
                                  for link, item in solution.applied.inertia.items()},
                      "loads": [_load_dict(item, symbols) for item in solution.applied.items
                                if item.kind in (AppliedKind.LOAD, AppliedKind.FRICTION)],
-                     "groups": [_group_dict(group) for group in solution.groups.groups],
+                     "groups": [_group_dict(group, numbers)
+                                for group in solution.groups.groups],
                      "scales": {"mu_f": self.mu_f}}
         if self.combined is not None:
             out["combined_force"] = _combined_dict(self.combined)
@@ -287,9 +289,11 @@ def _load_dict(item, symbols: Mapping[str, tuple[str, str]]) -> dict:
     return {"name": item.name, **shown, "link": item.link, "kind": item.kind, **given}
 
 
-def _group_dict(group) -> dict:
-    """A group's solve: its kind, links, steps (rendered), reactions and special point."""
-    out = {"name": group.name, "kind": group.kind, "links": list(group.links),
+def _group_dict(group, numbers: Mapping[str, int]) -> dict:
+    """A group's solve: its kind, links (in the order of their numbers in the course's
+    notation, as the text lists them), steps (rendered), reactions and special point."""
+    links = sorted(group.links, key=lambda link: numbers.get(link, len(numbers)))
+    out = {"name": group.name, "kind": group.kind, "links": links,
            "steps": [render(step) for step in group.steps],
            "reactions": list(group.reactions)}
     if group.special_point is not None:
