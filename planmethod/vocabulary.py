@@ -34,6 +34,7 @@ __all__ = [
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
+    "SYMBOL_LETTERS",
     "TITLE_SHOWN_CHARACTERS",
     "UNIT_WORDS",
     "AppliedKind",
@@ -60,6 +61,7 @@ __all__ = [
     "quantity",
     "question_text",
     "question_words",
+    "reads_as_symbol",
     "scale_text",
     "scale_words",
     "shown_title",
@@ -497,12 +499,33 @@ def subscript(text: str) -> str:
     return text.translate(_SUBSCRIPT_TEXT)
 
 
-def point_text(name: str) -> str:
-    """A point's name in plain text, its digits as subscripts (``O1`` → ``O₁``).
+#: the letters a force or a moment is printed by with a link's number as its subscript (G₂,
+#: P₃, T₃, R₁₂, N₀₃, Fᵘ₂, Mᵘ₂, Q₂) and the centre of mass S₂: a point named by one of them and
+#: digits is printed as it is written (G1), never as a symbol (G₁, the weight of link 1)
+SYMBOL_LETTERS = frozenset("FGMNPQRST")
 
-    >>> point_text("O1"), point_text("C")
-    ('O₁', 'C')
+
+def reads_as_symbol(name: str) -> bool:
+    """Whether the point ``name`` would print like a force's symbol with its digits set as a
+    subscript (``G1`` as G₁, the weight of link 1): one of :data:`SYMBOL_LETTERS`, then
+    digits.
+
+    >>> reads_as_symbol("G1"), reads_as_symbol("O1"), reads_as_symbol("G")
+    (True, False, False)
     """
+    head = name.rstrip("0123456789")
+    return head in SYMBOL_LETTERS and len(name) > len(head)
+
+
+def point_text(name: str) -> str:
+    """A point's name in plain text, its digits as subscripts (``O1`` → ``O₁``); a name
+    that would read as a force's symbol (:func:`reads_as_symbol`) as it is written.
+
+    >>> point_text("O1"), point_text("C"), point_text("G1")
+    ('O₁', 'C', 'G1')
+    """
+    if reads_as_symbol(name):
+        return name
     head = name.rstrip("0123456789")
     return head + subscript(name[len(head):])
 

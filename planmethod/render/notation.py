@@ -221,7 +221,7 @@ class ForceNotation:
             return label_runs(symbol)
         marks = sub[len(sub.rstrip("′″‴")):]     # a load's primes (P₃′) stand beside
         runs = ((symbol, RunKind.MAIN), (sub[:len(sub) - len(marks)], RunKind.SUB))
-        return runs + ((marks, RunKind.MAIN),) if marks else runs
+        return (*runs, (marks, RunKind.MAIN)) if marks else runs
 
     def plain(self, name: str, on: str | None = None) -> str:
         """The printed name in one string, the subscript in Unicode subscript digits."""
