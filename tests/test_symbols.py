@@ -158,6 +158,11 @@ def test_a_slides_motion_is_named_by_its_point(press):
     for shown in ("v_D₅D₀", "aʳ_D₅D₀", "aᵏ_D₅D₀", "s₅₀"):
         assert re.search(rf"^  {shown} ", table, re.MULTILINE), shown
     assert "ds/dt" not in table and "d²s/dt²" not in table
+    steps = [step["text"] for kind in ("velocity", "acceleration")
+             for step in report_dict(analysis)["plans"][kind]["steps"]]
+    assert any(re.search(r"\(d₀d\) = [\d.]+ mm → v_D₅D₀ = ", step) for step in steps)
+    assert any("→ aʳ_D₅D₀ = " in step for step in steps)
+    assert not any("ds/dt" in step or "d²s/dt²" in step for step in steps)
 
 
 def test_a_triads_links_are_listed_in_the_courses_order():
