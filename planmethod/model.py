@@ -214,8 +214,8 @@ class Load:
     moment: float | None = None
     oppose_velocity: bool = False
     index: int = 1
-    #: the name figures print (``P_c``, ``F_res``); default P₁, P₂… for forces and T₁, T₂… for
-    #: moments, by ``index``
+    #: the name figures print (``P_c``, ``F_res``); default P₃ for a force and T₃ for a moment
+    #: on link 3 (two of one letter on one link: P₃′, P₃″)
     name: str | None = None
 
 

@@ -303,13 +303,16 @@ def _structure_dict(analysis: Analysis) -> dict:
     """The structure: the counts, W, and each Assur group with its assembly (its branch and
     why) and, for a dyad, how far from its toggle its lines meet."""
     structure, motion = analysis.structure, analysis.motion
+    numbers = course_numbers(analysis.exercise.mechanism)
     return {"n": structure.n, "p5": structure.p5, "p4": structure.p4, "W": structure.mobility,
-            "groups": [_group_dict(group, motion) for group in structure.groups]}
+            "groups": [_group_dict(group, motion, numbers) for group in structure.groups]}
 
 
-def _group_dict(group, motion: Motion) -> dict:
-    """One Assur group of the structure (see :func:`_structure_dict`)."""
-    entry: dict[str, Any] = {"type": group.kind, "links": list(group.links),
+def _group_dict(group, motion: Motion, numbers: dict[str, int]) -> dict:
+    """One Assur group of the structure (see :func:`_structure_dict`), its links in the
+    order of their numbers in the course's notation (as the text lists them)."""
+    links = sorted(group.links, key=lambda link: numbers.get(link, len(numbers)))
+    entry: dict[str, Any] = {"type": group.kind, "links": links,
                              "class": group.group_class, "order": group.order,
                              "pairs": [joint.label for joint in group.joints]}
     if group.type_number:

@@ -34,6 +34,7 @@ __all__ = [
     "QUANTITY_KINDS",
     "SCALES",
     "STAGE_PLURAL",
+    "SYMBOL_LETTERS",
     "TITLE_SHOWN_CHARACTERS",
     "UNIT_WORDS",
     "AppliedKind",
@@ -60,10 +61,12 @@ __all__ = [
     "quantity",
     "question_text",
     "question_words",
+    "reads_as_symbol",
     "scale_text",
     "scale_words",
     "shown_title",
     "sign_words",
+    "slide_points",
     "stage_words",
     "subscript",
     "symbol",
@@ -496,12 +499,33 @@ def subscript(text: str) -> str:
     return text.translate(_SUBSCRIPT_TEXT)
 
 
-def point_text(name: str) -> str:
-    """A point's name in plain text, its digits as subscripts (``O1`` → ``O₁``).
+#: the letters a force or a moment is printed by with a link's number as its subscript (G₂,
+#: P₃, T₃, R₁₂, N₀₃, Fᵘ₂, Mᵘ₂, Q₂) and the centre of mass S₂: a point named by one of them and
+#: digits is printed as it is written (G1), never as a symbol (G₁, the weight of link 1)
+SYMBOL_LETTERS = frozenset("FGMNPQRST")
 
-    >>> point_text("O1"), point_text("C")
-    ('O₁', 'C')
+
+def reads_as_symbol(name: str) -> bool:
+    """Whether the point ``name`` would print like a force's symbol with its digits set as a
+    subscript (``G1`` as G₁, the weight of link 1): one of :data:`SYMBOL_LETTERS`, then
+    digits.
+
+    >>> reads_as_symbol("G1"), reads_as_symbol("O1"), reads_as_symbol("G")
+    (True, False, False)
     """
+    head = name.rstrip("0123456789")
+    return head in SYMBOL_LETTERS and len(name) > len(head)
+
+
+def point_text(name: str) -> str:
+    """A point's name in plain text, its digits as subscripts (``O1`` → ``O₁``); a name
+    that would read as a force's symbol (:func:`reads_as_symbol`) as it is written.
+
+    >>> point_text("O1"), point_text("C"), point_text("G1")
+    ('O₁', 'C', 'G1')
+    """
+    if reads_as_symbol(name):
+        return name
     head = name.rstrip("0123456789")
     return head + subscript(name[len(head):])
 
@@ -581,12 +605,18 @@ def point_name(point: str, numbers: Mapping[str, int] | None = None) -> str:
     return f"{point_text(name)} {link}"
 
 
-def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
+def symbol(name: str, numbers: Mapping[str, int] | None = None,
+           points: Mapping[str, str] | None = None) -> str:
     """A quantity as a course writes it: a link's by the link's number as a subscript (ω₂,
     ε₃), a point's with the point's name (v_C, a_C, ρ_D; a point of a link by the link's
     number, v_B₃), a pair's by its two links' numbers (s₃₀: link 3 along link 0); a name that
     is no quantity is returned as it is. Without ``numbers`` a link's and a pair's quantity
     keep their names.
+
+    ``points`` gives a prismatic pair's point by the pair's key (``{"slider/frame": "C"}``,
+    :func:`slide_points`): its sliding velocity, relative acceleration and Coriolis component
+    are then the motion of the slide's point B of link 3 relative to link 2, as a course
+    writes them: v_B₃B₂, aʳ_B₃B₂, aᵏ_B₃B₂.
 
     Examples
     --------
@@ -595,6 +625,9 @@ def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
     ('ω₂', 'a_C', 'v_B₄')
     >>> symbol("ds_slider/frame", numbers), symbol("s_slider/frame")
     ('ds/dt₃₀', 's (slider/frame)')
+    >>> points = {"slider/frame": "C"}
+    >>> [symbol(f"{kind}_slider/frame", numbers, points) for kind in ("ds", "dds", "coriolis")]
+    ['v_C₃C₀', 'aʳ_C₃C₀', 'aᵏ_C₃C₀']
     """
     try:
         found = quantity(name)
@@ -606,9 +639,28 @@ def symbol(name: str, numbers: Mapping[str, int] | None = None) -> str:
     if kind.subject == "pair":
         link, _, along = subject.partition("/")
         if numbers and link in numbers and along in numbers:
+            point = (points or {}).get(subject)
+            if point is not None and kind.prefix in _SLIDE_LETTERS:
+                return (f"{_SLIDE_LETTERS[kind.prefix]}_{point_name(f'{point}@{link}', numbers)}"
+                        f"{point_name(f'{point}@{along}', numbers)}")
             return kind.symbol + subscript(pair_number(numbers[link], numbers[along]))
         return f"{kind.symbol} ({subject})"
     return f"{kind.symbol}_{point_name(subject, numbers)}"
+
+
+#: a prismatic pair's quantities that a course writes as the relative motion of the slide's
+#: point (v_B₃B₂, aʳ_B₃B₂, aᵏ_B₃B₂), by their letter
+_SLIDE_LETTERS = {"ds": "v", "dds": "aʳ", "coriolis": "aᵏ"}
+
+
+def slide_points(mechanism) -> dict[str, str]:
+    """Each prismatic pair's point by the pair's key (``link/along``), for :func:`symbol`.
+
+    >>> from types import SimpleNamespace as Slide
+    >>> slide_points(Slide(slides=[Slide(key="slider/frame", point="C")]))
+    {'slider/frame': 'C'}
+    """
+    return {slide.key: slide.point for slide in mechanism.slides}
 
 
 #: the balancing moment's symbol, which a course's tradition writes in its own letters (Мур)
@@ -733,10 +785,12 @@ def _point_words(point: str) -> Message | str:
     return message("{point} of link {link}", point=name, link=link) if link else point
 
 
-def question_words(name: str, numbers: Mapping[str, int] | None = None) -> Message:
+def question_words(name: str, numbers: Mapping[str, int] | None = None,
+                   points: Mapping[str, str] | None = None) -> Message:
     """What a task asks for a quantity, in words and in a course's symbols: the kind's
     question (:attr:`QuantityKind.asked`) filled, its links named by their numbers where
-    ``numbers`` has them.
+    ``numbers`` has them (a slide's motion by its point's where ``points`` has it:
+    :func:`symbol`).
 
     Examples
     --------
@@ -753,7 +807,7 @@ def question_words(name: str, numbers: Mapping[str, int] | None = None) -> Messa
             return kind.asked.replace(point=_point_words(subject), subject=subject)
         point = point_name(subject, numbers)
         return kind.asked.replace(point=point, subject=point)
-    shown = symbol(name, numbers) if numbers else kind.symbol
+    shown = symbol(name, numbers, points) if numbers else kind.symbol
     if kind.subject == "link":
         if numbers and subject in numbers:
             return kind.asked_numbered.replace(symbol=shown, number=numbers[subject],

@@ -8,12 +8,15 @@ import re
 from pathlib import Path
 
 import pytest
+from defusedxml import ElementTree
 
 from planmethod.render.figures import plan_files
 from planmethod.render.plan_words import step_text
 from planmethod.report import analyse, report_dict
 from planmethod.spec import load_exercise
 from planmethod.testing.figures import figure_problems
+
+_SVG = "{http://www.w3.org/2000/svg}"
 
 ROOT = Path(__file__).resolve().parent.parent
 EXERCISES = sorted((ROOT / "exercises").glob("*.toml"))
@@ -43,12 +46,15 @@ def test_the_lever_states_the_reports_moment_and_draws_each_force(drawn):
     report = report_dict(analysis)
     moment = report["forces"]["zhukovsky_moment"]
     lever = files["lever.svg"]
-    assert f"M_b = {moment:.6g} N·m (Zhukovsky's lever)" in lever
+    # M_b set with its subscript b: the line's text reads "Mb = …"
+    lines = ["".join(element.itertext()) for element in
+             ElementTree.fromstring(lever.encode("utf-8")).iter(f"{_SVG}text")]
+    assert any(f"Mb = {moment:.6g} N·m (Zhukovsky's lever)" in line for line in lines)
+    assert f"M_b = {moment:.6g}" not in lever
     drawn_forces = {force.name for force in analysis.forces.solution.lever.forces
                     if not force.name.startswith("M_f") and any(force.force[0])}
     labelled = set(re.findall(r'data-points="force:([^"]+)"', lever))
     assert labelled == drawn_forces | {"F_b"}                 # each force named at its image
-    from defusedxml import ElementTree
 
     root = ElementTree.fromstring(lever.encode("utf-8"))
     results = next(group for group in root if group.get("class") == "results")
@@ -195,7 +201,7 @@ def test_loads_are_printed_by_the_name_the_exercise_gives_them():
     data = tomllib.loads((ROOT / "exercises/combined_force_slider_crank.toml")
                          .read_text(encoding="utf-8"))
     solution = analyse(exercise_from_dict(data)).forces.solution
-    assert ForceNotation(solution).plain("load[1]") == "P₁"          # the default name
+    assert ForceNotation(solution).plain("load[1]") == "P₃"     # the default: its link, 3
     data["load"][0]["name"] = "P_c"
     named = analyse(exercise_from_dict(data))
     assert ForceNotation(named.forces.solution).plain("load[1]") == "P_c"

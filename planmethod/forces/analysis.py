@@ -51,6 +51,7 @@ from .combined import (
 )
 from .friction import FrictionResult, friction_settings, solve_with_friction
 from .group_method import GroupSolution, solve_by_groups
+from .names import load_symbol, load_symbols
 from .system import SystemSolution, solve_whole_system
 
 __all__ = ["AGREEMENT", "ForceAnalysis", "ForceSolution", "analyse_forces", "force_columns",
@@ -211,6 +212,8 @@ class ForceAnalysis:
         computed; its sentences (a group's steps, the flags) rendered in the language spoken,
         with the forces by their report names."""
         solution = self.solution
+        symbols = load_symbols(solution.mechanism)
+        numbers = course_numbers(solution.mechanism)
         out: dict = {"reactions": {key: _reaction_dict(reaction)
                                    for key, reaction in self.reactions.items()},
                      "balancing_moment": self.balancing_moment,
@@ -221,9 +224,10 @@ class ForceAnalysis:
                      "whole_system": _whole_system_dict(solution),
                      "inertia": {link: _inertia_dict(item)
                                  for link, item in solution.applied.inertia.items()},
-                     "loads": [_load_dict(item) for item in solution.applied.items
+                     "loads": [_load_dict(item, symbols) for item in solution.applied.items
                                if item.kind in (AppliedKind.LOAD, AppliedKind.FRICTION)],
-                     "groups": [_group_dict(group) for group in solution.groups.groups],
+                     "groups": [_group_dict(group, numbers)
+                                for group in solution.groups.groups],
                      "scales": {"mu_f": self.mu_f}}
         if self.combined is not None:
             out["combined_force"] = _combined_dict(self.combined)
@@ -274,18 +278,22 @@ def _reaction_dict(reaction) -> dict:
     return entry
 
 
-def _load_dict(item) -> dict:
-    """A given load or a friction force or moment at the first angle."""
+def _load_dict(item, symbols: Mapping[str, tuple[str, str]]) -> dict:
+    """A given load or a friction force or moment at the first angle; a load with the
+    symbol figures print it by (``symbol``: P₃, the number of its link)."""
     if item.force is not None:
         given = {"point": _pair(item.point[0]), "force": _pair(item.force[0])}
     else:
         given = {"moment": float(item.moment[0])}
-    return {"name": item.name, "link": item.link, "kind": item.kind, **given}
+    shown = {"symbol": load_symbol(symbols[item.name])} if item.name in symbols else {}
+    return {"name": item.name, **shown, "link": item.link, "kind": item.kind, **given}
 
 
-def _group_dict(group) -> dict:
-    """A group's solve: its kind, links, steps (rendered), reactions and special point."""
-    out = {"name": group.name, "kind": group.kind, "links": list(group.links),
+def _group_dict(group, numbers: Mapping[str, int]) -> dict:
+    """A group's solve: its kind, links (in the order of their numbers in the course's
+    notation, as the text lists them), steps (rendered), reactions and special point."""
+    links = sorted(group.links, key=lambda link: numbers.get(link, len(numbers)))
+    out = {"name": group.name, "kind": group.kind, "links": links,
            "steps": [render(step) for step in group.steps],
            "reactions": list(group.reactions)}
     if group.special_point is not None:

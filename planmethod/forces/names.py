@@ -3,7 +3,7 @@
 The force analysis says what it did in sentences (a group's steps, its flags): messages
 (:mod:`planmethod.words`) whose fields name forces and links. The JSON report writes a force
 by its report name (``Rᵗ_B``, ``F_u,BC``, ``load[1]``) and a link by its name; a course's
-text prints the force's symbol (Rᵗ₁₂, Fᵘ₂, P₁) and, where a course writes a link by its
+text prints the force's symbol (Rᵗ₁₂, Fᵘ₂, P₃) and, where a course writes a link by its
 number (ΣM_C(2)), the number. So such a field is a typed value, not text: a
 :class:`ForceName` or a :class:`LinkNumber`, which is written as its report name when the
 sentence is rendered as it is (the JSON report), and which
@@ -27,10 +27,14 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from ..model import Mechanism
+from ..numbering import course_numbers
+from ..vocabulary import subscript
 from ..words import Message, message
 
 __all__ = ["BALANCING_FORCE", "BALANCING_MOMENT", "FRICTION_FORCE", "FRICTION_MOMENT",
-           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceName", "LinkNumber", "crank_angles"]
+           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceName", "LinkNumber", "crank_angles",
+           "load_symbol", "load_symbols"]
 
 #: the letters a course's tradition writes its own way: a course's catalogue translates these
 #: symbols (a Russian course: Fи, Mи, Mур, Fтр, Mтр); what follows an underscore is a subscript
@@ -69,3 +73,53 @@ def crank_angles(angles: Iterable[float]) -> list[Message]:
     """Crank angles as a sentence lists them (``0°, 90°``): one message each, its number a
     field (a decimal comma where the language writes one)."""
     return [message("{angle:g}°", angle=float(angle)) for angle in angles]
+
+
+#: the marks that set apart two loads of one letter on one link (P₃′, P₃″, P₃‴)
+_PRIMES = ("′", "″", "‴")
+
+
+def load_symbols(mechanism: Mechanism) -> dict[str, tuple[str, str]]:
+    """Each external load's printed symbol by its report name (``load[1]``): (letter,
+    subscript). A load keeps the ``name`` its exercise gives it; otherwise a force is P and a
+    moment T, with the number of the link it acts on (P₃ on link 3), and two or more of one
+    letter on one link are told apart by primes in the file's order (P₃′, P₃″).
+
+    Examples
+    --------
+    >>> from planmethod.spec import load_exercise
+    >>> load_symbols(load_exercise("exercises/fourbar_study.toml").mechanism)
+    {'load[1]': ('T', '3')}
+    """
+    numbers = course_numbers(mechanism)
+    keys: dict[str, tuple[str, str]] = {}
+    for load in mechanism.loads:
+        letter = "T" if load.moment is not None else "P"
+        number = str(numbers[load.link]) if load.link in numbers else str(load.index)
+        keys[f"load[{load.index}]"] = (letter, number)
+    counts: dict[tuple[str, str], int] = {}
+    for key in keys.values():
+        counts[key] = counts.get(key, 0) + 1
+    seen: dict[tuple[str, str], int] = {}
+    out: dict[str, tuple[str, str]] = {}
+    for load in mechanism.loads:
+        name = f"load[{load.index}]"
+        if load.name:
+            out[name] = (load.name, "")
+            continue
+        letter, number = key = keys[name]
+        seen[key] = seen.get(key, 0) + 1
+        order = seen[key]
+        mark = "" if counts[key] == 1 else _PRIMES[order - 1] if order <= 3 else "′" * order
+        out[name] = (letter, number + mark)
+    return out
+
+
+def load_symbol(parts: tuple[str, str]) -> str:
+    """A load's (letter, subscript) in one string, the link's number in subscript digits.
+
+    >>> load_symbol(("P", "3″")), load_symbol(("F_res", ""))
+    ('P₃″', 'F_res')
+    """
+    letter, sub = parts
+    return letter + subscript(sub)

@@ -49,6 +49,7 @@ from ..vectors import angle_deg, cross, dot, norm, perp, unit, unit_or_zero
 from ..vocabulary import (
     PlanKind,
     shown_title,
+    slide_points,
 )
 from ..words import message
 from .groups import plan_face
@@ -157,6 +158,8 @@ class Plan:
     numbers: Mapping[str, int] = field(default_factory=dict)
     angle: float = 0.0
     crank: int = 1
+    #: each prismatic pair's point by the pair's key (for printed names: v_B₃B₂)
+    slides: Mapping[str, str] = field(default_factory=dict)
 
     def point(self, label: str) -> np.ndarray:
         return np.asarray(self.points_mm[label], dtype=float)
@@ -393,11 +396,12 @@ class _Sheet:
             link=link))
 
     def finish(self, title: str, angle: float, crank: int,
-               numbers: Mapping[str, int]) -> Plan:
+               numbers: Mapping[str, int], slides: Mapping[str, str] | None = None) -> Plan:
         points = {k: (v if np.ndim(v) == 2 else (float(v[0]), float(v[1])))
                   for k, v in self.points.items()}    # copies of a drawing: (N, 2) each
         return Plan(self.kind, self.pole, self.scale, self.unit, points, self.recorder.steps,
-                    tuple(self.flags), self.precision, title, numbers, angle, crank)
+                    tuple(self.flags), self.precision, title, numbers, angle, crank,
+                    dict(slides or {}))
 
 
 def _velocity_offset(image: LinkImage, point: np.ndarray, mu_v: float) -> np.ndarray:
@@ -1053,8 +1057,10 @@ def _drawn(emulator: _Emulator, exercise: Exercise, position_plan: PositionPlan 
         _sliding_readings(emulator, key, acceleration)
     numbers = course_numbers(mechanism)
     title, crank = shown_title(mechanism.title), numbers[mechanism.drive.link]
-    velocity_plan = emulator.v.finish(title, angle, crank, numbers)
-    acceleration_plan = emulator.a.finish(title, angle, crank, numbers) if acceleration else None
+    slides = slide_points(mechanism)
+    velocity_plan = emulator.v.finish(title, angle, crank, numbers, slides)
+    acceleration_plan = (emulator.a.finish(title, angle, crank, numbers, slides)
+                         if acceleration else None)
     flags = velocity_plan.flags + (acceleration_plan.flags if acceleration_plan else ())
     return Plans(exercise, angle, emulator.scales, position_plan, velocity_plan,
                  acceleration_plan, dict(emulator.readings), flags, motion)

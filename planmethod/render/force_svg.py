@@ -272,7 +272,8 @@ def _force_legend(figure: Canvas, at, used: dict[Message, tuple[str, str | None]
         y += 20
         figure.arrow((x, y - 4), (x + 34, y - 4), style, layer="text", color=colour,
                      obstacle=False)
-        figure.text((x + 44, y), render(text), size=SMALL_SIZE, css="legend", area=False)
+        figure.text((x + 44, y), render(text), size=SMALL_SIZE, css="legend", area=False,
+                    formula=True)
     return y
 
 

@@ -7,8 +7,10 @@ it as a subscript — ``c4`` → c₄, ``n_CB`` → n with subscript CB, ``b@lev
 name *lever* as an upright subscript (the image of B taken as a point of the lever),
 ``k_C@lever`` → k with subscript "C, lever"; with the links' numbers (the course's notation) a
 point of link 3 is b₃ and k_B₃ instead. Digits and link names are upright, point names
-italic. Labels of points that coincide on the drawing are merged into one label joined by "≡"
-(``p ≡ a ≡ c_frame``), the pole first.
+italic; a point named like a force's symbol (``G1``, beside the weight G₁ of link 1) is set
+upright as it is written, G1 (:func:`planmethod.vocabulary.reads_as_symbol`). Labels of
+points that coincide on the drawing are merged into one label joined by "≡" (``p ≡ a ≡
+c_frame``), the pole first.
 
 Placement
 ---------
@@ -39,6 +41,8 @@ Examples
 ("'b':main '3':upright", "'k':main 'B':sub '3':upright")
 >>> show(label_runs("k1_Q")), show(label_runs("k2_Q"))
 ("'k':main 'Q':sub", "'k′':main 'Q':sub")
+>>> show(label_runs("G1"))                  # upright as written: never the weight G₁
+"'G1':sep"
 >>> plain(merge_runs([label_runs("p"), label_runs("c@frame")]))
 'p ≡ c frame'
 """
@@ -52,7 +56,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from ..vocabulary import coriolis_letter
+from ..vocabulary import coriolis_letter, reads_as_symbol
 from .style import CLEARANCE_PX, LABEL, NBSP, SUB_SCALE, SUB_SHIFT, TOUCH_PX, text_width
 
 __all__ = [
@@ -142,6 +146,8 @@ def label_runs(label: str, numbers: Mapping[str, int] | None = None) -> tuple[Ru
     b₃, ``k_B@lever`` is k with subscript B₃."""
     name, at, link = label.partition("@")
     main, _, rest = name.partition("_")
+    if not rest and reads_as_symbol(main):  # G1 upright as written: never the weight G₁
+        return ((main, RunKind.SEP), *_link_runs(link if at else "", numbers, False))
     main, digits = _split_digits(main)
     if main == "k" and digits and rest:     # a Coriolis point's side index: k1_Q is k_Q
         main, digits = coriolis_letter(digits), ""
@@ -154,11 +160,17 @@ def label_runs(label: str, numbers: Mapping[str, int] | None = None) -> tuple[Ru
     runs: list[Run] = [(main, RunKind.MAIN)]
     for index, (text, kind) in enumerate(parts):
         runs.append(((", " if index else "") + text, kind))
-    if at and numbers and link in numbers:
-        runs.append((str(numbers[link]), RunKind.UPRIGHT))      # b₃, k_B₃: no comma
-    elif at:
-        runs.append(((", " if parts else "") + link, RunKind.UPRIGHT))
-    return tuple(runs)
+    return tuple(runs) + _link_runs(link if at else "", numbers, bool(parts))
+
+
+def _link_runs(link: str, numbers: Mapping[str, int] | None, comma: bool) -> tuple[Run, ...]:
+    """The run of the link a point is taken as a point of: its number (b₃, k_B₃: no comma),
+    else its name."""
+    if not link:
+        return ()
+    if numbers and link in numbers:
+        return ((str(numbers[link]), RunKind.UPRIGHT),)
+    return (((", " if comma else "") + link, RunKind.UPRIGHT),)
 
 
 def merge_runs(labels: Iterable[Sequence[Run]], sign: str = "≡") -> tuple[Run, ...]:

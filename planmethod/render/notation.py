@@ -11,7 +11,8 @@ report name            printed
 ``M_u,BC``             Mᵘ₂ — the inertia moment of link 2
 ``R_B``, ``Rᵗ_B``      R₁₂, Rᵗ₁₂ … — the force of link 1 on link 2 (R₂₁ = −R₁₂); also Rⁿ, N
 ``M_f,B``, ``F_f,B``   Mᶠ₁₂, Fᶠ₁₂ — the friction moment or force of link 1 on link 2
-``load[1]``            the load's ``name`` from the exercise, else P₁ (a force) or T₁ (a moment)
+``load[1]``            the load's ``name`` from the exercise, else P₃ (a force) or T₃ (a moment)
+                       with the number of the link it acts on (two on link 3: P₃′, P₃″)
 =====================  ======================================================================
 
 Links are numbered as the exercise's course numbers them
@@ -56,6 +57,7 @@ from ..forces.names import (
     INERTIA_MOMENT,
     ForceName,
     LinkNumber,
+    load_symbols,
 )
 from ..numbering import course_numbers
 from ..vocabulary import (
@@ -108,13 +110,7 @@ class ForceNotation:
         self.symbols = {head: render(symbol) for head, symbol in _SYMBOLS.items()}
         self.pairs = {key: (reaction.source, reaction.target)
                       for key, reaction in solution.reactions.items()}
-        self.loads: dict[str, tuple[str, str]] = {}
-        for load in mechanism.loads:
-            if load.name:
-                self.loads[f"load[{load.index}]"] = (load.name, "")
-            else:
-                self.loads[f"load[{load.index}]"] = ("T" if load.moment is not None else "P",
-                                                     str(load.index))
+        self.loads = load_symbols(mechanism)
 
     # -- links -------------------------------------------------------------------------------
     def number(self, link: str) -> str:
@@ -223,7 +219,9 @@ class ForceNotation:
         symbol, sub = found
         if not sub:
             return label_runs(symbol)
-        return ((symbol, RunKind.MAIN), (sub, RunKind.SUB))
+        marks = sub[len(sub.rstrip("′″‴")):]     # a load's primes (P₃′) stand beside
+        runs = ((symbol, RunKind.MAIN), (sub[:len(sub) - len(marks)], RunKind.SUB))
+        return (*runs, (marks, RunKind.MAIN)) if marks else runs
 
     def plain(self, name: str, on: str | None = None) -> str:
         """The printed name in one string, the subscript in Unicode subscript digits."""

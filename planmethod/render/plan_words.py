@@ -25,6 +25,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -129,12 +130,25 @@ def _rate(letter: str, link: str, numbers: Numbers) -> str:
     return numbered(letter, numbers[link]) if link in numbers else f"{letter}_{_words(link)}"
 
 
-def _read_symbol(step: Read, numbers: Numbers) -> str:
+def _read_symbol(step: Read, numbers: Numbers, slides: Mapping[str, str] | None = None
+                 ) -> str:
     """What a reading gives, as a course writes it: a relative motion by its vector, a
-    quantity by its symbol (``a_rel_…`` by aʳ)."""
+    quantity by its symbol (``a_rel_…`` by aʳ; a slide's sliding velocity by its point's
+    relative velocity, v_B₃B₂, where ``slides`` has the point and the segment read joins two
+    images of it)."""
     if step.relative is not None:
         return vector_text(step.relative, numbers)
-    return symbol(step.quantity, numbers)
+    point = (slides or {}).get(step.quantity.partition("_")[2])
+    if point is None or not all(_of_point(label, point) for label in (step.start, step.end)):
+        return symbol(step.quantity, numbers)
+    return symbol(step.quantity, numbers, slides)
+
+
+def _of_point(label: str, point: str) -> bool:
+    """Whether a plan label is an image of ``point`` (``b``, ``b@lever``) or the end of its
+    Coriolis component (``k_B@lever``, ``k2_B``)."""
+    name = re.sub(r"^k\d*_", "", label.partition("@")[0])
+    return name in (point, point.lower())
 
 
 # -- the steps' sentences ---------------------------------------------------------------------
@@ -142,8 +156,9 @@ class _Fields:
     """What every template of a step may name: its plan points, vector and numbers, in the
     course's notation."""
 
-    def __init__(self, step: Step, kind: str, numbers: Numbers) -> None:
-        self.step, self.kind, self.numbers = step, kind, numbers
+    def __init__(self, step: Step, kind: str, numbers: Numbers,
+                 slides: Mapping[str, str] | None = None) -> None:
+        self.step, self.kind, self.numbers, self.slides = step, kind, numbers, slides
         self.start = label_text(step.start, numbers) if step.start else ""
         self.end = label_text(step.end, numbers) if step.end else ""
 
@@ -308,7 +323,7 @@ def _project(step: Project, at: _Fields) -> Message:
 def _read(step: Read, at: _Fields) -> Message:
     return message("({start}{end}) = {length:.4g} mm → {quantity} = {value:.6g}",
                    start=at.start, end=at.end, length=step.length_mm,
-                   quantity=_read_symbol(step, at.numbers), value=step.value)
+                   quantity=_read_symbol(step, at.numbers, at.slides), value=step.value)
 
 
 def _read_radius(step: ReadRadius, at: _Fields) -> Message:
@@ -333,15 +348,17 @@ STEP_MESSAGES: dict[type, Callable[[Any, _Fields], Message]] = {
 }
 
 
-def step_message(step: Step, kind: str, numbers: Numbers | None = None) -> Message:
+def step_message(step: Step, kind: str, numbers: Numbers | None = None,
+                 slides: Mapping[str, str] | None = None) -> Message:
     """The sentence of a construction ``step`` of the plan of ``kind`` (velocity or
-    acceleration), its fields in the course's notation (``numbers``: the links' numbers)."""
-    return STEP_MESSAGES[type(step)](step, _Fields(step, kind, numbers or {}))
+    acceleration), its fields in the course's notation (``numbers``: the links' numbers;
+    ``slides``: each prismatic pair's point, :func:`planmethod.vocabulary.slide_points`)."""
+    return STEP_MESSAGES[type(step)](step, _Fields(step, kind, numbers or {}, slides))
 
 
 def step_text(step: Step, plan: Plan) -> str:
     """The sentence of ``step`` of ``plan``, as text in the language spoken now."""
-    return render(step_message(step, plan.kind, plan.numbers))
+    return render(step_message(step, plan.kind, plan.numbers, plan.slides))
 
 
 def step_dict(step: Step, plan: Plan) -> dict:

@@ -31,7 +31,7 @@ from ..forces.names import BALANCING_MOMENT, INERTIA_FORCE, INERTIA_MOMENT
 from ..numbering import course_numbers
 from ..report import Analysis, published_comparison
 from ..vectors import norm
-from ..vocabulary import numbered, point_text, subscript, symbol
+from ..vocabulary import numbered, point_text, slide_points, subscript, symbol
 from ..words import Message, message, number_text, plural, render
 from .notation import ForceNotation
 
@@ -62,8 +62,10 @@ def _cell(value: float | None, width: int, specification: str) -> str:
 def check_lines(analysis: Analysis) -> list[str]:
     """The check table: each asked quantity read off the plan against the exact value, with
     the errors and the unit (its first line empty)."""
-    numbers = course_numbers(analysis.exercise.mechanism)
-    shown = {check.quantity: symbol(check.quantity, numbers) for check in analysis.checks}
+    mechanism = analysis.exercise.mechanism
+    numbers, points = course_numbers(mechanism), slide_points(mechanism)
+    shown = {check.quantity: symbol(check.quantity, numbers, points)
+             for check in analysis.checks}
     quantity = message("quantity", context="column")
     width = max([len(text) for text in shown.values()] + [8, len(render(quantity))])
     heading, extra = _heading((
@@ -89,6 +91,7 @@ def published_lines(analysis: Analysis) -> list[str]:
     if not exercise.published:
         return []
     numbers = course_numbers(exercise.mechanism)
+    points = slide_points(exercise.mechanism)
     source = exercise.published_source or message("the book")
     heading, extra = _heading((
         (message("quantity", context="column"), "<", 22),
@@ -102,7 +105,7 @@ def published_lines(analysis: Analysis) -> list[str]:
                else number_text(row.difference_percent, "+.1f") + " %")
         slip = ("   " + render(message("likely a slip (> 5 %)")) if row.likely_slip else "")
         exact = "—" if row.exact is None else number_text(row.exact, ".6g")
-        lines.append(f"  {symbol(row.quantity, numbers):<{22 + extra[0]}}"
+        lines.append(f"  {symbol(row.quantity, numbers, points):<{22 + extra[0]}}"
                      f"{number_text(row.published, f'>{12 + extra[1]}.6g')}"
                      f"{exact:>{14 + extra[2]}}{off:>{12 + extra[3]}}{slip}")
     return lines

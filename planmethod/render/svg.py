@@ -482,7 +482,7 @@ def frame(figure: Canvas, title: Message | str, scale_lines: Sequence[Message | 
     figure.text((x0, y0 - 16), title, size=TITLE_SIZE, bold=True, css="title", area=False)
     y = y1 + 26
     for line in scale_lines:
-        figure.text((x0, y), line, size=TEXT_SIZE, css="scale", area=False)
+        figure.text((x0, y), line, size=TEXT_SIZE, css="scale", area=False, formula=True)
         y += 19
     if bar is not None:
         scale, unit, target = bar
