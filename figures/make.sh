@@ -11,7 +11,7 @@ for name in fourbar_coupler_point offset_slider_crank scotch_yoke screen_sixbar 
 done
 run solve exercises/compressor_slider_crank.toml --svg figures/compressor --png > /dev/null
 run sweep exercises/shaper_sixbar.toml --step 2 --plot figures/shaper_sixbar/sweep.png > /dev/null
-for name in combined_force_slider_crank conveyor_sixbar fourbar_forces fourbar_study; do
+for name in combined_force_slider_crank conveyor_sixbar fourbar_forces fourbar_study loaded_press_sixbar; do
     run solve "exercises/$name.toml" --svg "figures/forces/$name" --png \
         > "figures/forces/$name/solve.txt"
 done
