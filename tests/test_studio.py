@@ -636,17 +636,23 @@ def test_a_job_asked_for_without_its_id_is_400(server):
     assert status == 400 and one_line(payload) == "id: is missing"
 
 
-def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folder):
+@pytest.mark.parametrize("asked", [True, False], ids=["some-asked", "nothing-asked"])
+def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folder, asked):
+    """Nothing asked asks everything (docs/studio.md): the template says so in its [ask]."""
+    text = read_text(COMPRESSOR)
+    if not asked:
+        start = text.index("[ask]")
+        text = text[:start] + text[text.index("\n[", start):]
     status, _, _ = post_json(server, "/api/save", {
-        "template": True, "path": "template.toml", "toml": read_text(COMPRESSOR),
+        "template": True, "path": f"template-{asked}.toml", "toml": text,
         "ranges": {"lengths": {"AB": [0.055, 0.065]}, "angle": [30, 60, 10]}})
     assert status == 200
     done = subprocess.run([sys.executable, "-m", "planmethod", "variants",
-                           str(folder / "template.toml"), "--count", "2", "--out",
-                           str(folder / "cli-run"), "--no-sheets"],
+                           str(folder / f"template-{asked}.toml"), "--count", "2", "--out",
+                           str(folder / f"cli-run-{asked}"), "--no-sheets"],
                           capture_output=True, text=True, cwd=ROOT)
     assert done.returncode == 0, done.stderr
-    assert (folder / "cli-run" / "keys.json").is_file()
+    assert (folder / f"cli-run-{asked}" / "keys.json").is_file()
 
 
 # -- the file system's odd corners (issue 35) ------------------------------------------------------

@@ -332,3 +332,47 @@ def test_a_hostile_title_is_saved_as_typed(studio_page):
     text = (folder / "hostile.toml").read_text(encoding="utf-8")
     assert tomllib.loads(text)["title"] == title and "\x7f" not in text
     assert errors == []
+
+
+def test_with_nothing_asked_preview_export_and_the_template_work(studio_page):
+    """Issue 39: nothing ticked under "What is asked" asks everything (docs/studio.md) in
+    every path: Preview draws the sheets, Export writes the packages, and *Save template*
+    writes a template ``planmethod variants`` accepts."""
+    page, folder, errors = studio_page
+    open_compressor(page, folder)
+    ticked = page.locator("#ask-body input[data-ask]:checked")
+    assert ticked.count() > 0
+    while ticked.count():
+        ticked.first.uncheck()
+    assert page.evaluate("window.studio.tables.ask === undefined")
+    settled(page)
+    page.click("#variants-button")
+    page.fill("#variant-count", "2")
+    page.click("#preview-variants")
+    page.wait_for_selector('#variants-job .job:not([data-state="running"])', timeout=120_000)
+    assert page.get_attribute("#variants-job .job", "data-state") == "done", \
+        page.inner_text("#variants-job")
+    assert page.locator("#sheets figure svg").count() == 2
+    page.fill("#template-path", "everything.toml")
+    page.click("#save-template")
+    page.wait_for_function("document.querySelector('#variants-message').textContent"
+                           ".includes('everything.toml')", timeout=30_000)
+    assert (folder / "everything.toml").is_file(), page.inner_text("#variants-message")
+    done = subprocess.run([sys.executable, "-m", "planmethod", "variants",
+                           str(folder / "everything.toml"), "--count", "2", "--out",
+                           str(folder / "cli-run"), "--no-sheets"],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr
+    keys = json.loads((folder / "cli-run" / "keys.json").read_text(encoding="utf-8"))
+    assert "template.toml" not in done.stderr
+    assert keys
+    page.click("#variants-close")
+    page.click("#export-button")
+    page.fill("#export-folder", "everything-run")
+    page.fill("#export-count", "2")
+    page.click("#export-run")
+    page.wait_for_selector('#export-job .job:not([data-state="running"])', timeout=120_000)
+    assert page.get_attribute("#export-job .job", "data-state") == "done", \
+        page.inner_text("#export-job")
+    assert any((folder / "everything-run").rglob("*"))
+    assert errors == []
