@@ -376,3 +376,104 @@ def test_with_nothing_asked_preview_export_and_the_template_work(studio_page):
         page.inner_text("#export-job")
     assert any((folder / "everything-run").rglob("*"))
     assert errors == []
+
+
+def open_exercise(page, folder: Path, name: str) -> None:
+    (folder / name).write_bytes((ROOT / "exercises" / name).read_bytes())
+    page.evaluate("""async (path) => {
+        const answer = await fetch('/api/open', {method: 'POST', credentials: 'same-origin',
+            body: JSON.stringify({path: path})});
+        window.studio.load((await answer.json()).tables);
+    }""", name)
+    settled(page)
+
+
+def _snap_problems(page, point: str, pointer: tuple[float, float], step: float) -> list[str]:
+    """What is wrong with ``point`` after a drag step: it lies on another point, or nearer to
+    one than a snap step while not where the pointer is, within a pixel (snapped there)."""
+    box = page.locator("#editor").bounding_box()
+    free = page.evaluate("([x, y]) => window.studio.toWorld(x, y)",
+                         [pointer[0] - box["x"], pointer[1] - box["y"]])
+    where = page.evaluate("window.studio.tables.points")
+    pixel = 1 / page.evaluate("window.studio.view.scale")   # m
+    x, y = where[point]
+    problems = []
+    for other, (ox, oy) in where.items():
+        distance = ((x - ox) ** 2 + (y - oy) ** 2) ** 0.5
+        unsnapped = abs(x - free[0]) < pixel and abs(y - free[1]) < pixel
+        if other != point and (distance == 0 or (distance < step * (1 - 1e-9)
+                                                 and not unsnapped)):
+            problems.append(f"{point} at {distance * 1000:.3f} mm from {other}")
+    return problems
+
+
+def _centre(page, point: str) -> tuple[float, float]:
+    handle = page.locator(f'circle.point-hit[data-point="{point}"]').bounding_box()
+    return handle["x"] + handle["width"] / 2, handle["y"] + handle["height"] / 2
+
+
+def test_a_drag_on_the_conveyor_never_snaps_a_point_onto_another(studio_page):
+    """Issue 39: the snap grid followed the zoom (100 mm on the conveyor) and a one-pixel drag
+    snapped the crank pin onto its pivot. The step is a round number of the drawing's
+    millimetres suited to the mechanism (a tenth of its 60 mm crank at most: 5 mm), the same at
+    any zoom; a one-pixel drag of every point, and the crank pin dragged right up to its pivot,
+    never put a point onto another or nearer than a step unless the pointer is there; Alt held
+    places freely, G turns the snap off and on, and the page says which."""
+    page, folder, errors = studio_page
+    open_exercise(page, folder, "conveyor_sixbar.toml")
+    step = page.evaluate("window.studio.snapStep()")
+    assert round(step * 1000, 9) == 5
+    assert "5 mm" in page.inner_text("#grid-note")
+    box = page.locator("#editor").bounding_box()
+    page.mouse.move(box["x"] + 300, box["y"] + 260)
+    for delta in (-600, 900):   # zoomed in, then out: the step stays
+        page.mouse.wheel(0, delta)
+        assert page.evaluate("window.studio.snapStep()") == step
+    page.click("#fit")
+    mode(page, "move")
+    problems: list[str] = []
+    for point in page.evaluate("Object.keys(window.studio.tables.points)"):
+        for dx, dy in ((1, 0), (0, 1), (-1, 0), (0, -1)):
+            x, y = _centre(page, point)
+            page.mouse.move(x, y)
+            page.mouse.down()
+            page.mouse.move(x + dx, y + dy)
+            problems += _snap_problems(page, point, (x + dx, y + dy), step)
+            page.mouse.up()
+    # the crank pin A dragged in small steps right onto its pivot O
+    x, y = _centre(page, "A")
+    ox, oy = _centre(page, "O")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for number in range(1, 21):
+        pointer = (x + (ox - x) * number / 20, y + (oy - y) * number / 20)
+        page.mouse.move(*pointer)
+        problems += _snap_problems(page, "A", pointer, step)
+    page.mouse.up()
+    assert problems == []
+    # Alt held: placed where the pointer is; G: the snap off, then on again
+    x, y = _centre(page, "B")
+    page.keyboard.down("Alt")
+    assert page.get_attribute("#grid-note", "data-snap") == "off"
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 3.3, y + 2.7)
+    page.mouse.up()
+    page.keyboard.up("Alt")
+    free = page.evaluate("([x, y]) => window.studio.toWorld(x, y)",
+                         [x + 3.3 - box["x"], y + 2.7 - box["y"]])
+    pixel = 1 / page.evaluate("window.studio.view.scale")
+    assert page.evaluate("window.studio.tables.points.B") == pytest.approx(free, abs=pixel)
+    off_grid = [abs(v / step - round(v / step)) > 1e-6
+                for v in page.evaluate("window.studio.tables.points.B")]
+    assert any(off_grid)
+    assert page.get_attribute("#grid-note", "data-snap") == "on"
+    page.locator("#editor").focus()
+    page.keyboard.press("g")
+    assert page.get_attribute("#grid-note", "data-snap") == "off"
+    assert "press G to snap" in page.inner_text("#grid-note")
+    assert not page.is_checked("#snap")
+    page.keyboard.press("g")
+    assert page.get_attribute("#grid-note", "data-snap") == "on" and page.is_checked("#snap")
+    settled(page)
+    assert [e for e in errors if "status of 400" not in e] == []

@@ -66,7 +66,10 @@ SCRIPT_WORDS: dict[str, Message] = {
     "head_exact": template("exact", context="a value"),
     "head_unit": template("unit"),
     "solved": template("solved in {time:g} ms on the server"),
-    "grid": template("grid {step:g} mm"),
+    "snap_on": template("points snap to a {step:g} mm grid (hold Alt or press G to place "
+                        "them freely)"),
+    "snap_off": template("points are placed freely (press G to snap them to a {step:g} mm "
+                         "grid)"),
     "mode_move": template("Drag a point; click one to select it."),
     "mode_point": template("Click on the grid to add a point."),
     "mode_link": template("Click the link's points one after another; Enter or Finish link "
@@ -168,7 +171,7 @@ MARKUP: dict[str, tuple[Message, dict[str, str]]] = {
     "delete_tip": (template("click a point, link or slider to delete it"), {}),
     "fit": (template("Fit"), {}),
     "fit_tip": (template("fit the drawing in the view"), {}),
-    "snap": (template("snap to grid"), {}),
+    "snap": (template("snap to grid (G)"), {}),
     "selection": (template("Selection"), {}),
     "nothing": (template("Nothing selected."), {}),
     "drive_link": (SCRIPT_WORDS["ask_link"], {}),

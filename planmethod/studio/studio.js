@@ -19,6 +19,7 @@ const kindText = (kind) => say("kind_" + (["structure", "assembly", "toggle", "f
 const studio = window.studio = {
   tables: emptyTables(), selected: null, mode: "move", building: [], sliderPoint: null,
   view: {cx: 0.12, cy: 0.02, scale: 1800}, timings: [], serverTimes: [], solves: 0,
+  snap: {on: true, held: false},
   report: null, ready: false, path: null, lastError: null,
   driveSymbols: {phi: "φ₁", omega: "ω₁", epsilon: "ε₁"},   // until a solve names them
 };
@@ -233,14 +234,47 @@ function toWorld(px, py) {
   const [w, h] = size(), v = studio.view;
   return [v.cx + (px - w / 2) / v.scale, v.cy - (py - h / 2) / v.scale];
 }
-function gridStep() {
-  const steps = [1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10];
-  return steps.find((step) => step * studio.view.scale >= 14) || 10;
+// the snap grid: a round step in the drawing's millimetres that suits the mechanism's size
+// (about a hundredth of its extent, at most a tenth of its shortest link; not the zoom's),
+// never putting a point onto another point or nearer to one than a step
+const ROUND_MM = [0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000];
+function snapStep() {
+  const p = points(), values = Object.values(p);
+  let wanted = 2;   // mm: an empty page, a mechanism of about 200 mm to come
+  if (values.length >= 2) {
+    const span = Math.max(Math.max(...values.map((v) => v[0])) - Math.min(...values.map((v) => v[0])),
+                          Math.max(...values.map((v) => v[1])) - Math.min(...values.map((v) => v[1])));
+    wanted = span * 1000 / 100;
+    for (const [name, members] of Object.entries(links())) {
+      if (name === FRAME) continue;
+      for (let i = 0; i < members.length; i++) for (let j = i + 1; j < members.length; j++) {
+        const a = p[members[i]], b = p[members[j]];
+        const length = a && b ? Math.hypot(b[0] - a[0], b[1] - a[1]) * 1000 : 0;
+        if (length > 0) wanted = Math.min(wanted, length / 10);
+      }
+    }
+  }
+  return (ROUND_MM.filter((step) => step <= wanted).pop() || ROUND_MM[0]) / 1000;
 }
-function snapped([x, y]) {
-  if (!$("snap").checked) return [x, y];
-  const step = gridStep();
-  return [round(Math.round(x / step) * step, 9), round(Math.round(y / step) * step, 9)];
+function snapOn(event) { return studio.snap.on && !(event && event.altKey) && !studio.snap.held; }
+function snapped([x, y], {moving = null, event = null, step = null} = {}) {
+  if (!snapOn(event)) return [x, y];
+  const unit = step || snapStep();
+  const grid = [round(Math.round(x / unit) * unit, 9), round(Math.round(y / unit) * unit, 9)];
+  for (const [name, other] of Object.entries(points())) {
+    if (name !== moving && Math.hypot(grid[0] - other[0], grid[1] - other[1]) < unit * (1 - 1e-9)) return [x, y];
+  }
+  return grid;
+}
+// the grid drawn: lines on the snap step, every so many steps so that they stay apart
+function gridLines(step) {
+  return step * ([1, 2, 5, 10, 20, 50, 100, 200, 500, 1000].find((k) => k * step * studio.view.scale >= 14) || 1000);
+}
+function showSnap() {
+  const step = round(snapStep() * 1000, 3);
+  $("snap").checked = studio.snap.on;
+  $("grid-note").textContent = snapOn() ? say("snap_on", {step: step}) : say("snap_off", {step: step});
+  $("grid-note").dataset.snap = snapOn() ? "on" : "off";
 }
 function element(name, attributes, parent) {
   const node = document.createElementNS(SVG, name);
@@ -253,8 +287,8 @@ function draw() {
   const [w, h] = size();
   editor.setAttribute("viewBox", `0 0 ${w} ${h}`);
   editor.replaceChildren();
-  const step = gridStep();
-  $("grid-note").textContent = say("grid", {step: round(step * 1000, 3)});
+  const step = gridLines(dragging && dragging.step || snapStep());
+  showSnap();
   const [x0, y1] = toWorld(0, 0), [x1, y0] = toWorld(w, h);
   const grid = element("g", {}, editor);
   const first = (low) => Math.ceil(low / step);
@@ -483,7 +517,7 @@ editor.addEventListener("pointerdown", (event) => {
   if (point) {
     if (mode === "move") {
       studio.selected = {kind: "point", name: point};
-      dragging = {point, moved: false};
+      dragging = {point, moved: false, step: snapStep()};
       editor.setPointerCapture(event.pointerId);
       draw(); refreshPanels();
     } else if (mode === "link") {
@@ -505,7 +539,7 @@ editor.addEventListener("pointerdown", (event) => {
     event.preventDefault();
     return;
   }
-  if (mode === "point") { addPoint(snapped(eventWorld(event))); event.preventDefault(); return; }
+  if (mode === "point") { addPoint(snapped(eventWorld(event), {event})); event.preventDefault(); return; }
   if (mode === "move") {
     studio.selected = null; refreshPanels(); draw();
     panning = {x: event.clientX, y: event.clientY, cx: studio.view.cx, cy: studio.view.cy};
@@ -515,7 +549,7 @@ editor.addEventListener("pointerdown", (event) => {
 
 editor.addEventListener("pointermove", (event) => {
   if (dragging) {
-    points()[dragging.point] = snapped(eventWorld(event));
+    points()[dragging.point] = snapped(eventWorld(event), {moving: dragging.point, event, step: dragging.step});
     dragging.moved = true;
     changed();
   } else if (panning) {
@@ -537,8 +571,13 @@ editor.addEventListener("wheel", (event) => {
   draw();
 }, {passive: false});
 
+// Alt held places freely while it is held; G turns the snap off and on
 document.addEventListener("keydown", (event) => {
+  if (event.key === "Alt" && !studio.snap.held) { studio.snap.held = true; showSnap(); }
   if (event.target.tagName === "INPUT" || event.target.tagName === "SELECT") return;
+  if ((event.key === "g" || event.key === "G") && !event.ctrlKey && !event.metaKey && !event.altKey) {
+    studio.snap.on = !studio.snap.on; showSnap();
+  }
   if (event.key === "Enter" && studio.mode === "link") finishLink();
   if (event.key === "Escape") { studio.building = []; studio.sliderPoint = null; draw(); }
   if ((event.key === "Delete" || event.key === "Backspace") && studio.selected) {
@@ -550,6 +589,9 @@ document.addEventListener("keydown", (event) => {
 for (const button of document.querySelectorAll("#tools [data-mode]")) button.addEventListener("click", () => setMode(button.dataset.mode));
 $("finish-link").addEventListener("click", finishLink);
 $("fit").addEventListener("click", fit);
+document.addEventListener("keyup", (event) => { if (event.key === "Alt") { studio.snap.held = false; showSnap(); } });
+window.addEventListener("blur", () => { if (studio.snap.held) { studio.snap.held = false; showSnap(); } });
+$("snap").addEventListener("change", () => { studio.snap.on = $("snap").checked; showSnap(); });
 window.addEventListener("resize", draw);
 
 // ---- panels -------------------------------------------------------------------------------------
@@ -691,6 +733,9 @@ function load(tables, {keepView = false} = {}) {
 }
 studio.load = load;
 studio.movePoint = (name, x, y) => { points()[name] = [x, y]; changed(); };
+studio.snapStep = snapStep;
+// the drawing's point (m) under a point of the editor (px from its corner)
+studio.toWorld = toWorld;
 studio.exercise = exercise;
 
 $("open-button").addEventListener("click", async () => {
