@@ -477,3 +477,70 @@ def test_a_drag_on_the_conveyor_never_snaps_a_point_onto_another(studio_page):
     assert page.get_attribute("#grid-note", "data-snap") == "on" and page.is_checked("#snap")
     settled(page)
     assert [e for e in errors if "status of 400" not in e] == []
+
+
+def serious(violations: list[dict]) -> list[dict]:
+    return [v for v in violations if v["impact"] in ("serious", "critical")]
+
+
+def test_axe_finds_no_serious_violation_and_the_keyboard_reaches_everything(studio_page):
+    """Issue 39: axe-core reports no serious or critical violation on the studio — the page,
+    a point selected, the variants dialog with a preview's job, the export dialog; every
+    control is reached by Tab; What is asked is labelled in the course's words (ω₂, not
+    omega_BC); a point is chosen and moved from the keyboard by a step of the grid."""
+    from browser_tools import run_axe
+
+    page, folder, errors = studio_page
+    open_compressor(page, folder)
+    found = serious(run_axe(page))
+    assert page.get_attribute('input[data-ask="omega"][data-name="BC"]', "aria-label") == \
+        "ask the angular velocity ω₂ of link BC"
+    assert page.get_attribute('input[data-ask="curvature"][data-name="D"]', "aria-label") == \
+        "ask the radius of curvature ρ_D of the path of point D"
+    # every control is in the Tab order (none taken out of it), the editor too
+    assert page.eval_on_selector_all(
+        "button, input, select, #editor", "nodes => nodes.filter(n => n.tabIndex < 0)"
+        ".map(n => n.id || n.outerHTML.slice(0, 60))") == []
+    page.focus("#editor")
+    page.keyboard.press("]")
+    assert page.evaluate("window.studio.selected") == {"kind": "point", "name": "A"}
+    page.keyboard.press("]")
+    before = page.evaluate("window.studio.tables.points.B")
+    page.keyboard.press("ArrowUp")
+    after = page.evaluate("window.studio.tables.points.B")
+    step = page.evaluate("window.studio.snapStep()")
+    assert after == pytest.approx([before[0], before[1] + step], abs=1e-9)
+    assert "point B chosen" in page.inner_text("#key-note")
+    settled(page)
+    found += serious(run_axe(page))   # the selection panel of a point
+    page.click("#variants-button")
+    page.fill("#variant-count", "2")
+    page.click("#preview-variants")
+    page.wait_for_selector('#variants-job .job[data-state="done"]', timeout=120_000)
+    found += serious(run_axe(page))
+    page.click("#variants-close")
+    page.click("#export-button")
+    found += serious(run_axe(page))
+    assert found == []
+    assert errors == []
+
+
+def test_a_preview_shows_its_progress_and_is_cancelled_from_the_page(studio_page):
+    """A 40-variant preview shows its progress in its dialog and in the bar under the header;
+    Cancel ends it, no sheet is shown, and the page says so."""
+    page, folder, errors = studio_page
+    open_compressor(page, folder)
+    page.click("#variants-button")
+    page.fill("#variant-count", "40")
+    page.click("#preview-variants")
+    row = '#variants-job .job[data-state="running"]'
+    page.wait_for_selector(row, timeout=60_000)
+    page.wait_for_function(f"Number(document.querySelector('{row} progress')?.value) >= 1",
+                           timeout=120_000)
+    assert page.get_attribute(f"{row} progress", "max") == "40"
+    assert page.locator('#jobs .job[data-state="running"]').count() == 1
+    page.click(f"{row} button[data-cancel-job]")
+    page.wait_for_selector('#variants-job .job[data-state="cancelled"]', timeout=60_000)
+    assert "cancelled" in page.inner_text("#variants-job .job-text")
+    assert page.locator("#sheets figure").count() == 0
+    assert errors == []

@@ -267,12 +267,14 @@ class Workspace:
 # -- solving -------------------------------------------------------------------------------------
 def solve(text: str) -> dict[str, Any]:
     """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
-    "symbols": …, "drive_symbols": …, "server_ms": …}``: the report of ``planmethod solve
+    "symbols": …, "ask_symbols": …, "drive_symbols": …, "server_ms": …}``: the report of
+    ``planmethod solve
     --json``, the plans as the command line draws them but without the enlarged details of
     crowded points (a live picture, redrawn at every step of a drag: the details would jump
     about below it; ``planmethod solve --svg`` draws them) as SVG for an HTML page (no XML
     declaration), each checked quantity's course symbol under the exercise's numbering
-    (``omega_BC`` → ω₂) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁)."""
+    (``omega_BC`` → ω₂), the symbol of every quantity that could be asked (the page's labels of
+    *What is asked*) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁)."""
     from ..numbering import course_numbers, course_symbols
     from ..render.svg import plan_svg, position_svg
     from ..render.workbook import inline_svg
@@ -292,8 +294,13 @@ def solve(text: str) -> dict[str, Any]:
     numbers = course_numbers(analysis.exercise.mechanism)
     symbols = {check["quantity"]: symbol(check["quantity"], numbers)
                for check in report["checks"]}
-    drive = course_symbols(analysis.exercise.mechanism)
+    mechanism = analysis.exercise.mechanism
+    drive = course_symbols(mechanism)
+    askable = [f"{kind}_{point}" for link in mechanism.links.values() for point in link.points
+               for kind in ("v", "a", "rho")]
+    askable += [f"{kind}_{link}" for link in mechanism.links for kind in ("omega", "epsilon")]
     return {"report": report, "svg": svg, "symbols": symbols,
+            "ask_symbols": {quantity: symbol(quantity, numbers) for quantity in askable},
             "drive_symbols": {name: drive[name] for name in ("phi", "omega", "epsilon")},
             "server_ms": round(1000 * (time.perf_counter() - start), 2)}
 

@@ -19,7 +19,7 @@ const kindText = (kind) => say("kind_" + (["structure", "assembly", "toggle", "f
 const studio = window.studio = {
   tables: emptyTables(), selected: null, mode: "move", building: [], sliderPoint: null,
   view: {cx: 0.12, cy: 0.02, scale: 1800}, timings: [], serverTimes: [], solves: 0,
-  snap: {on: true, held: false},
+  snap: {on: true, held: false}, askSymbols: {},
   report: null, ready: false, path: null, lastError: null,
   driveSymbols: {phi: "φ₁", omega: "ω₁", epsilon: "ε₁"},   // until a solve names them
 };
@@ -206,8 +206,16 @@ function showSolve(data) {
   $("status").textContent = say("solved", {time: data.server_ms});
   // the drive's symbols follow the crank's number in the exercise's notation (φ₁ or θ₂ …)
   Object.assign(studio.driveSymbols, data.drive_symbols || {});
+  studio.askSymbols = data.ask_symbols || {};
+  labelAsk();
+  showDriveSymbols();
+}
+
+function showDriveSymbols() {
   for (const node of document.querySelectorAll("[data-drive-symbol]"))
     node.textContent = studio.driveSymbols[node.dataset.driveSymbol];
+  for (const node of document.querySelectorAll("[data-drive-label]"))
+    node.setAttribute("aria-label", say(node.dataset.driveLabel, studio.driveSymbols));
 }
 
 function showProblem(data) {
@@ -589,6 +597,27 @@ document.addEventListener("keydown", (event) => {
 for (const button of document.querySelectorAll("#tools [data-mode]")) button.addEventListener("click", () => setMode(button.dataset.mode));
 $("finish-link").addEventListener("click", finishLink);
 $("fit").addEventListener("click", fit);
+// the editor from the keyboard: [ and ] choose the previous or next point, the arrows move it by
+// a step of the snap grid (with Shift ten)
+const ARROWS = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1]};
+editor.addEventListener("keydown", (event) => {
+  const names = Object.keys(points());
+  const chosen = studio.selected && studio.selected.kind === "point" ? names.indexOf(studio.selected.name) : -1;
+  if ((event.key === "]" || event.key === "[") && names.length) {
+    const next = chosen < 0 ? (event.key === "]" ? 0 : names.length - 1)
+      : (chosen + (event.key === "]" ? 1 : names.length - 1)) % names.length;
+    studio.selected = {kind: "point", name: names[next]};
+    draw(); refreshPanels();
+    $("key-note").textContent = say("chosen_point", {point: pointText(names[next])});
+    event.preventDefault();
+  } else if (ARROWS[event.key] && chosen >= 0) {
+    const step = snapStep() * (event.shiftKey ? 10 : 1), [dx, dy] = ARROWS[event.key];
+    const [x, y] = points()[names[chosen]];
+    points()[names[chosen]] = [round(x + dx * step, 9), round(y + dy * step, 9)];
+    changed();
+    event.preventDefault();
+  }
+});
 document.addEventListener("keyup", (event) => { if (event.key === "Alt") { studio.snap.held = false; showSnap(); } });
 window.addEventListener("blur", () => { if (studio.snap.held) { studio.snap.held = false; showSnap(); } });
 $("snap").addEventListener("change", () => { studio.snap.on = $("snap").checked; showSnap(); });
@@ -666,15 +695,32 @@ function refreshPanels() {
   refreshAsk();
 }
 
+// a box of What is asked, in the course's words: "ask the angular velocity ω₂ of link rod"
+const ASK_QUANTITY = {velocity: "v", acceleration: "a", curvature: "rho", omega: "omega", epsilon: "epsilon"};
+function askLabel(key, name) {
+  if (key === "sliding") {
+    const [link, along] = name.split("/");
+    return say("ask_sliding_box", {link: link, along: along});
+  }
+  const quantity = ASK_QUANTITY[key] + "_" + name;
+  const symbol = studio.askSymbols[quantity] || quantity;
+  return say("ask_" + key + "_box", ["omega", "epsilon"].includes(key) ? {symbol: symbol, link: name}
+    : {symbol: symbol, point: pointText(name)});
+}
+function labelAsk() {
+  for (const input of $("ask-body").querySelectorAll("input[data-ask]"))
+    input.setAttribute("aria-label", askLabel(input.dataset.ask, input.dataset.name));
+}
+
 function refreshAsk() {
   const ask = studio.tables.ask || {};
   const has = (key, name) => (ask[key] || []).includes(name);
-  const box = (key, name) => `<input type="checkbox" data-ask="${key}" data-name="${escapeHtml(name)}" ${has(key, name) ? "checked" : ""}>`;
+  const box = (key, name) => `<input type="checkbox" data-ask="${key}" data-name="${escapeHtml(name)}" aria-label="${escapeHtml(askLabel(key, name))}" ${has(key, name) ? "checked" : ""}>`;
   const moving = Object.keys(points()).filter((p) => !isFixed(p));
   const turning = Object.keys(links()).filter((n) => n !== FRAME && n !== studio.tables.drive.link);
   let html = `<table id="ask-table"><tr><th>${escapeHtml(say("ask_point"))}</th><th>v</th><th>a</th><th>ρ</th></tr>`;
   for (const p of moving) html += `<tr><td>${escapeHtml(p)}</td><td>${box("velocity", p)}</td><td>${box("acceleration", p)}</td><td>${box("curvature", p)}</td></tr>`;
-  html += `<tr><th>${escapeHtml(say("ask_link"))}</th><th>ω</th><th>ε</th><th></th></tr>`;
+  html += `<tr><th>${escapeHtml(say("ask_link"))}</th><th>ω</th><th>ε</th><td></td></tr>`;
   for (const n of turning) html += `<tr><td>${escapeHtml(n)}</td><td>${box("omega", n)}</td><td>${box("epsilon", n)}</td><td></td></tr>`;
   for (const s of slides()) html += `<tr><td>${escapeHtml(s.link + "/" + s.along)}</td><td colspan="3">${escapeHtml(say("ask_sliding"))} ${box("sliding", s.link + "/" + s.along)}</td></tr>`;
   html += "</table>";
@@ -784,6 +830,7 @@ studio.page = {call: call, say: say, words: words, kindText: kindText, escapeHtm
 async function start() {
   if (window.location.search) window.history.replaceState(null, "", window.location.pathname);
   setMode("move");
+  showDriveSymbols();
   refreshPanels();
   draw();
   const answer = await call("/api/state");
