@@ -97,8 +97,22 @@ def _percentile(values: list[float], share: float) -> float:
     return ordered[min(len(ordered) - 1, round(share * (len(ordered) - 1)))]
 
 
+def _timed_solves(texts: list[str], *, draft: bool) -> tuple[list[float], list[float]]:
+    """Wall and CPU ms of ``api.solve`` of each text (a draft: a drag's intermediate step)."""
+    totals, cpu = [], []
+    for text in texts:
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        api.solve(text, draft=draft)
+        cpu.append(1000 * (time.thread_time() - start_cpu))
+        totals.append(1000 * (time.perf_counter() - start))
+    return totals, cpu
+
+
 def server_times(name: str, count: int = STEPS) -> dict:
-    """ms per update of ``api.solve`` along a drag, and each stage's median (ms)."""
+    """ms per update of ``api.solve`` along a drag, at rest (in full) and as the drag's
+    intermediate steps (drafts: labels placed quickly; no forces where everything is asked),
+    the two along mirrored drags (every step a mechanism not solved before) in turn, five
+    steps at a time; and each stage's median (ms) of the full update."""
     from planmethod.render.svg import plan_svg, position_svg
     from planmethod.report import analyse, report_dict
     from planmethod.spec import parse_exercise
@@ -106,13 +120,16 @@ def server_times(name: str, count: int = STEPS) -> dict:
     path, pin = FILES[name]
     tables = drawn_tables(parse_toml(read_text(ROOT / path)))
     texts = [to_toml(step) for step in drag_steps(tables, pin, count)]
+    mirrored = [to_toml(step) for step in drag_steps(tables, pin, count, -STEP_M)]
     api.solve(to_toml(tables))   # the imports and the first compilations
-    totals, cpu = [], []
-    for text in texts:
-        start, start_cpu = time.perf_counter(), time.thread_time()
-        api.solve(text)
-        cpu.append(1000 * (time.thread_time() - start_cpu))
-        totals.append(1000 * (time.perf_counter() - start))
+    api.solve(to_toml(tables), draft=True)
+    totals, cpu, draft_totals, draft_cpu = [], [], [], []
+    for first in range(0, count, 5):
+        for wall, spent, chosen, draft in ((totals, cpu, texts, False),
+                                           (draft_totals, draft_cpu, mirrored, True)):
+            more_wall, more_cpu = _timed_solves(chosen[first:first + 5], draft=draft)
+            wall += more_wall
+            spent += more_cpu
     stages: dict[str, list[float]] = {"read": [], "solve": [], "report": [], "svg": []}
     for step in drag_steps(tables, pin, count // 2, -0.7 * STEP_M):   # mechanisms not met yet
         clock = [time.perf_counter()]
@@ -131,6 +148,10 @@ def server_times(name: str, count: int = STEPS) -> dict:
             stages[stage].append(1000 * (end - start))
     return {"median_ms": statistics.median(totals), "p90_ms": _percentile(totals, 0.9),
             "cpu_median_ms": statistics.median(cpu), "cpu_p90_ms": _percentile(cpu, 0.9),
+            "draft": {"median_ms": statistics.median(draft_totals),
+                      "p90_ms": _percentile(draft_totals, 0.9),
+                      "cpu_median_ms": statistics.median(draft_cpu),
+                      "cpu_p90_ms": _percentile(draft_cpu, 0.9)},
             "stages_ms": {stage: statistics.median(values) for stage, values in stages.items()}}
 
 
@@ -174,16 +195,27 @@ def browser_times(name: str, count: int = STEPS) -> dict | None:
         with studio_page(folder, "exercise.toml") as page:
             if page is None:
                 return None
+            # the steps come faster than a hand rests: no full answer between them
+            page.evaluate("window.studio.restMs = 1e9")
             for step in drag_steps(tables, pin, 5):   # warm the solver and the page
                 _move(page, pin, step["points"][pin])
-            page.evaluate("window.studio.timings = []")
-            for step in drag_steps(tables, pin, count):
-                _move(page, pin, step["points"][pin])
+                _move(page, pin, step["points"][pin], draft=True)
+            page.evaluate("window.studio.timings = []; window.studio.draftTimings = []")
+            steps, mirrored = drag_steps(tables, pin, count), drag_steps(tables, pin, count,
+                                                                          -STEP_M)
+            for first in range(0, count, 5):   # at rest and dragging in turn, 5 steps each
+                for step in steps[first:first + 5]:
+                    _move(page, pin, step["points"][pin])
+                for step in mirrored[first:first + 5]:
+                    _move(page, pin, step["points"][pin], draft=True)
             times = page.evaluate("window.studio.timings")
+            drafts = page.evaluate("window.studio.draftTimings")
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     return {"median_ms": statistics.median(times), "p90_ms": _percentile(times, 0.9),
-            "steps": len(times)}
+            "steps": len(times),
+            "draft": {"median_ms": statistics.median(drafts), "p90_ms": _percentile(drafts, 0.9),
+                      "steps": len(drafts)}}
 
 
 def screenshot(path: Path, exercise: str = "exercises/fourbar_coupler_point.toml",
@@ -332,9 +364,12 @@ def solve_during_export(count: int = EXPORT_COUNT) -> dict:
                        "export_s": thread_seconds}}
 
 
-def _move(page, pin: str, xy: list[float]) -> None:
+def _move(page, pin: str, xy: list[float], *, draft: bool = False) -> None:
+    """Move ``pin`` to ``xy`` by the page's own code (a drag's intermediate step if
+    ``draft``) and wait for the answer shown."""
     solves = page.evaluate("window.studio.solves")
-    page.evaluate("([name, x, y]) => window.studio.movePoint(name, x, y)", [pin, *xy])
+    page.evaluate("([name, x, y, draft]) => window.studio.movePoint(name, x, y, {draft})",
+                  [pin, *xy, draft])
     page.wait_for_function(f"window.studio.solves > {solves}", timeout=60_000, polling=1)
 
 

@@ -5,7 +5,8 @@ stopped). In headless Chromium (Playwright) the test places four points by click
 grid and types their exact coordinates, pins A to the frame, joins AB and BCD into links, puts
 a slider on C guided through A, makes AB the drive, sets ω1 = 100 rad/s, ticks what is asked
 and saves. ``planmethod solve`` on the saved file must give the compressor's numbers (those of
-``exercises/compressor_slider_crank.toml``); dragging B must change the velocity plan.
+``exercises/compressor_slider_crank.toml``); dragging B must change the velocity plan (drafts
+while it moves, the full answer where it rests).
 
 Skipped, with the reason, where Playwright or the system Chromium is missing. Leave them out
 with ``pytest -m "not browser"``.
@@ -166,6 +167,15 @@ def test_the_compressor_built_by_clicks_solves_as_the_shipped_one(studio_page):
     page.mouse.up()
     settled(page)
     assert page.evaluate("window.studio.solves") > solves
+    # the drag's steps were drafts, the answer at rest is in full: the same as asked afresh
+    assert page.evaluate("window.studio.draftTimings.length") > 0
+    assert page.evaluate("window.studio.drafted") is False
+    assert page.evaluate("window.studio.report") == page.evaluate("""async () => {
+        const answer = await fetch('/api/solve', {method: 'POST', credentials: 'same-origin',
+            headers: {'Content-Type': 'application/json'},
+            body: JSON.stringify({exercise: window.studio.exercise()})});
+        return (await answer.json()).report;
+    }""")
     assert page.inner_html("#plan-velocity-drawing") != velocity_before
     assert page.evaluate("window.studio.report.plans.velocity.points_mm.b") != speed_before
     assert errors == []

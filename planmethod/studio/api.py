@@ -21,6 +21,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import secrets
@@ -28,6 +29,7 @@ import shutil
 import stat
 import time
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path, PurePosixPath
 from typing import Any
 
@@ -265,7 +267,7 @@ class Workspace:
 
 
 # -- solving -------------------------------------------------------------------------------------
-def solve(text: str) -> dict[str, Any]:
+def solve(text: str, *, draft: bool = False) -> dict[str, Any]:
     """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
     "symbols": …, "ask_symbols": …, "drive_symbols": …, "server_ms": …}``: the report of
     ``planmethod solve
@@ -274,23 +276,34 @@ def solve(text: str) -> dict[str, Any]:
     about below it; ``planmethod solve --svg`` draws them) as SVG for an HTML page (no XML
     declaration), each checked quantity's course symbol under the exercise's numbering
     (``omega_BC`` → ω₂), the symbol of every quantity that could be asked (the page's labels of
-    *What is asked*) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁)."""
+    *What is asked*) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁).
+
+    A ``draft`` is a drag's intermediate step, shown for a moment: its labels are placed
+    quickly (:func:`~planmethod.render.labels.drafted`) and, where everything is asked, the
+    forces (which the page does not show) are left out; the page asks for the full answer when
+    the drag rests, the same bytes as ever."""
     from ..numbering import course_numbers, course_symbols
+    from ..render.labels import drafted
     from ..render.svg import plan_svg, position_svg
     from ..render.workbook import inline_svg
     from ..report import analyse, report_dict
     from ..vocabulary import symbol
 
     start = time.perf_counter()
-    analysis = analyse(exercise_of(text))
+    exercise = exercise_of(text)
+    if draft and exercise.ask.everything:   # the same scene without the forces
+        exercise = replace(exercise, ask=replace(exercise.ask, forces=False))
+    analysis = analyse(exercise)
     report = report_dict(analysis)
     svg = {}
     plans = analysis.plans
-    if plans is not None:
-        svg["position"] = inline_svg(position_svg(plans.position, plans=plans, details=False))
-        svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
-        if plans.acceleration is not None:
-            svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
+    with drafted() if draft else contextlib.nullcontext():
+        if plans is not None:
+            svg["position"] = inline_svg(position_svg(plans.position, plans=plans,
+                                                      details=False))
+            svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
+            if plans.acceleration is not None:
+                svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
     numbers = course_numbers(analysis.exercise.mechanism)
     symbols = {check["quantity"]: symbol(check["quantity"], numbers)
                for check in report["checks"]}

@@ -19,7 +19,8 @@ const kindText = (kind) => say("kind_" + (["structure", "assembly", "toggle", "f
 const studio = window.studio = {
   tables: emptyTables(), selected: null, mode: "move", building: [], sliderPoint: null,
   view: {cx: 0.12, cy: 0.02, scale: 1800}, timings: [], serverTimes: [], solves: 0,
-  snap: {on: true, held: false}, askSymbols: {},
+  snap: {on: true, held: false}, askSymbols: {}, draftTimings: [], drafted: false,
+  restMs: 250,   // a drag held still this long rests: solved in full
   report: null, ready: false, path: null, lastError: null,
   driveSymbols: {phi: "φ₁", omega: "ω₁", epsilon: "ε₁"},   // until a solve names them
 };
@@ -146,24 +147,31 @@ function ready() {
   return null;
 }
 
-let inFlight = false, pending = false;
-function requestSolve() {
+// A drag's intermediate steps are drafts (labels placed quickly, no forces: the server's
+// api.solve), the step where it rests — released, or held still for studio.restMs — in full
+let inFlight = false, pending = false, draftWanted = false, restTimer = null;
+function requestSolve({draft = false} = {}) {
   pending = true;
+  draftWanted = draft;
+  clearTimeout(restTimer);
+  if (draft) restTimer = setTimeout(() => requestSolve(), studio.restMs);
   if (!inFlight) sendSolve();
 }
 
 async function sendSolve() {
   pending = false;
+  const draft = draftWanted;
   const waiting = ready();
   $("hint").textContent = waiting || say("ready");
   if (waiting) { showProblem(null); clearPlans(); return; }
   inFlight = true;
   const started = performance.now();
   try {
-    const answer = await call("/api/solve", {exercise: exercise()});
+    const answer = await call("/api/solve", draft ? {exercise: exercise(), draft: true} : {exercise: exercise()});
     if (answer.ok) {
       showSolve(answer.data);
-      studio.timings.push(performance.now() - started);
+      studio.drafted = draft;
+      (draft ? studio.draftTimings : studio.timings).push(performance.now() - started);
       studio.serverTimes.push(answer.data.server_ms);
     } else {
       showProblem(answer.data);
@@ -400,11 +408,11 @@ function setMode(mode) {
   draw();
 }
 
-function changed({solve = true} = {}) {
+function changed({solve = true, draft = false} = {}) {
   syncDrawing();
   draw();
   refreshPanels();
-  if (solve) requestSolve();
+  if (solve) requestSolve({draft});
 }
 
 function addPoint(xy) {
@@ -559,7 +567,7 @@ editor.addEventListener("pointermove", (event) => {
   if (dragging) {
     points()[dragging.point] = snapped(eventWorld(event), {moving: dragging.point, event, step: dragging.step});
     dragging.moved = true;
-    changed();
+    changed({draft: true});
   } else if (panning) {
     studio.view.cx = panning.cx - (event.clientX - panning.x) / studio.view.scale;
     studio.view.cy = panning.cy + (event.clientY - panning.y) / studio.view.scale;
@@ -567,7 +575,10 @@ editor.addEventListener("pointermove", (event) => {
   }
 });
 
-function endDrag() { dragging = null; panning = null; }
+function endDrag() {
+  if (dragging && dragging.moved) requestSolve();   // at rest: the full answer
+  dragging = null; panning = null;
+}
 editor.addEventListener("pointerup", endDrag);
 editor.addEventListener("pointercancel", endDrag);
 editor.addEventListener("wheel", (event) => {
@@ -778,7 +789,7 @@ function load(tables, {keepView = false} = {}) {
   requestSolve();
 }
 studio.load = load;
-studio.movePoint = (name, x, y) => { points()[name] = [x, y]; changed(); };
+studio.movePoint = (name, x, y, {draft = false} = {}) => { points()[name] = [x, y]; changed({draft}); };
 studio.snapStep = snapStep;
 // the drawing's point (m) under a point of the editor (px from its corner)
 studio.toWorld = toWorld;
