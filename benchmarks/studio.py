@@ -420,12 +420,12 @@ def verdicts(result: dict) -> list[str]:
             if server is None:
                 continue
             cpu = server["cpu_median_ms"] / load["cpu_factor"]
-            lines.append(f"- {name}, {label}: server {cpu:.3g} ms ≤ {target['server']:g} — "
+            lines.append(f"- {name}, {label}: server {cpu:.3g} ms, target ≤ {target['server']:g}: "
                          f"**{'MET' if cpu <= target['server'] else 'NOT MET'}**")
             if browser is not None:
                 wall = browser["median_ms"] / load["factor"]
-                lines.append(f"- {name}, {label}: round trip {wall:.3g} ms ≤ "
-                             f"{target['browser']:g} — "
+                lines.append(f"- {name}, {label}: round trip {wall:.3g} ms, target ≤ "
+                             f"{target['browser']:g}: "
                              f"**{'MET' if wall <= target['browser'] else 'NOT MET'}**")
     return lines
 
