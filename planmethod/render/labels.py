@@ -716,13 +716,12 @@ def _drafted_labels(requests: Sequence[LabelRequest]) -> tuple[PlacedLabel, ...]
 def place_labels(requests: Sequence[LabelRequest], lines: Sequence, areas: Sequence, *,
                  vectors: Sequence = (), marks: Sequence = (),
                  bounds: Sequence[float] | None = None) -> tuple[PlacedLabel, ...]:
-    """Place labels so that no two overlap and as few drawn lines as possible run under them.
+    """Place labels so that no two overlap and as few drawn lines as possible run under them
+    (within :func:`drafted`, quickly: a drag's intermediate pictures). Long: its documentation.
 
     A label shown elsewhere too (``optional``: in an enlarged detail) is left out where it
     finds no clean spot; a crowded point's label of a figure without details (``crowded``)
     then goes, after all the others, on a leader (:func:`_crowded_spot`).
-
-    Within :func:`drafted`, the quick placement of a drag's intermediate pictures instead.
 
     A label pushed far from its point gets a leader: a label's box never takes a leader drawn
     before, and a leader crosses a label placed before or another leader only where no other
