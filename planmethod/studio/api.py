@@ -386,13 +386,14 @@ def _students(count: int):
     return class_of(count, width=2)
 
 
-def _template(text: str, ranges: Mapping[str, Any]) -> str:
-    """The template made of the drawing and ``ranges``, checked as a template."""
+def _template(text: str, ranges: Mapping[str, Any], file: str | None = None) -> str:
+    """The template made of the drawing and ``ranges``, checked as a template (a problem
+    named in ``file``, the file an export writes it to; a preview's is in no file)."""
     from ..application.templating import make_template
     from ..grading.templates import parse_template
 
     template_text = make_template(text, ranges)
-    parse_template(template_text, file="template.toml")
+    parse_template(template_text, file=file)
     return template_text
 
 
@@ -435,7 +436,7 @@ def run_variants(arguments: Mapping[str, Any],
     from ..render.workbook import inline_svg
     from ..words import render
 
-    template = parse_template(arguments["template"], file="template.toml")
+    template = parse_template(arguments["template"])   # the preview's: in no file
     drawn = choose_branches(exercise_of(arguments["text"]).mechanism)
     students = _students(arguments["count"]).students
     out, rejected = [], []
@@ -481,7 +482,7 @@ def prepare_export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *
         raise SpecError(message("must be a list of {formats}", formats=list(FORMATS)),
                         key="formats")
     target = workspace.new_folder(folder)
-    return {"template": _template(text, ranges), "count": count, "seed": seed,
+    return {"template": _template(text, ranges, "template.toml"), "count": count, "seed": seed,
             "formats": list(formats), "folder": workspace.relative(target),
             "target": str(target)}
 
