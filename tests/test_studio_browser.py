@@ -248,20 +248,29 @@ def open_compressor(page, folder: Path) -> None:
     settled(page)
 
 
+def running_job(page, dialog: str, fields: dict[str, str], run: str, place: str) -> str:
+    """Open ``dialog``, fill its ``fields``, press ``run`` and wait until the job's row in
+    ``place`` shows progress; the row's selector."""
+    page.click(dialog)
+    for selector, value in fields.items():
+        page.fill(selector, value)
+    page.click(run)
+    row = f'{place} .job[data-state="running"]'
+    page.wait_for_selector(row, timeout=60_000)
+    page.wait_for_function(f"Number(document.querySelector('{row} progress')?.value) >= 1",
+                           timeout=120_000)
+    return row
+
+
 def test_an_export_shows_its_progress_and_is_cancelled_from_the_page(studio_page):
     """A 200-variant export started from its dialog shows its progress there and in the bar
     under the header; the drawing keeps being solved meanwhile; Cancel ends it and nothing is
     written."""
     page, folder, errors = studio_page
     open_compressor(page, folder)
-    page.click("#export-button")
-    page.fill("#export-folder", "class-run")
-    page.fill("#export-count", "200")
-    page.click("#export-run")
-    row = '#export-job .job[data-state="running"]'
-    page.wait_for_selector(row, timeout=60_000)
-    page.wait_for_function(f"Number(document.querySelector('{row} progress')?.value) >= 1",
-                           timeout=120_000)
+    row = running_job(page, "#export-button", {"#export-folder": "class-run",
+                                               "#export-count": "200"}, "#export-run",
+                      "#export-job")
     assert "drawing variants" in page.inner_text(f"{row} .job-text")
     assert page.locator('#jobs .job[data-state="running"]').count() == 1
     # the server goes on solving the drawing while the export runs
@@ -540,13 +549,8 @@ def test_a_preview_shows_its_progress_and_is_cancelled_from_the_page(studio_page
     Cancel ends it, no sheet is shown, and the page says so."""
     page, folder, errors = studio_page
     open_compressor(page, folder)
-    page.click("#variants-button")
-    page.fill("#variant-count", "40")
-    page.click("#preview-variants")
-    row = '#variants-job .job[data-state="running"]'
-    page.wait_for_selector(row, timeout=60_000)
-    page.wait_for_function(f"Number(document.querySelector('{row} progress')?.value) >= 1",
-                           timeout=120_000)
+    row = running_job(page, "#variants-button", {"#variant-count": "40"}, "#preview-variants",
+                      "#variants-job")
     assert page.get_attribute(f"{row} progress", "max") == "40"
     assert page.locator('#jobs .job[data-state="running"]').count() == 1
     page.click(f"{row} button[data-cancel-job]")
