@@ -378,6 +378,32 @@ def test_the_live_mechanism_is_drawn_without_the_enlarged_details():
     assert live.startswith("<svg") and 'class="detail' not in live
 
 
+def test_a_drafts_labels_are_quick_and_the_answer_at_rest_is_the_same_bytes(server):
+    """A drag's intermediate step (``"draft": true``) reads the same values off the same
+    plans, with its labels placed quickly and no forces; the full answer after it is the
+    same bytes as one never preceded by a draft."""
+    conveyor = ROOT / "exercises" / "conveyor_sixbar.toml"
+    tables = post_json(server, "/api/open", {"path": "compressor.toml"})[1]["tables"]
+    as_json = {"Content-Type": "application/json"}
+    status, alone, _ = post_json(server, "/api/solve", {"exercise": tables}, headers=as_json)
+    assert status == 200
+    status, draft, _ = post_json(server, "/api/solve", {"exercise": tables, "draft": True},
+                                 headers=as_json)
+    assert status == 200
+    status, after, _ = post_json(server, "/api/solve", {"exercise": tables}, headers=as_json)
+    assert after["svg"] == alone["svg"] and after["report"] == alone["report"]
+    assert draft["report"]["checks"] == alone["report"]["checks"]
+    assert draft["svg"]["velocity"] != alone["svg"]["velocity"]   # labels placed otherwise
+    for plan in ("position", "velocity", "acceleration"):
+        assert draft["svg"][plan].count("<text") == alone["svg"][plan].count("<text")
+    # everything asked (the conveyor): the draft leaves out the forces the page never shows
+    text = read_text(conveyor)
+    full, quick = api.solve(text), api.solve(text, draft=True)
+    assert full["report"]["forces"] and "forces" not in quick["report"]
+    assert quick["report"]["checks"] == full["report"]["checks"]
+    assert api.solve(text)["svg"] == full["svg"]
+
+
 def test_the_drives_symbols_follow_the_cranks_number(server):
     """Where the course numbers the frame 1, the crank is 2: the Drive box says φ₂, ω₂, ε₂."""
     text = read_text(COMPRESSOR) + "\n[notation]\nframe = 1\n"
@@ -636,17 +662,23 @@ def test_a_job_asked_for_without_its_id_is_400(server):
     assert status == 400 and one_line(payload) == "id: is missing"
 
 
-def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folder):
+@pytest.mark.parametrize("asked", [True, False], ids=["some-asked", "nothing-asked"])
+def test_a_template_saved_from_the_studio_runs_on_the_command_line(server, folder, asked):
+    """Nothing asked asks everything (docs/studio.md): the template says so in its [ask]."""
+    text = read_text(COMPRESSOR)
+    if not asked:
+        start = text.index("[ask]")
+        text = text[:start] + text[text.index("\n[", start):]
     status, _, _ = post_json(server, "/api/save", {
-        "template": True, "path": "template.toml", "toml": read_text(COMPRESSOR),
+        "template": True, "path": f"template-{asked}.toml", "toml": text,
         "ranges": {"lengths": {"AB": [0.055, 0.065]}, "angle": [30, 60, 10]}})
     assert status == 200
     done = subprocess.run([sys.executable, "-m", "planmethod", "variants",
-                           str(folder / "template.toml"), "--count", "2", "--out",
-                           str(folder / "cli-run"), "--no-sheets"],
+                           str(folder / f"template-{asked}.toml"), "--count", "2", "--out",
+                           str(folder / f"cli-run-{asked}"), "--no-sheets"],
                           capture_output=True, text=True, cwd=ROOT)
     assert done.returncode == 0, done.stderr
-    assert (folder / "cli-run" / "keys.json").is_file()
+    assert (folder / f"cli-run-{asked}" / "keys.json").is_file()
 
 
 # -- the file system's odd corners (issue 35) ------------------------------------------------------

@@ -25,7 +25,8 @@ from ..errors import SpecError, value_text
 from ..model import FRAME
 from ..words import message, number_text, render
 
-__all__ = ["as_drawn", "checked_number", "checked_whole", "exercise_of", "make_template"]
+__all__ = ["as_drawn", "checked_number", "checked_whole", "everything_asked", "exercise_of",
+           "make_template"]
 
 
 def exercise_of(text: str, file: str | None = None):
@@ -194,6 +195,36 @@ def _task(mechanism, drive: Mapping[str, Any], scaled, variables) -> str:
                   message("{title}. {task}", title="{title}", task=crank))
 
 
+def everything_asked(mechanism) -> dict[str, Any]:
+    """The ``[ask]`` table that asks what a file without one asks (docs/studio.md: nothing
+    ticked asks everything), written out for a template, whose students must be told what
+    they are asked: v and a of every point that moves, ω and ε of every link but the drive's
+    and those that only slide along the frame (they never turn), the sliding of every pair on a
+    moving guide (on the frame's its slider's v and a say it), forces where masses or loads are
+    given. Zero by construction is never asked: no variant could pass the rules a drawn one is
+    held to.
+
+    >>> from planmethod.spec import load_exercise
+    >>> ask = everything_asked(load_exercise("exercises/compressor_slider_crank.toml").mechanism)
+    >>> ask["velocity"], ask["omega"], "sliding" in ask
+    (['B', 'C', 'D'], ['BC'], False)
+    """
+    points = list(dict.fromkeys(
+        point for name, link in mechanism.links.items() if name != FRAME
+        for point in link.points if FRAME not in mechanism.links_with_point(point)))
+    translating = {pair.link for pair in mechanism.slides if pair.along == FRAME}
+    turning = [name for name in mechanism.links
+               if name not in (FRAME, mechanism.drive.link) and name not in translating]
+    ask: dict[str, Any] = {"velocity": points, "acceleration": points, "omega": turning,
+                           "epsilon": turning}
+    sliding = [pair.key for pair in mechanism.slides if pair.along != FRAME]
+    if sliding:
+        ask["sliding"] = sliding
+    if mechanism.masses or mechanism.loads:
+        ask["forces"] = True
+    return ask
+
+
 def make_template(text: str, ranges: Mapping[str, Any]) -> str:
     """A template (in link frames) made of the drawing: each link listed in
     ``ranges["lengths"]`` (``{"BC": [0.16, 0.20]}``, m) scaled to a length drawn from that
@@ -201,7 +232,8 @@ def make_template(text: str, ranges: Mapping[str, Any]) -> str:
     pivot), the crank angle from ``ranges["angle"]`` (``[from, to, step]``, deg) and ω1 from
     ``ranges["omega"]`` (``[low, high, step]``, rad/s), each drawn on its grid. The
     assembly is picked by the drawing's points (a ``[sketch]`` at the drawn angle); the
-    task's words are in the language spoken."""
+    task's words are in the language spoken. A drawing that asks nothing asks everything
+    (:func:`everything_asked`), written out."""
     from ..convert import frame_tables
     from ..grading.templates import to_toml
     from ..spec import exercise_from_dict
@@ -230,4 +262,6 @@ def make_template(text: str, ranges: Mapping[str, Any]) -> str:
                               for link, props in value.items()}
         else:
             tables[key] = value
+    if "ask" not in frames:
+        tables["ask"] = everything_asked(mechanism)
     return to_toml(tables)

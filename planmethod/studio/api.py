@@ -21,6 +21,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import secrets
@@ -28,6 +29,7 @@ import shutil
 import stat
 import time
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path, PurePosixPath
 from typing import Any
 
@@ -265,35 +267,53 @@ class Workspace:
 
 
 # -- solving -------------------------------------------------------------------------------------
-def solve(text: str) -> dict[str, Any]:
+def solve(text: str, *, draft: bool = False) -> dict[str, Any]:
     """An exercise's TOML → ``{"report": …, "svg": {"position", "velocity", "acceleration"},
-    "symbols": …, "drive_symbols": …, "server_ms": …}``: the report of ``planmethod solve
+    "symbols": …, "ask_symbols": …, "drive_symbols": …, "server_ms": …}``: the report of
+    ``planmethod solve
     --json``, the plans as the command line draws them but without the enlarged details of
     crowded points (a live picture, redrawn at every step of a drag: the details would jump
     about below it; ``planmethod solve --svg`` draws them) as SVG for an HTML page (no XML
     declaration), each checked quantity's course symbol under the exercise's numbering
-    (``omega_BC`` → ω₂) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁)."""
+    (``omega_BC`` → ω₂), the symbol of every quantity that could be asked (the page's labels of
+    *What is asked*) and the drive's ``phi``, ``omega`` and ``epsilon`` (φ₁, ω₁, ε₁).
+
+    A ``draft`` is a drag's intermediate step, shown for a moment: its labels are placed
+    quickly (:func:`~planmethod.render.labels.drafted`) and, where everything is asked, the
+    forces (which the page does not show) are left out; the page asks for the full answer when
+    the drag rests, the same bytes as ever."""
     from ..numbering import course_numbers, course_symbols
+    from ..render.labels import drafted
     from ..render.svg import plan_svg, position_svg
     from ..render.workbook import inline_svg
     from ..report import analyse, report_dict
     from ..vocabulary import symbol
 
     start = time.perf_counter()
-    analysis = analyse(exercise_of(text))
+    exercise = exercise_of(text)
+    if draft and exercise.ask.everything:   # the same scene without the forces
+        exercise = replace(exercise, ask=replace(exercise.ask, forces=False))
+    analysis = analyse(exercise)
     report = report_dict(analysis)
     svg = {}
     plans = analysis.plans
-    if plans is not None:
-        svg["position"] = inline_svg(position_svg(plans.position, plans=plans, details=False))
-        svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
-        if plans.acceleration is not None:
-            svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
+    with drafted() if draft else contextlib.nullcontext():
+        if plans is not None:
+            svg["position"] = inline_svg(position_svg(plans.position, plans=plans,
+                                                      details=False))
+            svg["velocity"] = inline_svg(plan_svg(plans.velocity, details=False))
+            if plans.acceleration is not None:
+                svg["acceleration"] = inline_svg(plan_svg(plans.acceleration, details=False))
     numbers = course_numbers(analysis.exercise.mechanism)
     symbols = {check["quantity"]: symbol(check["quantity"], numbers)
                for check in report["checks"]}
-    drive = course_symbols(analysis.exercise.mechanism)
+    mechanism = analysis.exercise.mechanism
+    drive = course_symbols(mechanism)
+    askable = [f"{kind}_{point}" for link in mechanism.links.values() for point in link.points
+               for kind in ("v", "a", "rho")]
+    askable += [f"{kind}_{link}" for link in mechanism.links for kind in ("omega", "epsilon")]
     return {"report": report, "svg": svg, "symbols": symbols,
+            "ask_symbols": {quantity: symbol(quantity, numbers) for quantity in askable},
             "drive_symbols": {name: drive[name] for name in ("phi", "omega", "epsilon")},
             "server_ms": round(1000 * (time.perf_counter() - start), 2)}
 
@@ -366,13 +386,14 @@ def _students(count: int):
     return class_of(count, width=2)
 
 
-def _template(text: str, ranges: Mapping[str, Any]) -> str:
-    """The template made of the drawing and ``ranges``, checked as a template."""
+def _template(text: str, ranges: Mapping[str, Any], file: str | None = None) -> str:
+    """The template made of the drawing and ``ranges``, checked as a template (a problem
+    named in ``file``, the file an export writes it to; a preview's is in no file)."""
     from ..application.templating import make_template
     from ..grading.templates import parse_template
 
     template_text = make_template(text, ranges)
-    parse_template(template_text, file="template.toml")
+    parse_template(template_text, file=file)
     return template_text
 
 
@@ -415,7 +436,7 @@ def run_variants(arguments: Mapping[str, Any],
     from ..render.workbook import inline_svg
     from ..words import render
 
-    template = parse_template(arguments["template"], file="template.toml")
+    template = parse_template(arguments["template"])   # the preview's: in no file
     drawn = choose_branches(exercise_of(arguments["text"]).mechanism)
     students = _students(arguments["count"]).students
     out, rejected = [], []
@@ -461,7 +482,7 @@ def prepare_export(workspace: Workspace, text: str, ranges: Mapping[str, Any], *
         raise SpecError(message("must be a list of {formats}", formats=list(FORMATS)),
                         key="formats")
     target = workspace.new_folder(folder)
-    return {"template": _template(text, ranges), "count": count, "seed": seed,
+    return {"template": _template(text, ranges, "template.toml"), "count": count, "seed": seed,
             "formats": list(formats), "folder": workspace.relative(target),
             "target": str(target)}
 

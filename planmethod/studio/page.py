@@ -66,7 +66,10 @@ SCRIPT_WORDS: dict[str, Message] = {
     "head_exact": template("exact", context="a value"),
     "head_unit": template("unit"),
     "solved": template("solved in {time:g} ms on the server"),
-    "grid": template("grid {step:g} mm"),
+    "snap_on": template("points snap to a {step:g} mm grid (hold Alt or press G to place "
+                        "them freely)"),
+    "snap_off": template("points are placed freely (press G to snap them to a {step:g} mm "
+                         "grid)"),
     "mode_move": template("Drag a point; click one to select it."),
     "mode_point": template("Click on the grid to add a point."),
     "mode_link": template("Click the link's points one after another; Enter or Finish link "
@@ -97,6 +100,21 @@ SCRIPT_WORDS: dict[str, Message] = {
     "ask_point": template("point"),
     "ask_link": template("link"),
     "ask_sliding": template("sliding"),
+    "ask_velocity_box": template("ask the velocity {symbol} of point {point}"),
+    "ask_acceleration_box": template("ask the acceleration {symbol} of point {point}"),
+    "ask_curvature_box": template("ask the radius of curvature {symbol} of the path of point "
+                                  "{point}"),
+    "ask_omega_box": template("ask the angular velocity {symbol} of link {link}"),
+    "ask_epsilon_box": template("ask the angular acceleration {symbol} of link {link}"),
+    "ask_sliding_box": template("ask the sliding of {link} along {along}"),
+    "omega_low": template("lowest {omega} drawn, rad/s"),
+    "omega_high": template("highest {omega} drawn, rad/s"),
+    "omega_step": template("step of {omega}, rad/s"),
+    "range_vary_box": template("vary the length of link {link}"),
+    "range_low_box": template("shortest length of link {link}, m"),
+    "range_high_box": template("longest length of link {link}, m"),
+    "chosen_point": template("point {point} chosen: the arrows move it by a step of the grid "
+                             "(Shift: ten steps)"),
     "no_files": template("no {suffix} files in this folder"),
     "file_converted": template("{path} (in link frames: shown as drawn)"),
     "replace": template("{path} exists. Replace it?"),
@@ -168,7 +186,9 @@ MARKUP: dict[str, tuple[Message, dict[str, str]]] = {
     "delete_tip": (template("click a point, link or slider to delete it"), {}),
     "fit": (template("Fit"), {}),
     "fit_tip": (template("fit the drawing in the view"), {}),
-    "snap": (template("snap to grid"), {}),
+    "snap": (template("snap to grid (G)"), {}),
+    "editor": (template("the mechanism as drawn: drag its points, or press ] and [ to choose a "
+                        "point and the arrows to move it"), {}),
     "selection": (template("Selection"), {}),
     "nothing": (template("Nothing selected."), {}),
     "drive_link": (SCRIPT_WORDS["ask_link"], {}),
@@ -193,6 +213,7 @@ MARKUP: dict[str, tuple[Message, dict[str, str]]] = {
     "to": (template("to", context="a range"), {}),
     "step": (template("step", context="a range's"), {}),
     "vary_omega": (template("vary {omega} from"), {"omega": _OMEGA}),
+
     "count": (template("variants", context="how many"), {}),
     "seed": (template("seed"), {}),
     "preview": (template("Preview task sheets"), {}),

@@ -123,8 +123,9 @@ RANGES = Field("table", fields={"lengths": Field("table", values=NUMBERS), "angl
                                 "omega": NUMBERS, "step": Field("number")})
 
 #: ``POST /api/solve`` as JSON: the exercise (the page sends its tables as ``exercise``,
-#: which the server writes as this TOML: :mod:`~planmethod.studio.exercise_data`)
-SOLVE = {"toml": NEEDED_TEXT}
+#: which the server writes as this TOML: :mod:`~planmethod.studio.exercise_data`); a
+#: ``draft`` is a drag's intermediate step (``api.solve``)
+SOLVE = {"toml": NEEDED_TEXT, "draft": FLAG}
 #: ``POST /api/open``: a file of the folder
 OPEN = {"path": NEEDED_TEXT}
 #: ``POST /api/save``: the exercise, or with ``template`` the template made of it

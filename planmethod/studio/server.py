@@ -297,7 +297,7 @@ def _files(server: StudioServer, fields: dict) -> dict:
 
 
 def _solve(server: StudioServer, fields: dict) -> dict:
-    return api.solve(fields["toml"])
+    return api.solve(fields["toml"], draft=fields.get("draft", False))
 
 
 def _open(server: StudioServer, fields: dict) -> dict:

@@ -19,6 +19,8 @@ const kindText = (kind) => say("kind_" + (["structure", "assembly", "toggle", "f
 const studio = window.studio = {
   tables: emptyTables(), selected: null, mode: "move", building: [], sliderPoint: null,
   view: {cx: 0.12, cy: 0.02, scale: 1800}, timings: [], serverTimes: [], solves: 0,
+  snap: {on: true, held: false}, askSymbols: {}, draftTimings: [], drafted: false,
+  restMs: 250,   // a drag held still this long rests: solved in full
   report: null, ready: false, path: null, lastError: null,
   driveSymbols: {phi: "φ₁", omega: "ω₁", epsilon: "ε₁"},   // until a solve names them
 };
@@ -145,24 +147,31 @@ function ready() {
   return null;
 }
 
-let inFlight = false, pending = false;
-function requestSolve() {
+// A drag's intermediate steps are drafts (labels placed quickly, no forces: the server's
+// api.solve), the step where it rests — released, or held still for studio.restMs — in full
+let inFlight = false, pending = false, draftWanted = false, restTimer = null;
+function requestSolve({draft = false} = {}) {
   pending = true;
+  draftWanted = draft;
+  clearTimeout(restTimer);
+  if (draft) restTimer = setTimeout(() => requestSolve(), studio.restMs);
   if (!inFlight) sendSolve();
 }
 
 async function sendSolve() {
   pending = false;
+  const draft = draftWanted;
   const waiting = ready();
   $("hint").textContent = waiting || say("ready");
   if (waiting) { showProblem(null); clearPlans(); return; }
   inFlight = true;
   const started = performance.now();
   try {
-    const answer = await call("/api/solve", {exercise: exercise()});
+    const answer = await call("/api/solve", draft ? {exercise: exercise(), draft: true} : {exercise: exercise()});
     if (answer.ok) {
       showSolve(answer.data);
-      studio.timings.push(performance.now() - started);
+      studio.drafted = draft;
+      (draft ? studio.draftTimings : studio.timings).push(performance.now() - started);
       studio.serverTimes.push(answer.data.server_ms);
     } else {
       showProblem(answer.data);
@@ -205,8 +214,16 @@ function showSolve(data) {
   $("status").textContent = say("solved", {time: data.server_ms});
   // the drive's symbols follow the crank's number in the exercise's notation (φ₁ or θ₂ …)
   Object.assign(studio.driveSymbols, data.drive_symbols || {});
+  studio.askSymbols = data.ask_symbols || {};
+  labelAsk();
+  showDriveSymbols();
+}
+
+function showDriveSymbols() {
   for (const node of document.querySelectorAll("[data-drive-symbol]"))
     node.textContent = studio.driveSymbols[node.dataset.driveSymbol];
+  for (const node of document.querySelectorAll("[data-drive-label]"))
+    node.setAttribute("aria-label", say(node.dataset.driveLabel, studio.driveSymbols));
 }
 
 function showProblem(data) {
@@ -233,14 +250,47 @@ function toWorld(px, py) {
   const [w, h] = size(), v = studio.view;
   return [v.cx + (px - w / 2) / v.scale, v.cy - (py - h / 2) / v.scale];
 }
-function gridStep() {
-  const steps = [1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10];
-  return steps.find((step) => step * studio.view.scale >= 14) || 10;
+// the snap grid: a round step in the drawing's millimetres that suits the mechanism's size
+// (about a hundredth of its extent, at most a tenth of its shortest link; not the zoom's),
+// never putting a point onto another point or nearer to one than a step
+const ROUND_MM = [0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000];
+function snapStep() {
+  const p = points(), values = Object.values(p);
+  let wanted = 2;   // mm: an empty page, a mechanism of about 200 mm to come
+  if (values.length >= 2) {
+    const span = Math.max(Math.max(...values.map((v) => v[0])) - Math.min(...values.map((v) => v[0])),
+                          Math.max(...values.map((v) => v[1])) - Math.min(...values.map((v) => v[1])));
+    wanted = span * 1000 / 100;
+    for (const [name, members] of Object.entries(links())) {
+      if (name === FRAME) continue;
+      for (let i = 0; i < members.length; i++) for (let j = i + 1; j < members.length; j++) {
+        const a = p[members[i]], b = p[members[j]];
+        const length = a && b ? Math.hypot(b[0] - a[0], b[1] - a[1]) * 1000 : 0;
+        if (length > 0) wanted = Math.min(wanted, length / 10);
+      }
+    }
+  }
+  return (ROUND_MM.filter((step) => step <= wanted).pop() || ROUND_MM[0]) / 1000;
 }
-function snapped([x, y]) {
-  if (!$("snap").checked) return [x, y];
-  const step = gridStep();
-  return [round(Math.round(x / step) * step, 9), round(Math.round(y / step) * step, 9)];
+function snapOn(event) { return studio.snap.on && !(event && event.altKey) && !studio.snap.held; }
+function snapped([x, y], {moving = null, event = null, step = null} = {}) {
+  if (!snapOn(event)) return [x, y];
+  const unit = step || snapStep();
+  const grid = [round(Math.round(x / unit) * unit, 9), round(Math.round(y / unit) * unit, 9)];
+  for (const [name, other] of Object.entries(points())) {
+    if (name !== moving && Math.hypot(grid[0] - other[0], grid[1] - other[1]) < unit * (1 - 1e-9)) return [x, y];
+  }
+  return grid;
+}
+// the grid drawn: lines on the snap step, every so many steps so that they stay apart
+function gridLines(step) {
+  return step * ([1, 2, 5, 10, 20, 50, 100, 200, 500, 1000].find((k) => k * step * studio.view.scale >= 14) || 1000);
+}
+function showSnap() {
+  const step = round(snapStep() * 1000, 3);
+  $("snap").checked = studio.snap.on;
+  $("grid-note").textContent = snapOn() ? say("snap_on", {step: step}) : say("snap_off", {step: step});
+  $("grid-note").dataset.snap = snapOn() ? "on" : "off";
 }
 function element(name, attributes, parent) {
   const node = document.createElementNS(SVG, name);
@@ -253,8 +303,8 @@ function draw() {
   const [w, h] = size();
   editor.setAttribute("viewBox", `0 0 ${w} ${h}`);
   editor.replaceChildren();
-  const step = gridStep();
-  $("grid-note").textContent = say("grid", {step: round(step * 1000, 3)});
+  const step = gridLines(dragging && dragging.step || snapStep());
+  showSnap();
   const [x0, y1] = toWorld(0, 0), [x1, y0] = toWorld(w, h);
   const grid = element("g", {}, editor);
   const first = (low) => Math.ceil(low / step);
@@ -358,11 +408,11 @@ function setMode(mode) {
   draw();
 }
 
-function changed({solve = true} = {}) {
+function changed({solve = true, draft = false} = {}) {
   syncDrawing();
   draw();
   refreshPanels();
-  if (solve) requestSolve();
+  if (solve) requestSolve({draft});
 }
 
 function addPoint(xy) {
@@ -483,7 +533,7 @@ editor.addEventListener("pointerdown", (event) => {
   if (point) {
     if (mode === "move") {
       studio.selected = {kind: "point", name: point};
-      dragging = {point, moved: false};
+      dragging = {point, moved: false, step: snapStep()};
       editor.setPointerCapture(event.pointerId);
       draw(); refreshPanels();
     } else if (mode === "link") {
@@ -505,7 +555,7 @@ editor.addEventListener("pointerdown", (event) => {
     event.preventDefault();
     return;
   }
-  if (mode === "point") { addPoint(snapped(eventWorld(event))); event.preventDefault(); return; }
+  if (mode === "point") { addPoint(snapped(eventWorld(event), {event})); event.preventDefault(); return; }
   if (mode === "move") {
     studio.selected = null; refreshPanels(); draw();
     panning = {x: event.clientX, y: event.clientY, cx: studio.view.cx, cy: studio.view.cy};
@@ -515,9 +565,9 @@ editor.addEventListener("pointerdown", (event) => {
 
 editor.addEventListener("pointermove", (event) => {
   if (dragging) {
-    points()[dragging.point] = snapped(eventWorld(event));
+    points()[dragging.point] = snapped(eventWorld(event), {moving: dragging.point, event, step: dragging.step});
     dragging.moved = true;
-    changed();
+    changed({draft: true});
   } else if (panning) {
     studio.view.cx = panning.cx - (event.clientX - panning.x) / studio.view.scale;
     studio.view.cy = panning.cy + (event.clientY - panning.y) / studio.view.scale;
@@ -525,7 +575,10 @@ editor.addEventListener("pointermove", (event) => {
   }
 });
 
-function endDrag() { dragging = null; panning = null; }
+function endDrag() {
+  if (dragging && dragging.moved) requestSolve();   // at rest: the full answer
+  dragging = null; panning = null;
+}
 editor.addEventListener("pointerup", endDrag);
 editor.addEventListener("pointercancel", endDrag);
 editor.addEventListener("wheel", (event) => {
@@ -537,8 +590,13 @@ editor.addEventListener("wheel", (event) => {
   draw();
 }, {passive: false});
 
+// Alt held places freely while it is held; G turns the snap off and on
 document.addEventListener("keydown", (event) => {
+  if (event.key === "Alt" && !studio.snap.held) { studio.snap.held = true; showSnap(); }
   if (event.target.tagName === "INPUT" || event.target.tagName === "SELECT") return;
+  if ((event.key === "g" || event.key === "G") && !event.ctrlKey && !event.metaKey && !event.altKey) {
+    studio.snap.on = !studio.snap.on; showSnap();
+  }
   if (event.key === "Enter" && studio.mode === "link") finishLink();
   if (event.key === "Escape") { studio.building = []; studio.sliderPoint = null; draw(); }
   if ((event.key === "Delete" || event.key === "Backspace") && studio.selected) {
@@ -550,6 +608,30 @@ document.addEventListener("keydown", (event) => {
 for (const button of document.querySelectorAll("#tools [data-mode]")) button.addEventListener("click", () => setMode(button.dataset.mode));
 $("finish-link").addEventListener("click", finishLink);
 $("fit").addEventListener("click", fit);
+// the editor from the keyboard: [ and ] choose the previous or next point, the arrows move it by
+// a step of the snap grid (with Shift ten)
+const ARROWS = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1]};
+editor.addEventListener("keydown", (event) => {
+  const names = Object.keys(points());
+  const chosen = studio.selected && studio.selected.kind === "point" ? names.indexOf(studio.selected.name) : -1;
+  if ((event.key === "]" || event.key === "[") && names.length) {
+    const next = chosen < 0 ? (event.key === "]" ? 0 : names.length - 1)
+      : (chosen + (event.key === "]" ? 1 : names.length - 1)) % names.length;
+    studio.selected = {kind: "point", name: names[next]};
+    draw(); refreshPanels();
+    $("key-note").textContent = say("chosen_point", {point: pointText(names[next])});
+    event.preventDefault();
+  } else if (ARROWS[event.key] && chosen >= 0) {
+    const step = snapStep() * (event.shiftKey ? 10 : 1), [dx, dy] = ARROWS[event.key];
+    const [x, y] = points()[names[chosen]];
+    points()[names[chosen]] = [round(x + dx * step, 9), round(y + dy * step, 9)];
+    changed();
+    event.preventDefault();
+  }
+});
+document.addEventListener("keyup", (event) => { if (event.key === "Alt") { studio.snap.held = false; showSnap(); } });
+window.addEventListener("blur", () => { if (studio.snap.held) { studio.snap.held = false; showSnap(); } });
+$("snap").addEventListener("change", () => { studio.snap.on = $("snap").checked; showSnap(); });
 window.addEventListener("resize", draw);
 
 // ---- panels -------------------------------------------------------------------------------------
@@ -624,15 +706,32 @@ function refreshPanels() {
   refreshAsk();
 }
 
+// a box of What is asked, in the course's words: "ask the angular velocity ω₂ of link rod"
+const ASK_QUANTITY = {velocity: "v", acceleration: "a", curvature: "rho", omega: "omega", epsilon: "epsilon"};
+function askLabel(key, name) {
+  if (key === "sliding") {
+    const [link, along] = name.split("/");
+    return say("ask_sliding_box", {link: link, along: along});
+  }
+  const quantity = ASK_QUANTITY[key] + "_" + name;
+  const symbol = studio.askSymbols[quantity] || quantity;
+  return say("ask_" + key + "_box", ["omega", "epsilon"].includes(key) ? {symbol: symbol, link: name}
+    : {symbol: symbol, point: pointText(name)});
+}
+function labelAsk() {
+  for (const input of $("ask-body").querySelectorAll("input[data-ask]"))
+    input.setAttribute("aria-label", askLabel(input.dataset.ask, input.dataset.name));
+}
+
 function refreshAsk() {
   const ask = studio.tables.ask || {};
   const has = (key, name) => (ask[key] || []).includes(name);
-  const box = (key, name) => `<input type="checkbox" data-ask="${key}" data-name="${escapeHtml(name)}" ${has(key, name) ? "checked" : ""}>`;
+  const box = (key, name) => `<input type="checkbox" data-ask="${key}" data-name="${escapeHtml(name)}" aria-label="${escapeHtml(askLabel(key, name))}" ${has(key, name) ? "checked" : ""}>`;
   const moving = Object.keys(points()).filter((p) => !isFixed(p));
   const turning = Object.keys(links()).filter((n) => n !== FRAME && n !== studio.tables.drive.link);
   let html = `<table id="ask-table"><tr><th>${escapeHtml(say("ask_point"))}</th><th>v</th><th>a</th><th>ρ</th></tr>`;
   for (const p of moving) html += `<tr><td>${escapeHtml(p)}</td><td>${box("velocity", p)}</td><td>${box("acceleration", p)}</td><td>${box("curvature", p)}</td></tr>`;
-  html += `<tr><th>${escapeHtml(say("ask_link"))}</th><th>ω</th><th>ε</th><th></th></tr>`;
+  html += `<tr><th>${escapeHtml(say("ask_link"))}</th><th>ω</th><th>ε</th><td></td></tr>`;
   for (const n of turning) html += `<tr><td>${escapeHtml(n)}</td><td>${box("omega", n)}</td><td>${box("epsilon", n)}</td><td></td></tr>`;
   for (const s of slides()) html += `<tr><td>${escapeHtml(s.link + "/" + s.along)}</td><td colspan="3">${escapeHtml(say("ask_sliding"))} ${box("sliding", s.link + "/" + s.along)}</td></tr>`;
   html += "</table>";
@@ -690,7 +789,10 @@ function load(tables, {keepView = false} = {}) {
   requestSolve();
 }
 studio.load = load;
-studio.movePoint = (name, x, y) => { points()[name] = [x, y]; changed(); };
+studio.movePoint = (name, x, y, {draft = false} = {}) => { points()[name] = [x, y]; changed({draft}); };
+studio.snapStep = snapStep;
+// the drawing's point (m) under a point of the editor (px from its corner)
+studio.toWorld = toWorld;
 studio.exercise = exercise;
 
 $("open-button").addEventListener("click", async () => {
@@ -739,6 +841,7 @@ studio.page = {call: call, say: say, words: words, kindText: kindText, escapeHtm
 async function start() {
   if (window.location.search) window.history.replaceState(null, "", window.location.pathname);
   setMode("move");
+  showDriveSymbols();
   refreshPanels();
   draw();
   const answer = await call("/api/state");

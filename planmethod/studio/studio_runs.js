@@ -28,8 +28,9 @@ function fillRanges() {
     const length = baseLength(name);
     if (!(length > 0)) continue;
     const low = round(length * 0.9, 3), high = round(length * 1.1, 3);
-    rows.push(`<tr><td>${escapeHtml(name)}</td><td>${round(length, 4)}</td><td><input type="checkbox" data-range="${escapeHtml(name)}" ${name === FRAME ? "" : "checked"}></td>` +
-      `<td><input type="number" step="any" data-low="${escapeHtml(name)}" value="${low}"></td><td><input type="number" step="any" data-high="${escapeHtml(name)}" value="${high}"></td></tr>`);
+    const label = (id) => escapeHtml(say(id, {link: name}));
+    rows.push(`<tr><td>${escapeHtml(name)}</td><td>${round(length, 4)}</td><td><input type="checkbox" data-range="${escapeHtml(name)}" aria-label="${label("range_vary_box")}" ${name === FRAME ? "" : "checked"}></td>` +
+      `<td><input type="number" step="any" data-low="${escapeHtml(name)}" aria-label="${label("range_low_box")}" value="${low}"></td><td><input type="number" step="any" data-high="${escapeHtml(name)}" aria-label="${label("range_high_box")}" value="${high}"></td></tr>`);
   }
   $("ranges-table").innerHTML = rows.join("");
   const angle = Number(studio.tables.drive.angle) || 0;
