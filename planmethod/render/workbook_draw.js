@@ -94,7 +94,8 @@
     const plans = {};
     PLANS.forEach(plan => { plans[plan] = {points: {}, lines: []}; });
     return {format: meta.format, version: 1, title: meta.title, exercise: meta.exercise,
-            angle: wb.data.angles[draw.frame], plans: plans};
+            angle: wb.data.angles[draw.frame], plans: plans, help: {construction: {}, shown: {}},
+            checked: []};
   }
   function restore() {
     let record = null;
@@ -126,6 +127,12 @@
       });
       fresh.plans[plan] = {points: points,
                            lines: (kept.lines || []).filter(line => line && Array.isArray(line.at))};
+      // what the student asked to see of the plan, and whether it was checked
+      const help = record.help || {};
+      const step = (help.construction || {})[plan];
+      if (Number.isInteger(step) && step >= 0) fresh.help.construction[plan] = step;
+      if ((help.shown || {})[plan] === true) fresh.help.shown[plan] = true;
+      if (Array.isArray(record.checked) && record.checked.includes(plan)) fresh.checked.push(plan);
     });
     return fresh;
   }
@@ -270,6 +277,8 @@
     if (cell) { cell.textContent = ""; delete cell.dataset.ok; }
     if (draw.results[plan]) delete draw.results[plan][label];
     draw.planMistakes[plan] = [];
+    store.checked = store.checked.filter(one => one !== plan);
+    element("draw-status").textContent = "";
     const summary = planBox(plan).querySelector(".draw-summary");
     if (summary.textContent) summary.textContent = say("moved");
   }
@@ -426,10 +435,27 @@
     draw.planMistakes[plan] = common;
     planBox(plan).querySelector(".draw-summary").textContent = wb.rules.planSummary(
       plan, required.filter(result => result.ok).length, required.length, common, texts);
+    if (!store.checked.includes(plan)) { store.checked.push(plan); save(); }
+    sayNext();
     render(plan);
     void document.body.offsetHeight;   // the verdicts laid out: part of the check
     draw.checkTimes.push(performance.now() - t0);
     return results;
+  }
+
+  // what comes next: after a right velocity plan the acceleration plan, after both another
+  // angle
+  function planRight(plan) {
+    const results = Object.values(draw.results[plan] || {}).filter(result => result.required);
+    return results.length > 0 && results.every(result => result.ok);
+  }
+  function sayNext() {
+    const drawn = PLANS.filter(plan => frameData(plan));
+    let said = "";
+    if (drawn.every(planRight)) said = say("plans_right", {phi: meta.phi,
+                                                         angle: wb.data.angles[draw.frame]});
+    else if (planRight("velocity") && frameData("acceleration")) said = say("next_acceleration");
+    element("draw-status").textContent = said;
   }
 
   // -- what stays hidden while drawing: every value read off a plan (the readings, the curves,
@@ -452,6 +478,8 @@
     if (!steps.length || !panelOf(plan)) return;
     const next = Math.min(steps.length - 1, (draw.revealed[plan] ?? -1) + 1);
     draw.revealed[plan] = next;
+    store.help.construction[plan] = next;
+    save();
     // the plan's points show as its steps reach them, not all at once
     panelOf(plan).classList.add("revealed", "stepwise");
     element("step-plan").value = plan;
@@ -463,6 +491,8 @@
   }
   function showPlan(plan) {
     draw.shownPlan[plan] = true;
+    store.help.shown[plan] = true;
+    save();
     conceal();
     const panel = panelOf(plan);
     if (panel) {
@@ -510,6 +540,8 @@
     draw.revealed = {};
     draw.shownPlan = {};
     notice("");
+    element("draw-status").textContent = "";
+    element("draw-kept").textContent = "";
     conceal();
     store = restore();
     PLANS.forEach(plan => {
@@ -520,6 +552,25 @@
       buildList(plan);
       render(plan);
     });
+    reopen();
+  }
+  // a drawing kept at this angle as it was left: what was asked to be seen, the verdicts of
+  // the plans checked, and a word of which angle it was drawn at
+  function reopen() {
+    const kept = PLANS.filter(plan => planBox(plan) && frameData(plan));
+    kept.forEach(plan => {
+      if (store.help.shown[plan]) showPlan(plan);
+      const step = store.help.construction[plan];
+      if (step !== undefined) {
+        draw.revealed[plan] = step - 1;
+        showStep(plan);
+      }
+    });
+    const checked = kept.filter(plan => store.checked.includes(plan));
+    checked.forEach(check);
+    const placed = kept.some(plan => Object.keys(store.plans[plan].points).length);
+    element("draw-kept").textContent = placed ? say("kept_restored", {
+      phi: meta.phi, angle: wb.data.angles[draw.frame]}) : "";
   }
   function setZoom(zoom) {
     draw.zoom = zoom;
@@ -562,10 +613,7 @@
         render(plan);
       });
     });
-    element("draw-mode").addEventListener("change", event => {
-      document.body.classList.toggle("drawing", event.target.checked);
-      conceal();
-    });
+    document.addEventListener("workbook:mode", conceal);
     const planOf = Object.fromEntries(wb.data.quantities.map(q => [q.name, q.plan]));
     wb.concealed = name => concealed(planOf[name]);
     wb.planShown = name => drawingOn() && !!planOf[name] && !!draw.shownPlan[planOf[name]];

@@ -1,0 +1,267 @@
+"""The workbook in a classroom, in headless Chromium through Playwright (issue 39): the mode
+bar (watch, practise, draw) in the first viewport on a laptop and a phone and in view when
+scrolled; drawing brought into view; what comes after a right velocity plan; a reload that
+restores the mode, the angle, the drawing with its verdicts and what was revealed; no asked
+value shown while practising or drawing with nothing typed; a point placed by a tap on a phone
+and graded.
+
+Skipped, with the reason, where Playwright or the system Chromium is missing.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import chromium
+import pytest
+
+pytestmark = pytest.mark.browser
+
+ROOT = Path(__file__).resolve().parent.parent
+COMPRESSOR = ROOT / "exercises" / "compressor_slider_crank.toml"
+SLOTTED = ROOT / "exercises" / "slotted_lever.toml"
+
+sync_api, CHROMIUM = chromium.require()
+
+LAPTOP = {"viewport": {"width": 1280, "height": 720}}
+PHONE = {"viewport": {"width": 390, "height": 844}, "has_touch": True, "is_mobile": True,
+         "device_scale_factor": 3}
+
+
+def cli(*argv) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "planmethod", *map(str, argv)], cwd=ROOT,
+                          capture_output=True, text=True, check=True)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with sync_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+        yield browser
+        browser.close()
+
+
+@pytest.fixture(scope="module")
+def slotted_page(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("classroom") / "slotted.html"
+    cli("workbook", SLOTTED, "-o", path, "--step", 15)
+    return path
+
+
+@pytest.fixture(scope="module")
+def compressor_page(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("classroom") / "compressor.html"
+    cli("workbook", COMPRESSOR, "-o", path, "--step", 15)
+    return path
+
+
+@pytest.fixture(scope="module")
+def slotted_report() -> dict:
+    return json.loads(cli("solve", SLOTTED, "--json").stdout)
+
+
+def ready(page) -> None:
+    page.wait_for_function("window.workbook && window.workbook.ready", timeout=30_000)
+
+
+def open_page(browser, path: Path, device: dict):
+    """A new browser context (its own storage) of ``device`` with the page open, and the
+    console errors it logs."""
+    context = browser.new_context(**device)
+    page = context.new_page()
+    errors: list[str] = []
+    page.on("console", lambda message: errors.append(message.text)
+            if message.type == "error" else None)
+    page.on("pageerror", lambda error: errors.append(str(error)))
+    page.goto(path.as_uri())
+    ready(page)
+    return page, errors
+
+
+def box(page, selector: str) -> dict:
+    return page.eval_on_selector(selector, "e => e.getBoundingClientRect().toJSON()")
+
+
+def in_view(page, selector: str) -> bool:
+    """Whether the element lies wholly inside the viewport."""
+    rect, (width, height) = box(page, selector), page.evaluate("[innerWidth, innerHeight]")
+    return rect["top"] >= 0 and rect["left"] >= 0 and rect["bottom"] <= height and \
+        rect["right"] <= width and rect["width"] > 0
+
+
+def move_slider(page, angle: float) -> None:
+    page.eval_on_selector("#angle", """(slider, angle) => {
+        slider.value = angle;
+        slider.dispatchEvent(new Event("input", {bubbles: true}));
+    }""", angle)
+
+
+def words(page, name: str, **fields) -> str:
+    """A sentence of the page's words, as the page says it."""
+    return page.evaluate("([name, fields]) => workbook.rules.words.say(name, fields)",
+                         [name, fields])
+
+
+def sheet_point(page, plan: str, x: float, y: float) -> tuple[float, float]:
+    """The viewport point of the plan point (x, y) mm of ``plan``'s sheet, scrolled into the
+    middle of the window first."""
+    return tuple(page.eval_on_selector(f'svg[data-draw="{plan}"]', """(svg, [x, y]) => {
+        const mark = document.createElementNS(svg.namespaceURI, "circle");
+        mark.setAttribute("cx", x); mark.setAttribute("cy", y); mark.setAttribute("r", 0.01);
+        svg.appendChild(mark);
+        mark.scrollIntoView({block: "center", inline: "center"});
+        const b = mark.getBoundingClientRect();
+        mark.remove();
+        return [b.x + b.width / 2, b.y + b.height / 2];
+    }""", [x, -y]))
+
+
+def place_all(page, plan: str, points: dict, tap: bool = False) -> list[str]:
+    labels = [place.partition(":")[2] for place in page.eval_on_selector_all(
+        f'[data-place^="{plan}:"]', "buttons => buttons.map(b => b.dataset.place)")]
+    for label in labels:
+        if tap:
+            page.tap(f'[data-place="{plan}:{label}"]')
+            page.touchscreen.tap(*sheet_point(page, plan, *points[label]))
+        else:
+            page.click(f'[data-place="{plan}:{label}"]')
+            page.mouse.click(*sheet_point(page, plan, *points[label]))
+    return labels
+
+
+@pytest.mark.parametrize("device", [LAPTOP, PHONE], ids=["1280x720", "390x844-touch"])
+def test_the_mode_bar_is_in_the_first_viewport_and_stays_in_view(browser, slotted_page,
+                                                                  device):
+    page, errors = open_page(browser, slotted_page, device)
+    assert page.eval_on_selector_all('#modes input[name="mode"]',
+                                     "inputs => inputs.map(i => i.value)") == \
+        ["watch", "practise", "draw"]
+    assert in_view(page, "#modes")
+    for label in page.query_selector_all("#modes label"):
+        size = label.bounding_box()
+        assert size["width"] >= 44 and size["height"] >= 44
+    # no horizontal scroll of the page
+    assert page.evaluate("document.documentElement.scrollWidth <= innerWidth")
+    page.evaluate("window.scrollTo(0, document.body.scrollHeight)")
+    assert page.evaluate("scrollY") > 0 and in_view(page, "#modes")
+    # switching to draw brings the velocity plan's sheet into view, below the bar
+    page.evaluate("window.scrollTo(0, 0)")
+    page.check("#draw-mode")
+    heading = box(page, '.draw-plan[data-plan="velocity"] h3')
+    assert heading["top"] >= box(page, "#controls")["bottom"] - 1
+    sheet = box(page, 'svg[data-draw="velocity"]')
+    assert sheet["top"] < page.evaluate("innerHeight") - 100
+    assert in_view(page, "#modes")
+    assert page.evaluate("document.documentElement.scrollWidth <= innerWidth")
+    assert errors == []
+    page.context.close()
+
+
+def test_a_right_velocity_plan_says_the_acceleration_plan_comes_next(browser, slotted_page,
+                                                                     slotted_report):
+    page, errors = open_page(browser, slotted_page, LAPTOP)
+    move_slider(page, 30)
+    page.check("#draw-mode")
+    assert page.text_content("#draw-status") == ""
+    place_all(page, "velocity", slotted_report["plans"]["velocity"]["points_mm"])
+    page.click('[data-check="velocity"]')
+    said = words(page, "next_acceleration")
+    assert said == "the velocity plan is right: now draw the acceleration plan"
+    assert page.text_content("#draw-status") == said
+    place_all(page, "acceleration", slotted_report["plans"]["acceleration"]["points_mm"])
+    page.click('[data-check="acceleration"]')
+    assert page.text_content("#draw-status") == words(page, "plans_right", phi="φ₁", angle=30)
+    assert errors == []
+    page.context.close()
+
+
+def test_a_reload_restores_the_drawing_its_verdicts_and_what_was_revealed(
+        browser, slotted_page, slotted_report):
+    page, errors = open_page(browser, slotted_page, LAPTOP)
+    move_slider(page, 45)
+    page.check("#practice")
+    page.click('button[data-reveal="v_B@lever"]')
+    move_slider(page, 30)
+    page.check("#draw-mode")
+    points = slotted_report["plans"]["velocity"]["points_mm"]
+    place_all(page, "velocity", points)
+    page.click('[data-check="velocity"]')
+    shown = {cell: text for cell, text in page.eval_on_selector_all(
+        '[data-verdict-for^="velocity:"]',
+        "cells => cells.map(c => [c.dataset.verdictFor, c.textContent])")}
+    assert shown and all(shown.values())
+    page.click('[data-show-step="acceleration"]')
+    page.click('[data-show-step="acceleration"]')
+    step = page.text_content('.draw-plan[data-plan="acceleration"] .draw-step')
+    assert step
+    page.reload()
+    ready(page)
+    # the mode, the angle, the drawing and its verdicts, the construction's steps shown
+    assert page.is_checked("#draw-mode") and page.input_value("#angle") == "30"
+    assert page.text_content("#draw-kept") == words(page, "kept_restored", phi="φ₁", angle=30)
+    assert "30°" in page.text_content("#draw-kept")
+    assert {cell: text for cell, text in page.eval_on_selector_all(
+        '[data-verdict-for^="velocity:"]',
+        "cells => cells.map(c => [c.dataset.verdictFor, c.textContent])")} == shown
+    assert page.text_content("#draw-status") == words(page, "next_acceleration")
+    assert page.text_content('.draw-plan[data-plan="acceleration"] .draw-step') == step
+    assert page.evaluate("workbook.draw.exported('acceleration').revealed") == \
+        ["construction:acceleration"]
+    # what was revealed while practising, at its angle
+    assert page.evaluate("workbook.revealed") == {"45": ["v_B@lever"]}
+    page.check("#practice")
+    move_slider(page, 45)
+    assert page.is_visible('td.reading[data-quantity="v_B@lever"]')
+    assert not page.is_visible('td.reading[data-quantity="omega_lever"]')
+    assert errors == []
+    page.context.close()
+
+
+@pytest.mark.parametrize("mode", ["practice", "draw-mode"])
+def test_nothing_typed_shows_no_asked_value(browser, compressor_page, mode):
+    """Practising or drawing, *check* with nothing typed shows no right value of an asked
+    quantity anywhere in the page's visible text."""
+    report = json.loads(cli("solve", COMPRESSOR, "--angle", 45, "--json").stdout)
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    page, errors = open_page(browser, compressor_page, LAPTOP)
+    move_slider(page, 45)
+    page.check(f"#{mode}")
+    page.click("#check")
+    results = page.evaluate("workbook.results")
+    asked = set(results)
+    assert asked and not any(result["correct"] for result in results.values())
+    text = page.evaluate("document.body.innerText")
+    given = {name: shown for name, value in exact.items() if name in asked and abs(value) > 1e-9
+             for shown in (f"{value:.4g}", f"{value:.6g}") if shown in text}
+    assert given == {}
+    assert errors == []
+    page.context.close()
+
+
+def test_a_point_is_placed_by_a_tap_on_a_phone_and_graded(browser, slotted_page,
+                                                          slotted_report):
+    page, errors = open_page(browser, slotted_page, PHONE)
+    move_slider(page, 30)
+    page.check("#draw-mode")
+    assert in_view(page, "#modes")
+    points = slotted_report["plans"]["velocity"]["points_mm"]
+    labels = place_all(page, "velocity", points, tap=True)
+    for label in labels:
+        placed = page.evaluate(f"workbook.draw.drawing('velocity').points[{label!r}]")
+        assert placed == pytest.approx(points[label], abs=0.2)
+    page.tap('[data-check="velocity"]')
+    oks = page.eval_on_selector_all('[data-verdict-for^="velocity:"]',
+                                    "cells => cells.map(c => c.dataset.ok)")
+    assert oks and all(ok == "true" for ok in oks)
+    # point buttons and the plan's controls are at least 44 × 44 CSS px
+    for selector in ('.draw-plan[data-plan="velocity"] button', "#controls button"):
+        for button in page.query_selector_all(selector):
+            size = button.bounding_box()
+            if size:
+                assert size["width"] >= 44 and size["height"] >= 44, selector
+    assert page.evaluate("document.documentElement.scrollWidth <= innerWidth")
+    assert errors == []
+    page.context.close()
