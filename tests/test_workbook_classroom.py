@@ -265,3 +265,34 @@ def test_a_point_is_placed_by_a_tap_on_a_phone_and_graded(browser, slotted_page,
     assert page.evaluate("document.documentElement.scrollWidth <= innerWidth")
     assert errors == []
     page.context.close()
+
+
+def test_a_practice_hint_says_about_how_far_off_and_which_way(browser, compressor_page,
+                                                               tmp_path):
+    """A wrong answer's hint tells which way it is off and about how far (to one significant
+    digit, never the right value), the same sentence as ``grade --feedback hints``."""
+    report = json.loads(cli("solve", COMPRESSOR, "--json").stdout)   # at its own angle
+    exact = {check["quantity"]: check["analytic"] for check in report["checks"]}
+    answers = {"v_C": 1.12 * exact["v_C"], "v_D": 0.7 * exact["v_D"],
+               "a_C": 30 * exact["a_C"]}
+    sheet = tmp_path / "answers.json"
+    sheet.write_text(json.dumps({"s1": answers}))
+    cli("grade", COMPRESSOR, sheet, "--json", tmp_path / "graded.json")
+    graded = {q["id"]: q for q in json.loads(
+        (tmp_path / "graded.json").read_text())["answers"][0]["questions"]}
+    page, errors = open_page(browser, compressor_page, LAPTOP)
+    page.check("#practice")
+    for name, value in answers.items():
+        page.fill(f'input[data-answer="{name}"]', repr(value))
+    page.click("#check")
+    for name in answers:
+        shown = page.text_content(f'td.verdict[data-verdict-for="{name}"]')
+        assert shown == graded[name]["hint"]
+        assert f"{exact[name]:.4g}" not in shown
+    hint = graded["v_C"]["hint"]
+    assert hint.endswith("(about 10 % too high)") or \
+        hint.endswith("(about 10 % too large in magnitude)")
+    assert "about 30 % too" in graded["v_D"]["hint"]
+    assert "about 30 times what it should be" in graded["a_C"]["hint"]
+    assert errors == []
+    page.context.close()
