@@ -296,3 +296,74 @@ def test_a_practice_hint_says_about_how_far_off_and_which_way(browser, compresso
     assert "about 30 times what it should be" in graded["a_C"]["hint"]
     assert errors == []
     page.context.close()
+
+
+def touch(client, kind: str, *points: tuple[float, float]) -> None:
+    """A touch event through the browser's input (the fingers at ``points``, CSS px)."""
+    client.send("Input.dispatchTouchEvent", {
+        "type": kind, "touchPoints": [{"x": x, "y": y, "id": number}
+                                      for number, (x, y) in enumerate(points)]})
+
+
+def test_a_finger_sees_its_point_magnified_above_it_and_two_fingers_zoom(
+        browser, slotted_page):
+    """A finger's point shows in a loupe above the finger while it moves (the finger hides
+    the point itself) and is placed where the finger leaves the sheet; two fingers zoom the
+    sheet and place nothing; the zoom reaches a size where every tolerance disc of the page is
+    6 px across or more."""
+    page, errors = open_page(browser, slotted_page, PHONE)
+    assert page.get_attribute('meta[name="viewport"]', "content") == \
+        "width=device-width, initial-scale=1"
+    page.check("#draw-mode")
+    client = page.context.new_cdp_session(page)
+    x, y = sheet_point(page, "velocity", 0, 10)
+    zoom = page.evaluate("workbook.draw.zoom")
+    touch(client, "touchStart", (x, y))
+    touch(client, "touchMove", (x + 2 * zoom, y))
+    loupe = box(page, ".draw-loupe")
+    assert page.is_visible(".draw-loupe") and loupe["bottom"] < y - 20     # above the finger
+    assert page.eval_on_selector(".draw-loupe svg", "v => v.querySelectorAll('circle').length")
+    touch(client, "touchEnd")
+    assert not page.is_visible(".draw-loupe")
+    first = page.evaluate("Object.keys(workbook.draw.drawing('velocity').points)")
+    assert len(first) == 1
+    placed = page.evaluate(f"workbook.draw.drawing('velocity').points[{first[0]!r}]")
+    assert placed == pytest.approx([2, 10], abs=0.5)
+    # two fingers spread apart: the sheet zooms in, the chosen point stays unplaced
+    before = page.evaluate("workbook.draw.drawing('velocity').points")
+    touch(client, "touchStart", (x - 20, y + 40), (x + 20, y + 40))
+    for step in range(1, 6):
+        touch(client, "touchMove", (x - 20 - 15 * step, y + 40), (x + 20 + 15 * step, y + 40))
+    touch(client, "touchEnd")
+    assert page.evaluate("workbook.draw.zoom") > zoom
+    assert page.evaluate("workbook.draw.drawing('velocity').points") == before
+    smallest, zooms = page.evaluate("[workbook.draw.smallestRadius, workbook.draw.zooms]")
+    assert smallest > 0 and max(zooms) * 2 * smallest >= 6
+    for _ in zooms:
+        page.click('[data-zoom="1"]')
+    assert page.evaluate("workbook.draw.zoom") == max(zooms)
+    assert page.evaluate("document.documentElement.scrollWidth <= innerWidth")
+    assert errors == []
+    page.context.close()
+
+
+def test_the_keyboard_places_a_point_on_a_chosen_sheet(browser, slotted_page, slotted_report):
+    """Enter on a focused sheet places the chosen point at the middle of the sheet in view;
+    Control + an arrow key moves it 5 mm, an arrow key 0.5 mm; + zooms."""
+    page, errors = open_page(browser, slotted_page, LAPTOP)
+    move_slider(page, 30)
+    page.check("#draw-mode")
+    page.focus('[data-place="velocity:b"]')
+    page.keyboard.press("Enter")                      # the point's button chooses it
+    page.focus('svg[data-draw="velocity"]')
+    page.keyboard.press("Enter")
+    start = page.evaluate("workbook.draw.drawing('velocity').points.b")
+    page.keyboard.press("Control+ArrowRight")
+    page.keyboard.press("ArrowUp")
+    moved = page.evaluate("workbook.draw.drawing('velocity').points.b")
+    assert moved == pytest.approx([start[0] + 5, start[1] + 0.5], abs=1e-9)
+    zoom = page.evaluate("workbook.draw.zoom")
+    page.keyboard.press("+")
+    assert page.evaluate("workbook.draw.zoom") > zoom
+    assert errors == []
+    page.context.close()

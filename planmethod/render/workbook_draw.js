@@ -8,6 +8,7 @@
   const PLANS = ["velocity", "acceleration"];
   const ZOOMS = [4, 5, 6, 8, 10, 12, 16, 20, 24, 32];   // CSS px per drawing millimetre
   const NUDGE_MM = 0.5, FINE_NUDGE_MM = 0.1;             // an arrow key; Shift + an arrow key
+  const COARSE_NUDGE_MM = 5;                             // Control + an arrow key
   const MARK_PX = 5;          // a press this near a placed point's centre is on its mark
   const GRAB_PX = 8;          // with Alt, a press this near a placed point grabs it
   const draw = {results: {}, planMistakes: {}, checkTimes: [], tool: {}, selected: {}, armed: {},
@@ -159,7 +160,9 @@
     svg.style.width = (right - left) * draw.zoom + "px";
     svg.style.height = (top - bottom) * draw.zoom + "px";
     svg.replaceChildren();
-    const grid = make("g", {"class": "grid"}, svg);
+    // everything drawn in one group: the loupe shows a copy of it, magnified
+    const content = make("g", {"class": "content"}, svg);
+    const grid = make("g", {"class": "grid"}, content);
     let minor = "", major = "";
     for (let x = Math.ceil(left); x <= right; x++) {
       const path = "M" + x + " " + (-top) + "V" + (-bottom);
@@ -171,9 +174,9 @@
     }
     make("path", {d: minor, "class": "minor", "vector-effect": "non-scaling-stroke"}, grid);
     make("path", {d: major, "class": "major", "vector-effect": "non-scaling-stroke"}, grid);
-    make("g", {"class": "lines"}, svg);
-    make("g", {"class": "right-plan"}, svg);
-    make("g", {"class": "points"}, svg);
+    make("g", {"class": "lines"}, content);
+    make("g", {"class": "right-plan"}, content);
+    make("g", {"class": "points"}, content);
     render(plan);
   }
   // a point's mark and its name (a point id typeset, or the pole's letter)
@@ -313,7 +316,69 @@
     save();
     render(plan);
   }
+  // -- a finger: the loupe shows the point under it magnified above it; two fingers zoom the
+  // sheet (to the zoom steps) and move it --------------------------------------------------
+  const LOUPE_PX = 120, LOUPE_LIFT_PX = 100, LOUPE_TIMES = 3;
+  const fingers = new Map();   // pointer id -> [clientX, clientY] of the fingers on a sheet
+  let pinch = null;
+  function loupe(plan, event, xy) {
+    const box = document.querySelector(".draw-loupe");
+    if (!xy) { box.classList.remove("on"); box.replaceChildren(); return; }
+    // a copy of the sheet's drawing as it is now (the page's style reaches a copy, not a
+    // <use> of it), without the names the page and its tests find points by
+    const view = document.createElementNS(svgOf(plan).namespaceURI, "svg");
+    const copy = svgOf(plan).querySelector("g.content").cloneNode(true);
+    copy.removeAttribute("id");
+    copy.querySelectorAll("[data-point]").forEach(node => node.removeAttribute("data-point"));
+    view.appendChild(copy);
+    make("path", {"class": "cross"}, view);
+    box.replaceChildren(view);
+    const half = LOUPE_PX / 2 / (draw.zoom * LOUPE_TIMES);
+    view.setAttribute("viewBox", [xy[0] - half, -xy[1] - half, 2 * half, 2 * half].join(" "));
+    view.querySelector(".cross").setAttribute("d",
+      "M" + (xy[0] - half) + " " + (-xy[1]) + "H" + (xy[0] + half) +
+      "M" + xy[0] + " " + (-xy[1] - half) + "V" + (-xy[1] + half));
+    const above = event.clientY - LOUPE_LIFT_PX - LOUPE_PX / 2;
+    box.style.left = Math.max(0, Math.min(window.innerWidth - LOUPE_PX,
+                                          event.clientX - LOUPE_PX / 2)) + "px";
+    box.style.top = (above >= 0 ? above : event.clientY + LOUPE_LIFT_PX - LOUPE_PX / 2) + "px";
+    box.classList.add("on");
+  }
+  const spread = () => {
+    const [a, b] = Array.from(fingers.values());
+    return [Math.hypot(a[0] - b[0], a[1] - b[1]), (a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+  };
+  function startPinch(plan) {
+    // the first finger's point goes back where it was: two fingers zoom, they place nothing
+    if (drag && drag.plan === plan && drag.label !== undefined) {
+      const points = store.plans[plan].points;
+      if (drag.before) points[drag.label] = drag.before; else delete points[drag.label];
+      save();
+      render(plan);
+    }
+    drag = null;
+    loupe(plan, null, null);
+    const [distance, x, y] = spread();
+    pinch = {plan: plan, distance: distance, zoom: draw.zoom, x: x, y: y};
+  }
+  function movePinch(plan) {
+    const [distance, x, y] = spread();
+    const wanted = pinch.zoom * distance / (pinch.distance || 1);
+    const zoom = ZOOMS.reduce((best, one) =>
+      Math.abs(Math.log(one / wanted)) < Math.abs(Math.log(best / wanted)) ? one : best);
+    if (zoom !== draw.zoom) setZoom(zoom);
+    const scroller = svgOf(plan).parentNode;
+    scroller.scrollLeft -= x - pinch.x;
+    scroller.scrollTop -= y - pinch.y;
+    pinch.x = x; pinch.y = y;
+  }
+
   function onPointerDown(plan, event) {
+    if (event.pointerType === "touch") {
+      fingers.set(event.pointerId, [event.clientX, event.clientY]);
+      if (fingers.size === 2) { startPinch(plan); event.preventDefault(); return; }
+      if (fingers.size > 2) return;
+    }
     if (event.button !== 0 || !frameData(plan)) return;
     const xy = planPoint(plan, event);
     svgOf(plan).focus({preventScroll: true});
@@ -330,8 +395,9 @@
       const label = draw.selected[plan];
       const hit = nearest(plan, xy, event.altKey ? GRAB_PX : MARK_PX);
       if (draw.armed[plan] && label !== undefined && !event.altKey) {
+        const before = store.plans[plan].points[label];
         place(plan, label, xy[0], xy[1]);
-        drag = {plan: plan, label: label, moved: false, placed: true};
+        drag = {plan: plan, label: label, moved: false, placed: true, before: before};
       } else if (hit && hit !== meta.poles[plan]) {
         draw.selected[plan] = hit;
         draw.armed[plan] = false;
@@ -341,10 +407,14 @@
         return;
       }
     }
+    if (event.pointerType !== "mouse" && drag && drag.label !== undefined)
+      loupe(plan, event, store.plans[plan].points[drag.label]);
     svgOf(plan).setPointerCapture(event.pointerId);
     event.preventDefault();
   }
   function onPointerMove(plan, event) {
+    if (fingers.has(event.pointerId)) fingers.set(event.pointerId, [event.clientX, event.clientY]);
+    if (pinch && pinch.plan === plan && fingers.size === 2) { movePinch(plan); return; }
     if (!drag || drag.plan !== plan) return;
     const xy = planPoint(plan, event);
     if (drag.line) {
@@ -365,9 +435,13 @@
       store.plans[plan].points[drag.label] = [round2(xy[0]), round2(xy[1])];
       clearVerdict(plan, drag.label);
       render(plan);
+      if (event.pointerType !== "mouse") loupe(plan, event, store.plans[plan].points[drag.label]);
     }
   }
-  function onPointerUp(plan) {
+  function onPointerUp(plan, event) {
+    fingers.delete(event.pointerId);
+    if (fingers.size < 2) pinch = null;
+    loupe(plan, null, null);
     if (!drag || drag.plan !== plan) return;
     const done = drag;
     drag = null;
@@ -382,14 +456,37 @@
     }
     save();
   }
+  // the middle of the part of a plan's sheet in view (mm, y up)
+  function visibleMiddle(plan) {
+    const scroller = svgOf(plan).parentNode.getBoundingClientRect();
+    const bar = element("controls").getBoundingClientRect().bottom;
+    const top = Math.max(scroller.top, bar), bottom = Math.min(scroller.bottom, window.innerHeight);
+    return planPoint(plan, {clientX: (scroller.left + scroller.right) / 2,
+                            clientY: bottom > top ? (top + bottom) / 2 :
+                              (scroller.top + scroller.bottom) / 2});
+  }
   function onKey(plan, event) {
     const label = draw.selected[plan];
     const points = store.plans[plan].points;
     const steps = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1]};
-    if (event.key in steps && label in points) {
+    const onSheet = event.target === svgOf(plan);
+    if (onSheet && (event.key === "Enter" || event.key === " ") && label !== undefined &&
+        frameData(plan)) {
+      // the chosen point at the middle of the sheet in view, then the arrow keys move it
+      const [x, y] = visibleMiddle(plan);
+      place(plan, label, x, y);
+      event.preventDefault();
+    } else if (onSheet && (event.key === "+" || event.key === "=" || event.key === "-")) {
+      const at = ZOOMS.indexOf(draw.zoom) + (event.key === "-" ? -1 : 1);
+      setZoom(ZOOMS[Math.max(0, Math.min(ZOOMS.length - 1, at))]);
+      svgOf(plan).focus({preventScroll: true});
+      event.preventDefault();
+    } else if (event.key in steps && label in points &&
+               (onSheet || event.target.dataset.place !== undefined)) {
       const [dx, dy] = steps[event.key];
       const [x, y] = points[label];
-      const nudge = event.shiftKey ? FINE_NUDGE_MM : NUDGE_MM;
+      const nudge = event.ctrlKey || event.metaKey ? COARSE_NUDGE_MM :
+        event.shiftKey ? FINE_NUDGE_MM : NUDGE_MM;
       place(plan, label, x + dx * nudge, y + dy * nudge);
       event.preventDefault();
     } else if ((event.key === "Delete" || event.key === "Backspace") && label in points &&
@@ -584,6 +681,14 @@
     const widest = Math.max(...PLANS.filter(plan => meta.extents[plan]).map(
       plan => meta.extents[plan][2] - meta.extents[plan][0]));
     draw.zoom = ZOOMS.filter(zoom => zoom === ZOOMS[0] || zoom * widest <= 640).pop();
+    // the zoom reaches a size where every tolerance disc of the page is 6 px across or more
+    let smallest = Infinity;
+    wb.data.frames.forEach(frame => Object.values(frame.draw || {}).forEach(entry =>
+      Object.values(entry.points).forEach(point => { smallest = Math.min(smallest, point[2]); })));
+    draw.smallestRadius = Number.isFinite(smallest) ? smallest : null;
+    while (draw.smallestRadius && ZOOMS[ZOOMS.length - 1] * 2 * draw.smallestRadius < 6)
+      ZOOMS.push(Math.ceil(ZOOMS[ZOOMS.length - 1] * 1.5));
+    draw.zooms = ZOOMS;
     PLANS.forEach(plan => {
       const box = planBox(plan);
       if (!box) return;
@@ -591,8 +696,8 @@
       draw.tool[plan] = "point";
       svg.addEventListener("pointerdown", event => onPointerDown(plan, event));
       svg.addEventListener("pointermove", event => onPointerMove(plan, event));
-      svg.addEventListener("pointerup", () => onPointerUp(plan));
-      svg.addEventListener("pointercancel", () => onPointerUp(plan));
+      svg.addEventListener("pointerup", event => onPointerUp(plan, event));
+      svg.addEventListener("pointercancel", event => onPointerUp(plan, event));
       box.addEventListener("keydown", event => onKey(plan, event));
       box.querySelectorAll("[data-tool]").forEach(button =>
         button.addEventListener("click", () => setTool(plan, button.dataset.tool)));

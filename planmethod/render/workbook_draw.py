@@ -203,18 +203,18 @@ body.drawing .panel.stepwise circle.point{visibility:hidden}
  max-width:100%}
 .draw-sheet svg{display:block;background:#fff;cursor:crosshair;touch-action:none}
 .draw-sheet svg:focus{outline:2px solid #1f5fa8}
-.draw-sheet .minor{stroke:#e3e7f0;stroke-width:1px;fill:none}
-.draw-sheet .major{stroke:#b8c0d8;stroke-width:1px;fill:none}
-.draw-sheet .construction{stroke:#7a7a7a;stroke-width:1px;stroke-dasharray:6 3}
-.draw-sheet .pole circle{fill:#000}
-.draw-sheet .placed circle{fill:#1f5fa8}
-.draw-sheet .placed.selected circle{fill:#d35400}
-.draw-sheet .placed.ok circle{fill:#1a7f37}
-.draw-sheet .placed.off circle{fill:#c0392b}
-.draw-sheet .right-point circle{fill:none;stroke:#2e8b57;stroke-width:1px;
+:is(.draw-sheet,.draw-loupe) .minor{stroke:#e3e7f0;stroke-width:1px;fill:none}
+:is(.draw-sheet,.draw-loupe) .major{stroke:#b8c0d8;stroke-width:1px;fill:none}
+:is(.draw-sheet,.draw-loupe) .construction{stroke:#7a7a7a;stroke-width:1px;stroke-dasharray:6 3}
+:is(.draw-sheet,.draw-loupe) .pole circle{fill:#000}
+:is(.draw-sheet,.draw-loupe) .placed circle{fill:#1f5fa8}
+:is(.draw-sheet,.draw-loupe) .placed.selected circle{fill:#d35400}
+:is(.draw-sheet,.draw-loupe) .placed.ok circle{fill:#1a7f37}
+:is(.draw-sheet,.draw-loupe) .placed.off circle{fill:#c0392b}
+:is(.draw-sheet,.draw-loupe) .right-point circle{fill:none;stroke:#2e8b57;stroke-width:1px;
  vector-effect:non-scaling-stroke}
-.draw-sheet .right-point text{fill:#2e8b57}
-.draw-sheet text{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;
+:is(.draw-sheet,.draw-loupe) .right-point text{fill:#2e8b57}
+:is(.draw-sheet,.draw-loupe) text{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;
  pointer-events:none;user-select:none}
 .draw-points{display:flex;flex-direction:column;gap:2px;padding-left:1.5em;margin:4px 0}
 .draw-points button{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;min-width:4em;
