@@ -17,6 +17,7 @@ from pathlib import Path
 
 import chromium
 import pytest
+from browser_tools import run_axe, violations_text
 
 pytestmark = pytest.mark.browser
 
@@ -365,5 +366,102 @@ def test_the_keyboard_places_a_point_on_a_chosen_sheet(browser, slotted_page, sl
     zoom = page.evaluate("workbook.draw.zoom")
     page.keyboard.press("+")
     assert page.evaluate("workbook.draw.zoom") > zoom
+    assert errors == []
+    page.context.close()
+
+
+@pytest.mark.parametrize("device", [LAPTOP, PHONE], ids=["1280x720", "390x844-touch"])
+def test_axe_finds_no_serious_or_critical_violation(browser, slotted_page, slotted_report,
+                                                   device):
+    """axe-core on the workbook in each mode: watching, practising with every verdict shown,
+    drawing with a plan checked and its right plan shown."""
+    page, errors = open_page(browser, slotted_page, device)
+    assert run_axe(page) == [], violations_text(run_axe(page))
+    page.check("#practice")
+    page.click("#check")
+    page.click('button[data-reveal="v_C"]')
+    found = run_axe(page)
+    assert found == [], violations_text(found)
+    move_slider(page, 30)
+    page.check("#draw-mode")
+    place_all(page, "velocity", slotted_report["plans"]["velocity"]["points_mm"])
+    page.click('[data-check="velocity"]')
+    page.click('[data-show-plan="acceleration"]')
+    found = run_axe(page)
+    assert found == [], violations_text(found)
+    assert errors == []
+    page.context.close()
+
+
+def test_controls_are_named_in_course_words(browser, slotted_page):
+    """Each answer's field is named by its quantity's course symbol as the table shows it
+    (ω₃, v_B₃), never by its id (omega_lever, v_B@lever); no control is named by an id."""
+    page, errors = open_page(browser, slotted_page, LAPTOP)
+    page.check("#practice")
+    ids = page.eval_on_selector_all("input.answer", "inputs => inputs.map(i => i.dataset.answer)")
+    names = page.eval_on_selector_all("input.answer", """inputs => inputs.map(input =>
+        document.getElementById(input.getAttribute("aria-labelledby")).textContent)""")
+    assert "ω3" in names and "vB₃" in names
+    for name, id_ in zip(names, ids, strict=True):
+        assert name and "_" not in name and "@" not in name and name != id_
+        assert page.get_by_label(name, exact=True).first.get_attribute("data-answer") == id_
+    labels = page.eval_on_selector_all("[aria-label]", "nodes => nodes.map(n => n.ariaLabel)")
+    assert not [label for label in labels if any(id_ in label for id_ in ids)]
+    assert errors == []
+    page.context.close()
+
+
+def test_every_action_works_from_the_keyboard(browser, slotted_page, slotted_report):
+    """The modes by the arrow keys, an answer typed, checked and shown, the angle by the
+    arrow keys, a point chosen and placed, a construction line drawn and turned, a plan
+    checked — without the mouse."""
+    page, errors = open_page(browser, slotted_page, LAPTOP)
+    page.focus("#watch")
+    page.keyboard.press("ArrowRight")
+    assert page.is_checked("#practice")
+    page.focus('input[data-answer="v_C"]')
+    page.keyboard.type("1")
+    page.focus("#check")
+    page.keyboard.press("Enter")
+    assert page.text_content('td.verdict[data-verdict-for="v_C"]').startswith("v_C = 1")
+    page.focus('button[data-reveal="v_C"]')
+    page.keyboard.press("Enter")
+    assert page.evaluate("workbook.revealedAt(workbook.data.angles[workbook.frame])") == ["v_C"]
+    page.focus("#angle")
+    angle = page.evaluate("workbook.data.angles[workbook.frame]")
+    page.keyboard.press("ArrowRight")
+    assert page.evaluate("workbook.data.angles[workbook.frame]") == angle + 15
+    page.keyboard.press("ArrowLeft")
+    page.focus("#practice")
+    page.keyboard.press("ArrowRight")
+    assert page.is_checked("#draw-mode")
+    points = slotted_report["plans"]["velocity"]["points_mm"]
+    page.focus('[data-place="velocity:b"]')
+    page.keyboard.press("Enter")
+    page.focus('svg[data-draw="velocity"]')
+    page.keyboard.press("Enter")
+    start = page.evaluate("workbook.draw.drawing('velocity').points.b")
+    # to the right place in 5 mm, 0.5 mm and 0.1 mm steps
+    for axis, (key_up, key_down) in enumerate((("ArrowRight", "ArrowLeft"),
+                                               ("ArrowUp", "ArrowDown"))):
+        for step, modifier in ((5, "Control+"), (0.5, ""), (0.1, "Shift+")):
+            for _ in range(int(abs(points["b"][axis] - page.evaluate(
+                    "workbook.draw.drawing('velocity').points.b")[axis]) / step + 1e-9)):
+                current = page.evaluate("workbook.draw.drawing('velocity').points.b")[axis]
+                page.keyboard.press(modifier + (key_up if points["b"][axis] > current
+                                                else key_down))
+    placed = page.evaluate("workbook.draw.drawing('velocity').points.b")
+    assert placed != start and placed == pytest.approx(points["b"], abs=0.11)
+    page.focus('.draw-plan[data-plan="velocity"] [data-tool="line"]')
+    page.keyboard.press("Enter")
+    page.focus('svg[data-draw="velocity"]')
+    page.keyboard.press("Enter")
+    page.keyboard.press("Control+ArrowUp")
+    page.keyboard.press("ArrowUp")
+    assert page.evaluate("workbook.draw.drawing('velocity').lines") == [
+        {"through": "b", "at": placed, "direction_deg": 16}]
+    page.focus('[data-check="velocity"]')
+    page.keyboard.press("Enter")
+    assert page.get_attribute('[data-verdict-for="velocity:b"]', "data-ok") == "true"
     assert errors == []
     page.context.close()

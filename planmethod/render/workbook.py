@@ -482,6 +482,7 @@ _CHROME = {
     "previous": template("◀ step"),
     "next": template("step ▶"),
     "all": template("all", context="every step"),
+    "quantity": template("quantity", context="a table's column"),
     "exact": template("exact", context="a value"),
     "read": template("read off the plan"),
     "unit": template("unit"),
@@ -561,6 +562,7 @@ _PAGE = """<!DOCTYPE html>
 <style>{style}</style>
 </head>
 <body>
+<main>
 <h1>{title}</h1>
 {notes}
 <div id="controls">
@@ -596,7 +598,7 @@ _PAGE = """<!DOCTYPE html>
 <section class="readings" aria-labelledby="readings-caption">
 <table id="readings">
 <caption id="readings-caption">{readings}</caption>
-<thead><tr><th></th><td>{exact}</td><td>{read}</td><td>{unit}</td>
+<thead><tr><th scope="col">{quantity}</th><td>{exact}</td><td>{read}</td><td>{unit}</td>
 <td class="practice">{answer}</td><td class="tolerance">{tolerance}</td>
 <td class="verdict"><button type="button" id="check">{check}</button></td></tr></thead>
 <tbody>
@@ -607,6 +609,7 @@ _PAGE = """<!DOCTYPE html>
 <div id="charts">
 {charts}
 </div>
+</main>
 <script type="application/octet-stream" id="workbook-data">{data}</script>
 {drawing_script}
 <script>{script}</script>

@@ -465,12 +465,37 @@
                             clientY: bottom > top ? (top + bottom) / 2 :
                               (scroller.top + scroller.bottom) / 2});
   }
+  // the line tool from the keyboard: Enter draws a line through the chosen point (the pole
+  // when it is not placed) at 0°, the arrow keys turn the last line 1° (Shift 0.1°, Control
+  // 15°): counter-clockwise with → and ↑. Whether the key was the tool's.
+  function lineKey(plan, event) {
+    const drawn = store.plans[plan];
+    const turns = {ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1};
+    if (event.key === "Enter" || event.key === " ") {
+      const label = draw.selected[plan];
+      const through = label in drawn.points ? label : meta.poles[plan];
+      const at = through === meta.poles[plan] ? [0, 0] : drawn.points[through];
+      drawn.lines.push({through: through, at: at.slice(), direction_deg: 0});
+    } else if (event.key in turns && drawn.lines.length) {
+      const line = drawn.lines[drawn.lines.length - 1];
+      const step = event.ctrlKey || event.metaKey ? 15 : event.shiftKey ? 0.1 : 1;
+      line.direction_deg = Math.round(((line.direction_deg + turns[event.key] * step) % 360) *
+                                      10) / 10;
+    } else {
+      return false;
+    }
+    save();
+    render(plan);
+    return true;
+  }
   function onKey(plan, event) {
     const label = draw.selected[plan];
     const points = store.plans[plan].points;
     const steps = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1]};
     const onSheet = event.target === svgOf(plan);
-    if (onSheet && (event.key === "Enter" || event.key === " ") && label !== undefined &&
+    if (onSheet && draw.tool[plan] === "line" && lineKey(plan, event)) {
+      event.preventDefault();
+    } else if (onSheet && (event.key === "Enter" || event.key === " ") && label !== undefined &&
         frameData(plan)) {
       // the chosen point at the middle of the sheet in view, then the arrow keys move it
       const [x, y] = visibleMiddle(plan);

@@ -105,7 +105,8 @@ def drawing_section(plans: Sequence[str]) -> str:
                          "it, a finger's point shown magnified above it; on a chosen sheet "
                          "Enter places the chosen\npoint at the sheet's middle, the arrow keys "
                          "move it 0.5 mm, Shift + an arrow key 0.1 mm,\nControl + an arrow "
-                         "key 5 mm, + and − zoom; Delete removes it)"))
+                         "key 5 mm, + and − zoom; Delete removes it; with the line tool\n"
+                         "Enter draws a line through the chosen point, the arrow keys turn it)"))
     zoom_out = html.escape(render(template("zoom out")))
     zoom_in = html.escape(render(template("zoom in")))
     return f"""<section id="drawing" aria-labelledby="drawing-heading">

@@ -1,0 +1,64 @@
+"""Helpers the browser tests share: axe-core, the automated accessibility check, run on a page.
+
+axe-core is a JavaScript file from the npm registry (``npm install --global axe-core@4``, as
+.ci/run does); it is looked for at ``$PLANMETHOD_AXE`` (a path to ``axe.min.js``), in the
+project's ``node_modules``, then in npm's global folder. Where it is not found, a test that
+calls :func:`run_axe` is skipped with the reason — never fetched at test time.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+#: the impacts a page must not have (axe's four: minor, moderate, serious, critical)
+BLOCKING = ("serious", "critical")
+
+
+@functools.cache
+def axe_script() -> str | None:
+    """The text of ``axe.min.js``, or None where axe-core is not installed."""
+    places = [os.environ.get("PLANMETHOD_AXE", ""),
+              str(ROOT / "node_modules" / "axe-core" / "axe.min.js")]
+    npm = shutil.which("npm")
+    if npm:
+        try:
+            found = subprocess.run([npm, "root", "--global"], capture_output=True, text=True,
+                                   timeout=30, check=False).stdout.strip()
+        except (OSError, subprocess.SubprocessError):
+            found = ""
+        if found:
+            places.append(str(Path(found) / "axe-core" / "axe.min.js"))
+    for place in places:
+        if place and Path(place).is_file():
+            return Path(place).read_text(encoding="utf-8")
+    return None
+
+
+def run_axe(page, *, impacts: tuple[str, ...] = BLOCKING) -> list[dict]:
+    """axe-core's violations on ``page`` (a Playwright page) whose impact is one of
+    ``impacts`` (default: serious or critical), each as axe gives it (``id``, ``impact``,
+    ``help``, ``nodes`` …). Skips the calling test where axe-core is not installed."""
+    script = axe_script()
+    if script is None:
+        pytest.skip("axe-core is not installed (npm install --global axe-core@4, or set "
+                    "PLANMETHOD_AXE to axe.min.js)")
+    page.add_script_tag(content=script)
+    results = page.evaluate("""async () => {
+        const found = await axe.run(document, {resultTypes: ["violations"]});
+        return found.violations;
+    }""")
+    return [violation for violation in results if violation.get("impact") in impacts]
+
+
+def violations_text(violations: list[dict]) -> str:
+    """The violations as lines a person reads in a failed assertion: rule, impact, where."""
+    return "\n".join(f"{v['id']} ({v['impact']}): {v['help']} — "
+                     f"{', '.join(str(node['target']) for node in v['nodes'][:5])}"
+                     for v in violations)
