@@ -548,7 +548,12 @@ body.practising #charts,body.practising #playback{display:none}
 #status{color:#c0392b}
 @media (max-width:600px){
  body{margin:6px}
- .switch{display:none}
+ .switch,.option{display:none}
+ #modes legend{position:absolute;width:1px;height:1px;overflow:hidden;clip-path:inset(50%)}
+ .mode{padding:0 8px}
+ .angle-control{flex:1 1 100%;gap:2px 6px}
+ .angle-control label{flex:1 1 100%;font-size:.9em}
+ #angle{flex:1 1 120px;width:auto}
  .panel,body.compact .panel{width:100%}
 }
 """
@@ -575,8 +580,8 @@ _PAGE = """<!DOCTYPE html>
 </fieldset>
 <span class="angle-control"><label for="angle">{crank}</label>
 <input type="range" id="angle" min="{low}" max="{high}" step="{step}" value="{first}">
-<output id="angle-value" for="angle">{first}°</output></span>
-<button type="button" id="play">{play}</button>
+<output id="angle-value" for="angle">{first}°</output>
+<button type="button" id="play">{play}</button></span>
 <label class="option"><input type="checkbox" id="compact"> {compact}</label>
 <span class="switch">{switch}</span>
 <span id="status" data-failed="{failed}">{loading}</span>
