@@ -555,6 +555,8 @@ body.practising #charts,body.practising #playback{display:none}
  .angle-control label{flex:1 1 100%;font-size:.9em}
  #angle{flex:1 1 120px;width:auto}
  .panel,body.compact .panel{width:100%}
+ body.practising #readings :is(.reading,.plan-reading,.reading-head,.plan-head){display:none}
+ td,th{padding:2px 4px}
 }
 """
 
@@ -603,7 +605,8 @@ _PAGE = """<!DOCTYPE html>
 <section class="readings" aria-labelledby="readings-caption">
 <table id="readings">
 <caption id="readings-caption">{readings}</caption>
-<thead><tr><th scope="col">{quantity}</th><td>{exact}</td><td>{read}</td><td>{unit}</td>
+<thead><tr><th scope="col">{quantity}</th><td class="reading-head">{exact}</td>
+<td class="plan-head">{read}</td><td>{unit}</td>
 <td class="practice">{answer}</td><td class="tolerance">{tolerance}</td>
 <td class="verdict"><button type="button" id="check">{check}</button></td></tr></thead>
 <tbody>
