@@ -1,44 +1,69 @@
-"""What browser tests share: an accessibility check of a page with axe-core.
+"""Helpers the browser tests share: axe-core, the automated accessibility check, run on a page.
 
-A minimal copy in the studio's branch (engineer "workbook" writes the full module; the lead
-keeps theirs): :func:`run_axe` injects axe-core into a Playwright page and returns its
-violations; without axe-core the calling test is skipped with the way to get it.
-
-axe-core is looked for at ``$PLANMETHOD_AXE`` (the path of ``axe.min.js``), then at
-``~/.cache/planmethod/axe-core/axe.min.js`` — put there with::
-
-    npm pack axe-core --pack-destination /tmp && mkdir -p ~/.cache/planmethod/axe-core &&
-    tar -xzf /tmp/axe-core-*.tgz -C ~/.cache/planmethod/axe-core --strip-components=1
+axe-core is a JavaScript file; the test extra installs it inside the ``axe-playwright-python``
+package (which bundles ``axe.min.js``). It is looked for at ``$PLANMETHOD_AXE`` (a path to
+``axe.min.js``), in that package, in the project's ``node_modules``, then in npm's global folder
+(``npm install --global axe-core@4``). Where it is not found, a test that calls :func:`run_axe`
+is skipped with the reason — never fetched at test time.
 """
 
 from __future__ import annotations
 
+import functools
+import importlib.util
 import os
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
 
+ROOT = Path(__file__).resolve().parent.parent
+#: the impacts a page must not have (axe's four: minor, moderate, serious, critical)
+BLOCKING = ("serious", "critical")
 
-def axe_path() -> Path | None:
-    """Where axe-core's ``axe.min.js`` is, or None."""
-    chosen = os.environ.get("PLANMETHOD_AXE")
-    for path in ([Path(chosen)] if chosen else []) + [
-            Path.home() / ".cache" / "planmethod" / "axe-core" / "axe.min.js"]:
-        if path.is_file():
-            return path
+
+@functools.cache
+def axe_script() -> str | None:
+    """The text of ``axe.min.js``, or None where axe-core is not installed."""
+    bundled = importlib.util.find_spec("axe_playwright_python")
+    places = [os.environ.get("PLANMETHOD_AXE", ""),
+              *[str(Path(folder) / "axe.min.js")
+                for folder in (bundled.submodule_search_locations or [] if bundled else [])],
+              str(ROOT / "node_modules" / "axe-core" / "axe.min.js")]
+    npm = shutil.which("npm")
+    if npm:
+        try:
+            found = subprocess.run([npm, "root", "--global"], capture_output=True, text=True,
+                                   timeout=30, check=False).stdout.strip()
+        except (OSError, subprocess.SubprocessError):
+            found = ""
+        if found:
+            places.append(str(Path(found) / "axe-core" / "axe.min.js"))
+    for place in places:
+        if place and Path(place).is_file():
+            return Path(place).read_text(encoding="utf-8")
     return None
 
 
-def run_axe(page) -> list[dict]:
-    """axe-core's violations on ``page`` (each ``{"id", "impact", "help", "nodes"}``), or skip
-    the test where axe-core is absent. The page's context must bypass its content security
-    policy (axe is injected as a script of the test's)."""
-    path = axe_path()
-    if path is None:
-        pytest.skip("axe-core is absent: npm pack axe-core (see tests/browser_tools.py)")
-    page.add_script_tag(content=path.read_text(encoding="utf-8"))
-    result = page.evaluate("() => axe.run(document, {resultTypes: ['violations']})")
-    return [{"id": v["id"], "impact": v["impact"], "help": v["help"],
-             "nodes": [" ".join(node["target"]) if isinstance(node["target"], list)
-                       else str(node["target"]) for node in v["nodes"]]}
-            for v in result["violations"]]
+def run_axe(page, *, impacts: tuple[str, ...] = BLOCKING) -> list[dict]:
+    """axe-core's violations on ``page`` (a Playwright page) whose impact is one of
+    ``impacts`` (default: serious or critical), each as axe gives it (``id``, ``impact``,
+    ``help``, ``nodes`` …). Skips the calling test where axe-core is not installed."""
+    script = axe_script()
+    if script is None:
+        pytest.skip("axe-core is not installed (pip install axe-playwright-python, the test "
+                    "extra's, or set PLANMETHOD_AXE to axe.min.js)")
+    page.add_script_tag(content=script)
+    results = page.evaluate("""async () => {
+        const found = await axe.run(document, {resultTypes: ["violations"]});
+        return found.violations;
+    }""")
+    return [violation for violation in results if violation.get("impact") in impacts]
+
+
+def violations_text(violations: list[dict]) -> str:
+    """The violations as lines a person reads in a failed assertion: rule, impact, where."""
+    return "\n".join(f"{v['id']} ({v['impact']}): {v['help']} — "
+                     f"{', '.join(str(node['target']) for node in v['nodes'][:5])}"
+                     for v in violations)

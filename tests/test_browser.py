@@ -295,7 +295,7 @@ def test_practice_gives_no_answer_away_until_asked(browser, compressor_page):
     move_slider(page, 45)
     page.click("#check")
     assert page.text_content('td.verdict[data-verdict-for="v_C"]') == results["v_C"]["feedback"]
-    page.uncheck("#practice")
+    page.check("#watch")
     assert page.is_visible(rho) and page.is_visible("#charts")
     assert errors == []
     page.close()
@@ -701,7 +701,7 @@ def test_drawing_hides_every_value_read_off_a_plan(browser, compressor_page, tmp
     page.check("#draw-mode")
     assert all(hidden_readings().values())
     assert shown_charts() == [] and not page.is_visible(rho)
-    page.check("#practice")
+    # drawing, the answers are typed and graded too (the hint, as while practising)
     for name in ("v_C", "a_C"):
         page.fill(f'input[data-answer="{name}"]', repr(1.2 * exact[name]))
     page.click("#check")
@@ -713,12 +713,11 @@ def test_drawing_hides_every_value_read_off_a_plan(browser, compressor_page, tmp
     page.click("#check")
     assert page.text_content('td.verdict[data-verdict-for="v_C"]') == graded["v_C"]["feedback"]
     assert page.text_content('td.verdict[data-verdict-for="a_C"]') == graded["a_C"]["hint"]
-    page.uncheck("#practice")
     shown = {name for name, hidden in hidden_readings().items() if not hidden}
     assert shown == {"v_C", "v_D", "omega_BC"}
     assert [title.partition(" over")[0] for title in shown_charts()] == \
         ["velocities", "angular velocities"]
-    page.uncheck("#draw-mode")
+    page.check("#watch")
     assert not any(hidden_readings().values()) and len(shown_charts()) == 4
     assert page.is_visible(rho)
     assert errors == []

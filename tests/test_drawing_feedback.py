@@ -262,7 +262,7 @@ def test_the_result_of_a_drawing_field_by_field(key):
     radius = key["plans"]["velocity"]["tolerance_mm"]
     assert result == {
         "plan": "velocity", "student": key["student"], "score": 2.0, "max_score": 3.0,
-        "scale_factor": 1.0, "plan_mistakes": [], "feedback": [],
+        "scale_factor": 1.0, "plan_mistakes": [], "feedback": [], "revealed": [],
         "points": [{"point": label, "found": True, "correct": True, "distance_mm": 0.0,
                     "tolerance_mm": radius[label], "score": 1.0, "max_score": 1.0,
                     "feedback": f"{label}: within {radius[label]:.2g} mm (0 mm off)",

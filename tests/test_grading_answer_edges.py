@@ -56,7 +56,7 @@ def test_a_file_of_exactly_the_row_limit_is_read_and_one_more_is_refused(tmp_pat
     (-2.0, 0.5, True, "the sense is reversed", None),          # between 0 and 1
     (0.5, -1.0, True, "the sense is reversed", None),          # a right value between 0 and 1
     (-2.0, 0.5, False, "too high", "125.0 % low"),             # a magnitude's sign: no sense
-    (0.5, 0.4, False, "too low", "20.0 % low"),                # no 'in magnitude' for 0.5
+    (0.5, 0.4, False, "about 20 % too low", "20.0 % low"),     # no 'in magnitude' for 0.5
 ])
 def test_which_way_a_wrong_answer_is_off_around_0_and_1(right, answer, signed, hint, off):
     graded = grade_question({"id": "x", "unit": "m", "value": right, "tolerance": 0.01,

@@ -415,11 +415,11 @@ def test_feedback_levels_show_the_values_the_hint_or_nothing():
     from planmethod.grading.answers import feedback_text, grade_question
 
     typed = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
-    assert render(feedback_text(typed, "hints")) == "v_C = 6: wrong (too high)"
+    assert render(feedback_text(typed, "hints")) == "v_C = 6: wrong (about 10 % too high)"
     assert feedback_text(typed) == typed.feedback and feedback_text(typed, "score") == ""
     graded = typed.as_dict()        # as grade --json writes it
     assert feedback_text(graded) == graded["feedback"] == feedback_text(graded, "full")
-    assert feedback_text(graded, "hints") == "v_C = 6: wrong (too high)"
+    assert feedback_text(graded, "hints") == "v_C = 6: wrong (about 10 % too high)"
     assert feedback_text(graded, "score") == ""
     assert feedback_text({"feedback": "kept"}, "hints") == ""     # no hint: nothing shown
     with pytest.raises(ValueError) as caught:
@@ -473,17 +473,19 @@ def test_the_class_report_of_five_results_whole():
 @pytest.mark.parametrize(("right", "answer", "signed", "feedback", "hint"), [
     (0.0, 0.5, True, "0.5 off (off by 0.5 m; right: 0 m ± 0.001)", "too high"),
     (2.0, 20.0, False, "10 times the right value (off by 18 m; right: 2 m ± 0.001 = ± 0.05 %)",
-     "too high"),
+     "about 10 times what it should be"),
     (2.0, 19.98, False, "899.0 % high (off by 17.98 m; right: 2 m ± 0.001 = ± 0.05 %)",
-     "too high"),
+     "about 10 times what it should be"),
     (2.0, 0.2, False, "0.1 times the right value (off by 1.8 m; right: 2 m ± 0.001 = ± 0.05 %)",
-     "too low"),
+     "about 0.1 times what it should be"),
     (2.0, 0.2002, False, "90.0 % low (off by 1.7998 m; right: 2 m ± 0.001 = ± 0.05 %)",
-     "too low"),
+     "about 90 % too low"),
+    (2.0, 2.25, False, "12.5 % high (off by 0.25 m; right: 2 m ± 0.001 = ± 0.05 %)",
+     "about 10 % too high"),                                # to one digit: never the value
     (-2.0, -3.0, True, "50.0 % high in magnitude (off by 1 m; right: -2 m ± 0.001 = ± 0.05 %)",
-     "too large in magnitude"),
+     "about 50 % too large in magnitude"),
     (-2.0, -1.0, True, "50.0 % low in magnitude (off by 1 m; right: -2 m ± 0.001 = ± 0.05 %)",
-     "too small in magnitude"),
+     "about 50 % too small in magnitude"),
     (-2.0, 0.0, True, "100.0 % low in magnitude (off by 2 m; right: -2 m ± 0.001 = ± 0.05 %)",
      "too small in magnitude"),
     (2.0, 0.0, False, "100.0 % low (off by 2 m; right: 2 m ± 0.001 = ± 0.05 %)", "too low"),
@@ -529,7 +531,7 @@ _RIGHT = "-2 rad/s ± 0.5"
      "ω₂: '1,000.5' is not a number"),
     (-2.51, {"answer": -2.51},
      "ω₂ = -2.51 rad/s: wrong — 25.5 % high in magnitude (off by 0.51 rad/s; right: "
-     f"{_RIGHT} = ± 25 %)", "ω₂ = -2.51 rad/s: wrong (too large in magnitude)"),
+     f"{_RIGHT} = ± 25 %)", "ω₂ = -2.51 rad/s: wrong (about 30 % too large in magnitude)"),
     (2.5, {"answer": 2.5, "mistake": "sense"},      # at the sense mistake's tolerance
      f"ω₂ = 2.5 rad/s: wrong — it looks as if the sense (sign) is reversed (that gives 2; right: "
      f"{_RIGHT})", "ω₂ = 2.5 rad/s: wrong (too high) — it looks as if the sense (sign) is "
@@ -537,7 +539,8 @@ _RIGHT = "-2 rad/s ± 0.5"
     (-25.0, {"answer": -25.0, "mistake": "scale_ten", "also": ["degrees"]},
      "ω₂ = -25 rad/s: wrong, 12.5 times the right value — it looks as if the plan's scale was "
      f"misread ten times too large (that gives -20; right: {_RIGHT})",
-     "ω₂ = -25 rad/s: wrong (too large in magnitude) — it looks as if the plan's scale was "
+     "ω₂ = -25 rad/s: wrong (about 10 times what it should be) — it looks as if the plan's "
+     "scale was "
      "misread ten times too large"),
     (25.0, {"answer": 25.0, "mistake": "scale_ten+sense"},
      "ω₂ = 25 rad/s: wrong — it looks as if the plan's scale was misread ten times too large, "

@@ -51,6 +51,7 @@ from .verdicts import (
     MAGNITUDE,
     OFF,
     RIGHT,
+    ROUGHLY,
     SENSES,
     WAYS,
     AnswerVerdict,
@@ -439,14 +440,28 @@ def _off(answer: float, right: float) -> Message:
     return OFF[way].replace(percent=abs(relative) * 100)
 
 
+def _rough(value: float) -> float:
+    """``value`` to one significant digit (``12.4`` → ``10``): how far off a hint tells."""
+    return float(format(value, ".1g"))
+
+
 def _way(answer: float, right: float, signed: bool) -> Message:
-    """Which way an answer is off, without the right value: ``too high``, ``too small in
-    magnitude``, ``the sense is reversed``."""
+    """Which way an answer is off and about how far, without the right value: ``about 10 %
+    too high``, ``about 20 % too small in magnitude``, ``about 30 times what it should be``,
+    ``the sense is reversed``; ``too high`` alone where no share of the right value tells
+    (a right value of 0, an answer of 0 or of the other sign)."""
     if signed and right != 0 and answer != 0 and (answer > 0) != (right > 0):
         return WAYS[Way.SENSE]
     if right < 0 and answer <= 0:
-        return WAYS[Way.LARGER] if answer < right else WAYS[Way.SMALLER]
-    return WAYS[Way.HIGH] if answer > right else WAYS[Way.LOW]
+        way = Way.LARGER if answer < right else Way.SMALLER
+    else:
+        way = Way.HIGH if answer > right else Way.LOW
+    ratio = answer / right if right else 0.0
+    if ratio <= 0:
+        return WAYS[way]
+    if ratio >= 2 or ratio <= 0.1:
+        return ROUGHLY["times"].replace(ratio=_rough(ratio))
+    return ROUGHLY[way].replace(percent=_rough(abs(ratio - 1.0) * 100))
 
 
 def _verdict(kind: AnswerVerdict, **fields: Any) -> Verdict:
@@ -592,7 +607,7 @@ def feedback_text(question: GradedQuestion | Mapping[str, Any], level: str = "fu
     --------
     >>> graded = grade_question({"id": "v_C", "value": 5.27, "tolerance": 0.1}, 6.0)
     >>> render(feedback_text(graded, "hints"))
-    'v_C = 6: wrong (too high)'
+    'v_C = 6: wrong (about 10 % too high)'
     >>> "5.27" in render(feedback_text(graded, "full")), feedback_text(graded, "score")
     (True, '')
     """

@@ -19,7 +19,10 @@ JSON submissions are ``{"plan": "velocity", "points": {"p": [0, 0], "b": [x, y],
 y up (or just the points object). A drawing downloaded from the workbook page
 (``"format": "planmethod-drawing"``, see docs/workbook-drawing.md) also names its exercise's
 ``title`` and crank ``angle``: grading it against a key of another exercise or angle is refused
-in one line. It is drawn on a millimetre grid, so it is never rescaled.
+in one line. It is drawn on a millimetre grid, so it is never rescaled. It also lists what the
+student asked the page to show before downloading it (``revealed``: the answers shown, by
+question id, ``construction:<plan>``, ``plan:<plan>``): the grade reports it
+(:attr:`GradedDrawing.revealed`, and a note on the drawing naming it in course words).
 
 Examples
 --------
@@ -45,7 +48,7 @@ from ..render.plan_words import label_text
 from ..spec import MAX_ANGLE_DEG, parse_json
 from ..vectors import cross
 from ..vocabulary import numbered, symbol
-from ..words import Message, message, plural
+from ..words import Message, message, plural, template
 from .answers import refuse_twice
 from .keys import key_numbers
 from .plan_points import (
@@ -73,6 +76,7 @@ __all__ = [
     "parse_drawing_json",
     "parse_drawing_svg",
     "read_drawing",
+    "revealed_notes",
 ]
 
 MAX_BYTES = 2_000_000
@@ -120,6 +124,9 @@ class Drawing:
     #: every label an SVG drawing holds: (its text as written, the point it names, where it
     #: marks in mm); two that name one point at two places are refused when it is graded
     labels: tuple[tuple[str, str, tuple[float, float]], ...] = ()
+    #: what the workbook page showed the student before the drawing was downloaded: answers
+    #: by question id, ``construction:<plan>`` (steps shown), ``plan:<plan>`` (the right plan)
+    revealed: tuple[str, ...] = ()
 
 
 def read_drawing(path: str | Path) -> Drawing:
@@ -210,7 +217,57 @@ def _page_drawing(parsed: Mapping[str, Any], points, plan, source: str | None) -
                                       "got {given}", limit=MAX_ANGLE_DEG,
                                       given=value_text(angle)), file=source, key="angle")
     return Drawing(points, plan, (), source, title=title, angle=float(angle), exact_scale=True,
-                   exercise=digest)
+                   exercise=digest, revealed=_revealed(parsed.get("revealed", []), source))
+
+
+#: at most this many things revealed, each named in at most this many characters
+MAX_REVEALED, MAX_REVEALED_CHARACTERS = 1000, 200
+
+
+def _revealed(given: Any, source: str | None) -> tuple[str, ...]:
+    """What a page's drawing says was shown: a list of names (each once, in order)."""
+    if (not isinstance(given, list) or len(given) > MAX_REVEALED
+            or not all(isinstance(name, str) and 0 < len(name) <= MAX_REVEALED_CHARACTERS
+                       for name in given)):
+        raise SubmissionError(message("must be a list of what the page showed (at most "
+                                      "{count} names), got {given}", count=MAX_REVEALED,
+                                      given=value_text(given)), file=source, key="revealed")
+    return tuple(dict.fromkeys(given))
+
+
+#: what a drawing's note says the page showed, by what ``revealed`` names of a plan
+_REVEALED_PLAN = {
+    "construction:velocity": template("the page showed the construction of the velocity plan "
+                                      "before the drawing was downloaded"),
+    "construction:acceleration": template("the page showed the construction of the "
+                                          "acceleration plan before the drawing was "
+                                          "downloaded"),
+    "plan:velocity": template("the page showed the right velocity plan before the drawing "
+                              "was downloaded"),
+    "plan:acceleration": template("the page showed the right acceleration plan before the "
+                                  "drawing was downloaded"),
+}
+
+
+def revealed_notes(revealed: Sequence[str], key: Mapping[str, Any]) -> list[Message]:
+    """The notes on a drawing that say what the page showed before it was downloaded: the
+    plans' help (:data:`_REVEALED_PLAN`), and the answers shown by their course symbols (a
+    name the key does not ask is given as written).
+
+    >>> from planmethod.words import render
+    >>> key = {"questions": [{"id": "omega_BC", "symbol": "ω₂"}]}
+    >>> [render(note) for note in revealed_notes(["omega_BC", "plan:velocity"], key)]
+    ['the page showed the right velocity plan before the drawing was downloaded', \
+'the page showed the right values of these before the drawing was downloaded: ω₂']
+    """
+    symbols = {question.get("id"): question.get("symbol") or question.get("id")
+               for question in key.get("questions", []) if isinstance(question, Mapping)}
+    notes = [_REVEALED_PLAN[name] for name in revealed if name in _REVEALED_PLAN]
+    answers = [str(symbols.get(name, name)) for name in revealed if name not in _REVEALED_PLAN]
+    if answers:
+        notes.append(message("the page showed the right values of these before the drawing "
+                             "was downloaded: {symbols}", symbols=", ".join(answers)))
+    return notes
 
 
 def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawing:
@@ -886,9 +943,10 @@ def grade_drawing(key: Mapping[str, Any], drawing: Drawing, plan: str | None = N
     common = common_mistakes([list(r.mistakes) for r in results if r.found and not r.correct])
     if common:
         notes.append(plan_sentence(common))
+    notes += revealed_notes(drawing.revealed, key)
     return GradedDrawing(plan, key.get("student"), sum(r.score for r in results),
                          sum(r.max_score for r in results), factor, tuple(results),
-                         tuple(common), tuple(notes))
+                         tuple(common), tuple(notes), drawing.revealed)
 
 
 def _line_part(line: ConstructionLine, found: np.ndarray, right: np.ndarray, radius: float,

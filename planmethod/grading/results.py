@@ -219,8 +219,10 @@ class GradedPoint:
 class GradedDrawing:
     """A graded drawn plan: which ``plan``, the key's ``student``, the ``score`` of
     ``max_score``, the factor the drawing was scaled by, each point's grade, the mistakes
-    named on every wrong point (``plan_mistakes``) and the notes on the whole drawing
-    (``feedback``)."""
+    named on every wrong point (``plan_mistakes``), the notes on the whole drawing
+    (``feedback``) and what the workbook page showed the student before the drawing was
+    downloaded (``revealed``: answers by question id, ``construction:<plan>``,
+    ``plan:<plan>``)."""
 
     plan: str
     student: Any
@@ -230,6 +232,7 @@ class GradedDrawing:
     points: tuple[GradedPoint, ...]
     plan_mistakes: tuple[str, ...] = ()
     feedback: tuple[Message | str, ...] = ()
+    revealed: tuple[str, ...] = ()
 
     def as_dict(self) -> dict[str, Any]:
         """The drawing as ``grade --json`` writes it."""
@@ -237,7 +240,8 @@ class GradedDrawing:
                 "max_score": self.max_score, "scale_factor": self.scale_factor,
                 "points": [point.as_dict() for point in self.points],
                 "plan_mistakes": list(self.plan_mistakes),
-                "feedback": [render(note) for note in self.feedback]}
+                "feedback": [render(note) for note in self.feedback],
+                "revealed": list(self.revealed)}
 
 
 @dataclass(frozen=True, slots=True)

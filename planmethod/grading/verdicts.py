@@ -13,7 +13,8 @@ The tables:
 * :data:`FEEDBACK` and :data:`HINTS` — an answer's sentence by its :class:`AnswerVerdict`, at
   the ``full`` level (the right value shown) and the ``hints`` level (never the right value);
 * their fields' own sentences: :data:`OFF` (how far off: ``24.1 % low``), :data:`WAYS`
-  (which way: ``too high``), :data:`SENSES` (what a sign means: ``clockwise``),
+  (which way: ``too high``), :data:`ROUGHLY` (which way and about how far, for a hint:
+  ``about 10 % too high``), :data:`SENSES` (what a sign means: ``clockwise``),
   :data:`AMOUNT`, :data:`GIVEN`, :data:`RIGHT` (a number with its unit, the answer as given,
   the right value with its tolerance), :data:`MAGNITUDE` (a negative magnitude's note);
 * :data:`POINTS` — a drawn point's sentence by its :class:`PointVerdict`, and
@@ -44,7 +45,7 @@ from typing import Any
 from ..words import Message, template
 
 __all__ = ["AMOUNT", "AMOUNT_BARE", "FEEDBACK", "GIVEN", "HINTS", "MAGNITUDE", "OFF",
-           "POINTS", "POINT_PARTS", "RIGHT", "SENSES", "WAYS", "AnswerVerdict", "Off",
+           "POINTS", "POINT_PARTS", "RIGHT", "ROUGHLY", "SENSES", "WAYS", "AnswerVerdict", "Off",
            "PointPart", "PointVerdict", "Verdict", "Way", "rulebook", "rulebook_tables"]
 
 
@@ -156,6 +157,17 @@ WAYS: dict[Way, Message] = {
     Way.SMALLER: template("too small in magnitude"),
     Way.HIGH: template("too high"),
     Way.LOW: template("too low"),
+}
+
+#: which way a wrong answer is off and about how far, to one significant digit (never so near
+#: that the hint gives the right value away): by the :class:`Way` of a wrong answer of the
+#: right sign, and ``times`` for twice the right value or more, a tenth or less
+ROUGHLY: dict[str, Message] = {
+    Way.HIGH: template("about {percent:g} % too high"),
+    Way.LOW: template("about {percent:g} % too low"),
+    Way.LARGER: template("about {percent:g} % too large in magnitude"),
+    Way.SMALLER: template("about {percent:g} % too small in magnitude"),
+    "times": template("about {ratio:g} times what it should be"),
 }
 
 #: how the sign of a signed quantity is told, by what the quantity is of (its kind's
@@ -303,7 +315,8 @@ def rulebook_tables() -> dict[str, dict[str, Message]]:
               for subject, pair in SENSES.items()
               for sign, sentence in zip(("positive", "negative"), pair, strict=True)}
     tables: dict[str, dict[Any, Message]] = {
-        "answers": FEEDBACK, "hints": HINTS, "off": OFF, "ways": WAYS, "senses": senses,
+        "answers": FEEDBACK, "hints": HINTS, "off": OFF, "ways": WAYS, "roughly": ROUGHLY,
+        "senses": senses,
         "points": POINTS, "parts": POINT_PARTS,
         "amounts": {"amount": AMOUNT, "bare": AMOUNT_BARE, "given": GIVEN, "right": RIGHT,
                     "magnitude": MAGNITUDE}}
@@ -313,9 +326,10 @@ def rulebook_tables() -> dict[str, dict[str, Message]]:
 
 def rulebook() -> dict[str, dict[str, dict[str, Any]]]:
     """The tables as data for a page that grades as ``planmethod grade`` does: by table
-    (``answers``, ``hints``, ``off``, ``ways``, ``senses``, ``points``, ``parts``, and the
-    ``amounts``: ``amount``, ``bare``, ``given``, ``right``, ``magnitude``), each class's
-    English template (the catalogue's key of its translations) and the names of its fields.
+    (``answers``, ``hints``, ``off``, ``ways``, ``roughly``, ``senses``, ``points``,
+    ``parts``, and the ``amounts``: ``amount``, ``bare``, ``given``, ``right``,
+    ``magnitude``), each class's English template (the catalogue's key of its translations)
+    and the names of its fields.
 
     >>> rulebook()["parts"]["on_the_line"]["fields"]
     ['along', 'line', 'through']

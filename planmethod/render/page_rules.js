@@ -116,11 +116,17 @@
         (right < 0 && ratio >= 0 ? "_in_magnitude" : "");
       return m(way, {percent: Math.abs(relative) * 100});
     }
-    // which way, without the right value (answers._way)
+    // which way and about how far, without the right value (answers._way): the share off
+    // to one significant digit (answers._rough), as Python's format(x, ".1g") rounds it
+    const rough = value => Number(wordsApi.formatNumber(value, ".1g"));
     function way(answer, right, signed) {
       if (signed && reversed(answer, right)) return m("ways.sense");
-      if (right < 0 && answer <= 0) return m(answer < right ? "ways.larger" : "ways.smaller");
-      return m(answer > right ? "ways.high" : "ways.low");
+      const kind = right < 0 && answer <= 0 ? (answer < right ? "larger" : "smaller") :
+        (answer > right ? "high" : "low");
+      const ratio = right ? answer / right : 0;
+      if (ratio <= 0) return m("ways." + kind);
+      if (ratio >= 2 || ratio <= 0.1) return m("roughly.times", {ratio: rough(ratio)});
+      return m("roughly." + kind, {percent: rough(Math.abs(ratio - 1) * 100)});
     }
     // a known mistake's answer, with the sense reversed too for a signed quantity
     // (answers._named_mistake): [class, fields, the mistake's name] or null

@@ -90,6 +90,12 @@ PAGE_WORDS: dict[str, Message] = {
     "construction_point": template("a construction point (checked when placed)"),
     "moved": template("moved since the last check: check again"),
     "zoom": template("{zoom} px/mm"),
+    "kept_restored": template("your drawing at {phi} = {angle:g}° is back as this browser kept "
+                              "it"),
+    "next_acceleration": template("the velocity plan is right: now draw the acceleration "
+                                  "plan"),
+    "plans_right": template("every plan at {phi} = {angle:g}° is right: choose another angle "
+                            "to draw"),
 }
 
 

@@ -32,8 +32,37 @@
   const revealedHere = name => wb.revealedAt(wb.data.angles[wb.frame]).includes(name);
   // whether an answer's right value is kept from the student now: while practising, until
   // they ask to see it (or the plan it is read off); while drawing, until that plan is shown
+  // or they ask to see it
   wb.hidden = name => practising() ? !(revealedHere(name) || wb.planShown(name)) :
-    wb.concealed(name);
+    wb.concealed(name) && !revealedHere(name);
+
+  // -- what the page keeps in this browser, by exercise (its title and digest): the mode, the
+  // angle, the answers shown ------------------------------------------------------------------
+  const STATE_PREFIX = "planmethod-page:";
+  const stateKey = () => STATE_PREFIX + JSON.stringify(wb.data.key || []);
+  function readState() {
+    try {
+      const kept = JSON.parse(window.localStorage.getItem(stateKey()) || "null");
+      return kept && typeof kept === "object" ? kept : {};
+    } catch (error) {
+      return {};
+    }
+  }
+  function keepState() {
+    if (!wb.ready) return;
+    try {
+      window.localStorage.setItem(stateKey(), JSON.stringify(
+        {mode: wb.mode, angle: wb.data.angles[wb.frame], revealed: wb.revealed}));
+    } catch (error) { /* a browser that keeps nothing: the page works without */ }
+  }
+  // answers shown as the page kept them: {angle: [question id, …]}, names only
+  function keptRevealed(kept) {
+    const out = {};
+    Object.entries(kept && typeof kept === "object" ? kept : {}).forEach(([angle, names]) => {
+      if (Array.isArray(names)) out[angle] = names.filter(name => typeof name === "string");
+    });
+    return out;
+  }
 
   async function load() {
     const raw = document.getElementById("workbook-data").textContent.trim();
@@ -146,6 +175,7 @@
       wb.switchTimes.push(spent);
       document.getElementById("switch-time").textContent = say("switch_time", {time: spent});
       prepareNeighbours(frame);
+      keepState();
     }
     wb.show = show;
     wb.showAngle = angle => { slider.value = angle; show(stepOf(Number(angle))); };
@@ -214,11 +244,29 @@
       document.body.classList.toggle("compact", event.target.checked);
     });
 
-    // practice mode: readings hidden, answers graded against the key of this angle
-    document.getElementById("practice").addEventListener("change", event => {
-      document.body.classList.toggle("practising", event.target.checked);
+    // the page's modes: watch, practise (readings hidden, answers graded against the key of
+    // this angle), draw (workbook_draw.js); switching to draw brings the sheets into view
+    const MODES = ["watch", "practise", "draw"];
+    function setMode(mode, scroll) {
+      if (!MODES.includes(mode) || !document.querySelector('#modes input[value="' + mode + '"]'))
+        mode = "watch";
+      wb.mode = mode;
+      document.querySelector('#modes input[value="' + mode + '"]').checked = true;
+      document.body.classList.toggle("practising", mode === "practise");
+      document.body.classList.toggle("drawing", mode === "draw");
       hideAsked();
-    });
+      document.dispatchEvent(new CustomEvent("workbook:mode", {detail: {mode: mode}}));
+      if (scroll && mode === "draw") {
+        const bar = document.getElementById("controls").getBoundingClientRect().height;
+        const target = document.querySelector(".draw-plan:not(.absent)") ||
+          document.getElementById("drawing");
+        window.scrollBy(0, target.getBoundingClientRect().top - bar - 4);
+      }
+      keepState();
+    }
+    wb.setMode = setMode;
+    document.querySelectorAll('#modes input[name="mode"]').forEach(input =>
+      input.addEventListener("change", () => { if (input.checked) setMode(input.value, true); }));
     // what the figures show of an asked value while practising: a radius of curvature on the
     // mechanism (its label gives the value, its centre the length) stays hidden until the
     // student asks to see that answer
@@ -239,6 +287,7 @@
       const key = String(data.angles[wb.frame]);
       const listed = wb.revealed[key] = wb.revealed[key] || [];
       if (!listed.includes(name)) listed.push(name);
+      keepState();
       const i = data.quantities.findIndex(q => q.name === name);
       rows[i].classList.add("revealed");
       const question = questionOf(wb.frame, name);
@@ -272,9 +321,15 @@
 
     // other parts of the page (the drawing mode) start from the loaded data
     document.dispatchEvent(new CustomEvent("workbook:load", {detail: wb}));
-    show(stepOf(Number(slider.value)));  // the exercise's own angle
+    // the page as this browser kept it (the mode, the angle, the answers shown), else the
+    // exercise's own angle, watching
+    const kept = readState();
+    wb.revealed = keptRevealed(kept.revealed);
+    if (data.angles.includes(kept.angle)) slider.value = kept.angle;
+    show(stepOf(Number(slider.value)));
     status.textContent = "";
     wb.ready = true;
+    setMode(kept.mode || "watch", kept.mode === "draw");
   }).catch(error => {
     // the page's data did not load: the one sentence said without it is in the markup
     status.textContent = window.planmethodWords.fill(status.dataset.failed, {error: String(error)},

@@ -353,7 +353,10 @@ def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
             "strings": table.strings, "frames": frames,
             "quantities": [quantity.as_dict(rules.language) for quantity in page.quantities],
             "charts": [list(chart.span) for chart in page.charts],
-            "sense": -1 if page.sense < 0 else 1, "rules": rules.as_dict()}
+            "sense": -1 if page.sense < 0 else 1, "rules": rules.as_dict(),
+            # what the page keeps in the browser is kept under the exercise's title and
+            # digest (two variants of a template share a title)
+            "key": [page.title, (page.drawing or {}).get("exercise", "")]}
     if page.drawing is not None:
         data["draw"] = dict(page.drawing)
     return data
@@ -446,12 +449,13 @@ def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
     True
     """
     rules = rules or page_rules()
-    draw_html, draw_extra = "", ""
+    draw_html, draw_extra, draw_mode = "", "", ""
     if page.drawing is not None:
-        from .workbook_draw import DRAW_STYLE, draw_script, drawing_section
+        from .workbook_draw import DRAW_STYLE, draw_mode_html, draw_script, drawing_section
 
         draw_html = drawing_section(list(page.drawing["extents"]))
         draw_extra = f"<script>{draw_script()}</script>\n<style>{DRAW_STYLE}</style>"
+        draw_mode = draw_mode_html()
     words = _words(page, rules)
     angles = page.angles
     step = (angles[1] - angles[0]) if len(angles) > 1 else 1.0
@@ -464,24 +468,28 @@ def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
         step=num(step), panels=panels, charts=charts,
         rows=_rows_html(page.quantities, words["show_answer"]),
         data=_pack(_page_data(page, rules)), style=_STYLE, script=_script(),
-        drawing=draw_html, drawing_script=draw_extra, **words)
+        drawing=draw_html, drawing_script=draw_extra, draw_mode=draw_mode, **words)
 
 
 #: the page's own words (its controls, the table's heads)
 _CHROME = {
-    "practice": template("practice"),
+    "modes": template("mode", context="of the page"),
+    "watch": template("watch", context="a mode of the page"),
+    "practice": template("practise", context="a mode of the page"),
     "compact": template("two drawings to a row"),
     "loading": template("loading…"),
     "first_step": template("first", context="the first step"),
     "previous": template("◀ step"),
     "next": template("step ▶"),
     "all": template("all", context="every step"),
+    "quantity": template("quantity", context="a table's column"),
     "exact": template("exact", context="a value"),
     "read": template("read off the plan"),
     "unit": template("unit"),
     "answer": template("your answer"),
     "tolerance": template("tolerance"),
     "check": template("check", context="a button"),
+    "readings": template("the values at this angle", context="a table's caption"),
     "show_answer": template("show the answer", context="a button"),
 }
 _CONSTRUCTION = template("construction of the\n{plan}")
@@ -492,22 +500,38 @@ _STYLE = """
 body{font-family:"DejaVu Sans",Verdana,Arial,sans-serif;margin:12px;color:#111}
 h1{font-size:1.25em;margin:0 0 4px}
 .note{margin:2px 0;color:#444;font-size:.9em}
-#controls{position:sticky;top:0;background:#fff;padding:6px 0;z-index:2;
- border-bottom:1px solid #ccc;display:flex;gap:12px;align-items:center;flex-wrap:wrap}
-#angle{width:360px}
+#controls{position:sticky;top:0;background:#fff;padding:4px 0;z-index:2;
+ border-bottom:1px solid #ccc;display:flex;gap:4px 12px;align-items:center;flex-wrap:wrap}
+#modes{display:flex;gap:4px;align-items:center;border:0;margin:0;padding:0;flex-wrap:wrap}
+#modes legend{float:left;margin-right:4px;color:#444}
+.mode{display:inline-flex;align-items:center;gap:4px;min-height:44px;min-width:44px;
+ padding:0 10px;border:1px solid #8a9bb8;border-radius:6px;box-sizing:border-box;
+ cursor:pointer;background:#f4f7fb}
+.mode:has(input:checked){background:#1f5fa8;color:#fff;border-color:#1f5fa8}
+.mode:has(input:focus-visible){outline:3px solid #d35400;outline-offset:1px}
+.angle-control{display:inline-flex;align-items:center;gap:6px;flex-wrap:wrap;max-width:100%}
+#angle{width:min(360px,calc(100vw - 48px));min-height:44px}
+button,select{min-height:44px;min-width:44px}
+.option{display:inline-flex;align-items:center;gap:4px;min-height:44px}
+.option input{width:24px;height:24px}
 #panels{display:flex;flex-wrap:wrap;gap:8px;margin-top:8px;align-items:flex-start}
-.panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:320px;height:430px;
- max-width:calc(100% - 2px)}
+.panel{margin:0;border:1px solid #ddd;width:calc(50% - 8px);min-width:min(320px,100%);
+ height:430px;max-width:calc(100% - 2px);box-sizing:border-box}
 .panel[style]{height:auto;width:100%;min-height:0;overflow:hidden}
 body.compact .panel{width:calc(50% - 8px)}
 .panel svg{display:block;width:100%;height:100%}
 #charts{display:flex;flex-wrap:wrap;gap:12px;margin-top:8px}
-.chart svg{width:520px;height:240px}
+.chart{max-width:100%}
+.chart svg{width:520px;height:240px;max-width:100%}
+section.readings{overflow-x:auto;max-width:100%}
 table{border-collapse:collapse;margin-top:8px}
+caption{text-align:left;font-weight:bold;padding:2px 8px}
 td,th{padding:2px 8px;border-bottom:1px solid #eee;text-align:right}
 th{font-weight:normal;font-style:italic;font-family:"DejaVu Serif",Georgia,serif}
+input.answer{min-height:40px;font-size:1em;max-width:8em}
 .practice,.tolerance,.verdict{display:none}
-body.practising .practice,body.practising .tolerance,body.practising .verdict{display:table-cell}
+body.practising .practice,body.practising .tolerance,body.practising .verdict,
+body.drawing .practice,body.drawing .tolerance,body.drawing .verdict{display:table-cell}
 body.practising .reading,body.practising .plan-reading{visibility:hidden}
 body.practising #readings tr.revealed td.reading,
 body.practising #readings tr.revealed td.plan-reading{visibility:visible}
@@ -522,26 +546,46 @@ body.practising #charts,body.practising #playback{display:none}
 .step-current line,.step-current polygon,line.step-current{stroke:#d00000!important;
  fill:#d00000}
 #status{color:#c0392b}
+@media (max-width:600px){
+ body{margin:6px}
+ .switch,.option{display:none}
+ #modes legend{position:absolute;width:1px;height:1px;overflow:hidden;clip-path:inset(50%)}
+ .mode{padding:0 8px}
+ .angle-control{flex:1 1 100%;gap:2px 6px}
+ .angle-control label{flex:1 1 100%;font-size:.9em}
+ #angle{flex:1 1 120px;width:auto}
+ .panel,body.compact .panel{width:100%}
+ body.practising #readings :is(.reading,.plan-reading,.reading-head,.plan-head){display:none}
+ td,th{padding:2px 4px}
+}
 """
 
 _PAGE = """<!DOCTYPE html>
 <html lang="{language}">
 <head>
 <meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{heading}</title>
 <style>{style}</style>
 </head>
 <body>
+<main>
 <h1>{title}</h1>
 {notes}
 <div id="controls">
-<label for="angle">{crank}</label>
+<fieldset id="modes"><legend>{modes}</legend>
+<label class="mode"><input type="radio" name="mode" id="watch" value="watch" checked> \
+{watch}</label>
+<label class="mode"><input type="radio" name="mode" id="practice" value="practise"> \
+{practice}</label>
+{draw_mode}
+</fieldset>
+<span class="angle-control"><label for="angle">{crank}</label>
 <input type="range" id="angle" min="{low}" max="{high}" step="{step}" value="{first}">
-<output id="angle-value">{first}°</output>
-<button type="button" id="play">{play}</button>
-<label><input type="checkbox" id="practice"> {practice}</label>
-<label><input type="checkbox" id="compact"> {compact}</label>
-<span>{switch}</span>
+<output id="angle-value" for="angle">{first}°</output>
+<button type="button" id="play">{play}</button></span>
+<label class="option"><input type="checkbox" id="compact"> {compact}</label>
+<span class="switch">{switch}</span>
 <span id="status" data-failed="{failed}">{loading}</span>
 </div>
 <div id="panels">
@@ -558,9 +602,11 @@ _PAGE = """<!DOCTYPE html>
 <p id="step-text"></p>
 <p id="equations"></p>
 </section>
-<section>
+<section class="readings" aria-labelledby="readings-caption">
 <table id="readings">
-<thead><tr><th></th><td>{exact}</td><td>{read}</td><td>{unit}</td>
+<caption id="readings-caption">{readings}</caption>
+<thead><tr><th scope="col">{quantity}</th><td class="reading-head">{exact}</td>
+<td class="plan-head">{read}</td><td>{unit}</td>
 <td class="practice">{answer}</td><td class="tolerance">{tolerance}</td>
 <td class="verdict"><button type="button" id="check">{check}</button></td></tr></thead>
 <tbody>
@@ -571,6 +617,7 @@ _PAGE = """<!DOCTYPE html>
 <div id="charts">
 {charts}
 </div>
+</main>
 <script type="application/octet-stream" id="workbook-data">{data}</script>
 {drawing_script}
 <script>{script}</script>

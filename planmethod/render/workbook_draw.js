@@ -8,6 +8,7 @@
   const PLANS = ["velocity", "acceleration"];
   const ZOOMS = [4, 5, 6, 8, 10, 12, 16, 20, 24, 32];   // CSS px per drawing millimetre
   const NUDGE_MM = 0.5, FINE_NUDGE_MM = 0.1;             // an arrow key; Shift + an arrow key
+  const COARSE_NUDGE_MM = 5;                             // Control + an arrow key
   const MARK_PX = 5;          // a press this near a placed point's centre is on its mark
   const GRAB_PX = 8;          // with Alt, a press this near a placed point grabs it
   const draw = {results: {}, planMistakes: {}, checkTimes: [], tool: {}, selected: {}, armed: {},
@@ -94,7 +95,8 @@
     const plans = {};
     PLANS.forEach(plan => { plans[plan] = {points: {}, lines: []}; });
     return {format: meta.format, version: 1, title: meta.title, exercise: meta.exercise,
-            angle: wb.data.angles[draw.frame], plans: plans};
+            angle: wb.data.angles[draw.frame], plans: plans, help: {construction: {}, shown: {}},
+            checked: []};
   }
   function restore() {
     let record = null;
@@ -126,6 +128,12 @@
       });
       fresh.plans[plan] = {points: points,
                            lines: (kept.lines || []).filter(line => line && Array.isArray(line.at))};
+      // what the student asked to see of the plan, and whether it was checked
+      const help = record.help || {};
+      const step = (help.construction || {})[plan];
+      if (Number.isInteger(step) && step >= 0) fresh.help.construction[plan] = step;
+      if ((help.shown || {})[plan] === true) fresh.help.shown[plan] = true;
+      if (Array.isArray(record.checked) && record.checked.includes(plan)) fresh.checked.push(plan);
     });
     return fresh;
   }
@@ -152,7 +160,9 @@
     svg.style.width = (right - left) * draw.zoom + "px";
     svg.style.height = (top - bottom) * draw.zoom + "px";
     svg.replaceChildren();
-    const grid = make("g", {"class": "grid"}, svg);
+    // everything drawn in one group: the loupe shows a copy of it, magnified
+    const content = make("g", {"class": "content"}, svg);
+    const grid = make("g", {"class": "grid"}, content);
     let minor = "", major = "";
     for (let x = Math.ceil(left); x <= right; x++) {
       const path = "M" + x + " " + (-top) + "V" + (-bottom);
@@ -164,9 +174,9 @@
     }
     make("path", {d: minor, "class": "minor", "vector-effect": "non-scaling-stroke"}, grid);
     make("path", {d: major, "class": "major", "vector-effect": "non-scaling-stroke"}, grid);
-    make("g", {"class": "lines"}, svg);
-    make("g", {"class": "right-plan"}, svg);
-    make("g", {"class": "points"}, svg);
+    make("g", {"class": "lines"}, content);
+    make("g", {"class": "right-plan"}, content);
+    make("g", {"class": "points"}, content);
     render(plan);
   }
   // a point's mark and its name (a point id typeset, or the pole's letter)
@@ -270,6 +280,8 @@
     if (cell) { cell.textContent = ""; delete cell.dataset.ok; }
     if (draw.results[plan]) delete draw.results[plan][label];
     draw.planMistakes[plan] = [];
+    store.checked = store.checked.filter(one => one !== plan);
+    element("draw-status").textContent = "";
     const summary = planBox(plan).querySelector(".draw-summary");
     if (summary.textContent) summary.textContent = say("moved");
   }
@@ -304,7 +316,69 @@
     save();
     render(plan);
   }
+  // -- a finger: the loupe shows the point under it magnified above it; two fingers zoom the
+  // sheet (to the zoom steps) and move it --------------------------------------------------
+  const LOUPE_PX = 120, LOUPE_LIFT_PX = 100, LOUPE_TIMES = 3;
+  const fingers = new Map();   // pointer id -> [clientX, clientY] of the fingers on a sheet
+  let pinch = null;
+  function loupe(plan, event, xy) {
+    const box = document.querySelector(".draw-loupe");
+    if (!xy) { box.classList.remove("on"); box.replaceChildren(); return; }
+    // a copy of the sheet's drawing as it is now (the page's style reaches a copy, not a
+    // <use> of it), without the names the page and its tests find points by
+    const view = document.createElementNS(svgOf(plan).namespaceURI, "svg");
+    const copy = svgOf(plan).querySelector("g.content").cloneNode(true);
+    copy.removeAttribute("id");
+    copy.querySelectorAll("[data-point]").forEach(node => node.removeAttribute("data-point"));
+    view.appendChild(copy);
+    make("path", {"class": "cross"}, view);
+    box.replaceChildren(view);
+    const half = LOUPE_PX / 2 / (draw.zoom * LOUPE_TIMES);
+    view.setAttribute("viewBox", [xy[0] - half, -xy[1] - half, 2 * half, 2 * half].join(" "));
+    view.querySelector(".cross").setAttribute("d",
+      "M" + (xy[0] - half) + " " + (-xy[1]) + "H" + (xy[0] + half) +
+      "M" + xy[0] + " " + (-xy[1] - half) + "V" + (-xy[1] + half));
+    const above = event.clientY - LOUPE_LIFT_PX - LOUPE_PX / 2;
+    box.style.left = Math.max(0, Math.min(window.innerWidth - LOUPE_PX,
+                                          event.clientX - LOUPE_PX / 2)) + "px";
+    box.style.top = (above >= 0 ? above : event.clientY + LOUPE_LIFT_PX - LOUPE_PX / 2) + "px";
+    box.classList.add("on");
+  }
+  const spread = () => {
+    const [a, b] = Array.from(fingers.values());
+    return [Math.hypot(a[0] - b[0], a[1] - b[1]), (a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+  };
+  function startPinch(plan) {
+    // the first finger's point goes back where it was: two fingers zoom, they place nothing
+    if (drag && drag.plan === plan && drag.label !== undefined) {
+      const points = store.plans[plan].points;
+      if (drag.before) points[drag.label] = drag.before; else delete points[drag.label];
+      save();
+      render(plan);
+    }
+    drag = null;
+    loupe(plan, null, null);
+    const [distance, x, y] = spread();
+    pinch = {plan: plan, distance: distance, zoom: draw.zoom, x: x, y: y};
+  }
+  function movePinch(plan) {
+    const [distance, x, y] = spread();
+    const wanted = pinch.zoom * distance / (pinch.distance || 1);
+    const zoom = ZOOMS.reduce((best, one) =>
+      Math.abs(Math.log(one / wanted)) < Math.abs(Math.log(best / wanted)) ? one : best);
+    if (zoom !== draw.zoom) setZoom(zoom);
+    const scroller = svgOf(plan).parentNode;
+    scroller.scrollLeft -= x - pinch.x;
+    scroller.scrollTop -= y - pinch.y;
+    pinch.x = x; pinch.y = y;
+  }
+
   function onPointerDown(plan, event) {
+    if (event.pointerType === "touch") {
+      fingers.set(event.pointerId, [event.clientX, event.clientY]);
+      if (fingers.size === 2) { startPinch(plan); event.preventDefault(); return; }
+      if (fingers.size > 2) return;
+    }
     if (event.button !== 0 || !frameData(plan)) return;
     const xy = planPoint(plan, event);
     svgOf(plan).focus({preventScroll: true});
@@ -321,8 +395,9 @@
       const label = draw.selected[plan];
       const hit = nearest(plan, xy, event.altKey ? GRAB_PX : MARK_PX);
       if (draw.armed[plan] && label !== undefined && !event.altKey) {
+        const before = store.plans[plan].points[label];
         place(plan, label, xy[0], xy[1]);
-        drag = {plan: plan, label: label, moved: false, placed: true};
+        drag = {plan: plan, label: label, moved: false, placed: true, before: before};
       } else if (hit && hit !== meta.poles[plan]) {
         draw.selected[plan] = hit;
         draw.armed[plan] = false;
@@ -332,10 +407,14 @@
         return;
       }
     }
+    if (event.pointerType !== "mouse" && drag && drag.label !== undefined)
+      loupe(plan, event, store.plans[plan].points[drag.label]);
     svgOf(plan).setPointerCapture(event.pointerId);
     event.preventDefault();
   }
   function onPointerMove(plan, event) {
+    if (fingers.has(event.pointerId)) fingers.set(event.pointerId, [event.clientX, event.clientY]);
+    if (pinch && pinch.plan === plan && fingers.size === 2) { movePinch(plan); return; }
     if (!drag || drag.plan !== plan) return;
     const xy = planPoint(plan, event);
     if (drag.line) {
@@ -356,9 +435,13 @@
       store.plans[plan].points[drag.label] = [round2(xy[0]), round2(xy[1])];
       clearVerdict(plan, drag.label);
       render(plan);
+      if (event.pointerType !== "mouse") loupe(plan, event, store.plans[plan].points[drag.label]);
     }
   }
-  function onPointerUp(plan) {
+  function onPointerUp(plan, event) {
+    fingers.delete(event.pointerId);
+    if (fingers.size < 2) pinch = null;
+    loupe(plan, null, null);
     if (!drag || drag.plan !== plan) return;
     const done = drag;
     drag = null;
@@ -373,14 +456,62 @@
     }
     save();
   }
+  // the middle of the part of a plan's sheet in view (mm, y up)
+  function visibleMiddle(plan) {
+    const scroller = svgOf(plan).parentNode.getBoundingClientRect();
+    const bar = element("controls").getBoundingClientRect().bottom;
+    const top = Math.max(scroller.top, bar), bottom = Math.min(scroller.bottom, window.innerHeight);
+    return planPoint(plan, {clientX: (scroller.left + scroller.right) / 2,
+                            clientY: bottom > top ? (top + bottom) / 2 :
+                              (scroller.top + scroller.bottom) / 2});
+  }
+  // the line tool from the keyboard: Enter draws a line through the chosen point (the pole
+  // when it is not placed) at 0°, the arrow keys turn the last line 1° (Shift 0.1°, Control
+  // 15°): counter-clockwise with → and ↑. Whether the key was the tool's.
+  function lineKey(plan, event) {
+    const drawn = store.plans[plan];
+    const turns = {ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1};
+    if (event.key === "Enter" || event.key === " ") {
+      const label = draw.selected[plan];
+      const through = label in drawn.points ? label : meta.poles[plan];
+      const at = through === meta.poles[plan] ? [0, 0] : drawn.points[through];
+      drawn.lines.push({through: through, at: at.slice(), direction_deg: 0});
+    } else if (event.key in turns && drawn.lines.length) {
+      const line = drawn.lines[drawn.lines.length - 1];
+      const step = event.ctrlKey || event.metaKey ? 15 : event.shiftKey ? 0.1 : 1;
+      line.direction_deg = Math.round(((line.direction_deg + turns[event.key] * step) % 360) *
+                                      10) / 10;
+    } else {
+      return false;
+    }
+    save();
+    render(plan);
+    return true;
+  }
   function onKey(plan, event) {
     const label = draw.selected[plan];
     const points = store.plans[plan].points;
     const steps = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1]};
-    if (event.key in steps && label in points) {
+    const onSheet = event.target === svgOf(plan);
+    if (onSheet && draw.tool[plan] === "line" && lineKey(plan, event)) {
+      event.preventDefault();
+    } else if (onSheet && (event.key === "Enter" || event.key === " ") && label !== undefined &&
+        frameData(plan)) {
+      // the chosen point at the middle of the sheet in view, then the arrow keys move it
+      const [x, y] = visibleMiddle(plan);
+      place(plan, label, x, y);
+      event.preventDefault();
+    } else if (onSheet && (event.key === "+" || event.key === "=" || event.key === "-")) {
+      const at = ZOOMS.indexOf(draw.zoom) + (event.key === "-" ? -1 : 1);
+      setZoom(ZOOMS[Math.max(0, Math.min(ZOOMS.length - 1, at))]);
+      svgOf(plan).focus({preventScroll: true});
+      event.preventDefault();
+    } else if (event.key in steps && label in points &&
+               (onSheet || event.target.dataset.place !== undefined)) {
       const [dx, dy] = steps[event.key];
       const [x, y] = points[label];
-      const nudge = event.shiftKey ? FINE_NUDGE_MM : NUDGE_MM;
+      const nudge = event.ctrlKey || event.metaKey ? COARSE_NUDGE_MM :
+        event.shiftKey ? FINE_NUDGE_MM : NUDGE_MM;
       place(plan, label, x + dx * nudge, y + dy * nudge);
       event.preventDefault();
     } else if ((event.key === "Delete" || event.key === "Backspace") && label in points &&
@@ -426,10 +557,27 @@
     draw.planMistakes[plan] = common;
     planBox(plan).querySelector(".draw-summary").textContent = wb.rules.planSummary(
       plan, required.filter(result => result.ok).length, required.length, common, texts);
+    if (!store.checked.includes(plan)) { store.checked.push(plan); save(); }
+    sayNext();
     render(plan);
     void document.body.offsetHeight;   // the verdicts laid out: part of the check
     draw.checkTimes.push(performance.now() - t0);
     return results;
+  }
+
+  // what comes next: after a right velocity plan the acceleration plan, after both another
+  // angle
+  function planRight(plan) {
+    const results = Object.values(draw.results[plan] || {}).filter(result => result.required);
+    return results.length > 0 && results.every(result => result.ok);
+  }
+  function sayNext() {
+    const drawn = PLANS.filter(plan => frameData(plan));
+    let said = "";
+    if (drawn.every(planRight)) said = say("plans_right", {phi: meta.phi,
+                                                         angle: wb.data.angles[draw.frame]});
+    else if (planRight("velocity") && frameData("acceleration")) said = say("next_acceleration");
+    element("draw-status").textContent = said;
   }
 
   // -- what stays hidden while drawing: every value read off a plan (the readings, the curves,
@@ -452,6 +600,8 @@
     if (!steps.length || !panelOf(plan)) return;
     const next = Math.min(steps.length - 1, (draw.revealed[plan] ?? -1) + 1);
     draw.revealed[plan] = next;
+    store.help.construction[plan] = next;
+    save();
     // the plan's points show as its steps reach them, not all at once
     panelOf(plan).classList.add("revealed", "stepwise");
     element("step-plan").value = plan;
@@ -463,6 +613,8 @@
   }
   function showPlan(plan) {
     draw.shownPlan[plan] = true;
+    store.help.shown[plan] = true;
+    save();
     conceal();
     const panel = panelOf(plan);
     if (panel) {
@@ -510,6 +662,8 @@
     draw.revealed = {};
     draw.shownPlan = {};
     notice("");
+    element("draw-status").textContent = "";
+    element("draw-kept").textContent = "";
     conceal();
     store = restore();
     PLANS.forEach(plan => {
@@ -520,6 +674,25 @@
       buildList(plan);
       render(plan);
     });
+    reopen();
+  }
+  // a drawing kept at this angle as it was left: what was asked to be seen, the verdicts of
+  // the plans checked, and a word of which angle it was drawn at
+  function reopen() {
+    const kept = PLANS.filter(plan => planBox(plan) && frameData(plan));
+    kept.forEach(plan => {
+      if (store.help.shown[plan]) showPlan(plan);
+      const step = store.help.construction[plan];
+      if (step !== undefined) {
+        draw.revealed[plan] = step - 1;
+        showStep(plan);
+      }
+    });
+    const checked = kept.filter(plan => store.checked.includes(plan));
+    checked.forEach(check);
+    const placed = kept.some(plan => Object.keys(store.plans[plan].points).length);
+    element("draw-kept").textContent = placed ? say("kept_restored", {
+      phi: meta.phi, angle: wb.data.angles[draw.frame]}) : "";
   }
   function setZoom(zoom) {
     draw.zoom = zoom;
@@ -533,6 +706,14 @@
     const widest = Math.max(...PLANS.filter(plan => meta.extents[plan]).map(
       plan => meta.extents[plan][2] - meta.extents[plan][0]));
     draw.zoom = ZOOMS.filter(zoom => zoom === ZOOMS[0] || zoom * widest <= 640).pop();
+    // the zoom reaches a size where every tolerance disc of the page is 6 px across or more
+    let smallest = Infinity;
+    wb.data.frames.forEach(frame => Object.values(frame.draw || {}).forEach(entry =>
+      Object.values(entry.points).forEach(point => { smallest = Math.min(smallest, point[2]); })));
+    draw.smallestRadius = Number.isFinite(smallest) ? smallest : null;
+    while (draw.smallestRadius && ZOOMS[ZOOMS.length - 1] * 2 * draw.smallestRadius < 6)
+      ZOOMS.push(Math.ceil(ZOOMS[ZOOMS.length - 1] * 1.5));
+    draw.zooms = ZOOMS;
     PLANS.forEach(plan => {
       const box = planBox(plan);
       if (!box) return;
@@ -540,8 +721,8 @@
       draw.tool[plan] = "point";
       svg.addEventListener("pointerdown", event => onPointerDown(plan, event));
       svg.addEventListener("pointermove", event => onPointerMove(plan, event));
-      svg.addEventListener("pointerup", () => onPointerUp(plan));
-      svg.addEventListener("pointercancel", () => onPointerUp(plan));
+      svg.addEventListener("pointerup", event => onPointerUp(plan, event));
+      svg.addEventListener("pointercancel", event => onPointerUp(plan, event));
       box.addEventListener("keydown", event => onKey(plan, event));
       box.querySelectorAll("[data-tool]").forEach(button =>
         button.addEventListener("click", () => setTool(plan, button.dataset.tool)));
@@ -562,10 +743,7 @@
         render(plan);
       });
     });
-    element("draw-mode").addEventListener("change", event => {
-      document.body.classList.toggle("drawing", event.target.checked);
-      conceal();
-    });
+    document.addEventListener("workbook:mode", conceal);
     const planOf = Object.fromEntries(wb.data.quantities.map(q => [q.name, q.plan]));
     wb.concealed = name => concealed(planOf[name]);
     wb.planShown = name => drawingOn() && !!planOf[name] && !!draw.shownPlan[planOf[name]];

@@ -35,7 +35,8 @@ from typing import Any
 from ..words import Message, message, render, template
 from .canvas import empty_svg
 
-__all__ = ["DRAW_STYLE", "draw_script", "drawing_data", "drawing_section", "pack_frame"]
+__all__ = ["DRAW_STYLE", "draw_mode_html", "draw_script", "drawing_data", "drawing_section",
+           "pack_frame"]
 
 #: what each plan is called on the page, and its scale's symbol
 PLAN_TITLES = {"velocity": (template("velocity plan"), "μv"),
@@ -88,28 +89,40 @@ def _plan_block(plan: str) -> str:
 </div>"""
 
 
+def draw_mode_html() -> str:
+    """The drawing mode's place in the page's mode bar: a radio button of the ``mode``
+    group (``#draw-mode``)."""
+    return ('<label class="mode"><input type="radio" name="mode" id="draw-mode" value="draw">'
+            f' {_said(template("draw", context="a mode of the page"))}</label>')
+
+
 def drawing_section(plans: Sequence[str]) -> str:
-    """The drawing mode's markup: a switch, the zoom, and per plan a sheet with its tools."""
-    switch = _said(template("draw the plans of this angle yourself"))
+    """The drawing mode's markup: how to draw, the zoom, and per plan a sheet with its
+    tools."""
     how = _said(template("(the plans' drawings and the values read off them are hidden; a "
-                         "click places the chosen\npoint, however near another; a press on a "
-                         "placed point's mark, or Alt + a press near it,\ndrags it; the arrow "
-                         "keys move the chosen point 0.5 mm, Shift + an arrow key 0.1 mm; "
-                         "Delete\nremoves it)"))
+                         "click or a tap places the chosen\npoint, however near another; a "
+                         "press on a placed point's mark, or Alt + a press near it,\ndrags "
+                         "it, a finger's point shown magnified above it; on a chosen sheet "
+                         "Enter places the chosen\npoint at the sheet's middle, the arrow keys "
+                         "move it 0.5 mm, Shift + an arrow key 0.1 mm,\nControl + an arrow "
+                         "key 5 mm, + and − zoom; Delete removes it; with the line tool\n"
+                         "Enter draws a line through the chosen point, the arrow keys turn it)"))
     zoom_out = html.escape(render(template("zoom out")))
     zoom_in = html.escape(render(template("zoom in")))
-    return f"""<section id="drawing">
-<h2>{_said(template("Draw the plans"))}</h2>
-<p><label><input type="checkbox" id="draw-mode"> {switch}</label>
-{how}
-<span class="draw-zoom">{_said(template("zoom"))} <button type="button" data-zoom="-1" \
+    return f"""<section id="drawing" aria-labelledby="drawing-heading">
+<h2 id="drawing-heading">{_said(template("Draw the plans"))}</h2>
+<p class="draw-how">{how}</p>
+<p class="draw-zoom">{_said(template("zoom"))} <button type="button" data-zoom="-1" \
 aria-label="{zoom_out}">−</button>
 <output id="draw-zoom"></output>
-<button type="button" data-zoom="1" aria-label="{zoom_in}">+</button></span></p>
+<button type="button" data-zoom="1" aria-label="{zoom_in}">+</button></p>
+<p id="draw-kept" role="status"></p>
+<p id="draw-status" role="status"></p>
 <p id="draw-notice" role="status"></p>
 <div class="draw-plans">
 {chr(10).join(_plan_block(plan) for plan in plans)}
 </div>
+<div class="draw-loupe" aria-hidden="true"></div>
 </section>"""
 
 
@@ -170,9 +183,12 @@ def draw_script() -> str:
 DRAW_STYLE = """
 #drawing{margin-top:10px;border-top:1px solid #ccc}
 #drawing h2{font-size:1.1em;margin:6px 0}
-.draw-plans,.draw-zoom{display:none}
+.draw-plans,.draw-zoom,.draw-how,#draw-status,#draw-kept{display:none}
 body.drawing .draw-plans{display:flex;flex-wrap:wrap;gap:16px}
-body.drawing .draw-zoom{display:inline}
+body.drawing :is(.draw-zoom,.draw-how,#draw-status,#draw-kept){display:block}
+#draw-status{color:#1a5f2a;font-weight:bold}
+#readings tr.concealed.revealed td.reading,
+#readings tr.concealed.revealed td.plan-reading{visibility:visible}
 body.drawing .panel[data-panel]:not([data-panel="position"]):not(.revealed){display:none}
 #readings tr.concealed td.reading,#readings tr.concealed td.plan-reading{visibility:hidden}
 #charts .chart.concealed{display:none}
@@ -180,28 +196,37 @@ body.drawing:not(.shown-acceleration) #panel-position :is(.rho,.centre,[data-poi
  [data-points^="O_"]){visibility:hidden}
 body.drawing #playback :is(label,button,#step-number,#step-text){display:none}
 body.drawing .panel.stepwise circle.point{visibility:hidden}
-.draw-plan{flex:1 1 560px;min-width:320px}
+.draw-plan{flex:1 1 560px;min-width:min(320px,100%);max-width:100%}
 .draw-plan.absent{display:none}
 .draw-plan h3{font-size:1em;margin:4px 0}
 .draw-scale{font-weight:normal;color:#444}
-.draw-sheet{overflow:auto;max-height:720px;border:1px solid #bbb;margin:4px 0}
+.draw-sheet{overflow:auto;max-height:min(720px,70vh);border:1px solid #bbb;margin:4px 0;
+ max-width:100%}
 .draw-sheet svg{display:block;background:#fff;cursor:crosshair;touch-action:none}
 .draw-sheet svg:focus{outline:2px solid #1f5fa8}
-.draw-sheet .minor{stroke:#e3e7f0;stroke-width:1px;fill:none}
-.draw-sheet .major{stroke:#b8c0d8;stroke-width:1px;fill:none}
-.draw-sheet .construction{stroke:#7a7a7a;stroke-width:1px;stroke-dasharray:6 3}
-.draw-sheet .pole circle{fill:#000}
-.draw-sheet .placed circle{fill:#1f5fa8}
-.draw-sheet .placed.selected circle{fill:#d35400}
-.draw-sheet .placed.ok circle{fill:#1a7f37}
-.draw-sheet .placed.off circle{fill:#c0392b}
-.draw-sheet .right-point circle{fill:none;stroke:#2e8b57;stroke-width:1px;
+:is(.draw-sheet,.draw-loupe) .minor{stroke:#e3e7f0;stroke-width:1px;fill:none}
+:is(.draw-sheet,.draw-loupe) .major{stroke:#b8c0d8;stroke-width:1px;fill:none}
+:is(.draw-sheet,.draw-loupe) .construction{stroke:#7a7a7a;stroke-width:1px;stroke-dasharray:6 3}
+:is(.draw-sheet,.draw-loupe) .pole circle{fill:#000}
+:is(.draw-sheet,.draw-loupe) .placed circle{fill:#1f5fa8}
+:is(.draw-sheet,.draw-loupe) .placed.selected circle{fill:#d35400}
+:is(.draw-sheet,.draw-loupe) .placed.ok circle{fill:#1a7f37}
+:is(.draw-sheet,.draw-loupe) .placed.off circle{fill:#c0392b}
+:is(.draw-sheet,.draw-loupe) .right-point circle{fill:none;stroke:#2e8b57;stroke-width:1px;
  vector-effect:non-scaling-stroke}
-.draw-sheet .right-point text{fill:#2e8b57}
-.draw-sheet text{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;
+:is(.draw-sheet,.draw-loupe) .right-point text{fill:#2e8b57}
+:is(.draw-sheet,.draw-loupe) text{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;
  pointer-events:none;user-select:none}
 .draw-points{display:flex;flex-direction:column;gap:2px;padding-left:1.5em;margin:4px 0}
-.draw-points button{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;min-width:4em}
+.draw-points button{font-family:"DejaVu Serif",Georgia,serif;font-style:italic;min-width:4em;
+ min-height:44px}
+.draw-tools,.draw-actions{display:flex;flex-wrap:wrap;gap:4px}
+.draw-loupe{display:none;position:fixed;width:120px;height:120px;border-radius:50%;
+ border:2px solid #1f5fa8;background:#fff;overflow:hidden;pointer-events:none;z-index:5;
+ box-shadow:0 2px 8px rgba(0,0,0,.35)}
+.draw-loupe.on{display:block}
+.draw-loupe svg{width:100%;height:100%;display:block}
+.draw-loupe .cross{stroke:#d35400;vector-effect:non-scaling-stroke;stroke-width:1px}
 .draw-points button.placed{background:#e8f0fb}
 .course-name sub{font-size:.75em;line-height:0}
 .course-name sub.upright{font-style:normal}
