@@ -110,11 +110,27 @@ def test_a_sheet_geometry_edited_by_hand_is_refused(keys):
 
     key = json.loads(json.dumps(keys["001"]))
     key["sheets"]["velocity"]["pole_mm"] = [float("nan"), 3]
-    with pytest.raises(CourseError, match=r"sheets.velocity.pole_mm: must be a number"):
+    with pytest.raises(CourseError, match=r"^sheets\.velocity\.pole_mm: must be a number"):
         read_sheet(key, "velocity")
     del key["sheets"]
     with pytest.raises(CourseError, match="written before booklets"):
         read_sheet(key, "velocity")
+
+
+def test_an_edited_sheet_is_named_by_its_key_in_the_bundle(course, tmp_path):
+    """The error names the sheet's key as keys.json has it: the student's place in the list
+    of keys, then the sheet's fields."""
+    from planmethod.grading.paper import CourseError
+
+    data = json.loads((course / "keys.json").read_text(encoding="utf-8"))
+    data["keys"][1]["sheets"]["acceleration"]["markers"]["size_mm"] = -4
+    edited = tmp_path / "keys.json"
+    edited.write_text(json.dumps(data), encoding="utf-8")
+    key = load_keys(edited)["002"]
+    with pytest.raises(CourseError) as refused:
+        read_sheet(key, "acceleration", file=str(edited))
+    assert str(refused.value).startswith(
+        f"{edited}: keys[1].sheets.acceleration.markers.size_mm: must be a number")
 
 
 # -- the booklet ------------------------------------------------------------------------------
