@@ -364,6 +364,24 @@ def test_the_marked_photo_and_a_pool_of_workers(course, velocity_photo, tmp_path
     assert processes_holding("marked-8c1f") == []
 
 
+def test_a_long_header_wraps_in_the_marked_photo(keys, velocity_photo):
+    """An LMS folder's long path in the marked photo's first line wraps inside the picture
+    (it ran off its right edge)."""
+    from planmethod.grading.photos import grade_photo
+    from planmethod.render.marked import marked_photo
+
+    path, _ = velocity_photo
+    graded = grade_photo(keys, path)
+    header = ["submissions/Student 002_1001_assignsubmission_file/" * 3
+              + "IMG_4811.jpg (student 002, acceleration plan): 2/3"]
+    image = cv2.imdecode(np.frombuffer(marked_photo(graded, header), np.uint8),
+                         cv2.IMREAD_GRAYSCALE)
+    photo_rows = np.nonzero(image[:, :6].min(axis=1) < 200)[0]   # the photo reaches its left
+    text = image[photo_rows.max() + 1:, :]        # the sentences under the photo
+    assert text.shape[0] > 100 and text.min() < 100
+    assert text[:, -12:].min() > 200             # nothing written to the right edge
+
+
 # -- refusals -----------------------------------------------------------------------------------
 def _edited(photo_path: Path, tmp_path: Path, edit) -> Path:
     image = cv2.imread(str(photo_path))
