@@ -276,6 +276,39 @@ def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
             assert not point.correct and "no_normal" in point.mistakes
 
 
+def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_path):
+    """Student 002's acceleration plan drawn without aⁿ (photographed as the benchmark's
+    case 18 is, seed 10018): two lines leave b 2° apart, their pencil runs together near it,
+    and a line fitted to both at once was found besides each; crossing (πb) it moved b 0.4 mm
+    along (πb), beyond b's radius of 0.25 mm. Without that line b is read where it was drawn."""
+    from planmethod.grading.photos import grade_photo
+
+    photo = sheet_photo(keys["002"], "acceleration", "no_normal", seed=10018)
+    path = tmp_path / "002_no_normal.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    place = {place.point: place for place in graded.places}["b"]
+    point = {point.point: point for point in graded.drawing.points}["b"]
+    drawn = plan_to_page(read_sheet(keys["002"], "acceleration").pole_mm, photo.drawn.points["b"])
+    assert photo.drawn.deserved["b"] == "right"
+    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
+
+
+def test_a_helper_takes_no_mark_a_plan_point_needs():
+    """b found just beyond its radius (0.27 mm off, as a cluttered photo reads it) is b, not
+    the helper n_CB that the construction without aⁿ puts at b: the plan's points take their
+    marks first, so b is graded 0.27 mm off, not 0.8 mm off at the next mark."""
+    from planmethod.grading.photos import Mark, MarkKind, _assign
+
+    entry = {"pole": "π", "points_mm": {"π": [0, 0], "b": [30, 0], "n_CB": [33, 0]},
+             "tolerance_mm": {"π": 0, "b": 0.25, "n_CB": 0.6},
+             "mistake_points": {"n_CB": [["no_normal", 30, 0]]}}
+    marks = [(np.array([30.27, 0.0]), Mark((0, 0), MarkKind.CROSS, 0.8, 3)),
+             (np.array([30.5, 0.6]), Mark((0, 0), MarkKind.CROSS, 1.0, 2)),
+             (np.array([33.0, 0.1]), Mark((0, 0), MarkKind.CROSSING, 0.9, 2))]
+    assert _assign(entry, marks) == {"b": 0, "n_CB": 2}
+
+
 def test_a_piece_of_a_label_does_not_win_over_the_lines_end(tmp_path):
     """Four-bar student 001's acceleration plan drawn without aⁿ, photographed as the benchmark
     photographs it (seed 24, found by a search over seeds for this trap): the handwritten label

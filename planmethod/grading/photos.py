@@ -625,10 +625,30 @@ def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
         lines.append(line)
     lines = _merged(lines, points, weights)
     lines = [_reaching(line, points) for line in lines]
-    lines = [line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3]
+    lines = _unique([line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3],
+                    points)
     if darkness is not None:
         lines = [_polished(line, lines, darkness, origin, resolution) for line in lines]
     return lines
+
+
+def _unique(lines: Sequence[Stroke], points: np.ndarray, *, band_mm: float = 0.3,
+            share: float = 0.75) -> list[Stroke]:
+    """``lines`` without those whose pixels the others hold: where two lines leave a point a
+    few degrees apart, their pencil runs together near it, and a line fitted to both at once
+    (found besides each) would move where they cross another. The least straight go first."""
+    kept = list(lines)
+    for line in sorted(lines, key=lambda line: -line.rms_mm):
+        mine = _on(line, points, band_mm)
+        if not mine.any():
+            continue
+        others = np.zeros(len(points), bool)
+        for other in kept:
+            if other is not line:
+                others |= _on(other, points, band_mm)
+        if (mine & others).sum() >= share * mine.sum():
+            kept.remove(line)
+    return kept
 
 
 def _polished(line: Stroke, lines: Sequence[Stroke], darkness: np.ndarray,
@@ -1111,6 +1131,21 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         found[label] = (right, mistaken)
     chosen: dict[str, int] = {}
     claimed: set[int] = set()
+    # the plan's points first, a found one not within its radius the nearest mark left; the
+    # helpers from the marks they leave (a helper's mistaken place is often a plan point's)
+    _claim({label: found[label] for label in graded}, marks, chosen, claimed)
+    _nearest_left(entry, graded, positions, kinds, chosen, claimed)
+    _claim({label: found[label] for label in helpers}, marks, chosen, claimed)
+    return chosen
+
+
+def _claim(found: Mapping[str, tuple[list[int], list[int]]],
+           marks: Sequence[tuple[np.ndarray, Mark]], chosen: dict[str, int],
+           claimed: set[int]) -> None:
+    """Give each point of ``found`` (the marks at its right place and at its mistakes' places,
+    most trusted first) its mark, as :func:`_assign` says: first those with nothing but loose
+    marks at their right place, then the others."""
+    kinds = [mark.kind for _, mark in marks]
     for label, (right, mistaken) in found.items():       # nothing at the right place
         free = [index for index in mistaken if index not in claimed
                 and kinds[index].evidence > (kinds[right[0]].evidence if right else -1)]
@@ -1124,8 +1159,6 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
                     and _stronger(marks[index][1], marks[right[0]][1])]
         chosen[label] = stronger[0] if stronger else right[0]
         claimed.add(chosen[label])
-    _nearest_left(entry, graded, positions, kinds, chosen, claimed | set(chosen.values()))
-    return chosen
 
 
 def _stronger(mark: Mark, other: Mark) -> bool:
