@@ -297,7 +297,8 @@ def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_
 def test_a_helper_takes_no_mark_a_plan_point_needs():
     """b found just beyond its radius (0.27 mm off, as a cluttered photo reads it) is b, not
     the helper n_CB that the construction without aⁿ puts at b: the plan's points take their
-    marks first, so b is graded 0.27 mm off, not 0.8 mm off at the next mark."""
+    marks first, so b is graded 0.27 mm off, not 0.8 mm off at the next mark. A helper with
+    nothing at its own place still shares a plan point's mark (n_CB drawn at b)."""
     from planmethod.grading.photos import Mark, MarkKind, _assign
 
     entry = {"pole": "π", "points_mm": {"π": [0, 0], "b": [30, 0], "n_CB": [33, 0]},
@@ -307,6 +308,8 @@ def test_a_helper_takes_no_mark_a_plan_point_needs():
              (np.array([30.5, 0.6]), Mark((0, 0), MarkKind.CROSS, 1.0, 2)),
              (np.array([33.0, 0.1]), Mark((0, 0), MarkKind.CROSSING, 0.9, 2))]
     assert _assign(entry, marks) == {"b": 0, "n_CB": 2}
+    # drawn without aⁿ, n_CB is b: with nothing at its own place it shares b's mark
+    assert _assign(entry, marks[:2]) == {"b": 0, "n_CB": 0}
 
 
 def test_a_piece_of_a_label_does_not_win_over_the_lines_end(tmp_path):

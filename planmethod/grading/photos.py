@@ -1135,19 +1135,20 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
     # helpers from the marks they leave (a helper's mistaken place is often a plan point's)
     _claim({label: found[label] for label in graded}, marks, chosen, claimed)
     _nearest_left(entry, graded, positions, kinds, chosen, claimed)
-    _claim({label: found[label] for label in helpers}, marks, chosen, claimed)
+    _claim({label: found[label] for label in helpers}, marks, chosen, claimed, share=True)
     return chosen
 
 
 def _claim(found: Mapping[str, tuple[list[int], list[int]]],
            marks: Sequence[tuple[np.ndarray, Mark]], chosen: dict[str, int],
-           claimed: set[int]) -> None:
+           claimed: set[int], *, share: bool = False) -> None:
     """Give each point of ``found`` (the marks at its right place and at its mistakes' places,
     most trusted first) its mark, as :func:`_assign` says: first those with nothing but loose
-    marks at their right place, then the others."""
+    marks at their right place — with ``share``, at a mark a point took already (a helper
+    drawn on a plan point: n_CB at b when aⁿ is left out) — then the others."""
     kinds = [mark.kind for _, mark in marks]
     for label, (right, mistaken) in found.items():       # nothing at the right place
-        free = [index for index in mistaken if index not in claimed
+        free = [index for index in mistaken if (share or index not in claimed)
                 and kinds[index].evidence > (kinds[right[0]].evidence if right else -1)]
         if (not right or not kinds[right[0]].evidence) and free:
             chosen[label] = free[0]
