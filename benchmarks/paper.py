@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import statistics
 import sys
 import tempfile
@@ -208,6 +209,29 @@ def summary(data: dict) -> dict:
                          for photo in refused]}
 
 
+#: issue 40's targets: the share of points with the verdict they deserve, and the CPU time to
+#: grade a photo on one core (s; its 95th percentile)
+TARGET_SHARE, TARGET_CPU_SECONDS = 0.97, 1.5
+
+
+def targets(found: dict) -> list[str]:
+    """Whether the run meets issue 40's targets, one line each.
+
+    >>> targets({"share": 0.98, "mistaken_called_right": 0, "cpu_seconds": {"p95": 0.7}})[1]
+    '- no point a mistake moved is called right: **met** (0)'
+    """
+    def met(ok: bool) -> str:
+        return "**met**" if ok else "**not met**"
+
+    cpu = found["cpu_seconds"].get("p95", math.inf) if found["cpu_seconds"] else math.inf
+    return [f"- ≥ {100 * TARGET_SHARE:.0f} % of points get the verdict their construction "
+            f"deserves: {met(found['share'] >= TARGET_SHARE)} ({100 * found['share']:.1f} %)",
+            f"- no point a mistake moved is called right: "
+            f"{met(found['mistaken_called_right'] == 0)} ({found['mistaken_called_right']})",
+            f"- a photo graded in ≤ {TARGET_CPU_SECONDS:g} s on one core (95 % of the photos' "
+            f"CPU time): {met(cpu <= TARGET_CPU_SECONDS)} ({cpu:.2f} s)"]
+
+
 def report(data: dict, found: dict) -> str:
     lines = [written_by(COMMAND, data["machine"]).rstrip(), "",
              f"{found['photos']} photos of plan sheets ({data['students']} students of each "
@@ -226,6 +250,7 @@ def report(data: dict, found: dict) -> str:
                   f"| CPU time to grade a photo, median / 95 % / max (s) | "
                   f"{found['cpu_seconds']['median']:.2f} / {found['cpu_seconds']['p95']:.2f} / "
                   f"{found['cpu_seconds']['max']:.2f} |"]
+    lines += ["", *targets(found)]
     lines += ["", load_sentence(data["load"]), "",
               "Each photo is made and graded in one of two worker processes (each on its own "
               "core of the two); grading runs with OpenCV on one thread.", "",

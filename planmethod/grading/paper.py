@@ -276,17 +276,27 @@ def _pair(value: Any, where: str, file: str | None) -> tuple[float, float]:
 
 
 def read_sheet(key: Mapping[str, Any], plan: str, *, file: str | None = None) -> Sheet:
-    """A key's sheet of ``plan``, checked (a key is a file a person may have edited) — one
-    check per field of the record, in the order variants writes them (hence its length).
+    """A key's sheet of ``plan``, checked (a key is a file a person may have edited); an error
+    names the sheet's key as the file has it (``keys[3].sheets.velocity.pole_mm`` in a
+    bundle, ``sheets.velocity.pole_mm`` in a key file of its own).
 
     Raises
     ------
     CourseError
         If the key has no sheets (written before booklets: run variants again) or a sheet's
         geometry is not what variants writes.
+
+    Examples
+    --------
+    >>> try:
+    ...     read_sheet({"student": "001", "sheets": {"velocity": {}}}, "velocity")
+    ... except CourseError as error:
+    ...     print(error.key)
+    sheets.velocity
     """
     student = str(key.get("student"))
-    where = f"student {student}: sheets.{plan}"
+    place = getattr(key, "place", "")
+    where = f"{place}.sheets.{plan}" if place else f"sheets.{plan}"
     sheets = key.get("sheets")
     if not isinstance(sheets, Mapping):
         raise CourseError(message("the key of student {student} records no sheets: it was "
@@ -301,42 +311,52 @@ def read_sheet(key: Mapping[str, Any], plan: str, *, file: str | None = None) ->
     if isinstance(page, bool) or not isinstance(page, int) or not 1 <= page <= 1_000_000:
         raise CourseError(message("must be a page number, got {value}", value=repr(page)[:40]),
                           file=file, key=f"{where}.page")
-    page_mm = _pair(data.get("page_mm"), f"{where}.page_mm", file)
-    markers = data.get("markers")
-    centres = markers.get("centres_mm") if isinstance(markers, Mapping) else None
-    if (not isinstance(markers, Mapping) or markers.get("dictionary") != MARKER_DICTIONARY
-            or not isinstance(centres, Mapping) or sorted(centres) != ["0", "1", "2", "3"]):
-        raise CourseError(message("must give the centres of markers 0–3 of {dictionary}",
-                                  dictionary=MARKER_DICTIONARY), file=file,
-                          key=f"{where}.markers")
-    size = _number(markers.get("size_mm"), f"{where}.markers.size_mm", file, low=1.0, high=100.0)
-    found = tuple(Marker(int(number), _pair(centre, f"{where}.markers.centres_mm.{number}",
-                                            file))
-                  for number, centre in sorted(centres.items()))
-    drawing = data.get("drawing_mm")
-    if not isinstance(drawing, list | tuple) or len(drawing) != 4:
-        raise CourseError(message("must be [left, top, right, bottom] in mm"), file=file,
-                          key=f"{where}.drawing_mm")
-    box = tuple(_number(value, f"{where}.drawing_mm", file) for value in drawing)
-    pole_mm = _pair(data.get("pole_mm"), f"{where}.pole_mm", file)
+    size, markers = _markers(data.get("markers"), f"{where}.markers", file)
     scale = data.get("scale")
     if (isinstance(scale, bool) or not isinstance(scale, int | float)
             or not (math.isfinite(scale) and scale > 0)):
         raise CourseError(message("must be a positive number, got {value}",
                                   value=repr(scale)[:40]), file=file, key=f"{where}.scale")
+    code = read_sheet_code(str(data.get("qr", "")))
+    if code is None or code.student != student or code.plan != plan:
+        raise CourseError(message("is not this sheet's code"), file=file, key=f"{where}.qr")
+    return Sheet(student, plan, page, _pair(data.get("page_mm"), f"{where}.page_mm", file),
+                 markers, size, _places(data, where, file, "drawing_mm"),
+                 str(data.get("pole", "")), _pair(data.get("pole_mm"), f"{where}.pole_mm", file),
+                 float(scale), str(data.get("unit", "")), _scale_bar(data, where, file),
+                 _places(data, where, file, "qr_mm"), code)
+
+
+def _markers(markers: Any, where: str, file: str | None) -> tuple[float, tuple[Marker, ...]]:
+    """A sheet's ``markers``: their size (mm) and the four markers."""
+    centres = markers.get("centres_mm") if isinstance(markers, Mapping) else None
+    if (not isinstance(markers, Mapping) or markers.get("dictionary") != MARKER_DICTIONARY
+            or not isinstance(centres, Mapping) or sorted(centres) != ["0", "1", "2", "3"]):
+        raise CourseError(message("must give the centres of markers 0–3 of {dictionary}",
+                                  dictionary=MARKER_DICTIONARY), file=file, key=where)
+    size = _number(markers.get("size_mm"), f"{where}.size_mm", file, low=1.0, high=100.0)
+    return size, tuple(Marker(int(number), _pair(centre, f"{where}.centres_mm.{number}", file))
+                       for number, centre in sorted(centres.items()))
+
+
+def _places(data: Mapping[str, Any], where: str, file: str | None, name: str
+            ) -> tuple[float, ...]:
+    """A sheet's ``drawing_mm`` (left, top, right, bottom) or ``qr_mm`` (left, top, side)."""
+    value = data.get(name)
+    count = 4 if name == "drawing_mm" else 3
+    if not isinstance(value, list | tuple) or len(value) != count:
+        said = (message("must be [left, top, right, bottom] in mm") if count == 4 else
+                message("must be [left, top, side] in mm"))
+        raise CourseError(said, file=file, key=f"{where}.{name}")
+    return tuple(_number(number, f"{where}.{name}", file) for number in value)
+
+
+def _scale_bar(data: Mapping[str, Any], where: str, file: str | None
+               ) -> tuple[tuple[float, float], float]:
+    """A sheet's scale bar: its left end (mm) and its length (mm)."""
     bar = data.get("scale_bar_mm")
     if not isinstance(bar, list | tuple) or len(bar) != 2:
         raise CourseError(message("must be [[x, y], length] in mm"), file=file,
                           key=f"{where}.scale_bar_mm")
-    qr = data.get("qr_mm")
-    if not isinstance(qr, list | tuple) or len(qr) != 3:
-        raise CourseError(message("must be [left, top, side] in mm"), file=file,
-                          key=f"{where}.qr_mm")
-    code = read_sheet_code(str(data.get("qr", "")))
-    if code is None or code.student != student or code.plan != plan:
-        raise CourseError(message("is not this sheet's code"), file=file, key=f"{where}.qr")
-    return Sheet(student, plan, page, page_mm, found, size, box, str(data.get("pole", "")),
-                 pole_mm, float(scale), str(data.get("unit", "")),
-                 (_pair(bar[0], f"{where}.scale_bar_mm", file),
-                  _number(bar[1], f"{where}.scale_bar_mm", file, low=1.0)),
-                 tuple(_number(value, f"{where}.qr_mm", file) for value in qr), code)
+    return (_pair(bar[0], f"{where}.scale_bar_mm", file),
+            _number(bar[1], f"{where}.scale_bar_mm", file, low=1.0))

@@ -625,10 +625,30 @@ def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
         lines.append(line)
     lines = _merged(lines, points, weights)
     lines = [_reaching(line, points) for line in lines]
-    lines = [line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3]
+    lines = _unique([line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3],
+                    points)
     if darkness is not None:
         lines = [_polished(line, lines, darkness, origin, resolution) for line in lines]
     return lines
+
+
+def _unique(lines: Sequence[Stroke], points: np.ndarray, *, band_mm: float = 0.3,
+            share: float = 0.75) -> list[Stroke]:
+    """``lines`` without those whose pixels the others hold: where two lines leave a point a
+    few degrees apart, their pencil runs together near it, and a line fitted to both at once
+    (found besides each) would move where they cross another. The least straight go first."""
+    kept = list(lines)
+    for line in sorted(lines, key=lambda line: -line.rms_mm):
+        mine = _on(line, points, band_mm)
+        if not mine.any():
+            continue
+        others = np.zeros(len(points), bool)
+        for other in kept:
+            if other is not line:
+                others |= _on(other, points, band_mm)
+        if (mine & others).sum() >= share * mine.sum():
+            kept.remove(line)
+    return kept
 
 
 def _polished(line: Stroke, lines: Sequence[Stroke], darkness: np.ndarray,
@@ -849,6 +869,8 @@ class Mark:
     #: how exactly the place is known: the sine of the angle two crossing lines make (1 for
     #: a dot or an end)
     sharpness: float = 1.0
+    #: how many of the construction's lines end at it or pass through it
+    lines: int = 0
 
 
 def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarray, *,
@@ -885,8 +907,12 @@ def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarr
                 dot = _dot_at_end(stroke, along, inward, points, weights)
                 marks.append(Mark((float(end[0]), float(end[1])), MarkKind.END) if dot is None
                              else Mark((float(dot[0]), float(dot[1])), MarkKind.DOT))
-    return [mark if mark.kind is MarkKind.END or _reached(mark.at, long)
-            else Mark(mark.at, MarkKind.LOOSE, mark.sharpness) for mark in _gathered(marks)]
+    out = []
+    for mark in _gathered(marks):
+        ends, through = _reached(mark.at, long)
+        kind = mark.kind if mark.kind is MarkKind.END or ends or through >= 2 else MarkKind.LOOSE
+        out.append(Mark(mark.at, kind, mark.sharpness, ends + through))
+    return out
 
 
 def _dot_at_end(stroke: Stroke, along: float, inward: float, points: np.ndarray,
@@ -915,11 +941,12 @@ def _dot_at_end(stroke: Stroke, along: float, inward: float, points: np.ndarray,
 
 
 def _reached(at, long: Sequence[Stroke], *, band_mm: float = 0.5, end_mm: float = 1.5
-             ) -> bool:
-    """Whether the construction's lines (``long``) reach ``at``: one ends there (within
-    ``band_mm`` across it and ``end_mm`` along it of an end: a pencil's overshoot or early
-    stop), or two pass through it (within ``band_mm``)."""
-    through = 0
+             ) -> tuple[int, int]:
+    """How the construction's lines (``long``) reach ``at``: how many end there (within
+    ``band_mm`` across and ``end_mm`` along of an end: a pencil's overshoot or early stop),
+    and how many pass through it (within ``band_mm``). A point is reached where one ends or
+    two pass."""
+    ends = through = 0
     for stroke in long:
         direction = np.asarray(stroke.direction)
         offset = np.asarray(at) - np.asarray(stroke.point)
@@ -929,9 +956,10 @@ def _reached(at, long: Sequence[Stroke], *, band_mm: float = 0.5, end_mm: float 
         if not stroke.start - end_mm <= along <= stroke.stop + end_mm:
             continue
         if min(abs(along - stroke.start), abs(along - stroke.stop)) <= end_mm:
-            return True
-        through += 1
-    return through >= 2
+            ends += 1
+        else:
+            through += 1
+    return ends, through
 
 
 def _gathered(marks: Sequence[Mark], radius: float = 0.3) -> list[Mark]:
@@ -1065,9 +1093,10 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
 
     A point is where the student put it: at its right place (within its tolerance radius) or
     at a place a named mistake puts it (within that radius or :data:`MEASURING_MM`). The
-    stronger evidence wins (:attr:`MarkKind.evidence`):
+    stronger evidence wins (:func:`_stronger`):
     a point the student marked where lines end or cross is trusted over one where lines merely
-    end or cross, and that over a loose mark (a piece of a label): a point with stronger
+    end or cross, and that over a loose mark (a piece of a label); of two alike, one where two
+    lines end or cross over one that a single line reaches: a point with stronger
     evidence at a mistake's place than at its right place is taken at the mistake's. Points
     with nothing but loose marks at their right place choose first, each mark going to one of
     them. A point found at neither is the nearest mark left within :data:`SEARCH_MM`, a loose
@@ -1102,8 +1131,24 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         found[label] = (right, mistaken)
     chosen: dict[str, int] = {}
     claimed: set[int] = set()
+    # the plan's points first, a found one not within its radius the nearest mark left; the
+    # helpers from the marks they leave (a helper's mistaken place is often a plan point's)
+    _claim({label: found[label] for label in graded}, marks, chosen, claimed)
+    _nearest_left(entry, graded, positions, kinds, chosen, claimed)
+    _claim({label: found[label] for label in helpers}, marks, chosen, claimed, share=True)
+    return chosen
+
+
+def _claim(found: Mapping[str, tuple[list[int], list[int]]],
+           marks: Sequence[tuple[np.ndarray, Mark]], chosen: dict[str, int],
+           claimed: set[int], *, share: bool = False) -> None:
+    """Give each point of ``found`` (the marks at its right place and at its mistakes' places,
+    most trusted first) its mark, as :func:`_assign` says: first those with nothing but loose
+    marks at their right place — with ``share``, at a mark a point took already (a helper
+    drawn on a plan point: n_CB at b when aⁿ is left out) — then the others."""
+    kinds = [mark.kind for _, mark in marks]
     for label, (right, mistaken) in found.items():       # nothing at the right place
-        free = [index for index in mistaken if index not in claimed
+        free = [index for index in mistaken if (share or index not in claimed)
                 and kinds[index].evidence > (kinds[right[0]].evidence if right else -1)]
         if (not right or not kinds[right[0]].evidence) and free:
             chosen[label] = free[0]
@@ -1112,11 +1157,19 @@ def _assign(entry: Mapping[str, Any], marks: Sequence[tuple[np.ndarray, Mark]]
         if label in chosen or not right:
             continue
         stronger = [index for index in mistaken if index not in claimed
-                    and kinds[index].evidence > kinds[right[0]].evidence]
+                    and _stronger(marks[index][1], marks[right[0]][1])]
         chosen[label] = stronger[0] if stronger else right[0]
         claimed.add(chosen[label])
-    _nearest_left(entry, graded, positions, kinds, chosen, claimed | set(chosen.values()))
-    return chosen
+
+
+def _stronger(mark: Mark, other: Mark) -> bool:
+    """Whether ``mark`` says more strongly than ``other`` that a point is there: its kind's
+    evidence (:attr:`MarkKind.evidence`) is stronger, or as strong and two lines or more reach
+    it where one reaches ``other`` (a piece of a label that a stray line happens to end at is
+    marked as a dot that one line reaches, a point of the construction where its lines meet)."""
+    if mark.kind.evidence != other.kind.evidence:
+        return mark.kind.evidence > other.kind.evidence
+    return other.lines <= 1 < mark.lines
 
 
 def _nearest_left(entry: Mapping[str, Any], graded: Sequence[str], positions: np.ndarray,

@@ -123,8 +123,9 @@ def _with_text(photo, graded: GradedPhoto, header: Sequence[str], quality: int) 
     font, bold = _font(size), _font(round(size * 1.15))
     characters = max(30, int(photo.width / (0.55 * size)) - 4)
     rows: list[tuple[str, tuple[int, int, int], Any]] = []
-    for text in header:
-        rows.append((_shown(text), (0, 0, 0), bold))
+    for text in header:          # a long path wraps too, in the larger bold face
+        for index, piece in enumerate(textwrap.wrap(_shown(text), int(characters / 1.15))):
+            rows.append((("   " if index else "") + piece, (0, 0, 0), bold))
     for point in graded.drawing.points:
         mark = "✓ " if point.correct else "✗ "
         colour = GREEN if point.correct else RED

@@ -276,74 +276,97 @@ def pencil_page(page: np.ndarray, drawn: DrawnPlan, pole_mm: Sequence[float],
                 rng: np.random.Generator, *, px_per_mm: float = PAGE_PX_PER_MM,
                 labels: bool = True) -> np.ndarray:
     """``page`` with ``drawn`` pencilled on it: grey grainy strokes 0.3–0.5 mm wide, a dot or
-    a small cross at some points, and each point's label written beside it (one pass of the
-    pencil over the strokes, the marks and the labels in one window of the page: hence its
-    length)."""
-    import cv2
-
+    a small cross at some points, and each point's label written beside it; the pencil works
+    in the window of the page round what it draws."""
     from ..grading.paper import plan_to_page
-
-    height, width = page.shape[:2]
-    shift = 4
-    unit = float(1 << shift)
 
     def to_px(xy) -> np.ndarray:
         x, y = plan_to_page(pole_mm, xy)      # a pixel's centre is at (i + ½)/px_per_mm
         return np.array([x * px_per_mm - 0.5, y * px_per_mm - 0.5])
 
-    # the pencil works in the window round what it draws
     corners = np.array([to_px(xy) for stroke in drawn.strokes for xy in stroke]
                        + [to_px(xy) for xy in drawn.points.values()] + [to_px((0, 0))])
     margin = 10 * px_per_mm
+    height, width = page.shape[:2]
     x0, y0 = np.maximum(np.floor(corners.min(axis=0) - margin), 0).astype(int)
     x1 = int(min(math.ceil(corners[:, 0].max() + margin), width))
     y1 = int(min(math.ceil(corners[:, 1].max() + margin), height))
-    origin = np.array([x0, y0], float)
-    cover = np.zeros((y1 - y0, x1 - x0), np.float32)
-
-    def draw(points: np.ndarray, thickness_mm: float, strength: float) -> None:
-        thickness = max(1, round(thickness_mm * px_per_mm))
-        layer = np.zeros_like(cover)
-        cv2.polylines(layer, [np.round((points - origin) * unit).astype(np.int32)], False, 1.0,
-                      thickness, cv2.LINE_AA, shift)
-        np.maximum(cover, layer * strength, out=cover)
-
+    pencil = _Pencil(np.zeros((y1 - y0, x1 - x0), np.float32), np.array([x0, y0], float),
+                     px_per_mm)
     for a, b in drawn.strokes:
         width_mm = rng.uniform(0.3, 0.5)
         strength = rng.uniform(0.55, 0.85)
         for piece in _stroke_polyline(to_px(a), to_px(b), rng, px_per_mm):
-            draw(piece, width_mm, strength)
+            pencil.line(piece, width_mm, strength)
     for label, xy in drawn.points.items():
         centre = to_px(xy)
-        shape = rng.choice(["dot", "cross"] if label in drawn.marked else
-                           ["dot", "cross", "none"])
-        if shape == "dot":
-            radius = rng.uniform(0.5, 0.75) * px_per_mm
-            cv2.circle(cover, tuple(np.round((centre - origin) * unit).astype(int)),
-                       round(radius * unit), rng.uniform(0.6, 0.85), -1, cv2.LINE_AA, shift)
-        elif shape == "cross":
-            turn = rng.uniform(0, math.pi / 2)
-            arm = rng.uniform(1.2, 1.8) * px_per_mm
-            for angle in (turn, turn + math.pi / 2):
-                offset = arm * np.array([math.cos(angle), math.sin(angle)])
-                draw(np.array([centre - offset, centre + offset]), 0.3, rng.uniform(0.6, 0.8))
+        pencil.mark(centre, rng.choice(["dot", "cross"] if label in drawn.marked else
+                                       ["dot", "cross", "none"]), rng)
         if labels:               # written beside the point, where no line leaves it
             side = _free_side(xy, drawn.strokes, rng)
-            at = centre + 3.5 * px_per_mm * np.array([math.cos(side), -math.sin(side)])
-            at += np.array([-1.2, 1.4]) * px_per_mm - origin   # the letter's box round it
-            text = label.split("@")[0]
-            layer = np.zeros(cover.shape, np.uint8)
-            cv2.putText(layer, text, tuple(int(v) for v in at), cv2.FONT_HERSHEY_SCRIPT_SIMPLEX,
-                        0.13 * px_per_mm, 255, max(1, int(0.3 * px_per_mm)), cv2.LINE_AA)
-            np.maximum(cover, layer.astype(np.float32) / 255.0 * rng.uniform(0.5, 0.75),
-                       out=cover)
-    grain = rng.uniform(0.75, 1.0, cover.shape).astype(np.float32)
+            pencil.write(label.split("@")[0],
+                         centre + 3.5 * px_per_mm * np.array([math.cos(side), -math.sin(side)]),
+                         rng)
+    grain = rng.uniform(0.75, 1.0, pencil.cover.shape).astype(np.float32)
     graphite = np.array([92, 90, 88], np.float32) / 255.0    # a slightly warm grey (B, G, R)
     paper = page[y0:y1, x0:x1].astype(np.float32)
-    alpha = (cover * grain)[..., None]
+    alpha = (pencil.cover * grain)[..., None]
     out = page.copy()
     out[y0:y1, x0:x1] = np.clip(paper * (1 - alpha * (1 - graphite)), 0, 255).astype(np.uint8)
     return out
+
+
+@dataclass
+class _Pencil:
+    """How much pencil covers each pixel of a window of the page (0…1), the window's
+    top-left corner (page px) and the page's px per mm: the pencil draws lines, marks points
+    and writes their names on it."""
+
+    cover: np.ndarray
+    origin: np.ndarray
+    px_per_mm: float
+    #: OpenCV draws at 1/2**shift px
+    shift: int = 4
+
+    def line(self, points: np.ndarray, thickness_mm: float, strength: float) -> None:
+        """A polyline (page px), ``thickness_mm`` wide, ``strength`` dark."""
+        import cv2
+
+        thickness = max(1, round(thickness_mm * self.px_per_mm))
+        layer = np.zeros_like(self.cover)
+        cv2.polylines(layer, [np.round((points - self.origin) * (1 << self.shift)
+                                       ).astype(np.int32)], False, 1.0, thickness,
+                      cv2.LINE_AA, self.shift)
+        np.maximum(self.cover, layer * strength, out=self.cover)
+
+    def mark(self, centre: np.ndarray, shape: str, rng: np.random.Generator) -> None:
+        """A ``dot`` or a small ``cross`` at ``centre`` (page px), or ``none``."""
+        import cv2
+
+        unit = float(1 << self.shift)
+        if shape == "dot":
+            radius = rng.uniform(0.5, 0.75) * self.px_per_mm
+            cv2.circle(self.cover, tuple(np.round((centre - self.origin) * unit).astype(int)),
+                       round(radius * unit), rng.uniform(0.6, 0.85), -1, cv2.LINE_AA,
+                       self.shift)
+        elif shape == "cross":
+            turn = rng.uniform(0, math.pi / 2)
+            arm = rng.uniform(1.2, 1.8) * self.px_per_mm
+            for angle in (turn, turn + math.pi / 2):
+                offset = arm * np.array([math.cos(angle), math.sin(angle)])
+                self.line(np.array([centre - offset, centre + offset]), 0.3,
+                          rng.uniform(0.6, 0.8))
+
+    def write(self, text: str, middle: np.ndarray, rng: np.random.Generator) -> None:
+        """``text`` handwritten round ``middle`` (page px)."""
+        import cv2
+
+        at = middle + np.array([-1.2, 1.4]) * self.px_per_mm - self.origin   # the letter's box
+        layer = np.zeros(self.cover.shape, np.uint8)
+        cv2.putText(layer, text, tuple(int(v) for v in at), cv2.FONT_HERSHEY_SCRIPT_SIMPLEX,
+                    0.13 * self.px_per_mm, 255, max(1, int(0.3 * self.px_per_mm)), cv2.LINE_AA)
+        np.maximum(self.cover, layer.astype(np.float32) / 255.0 * rng.uniform(0.5, 0.75),
+                   out=self.cover)
 
 
 def _free_side(point, strokes, rng: np.random.Generator) -> float:
@@ -464,6 +487,9 @@ def photograph(page: np.ndarray, page_mm: Sequence[float], conditions: Condition
     if conditions.blur_px > 0:
         image = cv2.GaussianBlur(image, (0, 0), conditions.blur_px)
     noise = np.empty_like(image)
+    # OpenCV's generator is one for the process (grading seeds it too): seeded from ``rng``,
+    # a photo is the same whatever ran before it
+    cv2.setRNGSeed(int(rng.integers(0, 2**31 - 1)))
     cv2.randn(noise, 0.0, float(conditions.noise))
     image += noise
     image = np.clip(image, 0, 255).astype(np.uint8)
