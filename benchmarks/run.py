@@ -25,7 +25,9 @@ Sections (all by default, or ``--only speed,accuracy,scene,memory,stress,workboo
 * ``studio`` — the studio's time per update while a point is dragged, on the server and in
   headless Chromium → ``results/studio.{json,md}``;
 * ``triad`` — a class III mechanism's first answer (one angle, a full turn) against a
-  four-bar's, in fresh processes and for a new mechanism → ``results/triad.{json,md}``.
+  four-bar's, in fresh processes and for a new mechanism → ``results/triad.{json,md}``;
+* ``language`` — what speaking the course's language costs ``solve --svg`` and a workbook's
+  frames: English and Russian against text with no catalogue → ``results/language.{json,md}``.
 
 A full run writes into ``benchmarks/results`` and ``figures``; ``--quick`` (smaller N, fewer
 repeats, about a minute) writes into ``--out`` (default: a temporary folder), so that quick
@@ -34,8 +36,8 @@ numbers never replace the committed ones.
 Examples
 --------
 >>> sorted(SECTIONS)
-['accuracy', 'continuation', 'memory', 'scene', 'speed', 'stress', 'studio', 'toggle', 'triad',
- 'workbook']
+['accuracy', 'continuation', 'language', 'memory', 'scene', 'speed', 'stress', 'studio', 'toggle',
+ 'triad', 'workbook']
 """
 
 from __future__ import annotations
@@ -50,6 +52,7 @@ from pathlib import Path
 from . import (
     accuracy,
     continuation,
+    language,
     memory,
     scene,
     speed,
@@ -72,6 +75,7 @@ SECTIONS = {
     "toggle": (toggle, None),
     "studio": (studio, None),
     "triad": (triad, None),
+    "language": (language, None),
 }
 
 

@@ -231,6 +231,26 @@ def unit_words(unit: str) -> Message | str:
     return UNIT_WORDS.get(unit, unit)
 
 
+#: why a group takes its assembly (:attr:`Branch.reason <planmethod.kinematics.groups.base.Branch>`:
+#: the sketch's nearer one, the first where the sketch cannot tell, the only one), as a person
+#: reads it in a report, by the reason's machine name (the JSON report keeps that name)
+BRANCH_REASON_WORDS: dict[str, Message] = {
+    "sketch": message("sketch", context="branch reason"),
+    "default": message("default", context="branch reason"),
+    "unique": message("unique", context="branch reason"),
+}
+
+
+def branch_reason_words(reason: str) -> Message | str:
+    """Why a group takes its assembly, in the course's language (:data:`BRANCH_REASON_WORDS`);
+    a reason not in the table is shown as it is.
+
+    >>> render(branch_reason_words("sketch")), branch_reason_words("given")
+    ('sketch', 'given')
+    """
+    return BRANCH_REASON_WORDS.get(reason, reason)
+
+
 def scale_words(name: str, value: float) -> Message:
     """A scale as a drawing's header prints it, with its unit (``μv = 0.2 (m/s)/mm``).
 
@@ -266,7 +286,10 @@ class QuantityKind:
     course's notation (``{number}`` and ``{name}``, and for a pair ``{along_number}`` and
     ``{along_name}``); None for a point's quantity, whose question has no link in it.
     ``plotted`` titles the panel of a full-turn plot that draws this kind's curves (None:
-    the kind has no panel of its own); ``what`` says what it is.
+    the kind has no panel of its own); ``what`` says what it is. ``asked_plain`` and
+    ``asked_numbered_plain`` are ``asked`` and ``asked_numbered`` without the note of which
+    sense is positive, for a page whose heading says it once (a task sheet's answer table);
+    None where the question has no such note.
     """
 
     prefix: str
@@ -279,6 +302,8 @@ class QuantityKind:
     asked: Message
     asked_numbered: Message | None = None
     plotted: Message | None = None
+    asked_plain: Message | None = None
+    asked_numbered_plain: Message | None = None
 
     @property
     def description(self) -> str:
@@ -304,13 +329,17 @@ QUANTITY_KINDS: dict[str, QuantityKind] = {kind.prefix: kind for kind in (
                                   "positive)"),
                  template("angular velocity {symbol} of link {number} ({name}) "
                           "(counter-clockwise positive)"),
-                 message("angular velocity ω of links")),
+                 message("angular velocity ω of links"),
+                 template("angular velocity {symbol} of {link}"),
+                 template("angular velocity {symbol} of link {number} ({name})")),
     QuantityKind("epsilon", "ε", "rad/s²", message("angular acceleration of a link"), "mu_a",
                  True, "link", template("angular acceleration {symbol} of {link} "
                                         "(counter-clockwise positive)"),
                  template("angular acceleration {symbol} of link {number} ({name}) "
                           "(counter-clockwise positive)"),
-                 message("angular acceleration ε of links")),
+                 message("angular acceleration ε of links"),
+                 template("angular acceleration {symbol} of {link}"),
+                 template("angular acceleration {symbol} of link {number} ({name})")),
     QuantityKind("s", "s", "m", message("travel of a prismatic pair"), "mu_l", True, "pair",
                  template("travel {symbol} of the slide {pair}"),
                  template("travel {symbol} of link {number} ({name}) along link "
@@ -786,17 +815,20 @@ def _point_words(point: str) -> Message | str:
 
 
 def question_words(name: str, numbers: Mapping[str, int] | None = None,
-                   points: Mapping[str, str] | None = None) -> Message:
+                   points: Mapping[str, str] | None = None, *, sense: bool = True) -> Message:
     """What a task asks for a quantity, in words and in a course's symbols: the kind's
     question (:attr:`QuantityKind.asked`) filled, its links named by their numbers where
     ``numbers`` has them (a slide's motion by its point's where ``points`` has it:
-    :func:`symbol`).
+    :func:`symbol`); with ``sense=False`` without the note of which sense is positive
+    (:attr:`QuantityKind.asked_plain`: a page that says it once above its questions).
 
     Examples
     --------
     >>> numbers = {"frame": 0, "AB": 1, "BC": 2, "slider": 3}
     >>> render(question_words("omega_BC", numbers))
     'angular velocity ω₂ of link 2 (BC) (counter-clockwise positive)'
+    >>> render(question_words("omega_BC", numbers, sense=False))
+    'angular velocity ω₂ of link 2 (BC)'
     >>> render(question_words("v_B@BC"))
     'speed of B of link BC, |v_B@BC|'
     """
@@ -809,11 +841,12 @@ def question_words(name: str, numbers: Mapping[str, int] | None = None,
         return kind.asked.replace(point=point, subject=point)
     shown = symbol(name, numbers, points) if numbers else kind.symbol
     if kind.subject == "link":
+        asked, numbered = ((kind.asked, kind.asked_numbered) if sense or kind.asked_plain is None
+                           else (kind.asked_plain, kind.asked_numbered_plain))
         if numbers and subject in numbers:
-            return kind.asked_numbered.replace(symbol=shown, number=numbers[subject],
-                                               name=_name_words(subject))
-        return kind.asked.replace(symbol=shown,
-                                  link=_name_words(subject) if numbers else subject)
+            return numbered.replace(symbol=shown, number=numbers[subject],
+                                    name=_name_words(subject))
+        return asked.replace(symbol=shown, link=_name_words(subject) if numbers else subject)
     link, _, along = subject.partition("/")
     if numbers and link in numbers and along in numbers:
         return kind.asked_numbered.replace(

@@ -22,6 +22,7 @@ TIERS: dict[str, str] = {
     "test_docs_examples.py": "docs", "test_docs_site.py": "docs", "test_docs_answers.py": "docs",
     "test_cli.py": "cli", "test_hostile_commands.py": "cli", "test_hostile_outputs.py": "cli",
     "test_forces_cli.py": "cli", "test_studio.py": "cli", "test_words.py": "cli",
+    "test_russian_runs.py": "cli",
 }
 TIER_NAMES = ("unit", "cli", "docs", "browser")
 

@@ -121,9 +121,8 @@ def test_a_drawn_plan_is_told_in_marked_sentences(environment, words, tmp_path):
         files[-1].write_text(json.dumps({"plan": plan, "points": points}), encoding="utf-8")
     printed = _run(environment, "grade", LEVER, *(arg for path in files
                                                    for arg in ("--drawing", path)))
-    # the line's name is the key's step sentence after its ": " (plan_points.line_name); the
-    # step's sentence is a message too, and its closing mark comes with the name
-    assert "⟦it lies on the line v_B₃B along the guide of pair 2–3⟧ through b but" in printed
+    # the line's name is a message of its own, kept by the key apart from its step's sentence
+    assert "⟦it lies on the line ⟦v_B₃B along the guide of pair 2–3⟧ through b but" in printed
     assert "⟦the drawing's scale is off:" in printed and "read 44 % high⟧" in printed
     shown = PLAN_LINE.sub(" ", printed)
     assert unmarked_words(shown, words, names=[str(path) for path in files]) == [], printed

@@ -261,6 +261,7 @@ def check_row(exercise, row: Row, tolerance: float) -> RowFindings:
     """Check one row against the link lengths and the exact assembly (tolerance in m)."""
     from ..errors import PlanmethodError
     from ..kinematics import solve
+    from ..vocabulary import branch_reason_words
 
     lengths = _lengths(exercise.mechanism, row)
     positions = []
@@ -269,7 +270,7 @@ def check_row(exercise, row: Row, tolerance: float) -> RowFindings:
     try:
         motion = solve(exercise.mechanism, row.angle, stage="position")
         branches = tuple(message("group {number}: {reason}", number=index + 1,
-                                 reason=branch.reason)
+                                 reason=branch_reason_words(branch.reason))
                          for index, branch in sorted(motion.branches.items()))
         here = motion.at(0)
         for point, xy in row.points.items():

@@ -31,8 +31,8 @@ from typing import Any
 from ..errors import PlanmethodError, SpecError
 from ..words.language import ENVIRONMENT, choose, problem
 
-__all__ = ["COURSE_KEY", "chosen_language", "course_language", "file_language", "run_language",
-           "text_language"]
+__all__ = ["COURSE_KEY", "chosen_language", "course_language", "file_language", "keys_language",
+           "run_language", "text_language"]
 
 #: the key of an exercise or template file that names its course's language
 COURSE_KEY = "course.language"
@@ -60,9 +60,14 @@ def text_language(text: str) -> Any:
 
 
 def file_language(path: str | Path | None) -> Any:
-    """The ``[course] language`` of an exercise or template file (``.toml``), or None: for
-    another file, or one that cannot be read (the command that reads it says why)."""
-    if path is None or Path(path).suffix.lower() != ".toml":
+    """The ``[course] language`` of an exercise or template file (``.toml``), or the one its
+    keys record (:func:`keys_language`: a ``.json`` key or bundle, or a variants folder), or
+    None: for another file, or one that cannot be read (the command that reads it says why)."""
+    if path is None:
+        return None
+    if Path(path).suffix.lower() == ".json" or Path(path).is_dir():
+        return keys_language(path)
+    if Path(path).suffix.lower() != ".toml":
         return None
     from ..spec import read_text
 
@@ -71,6 +76,26 @@ def file_language(path: str | Path | None) -> Any:
     except (PlanmethodError, OSError):
         return None
     return text_language(text)
+
+
+def keys_language(path: str | Path) -> Any:
+    """The ``[course] language`` a key, a bundle of keys (``keys.json``) or the folder
+    ``planmethod variants`` wrote records: that of the template its keys were drawn from (a
+    key keeps its exercise), or None — also for a file that is no key or cannot be read (the
+    command that reads it says why).
+
+    >>> keys_language("no such folder") is None
+    True
+    """
+    from ..grading.keys import load_keys
+
+    try:
+        keys = load_keys(path)
+    except (PlanmethodError, OSError, RecursionError, MemoryError):
+        return None
+    exercises = [key.get("exercise") for key in keys.values()]
+    return next((course_language(exercise) for exercise in exercises
+                 if isinstance(exercise, Mapping)), None)
 
 
 def run_language(option: str | None, file: str | Path | None = None, *,

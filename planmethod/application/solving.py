@@ -155,6 +155,7 @@ def report_text(analysis) -> str:
 
 def _structure_lines(analysis, numbers: Mapping[str, int]) -> list[str]:
     from ..structure import describe
+    from ..vocabulary import branch_reason_words
 
     lines = [render(message("Structural analysis"))]
     lines += ["  " + line for line in describe(analysis.structure, numbers).splitlines()]
@@ -162,7 +163,7 @@ def _structure_lines(analysis, numbers: Mapping[str, int]) -> list[str]:
         analysis.structure.groups[index]
         lines.append("  " + render(message("group {number} assembly: branch {sign:+d} "
                                            "({reason})", number=index + 1, sign=branch.sign,
-                                           reason=branch.reason)))
+                                           reason=branch_reason_words(branch.reason))))
     return lines
 
 

@@ -256,9 +256,10 @@ def _page_quantities(first: dict[str, Any], numbers: dict[str, int],
     what a negative value means and the words of its two senses."""
     from ..grading.answers import magnitude_note, sense_words
     from ..render.workbook import PageQuantity
-    from ..vocabulary import quantity
+    from ..vocabulary import quantity, unit_words
 
-    return [PageQuantity(name, quantity(name).symbol, _subscript(name, numbers), unit,
+    return [PageQuantity(name, quantity(name).symbol, _subscript(name, numbers),
+                         render(unit_words(unit)),
                          plans.get(name), magnitude_note(name, numbers), sense_words(name))
             for name, unit in first["quantities"]]
 
@@ -356,14 +357,15 @@ def turn_charts(frames: Sequence[dict[str, Any]], numbers: dict[str, int] | None
     the checks, and the balancing moment when forces are computed; each curve named as a
     course writes it (ω₃ with the links' ``numbers``, v_C). Each chart is (title, unit,
     {curve: values}, the check quantities it draws), its title in the language spoken."""
-    from ..vocabulary import symbol
+    from ..vocabulary import symbol, unit_words
 
     charts: dict[str, tuple[str, str, dict, list[str]]] = {}
     for index, (name, unit) in enumerate(frames[0]["quantities"]):
         kind = name.partition("_")[0]
         if kind not in _CHART_TITLES:
             continue
-        _, _, curves, names = charts.setdefault(kind, (render(_CHART_TITLES[kind]), unit,
+        _, _, curves, names = charts.setdefault(kind, (render(_CHART_TITLES[kind]),
+                                                       render(unit_words(unit)),
                                                        {}, []))
         curves[symbol(name, numbers)] = [frame["readings"][index][0] for frame in frames]
         names.append(name)

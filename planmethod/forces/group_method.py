@@ -40,7 +40,7 @@ from ..kinematics.state import LinkState
 from ..model import FRAME, Mechanism
 from ..structure import AssurGroup, Joint, Structure
 from ..vectors import cross, norm, perp, unit_angle
-from ..vocabulary import EdgeKind, GroupKind, PairKind
+from ..vocabulary import EdgeKind, GroupKind, PairKind, group_kind_words
 from ..words import Message, message
 from .applied import AppliedLoads, Wrench
 from .groups import reactions_of
@@ -161,7 +161,7 @@ class _Solver:
                                          reaction.target if reaction.target in group.links
                                          else reaction.source))
         steps = (message("{kind} of links {links}: its 3·{count} equilibrium equations solved "
-                         "at once (the group's linear system)", kind=str(group.kind),
+                         "at once (the group's linear system)", kind=group_kind_words(group.kind),
                          links=list(group.links), count=len(group.links)),)
         return GroupForces(group.name, group.kind, group.links, steps, tuple(edges),
                            tuple(keys))

@@ -40,7 +40,7 @@ from typing import Any
 from ..errors import SpecError
 from ..io import read_text_bounded
 from ..spec import parse_json
-from ..vocabulary import quantity, question_text, symbol
+from ..vocabulary import quantity, question_text, symbol, unit_words
 from ..words import Message, message, plural, render, template
 from .reading import read_number
 from .results import GradedQuestion, KeyMistake, KeyQuestion, StudentGrade
@@ -421,7 +421,7 @@ def sense_words(name: str) -> tuple[Message, Message]:
 
 def _amount(number: float, unit: str) -> Message:
     """A number with its unit (the unit left out where there is none)."""
-    return AMOUNT.replace(number=number, unit=unit) if unit else AMOUNT_BARE.replace(
+    return AMOUNT.replace(number=number, unit=unit_words(unit)) if unit else AMOUNT_BARE.replace(
         number=number)
 
 

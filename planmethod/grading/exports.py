@@ -44,7 +44,7 @@ from typing import Any
 from xml.sax.saxutils import escape
 
 from ..io import csv_text, json_text
-from ..vocabulary import shown_title, xml_characters
+from ..vocabulary import shown_title, unit_words, xml_characters
 from ..words import Message, message, render, template
 from ..words.language import catalogue, current
 from .answers import FEEDBACK_LEVELS, feedback_text
@@ -632,7 +632,7 @@ def _question_html(first: Mapping[str, Any], plans: list[str],
             f'<pl-number-input answers-name="{ident}" comparison="relabs" '
             f'rtol="{{{{params.rtol.{ident}}}}}" atol="{{{{params.atol.{ident}}}}}" '
             f'label="{escape(question["text"], _QUOTE)} =" '
-            f'suffix="{escape(question["unit"], _QUOTE)}">'
+            f'suffix="{escape(render(unit_words(question["unit"])), _QUOTE)}">'
             "</pl-number-input>")
     for name in plans:
         html += _drawing_html(first, name, labels[name], size_px)
@@ -740,7 +740,7 @@ def cloze_field(question: KeyQuestion | Mapping[str, Any]) -> str:
     tolerance = question.tolerance
     right = _cloze_escape(render(
         message("Right: within the drawing's tolerance ± {tolerance:.3g} {unit}.",
-                tolerance=tolerance, unit=question.unit) if question.unit else
+                tolerance=tolerance, unit=unit_words(question.unit)) if question.unit else
         message("Right: within the drawing's tolerance ± {tolerance:.3g}.",
                 tolerance=tolerance)))
     parts = [f"={_cloze_number(question.value)}:{_cloze_number(tolerance)}#{right}"]
@@ -804,7 +804,7 @@ def _cloze_question(key: Mapping[str, Any], title: str, student: str,
     # words: vocabulary (a question's text and a unit alone: its text until it is a message)
     rows = "".join(
         f"<tr><td>{_cloze_text(question['text'])}</td><td>{cloze_field(question)}</td>"
-        f"<td>{_cloze_text(question.get('unit', ''))}</td></tr>"
+        f"<td>{_cloze_text(render(unit_words(question.get('unit', ''))))}</td></tr>"
         for question in key["questions"])
     variant = _cloze_text(render(message("— variant {student}", student=student)))
     give = _cloze_text(render(message("Give in SI units (counter-clockwise positive):")))

@@ -52,7 +52,7 @@ from typing import Any
 from ..errors import PlanmethodError, SpecError, value_text
 from ..io import read_text_bounded
 from ..numbering import course_numbers
-from ..render.plan_words import step_dict
+from ..render.plan_words import line_text, step_dict
 from ..spec import checked_table, parse_json
 from ..vocabulary import QUANTITY_KINDS, symbol
 from ..vocabulary import question_text as course_question
@@ -324,7 +324,7 @@ def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict,
                  "points_mm": {k: list(v) for k, v in plan.points_mm.items()},
                  "tolerance_mm": {k: max(radii.get(k, 0.0), floor_mm if k != plan.pole else 0.0)
                                   for k in plan.points_mm},
-                 "steps": [step_dict(step, plan) for step in plan.steps],
+                 "steps": [_key_step(step, plan) for step in plan.steps],
                  "mistakes": {}}
         if name == "velocity":
             entry["mistakes"]["sense"] = {k: [-v[0], -v[1]] for k, v in plan.points_mm.items()}
@@ -338,6 +338,16 @@ def _plan_table(found, scales, settings: GradingSettings, wrong_plans: dict,
             drawn_labels(entry))
         table[name] = entry
     return table
+
+
+def _key_step(step, plan) -> dict[str, Any]:
+    """A step of a key's plan: as the JSON report writes it, and a line step with its line's
+    name (``line``: what a drawn point's sentence names the line by)."""
+    entry = step_dict(step, plan)
+    line = line_text(step, plan)
+    if line is not None:
+        entry["line"] = line
+    return entry
 
 
 def _propagation(variant, exercise, settings: GradingSettings, quantities, motion):

@@ -237,15 +237,17 @@ class ConstructionLine:
 
 
 def line_name(step: Mapping[str, Any]) -> str:
-    """The words a line step's sentence names its line with (``through b: v_CB ⟂ CB`` →
-    ``v_CB ⟂ CB``): a key keeps a step's sentence, in which the line's name follows the
-    point it is drawn through.
+    """The name of a key's line step (``v_CB ⟂ CB``): its ``line``; a key written before
+    keys kept it names it in its sentence, after the point it is drawn through.
 
+    >>> line_name({"text": "through b: v_CB ⟂ CB", "start": "b", "line": "v_CB ⟂ CB"})
+    'v_CB ⟂ CB'
     >>> line_name({"text": "through b: v_CB ⟂ CB", "start": "b"})
     'v_CB ⟂ CB'
     """
-    # words: plans (the line's name is a part of the step's sentence until a step keeps it
-    # apart)
+    if "line" in step:
+        return str(step["line"])
+    # words: an older key's sentence (every line step's sentence is "through {start}: {line}")
     return str(step.get("text", "")).partition(": ")[2]
 
 
@@ -256,7 +258,7 @@ def point_lines(entry: Mapping[str, Any]) -> dict[str, tuple[ConstructionLine, .
     line v_B₃B along the guide).
 
     >>> entry = {"steps": [{"number": 1, "action": "line", "start": "b", "direction_deg": 90.0,
-    ...                     "text": "through b: v_CB ⟂ CB"},
+    ...                     "text": "through b: v_CB ⟂ CB", "line": "v_CB ⟂ CB"},
     ...                    {"number": 2, "action": "intersect", "end": "c", "lines": [1, 5]}]}
     >>> point_lines(entry)["c"][0].name
     'v_CB ⟂ CB'

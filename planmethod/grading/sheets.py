@@ -32,16 +32,22 @@ from ..render.canvas import Canvas
 from ..render.plan_words import label_text
 from ..render.style import LABEL_FAMILY
 from ..render.svg import position_drawing
-from ..vocabulary import PLAN_SCALES, numbered, point_text, scale_text, shown_title, symbol
+from ..vocabulary import (
+    PLAN_SCALES,
+    numbered,
+    point_text,
+    question_words,
+    scale_words,
+    shown_title,
+    symbol,
+    unit_words,
+)
 from ..words import Message, message, render, template
 from .keys import key_numbers
 from .templates import drawn_lengths
 
 __all__ = ["blank_plan_sheet", "given_data", "paper_plan_sheet", "paper_task_sheet",
            "plan_sheet_for_key", "task_figure_svg", "task_sheet_svg", "task_text"]
-
-#: the words a question's text ends with that the answer table's heading says for every row
-_SENSE_NOTE = " (counter-clockwise positive)"  # words: as a key's English text ends
 
 
 def _lines(key: Mapping[str, Any]) -> list[Message | str]:
@@ -56,8 +62,7 @@ def _lines(key: Mapping[str, Any]) -> list[Message | str]:
                 student=key.get("student")), "", key.get("task", "").strip(), ""]
     if exercise is not None:
         lines.append(message("Given: {data}.", data=given_data(exercise, numbers)))
-    # words: vocabulary (a scale's text is English until it is a message)
-    scale_texts = [scale_text(name, scales.get(name, 0)) for name in ("mu_l", "mu_v", "mu_a")]
+    scale_texts = [scale_words(name, scales.get(name, 0)) for name in ("mu_l", "mu_v", "mu_a")]
     lines.append(message("Crank angle {phi} = {angle:g}°; scales {scales}.",
                          phi=numbered("φ", crank), angle=key.get("angle", 0),
                          scales=scale_texts))
@@ -77,10 +82,12 @@ def _row(question: Mapping[str, Any], numbers: Mapping[str, int]) -> Message:
     unit = question.get("unit", "")
     shown = question.get("symbol") or symbol(question["id"], numbers)
     # the heading says counter-clockwise is positive: the row need not say it again
-    # words: vocabulary (the question's text is English until the key keeps its fields)
-    text = question["text"].replace(_SENSE_NOTE, "")
+    try:
+        text: Message | str = question_words(question["id"], numbers, sense=False)
+    except KeyError:          # a quantity this version does not know: the key's own words
+        text = question["text"]
     return message("  {symbol:<16} {question}   [{column}]",
-                   symbol=message("{symbol}, {unit}", symbol=shown, unit=unit) if unit
+                   symbol=message("{symbol}, {unit}", symbol=shown, unit=unit_words(unit)) if unit
                    else shown, question=text, column=question["id"])
 
 
@@ -167,8 +174,15 @@ def given_data(exercise, numbers: Mapping[str, int]) -> list[Message]:
     return given
 
 
-def _words(name: str) -> str:
-    """A link's name as a sheet prints it: ``rocker_EF`` → ``rocker EF``."""
+def _words(name: str) -> Message | str:
+    """A link's name as a sheet prints it: ``rocker_EF`` → ``rocker EF``; the frame, whose
+    name is the file's keyword, in the course's word for it.
+
+    >>> _words("rocker_EF"), render(_words("frame"), "ru")
+    ('rocker EF', 'стойка')
+    """
+    if name == FRAME:
+        return message("frame", context="link")
     return name.replace("_", " ")
 
 
@@ -231,9 +245,8 @@ def blank_plan_sheet(plan: str, *, pole: str, scale: float, unit: str, size_mm: 
     size = float(size_mm)
     centre = size / 2
     title = shown_title(title)
-    # words: vocabulary (a scale's text is English until it is a message)
     header = render(_HEADERS[plan].replace(title=title, student=student, given=given, pole=pole,
-                                           scale=scale_text(PLAN_SCALES[plan], scale)))
+                                           scale=scale_words(PLAN_SCALES[plan], scale)))
     canvas = Canvas()
     grid = canvas.grid_pattern("grid", 10.0, color="#c9cede", width=0.2)
     canvas.rectangle((0.0, 12.0), (size, size), fill=grid, stroke="#99a", width=0.3,

@@ -755,21 +755,8 @@ precision of 100000000; at most 15
         problem = _format_problem(match)
         if problem:
             raise SpecError(problem, key="description")
-        name, spec = match.group(1), match.group(2) or ""
-        for source in (values, data, drawing or {}):
-            try:
-                value = _lookup(source, name)
-                break
-            except KeyError:
-                continue
-        else:
-            return match.group(0)
-        if isinstance(value, Mapping | list):
-            return match.group(0)
-        try:   # a number as the course writes it (a decimal comma in Russian)
-            filled = (number_text(value, spec or "g") if _number(value)
-                      else format(value, spec) if spec else str(value))
-        except (ValueError, TypeError):
+        filled = _filled(match, (values, data, drawing or {}))
+        if filled is None:
             return match.group(0)
         written[0] += len(filled) - len(match.group(0))
         if len(text) + written[0] > MAX_TASK_CHARACTERS:
@@ -779,6 +766,28 @@ precision of 100000000; at most 15
     if len(text) > MAX_TASK_CHARACTERS:
         raise SpecError(_too_long_task(len(text)), key="description")
     return _PLACEHOLDER.sub(fill, text)
+
+
+def _filled(placeholder: re.Match, sources: tuple[Mapping[str, Any], ...]) -> str | None:
+    """A placeholder's value from the first of ``sources`` that has its name, formatted by
+    its specification, a number as the course writes it (a decimal comma in Russian); None
+    where no source has it, it is a table, or its specification does not fit it."""
+    name, spec = placeholder.group(1), placeholder.group(2) or ""
+    for source in sources:
+        try:
+            value = _lookup(source, name)
+            break
+        except KeyError:
+            continue
+    else:
+        return None
+    if isinstance(value, Mapping | list):
+        return None
+    try:
+        return (number_text(value, spec or "g") if _number(value)
+                else format(value, spec) if spec else str(value))
+    except (ValueError, TypeError):
+        return None
 
 
 #: a placeholder's format asks for too much: its width, its precision

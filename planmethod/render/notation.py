@@ -63,6 +63,7 @@ from ..numbering import course_numbers
 from ..vocabulary import (
     GroupKind,
     column_text,
+    group_kind_words,
     link_text,
     links_text,
     pair_number,
@@ -172,7 +173,8 @@ class ForceNotation:
         drive with the frame, solved last), ``RRR of links 2, 3 (BC, CD)``."""
         if group.kind == GroupKind.DRIVE:
             return link_text(group.links[0], self.numbers, "drive link")  # words: vocabulary
-        return message("{kind} of {links}", kind=str(group.kind), links=self.links(group.links))
+        return message("{kind} of {links}", kind=group_kind_words(group.kind),
+                       links=self.links(group.links))
 
     def _pair(self, key: str, on: str | None) -> str | None:
         """The subscript ``ij`` of the pair ``key``: force of link i on link j, j = ``on``."""

@@ -76,8 +76,9 @@ from ..words import Message, message, render
 if TYPE_CHECKING:
     from ..plans import Plan, Scales
 
-__all__ = ["STEP_MESSAGES", "flag_message", "label_text", "plan_dict", "plan_title",
-           "scale_lines", "step_dict", "step_message", "step_text", "vector_text"]
+__all__ = ["LINE_MESSAGES", "STEP_MESSAGES", "flag_message", "label_text", "line_text",
+           "plan_dict", "plan_title", "scale_lines", "step_dict", "step_message", "step_text",
+           "vector_text"]
 
 Numbers = Mapping[str, int]
 
@@ -227,39 +228,49 @@ def _frame_image(known: FrameImage, at: _Fields) -> Message:
 
 
 def _across(along: Across, at: _Fields) -> Message:
-    return message("through {start}: {vector} ⟂ {first}{second}", start=at.start,
-                   vector=at.vector, first=at.point(along.first),
+    return message("{vector} ⟂ {first}{second}", vector=at.vector, first=at.point(along.first),
                    second=at.point(along.second))
 
 
 def _guide(along: Guide, at: _Fields) -> Message:
     first, second = _number(along.link, at.numbers), _number(along.along, at.numbers)
     if at.kind == PlanKind.VELOCITY:
-        return message("through {start}: {vector} along the guide of pair {first}–{second}",
-                       start=at.start, vector=at.vector, first=first, second=second)
-    return message("through {start}: {vector} (relative) along the guide of pair "
-                   "{first}–{second}", start=at.start, vector=at.vector, first=first,
-                   second=second)
+        return message("{vector} along the guide of pair {first}–{second}", vector=at.vector,
+                       first=first, second=second)
+    return message("{vector} (relative) along the guide of pair {first}–{second}",
+                   vector=at.vector, first=first, second=second)
 
 
 def _special_side(along: SpecialSide, at: _Fields) -> Message:
     outer, inner = at.point(along.outer), at.point(along.inner)
     if at.kind == PlanKind.VELOCITY:
-        return message("through {start}: v_S* − v_{outer} ⟂ {outer}{inner} (S* lies on the "
-                       "line {outer}{inner})", start=at.start, outer=outer, inner=inner)
-    return message("through {start}: aᵗ_{inner}{outer} + aᵗ_S*{inner} ⟂ {outer}{inner}",
-                   start=at.start, outer=outer, inner=inner)
+        return message("v_S* − v_{outer} ⟂ {outer}{inner} (S* lies on the line {outer}{inner})",
+                       outer=outer, inner=inner)
+    return message("aᵗ_{inner}{outer} + aᵗ_S*{inner} ⟂ {outer}{inner}", outer=outer,
+                   inner=inner)
 
 
 def _special_guide(along: SpecialGuide, at: _Fields) -> Message:
     first, second = _number(along.link, at.numbers), _number(along.along, at.numbers)
     if at.kind == PlanKind.VELOCITY:
-        return message("through {start}: {vector} along the guide of pair {first}–{second} "
-                       "(S* lies on the normal to the guide through {pin})", start=at.start,
-                       vector=at.vector, first=first, second=second, pin=at.point(along.pin))
-    return message("through {start}: aʳ + aᵗ_S*{pin} along the guide of pair "
-                   "{first}–{second}", start=at.start, pin=at.point(along.pin), first=first,
-                   second=second)
+        return message("{vector} along the guide of pair {first}–{second} (S* lies on the "
+                       "normal to the guide through {pin})", vector=at.vector, first=first,
+                       second=second, pin=at.point(along.pin))
+    return message("aʳ + aᵗ_S*{pin} along the guide of pair {first}–{second}",
+                   pin=at.point(along.pin), first=first, second=second)
+
+
+#: the name of a construction line — what it is drawn as, a drawn point's sentence names it
+#: by it —, by what gives the line its direction
+LINE_MESSAGES: dict[type, Callable[[Any, _Fields], Message]] = {
+    Across: _across, Guide: _guide, SpecialSide: _special_side, SpecialGuide: _special_guide,
+}
+
+
+def _through(along: Across | Guide | SpecialSide | SpecialGuide, at: _Fields) -> Message:
+    """A line step's sentence: the point it is drawn through, and the line's name."""
+    return message("through {start}: {line}", start=at.start,
+                   line=LINE_MESSAGES[type(along)](along, at))
 
 
 def _velocity_equation(solves: VelocityEquation, at: _Fields) -> Message:
@@ -298,7 +309,7 @@ REASON_MESSAGES: dict[type, Callable[[Any, _Fields], Message]] = {
     CrankTangential: _crank_tangential, NormalComponent: _normal_component,
     NormalOfSegment: _normal_of_segment, CoriolisComponent: _coriolis,
     FixedPivot: _fixed_pivot, FrameImage: _frame_image,
-    Across: _across, Guide: _guide, SpecialSide: _special_side, SpecialGuide: _special_guide,
+    Across: _through, Guide: _through, SpecialSide: _through, SpecialGuide: _through,
     VelocityEquation: _velocity_equation, BothEquations: _both_equations,
     SpecialPoint: _special_point, SpecialAcceleration: _special_acceleration,
     BothSides: _both_sides,
@@ -359,6 +370,23 @@ def step_message(step: Step, kind: str, numbers: Numbers | None = None,
 def step_text(step: Step, plan: Plan) -> str:
     """The sentence of ``step`` of ``plan``, as text in the language spoken now."""
     return render(step_message(step, plan.kind, plan.numbers, plan.slides))
+
+
+def line_text(step: Step, plan: Plan) -> str | None:
+    """The name of the line a line step of ``plan`` draws (``v_CB ⟂ CB``: its sentence
+    without the point it is drawn through), as text in the language spoken now; None for
+    another step.
+
+    >>> from planmethod.plans import draw_plans
+    >>> from planmethod.spec import load_exercise
+    >>> plan = draw_plans(load_exercise("exercises/compressor_slider_crank.toml")).velocity
+    >>> [(step_text(s, plan), line_text(s, plan)) for s in plan.steps if line_text(s, plan)][0]
+    ('through b: v_CB ⟂ CB', 'v_CB ⟂ CB')
+    """
+    along = getattr(step, "along", None)
+    if type(along) not in LINE_MESSAGES:
+        return None
+    return render(LINE_MESSAGES[type(along)](along, _Fields(step, plan.kind, plan.numbers)))
 
 
 def step_dict(step: Step, plan: Plan) -> dict:

@@ -31,7 +31,7 @@ from ..forces.names import BALANCING_MOMENT, INERTIA_FORCE, INERTIA_MOMENT
 from ..numbering import course_numbers
 from ..report import Analysis, published_comparison
 from ..vectors import norm
-from ..vocabulary import numbered, point_text, slide_points, subscript, symbol
+from ..vocabulary import numbered, point_text, slide_points, subscript, symbol, unit_words
 from ..words import Message, message, number_text, plural, render
 from .notation import ForceNotation
 
@@ -80,7 +80,8 @@ def check_lines(analysis: Analysis) -> list[str]:
                      f"{_cell(check.plan, 12 + extra[1], '.6g')}  "
                      f"{_cell(check.analytic, 12 + extra[2], '.6g')}  "
                      f"{_cell(check.abs_error, 10 + extra[3], '.3g')}   "
-                     f"{_cell(check.rel_error, 10 + extra[4], '.2e')}  {render(check.unit)}")
+                     f"{_cell(check.rel_error, 10 + extra[4], '.2e')}  "
+                     f"{render(unit_words(check.unit))}")
     return lines
 
 

@@ -42,9 +42,8 @@ def render(text: Message | str, language: str | None = None) -> str:
     if not isinstance(text, Message):
         return text
     language = language or current()
-    translations = catalogue(language)
+    translations, formatter = _speaker(language)
     template = _translated(text, translations, language)
-    formatter = _Formatter(language, _decimal_sign(language))
     values = text.values
     try:
         return formatter.vformat(template, (), values)
@@ -52,6 +51,21 @@ def render(text: Message | str, language: str | None = None) -> str:
         if template is text.template:
             raise
         return formatter.vformat(_english(text), (), values)
+
+
+#: each language's catalogue with the formatter that writes its numbers (its decimal sign
+#: asked of the catalogue once, not once a message): made again when the catalogue is
+_SPEAKERS: dict[str, tuple[Any, _Formatter]] = {}
+
+
+def _speaker(language: str) -> tuple[Any, _Formatter]:
+    """``language``'s catalogue and the formatter of its messages."""
+    translations = catalogue(language)
+    found = _SPEAKERS.get(language)
+    if found is None or found[0] is not translations:
+        found = _SPEAKERS[language] = (translations,
+                                       _Formatter(language, _decimal_sign(language)))
+    return found
 
 
 def _english(text: Message) -> str:
@@ -106,7 +120,7 @@ def formatted_number(value: Any, specification: str) -> str:
 def number_text(value: float, specification: str = "g", language: str | None = None) -> str:
     """A number as the language writes it (``number_text(0.25, "g", "ru")`` → ``'0,25'``)."""
     language = language or current()
-    return decimal_number(formatted_number(value, specification), _decimal_sign(language))
+    return decimal_number(formatted_number(value, specification), _speaker(language)[1].sign)
 
 
 class _Formatter(string.Formatter):
