@@ -1,4 +1,4 @@
-"""The one SVG canvas every figure of planmethod is drawn on (svgwrite).
+"""The one SVG canvas every figure of planmethod is drawn on (written as svgwrite would).
 
 A :class:`Canvas` collects primitives in page coordinates (px, y down) in fixed layers — lines,
 polylines, circles, arrows, fixed text, rectangles — remembers what labels must not cover
