@@ -564,3 +564,29 @@ def test_a_keys_blank_sheet_whole():
     assert header == ("W — acceleration plan — s9 — μa = " + f"{entry['scale']:g}" + " (m/s²)/mm.  "
                       "Draw the plan from the pole π; label every point (b, c, …) next to it. "
                       "(grid: 10 mm)")
+
+
+@pytest.mark.parametrize("unit, attributes, title", [
+    ("", {}, "a plan, φ₁ = 45°"),
+    ("mm", {"data-kind": "plan", "aria-label": 'a "plan" & <more>\n\tx'}, "T & <x> \"q\"\n"),
+    ("", {"data-x": "a\x01b"}, "bad \x02 character"),
+])
+def test_the_svg_shell_is_what_svgwrite_and_elementtree_write(unit, attributes, title):
+    """The document's shell is written by hand; svgwrite with ElementTree writes the same."""
+    import svgwrite
+
+    from planmethod.render.canvas import _shell
+    from planmethod.render.style import num
+    from planmethod.vocabulary import xml_characters
+
+    width, height, x0, y0 = 1057.567, 623.661, -524.4, -118.04
+    drawing = svgwrite.Drawing(size=(num(width) + unit, num(height) + unit), profile="full",
+                               debug=False)
+    drawing["viewBox"] = f"{num(x0)} {num(y0)} {num(width)} {num(height)}"
+    for key, value in attributes.items():
+        drawing[key] = xml_characters(value)
+    drawing.set_desc(title=xml_characters(title))
+    drawing.add(drawing.rect(insert=(num(x0), num(y0)), size=(num(width), num(height)),
+                             fill="#ffffff", class_="background"))
+    expected = ET.tostring(drawing.get_xml(), encoding="unicode")
+    assert _shell(width, height, unit, (x0, y0), attributes, title) == expected

@@ -85,6 +85,51 @@ def test_a_template_never_takes_positional_fields():
         render(message("{0} and {1}"), "en")
 
 
+@pytest.mark.parametrize("template, values", [
+    ("{a:.3g} m/s, {b!r} {c:>6}", {"a": 0.70093, "b": "x", "c": -0.0}),
+    ("{a[0]} {b.real}", {"a": [1.25], "b": 2.5}),         # not plain names: string.Formatter
+    ("{a:{width}}", {"a": 1.5, "width": 6}),              # a nested field: string.Formatter
+    ("{{literal}} {a}", {"a": message("x")}),
+])
+def test_a_template_is_filled_as_string_formatter_fills_it(template, values):
+    """The quick fill of plain-named fields writes what ``string.Formatter`` writes."""
+    from planmethod.words.render import _filled, _Formatter
+
+    for language, sign in (("en", "."), ("ru", ",")):
+        formatter = _Formatter(language, sign)
+        assert _filled(formatter, template, values) == formatter.vformat(template, (), values)
+
+
+def test_every_catalogue_template_fills_the_quick_way_or_falls_back():
+    """Every template of the package, in English and in Russian, is filled the quick way (or
+    said to need string.Formatter), and its fields filled alike either way."""
+    from planmethod.words.language import catalogue
+    from planmethod.words.render import _filled, _Formatter, _simple_fields
+
+    russian = catalogue("ru")
+    for found in package_templates():
+        for template in found.forms:
+            for value in (3, -0.25, "x"):
+                fields = {name: value for name in found.names()}
+                for text, sign in ((template, "."), (russian.gettext(template), ",")):
+                    formatter = _Formatter("ru", sign)
+                    if _simple_fields(text) is None or not set(fields) >= _names(text):
+                        continue
+                    try:
+                        expected = formatter.vformat(text, (), fields)
+                    except ValueError:        # a number's format given text: fails alike
+                        with pytest.raises(ValueError):
+                            _filled(formatter, text, fields)
+                        continue
+                    assert _filled(formatter, text, fields) == expected
+
+
+def _names(template: str) -> set[str]:
+    import string
+
+    return {name for _, name, _, _ in string.Formatter().parse(template) if name}
+
+
 def _course_catalogue(folder: Path, language: str, entries: dict[str, str]) -> None:
     """A course's catalogue, as docs/languages.md makes one: started from the package's
     template with the catalogue command, a few messages filled in, compiled."""

@@ -1,4 +1,4 @@
-"""The one SVG canvas every figure of planmethod is drawn on (svgwrite).
+"""The one SVG canvas every figure of planmethod is drawn on (written as svgwrite would).
 
 A :class:`Canvas` collects primitives in page coordinates (px, y down) in fixed layers — lines,
 polylines, circles, arrows, fixed text, rectangles — remembers what labels must not cover
@@ -574,29 +574,16 @@ class Canvas:
         ``attributes`` are added to the root element (e.g. ``data-…`` markers a reader looks
         for).
         """
-        from xml.etree import ElementTree
-
-        import svgwrite
-
         if view is None:
             x0, y0, x1, y1 = self.extent
             x0, y0, x1, y1 = x0 - MARGIN, y0 - MARGIN, x1 + MARGIN, y1 + MARGIN
             width, height = x1 - x0, y1 - y0
         else:
             x0, y0, width, height = view
-        drawing = svgwrite.Drawing(size=(num(width) + unit, num(height) + unit),
-                                   profile="full", debug=False)
-        drawing["viewBox"] = f"{num(x0)} {num(y0)} {num(width)} {num(height)}"
-        for key, value in (attributes or {}).items():
-            drawing[key] = xml_characters(value)
-        drawing.set_desc(title=xml_characters(shown_text(title)))
-        drawing.add(drawing.rect(insert=(num(x0), num(y0)), size=(num(width), num(height)),
-                                 fill="#ffffff", class_="background"))
-        # the document's shell (its root, title, definitions, background) is svgwrite's;
-        # the drawn elements are written into it as ElementTree would write them from
-        # svgwrite's own elements (attributes sorted, svgwrite's defaults first), at a
-        # fraction of the time
-        shell = ElementTree.tostring(drawing.get_xml(), encoding="unicode")
+        # the document's shell (its root, title, definitions, background) and the drawn
+        # elements are written as ElementTree writes svgwrite's elements of them (attributes
+        # sorted, svgwrite's defaults first; :func:`_shell`), at a fraction of the time
+        shell = _shell(width, height, unit, (x0, y0), attributes or {}, shown_text(title))
         if self.definitions:
             definitions = ["<defs>"]
             for item in self.definitions:
@@ -620,6 +607,35 @@ class Canvas:
         return SvgFigure(text, float(num(width)), float(num(height)), self.labels,
                          tuple(self.arrow_steps), (float(x0), float(y0), float(width),
                                                    float(height)), elements)
+
+
+#: the root element's attributes svgwrite writes for a full-profile drawing
+_SVG_ROOT = {"baseProfile": "full", "version": "1.1", "xmlns": "http://www.w3.org/2000/svg",
+             "xmlns:ev": "http://www.w3.org/2001/xml-events",
+             "xmlns:xlink": "http://www.w3.org/1999/xlink"}
+
+
+def _shell(width: float, height: float, unit: str, corner: tuple[float, float],
+           attributes: Mapping[str, str], title: str) -> str:
+    """An SVG document with nothing drawn, as ElementTree writes svgwrite's full-profile
+    ``Drawing`` of that size (``unit`` appended), its viewBox from ``corner``, the root's
+    extra ``attributes``, the ``title`` and a white background (the test holds it to
+    svgwrite's).
+
+    >>> _shell(10, 5, "", (0, -1), {"data-kind": "plan"}, "a & b")[:62]
+    '<svg baseProfile="full" data-kind="plan" height="5" version="1'
+    """
+    x, y = num(corner[0]), num(corner[1])
+    root = {**_SVG_ROOT, "width": num(width) + unit, "height": num(height) + unit,
+            "viewBox": f"{x} {y} {num(width)} {num(height)}",
+            **{key: xml_characters(value) for key, value in attributes.items()}}
+    head: list[str] = []
+    _write(("svg", root, []), head)
+    background: list[str] = []
+    _write(("rect", {"x": x, "y": y, "width": num(width), "height": num(height),
+                     "fill": "#ffffff", "class": "background"}, []), background)
+    return (head[0][:-len(" />")] + f"><title>{_escape_text(title)}</title><defs />"
+            + background[0] + "</svg>")
 
 
 #: how far (px) beyond a clip box an element may reach and still be written: a stroke's width
@@ -712,20 +728,31 @@ def _write(item, out: list[str]) -> None:
     '<text class="a&amp;b" x="1">p&lt;<tspan dy="2">1</tspan></text>'
     """
     tag, attrs, children = item
-    attrs = {**_SVGWRITE_DEFAULTS.get(tag, {}), **attrs}
-    if tag in ("polygon", "polyline"):
-        attrs["points"] = " ".join("%s,%s" % point for point in attrs["points"])  # noqa: UP031
+    defaults = _SVGWRITE_DEFAULTS.get(tag)
+    if defaults is not None:
+        attrs = {**defaults, **attrs}
+    if tag in _POINTS_TAGS:
+        attrs = {**attrs, "points": " ".join(["%s,%s" % point  # noqa: UP031
+                                              for point in attrs["points"]])}
     keys, values = [], []
-    for key, value in sorted(attrs.items()):
-        if value is not None and (value := str(value)):
+    for key in sorted(attrs):
+        value = attrs[key]
+        if value is None:
+            continue
+        if value.__class__ is not str:
+            value = str(value)
+        if value:
             keys.append(key)
             values.append(value)
     # one search over the values joined (most are numbers, with nothing to escape)
     if _ATTRIBUTE_SPECIAL.search("".join(values)) is not None:
         values = [_escape_attribute(value) for value in values]
     head = "".join([f' {key}="{value}"' for key, value in zip(keys, values, strict=True)])
-    text = ("".join(child for child in children if isinstance(child, str))
-            if tag in ("text", "tspan", "style") else "")
+    if not children:
+        out.append(f"<{tag}{head} />")
+        return
+    text = ("".join([child for child in children if isinstance(child, str)])
+            if tag in _TEXT_TAGS else "")
     elements = [child for child in children if not isinstance(child, str)]
     if not text and not elements:
         out.append(f"<{tag}{head} />")
@@ -734,6 +761,11 @@ def _write(item, out: list[str]) -> None:
     for child in elements:
         _write(child, out)
     out.append(f"</{tag}>")
+
+
+#: the tags whose ``points`` are a list of pairs, and those whose strings are their text
+_POINTS_TAGS = frozenset(("polygon", "polyline"))
+_TEXT_TAGS = frozenset(("text", "tspan", "style"))
 
 
 #: subscript digits inside a subscript are set as plain digits (the run is set small)

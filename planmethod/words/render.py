@@ -22,6 +22,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import numbers
 import string
 from collections.abc import Mapping, Sequence
@@ -46,11 +47,49 @@ def render(text: Message | str, language: str | None = None) -> str:
     template = _translated(text, translations, language)
     values = text.values
     try:
-        return formatter.vformat(template, (), values)
+        return _filled(formatter, template, values)
     except (KeyError, IndexError, ValueError):
         if template is text.template:
             raise
-        return formatter.vformat(_english(text), (), values)
+        return _filled(formatter, _english(text), values)
+
+
+@functools.lru_cache(maxsize=4096)
+def _simple_fields(template: str) -> tuple[tuple[str, str | None, str, str | None], ...] | None:
+    """A template as :meth:`string.Formatter.parse` splits it, if every field is a plain
+    name with a literal format specification (what :func:`_filled` fills quickly); None
+    otherwise (an attribute, an index, a nested field, a template that does not parse).
+
+    >>> _simple_fields("{a:.3g} m/s, {b}")
+    (('', 'a', '.3g', None), (' m/s, ', 'b', '', None))
+    >>> _simple_fields("{a[0]}") is None, _simple_fields("{") is None
+    (True, True)
+    """
+    try:
+        parts = tuple(_PARSER.parse(template))
+    except ValueError:
+        return None
+    for _, name, specification, _ in parts:
+        if name is not None and (not name.isidentifier() or "{" in specification):
+            return None
+    return parts
+
+
+def _filled(formatter: _Formatter, template: str, values: Mapping[str, Any]) -> str:
+    """``formatter.vformat(template, (), values)``, the same text, without
+    :class:`string.Formatter`'s generic walk where every field is a plain name with a literal
+    format specification (the templates of the catalogues: rendered for every figure)."""
+    parts = _simple_fields(template)
+    if parts is None:
+        return formatter.vformat(template, (), values)
+    out = []
+    for literal, name, specification, conversion in parts:
+        if literal:
+            out.append(literal)
+        if name is not None:
+            value = formatter.convert_field(values[name], conversion)
+            out.append(formatter.format_field(value, specification))
+    return "".join(out)
 
 
 #: each language's catalogue with the formatter that writes its numbers (its decimal sign
@@ -144,3 +183,7 @@ class _Formatter(string.Formatter):
         if isinstance(value, numbers.Number) and not isinstance(value, bool):
             return decimal_number(formatted_number(value, format_spec), self.sign)
         return format(value, format_spec)
+
+
+#: splits templates into literal text and fields (:func:`_simple_fields`)
+_PARSER = string.Formatter()
