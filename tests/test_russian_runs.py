@@ -51,7 +51,7 @@ NOT_WORDS = re.compile(r"(?:/[^\s\"'<>]*)?[\w.+-]+\."
                        r"\b[IVX]+\b|\b\w+_\w+\b|/tmp/\S+|\S*/pytest-\S+|\{[\w.]+(?::[^{}]*)?\}")
 #: keys of a keyboard, products and tools a course's texts name
 PRODUCTS = ("planmethod", "Gradescope", "PrairieLearn", "Moodle", "Python", "Alt", "Shift",
-            "Delete", "wheel", "zip", "run_autograder", "src")
+            "Delete", "Enter", "Ctrl", "wheel", "zip", "run_autograder", "src")
 #: a JSON string meant for programs: a name, a key, an enum value
 MACHINE_WORD = re.compile(r"[A-Za-z_(][\w@/*.+,()²·\[\]-]*(?: at [A-Za-z]\w*)?|velocity plan|"
                           r"exact velocities")

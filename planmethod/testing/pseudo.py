@@ -105,6 +105,10 @@ def texts_of_svg(svg: str) -> list[str]:
     return runs
 
 
+#: inputs whose ``value`` a person neither sees nor hears (a radio button's is its label's job)
+_UNSEEN = frozenset({"radio", "checkbox", "hidden", "range"})
+
+
 class _PageText(HTMLParser):
     """Collects the text runs of a page: data outside scripts and styles, and the attributes
     a person sees or hears."""
@@ -117,9 +121,10 @@ class _PageText(HTMLParser):
     def handle_starttag(self, tag: str, attributes: list[tuple[str, str | None]]) -> None:
         if tag in ("script", "style"):
             self.hidden += 1
+        kind = dict(attributes).get("type") or "text"
         for name, value in attributes:
             if value and (name in ("title", "alt", "placeholder", "aria-label")
-                          or (tag == "input" and name == "value")):
+                          or (tag == "input" and name == "value" and kind not in _UNSEEN)):
                 self.runs.append(value.strip())
 
     def handle_endtag(self, tag: str) -> None:
@@ -133,7 +138,8 @@ class _PageText(HTMLParser):
 
 def texts_of_html(html: str) -> list[str]:
     """The text runs a person sees or hears in an HTML page: text outside scripts and styles,
-    and the ``title``, ``alt``, ``placeholder``, ``aria-label`` and ``value`` of inputs."""
+    and the ``title``, ``alt``, ``placeholder``, ``aria-label`` and ``value`` of inputs (not
+    of radio buttons, check boxes, ranges and hidden inputs, whose value nobody sees)."""
     reader = _PageText()
     reader.feed(html)
     return reader.runs
