@@ -67,3 +67,14 @@ def violations_text(violations: list[dict]) -> str:
     return "\n".join(f"{v['id']} ({v['impact']}): {v['help']} — "
                      f"{', '.join(str(node['target']) for node in v['nodes'][:5])}"
                      for v in violations)
+
+
+#: subscript digits as plain digits (a subscript's digits are set plain inside its <sub>)
+_PLAIN = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
+def flat(text: str) -> str:
+    """A sentence as a page with its symbols' subscripts set reads as plain text: no
+    underscore, digits plain (v_B₃ → vB3: v with B3 set below), so that the page's text can
+    be compared with ``grade``'s (which keeps v_C)."""
+    return text.replace("_", "").translate(_PLAIN)

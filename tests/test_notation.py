@@ -172,3 +172,22 @@ def test_a_variant_keeps_its_machine_names():
     key = build_key(variant)
     assert key["numbers"] == course_numbers(variant.exercise.mechanism)
     assert all("_" in q["id"] and q["symbol"] for q in key["questions"])
+
+
+def test_the_force_steps_name_points_as_the_course_writes_them():
+    """A step of the force analysis names its points with their digits as subscripts where
+    a course reads it (the text report, the force figure: ΣM_O₁(1), O₂B), and by the file's
+    names in the JSON report's sentences (ΣM_O1)."""
+    from planmethod.forces.names import PointNames
+    from planmethod.render.report_text import force_lines
+    from planmethod.spec import load_exercise
+    from planmethod.words import render
+
+    forces = analyse(load_exercise(ROOT / "exercises" / "loaded_press_sixbar.toml")).forces
+    text = "\n".join(force_lines(forces))
+    assert "ΣM_O₁(1) = 0" in text and "Rᵗ₀₃ ⟂ O₂B from ΣM_B(3)" in text
+    assert not re.search(r"O[12](?![₀-₉])", text), text
+    steps = [step for group in forces.solution.groups.groups for step in group.steps]
+    plain = [render(step) for step in steps]
+    assert "M_b from ΣM_O1(crank) = 0" in plain
+    assert any(isinstance(value, PointNames) for step in steps for _, value in step.fields)

@@ -44,7 +44,7 @@ from ..model import FRAME, Mechanism
 from ..vectors import cross, dot, norm
 from ..vocabulary import AppliedKind
 from ..words import Message, message
-from .names import ForceName, crank_angles
+from .names import ForceName, PointNames, crank_angles
 
 __all__ = [
     "AppliedItem",
@@ -241,11 +241,12 @@ def _given_force(mechanism: Mechanism, load, state: LinkState, count: int, rest:
         if not np.all(moving) and angles is None:
             flags.append(message("{load} on {link} at {point}: the point is at rest, the "
                                  "force acts as given", load=ForceName(name), link=load.link,
-                                 point=load.point))
+                                 point=PointNames(load.point)))
         elif not np.all(moving):
             flags.append(message("{load} on {link} at {point}: the point is at rest (crank "
                                  "angle {angles}), the force acts as given",
-                                 load=ForceName(name), link=load.link, point=load.point,
+                                 load=ForceName(name), link=load.link,
+                                 point=PointNames(load.point),
                                  angles=_at_rest(angles, ~moving)))
     return AppliedItem(load.link, name, AppliedKind.LOAD, point, force, local=local,
                        label=load.point)

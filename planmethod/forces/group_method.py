@@ -45,7 +45,7 @@ from ..words import Message, message
 from .applied import AppliedLoads, Wrench
 from .groups import reactions_of
 from .groups.base import GroupForces, PolygonEdge
-from .names import BALANCING_MOMENT, ForceName, LinkNumber
+from .names import BALANCING_MOMENT, ForceName, LinkNumber, PointNames
 from .reactions import Reaction, canonical, pair_key
 from .system import group_linear_reactions
 
@@ -178,7 +178,7 @@ class _Solver:
                  PolygonEdge(f"R_{drive.pivot}", reaction, EdgeKind.REACTION, link)]
         key = self.record(joint, (link,), link, FRAME, pivot, reaction).key
         steps = (message("{moment} from ΣM_{pivot}({link}) = 0", moment=BALANCING_MOMENT,
-                         pivot=drive.pivot, link=LinkNumber(link)),
+                         pivot=PointNames(drive.pivot), link=LinkNumber(link)),
                  message("{reaction} from the force polygon of {link}",
                          reaction=ForceName(f"R_{drive.pivot}"), link=link))
         return balancing, GroupForces(link, GroupKind.DRIVE, (link,), steps, tuple(edges), (key,))

@@ -4,8 +4,9 @@ The force analysis says what it did in sentences (a group's steps, its flags): m
 (:mod:`planmethod.words`) whose fields name forces and links. The JSON report writes a force
 by its report name (``Rᵗ_B``, ``F_u,BC``, ``load[1]``) and a link by its name; a course's
 text prints the force's symbol (Rᵗ₁₂, Fᵘ₂, P₃) and, where a course writes a link by its
-number (ΣM_C(2)), the number. So such a field is a typed value, not text: a
-:class:`ForceName` or a :class:`LinkNumber`, which is written as its report name when the
+number (ΣM_C(2)), the number; and it writes a point's digits as subscripts (ΣM_O₁, O₂B).
+So such a field is a typed value, not text: a :class:`ForceName`, a :class:`LinkNumber` or
+:class:`PointNames`, which is written as its report name when the
 sentence is rendered as it is (the JSON report), and which
 :meth:`planmethod.render.notation.ForceNotation.sentence` replaces by the course's notation.
 The symbols of a tradition (the balancing moment M_b, the inertia force Fᵘ …) are messages
@@ -18,6 +19,9 @@ Examples
 ...                link=LinkNumber("BC"))
 >>> render(step)
 'Rᵗ_B from ΣM_C(BC) = 0'
+>>> render(message("⟂ {segment} from ΣM_{pin}", segment=PointNames("O2", "B"),
+...                pin=PointNames("O1")))
+'⟂ O2B from ΣM_O1'
 >>> render(message("at {angles}", angles=crank_angles([0.0, 90.0])))
 'at 0°, 90°'
 """
@@ -33,7 +37,8 @@ from ..vocabulary import subscript
 from ..words import Message, message
 
 __all__ = ["BALANCING_FORCE", "BALANCING_MOMENT", "FRICTION_FORCE", "FRICTION_MOMENT",
-           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceName", "LinkNumber", "crank_angles",
+           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceName", "LinkNumber", "PointNames",
+           "crank_angles",
            "load_symbol", "load_symbols"]
 
 #: the letters a course's tradition writes its own way: a course's catalogue translates these
@@ -67,6 +72,22 @@ class LinkNumber:
 
     def __format__(self, specification: str) -> str:
         return format(self.link, specification)
+
+
+@dataclass(frozen=True, slots=True, init=False)
+class PointNames:
+    """A point (``O1``: the pivot of a moment equation, ΣM_O1) or a segment by its two points
+    (``O2``, ``B``: the segment O2B) named in a sentence: written as the names run together
+    where the sentence is rendered as it is; a course's text sets each name's digits as
+    subscripts (O₂B, :func:`planmethod.vocabulary.point_text`)."""
+
+    points: tuple[str, ...]
+
+    def __init__(self, *points: str) -> None:
+        object.__setattr__(self, "points", points)
+
+    def __format__(self, specification: str) -> str:
+        return format("".join(self.points), specification)
 
 
 def crank_angles(angles: Iterable[float]) -> list[Message]:

@@ -73,6 +73,7 @@ __all__ = [
     "SvgFigure",
     "arrowhead",
     "fit_zoom",
+    "formula_grammar",
     "formula_runs",
     "page_direction",
     "page_point",
@@ -795,6 +796,19 @@ def formula_runs(text: str) -> list[tuple[str, bool]]:
     if at < len(text):
         runs.append((text[at:], False))
     return runs
+
+
+def formula_grammar() -> dict[str, str]:
+    """The grammar of :func:`formula_runs` as data, for a page's script to set the
+    subscripts of the sentences it fills (``page_words.js``: ``formula``): the pattern of a
+    subscript run (group 1: the subscript) and the subscript digits it sets as plain digits.
+
+    >>> grammar = formula_grammar()
+    >>> re.findall(grammar["pattern"], "v_C = v_B₃ [v_C]"), grammar["digits"][:3]
+    (['C', 'B₃', ''], '₀₁₂')
+    """
+    return {"pattern": _SUBSCRIPT_RUN.pattern,
+            "digits": "".join(chr(code) for code in sorted(_PLAIN_DIGITS))}
 
 
 def _formula_spans(runs: Sequence[tuple[str, bool]], size: float, monospace: bool) -> list:

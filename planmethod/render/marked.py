@@ -4,7 +4,10 @@ thin line to where it belongs — and the grader's sentences under it.
 
 The photo is drawn with Pillow (the ``paper`` extra), its text in DejaVu Sans (matplotlib
 ships the font), so that every symbol of the sentences (ω₂, π, aᵏ, Cyrillic) shows. Its
-sentences are rendered here, in the language spoken.
+sentences are rendered here, in the language spoken. A point's name and the symbols of the
+sentences are set as the figures set them (n with CB below, v_B₃ as v with B3 below:
+:func:`~planmethod.render.canvas.formula_runs`), a subscript smaller and lower, never with
+an underscore.
 
 Examples
 --------
@@ -22,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..words import render
+from .canvas import formula_runs
 
 if TYPE_CHECKING:
     from ..grading.photos import GradedPhoto
@@ -68,8 +72,8 @@ def marked_photo(graded: GradedPhoto, header: Sequence[str], *, quality: int = 8
     unit = max(2.0, millimetre * scale)              # a millimetre of the sheet, in px
     ring_size = max(8, round(1.4 * unit))
     line = max(2, round(0.25 * unit))
-    name_font = _font(max(16, round(2.6 * unit)))
-    small_font = _font(max(12, round(1.6 * unit)))
+    name_font = _Faces(max(16, round(2.6 * unit)))
+    small_font = _Faces(max(12, round(1.6 * unit)))
 
     def at(place) -> tuple[float, float]:
         return ((place[0] - left) * scale, (place[1] - top) * scale)
@@ -90,14 +94,44 @@ def marked_photo(graded: GradedPhoto, header: Sequence[str], *, quality: int = 8
                              outline=GREEN, width=max(1, line // 2))
             draw.ellipse([x - ring, y - ring, x + ring, y + ring], outline=colour, width=line)
             # a helper point's name below, clear of the point's it usually lies beside
-            draw.text((x + ring * 1.1, y - ring * 2.0 if scored else y + ring * 0.4),
-                      point.name, fill=colour, font=label_font)
+            label_font.draw(draw, (x + ring * 1.1, y - ring * 2.0 if scored else y + ring * 0.4),
+                            point.name, colour)
         else:
             x, y = at(spot.right_photo_px)
             _dashed_ring(draw, (x, y), ring, RED, line)
-            draw.text((x + ring * 1.1, y - ring * 2.0), point.name + "?", fill=RED,
-                      font=label_font)
+            label_font.draw(draw, (x + ring * 1.1, y - ring * 2.0), point.name + "?", RED)
     return _with_text(photo, graded, header, quality)
+
+
+#: a subscript's size and how far it is lowered, in the text's size (the figures' 0.72)
+SUB_SCALE, SUB_DROP = 0.72, 0.35
+
+
+class _Faces:
+    """A text size's face and its subscripts' smaller face, and how a text is set in them:
+    its symbols' subscripts smaller and lower (:func:`_runs`)."""
+
+    def __init__(self, size: int) -> None:
+        self.size = size
+        self.main, self.sub = _font(size), _font(max(8, round(size * SUB_SCALE)))
+
+    def draw(self, draw, place: tuple[float, float], text: str, colour) -> None:
+        """``text`` set at ``place`` (its top left), run by run."""
+        x, y = place
+        for part, small in _runs(text):
+            face = self.sub if small else self.main
+            draw.text((x, y + (SUB_DROP * self.size if small else 0.0)), part, fill=colour,
+                      font=face)
+            x += draw.textlength(part, font=face)
+
+
+def _runs(text: str) -> list[tuple[str, bool]]:
+    """A sentence's or a name's runs as the photo sets them: (text, set as a subscript).
+
+    >>> _runs("n_CB is 2.8 mm off: (bn_CB) ⟂ CB")
+    [('n', False), ('CB', True), (' is 2.8 mm off: (bn', False), ('CB', True), (') ⊥ CB', False)]
+    """
+    return formula_runs(_shown(text)) or [("", False)]
 
 
 #: characters DejaVu Sans lacks, drawn as the nearest it has
@@ -120,9 +154,9 @@ def _with_text(photo, graded: GradedPhoto, header: Sequence[str], quality: int) 
     from PIL import Image, ImageDraw
 
     size = max(16, photo.width // 55)
-    font, bold = _font(size), _font(round(size * 1.15))
+    font, bold = _Faces(size), _font(round(size * 1.15))
     characters = max(30, int(photo.width / (0.55 * size)) - 4)
-    rows: list[tuple[str, tuple[int, int, int], Any]] = []
+    rows: list[tuple[str, tuple[int, int, int], Any]] = []   # the header plain (a path)
     for text in header:          # a long path wraps too, in the larger bold face
         for index, piece in enumerate(textwrap.wrap(_shown(text), int(characters / 1.15))):
             rows.append((("   " if index else "") + piece, (0, 0, 0), bold))
@@ -142,7 +176,10 @@ def _with_text(photo, graded: GradedPhoto, header: Sequence[str], quality: int) 
     draw = ImageDraw.Draw(panel)
     y = photo.height + size
     for text, colour, face in rows:
-        draw.text((size, y), text, fill=colour, font=face)
+        if isinstance(face, _Faces):
+            face.draw(draw, (size, y), text, colour)
+        else:
+            draw.text((size, y), text, fill=colour, font=face)
         y += step
     out = io.BytesIO()
     panel.save(out, "JPEG", quality=quality)

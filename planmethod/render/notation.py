@@ -57,6 +57,7 @@ from ..forces.names import (
     INERTIA_MOMENT,
     ForceName,
     LinkNumber,
+    PointNames,
     load_symbols,
 )
 from ..numbering import course_numbers
@@ -234,8 +235,10 @@ class ForceNotation:
         """A sentence of the force analysis (a group's step, a flag) in the course's
         notation: each force field (:class:`~planmethod.forces.names.ForceName`) printed by
         its symbol — a reaction acting on the one link of ``links`` (the group's) at its pair —
-        a :class:`~planmethod.forces.names.LinkNumber` by the link's number, and any link
-        name with an underscore in the other fields in words."""
+        a :class:`~planmethod.forces.names.LinkNumber` by the link's number, points
+        (:class:`~planmethod.forces.names.PointNames`) with their digits as subscripts (O₂B,
+        :func:`~planmethod.vocabulary.point_text`), and any link name with an underscore in
+        the other fields in words."""
         return self._resolved(text, tuple(links))
 
     def _resolved(self, value: Any, links: tuple[str, ...]) -> Any:
@@ -248,6 +251,8 @@ class ForceNotation:
             return self._force(value.name, links)
         if isinstance(value, LinkNumber):
             return self.number(value.link)
+        if isinstance(value, PointNames):
+            return "".join(point_text(point) for point in value.points)
         if isinstance(value, str):
             return self._words(value)
         return value

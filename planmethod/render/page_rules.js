@@ -91,7 +91,7 @@
   function make(rules) {
     const quoted = quoter(rules.unprintable);
     const words = wordsApi.make({templates: rules.templates, decimal: rules.decimal,
-                                 quote: quoted});
+                                 quote: quoted, formula: rules.formula});
     const read = reader(rules.number);
     const m = words.message;
     const told = Object.keys(rules.templates).filter(id => id.startsWith("answers."))
@@ -192,10 +192,15 @@
         [kind, fields] = answer === null ? ["no_answer", {symbol: given.symbol, right: right}] :
           ["not_a_number", {symbol: given.symbol, given: answer, right: right}];
       }
+      // the page's HTML of them: the symbols' subscripts set, the text typed quoted as it is
+      const markup = typeof answer === "string" ?
+        {given: wordsApi.escapeHtml(quoted(answer))} : {};
       return {id: question.id, correct: kind === "correct", mistake: mistake,
               answer: typeof answer === "number" ? answer : null, verdict: kind,
               feedback: words.say("answers." + kind, fields),
-              hint: words.say("hints." + kind, fields)};
+              hint: words.say("hints." + kind, fields),
+              feedbackHtml: words.html("answers." + kind, fields, markup),
+              hintHtml: words.html("hints." + kind, fields, markup)};
     }
 
     // -- a drawn plan point (planmethod.grading.drawings: grade_drawing's _grade_point) --------

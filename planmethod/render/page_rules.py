@@ -48,6 +48,7 @@ from ..grading.reading import NumberGrammar, number_grammar
 from ..grading.verdicts import rulebook_tables
 from ..words import Message, current, render, template
 from ..words.render import DECIMAL_SIGN
+from .canvas import formula_grammar
 
 __all__ = ["PAGE_WORDS", "PageRules", "page_rules", "plan_summary", "quoted", "rule_templates",
            "template_text", "unprintable_points"]
@@ -204,7 +205,9 @@ def quoted(text: str, unprintable: Sequence[int]) -> str:
 class PageRules:
     """What a page grades with (see the module): the ``language`` and its ``decimal`` sign,
     the ``number`` grammar, the ``unprintable`` ranges and the ``templates`` in the language
-    (grading's rulebook by ``<table>.<class>``, and the page's own words)."""
+    (grading's rulebook by ``<table>.<class>``, and the page's own words); the page sets a
+    sentence's symbols (v_C, n_CB) with real subscripts by the figures' ``formula`` grammar
+    (:func:`~planmethod.render.canvas.formula_grammar`)."""
 
     language: str
     decimal: str
@@ -216,7 +219,7 @@ class PageRules:
         """The rules as JSON data, for the page's script."""
         return {"language": self.language, "decimal": self.decimal,
                 "number": self.number.as_dict(), "unprintable": list(self.unprintable),
-                "templates": dict(self.templates)}
+                "templates": dict(self.templates), "formula": formula_grammar()}
 
 
 def rule_templates() -> dict[str, Message]:

@@ -121,6 +121,8 @@
   }
 
   // -- templates ------------------------------------------------------------------------------
+  // a field's mark while a message is written as HTML (html(): its markup put in after)
+  const MARK = /^\u0000[0-9]+\u0000$/;
   const FIELD = /\{\{|\}\}|\{([A-Za-z_][A-Za-z0-9_]*)(?:!(r))?(?::([^{}]*))?\}/g;
   // a template's named fields filled; a value is text, a number, a message {id, fields} or a
   // list of those (joined with commas), as planmethod.words.render fills them; a text field
@@ -131,6 +133,7 @@
       if (whole === "}}") return "}";
       if (!(name in fields)) throw new Error("no field " + name + " for " + template);
       if (conversion) {
+        if (MARK.test(fields[name])) return fields[name];   // set by html() as its markup says
         if (typeof fields[name] !== "string" || !quote || specification)
           throw new Error("cannot quote field " + name + " of " + template);
         return quote(fields[name]);
@@ -176,23 +179,43 @@
                   table.quote);
     }
     const render = message => rendered(message, {});
+    // a text as HTML, escaped, each subscript of its symbols (v_C, n_CB, a_B₃) set as <sub>
+    // by the figures' grammar (table.formula: planmethod.render.canvas.formula_grammar; its
+    // subscript digits set plain inside the <sub>); without a grammar only escaped. A mark
+    // (\u0000…) ends a subscript.
+    const grammar = table.formula, subscript = grammar && new RegExp(grammar.pattern, "g");
+    const plainDigits = text => text.replace(/[\u2080-\u2089]/g,
+                                             digit => String(grammar.digits.indexOf(digit)));
+    function formula(text) {
+      if (!subscript) return escapeHtml(text);
+      let out = "", at = 0;
+      for (const match of text.matchAll(subscript)) {
+        if (match[1] === undefined || match.index < at) continue;
+        const sub = match[1].split("\u0000")[0];
+        out += escapeHtml(text.slice(at, match.index)) + "<sub>" + escapeHtml(plainDigits(sub)) +
+          "</sub>";
+        at = match.index + 1 + sub.length;
+      }
+      return out + escapeHtml(text.slice(at));
+    }
     return {
       // a message: the template `id` with its fields (nested in another's fields, or rendered)
       message: (id, fields) => ({id: id, fields: fields || {}}),
       render: render,
       say: (id, fields) => render({id: id, fields: fields || {}}),
-      // the message as HTML: its text escaped, the fields named in `markup` set as given (in
-      // the messages nested in it too)
+      // the message as HTML: its text escaped (its symbols' subscripts set, `formula`), the
+      // fields named in `markup` set as given (in the messages nested in it too)
       html: (id, fields, markup) => {
         const marks = {};
         Object.keys(markup || {}).forEach((name, index) => {
           marks[name] = "\u0000" + index + "\u0000";
         });
-        let text = escapeHtml(rendered({id: id, fields: fields || {}}, marks));
+        let text = formula(rendered({id: id, fields: fields || {}}, marks));
         Object.keys(marks).forEach(name => { text = text.split(marks[name]).join(markup[name]); });
         return text;
       },
       number: (item, specification) => value(item, specification || "", render, decimal),
+      formula: formula,
     };
   }
 

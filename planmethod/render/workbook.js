@@ -293,7 +293,7 @@
       const question = questionOf(wb.frame, name);
       if (question) {
         const result = grade(question, answers[i].value);
-        verdicts[i].textContent = result.feedback;
+        verdicts[i].innerHTML = result.feedbackHtml;
         verdicts[i].className = "verdict " + (result.correct ? "correct" : "wrong");
       }
       hideAsked();
@@ -309,7 +309,7 @@
         if (!question) { verdicts[i].textContent = say("not_graded"); return; }
         const result = grade(question, input.value);
         results[name] = result;
-        verdicts[i].textContent = wb.hidden(name) ? result.hint : result.feedback;
+        verdicts[i].innerHTML = wb.hidden(name) ? result.hintHtml : result.feedbackHtml;
         verdicts[i].className = "verdict " + (result.correct ? "correct" : "wrong");
         verdicts[i].dataset.correct = String(result.correct);
       });

@@ -555,8 +555,9 @@
       result => result.graded && result.placed && result.ok === false)
       .map(result => result.mistakes));
     draw.planMistakes[plan] = common;
-    planBox(plan).querySelector(".draw-summary").textContent = wb.rules.planSummary(
-      plan, required.filter(result => result.ok).length, required.length, common, texts);
+    planBox(plan).querySelector(".draw-summary").innerHTML = wb.rules.words.formula(
+      wb.rules.planSummary(plan, required.filter(result => result.ok).length, required.length,
+                           common, texts));
     if (!store.checked.includes(plan)) { store.checked.push(plan); save(); }
     sayNext();
     render(plan);

@@ -74,6 +74,48 @@ test("every drawn point gets grade --drawing's verdict and sentence", {skip}, ()
   assert.ok(lines >= 10, "points of the wrong link (on a line, off along it): " + lines);
 });
 
+// what a person reads of the page's HTML: its tags left out, its entities read
+const visible = html => html.replace(/<[^>]*>/g, "").replace(/&lt;/g, "<").replace(/&gt;/g, ">")
+  .replace(/&quot;/g, "\"").replace(/&#39;/g, "'").replace(/&amp;/g, "&");
+// a text with its symbols' underscores and subscript digits left out (v_B₃ → vB3): what the
+// page's HTML of a sentence shows, v with B3 set below
+const flat = text => text.replace(/_/g, "").replace(/[\u2080-\u2089]/g,
+                                                   digit => String(digit.charCodeAt(0) - 0x2080));
+const codeName = /_[A-Za-z\u0370-\u03ff]/;
+
+test("the page's feedback and hints set the symbols' subscripts: no v_C, n_CB", {skip}, () => {
+  let subscripts = 0;
+  agree(golden.answers, item => {
+    const {question, quantity} = golden.questions[item.question];
+    const mine = rules.answerVerdict(question, item.raw, quantity);
+    for (const [html, text] of [[mine.feedbackHtml, mine.feedback], [mine.hintHtml, mine.hint]]) {
+      subscripts += (html.match(/<sub>/g) || []).length;
+      const shown = visible(html);
+      if (flat(shown) !== flat(text) || (!item.raw.includes("_") && codeName.test(shown)))
+        return {raw: item.raw, question: question.id, html: html, text: text};
+    }
+    return null;
+  });
+  assert.ok(subscripts > 100, "symbols set with subscripts: " + subscripts);
+});
+
+test("the page's drawn points' sentences set the symbols' subscripts", {skip}, () => {
+  agree(golden.drawings, item => {
+    const page = golden.plans[item.plan];
+    const verdict = rules.sheet(page.data, item.drawn, page.names, golden.texts);
+    for (const label of Object.keys(page.data.points)) {
+      const mine = verdict(label);
+      // the point's own name typeset apart, as the page sets it (workbook_draw.js)
+      const point = "<span>" + rules.words.formula(page.names[label] || label) + "</span>";
+      const html = rules.words.html(mine.message.id, mine.message.fields, {point: point});
+      const shown = visible(html);
+      if (flat(shown) !== flat(mine.sentence) || codeName.test(shown))
+        return {label: label, html: html, sentence: mine.sentence};
+    }
+    return null;
+  });
+});
+
 test("numbers are written as Python's format() writes them", {skip}, () => {
   agree(golden.numbers, ([value, specification, expected]) => {
     const got = words.formatNumber(value, specification);

@@ -22,7 +22,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName
+from ..names import ForceName, PointNames
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -64,7 +64,7 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     steps = (message("{reaction} along the guide from {link}'s projection on the guide",
                      reaction=first, link=l1),
              message("{reaction} ⟂ the guide from ΣM_{point} of the group = 0",
-                     reaction=first, point=ext2.point),
+                     reaction=first, point=PointNames(ext2.point)),
              message("the normal force and couple of {pair} from {link}",
                      pair=internal.slide.key, link=l1),
              message("{reaction} from the force polygon of {link}",

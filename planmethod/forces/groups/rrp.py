@@ -21,7 +21,7 @@ from ...structure import AssurGroup
 from ...vectors import cross, perp
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName, LinkNumber
+from ..names import ForceName, LinkNumber, PointNames
 from .base import ForceSolver, GroupForces, split
 
 __all__ = ["reactions"]
@@ -60,12 +60,12 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     p1, pin, guide = ext1.point, internal.point, ext2.slide
     tangential, normal_part = ForceName(f"Rᵗ_{p1}"), ForceName(f"Rⁿ_{p1}")
     steps = (message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0", force=tangential,
-                     segment=p1 + pin, pin=pin, link=LinkNumber(l1)),
+                     segment=PointNames(p1, pin), pin=PointNames(pin), link=LinkNumber(l1)),
              message("force polygon: {tangential} + ΣF + N + {normal} = 0, N ⟂ the guide of "
                      "{pair}, {normal} ∥ {segment}", tangential=tangential,
-                     normal=normal_part, pair=guide.key, segment=p1 + pin),
+                     normal=normal_part, pair=guide.key, segment=PointNames(p1, pin)),
              message("{pin} from the equilibrium of {link}", pin=ForceName(f"R_{pin}"),
                      link=l1),
              message("the reaction couple of {pair} from ΣM({link}) = 0 about {point}",
-                     pair=guide.key, link=LinkNumber(l2), point=guide.point))
+                     pair=guide.key, link=LinkNumber(l2), point=PointNames(guide.point)))
     return solver.result(group, steps, edges, keys)

@@ -21,7 +21,7 @@ from ...structure import AssurGroup
 from ...vectors import perp
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName, LinkNumber
+from ..names import ForceName, LinkNumber, PointNames
 from .base import ForceSolver, GroupForces, split
 
 __all__ = ["reactions"]
@@ -65,15 +65,18 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
 def _steps(p1: str, q: str, p2: str, l1: str, l2: str) -> tuple:
     """The sequence's sentences: the outer pins P1, P2 of the links L1, L2, the inner pin Q."""
     first, second = ForceName(f"Rᵗ_{p1}"), ForceName(f"Rᵗ_{p2}")
+    pin = PointNames(q)
     return (message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0: {force} = ΣM_{pin}/"
-                    "{segment}", force=first, segment=p1 + q, pin=q, link=LinkNumber(l1)),
+                    "{segment}", force=first, segment=PointNames(p1, q), pin=pin,
+                    link=LinkNumber(l1)),
             message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0: {force} = ΣM_{pin}/"
-                    "{segment}", force=second, segment=p2 + q, pin=q, link=LinkNumber(l2)),
+                    "{segment}", force=second, segment=PointNames(p2, q), pin=pin,
+                    link=LinkNumber(l2)),
             message("force polygon of the group: {first} + ΣF + {second} + {second_normal} + "
                     "{first_normal} = 0, {first_normal} ∥ {first_segment}, {second_normal} ∥ "
                     "{second_segment}", first=first, second=second,
                     first_normal=ForceName(f"Rⁿ_{p1}"), second_normal=ForceName(f"Rⁿ_{p2}"),
-                    first_segment=p1 + q, second_segment=p2 + q),
+                    first_segment=PointNames(p1, q), second_segment=PointNames(p2, q)),
             message("{pin} from the equilibrium of {link}: {pin} = {outer} + ΣF({number})",
                     pin=ForceName(f"R_{q}"), link=l1, outer=ForceName(f"R_{p1}"),
                     number=LinkNumber(l1)))

@@ -27,7 +27,7 @@ from ...structure import AssurGroup, Joint
 from ...vectors import cross, norm, perp
 from ...vocabulary import EdgeKind
 from ...words import Message, message
-from ..names import ForceName, LinkNumber
+from ..names import ForceName, LinkNumber, PointNames
 from .base import ForceSolver, GroupForces, split
 
 __all__ = ["reactions"]
@@ -134,13 +134,14 @@ def _steps(sides: list[_Side], central: str) -> tuple[Message, ...]:
     """The sequence's sentences."""
     steps = tuple(message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0",
                           force=ForceName(f"Rᵗ_{side.outer.point}"),
-                          segment=side.outer.point + side.inner.point, pin=side.inner.point,
+                          segment=PointNames(side.outer.point, side.inner.point),
+                          pin=PointNames(side.inner.point),
                           link=LinkNumber(side.link)) for side in sides)
     return (
         *steps,
         message("Assur's special point S where the lines of two side links (through "
                 "{points}) meet: ΣM_S of the group gives the third Rⁿ",
-                points=[side.outer.point for side in sides]),
+                points=[PointNames(side.outer.point) for side in sides]),
         message("force polygon of the group: ΣRᵗ + ΣF + ΣRⁿ = 0 gives the other two Rⁿ"),
         message("the inner pins from the equilibrium of each side link ({link} is the "
                 "central link)", link=central))
