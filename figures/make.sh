@@ -12,6 +12,7 @@ done
 run solve exercises/compressor_slider_crank.toml --svg figures/compressor --png > /dev/null
 run sweep exercises/shaper_sixbar.toml --step 2 --plot figures/shaper_sixbar/sweep.png > /dev/null
 for name in combined_force_slider_crank conveyor_sixbar fourbar_forces fourbar_study loaded_press_sixbar; do
+    mkdir -p "figures/forces/$name"
     run solve "exercises/$name.toml" --svg "figures/forces/$name" --png \
         > "figures/forces/$name/solve.txt"
 done
