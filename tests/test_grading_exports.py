@@ -4,6 +4,7 @@ end to end: template → variants → grade → export."""
 from __future__ import annotations
 
 import csv
+import html
 import io
 import json
 import re
@@ -27,6 +28,7 @@ from planmethod.grading.keys import build_key, bundle
 from planmethod.grading.plan_points import graded_labels
 from planmethod.grading.results import GradedQuestion, StudentGrade
 from planmethod.grading.templates import draw_variant, load_template
+from planmethod.testing.pseudo import texts_of_html
 
 TEMPLATE = "exercises/templates/four_bar.toml"
 EXAMPLE = "exercises/templates/slider_crank_answers_example.csv"
@@ -667,8 +669,9 @@ def _small_key() -> dict:
 
 
 def test_prairielearn_question_of_a_small_key_whole():
-    """info.json and question.html as PrairieLearn reads them (attributes escaped, one number
-    input per question, one drawing per plan on a 320 px canvas — a 30 mm plan and its
+    """info.json and question.html as PrairieLearn reads them (attributes escaped; a number
+    input's label is HTML, which PrairieLearn inserts as it is, so its text is escaped twice),
+    one number input per question, one drawing per plan on a 320 px canvas — a 30 mm plan and its
     margin — with the pole given and the graded points to place), and the variant's
     parameters: relabs tolerances (a zero answer's in atol), discs of at least 0.5 mm, the
     mistakes on the canvas, the points' names."""
@@ -687,11 +690,11 @@ def test_prairielearn_question_of_a_small_key_whole():
         "<pl-question-panel>", "  <p><b>{{params.title}}</b></p>", "  {{{params.task_html}}}",
         "</pl-question-panel>", "",
         '<pl-number-input answers-name="v_C" comparison="relabs" rtol="{{params.rtol.v_C}}" '
-        'atol="{{params.atol.v_C}}" label="speed of C, &quot;v&quot; =" suffix="m/s">'
+        'atol="{{params.atol.v_C}}" label="speed of C, &amp;quot;v&amp;quot; =" suffix="m/s">'
         "</pl-number-input>",
         '<pl-number-input answers-name="omega_BC" comparison="relabs" '
         'rtol="{{params.rtol.omega_BC}}" atol="{{params.atol.omega_BC}}" '
-        'label="angular velocity &lt;ω&gt; =" suffix="rad/s"></pl-number-input>', "",
+        'label="angular velocity &amp;lt;ω&amp;gt; =" suffix="rad/s"></pl-number-input>', "",
         "<p>Draw the velocity plan at the given scale (one grid square is 10 mm of the drawing; "
         "the pole p is marked): place the points b, c.</p>",
         '<pl-drawing answers-name="velocity_plan" gradable="true" width="320" height="320" '
@@ -722,6 +725,56 @@ def test_prairielearn_question_of_a_small_key_whole():
         "plan_labels": {"velocity": {"b": "b", "c": "c"}},
         "mistakes_px": {"velocity": {"c": [["sense", 160.0, 80.0],
                                            ["scale_ten", 160.0, 168.0]]}}}
+
+
+#: a symbol written with its underscore (``v_C``): an underscore followed by a letter
+UNDERSCORED = re.compile(r"_[^\W\d_]")
+
+
+def prairielearn_texts(files: dict[str, str], slug: str) -> list[str]:
+    """What a student sees of a PrairieLearn question: question.html's text, its number
+    inputs' labels (HTML, which PrairieLearn inserts as it is) and each variant's task
+    (the page's ``{{params…}}`` fields left out)."""
+    page = re.sub(r"\{\{\{?[^{}]*\}?\}\}", " ", files[f"{slug}/question.html"])  # its fields
+    shown = texts_of_html(page) + [text for label in re.findall(r'label="([^"]*)"', page)
+                                   for text in texts_of_html(html.unescape(label))]
+    namespace: dict = {}
+    exec(compile(files[f"{slug}/server.py"], "server.py", "exec"), namespace)  # our own code
+    for seed in range(1, 4):
+        data = {"params": {}, "correct_answers": {}, "variant_seed": seed}
+        namespace["generate"](data)
+        shown += texts_of_html(data["params"]["task_html"])
+    return shown
+
+
+def test_the_lms_questions_set_symbols_with_subscripts():
+    """Moodle's question texts and PrairieLearn's question (its labels and task too) set
+    ``v_C``, ``ρ_D`` as v and ρ with a subscript, as the task sheet does; the answers keep
+    their values, the plain-text README its ids."""
+    template = load_template("exercises/templates/slider_crank.toml")
+    keys = [build_key(draw_variant(template, seed=5, student=s)) for s in ("ann", "bob")]
+    assert "ρ_D" in keys[0]["task"] and "|v_C|" in keys[0]["questions"][0]["text"]
+    quiz = ElementTree.fromstring(moodle_xml(keys).encode("utf-8"))
+    questions = [q.findtext("questiontext/text") for q in quiz.iter("question")
+                 if q.get("type") == "cloze"]
+    for key, text in zip(keys, questions, strict=True):
+        shown = texts_of_html(text)
+        assert not [run for run in shown if UNDERSCORED.search(run)], shown
+        assert "|v<sub>C</sub>|" in text and "ρ<sub>D</sub>" in text
+        assert [field["answers"][0]["value"] for field in _cloze_fields(text)] == [
+            question["value"] for question in key["questions"]]
+    files = prairielearn_questions(bundle(keys, seed=3), slug="q")
+    shown = prairielearn_texts(files, "q")
+    assert not [run for run in shown if UNDERSCORED.search(run)], shown
+    assert 'label="speed of C, |v&lt;sub&gt;C&lt;/sub&gt;| ="' in files["q/question.html"]
+    namespace: dict = {}
+    exec(compile(files["q/server.py"], "server.py", "exec"), namespace)  # our own code
+    for seed in range(1, 5):
+        data = {"params": {}, "correct_answers": {}, "variant_seed": seed}
+        namespace["generate"](data)
+        key = next(key for key in keys if key["student"] == data["params"]["student"])
+        assert data["correct_answers"] == {q["id"]: q["value"] for q in key["questions"]}
+    assert "v_C, v_D" in gradescope_autograder(bundle(keys))["README.txt"]    # the ids
 
 
 def test_gradebook_csv_whole():

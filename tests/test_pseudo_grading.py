@@ -17,6 +17,7 @@ import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
+from html import unescape
 from pathlib import Path
 
 import pytest
@@ -149,10 +150,12 @@ def test_a_task_sheet_and_a_blank_plan_sheet_are_marked(course, words):
 
 def _key_texts(keys) -> list[str]:
     """What the keys hold that others make: the questions' texts and units (vocabulary), the
-    author's task and title."""
-    return ([question[field] for key in keys for question in key["questions"]
-             for field in ("text", "unit")]
-            + [key["title"] for key in keys] + [_plain(key["task"]) for key in keys])
+    author's task and title — the texts also as a page shows them, their subscripts set
+    apart (``|v_C|`` → ``|v C |``)."""
+    texts = ([question[field] for key in keys for question in key["questions"]
+              for field in ("text", "unit")]
+             + [key["title"] for key in keys] + [_plain(key["task"]) for key in keys])
+    return texts + [_plain(" ".join(part for part, _ in formula_runs(text))) for text in texts]
 
 
 def test_the_lms_exports_visible_texts_are_marked(course, words, speaking_pseudo):
@@ -172,7 +175,8 @@ def test_the_lms_exports_visible_texts_are_marked(course, words, speaking_pseudo
         assert unmarked_words(text, words, names=names) == [], text
     files = prairielearn_questions(bundle(keys, seed=2026), slug="q")
     page = files["q/question.html"]
-    shown = texts_of_html(page) + re.findall(r'label="([^"]*)"', page)
+    shown = texts_of_html(page) + [run for label in re.findall(r'label="([^"]*)"', page)
+                                   for run in texts_of_html(unescape(label))]   # HTML
     text = _plain(MUSTACHE.sub(" ", " ".join(shown)))
     assert "⟦Draw the velocity plan" in text and "⟦Plan points:⟧" in text
     assert unmarked_words(text, words, names=names) == [], text

@@ -18,6 +18,7 @@ to. The same runs in English show those words (the last tests), so the check can
 
 from __future__ import annotations
 
+import html
 import io
 import json
 import re
@@ -39,6 +40,8 @@ EXERCISES = sorted((ROOT / "exercises").glob("*.toml"))
 TEMPLATE = ROOT / "exercises" / "templates" / "ru" / "slider_crank.toml"
 ANSWERS = ROOT / "exercises" / "templates" / "slider_crank_answers_example.csv"
 TABLE = ROOT / "exercises" / "conveyor_sixbar_table2.csv"
+#: a symbol written with its underscore (``v_C``) where a page could set its subscript
+UNDERSCORED = re.compile(r"_[^\W\d_]")
 #: a unit written in English: alone, or after a number
 LATIN_UNIT = re.compile(r"m/s²?|m/mm|\brad\b|N·m|kg·m²|N/mm|\d[ \u00a0\u202f](?:mm|m|N|kg|W)"
                         r"(?![\w/·²])")
@@ -185,12 +188,17 @@ def test_the_exports_speak_the_keys_russian(course, course_names, tmp_path):
                       for text in texts_of_html(question.findtext("questiontext/text") or ""))
     assert "рад/с" in shown
     assert english(shown, course_names) == [], shown
+    assert UNDERSCORED.search(shown) is None, shown      # v_C set as v with C below
     _run("export", course / "keys.json", "--format", "prairielearn", "--out", tmp_path / "pl")
     page = next((tmp_path / "pl").rglob("question.html")).read_text(encoding="utf-8")
-    shown = texts_of_html(page) + re.findall(r'(?:label|suffix)="([^"]*)"', page)
+    page = re.sub(r"\{\{\{?[^{}]*\}?\}\}", " ", page)         # its {{params…}} fields
+    shown = (texts_of_html(page) + re.findall(r'suffix="([^"]*)"', page)
+             + [run for label in re.findall(r'label="([^"]*)"', page)   # HTML, as it is
+                for run in texts_of_html(html.unescape(label))])
+    assert UNDERSCORED.search("\n".join(shown)) is None, shown
     server = next((tmp_path / "pl").rglob("server.py")).read_text(encoding="utf-8")
     shown += json.loads(re.search(r"\nTEXTS = (\{.*?\n\})", server, re.S).group(1)).values()
-    text = re.sub(r"\{\{\{?[^{}]*\}?\}\}", " ", "\n".join(shown))
+    text = "\n".join(shown)
     assert english(text, course_names) == [], text
     _run("export", course / "keys.json", "--format", "gradescope", "--out", tmp_path / "gs")
     readme = (tmp_path / "gs" / "README.txt").read_text(encoding="utf-8")

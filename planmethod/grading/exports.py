@@ -74,6 +74,19 @@ PRAIRIELEARN_FILES = ("info.json", "question.html", "server.py")
 PRAIRIELEARN_FIGURES = "clientFilesQuestion"
 
 
+def _html(text: object) -> str:
+    """Text set as HTML in the course's notation: escaped, what follows an underscore set as
+    a subscript by the rule the figures, the task sheet and the workbook use
+    (:func:`planmethod.render.workbook.formula_html`), so that ``|v_C|`` reads v with C below.
+
+    >>> _html("speed of C, |v_C| <")
+    'speed of C, |v<sub>C</sub>| &lt;'
+    """
+    from ..render.workbook import formula_html
+
+    return formula_html(str(text))
+
+
 def _identifier(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_]", "_", name)
 
@@ -552,7 +565,7 @@ def _variant(key: Mapping[str, Any], number: int, slug: str, question_ids: list[
     ``figures``)."""
     params: dict[str, Any] = {
         "student": key.get("student"), "title": shown_title(str(key.get("title", ""))),
-        "task_html": "<p>" + escape(key.get("task", "")).replace("\n\n", "</p><p>")
+        "task_html": "<p>" + _html(key.get("task", "")).replace("\n\n", "</p><p>")
         + "</p>", "rtol": {}, "atol": {}, "plans": {}, "tol_px": {}, "radius_px": {},
         "plan_labels": {}, "mistakes_px": {}}
     figure = _task_figure(key)
@@ -631,7 +644,7 @@ def _question_html(first: Mapping[str, Any], plans: list[str],
         html.append(
             f'<pl-number-input answers-name="{ident}" comparison="relabs" '
             f'rtol="{{{{params.rtol.{ident}}}}}" atol="{{{{params.atol.{ident}}}}}" '
-            f'label="{escape(question["text"], _QUOTE)} =" '
+            f'label="{escape(_html(question["text"]), _QUOTE)} =" '
             f'suffix="{escape(render(unit_words(question["unit"])), _QUOTE)}">'
             "</pl-number-input>")
     for name in plans:
@@ -698,7 +711,11 @@ def _cloze_text(text: object) -> str:
     >>> _cloze_text("{1:MULTICHOICE:=a~b} <i>")
     '&#123;1:MULTICHOICE:=a~b&#125; &lt;i&gt;'
     """
-    return escape(str(text)).replace("{", "&#123;").replace("}", "&#125;")
+    return _braces(escape(str(text)))
+
+
+def _braces(html: str) -> str:
+    return html.replace("{", "&#123;").replace("}", "&#125;")
 
 
 def _category_name(name: object) -> str:
@@ -793,7 +810,7 @@ def _cloze_question(key: Mapping[str, Any], title: str, student: str,
     """(the question's text, its embedded files) of one variant's Cloze question."""
     import base64
 
-    task = _cloze_text(key.get("task", "")).replace("\n\n", "</p><p>")
+    task = _braces(_html(key.get("task", ""))).replace("\n\n", "</p><p>")
     image, files = "", ""
     if sheets and student in sheets:
         name = f"sheet_{_identifier(student)}.svg"
@@ -803,7 +820,7 @@ def _cloze_question(key: Mapping[str, Any], title: str, student: str,
         files = f'<file name="{name}" path="/" encoding="base64">{data}</file>'
     # words: vocabulary (a question's text and a unit alone: its text until it is a message)
     rows = "".join(
-        f"<tr><td>{_cloze_text(question['text'])}</td><td>{cloze_field(question)}</td>"
+        f"<tr><td>{_braces(_html(question['text']))}</td><td>{cloze_field(question)}</td>"
         f"<td>{_cloze_text(render(unit_words(question.get('unit', ''))))}</td></tr>"
         for question in key["questions"])
     variant = _cloze_text(render(message("— variant {student}", student=student)))
