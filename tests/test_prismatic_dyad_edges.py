@@ -366,19 +366,19 @@ def test_rpp_reactions_with_the_block_off_its_pin(inner, outer):
 # -- the steps the report lists -----------------------------------------------------------------
 @pytest.mark.parametrize("data, kind, steps", [
     pytest.param(_lever_offsets(), "RPR", [
-        "R_B along the guide from block's projection on the guide",
+        "R_B along the guide from link block's projection on the guide",
         "R_B ⟂ the guide from ΣM_O2 of the group = 0",
-        "the normal force and couple of block/lever from block",
-        "R_O2 from the force polygon of lever"], id="RPR"),
+        "the normal force and couple of pair block/lever from link block",
+        "R_O2 from the force polygon of link lever"], id="RPR"),
     pytest.param(_guides(), "PRP", [
         "force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide",
-        "R_Q from the equilibrium of s2",
+        "R_Q from the equilibrium of link s2",
         "each reaction couple from its link's moments about its slide point"], id="PRP"),
     pytest.param(_yoke(), "RPP", [
-        "N of yoke/frame from yoke's projection on the guide of block/yoke",
+        "N of pair yoke/frame from link yoke's projection on the guide of pair block/yoke",
         "R_B from the force polygon of the group",
-        "the normal force and couple of block/yoke from block",
-        "the couple of yoke/frame from ΣM(yoke) = 0"], id="RPP"),
+        "the normal force and couple of pair block/yoke from link block",
+        "the couple of pair yoke/frame from ΣM(yoke) = 0"], id="RPP"),
 ])
 def test_reaction_steps_as_the_report_lists_them(data, kind, steps):
     """Each prismatic dyad's textbook sequence (docs/kinetostatics.md, "Group by group": the

@@ -247,3 +247,44 @@ def test_grade_and_export_take_the_keys_language(course, tmp_path, monkeypatch):
          "--out", english_class, "--no-sheets")
     monkeypatch.setenv(language.ENVIRONMENT, "ru")
     assert "неверно" in _run("grade", english_class / "keys.json", ANSWERS)   # no [course]
+
+
+def _force_steps(report: str) -> list[str]:
+    """The force analysis's step sentences of a printed report: the lines under a group's or
+    the drive's heading (``  группа RRP — звенья 2, 3 (BC, piston):``)."""
+    steps, inside = [], False
+    for line in report.splitlines():
+        if line.startswith("  ") and not line.startswith("   ") and line.endswith(":"):
+            inside = True
+        elif inside and line.startswith("    "):
+            steps.append(line.strip())
+        else:
+            inside = False
+    return steps
+
+
+def _word_names(path: Path) -> list[str]:
+    """An exercise's link names that are words (``piston``, ``rocker_EF``), not a segment of
+    its points (``BC``, which a step names as the segment BC)."""
+    mechanism = load_exercise(path).mechanism
+    points = {point for link in mechanism.links.values() for point in link.points}
+    return [name for link in mechanism.links for name in (link, link.replace("_", " "))
+            if not re.fullmatch(f"(?:{'|'.join(map(re.escape, points))})+", link)]
+
+
+@pytest.mark.parametrize("name", ["combined_force_slider_crank", "conveyor_sixbar"])
+def test_the_force_steps_name_links_and_pairs_by_number(name):
+    """A step names a link by its course number and a prismatic pair by its links' numbers
+    (the guide of pair 3–0), never by the exercise's names, in Russian and in English."""
+    path = ROOT / "exercises" / f"{name}.toml"
+    names = _word_names(path)
+    russian = _force_steps(_run("solve", path, "--lang", "ru"))
+    english_steps = _force_steps(_run("solve", path, "--lang", "en"))
+    assert len(russian) == len(english_steps) >= 5
+    for steps in (russian, english_steps):
+        shown = "\n".join(steps)
+        assert [name for name in names if re.search(rf"\b{re.escape(name)}\b", shown)] == []
+    if name == "combined_force_slider_crank":
+        assert "N ⟂ направляющей пары 3–0" in "\n".join(russian)
+        assert "N ⟂ the guide of pair 3–0" in "\n".join(english_steps)
+        assert "R₀₁ from the force polygon of link 1" in english_steps

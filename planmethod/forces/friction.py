@@ -49,7 +49,7 @@ from ..vocabulary import AppliedKind, PairKind
 from ..words import Message, message
 from .applied import REST_SPEED, AppliedItem, AppliedLoads
 from .group_method import GroupSolution, solve_by_groups
-from .names import crank_angles
+from .names import PairNumbers, crank_angles
 
 __all__ = ["FrictionResult", "FrictionSettings", "friction_items", "friction_settings",
            "solve_with_friction"]
@@ -169,7 +169,8 @@ def friction_items(mechanism: Mechanism, states: Mapping[str, LinkState], soluti
         senses[key] = sense
         if np.any(sense == 0):
             flags.append(message("pair {pair}: no relative sliding {where}, friction taken "
-                                 "as zero there", pair=key, where=_where(sense == 0, angles)))
+                                 "as zero there", pair=PairNumbers(slide.link, slide.along),
+                                 where=_where(sense == 0, angles)))
     return items, losses, flags, senses
 
 

@@ -179,8 +179,8 @@ class _Solver:
         key = self.record(joint, (link,), link, FRAME, pivot, reaction).key
         steps = (message("{moment} from ΣM_{pivot}({link}) = 0", moment=BALANCING_MOMENT,
                          pivot=PointNames(drive.pivot), link=LinkNumber(link)),
-                 message("{reaction} from the force polygon of {link}",
-                         reaction=ForceName(f"R_{drive.pivot}"), link=link))
+                 message("{reaction} from the force polygon of link {link}",
+                         reaction=ForceName(f"R_{drive.pivot}"), link=LinkNumber(link)))
         return balancing, GroupForces(link, GroupKind.DRIVE, (link,), steps, tuple(edges), (key,))
 
 

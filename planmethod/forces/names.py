@@ -5,8 +5,9 @@ The force analysis says what it did in sentences (a group's steps, its flags): m
 by its report name (``Rᵗ_B``, ``F_u,BC``, ``load[1]``) and a link by its name; a course's
 text prints the force's symbol (Rᵗ₁₂, Fᵘ₂, P₃) and, where a course writes a link by its
 number (ΣM_C(2)), the number; and it writes a point's digits as subscripts (ΣM_O₁, O₂B).
-So such a field is a typed value, not text: a :class:`ForceName`, a :class:`LinkNumber` or
-:class:`PointNames`, which is written as its report name when the
+So such a field is a typed value, not text: a :class:`ForceName`, a :class:`LinkNumber`,
+:class:`PointNames` or a prismatic pair's :class:`PairNumbers` (3–0 in a course's text,
+``piston/frame`` in the JSON report), which is written as its report name when the
 sentence is rendered as it is (the JSON report), and which
 :meth:`planmethod.render.notation.ForceNotation.sentence` replaces by the course's notation.
 The symbols of a tradition (the balancing moment M_b, the inertia force Fᵘ …) are messages
@@ -22,6 +23,8 @@ Examples
 >>> render(message("⟂ {segment} from ΣM_{pin}", segment=PointNames("O2", "B"),
 ...                pin=PointNames("O1")))
 '⟂ O2B from ΣM_O1'
+>>> render(message("the guide of pair {pair}", pair=PairNumbers("piston", "frame")))
+'the guide of pair piston/frame'
 >>> render(message("at {angles}", angles=crank_angles([0.0, 90.0])))
 'at 0°, 90°'
 """
@@ -37,7 +40,8 @@ from ..vocabulary import subscript
 from ..words import Message, message
 
 __all__ = ["BALANCING_FORCE", "BALANCING_MOMENT", "FRICTION_FORCE", "FRICTION_MOMENT",
-           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceName", "LinkNumber", "PointNames",
+           "INERTIA_FORCE", "INERTIA_MOMENT", "ForceName", "LinkNumber", "PairNumbers",
+           "PointNames",
            "crank_angles",
            "load_symbol", "load_symbols"]
 
@@ -72,6 +76,20 @@ class LinkNumber:
 
     def __format__(self, specification: str) -> str:
         return format(self.link, specification)
+
+
+@dataclass(frozen=True, slots=True)
+class PairNumbers:
+    """A prismatic pair named in a sentence by its two links, the sliding one first and the
+    one it slides along (its guide's) second: written as the pair's report key
+    (``piston/frame``) where the sentence is rendered as it is; a course's text writes the
+    two links' numbers (3–0, :meth:`planmethod.render.notation.ForceNotation.pair_name`)."""
+
+    link: str
+    along: str
+
+    def __format__(self, specification: str) -> str:
+        return format(f"{self.link}/{self.along}", specification)
 
 
 @dataclass(frozen=True, slots=True, init=False)

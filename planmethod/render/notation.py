@@ -57,6 +57,7 @@ from ..forces.names import (
     INERTIA_MOMENT,
     ForceName,
     LinkNumber,
+    PairNumbers,
     PointNames,
     load_symbols,
 )
@@ -235,7 +236,8 @@ class ForceNotation:
         """A sentence of the force analysis (a group's step, a flag) in the course's
         notation: each force field (:class:`~planmethod.forces.names.ForceName`) printed by
         its symbol — a reaction acting on the one link of ``links`` (the group's) at its pair —
-        a :class:`~planmethod.forces.names.LinkNumber` by the link's number, points
+        a :class:`~planmethod.forces.names.LinkNumber` by the link's number, a prismatic pair
+        (:class:`~planmethod.forces.names.PairNumbers`) by its links' numbers (3–0), points
         (:class:`~planmethod.forces.names.PointNames`) with their digits as subscripts (O₂B,
         :func:`~planmethod.vocabulary.point_text`), and any link name with an underscore in
         the other fields in words."""
@@ -251,6 +253,8 @@ class ForceNotation:
             return self._force(value.name, links)
         if isinstance(value, LinkNumber):
             return self.number(value.link)
+        if isinstance(value, PairNumbers):
+            return self.pair_name(f"{value.link}/{value.along}")
         if isinstance(value, PointNames):
             return "".join(point_text(point) for point in value.points)
         if isinstance(value, str):

@@ -21,7 +21,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName
+from ..names import ForceName, LinkNumber, PairNumbers
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -42,8 +42,10 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     _, n2, ps2 = solver.guide(ext2)
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
     big1, big2 = solver.solve2(n1, n2, -(w1.force + w2.force), group.name,
-                               message("the guides of {first} and {second} are parallel",
-                                       first=ext1.slide.key, second=ext2.slide.key))
+                               message("the guides of pairs {first} and {second} are parallel",
+                                       first=PairNumbers(ext1.slide.link, ext1.slide.along),
+                                       second=PairNumbers(ext2.slide.link,
+                                                          ext2.slide.along)))
     f1, f2 = big1[..., None] * n1, big2[..., None] * n2
     r_q = -(w2.force + f2)                         # on l2 from l1
     c1 = -(w1.moment_about(ps1) + vectors.cross(q - ps1, -r_q))
@@ -55,7 +57,7 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
             solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key,
             solver.record(internal, group.links, l2, l1, q, r_q).key]
     steps = (message("force polygon of the group: ΣF + N2 + N1 = 0, each N ⟂ its guide"),
-             message("{pin} from the equilibrium of {link}",
-                     pin=ForceName(f"R_{internal.point}"), link=l2),
+             message("{pin} from the equilibrium of link {link}",
+                     pin=ForceName(f"R_{internal.point}"), link=LinkNumber(l2)),
              message("each reaction couple from its link's moments about its slide point"))
     return solver.result(group, steps, edges, keys)

@@ -12,7 +12,7 @@ Examples
 >>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/scotch_yoke.toml").mechanism)
 >>> render(solve_forces(motion).groups.groups[0].steps[0])
-"N of yoke/frame from yoke's projection on the guide of block/yoke"
+"N of pair yoke/frame from link yoke's projection on the guide of pair block/yoke"
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName, LinkNumber
+from ..names import ForceName, LinkNumber, PairNumbers
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -35,6 +35,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     polygon; the inner normal force and couple from L1, the outer couple from ΣM(L2).
     """
     ext1, internal, ext2 = group.joints
+    inner_pair = PairNumbers(internal.slide.link, internal.slide.along)
+    outer_pair = PairNumbers(ext2.slide.link, ext2.slide.along)
     l1, l2 = group.links
     k1, k2 = ext1.other(l1), ext2.other(l2)
     p1 = solver.at(l1, ext1.point)
@@ -43,8 +45,8 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     w1, w2 = solver.wrench[l1], solver.wrench[l2]
     across = vectors.dot(n2, di)
     solver.singular(across, 1.0, group.name,
-                    message("the guides of {first} and {second} are parallel",
-                            first=internal.slide.key, second=ext2.slide.key))
+                    message("the guides of pairs {first} and {second} are parallel",
+                            first=inner_pair, second=outer_pair))
     big2 = -vectors.dot(w2.force, di) / across
     f2 = big2[..., None] * n2
     r1 = -(w1.force + w2.force + f2)
@@ -57,12 +59,12 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     keys = [solver.record(ext1, group.links, l1, k1, p1, r1).key,
             solver.record(internal, group.links, l1, l2, psi, inner, c_inner).key,
             solver.record(ext2, group.links, l2, k2, ps2, f2, c2).key]
-    steps = (message("N of {pair} from {link}'s projection on the guide of {inner}",
-                     pair=ext2.slide.key, link=l2, inner=internal.slide.key),
+    steps = (message("N of pair {pair} from link {link}'s projection on the guide of pair "
+                     "{inner}", pair=outer_pair, link=LinkNumber(l2), inner=inner_pair),
              message("{reaction} from the force polygon of the group",
                      reaction=ForceName(f"R_{ext1.point}")),
-             message("the normal force and couple of {pair} from {link}",
-                     pair=internal.slide.key, link=l1),
-             message("the couple of {pair} from ΣM({link}) = 0", pair=ext2.slide.key,
+             message("the normal force and couple of pair {pair} from link {link}",
+                     pair=inner_pair, link=LinkNumber(l1)),
+             message("the couple of pair {pair} from ΣM({link}) = 0", pair=outer_pair,
                      link=LinkNumber(l2)))
     return solver.result(group, steps, edges, keys)

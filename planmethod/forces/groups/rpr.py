@@ -13,7 +13,7 @@ Examples
 >>> from planmethod.words import render
 >>> motion = solve(load_exercise("exercises/slotted_lever.toml").mechanism)
 >>> render(solve_forces(motion).groups.groups[0].steps[0])
-"R_B along the guide from block's projection on the guide"
+"R_B along the guide from link block's projection on the guide"
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from ... import vectors
 from ...structure import AssurGroup
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName, PointNames
+from ..names import ForceName, LinkNumber, PairNumbers, PointNames
 from .base import ForceSolver, GroupForces
 
 __all__ = ["reactions"]
@@ -61,12 +61,13 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
             solver.record(internal, group.links, l1, l2, ps, inner, couple).key,
             solver.record(ext2, group.links, l2, k2, p2, r2).key]
     first = ForceName(f"R_{ext1.point}")
-    steps = (message("{reaction} along the guide from {link}'s projection on the guide",
-                     reaction=first, link=l1),
+    steps = (message("{reaction} along the guide from link {link}'s projection on the guide",
+                     reaction=first, link=LinkNumber(l1)),
              message("{reaction} ⟂ the guide from ΣM_{point} of the group = 0",
                      reaction=first, point=PointNames(ext2.point)),
-             message("the normal force and couple of {pair} from {link}",
-                     pair=internal.slide.key, link=l1),
-             message("{reaction} from the force polygon of {link}",
-                     reaction=ForceName(f"R_{ext2.point}"), link=l2))
+             message("the normal force and couple of pair {pair} from link {link}",
+                     pair=PairNumbers(internal.slide.link, internal.slide.along),
+                     link=LinkNumber(l1)),
+             message("{reaction} from the force polygon of link {link}",
+                     reaction=ForceName(f"R_{ext2.point}"), link=LinkNumber(l2)))
     return solver.result(group, steps, edges, keys)

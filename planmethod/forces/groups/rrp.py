@@ -21,7 +21,7 @@ from ...structure import AssurGroup
 from ...vectors import cross, perp
 from ...vocabulary import EdgeKind
 from ...words import message
-from ..names import ForceName, LinkNumber, PointNames
+from ..names import ForceName, LinkNumber, PairNumbers, PointNames
 from .base import ForceSolver, GroupForces, split
 
 __all__ = ["reactions"]
@@ -44,8 +44,9 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
     t1 = w1.moment_about(q) / a
     rt1 = t1[..., None] * perp(e1)
     n1, normal = solver.solve2(e1, n, -(rt1 + w1.force + w2.force), group.name,
-                               message("{link} is perpendicular to the guide of {pair}",
-                                       link=l1, pair=ext2.slide.key))
+                               message("{link} is perpendicular to the guide of pair {pair}",
+                                       link=l1, pair=PairNumbers(ext2.slide.link,
+                                                                 ext2.slide.along)))
     rn1, big_n = n1[..., None] * e1, normal[..., None] * n
     r1 = rn1 + rt1
     r_q = r1 + w1.force
@@ -59,13 +60,14 @@ def reactions(solver: ForceSolver, group: AssurGroup) -> GroupForces:
             solver.record(internal, group.links, l2, l1, q, r_q).key]
     p1, pin, guide = ext1.point, internal.point, ext2.slide
     tangential, normal_part = ForceName(f"Rᵗ_{p1}"), ForceName(f"Rⁿ_{p1}")
+    pair = PairNumbers(guide.link, guide.along)
     steps = (message("{force} ⟂ {segment} from ΣM_{pin}({link}) = 0", force=tangential,
                      segment=PointNames(p1, pin), pin=PointNames(pin), link=LinkNumber(l1)),
              message("force polygon: {tangential} + ΣF + N + {normal} = 0, N ⟂ the guide of "
-                     "{pair}, {normal} ∥ {segment}", tangential=tangential,
-                     normal=normal_part, pair=guide.key, segment=PointNames(p1, pin)),
-             message("{pin} from the equilibrium of {link}", pin=ForceName(f"R_{pin}"),
-                     link=l1),
-             message("the reaction couple of {pair} from ΣM({link}) = 0 about {point}",
-                     pair=guide.key, link=LinkNumber(l2), point=PointNames(guide.point)))
+                     "pair {pair}, {normal} ∥ {segment}", tangential=tangential,
+                     normal=normal_part, pair=pair, segment=PointNames(p1, pin)),
+             message("{pin} from the equilibrium of link {link}", pin=ForceName(f"R_{pin}"),
+                     link=LinkNumber(l1)),
+             message("the reaction couple of pair {pair} from ΣM({link}) = 0 about {point}",
+                     pair=pair, link=LinkNumber(l2), point=PointNames(guide.point)))
     return solver.result(group, steps, edges, keys)

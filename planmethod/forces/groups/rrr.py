@@ -77,6 +77,6 @@ def _steps(p1: str, q: str, p2: str, l1: str, l2: str) -> tuple:
                     "{second_segment}", first=first, second=second,
                     first_normal=ForceName(f"Rⁿ_{p1}"), second_normal=ForceName(f"Rⁿ_{p2}"),
                     first_segment=PointNames(p1, q), second_segment=PointNames(p2, q)),
-            message("{pin} from the equilibrium of {link}: {pin} = {outer} + ΣF({number})",
-                    pin=ForceName(f"R_{q}"), link=l1, outer=ForceName(f"R_{p1}"),
+            message("{pin} from the equilibrium of link {number}: {pin} = {outer} + "
+                    "ΣF({number})", pin=ForceName(f"R_{q}"), outer=ForceName(f"R_{p1}"),
                     number=LinkNumber(l1)))

@@ -143,5 +143,5 @@ def _steps(sides: list[_Side], central: str) -> tuple[Message, ...]:
                 "{points}) meet: ΣM_S of the group gives the third Rⁿ",
                 points=[PointNames(side.outer.point) for side in sides]),
         message("force polygon of the group: ΣRᵗ + ΣF + ΣRⁿ = 0 gives the other two Rⁿ"),
-        message("the inner pins from the equilibrium of each side link ({link} is the "
-                "central link)", link=central))
+        message("the inner pins from the equilibrium of each side link (link {link} is "
+                "the central link)", link=LinkNumber(central)))
