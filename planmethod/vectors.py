@@ -111,6 +111,34 @@ def angle_deg(a: np.ndarray) -> float:
     return math.degrees(math.atan2(a[1], a[0]))
 
 
+def inside_span(start, end, box) -> tuple[float, float] | None:
+    """The parameters ``(low, high)`` of the part of the segment ``start + t·(end − start)``,
+    0 ≤ t ≤ 1, that lies inside the box ``(x0, y0, x1, y1)``, or None where none of it does
+    (Liang–Barsky clipping).
+
+    Examples
+    --------
+    >>> inside_span((-5.0, 0.0), (5.0, 0.0), (0.0, -1.0, 2.0, 1.0))
+    (0.5, 0.7)
+    >>> inside_span((-5.0, 3.0), (5.0, 3.0), (0.0, -1.0, 2.0, 1.0)) is None
+    True
+    """
+    (sx, sy), (ex, ey) = start, end
+    dx, dy = ex - sx, ey - sy
+    x0, y0, x1, y1 = box
+    low, high = 0.0, 1.0
+    for p, q in ((-dx, sx - x0), (dx, x1 - sx), (-dy, sy - y0), (dy, y1 - sy)):
+        if p == 0:
+            if q < 0:
+                return None
+            continue
+        if p < 0:
+            low = max(low, q / p)
+        else:
+            high = min(high, q / p)
+    return (low, high) if high > low else None
+
+
 @functools.lru_cache(maxsize=4096)
 def _turn_matrix(x: float, y: float) -> np.ndarray:
     matrix = np.array([[x, y], [-y, x]])

@@ -7,8 +7,14 @@ is skipped with the reason (CI installs both: .ci/run). Never ``playwright insta
 from __future__ import annotations
 
 import shutil
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
 
 
 def require():
@@ -21,3 +27,18 @@ def require():
         pytest.skip("no system Chromium on the PATH (apt-get install chromium)",
                     allow_module_level=True)
     return sync_api, chromium
+
+
+def launched(sync_api, chromium: str) -> Iterator:
+    """The system Chromium launched headless for a module's tests (a fixture's body: yields
+    the browser, closes it after)."""
+    with sync_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
+        yield browser
+        browser.close()
+
+
+def cli(*argv) -> subprocess.CompletedProcess:
+    """``planmethod ARGV…`` run from the project's root; fails the test on a non-zero exit."""
+    return subprocess.run([sys.executable, "-m", "planmethod", *map(str, argv)], cwd=ROOT,
+                          capture_output=True, text=True, check=True)

@@ -20,8 +20,6 @@ from __future__ import annotations
 import csv
 import json
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import chromium
@@ -40,17 +38,12 @@ SLOTTED = ROOT / "exercises" / "slotted_lever.toml"
 sync_api, CHROMIUM = chromium.require()
 
 
-def cli(*argv) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "planmethod", *map(str, argv)], cwd=ROOT,
-                          capture_output=True, text=True, check=True)
+cli = chromium.cli
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
-        yield browser
-        browser.close()
+    yield from chromium.launched(sync_api, CHROMIUM)
 
 
 def open_page(browser, path: Path):

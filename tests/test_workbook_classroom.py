@@ -11,8 +11,6 @@ Skipped, with the reason, where Playwright or the system Chromium is missing.
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import chromium
@@ -32,17 +30,12 @@ PHONE = {"viewport": {"width": 390, "height": 844}, "has_touch": True, "is_mobil
          "device_scale_factor": 3}
 
 
-def cli(*argv) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "planmethod", *map(str, argv)], cwd=ROOT,
-                          capture_output=True, text=True, check=True)
+cli = chromium.cli
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
-        yield browser
-        browser.close()
+    yield from chromium.launched(sync_api, CHROMIUM)
 
 
 @pytest.fixture(scope="module")

@@ -36,7 +36,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..vectors import norm
+from ..vectors import inside_span, norm
 from ..words import Message, message, number_text, template
 from .canvas import MARGIN, Canvas, Point, page_point, shown_text
 from .labels import RunKind, drawn_length
@@ -290,18 +290,10 @@ def _anchored(request, box):
         return request
     (sx, sy), (ex, ey) = request.span
     dx, dy = ex - sx, ey - sy
-    low, high = 0.0, 1.0
-    for p, q in ((-dx, sx - x0), (dx, x1 - sx), (-dy, sy - y0), (dy, y1 - sy)):
-        if p == 0:
-            if q < 0:
-                return request
-            continue
-        if p < 0:
-            low = max(low, q / p)
-        else:
-            high = min(high, q / p)
-    if high - low <= 0 or (high - low) * math.hypot(dx, dy) < 8.0:
+    span = inside_span(request.span[0], request.span[1], box)
+    if span is None or (span[1] - span[0]) * math.hypot(dx, dy) < 8.0:
         return request                     # not shown, or too little of it to name
+    low, high = span
     middle = 0.5 * (low + high)
     return replace(request, anchor=(sx + middle * dx, sy + middle * dy))
 

@@ -41,7 +41,7 @@ import numpy as np
 from ..forces.checks import VelocitySource
 from ..forces.names import BALANCING_MOMENT, INERTIA_FORCE, INERTIA_MOMENT
 from ..plans.scales import standard
-from ..vectors import cross, dot, norm, perp, unit
+from ..vectors import cross, dot, inside_span, norm, perp, unit
 from ..vocabulary import (
     SCALES,
     AppliedKind,
@@ -1006,21 +1006,10 @@ def _clipped(start: np.ndarray, end: np.ndarray, box) -> tuple[np.ndarray, np.nd
     ...                               (0.0, -1.0, 2.0, 1.0))]
     [[0.0, 0.0], [2.0, 0.0]]
     """
-    delta = end - start
-    low, high = 0.0, 1.0
-    for p, q in ((-delta[0], start[0] - box[0]), (delta[0], box[2] - start[0]),
-                 (-delta[1], start[1] - box[1]), (delta[1], box[3] - start[1])):
-        if p == 0:
-            if q < 0:
-                return None
-            continue
-        if p < 0:
-            low = max(low, q / p)
-        else:
-            high = min(high, q / p)
-    if high <= low:
+    span = inside_span(start, end, box)
+    if span is None:
         return None
-    return start + low * delta, start + high * delta
+    return start + span[0] * (end - start), start + span[1] * (end - start)
 
 
 def _legend_key_of(name: str) -> Message:
