@@ -295,7 +295,7 @@ def graded_lines(graded: Graded, *, feedback: str = "full", quiet: bool = False)
         if not quiet:
             lines += [f"  {render(_MARKS[bool(q.correct)])} "
                       f"{render(feedback_text(q, feedback))}" for q in result.questions]
-        if result.revealed:   # the workbook page showed these right values
+        if result.revealed and not quiet:   # the workbook page showed these right values
             key = graded.keys.get(str(result.student), graded.keys.get("*", {}))
             lines.append(f"  !  {render(revealed_answers_note(result.revealed, key))}")
     for path, drawing in graded.drawings:
