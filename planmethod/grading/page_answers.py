@@ -25,7 +25,7 @@ from ..io import read_text_bounded
 from ..spec import parse_json
 from ..words import Message, message
 from .answers import ANSWERS_FORMAT, MAX_ANSWER_BYTES
-from .drawings import _page_drawing, exercise_digest, key_at_angle
+from .drawings import exercise_digest, key_at_angle, page_drawing
 
 __all__ = ["PageAnswers", "key_for_answers", "page_answers", "read_page_answers",
            "revealed_answers_note"]
@@ -62,7 +62,7 @@ def page_answers(parsed: Any, source: str | None = None) -> PageAnswers | None:
     if not isinstance(parsed, Mapping) or parsed.get("format") != ANSWERS_FORMAT:
         return None
     # the envelope's title, digest, angle and revealed are read as a page's drawing's are
-    drawing = _page_drawing(parsed, {}, None, source)
+    drawing = page_drawing(parsed, {}, None, source)
     return PageAnswers(str(drawing.title), drawing.exercise, float(drawing.angle),
                        drawing.revealed, source)
 
