@@ -458,3 +458,33 @@ def test_every_action_works_from_the_keyboard(browser, slotted_page, slotted_rep
     assert page.get_attribute('[data-verdict-for="velocity:b"]', "data-ok") == "true"
     assert errors == []
     page.context.close()
+
+
+def test_downloaded_answers_say_what_was_revealed_and_grade_reports_it(
+        browser, slotted_page, tmp_path):
+    """Practising at 45°, one answer shown and another typed: the answers downloaded name the
+    exercise and the angle, are graded at that angle, and ``grade`` reports the one shown (in
+    its text and in the JSON's ``revealed``)."""
+    page, errors = open_page(browser, slotted_page, LAPTOP)
+    move_slider(page, 45)
+    page.check("#practice")
+    page.click('button[data-reveal="v_B@lever"]')
+    right = page.get_attribute('td.reading[data-quantity="omega_lever"]', "data-value")
+    page.fill('input[data-answer="omega_lever"]', right)
+    with page.expect_download() as download:
+        page.click("#download-answers")
+    sheet = tmp_path / download.value.suggested_filename
+    download.value.save_as(sheet)
+    assert sheet.name.endswith("-answers-45deg.json")
+    written = json.loads(sheet.read_text())
+    assert written["angle"] == 45 and written["revealed"] == ["v_B@lever"]
+    assert written["answers"] == {"omega_lever": right} and len(written["exercise"]) == 16
+    graded_json = tmp_path / "graded.json"
+    shown = cli("grade", SLOTTED, sheet, "--json", graded_json).stdout
+    graded = json.loads(graded_json.read_text())["answers"][0]
+    assert graded["revealed"] == ["v_B@lever"]
+    assert next(q for q in graded["questions"] if q["id"] == "omega_lever")["correct"]
+    note = next(line for line in shown.splitlines() if line.startswith("  !  "))
+    assert "the page showed the right values" in note and note.endswith(": v_B₃")
+    assert errors == []
+    page.context.close()

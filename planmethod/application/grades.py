@@ -135,6 +135,27 @@ def _drawings(request: GradeRequest, keys: Mapping[str, Any], key_of_student
     return tuple(drawings)
 
 
+def _page_graded(request: GradeRequest, keys: Mapping[str, Any], key_of_student,
+                 rows: list) -> list[StudentGrade] | None:
+    """The answers downloaded from the workbook page graded at their own angle, on their own
+    exercise, with what the page showed; None for any other answers file."""
+    from dataclasses import replace
+
+    from ..grading.answers import grade_answers
+    from ..grading.page_answers import key_for_answers, read_page_answers
+
+    page = read_page_answers(request.answers)
+    if page is None:
+        return None
+    key = key_of_student or keys.get("*")
+    if key is None:
+        raise SpecError(message("grading the page's answers against a bundle needs "
+                                "--student"), file=request.answers)
+    student, answers = rows[0]
+    graded = grade_answers(key_for_answers(key, page), answers, student=student)
+    return [replace(graded, revealed=page.revealed)]
+
+
 def grade(request: GradeRequest) -> Graded:
     """Grade the answers and drawings of ``request``.
 
@@ -167,7 +188,8 @@ def grade(request: GradeRequest) -> Graded:
             if request.student is not None:
                 rows = [(request.student if s == "*" or len(rows) == 1 else s, a)
                         for s, a in rows]
-            results = grade_many(keys, rows)
+            results = _page_graded(request, keys, key_of_student, rows) or grade_many(keys,
+                                                                                     rows)
     return Graded(keys, tuple(results), _drawings(request, keys, key_of_student), photos,
                   refused)
 
@@ -261,6 +283,7 @@ def graded_lines(graded: Graded, *, feedback: str = "full", quiet: bool = False)
     """The lines a grader reads: each student's score and, unless ``quiet``, each question's
     feedback; each drawing's score and each point's feedback; in the language spoken."""
     from ..grading.answers import feedback_text
+    from ..grading.page_answers import revealed_answers_note
 
     lines: list[Message | str] = []
     for result in graded.answers:
@@ -272,6 +295,9 @@ def graded_lines(graded: Graded, *, feedback: str = "full", quiet: bool = False)
         if not quiet:
             lines += [f"  {render(_MARKS[bool(q.correct)])} "
                       f"{render(feedback_text(q, feedback))}" for q in result.questions]
+        if result.revealed and not quiet:   # the workbook page showed these right values
+            key = graded.keys.get(str(result.student), graded.keys.get("*", {}))
+            lines.append(f"  !  {render(revealed_answers_note(result.revealed, key))}")
     for path, drawing in graded.drawings:
         lines.append(message("{path} ({plan}): {score:g}/{total:g}", path=path,
                              plan=_PLANS.get(drawing.plan, drawing.plan),

@@ -4,7 +4,9 @@ Answers come as CSV (a header row; a ``student`` column — or ``id``, ``student
 ``email``, ``name`` — and one column per question id such as ``v_C``, ``omega_BC``; a file
 without a student column is one student's answers in one row) or as JSON
 (``{"s01": {"v_C": 5.2, …}, …}``, or a list of ``{"student": "s01", "v_C": 5.2, …}`` /
-``{"student": "s01", "answers": {…}}``).
+``{"student": "s01", "answers": {…}}``). An answers file downloaded from the workbook page
+is one student's: ``{"format": "planmethod-answers", "title": …, "exercise": …, "angle": …,
+"answers": {…}, "revealed": [question id, …]}`` (:mod:`planmethod.grading.page_answers`).
 
 An answer within the question's tolerance scores the question's points. Otherwise the
 feedback says by how much it is off, and names the mistake when the answer matches one
@@ -60,12 +62,15 @@ from .verdicts import (
     Way,
 )
 
-__all__ = ["FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS", "answers_from_csv",
+__all__ = ["ANSWERS_FORMAT", "FEEDBACK_LEVELS", "MAX_ANSWER_BYTES", "STUDENT_COLUMNS",
+           "answers_from_csv",
            "classify", "feedback_text", "grade_answers", "grade_many", "grade_question",
            "magnitude_note", "read_answers", "refuse_twice", "sense_words"]
 
 MAX_ANSWER_BYTES = 20_000_000
 MAX_ROWS = 200_000
+#: the ``format`` of an answers file downloaded from the workbook page
+ANSWERS_FORMAT = "planmethod-answers"
 STUDENT_COLUMNS = ("student", "student_id", "id", "sid", "email", "name")
 #: the mistake of a reversed sense (named without how far off the answer is)
 SENSE = "sense"
@@ -172,6 +177,11 @@ def _answers_of_object(data: Mapping[str, Any], where: str) -> list[tuple[str, d
         raise SpecError(message("no student's answers (the object is empty)"), file=where)
     if any(keys <= set(data) for keys in _RESULTS_KEYS):
         raise SpecError(_NOT_ANSWERS, file=where)
+    if data.get("format") == ANSWERS_FORMAT:   # the page's: one student's, with what it was
+        answers = data.get("answers")
+        if not isinstance(answers, Mapping):
+            raise SpecError(message("must be an object of answers"), file=where, key="answers")
+        return [("*", _one_answer_each(answers, where, "answers"))]
     students = [name for name, value in data.items() if isinstance(value, Mapping)]
     if len(students) == len(data):       # {"s01": {"v_C": 5.2, …}, …}
         return [(str(name), _one_answer_each(value, where, str(name)))

@@ -73,6 +73,7 @@ __all__ = [
     "grade_drawing",
     "key_at_angle",
     "key_for_drawing",
+    "page_drawing",
     "parse_drawing_json",
     "parse_drawing_svg",
     "read_drawing",
@@ -198,9 +199,20 @@ def _json_points(parsed: Mapping[str, Any], plan: Any, source: str | None
             for label in names}
 
 
-def _page_drawing(parsed: Mapping[str, Any], points, plan, source: str | None) -> Drawing:
+def page_drawing(parsed: Mapping[str, Any], points, plan, source: str | None) -> Drawing:
     """A drawing downloaded from the workbook page: its points, and the exercise's title,
-    digest and crank angle it names."""
+    digest and crank angle it names, and what the page showed (``revealed``); the answers
+    the page downloads name them alike (:mod:`planmethod.grading.page_answers`).
+
+    >>> page_drawing({"title": "T", "angle": 45, "revealed": ["v_C"]}, {}, None, None).angle
+    45.0
+
+    Raises
+    ------
+    SubmissionError
+        In one line, naming the field, for a title, digest, angle or ``revealed`` that is not
+        what the page writes.
+    """
     title, angle = parsed.get("title"), parsed.get("angle")
     digest = parsed.get("exercise")
     if not isinstance(title, str):
@@ -293,7 +305,7 @@ def parse_drawing_json(data: bytes | str, *, source: str | None = None) -> Drawi
     points = _json_points(parsed, plan, source)
     if parsed.get("format") != DRAWING_FORMAT:
         return Drawing(points, plan, (), source)
-    return _page_drawing(parsed, points, plan, source)
+    return page_drawing(parsed, points, plan, source)
 
 
 # -- SVG -------------------------------------------------------------------------------------

@@ -161,7 +161,9 @@ class GradedQuestion:
 class StudentGrade:
     """One student's grade: who (``student``), the variant graded against, the ``score`` of
     ``max_score``, each question's grade and the answers that matched no question
-    (``ignored``); or, for a student no key is for, the ``error`` (no score of anything)."""
+    (``ignored``); or, for a student no key is for, the ``error`` (no score of anything).
+    Answers downloaded from the workbook page say which right values the page showed
+    (``revealed``: question ids at the answers' angle); other answers files, None."""
 
     student: Any
     variant: Any
@@ -170,16 +172,20 @@ class StudentGrade:
     questions: tuple[GradedQuestion, ...] = ()
     ignored: tuple[str, ...] = ()
     error: Message | None = None
+    revealed: tuple[str, ...] | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """The grade as ``grade --json`` writes it."""
         if self.error is not None:
             return {"student": self.student, "score": self.score, "max_score": self.max_score,
                     "questions": [], "error": render(self.error)}
-        return {"student": self.student, "variant": self.variant, "score": self.score,
-                "max_score": self.max_score,
-                "questions": [question.as_dict() for question in self.questions],
-                "ignored": list(self.ignored)}
+        out = {"student": self.student, "variant": self.variant, "score": self.score,
+               "max_score": self.max_score,
+               "questions": [question.as_dict() for question in self.questions],
+               "ignored": list(self.ignored)}
+        if self.revealed is not None:
+            out["revealed"] = list(self.revealed)
+        return out
 
 
 @dataclass(frozen=True, slots=True)

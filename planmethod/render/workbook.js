@@ -319,6 +319,33 @@
     wb.check = check;
     document.getElementById("check").addEventListener("click", check);
 
+    // -- the answers as the answers file planmethod grade reads: the exercise (its title and
+    // digest) and the angle they are for, the answers typed, and the answers shown at it
+    function exportedAnswers() {
+      const angle = data.angles[wb.frame];
+      const [title, exercise] = data.key;
+      const typed = {};
+      answers.forEach(input => {
+        if (input.value.trim() !== "") typed[input.dataset.answer] = input.value.trim();
+      });
+      const out = {format: data.answers_format, version: 1, title: title};
+      if (exercise) out.exercise = exercise;
+      return Object.assign(out, {angle: angle, answers: typed, revealed: wb.revealedAt(angle)});
+    }
+    wb.exportedAnswers = exportedAnswers;
+    function downloadAnswers() {
+      const text = JSON.stringify(exportedAnswers(), null, 1) + "\n";
+      const link = document.createElement("a");
+      link.href = URL.createObjectURL(new Blob([text], {type: "application/json"}));
+      const slug = data.key[0].toLowerCase().replace(/[^a-z0-9]+/g, "-").replace(/^-|-$/g, "");
+      link.download = (slug || "answers") + "-answers-" + data.angles[wb.frame] + "deg.json";
+      document.body.appendChild(link);
+      link.click();
+      link.remove();
+      setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+    }
+    document.getElementById("download-answers").addEventListener("click", downloadAnswers);
+
     // other parts of the page (the drawing mode) start from the loaded data
     document.dispatchEvent(new CustomEvent("workbook:load", {detail: wb}));
     // the page as this browser kept it (the mode, the angle, the answers shown), else the

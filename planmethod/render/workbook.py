@@ -38,6 +38,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from ..grading.answers import ANSWERS_FORMAT
 from ..vocabulary import shown_title
 from ..words import Message, message, number_text, render, template
 from .canvas import Canvas, formula_runs
@@ -356,7 +357,9 @@ def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
             "sense": -1 if page.sense < 0 else 1, "rules": rules.as_dict(),
             # what the page keeps in the browser is kept under the exercise's title and
             # digest (two variants of a template share a title)
-            "key": [page.title, (page.drawing or {}).get("exercise", "")]}
+            "key": [page.title, (page.drawing or {}).get("exercise", "")],
+            # the answers the page downloads are an answers file planmethod grade reads
+            "answers_format": ANSWERS_FORMAT}
     if page.drawing is not None:
         data["draw"] = dict(page.drawing)
     return data
@@ -491,6 +494,7 @@ _CHROME = {
     "check": template("check", context="a button"),
     "readings": template("the values at this angle", context="a table's caption"),
     "show_answer": template("show the answer", context="a button"),
+    "download_answers": template("download my answers", context="a button"),
 }
 _CONSTRUCTION = template("construction of the\n{plan}")
 _SWITCH = template("frame switch: {time}")
@@ -608,7 +612,8 @@ _PAGE = """<!DOCTYPE html>
 <thead><tr><th scope="col">{quantity}</th><td class="reading-head">{exact}</td>
 <td class="plan-head">{read}</td><td>{unit}</td>
 <td class="practice">{answer}</td><td class="tolerance">{tolerance}</td>
-<td class="verdict"><button type="button" id="check">{check}</button></td></tr></thead>
+<td class="verdict"><button type="button" id="check">{check}</button>
+<button type="button" id="download-answers">{download_answers}</button></td></tr></thead>
 <tbody>
 {rows}
 </tbody>
