@@ -139,7 +139,7 @@ def browser_switch(path: str, screenshot: Path | None = None) -> dict | None:
         page.check("#draw-mode")
         first, checks = drawn_plan_checks(page, angles[::max(1, len(angles) // 12)][:12])
         page.evaluate("localStorage.clear()")
-        page.uncheck("#draw-mode")
+        page.check("#watch")        # back to watching (the modes are radios)
         if screenshot is not None:
             page.eval_on_selector("#angle", _TO_ANGLE, 60)
             page.select_option("#step-plan", "velocity")

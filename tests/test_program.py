@@ -231,6 +231,28 @@ def test_a_posed_mechanism_shares_its_dyads_program(path, shared):
                                rtol=1e-11, atol=1e-12)
 
 
+def test_a_reference_solve_and_a_posed_check_compile_nothing():
+    """The reference path runs the group kinds' formulas directly: it compiles no program,
+    and gives the compiled program's motion; so posing the conveyor (its class III group's
+    search checked by the reference path) leaves the posed mechanism nothing compiled."""
+    from planmethod.kinematics.continuation import pose
+
+    exercise = _fresh("exercises/conveyor_sixbar.toml", "reference compiles nothing")
+    found = model(exercise.mechanism)
+    angles = np.array([10.0, 200.0])
+    direct = solve(exercise.mechanism, angles, stage="acceleration", reference=True)
+    assert found.compilations == 0
+    compiled = solve(exercise.mechanism, angles, stage="acceleration")
+    assert found.compilations == 1
+    assert direct.branches == compiled.branches and direct.solved == compiled.solved
+    for link in direct.solved:
+        for point in exercise.mechanism.links[link].points:
+            assert np.allclose(direct.position(point), compiled.position(point), rtol=1e-12,
+                               atol=1e-15)
+    posed = pose(exercise.mechanism, 100.0).mechanism
+    assert model(posed).compilations == 0
+
+
 def test_a_motion_is_over_arrays_and_at_reads_one_angle():
     """A motion's readers return arrays over its angles whether one angle or many was asked
     (no flag changes what they return); ``at(i)`` reads the same values at angle i — a vector

@@ -521,25 +521,37 @@ def solve(mechanism: Mechanism, angles=None, *, stage: str = "acceleration",
     if not np.isfinite(angles_deg).all():
         raise SpecError(message("crank angles must be finite numbers"))
     level = _LEVELS[stage]
+    if reference:
+        return _reference_motion(mechanism, angles_deg, stage, links, branches)
     if links is None and branches is None:
         program = found.program(level)
     else:
         groups = found.groups(links)
         program = found.program(level, groups, found.branches(groups) if branches is None else {
             group.index: branches[group.index] for group in groups})
-    if reference:
-        result = program.direct(angles_deg)
-    else:
-        try:
-            result = program.run(angles_deg)
-        except PlanmethodError:
-            if angles_deg.shape[0] <= CHUNK:
-                raise
-            # a chunk came near a refused position: the direct evaluation over every angle
-            # finds the first angle refused, group by group in build order
-            program.direct(angles_deg)
+    try:
+        result = program.run(angles_deg)
+    except PlanmethodError:
+        if angles_deg.shape[0] <= CHUNK:
             raise
+        # a chunk came near a refused position: the direct evaluation over every angle
+        # finds the first angle refused, group by group in build order
+        program.direct(angles_deg)
+        raise
     return Motion(mechanism, found.structure, angles_deg, stage, program.branches,
+                  result.schema.solved, result, found.carriers)
+
+
+def _reference_motion(mechanism: Mechanism, angles_deg: np.ndarray, stage: str, links,
+                      branches: Mapping[int, Branch] | None) -> Motion:
+    """The motion :func:`solve` gives with ``reference``: the group kinds' formulas run
+    directly, with no program compiled (a posed mechanism's check compiles none)."""
+    found = model(mechanism)
+    groups = found.groups(links)
+    chosen = dict(found.branches(groups) if branches is None else {
+        group.index: branches[group.index] for group in groups})
+    result = found.direct(_LEVELS[stage], groups, chosen, angles_deg)
+    return Motion(mechanism, found.structure, angles_deg, stage, chosen,
                   result.schema.solved, result, found.carriers)
 
 
