@@ -348,6 +348,36 @@ def test_connections_are_bounded(strict_server):
     assert request(server, "GET", "/api/files")[0] == 200
 
 
+def test_a_ctrl_c_while_a_connection_starts_stops_the_studio_and_frees_its_place(
+        tmp_path, monkeypatch):
+    """A Ctrl-C may land in the server's thread just after a connection's thread started:
+    the place is given back once (the thread gives it back too) and the interrupt goes on —
+    it once became 'Semaphore released too many times', was shown as an internal error and
+    the studio served on."""
+    import socketserver
+
+    server = StudioServer(tmp_path, 0, connections=2)
+    started = socketserver.ThreadingMixIn.process_request
+
+    def interrupted(self, request, client_address):
+        started(self, request, client_address)
+        for thread in threading.enumerate():   # the connection's thread has ended
+            if "process_request_thread" in thread.name:
+                thread.join(30)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(socketserver.ThreadingMixIn, "process_request", interrupted)
+    try:
+        client, served = socket.socketpair()
+        client.close()
+        with pytest.raises(KeyboardInterrupt):
+            server.process_request(served, ("127.0.0.1", 0))
+        assert [server._places.acquire(blocking=False) for _ in range(3)] == [True, True, False]
+    finally:
+        monkeypatch.undo()
+        server.close()
+
+
 # -- the API --------------------------------------------------------------------------------------
 def test_solve_gives_the_reports_of_solve_json_with_the_plans(server):
     status, payload, _ = request(server, "POST", "/api/solve", read_text(COMPRESSOR))

@@ -142,6 +142,9 @@ class StudioServer(ThreadingHTTPServer):
         self.jobs = Jobs()
         self.request_seconds, self.idle_seconds = request_seconds, idle_seconds
         self._places = threading.BoundedSemaphore(connections)
+        #: the connections that hold a place (by id), so that each gives it back once
+        self._holding: set[int] = set()
+        self._holding_lock = threading.Lock()
         self.connections = connections
         self._thread: threading.Thread | None = None
         super().__init__((HOST, port), StudioHandler)
@@ -184,17 +187,29 @@ class StudioServer(ThreadingHTTPServer):
             _refuse_busy(request, self.connections, self.base_language)
             self.shutdown_request(request)
             return
+        with self._holding_lock:
+            self._holding.add(id(request))
         try:
             super().process_request(request, client_address)
         except BaseException:
-            self._places.release()
+            # a Ctrl-C may land here after the connection's thread started, which gives its
+            # place back too: the place is given back once, and the interrupt goes on
+            self._give_back(request)
             raise
 
     def process_request_thread(self, request: Any, client_address: Any) -> None:
         try:
             super().process_request_thread(request, client_address)
         finally:
-            self._places.release()
+            self._give_back(request)
+
+    def _give_back(self, request: Any) -> None:
+        """Free the place ``request`` holds, once however many paths end it."""
+        with self._holding_lock:
+            if id(request) not in self._holding:
+                return
+            self._holding.discard(id(request))
+        self._places.release()
 
     def handle_error(self, request: Any, client_address: Any) -> None:
         """What escaped a connection's handler: one line, never a traceback."""
