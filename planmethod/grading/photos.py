@@ -15,7 +15,8 @@ A photo is read in steps, each of which may refuse it in one line (:class:`Photo
    to it corrects every position found (:class:`Correction`);
 4. **the pencil** — dark, colourless strokes are separated from the light blue grid, straight
    strokes are found and fitted (:func:`find_strokes`), and the points a student marks are
-   where two strokes meet or cross, a dot, or a small cross (:func:`find_points`);
+   where two strokes meet or cross, a dot, or a small cross (:func:`find_points`); where
+   the lines reaching a point meet too shallowly to place it, the dot drawn there does;
 5. **the grade** — each point of the key's plan is looked for at its right place, then at each
    place a named mistake puts it (within the point's own tolerance radius, or a mistake's
    place within the photo's measuring error where that is wider), and the points so found are
