@@ -294,6 +294,28 @@ def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_
     assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
 
 
+def test_b_is_read_at_the_dot_where_its_lines_meet_too_shallowly(tmp_path):
+    """Student 001's four-bar velocity plan with c laid off from the pole (photographed as the
+    benchmark's case 157 is, seed 10157): three lines reach b within 15° of each other, so
+    where they cross moves with their pencil's width (1/sine), and b was read 0.7 mm off along
+    (pb), beyond its radius of 0.25 mm. The dot drawn at b places it."""
+    from planmethod.grading.photos import grade_photo
+
+    out = tmp_path / "course"
+    assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", "1",
+                 "--seed", "2026", "--out", str(out)]) == 0
+    keys = load_keys(out / "keys.json")
+    photo = sheet_photo(keys["001"], "velocity", "relative_for_absolute", "c", seed=10157)
+    path = tmp_path / "001_relative.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    place = {place.point: place for place in graded.places}["b"]
+    point = {point.point: point for point in graded.drawing.points}["b"]
+    drawn = plan_to_page(read_sheet(keys["001"], "velocity").pole_mm, photo.drawn.points["b"])
+    assert photo.drawn.deserved["b"] == "right"
+    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
+
+
 def test_a_helper_takes_no_mark_a_plan_point_needs():
     """b found just beyond its radius (0.27 mm off, as a cluttered photo reads it) is b, not
     the helper n_CB that the construction without aⁿ puts at b: the plan's points take their

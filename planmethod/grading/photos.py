@@ -15,7 +15,8 @@ A photo is read in steps, each of which may refuse it in one line (:class:`Photo
    to it corrects every position found (:class:`Correction`);
 4. **the pencil** — dark, colourless strokes are separated from the light blue grid, straight
    strokes are found and fitted (:func:`find_strokes`), and the points a student marks are
-   where two strokes meet or cross, a dot, or a small cross (:func:`find_points`);
+   where two strokes meet or cross, a dot, or a small cross (:func:`find_points`); where
+   the lines reaching a point meet too shallowly to place it, the dot drawn there does;
 5. **the grade** — each point of the key's plan is looked for at its right place, then at each
    place a named mistake puts it (within the point's own tolerance radius, or a mistake's
    place within the photo's measuring error where that is wider), and the points so found are
@@ -687,7 +688,9 @@ def _polished(line: Stroke, lines: Sequence[Stroke], darkness: np.ndarray,
     profile = np.clip(profile - np.minimum(profile[:, :3].mean(axis=1),
                                            profile[:, -3:].mean(axis=1))[:, None], 0, None)
     mass = profile.sum(axis=1)
-    good = mass > 0.5 * np.median(mass)
+    # a station with far more pencil across it than the line's own is touched by something
+    # else (a label's letter, a dot): its centre would be pulled towards it
+    good = (mass > 0.5 * np.median(mass)) & (mass < 1.5 * np.median(mass))
     if good.sum() < 8:
         return line
     shift = (profile[good] * offsets).sum(axis=1) / mass[good]
@@ -1072,6 +1075,50 @@ def _dots(points: np.ndarray, weights: np.ndarray, resolution: float
     return out
 
 
+def _on_dot(mark: Mark, darkness: np.ndarray, origin: Sequence[float], resolution: float,
+            *, reach_mm: float = 0.9) -> Mark:
+    """``mark`` moved onto the dot drawn on it, where its lines meet too shallowly to place it
+    (sine under :data:`SHALLOW_SINE`: their crossing's error grows as 1/sine): the strongest
+    blob of a dot's size (a difference of Gaussians, 0.45 mm and 1.2 mm) within ``reach_mm``
+    of it, placed to a fraction of a pixel (a parabola through the peak and its neighbours), if
+    it is as strong as a dot (:data:`DOT_BLOB`) — a pencil line, or lines running together,
+    give less."""
+    import cv2
+
+    if mark.kind not in (MarkKind.CROSS, MarkKind.CROSSING) or mark.sharpness >= SHALLOW_SINE:
+        return mark
+    half = math.ceil(4.5 * resolution)
+    column = round((mark.at[0] - origin[0]) * resolution - 0.5)
+    row = round((mark.at[1] - origin[1]) * resolution - 0.5)
+    height, width = darkness.shape
+    if not (half <= row < height - half and half <= column < width - half):
+        return mark
+    patch = darkness[row - half:row + half + 1, column - half:column + half + 1]
+    blob = (cv2.GaussianBlur(patch, (0, 0), 0.45 * resolution)
+            - cv2.GaussianBlur(patch, (0, 0), 1.2 * resolution))
+    ys, xs = np.mgrid[-half:half + 1, -half:half + 1]
+    blob = np.where(np.hypot(xs, ys) <= reach_mm * resolution, blob, -np.inf)
+    y, x = np.unravel_index(int(np.argmax(blob)), blob.shape)
+    if blob[y, x] < DOT_BLOB or not (0 < y < blob.shape[0] - 1 and 0 < x < blob.shape[1] - 1):
+        return mark
+
+    def vertex(low: float, middle: float, high: float) -> float:
+        bend = low - 2 * middle + high
+        return 0.0 if not np.isfinite(bend) or bend >= 0 else 0.5 * (low - high) / bend
+
+    dx = vertex(blob[y, x - 1], blob[y, x], blob[y, x + 1])
+    dy = vertex(blob[y - 1, x], blob[y, x], blob[y + 1, x])
+    at = (origin[0] + (column - half + x + dx + 0.5) / resolution,
+          origin[1] + (row - half + y + dy + 0.5) / resolution)
+    return Mark((float(at[0]), float(at[1])), mark.kind, mark.sharpness, mark.lines)
+
+
+#: lines that meet at a sine under this place their point less exactly than a dot drawn there
+SHALLOW_SINE = 0.35
+#: the least response of a dot to the blob filter of :func:`_on_dot` (darkness)
+DOT_BLOB = 0.13
+
+
 # -- 5. the grade -----------------------------------------------------------------------------
 def _rectified(image: np.ndarray, to_page: np.ndarray, box, resolution: float) -> np.ndarray:
     import cv2
@@ -1331,6 +1378,7 @@ def grade_photo(keys: Mapping[str, Mapping[str, Any]], path: str | Path, *,
     pixels, weights = _pencil_pixels(darkness, sheet, box, resolution, PENCIL_DARKNESS)
     strokes = find_strokes(pixels, weights, resolution, box[:2], darkness.shape, darkness)
     marks = find_points(strokes, pixels, weights, resolution=resolution)
+    marks = [_on_dot(mark, darkness, box[:2], resolution) for mark in marks]
     seen = [np.asarray(mark.at) for mark in marks]
     true = correction.true(np.asarray(seen).reshape(-1, 2)) if seen else np.zeros((0, 2))
     placed = [(np.asarray(page_to_plan(sheet.pole_mm, xy)), mark)
