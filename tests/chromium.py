@@ -7,14 +7,9 @@ is skipped with the reason (CI installs both: .ci/run). Never ``playwright insta
 from __future__ import annotations
 
 import shutil
-import subprocess
-import sys
 from collections.abc import Iterator
-from pathlib import Path
 
 import pytest
-
-ROOT = Path(__file__).resolve().parent.parent
 
 
 def require():
@@ -36,9 +31,3 @@ def launched(sync_api, chromium: str) -> Iterator:
         browser = playwright.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
         yield browser
         browser.close()
-
-
-def cli(*argv) -> subprocess.CompletedProcess:
-    """``planmethod ARGV…`` run from the project's root; fails the test on a non-zero exit."""
-    return subprocess.run([sys.executable, "-m", "planmethod", *map(str, argv)], cwd=ROOT,
-                          capture_output=True, text=True, check=True)

@@ -7,11 +7,10 @@ files read as before."""
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from commands import cli
 
 from planmethod.errors import SpecError
 from planmethod.grading.answers import ANSWERS_FORMAT, read_answers
@@ -21,11 +20,6 @@ from planmethod.spec import load_exercise
 
 ROOT = Path(__file__).resolve().parent.parent
 SLOTTED = ROOT / "exercises" / "slotted_lever.toml"
-
-
-def cli(*argv, check=True) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "planmethod", *map(str, argv)], cwd=ROOT,
-                          capture_output=True, text=True, check=check)
 
 
 @pytest.fixture(scope="module")

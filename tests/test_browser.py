@@ -25,6 +25,7 @@ from pathlib import Path
 import chromium
 import pytest
 from browser_tools import flat
+from commands import cli
 
 from planmethod.render.workbook import formula_html
 
@@ -38,7 +39,6 @@ SLOTTED = ROOT / "exercises" / "slotted_lever.toml"
 sync_api, CHROMIUM = chromium.require()
 
 
-cli = chromium.cli
 
 
 @pytest.fixture(scope="module")

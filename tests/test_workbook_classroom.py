@@ -16,6 +16,7 @@ from pathlib import Path
 import chromium
 import pytest
 from browser_tools import flat, run_axe, violations_text
+from commands import cli
 
 pytestmark = pytest.mark.browser
 
@@ -30,7 +31,6 @@ PHONE = {"viewport": {"width": 390, "height": 844}, "has_touch": True, "is_mobil
          "device_scale_factor": 3}
 
 
-cli = chromium.cli
 
 
 @pytest.fixture(scope="module")
