@@ -678,3 +678,25 @@ def test_a_key_records_the_variant_it_keys():
     variant = draw_variant(load_template(SEED), seed=3, student="s07")
     key = build_key(replace(variant, attempt=2))
     assert (key["student"], key["seed"], key["attempt"]) == ("s07", 3, 2)
+
+
+def test_a_key_file_read_twice_is_parsed_once_and_read_again_when_it_changes(tmp_path,
+                                                                              monkeypatch):
+    import os
+
+    from planmethod.grading import keys as keys_module
+
+    parsed = []
+    real = keys_module.parse_json
+    monkeypatch.setattr(keys_module, "parse_json",
+                        lambda text, **kw: parsed.append(1) or real(text, **kw))
+    path = tmp_path / "key.json"
+    key = {"format": "planmethod-key", "student": "s1", "questions": []}
+    path.write_text(json.dumps(key))
+    first, again = load_keys(path), load_keys(tmp_path / "." / "key.json")
+    assert first == again and len(parsed) == 1      # the language's read, then the grading's
+    first["s1"]["student"] = "changed by a caller"  # a caller's change is not kept
+    assert load_keys(path)["s1"]["student"] == "s1"
+    path.write_text(json.dumps({**key, "student": "s22"}))   # rewritten: read again
+    os.utime(path, ns=(1, 1))
+    assert list(load_keys(path)) == ["s22", "*"] and len(parsed) == 2

@@ -45,6 +45,7 @@ Examples
 from __future__ import annotations
 
 import math
+import stat
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -521,6 +522,31 @@ def _check_key(key: Any, where: str) -> dict:
     return dict(key)
 
 
+#: the last key file parsed: its identity (path, inode, size, modification time) → its data
+_LAST_PARSED: dict[tuple, Any] = {}
+
+
+def _parsed_keys(path: Path) -> Any:
+    """The JSON of a key file, parsed once per process while the file stays the same: a
+    command reads a bundle's course language before it grades, and a bundle of 1000 keys
+    takes about a second to parse. Only the last regular file is kept; callers copy the
+    tables they change (:func:`_check_key`, :class:`ReadKey`)."""
+    try:
+        status = path.stat()
+    except OSError:
+        status = None
+    identity = None
+    if status is not None and stat.S_ISREG(status.st_mode):
+        identity = (str(path.resolve()), status.st_ino, status.st_size, status.st_mtime_ns)
+        if identity in _LAST_PARSED:
+            return _LAST_PARSED[identity]
+    data = parse_json(read_text_bounded(path, MAX_KEYS_BYTES), file=str(path))
+    if identity is not None:
+        _LAST_PARSED.clear()
+        _LAST_PARSED[identity] = data
+    return data
+
+
 def load_keys(path: str | Path) -> dict[str, dict]:
     """Read a key or a bundle of keys: student → key (a single key is keyed ``*`` too, so
     that every student is graded against it).
@@ -538,8 +564,7 @@ def load_keys(path: str | Path) -> dict[str, dict]:
     path = Path(path)
     if path.is_dir():
         path = path / "keys.json"
-    text = read_text_bounded(path, MAX_KEYS_BYTES)
-    data = parse_json(text, file=str(path))
+    data = _parsed_keys(path)
     if isinstance(data, Mapping) and data.get("format") == KEYS_FORMAT:
         keys = data.get("keys")
         if not isinstance(keys, list):
