@@ -550,9 +550,10 @@ body.practising #charts,body.practising #playback{display:none}
 .step-current line,.step-current polygon,line.step-current{stroke:#d00000!important;
  fill:#d00000}
 #status{color:#c0392b}
+.switch{display:none}
 @media (max-width:600px){
  body{margin:6px}
- .switch,.option{display:none}
+ .option{display:none}
  #modes legend{position:absolute;width:1px;height:1px;overflow:hidden;clip-path:inset(50%)}
  .mode{padding:0 8px}
  .angle-control{flex:1 1 100%;gap:2px 6px}
