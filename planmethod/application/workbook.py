@@ -230,26 +230,32 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
         notes=_notes(len(angles), step, frames[0]), start=mechanism.drive.angle,
         phi=numbered("φ", numbers[mechanism.drive.link]),
         drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1),
-        data=packing.data)
+        rules=packing.rules, data=packing.data)
 
 
 class _Packing:
     """A page's frames packed as they come (:class:`planmethod.render.workbook.PageData`, made
-    at the first frame, whose drawings name the page's panels): while the workers solve the
-    frames that follow, this process enters the lines of those solved in the page's string
-    table and compresses them, instead of doing it all once the last frame is in."""
+    at the first frame, whose drawings name the page's panels), and the page's rules
+    (:func:`planmethod.render.page_rules.page_rules`, in the language spoken): while the
+    workers solve the frames that follow, this process enters the lines of those solved in
+    the page's string table and compresses them, instead of doing it all once the last frame
+    is in."""
 
     def __init__(self, angles: Sequence[float]) -> None:
         self.angles = angles
         self.data = None
+        self.rules = None
 
     def add(self, frames: Sequence[dict[str, Any]]) -> None:
         """The next frames of the turn, in order."""
+        from ..render.page_rules import page_rules
         from ..render.workbook import PageData
 
         if self.data is None:
             self.data = PageData(self.angles, _panels(frames[0]))
         self.data.add(frames)
+        if self.rules is None:      # (its Unicode tables take a third of a second, once)
+            self.rules = page_rules()
 
 
 def _panels(first: dict[str, Any]) -> list[str]:

@@ -412,6 +412,7 @@ class PageData:
         head = f'{{"angles":{_json(self.angles)},"panels":{_json(self.panels)},"strings":['
         self._out = [self._stream.compress(head.encode("utf-8"))]
         self._written = 0
+        self._done: str | None = None
 
     def add(self, frames: Sequence[Mapping[str, Any]]) -> None:
         """The next ``frames`` of the page, packed; the strings they bring, compressed."""
@@ -436,12 +437,14 @@ class PageData:
     def packed(self, page: WorkbookPage, rules: PageRules) -> str:
         """The page's data packed (gzip, base64), as :func:`_pack` of :func:`_page_data`; the
         page must be one this holds (:meth:`holds`)."""
-        data = _page_data(page, rules, self.table, self._packed)
-        rest = {key: value for key, value in data.items()
-                if key not in ("angles", "panels", "strings")}
-        tail = "]," + _json(rest)[1:]
-        out = [*self._out, self._stream.compress(tail.encode("utf-8")), self._stream.flush()]
-        return base64.b64encode(b"".join(out)).decode("ascii")
+        if self._done is None:          # (the stream ends here: packed once, kept)
+            data = _page_data(page, rules, self.table, self._packed)
+            rest = {key: value for key, value in data.items()
+                    if key not in ("angles", "panels", "strings")}
+            tail = "]," + _json(rest)[1:]
+            self._out += [self._stream.compress(tail.encode("utf-8")), self._stream.flush()]
+            self._done = base64.b64encode(b"".join(self._out)).decode("ascii")
+        return self._done
 
 
 def _rows_html(quantities: Sequence[PageQuantity], reveal: str) -> str:
