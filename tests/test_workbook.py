@@ -287,3 +287,28 @@ def test_a_page_draws_its_exercises_variant_once(monkeypatch, jobs):
     exercise = load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml")
     page = workbook.build_workbook(exercise, 60.0, jobs=jobs)
     assert len(calls) == 1 and page.count('data-quantity="') == 7
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_page_packed_as_its_frames_come_is_the_page_packed_at_once(monkeypatch, jobs):
+    """The page's data is packed while the workers solve the frames that follow (its string
+    table grown and gzipped chunk by chunk): the page is byte for byte the one packed at
+    once from the same frames."""
+    from planmethod.application import workbook
+    from planmethod.application.workers import usable_cpus
+    from planmethod.render import workbook as page_module
+
+    if jobs > usable_cpus():
+        pytest.skip("one CPU: no second worker")
+    made = {}
+    write = page_module.workbook_html
+
+    def kept(page, rules=None, data=None):
+        made.update(page=page, rules=rules, held=data is not None and data.holds(page))
+        return write(page, rules, data)
+
+    monkeypatch.setattr(page_module, "workbook_html", kept)
+    text = workbook.build_workbook(load_exercise(COMPRESSOR), 10.0, jobs=jobs)
+    assert made["held"] and len(made["page"].frames) == 36
+    assert text == write(made["page"], made["rules"])      # packed at once
+    assert len(page_data(text)["frames"]) == 36

@@ -162,13 +162,16 @@ def _solve_chunk(job: tuple) -> list[dict[str, Any]]:
 
 
 def _solve_turn(exercise, angles: Sequence[float], workers: int, watch: Watch, views,
-                variant) -> list[dict[str, Any]]:
+                variant, packing=None) -> list[dict[str, Any]]:
     """The frames of ``angles``, here (one worker) or in ``workers`` processes, in order;
-    ``watch`` hears each (phase ``frames``) and may cancel the page between two."""
+    ``watch`` hears each (phase ``frames``) and may cancel the page between two; ``packing``
+    (a :class:`_Packing`) packs them for the page as they come."""
     frames: list[dict[str, Any]] = []
 
     def done(solved: list[dict[str, Any]]) -> None:
         frames.extend(solved)
+        if packing is not None:
+            packing.add(solved)
         watch.step("frames", len(frames), len(angles))
 
     if workers == 1:
@@ -214,7 +217,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     workers = worker_count(jobs, len(angles))
     views = steady_views(exercise, angles)      # one zoom and one page per panel
     variant = exercise_variant(exercise)        # once: a frame keys it at its own angle
-    frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant)
+    packing = _Packing(angles)                  # the page's data made while frames come
+    frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant, packing)
     numbers = course_numbers(mechanism)
     plans = reading_plans(frames)
     return workbook_html(WorkbookPage(
@@ -225,7 +229,33 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
                 for title, unit, curves, names in turn_charts(frames, numbers)],
         notes=_notes(len(angles), step, frames[0]), start=mechanism.drive.angle,
         phi=numbered("φ", numbers[mechanism.drive.link]),
-        drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1))
+        drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1),
+        rules=packing.rules, data=packing.data)
+
+
+class _Packing:
+    """A page's frames packed as they come (:class:`planmethod.render.workbook.PageData`, made
+    at the first frame, whose drawings name the page's panels), and the page's rules
+    (:func:`planmethod.render.page_rules.page_rules`, in the language spoken): while the
+    workers solve the frames that follow, this process enters the lines of those solved in
+    the page's string table and compresses them, instead of doing it all once the last frame
+    is in."""
+
+    def __init__(self, angles: Sequence[float]) -> None:
+        self.angles = angles
+        self.data = None
+        self.rules = None
+
+    def add(self, frames: Sequence[dict[str, Any]]) -> None:
+        """The next frames of the turn, in order."""
+        from ..render.page_rules import page_rules
+        from ..render.workbook import PageData
+
+        if self.data is None:
+            self.data = PageData(self.angles, _panels(frames[0]))
+        self.data.add(frames)
+        if self.rules is None:      # (its Unicode tables take a third of a second, once)
+            self.rules = page_rules()
 
 
 def _panels(first: dict[str, Any]) -> list[str]:

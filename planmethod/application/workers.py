@@ -114,11 +114,21 @@ def in_workers(function: Callable[[Any], Any], jobs: Sequence[Any], workers: int
             each(done)
 
 
+#: the most items in one chunk: a worker that ends its last chunk early waits for the
+#: others at most that long (a workbook's frames: a second or two of the conveyor's)
+CHUNK_LIMIT = 8
+
+
 def chunked(items: Sequence[Any], workers: int) -> list[Sequence[Any]]:
-    """``items`` in about four chunks per worker, in order.
+    """``items`` in at least four chunks per worker, in order, of at most
+    :data:`CHUNK_LIMIT` items each.
 
     >>> chunked(list(range(10)), 1)
     [[0, 1, 2], [3, 4, 5], [6, 7, 8], [9]]
+    >>> [len(chunk) for chunk in chunked(list(range(40)), 2)]
+    [5, 5, 5, 5, 5, 5, 5, 5]
+    >>> [len(chunk) for chunk in chunked(range(360), 2)][:3], len(chunked(range(360), 2))
+    ([8, 8, 8], 45)
     """
-    size = math.ceil(len(items) / (4 * workers))
+    size = min(math.ceil(len(items) / (4 * workers)), CHUNK_LIMIT)
     return [items[start:start + size] for start in range(0, len(items), size)]

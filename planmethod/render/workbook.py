@@ -29,11 +29,11 @@ from __future__ import annotations
 
 import base64
 import functools
-import gzip
 import html
 import json
 import math
 import re
+import zlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -45,7 +45,7 @@ from .canvas import Canvas, formula_runs
 from .page_rules import PageRules, page_rules
 from .style import INK, SMALL_SIZE, TEXT_SIZE, num
 
-__all__ = ["Chart", "PageQuantity", "StringTable", "WorkbookPage", "curve_chart",
+__all__ = ["Chart", "PageData", "PageQuantity", "StringTable", "WorkbookPage", "curve_chart",
            "formula_html", "inline_svg", "marked_html", "page_script", "workbook_html"]
 
 #: a drawing's viewBox (its four numbers)
@@ -317,27 +317,45 @@ def _plan_attribute(plan: str | None, name: str = "data-plan") -> str:
     return f' {name}="{html.escape(plan)}"' if plan else ""
 
 
+def _json(data: Any) -> str:
+    """``data`` as the page's JSON: compact, not escaped to ASCII, no NaN."""
+    return json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+
+
+def _gzip() -> Any:
+    """A gzip stream (level 6: 4 % larger than 9 on a page's frames, at less than half the
+    time; no time in its header): the same bytes whether the text comes at once or in parts."""
+    return zlib.compressobj(6, zlib.DEFLATED, 31)
+
+
 def _pack(data: Any) -> str:
-    text = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
-    # level 6: 4 % larger than 9 on a page's frames, at less than half the time
-    return base64.b64encode(gzip.compress(text.encode("utf-8"), compresslevel=6,
-                                          mtime=0)).decode("ascii")
+    stream = _gzip()
+    packed = stream.compress(_json(data).encode("utf-8")) + stream.flush()
+    return base64.b64encode(packed).decode("ascii")
 
 
-def _packed_frames(page: WorkbookPage, table: StringTable) -> list[dict[str, Any]]:
-    """Each frame as the page's data: its drawings' lines and its sentences by their numbers
-    in ``table``, typeset (:func:`formula_html`)."""
-    packed = []
-    for frame in page.frames:
-        drawings = [table.lines(inline_svg(frame["drawings"][name])) if name in
-                    frame["drawings"] else [] for name in page.panels]
-        steps = {plan: [[number, table.add(formula_html(text)), action, *rest]
-                        for number, text, action, *rest in listed]
-                 for plan, listed in frame.get("steps", {}).items()}
-        equations = {plan: [table.add(formula_html(text)) for text in listed]
-                     for plan, listed in frame.get("equations", {}).items()}
-        packed.append({"drawings": drawings, "readings": frame["readings"], "steps": steps,
-                       "equations": equations, "questions": frame.get("questions", [])})
+def _packed_frame(frame: Mapping[str, Any], panels: Sequence[str], table: StringTable
+                  ) -> dict[str, Any]:
+    """A frame as the page's data: its drawings' lines and its sentences by their numbers in
+    ``table``, typeset (:func:`formula_html`); its drawing-mode data is added apart (it needs
+    the whole turn's extents)."""
+    drawings = [table.lines(inline_svg(frame["drawings"][name])) if name in
+                frame["drawings"] else [] for name in panels]
+    steps = {plan: [[number, table.add(formula_html(text)), action, *rest]
+                    for number, text, action, *rest in listed]
+             for plan, listed in frame.get("steps", {}).items()}
+    equations = {plan: [table.add(formula_html(text)) for text in listed]
+                 for plan, listed in frame.get("equations", {}).items()}
+    return {"drawings": drawings, "readings": frame["readings"], "steps": steps,
+            "equations": equations, "questions": frame.get("questions", [])}
+
+
+def _packed_frames(page: WorkbookPage, table: StringTable,
+                   packed: list[dict[str, Any]] | None = None) -> list[dict[str, Any]]:
+    """Each frame as the page's data (:func:`_packed_frame`; ``packed``: already so), with
+    its drawing-mode data."""
+    if packed is None:
+        packed = [_packed_frame(frame, page.panels, table) for frame in page.frames]
     if page.drawing is not None:
         from .workbook_draw import pack_frame
 
@@ -346,10 +364,12 @@ def _packed_frames(page: WorkbookPage, table: StringTable) -> list[dict[str, Any
     return packed
 
 
-def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
-    """Everything the page's script reads, as JSON data."""
-    table = StringTable()
-    frames = _packed_frames(page, table)
+def _page_data(page: WorkbookPage, rules: PageRules, table: StringTable | None = None,
+               packed: list[dict[str, Any]] | None = None) -> dict[str, Any]:
+    """Everything the page's script reads, as JSON data (``table`` and ``packed``: the string
+    table and the frames packed so far, see :class:`PageData`)."""
+    table = StringTable() if table is None else table
+    frames = _packed_frames(page, table, packed)
     data = {"angles": [float(a) for a in page.angles], "panels": list(page.panels),
             "strings": table.strings, "frames": frames,
             "quantities": [quantity.as_dict(rules.language) for quantity in page.quantities],
@@ -363,6 +383,68 @@ def _page_data(page: WorkbookPage, rules: PageRules) -> dict[str, Any]:
     if page.drawing is not None:
         data["draw"] = dict(page.drawing)
     return data
+
+
+class PageData:
+    """A page's data packed as its frames come, in order: each frame's lines and sentences
+    entered in the string table, and the strings found so far written as JSON and
+    compressed — the page's serial part, done while the frames that follow are solved.
+    :meth:`packed` then adds the rest; the text is that of the whole page packed at once
+    (as :func:`workbook_html` packs a page whose frames are not those added here).
+
+    >>> frame = {"drawings": {"position": "<svg>\\n</svg>"}, "readings": [], "steps": {}}
+    >>> page = WorkbookPage("Demo", [0.0, 90.0], ["position"], [frame, frame], [])
+    >>> data = PageData(page.angles, page.panels)
+    >>> data.add(page.frames[:1]), data.add(page.frames[1:])
+    (None, None)
+    >>> data.packed(page, page_rules()) == _pack(_page_data(page, page_rules()))
+    True
+    """
+
+    def __init__(self, angles: Sequence[float], panels: Sequence[str]) -> None:
+        self.angles = [float(angle) for angle in angles]
+        self.panels = list(panels)
+        self.table = StringTable()
+        self.frames: list[Mapping[str, Any]] = []
+        self._packed: list[dict[str, Any]] = []
+        self._stream = _gzip()
+        # the data's first keys, in the order _page_data writes them: the strings come last
+        head = f'{{"angles":{_json(self.angles)},"panels":{_json(self.panels)},"strings":['
+        self._out = [self._stream.compress(head.encode("utf-8"))]
+        self._written = 0
+        self._done: str | None = None
+
+    def add(self, frames: Sequence[Mapping[str, Any]]) -> None:
+        """The next ``frames`` of the page, packed; the strings they bring, compressed."""
+        for frame in frames:
+            self.frames.append(frame)
+            self._packed.append(_packed_frame(frame, self.panels, self.table))
+        fresh = self.table.strings[self._written:]
+        if fresh:
+            text = _json(fresh)[1:-1]
+            self._out.append(self._stream.compress(
+                (("," if self._written else "") + text).encode("utf-8")))
+            self._written = len(self.table.strings)
+
+    def holds(self, page: WorkbookPage) -> bool:
+        """Whether ``page``'s angles, panels and frames (the very ones, in order) are those
+        packed here."""
+        return (self.angles == [float(angle) for angle in page.angles]
+                and self.panels == list(page.panels) and len(self.frames) == len(page.frames)
+                and all(one is other for one, other in zip(self.frames, page.frames,
+                                                           strict=True)))
+
+    def packed(self, page: WorkbookPage, rules: PageRules) -> str:
+        """The page's data packed (gzip, base64), as :func:`_pack` of :func:`_page_data`; the
+        page must be one this holds (:meth:`holds`)."""
+        if self._done is None:          # (the stream ends here: packed once, kept)
+            data = _page_data(page, rules, self.table, self._packed)
+            rest = {key: value for key, value in data.items()
+                    if key not in ("angles", "panels", "strings")}
+            tail = "]," + _json(rest)[1:]
+            self._out += [self._stream.compress(tail.encode("utf-8")), self._stream.flush()]
+            self._done = base64.b64encode(b"".join(self._out)).decode("ascii")
+        return self._done
 
 
 def _rows_html(quantities: Sequence[PageQuantity], reveal: str) -> str:
@@ -433,9 +515,11 @@ def _words(page: WorkbookPage, rules: PageRules) -> dict[str, str]:
     return words
 
 
-def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
+def workbook_html(page: WorkbookPage, rules: PageRules | None = None,
+                  data: PageData | None = None) -> str:
     """The workbook page of ``page`` as HTML text, with the rules it grades by (default:
-    :func:`~planmethod.render.page_rules.page_rules` in the language spoken now).
+    :func:`~planmethod.render.page_rules.page_rules` in the language spoken now); ``data``:
+    the page's frames already packed as they came (:class:`PageData`).
 
     Examples
     --------
@@ -470,7 +554,9 @@ def workbook_html(page: WorkbookPage, rules: PageRules | None = None) -> str:
         notes=notes, low=num(angles[0]), high=num(angles[-1]), first=num(page.opening()),
         step=num(step), panels=panels, charts=charts,
         rows=_rows_html(page.quantities, words["show_answer"]),
-        data=_pack(_page_data(page, rules)), style=_STYLE, script=_script(),
+        data=(data.packed(page, rules) if data is not None and data.holds(page)
+              else _pack(_page_data(page, rules))),
+        style=_STYLE, script=_script(),
         drawing=draw_html, drawing_script=draw_extra, draw_mode=draw_mode, **words)
 
 
@@ -550,9 +636,10 @@ body.practising #charts,body.practising #playback{display:none}
 .step-current line,.step-current polygon,line.step-current{stroke:#d00000!important;
  fill:#d00000}
 #status{color:#c0392b}
+.switch{display:none}
 @media (max-width:600px){
  body{margin:6px}
- .switch,.option{display:none}
+ .option{display:none}
  #modes legend{position:absolute;width:1px;height:1px;overflow:hidden;clip-path:inset(50%)}
  .mode{padding:0 8px}
  .angle-control{flex:1 1 100%;gap:2px 6px}
