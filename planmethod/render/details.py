@@ -31,7 +31,7 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -52,7 +52,7 @@ __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_T
 DENSE_PX = READABLE_PX
 #: the longest side of a detail inset (px), and the least and most enlargement of one step
 DETAIL_SIZE = 300.0
-DETAIL_ZOOM = (2.5, 12.0)
+DETAIL_ZOOM = (2.0, 12.0)
 #: details of details go this deep at most in any figure (a figure, its detail, a detail of
 #: that; the figure lists the points still crowded): :func:`detail_regions`'s ``depth``
 DEPTH = 2
@@ -166,7 +166,7 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: i
 
 
 def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = True,
-                   depth: int = DEPTH) -> list[Detail]:
+                   depth: int = DEPTH, alone: Collection[str] = ()) -> list[Detail]:
     """The figure's dense regions worth an enlarged detail, and the regions of those details
     still too dense at their enlargement (details of details), in the order they are drawn;
     each region of the figure is marked on it with a frame and its numeral (placed with the
@@ -176,7 +176,10 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
     workbook page, the studio) gets no region; the labels of its crowded points that find no
     clean spot go on leaders, after the others (``crowded``, see
     :func:`planmethod.render.labels.place_labels`). Details nest ``depth`` levels at most; the
-    points the deepest still crowds are its ``crowded`` ones (:func:`crowded_points`)."""
+    points the deepest still crowds are its ``crowded`` ones (:func:`crowded_points`). The
+    places of the names ``alone`` (labels that found no clean spot on the figure) are
+    regions by themselves where no other region holds them: a label crowded by the lines
+    round it needs no second point near it to be drawn again larger."""
     same = one_spot(where)
     if not draw:
         for box in _regions(where, 1.0, same):
@@ -186,17 +189,18 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
         return []
     out: list[Detail] = []
     queue: list[tuple[tuple[float, float, float, float], float, str | None, int]] = [
-        (box, 1.0, None, 1) for box in _regions(where, 1.0, same)]
+        (box, 1.0, None, 1) for box in _lone(_regions(where, 1.0, same), [
+            where[name] for name in alone if name in where])]
     while queue and len(out) < MOST:
         box, base, parent, level = queue.pop(0)
-        step = math.floor(min(DETAIL_SIZE / (max(box[2] - box[0], box[3] - box[1]) * base),
-                              DETAIL_ZOOM[1]))
-        if step < DETAIL_ZOOM[0]:
-            continue
         inside = {name: xy for name, xy in where.items()
                   if box[0] <= xy[0] <= box[2] and box[1] <= xy[1] <= box[3]}
+        step = _step(box, base)
+        if step < DETAIL_ZOOM[0]:       # too wide a crowd for one detail: its tighter parts
+            queue[:0] = [(part, base, parent, level) for part in _parts(inside, base, same)]
+            continue
         detail = Detail(ROMAN[len(out)], box, base * step, parent)
-        inner = _regions(inside, detail.zoom, same)
+        inner = _joined(_regions(inside, detail.zoom, same), detail.zoom)
         if level >= depth and inner:     # no deeper level: its crowded points are listed
             detail = replace(detail, crowded=tuple(
                 name for name, xy in inside.items()
@@ -213,13 +217,81 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
     return out
 
 
-def _regions(where: Mapping[str, Point], zoom: float, same: float
+def _regions(where: Mapping[str, Point], zoom: float, same: float, gap: float = DENSE_PX
              ) -> list[tuple[float, float, float, float]]:
     """The framed dense regions (figure px) of the points ``where`` seen ``zoom`` times
-    larger, overlapping ones joined."""
+    larger (each within ``gap`` of another there), overlapping ones joined."""
     scaled = {name: page_point(xy) * zoom for name, xy in where.items()}
-    boxes = [_framed(region) for region in dense_regions(scaled, same=same * zoom)]
+    boxes = [_framed(region) for region in dense_regions(scaled, gap=gap, same=same * zoom)]
     return [tuple(value / zoom for value in box) for box in _merged(boxes)]
+
+
+def _lone(boxes: list[tuple[float, float, float, float]], places: Sequence[Point]
+          ) -> list[tuple[float, float, float, float]]:
+    """The regions ``boxes`` and a framed region round each of the ``places`` that none of
+    them holds, overlapping ones joined.
+
+    >>> _lone([(0, 0, 30, 30)], [(10, 10), (100, 100)])
+    [(0, 0, 30, 30), (90.0, 90.0, 110.0, 110.0)]
+    """
+    out = list(boxes)
+    for place in places:
+        x, y = (float(value) for value in page_point(place))
+        if not any(box[0] <= x <= box[2] and box[1] <= y <= box[3] for box in out):
+            out.append(_framed((x, y, x, y)))
+    return _merged(out)
+
+
+def _step(box: tuple[float, float, float, float], base: float) -> int:
+    """The whole enlargement (of a figure seen ``base`` times larger) that draws ``box``
+    within :data:`DETAIL_SIZE`, at most :data:`DETAIL_ZOOM`'s largest.
+
+    >>> _step((0, 0, 40, 25), 1.0), _step((0, 0, 40, 25), 3.0), _step((0, 0, 4, 2), 1.0)
+    (7, 2, 12)
+    """
+    return math.floor(min(DETAIL_SIZE / (max(box[2] - box[0], box[3] - box[1]) * base),
+                          DETAIL_ZOOM[1]))
+
+
+def _parts(where: Mapping[str, Point], zoom: float, same: float
+           ) -> list[tuple[float, float, float, float]]:
+    """A crowd too wide for one detail (of a figure seen ``zoom`` times larger) split into
+    its tighter parts: the dense regions of its points at half the distance, a half again
+    where one is still too wide, down to the hair that is one spot — each part one that a
+    detail can draw (the labels of what falls between them find their spots on the figure).
+    Many labels round a few points make such a crowd: no region is dropped for being wide."""
+    gap = DENSE_PX / 2
+    while gap >= 1.0:
+        parts = _regions(where, zoom, same, gap)
+        if all(_step(part, zoom) >= DETAIL_ZOOM[0] for part in parts):
+            return parts
+        gap /= 2
+    return []
+
+
+def _joined(boxes: list[tuple[float, float, float, float]], zoom: float
+            ) -> list[tuple[float, float, float, float]]:
+    """The regions of a detail (drawn ``zoom`` times the figure) joined where two fit one
+    detail together (the two whose joined box is smallest first): a few details of a detail,
+    not a page of small ones.
+
+    >>> _joined([(0, 0, 10, 10), (20, 0, 30, 10), (400, 0, 410, 10)], 1.0)
+    [(0, 0, 30, 10), (400, 0, 410, 10)]
+    """
+    boxes = list(boxes)
+    while len(boxes) > 1:
+        pairs = [(max(x1, b[2]) - min(x0, b[0]), max(y1, b[3]) - min(y0, b[1]), i, j)
+                 for i, (x0, y0, x1, y1) in enumerate(boxes)
+                 for j, b in enumerate(boxes) if j > i]
+        _, _, i, j = min(pairs, key=lambda pair: max(pair[0], pair[1]))
+        first, second = boxes[i], boxes[j]
+        whole = (min(first[0], second[0]), min(first[1], second[1]),
+                 max(first[2], second[2]), max(first[3], second[3]))
+        if _step(whole, zoom) < DETAIL_ZOOM[0]:
+            break
+        boxes[i] = whole
+        del boxes[j]
+    return boxes
 
 
 def _within(request, box) -> bool:
