@@ -208,14 +208,16 @@ def _laid_out(zoom: float, content, where_of, details: bool,
     labels placed (within ``bounds`` where they can: a steady page's box). The details watch
     the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
     again once the regions are marked (a frame may push a label off its spot: then the figure
-    is drawn once more with that label watched too)."""
+    is drawn once more with that label watched too). Such a label is a crowded place by
+    itself: no second point need be near it for it to be drawn again larger."""
     extra: dict = {}
     for _ in range(2):
         figure = Canvas(zoom)
         content(figure)
         where = where_of(figure)
         watched = (_crowded(figure, where) | extra) if details else where
-        regions = detail_regions(figure, watched, draw=details)
+        regions = detail_regions(figure, watched, draw=details,
+                                 alone=set(watched) - set(where))
         figure.place(bounds=bounds)
         pushed = {" ".join(label.points): label.anchor for label in figure.labels
                   if not label.clean and not set(label.points) & set(watched)
