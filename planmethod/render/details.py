@@ -63,6 +63,9 @@ PAGE = 2.9
 #: points of a figure nearer each other than this fraction of its extent are one spot of the
 #: drawing: no detail two steps deep (×144) would set them the readable distance apart
 RESOLUTION = 1.0 / 2000.0
+#: a detail of labels alone (no point near them) enlarges this much at most: they need room
+#: round them, not the drawing larger
+LONE_ZOOM = 3
 #: how far (px) round a region's corner its numeral looks for room
 NUMERAL_ROOM = 30.0
 #: the title of the table of the points a plan's details cannot set apart (x, y from its pole)
@@ -166,7 +169,8 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: i
 
 
 def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = True,
-                   depth: int = DEPTH, alone: Collection[str] = ()) -> list[Detail]:
+                   depth: int = DEPTH, alone: Collection[str] = (),
+                   same: float | None = None) -> list[Detail]:
     """The figure's dense regions worth an enlarged detail, and the regions of those details
     still too dense at their enlargement (details of details), in the order they are drawn;
     each region of the figure is marked on it with a frame and its numeral (placed with the
@@ -179,8 +183,10 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
     points the deepest still crowds are its ``crowded`` ones (:func:`crowded_points`). The
     places of the names ``alone`` (labels that found no clean spot on the figure) are
     regions by themselves where no other region holds them: a label crowded by the lines
-    round it needs no second point near it to be drawn again larger."""
-    same = one_spot(where)
+    round it needs no second point near it to be drawn again larger. Points nearer than
+    ``same`` (px; :func:`one_spot` of ``where`` unless given: that of the points the figure
+    joins in one mark) are one spot."""
+    same = one_spot(where) if same is None else same
     if not draw:
         for box in _regions(where, 1.0, same):
             figure.requests = [replace(request, optional=True, crowded=True)
@@ -196,6 +202,8 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
         inside = {name: xy for name, xy in where.items()
                   if box[0] <= xy[0] <= box[2] and box[1] <= xy[1] <= box[3]}
         step = _step(box, base)
+        if inside and set(inside) <= set(alone):     # labels alone: room round them
+            step = min(step, LONE_ZOOM)
         if step < DETAIL_ZOOM[0]:       # too wide a crowd for one detail: its tighter parts
             queue[:0] = [(part, base, parent, level) for part in _parts(inside, base, same)]
             continue

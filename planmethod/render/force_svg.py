@@ -61,6 +61,7 @@ from .details import (
     column_and_details,
     crowded_points,
     detail_regions,
+    one_spot,
 )
 from .labels import RunKind, label_runs
 from .notation import BALANCING_FORCE, ForceNotation, symbol_runs
@@ -202,22 +203,27 @@ def _polygon_notes(group, edges: list, mu_f: float, closure: float,
 
 
 def _laid_out(zoom: float, content, where_of, details: bool,
-              bounds: tuple[float, float, float, float] | None = None
+              bounds: tuple[float, float, float, float] | None = None, plan_of=None
               ) -> tuple[Canvas, list]:
     """A figure drawn by ``content`` at ``zoom``, its enlarged details' regions marked and its
     labels placed (within ``bounds`` where they can: a steady page's box). The details watch
     the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
     again once the regions are marked (a frame may push a label off its spot: then the figure
     is drawn once more with that label watched too). Such a label is a crowded place by
-    itself: no second point need be near it for it to be drawn again larger."""
+    itself: no second point need be near it for it to be drawn again larger — but an arm's
+    h, which stands a fixed step (px) beside its arm, is drawn larger only with what is
+    near it (a detail of its place alone would show the arm elsewhere). Points one spot
+    apart are as near as the plan's own points ``plan_of(figure)`` (all of ``where_of``
+    unless given) are where the plan joins them in one mark."""
     extra: dict = {}
     for _ in range(2):
         figure = Canvas(zoom)
         content(figure)
         where = where_of(figure)
         watched = (_crowded(figure, where) | extra) if details else where
-        regions = detail_regions(figure, watched, draw=details,
-                                 alone=set(watched) - set(where))
+        regions = detail_regions(figure, watched, draw=details, alone=[
+            name for name in watched if name not in where and not name.startswith("arm:")],
+            same=one_spot((plan_of or where_of)(figure)))
         figure.place(bounds=bounds)
         pushed = {" ".join(label.points): label.anchor for label in figure.labels
                   if not label.clean and not set(label.points) & set(watched)
@@ -306,7 +312,8 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     extra = [new_pole] + [f.image_mm for f in combined.forces]
     figure, regions = _laid_out(view.zoom if view else fit_zoom(
         list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
-        view.box if view else None)
+        view.box if view else None,
+        plan_of=lambda canvas: {label: canvas.px(xy) for label, xy in points.items()})
     if view:
         lines_of_details = []
         _combined_column(figure, (view.box[2] + 34, view.box[1] + 4))
