@@ -65,7 +65,7 @@ PAGE = 2.9
 RESOLUTION = 1.0 / 2000.0
 #: a detail of labels alone (no point near them) enlarges this much at most: they need room
 #: round them, not the drawing larger
-LONE_ZOOM = 3
+LONE_ZOOM = 6
 #: how far (px) round a region's corner its numeral looks for room
 NUMERAL_ROOM = 30.0
 #: the title of the table of the points a plan's details cannot set apart (x, y from its pole)
