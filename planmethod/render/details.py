@@ -63,8 +63,8 @@ PAGE = 2.9
 #: points of a figure nearer each other than this fraction of its extent are one spot of the
 #: drawing: no detail two steps deep (×144) would set them the readable distance apart
 RESOLUTION = 1.0 / 2000.0
-#: a detail of labels alone (no point near them) enlarges this much at most: they need room
-#: round them, not the drawing larger
+#: a detail of labels alone (no two places in it near each other) enlarges this much at
+#: most: they need room round them, not the drawing larger
 LONE_ZOOM = 6
 #: how far (px) round a region's corner its numeral looks for room
 NUMERAL_ROOM = 30.0
@@ -194,15 +194,19 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
                                else request for request in figure.requests]
         return []
     out: list[Detail] = []
+    dense = _regions(where, 1.0, same)
     queue: list[tuple[tuple[float, float, float, float], float, str | None, int]] = [
-        (box, 1.0, None, 1) for box in _lone(_regions(where, 1.0, same), [
-            where[name] for name in alone if name in where])]
-    while queue and len(out) < MOST:
-        box, base, parent, level = queue.pop(0)
+        (box, 1.0, None, 1) for box in dense]
+    # the places of labels alone come after every crowd and its details of details
+    later = [(box, 1.0, None, 1) for box in _lone(dense, [
+        where[name] for name in alone if name in where])]
+    while (queue or later) and len(out) < MOST:
+        box, base, parent, level = (queue or later).pop(0)
         inside = {name: xy for name, xy in where.items()
                   if box[0] <= xy[0] <= box[2] and box[1] <= xy[1] <= box[3]}
         step = _step(box, base)
-        if inside and set(inside) <= set(alone):     # labels alone: room round them
+        if inside and set(inside) <= set(alone) and not dense_regions(
+                inside, same=same):       # labels alone, no two near: room round them
             step = min(step, LONE_ZOOM)
         if step < DETAIL_ZOOM[0]:       # too wide a crowd for one detail: its tighter parts
             queue[:0] = [(part, base, parent, level) for part in _parts(inside, base, same)]
@@ -236,18 +240,21 @@ def _regions(where: Mapping[str, Point], zoom: float, same: float, gap: float = 
 
 def _lone(boxes: list[tuple[float, float, float, float]], places: Sequence[Point]
           ) -> list[tuple[float, float, float, float]]:
-    """The regions ``boxes`` and a framed region round each of the ``places`` that none of
-    them holds, overlapping ones joined.
+    """A framed region round each of the ``places`` that none of the regions ``boxes``
+    holds (overlapping ones joined), but those that overlap one of them: a region's detail
+    shows what reaches into it.
 
-    >>> _lone([(0, 0, 30, 30)], [(10, 10), (100, 100)])
-    [(0, 0, 30, 30), (90.0, 90.0, 110.0, 110.0)]
+    >>> _lone([(0, 0, 30, 30)], [(10, 10), (100, 100), (35, 35)])
+    [(90.0, 90.0, 110.0, 110.0)]
     """
-    out = list(boxes)
+    out = []
     for place in places:
         x, y = (float(value) for value in page_point(place))
-        if not any(box[0] <= x <= box[2] and box[1] <= y <= box[3] for box in out):
+        if not any(box[0] <= x <= box[2] and box[1] <= y <= box[3] for box in boxes):
             out.append(_framed((x, y, x, y)))
-    return _merged(out)
+    return [box for box in _merged(out) if not any(
+        box[0] <= other[2] and other[0] <= box[2] and box[1] <= other[3]
+        and other[1] <= box[3] for other in boxes)]
 
 
 def _step(box: tuple[float, float, float, float], base: float) -> int:

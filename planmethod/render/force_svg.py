@@ -212,36 +212,43 @@ def _laid_out(zoom: float, content, where_of, details: bool,
     is drawn once more with that label watched too). Such a label is a crowded place by
     itself: no second point need be near it for it to be drawn again larger — but an arm's
     h, which stands a fixed step (px) beside its arm, is drawn larger only with what is
-    near it (a detail of its place alone would show the arm elsewhere). Points one spot
+    near it (a detail of its place alone would show the arm elsewhere); so is a point whose
+    own label finds no clean spot (on trial or on the figure). Points one spot
     apart are as near as the plan's own points ``plan_of(figure)`` (all of ``where_of``
     unless given) are where the plan joins them in one mark."""
     extra: dict = {}
-    for _ in range(2):
+    lone: set[str] = set()
+    for _ in range(3):
         figure = Canvas(zoom)
         content(figure)
         where = where_of(figure)
-        watched = (_crowded(figure, where) | extra) if details else where
+        watched, unclean = _crowded(figure, where) if details else (where, set())
+        watched, lone = watched | extra, lone | unclean
         regions = detail_regions(figure, watched, draw=details, alone=[
-            name for name in watched if name not in where and not name.startswith("arm:")],
-            same=one_spot((plan_of or where_of)(figure)))
+            name for name in watched if (name not in where or name in lone)
+            and not name.startswith("arm:")], same=one_spot((plan_of or where_of)(figure)))
         figure.place(bounds=bounds)
-        pushed = {" ".join(label.points): label.anchor for label in figure.labels
-                  if not label.clean and not set(label.points) & set(watched)
-                  and not label.points[0].startswith("detail:")}
-        if not details or not pushed:
+        stuck = [label for label in figure.labels
+                 if not label.clean and not label.points[0].startswith("detail:")]
+        pushed = {" ".join(label.points): label.anchor for label in stuck
+                  if not set(label.points) & set(watched)}
+        alone = {point for label in stuck for point in label.points if point in where} - lone
+        if not details or not (pushed or alone):
             break
-        extra |= pushed
+        extra, lone = extra | pushed, lone | alone
     return figure, regions
 
 
-def _crowded(figure: Canvas, where: dict) -> dict:
+def _crowded(figure: Canvas, where: dict) -> tuple[dict, set[str]]:
     """The points a detail watches, ``where``, and where the other labels go (of forces,
     arms, moments) that find no clean spot on the figure, placed on trial: such a label
     crowds the points near it like a point, so an enlarged detail shows it where others are
-    near."""
-    return where | {" ".join(label.points): label.anchor for label in figure.trial()
-                    if not label.clean and not set(label.points) & set(where)
-                    and not label.points[0].startswith("detail:")}
+    near; and the points whose own labels find no clean spot (each a crowded place)."""
+    trial = [label for label in figure.trial()
+             if not label.clean and not label.points[0].startswith("detail:")]
+    return (where | {" ".join(label.points): label.anchor for label in trial
+                     if not set(label.points) & set(where)},
+            {point for label in trial for point in label.points if point in where})
 
 
 #: a polygon's legend entries of its known forces and its components
