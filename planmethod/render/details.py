@@ -389,12 +389,14 @@ def _anchored(request, box):
 class Room:
     """Where a figure's details go: on its page beside what is ``taken`` (boxes x0, y0, x1,
     y1 px: its drawing with its labels, the column of its legend), from ``left`` and ``top``,
-    no detail reaching past ``right`` (unless one alone is wider than the page)."""
+    no detail reaching past ``right`` (unless one alone is wider than the page), and where
+    one would reach past ``bottom``, drawn smaller if it can (:func:`_fitted`)."""
 
     taken: tuple[tuple[float, float, float, float], ...]
     left: float
     top: float
     right: float
+    bottom: float = math.inf
 
 
 #: the room (px) between two details, or a detail and what it stands beside
@@ -402,20 +404,27 @@ GAP = 40.0
 
 
 def room_beside(figure: Canvas, drawn: Sequence[float],
-                taken: Sequence[Sequence[float]]) -> Room:
+                taken: Sequence[Sequence[float]], below: float = 0.0) -> Room:
     """The room for a figure's details beside what is ``taken`` on a page at most
-    :data:`PAGE` times as wide as ``drawn`` (x0, y0, x1, y1 px: what the figure draws,
-    :attr:`Canvas.drawn`), less its margins.
+    :data:`PAGE` times as wide and as tall as ``drawn`` (x0, y0, x1, y1 px: what the figure
+    draws, :attr:`Canvas.drawn`), less its margins and the ``below`` px of lines under it.
 
     >>> figure = Canvas()
     >>> figure.grow((0, 0), (100, 80))
-    >>> room_beside(figure, (0, 0, 100, 80), [(0, 0, 100, 80)])
-    Room(taken=((0.0, 0.0, 100.0, 80.0),), left=0.0, top=0.0, right=262.0)
+    >>> room_beside(figure, (0, 0, 100, 80), [(0, 0, 100, 80)], below=40.0)
+    Room(taken=((0.0, 0.0, 100.0, 80.0),), left=0.0, top=0.0, right=262.0, bottom=222.0)
     """
     x0, y0, _, _ = figure.extent
     side = max(drawn[2] - drawn[0], drawn[3] - drawn[1])
     return Room(tuple(tuple(float(v) for v in box) for box in taken), float(x0), float(y0),
-                x0 + PAGE * side - 2 * MARGIN)
+                x0 + PAGE * side - 2 * MARGIN, y0 + PAGE * side - 2 * MARGIN - below)
+
+
+#: the height (px) of the lines under a figure: the first's drop, each line, the scale bar,
+#: the title over it (:func:`planmethod.render.svg.frame`)
+LINES_PX = (26.0, 19.0, 40.0, 30.0)
+#: the lines a figure with forces writes under it besides its details' (scales, notes)
+OWN_LINES = 4
 
 
 def _spot(room: Room, taken: list, width: float, height: float) -> tuple[float, float]:
@@ -460,8 +469,10 @@ def column_and_details(figure: Canvas, draw: Callable[[Canvas], None], regions: 
     taken = [drawing]
     if figure.extent[2] > drawing[2]:          # the column drawn
         taken.append((at[0], drawing[1], figure.extent[2], max(bottom, at[1])))
+    first, line, bar, title = LINES_PX
+    below = first + line * (len(regions) + OWN_LINES) + bar + title
     return detail_insets(figure, draw, regions, ident,
-                         room=room_beside(figure, drawn, taken))
+                         room=room_beside(figure, drawn, taken, below=below))
 
 
 def detail_insets(figure: Canvas, draw: Callable[[Canvas], None], regions: list[Detail],
@@ -505,7 +516,8 @@ def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
     would make the page longer and no detail is marked in it, it is drawn at the largest
     smaller whole enlargement (of the figure or the detail it is marked in, down to half its
     own and :data:`DETAIL_ZOOM`'s least) that fits beside what is drawn and still shows its
-    points apart. Returns the region (its
+    points apart; where it would reach past the page's height (``room.bottom``), marked
+    details too, at the smallest such one if none fits. Returns the region (its
     enlargement as drawn), the drawn detail and its spot."""
     floor = max(box[3] for box in taken)
 
@@ -517,12 +529,14 @@ def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
         return drawn, _spot(room, taken, width, view[3] - view[1] + 22.0), view[3] - view[1]
 
     drawn, spot, height = tried(region)
-    if spot[1] + height + 22.0 <= floor or any(inner.parent == region.letter
-                                                for inner in regions):
+    past = spot[1] + height + 22.0 > room.bottom       # past the page's height
+    if spot[1] + height + 22.0 <= floor or (not past and any(
+            inner.parent == region.letter for inner in regions)):
         return region, drawn, spot
     base = next((other.zoom for other in regions if other.letter == region.parent), 1.0)
     step = round(region.zoom / base)
     least = max(DETAIL_ZOOM[0], step / 2)      # at least half its own: a detail, not a dot
+    best = (region, drawn, spot)
     while step - 1 >= least:
         step -= 1
         candidate = replace(region, zoom=base * step)
@@ -531,7 +545,9 @@ def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
             break                         # smaller still would crowd what it shows
         if place[1] + tall + 22.0 <= floor:
             return candidate, smaller, place
-    return region, drawn, spot
+        if past:                          # the page too tall: the smallest readable
+            best = (candidate, smaller, place)
+    return best
 
 
 def _readable(detail: Canvas, view, inside: set[str]) -> bool:
