@@ -50,6 +50,9 @@ __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_T
 #: distinct points nearer than this (px) to a neighbour crowd each other: two or more such make
 #: a region that gets an enlarged detail (the readable distance)
 DENSE_PX = READABLE_PX
+#: the figure writes coordinates to 0.01 px: two points this much farther apart than a
+#: distance may be read nearer than it from the file, and count as nearer
+WRITTEN_PX = 0.02
 #: the longest side of a detail inset (px), and the least and most enlargement of one step
 DETAIL_SIZE = 300.0
 DETAIL_ZOOM = (2.0, 12.0)
@@ -142,7 +145,8 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: i
                   same: float = 1e-6) -> list[tuple[float, float, float, float]]:
     """Boxes (x0, y0, x1, y1, page px) round the groups of at least ``least`` distinct points
     (points within ``same`` px of one another count once) each within ``gap`` of another of
-    the group — the regions of a figure too dense to read, largest group first."""
+    the group (or :data:`WRITTEN_PX` more: as near as the written figure may show them) —
+    the regions of a figure too dense to read, largest group first."""
     spots: list[np.ndarray] = []
     for xy in where.values():
         xy = page_point(xy)
@@ -151,7 +155,7 @@ def dense_regions(where: Mapping[str, Point], *, gap: float = DENSE_PX, least: i
     if not spots:
         return []
     array = np.asarray(spots)
-    near = norm(array[:, None, :] - array[None, :, :]) < gap
+    near = norm(array[:, None, :] - array[None, :, :]) < gap + WRITTEN_PX
     group = np.arange(len(spots))
     for _ in range(len(spots)):          # join neighbours until the groups stop growing
         joined = np.array([group[near[index]].min() for index in range(len(spots))])
