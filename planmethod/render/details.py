@@ -30,22 +30,23 @@ Examples
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..vectors import inside_span, norm
+from ..vectors import cross, inside_span, norm
 from ..words import Message, message, number_text, template
 from .canvas import MARGIN, Canvas, Point, page_point, shown_text
-from .labels import RunKind, drawn_length
+from .labels import PADDING, RunKind, drawn_length
 from .style import INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
 
 __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
            "PAGE", "RESOLUTION", "Detail",
            "Room", "column_and_details", "crowded_points", "crowded_table", "dense_regions",
-           "detail_insets", "detail_regions", "one_spot", "room_beside"]
+           "detail_insets", "detail_regions", "laid_out", "one_spot", "room_beside"]
 
 #: distinct points nearer than this (px) to a neighbour crowd each other: two or more such make
 #: a region that gets an enlarged detail (the readable distance)
@@ -231,6 +232,93 @@ def detail_regions(figure: Canvas, where: Mapping[str, Point], *, draw: bool = T
         if level < depth:
             queue += [(region, detail.zoom, detail.letter, level + 1) for region in inner]
     return out
+
+
+def laid_out(zoom: float, content: Callable[[Canvas], None],
+             where_of: Callable[[Canvas], Mapping[str, Point]], details: bool,
+             bounds: tuple[float, float, float, float] | None = None,
+             plan_of: Callable[[Canvas], Mapping[str, Point]] | None = None
+             ) -> tuple[Canvas, list[Detail]]:
+    """A figure drawn by ``content`` at ``zoom``, its enlarged details' regions marked and its
+    labels placed (within ``bounds`` where they can: a steady page's box). The details watch
+    the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
+    again once the regions are marked (a frame may push a label off its spot: then the figure
+    is drawn once more with that label watched too, up to three times). A label — of a
+    force, a moment or a point — that a line crosses or whose leader crosses an arrow
+    (:func:`_troubled`) is a crowded place by itself: no second point need be near it for it
+    to be drawn again larger — but an arm's h, which stands a fixed step (px) beside its
+    arm, is drawn larger only with what is near it (a detail of its place alone would show
+    the arm elsewhere). Points one spot
+    apart are as near as the plan's own points ``plan_of(figure)`` (all of ``where_of``
+    unless given) are where the plan joins them in one mark.
+
+    >>> figure, regions = laid_out(1.0, lambda canvas: None, lambda canvas: {}, True)
+    >>> regions
+    []
+    """
+    extra: dict = {}
+    lone: set[str] = set()
+    for _ in range(3):
+        figure = Canvas(zoom)
+        content(figure)
+        where = where_of(figure)
+        watched, unclean = _crowded(figure, where) if details else (where, set())
+        watched, lone = watched | extra, lone | unclean
+        regions = detail_regions(figure, watched, draw=details, alone=[
+            name for name in watched if name in lone and not name.startswith("arm:")],
+            same=one_spot((plan_of or where_of)(figure)))
+        figure.place(bounds=bounds)
+        stuck = [label for label in figure.labels
+                 if not label.clean and not label.points[0].startswith("detail:")]
+        pushed = {" ".join(label.points): label.anchor for label in stuck
+                  if not set(label.points) & set(watched)}
+        alone = {name for label in stuck if _troubled(figure, label) for name in (
+            [point for point in label.points if point in where] or [" ".join(label.points)])
+                 } - lone
+        if not details or not (pushed or alone):
+            break
+        extra, lone = extra | pushed, lone | alone
+    return figure, regions
+
+
+def _crowded(figure: Canvas, where: dict) -> tuple[dict, set[str]]:
+    """The points a detail watches, ``where``, and where the other labels go (of forces,
+    arms, moments) that find no clean spot on the figure, placed on trial: such a label
+    crowds the points near it like a point, so an enlarged detail shows it where others are
+    near; and the labels (of a point: its name) that a line crosses or whose leader crosses
+    an arrow there (:func:`_troubled`), each a crowded place by itself."""
+    trial = [label for label in figure.trial()
+             if not label.clean and not label.points[0].startswith("detail:")]
+    return (where | {" ".join(label.points): label.anchor for label in trial
+                     if not set(label.points) & set(where)},
+            {name for label in trial if _troubled(figure, label) for name in
+             ([point for point in label.points if point in where] or [" ".join(label.points)])})
+
+
+def _troubled(figure: Canvas, label) -> bool:
+    """Whether a label placed on ``figure`` is crossed by a drawn line or its leader crosses
+    a vector's arrow more than a hair from its point — what a reader sees as crowded, not
+    only a spot that costs more than a clean one."""
+    x0, y0, x1, y1 = label.box
+    inner = (x0 + PADDING + 0.6, y0 + PADDING + 0.6, x1 - PADDING - 0.6, y1 - PADDING - 0.6)
+    if drawn_length(figure.obstacle_lines + figure.vector_lines, [inner])[0] > 1.5:
+        return True
+    if not label.leader:
+        return False
+    start = np.asarray(label.anchor, float)
+    end = np.clip(start, (x0, y0), (x1, y1))
+    for line in figure.vector_lines:
+        for first, second in itertools.pairwise(line):
+            first, second = np.asarray(first, float), np.asarray(second, float)
+            along, other = end - start, second - first
+            denominator = float(cross(along, other))
+            if abs(denominator) < 1e-12:
+                continue
+            t = float(cross(first - start, other)) / denominator
+            u = float(cross(first - start, along)) / denominator
+            if 0.0 <= t <= 1.0 and 0.0 <= u <= 1.0 and t * float(norm(along)) > 1.5:
+                return True
+    return False
 
 
 def _regions(where: Mapping[str, Point], zoom: float, same: float, gap: float = DENSE_PX

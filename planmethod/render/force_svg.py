@@ -30,7 +30,6 @@ Examples
 
 from __future__ import annotations
 
-import itertools
 import math
 import re
 from collections.abc import Mapping
@@ -61,10 +60,9 @@ from .details import (
     ON_THE_DRAWING,
     column_and_details,
     crowded_points,
-    detail_regions,
-    one_spot,
+    laid_out,
 )
-from .labels import PADDING, RunKind, drawn_length, label_runs
+from .labels import RunKind, label_runs
 from .notation import BALANCING_FORCE, ForceNotation, symbol_runs
 from .plan_words import flag_message, label_text
 from .steady import SteadyView
@@ -171,7 +169,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
                                span=(start, end))
         figure.circle(where[0], 3.4, fill=INK, css="start")
 
-    figure, regions = _laid_out(
+    figure, regions = laid_out(
         view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE), content,
         lambda canvas: {f"corner {k}": canvas.px(c) for k, c in enumerate(corners[:-1])},
         details and not view, view.box if view else None)
@@ -201,86 +199,6 @@ def _polygon_notes(group, edges: list, mu_f: float, closure: float,
             render(message("the polygon closes to {closure:.2g} mm", closure=closure)),
             *(render(notation.sentence(step, group.links) if notation else step)
               for step in group.steps)]
-
-
-def _laid_out(zoom: float, content, where_of, details: bool,
-              bounds: tuple[float, float, float, float] | None = None, plan_of=None
-              ) -> tuple[Canvas, list]:
-    """A figure drawn by ``content`` at ``zoom``, its enlarged details' regions marked and its
-    labels placed (within ``bounds`` where they can: a steady page's box). The details watch
-    the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
-    again once the regions are marked (a frame may push a label off its spot: then the figure
-    is drawn once more with that label watched too, up to three times). A label — of a
-    force, a moment or a point — that a line crosses or whose leader crosses an arrow
-    (:func:`_troubled`) is a crowded place by itself: no second point need be near it for it
-    to be drawn again larger — but an arm's h, which stands a fixed step (px) beside its
-    arm, is drawn larger only with what is near it (a detail of its place alone would show
-    the arm elsewhere). Points one spot
-    apart are as near as the plan's own points ``plan_of(figure)`` (all of ``where_of``
-    unless given) are where the plan joins them in one mark."""
-    extra: dict = {}
-    lone: set[str] = set()
-    for _ in range(3):
-        figure = Canvas(zoom)
-        content(figure)
-        where = where_of(figure)
-        watched, unclean = _crowded(figure, where) if details else (where, set())
-        watched, lone = watched | extra, lone | unclean
-        regions = detail_regions(figure, watched, draw=details, alone=[
-            name for name in watched if name in lone and not name.startswith("arm:")],
-            same=one_spot((plan_of or where_of)(figure)))
-        figure.place(bounds=bounds)
-        stuck = [label for label in figure.labels
-                 if not label.clean and not label.points[0].startswith("detail:")]
-        pushed = {" ".join(label.points): label.anchor for label in stuck
-                  if not set(label.points) & set(watched)}
-        alone = {name for label in stuck if _troubled(figure, label) for name in (
-            [point for point in label.points if point in where] or [" ".join(label.points)])
-                 } - lone
-        if not details or not (pushed or alone):
-            break
-        extra, lone = extra | pushed, lone | alone
-    return figure, regions
-
-
-def _crowded(figure: Canvas, where: dict) -> tuple[dict, set[str]]:
-    """The points a detail watches, ``where``, and where the other labels go (of forces,
-    arms, moments) that find no clean spot on the figure, placed on trial: such a label
-    crowds the points near it like a point, so an enlarged detail shows it where others are
-    near; and the labels (of a point: its name) that a line crosses or whose leader crosses
-    an arrow there (:func:`_troubled`), each a crowded place by itself."""
-    trial = [label for label in figure.trial()
-             if not label.clean and not label.points[0].startswith("detail:")]
-    return (where | {" ".join(label.points): label.anchor for label in trial
-                     if not set(label.points) & set(where)},
-            {name for label in trial if _troubled(figure, label) for name in
-             ([point for point in label.points if point in where] or [" ".join(label.points)])})
-
-
-def _troubled(figure: Canvas, label) -> bool:
-    """Whether a label placed on ``figure`` is crossed by a drawn line or its leader crosses
-    a vector's arrow more than a hair from its point — what a reader sees as crowded, not
-    only a spot that costs more than a clean one."""
-    x0, y0, x1, y1 = label.box
-    inner = (x0 + PADDING + 0.6, y0 + PADDING + 0.6, x1 - PADDING - 0.6, y1 - PADDING - 0.6)
-    if drawn_length(figure.obstacle_lines + figure.vector_lines, [inner])[0] > 1.5:
-        return True
-    if not label.leader:
-        return False
-    start = np.asarray(label.anchor, float)
-    end = np.clip(start, (x0, y0), (x1, y1))
-    for line in figure.vector_lines:
-        for first, second in itertools.pairwise(line):
-            first, second = np.asarray(first, float), np.asarray(second, float)
-            along, other = end - start, second - first
-            denominator = float(cross(along, other))
-            if abs(denominator) < 1e-12:
-                continue
-            t = float(cross(first - start, other)) / denominator
-            u = float(cross(first - start, along)) / denominator
-            if 0.0 <= t <= 1.0 and 0.0 <= u <= 1.0 and t * float(norm(along)) > 1.5:
-                return True
-    return False
 
 
 #: a polygon's legend entries of its known forces and its components
@@ -349,7 +267,7 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
                 | {f"s_{force.link}": canvas.px(force.image_mm) for force in combined.forces})
 
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure, regions = _laid_out(view.zoom if view else fit_zoom(
+    figure, regions = laid_out(view.zoom if view else fit_zoom(
         list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
         view.box if view else None,
         plan_of=lambda canvas: {label: canvas.px(xy) for label, xy in points.items()})
@@ -740,7 +658,7 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
         return None
     page = _LeverFigure(forces, plans)
     plan = page.plan
-    figure, regions = _laid_out(page.zoom, page.content, lambda canvas: {
+    figure, regions = laid_out(page.zoom, page.content, lambda canvas: {
         label: canvas.px(xy) for label, xy in page.turned.items()}, details)
 
     def column(at) -> float:
@@ -999,7 +917,7 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
         return None
     page = _LoadedFigure(forces, plans)
     mechanism = forces.solution.mechanism
-    figure, regions = _laid_out(page.zoom, page.content, page.where, details)
+    figure, regions = laid_out(page.zoom, page.content, page.where, details)
 
     def column(at) -> float:
         """The forces' legend and their table, top-left at ``at``."""
