@@ -41,7 +41,7 @@ from ..vectors import cross, inside_span, norm
 from ..words import Message, message, number_text, template
 from .canvas import MARGIN, Canvas, Point, page_point, shown_text
 from .labels import PADDING, RunKind, drawn_length
-from .style import INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
+from .style import CLEARANCE_PX, INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
 
 __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
            "PAGE", "RESOLUTION", "Detail",
@@ -268,11 +268,11 @@ def laid_out(zoom: float, content: Callable[[Canvas], None],
             name for name in watched if name in lone and not name.startswith("arm:")],
             same=one_spot((plan_of or where_of)(figure)))
         figure.place(bounds=bounds)
-        stuck = [label for label in figure.labels
-                 if not label.clean and not label.points[0].startswith("detail:")]
-        pushed = {" ".join(label.points): label.anchor for label in stuck
-                  if not set(label.points) & set(watched)}
-        alone = {name for label in stuck if _troubled(figure, label) for name in (
+        placed = [label for label in figure.labels
+                  if not label.points[0].startswith("detail:")]
+        pushed = {" ".join(label.points): label.anchor for label in placed
+                  if not label.clean and not set(label.points) & set(watched)}
+        alone = {name for label in placed if _troubled(figure, label) for name in (
             [point for point in label.points if point in where] or [" ".join(label.points)])
                  } - lone
         if not details or not (pushed or alone):
@@ -287,22 +287,32 @@ def _crowded(figure: Canvas, where: dict) -> tuple[dict, set[str]]:
     crowds the points near it like a point, so an enlarged detail shows it where others are
     near; and the labels (of a point: its name) that a line crosses or whose leader crosses
     an arrow there (:func:`_troubled`), each a crowded place by itself."""
-    trial = [label for label in figure.trial()
-             if not label.clean and not label.points[0].startswith("detail:")]
+    trial = [label for label in figure.trial() if not label.points[0].startswith("detail:")]
     return (where | {" ".join(label.points): label.anchor for label in trial
-                     if not set(label.points) & set(where)},
+                     if not label.clean and not set(label.points) & set(where)},
             {name for label in trial if _troubled(figure, label) for name in
              ([point for point in label.points if point in where] or [" ".join(label.points)])})
 
 
 def _troubled(figure: Canvas, label) -> bool:
-    """Whether a label placed on ``figure`` is crossed by a drawn line or its leader crosses
-    a vector's arrow more than a hair from its point — what a reader sees as crowded, not
-    only a spot that costs more than a clean one."""
+    """Whether a label placed on ``figure`` is crossed by a drawn line, lies on another
+    point's mark (a point's label: nearer it than :data:`CLEARANCE_PX`, with a px for the
+    fonts' ascent as a reader's box has it), or its leader
+    crosses a vector's arrow more than a hair from its point — what a reader sees as
+    crowded, not only a spot that costs more than a clean one."""
     x0, y0, x1, y1 = label.box
     inner = (x0 + PADDING + 0.6, y0 + PADDING + 0.6, x1 - PADDING - 0.6, y1 - PADDING - 0.6)
     if drawn_length(figure.obstacle_lines + figure.vector_lines, [inner])[0] > 1.5:
         return True
+    ax, ay = label.anchor
+    marks = [(x, y, radius) for x, y, radius, _ in figure.point_marks]
+    own = any(abs(x - ax) + abs(y - ay) < 0.5 for x, y, _ in marks)   # a point's label
+    text = (x0 + PADDING, y0 + PADDING, x1 - PADDING, y1 - PADDING)
+    for x, y, radius in marks:         # on (a point's: near) another point's mark
+        gap = math.hypot(max(text[0] - x, 0.0, x - text[2]),
+                         max(text[1] - y, 0.0, y - text[3])) - radius
+        if abs(x - ax) + abs(y - ay) >= 0.5 and gap < (CLEARANCE_PX + 1.0 if own else 0.0):
+            return True
     if not label.leader:
         return False
     start = np.asarray(label.anchor, float)

@@ -86,6 +86,7 @@ from .details import (
     column_and_details,
     crowded_points,
     detail_regions,
+    laid_out,
     one_spot,
 )
 from .labels import RunKind, label_runs, merge_runs
@@ -532,14 +533,13 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
     """A velocity or acceleration plan as an :class:`SvgFigure` (see the module docstring);
     with ``details``, a region too dense to read is drawn again, enlarged, below the plan;
     ``view`` keeps the zoom and the page of every frame of a turn."""
-    figure = Canvas(view.zoom if view else fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
     def content(canvas: Canvas) -> None:
         plan_content(canvas, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
 
-    content(figure)
-    where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    regions = detail_regions(figure, where, draw=details and not view)
-    figure.place(bounds=view.box if view else None)      # a steady page holds them
+    figure, regions = laid_out(      # a steady page holds the labels
+        view.zoom if view else fit_zoom(list(plan.points_mm.values()), PLAN_SIZE), content,
+        lambda canvas: {label: canvas.px(xy) for label, xy in plan.points_mm.items()},
+        details and not view, view.box if view else None)
     equations = vector_equations(plan)
     details = [] if view else column_and_details(   # the legend's column, the details
         figure, content, regions, f"detail-{plan.kind}",
