@@ -619,7 +619,8 @@ def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
     smaller whole enlargement (of the figure or the detail it is marked in, down to half its
     own and :data:`DETAIL_ZOOM`'s least) that fits beside what is drawn and still shows its
     points apart; where it would reach past the page's height (``room.bottom``), marked
-    details too, at the smallest such one if none fits. Returns the region (its
+    details too, at the smallest such one if none fits — its labels then no more crowded
+    than at its own enlargement, not all clean. Returns the region (its
     enlargement as drawn), the drawn detail and its spot."""
     floor = max(box[3] for box in taken)
 
@@ -643,7 +644,7 @@ def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
         step -= 1
         candidate = replace(region, zoom=base * step)
         smaller, place, tall = tried(candidate)
-        if not _readable(*smaller):
+        if not _readable(*smaller, troubles=_troubles(*drawn) if past else None):
             break                         # smaller still would crowd what it shows
         if place[1] + tall + 22.0 <= floor:
             return candidate, smaller, place
@@ -652,16 +653,25 @@ def _fitted(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
     return best
 
 
-def _readable(detail: Canvas, view, inside: set[str]) -> bool:
+def _readable(detail: Canvas, view, inside: set[str], troubles: int | None = None) -> bool:
     """Whether a detail shows its points the readable distance apart (or at one place) and
-    every label of what it shows on a clean spot."""
+    every label of what it shows on a clean spot — or, given the ``troubles`` of the detail
+    it would replace, no more of its labels crowded (:func:`_troubles`)."""
     marks = [(x, y) for x, y, _, _ in detail.point_marks
              if view[0] <= x <= view[2] and view[1] <= y <= view[3]]
     for index, (x0, y0) in enumerate(marks):
         for x1, y1 in marks[index + 1:]:
             if 0.5 < math.hypot(x1 - x0, y1 - y0) < DENSE_PX:
                 return False
+    if troubles is not None:
+        return _troubles(detail, view, inside) <= troubles
     return all(label.clean for label in detail.labels if " ".join(label.points) in inside)
+
+
+def _troubles(detail: Canvas, view, inside: set[str]) -> int:
+    """How many labels of what a detail shows a reader sees crowded (:func:`_troubled`)."""
+    return sum(_troubled(detail, label) for label in detail.labels
+               if " ".join(label.points) in inside)
 
 
 def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detail,
