@@ -34,6 +34,7 @@ import itertools
 import math
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, replace
+from typing import TypeVar
 
 import numpy as np
 
@@ -46,7 +47,8 @@ from .style import CLEARANCE_PX, INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_wi
 __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
            "PAGE", "RESOLUTION", "Detail",
            "Room", "column_and_details", "crowded_points", "crowded_table", "dense_regions",
-           "detail_insets", "detail_regions", "laid_out", "one_spot", "room_beside"]
+           "detail_insets", "detail_regions", "laid_out", "one_spot", "page_times",
+           "room_beside", "within_page"]
 
 #: distinct points nearer than this (px) to a neighbour crowd each other: two or more such make
 #: a region that gets an enlarged detail (the readable distance)
@@ -79,6 +81,8 @@ ON_THE_DRAWING = message("points too close to read (mm on the drawing)")
 #: at most this many details a figure, named by Roman numerals (no point is named so)
 ROMAN = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
 MOST = len(ROMAN)
+#: what a figure's builder returns besides its canvas (:func:`within_page`)
+_T = TypeVar("_T")
 
 
 @dataclass(frozen=True)
@@ -503,6 +507,46 @@ class Room:
 
 #: the room (px) between two details, or a detail and what it stands beside
 GAP = 40.0
+
+#: no figure's page is more than this many times as long as what it draws (the figure check's
+#: limit, issue 37), a little under it for the coordinates written to 0.01 px
+PAGE_MOST = 2.99
+#: how much larger than its own size a figure draws its drawing, in turn, where its page
+#: (legend, tables, details, lines under it — all of a fixed size) would be longer than that
+GROWTH = (1.0, 1.25, 1.5, 2.0)
+
+
+def page_times(figure: Canvas) -> float:
+    """How many times the longer side of a figure's page (what it holds, with its margins)
+    is the longer side of what it draws (:attr:`Canvas.drawn`).
+
+    >>> figure = Canvas()
+    >>> figure.grow((0, 0), (100, 50), layer="points")
+    >>> figure.grow((0, 0), (272, 50))
+    >>> page_times(figure)
+    3.0
+    """
+    x0, y0, x1, y1 = figure.extent
+    drawn = figure.drawn
+    return (max(x1 - x0, y1 - y0) + 2 * MARGIN) / max(drawn[2] - drawn[0],
+                                                      drawn[3] - drawn[1], 1e-9)
+
+
+def within_page(build: Callable[[float], tuple[Canvas, _T]]) -> _T:
+    """A figure built by ``build(growth)`` (its canvas and what it returns) with its drawing
+    :data:`GROWTH` times its own size in turn, the first whose page keeps within
+    :data:`PAGE_MOST` of what it draws (:func:`page_times`) — the last tried if none does:
+    a drawing drawn larger holds its legend, its tables and its details on a page of fewer
+    times its size, and crowds fewer of its points.
+
+    >>> within_page(lambda growth: (Canvas(growth), growth))
+    1.0
+    """
+    for growth in GROWTH:
+        figure, out = build(growth)
+        if page_times(figure) <= PAGE_MOST:
+            break
+    return out
 
 
 def room_beside(figure: Canvas, drawn: Sequence[float],

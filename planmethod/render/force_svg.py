@@ -61,6 +61,7 @@ from .details import (
     column_and_details,
     crowded_points,
     laid_out,
+    within_page,
 )
 from .labels import RunKind, label_runs
 from .notation import BALANCING_FORCE, ForceNotation, symbol_runs
@@ -456,7 +457,7 @@ class _LeverFigure:
     lever, and each force at the image of its point with its arm from the pole — drawn on any
     canvas (:meth:`content`), so that a crowded region can be drawn again as a detail."""
 
-    def __init__(self, forces: Any, plans) -> None:
+    def __init__(self, forces: Any, plans, growth: float = 1.0) -> None:
         lever = forces.solution.lever
         self.notation = notation = ForceNotation(forces.solution)
         self.plan = plan = plans.velocity
@@ -504,7 +505,7 @@ class _LeverFigure:
             standard(pair / (COUPLE_LENGTH * extent))
         ends = [tuple(item.image + item.force / mu_f) for item in drawn]
         ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
-        self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        self.zoom = growth * fit_zoom(points + ends, PLAN_SIZE)
         self.balancing_runs = symbol_runs(BALANCING_FORCE)
         numbered = _stacked([*self.known, *self.couples, self.balancing], self.zoom)
         self.known = numbered[:len(self.known)]
@@ -656,7 +657,12 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     if plans is None or lever.source != VelocitySource.PLAN or not np.isfinite(
             lever.balancing_moment[0]):
         return None
-    page = _LeverFigure(forces, plans)
+    return within_page(lambda growth: _lever_page(forces, plans, details, growth))
+
+
+def _lever_page(forces: Any, plans, details: bool, growth: float) -> tuple[Canvas, str]:
+    """The lever's page with its drawing ``growth`` times its own size: its canvas and SVG."""
+    page = _LeverFigure(forces, plans, growth)
     plan = page.plan
     figure, regions = laid_out(page.zoom, page.content, lambda canvas: {
         label: canvas.px(xy) for label, xy in page.turned.items()}, details)
@@ -680,7 +686,7 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
                            phi=_phi(plans), angle=plans.angle)).lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
           plan.flags, PlanKind.VELOCITY)
-    return figure.svg(title).svg
+    return figure, figure.svg(title).svg
 
 
 def _lever_table(figure: Canvas, at, page: _LeverFigure) -> float:
