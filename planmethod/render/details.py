@@ -745,7 +745,7 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
     detail.requests = [request for request in detail.requests
                        if box[0] - reach <= request.anchor[0] <= box[2] + reach
                        and box[1] - reach <= request.anchor[1] <= box[3] + reach]
-    detail.place(bounds=box)           # inside the frame where they can
+    detail.place(bounds=_bounds(detail, box))      # inside the frame where they can
     inside = {" ".join(label.points) for label in detail.labels
               if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3]}
     # the frame holds the labels kept whole: where one reaches past the region, the detail
@@ -756,6 +756,27 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
             view = [min(view[0], label.box[0] - 2.0), min(view[1], label.box[1] - 2.0),
                     max(view[2], label.box[2] + 2.0), max(view[3], label.box[3] + 2.0)]
     return detail, view, inside
+
+
+#: how far (px) past a detail's region its labels may go where, inside it, a leader would
+#: cross an arrow or a line a label (the frame then widens to hold them)
+WIDER_PX = 30.0
+
+
+def _bounds(detail: Canvas, box: tuple[float, float, float, float]
+            ) -> tuple[float, float, float, float]:
+    """Where a detail's labels go: inside its region ``box`` where they can — or, where
+    that leaves some of them crowded (:func:`_troubled`: a leader across an arrow, a line
+    across a label) and :data:`WIDER_PX` more room round it leaves fewer, within that."""
+    def troubles(bounds) -> int:
+        return sum(_troubled(detail, label) for label in detail.trial(bounds)
+                   if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3])
+
+    first = troubles(box)
+    if not first:
+        return box
+    wider = (box[0] - WIDER_PX, box[1] - WIDER_PX, box[2] + WIDER_PX, box[3] + WIDER_PX)
+    return wider if troubles(wider) < first else box
 
 
 def _caption(region: Detail, width: float | None = None) -> Message:
