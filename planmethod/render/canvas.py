@@ -545,12 +545,11 @@ class Canvas:
         return place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
                             vectors=self.vector_lines, marks=self.point_marks, bounds=bounds)
 
-    def place(self, bounds: Sequence[float] | None = None) -> None:
+    def place(self, bounds: Sequence[float] | None = None,
+              labels: tuple[PlacedLabel, ...] | None = None) -> None:
         """Place the requested labels (within ``bounds``, x0, y0, x1, y1, where they can) and
-        draw them with their leaders."""
-        self.labels = place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
-                                   vectors=self.vector_lines, marks=self.point_marks,
-                                   bounds=bounds)
+        draw them with their leaders — or draw the ``labels`` a :meth:`trial` placed."""
+        self.labels = self.trial(bounds) if labels is None else labels
         for label in self.labels:
             x0, y0, x1, y1 = label.box
             self.grow((x0, y0), (x1, y1))

@@ -745,7 +745,7 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
     detail.requests = [request for request in detail.requests
                        if box[0] - reach <= request.anchor[0] <= box[2] + reach
                        and box[1] - reach <= request.anchor[1] <= box[3] + reach]
-    detail.place(bounds=_bounds(detail, box))      # inside the frame where they can
+    detail.place(labels=_inside(detail, box))      # inside the frame where they can
     inside = {" ".join(label.points) for label in detail.labels
               if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3]}
     # the frame holds the labels kept whole: where one reaches past the region, the detail
@@ -763,20 +763,23 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
 WIDER_PX = 30.0
 
 
-def _bounds(detail: Canvas, box: tuple[float, float, float, float]
-            ) -> tuple[float, float, float, float]:
-    """Where a detail's labels go: inside its region ``box`` where they can — or, where
-    that leaves some of them crowded (:func:`_troubled`: a leader across an arrow, a line
-    across a label) and :data:`WIDER_PX` more room round it leaves fewer, within that."""
-    def troubles(bounds) -> int:
-        return sum(_troubled(detail, label) for label in detail.trial(bounds)
-                   if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3])
+def _inside(detail: Canvas, box: tuple[float, float, float, float]) -> tuple:
+    """A detail's labels placed (:meth:`Canvas.trial`) inside its region ``box`` where they
+    can — or, where that leaves some of them crowded (:func:`_troubled`: a leader across an
+    arrow, a line across a label) and :data:`WIDER_PX` more room round it leaves fewer,
+    within that."""
+    def troubles(labels) -> int:
+        return sum(_troubled(detail, label) for label in labels     # a clean spot's
+                   if (label.leader or not label.clean)              # label: on no line
+                   and box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3])
 
-    first = troubles(box)
+    placed = detail.trial(box)
+    first = troubles(placed)
     if not first:
-        return box
-    wider = (box[0] - WIDER_PX, box[1] - WIDER_PX, box[2] + WIDER_PX, box[3] + WIDER_PX)
-    return wider if troubles(wider) < first else box
+        return placed
+    wider = detail.trial((box[0] - WIDER_PX, box[1] - WIDER_PX, box[2] + WIDER_PX,
+                          box[3] + WIDER_PX))
+    return wider if troubles(wider) < first else placed
 
 
 def _caption(region: Detail, width: float | None = None) -> Message:
