@@ -539,17 +539,17 @@ class Canvas:
                                           _pair(lean) if lean is not None else None))
 
     # labels
-    def trial(self) -> tuple[PlacedLabel, ...]:
-        """Where the requested labels would go, without drawing them."""
+    def trial(self, bounds: Sequence[float] | None = None) -> tuple[PlacedLabel, ...]:
+        """Where the requested labels would go (within ``bounds`` where they can, as
+        :meth:`place` puts them), without drawing them."""
         return place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
-                            vectors=self.vector_lines, marks=self.point_marks)
+                            vectors=self.vector_lines, marks=self.point_marks, bounds=bounds)
 
-    def place(self, bounds: Sequence[float] | None = None) -> None:
+    def place(self, bounds: Sequence[float] | None = None,
+              labels: tuple[PlacedLabel, ...] | None = None) -> None:
         """Place the requested labels (within ``bounds``, x0, y0, x1, y1, where they can) and
-        draw them with their leaders."""
-        self.labels = place_labels(self.requests, self.obstacle_lines, self.obstacle_areas,
-                                   vectors=self.vector_lines, marks=self.point_marks,
-                                   bounds=bounds)
+        draw them with their leaders — or draw the ``labels`` a :meth:`trial` placed."""
+        self.labels = self.trial(bounds) if labels is None else labels
         for label in self.labels:
             x0, y0, x1, y1 = label.box
             self.grow((x0, y0), (x1, y1))

@@ -60,7 +60,8 @@ from .details import (
     ON_THE_DRAWING,
     column_and_details,
     crowded_points,
-    detail_regions,
+    laid_out,
+    within_page,
 )
 from .labels import RunKind, label_runs
 from .notation import BALANCING_FORCE, ForceNotation, symbol_runs
@@ -169,7 +170,7 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
                                span=(start, end))
         figure.circle(where[0], 3.4, fill=INK, css="start")
 
-    figure, regions = _laid_out(
+    figure, regions = laid_out(
         view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE), content,
         lambda canvas: {f"corner {k}": canvas.px(c) for k, c in enumerate(corners[:-1])},
         details and not view, view.box if view else None)
@@ -199,41 +200,6 @@ def _polygon_notes(group, edges: list, mu_f: float, closure: float,
             render(message("the polygon closes to {closure:.2g} mm", closure=closure)),
             *(render(notation.sentence(step, group.links) if notation else step)
               for step in group.steps)]
-
-
-def _laid_out(zoom: float, content, where_of, details: bool,
-              bounds: tuple[float, float, float, float] | None = None
-              ) -> tuple[Canvas, list]:
-    """A figure drawn by ``content`` at ``zoom``, its enlarged details' regions marked and its
-    labels placed (within ``bounds`` where they can: a steady page's box). The details watch
-    the points ``where_of(figure)`` and the labels that find no clean spot — on trial, and
-    again once the regions are marked (a frame may push a label off its spot: then the figure
-    is drawn once more with that label watched too)."""
-    extra: dict = {}
-    for _ in range(2):
-        figure = Canvas(zoom)
-        content(figure)
-        where = where_of(figure)
-        watched = (_crowded(figure, where) | extra) if details else where
-        regions = detail_regions(figure, watched, draw=details)
-        figure.place(bounds=bounds)
-        pushed = {" ".join(label.points): label.anchor for label in figure.labels
-                  if not label.clean and not set(label.points) & set(watched)
-                  and not label.points[0].startswith("detail:")}
-        if not details or not pushed:
-            break
-        extra |= pushed
-    return figure, regions
-
-
-def _crowded(figure: Canvas, where: dict) -> dict:
-    """The points a detail watches, ``where``, and where the other labels go (of forces,
-    arms, moments) that find no clean spot on the figure, placed on trial: such a label
-    crowds the points near it like a point, so an enlarged detail shows it where others are
-    near."""
-    return where | {" ".join(label.points): label.anchor for label in figure.trial()
-                    if not label.clean and not set(label.points) & set(where)
-                    and not label.points[0].startswith("detail:")}
 
 
 #: a polygon's legend entries of its known forces and its components
@@ -302,9 +268,10 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
                 | {f"s_{force.link}": canvas.px(force.image_mm) for force in combined.forces})
 
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure, regions = _laid_out(view.zoom if view else fit_zoom(
+    figure, regions = laid_out(view.zoom if view else fit_zoom(
         list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
-        view.box if view else None)
+        view.box if view else None,
+        plan_of=lambda canvas: {label: canvas.px(xy) for label, xy in points.items()})
     if view:
         lines_of_details = []
         _combined_column(figure, (view.box[2] + 34, view.box[1] + 4))
@@ -490,7 +457,7 @@ class _LeverFigure:
     lever, and each force at the image of its point with its arm from the pole — drawn on any
     canvas (:meth:`content`), so that a crowded region can be drawn again as a detail."""
 
-    def __init__(self, forces: Any, plans) -> None:
+    def __init__(self, forces: Any, plans, growth: float = 1.0) -> None:
         lever = forces.solution.lever
         self.notation = notation = ForceNotation(forces.solution)
         self.plan = plan = plans.velocity
@@ -538,7 +505,7 @@ class _LeverFigure:
             standard(pair / (COUPLE_LENGTH * extent))
         ends = [tuple(item.image + item.force / mu_f) for item in drawn]
         ends += [tuple(item.image + item.force / self.mu_couple) for item in self.couples]
-        self.zoom = fit_zoom(points + ends, PLAN_SIZE)
+        self.zoom = growth * fit_zoom(points + ends, PLAN_SIZE)
         self.balancing_runs = symbol_runs(BALANCING_FORCE)
         numbered = _stacked([*self.known, *self.couples, self.balancing], self.zoom)
         self.known = numbered[:len(self.known)]
@@ -690,9 +657,14 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     if plans is None or lever.source != VelocitySource.PLAN or not np.isfinite(
             lever.balancing_moment[0]):
         return None
-    page = _LeverFigure(forces, plans)
+    return within_page(lambda growth: _lever_page(forces, plans, details, growth))
+
+
+def _lever_page(forces: Any, plans, details: bool, growth: float) -> tuple[Canvas, str]:
+    """The lever's page with its drawing ``growth`` times its own size: its canvas and SVG."""
+    page = _LeverFigure(forces, plans, growth)
     plan = page.plan
-    figure, regions = _laid_out(page.zoom, page.content, lambda canvas: {
+    figure, regions = laid_out(page.zoom, page.content, lambda canvas: {
         label: canvas.px(xy) for label, xy in page.turned.items()}, details)
 
     def column(at) -> float:
@@ -714,7 +686,7 @@ def lever_forces_svg(forces: Any, plans, *, details: bool = True) -> str | None:
                            phi=_phi(plans), angle=plans.angle)).lstrip(" —")
     frame(figure, title, lines, (plan.scale, SCALES["mu_v"].drawn, 0.3 * PLAN_SIZE),
           plan.flags, PlanKind.VELOCITY)
-    return figure.svg(title).svg
+    return figure, figure.svg(title).svg
 
 
 def _lever_table(figure: Canvas, at, page: _LeverFigure) -> float:
@@ -951,7 +923,7 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
         return None
     page = _LoadedFigure(forces, plans)
     mechanism = forces.solution.mechanism
-    figure, regions = _laid_out(page.zoom, page.content, page.where, details)
+    figure, regions = laid_out(page.zoom, page.content, page.where, details)
 
     def column(at) -> float:
         """The forces' legend and their table, top-left at ``at``."""

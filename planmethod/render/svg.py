@@ -86,7 +86,9 @@ from .details import (
     column_and_details,
     crowded_points,
     detail_regions,
+    laid_out,
     one_spot,
+    within_page,
 )
 from .labels import RunKind, label_runs, merge_runs
 from .plan_words import flag_message, label_text, plan_title, scale_lines, vector_text
@@ -531,15 +533,25 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
                  ) -> SvgFigure:
     """A velocity or acceleration plan as an :class:`SvgFigure` (see the module docstring);
     with ``details``, a region too dense to read is drawn again, enlarged, below the plan;
-    ``view`` keeps the zoom and the page of every frame of a turn."""
-    figure = Canvas(view.zoom if view else fit_zoom(list(plan.points_mm.values()), PLAN_SIZE))
+    ``view`` keeps the zoom and the page of every frame of a turn; without it, the plan is
+    drawn larger where its page would be too long for it (:func:`within_page`)."""
+    if view is not None:
+        return _plan_page(plan, details, view, 1.0)[1]
+    return within_page(lambda growth: _plan_page(plan, details, None, growth))
+
+
+def _plan_page(plan: Plan, details: bool, view: SteadyView | None, growth: float
+               ) -> tuple[Canvas, SvgFigure]:
+    """A plan's page (:func:`plan_drawing`) with its drawing ``growth`` times its own size:
+    its canvas and the figure."""
     def content(canvas: Canvas) -> None:
         plan_content(canvas, plan.points_mm, plan.steps, plan.pole, numbers=plan.numbers)
 
-    content(figure)
-    where = {label: figure.px(xy) for label, xy in plan.points_mm.items()}
-    regions = detail_regions(figure, where, draw=details and not view)
-    figure.place(bounds=view.box if view else None)      # a steady page holds them
+    figure, regions = laid_out(      # a steady page holds the labels
+        view.zoom if view else growth * fit_zoom(list(plan.points_mm.values()), PLAN_SIZE),
+        content,
+        lambda canvas: {label: canvas.px(xy) for label, xy in plan.points_mm.items()},
+        details and not view, view.box if view else None)
     equations = vector_equations(plan)
     details = [] if view else column_and_details(   # the legend's column, the details
         figure, content, regions, f"detail-{plan.kind}",
@@ -557,8 +569,8 @@ def plan_drawing(plan: Plan, *, details: bool = True, view: SteadyView | None = 
     frame(figure, title, lines, (plan.scale, SCALES[scale].drawn, 0.3 * PLAN_SIZE),
           [flag_message(flag, plan.numbers) for flag in plan.flags], plan.kind,
           box=view.box if view else None, equations=equations, column=view is not None)
-    return figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
-                                              equations=equations) if view else None)
+    return figure, figure.svg(title, view=steady_page(view, title, len(lines), plan.kind,
+                                                      equations=equations) if view else None)
 
 
 def plan_svg(plan: Plan, *, details: bool = True, view: SteadyView | None = None) -> str:
