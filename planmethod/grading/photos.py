@@ -626,20 +626,28 @@ def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
         lines.append(line)
     lines = _merged(lines, points, weights)
     lines = [_reaching(line, points) for line in lines]
-    lines = _unique([line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3],
-                    points)
+    lines = [line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3]
+    lines = _unique(lines, points, None if darkness is None else
+                    [_track_darkness(line, darkness, origin, resolution) for line in lines])
     if darkness is not None:
         lines = [_polished(line, lines, darkness, origin, resolution) for line in lines]
     return lines
 
 
-def _unique(lines: Sequence[Stroke], points: np.ndarray, *, band_mm: float = 0.3,
-            share: float = 0.75) -> list[Stroke]:
-    """``lines`` without those whose pixels the others hold: where two lines leave a point a
-    few degrees apart, their pencil runs together near it, and a line fitted to both at once
-    (found besides each) would move where they cross another. The least straight go first."""
+def _unique(lines: Sequence[Stroke], points: np.ndarray, dark: Sequence[float] | None = None,
+            *, band_mm: float = 0.3, share: float = 0.75) -> list[Stroke]:
+    """``lines`` without those whose pixels the others hold. First a line between two that
+    leave a point a few degrees apart (:func:`_doubled`): their pencil runs together near it,
+    and a line fitted to both at once (found besides each) would move where they cross another;
+    then the least dark along their course (``dark``: :func:`_track_darkness`; else the least
+    straight): the lines fitted to the edges of a line drawn twice over run on lighter pencil
+    than the one along its middle."""
     kept = list(lines)
-    for line in sorted(lines, key=lambda line: -line.rms_mm):
+    order = [-line.rms_mm for line in lines] if dark is None else list(dark)
+    for index in sorted(range(len(lines)),
+                        key=lambda index: (_doubled(lines[index], lines) != "between",
+                                           order[index])):
+        line = lines[index]
         mine = _on(line, points, band_mm)
         if not mine.any():
             continue
@@ -650,6 +658,61 @@ def _unique(lines: Sequence[Stroke], points: np.ndarray, *, band_mm: float = 0.3
         if (mine & others).sum() >= share * mine.sum():
             kept.remove(line)
     return kept
+
+
+def _track_darkness(line: Stroke, darkness: np.ndarray, origin: Sequence[float],
+                    resolution: float) -> float:
+    """The median darkness under ``line`` (every 0.25 mm along it): high on a pencil line's
+    middle, lower along its edge or between two lines.
+
+    >>> line = Stroke((1.0, 1.5), (1.0, 0.0), 0.0, 2.0, 0.1)
+    >>> darkness = np.zeros((30, 40), np.float32); darkness[14:16] = 0.8
+    >>> _track_darkness(line, darkness, (0.0, 0.0), 10.0)
+    0.8
+    """
+    import cv2
+
+    along = np.arange(line.start, line.stop + 1e-9, 0.25)
+    centres = np.asarray(line.point) + along[:, None] * np.asarray(line.direction)
+    columns = ((centres[:, 0] - origin[0]) * resolution - 0.5).astype(np.float32)
+    rows = ((centres[:, 1] - origin[1]) * resolution - 0.5).astype(np.float32)
+    sampled = cv2.remap(darkness, columns[None, :], rows[None, :], cv2.INTER_LINEAR,
+                        borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+    return round(float(np.median(sampled)), 6)
+
+
+def _doubled(line: Stroke, lines: Sequence[Stroke], *, angle_deg: float = 3.0,
+             ends_mm: float = 1.5, across_mm: float = 0.6) -> str | None:
+    """Whether ``line`` runs between two nearly parallel lines within its extent, one each
+    side: ``"doubled"`` along the middle of a line drawn twice over (a construction line and
+    the vector read along it, or two drawn from one point along one course; its pencil is found
+    as three lines, the two along its edges as long as each other), else ``"between"`` two
+    lines that leave a point a few degrees apart (not as long as each other); else None.
+
+    >>> middle = Stroke((0.0, 0.0), (1.0, 0.0), 0.0, 18.0, 0.12)
+    >>> edges = [Stroke((0.0, y), (1.0, 0.0), 0.3, 12.2, 0.05) for y in (-0.3, 0.35)]
+    >>> _doubled(middle, [middle, *edges]), _doubled(edges[0], [middle, *edges])
+    ('doubled', None)
+    """
+    direction = np.asarray(line.direction)
+    normal = np.array([-direction[1], direction[0]])
+    middle = line.at((line.start + line.stop) / 2)
+    sides: list[tuple[bool, float, float]] = []
+    for other in lines:
+        turned = np.asarray(other.direction)
+        if other is line or abs(float(turned @ direction)) < math.cos(math.radians(angle_deg)):
+            continue
+        low, high = sorted(float((other.at(t) - np.asarray(line.point)) @ direction)
+                           for t in (other.start, other.stop))
+        across = float((np.asarray(other.point) - middle) @ normal)
+        if (low >= line.start - ends_mm and high <= line.stop + ends_mm
+                and 0.1 <= abs(across) <= across_mm):
+            sides.append((across > 0, low, high))
+    if any(first[0] != second[0] and abs(first[1] - second[1]) <= ends_mm
+           and abs(first[2] - second[2]) <= ends_mm
+           for first, second in itertools.combinations(sides, 2)):
+        return "doubled"
+    return "between" if len({side for side, _, _ in sides}) == 2 else None
 
 
 def _polished(line: Stroke, lines: Sequence[Stroke], darkness: np.ndarray,
