@@ -294,6 +294,31 @@ def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_
     assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
 
 
+def test_c_is_read_where_a_line_drawn_twice_over_crosses_another(tmp_path):
+    """Four-bar student 001's velocity plan drawn with a velocity's sense reversed
+    (photographed as the benchmark's case 155 is, seed 10155): (pc) is drawn twice over, as
+    the construction line and as the vector read, and its pencil was found as three lines, one
+    along its middle and two along its edges; the middle one was dropped, and the edges crossed
+    (bc) 0.3-0.4 mm from c each side, so c was not found. The middle one is kept: c is found
+    where it was drawn and named with the mistake."""
+    from planmethod.grading.photos import grade_photo
+
+    out = tmp_path / "course"
+    assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", "1",
+                 "--seed", "2026", "--out", str(out)]) == 0
+    keys = load_keys(out / "keys.json")
+    photo = sheet_photo(keys["001"], "velocity", "sense", seed=10155)
+    path = tmp_path / "001_sense.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    place = {place.point: place for place in graded.places}["c"]
+    point = {point.point: point for point in graded.drawing.points}["c"]
+    drawn = plan_to_page(read_sheet(keys["001"], "velocity").pole_mm, photo.drawn.points["c"])
+    assert photo.drawn.deserved["c"] == "sense"
+    assert not point.correct and "sense" in point.mistakes
+    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.3
+
+
 def test_b_is_read_at_the_dot_where_its_lines_meet_too_shallowly(tmp_path):
     """Student 001's four-bar velocity plan with c laid off from the pole (photographed as the
     benchmark's case 157 is, seed 10157): three lines reach b within 15° of each other, so
