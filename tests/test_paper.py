@@ -319,6 +319,34 @@ def test_c_is_read_where_a_line_drawn_twice_over_crosses_another(tmp_path):
     assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.3
 
 
+def test_pencil_beside_the_poles_printed_name_is_read(keys):
+    """Where the pole's name is printed, only its ink (darker than pencil), what lies close to
+    it and what lies within 4.5 mm of the pole are left out: a line drawn past the name,
+    1.5 mm from it, is read (a point drawn there was not found: e laid off from the pole on
+    the benchmark's four-bar student 009's acceleration plan)."""
+    from planmethod.grading import photos
+
+    sheet = read_sheet(keys["001"], "velocity")
+    box, resolution = sheet.drawing_mm, photos.RECTIFIED_PX_PER_MM
+    left, top, right, bottom = box
+    darkness = np.zeros((round((bottom - top) * resolution), round((right - left) * resolution)),
+                        np.float32)
+    px, py = sheet.pole_mm
+
+    def cells(x0, x1, y0, y1):
+        return (slice(round((y0 - top) * resolution), round((y1 - top) * resolution)),
+                slice(round((x0 - left) * resolution), round((x1 - left) * resolution)))
+
+    darkness[cells(px - 4.5, px - 2.5, py - 5.0, py - 1.5)] = 0.9     # the printed name
+    darkness[cells(px - 6.2, px - 5.8, py - 12.0, py - 1.0)] = 0.5    # a pencil line past it
+    pixels, _ = photos._pencil_pixels(darkness, sheet, box, resolution, photos.PENCIL_DARKNESS)
+    beside = (np.abs(pixels[:, 0] - (px - 6.0)) < 0.3) & (pixels[:, 1] > py - 7.8)
+    assert beside.sum() >= 0.9 * 0.4 * 6.8 * resolution ** 2
+    near_name = ((pixels[:, 0] > px - 4.9) & (pixels[:, 0] < px - 2.1)
+                 & (pixels[:, 1] > py - 5.4) & (pixels[:, 1] < py - 1.1))
+    assert not near_name.any()
+
+
 def test_b_is_read_at_the_dot_where_its_lines_meet_too_shallowly(tmp_path):
     """Student 001's four-bar velocity plan with c laid off from the pole (photographed as the
     benchmark's case 157 is, seed 10157): three lines reach b within 15° of each other, so

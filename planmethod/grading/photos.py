@@ -559,17 +559,38 @@ def _darkness(rectified: np.ndarray, resolution: float) -> np.ndarray:
 def _pencil_pixels(darkness: np.ndarray, sheet: Sheet, box, resolution: float,
                    threshold: float):
     """The pencil's pixels (mm, rectified page) and their darkness, the printed pole and its
-    name left out."""
+    name left out: the ring round the pole, and in the box where the name is printed, what
+    lies within 0.4 mm of printed ink (darker than pencil is: :data:`PRINTED_DARKNESS`) or
+    within 4.5 mm of the pole (where the lines that leave it crowd), so that a line drawn
+    past the name, or a point drawn beside it, is still read."""
+    import cv2
+
     left, top, right, bottom = box
     mask = darkness > threshold
     px, py = sheet.pole_mm
+    name = (px - 7.5, py - 7.8, px - 1.2, py - 0.6)          # where the name is printed
+    first = (max(0, int((name[0] - left) * resolution)), max(0, int((name[1] - top) * resolution)))
+    last = (max(0, int((name[2] - left) * resolution) + 1),
+            max(0, int((name[3] - top) * resolution) + 1))
+    ink = darkness[first[1]:last[1], first[0]:last[0]] > PRINTED_DARKNESS
+    if ink.size:
+        reach = 2 * round(0.4 * resolution) + 1
+        ink = cv2.dilate(ink.astype(np.uint8), cv2.getStructuringElement(
+            cv2.MORPH_ELLIPSE, (reach, reach))).astype(bool)
+        rows, columns = np.mgrid[first[1]:last[1], first[0]:last[0]]
+        near = np.hypot(left + (columns + 0.5) / resolution - px,
+                        top + (rows + 0.5) / resolution - py) < 4.5
+        mask[first[1]:last[1], first[0]:last[0]] &= ~(ink | near)
     rows, columns = np.nonzero(mask)
     xs = left + (columns + 0.5) / resolution
     ys = top + (rows + 0.5) / resolution
     keep = np.hypot(xs - px, ys - py) > 2.4                       # the pole's ring
-    keep &= ~((xs > px - 7.5) & (xs < px - 1.2) & (ys > py - 7.8) & (ys < py - 0.6))  # its name
     keep &= (xs > left + 1.0) & (xs < right - 1.0) & (ys > top + 1.0) & (ys < bottom - 1.0)
     return np.column_stack([xs[keep], ys[keep]]), darkness[rows[keep], columns[keep]]
+
+
+#: printed ink is darker than this (of 1: black); a pencil line, grey, is lighter
+PRINTED_DARKNESS = 0.72
 
 
 def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
