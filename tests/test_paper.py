@@ -294,6 +294,59 @@ def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_
     assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
 
 
+def test_c_is_read_where_a_line_drawn_twice_over_crosses_another(tmp_path):
+    """Four-bar student 001's velocity plan drawn with a velocity's sense reversed
+    (photographed as the benchmark's case 155 is, seed 10155): (pc) is drawn twice over, as
+    the construction line and as the vector read, and its pencil was found as three lines, one
+    along its middle and two along its edges; the middle one was dropped, and the edges crossed
+    (bc) 0.3-0.4 mm from c each side, so c was not found. The middle one is kept: c is found
+    where it was drawn and named with the mistake."""
+    from planmethod.grading.photos import grade_photo
+
+    out = tmp_path / "course"
+    assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", "1",
+                 "--seed", "2026", "--out", str(out)]) == 0
+    keys = load_keys(out / "keys.json")
+    photo = sheet_photo(keys["001"], "velocity", "sense", seed=10155)
+    path = tmp_path / "001_sense.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    place = {place.point: place for place in graded.places}["c"]
+    point = {point.point: point for point in graded.drawing.points}["c"]
+    drawn = plan_to_page(read_sheet(keys["001"], "velocity").pole_mm, photo.drawn.points["c"])
+    assert photo.drawn.deserved["c"] == "sense"
+    assert not point.correct and "sense" in point.mistakes
+    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.3
+
+
+def test_pencil_beside_the_poles_printed_name_is_read(keys):
+    """Where the pole's name is printed, only its ink (darker than pencil), what lies close to
+    it and what lies within 4.5 mm of the pole are left out: a line drawn past the name,
+    1.5 mm from it, is read (a point drawn there was not found: e laid off from the pole on
+    the benchmark's four-bar student 009's acceleration plan)."""
+    from planmethod.grading import photos
+
+    sheet = read_sheet(keys["001"], "velocity")
+    box, resolution = sheet.drawing_mm, photos.RECTIFIED_PX_PER_MM
+    left, top, right, bottom = box
+    darkness = np.zeros((round((bottom - top) * resolution), round((right - left) * resolution)),
+                        np.float32)
+    px, py = sheet.pole_mm
+
+    def cells(x0, x1, y0, y1):
+        return (slice(round((y0 - top) * resolution), round((y1 - top) * resolution)),
+                slice(round((x0 - left) * resolution), round((x1 - left) * resolution)))
+
+    darkness[cells(px - 4.5, px - 2.5, py - 5.0, py - 1.5)] = 0.9     # the printed name
+    darkness[cells(px - 6.2, px - 5.8, py - 12.0, py - 1.0)] = 0.5    # a pencil line past it
+    pixels, _ = photos._pencil_pixels(darkness, sheet, box, resolution, photos.PENCIL_DARKNESS)
+    beside = (np.abs(pixels[:, 0] - (px - 6.0)) < 0.3) & (pixels[:, 1] > py - 7.8)
+    assert beside.sum() >= 0.9 * 0.4 * 6.8 * resolution ** 2
+    near_name = ((pixels[:, 0] > px - 4.9) & (pixels[:, 0] < px - 2.1)
+                 & (pixels[:, 1] > py - 5.4) & (pixels[:, 1] < py - 1.1))
+    assert not near_name.any()
+
+
 def test_b_is_read_at_the_dot_where_its_lines_meet_too_shallowly(tmp_path):
     """Student 001's four-bar velocity plan with c laid off from the pole (photographed as the
     benchmark's case 157 is, seed 10157): three lines reach b within 15° of each other, so

@@ -559,17 +559,38 @@ def _darkness(rectified: np.ndarray, resolution: float) -> np.ndarray:
 def _pencil_pixels(darkness: np.ndarray, sheet: Sheet, box, resolution: float,
                    threshold: float):
     """The pencil's pixels (mm, rectified page) and their darkness, the printed pole and its
-    name left out."""
+    name left out: the ring round the pole, and in the box where the name is printed, what
+    lies within 0.4 mm of printed ink (darker than pencil is: :data:`PRINTED_DARKNESS`) or
+    within 4.5 mm of the pole (where the lines that leave it crowd), so that a line drawn
+    past the name, or a point drawn beside it, is still read."""
+    import cv2
+
     left, top, right, bottom = box
     mask = darkness > threshold
     px, py = sheet.pole_mm
+    name = (px - 7.5, py - 7.8, px - 1.2, py - 0.6)          # where the name is printed
+    first = (max(0, int((name[0] - left) * resolution)), max(0, int((name[1] - top) * resolution)))
+    last = (max(0, int((name[2] - left) * resolution) + 1),
+            max(0, int((name[3] - top) * resolution) + 1))
+    ink = darkness[first[1]:last[1], first[0]:last[0]] > PRINTED_DARKNESS
+    if ink.size:
+        reach = 2 * round(0.4 * resolution) + 1
+        ink = cv2.dilate(ink.astype(np.uint8), cv2.getStructuringElement(
+            cv2.MORPH_ELLIPSE, (reach, reach))).astype(bool)
+        rows, columns = np.mgrid[first[1]:last[1], first[0]:last[0]]
+        near = np.hypot(left + (columns + 0.5) / resolution - px,
+                        top + (rows + 0.5) / resolution - py) < 4.5
+        mask[first[1]:last[1], first[0]:last[0]] &= ~(ink | near)
     rows, columns = np.nonzero(mask)
     xs = left + (columns + 0.5) / resolution
     ys = top + (rows + 0.5) / resolution
     keep = np.hypot(xs - px, ys - py) > 2.4                       # the pole's ring
-    keep &= ~((xs > px - 7.5) & (xs < px - 1.2) & (ys > py - 7.8) & (ys < py - 0.6))  # its name
     keep &= (xs > left + 1.0) & (xs < right - 1.0) & (ys > top + 1.0) & (ys < bottom - 1.0)
     return np.column_stack([xs[keep], ys[keep]]), darkness[rows[keep], columns[keep]]
+
+
+#: printed ink is darker than this (of 1: black); a pencil line, grey, is lighter
+PRINTED_DARKNESS = 0.72
 
 
 def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
@@ -626,20 +647,28 @@ def find_strokes(points: np.ndarray, weights: np.ndarray, resolution: float,
         lines.append(line)
     lines = _merged(lines, points, weights)
     lines = [_reaching(line, points) for line in lines]
-    lines = _unique([line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3],
-                    points)
+    lines = [line for line in lines if line.length >= 1.5 and line.rms_mm <= 0.3]
+    lines = _unique(lines, points, None if darkness is None else
+                    [_track_darkness(line, darkness, origin, resolution) for line in lines])
     if darkness is not None:
         lines = [_polished(line, lines, darkness, origin, resolution) for line in lines]
     return lines
 
 
-def _unique(lines: Sequence[Stroke], points: np.ndarray, *, band_mm: float = 0.3,
-            share: float = 0.75) -> list[Stroke]:
-    """``lines`` without those whose pixels the others hold: where two lines leave a point a
-    few degrees apart, their pencil runs together near it, and a line fitted to both at once
-    (found besides each) would move where they cross another. The least straight go first."""
+def _unique(lines: Sequence[Stroke], points: np.ndarray, dark: Sequence[float] | None = None,
+            *, band_mm: float = 0.3, share: float = 0.75) -> list[Stroke]:
+    """``lines`` without those whose pixels the others hold. First a line between two that
+    leave a point a few degrees apart (:func:`_doubled`): their pencil runs together near it,
+    and a line fitted to both at once (found besides each) would move where they cross another;
+    then the least dark along their course (``dark``: :func:`_track_darkness`; else the least
+    straight): the lines fitted to the edges of a line drawn twice over run on lighter pencil
+    than the one along its middle."""
     kept = list(lines)
-    for line in sorted(lines, key=lambda line: -line.rms_mm):
+    order = [-line.rms_mm for line in lines] if dark is None else list(dark)
+    for index in sorted(range(len(lines)),
+                        key=lambda index: (_doubled(lines[index], lines) != "between",
+                                           order[index])):
+        line = lines[index]
         mine = _on(line, points, band_mm)
         if not mine.any():
             continue
@@ -650,6 +679,61 @@ def _unique(lines: Sequence[Stroke], points: np.ndarray, *, band_mm: float = 0.3
         if (mine & others).sum() >= share * mine.sum():
             kept.remove(line)
     return kept
+
+
+def _track_darkness(line: Stroke, darkness: np.ndarray, origin: Sequence[float],
+                    resolution: float) -> float:
+    """The median darkness under ``line`` (every 0.25 mm along it): high on a pencil line's
+    middle, lower along its edge or between two lines.
+
+    >>> line = Stroke((1.0, 1.5), (1.0, 0.0), 0.0, 2.0, 0.1)
+    >>> darkness = np.zeros((30, 40), np.float32); darkness[14:16] = 0.8
+    >>> _track_darkness(line, darkness, (0.0, 0.0), 10.0)
+    0.8
+    """
+    import cv2
+
+    along = np.arange(line.start, line.stop + 1e-9, 0.25)
+    centres = np.asarray(line.point) + along[:, None] * np.asarray(line.direction)
+    columns = ((centres[:, 0] - origin[0]) * resolution - 0.5).astype(np.float32)
+    rows = ((centres[:, 1] - origin[1]) * resolution - 0.5).astype(np.float32)
+    sampled = cv2.remap(darkness, columns[None, :], rows[None, :], cv2.INTER_LINEAR,
+                        borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+    return round(float(np.median(sampled)), 6)
+
+
+def _doubled(line: Stroke, lines: Sequence[Stroke], *, angle_deg: float = 3.0,
+             ends_mm: float = 1.5, across_mm: float = 0.6) -> str | None:
+    """Whether ``line`` runs between two nearly parallel lines within its extent, one each
+    side: ``"doubled"`` along the middle of a line drawn twice over (a construction line and
+    the vector read along it, or two drawn from one point along one course; its pencil is found
+    as three lines, the two along its edges as long as each other), else ``"between"`` two
+    lines that leave a point a few degrees apart (not as long as each other); else None.
+
+    >>> middle = Stroke((0.0, 0.0), (1.0, 0.0), 0.0, 18.0, 0.12)
+    >>> edges = [Stroke((0.0, y), (1.0, 0.0), 0.3, 12.2, 0.05) for y in (-0.3, 0.35)]
+    >>> _doubled(middle, [middle, *edges]), _doubled(edges[0], [middle, *edges])
+    ('doubled', None)
+    """
+    direction = np.asarray(line.direction)
+    normal = np.array([-direction[1], direction[0]])
+    middle = line.at((line.start + line.stop) / 2)
+    sides: list[tuple[bool, float, float]] = []
+    for other in lines:
+        turned = np.asarray(other.direction)
+        if other is line or abs(float(turned @ direction)) < math.cos(math.radians(angle_deg)):
+            continue
+        low, high = sorted(float((other.at(t) - np.asarray(line.point)) @ direction)
+                           for t in (other.start, other.stop))
+        across = float((np.asarray(other.point) - middle) @ normal)
+        if (low >= line.start - ends_mm and high <= line.stop + ends_mm
+                and 0.1 <= abs(across) <= across_mm):
+            sides.append((across > 0, low, high))
+    if any(first[0] != second[0] and abs(first[1] - second[1]) <= ends_mm
+           and abs(first[2] - second[2]) <= ends_mm
+           for first, second in itertools.combinations(sides, 2)):
+        return "doubled"
+    return "between" if len({side for side, _, _ in sides}) == 2 else None
 
 
 def _polished(line: Stroke, lines: Sequence[Stroke], darkness: np.ndarray,
@@ -900,7 +984,7 @@ def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarr
     for dot in _dots(spare, spare_weights, resolution):
         if all(math.dist(dot, mark.at) > 1.0 for mark in marks
                if mark.kind is MarkKind.CROSS):
-            marks.append(Mark(dot, MarkKind.DOT))
+            marks.append(Mark(_onto_ends(dot, long), MarkKind.DOT))
     for stroke in long:
         if stroke.length < 5.0:
             continue
@@ -916,6 +1000,33 @@ def find_points(strokes: Sequence[Stroke], points: np.ndarray, weights: np.ndarr
         kind = mark.kind if mark.kind is MarkKind.END or ends or through >= 2 else MarkKind.LOOSE
         out.append(Mark(mark.at, kind, mark.sharpness, ends + through))
     return out
+
+
+def _onto_ends(dot: tuple[float, float], long: Sequence[Stroke], *, across_mm: float = 0.9,
+               end_mm: float = 1.5) -> tuple[float, float]:
+    """A dot moved onto the lines that end at it, where two or more do (within ``across_mm``
+    across and ``end_mm`` along of an end; the mean of its places on each): a dot found among
+    the pixels the lines leave is what the lines do not cover of it, off its middle where they
+    cover it unevenly, and the lines tell where across them more exactly than the dot. (One
+    line ending at a spot may be a stray one reaching a written label.)
+
+    >>> lines = [Stroke((0.0, 0.0), (1.0, 0.0), 0.0, 10.0, 0.1),
+    ...          Stroke((20.0, 0.0), (1.0, 0.0), -10.0, 0.0, 0.1)]
+    >>> _onto_ends((10.2, 0.6), lines), _onto_ends((10.2, 0.4), lines[:1])
+    ((10.2, 0.0), (10.2, 0.4))
+    """
+    placed = []
+    for stroke in long:
+        direction = np.asarray(stroke.direction)
+        offset = np.asarray(dot) - np.asarray(stroke.point)
+        along = float(offset @ direction)
+        if (abs(float(offset @ np.array([-direction[1], direction[0]]))) <= across_mm
+                and min(abs(along - stroke.start), abs(along - stroke.stop)) <= end_mm):
+            placed.append(stroke.at(along))
+    if len(placed) < 2:
+        return dot
+    x, y = np.mean(placed, axis=0)
+    return (round(float(x), 9), round(float(y), 9))
 
 
 def _dot_at_end(stroke: Stroke, along: float, inward: float, points: np.ndarray,
