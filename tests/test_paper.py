@@ -276,22 +276,31 @@ def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
             assert not point.correct and "no_normal" in point.mistakes
 
 
+def _read_point(keys, student, plan, construction, seed, name, folder):
+    """A photo of ``student``'s ``plan`` drawn by ``construction`` (the benchmark's ``seed``),
+    graded: the photo, the graded point ``name``, and how far (mm) it was read from where it
+    was drawn."""
+    from planmethod.grading.photos import grade_photo
+
+    photo = sheet_photo(keys[student], plan, construction, seed=seed)
+    path = folder / f"{student}_{construction}.jpg"
+    path.write_bytes(photo.jpeg)
+    graded = grade_photo(keys, path)
+    place = {place.point: place for place in graded.places}[name]
+    point = {point.point: point for point in graded.drawing.points}[name]
+    drawn = plan_to_page(read_sheet(keys[student], plan).pole_mm, photo.drawn.points[name])
+    return photo, point, float(np.hypot(*np.subtract(place.page_mm, drawn)))
+
+
 def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_path):
     """Student 002's acceleration plan drawn without aⁿ (photographed as the benchmark's
     case 18 is, seed 10018): two lines leave b 2° apart, their pencil runs together near it,
     and a line fitted to both at once was found besides each; crossing (πb) it moved b 0.4 mm
     along (πb), beyond b's radius of 0.25 mm. Without that line b is read where it was drawn."""
-    from planmethod.grading.photos import grade_photo
-
-    photo = sheet_photo(keys["002"], "acceleration", "no_normal", seed=10018)
-    path = tmp_path / "002_no_normal.jpg"
-    path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
-    place = {place.point: place for place in graded.places}["b"]
-    point = {point.point: point for point in graded.drawing.points}["b"]
-    drawn = plan_to_page(read_sheet(keys["002"], "acceleration").pole_mm, photo.drawn.points["b"])
+    photo, point, off = _read_point(keys, "002", "acceleration", "no_normal", 10018, "b",
+                                    tmp_path)
     assert photo.drawn.deserved["b"] == "right"
-    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
+    assert off < 0.2 and point.correct
 
 
 def test_c_is_read_where_a_line_drawn_twice_over_crosses_another(tmp_path):
@@ -301,22 +310,14 @@ def test_c_is_read_where_a_line_drawn_twice_over_crosses_another(tmp_path):
     along its middle and two along its edges; the middle one was dropped, and the edges crossed
     (bc) 0.3-0.4 mm from c each side, so c was not found. The middle one is kept: c is found
     where it was drawn and named with the mistake."""
-    from planmethod.grading.photos import grade_photo
-
     out = tmp_path / "course"
     assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", "1",
                  "--seed", "2026", "--out", str(out)]) == 0
     keys = load_keys(out / "keys.json")
-    photo = sheet_photo(keys["001"], "velocity", "sense", seed=10155)
-    path = tmp_path / "001_sense.jpg"
-    path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
-    place = {place.point: place for place in graded.places}["c"]
-    point = {point.point: point for point in graded.drawing.points}["c"]
-    drawn = plan_to_page(read_sheet(keys["001"], "velocity").pole_mm, photo.drawn.points["c"])
+    photo, point, off = _read_point(keys, "001", "velocity", "sense", 10155, "c", tmp_path)
     assert photo.drawn.deserved["c"] == "sense"
     assert not point.correct and "sense" in point.mistakes
-    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.3
+    assert off < 0.3
 
 
 def test_pencil_beside_the_poles_printed_name_is_read(keys):
