@@ -263,12 +263,8 @@ def test_a_photo_is_graded_as_the_same_plan_given_as_a_drawing(keys, course, vel
 def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
     """The acceleration plan drawn without the normal component aⁿ: every point it moves is
     wrong and named with that mistake."""
-    from planmethod.grading.photos import grade_photo
-
-    photo = sheet_photo(keys["002"], "acceleration", "no_normal", seed=5, conditions=STEADY)
-    path = tmp_path / "002_no_normal.jpg"
-    path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
+    photo, graded = _graded_photo(keys, "002", "acceleration", "no_normal", seed=5,
+                                  folder=tmp_path, conditions=STEADY)
     moved = {label for label, verdict in photo.drawn.deserved.items() if verdict != "right"}
     assert moved
     for point in graded.drawing.points:
@@ -276,20 +272,40 @@ def test_a_mistaken_construction_is_named_never_called_right(keys, tmp_path):
             assert not point.correct and "no_normal" in point.mistakes
 
 
-def _read_point(keys, student, plan, construction, seed, name, folder):
-    """A photo of ``student``'s ``plan`` drawn by ``construction`` (the benchmark's ``seed``),
-    graded: the photo, the graded point ``name``, and how far (mm) it was read from where it
-    was drawn."""
+def _four_bar_keys(folder, count: int = 1):
+    """The keys of ``count`` four-bar variants (seed 2026, as the benchmark draws them)."""
+    out = folder / "course"
+    assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", str(count),
+                 "--seed", "2026", "--out", str(out)]) == 0
+    return load_keys(out / "keys.json")
+
+
+def _graded_photo(keys, student, plan, *construction, seed, folder, **options):
+    """A photo of ``student``'s ``plan`` drawn by ``construction`` (:func:`sheet_photo`'s
+    arguments; the benchmark's ``seed``), written to ``folder`` and graded: the photo and
+    what ``grade_photo`` made of it."""
     from planmethod.grading.photos import grade_photo
 
-    photo = sheet_photo(keys[student], plan, construction, seed=seed)
-    path = folder / f"{student}_{construction}.jpg"
+    photo = sheet_photo(keys[student], plan, *construction, seed=seed, **options)
+    path = folder / f"{student}_{plan}_{seed}.jpg"
     path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
+    return photo, grade_photo(keys, path)
+
+
+def _point_read(keys, student, plan, photo, graded, name):
+    """The graded point ``name`` of a photo, and how far (mm) it was read from where it was
+    drawn."""
     place = {place.point: place for place in graded.places}[name]
     point = {point.point: point for point in graded.drawing.points}[name]
     drawn = plan_to_page(read_sheet(keys[student], plan).pole_mm, photo.drawn.points[name])
-    return photo, point, float(np.hypot(*np.subtract(place.page_mm, drawn)))
+    return point, float(np.hypot(*np.subtract(place.page_mm, drawn)))
+
+
+def _read_point(keys, student, plan, construction, seed, name, folder):
+    """A photo of ``student``'s ``plan`` drawn by ``construction``, graded: the photo, the
+    graded point ``name``, and how far (mm) it was read from where it was drawn."""
+    photo, graded = _graded_photo(keys, student, plan, construction, seed=seed, folder=folder)
+    return (photo, *_point_read(keys, student, plan, photo, graded, name))
 
 
 def test_b_is_read_where_two_lines_leaving_it_close_together_cross_pb(keys, tmp_path):
@@ -310,10 +326,7 @@ def test_c_is_read_where_a_line_drawn_twice_over_crosses_another(tmp_path):
     along its middle and two along its edges; the middle one was dropped, and the edges crossed
     (bc) 0.3-0.4 mm from c each side, so c was not found. The middle one is kept: c is found
     where it was drawn and named with the mistake."""
-    out = tmp_path / "course"
-    assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", "1",
-                 "--seed", "2026", "--out", str(out)]) == 0
-    keys = load_keys(out / "keys.json")
+    keys = _four_bar_keys(tmp_path)
     photo, point, off = _read_point(keys, "001", "velocity", "sense", 10155, "c", tmp_path)
     assert photo.drawn.deserved["c"] == "sense"
     assert not point.correct and "sense" in point.mistakes
@@ -353,21 +366,12 @@ def test_b_is_read_at_the_dot_where_its_lines_meet_too_shallowly(tmp_path):
     benchmark's case 157 is, seed 10157): three lines reach b within 15° of each other, so
     where they cross moves with their pencil's width (1/sine), and b was read 0.7 mm off along
     (pb), beyond its radius of 0.25 mm. The dot drawn at b places it."""
-    from planmethod.grading.photos import grade_photo
-
-    out = tmp_path / "course"
-    assert main(["variants", str(TEMPLATE.with_name("four_bar.toml")), "--count", "1",
-                 "--seed", "2026", "--out", str(out)]) == 0
-    keys = load_keys(out / "keys.json")
-    photo = sheet_photo(keys["001"], "velocity", "relative_for_absolute", "c", seed=10157)
-    path = tmp_path / "001_relative.jpg"
-    path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
-    place = {place.point: place for place in graded.places}["b"]
-    point = {point.point: point for point in graded.drawing.points}["b"]
-    drawn = plan_to_page(read_sheet(keys["001"], "velocity").pole_mm, photo.drawn.points["b"])
+    keys = _four_bar_keys(tmp_path)
+    photo, graded = _graded_photo(keys, "001", "velocity", "relative_for_absolute", "c",
+                                  seed=10157, folder=tmp_path)
+    point, off = _point_read(keys, "001", "velocity", photo, graded, "b")
     assert photo.drawn.deserved["b"] == "right"
-    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.2 and point.correct
+    assert off < 0.2 and point.correct
 
 
 def test_a_helper_takes_no_mark_a_plan_point_needs():
@@ -394,23 +398,15 @@ def test_a_piece_of_a_label_does_not_win_over_the_lines_end(tmp_path):
     of e lies within e's tolerance of its right place, e itself 3.7 mm away where its lines
     end, under a cross. The blob is a loose mark (no line ends or crosses there) and e is
     graded where it was drawn: wrong, named."""
-    from planmethod.grading.photos import grade_photo
-
-    four_bar = ROOT / "exercises" / "templates" / "four_bar.toml"
-    assert main(["variants", str(four_bar), "--count", "2", "--seed", "2026", "--out",
-                 str(tmp_path / "course")]) == 0
-    keys = load_keys(tmp_path / "course" / "keys.json")
-    photo = sheet_photo(keys["001"], "acceleration", "no_normal", seed=24)
-    path = tmp_path / "001_no_normal.jpg"
-    path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
+    keys = _four_bar_keys(tmp_path, count=2)
+    photo, graded = _graded_photo(keys, "001", "acceleration", "no_normal", seed=24,
+                                  folder=tmp_path)
     entry = keys["001"]["plans"]["acceleration"]
     assert photo.drawn.deserved["e"] == "no_normal"
     place = {place.point: place for place in graded.places}["e"]
-    point = {point.point: point for point in graded.drawing.points}["e"]
+    point, off = _point_read(keys, "001", "acceleration", photo, graded, "e")
     assert not point.correct and "no_normal" in point.mistakes
-    drawn = plan_to_page(read_sheet(keys["001"], "acceleration").pole_mm, photo.drawn.points["e"])
-    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.5 and place.mark != "loose"
+    assert off < 0.5 and place.mark != "loose"
     # the trap is still there: a loose mark within e's tolerance of its right place
     from planmethod.grading import photos
 
@@ -436,22 +432,13 @@ def test_a_label_that_a_stray_line_reaches_does_not_win_over_the_lines_meeting(t
     stroke in one) ends at the written e, so it reads as a dot within e's tolerance of its
     right place, as trusted as the cross where e's lines end 3.7 mm away. Where two lines or
     more meet is trusted over what one line reaches: e is graded where it was drawn."""
-    from planmethod.grading.photos import grade_photo
-
-    four_bar = ROOT / "exercises" / "templates" / "four_bar.toml"
-    assert main(["variants", str(four_bar), "--count", "2", "--seed", "2026", "--out",
-                 str(tmp_path / "course")]) == 0
-    keys = load_keys(tmp_path / "course" / "keys.json")
-    photo = sheet_photo(keys["001"], "acceleration", "no_normal", seed=19)
-    path = tmp_path / "001_no_normal.jpg"
-    path.write_bytes(photo.jpeg)
-    graded = grade_photo(keys, path)
+    keys = _four_bar_keys(tmp_path, count=2)
+    photo, graded = _graded_photo(keys, "001", "acceleration", "no_normal", seed=19,
+                                  folder=tmp_path)
     assert photo.drawn.deserved["e"] == "no_normal"
-    point = {point.point: point for point in graded.drawing.points}["e"]
+    point, off = _point_read(keys, "001", "acceleration", photo, graded, "e")
     assert not point.correct and "no_normal" in point.mistakes
-    place = {place.point: place for place in graded.places}["e"]
-    drawn = plan_to_page(read_sheet(keys["001"], "acceleration").pole_mm, photo.drawn.points["e"])
-    assert np.hypot(*np.subtract(place.page_mm, drawn)) < 0.5
+    assert off < 0.5
 
 
 def test_the_marked_photo_and_a_pool_of_workers(course, velocity_photo, tmp_path):
