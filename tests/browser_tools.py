@@ -78,3 +78,31 @@ def flat(text: str) -> str:
     underscore, digits plain (v_B₃ → vB3: v with B3 set below), so that the page's text can
     be compared with ``grade``'s (which keeps v_C)."""
     return text.replace("_", "").translate(_PLAIN)
+
+
+def sheet_point(page, plan: str, x: float, y: float) -> tuple[float, float]:
+    """The viewport point of the plan point (x, y) mm (y up) of the workbook's drawing sheet
+    of ``plan``: at user coordinates (x, −y), scrolled into the middle of the window first."""
+    return tuple(page.eval_on_selector(f'svg[data-draw="{plan}"]', """(svg, [x, y]) => {
+        const mark = document.createElementNS(svg.namespaceURI, "circle");
+        mark.setAttribute("cx", x); mark.setAttribute("cy", y); mark.setAttribute("r", 0.01);
+        svg.appendChild(mark);
+        mark.scrollIntoView({block: "center", inline: "center"});
+        const box = mark.getBoundingClientRect();
+        mark.remove();
+        return [box.x + box.width / 2, box.y + box.height / 2];
+    }""", [x, -y]))
+
+
+def move_slider(page, angle: float) -> None:
+    """Move the workbook's crank-angle slider to ``angle`` as a hand does (an input event)."""
+    page.eval_on_selector("#angle", """(slider, angle) => {
+        slider.value = angle;
+        slider.dispatchEvent(new Event("input", {bubbles: true}));
+    }""", angle)
+
+
+def start_drawing(page, angle: float) -> None:
+    """The workbook at ``angle`` in drawing mode."""
+    move_slider(page, angle)
+    page.check("#draw-mode")

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import chromium
 import pytest
-from browser_tools import flat
+from browser_tools import flat, move_slider, sheet_point, start_drawing
 from commands import cli
 
 from planmethod.render.workbook import formula_html
@@ -57,13 +57,6 @@ def open_page(browser, path: Path):
     page.goto(path.as_uri())
     page.wait_for_function("window.workbook && window.workbook.ready", timeout=30_000)
     return page, errors
-
-
-def move_slider(page, angle: float) -> None:
-    page.eval_on_selector("#angle", """(slider, angle) => {
-        slider.value = angle;
-        slider.dispatchEvent(new Event("input", {bubbles: true}));
-    }""", angle)
 
 
 def practise(page, answers: dict[str, float]) -> dict:
@@ -342,11 +335,6 @@ def slotted_report():
     return json.loads(cli("solve", SLOTTED, "--json").stdout)
 
 
-def start_drawing(page, angle: float) -> None:
-    move_slider(page, angle)
-    page.check("#draw-mode")
-
-
 @pytest.fixture
 def drawing(browser, slotted_page):
     """The slotted lever's page in drawing mode at its own angle (30°), and the console errors
@@ -360,16 +348,7 @@ def drawing(browser, slotted_page):
 def click_plan_point(page, plan: str, x: float, y: float) -> None:
     """Click the drawing sheet of ``plan`` where the plan point (x, y) in mm (y up) is: at
     user coordinates (x, −y), scrolled into view first."""
-    where = page.eval_on_selector(f'svg[data-draw="{plan}"]', """(svg, [x, y]) => {
-        const mark = document.createElementNS(svg.namespaceURI, "circle");
-        mark.setAttribute("cx", x); mark.setAttribute("cy", y); mark.setAttribute("r", 0.01);
-        svg.appendChild(mark);
-        mark.scrollIntoView({block: "center", inline: "center"});
-        const box = mark.getBoundingClientRect();
-        mark.remove();
-        return [box.x + box.width / 2, box.y + box.height / 2];
-    }""", [x, -y])
-    page.mouse.click(*where)
+    page.mouse.click(*sheet_point(page, plan, x, y))
 
 
 def draw_and_download(page, plan: str, report: dict, folder: Path) -> Path:

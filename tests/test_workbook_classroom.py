@@ -15,7 +15,14 @@ from pathlib import Path
 
 import chromium
 import pytest
-from browser_tools import flat, run_axe, violations_text
+from browser_tools import (
+    flat,
+    move_slider,
+    run_axe,
+    sheet_point,
+    start_drawing,
+    violations_text,
+)
 from commands import cli
 
 pytestmark = pytest.mark.browser
@@ -86,31 +93,10 @@ def in_view(page, selector: str) -> bool:
         rect["right"] <= width and rect["width"] > 0
 
 
-def move_slider(page, angle: float) -> None:
-    page.eval_on_selector("#angle", """(slider, angle) => {
-        slider.value = angle;
-        slider.dispatchEvent(new Event("input", {bubbles: true}));
-    }""", angle)
-
-
 def words(page, name: str, **fields) -> str:
     """A sentence of the page's words, as the page says it."""
     return page.evaluate("([name, fields]) => workbook.rules.words.say(name, fields)",
                          [name, fields])
-
-
-def sheet_point(page, plan: str, x: float, y: float) -> tuple[float, float]:
-    """The viewport point of the plan point (x, y) mm of ``plan``'s sheet, scrolled into the
-    middle of the window first."""
-    return tuple(page.eval_on_selector(f'svg[data-draw="{plan}"]', """(svg, [x, y]) => {
-        const mark = document.createElementNS(svg.namespaceURI, "circle");
-        mark.setAttribute("cx", x); mark.setAttribute("cy", y); mark.setAttribute("r", 0.01);
-        svg.appendChild(mark);
-        mark.scrollIntoView({block: "center", inline: "center"});
-        const b = mark.getBoundingClientRect();
-        mark.remove();
-        return [b.x + b.width / 2, b.y + b.height / 2];
-    }""", [x, -y]))
 
 
 def place_all(page, plan: str, points: dict, tap: bool = False) -> list[str]:
@@ -157,8 +143,7 @@ def test_the_mode_bar_is_in_the_first_viewport_and_stays_in_view(browser, slotte
 def test_a_right_velocity_plan_says_the_acceleration_plan_comes_next(browser, slotted_page,
                                                                      slotted_report):
     page, errors = open_page(browser, slotted_page, LAPTOP)
-    move_slider(page, 30)
-    page.check("#draw-mode")
+    start_drawing(page, 30)
     assert page.text_content("#draw-status") == ""
     place_all(page, "velocity", slotted_report["plans"]["velocity"]["points_mm"])
     page.click('[data-check="velocity"]')
@@ -178,8 +163,7 @@ def test_a_reload_restores_the_drawing_its_verdicts_and_what_was_revealed(
     move_slider(page, 45)
     page.check("#practice")
     page.click('button[data-reveal="v_B@lever"]')
-    move_slider(page, 30)
-    page.check("#draw-mode")
+    start_drawing(page, 30)
     points = slotted_report["plans"]["velocity"]["points_mm"]
     place_all(page, "velocity", points)
     page.click('[data-check="velocity"]')
@@ -238,8 +222,7 @@ def test_nothing_typed_shows_no_asked_value(browser, compressor_page, mode):
 def test_a_point_is_placed_by_a_tap_on_a_phone_and_graded(browser, slotted_page,
                                                           slotted_report):
     page, errors = open_page(browser, slotted_page, PHONE)
-    move_slider(page, 30)
-    page.check("#draw-mode")
+    start_drawing(page, 30)
     assert in_view(page, "#modes")
     points = slotted_report["plans"]["velocity"]["points_mm"]
     labels = place_all(page, "velocity", points, tap=True)
@@ -345,8 +328,7 @@ def test_the_keyboard_places_a_point_on_a_chosen_sheet(browser, slotted_page, sl
     """Enter on a focused sheet places the chosen point at the middle of the sheet in view;
     Control + an arrow key moves it 5 mm, an arrow key 0.5 mm; + zooms."""
     page, errors = open_page(browser, slotted_page, LAPTOP)
-    move_slider(page, 30)
-    page.check("#draw-mode")
+    start_drawing(page, 30)
     page.focus('[data-place="velocity:b"]')
     page.keyboard.press("Enter")                      # the point's button chooses it
     page.focus('svg[data-draw="velocity"]')
@@ -375,8 +357,7 @@ def test_axe_finds_no_serious_or_critical_violation(browser, slotted_page, slott
     page.click('button[data-reveal="v_C"]')
     found = run_axe(page)
     assert found == [], violations_text(found)
-    move_slider(page, 30)
-    page.check("#draw-mode")
+    start_drawing(page, 30)
     place_all(page, "velocity", slotted_report["plans"]["velocity"]["points_mm"])
     page.click('[data-check="velocity"]')
     page.click('[data-show-plan="acceleration"]')
