@@ -272,6 +272,8 @@ def laid_out(zoom: float, content: Callable[[Canvas], None],
             name for name in watched if name in lone and not name.startswith("arm:")],
             same=one_spot((plan_of or where_of)(figure)))
         figure.place(bounds=bounds)
+        if not details:         # no detail to draw: nothing more to watch
+            break
         placed = [label for label in figure.labels
                   if not label.points[0].startswith("detail:")]
         pushed = {" ".join(label.points): label.anchor for label in placed
@@ -279,7 +281,7 @@ def laid_out(zoom: float, content: Callable[[Canvas], None],
         alone = {name for label in placed if _troubled(figure, label) for name in (
             [point for point in label.points if point in where] or [" ".join(label.points)])
                  } - lone
-        if not details or not (pushed or alone):
+        if not (pushed or alone):
             break
         extra, lone = extra | pushed, lone | alone
     return figure, regions
