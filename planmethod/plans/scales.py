@@ -28,6 +28,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -46,6 +47,7 @@ STANDARD_MANTISSAS = (1.0, 1.5, 2.0, 2.5, 4.0, 5.0, 7.5)
 ROUND_MANTISSAS = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 7.5, 8.0)
 
 
+@functools.lru_cache(maxsize=256)     # a figure asks for the same scales many times
 def standard(value: float) -> float:
     """The value of the standard series of drawing scales (1, 1.5, 2, 2.5, 4, 5, 7.5 × 10ᵏ)
     nearest to ``value`` (by ratio; a tie goes to the smaller, which draws larger).
