@@ -114,3 +114,43 @@ def test_random_drawings_in_copies_equal_the_drawings_one_by_one():
             for label, xy in labels.items():
                 assert np.allclose(together[f"points:{plan}:{label}"][k], xy, rtol=0,
                                    atol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["compressor_slider_crank", "conveyor_sixbar",
+                                  "slotted_lever", "loaded_press_sixbar"])
+def test_a_key_keyed_on_an_analysiss_exact_drawing_is_the_key_drawn_anew(name):
+    """A workbook frame's key takes the analysis's plans as its exact drawing instead of
+    drawing them again: the same key, to the last bit, at the exercise's own angle and at
+    others (followed there as a sweep follows the assembly)."""
+    from planmethod.grading.keys import build_key
+    from planmethod.grading.templates import draw_variant, load_template
+    from planmethod.grading.tolerances import exact_drawing
+    from planmethod.report import analyse
+
+    path = ROOT / "exercises" / f"{name}.toml"
+    variant = draw_variant(load_template(str(path)))
+    exercise = load_exercise(path)
+    for angle in (exercise.mechanism.drive.angle, 37.0, 200.0):
+        analysis = analyse(exercise, angle)
+        assert exact_drawing(analysis.plans, analysis.exercise)
+        keyed = replace(variant, exercise=analysis.exercise)
+        assert build_key(keyed, plans=analysis.plans) == build_key(keyed)
+
+
+def test_only_an_exact_drawing_of_that_exercise_stands_for_the_keys_own():
+    """Drawn with a drafting precision, with an error model, of another exercise object or
+    without the acceleration plan it asks for, plans are drawn again for the key."""
+    from planmethod.grading.tolerances import exact_drawing
+
+    exercise = load_exercise(ROOT / "exercises" / "compressor_slider_crank.toml")
+    exact = draw_plans(exercise)
+    assert exact_drawing(exact, exercise) and len(exact.exact) > 10
+    rounded = replace(exercise.plan, precision_mm=0.5)
+    assert draw_plans(exercise, settings=rounded).exact is None
+    assert draw_plans(exercise, perturb=_Recorder()).exact is None
+    assert not exact_drawing(exact, replace(exercise))
+    assert not exact_drawing(draw_plans(exercise, acceleration=False), exercise)
+    recorder = _Recorder()
+    draw_plans(exercise, perturb=recorder)
+    assert [length for length, _ in exact.exact] == recorder.lengths
+    assert [segment for _, segment in exact.exact] == recorder.segments

@@ -100,23 +100,29 @@ def frame_data(analysis, variant, files: dict[str, str]) -> dict[str, Any]:
     workbook_html`), with the plan each quantity is read off (``reads``)."""
     from ..grading.keys import build_key, key_numbers
     from ..grading.plan_points import drawing_frame
+    from ..grading.tolerances import exact_drawing
     from ..render.plan_words import step_text
     from ..render.svg import vector_equations
 
     drawings = {name.removesuffix(".svg"): text for name, text in files.items()}
     readings = [[check.analytic, check.plan] for check in analysis.checks]
+    key = build_key(replace(variant, exercise=analysis.exercise), plans=analysis.plans)
+    # the key's steps are those of the analysis's plans where they are its exact drawing:
+    # their sentences are rendered once
+    said = exact_drawing(analysis.plans, analysis.exercise)
     steps, equations, reads = {}, {}, {}
     if analysis.plans is not None:
         for name in ("velocity", "acceleration"):
             plan = getattr(analysis.plans, name)
             if plan is not None:
-                steps[name] = [[step.number, step_text(step, plan), step.action,
-                                 [point for point in (step.start, step.end) if point]]
-                                for step in plan.steps]
+                texts = ([step["text"] for step in key["plans"][name]["steps"]] if said
+                         else [step_text(step, plan) for step in plan.steps])
+                steps[name] = [[step.number, text, step.action,
+                                [point for point in (step.start, step.end) if point]]
+                               for step, text in zip(plan.steps, texts, strict=True)]
                 equations[name] = vector_equations(plan)
                 reads |= {step.quantity: name for step in plan.steps
                           if step.action == "read" and step.quantity}
-    key = build_key(replace(variant, exercise=analysis.exercise))
     questions = [{field: question[field] for field in QUESTION_FIELDS}
                  for question in key["questions"]]
     return {"drawings": drawings, "readings": readings, "steps": steps,

@@ -351,14 +351,15 @@ def _key_step(step, plan) -> dict[str, Any]:
     return entry
 
 
-def _propagation(variant, exercise, settings: GradingSettings, quantities, motion):
+def _propagation(variant, exercise, settings: GradingSettings, quantities, motion, plans):
     """The drawing tolerances of the variant's quantities: those found while its draw was
     checked, when they are of that very exercise at these settings, else found now."""
     found = getattr(variant, "propagation", None)
     if (found is None or found.plans.exercise is not exercise   # that very exercise only
             or found.precision_mm != settings.precision_mm
             or set(found.values) != set(quantities)):
-        found = propagate(exercise, settings.precision_mm, quantities=quantities, motion=motion)
+        found = propagate(exercise, settings.precision_mm, quantities=quantities,
+                          motion=motion, plans=plans)
     return found
 
 
@@ -395,7 +396,7 @@ def _questions(exercise, quantities, found, settings: GradingSettings, scales,
     return questions
 
 
-def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
+def build_key(variant, *, settings: GradingSettings | None = None, plans=None) -> dict:
     """The answer key of a variant (:class:`~planmethod.grading.templates.Variant`).
 
     Parameters
@@ -404,6 +405,9 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
         The variant to key.
     settings
         The grading settings (default: the exercise's ``[grading]`` table).
+    plans
+        The variant's plans drawn already (an analysis's), if so: taken as the key's exact
+        drawing where they are one (:func:`~planmethod.grading.tolerances.exact_drawing`).
 
     Raises
     ------
@@ -422,7 +426,7 @@ def build_key(variant, *, settings: GradingSettings | None = None) -> dict:
     quantities = asked_quantities(exercise, motion)
     if settings is None:
         settings = grading_settings(variant.data, exercise.source, quantities)
-    found = _propagation(variant, exercise, settings, quantities, motion)
+    found = _propagation(variant, exercise, settings, quantities, motion, plans)
     scales = choose_scales(exercise)
     wrong_plans = _wrong_plans(exercise, found, motion)
     questions = _questions(exercise, quantities, found, settings, scales, wrong_plans, motion)

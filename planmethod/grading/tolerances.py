@@ -106,7 +106,7 @@ def _plan_points(plans) -> dict[str, dict[str, np.ndarray]]:
 
 
 def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
-              motion=None) -> Propagation:
+              motion=None, plans=None) -> Propagation:
     """Exact values, readings and drawing tolerances of the exercise's asked quantities.
 
     Parameters
@@ -118,6 +118,11 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
     quantities
         The quantities (default: those the exercise asks, see
         :func:`planmethod.report.asked_quantities`).
+    motion
+        The exact motion at ``drive.angle``, if solved already.
+    plans
+        The exercise's plans drawn already, if so: taken as the exact drawing where they are
+        one (:func:`exact_drawing`), not drawn again.
     """
     from ..kinematics import solve
     from ..plans import draw_plans
@@ -130,8 +135,13 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
                        stage="acceleration" if acceleration else "velocity")
     settings = replace(exercise.plan, precision_mm=0.0)
     recorder = _Recorder()
-    base = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
-                      perturb=recorder)
+    if exact_drawing(plans, exercise):
+        base = plans
+        for length, segment in plans.exact:
+            recorder(length, segment)
+    else:
+        base = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
+                          perturb=recorder)
     if quantities is None:
         quantities = asked_quantities(exercise, motion)
     here = motion.at(0)
@@ -164,6 +174,23 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
                 for plan, labels in points.items()},
         radii=radii, segments=tuple(recorder.segments), precision_mm=precision_mm, plans=base,
         lengths=tuple(float(length) for length in recorder.lengths))
+
+
+def exact_drawing(plans, exercise: Exercise) -> bool:
+    """Whether ``plans`` are the exact drawing :func:`propagate` would draw of ``exercise``:
+    drawn of that very exercise at its own angle, with its position plan and every plan it
+    asks for, with no drafting error (precision 0), with their steps.
+
+    >>> from planmethod.plans import draw_plans
+    >>> from planmethod.spec import load_exercise
+    >>> exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    >>> exact_drawing(draw_plans(exercise), exercise), exact_drawing(None, exercise)
+    (True, False)
+    """
+    return (plans is not None and plans.exact is not None and plans.exercise is exercise
+            and plans.angle == exercise.mechanism.drive.angle and plans.position is not None
+            and (plans.acceleration is not None) == exercise.ask.needs_acceleration
+            and bool(plans.velocity.steps))
 
 
 def emulate_drawings(exercise: Exercise, precision_mm: float, count: int, *, seed: int = 0,

@@ -207,6 +207,10 @@ class Plans:
     readings: Mapping[str, float]
     flags: tuple[PoorIntersection, ...]
     motion: Motion
+    #: an exact drawing's (precision 0, no drafting-error or mistake model) lengths laid off
+    #: and read off, each with its :class:`Segment`, in construction order (what a ``perturb``
+    #: model would have been shown); None for any other drawing
+    exact: tuple[tuple[float, Segment], ...] | None = None
 
     def omega(self, link: str) -> float | None:
         """ω of ``link`` as read off the velocity plan (None: not read)."""
@@ -264,10 +268,13 @@ class _Sheet:
     precision."""
 
     def __init__(self, kind: PlanKind, pole: str, scale: float, unit: str, precision: float,
-                 min_angle: float, recorder: StepRecorder, perturb=None, turn=None) -> None:
+                 min_angle: float, recorder: StepRecorder, perturb=None, turn=None,
+                 exact: list | None = None) -> None:
         self.kind, self.pole, self.scale, self.unit = kind, pole, scale, unit
         self.precision, self.min_angle = precision, min_angle
         self.perturb = perturb
+        #: an exact drawing's (length, segment) pairs, shared by its sheets (None: not kept)
+        self.exact = exact
         #: a direction model ``turn(direction, segment) -> direction`` for construction lines
         #: (a construction drawn with a mistake); None draws them as they are
         self.turn = turn
@@ -290,6 +297,8 @@ class _Sheet:
         if self.perturb is not None:
             drawn = self.perturb(length, segment)
             return float(drawn) if np.ndim(drawn) == 0 else drawn
+        if self.exact is not None:
+            self.exact.append((length, segment))
         if self.precision > 0:
             return round(float(length) / self.precision) * self.precision
         return float(length)
@@ -438,10 +447,13 @@ class _Emulator:
         precision, min_angle = settings.precision_mm, settings.min_angle_deg
         #: what a group kind's own drawing keeps between its velocity and acceleration plans
         self.memo: dict = {}
+        #: an exact drawing keeps what it lays off and reads off (:attr:`Plans.exact`)
+        self.exact = ([] if precision == 0 and perturb is None and turn is None
+                      and mirror is None else None)
         self.v = _Sheet(PlanKind.VELOCITY, "p", scales.mu_v, "(m/s)/mm", precision, min_angle,
-                        recorder(), perturb, turn)
+                        recorder(), perturb, turn, self.exact)
         self.a = _Sheet(PlanKind.ACCELERATION, "π", scales.mu_a, "(m/s²)/mm", precision,
-                        min_angle, recorder(), perturb, turn)
+                        min_angle, recorder(), perturb, turn, self.exact)
 
     # -- geometry from the position plan ---------------------------------------------------
     def where(self, link: str, point: str) -> np.ndarray:
@@ -1063,7 +1075,8 @@ def _drawn(emulator: _Emulator, exercise: Exercise, position_plan: PositionPlan 
                          if acceleration else None)
     flags = velocity_plan.flags + (acceleration_plan.flags if acceleration_plan else ())
     return Plans(exercise, angle, emulator.scales, position_plan, velocity_plan,
-                 acceleration_plan, dict(emulator.readings), flags, motion)
+                 acceleration_plan, dict(emulator.readings), flags, motion,
+                 None if emulator.exact is None else tuple(emulator.exact))
 
 
 def _read_points(emulator: _Emulator, exercise: Exercise, motion: Motion,
