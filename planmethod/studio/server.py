@@ -411,6 +411,9 @@ class StudioHandler(BaseHTTPRequestHandler):
 
     def setup(self) -> None:
         super().setup()
+        # an answer's headers and body are two writes: without this the body's last segment
+        # waits for the client's delayed acknowledgement of the headers (40 ms and more)
+        self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self.rfile.close()   # the socket's own file, replaced by one that keeps the deadline
         self.rfile = io.BufferedReader(_DeadlineReader(self.connection, self), 65536)
         self._deadline: float | None = None
