@@ -381,6 +381,22 @@ def test_sweep_plot_panels():
     assert all("x_C" not in columns for columns in grouped.values())
 
 
+def test_a_curve_that_repeats_another_is_dashed_over_it():
+    """A block turning with its lever has the lever's ω over the whole turn: the second curve
+    is dashed so that the first shows through; a curve that differs stays solid."""
+    from planmethod.render.plots import Panel, _draw_panel, _new_figure
+
+    angle = np.arange(0.0, 360.0, 5.0)
+    omega = 10 + 3 * np.sin(np.radians(angle))
+    table = {"angle": angle, "omega_block": omega, "omega_lever": omega.copy(),
+             "omega_rod": omega * 1.001}
+    axis = _new_figure().add_subplot()
+    _draw_panel(axis, table, angle, Panel("ω", "rad/s", ["omega_block", "omega_lever",
+                                                            "omega_rod"]), None)
+    styles = [line.get_linestyle() for line in axis.get_lines()]
+    assert styles == ["-", "--", "-"]
+
+
 @pytest.mark.parametrize("table, name", [
     (_table(), "curves.jpg"),
     ({"v_C": np.ones(3)}, "curves.png"),

@@ -288,8 +288,11 @@ def _sweep_panels(table: Mapping[str, np.ndarray], path: Path
 def _draw_panel(ax, table: Mapping[str, np.ndarray], angle: np.ndarray, panel: Panel,
                 numbers: Mapping[str, int] | None) -> None:
     """One panel of a sweep's plot: its curves (radii of curvature by magnitude, on a log
-    scale where they span decades), title, axis label and legend."""
+    scale where they span decades), title, axis label and legend. A curve that repeats one
+    drawn before it over the whole turn (a block turning with its lever: ω₂ = ω₃) is dashed,
+    so that the one beneath shows through."""
     radius = all(name.startswith(_RADIUS) for name in panel.columns)
+    drawn: list[np.ndarray] = []
     for name in panel.columns:
         values = np.asarray(table[name], dtype=float)
         if radius:
@@ -297,7 +300,10 @@ def _draw_panel(ax, table: Mapping[str, np.ndarray], angle: np.ndarray, panel: P
                               np.nan)
         if not np.isfinite(values).any():
             continue                      # nothing drawn: not in the legend
-        ax.plot(angle, values, label=render(curve_label(name, numbers)))
+        repeats = any(_same_curve(values, earlier) for earlier in drawn)
+        ax.plot(angle, values, label=render(curve_label(name, numbers)),
+                ls=(0, (4, 3)) if repeats else "-")
+        drawn.append(values)
     if radius:
         radii = np.abs(np.asarray([table[c] for c in panel.columns], dtype=float))
         radii = radii[np.isfinite(radii) & (radii > 0)]
@@ -308,6 +314,21 @@ def _draw_panel(ax, table: Mapping[str, np.ndarray], angle: np.ndarray, panel: P
     ax.legend(fontsize=7.5, loc="best", ncols=min(3, len(panel.columns)), frameon=False)
     ax.set_xlim(float(angle.min()), float(angle.max()) if angle.size > 1
                 else float(angle.min()) + 1.0)
+
+
+def _same_curve(values: np.ndarray, other: np.ndarray) -> bool:
+    """Whether two curves of a panel are the same over the whole turn (to rounding: 1e-9 of
+    the larger's span), undefined at the same angles.
+
+    >>> a = np.array([1.0, 2.0, np.nan])
+    >>> _same_curve(a, a + 1e-12), _same_curve(a, a * 1.01), _same_curve(a, np.ones(3))
+    (True, False, False)
+    """
+    if values.shape != other.shape or not np.array_equal(np.isnan(values), np.isnan(other)):
+        return False
+    finite = np.isfinite(values)
+    span = max(float(np.ptp(values[finite])), float(np.ptp(other[finite])), 1e-300)
+    return bool(np.all(np.abs(values[finite] - other[finite]) <= 1e-9 * span + 1e-300))
 
 
 #: colours of the force curves
