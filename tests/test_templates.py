@@ -247,7 +247,8 @@ def test_rejected_draws_are_redrawn_deterministically():
 
 def test_a_refusal_sums_up_the_three_most_frequent_kinds_of_rejection(monkeypatch):
     """Every attempt rejected, four ways (numbers aside: 'lines meet at 3°' and 'at 5°' are
-    one kind): the refusal names the three most frequent kinds, most frequent first."""
+    one kind): the refusal names the three most frequent kinds, most frequent first, each
+    number as the range it took (not a '#' in its place)."""
     from planmethod.grading import templates
 
     cycle = ["a", "a", "a", "a", "b", "b", "b", "c", "c", "d"]
@@ -257,7 +258,7 @@ def test_a_refusal_sums_up_the_three_most_frequent_kinds_of_rejection(monkeypatc
     with pytest.raises(SpecError) as caught:
         draw_variant(template, seed=1, student="x")
     summary = str(caught.value).rpartition("): ")[2]
-    assert summary == "80× kind a at #°; 60× kind b at #°; 40× kind c at #°"
+    assert summary == "80× kind a at 0–193°; 60× kind b at 4–196°; 40× kind c at 7–198°"
 
 
 def test_a_template_that_never_assembles_fails_with_the_reasons():

@@ -30,12 +30,12 @@ from typing import Any
 
 from ..errors import SpecError
 from ..runs import MANIFEST, RunKind, write_run
-from ..words import Message, message, number_text, render
+from ..words import Message, message
 from .tasks import Watch
 
 __all__ = ["MANIFEST", "MAX_ROSTER_BYTES", "MAX_VARIANTS", "RUN", "RUN_FILES",
            "STUDENT_FILES", "Class", "DrawnVariant", "VariantSet", "VariantsRequest",
-           "class_of", "draw_variants", "manifest_text", "read_roster", "rejection_summary",
+           "class_of", "draw_variants", "manifest_text", "read_roster",
            "write_variants"]
 
 #: the files of a run beside its student folders
@@ -314,40 +314,3 @@ def write_variants(out: str | Path, drawn: VariantSet, earlier) -> Message | str
                                 for name, text in drawn.files.items()}, earlier) or None
 
 
-def _number_pattern() -> re.Pattern:
-    """A number in a reason as the language writes it (not a digit of a name such as O2)."""
-    sign = re.escape(number_text(0.5)[1])
-    return re.compile(rf"(?<![A-Za-z_])-?\d+(?:{sign}\d+)?")
-
-
-def _value(text: str) -> float:
-    return float(re.sub(r"[^\d\-]", ".", text))
-
-
-def rejection_summary(reasons: list[Message | str]) -> list[str]:
-    """The reasons of rejected draws, alike ones counted together, most frequent first, each
-    number shown as the range it took; in the language spoken.
-
-    Examples
-    --------
-    >>> for line in rejection_summary(["segment of ω₃ is 4.2 mm (below 10 mm)",
-    ...                                "the crank is 3.1° from a dead centre (below 5°)",
-    ...                                "segment of ω₃ is 9.5 mm (below 10 mm)"]):
-    ...     print(line)
-    2× segment of ω₃ is 4.2–9.5 mm (below 10 mm)
-    1× the crank is 3.1° from a dead centre (below 5°)
-    """
-    number = _number_pattern()
-    groups: dict[str, list[list[str]]] = {}
-    for reason in map(render, reasons):
-        groups.setdefault(number.sub("#", reason), []).append(number.findall(reason))
-    lines = []
-    for pattern, rows in sorted(groups.items(), key=lambda item: (-len(item[1]), item[0])):
-        parts = pattern.split("#")
-        text = parts[0]
-        for column, rest in zip(zip(*rows, strict=True), parts[1:], strict=True):
-            low, high = min(column, key=_value), max(column, key=_value)
-            text += low if _value(low) == _value(high) else f"{low}–{high}"
-            text += rest
-        lines.append(f"{len(rows)}× {text}")
-    return lines

@@ -70,10 +70,9 @@ def run(args: argparse.Namespace) -> int:
         VariantsRequest,
         class_of,
         draw_variants,
-        rejection_summary,
         write_variants,
     )
-    from ..grading.templates import load_template
+    from ..grading.templates import load_template, rejection_summary
     from ..progress import Progress
     from ..runs import earlier_run
     from .output import note, say

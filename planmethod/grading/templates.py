@@ -84,6 +84,7 @@ __all__ = [
     "format_description",
     "load_template",
     "parse_template",
+    "rejection_summary",
     "to_toml",
 ]
 
@@ -519,14 +520,48 @@ def _attempt(template: Template, seed: int, student: str, attempt: int,
 
 
 def _summary(reasons: list[Message]) -> str:
-    """The three most frequent kinds of rejection, each counted (``12× the crank is #° from a
-    dead centre (below #°)``: its numbers left out)."""
-    counts: dict[str, int] = {}
-    for reason in reasons:
-        short = re.sub(r"[-\d.]+", "#", render(reason))
-        counts[short] = counts.get(short, 0) + 1
-    return "; ".join(f"{n}× {text}" for text, n in sorted(counts.items(),
-                                                          key=lambda item: -item[1])[:3])
+    """The three most frequent kinds of rejection, each counted, each number shown as the
+    range it took (:func:`rejection_summary`)."""
+    return "; ".join(rejection_summary(reasons)[:3])
+
+
+def _number_pattern() -> re.Pattern:
+    """A number in a reason as the language writes it (not a digit of a name such as O2)."""
+    sign = re.escape(number_text(0.5)[1])
+    return re.compile(rf"(?<![A-Za-z_])-?\d+(?:{sign}\d+)?")
+
+
+def _value(text: str) -> float:
+    return float(re.sub(r"[^\d\-]", ".", text))
+
+
+def rejection_summary(reasons: list[Message | str]) -> list[str]:
+    """The reasons of rejected draws, alike ones counted together, most frequent first, each
+    number shown as the range it took; in the language spoken.
+
+    Examples
+    --------
+    >>> for line in rejection_summary(["segment of ω₃ is 4.2 mm (below 10 mm)",
+    ...                                "the crank is 3.1° from a dead centre (below 5°)",
+    ...                                "segment of ω₃ is 9.5 mm (below 10 mm)"]):
+    ...     print(line)
+    2× segment of ω₃ is 4.2–9.5 mm (below 10 mm)
+    1× the crank is 3.1° from a dead centre (below 5°)
+    """
+    number = _number_pattern()
+    groups: dict[str, list[list[str]]] = {}
+    for reason in map(render, reasons):
+        groups.setdefault(number.sub("#", reason), []).append(number.findall(reason))
+    lines = []
+    for pattern, rows in sorted(groups.items(), key=lambda item: (-len(item[1]), item[0])):
+        parts = pattern.split("#")
+        text = parts[0]
+        for column, rest in zip(zip(*rows, strict=True), parts[1:], strict=True):
+            low, high = min(column, key=_value), max(column, key=_value)
+            text += low if _value(low) == _value(high) else f"{low}–{high}"
+            text += rest
+        lines.append(f"{len(rows)}× {text}")
+    return lines
 
 
 def check_variant(exercise: Exercise, settings: TemplateSettings = TemplateSettings(), *,

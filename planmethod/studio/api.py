@@ -427,10 +427,9 @@ def run_variants(arguments: Mapping[str, Any],
     ``{"template": TOML, "variants": [{"student", "values", "attempt", "sheet", "note"}],
     "rejected": [reasons]}``. ``note`` says when a variant is assembled otherwise than drawn
     (a group on its other branch); ``on_progress("variants", done, total)`` after each."""
-    from ..application.variants import rejection_summary
     from ..grading.keys import build_key
     from ..grading.sheets import task_sheet_svg
-    from ..grading.templates import draw_variant, parse_template
+    from ..grading.templates import draw_variant, parse_template, rejection_summary
     from ..kinematics import choose_branches
     from ..plans import draw_plans
     from ..render.workbook import inline_svg
