@@ -342,6 +342,24 @@ def test_variants_a_student_cannot_measure_or_without_a_required_component_are_r
         is None
 
 
+def test_a_segment_below_its_limit_never_reads_as_the_limit():
+    """A segment just short of its limit is shown cut to a tenth, below the limit (18.3 mm
+    below 18.4 mm), not rounded up to it ('18.4 mm (below 18.4 mm)')."""
+    import re
+
+    from planmethod.grading.templates import plan_problem
+    from planmethod.plans import draw_plans
+
+    compressor = draw_plans(load_exercise("exercises/compressor_slider_crank.toml"))
+    shortest = min(abs(step.length_mm) for plan in (compressor.velocity, compressor.acceleration)
+                   for step in plan.steps if step.action == "read" and step.length_mm)
+    assert (shortest * 10) % 1 >= 0.5          # rounded to a tenth, it would reach the limit
+    limit = math.ceil(shortest * 10) / 10
+    reason = render(plan_problem(compressor, TemplateSettings(min_segment_mm=limit)))
+    shown = float(re.search(r"is (\d+\.\d) mm \(below", reason).group(1))
+    assert shown == math.floor(shortest * 10) / 10 < limit
+
+
 def test_variants_whose_drawing_tolerance_is_too_large_are_rejected():
     from dataclasses import replace
 

@@ -624,19 +624,29 @@ def plan_problem(plans, settings: TemplateSettings, *, drawable: bool = True
             continue
         for step in plan.steps:
             if step.action == "intersect" and step.angle_deg < settings.min_line_angle_deg:
-                return _SHARP[plan.kind].replace(angle=step.angle_deg,
+                return _SHARP[plan.kind].replace(angle=_shown_below(step.angle_deg),
                                                  limit=settings.min_line_angle_deg,
                                                  point=label_text(step.end, numbers))
     angle = dead_centre_angle(plans)
     if angle is not None and angle < settings.dead_centre_deg:
         return message("the crank is {angle:.1f}° from a dead centre (below {limit:g}°)",
-                       angle=angle, limit=settings.dead_centre_deg)
+                       angle=_shown_below(angle), limit=settings.dead_centre_deg)
     for plan in (plans.velocity, plans.acceleration):
         if plan is not None and drawable:
             problem = _unmeasurable(plan, settings, numbers)
             if problem is not None:
                 return problem
     return None
+
+
+def _shown_below(value: float) -> float:
+    """A value found below its limit as a reason shows it (one decimal): cut, not rounded,
+    so that 3.96 mm below 4 mm reads 3.9, not 4.0.
+
+    >>> _shown_below(3.96), _shown_below(14.99), _shown_below(2.0)
+    (3.9, 14.9, 2.0)
+    """
+    return math.floor(value * 10.0 + 1e-9) / 10.0
 
 
 def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
@@ -648,7 +658,8 @@ def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
                 and abs(step.length_mm) < settings.min_segment_mm):
             read = (vector_name(step.quantity, numbers) if step.quantity
                     else label_text(step.end, numbers))
-            return _SHORT[plan.kind].replace(quantity=read, length=abs(step.length_mm),
+            return _SHORT[plan.kind].replace(quantity=read,
+                                             length=_shown_below(abs(step.length_mm)),
                                              limit=settings.min_segment_mm)
     for component in settings.require:
         drawn = [abs(step.length_mm or 0.0) for step in plan.steps
@@ -656,7 +667,7 @@ def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
         needed = plan.kind == PlanKind.ACCELERATION or component == "relative"
         if needed and (not drawn or max(drawn) < settings.min_segment_mm):
             return _UNDRAWN[plan.kind].replace(component=_COMPONENTS[component],
-                                               length=max(drawn, default=0.0),
+                                               length=_shown_below(max(drawn, default=0.0)),
                                                limit=settings.min_segment_mm)
     return None
 
@@ -681,7 +692,7 @@ def tolerance_problem(exercise: Exercise, data: Mapping[str, Any], settings: Tem
         if tolerance > settings.max_tolerance * abs(value):
             return message("the drafting tolerance of {symbol} is {percent:.0f} % of its value "
                            "(above {limit:g} %)", symbol=symbol(quantity, numbers),
-                           percent=100 * tolerance / abs(value),
+                           percent=math.ceil(100 * tolerance / abs(value)),
                            limit=100 * settings.max_tolerance), found
     return None, found
 
