@@ -360,6 +360,29 @@ def test_a_segment_below_its_limit_never_reads_as_the_limit():
     assert shown == math.floor(shortest * 10) / 10 < limit
 
 
+def test_a_draw_whose_plan_would_not_fit_its_printed_sheet_is_rejected():
+    """Drawn at 300 mm for the crank pin's acceleration, the compressor's acceleration plan
+    spans more than a plan sheet's drawing area holds: a random draw is rejected (the booklet
+    could not print it), an exercise set as written is not held to it."""
+    from dataclasses import replace
+
+    from planmethod.grading.sheet_area import PLAN_ROOM_MM, plan_size_mm
+    from planmethod.grading.templates import plan_problem
+    from planmethod.plans import draw_plans
+
+    exercise = load_exercise("exercises/compressor_slider_crank.toml")
+    settings = TemplateSettings(min_segment_mm=0.0, min_line_angle_deg=0.0, dead_centre_deg=0.0)
+    assert plan_problem(draw_plans(exercise), settings) is None
+    large = draw_plans(replace(exercise, plan=replace(exercise.plan, acceleration_mm=300.0)))
+    width, height = plan_size_mm(large.acceleration.points_mm)
+    assert width > PLAN_ROOM_MM[0] or height > PLAN_ROOM_MM[1]
+    reason = render(plan_problem(large, settings))
+    assert reason.startswith("the acceleration plan spans ")
+    assert f"{math.ceil(width)} × {math.ceil(height)} mm" in reason
+    assert reason.endswith("more than its printed sheet holds (162 × 194 mm)")
+    assert plan_problem(large, settings, drawable=False) is None
+
+
 def test_variants_whose_drawing_tolerance_is_too_large_are_rejected():
     from dataclasses import replace
 

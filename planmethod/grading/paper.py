@@ -39,8 +39,9 @@ from urllib.parse import quote, unquote
 from ..errors import SpecError
 from ..words import message
 from .drawings import SubmissionError
+from .sheet_area import DRAWING_MM, PLAN_MARGIN_MM
 
-__all__ = ["A4_MM", "DRAWING_MM", "MARKER_BITS", "MARKER_CENTRES", "MARKER_DICTIONARY",
+__all__ = ["A4_MM", "MARKER_BITS", "MARKER_CENTRES", "MARKER_DICTIONARY",
            "MARKER_MM", "PLANS", "QR_MM", "SCALE_BAR_MM", "CourseError", "Marker", "PhotoError",
            "Sheet", "SheetCode", "add_sheets", "check_value", "course_id", "key_digest",
            "page_to_plan", "plan_to_page", "read_sheet", "read_sheet_code", "sheet_pages"]
@@ -58,14 +59,10 @@ MARKER_CENTRES = ((16.0, 16.0), (194.0, 16.0), (16.0, 281.0), (194.0, 281.0))
 #: them against OpenCV's dictionary): the booklet prints them without OpenCV
 MARKER_BITS = {0: ("1011", "0101", "0011", "0010"), 1: ("0000", "1111", "1001", "1010"),
                2: ("0011", "0011", "0010", "1101"), 3: ("1001", "1001", "0100", "0110")}
-#: the gridded drawing area (left, top, right, bottom; mm)
-DRAWING_MM = (12.0, 40.0, 198.0, 258.0)
 #: the QR code's square (left, top, side; mm), its quiet zone inside
 QR_MM = (150.0, 260.0, 28.0)
 #: the scale bar: its left end (mm) and its length (mm)
 SCALE_BAR_MM = ((30.0, 270.0), 50.0)
-#: the room (mm) kept between a plan's points and the drawing area's edge, for labels
-PLAN_MARGIN_MM = 12.0
 #: the plans drawn on paper, in the booklet's order, and their letters in the QR code
 PLANS = ("velocity", "acceleration")
 _PLAN_LETTERS = {"velocity": "v", "acceleration": "a"}
@@ -153,7 +150,7 @@ def page_to_plan(pole: Sequence[float], xy: Sequence[float]) -> tuple[float, flo
 
 def _pole(entry: Mapping[str, Any]) -> tuple[float, float]:
     """Where the pole goes (page mm): the drawing area's centre on whole millimetres, moved
-    only as far as the plan's points need to keep :data:`PLAN_MARGIN_MM` from its edges (so the
+    only as far as the plan's points need to keep ``PLAN_MARGIN_MM`` from its edges (so the
     pole's place tells little of the answer)."""
     left, top, right, bottom = DRAWING_MM
     xs = [float(x) for x, _ in entry["points_mm"].values()] + [0.0]

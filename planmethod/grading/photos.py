@@ -42,7 +42,6 @@ from ..io import read_bytes_bounded
 from ..words import Message, message
 from .drawings import Drawing, SubmissionError, grade_drawing
 from .paper import (
-    DRAWING_MM,
     MARKER_CENTRES,
     MARKER_DICTIONARY,
     MARKER_MM,
@@ -57,6 +56,7 @@ from .paper import (
 )
 from .plan_points import graded_labels
 from .results import GradedDrawing
+from .sheet_area import DRAWING_MM
 
 __all__ = ["MAX_PHOTO_BYTES", "MAX_TILT_DEG", "Correction", "GradedPhoto", "PhotoReading",
            "PointPlace", "Stroke", "find_points", "find_strokes", "grade_photo", "read_photo"]

@@ -72,6 +72,7 @@ from ..vocabulary import PlanKind, point_text, symbol
 from ..words import Message, message, number_text, plural, render, template
 from .expressions import ExpressionError, evaluate, parse, references
 from .plan_points import vector_name
+from .sheet_area import PLAN_ROOM_MM, plan_size_mm
 
 __all__ = [
     "Template",
@@ -605,6 +606,13 @@ _UNDRAWN = {PlanKind.VELOCITY: template("{component} required on the velocity pl
             PlanKind.ACCELERATION: template("{component} required on the acceleration plan is "
                                             "{length:.1f} mm (below {limit:g} mm, or not "
                                             "drawn)")}
+#: a plan too large for its printed sheet, by plan
+_TOO_LARGE = {PlanKind.VELOCITY: template("the velocity plan spans {width:.0f} × {height:.0f} mm: "
+                                          "more than its printed sheet holds ({room_width:g} × "
+                                          "{room_height:g} mm)"),
+              PlanKind.ACCELERATION: template("the acceleration plan spans {width:.0f} × "
+                                              "{height:.0f} mm: more than its printed sheet "
+                                              "holds ({room_width:g} × {room_height:g} mm)")}
 #: the components a template may require, named
 _COMPONENTS = {"normal": message("the normal component"),
                "tangential": message("the tangential component"),
@@ -652,7 +660,8 @@ def _shown_below(value: float) -> float:
 def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
                   ) -> Message | None:
     """Why a random draw's plan cannot be measured: a segment the student reads off shorter
-    than ``min_segment_mm``, or a required component not drawn that long; else None."""
+    than ``min_segment_mm``, a required component not drawn that long, or the plan too large
+    for its printed sheet (:data:`~planmethod.grading.sheet_area.PLAN_ROOM_MM`); else None."""
     for step in plan.steps:   # what the student reads off must be long enough to measure
         if (step.action == "read" and step.length_mm is not None
                 and abs(step.length_mm) < settings.min_segment_mm):
@@ -669,6 +678,11 @@ def _unmeasurable(plan, settings: TemplateSettings, numbers: Mapping[str, int]
             return _UNDRAWN[plan.kind].replace(component=_COMPONENTS[component],
                                                length=_shown_below(max(drawn, default=0.0)),
                                                limit=settings.min_segment_mm)
+    width, height = plan_size_mm(plan.points_mm)
+    room_width, room_height = PLAN_ROOM_MM
+    if width > room_width or height > room_height:
+        return _TOO_LARGE[plan.kind].replace(width=math.ceil(width), height=math.ceil(height),
+                                             room_width=room_width, room_height=room_height)
     return None
 
 
