@@ -606,3 +606,57 @@ def test_the_svg_shell_is_what_svgwrite_and_elementtree_write(unit, attributes, 
                              fill="#ffffff", class_="background"))
     expected = ET.tostring(drawing.get_xml(), encoding="unicode")
     assert _shell(width, height, unit, (x0, y0), attributes, title) == expected
+
+
+# -- the animation's frames ---------------------------------------------------------------------
+def _shaper_frames(angles=(60.0, 200.0)):
+    from planmethod.application.animating import _drawings
+    from planmethod.report import analyse
+
+    exercise = load_exercise("exercises/shaper_sixbar.toml")
+    analyses = [analyse(exercise, angle) for angle in angles]
+    return analyses, _drawings(exercise, list(angles), analyses)
+
+
+def test_an_animations_frames_are_the_projects_own_drawings_at_their_proportions():
+    """A GIF's frame is the row of drawings the SVG animation shows (the same labels), each
+    drawing as high as a cell and as wide as its steady page: no frame letterboxed, and every
+    frame of the turn the same size."""
+    pytest.importorskip("cairosvg", reason="the GIF's frames are drawn by CairoSVG")
+    from planmethod.render.animation import CELL_HEIGHT, frame_svg, rendered_frames
+
+    _, frames = _shaper_frames()
+    widths = [sum(CELL_HEIGHT * figure.view[2] / figure.view[3] for figure in row)
+              for row in frames]
+    images = rendered_frames(frames)
+    assert [image.size for image in images] == [(round(widths[0]), CELL_HEIGHT)] * 2
+    text = frame_svg(frames[0])     # each drawing whole: its texts, labels placed as it placed them
+    assert text.count("<text") == sum(figure.svg.count("<text") for figure in frames[0])
+    pixels = np.asarray(images[0])
+    assert (pixels < 128).any() and (pixels > 250).mean() > 0.5
+
+
+def test_the_raster_fallback_names_points_as_the_course_writes_them():
+    """Without CairoSVG the frames are drawn by matplotlib: points named O₁, b₃ (never O1,
+    b@lever), coincident ones joined by ≡, the frame not drawn as a bar, the lever's slot
+    drawn through the block."""
+    from planmethod.render.animation import _draw_mechanism, _draw_plan
+    from planmethod.render.plots import _new_figure
+
+    analyses, _ = _shaper_frames((60.0,))
+    plans = analyses[0].plans
+    figure = _new_figure()
+    mechanism, velocity = figure.subplots(1, 2)
+    mechanism.set_xlim(-200, 200), mechanism.set_ylim(-200, 200)
+    _draw_mechanism(mechanism, plans.position)
+    _draw_plan(velocity, plans.velocity)
+    named = {text.get_text() for text in mechanism.texts}
+    assert {"O₁", "O₂", "B", "C", "D"} <= named and not any("1" in name for name in named)
+    frame = plans.position.points_mm
+    bars = [line.get_xydata() for line in mechanism.get_lines() if line.get_linewidth() > 2]
+    assert not any({tuple(point) for point in bar} <= {tuple(frame[name]) for name in
+                                                       plans.position.links["frame"]}
+                   for bar in bars if len(bar) >= 2)
+    labels = {text.get_text() for text in velocity.texts}
+    assert "b₃" in labels and not any("@" in label for label in labels)
+    assert any("≡" in label for label in labels)

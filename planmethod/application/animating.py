@@ -66,14 +66,11 @@ def check_animation(request: AnimationRequest) -> str | None:
     return ffmpeg
 
 
-def _animated_svg(exercise, angles, analyses, request: AnimationRequest) -> None:
-    """The animation as SVG: one frame of the position, velocity and acceleration plans per
-    angle, each panel at one zoom over the turn."""
-    from ..io import write_text_atomic
-    from ..render.animation import animated_svg
+def _drawings(exercise, angles, analyses) -> list[list]:
+    """One row of drawings per angle: the position, velocity and acceleration plans, each
+    panel at one zoom over the turn (the frames of every form of the animation)."""
     from ..render.steady import steady_views
     from ..render.svg import plan_drawing, position_drawing
-    from ..vocabulary import shown_title
 
     views = steady_views(exercise, angles)     # one zoom and one page per panel
     frames = []
@@ -85,10 +82,31 @@ def _animated_svg(exercise, angles, analyses, request: AnimationRequest) -> None
             row.append(plan_drawing(plans.acceleration, details=False,
                                     view=views["acceleration"]))
         frames.append(row)
+    return frames
+
+
+def _animated_svg(exercise, angles, analyses, request: AnimationRequest) -> None:
+    """The animation as SVG: the frames of :func:`_drawings`, one at a time."""
+    from ..io import write_text_atomic
+    from ..render.animation import animated_svg
+    from ..vocabulary import shown_title
+
     title = render(message("{title} — a full turn",
                            title=shown_title(exercise.mechanism.title)))
-    write_text_atomic(request.output, animated_svg(frames, seconds=request.seconds,
-                                                   title=title))
+    write_text_atomic(request.output, animated_svg(_drawings(exercise, angles, analyses),
+                                                   seconds=request.seconds, title=title))
+
+
+def _images(exercise, angles, analyses) -> list:
+    """The frames as images: the drawings of :func:`_drawings` where CairoSVG is installed,
+    else the mechanism and plans drawn by matplotlib."""
+    import importlib.util
+
+    from ..render.animation import raster_frames, rendered_frames
+
+    if importlib.util.find_spec("cairosvg") is not None:
+        return rendered_frames(_drawings(exercise, angles, analyses))
+    return raster_frames([analysis.plans for analysis in analyses])
 
 
 def animate(exercise, request: AnimationRequest) -> int:
@@ -108,9 +126,9 @@ def animate(exercise, request: AnimationRequest) -> int:
     if form == "svg":
         _animated_svg(exercise, angles, analyses, request)
         return len(angles)
-    from ..render.animation import raster_frames, save_gif, save_mp4
+    from ..render.animation import save_gif, save_mp4
 
-    images = raster_frames([analysis.plans for analysis in analyses])
+    images = _images(exercise, angles, analyses)
     with atomic_path(request.output) as temporary:
         if form == "gif":
             save_gif(images, temporary, seconds=request.seconds)

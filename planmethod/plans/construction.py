@@ -95,12 +95,23 @@ __all__ = [
     "Segment",
     "draw_plans",
     "image_label",
+    "is_image",
     "position_plan",
 ]
 
 #: A drawing sheet is never larger than this (mm): lines that would meet further away than
 #: this, given the drafting precision, are parallel to within the drawing's precision.
 SHEET_MM = 1000.0
+
+
+def is_image(label: str, pole: str) -> bool:
+    """Whether a plan point is the image of a mechanism's point (``b``, ``b@lever``), not a
+    construction point (``n_CB``, ``k_B@lever``) or the pole.
+
+    >>> is_image("b@lever", "p"), is_image("n_CB", "p"), is_image("p", "p")
+    (True, False, False)
+    """
+    return "_" not in label and label != pole
 
 
 def image_label(point: str, pole: str = "p") -> str:

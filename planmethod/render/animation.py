@@ -4,10 +4,11 @@
   one frame at a time with a CSS animation (no script; it plays in browsers and in slide
   programs that show SVG). It is drawn on the one canvas (:mod:`planmethod.render.canvas`),
   which nests each drawing whole.
-* :func:`raster_frames` draws the mechanism and its plans from the plans' data with matplotlib
-  (``Figure`` and ``FigureCanvasAgg``, never pyplot), with axes fixed over the whole turn so that
-  nothing jumps; :func:`save_gif` writes them through Pillow and :func:`save_mp4` through
-  ffmpeg.
+* :func:`rendered_frames` draws the same drawings, frame by frame, as images through CairoSVG
+  (the ``png`` extra); without it :func:`raster_frames` draws the mechanism and its plans from
+  the plans' data with matplotlib (``Figure`` and ``FigureCanvasAgg``, never pyplot), with axes
+  fixed over the whole turn so that nothing jumps. :func:`save_gif` writes the images through
+  Pillow and :func:`save_mp4` through ffmpeg.
 
 Examples
 --------
@@ -29,14 +30,17 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import PlanmethodError
-from ..vocabulary import PlanKind, numbered
+from ..plans.construction import is_image
+from ..vocabulary import PlanKind, numbered, point_text
 from ..words import message, render
 from .canvas import Canvas, SvgFigure
+from .plan_words import label_text
 from .style import num
 
-__all__ = ["animated_svg", "raster_frames", "save_gif", "save_mp4"]
+__all__ = ["animated_svg", "frame_svg", "raster_frames", "rendered_frames", "save_gif",
+           "save_mp4"]
 
-#: the size (px) of one drawing in an animated SVG
+#: the height (px) of one drawing in an animation, and the width of one without a page size
 CELL_WIDTH, CELL_HEIGHT = 520.0, 480.0
 #: the title of each plan's panel in a raster frame
 _PLAN_TITLES = {PlanKind.VELOCITY: message("velocity plan"),
@@ -46,21 +50,59 @@ _PLAN_TITLES = {PlanKind.VELOCITY: message("velocity plan"),
 def animated_svg(frames: Sequence[Sequence[SvgFigure]], *, seconds: float = 6.0,
                  title: str = "") -> str:
     """One SVG that shows ``frames`` (each a row of drawings) in turn, looping, one full
-    turn in ``seconds``."""
+    turn in ``seconds``; each drawing as high as :data:`CELL_HEIGHT`, as wide as its page
+    (:func:`_cells`: a steady page keeps its size over the turn)."""
     count = len(frames)
-    columns = max(len(row) for row in frames)
-    width, height = CELL_WIDTH * columns, CELL_HEIGHT
+    cells = [_cells(row) for row in frames]
+    width = max(corner[0] + size[0] for row in cells for _, corner, size in row)
     share = 100.0 / count
     duration = seconds / count
     page = Canvas()
     page.style_sheet(f".frame{{visibility:hidden;animation:planmethod-turn {num(seconds)}s "
                      f"step-end infinite}}@keyframes planmethod-turn{{0%{{visibility:visible}}"
                      f"{share:.6g}%{{visibility:hidden}}100%{{visibility:hidden}}}}")
-    for number, row in enumerate(frames):
-        page.nest([(figure, (CELL_WIDTH * column, 0.0), (CELL_WIDTH, CELL_HEIGHT))
-                   for column, figure in enumerate(row)],
-                  css="frame", style=f"animation-delay:{number * duration:.6g}s")
-    return page.svg(title, view=(0.0, 0.0, width, height)).svg
+    for number, row in enumerate(cells):
+        page.nest(row, css="frame", style=f"animation-delay:{number * duration:.6g}s")
+    return page.svg(title, view=(0.0, 0.0, width, CELL_HEIGHT)).svg
+
+
+def _cells(row: Sequence[SvgFigure]) -> list[tuple[SvgFigure, tuple[float, float],
+                                                   tuple[float, float]]]:
+    """A row of drawings side by side, each :data:`CELL_HEIGHT` high and as wide as its
+    page's proportions make it: (figure, corner, size) for :meth:`Canvas.nest`."""
+    cells, left = [], 0.0
+    for figure in row:
+        _, _, width, height = figure.view
+        size = (CELL_HEIGHT * width / height if height > 0 else CELL_WIDTH, CELL_HEIGHT)
+        cells.append((figure, (left, 0.0), size))
+        left += size[0]
+    return cells
+
+
+def frame_svg(row: Sequence[SvgFigure]) -> str:
+    """One frame's drawings side by side as one SVG page (the cells of :func:`animated_svg`)."""
+    cells = _cells(row)
+    page = Canvas()
+    page.nest(cells, css="frame")
+    width = max(corner[0] + size[0] for _, corner, size in cells)
+    return page.svg("", view=(0.0, 0.0, width, CELL_HEIGHT)).svg
+
+
+def rendered_frames(frames: Sequence[Sequence[SvgFigure]]) -> list[Any]:
+    """The frames (each a row of the project's own drawings, as :func:`animated_svg` shows
+    them) as RGB images (``PIL.Image``), :data:`CELL_HEIGHT` px high, drawn by CairoSVG: the
+    GIF and the MP4 show what the SVG shows, labels placed as every figure places them."""
+    import io
+
+    import cairosvg
+    from PIL import Image
+
+    images = []
+    for row in frames:
+        png = cairosvg.svg2png(bytestring=frame_svg(row).encode("utf-8"),
+                               background_color="#ffffff")
+        images.append(Image.open(io.BytesIO(png)).convert("RGB"))
+    return images
 
 
 def _limits(points: Sequence[Sequence[float]]) -> tuple[float, float, float, float]:
@@ -120,37 +162,89 @@ def raster_frames(plans_of_frames: Sequence[Any], *, dpi: int = 100) -> list[Any
     return images
 
 
-def _draw_mechanism(ax, position) -> None:
-    where = _plan_points(position)
-    for names in position.links.values():
-        points = [where[name] for name in names if name in where]
-        if len(points) >= 2:
-            ax.plot([p[0] for p in points], [p[1] for p in points], color="#1f5fbf", lw=2.4,
-                    solid_capstyle="round")
+#: the colours of a raster frame: links, fixed pivots and guides, construction points
+_LINK, _INK, _GUIDE, _HELPER = "#1f5fbf", "#000000", "#777777", "#7b3fa0"
+
+
+def _joined(where: dict[str, tuple[float, float]], text) -> list[tuple[str, tuple[float, float]]]:
+    """Each place of ``where`` once, with the names of the points there joined by ≡ (a
+    course writes O₂ ≡ E and p ≡ a ≡ d₀), ``text`` naming each point."""
+    places: list[tuple[tuple[float, float], list[str]]] = []
     for name, (x, y) in where.items():
-        marker = "^" if name in position.pivots else "o"
-        ax.plot([x], [y], marker=marker, color="#000000", ms=5 if marker == "o" else 8)
-        ax.annotate(name, (x, y), xytext=(4, 4), textcoords="offset points", fontsize=9,
+        for (px, py), names in places:
+            if abs(px - x) + abs(py - y) < 1e-6:
+                names.append(name)
+                break
+        else:
+            places.append(((x, y), [name]))
+    return [(" ≡ ".join(text(name) for name in names), xy) for xy, names in places]
+
+
+def _draw_mechanism(ax, position) -> None:
+    """The mechanism of a raster frame: its moving links as bars (the frame not), each guide
+    as a thin line (a slot on a link through its points and the block's, a fixed guide across
+    the panel), a block as a square, fixed pivots as triangles; its points named as the
+    course writes them (O₁, O₂ ≡ E)."""
+    where = _plan_points(position)
+    frame = [link for link, number in position.numbers.items() if number == 0]
+    for slide in position.slides:
+        _draw_guide(ax, slide, where, position.links.get(slide["along"], ()),
+                    slide["along"] in frame)
+    for link, names in position.links.items():
+        points = [where[name] for name in names if name in where]
+        if link not in frame and len(points) >= 2:
+            ax.plot([p[0] for p in points], [p[1] for p in points], color=_LINK, lw=2.4,
+                    solid_capstyle="round")
+    blocks = {slide["point"] for slide in position.slides}
+    for name, (x, y) in where.items():
+        marker = "^" if name in position.pivots else "s" if name in blocks else "o"
+        ax.plot([x], [y], marker=marker, color=_INK, ms=5 if marker == "o" else 8,
+                mfc="#ffffff" if marker == "s" else _INK)
+    for text, xy in _joined(where, point_text):
+        ax.annotate(text, xy, xytext=(4, 4), textcoords="offset points", fontsize=9,
                     style="italic")
 
 
+def _draw_guide(ax, slide: dict, where: dict[str, tuple[float, float]],
+                carriers: Sequence[str], fixed: bool) -> None:
+    """A prismatic pair's guide: across the panel where it is fixed (a centre line), else
+    along its link from the farthest of the link's points to past the block."""
+    import math
+
+    x, y = (float(value) for value in slide["through_mm"])
+    angle = math.radians(float(slide["direction_deg"]))
+    ux, uy = math.cos(angle), math.sin(angle)
+    if fixed:
+        x0, x1 = ax.get_xlim()
+        y0, y1 = ax.get_ylim()
+        reach = 2.0 * math.hypot(x1 - x0, y1 - y0)
+        ax.plot([x - reach * ux, x + reach * ux], [y - reach * uy, y + reach * uy],
+                color=_GUIDE, lw=0.8, ls="-.")
+        return
+    along = [(px - x) * ux + (py - y) * uy for name, (px, py) in where.items()
+             if name in carriers or name == slide["point"]] + [0.0]
+    start, stop = min(along), max(along)
+    stop += 0.15 * max(stop - start, 1.0)          # the slot goes on past the block
+    ax.plot([x + start * ux, x + stop * ux], [y + start * uy, y + stop * uy], color=_LINK,
+            lw=2.4, solid_capstyle="round")
+
+
 def _draw_plan(ax, plan) -> None:
+    """A velocity or acceleration plan of a raster frame: an arrow from the pole to each
+    image of a point, the construction points (n, k) as small dots, every point named as the
+    course writes it (b₃, n_CB, p ≡ a)."""
     where = _plan_points(plan)
     pole = where.get(plan.pole, (0.0, 0.0))
     for name, (x, y) in where.items():
-        if name == plan.pole:
-            continue
-        image = name.isalnum() and name[:1].islower()
-        if image and (abs(x - pole[0]) + abs(y - pole[1])) > 1e-9:
+        if is_image(name, plan.pole) and abs(x - pole[0]) + abs(y - pole[1]) > 1e-9:
             ax.annotate("", xy=(x, y), xytext=pole,
-                        arrowprops={"arrowstyle": "-|>", "color": "#000000", "lw": 1.4})
-            ax.annotate(name, (x, y), xytext=(4, 4), textcoords="offset points", fontsize=9,
-                        style="italic")
-        else:
-            ax.plot([x], [y], marker=".", color="#7b3fa0", ms=4)
-    ax.plot([pole[0]], [pole[1]], marker="o", color="#000000", ms=5)
-    ax.annotate(plan.pole, pole, xytext=(4, -10), textcoords="offset points", fontsize=9,
-                style="italic")
+                        arrowprops={"arrowstyle": "-|>", "color": _INK, "lw": 1.4})
+        elif name != plan.pole:
+            ax.plot([x], [y], marker=".", color=_HELPER, ms=4)
+    ax.plot([pole[0]], [pole[1]], marker="o", color=_INK, ms=5)
+    for text, xy in _joined(where, lambda name: label_text(name, plan.numbers)):
+        ax.annotate(text, xy, xytext=(4, 4), textcoords="offset points", fontsize=9,
+                    style="italic")
 
 
 def save_gif(images: Sequence[Any], path: str | Path, *, seconds: float = 6.0) -> None:

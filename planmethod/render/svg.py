@@ -55,6 +55,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..plans.construction import is_image
 from ..plans.steps import Coincide, Intersect, LayOff, Line, Similarity
 from ..vectors import dot, norm, perp, unit_or_zero
 from ..vocabulary import (
@@ -168,11 +169,6 @@ def _snap(xy: Point) -> tuple[int, int]:
 
 
 # -- plans ----------------------------------------------------------------------------------------
-def _is_image(label: str, pole: str) -> bool:
-    """A plan point that is the image of a mechanism point (not n_…, k_… or the pole)."""
-    return "_" not in label and label != pole
-
-
 class _PlanPage:
     """One plan being drawn into a figure: where its points are on the page, which segments
     are drawn already, the images of links collected from the steps, and what each kind of
@@ -202,7 +198,7 @@ class _PlanPage:
         #: pole → image arrows (results), by label: the step that lays it off, if one does
         self.results: dict[str, int | None] = {
             label: None for label in points_mm
-            if _is_image(label, pole) and float(norm(where[label] - origin)) >= 0.5}
+            if is_image(label, pole) and float(norm(where[label] - origin)) >= 0.5}
         self.drawn = {(_snap(origin), _snap(where[label])) for label in self.results}
         self.images: dict[str, list[str]] = {}     # link → plan points of its image
         #: label → the step that fixes its point (playback)
@@ -279,7 +275,7 @@ class _PlanPage:
             link = step.quantity.partition("_")[2]
             self.images.setdefault(link, []).extend(
                 label for label in (step.start, step.end)
-                if label in self.where and _is_image(label, self.pole))
+                if label in self.where and is_image(label, self.pole))
 
     def project(self, step: Step) -> None:
         if step.start not in self.where or step.end not in self.where:
