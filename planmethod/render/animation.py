@@ -24,6 +24,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import subprocess
 from collections.abc import Sequence
 from pathlib import Path
@@ -209,8 +210,6 @@ def _draw_guide(ax, slide: dict, where: dict[str, tuple[float, float]],
                 carriers: Sequence[str], fixed: bool) -> None:
     """A prismatic pair's guide: across the panel where it is fixed (a centre line), else
     along its link from the farthest of the link's points to past the block."""
-    import math
-
     x, y = (float(value) for value in slide["through_mm"])
     angle = math.radians(float(slide["direction_deg"]))
     ux, uy = math.cos(angle), math.sin(angle)
