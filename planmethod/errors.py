@@ -264,6 +264,16 @@ class PlanmethodError(Exception):
         self.args = (self._text(),)
         return self
 
+    def noted(self, note: Message | str) -> PlanmethodError:
+        """Return the same error with what the user can do about it after what is wrong.
+
+        >>> str(ToggleError("the lines are parallel", angle=120).noted("take another range"))
+        'crank angle 120°: the lines are parallel; take another range'
+        """
+        self.message = message("{problem}; {note}", problem=self.message, note=note)
+        self.args = (self._text(),)
+        return self
+
     def under(self, prefix: str) -> PlanmethodError:
         """Return the same error with its key read inside the table ``prefix``: a table of
         one file kept inside another (a key's ``exercise``).

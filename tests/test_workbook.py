@@ -142,6 +142,38 @@ def test_workbook_bad_step_exits_2_and_writes_nothing(capsys, tmp_path, argv, wo
     assert "Traceback" not in err and not out_path.exists()
 
 
+@pytest.mark.parametrize("argv, words", [
+    (["--from", "100", "--to", "50"], "option --to"),
+    (["--from", "0", "--to", "400"], "option --to"),
+    (["--from", "inf"], "option --from"),
+])
+def test_workbook_bad_range_exits_2_and_writes_nothing(capsys, tmp_path, argv, words):
+    out_path = tmp_path / "page.html"
+    code, _, err = run(capsys, "workbook", COMPRESSOR, "-o", out_path, *argv)
+    assert code == 2 and words in err and len(err.strip().splitlines()) == 1
+    assert "Traceback" not in err and not out_path.exists()
+
+
+SLOTTED_CROSSHEAD = ROOT / "exercises" / "slotted_crank_crosshead.toml"
+
+
+def test_a_crank_that_cannot_turn_fully_gets_a_page_of_the_angles_it_reaches(capsys,
+                                                                           tmp_path):
+    """The slot carried by the crank turns parallel to the crosshead's guide at 120° (and
+    300°): no full turn, and the refusal says what makes a page; --from and --to give one,
+    its frames on the exercise's own angle's grid, and its note says the range."""
+    path = tmp_path / "page.html"
+    code, _, err = run(capsys, "workbook", SLOTTED_CROSSHEAD, "-o", path, "--step", "30")
+    assert code == 2 and not path.exists() and len(err.strip().splitlines()) == 1
+    assert "crank angle 120°" in err and err.rstrip().endswith("takes --from and --to")
+    code, _, err = run(capsys, "workbook", SLOTTED_CROSSHEAD, "-o", path, "--step", "30",
+                       "--from", "-50", "--to", "100")
+    assert code == 0 and not err
+    text = path.read_text(encoding="utf-8")
+    assert page_data(text)["angles"] == [-30.0, 0.0, 30.0, 60.0, 90.0]
+    assert "5 positions from -30° to 90°, every 30°" in text
+
+
 def test_workbook_wants_an_html_file(capsys, tmp_path):
     code, _, err = run(capsys, "workbook", COMPRESSOR, "-o", tmp_path / "page.pdf")
     assert code == 2 and "option -o" in err and not (tmp_path / "page.pdf").exists()

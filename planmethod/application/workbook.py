@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
-from ..errors import SpecError
+from ..errors import AssemblyError, BranchJumpError, SpecError, ToggleError
 from ..words import Message, current, message, render, speaking
 from .tasks import Watch
 from .workers import chunked, in_workers, worker_count
@@ -24,7 +24,7 @@ from .workers import chunked, in_workers, worker_count
 if TYPE_CHECKING:
     from ..render.workbook import PageQuantity
 
-__all__ = ["DEFAULT_STEP", "MIN_STEP_DEG", "build_workbook", "drawing_meta",
+__all__ = ["DEFAULT_STEP", "FULL_TURN", "MIN_STEP_DEG", "build_workbook", "drawing_meta",
            "exercise_variant", "frame_data", "reading_plans", "solve_frames", "turn_angles",
            "turn_charts", "turn_order"]
 
@@ -37,18 +37,24 @@ DEFAULT_STEP = 5.0
 #: the drawings a frame shows, in this order, by file name of ``plan_files``
 PANELS = ("position", "velocity", "acceleration", "lever")
 
+#: the crank angles of a page or an animation unless a range is given: one turn (deg)
+FULL_TURN = (0.0, 360.0)
 #: what a question of the key keeps in the page (its ``text`` is not shown)
 QUESTION_FIELDS = ("id", "symbol", "value", "tolerance", "unit", "signed", "mistakes")
 
 
-def turn_angles(step: float, option: str = "--step", start: float = 0.0) -> list[float]:
-    """The crank angles of a full turn, 0 ≤ φ < 360, ``step`` degrees apart, one of them
-    ``start`` (the exercise's own ``drive.angle``: a page opens there).
+def turn_angles(step: float, option: str = "--step", start: float = 0.0,
+                span: tuple[float, float] = FULL_TURN) -> list[float]:
+    """The crank angles of a full turn, 0 ≤ φ < 360 (or of ``span``: low ≤ φ < high),
+    ``step`` degrees apart, one of them ``start`` (the exercise's own ``drive.angle``: a page
+    opens there) or a whole number of steps from it.
 
     >>> turn_angles(90)
     [0.0, 90.0, 180.0, 270.0]
     >>> turn_angles(10, start=45)[:3], 45.0 in turn_angles(10, start=45)
     ([5.0, 15.0, 25.0], True)
+    >>> turn_angles(30, start=45, span=(-60, 100))
+    [-45.0, -15.0, 15.0, 45.0, 75.0]
     >>> turn_angles(0)
     Traceback (most recent call last):
     ...
@@ -60,11 +66,26 @@ def turn_angles(step: float, option: str = "--step", start: float = 0.0) -> list
                                 "{frames} frames), got {step:g}", finest=MIN_STEP_DEG,
                                 frames=round(360 / MIN_STEP_DEG), step=step),
                         key=f"option {option}")
-    offset = float(start) % step
-    if step - offset < 1e-9:          # start a whole number of steps from 0, but for rounding
+    low, high = _checked_span(span)
+    offset = (float(start) - low) % step
+    if step - offset < 1e-9 or offset >= high - low:   # rounding; a range shorter than that
         offset = 0.0
-    count = math.ceil((360.0 - offset) / step - 1e-9)
-    return [round(offset + number * step, 9) + 0.0 for number in range(count)]
+    count = math.ceil((high - low - offset) / step - 1e-9)
+    return [round(low + offset + number * step, 9) + 0.0 for number in range(count)]
+
+
+def _checked_span(span: tuple[float, float]) -> tuple[float, float]:
+    """``span`` (--from, --to) as two floats, refused unless finite, --to above --from and
+    at most one turn past it."""
+    low, high = (float(value) for value in span)
+    if not math.isfinite(low):
+        raise SpecError(message("must be a finite angle in degrees, got {angle:g}", angle=low),
+                        key="option --from")
+    if not (math.isfinite(high) and low < high <= low + 360.0):
+        raise SpecError(message("must be above --from ({low:g}°) and at most one turn past it "
+                                "({most:g}°), got {angle:g}", low=low, most=low + 360.0,
+                                angle=high), key="option --to")
+    return low, high
 
 
 def turn_order(angles: Sequence[float], start: float, omega: float) -> list[float]:
@@ -191,7 +212,7 @@ def _solve_turn(exercise, angles: Sequence[float], workers: int, watch: Watch, v
 
 
 def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = None,
-                   watch: Watch | None = None) -> str:
+                   watch: Watch | None = None, span: tuple[float, float] = FULL_TURN) -> str:
     """The workbook page of ``exercise`` as HTML, in the language spoken.
 
     Parameters
@@ -205,6 +226,16 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
         this process may use with at least 12 frames each.
     watch
         Hears each frame solved (phase ``frames``) and may cancel the page.
+    span
+        The crank angles the page shows, from the first up to (not including) the second
+        (deg; default a full turn): a crank that cannot turn fully (its mechanism meets a
+        limit) gets a page of the angles it reaches.
+
+    Raises
+    ------
+    ToggleError, AssemblyError, BranchJumpError
+        If the mechanism cannot take a frame's angle: the message says that a range the crank
+        reaches (``--from``, ``--to``) makes a page.
 
     Examples
     --------
@@ -219,12 +250,17 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     from ..vocabulary import numbered
 
     mechanism = exercise.mechanism
-    angles = turn_angles(step, start=mechanism.drive.angle)   # opens at its own angle
+    angles = turn_angles(step, start=mechanism.drive.angle, span=span)   # opens at its own
     workers = worker_count(jobs, len(angles))
-    views = steady_views(exercise, angles)      # one zoom and one page per panel
-    variant = exercise_variant(exercise)        # once: a frame keys it at its own angle
-    packing = _Packing(angles)                  # the page's data made while frames come
-    frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant, packing)
+    try:
+        views = steady_views(exercise, angles)      # one zoom and one page per panel
+        variant = exercise_variant(exercise)        # once: a frame keys it at its own angle
+        packing = _Packing(angles)                  # the page's data made while frames come
+        frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant,
+                             packing)
+    except (ToggleError, AssemblyError, BranchJumpError) as error:   # a limit on the way
+        raise error.noted(message("a page of the angles the crank reaches takes --from and "
+                                  "--to")) from None
     numbers = course_numbers(mechanism)
     plans = reading_plans(frames)
     return workbook_html(WorkbookPage(
@@ -233,7 +269,7 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
         charts=[curve_chart(angles, curves, title=title, unit=unit,
                             plans=sorted({plans[name] for name in names if plans.get(name)}))
                 for title, unit, curves, names in turn_charts(frames, numbers)],
-        notes=_notes(len(angles), step, frames[0]), start=mechanism.drive.angle,
+        notes=_notes(angles, step, frames[0], span), start=mechanism.drive.angle,
         phi=numbered("φ", numbers[mechanism.drive.link]),
         drawing=drawing_meta(exercise, frames), sense=-1 if mechanism.drive.omega < 0 else 1),
         rules=packing.rules, data=packing.data)
@@ -300,14 +336,26 @@ def _page_quantities(first: dict[str, Any], numbers: dict[str, int],
             for name, unit in first["quantities"]]
 
 
-def _notes(positions: int, step: float, first: dict[str, Any]) -> list[Message]:
-    """The page's notes: how many positions, how they are drawn, how practice grades."""
+def _notes(angles: Sequence[float], step: float, first: dict[str, Any],
+           span: tuple[float, float]) -> list[Message]:
+    """The page's notes: how many positions (and from which angle to which, unless a full
+    turn), how they are drawn, how practice grades."""
     precision = first["precision_mm"]
-    drawn = (message("{positions} positions, every {step:g}°; drawings by planmethod, "
-                     "drafting precision {precision:g} mm", positions=positions, step=step,
-                     precision=precision) if precision else
-             message("{positions} positions, every {step:g}°; drawings by planmethod, exact "
-                     "construction", positions=positions, step=step))
+    positions = len(angles)
+    if span == FULL_TURN:
+        drawn = (message("{positions} positions, every {step:g}°; drawings by planmethod, "
+                         "drafting precision {precision:g} mm", positions=positions, step=step,
+                         precision=precision) if precision else
+                 message("{positions} positions, every {step:g}°; drawings by planmethod, exact "
+                         "construction", positions=positions, step=step))
+    else:
+        drawn = (message("{positions} positions from {first:g}° to {last:g}°, every {step:g}°; "
+                         "drawings by planmethod, drafting precision {precision:g} mm",
+                         positions=positions, first=angles[0], last=angles[-1], step=step,
+                         precision=precision) if precision else
+                 message("{positions} positions from {first:g}° to {last:g}°, every {step:g}°; "
+                         "drawings by planmethod, exact construction", positions=positions,
+                         first=angles[0], last=angles[-1], step=step))
     graded = message("practice mode grades as `planmethod grade` does: tolerances from a "
                      "drafting precision of {precision:g} mm (each tolerance is shown)",
                      precision=first["tolerance_source"])

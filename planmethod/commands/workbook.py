@@ -1,11 +1,11 @@
-"""``planmethod workbook FILE -o PAGE.html``: one offline HTML page for a full turn of the crank
-(:mod:`planmethod.application.workbook` builds it)."""
+"""``planmethod workbook FILE -o PAGE.html``: one offline HTML page for a full turn of the crank,
+or of the angles ``--from`` … ``--to`` (:mod:`planmethod.application.workbook` builds it)."""
 
 from __future__ import annotations
 
 import argparse
 
-from ..application.workbook import DEFAULT_STEP
+from ..application.workbook import DEFAULT_STEP, FULL_TURN
 from ..arguments import EXERCISE_FILE, said
 from ..words import message, render
 
@@ -20,6 +20,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         metavar=render(message("DEG", context="metavar")),
                         help=said(message("crank-angle step in degrees (default {step:g}; 1 "
                                           "gives 360 frames)", step=DEFAULT_STEP)))
+    degrees = render(message("DEG", context="metavar"))
+    parser.add_argument("--from", dest="start", type=float, default=FULL_TURN[0],
+                        metavar=degrees,
+                        help=said(message("the first frame's crank angle (default 0; with "
+                                          "--to, a crank that cannot turn fully)")))
+    parser.add_argument("--to", dest="stop", type=float, default=FULL_TURN[1], metavar=degrees,
+                        help=said(message("frames up to (not including) this crank angle "
+                                          "(default 360)")))
     parser.add_argument("--jobs", type=int, metavar=render(message("N", context="metavar")),
                         help=said(message("worker processes, at most the CPUs this process "
                                           "may use (default: every CPU, at least 12 frames "
@@ -49,9 +57,11 @@ def run(args: argparse.Namespace) -> int:
     if Path(args.output).suffix.lower() not in (".html", ".htm"):
         raise SpecError(message("the page must be an .html file, got {path!r}",
                                 path=args.output), key="option -o")
-    worker_count(args.jobs, len(turn_angles(args.step)))   # before any work
+    span = (args.start, args.stop)
+    worker_count(args.jobs, len(turn_angles(args.step, span=span)))   # before any work
     exercise = load_exercise(args.file)
-    page = build_workbook(exercise, args.step, jobs=args.jobs, watch=Watch(_progress))
+    page = build_workbook(exercise, args.step, jobs=args.jobs, watch=Watch(_progress),
+                          span=span)
     write_text_atomic(args.output, page)
     say(message("Wrote {file} ({size:.2f} MB)", file=args.output,
                 size=len(page.encode("utf-8")) / 1e6))
