@@ -31,10 +31,25 @@ from collections.abc import Iterator
 
 from .words import Message, message, plural, render, template
 
-__all__ = ["EXERCISE_FILE", "argparse_words", "said"]
+__all__ = ["EXERCISE_FILE", "add_angle_range", "argparse_words", "said"]
 
 #: the help of a command's exercise file (a file format is a name, not a word)
 EXERCISE_FILE = message("exercise file ({format})", format="TOML")
+
+
+def add_angle_range(parser: argparse.ArgumentParser) -> None:
+    """``--from`` and ``--to`` (``start``, ``stop``): the crank angles a page or an animation
+    shows, a full turn unless given (:func:`planmethod.application.workbook.turn_angles`)."""
+    from .application.workbook import FULL_TURN
+
+    degrees = render(message("DEG", context="metavar"))
+    parser.add_argument("--from", dest="start", type=float, default=FULL_TURN[0],
+                        metavar=degrees,
+                        help=said(message("the first frame's crank angle (default 0; with "
+                                          "--to, a crank that cannot turn fully)")))
+    parser.add_argument("--to", dest="stop", type=float, default=FULL_TURN[1], metavar=degrees,
+                        help=said(message("frames up to (not including) this crank angle "
+                                          "(default 360)")))
 
 
 def said(text: Message) -> str:

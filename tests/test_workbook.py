@@ -165,13 +165,25 @@ def test_a_crank_that_cannot_turn_fully_gets_a_page_of_the_angles_it_reaches(cap
     path = tmp_path / "page.html"
     code, _, err = run(capsys, "workbook", SLOTTED_CROSSHEAD, "-o", path, "--step", "30")
     assert code == 2 and not path.exists() and len(err.strip().splitlines()) == 1
-    assert "crank angle 120°" in err and err.rstrip().endswith("takes --from and --to")
+    assert "crank angle 120°" in err and err.rstrip().endswith("with --from and --to")
     code, _, err = run(capsys, "workbook", SLOTTED_CROSSHEAD, "-o", path, "--step", "30",
                        "--from", "-50", "--to", "100")
     assert code == 0 and not err
     text = path.read_text(encoding="utf-8")
     assert page_data(text)["angles"] == [-30.0, 0.0, 30.0, 60.0, 90.0]
     assert "5 positions from -30° to 90°, every 30°" in text
+
+
+def test_an_animation_of_a_crank_that_cannot_turn_fully_takes_its_angles(capsys, tmp_path):
+    """As the workbook: a full turn meets the limit and says what makes an animation; the
+    range gives one frame per angle of it."""
+    path = tmp_path / "turn.svg"
+    code, _, err = run(capsys, "animate", SLOTTED_CROSSHEAD, "-o", path, "--step", "30")
+    assert code == 2 and not path.exists() and err.rstrip().endswith("with --from and --to")
+    code, out, _ = run(capsys, "animate", SLOTTED_CROSSHEAD, "-o", path, "--step", "30",
+                       "--from", "-50", "--to", "100")
+    assert code == 0 and "(5 frames," in out
+    assert path.read_text(encoding="utf-8").count('class="frame"') == 5
 
 
 def test_workbook_wants_an_html_file(capsys, tmp_path):

@@ -1,7 +1,8 @@
-"""The full turn of an exercise as one animation: ``.svg`` (the project's drawings, animated
-with CSS), ``.gif`` (matplotlib frames through Pillow) or ``.mp4`` (the same frames through
-ffmpeg, which must be installed). An unknown suffix, or ``.mp4`` without ffmpeg, is refused
-before any work (:func:`check_animation`).
+"""The full turn of an exercise (or the angles a crank that cannot turn fully reaches) as one
+animation: ``.svg`` (the project's drawings, animated with CSS), ``.gif`` (the same drawings
+through CairoSVG and Pillow; matplotlib's plainer frames without CairoSVG) or ``.mp4`` (the same
+frames through ffmpeg, which must be installed). An unknown suffix, or ``.mp4`` without ffmpeg,
+is refused before any work (:func:`check_animation`).
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from pathlib import Path
 
 from ..errors import SpecError
 from ..words import message, render
+from .workbook import FULL_TURN
 
 __all__ = ["DEFAULT_STEP", "FORMATS", "AnimationRequest", "animate", "animation_format",
            "check_animation"]
@@ -26,11 +28,13 @@ DEFAULT_STEP = 5.0
 @dataclass(frozen=True, slots=True)
 class AnimationRequest:
     """An animation: the file to write (its suffix tells the format), the crank-angle step
-    (deg) and how long one full turn lasts (s)."""
+    (deg), how long one full turn lasts (s) and the crank angles it shows (``span``: from the
+    first up to, not including, the second; deg)."""
 
     output: str
     step: float = DEFAULT_STEP
     seconds: float = 6.0
+    span: tuple[float, float] = FULL_TURN
 
 
 def animation_format(path: str) -> str:
@@ -113,13 +117,15 @@ def animate(exercise, request: AnimationRequest) -> int:
     """Write the animation ``request`` asks for; the number of frames."""
     from ..io import atomic_path
     from ..report import analyse
-    from .workbook import turn_angles, turn_order
+    from .workbook import limits_noted, turn_angles, turn_order
 
     ffmpeg = check_animation(request)
     form = animation_format(request.output)
     drive = exercise.mechanism.drive
-    angles = turn_order(turn_angles(request.step, start=drive.angle), drive.angle, drive.omega)
-    analyses = [analyse(exercise, angle) for angle in angles]
+    angles = turn_order(turn_angles(request.step, start=drive.angle, span=request.span),
+                        drive.angle, drive.omega)
+    with limits_noted():
+        analyses = [analyse(exercise, angle) for angle in angles]
     if any(analysis.plans is None for analysis in analyses):
         raise SpecError(message("this mechanism's plans are not drawn (a higher group): "
                                 "nothing to animate"), file=exercise.source)

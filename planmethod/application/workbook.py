@@ -11,8 +11,9 @@ The frames are solved here or in a bounded pool of worker processes
 
 from __future__ import annotations
 
+import contextlib
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -25,8 +26,8 @@ if TYPE_CHECKING:
     from ..render.workbook import PageQuantity
 
 __all__ = ["DEFAULT_STEP", "FULL_TURN", "MIN_STEP_DEG", "build_workbook", "drawing_meta",
-           "exercise_variant", "frame_data", "reading_plans", "solve_frames", "turn_angles",
-           "turn_charts", "turn_order"]
+           "exercise_variant", "frame_data", "limits_noted", "reading_plans", "solve_frames",
+           "turn_angles", "turn_charts", "turn_order"]
 
 #: the finest crank-angle step of a workbook or an animation (deg): 3,600 frames
 MIN_STEP_DEG = 0.1
@@ -72,6 +73,25 @@ def turn_angles(step: float, option: str = "--step", start: float = 0.0,
         offset = 0.0
     count = math.ceil((high - low - offset) / step - 1e-9)
     return [round(low + offset + number * step, 9) + 0.0 for number in range(count)]
+
+
+@contextlib.contextmanager
+def limits_noted() -> Iterator[None]:
+    """Note on a limit the mechanism meets inside the block (a toggle, a link that cannot
+    reach, a jump between assemblies) that ``--from`` and ``--to`` give the angles the crank
+    reaches (a page or an animation of a crank that cannot turn fully).
+
+    >>> with limits_noted():
+    ...     raise ToggleError("the guides are parallel", angle=120)
+    Traceback (most recent call last):
+    ...
+    planmethod.errors.ToggleError: crank angle 120°: the guides are parallel; give the angles ...
+    """
+    try:
+        yield
+    except (ToggleError, AssemblyError, BranchJumpError) as error:
+        raise error.noted(message("give the angles the crank reaches with --from and "
+                                  "--to")) from None
 
 
 def _checked_span(span: tuple[float, float]) -> tuple[float, float]:
@@ -234,8 +254,8 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     Raises
     ------
     ToggleError, AssemblyError, BranchJumpError
-        If the mechanism cannot take a frame's angle: the message says that a range the crank
-        reaches (``--from``, ``--to``) makes a page.
+        If the mechanism cannot take a frame's angle: the message says that ``--from`` and
+        ``--to`` give the angles the crank reaches (:func:`limits_noted`).
 
     Examples
     --------
@@ -252,15 +272,12 @@ def build_workbook(exercise, step: float = DEFAULT_STEP, *, jobs: int | None = N
     mechanism = exercise.mechanism
     angles = turn_angles(step, start=mechanism.drive.angle, span=span)   # opens at its own
     workers = worker_count(jobs, len(angles))
-    try:
+    with limits_noted():
         views = steady_views(exercise, angles)      # one zoom and one page per panel
         variant = exercise_variant(exercise)        # once: a frame keys it at its own angle
         packing = _Packing(angles)                  # the page's data made while frames come
         frames = _solve_turn(exercise, angles, workers, watch or Watch(), views, variant,
                              packing)
-    except (ToggleError, AssemblyError, BranchJumpError) as error:   # a limit on the way
-        raise error.noted(message("a page of the angles the crank reaches takes --from and "
-                                  "--to")) from None
     numbers = course_numbers(mechanism)
     plans = reading_plans(frames)
     return workbook_html(WorkbookPage(

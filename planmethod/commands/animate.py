@@ -1,12 +1,13 @@
-"""``planmethod animate FILE -o OUT.(svg|gif|mp4)``: the full turn as one animation
-(:mod:`planmethod.application.animating`; the format is told by the suffix)."""
+"""``planmethod animate FILE -o OUT.(svg|gif|mp4)``: the full turn (or the angles ``--from`` …
+``--to``) as one animation (:mod:`planmethod.application.animating`; the format is told by the
+suffix)."""
 
 from __future__ import annotations
 
 import argparse
 
 from ..application.animating import DEFAULT_STEP
-from ..arguments import EXERCISE_FILE, said
+from ..arguments import EXERCISE_FILE, add_angle_range, said
 from ..words import message, render
 
 
@@ -20,6 +21,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         metavar=render(message("DEG", context="metavar")),
                         help=said(message("crank-angle step in degrees (default {step:g})",
                                           step=DEFAULT_STEP)))
+    add_angle_range(parser)
     parser.add_argument("--seconds", type=float, default=6.0,
                         metavar=render(message("S", context="metavar")),
                         help=said(message("duration of one full turn (default 6)")))
@@ -30,7 +32,8 @@ def run(args: argparse.Namespace) -> int:
     from ..spec import load_exercise
     from .output import say
 
-    request = AnimationRequest(args.output, step=args.step, seconds=args.seconds)
+    request = AnimationRequest(args.output, step=args.step, seconds=args.seconds,
+                               span=(args.start, args.stop))
     check_animation(request)   # before any work
     frames = animate(load_exercise(args.file), request)
     say(message("Wrote {file} ({frames} frames, one turn in {seconds:g} s)",

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import argparse
 
-from ..application.workbook import DEFAULT_STEP, FULL_TURN
-from ..arguments import EXERCISE_FILE, said
+from ..application.workbook import DEFAULT_STEP
+from ..arguments import EXERCISE_FILE, add_angle_range, said
 from ..words import message, render
 
 
@@ -20,14 +20,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         metavar=render(message("DEG", context="metavar")),
                         help=said(message("crank-angle step in degrees (default {step:g}; 1 "
                                           "gives 360 frames)", step=DEFAULT_STEP)))
-    degrees = render(message("DEG", context="metavar"))
-    parser.add_argument("--from", dest="start", type=float, default=FULL_TURN[0],
-                        metavar=degrees,
-                        help=said(message("the first frame's crank angle (default 0; with "
-                                          "--to, a crank that cannot turn fully)")))
-    parser.add_argument("--to", dest="stop", type=float, default=FULL_TURN[1], metavar=degrees,
-                        help=said(message("frames up to (not including) this crank angle "
-                                          "(default 360)")))
+    add_angle_range(parser)
     parser.add_argument("--jobs", type=int, metavar=render(message("N", context="metavar")),
                         help=said(message("worker processes, at most the CPUs this process "
                                           "may use (default: every CPU, at least 12 frames "
