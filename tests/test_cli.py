@@ -222,7 +222,8 @@ def test_sweep_error_names_the_angle_and_writes_no_csv(capsys, tmp_path):
     csv = tmp_path / "out.csv"
     code, _, err = run(capsys, "sweep", path, "--csv", csv)
     assert code == 2 and "crank angle 10°" in err and "short by" in err
-    assert not csv.exists()
+    assert err.rstrip().endswith("; give the angles the crank reaches with --from and --to")
+    assert len(err.strip().splitlines()) == 1 and not csv.exists()
 
 
 def test_console_script_has_no_traceback(tmp_path):

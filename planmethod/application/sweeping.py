@@ -102,6 +102,7 @@ def sweep(exercise, request: SweepRequest) -> SweepResult:
     neither."""
     from ..io import csv_text, output_set
     from ..sweep import Extremes, csv_rows, sweep_chunks, sweep_table
+    from .workbook import limits_noted
 
     check_plot(request)
     extra = None
@@ -112,10 +113,11 @@ def sweep(exercise, request: SweepRequest) -> SweepResult:
     turn = {"step": request.step, "start": request.start, "stop": request.stop,
             "extra": extra}
     # a plot needs every column at once; otherwise the sweep streams chunk by chunk
-    table = sweep_table(exercise, **turn) if request.plot else None
+    with limits_noted():
+        table = sweep_table(exercise, **turn) if request.plot else None
     chunks = [table] if table is not None else sweep_chunks(exercise, **turn)
     extremes = Extremes()
-    with output_set() as outputs:   # the plot and the CSV together, or neither
+    with limits_noted(), output_set() as outputs:   # the plot and the CSV together, or neither
         if request.plot:
             with outputs.writing(request.plot) as temporary:
                 _save_plot(exercise, table, temporary, forces=request.forces)
