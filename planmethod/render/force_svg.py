@@ -559,7 +559,7 @@ class _LeverFigure:
                     layer="construction", css="arm")
         figure.request((f"arm:{item.name}",), foot + step,        # at its end, beyond it
                        (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
-                       size=SMALL_LABEL, mark=0.0, css="arm",
+                       size=SMALL_LABEL, mark=0.0, css="arm", span=(pole + step, foot + step),
                        lean=(foot - pole) / max(float(norm(foot - pole)), 1e-12))
         reach = max(4.0 / figure.zoom, float(dot(item.image - item.foot, direction)))
         figure.line(foot, figure.px(item.foot + direction * reach), color=colour, width=0.5,

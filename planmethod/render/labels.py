@@ -23,7 +23,10 @@ lines as straight pieces clipped to each box, the marks and text as rectangles (
 as the square of its area). The first three distances need no leader, so what their spots
 cost before the labels placed come in is costed for all labels together, up front. Labels
 are placed in a fixed order, so the result is deterministic. A label pushed far from its
-point gets a thin leader.
+point gets a thin leader. Where the cheapest spot is one a reader sees crowded — a line
+through its text, its leader across an arrow, another leader or a label — the label takes the
+cheapest spot that is not, among twice the directions, its leader starting anywhere along the
+force or the arm it names (its ``span``), if there is one.
 
 Examples
 --------
@@ -53,7 +56,7 @@ import contextlib
 import math
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextvars import ContextVar
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import StrEnum
 
 import numpy as np
@@ -132,6 +135,20 @@ CROWDED_ROOM = TOUCH_PX + 1.0
 #: cross arrows in a figure without details, but a spot a little farther that crosses none
 #: is taken first
 CROWDED_CROSSING_COST = 20.0
+#: a label's text less its padding and the figure check's hair: what a line must not cross
+_INNER = np.array([PADDING + 0.6, PADDING + 0.6, -PADDING - 0.6, -PADDING - 0.6])
+#: the length (px) of a line through a label's text that a reader sees as crossing it
+TROUBLE_PX = 1.5
+#: a label's text, less its padding, and the length (px) of lines in it that a spot found
+#: for a crowded label may have: a margin under :data:`TROUBLE_PX` for the fonts' metrics
+_TEXT = np.array([PADDING, PADDING, -PADDING, -PADDING])
+CLEAR_PX = 0.5
+#: the places along the vector a label names (fractions of it) that its leader may start
+#: from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none on the
+#: last 15 % (an arrow's head)
+RESCUE_ALONG = (0.5, 0.75, 0.3, 0.2, 0.85, 0.1, 0.6, 0.4)
+#: what a px of a rescued label's leader start moved along its vector costs (px of distance)
+SHIFT_COST = 0.5
 #: the directions tried for a crowded label on a leader: those of every label, then the
 #: ones halfway between them
 CROWDED_DIRECTIONS = np.concatenate((DIRECTIONS, np.asarray(DIRECTIONS[8:]) + 11.25,
@@ -220,8 +237,9 @@ class LabelRequest:
     size: float
     mark_radius: float = 3.0
     css: str = "label"
-    #: the vector a label names, (start, end) px, where it names one: an enlarged detail
-    #: that shows part of it anchors the label on that part
+    #: the vector a label names, (start, end) px, where it names one (or the dimension line
+    #: of an arm's h): an enlarged detail that shows part of a vector anchors the label on
+    #: that part, and a crowded label's leader may start anywhere along it
     span: tuple[tuple[float, float], tuple[float, float]] | None = None
     #: the side (a page direction) a label prefers, among spots as clean and as near: a
     #: dimension's label above its line
@@ -239,7 +257,9 @@ class LabelRequest:
 class PlacedLabel:
     """A placed label: its request's data, the baseline start (px), the box it covers
     ``(x0, y0, x1, y1)`` (padding included), whether a leader line joins it to the point and
-    whether its spot is clean (no line, label or leader in the way)."""
+    whether its spot is clean (no line, label or leader in the way). Its ``anchor`` is where
+    its leader starts: for a crowded label of a force or an arm, a place along what it names
+    other than the anchor asked for (:attr:`requested`)."""
 
     points: tuple[str, ...]
     anchor: tuple[float, float]
@@ -250,10 +270,17 @@ class PlacedLabel:
     leader: bool
     css: str
     clean: bool = True
+    #: the anchor asked for, where the leader starts elsewhere (None: at it)
+    named: tuple[float, float] | None = None
 
     @property
     def text(self) -> str:
         return plain(self.runs)
+
+    @property
+    def requested(self) -> tuple[float, float]:
+        """The anchor the label was asked for (what a detail watches)."""
+        return self.anchor if self.named is None else self.named
 
 
 def _directions(degrees) -> tuple:
@@ -830,8 +857,97 @@ def _place_near(request: LabelRequest, half: tuple[float, float], ascent: float,
         bottom = float(drawing.taken[:, 3].max()) if len(drawing.taken) else ay
         best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, *half)[0], math.inf, 0.0)
     far = best[2] > LEADER_DISTANCE
-    drawing.take(best[1], _leaders((ax, ay), best[1][None, :]) if far else None)
+    if not tidy and math.isfinite(best[0]) and _troubling(request.anchor, best[1], far,
+                                                          drawing):
+        rescued = _rescued(request, half, drawing)
+        if rescued is not None:          # a spot a reader sees clear, found farther afield
+            shifted, box, far = rescued
+            drawing.take(box, _leaders(shifted.anchor, box[None, :]) if far else None)
+            return _placed(shifted, box, ascent, far, tidy, named=request.anchor)
+    drawing.take(best[1], _leaders(request.anchor, best[1][None, :]) if far else None)
     return _placed(request, best[1], ascent, far, tidy)
+
+
+def _troubling(anchor, box: np.ndarray, leader: bool, drawing: _Drawing) -> bool:
+    """Whether a label in ``box`` is what a reader sees as crowded (as the figure check
+    counts it): a drawn line or leader more than a hair (:data:`TROUBLE_PX`) through its
+    text, or (with a ``leader`` from ``anchor``) its leader across a vector's arrow or another
+    leader away from its point, or through a label placed.
+
+    >>> drawing = _Drawing([((0, -20), (0, 20))], [], [((0, -20), (0, 20))], [], None, 1)
+    >>> _troubling((30.0, 0.0), np.array([-10.0, -5, 10, 5]), False, drawing)
+    True
+    >>> _troubling((-40.0, 0.0), np.array([-60.0, -5, -45, 5]), True, drawing)
+    False
+    """
+    lines = np.concatenate((drawing.segments, drawing.leaders))
+    inner = box + _INNER
+    if len(lines) and _clipped_lengths(lines, inner[None, :])[0] > TROUBLE_PX:
+        return True
+    if not leader:
+        return False
+    crossed = np.concatenate((drawing.arrows, drawing.leaders))
+    leader_line = _leaders(anchor, box[None, :])
+    return bool(_crossing(leader_line, crossed).any()) or bool(
+        len(drawing.taken) and _through(leader_line, drawing.taken)[0])
+
+
+def _along(request: LabelRequest) -> list[tuple[float, float]]:
+    """Where a label's leader may start: its anchor, and where it names a vector (its
+    ``span``), the places along it at :data:`RESCUE_ALONG` — the leader of a force's label
+    ends on its arrow anywhere.
+
+    >>> _along(LabelRequest(("F",), (6.0, 0.0), (), 15.0, span=((0.0, 0.0), (10.0, 0.0))))
+    [(6.0, 0.0), (5.0, 0.0), (7.5, 0.0), (3.0, 0.0), (2.0, 0.0), (8.5, 0.0), (1.0, 0.0), (4.0, 0.0)]
+    """
+    out = [request.anchor]
+    if request.span is not None:
+        (sx, sy), (ex, ey) = request.span
+        out += [(sx + t * (ex - sx), sy + t * (ey - sy)) for t in RESCUE_ALONG]
+    return list(dict.fromkeys(out))
+
+
+def _rescued(request: LabelRequest, half: tuple[float, float], drawing: _Drawing
+             ) -> tuple[LabelRequest, np.ndarray, bool] | None:
+    """A label whose cheapest spot a reader sees crowded (:func:`_troubling`) at the
+    cheapest spot that is not: among :data:`CROWDED_DIRECTIONS` at every distance, from its
+    anchor or another place along the vector it names (:func:`_along`, each px of the move
+    costing :data:`SHIFT_COST`). Returns the request with that anchor, the box and whether
+    it needs a leader; None where every such spot is crowded too."""
+    distance = np.repeat(np.asarray(DISTANCES), len(CROWDED_DIRECTIONS))
+    order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(DISTANCES))
+    directions = _directions(CROWDED_DIRECTIONS[order])
+    leading = distance > LEADER_DISTANCE
+    crossed = np.concatenate((drawing.arrows, drawing.leaders))
+    lines = np.concatenate((drawing.segments, drawing.leaders))
+    found = None
+    for anchor in _along(request):
+        moved = math.hypot(anchor[0] - request.anchor[0], anchor[1] - request.anchor[1])
+        boxes = _boxes(anchor, directions, request.mark_radius + distance, *half)
+        cost = distance + 0.05 * order + SHIFT_COST * moved
+        fit = _clear(boxes, drawing.taken)
+        if found is not None:
+            fit &= cost < found[0]
+        if len(lines) and fit.any():      # (the whole text: no hair of a line near it)
+            fit[fit] = _clipped_lengths(lines, boxes[fit] + _TEXT) <= CLEAR_PX
+        chosen = np.flatnonzero(fit)
+        if not len(chosen):
+            continue
+        shifted = replace(request, anchor=anchor)
+        table = _spot_costs(shifted, boxes[chosen], cost[chosen], leading[chosen], None,
+                            drawing)
+        far = chosen[leading[chosen]]
+        if len(far):          # no leader across an arrow, another leader or a label
+            leaders = _leaders(anchor, boxes[far])
+            blocked = _crossing(leaders, crossed).any(axis=1)
+            if len(drawing.taken):
+                blocked |= _through(leaders, drawing.taken) > 0
+            table[leading[chosen]] += np.where(blocked, np.inf, 0.0)
+        best = int(np.argmin(table))
+        if math.isfinite(table[best]) and (found is None or table[best] < found[0]):
+            found = (float(table[best]), shifted, boxes[chosen[best]],
+                     bool(leading[chosen[best]]))
+    return None if found is None else found[1:]
 
 
 #: the cheapest spot found for a label: (its cost, its box, its distance, what a clean spot
@@ -980,15 +1096,17 @@ def _pick(table: np.ndarray, batch: tuple[int, ...], boxes: np.ndarray, clean: n
     return best, False
 
 
-def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool, clean: bool
-            ) -> PlacedLabel:
+def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool, clean: bool,
+            named: tuple[float, float] | None = None) -> PlacedLabel:
     """The label of ``request`` placed in ``box`` (x0, y0, x1, y1, padding included): its
-    baseline starts inside the padding, ``ascent`` below the box's top edge."""
+    baseline starts inside the padding, ``ascent`` below the box's top edge; ``named`` is
+    the anchor asked for where the request's is another (a crowded label's, moved)."""
     corners = box.tolist()
     x0, y0 = corners[0], corners[1]
     return PlacedLabel(request.points, request.anchor, request.runs, request.size,
                        (round(x0 + PADDING, 2), round(y0 + PADDING + ascent, 2)),
-                       tuple([round(v, 2) for v in corners]), leader, request.css, clean)
+                       tuple([round(v, 2) for v in corners]), leader, request.css, clean,
+                       named if named != request.anchor else None)
 
 
 def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np.ndarray,
