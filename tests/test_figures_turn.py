@@ -142,9 +142,10 @@ def _over_three(turn) -> list[str]:
 
 def test_every_page_keeps_within_three_times_what_it_draws_over_the_turn(turn):
     """Every figure's page (its legend's column, its tables and details beside the drawing)
-    within 3× of what it draws — the press's lever with its eight details and its table of
-    21 forces too, and the conveyor's, whose page reached 3.9× what it draws at 225° (eight
-    details under a table of 19 forces): where they would make the page longer, the lever
+    within 3× of what it draws — the plans, the loaded mechanism, the combined force and
+    every force polygon, the press's lever with its eight details and its table of 21
+    forces too, and the conveyor's, whose page reached 3.9× what it draws at 225° (eight
+    details under a table of 19 forces): where they would make the page longer, the drawing
     is drawn larger."""
     found = _over_three(turn)
     assert not found, "\n".join(found[:20])
@@ -164,3 +165,39 @@ def test_the_press_lever_at_45_draws_its_crowd_as_details():
     assert not [problem for problem in problems if "(no detail)" in problem], problems
     assert not [problem for problem in problems if "overlaps" in problem], problems
     assert page_ratio(lever) <= 3.0
+
+
+#: how much longer (px) the stand-in column of legends is than a figure's own
+_LONGER = 1400.0
+
+
+@pytest.mark.parametrize("kind", ["loaded", "combined", "polygon"])
+def test_a_force_page_too_long_for_its_drawing_is_drawn_larger(kind, monkeypatch):
+    """The loaded mechanism, the combined force and a force polygon are drawn 1.25, 1.5 or 2
+    times their size where their page would be over 3× what it draws, as the plans and the
+    lever are (no page of the turn above needs it): here the column of legends beside the
+    drawing is made 1400 px longer than it is."""
+    from planmethod.render import details, force_svg
+    from planmethod.testing.figures import drawn_extent
+
+    analysis = analyse(_exercise("press"))
+    forces = analysis.forces
+    group = forces.solution.groups.groups[0]
+    draw = {"loaded": lambda: force_svg.loaded_svg(forces, analysis.plans),
+            "combined": lambda: force_svg.combined_svg(forces, analysis.plans),
+            "polygon": lambda: force_svg.polygon_svg(group, forces.mu_f, title="polygon",
+                                                     angle=forces.angle)}[kind]
+    legend = force_svg._force_legend
+
+    def longer(figure, at, used, heading=None) -> float:
+        bottom = legend(figure, at, used, heading) + _LONGER
+        figure.grow((at[0], bottom))
+        return bottom
+
+    monkeypatch.setattr(force_svg, "_force_legend", longer)
+    grown = draw()
+    monkeypatch.setattr(details, "GROWTH", (1.0,))     # as drawn before: its own size only
+    plain = draw()
+    assert page_ratio(plain) > 3.0 >= page_ratio(grown)
+    width = [drawn_extent(svg)[2] - drawn_extent(svg)[0] for svg in (plain, grown)]
+    assert width[1] >= 1.25 * width[0] - 1.0
