@@ -41,7 +41,7 @@ import numpy as np
 from ..vectors import cross, inside_span, norm
 from ..words import Message, message, number_text, template
 from .canvas import MARGIN, Canvas, Point, page_point, shown_text
-from .labels import PADDING, RunKind, drawn_length
+from .labels import PADDING, RunKind, drawn_length, near_only
 from .style import CLEARANCE_PX, INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
 
 __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
@@ -271,9 +271,11 @@ def laid_out(zoom: float, content: Callable[[Canvas], None],
         regions = detail_regions(figure, watched, draw=details, alone=[
             name for name in watched if name in lone and not name.startswith("arm:")],
             same=one_spot((plan_of or where_of)(figure)))
-        figure.place(bounds=bounds)
         if not details:         # no detail to draw: nothing more to watch
+            with near_only():   # (a frame of a turn: a leader may cross an arrow)
+                figure.place(bounds=bounds)
             break
+        figure.place(bounds=bounds)
         placed = [label for label in figure.labels
                   if not label.points[0].startswith("detail:")]
         pushed = {" ".join(label.points): label.requested for label in placed

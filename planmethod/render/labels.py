@@ -26,7 +26,8 @@ are placed in a fixed order, so the result is deterministic. A label pushed far 
 point gets a thin leader. Where the cheapest spot is one a reader sees crowded — a line
 through its text, its leader across an arrow, another leader or a label — the label takes the
 cheapest spot that is not, among twice the directions, its leader starting anywhere along the
-force or the arm it names (its ``span``), if there is one.
+force or the arm it names (its ``span``), if there is one — but not within :func:`near_only`
+(the frames of a turn drawn without enlarged details, where the time counts).
 
 Examples
 --------
@@ -72,6 +73,7 @@ __all__ = [
     "drawn_length",
     "label_runs",
     "merge_runs",
+    "near_only",
     "place_labels",
     "plain",
     "runs_extent",
@@ -139,9 +141,10 @@ CROWDED_CROSSING_COST = 20.0
 _INNER = np.array([PADDING + 0.6, PADDING + 0.6, -PADDING - 0.6, -PADDING - 0.6])
 #: the length (px) of a line through a label's text that a reader sees as crossing it
 TROUBLE_PX = 1.5
-#: a label's text, less its padding, and the length (px) of lines in it that a spot found
-#: for a crowded label may have: a margin under :data:`TROUBLE_PX` for the fonts' metrics
+#: a label's text less its padding: what a spot found for a crowded label keeps lines out of
 _TEXT = np.array([PADDING, PADDING, -PADDING, -PADDING])
+#: the length (px) of lines in that text such a spot may have: a margin under
+#: :data:`TROUBLE_PX` for the fonts' metrics, which the figure check reads otherwise
 CLEAR_PX = 0.5
 #: the places along the vector a label names (fractions of it) that its leader may start
 #: from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none on the
@@ -311,6 +314,14 @@ for _batch in _BATCHES:
     _CANDIDATES.append((_batch, np.asarray(DISTANCES)[_steps],
                         _directions(np.asarray(DIRECTIONS)[_order]),
                         np.asarray(DISTANCES)[_steps] + 0.05 * _order))
+#: the spots a crowded label is tried at (:func:`_rescued`), batch by batch of distances:
+#: each spot's distance, its direction's number and its direction (see :func:`_directions`)
+_RESCUE_BATCHES = []
+for _batch in (range(0, 5), range(5, 9), range(9, len(DISTANCES))):
+    _steps = np.repeat(np.asarray(_batch), len(CROWDED_DIRECTIONS))
+    _order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(_batch))
+    _RESCUE_BATCHES.append((np.asarray(DISTANCES)[_steps], _order,
+                            _directions(CROWDED_DIRECTIONS[_order])))
 #: where a label goes when every spot overlaps: straight below
 _BELOW = _directions(np.array([-90.0]))
 #: how far the gap kept between labels widens a box (x0, y0, x1, y1), touching counting
@@ -720,6 +731,30 @@ def drafted() -> Iterator[None]:
         _DRAFT.reset(token)
 
 
+#: set within :func:`near_only`: a crowded label does not look farther afield
+_NEAR_ONLY: ContextVar[bool] = ContextVar("planmethod_labels_near_only", default=False)
+
+
+@contextlib.contextmanager
+def near_only() -> Iterator[None]:
+    """Within it, :func:`place_labels` leaves a label at its cheapest spot even where a
+    reader sees it crowded, without looking farther afield for a clear one (see the module
+    docstring): for the many frames of a turn drawn without enlarged details, where the
+    time counts and a leader across an arrow is allowed.
+
+    >>> request = LabelRequest(("b",), (0.0, 0.0), label_runs("b"), 15.0)
+    >>> with near_only():
+    ...     placed = place_labels([request], [((-50, 0), (50, 0))], [])
+    >>> len(placed)
+    1
+    """
+    token = _NEAR_ONLY.set(True)
+    try:
+        yield
+    finally:
+        _NEAR_ONLY.reset(token)
+
+
 def _drafted_labels(requests: Sequence[LabelRequest]) -> tuple[PlacedLabel, ...]:
     """Each label at the first of its nearest spots clear of the labels placed before (the
     first spot where none is), no leader; an optional label with no clear spot left out.
@@ -857,8 +892,8 @@ def _place_near(request: LabelRequest, half: tuple[float, float], ascent: float,
         bottom = float(drawing.taken[:, 3].max()) if len(drawing.taken) else ay
         best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, *half)[0], math.inf, 0.0)
     far = best[2] > LEADER_DISTANCE
-    if not tidy and math.isfinite(best[0]) and _troubling(request.anchor, best[1], far,
-                                                          drawing):
+    if not tidy and math.isfinite(best[0]) and not _NEAR_ONLY.get() and _troubling(
+            request.anchor, best[1], far, drawing):
         rescued = _rescued(request, half, drawing)
         if rescued is not None:          # a spot a reader sees clear, found farther afield
             shifted, box, far = rescued
@@ -868,7 +903,8 @@ def _place_near(request: LabelRequest, half: tuple[float, float], ascent: float,
     return _placed(request, best[1], ascent, far, tidy)
 
 
-def _troubling(anchor, box: np.ndarray, leader: bool, drawing: _Drawing) -> bool:
+def _troubling(anchor: tuple[float, float], box: np.ndarray, leader: bool, drawing: _Drawing
+               ) -> bool:
     """Whether a label in ``box`` is what a reader sees as crowded (as the figure check
     counts it): a drawn line or leader more than a hair (:data:`TROUBLE_PX`) through its
     text, or (with a ``leader`` from ``anchor``) its leader across a vector's arrow or another
@@ -912,42 +948,60 @@ def _rescued(request: LabelRequest, half: tuple[float, float], drawing: _Drawing
     """A label whose cheapest spot a reader sees crowded (:func:`_troubling`) at the
     cheapest spot that is not: among :data:`CROWDED_DIRECTIONS` at every distance, from its
     anchor or another place along the vector it names (:func:`_along`, each px of the move
-    costing :data:`SHIFT_COST`). Returns the request with that anchor, the box and whether
-    it needs a leader; None where every such spot is crowded too."""
-    distance = np.repeat(np.asarray(DISTANCES), len(CROWDED_DIRECTIONS))
-    order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(DISTANCES))
-    directions = _directions(CROWDED_DIRECTIONS[order])
-    leading = distance > LEADER_DISTANCE
-    crossed = np.concatenate((drawing.arrows, drawing.leaders))
+    costing :data:`SHIFT_COST`), the nearer distances first (:data:`_RESCUE_BATCHES`: a
+    farther one only while it could still be cheaper). Returns the request with that anchor,
+    the box and whether it needs a leader; None where every such spot is crowded too."""
     lines = np.concatenate((drawing.segments, drawing.leaders))
-    found = None
-    for anchor in _along(request):
-        moved = math.hypot(anchor[0] - request.anchor[0], anchor[1] - request.anchor[1])
-        boxes = _boxes(anchor, directions, request.mark_radius + distance, *half)
-        cost = distance + 0.05 * order + SHIFT_COST * moved
-        fit = _clear(boxes, drawing.taken)
-        if found is not None:
-            fit &= cost < found[0]
-        if len(lines) and fit.any():      # (the whole text: no hair of a line near it)
-            fit[fit] = _clipped_lengths(lines, boxes[fit] + _TEXT) <= CLEAR_PX
-        chosen = np.flatnonzero(fit)
-        if not len(chosen):
-            continue
-        shifted = replace(request, anchor=anchor)
-        table = _spot_costs(shifted, boxes[chosen], cost[chosen], leading[chosen], None,
-                            drawing)
-        far = chosen[leading[chosen]]
-        if len(far):          # no leader across an arrow, another leader or a label
-            leaders = _leaders(anchor, boxes[far])
-            blocked = _crossing(leaders, crossed).any(axis=1)
-            if len(drawing.taken):
-                blocked |= _through(leaders, drawing.taken) > 0
-            table[leading[chosen]] += np.where(blocked, np.inf, 0.0)
+    around = (lines, _bounds(lines), np.concatenate((drawing.arrows, drawing.leaders)))
+    anchors = np.asarray(_along(request), dtype=float)
+    moved = SHIFT_COST * np.hypot(*(anchors - anchors[0]).T)
+    found: tuple | None = None
+    for candidates in _RESCUE_BATCHES:
+        if found is not None and candidates[0][0] >= found[0]:
+            break                   # no spot of a farther batch can be cheaper
+        found = _rescue_batch(request, anchors, moved, half, candidates, around, drawing,
+                              found)
+    return None if found is None else found[1:]
+
+
+def _rescue_batch(request: LabelRequest, anchors: np.ndarray, moved: np.ndarray,
+                  half: tuple[float, float], candidates: tuple, around: tuple,
+                  drawing: _Drawing, found: tuple | None) -> tuple | None:
+    """The cheapest clear spot of :func:`_rescued` among ``candidates`` (distances, direction
+    numbers, directions) round each of the ``anchors`` (what moving there costs: ``moved``)
+    — (cost, request, box, leader) — where it is cheaper than the one ``found`` so far; else
+    ``found``. ``around`` are the lines no text may lie on, their bounds, and the lines no
+    leader may cross."""
+    distance, order, directions = candidates
+    lines, line_bounds, crossed = around
+    which = np.repeat(np.arange(len(anchors)), len(distance))     # each spot's anchor
+    boxes = np.concatenate([_boxes(anchor, directions, request.mark_radius + distance, *half)
+                            for anchor in anchors])
+    cost = np.tile(distance + 0.05 * order, len(anchors)) + moved[which]
+    leading = np.tile(distance > LEADER_DISTANCE, len(anchors))
+    spots = np.flatnonzero(cost < found[0]) if found is not None else np.arange(len(cost))
+    spots = spots[_clear(boxes[spots], drawing.taken)]
+    if len(lines) and len(spots):         # (the whole text: no hair of a line near it)
+        spots = spots[_clipped_lengths(lines, boxes[spots] + _TEXT,
+                                       bounds=line_bounds) <= CLEAR_PX]
+    far = spots[leading[spots]]
+    if len(far):           # no leader across an arrow, another leader or a label
+        ends = np.clip(anchors[which[far]], boxes[far, :2], boxes[far, 2:])
+        leaders = np.column_stack((anchors[which[far]], ends))
+        blocked = _crossing(leaders, crossed).any(axis=1)
+        if len(drawing.taken):
+            blocked |= _through(leaders, drawing.taken) > 0
+        spots = np.setdiff1d(spots, far[blocked])
+    for index in np.unique(which[spots]).tolist():
+        chosen = spots[which[spots] == index]
+        shifted = replace(request, anchor=tuple(anchors[index].tolist()))
+        table = _spot_costs(shifted, boxes[chosen], cost[chosen],
+                            np.zeros(len(chosen), bool), None, drawing)
         best = int(np.argmin(table))
         if math.isfinite(table[best]) and (found is None or table[best] < found[0]):
             found = (float(table[best]), shifted, boxes[chosen[best]],
                      bool(leading[chosen[best]]))
-    return None if found is None else found[1:]
+    return found
 
 
 #: the cheapest spot found for a label: (its cost, its box, its distance, what a clean spot
