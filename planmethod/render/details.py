@@ -41,7 +41,7 @@ import numpy as np
 from ..vectors import cross, inside_span, norm
 from ..words import Message, message, number_text, template
 from .canvas import MARGIN, Canvas, Point, page_point, shown_text
-from .labels import PADDING, RunKind, drawn_length
+from .labels import PADDING, RunKind, drawn_length, near_only
 from .style import CLEARANCE_PX, INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
 
 __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
@@ -271,12 +271,14 @@ def laid_out(zoom: float, content: Callable[[Canvas], None],
         regions = detail_regions(figure, watched, draw=details, alone=[
             name for name in watched if name in lone and not name.startswith("arm:")],
             same=one_spot((plan_of or where_of)(figure)))
-        figure.place(bounds=bounds)
         if not details:         # no detail to draw: nothing more to watch
+            with near_only():   # (a frame of a turn: a leader may cross an arrow)
+                figure.place(bounds=bounds)
             break
+        figure.place(bounds=bounds)
         placed = [label for label in figure.labels
                   if not label.points[0].startswith("detail:")]
-        pushed = {" ".join(label.points): label.anchor for label in placed
+        pushed = {" ".join(label.points): label.requested for label in placed
                   if not label.clean and not set(label.points) & set(watched)}
         alone = {name for label in placed if _troubled(figure, label) for name in (
             [point for point in label.points if point in where] or [" ".join(label.points)])
@@ -294,7 +296,7 @@ def _crowded(figure: Canvas, where: dict) -> tuple[dict, set[str]]:
     near; and the labels (of a point: its name) that a line crosses or whose leader crosses
     an arrow there (:func:`_troubled`), each a crowded place by itself."""
     trial = [label for label in figure.trial() if not label.points[0].startswith("detail:")]
-    return (where | {" ".join(label.points): label.anchor for label in trial
+    return (where | {" ".join(label.points): label.requested for label in trial
                      if not label.clean and not set(label.points) & set(where)},
             {name for label in trial if _troubled(figure, label) for name in
              ([point for point in label.points if point in where] or [" ".join(label.points)])})
@@ -478,19 +480,34 @@ def _merged(boxes: list[tuple[float, float, float, float]]
 
 def _anchored(request, box):
     """A label request of a vector anchored on the part of it inside ``box`` (the middle of
-    that part), when its own anchor lies outside; else the request unchanged."""
+    that part), when its own anchor lies outside, and naming that part only (a crowded
+    label's leader may start anywhere on what it names: only on what the detail shows); else
+    the request unchanged. An arm's h stays at its arm's end (a detail of part of the arm
+    does not name it).
+
+    >>> from planmethod.render.labels import LabelRequest
+    >>> request = LabelRequest(("F",), (5.0, 0.0), (), 15.0, span=((-20.0, 0.0), (20.0, 0.0)))
+    >>> moved = _anchored(request, (-10.0, -5.0, 0.0, 5.0))
+    >>> moved.anchor, moved.span
+    ((-5.0, 0.0), ((-10.0, 0.0), (0.0, 0.0)))
+    """
     x0, y0, x1, y1 = box
     ax, ay = request.anchor
-    if request.span is None or (x0 <= ax <= x1 and y0 <= ay <= y1):
+    if request.span is None:
         return request
     (sx, sy), (ex, ey) = request.span
     dx, dy = ex - sx, ey - sy
     span = inside_span(request.span[0], request.span[1], box)
-    if span is None or (span[1] - span[0]) * math.hypot(dx, dy) < 8.0:
-        return request                     # not shown, or too little of it to name
+    if span is None:
+        return request                     # not shown
     low, high = span
+    shown = ((sx + low * dx, sy + low * dy), (sx + high * dx, sy + high * dy))
+    if x0 <= ax <= x1 and y0 <= ay <= y1:
+        return replace(request, span=shown)
+    if (high - low) * math.hypot(dx, dy) < 8.0 or request.points[0].startswith("arm:"):
+        return request                     # too little of it to name, or an arm's h
     middle = 0.5 * (low + high)
-    return replace(request, anchor=(sx + middle * dx, sy + middle * dy))
+    return replace(request, anchor=(sx + middle * dx, sy + middle * dy), span=shown)
 
 
 @dataclass(frozen=True)
@@ -749,7 +766,8 @@ def _detail(draw: Callable[[Canvas], None], regions: list[Detail], region: Detai
                        and box[1] - reach <= request.anchor[1] <= box[3] + reach]
     detail.place(labels=_inside(detail, box))      # inside the frame where they can
     inside = {" ".join(label.points) for label in detail.labels
-              if box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3]}
+              if box[0] <= label.requested[0] <= box[2]
+              and box[1] <= label.requested[1] <= box[3]}
     # the frame holds the labels kept whole: where one reaches past the region, the detail
     # shows that much more of the drawing
     view = list(box)
@@ -773,7 +791,8 @@ def _inside(detail: Canvas, box: tuple[float, float, float, float]) -> tuple:
     def troubles(labels) -> int:
         return sum(_troubled(detail, label) for label in labels     # a clean spot's
                    if (label.leader or not label.clean)              # label: on no line
-                   and box[0] <= label.anchor[0] <= box[2] and box[1] <= label.anchor[1] <= box[3])
+                   and box[0] <= label.requested[0] <= box[2]
+                   and box[1] <= label.requested[1] <= box[3])
 
     placed = detail.trial(box)
     first = troubles(placed)

@@ -141,7 +141,30 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
     if view is not None and view.scale:
         mu_f = view.scale
     edges = [edge for edge in group.polygon if float(norm(edge.vector[index])) > 0]
-    vectors = [edge.vector[index] / mu_f for edge in edges]
+    drawn = _Polygon(group, edges, mu_f, index, notation)
+    if view is not None:
+        return _polygon_page(drawn, title, details, view, 1.0)[1]
+    return within_page(lambda growth: _polygon_page(drawn, title, details, None, growth))
+
+
+@dataclass(frozen=True)
+class _Polygon:
+    """A group's force polygon to draw: its group, its edges (forces not zero), its force
+    scale, the crank angle's index and the notation its forces are printed in."""
+
+    group: Any
+    edges: list
+    mu_f: float
+    index: int
+    notation: ForceNotation | None
+
+
+def _polygon_page(drawn: _Polygon, title: str, details: bool, view: SteadyView | None,
+                  growth: float) -> tuple[Canvas, str]:
+    """A force polygon's page (:func:`polygon_svg`) with its drawing ``growth`` times its own
+    size: its canvas and SVG."""
+    group, edges, mu_f, notation = drawn.group, drawn.edges, drawn.mu_f, drawn.notation
+    vectors = [edge.vector[drawn.index] / mu_f for edge in edges]
     corners = [np.zeros(2)]
     for vector in vectors:
         corners.append(corners[-1] + vector)
@@ -171,7 +194,8 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
         figure.circle(where[0], 3.4, fill=INK, css="start")
 
     figure, regions = laid_out(
-        view.zoom if view else fit_zoom([tuple(c) for c in corners], PLAN_SIZE), content,
+        view.zoom if view else growth * fit_zoom([tuple(c) for c in corners], PLAN_SIZE),
+        content,
         lambda canvas: {f"corner {k}": canvas.px(c) for k, c in enumerate(corners[:-1])},
         details and not view, view.box if view else None)
     closure = float(norm(corners[-1] - corners[0]))
@@ -186,8 +210,8 @@ def polygon_svg(group, mu_f: float, *, title: str, angle: float, index: int = 0,
              + lines_of_details]
     frame(figure, title, lines, (mu_f, SCALES["mu_f"].drawn, 0.3 * PLAN_SIZE), (), "force",
           box=view.box if view else None)
-    return figure.svg(title, view=steady_page(view, title, len(lines), "force")
-                      if view else None).svg
+    return figure, figure.svg(title, view=steady_page(view, title, len(lines), "force")
+                              if view else None).svg
 
 
 def _polygon_notes(group, edges: list, mu_f: float, closure: float,
@@ -253,6 +277,16 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     combined = forces.combined
     if combined is None or plans is None or plans.acceleration is None or not combined.g:
         return None
+    if view is not None:
+        return _combined_page(forces, plans, view, details, 1.0)[1]
+    return within_page(lambda growth: _combined_page(forces, plans, None, details, growth))
+
+
+def _combined_page(forces, plans, view: SteadyView | None, details: bool, growth: float
+                   ) -> tuple[Canvas, str]:
+    """The combined-force figure's page (:func:`combined_svg`) with its drawing ``growth``
+    times its own size: its canvas and SVG."""
+    combined = forces.combined
     plan = plans.acceleration
     points = dict(plan.points_mm)
     new_pole = combined.new_pole_mm
@@ -268,7 +302,7 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
                 | {f"s_{force.link}": canvas.px(force.image_mm) for force in combined.forces})
 
     extra = [new_pole] + [f.image_mm for f in combined.forces]
-    figure, regions = laid_out(view.zoom if view else fit_zoom(
+    figure, regions = laid_out(view.zoom if view else growth * fit_zoom(
         list(points.values()) + extra, PLAN_SIZE), content, where, details and not view,
         view.box if view else None,
         plan_of=lambda canvas: {label: canvas.px(xy) for label, xy in points.items()})
@@ -293,8 +327,9 @@ def combined_svg(forces, plans, *, view: SteadyView | None = None, details: bool
     frame(figure, title, lines, None, [flag_message(f, plan.numbers) for f in plan.flags],
           PlanKind.ACCELERATION,
           box=view.box if view else None)
-    return figure.svg(title, view=steady_page(view, title, len(lines) + 2,
-                                              PlanKind.ACCELERATION) if view else None).svg
+    return figure, figure.svg(title, view=steady_page(view, title, len(lines) + 2,
+                                                      PlanKind.ACCELERATION) if view else None
+                              ).svg
 
 
 def _combined_column(figure: Canvas, at) -> float:
@@ -559,7 +594,7 @@ class _LeverFigure:
                     layer="construction", css="arm")
         figure.request((f"arm:{item.name}",), foot + step,        # at its end, beyond it
                        (("h", RunKind.MAIN), (str(item.number), RunKind.UPRIGHT)),
-                       size=SMALL_LABEL, mark=0.0, css="arm",
+                       size=SMALL_LABEL, mark=0.0, css="arm", span=(pole + step, foot + step),
                        lean=(foot - pole) / max(float(norm(foot - pole)), 1e-12))
         reach = max(4.0 / figure.zoom, float(dot(item.image - item.foot, direction)))
         figure.line(foot, figure.px(item.foot + direction * reach), color=colour, width=0.5,
@@ -753,7 +788,7 @@ class _LoadedFigure:
     drawn on any canvas (:meth:`content`), so that a crowded region can be drawn again as a
     detail — and the list of it all (:meth:`rows`)."""
 
-    def __init__(self, forces: Any, plans) -> None:
+    def __init__(self, forces: Any, plans, growth: float = 1.0) -> None:
         self.position = position = plans.position
         self.solution = solution = forces.solution
         self.notation = ForceNotation(solution)
@@ -779,7 +814,7 @@ class _LoadedFigure:
         largest = max((float(norm(force)) for _, _, force in self.arrows), default=0.0)
         self.mu_f = mu_f = standard(largest / (0.3 * extent)) if largest > 0 else 1.0
         ends = [tuple(start + force / mu_f) for _, start, force in self.arrows]
-        self.zoom = position_zoom(position, ends)
+        self.zoom = growth * position_zoom(position, ends)
         #: the frame (mm) the lines of action are clipped to: the mechanism, its slides'
         #: guides, its centres of mass and its forces' arrows, with a margin round them
         framed = np.asarray(points + [tuple(s["through_mm"]) for s in position.slides]
@@ -921,7 +956,13 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     analysis starts from (None without plans)."""
     if plans is None:
         return None
-    page = _LoadedFigure(forces, plans)
+    return within_page(lambda growth: _loaded_page(forces, plans, details, growth))
+
+
+def _loaded_page(forces: Any, plans, details: bool, growth: float) -> tuple[Canvas, str]:
+    """The loaded mechanism's page with its drawing ``growth`` times its own size: its canvas
+    and SVG."""
+    page = _LoadedFigure(forces, plans, growth)
     mechanism = forces.solution.mechanism
     figure, regions = laid_out(page.zoom, page.content, page.where, details)
 
@@ -951,7 +992,7 @@ def loaded_svg(forces: Any, plans, *, details: bool = True) -> str | None:
     frame(figure, title, lines, (page.position.mu_l, SCALES["mu_l"].drawn,
                                  0.25 * MECHANISM_SIZE),
           [render(flag) for flag in forces.solution.flags], PlanKind.POSITION)
-    return figure.svg(title).svg
+    return figure, figure.svg(title).svg
 
 
 #: the legend entries of the loaded mechanism's moments and lines

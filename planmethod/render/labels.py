@@ -23,7 +23,11 @@ lines as straight pieces clipped to each box, the marks and text as rectangles (
 as the square of its area). The first three distances need no leader, so what their spots
 cost before the labels placed come in is costed for all labels together, up front. Labels
 are placed in a fixed order, so the result is deterministic. A label pushed far from its
-point gets a thin leader.
+point gets a thin leader. Where the cheapest spot is one a reader sees crowded — a line
+through its text, its leader across an arrow, another leader or a label — the label takes the
+cheapest spot that is not, among twice the directions, its leader starting anywhere along the
+force or the arm it names (its ``span``), if there is one — but not within :func:`near_only`
+(the frames of a turn drawn without enlarged details, where the time counts).
 
 Examples
 --------
@@ -53,7 +57,7 @@ import contextlib
 import math
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextvars import ContextVar
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import StrEnum
 
 import numpy as np
@@ -69,6 +73,7 @@ __all__ = [
     "drawn_length",
     "label_runs",
     "merge_runs",
+    "near_only",
     "place_labels",
     "plain",
     "runs_extent",
@@ -132,6 +137,21 @@ CROWDED_ROOM = TOUCH_PX + 1.0
 #: cross arrows in a figure without details, but a spot a little farther that crosses none
 #: is taken first
 CROWDED_CROSSING_COST = 20.0
+#: a label's text less its padding and the figure check's hair: what a line must not cross
+_INNER = np.array([PADDING + 0.6, PADDING + 0.6, -PADDING - 0.6, -PADDING - 0.6])
+#: the length (px) of a line through a label's text that a reader sees as crossing it
+TROUBLE_PX = 1.5
+#: a label's text less its padding: what a spot found for a crowded label keeps lines out of
+_TEXT = np.array([PADDING, PADDING, -PADDING, -PADDING])
+#: the length (px) of lines in that text such a spot may have: a margin under
+#: :data:`TROUBLE_PX` for the fonts' metrics, which the figure check reads otherwise
+CLEAR_PX = 0.5
+#: the places along the vector a label names (fractions of it) that its leader may start
+#: from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none on the
+#: last 15 % (an arrow's head)
+RESCUE_ALONG = (0.5, 0.75, 0.3, 0.2, 0.85, 0.1, 0.6, 0.4)
+#: what a px of a rescued label's leader start moved along its vector costs (px of distance)
+SHIFT_COST = 0.5
 #: the directions tried for a crowded label on a leader: those of every label, then the
 #: ones halfway between them
 CROWDED_DIRECTIONS = np.concatenate((DIRECTIONS, np.asarray(DIRECTIONS[8:]) + 11.25,
@@ -220,8 +240,9 @@ class LabelRequest:
     size: float
     mark_radius: float = 3.0
     css: str = "label"
-    #: the vector a label names, (start, end) px, where it names one: an enlarged detail
-    #: that shows part of it anchors the label on that part
+    #: the vector a label names, (start, end) px, where it names one (or the dimension line
+    #: of an arm's h): an enlarged detail that shows part of a vector anchors the label on
+    #: that part, and a crowded label's leader may start anywhere along it
     span: tuple[tuple[float, float], tuple[float, float]] | None = None
     #: the side (a page direction) a label prefers, among spots as clean and as near: a
     #: dimension's label above its line
@@ -239,7 +260,9 @@ class LabelRequest:
 class PlacedLabel:
     """A placed label: its request's data, the baseline start (px), the box it covers
     ``(x0, y0, x1, y1)`` (padding included), whether a leader line joins it to the point and
-    whether its spot is clean (no line, label or leader in the way)."""
+    whether its spot is clean (no line, label or leader in the way). Its ``anchor`` is where
+    its leader starts: for a crowded label of a force or an arm, a place along what it names
+    other than the anchor asked for (:attr:`requested`)."""
 
     points: tuple[str, ...]
     anchor: tuple[float, float]
@@ -250,10 +273,17 @@ class PlacedLabel:
     leader: bool
     css: str
     clean: bool = True
+    #: the anchor asked for, where the leader starts elsewhere (None: at it)
+    named: tuple[float, float] | None = None
 
     @property
     def text(self) -> str:
         return plain(self.runs)
+
+    @property
+    def requested(self) -> tuple[float, float]:
+        """The anchor the label was asked for (what a detail watches)."""
+        return self.anchor if self.named is None else self.named
 
 
 def _directions(degrees) -> tuple:
@@ -284,6 +314,14 @@ for _batch in _BATCHES:
     _CANDIDATES.append((_batch, np.asarray(DISTANCES)[_steps],
                         _directions(np.asarray(DIRECTIONS)[_order]),
                         np.asarray(DISTANCES)[_steps] + 0.05 * _order))
+#: the spots a crowded label is tried at (:func:`_rescued`), batch by batch of distances:
+#: each spot's distance, its direction's number and its direction (see :func:`_directions`)
+_RESCUE_BATCHES = []
+for _batch in (range(0, 5), range(5, 9), range(9, len(DISTANCES))):
+    _steps = np.repeat(np.asarray(_batch), len(CROWDED_DIRECTIONS))
+    _order = np.tile(np.arange(len(CROWDED_DIRECTIONS)), len(_batch))
+    _RESCUE_BATCHES.append((np.asarray(DISTANCES)[_steps], _order,
+                            _directions(CROWDED_DIRECTIONS[_order])))
 #: where a label goes when every spot overlaps: straight below
 _BELOW = _directions(np.array([-90.0]))
 #: how far the gap kept between labels widens a box (x0, y0, x1, y1), touching counting
@@ -693,6 +731,30 @@ def drafted() -> Iterator[None]:
         _DRAFT.reset(token)
 
 
+#: set within :func:`near_only`: a crowded label does not look farther afield
+_NEAR_ONLY: ContextVar[bool] = ContextVar("planmethod_labels_near_only", default=False)
+
+
+@contextlib.contextmanager
+def near_only() -> Iterator[None]:
+    """Within it, :func:`place_labels` leaves a label at its cheapest spot even where a
+    reader sees it crowded, without looking farther afield for a clear one (see the module
+    docstring): for the many frames of a turn drawn without enlarged details, where the
+    time counts and a leader across an arrow is allowed.
+
+    >>> request = LabelRequest(("b",), (0.0, 0.0), label_runs("b"), 15.0)
+    >>> with near_only():
+    ...     placed = place_labels([request], [((-50, 0), (50, 0))], [])
+    >>> len(placed)
+    1
+    """
+    token = _NEAR_ONLY.set(True)
+    try:
+        yield
+    finally:
+        _NEAR_ONLY.reset(token)
+
+
 def _drafted_labels(requests: Sequence[LabelRequest]) -> tuple[PlacedLabel, ...]:
     """Each label at the first of its nearest spots clear of the labels placed before (the
     first spot where none is), no leader; an optional label with no clear spot left out.
@@ -830,8 +892,116 @@ def _place_near(request: LabelRequest, half: tuple[float, float], ascent: float,
         bottom = float(drawing.taken[:, 3].max()) if len(drawing.taken) else ay
         best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, *half)[0], math.inf, 0.0)
     far = best[2] > LEADER_DISTANCE
-    drawing.take(best[1], _leaders((ax, ay), best[1][None, :]) if far else None)
+    if not tidy and math.isfinite(best[0]) and not _NEAR_ONLY.get() and _troubling(
+            request.anchor, best[1], far, drawing):
+        rescued = _rescued(request, half, drawing)
+        if rescued is not None:          # a spot a reader sees clear, found farther afield
+            shifted, box, far = rescued
+            drawing.take(box, _leaders(shifted.anchor, box[None, :]) if far else None)
+            return _placed(shifted, box, ascent, far, tidy, named=request.anchor)
+    drawing.take(best[1], _leaders(request.anchor, best[1][None, :]) if far else None)
     return _placed(request, best[1], ascent, far, tidy)
+
+
+def _troubling(anchor: tuple[float, float], box: np.ndarray, leader: bool, drawing: _Drawing
+               ) -> bool:
+    """Whether a label in ``box`` is what a reader sees as crowded (as the figure check
+    counts it): a drawn line or leader more than a hair (:data:`TROUBLE_PX`) through its
+    text, or (with a ``leader`` from ``anchor``) its leader across a vector's arrow or another
+    leader away from its point, or through a label placed.
+
+    >>> drawing = _Drawing([((0, -20), (0, 20))], [], [((0, -20), (0, 20))], [], None, 1)
+    >>> _troubling((30.0, 0.0), np.array([-10.0, -5, 10, 5]), False, drawing)
+    True
+    >>> _troubling((-40.0, 0.0), np.array([-60.0, -5, -45, 5]), True, drawing)
+    False
+    """
+    lines = np.concatenate((drawing.segments, drawing.leaders))
+    inner = box + _INNER
+    if len(lines) and _clipped_lengths(lines, inner[None, :])[0] > TROUBLE_PX:
+        return True
+    if not leader:
+        return False
+    crossed = np.concatenate((drawing.arrows, drawing.leaders))
+    leader_line = _leaders(anchor, box[None, :])
+    return bool(_crossing(leader_line, crossed).any()) or bool(
+        len(drawing.taken) and _through(leader_line, drawing.taken)[0])
+
+
+def _along(request: LabelRequest) -> list[tuple[float, float]]:
+    """Where a label's leader may start: its anchor, and where it names a vector (its
+    ``span``), the places along it at :data:`RESCUE_ALONG` — the leader of a force's label
+    ends on its arrow anywhere.
+
+    >>> _along(LabelRequest(("F",), (6.0, 0.0), (), 15.0, span=((0.0, 0.0), (10.0, 0.0))))
+    [(6.0, 0.0), (5.0, 0.0), (7.5, 0.0), (3.0, 0.0), (2.0, 0.0), (8.5, 0.0), (1.0, 0.0), (4.0, 0.0)]
+    """
+    out = [request.anchor]
+    if request.span is not None:
+        (sx, sy), (ex, ey) = request.span
+        out += [(sx + t * (ex - sx), sy + t * (ey - sy)) for t in RESCUE_ALONG]
+    return list(dict.fromkeys(out))
+
+
+def _rescued(request: LabelRequest, half: tuple[float, float], drawing: _Drawing
+             ) -> tuple[LabelRequest, np.ndarray, bool] | None:
+    """A label whose cheapest spot a reader sees crowded (:func:`_troubling`) at the
+    cheapest spot that is not: among :data:`CROWDED_DIRECTIONS` at every distance, from its
+    anchor or another place along the vector it names (:func:`_along`, each px of the move
+    costing :data:`SHIFT_COST`), the nearer distances first (:data:`_RESCUE_BATCHES`: a
+    farther one only while it could still be cheaper). Returns the request with that anchor,
+    the box and whether it needs a leader; None where every such spot is crowded too."""
+    lines = np.concatenate((drawing.segments, drawing.leaders))
+    around = (lines, _bounds(lines), np.concatenate((drawing.arrows, drawing.leaders)))
+    anchors = np.asarray(_along(request), dtype=float)
+    moved = SHIFT_COST * np.hypot(*(anchors - anchors[0]).T)
+    found: tuple | None = None
+    for candidates in _RESCUE_BATCHES:
+        if found is not None and candidates[0][0] >= found[0]:
+            break                   # no spot of a farther batch can be cheaper
+        found = _rescue_batch(request, anchors, moved, half, candidates, around, drawing,
+                              found)
+    return None if found is None else found[1:]
+
+
+def _rescue_batch(request: LabelRequest, anchors: np.ndarray, moved: np.ndarray,
+                  half: tuple[float, float], candidates: tuple, around: tuple,
+                  drawing: _Drawing, found: tuple | None) -> tuple | None:
+    """The cheapest clear spot of :func:`_rescued` among ``candidates`` (distances, direction
+    numbers, directions) round each of the ``anchors`` (what moving there costs: ``moved``)
+    — (cost, request, box, leader) — where it is cheaper than the one ``found`` so far; else
+    ``found``. ``around`` are the lines no text may lie on, their bounds, and the lines no
+    leader may cross."""
+    distance, order, directions = candidates
+    lines, line_bounds, crossed = around
+    which = np.repeat(np.arange(len(anchors)), len(distance))     # each spot's anchor
+    boxes = np.concatenate([_boxes(anchor, directions, request.mark_radius + distance, *half)
+                            for anchor in anchors])
+    cost = np.tile(distance + 0.05 * order, len(anchors)) + moved[which]
+    leading = np.tile(distance > LEADER_DISTANCE, len(anchors))
+    spots = np.flatnonzero(cost < found[0]) if found is not None else np.arange(len(cost))
+    spots = spots[_clear(boxes[spots], drawing.taken)]
+    if len(lines) and len(spots):         # (the whole text: no hair of a line near it)
+        spots = spots[_clipped_lengths(lines, boxes[spots] + _TEXT,
+                                       bounds=line_bounds) <= CLEAR_PX]
+    far = spots[leading[spots]]
+    if len(far):           # no leader across an arrow, another leader or a label
+        ends = np.clip(anchors[which[far]], boxes[far, :2], boxes[far, 2:])
+        leaders = np.column_stack((anchors[which[far]], ends))
+        blocked = _crossing(leaders, crossed).any(axis=1)
+        if len(drawing.taken):
+            blocked |= _through(leaders, drawing.taken) > 0
+        spots = np.setdiff1d(spots, far[blocked])
+    for index in np.unique(which[spots]).tolist():
+        chosen = spots[which[spots] == index]
+        shifted = replace(request, anchor=tuple(anchors[index].tolist()))
+        table = _spot_costs(shifted, boxes[chosen], cost[chosen],
+                            np.zeros(len(chosen), bool), None, drawing)
+        best = int(np.argmin(table))
+        if math.isfinite(table[best]) and (found is None or table[best] < found[0]):
+            found = (float(table[best]), shifted, boxes[chosen[best]],
+                     bool(leading[chosen[best]]))
+    return found
 
 
 #: the cheapest spot found for a label: (its cost, its box, its distance, what a clean spot
@@ -980,15 +1150,17 @@ def _pick(table: np.ndarray, batch: tuple[int, ...], boxes: np.ndarray, clean: n
     return best, False
 
 
-def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool, clean: bool
-            ) -> PlacedLabel:
+def _placed(request: LabelRequest, box: np.ndarray, ascent: float, leader: bool, clean: bool,
+            named: tuple[float, float] | None = None) -> PlacedLabel:
     """The label of ``request`` placed in ``box`` (x0, y0, x1, y1, padding included): its
-    baseline starts inside the padding, ``ascent`` below the box's top edge."""
+    baseline starts inside the padding, ``ascent`` below the box's top edge; ``named`` is
+    the anchor asked for where the request's is another (a crowded label's, moved)."""
     corners = box.tolist()
     x0, y0 = corners[0], corners[1]
     return PlacedLabel(request.points, request.anchor, request.runs, request.size,
                        (round(x0 + PADDING, 2), round(y0 + PADDING + ascent, 2)),
-                       tuple([round(v, 2) for v in corners]), leader, request.css, clean)
+                       tuple([round(v, 2) for v in corners]), leader, request.css, clean,
+                       named if named != request.anchor else None)
 
 
 def _crowded_spot(request: LabelRequest, half: tuple[float, float], segments: np.ndarray,
