@@ -182,16 +182,43 @@ def _reaction_lines(forces: ForceAnalysis, notation: ForceNotation) -> list[str]
                             (message("Fx N"), ">", 16), (message("Fy N"), ">", 13),
                             (message("|R| N"), ">", 13), (message("couple N·m"), ">", 15)))
     lines = [line]
+    force_floor, couple_floor = _noise_floors(forces)
     for key, reaction in forces.reactions.items():
-        couple = "" if reaction.moment is None else number_text(float(reaction.moment),
-                                                                  f">{12 + extra[5]}.6g")
+        couple = "" if reaction.moment is None else number_text(
+            _beyond(float(reaction.moment), couple_floor), f">{12 + extra[5]}.6g")
+        fx, fy = (_beyond(float(value), force_floor) for value in np.ravel(reaction.force)[:2])
         lines.append(f"  {notation.plain(f'R_{key}', reaction.target):<{9 + extra[0]}} "
                      f"{notation.pair_name(key):<{10 + extra[1]}} "
-                     f"{number_text(float(reaction.force[0]), f'>{11 + extra[2]}.6g')} "
-                     f"{number_text(float(reaction.force[1]), f'>{11 + extra[3]}.6g')} "
+                     f"{number_text(fx, f'>{11 + extra[2]}.6g')} "
+                     f"{number_text(fy, f'>{11 + extra[3]}.6g')} "
                      f"{number_text(float(reaction.magnitude), f'>{11 + extra[4]}.6g')} "
                      f"{couple}".rstrip())
     return lines
+
+
+#: a reaction's component or couple smaller than this share of the table's largest reaction
+#: (times the extent of its pairs, for a couple) is the round-off of an exact zero
+NOISE_SHARE = 1e-12
+
+
+def _noise_floors(forces: ForceAnalysis) -> tuple[float, float]:
+    """The sizes (N, N·m) below which a reaction's component or couple is shown as 0: the
+    round-off of the sums that make it (a block whose couple is zero in exact arithmetic
+    prints −5.55e-17 N·m otherwise)."""
+    reactions = list(forces.reactions.values())
+    largest = max((float(reaction.magnitude) for reaction in reactions), default=0.0)
+    points = [np.ravel(reaction.point)[:2] for reaction in reactions]
+    extent = (float(np.max(np.ptp(np.array(points), axis=0))) if points else 0.0) or 1.0
+    return NOISE_SHARE * largest, NOISE_SHARE * largest * extent
+
+
+def _beyond(value: float, floor: float) -> float:
+    """``value``, or 0 where it is within ``floor`` of zero.
+
+    >>> _beyond(-5.55e-17, 1e-10), _beyond(0.25, 1e-10)
+    (0.0, 0.25)
+    """
+    return 0.0 if abs(value) <= floor else value
 
 
 def _moment_lines(forces: ForceAnalysis, omega: str) -> list[str]:
