@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -125,7 +126,6 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
         one (:func:`exact_drawing`), not drawn again.
     """
     from ..kinematics import solve
-    from ..plans import draw_plans
     from ..report import asked_quantities, exact_value
 
     mechanism = exercise.mechanism
@@ -134,34 +134,14 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
         motion = solve(mechanism, mechanism.drive.angle,
                        stage="acceleration" if acceleration else "velocity")
     settings = replace(exercise.plan, precision_mm=0.0)
-    recorder = _Recorder()
-    if exact_drawing(plans, exercise):
-        base = plans
-        for length, segment in plans.exact:
-            recorder(length, segment)
-    else:
-        base = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
-                          perturb=recorder)
+    base, recorder = _base_drawing(exercise, settings, motion, plans)
     if quantities is None:
         quantities = asked_quantities(exercise, motion)
     here = motion.at(0)
     values = {q: exact_value(here, q) for q in quantities}
     points = _plan_points(base)
-    count = len(recorder.segments)
-    sensitivity = {q: np.zeros(count) for q in quantities}
-    point_sensitivity = {plan: {label: np.zeros((count, 2)) for label in labels}
-                         for plan, labels in points.items()}
-    if count:   # copy i: segment i lengthened by δ; the same position, scales kept, no mechanism
-        drawn = draw_plans(exercise, settings=settings, motion=motion, acceleration=acceleration,
-                           perturb=_Recorder(DELTA_MM * np.eye(count)), scales=base.scales,
-                           position=False, recorder=DropSteps)
-        for q in quantities:
-            if q in base.readings and q in drawn.readings:
-                sensitivity[q][:] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
-        for plan, labels in _plan_points(drawn).items():
-            for label, xy in labels.items():
-                if label in point_sensitivity[plan]:
-                    point_sensitivity[plan][label][:] = (xy - points[plan][label]) / DELTA_MM
+    sensitivity, point_sensitivity = _sensitivities(exercise, settings, motion, base,
+                                                    len(recorder.segments), quantities, points)
     half = precision_mm / 2.0
     tolerances = {q: float(np.sum(np.abs(sensitivity[q]))) * half for q in quantities}
     radii = {plan: {label: float(np.sum(norm(s))) * half
@@ -174,6 +154,46 @@ def propagate(exercise: Exercise, precision_mm: float, *, quantities=None,
                 for plan, labels in points.items()},
         radii=radii, segments=tuple(recorder.segments), precision_mm=precision_mm, plans=base,
         lengths=tuple(float(length) for length in recorder.lengths))
+
+
+def _sensitivities(exercise: Exercise, settings, motion, base, count: int, quantities,
+                   points: Mapping[str, Mapping[str, np.ndarray]]) -> tuple[dict, dict]:
+    """Each quantity's and each plan point's change per mm of each of the ``count`` segments
+    of the exact drawing ``base``: one drawing in copies, copy i with segment i lengthened by
+    δ (the same position, the scales kept, no mechanism drawn)."""
+    from ..plans import draw_plans
+
+    sensitivity = {q: np.zeros(count) for q in quantities}
+    point_sensitivity = {plan: {label: np.zeros((count, 2)) for label in labels}
+                         for plan, labels in points.items()}
+    if not count:
+        return sensitivity, point_sensitivity
+    drawn = draw_plans(exercise, settings=settings, motion=motion,
+                       acceleration=exercise.ask.needs_acceleration,
+                       perturb=_Recorder(DELTA_MM * np.eye(count)), scales=base.scales,
+                       position=False, recorder=DropSteps)
+    for q in quantities:
+        if q in base.readings and q in drawn.readings:
+            sensitivity[q][:] = (drawn.readings[q] - base.readings[q]) / DELTA_MM
+    for plan, labels in _plan_points(drawn).items():
+        for label, xy in labels.items():
+            if label in point_sensitivity[plan]:
+                point_sensitivity[plan][label][:] = (xy - points[plan][label]) / DELTA_MM
+    return sensitivity, point_sensitivity
+
+
+def _base_drawing(exercise: Exercise, settings, motion, plans) -> tuple[Any, _Recorder]:
+    """The exact drawing the tolerances are found round, and the recorder of what it laid off
+    and read off: ``plans`` where they are it (:func:`exact_drawing`), else drawn now."""
+    from ..plans import draw_plans
+
+    recorder = _Recorder()
+    if exact_drawing(plans, exercise):
+        for length, segment in plans.exact:
+            recorder(length, segment)
+        return plans, recorder
+    return draw_plans(exercise, settings=settings, motion=motion,
+                      acceleration=exercise.ask.needs_acceleration, perturb=recorder), recorder
 
 
 def exact_drawing(plans, exercise: Exercise) -> bool:
