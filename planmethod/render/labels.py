@@ -26,8 +26,9 @@ are placed in a fixed order, so the result is deterministic. A label pushed far 
 point gets a thin leader. Where the cheapest spot is one a reader sees crowded — a line
 through its text, its leader across an arrow, another leader or a label — the label takes the
 cheapest spot that is not, among twice the directions, its leader starting anywhere along the
-force or the arm it names (its ``span``), if there is one — but not within :func:`near_only`
-(the frames of a turn drawn without enlarged details, where the time counts).
+force, the arm or the curved arrow it names (its ``span``), if there is one — but not within
+:func:`near_only` (the frames of a turn drawn without enlarged details, where the time
+counts).
 
 Examples
 --------
@@ -146,9 +147,9 @@ _TEXT = np.array([PADDING, PADDING, -PADDING, -PADDING])
 #: the length (px) of lines in that text such a spot may have: a margin under
 #: :data:`TROUBLE_PX` for the fonts' metrics, which the figure check reads otherwise
 CLEAR_PX = 0.5
-#: the places along the vector a label names (fractions of it) that its leader may start
-#: from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none on the
-#: last 15 % (an arrow's head)
+#: the places along the vector a label names (fractions of its length) that its leader may
+#: start from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none
+#: on the last 15 % (an arrow's head)
 RESCUE_ALONG = (0.5, 0.75, 0.3, 0.2, 0.85, 0.1, 0.6, 0.4)
 #: what a px of a rescued label's leader start moved along its vector costs (px of distance)
 SHIFT_COST = 0.5
@@ -241,9 +242,10 @@ class LabelRequest:
     mark_radius: float = 3.0
     css: str = "label"
     #: the vector a label names, (start, end) px, where it names one (or the dimension line
-    #: of an arm's h): an enlarged detail that shows part of a vector anchors the label on
-    #: that part, and a crowded label's leader may start anywhere along it
-    span: tuple[tuple[float, float], tuple[float, float]] | None = None
+    #: of an arm's h; a curved arrow's arc as a polyline of more points): an enlarged detail
+    #: that shows part of it anchors the label on that part, and a crowded label's leader
+    #: may start anywhere along it
+    span: tuple[tuple[float, float], ...] | None = None
     #: the side (a page direction) a label prefers, among spots as clean and as near: a
     #: dimension's label above its line
     lean: tuple[float, float] | None = None
@@ -929,18 +931,35 @@ def _troubling(anchor: tuple[float, float], box: np.ndarray, leader: bool, drawi
 
 
 def _along(request: LabelRequest) -> list[tuple[float, float]]:
-    """Where a label's leader may start: its anchor, and where it names a vector (its
-    ``span``), the places along it at :data:`RESCUE_ALONG` — the leader of a force's label
-    ends on its arrow anywhere.
+    """Where a label's leader may start: its anchor, and where it names a vector or a curved
+    arrow (its ``span``), the places along it at :data:`RESCUE_ALONG` — the leader of a
+    force's or a moment's label ends on its arrow anywhere.
 
     >>> _along(LabelRequest(("F",), (6.0, 0.0), (), 15.0, span=((0.0, 0.0), (10.0, 0.0))))
     [(6.0, 0.0), (5.0, 0.0), (7.5, 0.0), (3.0, 0.0), (2.0, 0.0), (8.5, 0.0), (1.0, 0.0), (4.0, 0.0)]
     """
     out = [request.anchor]
     if request.span is not None:
-        (sx, sy), (ex, ey) = request.span
-        out += [(sx + t * (ex - sx), sy + t * (ey - sy)) for t in RESCUE_ALONG]
+        out += [point_along(request.span, fraction) for fraction in RESCUE_ALONG]
     return list(dict.fromkeys(out))
+
+
+def point_along(path: Sequence[tuple[float, float]], fraction: float) -> tuple[float, float]:
+    """The point ``fraction`` of the way along the polyline ``path`` (of its length; a
+    curved arrow's arc, or a straight vector's start and end).
+
+    >>> point_along(((0.0, 0.0), (10.0, 0.0)), 0.25)
+    (2.5, 0.0)
+    >>> point_along(((0.0, 0.0), (10.0, 0.0), (10.0, 10.0)), 0.75)
+    (10.0, 5.0)
+    """
+    if len(path) == 2:
+        (sx, sy), (ex, ey) = path
+        return (sx + fraction * (ex - sx), sy + fraction * (ey - sy))
+    points = np.asarray(path, dtype=float)
+    reached = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
+    x, y = (np.interp(fraction * reached[-1], reached, points[:, axis]) for axis in (0, 1))
+    return (float(x), float(y))
 
 
 def _rescued(request: LabelRequest, half: tuple[float, float], drawing: _Drawing
