@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -22,6 +23,7 @@ from planmethod.render.svg import (
     plan_svg,
     position_drawing,
     position_svg,
+    turning_arrow,
 )
 from planmethod.spec import exercise_from_dict, load_exercise
 
@@ -524,6 +526,43 @@ def test_labels_that_find_no_free_spot_go_below_all_others():
         ax0, ay0, ax1, ay1 = first.box
         bx0, by0, bx1, by1 = second.box
         assert ax1 <= bx0 or bx1 <= ax0 or ay1 <= by0 or by1 <= ay0, (first.text, second.text)
+
+
+def _curved_arrow_in_a_grid(along_its_arc: bool):
+    """A moment's curved arrow (radius 100 px round the origin) whose label's point, the
+    middle of its arc, is the middle of a grid of ten arrows 16 px apart: every spot near it
+    is on a line, every leader from it crosses an arrow. ``along_its_arc``: the label names
+    its arc (as :func:`turning_arrow` asks), else only its point."""
+    from planmethod.render.canvas import Canvas
+    from planmethod.render.labels import RunKind
+
+    figure = Canvas()
+    turning_arrow(figure, (0.0, 0.0), 100.0, 0.0, 1.0, "#000000", "M", (("M", RunKind.MAIN),))
+    if not along_its_arc:
+        figure.requests[-1] = dataclasses.replace(figure.requests[-1], span=None)
+    x, y = figure.requests[-1].anchor
+    for step in (-32.0, -16.0, 0.0, 16.0, 32.0):
+        for start, end in (((x - 32, y + step), (x + 32, y + step)),
+                           ((x + step, y - 32), (x + step, y + 32))):
+            figure.arrow(np.array(start), np.array(end), "relative", layer="results",
+                         color="#000000", css="load")
+    figure.place()
+    return figure, (x, y)
+
+
+def test_a_crowded_moment_label_leads_from_elsewhere_on_its_arc():
+    """A curved arrow's label whose every spot round the arc's middle is crowded takes a
+    clear spot with its leader from another place on its arc (it names the arc), where from
+    the middle alone its leader would cross an arrow."""
+    from planmethod.testing.figures import figure_problems
+
+    alone, _ = _curved_arrow_in_a_grid(False)
+    assert "the leader of 'M' crosses an arrow" in " ".join(figure_problems(alone.svg("").svg))
+    figure, middle = _curved_arrow_in_a_grid(True)
+    assert figure_problems(figure.svg("").svg) == []
+    label = figure.labels[0]
+    assert label.requested == middle and label.anchor != middle
+    assert math.hypot(*label.anchor) == pytest.approx(100.0, abs=0.5)   # on the arc
 
 
 def test_a_keys_blank_sheet_whole():

@@ -529,13 +529,15 @@ class Canvas:
 
     def request(self, points: tuple[str, ...], anchor: Point, runs: tuple[Run, ...], *,
                 size: float = LABEL_SIZE, mark: float = 3.0, css: str = "label",
-                span: tuple[Point, Point] | None = None, lean: Point | None = None) -> None:
+                span: Sequence[Point] | None = None, lean: Point | None = None) -> None:
         """A label to place at ``anchor``; ``span`` is the vector (start, end) it names, if
-        it names one (an enlarged detail anchors it on the part it shows); ``lean`` the side
-        (a unit page direction) it prefers among equally clean spots."""
+        it names one, or the points of a curved arrow's arc (an enlarged detail anchors it on
+        the part it shows; a crowded label's leader may start anywhere along it); ``lean``
+        the side (a unit page direction) it prefers among equally clean spots."""
         self.requests.append(LabelRequest(points, (float(anchor[0]), float(anchor[1])), runs,
                                           size, mark, css,
-                                          (_pair(span[0]), _pair(span[1])) if span else None,
+                                          tuple(_pair(point) for point in span) if span
+                                          else None,
                                           _pair(lean) if lean is not None else None))
 
     # labels

@@ -41,7 +41,7 @@ import numpy as np
 from ..vectors import cross, inside_span, norm
 from ..words import Message, message, number_text, template
 from .canvas import MARGIN, Canvas, Point, page_point, shown_text
-from .labels import PADDING, RunKind, drawn_length, near_only
+from .labels import PADDING, RunKind, drawn_length, near_only, point_along
 from .style import CLEARANCE_PX, INK, READABLE_PX, SANS_BOLD, TEXT_SIZE, text_width
 
 __all__ = ["DENSE_PX", "DEPTH", "DETAIL_SIZE", "DETAIL_ZOOM", "FROM_POLE", "ON_THE_DRAWING",
@@ -495,6 +495,8 @@ def _anchored(request, box):
     ax, ay = request.anchor
     if request.span is None:
         return request
+    if len(request.span) > 2:
+        return _anchored_on_arc(request, box)
     (sx, sy), (ex, ey) = request.span
     dx, dy = ex - sx, ey - sy
     span = inside_span(request.span[0], request.span[1], box)
@@ -508,6 +510,68 @@ def _anchored(request, box):
         return request                     # too little of it to name, or an arm's h
     middle = 0.5 * (low + high)
     return replace(request, anchor=(sx + middle * dx, sy + middle * dy), span=shown)
+
+
+def _anchored_on_arc(request, box):
+    """:func:`_anchored` for a label of a curved arrow (its span a polyline, the arc): naming
+    the piece of the arc inside ``box`` that holds its anchor, or where its anchor lies
+    outside, anchored on the middle of the longest piece shown (if 8 px of it are).
+
+    >>> from planmethod.render.labels import LabelRequest
+    >>> arc = ((-20.0, 0.0), (0.0, 0.0), (0.0, 20.0))
+    >>> moved = _anchored_on_arc(LabelRequest(("M",), (-20.0, 0.0), (), 15.0, span=arc),
+    ...                          (-5.0, -5.0, 5.0, 30.0))
+    >>> moved.anchor, moved.span
+    ((0.0, 7.5), ((-5.0, 0.0), (0.0, 0.0), (0.0, 20.0)))
+    """
+    pieces = _shown_pieces(request.span, box)
+    if not pieces:
+        return request                     # not shown
+    x0, y0, x1, y1 = box
+    ax, ay = request.anchor
+    if x0 <= ax <= x1 and y0 <= ay <= y1:
+        holding = min(pieces, key=lambda piece: min(math.hypot(x - ax, y - ay)
+                                                     for x, y in piece))
+        return replace(request, span=holding)
+    longest = max(pieces, key=_path_length)
+    if _path_length(longest) < 8.0:
+        return request                     # too little of it to name
+    return replace(request, anchor=point_along(longest, 0.5), span=longest)
+
+
+def _path_length(path: Sequence[tuple[float, float]]) -> float:
+    """The length of a polyline."""
+    return sum(math.dist(start, end) for start, end in itertools.pairwise(path))
+
+
+def _shown_pieces(path: Sequence[tuple[float, float]], box: Sequence[float]
+                  ) -> list[tuple[tuple[float, float], ...]]:
+    """The pieces of the polyline ``path`` inside ``box`` (x0, y0, x1, y1), each a polyline.
+
+    >>> _shown_pieces(((-10.0, 0.0), (10.0, 0.0), (10.0, 5.0), (-10.0, 5.0)),
+    ...               (0.0, -1.0, 5.0, 6.0))
+    [((0.0, 0.0), (5.0, 0.0)), ((5.0, 5.0), (0.0, 5.0))]
+    """
+    pieces: list[tuple[tuple[float, float], ...]] = []
+    current: list[tuple[float, float]] = []
+    for (sx, sy), (ex, ey) in itertools.pairwise(path):
+        inside = inside_span((sx, sy), (ex, ey), box)
+        if inside is None:
+            low, high = 1.0, 0.0                   # (none of it: the piece ends)
+        else:
+            low, high = inside
+            first = (sx + low * (ex - sx), sy + low * (ey - sy))
+            if not current or low > 0.0:           # a new piece begins here
+                if current:
+                    pieces.append(tuple(current))
+                current = [first]
+            current.append((sx + high * (ex - sx), sy + high * (ey - sy)))
+        if high < 1.0 and current:
+            pieces.append(tuple(current))
+            current = []
+    if current:
+        pieces.append(tuple(current))
+    return pieces
 
 
 @dataclass(frozen=True)

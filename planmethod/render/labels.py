@@ -24,10 +24,11 @@ as the square of its area). The first three distances need no leader, so what th
 cost before the labels placed come in is costed for all labels together, up front. Labels
 are placed in a fixed order, so the result is deterministic. A label pushed far from its
 point gets a thin leader. Where the cheapest spot is one a reader sees crowded — a line
-through its text, its leader across an arrow, another leader or a label — the label takes the
-cheapest spot that is not, among twice the directions, its leader starting anywhere along the
-force or the arm it names (its ``span``), if there is one — but not within :func:`near_only`
-(the frames of a turn drawn without enlarged details, where the time counts).
+through its text, its leader across an arrow (or by a hair past an arrow's end), another
+leader or a label — the label takes the cheapest spot that is not, among twice the
+directions, its leader starting anywhere along the force, the arm or the curved arrow it names
+(its ``span``), if there is one — but not within :func:`near_only` (the frames of a turn drawn
+without enlarged details, where the time counts).
 
 Examples
 --------
@@ -146,12 +147,16 @@ _TEXT = np.array([PADDING, PADDING, -PADDING, -PADDING])
 #: the length (px) of lines in that text such a spot may have: a margin under
 #: :data:`TROUBLE_PX` for the fonts' metrics, which the figure check reads otherwise
 CLEAR_PX = 0.5
-#: the places along the vector a label names (fractions of it) that its leader may start
-#: from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none on the
-#: last 15 % (an arrow's head)
+#: the places along the vector a label names (fractions of its length) that its leader may
+#: start from where its cheapest spot is crowded (:func:`_rescued`): its middle first, none
+#: on the last 15 % (an arrow's head)
 RESCUE_ALONG = (0.5, 0.75, 0.3, 0.2, 0.85, 0.1, 0.6, 0.4)
 #: what a px of a rescued label's leader start moved along its vector costs (px of distance)
 SHIFT_COST = 0.5
+#: how far (px) past its ends an arrow's piece counts as crossed where a crowded label's
+#: leader is looked at: the figure is written to 0.01 px, where a leader that passes a
+#: head's corner by a hair may touch it
+GRAZE_PX = 0.05
 #: the directions tried for a crowded label on a leader: those of every label, then the
 #: ones halfway between them
 CROWDED_DIRECTIONS = np.concatenate((DIRECTIONS, np.asarray(DIRECTIONS[8:]) + 11.25,
@@ -241,9 +246,10 @@ class LabelRequest:
     mark_radius: float = 3.0
     css: str = "label"
     #: the vector a label names, (start, end) px, where it names one (or the dimension line
-    #: of an arm's h): an enlarged detail that shows part of a vector anchors the label on
-    #: that part, and a crowded label's leader may start anywhere along it
-    span: tuple[tuple[float, float], tuple[float, float]] | None = None
+    #: of an arm's h; a curved arrow's arc as a polyline of more points): an enlarged detail
+    #: that shows part of it anchors the label on that part, and a crowded label's leader
+    #: may start anywhere along it
+    span: tuple[tuple[float, float], ...] | None = None
     #: the side (a page direction) a label prefers, among spots as clean and as near: a
     #: dimension's label above its line
     lean: tuple[float, float] | None = None
@@ -348,6 +354,17 @@ def _segments(lines: Sequence[Sequence[tuple[float, float]]]) -> np.ndarray:
     if not pieces:
         return np.empty((0, 4))
     return np.array(sorted(pieces), dtype=float)
+
+
+def _lengthened(segments: np.ndarray, by: float) -> np.ndarray:
+    """The segments (x0, y0, x1, y1) each ``by`` px longer at both ends.
+
+    >>> _lengthened(np.array([[0.0, 0.0, 4.0, 0.0]]), 0.5).tolist()
+    [[-0.5, 0.0, 4.5, 0.0]]
+    """
+    along = segments[:, 2:] - segments[:, :2]
+    along = by * along / np.maximum(np.hypot(*along.T), 1e-12)[:, None]
+    return np.concatenate((segments[:, :2] - along, segments[:, 2:] + along), axis=1)
 
 
 def _bounds(items: np.ndarray) -> np.ndarray:
@@ -668,6 +685,8 @@ class _Drawing:
         self.segment_bounds = _bounds(self.segments)
         self.arrows = _segments(vectors)
         self.arrow_bounds = _bounds(self.arrows)
+        #: the arrows' pieces a crowded label's leader keeps off (:func:`_troubling`)
+        self.grazed = _lengthened(self.arrows, GRAZE_PX)
         self.rectangles = np.asarray(areas, dtype=float).reshape(-1, 4)
         self.rectangle_bounds = _bounds(self.rectangles)
         self.marks = np.asarray(marks, dtype=float).reshape(-1, 4)
@@ -892,7 +911,8 @@ def _place_near(request: LabelRequest, half: tuple[float, float], ascent: float,
         bottom = float(drawing.taken[:, 3].max()) if len(drawing.taken) else ay
         best = (math.inf, _boxes((ax, bottom + 4), _BELOW, 0.0, *half)[0], math.inf, 0.0)
     far = best[2] > LEADER_DISTANCE
-    if not tidy and math.isfinite(best[0]) and not _NEAR_ONLY.get() and _troubling(
+    # (a spot costed clean may be on a leader that grazes an arrow: looked at too)
+    if (not tidy or far) and math.isfinite(best[0]) and not _NEAR_ONLY.get() and _troubling(
             request.anchor, best[1], far, drawing):
         rescued = _rescued(request, half, drawing)
         if rescued is not None:          # a spot a reader sees clear, found farther afield
@@ -907,8 +927,9 @@ def _troubling(anchor: tuple[float, float], box: np.ndarray, leader: bool, drawi
                ) -> bool:
     """Whether a label in ``box`` is what a reader sees as crowded (as the figure check
     counts it): a drawn line or leader more than a hair (:data:`TROUBLE_PX`) through its
-    text, or (with a ``leader`` from ``anchor``) its leader across a vector's arrow or another
-    leader away from its point, or through a label placed.
+    text, or (with a ``leader`` from ``anchor``) its leader across a vector's arrow (or by a
+    hair past a piece's end, :data:`GRAZE_PX`) or another leader away from its point, or
+    through a label placed.
 
     >>> drawing = _Drawing([((0, -20), (0, 20))], [], [((0, -20), (0, 20))], [], None, 1)
     >>> _troubling((30.0, 0.0), np.array([-10.0, -5, 10, 5]), False, drawing)
@@ -922,25 +943,42 @@ def _troubling(anchor: tuple[float, float], box: np.ndarray, leader: bool, drawi
         return True
     if not leader:
         return False
-    crossed = np.concatenate((drawing.arrows, drawing.leaders))
+    crossed = np.concatenate((drawing.grazed, drawing.leaders))
     leader_line = _leaders(anchor, box[None, :])
     return bool(_crossing(leader_line, crossed).any()) or bool(
         len(drawing.taken) and _through(leader_line, drawing.taken)[0])
 
 
 def _along(request: LabelRequest) -> list[tuple[float, float]]:
-    """Where a label's leader may start: its anchor, and where it names a vector (its
-    ``span``), the places along it at :data:`RESCUE_ALONG` — the leader of a force's label
-    ends on its arrow anywhere.
+    """Where a label's leader may start: its anchor, and where it names a vector or a curved
+    arrow (its ``span``), the places along it at :data:`RESCUE_ALONG` — the leader of a
+    force's or a moment's label ends on its arrow anywhere.
 
     >>> _along(LabelRequest(("F",), (6.0, 0.0), (), 15.0, span=((0.0, 0.0), (10.0, 0.0))))
     [(6.0, 0.0), (5.0, 0.0), (7.5, 0.0), (3.0, 0.0), (2.0, 0.0), (8.5, 0.0), (1.0, 0.0), (4.0, 0.0)]
     """
     out = [request.anchor]
     if request.span is not None:
-        (sx, sy), (ex, ey) = request.span
-        out += [(sx + t * (ex - sx), sy + t * (ey - sy)) for t in RESCUE_ALONG]
+        out += [point_along(request.span, fraction) for fraction in RESCUE_ALONG]
     return list(dict.fromkeys(out))
+
+
+def point_along(path: Sequence[tuple[float, float]], fraction: float) -> tuple[float, float]:
+    """The point ``fraction`` of the way along the polyline ``path`` (of its length; a
+    curved arrow's arc, or a straight vector's start and end).
+
+    >>> point_along(((0.0, 0.0), (10.0, 0.0)), 0.25)
+    (2.5, 0.0)
+    >>> point_along(((0.0, 0.0), (10.0, 0.0), (10.0, 10.0)), 0.75)
+    (10.0, 5.0)
+    """
+    if len(path) == 2:
+        (sx, sy), (ex, ey) = path
+        return (sx + fraction * (ex - sx), sy + fraction * (ey - sy))
+    points = np.asarray(path, dtype=float)
+    reached = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
+    x, y = (np.interp(fraction * reached[-1], reached, points[:, axis]) for axis in (0, 1))
+    return (float(x), float(y))
 
 
 def _rescued(request: LabelRequest, half: tuple[float, float], drawing: _Drawing
@@ -952,7 +990,7 @@ def _rescued(request: LabelRequest, half: tuple[float, float], drawing: _Drawing
     farther one only while it could still be cheaper). Returns the request with that anchor,
     the box and whether it needs a leader; None where every such spot is crowded too."""
     lines = np.concatenate((drawing.segments, drawing.leaders))
-    around = (lines, _bounds(lines), np.concatenate((drawing.arrows, drawing.leaders)))
+    around = (lines, _bounds(lines), np.concatenate((drawing.grazed, drawing.leaders)))
     anchors = np.asarray(_along(request), dtype=float)
     moved = SHIFT_COST * np.hypot(*(anchors - anchors[0]).T)
     found: tuple | None = None

@@ -818,7 +818,8 @@ def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
                   runs: tuple, *, css: str = "omega", sweep_deg: float = 70.0) -> None:
     """A curved arrow round ``centre_mm`` (an angular velocity, a moment): ``radius_px`` on the
     page, from ``start_rad`` (counter-clockwise from +x) through ``sweep_deg`` in the
-    ``sense`` (+1 counter-clockwise), labelled ``runs`` at its middle."""
+    ``sense`` (+1 counter-clockwise), labelled ``runs`` at its middle (a crowded label's
+    leader may start anywhere on its arc before the head: the label's span)."""
     radius = radius_px / figure.zoom
     count = 21
     angles = [start_rad + sense * math.radians(22 + sweep_deg * k / (count - 1))
@@ -827,10 +828,11 @@ def turning_arrow(figure: Canvas, centre_mm: Sequence[float], radius_px: float,
            for a in angles]
     tip = arc[-1]
     direction = unit_or_zero(tip - arc[-2])
-    figure.polyline([*arc[:-1], tip - 7.0 * direction], color=color, width=1.4,
-                    layer="marks", css=f"arrow {css}", vector=True)
+    shaft = [*arc[:-1], tip - 7.0 * direction]
+    figure.polyline(shaft, color=color, width=1.4, layer="marks", css=f"arrow {css}",
+                    vector=True)
     arrowhead(figure, tip, direction, 10.0, color, "marks", css=f"arrow {css}")
-    figure.request((key,), arc[len(arc) // 2], runs, mark=1.0)
+    figure.request((key,), arc[len(arc) // 2], runs, mark=1.0, span=shaft)
 
 
 def crank_number(position: PositionPlan) -> int:
