@@ -112,12 +112,12 @@ def sweep(exercise, request: SweepRequest) -> SweepResult:
         extra = force_columns(exercise)
     turn = {"step": request.step, "start": request.start, "stop": request.stop,
             "extra": extra}
-    # a plot needs every column at once; otherwise the sweep streams chunk by chunk
-    with limits_noted():
-        table = sweep_table(exercise, **turn) if request.plot else None
-    chunks = [table] if table is not None else sweep_chunks(exercise, **turn)
     extremes = Extremes()
-    with limits_noted(), output_set() as outputs:   # the plot and the CSV together, or neither
+    # a limit met on the way is noted (--from, --to); the plot and the CSV together, or neither
+    with limits_noted(), output_set() as outputs:
+        # a plot needs every column at once; otherwise the sweep streams chunk by chunk
+        table = sweep_table(exercise, **turn) if request.plot else None
+        chunks = [table] if table is not None else sweep_chunks(exercise, **turn)
         if request.plot:
             with outputs.writing(request.plot) as temporary:
                 _save_plot(exercise, table, temporary, forces=request.forces)
