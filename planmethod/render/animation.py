@@ -37,6 +37,7 @@ from ..words import message, render
 from .canvas import Canvas, SvgFigure
 from .plan_words import label_text
 from .style import num
+from .svg import SAME_POINT_MM, coincident_groups
 
 __all__ = ["animated_svg", "frame_svg", "raster_frames", "rendered_frames", "save_gif",
            "save_mp4"]
@@ -170,15 +171,8 @@ _LINK, _INK, _GUIDE, _HELPER = "#1f5fbf", "#000000", "#777777", "#7b3fa0"
 def _joined(where: dict[str, tuple[float, float]], text) -> list[tuple[str, tuple[float, float]]]:
     """Each place of ``where`` once, with the names of the points there joined by ≡ (a
     course writes O₂ ≡ E and p ≡ a ≡ d₀), ``text`` naming each point."""
-    places: list[tuple[tuple[float, float], list[str]]] = []
-    for name, (x, y) in where.items():
-        for (px, py), names in places:
-            if abs(px - x) + abs(py - y) < 1e-6:
-                names.append(name)
-                break
-        else:
-            places.append(((x, y), [name]))
-    return [(" ≡ ".join(text(name) for name in names), xy) for xy, names in places]
+    return [(" ≡ ".join(text(name) for name in names), where[names[0]])
+            for names in coincident_groups(where, where, SAME_POINT_MM)]
 
 
 def _draw_mechanism(ax, position) -> None:

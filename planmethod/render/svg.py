@@ -116,7 +116,9 @@ if TYPE_CHECKING:
     from ..plans import Plan, Plans, PositionPlan, Step
 
 __all__ = [
+    "SAME_POINT_MM",
     "SvgFigure",
+    "coincident_groups",
     "crank_number",
     "frame",
     "legend_column",
@@ -148,7 +150,8 @@ def _distances(points: Sequence[Point]) -> np.ndarray:
     return norm(xy[:, None, :] - xy[None, :, :])
 
 
-def _clusters(names, where: Mapping[str, Point], tolerance: float) -> list[list[str]]:
+def coincident_groups(names, where: Mapping[str, Point], tolerance: float
+                      ) -> list[list[str]]:
     """Names grouped by coincidence on the page (within ``tolerance`` px of a group's
     first member), in the order of their first members."""
     names = list(names)
@@ -315,9 +318,9 @@ class _PlanPage:
         first = {label: (0 if label == self.pole else 1, order[label]) for label in order}
         shown = [label for label in self.points_mm if label not in self.hidden]
         exact = SAME_POINT_MM * self.figure.zoom
-        for spot in _clusters(shown, self.where, max(one_spot(self.where), exact)):
+        for spot in coincident_groups(shown, self.where, max(one_spot(self.where), exact)):
             groups = [sorted(members, key=first.get)
-                      for members in _clusters(spot, self.where, exact)]
+                      for members in coincident_groups(spot, self.where, exact)]
             groups.sort(key=lambda members: first[members[0]])
             members = [label for members in groups for label in members]
             centre = self.where[members[0]]
@@ -745,7 +748,7 @@ class _MechanismPage:
                 for corner in ((4.0, 4.0), (4.0, -4.0)):
                     figure.line(at - corner, at + corner, color=ink, width=1.0,
                                 layer="points", obstacle=False)
-        for members in _clusters(self.position.points_mm, self.where,
+        for members in coincident_groups(self.position.points_mm, self.where,
                                  SAME_POINT_MM * figure.zoom):
             figure.request(tuple(members), self.where[members[0]],
                            merge_runs(label_runs(name) for name in members), mark=4.5,
